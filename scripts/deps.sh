@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages penink builds, runs and tests with (idempotent: skips apt
+# when every package is already installed). Used by scripts/demo.sh and scripts/test.sh.
+set -euo pipefail
+pkgs=(
+  cmake g++ make pkg-config            # build
+  libosmesa6-dev libgl-dev libegl-dev  # headless OpenGL 4.5 core (OSMesa), EGL for GPUs
+  libglm-dev                           # vector maths
+  libgdal-dev                          # DEM input (GeoTIFF, ASCII grid, ...)
+  libgeographiclib-dev                 # geographic -> UTM
+  libcgal-dev                          # mesh I/O
+  libopenimageio-dev                   # PNG output
+  libcli11-dev libtoml11-dev nlohmann-json3-dev  # CLI, scene/style files
+  libgtest-dev libbenchmark-dev        # tests, benchmarks
+  librsvg2-bin ghostscript poppler-utils         # output checks in tests
+)
+missing=()
+for p in "${pkgs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "penink: installing ${missing[*]}"
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi

@@ -1,0 +1,88 @@
+#include "core/camera.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace penink {
+
+namespace {
+constexpr double deg = 3.14159265358979323846 / 180.0;
+}
+
+glm::dvec3 direction_from_angles(double azimuth_deg, double altitude_deg) {
+    const double a = azimuth_deg * deg, h = altitude_deg * deg;
+    return {std::sin(a) * std::cos(h), std::cos(a) * std::cos(h), std::sin(h)};
+}
+
+glm::dvec3 light_vector(const Light& light) { return direction_from_angles(light.azimuth, light.altitude); }
+
+glm::dmat4 view_matrix(const Camera& cam) {
+    const glm::dvec3 d = direction_from_angles(cam.azimuth, cam.altitude);
+    // Straight up/down views keep "up" as the azimuth direction on the ground.
+    glm::dvec3 up(0, 0, 1);
+    if (std::abs(d.z) > 0.999) up = direction_from_angles(cam.azimuth, 0.0) * (d.z < 0 ? 1.0 : -1.0);
+    return glm::lookAt(cam.eye, cam.eye + d, up);
+}
+
+glm::dmat4 projection_matrix(const Camera& cam) {
+    const double aspect = double(cam.width) / double(cam.height);
+    const double fovy = 2.0 * std::atan(std::tan(cam.fov * deg / 2.0) / aspect);
+    return glm::perspective(fovy, aspect, cam.near_plane, cam.far_plane);
+}
+
+glm::dmat4 view_projection(const Camera& cam) { return projection_matrix(cam) * view_matrix(cam); }
+
+bool project_to_pixel(const Camera& cam, const glm::dvec3& world, glm::dvec2& pixel, double& depth) {
+    const glm::dvec4 e = view_matrix(cam) * glm::dvec4(world, 1.0);
+    if (e.z >= 0.0) return false;
+    const glm::dvec4 c = projection_matrix(cam) * e;
+    pixel = {(c.x / c.w * 0.5 + 0.5) * cam.width, (0.5 - c.y / c.w * 0.5) * cam.height};
+    depth = glm::length(glm::dvec3(e));
+    return true;
+}
+
+Camera frame_box(const glm::dvec3& lo, const glm::dvec3& hi, double azimuth, double altitude,
+                 double fov, int width, int height, double fill) {
+    Camera cam;
+    cam.azimuth = azimuth, cam.altitude = altitude, cam.fov = fov;
+    cam.width = width, cam.height = height;
+    const glm::dvec3 centre = (lo + hi) * 0.5, d = direction_from_angles(azimuth, altitude);
+    // Start far enough to see the bounding sphere, then scale distance so the projected
+    // horizontal extent of the box corners is `fill` of the image width.
+    const double radius = glm::length(hi - lo) * 0.5;
+    double dist = radius / std::sin(fov * deg / 2.0);
+    for (int it = 0; it < 3; ++it) {
+        cam.eye = centre - d * dist;
+        fit_depth_range(cam, lo, hi);
+        const glm::dmat4 v = view_matrix(cam);
+        double xmax = 0.0;
+        for (int i = 0; i < 8; ++i) {
+            const glm::dvec3 p(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
+            const glm::dvec4 e = v * glm::dvec4(p, 1.0);
+            xmax = std::max(xmax, std::abs(e.x) / std::max(-e.z, 1e-9));
+        }
+        const double want = std::tan(fov * deg / 2.0) * fill;
+        // Distance to the nearest box point stays roughly fixed; scale the centre distance.
+        dist *= xmax / want;
+        dist = std::max(dist, radius * 1.05);
+    }
+    cam.eye = centre - d * dist;
+    fit_depth_range(cam, lo, hi);
+    return cam;
+}
+
+void fit_depth_range(Camera& cam, const glm::dvec3& lo, const glm::dvec3& hi) {
+    const glm::dmat4 v = view_matrix(cam);
+    double zmin = 1e300, zmax = 0.0;
+    for (int i = 0; i < 8; ++i) {
+        const glm::dvec3 p(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
+        const double z = -(v * glm::dvec4(p, 1.0)).z;
+        zmin = std::min(zmin, z), zmax = std::max(zmax, z);
+    }
+    cam.far_plane = std::max(zmax * 1.01, 1.0);
+    cam.near_plane = std::max({zmin * 0.5, cam.far_plane * 1e-4, 1e-3});
+}
+
+}  // namespace penink

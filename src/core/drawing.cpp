@@ -1,0 +1,22 @@
+#include "core/drawing.hpp"
+
+namespace penink {
+
+std::string_view layer_name(LayerKind kind) {
+    switch (kind) {
+        case LayerKind::surface: return "surface";
+        case LayerKind::ridges: return "ridges";
+        case LayerKind::creases: return "creases";
+        case LayerKind::pels: return "pels";
+        case LayerKind::textures: return "textures";
+        case LayerKind::feature_edges: return "feature-edges";
+        case LayerKind::silhouettes: return "silhouettes";
+    }
+    return "unknown";
+}
+
+Drawing::Drawing() {
+    for (size_t i = 0; i < layers.size(); ++i) layers[i].kind = all_layers[i];
+}
+
+}  // namespace penink

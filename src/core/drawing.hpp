@@ -1,0 +1,51 @@
+// The drawing handed from the lines stage to export: strokes (polylines in image pixels,
+// origin top-left, y down, with per-point eye distance in metres / world units) grouped in
+// the seven named layers of conventions.md, bottom to top, plus the surface mask polygons.
+#pragma once
+#include <array>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+namespace penink {
+
+enum class LayerKind { surface, ridges, creases, pels, textures, feature_edges, silhouettes };
+
+inline constexpr std::array<LayerKind, 7> all_layers = {
+    LayerKind::surface, LayerKind::ridges, LayerKind::creases, LayerKind::pels,
+    LayerKind::textures, LayerKind::feature_edges, LayerKind::silhouettes};
+
+// Exact layer name used in SVG ids/labels, PS/EPS comments and PDF OCG names.
+std::string_view layer_name(LayerKind kind);
+
+// One pen stroke: an open polyline (closed when the first point is repeated at the end).
+struct Stroke {
+    std::vector<glm::vec2> points;  // image pixels
+    std::vector<float> depth;       // eye distance per point (same size as points), metres
+    float strength = 1.0f;          // score that selected the line (rs for creases), >= 0
+    std::string kind;               // data-kind: "silhouette", "outline", "crease", ...
+};
+
+// A closed ring of the surface mask (even-odd fill), image pixels.
+using Ring = std::vector<glm::vec2>;
+
+struct Layer {
+    LayerKind kind = LayerKind::surface;
+    std::vector<Stroke> strokes;
+    std::vector<Ring> fill;  // only the surface layer fills: the white mask hiding what is behind
+};
+
+struct Drawing {
+    int width = 0, height = 0;  // image size in pixels
+    std::array<Layer, 7> layers;  // indexed by LayerKind, bottom to top
+    std::map<std::string, std::string> metadata;  // source, camera, light, parameters
+
+    Drawing();
+    Layer& layer(LayerKind k) { return layers[static_cast<size_t>(k)]; }
+    const Layer& layer(LayerKind k) const { return layers[static_cast<size_t>(k)]; }
+};
+
+}  // namespace penink

@@ -1,0 +1,15 @@
+#include "core/error.hpp"
+
+namespace penink {
+
+std::string format_error(const std::string& stage, const std::string& file, const std::string& what) {
+    std::string s = "penink: " + stage + ": ";
+    if (!file.empty()) s += file + ": ";
+    return s + what;
+}
+
+Error::Error(std::string stage, std::string file, const std::string& what, ExitCode code)
+    : std::runtime_error(format_error(stage, file, what)),
+      stage_(std::move(stage)), file_(std::move(file)), code_(code) {}
+
+}  // namespace penink

@@ -1,0 +1,27 @@
+// Errors crossing a stage boundary: one line `penink: <stage>: <file>: <what is wrong>`
+// (conventions.md), with the process exit code: 2 for bad input, 1 for internal failure.
+#pragma once
+#include <stdexcept>
+#include <string>
+
+namespace penink {
+
+enum class ExitCode : int { ok = 0, internal = 1, bad_input = 2 };
+
+class Error : public std::runtime_error {
+public:
+    Error(std::string stage, std::string file, const std::string& what,
+          ExitCode code = ExitCode::bad_input);
+    const std::string& stage() const { return stage_; }
+    const std::string& file() const { return file_; }
+    ExitCode code() const { return code_; }
+
+private:
+    std::string stage_, file_;
+    ExitCode code_;
+};
+
+// "penink: stage: file: what" (the file part is left out when file is empty).
+std::string format_error(const std::string& stage, const std::string& file, const std::string& what);
+
+}  // namespace penink

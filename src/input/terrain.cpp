@@ -1,0 +1,37 @@
+#include "input/terrain.hpp"
+
+#include <algorithm>
+
+#include <glm/common.hpp>
+
+namespace penink {
+
+Terrain crop_terrain(const Terrain& t, GridWindow w) {
+    w.c0 = std::clamp(w.c0, 0, t.cols), w.c1 = std::clamp(w.c1, w.c0, t.cols);
+    w.r0 = std::clamp(w.r0, 0, t.rows), w.r1 = std::clamp(w.r1, w.r0, t.rows);
+    Terrain out = t;
+    out.cols = w.cols(), out.rows = w.rows();
+    out.source_col0 = t.source_col0 + w.c0, out.source_row0 = t.source_row0 + w.r0;
+    out.pos.clear(), out.valid.clear();
+    out.pos.reserve(out.size()), out.valid.reserve(out.size());
+    for (int r = w.r0; r < w.r1; ++r) {
+        const std::size_t i0 = t.index(w.c0, r);
+        out.pos.insert(out.pos.end(), t.pos.begin() + i0, t.pos.begin() + (i0 + w.cols()));
+        out.valid.insert(out.valid.end(), t.valid.begin() + i0, t.valid.begin() + (i0 + w.cols()));
+    }
+    return out;
+}
+
+bool terrain_bounds(const Terrain& t, glm::dvec3& lo, glm::dvec3& hi) {
+    bool any = false;
+    for (std::size_t i = 0; i < t.size(); ++i) {
+        if (!t.valid[i]) continue;
+        const glm::dvec3 p(t.pos[i]);
+        lo = any ? glm::min(lo, p) : p;
+        hi = any ? glm::max(hi, p) : p;
+        any = true;
+    }
+    return any;
+}
+
+}  // namespace penink

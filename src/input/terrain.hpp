@@ -1,0 +1,44 @@
+// A DEM as a grid of nodes in the world frame (conventions.md): x east, y north, z elevation
+// times vertical exaggeration, metres, relative to `origin` (projected CRS coordinates of the
+// local frame's origin, so floats keep centimetre precision). Row 0 is the north edge.
+// A geographic DEM is projected node by node to UTM, so the grid may be curvilinear.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+namespace penink {
+
+struct Terrain {
+    int cols = 0, rows = 0;
+    glm::dvec2 origin{0.0};   // projected easting/northing of local (0,0), metres
+    std::string crs_wkt;      // WKT of the projected world CRS (UTM for geographic input)
+    int utm_zone = 0;         // UTM zone of the world CRS, 0 when it is not UTM
+    bool north = true;        // UTM hemisphere
+    double vertical_exaggeration = 1.0;
+    std::vector<glm::vec3> pos;    // cols*rows node positions, row-major, local metres
+    std::vector<std::uint8_t> valid;  // 1 where the node has data (not nodata)
+    std::string source;       // file it came from (for messages)
+    int source_col0 = 0, source_row0 = 0;  // where this grid starts in the source DEM (after cropping)
+
+    std::size_t index(int c, int r) const { return std::size_t(r) * cols + c; }
+    std::size_t size() const { return std::size_t(cols) * rows; }
+};
+
+// Node range [c0, c1) x [r0, r1) of a Terrain.
+struct GridWindow {
+    int c0 = 0, r0 = 0, c1 = 0, r1 = 0;
+    int cols() const { return c1 - c0; }
+    int rows() const { return r1 - r0; }
+};
+
+// Copy of the nodes inside `w` (clamped to the grid); keeps origin and CRS.
+Terrain crop_terrain(const Terrain& t, GridWindow w);
+
+// Axis-aligned bounds of the valid nodes (local metres); false when none is valid.
+bool terrain_bounds(const Terrain& t, glm::dvec3& lo, glm::dvec3& hi);
+
+}  // namespace penink
