@@ -1,0 +1,93 @@
+// Photic extremum lines (Xie et al. 2007, "An Effective Illustrative Visualization Framework
+// Based on Photic Extremum Lines", sec. 3): on a TriangleMesh with unit vertex normals, the
+// illumination phi = max(0, n . l) (light at the eye by default: l = unit vector from the
+// vertex to the eye), its per-vertex gradient (face gradients averaged with Meyer et al. 2001
+// mixed Voronoi areas, projected on the tangent plane), g = |grad phi| / max |grad phi|,
+// w = grad phi / |grad phi|, D_w g and D_w^2 g; PELs are the zero crossings of D_w g on edges
+// where D_w^2 g < 0 and g >= tau, at most one segment per triangle. Also object-space mesh
+// silhouettes: the zero set of n . (eye - p) interpolated inside each triangle.
+// All positions are in the mesh's world frame and units; timings in milliseconds.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "input/mesh_reader.hpp"
+
+namespace penink {
+
+// A piece of line on the mesh surface, world frame. Edge keys name the mesh edges (vertex pair,
+// lower index first) the endpoints lie on, for chaining; ~0 when not on an edge.
+struct ObjectSegment {
+    glm::vec3 a{0.0f}, b{0.0f};
+    float strength = 1.0f;  // normalised |grad phi| for PELs (mean of both ends), 1 otherwise
+    std::uint64_t edge_a = ~std::uint64_t(0), edge_b = ~std::uint64_t(0);
+};
+
+// An open 3D polyline in world coordinates (closed when the first point repeats at the end).
+struct ObjectPolyline {
+    std::vector<glm::vec3> points;
+    float strength = 1.0f;
+    std::string kind;      // "pel", "silhouette", "crease", "boundary", "material", "texture"
+    std::string material;  // material name where it applies (feature edges, textures)
+};
+
+// Per-mesh constants of the gradient operator; build once, reuse for every frame.
+struct PelGeometry {
+    std::vector<glm::vec3> grad_basis;  // 3 per triangle: grad of the hat function of each corner
+    std::vector<float> corner_weight;   // 3 per triangle: mixed Voronoi area of each corner
+    std::vector<float> vertex_weight;   // sum of the corner weights per vertex
+};
+
+struct PelOptions {
+    float threshold = 0.1f;       // tau on g (0..1); above 1 nothing is drawn
+    bool light_at_eye = true;     // l = normalize(eye - p) per vertex
+    glm::vec3 light_dir{0, 0, 1}; // otherwise: unit vector towards the (directional) light
+    bool clamp_diffuse = true;    // phi = max(0, n . l); false: phi = n . l
+};
+
+struct PelTimings {  // milliseconds per step of one frame
+    double illumination = 0, gradient = 0, magnitude = 0, derivative1 = 0, derivative2 = 0,
+           extraction = 0, total = 0;
+};
+
+// Per-vertex fields, exposed for tests and debugging.
+struct PelField {
+    std::vector<float> phi, g, dw, dw2;  // illumination, normalised |grad|, D_w g, D_w^2 g
+    std::vector<glm::vec3> w;            // unit gradient direction (zero where grad = 0)
+    float max_gradient = 0;              // max |grad phi| before normalisation (1 / units)
+};
+
+struct PelResult {
+    std::vector<ObjectSegment> segments;
+    PelField field;
+    PelTimings timings;
+};
+
+// Mixed Voronoi area of each corner (Meyer et al. 2001, fig. 4) and hat-function gradients.
+PelGeometry pel_geometry(const TriangleMesh& mesh);
+
+// Gradient per vertex of a per-vertex scalar f, projected on the plane normal to `normals`.
+std::vector<glm::vec3> vertex_gradient(const TriangleMesh& mesh, const PelGeometry& geom,
+                                       const std::vector<glm::vec3>& normals,
+                                       const std::vector<float>& f);
+
+// PELs for an eye position (and options.light_dir when the light is not at the eye).
+PelResult photic_extremum_lines(const TriangleMesh& mesh, const PelGeometry& geom,
+                                const std::vector<glm::vec3>& normals, const glm::vec3& eye,
+                                const PelOptions& options = {});
+
+// Object-space silhouettes: per triangle, the segment where the interpolated n . (eye - p)
+// crosses zero (front and back facing regions meet).
+std::vector<ObjectSegment> mesh_silhouettes(const TriangleMesh& mesh,
+                                            const std::vector<glm::vec3>& normals,
+                                            const glm::vec3& eye);
+
+// Joins segments sharing an edge key (or, for keyless ends, a bit-identical point) into
+// polylines, deterministic order; strength = mean of the segments' strengths.
+std::vector<ObjectPolyline> chain_segments(const std::vector<ObjectSegment>& segments,
+                                           const std::string& kind);
+
+}  // namespace penink

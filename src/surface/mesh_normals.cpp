@@ -1,0 +1,87 @@
+#include "surface/mesh_normals.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+namespace penink {
+namespace {
+
+glm::vec3 safe_normalize(const glm::vec3& v) {
+    float len = glm::length(v);
+    return len > 0.0f ? v / len : glm::vec3(0, 0, 1);
+}
+
+float corner_angle(const glm::vec3& at, const glm::vec3& a, const glm::vec3& b) {
+    glm::vec3 u = a - at, v = b - at;
+    float lu = glm::length(u), lv = glm::length(v);
+    if (lu <= 0.0f || lv <= 0.0f) return 0.0f;
+    return std::acos(std::clamp(glm::dot(u, v) / (lu * lv), -1.0f, 1.0f));
+}
+
+}  // namespace
+
+std::vector<glm::vec3> mesh_face_normals(const TriangleMesh& mesh) {
+    std::vector<glm::vec3> out(mesh.triangles.size());
+    for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+        const glm::uvec3& t = mesh.triangles[f];
+        const glm::vec3 &a = mesh.positions[t.x], &b = mesh.positions[t.y], &c = mesh.positions[t.z];
+        out[f] = safe_normalize(glm::cross(b - a, c - a));
+    }
+    return out;
+}
+
+std::vector<glm::vec3> mesh_vertex_normals(const TriangleMesh& mesh, NormalWeighting weighting) {
+    std::vector<glm::vec3> acc(mesh.positions.size(), glm::vec3(0.0f));
+    for (const glm::uvec3& t : mesh.triangles) {
+        const glm::vec3 p[3] = {mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]};
+        glm::vec3 cr = glm::cross(p[1] - p[0], p[2] - p[0]);  // length = 2 * area
+        if (weighting == NormalWeighting::area) {
+            for (int k = 0; k < 3; ++k) acc[t[k]] += cr;
+            continue;
+        }
+        glm::vec3 n = safe_normalize(cr);
+        for (int k = 0; k < 3; ++k) acc[t[k]] += n * corner_angle(p[k], p[(k + 1) % 3], p[(k + 2) % 3]);
+    }
+    for (auto& n : acc) n = safe_normalize(n);
+    return acc;
+}
+
+std::vector<glm::vec3> smooth_vertex_normals(const TriangleMesh& mesh, std::vector<glm::vec3> normals,
+                                             int iterations, float lambda) {
+    if (iterations <= 0) return normals;
+    std::vector<std::vector<unsigned>> nb(mesh.positions.size());
+    for (const glm::uvec3& t : mesh.triangles)
+        for (int k = 0; k < 3; ++k) {
+            nb[t[k]].push_back(t[(k + 1) % 3]);
+            nb[t[k]].push_back(t[(k + 2) % 3]);
+        }
+    for (auto& list : nb) {
+        std::sort(list.begin(), list.end());
+        list.erase(std::unique(list.begin(), list.end()), list.end());
+    }
+    std::vector<glm::vec3> next(normals.size());
+    for (int it = 0; it < iterations; ++it) {
+        for (std::size_t i = 0; i < normals.size(); ++i) {
+            if (nb[i].empty()) { next[i] = normals[i]; continue; }
+            glm::vec3 mean(0.0f);
+            for (unsigned j : nb[i]) mean += normals[j];
+            mean /= float(nb[i].size());
+            next[i] = safe_normalize((1.0f - lambda) * normals[i] + lambda * mean);
+        }
+        normals.swap(next);
+    }
+    return normals;
+}
+
+SurfaceMesh surface_mesh_from(const TriangleMesh& mesh, const std::vector<glm::vec3>& normals) {
+    SurfaceMesh s;
+    s.pos = mesh.positions;
+    s.tri = mesh.triangles;
+    s.normal = normals;
+    s.face_normal = mesh_face_normals(mesh);
+    return s;
+}
+
+}  // namespace penink
