@@ -1,0 +1,27 @@
+// SIL pass, Toward/Away algorithm (seed 001, section 3.2): pixel p is a silhouette pixel when it
+// holds a toward-facing fragment at eye distance t, an away-facing fragment behind it at a > t,
+// and one of its 8 neighbours holds a toward-facing fragment further still (> a, by the relative
+// gap u_min_gap). Neighbours with no surface at all are left to the outline of the surface mask.
+#include "common.glsl"
+
+layout(binding = 0) uniform sampler2D u_toward;  // eye distance, PENINK_FAR where none
+layout(binding = 1) uniform sampler2D u_away;
+uniform float u_min_gap;  // relative depth gap, e.g. 0.001
+
+layout(location = 0) out float o_silhouette;
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    ivec2 size = textureSize(u_toward, 0);
+    float t = texelFetch(u_toward, p, 0).r;
+    float a = texelFetch(u_away, p, 0).r;
+    o_silhouette = 0.0;
+    if (t >= PENINK_FAR || a >= PENINK_FAR || a <= t) return;
+    for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+            ivec2 q = clamp(p + ivec2(dx, dy), ivec2(0), size - 1);
+            float tq = texelFetch(u_toward, q, 0).r;
+            if (tq < PENINK_FAR && tq > a * (1.0 + u_min_gap)) o_silhouette = 1.0;
+        }
+    }
+}

@@ -1,0 +1,20 @@
+// TFT/AFT pass, tessellation evaluation: evaluates the PN patch at gl_TessCoord and sends the
+// vector from the eye (metres) to the fragment stage, which takes its length (exact per
+// fragment; interpolating distances themselves would not be).
+#include "common.glsl"
+
+layout(triangles, equal_spacing, ccw) in;
+
+patch in vec3 pn_b[10];
+patch in vec3 pn_n[6];
+out vec3 t_from_eye;
+
+uniform mat4 u_view_proj;
+uniform vec3 u_eye;
+
+void main() {
+    vec3 b[10] = pn_b;
+    vec3 p = pn_position(b, gl_TessCoord);
+    t_from_eye = p - u_eye;
+    gl_Position = u_view_proj * vec4(p, 1.0);
+}

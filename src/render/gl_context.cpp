@@ -1,0 +1,125 @@
+#include "render/gl_context.hpp"
+
+#include <vector>
+
+#include <GL/osmesa.h>
+#ifdef PENINK_HAVE_EGL
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#endif
+
+#include "core/error.hpp"
+
+namespace penink {
+
+std::string GlContext::describe(const char* backend_name) const {
+    const auto str = [&](GLenum e) {
+        const GLubyte* s = gl_.GetString(e);
+        return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
+    };
+    return std::string(backend_name) + ": " + str(GL_RENDERER) + ", OpenGL " + str(GL_VERSION);
+}
+
+void GlContext::init_api(GlProcLoader loader) {
+    gl_ = load_gl_api(loader);
+    // First timer query of a context returns garbage on llvmpipe: issue a throwaway one.
+    GLuint q = 0;
+    gl_.CreateQueries(GL_TIME_ELAPSED, 1, &q);
+    gl_.BeginQuery(GL_TIME_ELAPSED, q);
+    gl_.EndQuery(GL_TIME_ELAPSED);
+    GLuint64 ns = 0;
+    gl_.GetQueryObjectui64v(q, GL_QUERY_RESULT, &ns);
+    gl_.DeleteQueries(1, &q);
+    check_gl_error(gl_, "context creation");
+}
+
+namespace {
+
+void* osmesa_proc(const char* name) { return reinterpret_cast<void*>(OSMesaGetProcAddress(name)); }
+
+class OsMesaContext final : public GlContext {
+public:
+    OsMesaContext() {
+        const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24,
+                               OSMESA_PROFILE, OSMESA_CORE_PROFILE,
+                               OSMESA_CONTEXT_MAJOR_VERSION, 4, OSMESA_CONTEXT_MINOR_VERSION, 5, 0};
+        ctx_ = OSMesaCreateContextAttribs(attribs, nullptr);
+        if (!ctx_) throw Error("render", "", "cannot create an OpenGL 4.5 core context with OSMesa",
+                               ExitCode::internal);
+        if (!OSMesaMakeCurrent(ctx_, buffer_.data(), GL_UNSIGNED_BYTE, 1, 1)) {
+            OSMesaDestroyContext(ctx_);
+            throw Error("render", "", "cannot make the OSMesa context current", ExitCode::internal);
+        }
+        init_api(&osmesa_proc);
+    }
+    ~OsMesaContext() override { OSMesaDestroyContext(ctx_); }
+    std::string description() const override { return describe("OSMesa"); }
+    GlBackend backend() const override { return GlBackend::osmesa; }
+
+private:
+    OSMesaContext ctx_ = nullptr;
+    std::vector<unsigned char> buffer_ = std::vector<unsigned char>(4);
+};
+
+#ifdef PENINK_HAVE_EGL
+void* egl_proc(const char* name) { return reinterpret_cast<void*>(eglGetProcAddress(name)); }
+
+class EglContext final : public GlContext {
+public:
+    EglContext() {
+        display_ = eglGetDisplay(EGL_DEFAULT_DISPLAY);
+        EGLint major = 0, minor = 0;
+        if (display_ == EGL_NO_DISPLAY || !eglInitialize(display_, &major, &minor))
+            fail("cannot initialise an EGL display");
+        const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+        EGLConfig config;
+        EGLint count = 0;
+        if (!eglChooseConfig(display_, config_attribs, &config, 1, &count) || count < 1)
+            fail("no EGL config with desktop OpenGL");
+        eglBindAPI(EGL_OPENGL_API);
+        const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                                      EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                      EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+        ctx_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, ctx_attribs);
+        if (ctx_ == EGL_NO_CONTEXT) fail("cannot create an OpenGL 4.5 core context with EGL");
+        if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx_))
+            fail("cannot make the EGL context current (surfaceless)");
+        init_api(&egl_proc);
+    }
+    ~EglContext() override {
+        eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        if (ctx_ != EGL_NO_CONTEXT) eglDestroyContext(display_, ctx_);
+        eglTerminate(display_);
+    }
+    std::string description() const override { return describe("EGL"); }
+    GlBackend backend() const override { return GlBackend::egl; }
+
+private:
+    [[noreturn]] void fail(const char* what) {
+        if (display_ != EGL_NO_DISPLAY) eglTerminate(display_);
+        throw Error("render", "", what, ExitCode::internal);
+    }
+    EGLDisplay display_ = EGL_NO_DISPLAY;
+    EGLContext ctx_ = EGL_NO_CONTEXT;
+};
+#endif
+
+}  // namespace
+
+GlBackend parse_gl_backend(const std::string& name) {
+    if (name == "osmesa") return GlBackend::osmesa;
+    if (name == "egl") return GlBackend::egl;
+    throw Error("render", "", "unknown OpenGL backend \"" + name + "\" (use osmesa or egl)");
+}
+
+std::unique_ptr<GlContext> make_gl_context(GlBackend backend) {
+#ifdef PENINK_HAVE_EGL
+    if (backend == GlBackend::egl) return std::make_unique<EglContext>();
+#else
+    if (backend == GlBackend::egl)
+        throw Error("render", "", "this build has no EGL support", ExitCode::internal);
+#endif
+    return std::make_unique<OsMesaContext>();
+}
+
+}  // namespace penink

@@ -1,0 +1,134 @@
+#include "render/gl_objects.hpp"
+
+#include "core/error.hpp"
+#include "render/shader_source.hpp"
+
+namespace penink {
+
+namespace {
+
+GLenum stage_of(const std::string& file) {
+    const auto has = [&](const char* s) { return file.find(s) != std::string::npos; };
+    if (has(".vert.")) return GL_VERTEX_SHADER;
+    if (has(".tesc.")) return GL_TESS_CONTROL_SHADER;
+    if (has(".tese.")) return GL_TESS_EVALUATION_SHADER;
+    if (has(".geom.")) return GL_GEOMETRY_SHADER;
+    if (has(".frag.")) return GL_FRAGMENT_SHADER;
+    if (has(".comp.")) return GL_COMPUTE_SHADER;
+    throw Error("render", file, "cannot tell the shader stage from the file name", ExitCode::internal);
+}
+
+// Driver logs end with newlines; the error stays one line.
+std::string one_line(std::string s) {
+    while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
+    for (char& c : s) if (c == '\n') c = ' ';
+    return s;
+}
+
+GLuint compile_shader(const GlApi& gl, const std::string& file) {
+    const AssembledShader src = assemble_shader(file);
+    const GLuint shader = gl.CreateShader(stage_of(file));
+    const char* text = src.text.c_str();
+    gl.ShaderSource(shader, 1, &text, nullptr);
+    gl.CompileShader(shader);
+    GLint ok = 0;
+    gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        std::string log(4096, '\0');
+        GLsizei len = 0;
+        gl.GetShaderInfoLog(shader, GLsizei(log.size()), &len, log.data());
+        log.resize(std::size_t(len));
+        gl.DeleteShader(shader);
+        throw Error("render", file, "shader compile failed: " + one_line(map_log_to_files(log, src.files)),
+                    ExitCode::internal);
+    }
+    return shader;
+}
+
+}  // namespace
+
+GlHandle build_program(const GlApi& gl, const std::vector<std::string>& files) {
+    GlHandle program(gl, gl.CreateProgram(), [](const GlApi& g, GLuint id) { g.DeleteProgram(id); });
+    std::vector<GLuint> shaders;
+    try {
+        for (const std::string& f : files) {
+            shaders.push_back(compile_shader(gl, f));
+            gl.AttachShader(program.id(), shaders.back());
+        }
+    } catch (...) {
+        for (GLuint s : shaders) gl.DeleteShader(s);
+        throw;
+    }
+    gl.LinkProgram(program.id());
+    for (GLuint s : shaders) gl.DeleteShader(s);
+    GLint ok = 0;
+    gl.GetProgramiv(program.id(), GL_LINK_STATUS, &ok);
+    if (!ok) {
+        std::string log(4096, '\0');
+        GLsizei len = 0;
+        gl.GetProgramInfoLog(program.id(), GLsizei(log.size()), &len, log.data());
+        log.resize(std::size_t(len));
+        throw Error("render", files.front(), "program link failed: " + one_line(log), ExitCode::internal);
+    }
+    return program;
+}
+
+GlHandle make_buffer(const GlApi& gl, const void* data, std::size_t bytes, GLenum usage) {
+    GLuint id = 0;
+    gl.CreateBuffers(1, &id);
+    gl.NamedBufferData(id, GLsizeiptr(bytes), data, usage);
+    return GlHandle(gl, id, [](const GlApi& g, GLuint i) { g.DeleteBuffers(1, &i); });
+}
+
+GlHandle make_vertex_array(const GlApi& gl) {
+    GLuint id = 0;
+    gl.CreateVertexArrays(1, &id);
+    return GlHandle(gl, id, [](const GlApi& g, GLuint i) { g.DeleteVertexArrays(1, &i); });
+}
+
+GlHandle make_texture(const GlApi& gl, GLenum internal_format, int width, int height) {
+    GLuint id = 0;
+    gl.CreateTextures(GL_TEXTURE_2D, 1, &id);
+    gl.TextureStorage2D(id, 1, internal_format, width, height);
+    gl.TextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl.TextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl.TextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl.TextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return GlHandle(gl, id, [](const GlApi& g, GLuint i) { g.DeleteTextures(1, &i); });
+}
+
+GlHandle make_framebuffer(const GlApi& gl, const std::vector<GLuint>& colour, GLuint depth,
+                          const std::string& name) {
+    GLuint id = 0;
+    gl.CreateFramebuffers(1, &id);
+    GlHandle fb(gl, id, [](const GlApi& g, GLuint i) { g.DeleteFramebuffers(1, &i); });
+    std::vector<GLenum> bufs;
+    for (std::size_t i = 0; i < colour.size(); ++i) {
+        gl.NamedFramebufferTexture(id, GLenum(GL_COLOR_ATTACHMENT0 + i), colour[i], 0);
+        bufs.push_back(GLenum(GL_COLOR_ATTACHMENT0 + i));
+    }
+    if (depth) gl.NamedFramebufferTexture(id, GL_DEPTH_ATTACHMENT, depth, 0);
+    gl.NamedFramebufferDrawBuffers(id, GLsizei(bufs.size()), bufs.data());
+    if (gl.CheckNamedFramebufferStatus(id, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        throw Error("render", name, "framebuffer incomplete", ExitCode::internal);
+    return fb;
+}
+
+GpuTimer::GpuTimer(const GlApi& gl) : gl_(&gl) {
+    GLuint id = 0;
+    gl.CreateQueries(GL_TIME_ELAPSED, 1, &id);
+    query_ = GlHandle(gl, id, [](const GlApi& g, GLuint i) { g.DeleteQueries(1, &i); });
+}
+void GpuTimer::begin() { gl_->BeginQuery(GL_TIME_ELAPSED, query_.id()); }
+void GpuTimer::end() { gl_->EndQuery(GL_TIME_ELAPSED); }
+double GpuTimer::milliseconds() {
+    GLuint64 ns = 0;
+    gl_->GetQueryObjectui64v(query_.id(), GL_QUERY_RESULT, &ns);
+    return double(ns) * 1e-6;
+}
+
+GLint uniform_location(const GlApi& gl, GLuint program, const char* name) {
+    return gl.GetUniformLocation(program, name);
+}
+
+}  // namespace penink

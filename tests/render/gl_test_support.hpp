@@ -1,0 +1,14 @@
+// Shared by the render tests: one OSMesa context per test binary run (created on first use).
+#pragma once
+#include <memory>
+
+#include "render/gl_context.hpp"
+
+namespace penink::test {
+
+inline GlContext& test_context() {
+    static std::unique_ptr<GlContext> ctx = make_gl_context(GlBackend::osmesa);
+    return *ctx;
+}
+
+}  // namespace penink::test
