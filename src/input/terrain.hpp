@@ -3,6 +3,7 @@
 // local frame's origin, so floats keep centimetre precision). Row 0 is the north edge.
 // A geographic DEM is projected node by node to UTM, so the grid may be curvilinear.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -23,6 +24,12 @@ struct Terrain {
     std::vector<std::uint8_t> valid;  // 1 where the node has data (not nodata)
     std::string source;       // file it came from (for messages)
     int source_col0 = 0, source_row0 = 0;  // where this grid starts in the source DEM (after cropping)
+    // Source raster as read (after flipping to row 0 = north, column 0 = west): the centre of
+    // node (c, r) of this grid is geotransform applied to (source_col0 + c + 0.5,
+    // source_row0 + r + 0.5), in the source CRS's units (degrees when source_geographic).
+    std::array<double, 6> geotransform{0, 1, 0, 0, 0, -1};
+    bool source_geographic = false;
+    double elevation_min = 0.0, elevation_max = 0.0;  // valid elevations, metres, unexaggerated
 
     std::size_t index(int c, int r) const { return std::size_t(r) * cols + c; }
     std::size_t size() const { return std::size_t(cols) * rows; }

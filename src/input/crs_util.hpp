@@ -1,0 +1,24 @@
+// Small OGR helpers shared by the DEM reader and scene positions: WKT of a WGS84 UTM/UPS zone,
+// WKT of a spatial reference, and a spatial reference (x = easting/lon, y = northing/lat, i.e.
+// OAMS_TRADITIONAL_GIS_ORDER) parsed back from a Terrain's crs_wkt.
+#pragma once
+#include <memory>
+#include <string>
+
+#include <ogr_spatialref.h>
+
+namespace penink {
+
+// WKT of WGS 84 / UTM zone `zone` (1..60) in hemisphere `north`; zone 0 = UPS (EPSG 32661/32761).
+std::string utm_wkt(int zone, bool north);
+
+// WKT1 of `srs` (WKT2_2019 when the CRS cannot be written as WKT1); empty on failure.
+std::string srs_wkt(const OGRSpatialReference& srs);
+
+// Spatial reference from WKT with traditional GIS axis order; null when empty or unparsable.
+std::unique_ptr<OGRSpatialReference> srs_from_wkt(const std::string& wkt);
+
+// Metres per horizontal unit of the CRS in `wkt` (1 when empty, not projected or unparsable).
+double linear_unit_of(const std::string& wkt);
+
+}  // namespace penink

@@ -1,0 +1,264 @@
+#include "input/dem_reader.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <future>
+#include <limits>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <GeographicLib/UTMUPS.hpp>
+#include <glm/common.hpp>
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <cpl_vsi.h>
+#include <gdal_priv.h>
+#include <ogr_spatialref.h>
+
+#include "core/error.hpp"
+#include "input/crs_util.hpp"
+
+namespace penink {
+
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+
+// The band's values in our orientation (row 0 north, column 0 west), metres.
+struct Raster {
+    int w = 0, h = 0;
+    std::vector<double> elev;
+    std::vector<std::uint8_t> valid;
+    std::array<double, 6> gt{0, 1, 0, 0, 0, -1};
+    std::unique_ptr<OGRSpatialReference> srs;  // null when the dataset has none
+};
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+    throw Error("input", path, what, ExitCode::bad_input);
+}
+
+// Keeps GDAL quiet for the lifetime of the guard: our error line is the only message.
+struct QuietGdal {
+    QuietGdal() { CPLPushErrorHandler(CPLQuietErrorHandler); }
+    ~QuietGdal() {
+        CPLErrorReset();
+        CPLPopErrorHandler();
+    }
+};
+
+GDALDatasetUniquePtr open_raster(const std::string& path) {
+    GDALAllRegister();
+    VSIStatBufL st;
+    if (VSIStatExL(path.c_str(), &st, VSI_STAT_EXISTS_FLAG) != 0) fail(path, "no such file");
+    GDALDatasetUniquePtr ds(GDALDataset::FromHandle(
+        GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+    if (!ds || ds->GetRasterCount() < 1 || ds->GetRasterXSize() < 1 || ds->GetRasterYSize() < 1)
+        fail(path, "not a DEM raster (GDAL cannot read it)");
+    return ds;
+}
+
+// Metres per vertical unit from the band's unit string (metres when unknown or empty).
+double vertical_unit(GDALRasterBand& band) {
+    const std::string u = band.GetUnitType();
+    if (u == "ft" || u == "foot" || u == "feet" || u == "international foot") return 0.3048;
+    if (u == "US survey foot" || u == "ftUS" || u == "us-ft") return 1200.0 / 3937.0;
+    return 1.0;
+}
+
+bool is_nodata(double v, bool has_nodata, double nodata, GDALDataType type) {
+    if (std::isnan(v)) return true;
+    if (!has_nodata) return false;
+    if (type == GDT_Float32) return float(v) == float(nodata);
+    return v == nodata;
+}
+
+// Validity from NaN, the nodata value and any per-dataset or alpha mask.
+std::vector<std::uint8_t> read_validity(GDALRasterBand& band, const std::vector<double>& raw,
+                                        const std::string& path) {
+    int has = 0;
+    const double nodata = band.GetNoDataValue(&has);
+    std::vector<std::uint8_t> valid(raw.size());
+    for (std::size_t i = 0; i < raw.size(); ++i)
+        valid[i] = !is_nodata(raw[i], has != 0, nodata, band.GetRasterDataType());
+    const int flags = band.GetMaskFlags();
+    if (flags & (GMF_ALL_VALID | GMF_NODATA)) return valid;
+    std::vector<std::uint8_t> mask(raw.size());
+    if (band.GetMaskBand()->RasterIO(GF_Read, 0, 0, band.GetXSize(), band.GetYSize(), mask.data(),
+                                     band.GetXSize(), band.GetYSize(), GDT_Byte, 0, 0) != CE_None)
+        fail(path, "not a DEM raster (GDAL cannot read it)");
+    for (std::size_t i = 0; i < raw.size(); ++i) valid[i] = valid[i] && mask[i] != 0;
+    return valid;
+}
+
+// Flips the geotransform (and says which axes to flip) so row 0 is north and column 0 west.
+void orient(std::array<double, 6>& gt, int w, int h, bool& flip_c, bool& flip_r) {
+    flip_c = gt[1] < 0.0;
+    flip_r = gt[5] > 0.0;
+    if (flip_c) gt = {gt[0] + w * gt[1], -gt[1], gt[2], gt[3] + w * gt[4], -gt[4], gt[5]};
+    if (flip_r) gt = {gt[0] + h * gt[2], gt[1], -gt[2], gt[3] + h * gt[5], gt[4], -gt[5]};
+}
+
+Raster read_raster(const std::string& path) {
+    const QuietGdal quiet;
+    GDALDatasetUniquePtr ds = open_raster(path);
+    Raster r;
+    r.w = ds->GetRasterXSize(), r.h = ds->GetRasterYSize();
+    // No geotransform: pixel units as metres, row 0 on top (north).
+    if (ds->GetGeoTransform(r.gt.data()) != CE_None) r.gt = {0.0, 1.0, 0.0, double(r.h), 0.0, -1.0};
+    if (const OGRSpatialReference* s = ds->GetSpatialRef(); s && !s->IsEmpty())
+        r.srs.reset(s->Clone());
+    GDALRasterBand& band = *ds->GetRasterBand(1);
+    std::vector<double> raw(std::size_t(r.w) * r.h);
+    if (band.RasterIO(GF_Read, 0, 0, r.w, r.h, raw.data(), r.w, r.h, GDT_Float64, 0, 0) != CE_None)
+        fail(path, "not a DEM raster (GDAL cannot read it)");
+    const std::vector<std::uint8_t> valid = read_validity(band, raw, path);
+    int has_scale = 0, has_offset = 0;
+    const double scale = band.GetScale(&has_scale), offset = band.GetOffset(&has_offset);
+    const double unit = vertical_unit(band);
+    bool flip_c = false, flip_r = false;
+    orient(r.gt, r.w, r.h, flip_c, flip_r);
+    r.elev.resize(raw.size()), r.valid.resize(raw.size());
+    for (int row = 0; row < r.h; ++row)
+        for (int c = 0; c < r.w; ++c) {
+            const std::size_t src = std::size_t(flip_r ? r.h - 1 - row : row) * r.w + (flip_c ? r.w - 1 - c : c);
+            const std::size_t dst = std::size_t(row) * r.w + c;
+            r.valid[dst] = valid[src];
+            r.elev[dst] = (raw[src] * (has_scale ? scale : 1.0) + (has_offset ? offset : 0.0)) * unit;
+            if (!std::isfinite(r.elev[dst])) r.valid[dst] = 0;
+        }
+    return r;
+}
+
+glm::dvec2 affine(const std::array<double, 6>& gt, int c, int r) {
+    const double x = c + 0.5, y = r + 0.5;
+    return {gt[0] + x * gt[1] + y * gt[2], gt[3] + x * gt[4] + y * gt[5]};
+}
+
+// Node centres in the source CRS, scaled by `unit` (metres or degrees per CRS unit).
+std::vector<glm::dvec2> node_coordinates(const Raster& r, double unit, double offset_x) {
+    std::vector<glm::dvec2> xy(std::size_t(r.w) * r.h);
+    for (int row = 0; row < r.h; ++row)
+        for (int c = 0; c < r.w; ++c) {
+            const glm::dvec2 p = affine(r.gt, c, row);
+            xy[std::size_t(row) * r.w + c] = {p.x * unit + offset_x, p.y * unit};
+        }
+    return xy;
+}
+
+// Projects lon/lat degrees in [begin, end) to UTM/UPS `zone` in hemisphere `north`.
+void project_range(glm::dvec2* begin, glm::dvec2* end, int zone, bool north) {
+    for (glm::dvec2* p = begin; p != end; ++p) {
+        int z = 0;
+        bool n = true;
+        double x = 0, y = 0, gamma = 0, k = 0;
+        GeographicLib::UTMUPS::Forward(p->y, p->x, z, n, x, y, gamma, k, zone);
+        if (n != north) GeographicLib::UTMUPS::Transfer(z, n, x, y, z, north, x, y, z);
+        *p = {x, y};
+    }
+}
+
+// Projects every node in parallel chunks (each node independently: same result for any
+// number of threads); rethrows the first GeographicLib error.
+void project_all(std::vector<glm::dvec2>& xy, int zone, bool north) {
+    const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 16);
+    const std::size_t chunks = xy.size() < 20000 ? 1 : threads;
+    const std::size_t step = (xy.size() + chunks - 1) / chunks;
+    std::vector<std::future<void>> jobs;
+    for (std::size_t i = 0; i < xy.size(); i += step) {
+        glm::dvec2* b = xy.data() + i;
+        glm::dvec2* e = xy.data() + std::min(i + step, xy.size());
+        jobs.push_back(std::async(std::launch::async, project_range, b, e, zone, north));
+    }
+    for (auto& j : jobs) j.wait();
+    for (auto& j : jobs) j.get();
+}
+
+// Projects lon/lat degrees (in place) to UTM/UPS; fills the world CRS of `t`.
+void project_geographic(std::vector<glm::dvec2>& xy, const DemOptions& options, Terrain& t,
+                        const std::string& path) {
+    const glm::dvec2 centre = 0.5 * (xy.front() + xy.back());
+    int zone = options.utm_zone;
+    bool north = options.north;
+    try {
+        if (zone <= 0) {
+            zone = GeographicLib::UTMUPS::StandardZone(centre.y, centre.x);
+            north = centre.y >= 0.0;
+        }
+        project_all(xy, zone, north);
+    } catch (const GeographicLib::GeographicErr& e) {
+        fail(path, "DEM cannot be projected to UTM zone " + std::to_string(zone) + (north ? "N" : "S") +
+                       ": " + e.what());
+    }
+    t.utm_zone = zone, t.north = north;
+    t.crs_wkt = utm_wkt(zone, north);
+}
+
+// Node coordinates in the world CRS (metres); sets crs_wkt, utm_zone, north.
+std::vector<glm::dvec2> world_coordinates(const Raster& r, const DemOptions& options, Terrain& t,
+                                          const std::string& path) {
+    if (!r.srs) return node_coordinates(r, 1.0, 0.0);
+    if (r.srs->IsGeographic()) {
+        const double deg = r.srs->GetAngularUnits(nullptr) * 180.0 / pi;
+        const double unit = std::abs(deg - 1.0) < 1e-9 ? 1.0 : deg;
+        std::vector<glm::dvec2> xy = node_coordinates(r, unit, r.srs->GetPrimeMeridian(nullptr));
+        t.source_geographic = true;
+        project_geographic(xy, options, t, path);
+        return xy;
+    }
+    int north = 1;
+    t.utm_zone = r.srs->GetUTMZone(&north);
+    t.north = north != 0;
+    t.crs_wkt = srs_wkt(*r.srs);
+    return node_coordinates(r, r.srs->IsProjected() ? r.srs->GetLinearUnits(nullptr) : 1.0, 0.0);
+}
+
+void check_grid(const Raster& r, const std::string& path) {
+    if (r.w < 2 || r.h < 2)
+        fail(path, "DEM is too small (" + std::to_string(r.w) + "x" + std::to_string(r.h) +
+                       " nodes; at least 2x2 needed)");
+    for (std::uint8_t v : r.valid)
+        if (v) return;
+    fail(path, "DEM has no valid elevation (all nodata)");
+}
+
+void fill_positions(const Raster& r, const std::vector<glm::dvec2>& xy, Terrain& t) {
+    glm::dvec2 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    double emin = std::numeric_limits<double>::max(), emax = -emin;
+    for (std::size_t i = 0; i < xy.size(); ++i) {
+        lo = glm::min(lo, xy[i]), hi = glm::max(hi, xy[i]);
+        if (r.valid[i]) emin = std::min(emin, r.elev[i]), emax = std::max(emax, r.elev[i]);
+    }
+    t.origin = glm::round(0.5 * (lo + hi));
+    t.elevation_min = emin, t.elevation_max = emax;
+    t.pos.resize(xy.size());
+    const double s = t.vertical_exaggeration;
+    for (std::size_t i = 0; i < xy.size(); ++i) {
+        const glm::dvec2 p = xy[i] - t.origin;
+        t.pos[i] = glm::vec3(float(p.x), float(p.y), float((r.valid[i] ? r.elev[i] : emin) * s));
+    }
+}
+
+}  // namespace
+
+Terrain read_dem(const std::string& path, const DemOptions& options) {
+    const double ve = options.vertical_exaggeration;
+    if (!std::isfinite(ve) || ve <= 0.0) fail(path, "vertical exaggeration must be > 0");
+    if (options.utm_zone < 0 || options.utm_zone > 60)
+        fail(path, "UTM zone must be 1..60 (0 = standard zone), got " + std::to_string(options.utm_zone));
+    Raster r = read_raster(path);
+    check_grid(r, path);
+    Terrain t;
+    t.cols = r.w, t.rows = r.h;
+    t.vertical_exaggeration = ve;
+    t.source = path;
+    t.geotransform = r.gt;
+    const std::vector<glm::dvec2> xy = world_coordinates(r, options, t, path);
+    fill_positions(r, xy, t);
+    t.valid = std::move(r.valid);
+    return t;
+}
+
+}  // namespace penink

@@ -1,0 +1,247 @@
+#include "input/dem_reader.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include <GeographicLib/UTMUPS.hpp>
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "core/error.hpp"
+#include "test_grids.hpp"
+
+namespace penink {
+namespace {
+
+using test::TempDir;
+
+std::string error_of(const std::string& path, const DemOptions& o = {}) {
+    try {
+        read_dem(path, o);
+    } catch (const Error& e) {
+        EXPECT_EQ(e.stage(), "input");
+        EXPECT_EQ(e.file(), path);
+        EXPECT_EQ(e.code(), ExitCode::bad_input);
+        return e.what();
+    }
+    return "no error";
+}
+
+TEST(DemReader, AsciiValuesAndOrientation) {
+    TempDir dir;
+    const std::string p = test::write_asc(dir.file("g.asc"), 3, {{1, 2, 3}, {4, 5, 6}}, 1000, 2000, 10);
+    const Terrain t = read_dem(p);
+    ASSERT_EQ(t.cols, 3);
+    ASSERT_EQ(t.rows, 2);
+    // Node centres x 1005..1025, y 2015 (north row) .. 2005: origin = centre of the grid.
+    EXPECT_EQ(t.origin, glm::dvec2(1015, 2010));
+    EXPECT_EQ(t.pos[t.index(0, 0)], glm::vec3(-10, 5, 1));
+    EXPECT_EQ(t.pos[t.index(2, 0)], glm::vec3(10, 5, 3));
+    EXPECT_EQ(t.pos[t.index(0, 1)], glm::vec3(-10, -5, 4));
+    EXPECT_EQ(t.pos[t.index(2, 1)], glm::vec3(10, -5, 6));
+    EXPECT_TRUE(std::all_of(t.valid.begin(), t.valid.end(), [](auto v) { return v == 1; }));
+    EXPECT_TRUE(t.crs_wkt.empty());
+    EXPECT_EQ(t.utm_zone, 0);
+    EXPECT_EQ(t.source, p);
+    EXPECT_EQ(t.elevation_min, 1.0);
+    EXPECT_EQ(t.elevation_max, 6.0);
+}
+
+TEST(DemReader, NodataNodesAreInvalid) {
+    TempDir dir;
+    const std::string p = test::write_asc(dir.file("g.asc"), 3, {{-9999, 2, 3}, {4, 5, -9999}}, 0, 0, 1,
+                                          "NODATA_value -9999\n");
+    const Terrain t = read_dem(p);
+    const std::vector<std::uint8_t> want{0, 1, 1, 1, 1, 0};
+    EXPECT_EQ(t.valid, want);
+    EXPECT_EQ(t.elevation_min, 2.0);
+    EXPECT_EQ(t.elevation_max, 5.0);
+    EXPECT_EQ(t.pos[t.index(1, 0)].z, 2.0f);
+}
+
+TEST(DemReader, NanAndNodataInGeoTiffAreInvalid) {
+    TempDir dir;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const double nodata = -3.4028234663852886e+38;
+    const std::string p = test::write_tif(dir.file("g.tif"), 2, 2, {nan, 7, float(nodata), 9},
+                                          {0, 1, 0, 2, 0, -1}, 0, &nodata);
+    const Terrain t = read_dem(p);
+    const std::vector<std::uint8_t> want{0, 1, 0, 1};
+    EXPECT_EQ(t.valid, want);
+    EXPECT_EQ(t.pos[3].z, 9.0f);
+}
+
+TEST(DemReader, SouthUpGridIsFlippedSoRowZeroIsNorth) {
+    TempDir dir;
+    // File row 0 is the south edge (GT[5] > 0): y of file row r centre = 100 + 10 (r + 0.5).
+    const std::string p = test::write_tif(dir.file("s.tif"), 2, 3, {1, 2, 3, 4, 5, 6},
+                                          {500, 10, 0, 100, 0, 10});
+    const Terrain t = read_dem(p);
+    ASSERT_EQ(t.rows, 3);
+    EXPECT_EQ(t.origin, glm::dvec2(510, 115));
+    EXPECT_EQ(t.pos[t.index(0, 0)], glm::vec3(-5, 10, 5));  // north row = last file row
+    EXPECT_EQ(t.pos[t.index(1, 2)], glm::vec3(5, -10, 2));
+    const std::array<double, 6> gt{500, 10, 0, 130, 0, -10};
+    EXPECT_EQ(t.geotransform, gt);
+}
+
+TEST(DemReader, RotatedGeotransformAppliesFullAffine) {
+    TempDir dir;
+    const double c = std::cos(0.5), s = std::sin(0.5);
+    const std::array<double, 6> gt{1000, 10 * c, 10 * s, 5000, 10 * s, -10 * c};
+    const std::string p = test::write_tif(dir.file("r.tif"), 3, 3, {1, 2, 3, 4, 5, 6, 7, 8, 9}, gt);
+    const Terrain t = read_dem(p);
+    for (int r = 0; r < 3; ++r)
+        for (int col = 0; col < 3; ++col) {
+            const double x = gt[0] + (col + 0.5) * gt[1] + (r + 0.5) * gt[2];
+            const double y = gt[3] + (col + 0.5) * gt[4] + (r + 0.5) * gt[5];
+            const glm::vec3 q = t.pos[t.index(col, r)];
+            EXPECT_NEAR(q.x + t.origin.x, x, 1e-3);
+            EXPECT_NEAR(q.y + t.origin.y, y, 1e-3);
+            EXPECT_EQ(q.z, float(r * 3 + col + 1));
+        }
+    // Centre node (1, 1) sits at the grid centre: origin is it, rounded to metres.
+    EXPECT_EQ(t.origin, glm::round(glm::dvec2(gt[0] + 1.5 * (gt[1] + gt[2]), gt[3] + 1.5 * (gt[4] + gt[5]))));
+}
+
+TEST(DemReader, ExaggerationScalesZOnly) {
+    const std::string p = PENINK_SOURCE_DIR "/examples/volcano.asc";
+    const Terrain a = read_dem(p);
+    const Terrain b = read_dem(p, {.vertical_exaggeration = 2.5});
+    ASSERT_EQ(a.size(), b.size());
+    EXPECT_EQ(b.vertical_exaggeration, 2.5);
+    EXPECT_EQ(a.origin, b.origin);
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        ASSERT_EQ(a.pos[i].x, b.pos[i].x);
+        ASSERT_EQ(a.pos[i].y, b.pos[i].y);
+        ASSERT_FLOAT_EQ(a.pos[i].z * 2.5f, b.pos[i].z);
+    }
+}
+
+TEST(DemReader, ErrorTexts) {
+    TempDir dir;
+    const std::string missing = dir.file("nothing.tif");
+    EXPECT_EQ(error_of(missing), "penink: input: " + missing + ": no such file");
+    const std::string text = test::write_text(dir.file("notes.txt"), "this is not a raster\n");
+    EXPECT_EQ(error_of(text), "penink: input: " + text + ": not a DEM raster (GDAL cannot read it)");
+    const std::string empty = test::write_asc(dir.file("empty.asc"), 2, {{-1, -1}, {-1, -1}}, 0, 0, 1,
+                                              "NODATA_value -1\n");
+    EXPECT_EQ(error_of(empty), "penink: input: " + empty + ": DEM has no valid elevation (all nodata)");
+    const std::string one = test::write_asc(dir.file("one.asc"), 1, {{5}}, 0, 0, 1);
+    EXPECT_EQ(error_of(one), "penink: input: " + one + ": DEM is too small (1x1 nodes; at least 2x2 needed)");
+    const std::string line = test::write_asc(dir.file("line.asc"), 3, {{5, 6, 7}}, 0, 0, 1);
+    EXPECT_EQ(error_of(line), "penink: input: " + line + ": DEM is too small (3x1 nodes; at least 2x2 needed)");
+    const std::string ok = PENINK_SOURCE_DIR "/examples/volcano.asc";
+    for (double ve : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()})
+        EXPECT_EQ(error_of(ok, {.vertical_exaggeration = ve}),
+                  "penink: input: " + ok + ": vertical exaggeration must be > 0");
+}
+
+TEST(DemReader, VolcanoGridShapeRangeAndSpacing) {
+    const Terrain t = read_dem(PENINK_SOURCE_DIR "/examples/volcano.asc");
+    EXPECT_EQ(t.cols, 61);
+    EXPECT_EQ(t.rows, 87);
+    float lo = 1e9f, hi = -1e9f;
+    for (const glm::vec3& p : t.pos) lo = std::min(lo, p.z), hi = std::max(hi, p.z);
+    EXPECT_EQ(lo, 94.0f);
+    EXPECT_EQ(hi, 195.0f);
+    EXPECT_EQ(t.pos[t.index(1, 0)].x - t.pos[t.index(0, 0)].x, 10.0f);
+    EXPECT_EQ(t.pos[t.index(0, 0)].y - t.pos[t.index(0, 1)].y, 10.0f);
+    EXPECT_EQ(t.pos[t.index(0, 0)].y - t.pos[t.index(60, 0)].y, 0.0f);
+    // NZTM (volcano.prj): projected, not UTM; origin at the grid centre.
+    EXPECT_NE(t.crs_wkt.find("New Zealand Transverse Mercator"), std::string::npos);
+    EXPECT_EQ(t.utm_zone, 0);
+    EXPECT_EQ(t.origin, glm::dvec2(1756970 + 305, 5917000 + 435));
+    // R's volcano: the first (north) file row starts 100 100 101 in R order = east edge.
+    EXPECT_EQ(t.pos[t.index(60, 0)].z, 97.0f);
+}
+
+TEST(DemReader, VolcanoTifMatchesAsc) {
+    const Terrain a = read_dem(PENINK_SHARED_DIR "/data/volcano.asc");
+    const Terrain b = read_dem(PENINK_SHARED_DIR "/data/volcano.tif");
+    ASSERT_EQ(a.size(), b.size());
+    EXPECT_EQ(a.origin, b.origin);
+    for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a.pos[i], b.pos[i]) << i;
+}
+
+TEST(DemReader, ProjectedFeetAreConvertedToMetres) {
+    TempDir dir;  // EPSG:2274 NAD83 / Tennessee (ftUS): 100 ft cells
+    const std::string p = test::write_tif(dir.file("ft.tif"), 2, 2, {1, 2, 3, 4},
+                                          {1800000, 100, 0, 600000, 0, -100}, 2274);
+    const Terrain t = read_dem(p);
+    EXPECT_NEAR(t.pos[1].x - t.pos[0].x, 100 * 1200.0 / 3937.0, 1e-3);
+    EXPECT_NEAR(t.origin.x, std::round(1800100 * 1200.0 / 3937.0), 0.5);
+    EXPECT_EQ(t.pos[0].z, 1.0f);  // elevations stay metres
+}
+
+// Independent UTM coordinates of node (c, r) of a geographic file, from its geotransform.
+glm::dvec2 utm_of_node(const std::string& path, int c, int r, int zone, bool& north) {
+    GDALAllRegister();
+    GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER));
+    double gt[6];
+    ds->GetGeoTransform(gt);
+    const double lon = gt[0] + (c + 0.5) * gt[1], lat = gt[3] + (r + 0.5) * gt[5];
+    int z = 0;
+    double x, y;
+    GeographicLib::UTMUPS::Forward(lat, lon, z, north, x, y, zone);
+    return {x, y};
+}
+
+TEST(DemReader, JacksboroIsProjectedToUtm16North) {
+    const std::string p = PENINK_SHARED_DIR "/data/jacksboro.tif";
+    const auto t0 = std::chrono::steady_clock::now();
+    const Terrain t = read_dem(p);
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_LT(ms, 1000.0);  // ~25 ms on a desktop; generous for loaded CI machines
+    EXPECT_EQ(t.cols, 403);
+    EXPECT_EQ(t.rows, 344);
+    EXPECT_EQ(t.utm_zone, 16);
+    EXPECT_TRUE(t.north);
+    EXPECT_TRUE(t.source_geographic);
+    EXPECT_NE(t.crs_wkt.find("UTM zone 16N"), std::string::npos);
+    bool north = false;
+    const glm::dvec2 nw = utm_of_node(p, 0, 0, GeographicLib::UTMUPS::STANDARD, north);
+    EXPECT_TRUE(north);
+    EXPECT_NEAR(t.origin.x + t.pos[0].x, nw.x, 1.0);
+    EXPECT_NEAR(t.origin.y + t.pos[0].y, nw.y, 1.0);
+    EXPECT_NEAR(t.elevation_min, 236.0, 1e-9);
+    EXPECT_NEAR(t.elevation_max, 1076.0, 1e-9);
+    // ~75 m x 93 m cells: east step positive, south step negative.
+    EXPECT_NEAR(t.pos[1].x - t.pos[0].x, 74.5, 1.5);
+    EXPECT_NEAR(t.pos[t.index(0, 1)].y - t.pos[0].y, -92.6, 1.0);
+}
+
+TEST(DemReader, JacksboroForcedZoneAndAscii) {
+    const std::string p = PENINK_SHARED_DIR "/data/jacksboro.tif";
+    const Terrain t = read_dem(p, {.utm_zone = 17});
+    EXPECT_EQ(t.utm_zone, 17);
+    bool north = false;
+    const glm::dvec2 ne = utm_of_node(p, 402, 0, 17, north);
+    EXPECT_NEAR(t.origin.x + t.pos[402].x, ne.x, 1.0);
+    EXPECT_NEAR(t.origin.y + t.pos[402].y, ne.y, 1.0);
+    const Terrain a = read_dem(PENINK_SHARED_DIR "/data/jacksboro.asc");
+    const Terrain b = read_dem(p);
+    ASSERT_EQ(a.size(), b.size());
+    EXPECT_EQ(a.origin, b.origin);
+    for (std::size_t i = 0; i < a.size(); i += 97) ASSERT_NEAR(glm::distance(a.pos[i], b.pos[i]), 0.0, 0.05) << i;
+}
+
+TEST(DemReader, SouthernHemisphereGeographic) {
+    TempDir dir;  // around Auckland: zone 60 south
+    const std::string p = test::write_tif(dir.file("akl.tif"), 3, 3, {1, 2, 3, 4, 5, 6, 7, 8, 9},
+                                          {174.70, 0.01, 0, -36.80, 0, -0.01}, 4326);
+    const Terrain t = read_dem(p);
+    EXPECT_EQ(t.utm_zone, 60);
+    EXPECT_FALSE(t.north);
+    bool north = true;
+    const glm::dvec2 q = utm_of_node(p, 2, 2, 60, north);
+    EXPECT_FALSE(north);
+    EXPECT_NEAR(t.origin.x + t.pos[8].x, q.x, 1.0);
+    EXPECT_NEAR(t.origin.y + t.pos[8].y, q.y, 1.0);
+    EXPECT_NE(t.crs_wkt.find("UTM zone 60S"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace penink
