@@ -1,0 +1,106 @@
+// Page sizes, layout and number formatting for the writers (page.hpp).
+#include "export/page.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <stdexcept>
+
+#include "core/error.hpp"
+
+namespace penink {
+
+namespace {
+
+std::string lower(std::string s) {
+    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
+bool parse_custom(const std::string& s, double& w, double& h) {
+    const size_t x = s.find('x');
+    if (x == std::string::npos || s.size() < 3 || s.substr(s.size() - 2) != "mm") return false;
+    const char* b = s.data();
+    auto r1 = std::from_chars(b, b + x, w);
+    auto r2 = std::from_chars(b + x + 1, b + s.size() - 2, h);
+    return r1.ec == std::errc() && r1.ptr == b + x && r2.ec == std::errc() &&
+           r2.ptr == b + s.size() - 2 && w > 0 && h > 0;
+}
+
+}  // namespace
+
+void page_size_mm(const std::string& page, double& w_mm, double& h_mm) {
+    const std::string p = lower(page);
+    static constexpr struct { const char* name; double w, h; } sizes[] = {
+        {"a0", 841, 1189}, {"a1", 594, 841}, {"a2", 420, 594}, {"a3", 297, 420},
+        {"a4", 210, 297},  {"a5", 148, 210}, {"a6", 105, 148}, {"b4", 250, 353},
+        {"b5", 176, 250},  {"letter", 215.9, 279.4}, {"legal", 215.9, 355.6},
+        {"tabloid", 279.4, 431.8}};
+    for (const auto& s : sizes)
+        if (p == s.name) {
+            w_mm = s.w;
+            h_mm = s.h;
+            return;
+        }
+    if (!parse_custom(p, w_mm, h_mm))
+        throw std::invalid_argument("unknown page size \"" + page +
+                                    "\" (use A0-A6, B4, B5, letter, legal, tabloid or WxHmm)");
+}
+
+PageLayout page_layout(int width, int height, const PageOptions& o, const std::string& path) {
+    if (!(o.dpi > 0.0) || !std::isfinite(o.dpi)) throw Error("export", path, "dpi must be > 0");
+    if (width <= 0 || height <= 0) throw Error("export", path, "drawing has no size");
+    PageLayout L;
+    if (o.page.empty()) {
+        L.scale_mm = mm_per_inch / o.dpi;
+        L.page_w_mm = width * L.scale_mm + 2 * o.margin_mm;
+        L.page_h_mm = height * L.scale_mm + 2 * o.margin_mm;
+        L.offset_x_mm = L.offset_y_mm = o.margin_mm;
+        return L;
+    }
+    try {
+        page_size_mm(o.page, L.page_w_mm, L.page_h_mm);
+    } catch (const std::invalid_argument& e) {
+        throw Error("export", path, e.what());
+    }
+    const bool custom = lower(o.page).find('x') != std::string::npos;
+    if (!custom && (width > height) != (L.page_w_mm > L.page_h_mm)) std::swap(L.page_w_mm, L.page_h_mm);
+    const double aw = L.page_w_mm - 2 * o.margin_mm, ah = L.page_h_mm - 2 * o.margin_mm;
+    if (aw <= 0 || ah <= 0) throw Error("export", path, "margin leaves no room on the page");
+    L.scale_mm = std::min(aw / width, ah / height);
+    L.offset_x_mm = 0.5 * (L.page_w_mm - width * L.scale_mm);
+    L.offset_y_mm = 0.5 * (L.page_h_mm - height * L.scale_mm);
+    return L;
+}
+
+void append_number(std::string& out, double value, int decimals) {
+    char buf[64];
+    if (!std::isfinite(value)) value = 0.0;
+    auto r = std::to_chars(buf, buf + sizeof buf, value, std::chars_format::fixed, decimals);
+    char* end = r.ptr;
+    if (decimals > 0) {
+        while (end > buf && end[-1] == '0') --end;
+        if (end > buf && end[-1] == '.') --end;
+    }
+    if (end - buf == 2 && buf[0] == '-' && buf[1] == '0') {
+        out += '0';
+        return;
+    }
+    out.append(buf, end);
+}
+
+std::string format_number(double value, int decimals) {
+    std::string s;
+    append_number(s, value, decimals);
+    return s;
+}
+
+std::map<std::string, std::string> merged_metadata(const std::map<std::string, std::string>& a,
+                                                   const std::map<std::string, std::string>& b) {
+    std::map<std::string, std::string> m = a;
+    for (const auto& [k, v] : b) m[k] = v;
+    return m;
+}
+
+}  // namespace penink

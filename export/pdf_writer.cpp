@@ -1,0 +1,184 @@
+// PDF 1.5 writer with optional content groups (pdf_writer.hpp).
+#include "export/pdf_writer.hpp"
+
+#include <cctype>
+#include <cstdio>
+#include <map>
+
+#include "export/atomic_file.hpp"
+#include "export/pen_ops.hpp"
+
+namespace penink {
+
+namespace {
+
+// Optional content groups in drawing order: (object number, name, parent index or -1).
+struct Ocg {
+    int object;
+    std::string name;
+    int parent;
+};
+
+std::vector<Ocg> make_ocgs(const StyledDrawing& d, int first_object) {
+    std::vector<Ocg> ocgs;
+    const bool split = d.split == LayerSplit::kind_distance;
+    for (const StyledLayer& l : d.layers) {
+        const int parent = static_cast<int>(ocgs.size());
+        ocgs.push_back({first_object + parent, l.name, -1});
+        if (split)
+            for (const StyledGroup& g : l.groups)
+                ocgs.push_back({first_object + int(ocgs.size()), g.name, parent});
+    }
+    return ocgs;
+}
+
+std::string ref(int object) { return std::to_string(object) + " 0 R"; }
+
+// Opacity text -> ExtGState resource name (/GS0, /GS1, ... in first-use order).
+using AlphaNames = std::map<std::string, std::string>;
+
+void set_pen(std::string& o, PenState& pen, const StyledPath& p, AlphaNames& alphas) {
+    const std::string width = format_number(p.width, 3), alpha = format_number(p.opacity, 3);
+    if (!pen.valid || !(pen.color == p.color)) append_rgb_op(o, p.color, "RG");
+    if (!pen.valid || pen.width != width) o += width + " w\n";
+    if (!pen.valid || pen.dash != p.dash) append_dash_op(o, p.dash);
+    if (pen.valid ? pen.opacity != alpha : alpha != "1") {
+        auto it = alphas.find(alpha);
+        if (it == alphas.end()) it = alphas.emplace(alpha, "GS" + std::to_string(alphas.size())).first;
+        o += "/" + it->second + " gs\n";
+    }
+    pen = PenState{true, p.color, width, alpha, p.dash};
+}
+
+void group_body(std::string& o, const StyledGroup& g, PenState& pen, AlphaNames& alphas) {
+    for (const StyledPath& p : g.paths) {
+        set_pen(o, pen, p, alphas);
+        append_polyline_ops(o, p.points);
+        o += "S\n";
+    }
+}
+
+std::string content(const StyledDrawing& d, const PageLayout& L, const std::vector<Ocg>& ocgs,
+                    AlphaNames& alphas) {
+    std::string o;
+    o.reserve(4096 + path_count(d) * 64);
+    const double w = L.page_w_mm * points_per_mm, h = L.page_h_mm * points_per_mm;
+    o += "q\n";
+    if (!(d.background == Rgb{255, 255, 255})) {
+        append_rgb_op(o, d.background, "rg");
+        o += "0 0 " + format_number(w, 3) + " " + format_number(h, 3) + " re f\n";
+    }
+    const double k = L.scale_mm * points_per_mm;
+    o += format_number(k, 6) + " 0 0 " + format_number(-k, 6) + " " +
+         format_number(L.offset_x_mm * points_per_mm, 4) + " " +
+         format_number(h - L.offset_y_mm * points_per_mm, 4) + " cm\n1 J 1 j\n";
+    size_t oc = 0;
+    for (const StyledLayer& l : d.layers) {
+        o += "/OC /oc" + std::to_string(oc++) + " BDC\nq\n";
+        if (!l.fill.empty()) {
+            append_rgb_op(o, l.fill_color, "rg");
+            append_ring_ops(o, l.fill);
+            o += "f*\n";
+        }
+        PenState pen;
+        for (const StyledGroup& g : l.groups) {
+            const bool split = d.split == LayerSplit::kind_distance;
+            if (split) o += "/OC /oc" + std::to_string(oc++) + " BDC\n";
+            group_body(o, g, pen, alphas);
+            if (split) o += "EMC\n";
+        }
+        o += "Q\nEMC\n";
+    }
+    o += "Q\n";
+    return o;
+}
+
+std::string oc_properties(const std::vector<Ocg>& ocgs) {
+    std::string all, order;
+    for (size_t i = 0; i < ocgs.size(); ++i) {
+        all += (i ? " " : "") + ref(ocgs[i].object);
+        const bool first_child = ocgs[i].parent >= 0 && (i == 0 || ocgs[i - 1].parent < 0);
+        const bool last_child = ocgs[i].parent >= 0 && (i + 1 == ocgs.size() || ocgs[i + 1].parent < 0);
+        order += (i ? " " : "") + std::string(first_child ? "[" : "") + ref(ocgs[i].object) +
+                 (last_child ? "]" : "");
+    }
+    return "/OCProperties << /OCGs [" + all + "] /D << /Name (penink layers) /Order [" + order +
+           "] /ON [" + all + "] /OFF [] >> >>";
+}
+
+std::string info_dict(const StyledDrawing& d, const PageOptions& page, const std::string& path) {
+    std::string o = "<< /Producer (penink) /Creator (penink) /Title " +
+                    pdf_string(path.substr(path.find_last_of('/') + 1));
+    for (const auto& [k, v] : merged_metadata(d.metadata, page.metadata)) {
+        std::string name = "/penink_";
+        for (char c : k) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+        o += " " + name + " " + pdf_string(v);
+    }
+    return o + " >>";
+}
+
+struct PdfBuilder {
+    std::string out = "%PDF-1.5\n%\xe2\xe3\xcf\xd3\n";
+    std::vector<size_t> offsets;  // by object number - 1
+    void object(const std::string& body) {
+        offsets.push_back(out.size());
+        out += std::to_string(offsets.size()) + " 0 obj\n" + body + "\nendobj\n";
+    }
+    std::string finish(int root, int info) {
+        const size_t xref = out.size();
+        out += "xref\n0 " + std::to_string(offsets.size() + 1) + "\n0000000000 65535 f \n";
+        char line[32];
+        for (size_t off : offsets) {
+            std::snprintf(line, sizeof line, "%010zu 00000 n \n", off);
+            out += line;
+        }
+        out += "trailer\n<< /Size " + std::to_string(offsets.size() + 1) + " /Root " + ref(root) +
+               " /Info " + ref(info) + " >>\nstartxref\n" + std::to_string(xref) + "\n%%EOF\n";
+        return std::move(out);
+    }
+};
+
+}  // namespace
+
+std::string pdf_string(const std::string& text) {
+    std::string o = "(";
+    for (char ch : text) {
+        const unsigned char c = static_cast<unsigned char>(ch);
+        if (c == '(' || c == ')' || c == '\\') o += '\\';
+        if (c >= 32 && c < 127) {
+            o += ch;
+        } else {
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "\\%03o", c);
+            o += buf;
+        }
+    }
+    return o + ")";
+}
+
+std::string pdf_document(const StyledDrawing& d, const PageOptions& page, const std::string& path) {
+    const PageLayout L = page_layout(d.width, d.height, page, path);
+    const std::vector<Ocg> ocgs = make_ocgs(d, 6);
+    AlphaNames alphas;
+    const std::string stream = content(d, L, ocgs, alphas);
+    std::string gs, props;
+    for (const auto& [alpha, name] : alphas) gs += " /" + name + " << /Type /ExtGState /CA " + alpha + " >>";
+    for (size_t i = 0; i < ocgs.size(); ++i) props += " /oc" + std::to_string(i) + " " + ref(ocgs[i].object);
+    const std::string box = "[0 0 " + format_number(L.page_w_mm * points_per_mm, 3) + " " +
+                            format_number(L.page_h_mm * points_per_mm, 3) + "]";
+    PdfBuilder b;
+    b.object("<< /Type /Catalog /Pages 2 0 R " + oc_properties(ocgs) + " >>");
+    b.object("<< /Type /Pages /Kids [3 0 R] /Count 1 >>");
+    b.object("<< /Type /Page /Parent 2 0 R /MediaBox " + box + " /Resources << /ExtGState <<" + gs +
+             " >> /Properties <<" + props + " >> >> /Contents 4 0 R >>");
+    b.object("<< /Length " + std::to_string(stream.size()) + " >>\nstream\n" + stream + "endstream");
+    b.object(info_dict(d, page, path));
+    for (const Ocg& g : ocgs) b.object("<< /Type /OCG /Name " + pdf_string(g.name) + " >>");
+    return b.finish(1, 5);
+}
+
+void write_pdf(const StyledDrawing& drawing, const PageOptions& page, const std::string& path) {
+    write_file_atomically(path, pdf_document(drawing, page, path));
+}
+
+}  // namespace penink

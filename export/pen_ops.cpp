@@ -1,0 +1,62 @@
+// PostScript/PDF operator text (pen_ops.hpp).
+#include "export/pen_ops.hpp"
+
+#include <cmath>
+
+#include "export/page.hpp"
+
+namespace penink {
+
+namespace {
+
+void append_xy(std::string& o, glm::vec2 p, const char* op) {
+    append_number(o, p.x);
+    o += ' ';
+    append_number(o, p.y);
+    o += op;
+}
+
+}  // namespace
+
+void append_polyline_ops(std::string& o, const std::vector<glm::vec2>& pts) {
+    if (pts.empty()) return;
+    append_xy(o, pts[0], " m\n");
+    if (pts.size() == 1) append_xy(o, pts[0], " l\n");
+    for (size_t i = 1; i < pts.size(); ++i) append_xy(o, pts[i], " l\n");
+}
+
+void append_ring_ops(std::string& o, const std::vector<Ring>& rings) {
+    for (const Ring& r : rings) {
+        if (r.size() < 3) continue;
+        append_xy(o, r[0], " m\n");
+        for (size_t i = 1; i < r.size(); ++i) append_xy(o, r[i], " l\n");
+        o += "h\n";
+    }
+}
+
+void append_rgb_op(std::string& o, Rgb c, const char* op) {
+    for (std::uint8_t v : {c.r, c.g, c.b}) {
+        append_number(o, v / 255.0, 3);
+        o += ' ';
+    }
+    o += op;
+    o += '\n';
+}
+
+void append_dash_op(std::string& o, const std::vector<double>& dash) {
+    o += '[';
+    for (size_t i = 0; i < dash.size(); ++i) {
+        if (i) o += ' ';
+        append_number(o, dash[i], 3);
+    }
+    o += "] 0 d\n";
+}
+
+Rgb blend_to_white(Rgb c, double opacity) {
+    const auto mix = [&](std::uint8_t v) {
+        return static_cast<std::uint8_t>(std::lround(v * opacity + 255.0 * (1.0 - opacity)));
+    };
+    return Rgb{mix(c.r), mix(c.g), mix(c.b)};
+}
+
+}  // namespace penink

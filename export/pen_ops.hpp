@@ -1,0 +1,31 @@
+// Operator text shared by the PostScript and PDF writers: the body of both uses PDF operator
+// names (m l S h f* w RG rg d J j q Q cm), which the PostScript prolog defines as procedures.
+// Coordinates are image pixels (the page transform is set once with `cm`).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "export/styled_drawing.hpp"
+
+namespace penink {
+
+// "x y m x y l ... " for a polyline (a single point becomes a zero-length segment = a dot).
+void append_polyline_ops(std::string& out, const std::vector<glm::vec2>& points);
+// Closed rings "x y m ... h" for an even-odd fill (rings with < 3 points are skipped).
+void append_ring_ops(std::string& out, const std::vector<Ring>& rings);
+// "r g b OP" with components in [0, 1], 3 decimals.
+void append_rgb_op(std::string& out, Rgb c, const char* op);
+// "[a b] 0 d" (an empty array is solid).
+void append_dash_op(std::string& out, const std::vector<double>& dash);
+// `c` blended toward white by `opacity` (how PostScript shows opacity on white paper).
+Rgb blend_to_white(Rgb c, double opacity);
+
+// Pen state of a content stream, to emit only changed operators.
+struct PenState {
+    bool valid = false;
+    Rgb color;
+    std::string width, opacity;  // formatted, so equal text means no change
+    std::vector<double> dash;
+};
+
+}  // namespace penink

@@ -1,0 +1,132 @@
+// PostScript / EPS writer (ps_writer.hpp).
+#include "export/ps_writer.hpp"
+
+#include <cctype>
+#include <cmath>
+
+#include "export/atomic_file.hpp"
+#include "export/pen_ops.hpp"
+
+namespace penink {
+
+namespace {
+
+// Procedures named like the PDF operators, so pen_ops text works in both formats; Lb/Ln/LB
+// are Illustrator's layer operators, defined here as no-ops so any interpreter accepts them.
+constexpr const char* prolog =
+    "%%BeginProlog\n"
+    "%%BeginResource: procset penink 1.0 0\n"
+    "/penink_dict 24 dict def penink_dict begin\n"
+    "/m /moveto load def /l /lineto load def /h /closepath load def\n"
+    "/S /stroke load def /f* /eofill load def /w /setlinewidth load def\n"
+    "/RG /setrgbcolor load def /rg /setrgbcolor load def /d /setdash load def\n"
+    "/J /setlinecap load def /j /setlinejoin load def /q /gsave load def /Q /grestore load def\n"
+    "/cm { 6 array astore concat } bind def\n"
+    "/Lb { 10 { pop } repeat } bind def /Ln { pop } bind def /LB { } bind def\n"
+    "end\n"
+    "%%EndResource\n"
+    "%%EndProlog\n";
+
+// A PostScript string literal: ( ) and \ escaped, non-printing bytes dropped.
+std::string ps_string(const std::string& s) {
+    std::string o = "(";
+    for (char c : s) {
+        if (c == '(' || c == ')' || c == '\\') o += '\\';
+        if (static_cast<unsigned char>(c) >= 32 && static_cast<unsigned char>(c) < 127) o += c;
+    }
+    return o + ")";
+}
+
+// One-line comment text (no line breaks, printable ASCII).
+std::string comment_text(const std::string& s) {
+    std::string o;
+    for (char c : s) o += (static_cast<unsigned char>(c) >= 32 && static_cast<unsigned char>(c) < 127) ? c : ' ';
+    return o;
+}
+
+void header(std::string& o, const StyledDrawing& d, const PageLayout& L, bool eps,
+            const PageOptions& page, const std::string& path) {
+    const double w = L.page_w_mm * points_per_mm, h = L.page_h_mm * points_per_mm;
+    o += eps ? "%!PS-Adobe-3.0 EPSF-3.0\n" : "%!PS-Adobe-3.0\n";
+    o += "%%Creator: penink\n%%Title: " + comment_text(path.substr(path.find_last_of('/') + 1)) + "\n";
+    o += "%%BoundingBox: 0 0 " + std::to_string(int(std::ceil(w - 1e-6))) + " " +
+         std::to_string(int(std::ceil(h - 1e-6))) + "\n";
+    o += "%%HiResBoundingBox: 0 0 " + format_number(w, 3) + " " + format_number(h, 3) + "\n";
+    o += "%%LanguageLevel: 2\n%%DocumentData: Clean7Bit\n%%Pages: 1\n";
+    if (!eps) o += "%%DocumentMedia: penink " + format_number(w, 3) + " " + format_number(h, 3) + " 0 () ()\n";
+    o += "%%EndComments\n";
+    for (const auto& [k, v] : merged_metadata(d.metadata, page.metadata))
+        o += "% penink " + comment_text(k) + ": " + comment_text(v) + "\n";
+    o += prolog;
+    o += "%%BeginSetup\npenink_dict begin\n";
+    if (!eps) o += "<< /PageSize [" + format_number(w, 3) + " " + format_number(h, 3) + "] >> setpagedevice\n";
+    o += "%%EndSetup\n%%Page: 1 1\n%%BeginPageSetup\nq\n";
+    if (!(d.background == Rgb{255, 255, 255})) {
+        append_rgb_op(o, d.background, "rg");
+        o += "0 0 " + format_number(w, 3) + " " + format_number(h, 3) + " rectfill\n";
+    }
+    const double k = L.scale_mm * points_per_mm;
+    o += format_number(k, 6) + " 0 0 " + format_number(-k, 6) + " " +
+         format_number(L.offset_x_mm * points_per_mm, 4) + " " +
+         format_number(h - L.offset_y_mm * points_per_mm, 4) + " cm\n1 J 1 j\n%%EndPageSetup\n";
+}
+
+void set_pen(std::string& o, PenState& pen, const StyledPath& p) {
+    const Rgb c = blend_to_white(p.color, p.opacity);
+    const std::string width = format_number(p.width, 3);
+    if (!pen.valid || !(pen.color == c)) append_rgb_op(o, c, "RG");
+    if (!pen.valid || pen.width != width) o += width + " w\n";
+    if (!pen.valid || pen.dash != p.dash) append_dash_op(o, p.dash);
+    pen = PenState{true, c, width, "", p.dash};
+}
+
+void layer_body(std::string& o, const StyledLayer& l, bool split) {
+    if (!l.fill.empty()) {
+        append_rgb_op(o, l.fill_color, "rg");
+        append_ring_ops(o, l.fill);
+        o += "f*\n";
+    }
+    PenState pen;
+    for (const StyledGroup& g : l.groups) {
+        if (split) o += "%%BeginLayer: " + g.name + "\n";
+        for (const StyledPath& p : g.paths) {
+            set_pen(o, pen, p);
+            append_polyline_ops(o, p.points);
+            o += "S\n";
+        }
+        if (split) o += "%%EndLayer\n";
+    }
+}
+
+void layer(std::string& o, const StyledLayer& l, bool split) {
+    o += "%%BeginLayer: " + l.name + "\n%AI5_BeginLayer\n1 1 1 1 0 0 -1 0 0 0 Lb\n" +
+         ps_string(l.name) + " Ln\nq\n";
+    layer_body(o, l, split);
+    o += "Q\nLB\n%AI5_EndLayer--\n%%EndLayer\n";
+}
+
+bool ends_with_eps(const std::string& path) {
+    if (path.size() < 4) return false;
+    std::string ext = path.substr(path.size() - 4);
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".eps";
+}
+
+}  // namespace
+
+std::string ps_document(const StyledDrawing& d, const PageOptions& page, bool eps,
+                        const std::string& path) {
+    const PageLayout L = page_layout(d.width, d.height, page, path);
+    std::string o;
+    o.reserve(8192 + path_count(d) * 64);
+    header(o, d, L, eps, page, path);
+    for (const StyledLayer& l : d.layers) layer(o, l, d.split == LayerSplit::kind_distance);
+    o += "Q\nshowpage\n%%PageTrailer\n%%Trailer\nend\n%%EOF\n";
+    return o;
+}
+
+void write_ps(const StyledDrawing& drawing, const PageOptions& page, const std::string& path) {
+    write_file_atomically(path, ps_document(drawing, page, ends_with_eps(path), path));
+}
+
+}  // namespace penink

@@ -1,0 +1,110 @@
+// Colours and the shipped styles (technical, field-sketch); styles/*.toml mirror these values.
+#include "export/style.hpp"
+
+#include <stdexcept>
+
+#include "core/error.hpp"
+
+namespace penink {
+
+namespace {
+
+int hex_digit(char c) {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+}
+
+void set_width(LayerStyle& s, double near, double far) {
+    s.width = near;
+    s.width_far = far;
+}
+
+}  // namespace
+
+Rgb parse_rgb(const std::string& text) {
+    const bool short_form = text.size() == 4;
+    if (text.empty() || text[0] != '#' || (text.size() != 7 && !short_form))
+        throw std::invalid_argument("must be \"#rrggbb\"");
+    int v[6];
+    for (size_t i = 1; i < text.size(); ++i) {
+        v[i - 1] = hex_digit(text[i]);
+        if (v[i - 1] < 0) throw std::invalid_argument("must be \"#rrggbb\"");
+    }
+    if (short_form)
+        return Rgb{static_cast<std::uint8_t>(v[0] * 17), static_cast<std::uint8_t>(v[1] * 17),
+                   static_cast<std::uint8_t>(v[2] * 17)};
+    return Rgb{static_cast<std::uint8_t>(v[0] * 16 + v[1]),
+               static_cast<std::uint8_t>(v[2] * 16 + v[3]),
+               static_cast<std::uint8_t>(v[4] * 16 + v[5])};
+}
+
+std::string rgb_hex(Rgb c) {
+    static constexpr char digits[] = "0123456789abcdef";
+    std::string s = "#";
+    for (std::uint8_t v : {c.r, c.g, c.b}) {
+        s += digits[v >> 4];
+        s += digits[v & 15];
+    }
+    return s;
+}
+
+Style default_style() {
+    Style s;
+    s.name = "technical";
+    for (LayerStyle& l : s.layers) l = LayerStyle{};
+    set_width(s.layer(LayerKind::surface), 0.5, 0.5);
+    set_width(s.layer(LayerKind::ridges), 0.6, 0.6);
+    set_width(s.layer(LayerKind::creases), 0.6, 0.6);
+    set_width(s.layer(LayerKind::pels), 0.5, 0.5);
+    set_width(s.layer(LayerKind::textures), 0.4, 0.4);
+    set_width(s.layer(LayerKind::feature_edges), 0.8, 0.8);
+    set_width(s.layer(LayerKind::silhouettes), 1.2, 1.2);
+    return s;
+}
+
+namespace {
+
+Style field_sketch_style() {
+    Style s = default_style();
+    s.name = "field-sketch";
+    s.background = Rgb{0xfb, 0xf8, 0xf0};
+    s.fill = s.background;
+    const struct { LayerKind k; double w, wf, keep; } table[] = {
+        {LayerKind::surface, 0.8, 0.4, 1.0},        {LayerKind::ridges, 1.1, 0.4, 0.5},
+        {LayerKind::creases, 1.0, 0.35, 0.5},       {LayerKind::pels, 0.8, 0.3, 0.4},
+        {LayerKind::textures, 0.6, 0.25, 0.3},      {LayerKind::feature_edges, 1.4, 0.6, 0.8},
+        {LayerKind::silhouettes, 1.8, 0.7, 1.0}};
+    for (const auto& row : table) {
+        LayerStyle& l = s.layer(row.k);
+        l.color = Rgb{0x2b, 0x24, 0x1e};
+        set_width(l, row.w, row.wf);
+        l.opacity = 0.95;
+        l.opacity_far = 0.55;
+        l.keep_far = row.keep;
+        l.sketch = 1.5;
+        l.overshoot = 2.0;
+    }
+    s.layer(LayerKind::silhouettes).repeat = 2;
+    s.layer(LayerKind::textures).dash = {6.0, 3.0};
+    return s;
+}
+
+}  // namespace
+
+std::vector<std::string> builtin_style_names() { return {"technical", "field-sketch"}; }
+
+Style builtin_style(const std::string& name) {
+    if (name == "technical") return default_style();
+    if (name == "field-sketch") return field_sketch_style();
+    throw Error("style", name, "unknown style \"" + name + "\" (use technical or field-sketch)");
+}
+
+Style resolve_style(const std::string& name_or_path) {
+    for (const std::string& n : builtin_style_names())
+        if (n == name_or_path) return builtin_style(n);
+    return load_style(name_or_path);
+}
+
+}  // namespace penink

@@ -1,0 +1,71 @@
+// Drawing styles: per-layer pen colour, width and opacity (near and far), distance thinning,
+// dashes, sketchiness, overshoot and repeats, parsed from styles/*.toml (toml11) or built in.
+// Widths, dashes, sketch and overshoot are in pixels of the drawing's image (SVG user units);
+// near/far are fractions of the drawing's largest eye distance (see styles/README.md).
+#pragma once
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <toml.hpp>
+
+#include "core/drawing.hpp"
+
+namespace penink {
+
+struct Rgb {
+    std::uint8_t r = 0, g = 0, b = 0;
+    bool operator==(const Rgb&) const = default;
+};
+
+// "#rrggbb" (also "#rgb") -> Rgb; throws std::invalid_argument with a short reason.
+Rgb parse_rgb(const std::string& text);
+// Rgb -> "#rrggbb" (lower case).
+std::string rgb_hex(Rgb c);
+
+// How one layer's strokes are drawn. Values at the near distance; *_far at the far distance,
+// linearly interpolated in between (clamped outside).
+struct LayerStyle {
+    Rgb color{0, 0, 0};
+    double width = 1.0, width_far = 1.0;      // stroke width, image pixels
+    double opacity = 1.0, opacity_far = 1.0;  // [0, 1]
+    double keep_far = 1.0;                    // share of strokes kept at the far distance
+    std::vector<double> dash;                 // on/off lengths in pixels; empty = solid
+    double sketch = 0.0;                      // endpoint perturbation (lines stage), pixels
+    double overshoot = 0.0;                   // extension of open stroke ends, pixels
+    int repeat = 1;                           // times each stroke is drawn (plotter passes)
+    bool visible = true;                      // false: the layer is written empty
+    bool operator==(const LayerStyle&) const = default;
+};
+
+struct Style {
+    std::string name = "technical";
+    Rgb fill{255, 255, 255};        // surface mask fill
+    Rgb background{255, 255, 255};  // page / image background
+    double near = 0.0, far = 1.0;   // fractions of the drawing's largest depth
+    int bands = 4;                  // width bands (quantisation levels) per layer
+    std::array<LayerStyle, 7> layers;  // indexed by LayerKind
+    LayerStyle& layer(LayerKind k) { return layers[static_cast<size_t>(k)]; }
+    const LayerStyle& layer(LayerKind k) const { return layers[static_cast<size_t>(k)]; }
+    bool operator==(const Style&) const = default;
+};
+
+// The default style: equal to styles/technical.toml.
+Style default_style();
+// Shipped styles by name ("technical", "field-sketch"); throws Error("style", name,
+// "unknown style \"NAME\" (use technical or field-sketch)").
+Style builtin_style(const std::string& name);
+std::vector<std::string> builtin_style_names();
+
+// Parses a style file; starts from default_style() and applies the file's keys.
+// Errors: Error("style", path, what), e.g. `unknown layer "foo"`, `width must be >= 0`.
+Style load_style(const std::string& path);
+// Either a built-in name or a path to a .toml file.
+Style resolve_style(const std::string& name_or_path);
+
+// Applies a style table (a style file's root or a scene's [style] table: top-level keys and
+// one sub-table per layer name or "all"). Throws Error("style", source, what) on bad input.
+void apply_style_overrides(Style& style, const toml::value& table, const std::string& source = "");
+
+}  // namespace penink

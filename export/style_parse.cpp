@@ -1,0 +1,184 @@
+// Reading styles from TOML (toml11 3.7): a root of top-level keys plus one table per layer
+// (or "all", applied first). Unknown keys and out-of-range values are errors (styles/README.md).
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <stdexcept>
+
+#include "core/error.hpp"
+#include "export/style.hpp"
+
+namespace penink {
+
+namespace {
+
+// A bad key or value; turned into penink::Error with the file name by the caller.
+struct StyleProblem : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+std::string where(const std::string& table) { return table.empty() ? "" : " (in [" + table + "])"; }
+
+double number(const toml::value& v, const std::string& key, const std::string& table) {
+    if (v.is_floating()) return v.as_floating();
+    if (v.is_integer()) return static_cast<double>(v.as_integer());
+    throw StyleProblem(key + " must be a number" + where(table));
+}
+
+double number_at_least(const toml::value& v, const std::string& key, const std::string& table,
+                       double lo) {
+    const double x = number(v, key, table);
+    if (!std::isfinite(x) || x < lo)
+        throw StyleProblem(key + " must be >= " + (lo == 0 ? "0" : "1") + where(table));
+    return x;
+}
+
+double unit_number(const toml::value& v, const std::string& key, const std::string& table) {
+    const double x = number(v, key, table);
+    if (!(x >= 0.0 && x <= 1.0)) throw StyleProblem(key + " must be in [0, 1]" + where(table));
+    return x;
+}
+
+Rgb colour(const toml::value& v, const std::string& key, const std::string& table) {
+    if (!v.is_string()) throw StyleProblem(key + " must be a string \"#rrggbb\"" + where(table));
+    try {
+        return parse_rgb(v.as_string().str);
+    } catch (const std::invalid_argument&) {
+        throw StyleProblem(key + " must be \"#rrggbb\" (got \"" + v.as_string().str + "\")" +
+                           where(table));
+    }
+}
+
+std::vector<double> dash_array(const toml::value& v, const std::string& table) {
+    if (!v.is_array()) throw StyleProblem("dash must be an array of numbers" + where(table));
+    std::vector<double> dash;
+    double sum = 0.0;
+    for (const toml::value& x : v.as_array()) {
+        dash.push_back(number_at_least(x, "dash", table, 0.0));
+        sum += dash.back();
+    }
+    if (!dash.empty() && sum <= 0.0) throw StyleProblem("dash must not be all zeros" + where(table));
+    return dash;
+}
+
+std::vector<std::string> sorted_keys(const toml::value& t) {
+    std::vector<std::string> keys;
+    for (const auto& [k, v] : t.as_table()) keys.push_back(k);
+    std::sort(keys.begin(), keys.end());
+    return keys;
+}
+
+void apply_layer_key(LayerStyle& l, const std::string& key, const toml::value& v,
+                     const std::string& table) {
+    if (key == "color" || key == "colour") l.color = colour(v, key, table);
+    else if (key == "width") l.width = number_at_least(v, key, table, 0.0);
+    else if (key == "width_far") l.width_far = number_at_least(v, key, table, 0.0);
+    else if (key == "opacity") l.opacity = unit_number(v, key, table);
+    else if (key == "opacity_far") l.opacity_far = unit_number(v, key, table);
+    else if (key == "keep_far") l.keep_far = unit_number(v, key, table);
+    else if (key == "dash") l.dash = dash_array(v, table);
+    else if (key == "sketch") l.sketch = number_at_least(v, key, table, 0.0);
+    else if (key == "overshoot") l.overshoot = number_at_least(v, key, table, 0.0);
+    else if (key == "repeat") {
+        if (!v.is_integer() || v.as_integer() < 1 || v.as_integer() > 16)
+            throw StyleProblem("repeat must be an integer in [1, 16]" + where(table));
+        l.repeat = static_cast<int>(v.as_integer());
+    } else if (key == "visible") {
+        if (!v.is_boolean()) throw StyleProblem("visible must be true or false" + where(table));
+        l.visible = v.as_boolean();
+    } else {
+        throw StyleProblem("unknown key \"" + key + "\"" + where(table));
+    }
+}
+
+// A table's keys on one layer; `width` / `opacity` alone also set the far value (uniform).
+void apply_layer_table(LayerStyle& l, const toml::value& t, const std::string& table) {
+    const std::vector<std::string> keys = sorted_keys(t);
+    const auto has = [&](const char* k) { return std::find(keys.begin(), keys.end(), k) != keys.end(); };
+    for (const std::string& k : keys) apply_layer_key(l, k, t.as_table().at(k), table);
+    if (has("width") && !has("width_far")) l.width_far = l.width;
+    if (has("opacity") && !has("opacity_far")) l.opacity_far = l.opacity;
+}
+
+bool find_layer(const std::string& name, LayerKind& out) {
+    for (LayerKind k : all_layers)
+        if (layer_name(k) == name) {
+            out = k;
+            return true;
+        }
+    return false;
+}
+
+void apply_root_key(Style& s, const std::string& key, const toml::value& v) {
+    if (key == "name") {
+        if (!v.is_string()) throw StyleProblem("name must be a string");
+        s.name = v.as_string().str;
+    } else if (key == "fill") s.fill = colour(v, key, "");
+    else if (key == "background") s.background = colour(v, key, "");
+    else if (key == "near") s.near = unit_number(v, key, "");
+    else if (key == "far") s.far = unit_number(v, key, "");
+    else if (key == "bands") {
+        if (!v.is_integer() || v.as_integer() < 1 || v.as_integer() > 16)
+            throw StyleProblem("bands must be an integer in [1, 16]");
+        s.bands = static_cast<int>(v.as_integer());
+    } else throw StyleProblem("unknown key \"" + key + "\"");
+}
+
+void apply_table(Style& s, const toml::value& table) {
+    if (!table.is_table()) throw StyleProblem("style must be a table");
+    const std::vector<std::string> keys = sorted_keys(table);
+    for (const std::string& k : keys) {  // scalars first, then "all", then the layers
+        const toml::value& v = table.as_table().at(k);
+        if (!v.is_table()) apply_root_key(s, k, v);
+    }
+    if (table.contains("all") && table.at("all").is_table())
+        for (LayerStyle& l : s.layers) apply_layer_table(l, table.at("all"), "all");
+    for (const std::string& k : keys) {
+        const toml::value& v = table.as_table().at(k);
+        LayerKind kind;
+        if (!v.is_table() || k == "all") continue;
+        if (!find_layer(k, kind)) throw StyleProblem("unknown layer \"" + k + "\"");
+        apply_layer_table(s.layer(kind), v, k);
+    }
+    if (!(s.near < s.far)) throw StyleProblem("near must be less than far");
+}
+
+std::string first_line(std::string text) {
+    if (text.rfind("[error] ", 0) == 0) text.erase(0, 8);
+    const size_t nl = text.find('\n');
+    return nl == std::string::npos ? text : text.substr(0, nl);
+}
+
+}  // namespace
+
+void apply_style_overrides(Style& style, const toml::value& table, const std::string& source) {
+    Style s = style;
+    try {
+        apply_table(s, table);
+    } catch (const StyleProblem& e) {
+        throw Error("style", source, e.what());
+    }
+    style = s;
+}
+
+Style load_style(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error("style", path, "cannot open style file");
+    toml::value root;
+    try {
+        root = toml::parse(in, path);
+    } catch (const std::exception& e) {
+        throw Error("style", path, "invalid TOML: " + first_line(e.what()));
+    }
+    Style s = default_style();
+    s.name.clear();
+    apply_style_overrides(s, root, path);
+    if (s.name.empty()) {
+        const size_t slash = path.find_last_of('/'), dot = path.find_last_of('.');
+        const size_t from = slash == std::string::npos ? 0 : slash + 1;
+        s.name = path.substr(from, dot == std::string::npos || dot < from ? std::string::npos : dot - from);
+    }
+    return s;
+}
+
+}  // namespace penink

@@ -1,0 +1,172 @@
+// Styling a Drawing: distance thinning, overshoot, width bands, sublayers (styled_drawing.hpp).
+#include "export/styled_drawing.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace penink {
+
+namespace {
+
+std::uint64_t splitmix64(std::uint64_t x) {
+    x += 0x9e3779b97f4a7c15ull;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+    return x ^ (x >> 31);
+}
+
+// Uniform in [0, 1) from (seed, layer, stroke index), 53 random bits.
+double stroke_hash01(std::uint64_t seed, int layer, size_t index) {
+    std::uint64_t h = splitmix64(seed);
+    h = splitmix64(h ^ static_cast<std::uint64_t>(layer));
+    h = splitmix64(h ^ static_cast<std::uint64_t>(index));
+    return static_cast<double>(h >> 11) * 0x1.0p-53;
+}
+
+// Maps eye distances to t in [0, 1] between the style's near and far distances.
+struct DistanceMap {
+    double max_depth = 0.0, near = 0.0, far = 1.0;
+    double t(double depth) const {
+        if (max_depth <= 0.0) return 0.0;
+        return std::clamp((depth / max_depth - near) / (far - near), 0.0, 1.0);
+    }
+};
+
+double lerp(double a, double b, double t) { return a + (b - a) * t; }
+
+bool uniform(const LayerStyle& s) { return s.width == s.width_far && s.opacity == s.opacity_far; }
+
+int level_of(double t, int bands) {
+    return bands <= 1 ? 0 : static_cast<int>(std::lround(t * (bands - 1)));
+}
+
+double level_t(int level, int bands) { return bands <= 1 ? 0.0 : double(level) / (bands - 1); }
+
+double mean_depth(const Stroke& s, size_t from, size_t to) {  // [from, to]
+    if (s.depth.size() < s.points.size()) return 0.0;
+    double sum = 0.0;
+    for (size_t i = from; i <= to; ++i) sum += s.depth[i];
+    return sum / double(to - from + 1);
+}
+
+// Extends the two ends of an open stroke by `length` pixels along its end directions.
+Stroke with_overshoot(const Stroke& s, double length) {
+    Stroke out = s;
+    const size_t n = s.points.size();
+    if (length <= 0.0 || n < 2 || s.points.front() == s.points.back()) return out;
+    const auto extend = [&](glm::vec2 end, glm::vec2 inner) {
+        const glm::vec2 d = end - inner;
+        const float len = std::sqrt(d.x * d.x + d.y * d.y);
+        return len > 0.0f ? end + d * float(length / len) : end;
+    };
+    out.points.front() = extend(s.points[0], s.points[1]);
+    out.points.back() = extend(s.points[n - 1], s.points[n - 2]);
+    return out;
+}
+
+StyledPath band_path(const Stroke& s, size_t from, size_t to, int level, const LayerStyle& ls,
+                     int bands) {
+    StyledPath p;
+    p.points.assign(s.points.begin() + from, s.points.begin() + to + 1);
+    const double t = level_t(level, bands);
+    p.width = lerp(ls.width, ls.width_far, t);
+    p.opacity = lerp(ls.opacity, ls.opacity_far, t);
+    p.color = ls.color;
+    p.dash = ls.dash;
+    p.kind = s.kind;
+    p.depth = mean_depth(s, from, to);
+    p.strength = s.strength;
+    return p;
+}
+
+// Splits a stroke into runs of segments of equal quantised level; runs share end points.
+std::vector<StyledPath> split_bands(const Stroke& s, const LayerStyle& ls, const DistanceMap& dm,
+                                    int bands) {
+    const size_t n = s.points.size();
+    const bool has_depth = s.depth.size() >= n;
+    const int nb = uniform(ls) ? 1 : bands;
+    const auto depth_at = [&](size_t i) { return has_depth ? double(s.depth[i]) : 0.0; };
+    std::vector<StyledPath> out;
+    if (n == 1) {
+        out.push_back(band_path(s, 0, 0, level_of(dm.t(depth_at(0)), nb), ls, nb));
+        return out;
+    }
+    size_t start = 0;
+    int current = level_of(dm.t(0.5 * (depth_at(0) + depth_at(1))), nb);
+    for (size_t j = 1; j + 1 < n; ++j) {
+        const int level = level_of(dm.t(0.5 * (depth_at(j) + depth_at(j + 1))), nb);
+        if (level == current) continue;
+        out.push_back(band_path(s, start, j, current, ls, nb));
+        start = j;
+        current = level;
+    }
+    out.push_back(band_path(s, start, n - 1, current, ls, nb));
+    return out;
+}
+
+size_t distance_group(double depth, double max_depth) {
+    if (max_depth <= 0.0) return 0;
+    const double f = depth / max_depth;
+    return f < 1.0 / 3.0 ? 0 : (f < 2.0 / 3.0 ? 1 : 2);
+}
+
+StyledLayer style_layer(const Layer& layer, const Style& style, const DistanceMap& dm,
+                        std::uint64_t seed, LayerSplit split) {
+    StyledLayer out;
+    out.kind = layer.kind;
+    out.name = std::string(layer_name(layer.kind));
+    out.fill = layer.fill;
+    out.fill_color = style.fill;
+    out.style = style.layer(layer.kind);
+    const LayerStyle& ls = out.style;
+    if (split == LayerSplit::kind) out.groups.push_back({out.name, {}});
+    else for (const char* g : {"-near", "-middle", "-far"}) out.groups.push_back({out.name + g, {}});
+    if (!ls.visible) return out;
+    const int layer_index = static_cast<int>(layer.kind);
+    for (size_t i = 0; i < layer.strokes.size(); ++i) {
+        const Stroke& s = layer.strokes[i];
+        if (s.points.empty()) continue;
+        const double keep = 1.0 - (1.0 - ls.keep_far) * dm.t(mean_depth(s, 0, s.points.size() - 1));
+        if (stroke_hash01(seed, layer_index, i) >= keep) continue;
+        const std::vector<StyledPath> bands = split_bands(with_overshoot(s, ls.overshoot), ls, dm, style.bands);
+        for (int r = 0; r < std::max(1, ls.repeat); ++r)
+            for (const StyledPath& p : bands) {
+                const size_t g = split == LayerSplit::kind ? 0 : distance_group(p.depth, dm.max_depth);
+                out.groups[g].paths.push_back(p);
+            }
+    }
+    return out;
+}
+
+}  // namespace
+
+double max_depth(const Drawing& drawing) {
+    double m = 0.0;
+    for (const Layer& l : drawing.layers)
+        for (const Stroke& s : l.strokes)
+            for (float d : s.depth) m = std::max(m, double(d));
+    return m;
+}
+
+StyledDrawing style_drawing(const Drawing& drawing, const Style& style, std::uint64_t seed,
+                            LayerSplit split) {
+    StyledDrawing out;
+    out.width = drawing.width;
+    out.height = drawing.height;
+    out.background = style.background;
+    out.split = split;
+    out.metadata = drawing.metadata;
+    const DistanceMap dm{max_depth(drawing), style.near, style.far};
+    for (size_t i = 0; i < drawing.layers.size(); ++i)
+        out.layers[i] = style_layer(drawing.layers[i], style, dm, seed, split);
+    return out;
+}
+
+size_t path_count(const StyledDrawing& drawing) {
+    size_t n = 0;
+    for (const StyledLayer& l : drawing.layers)
+        for (const StyledGroup& g : l.groups) n += g.paths.size();
+    return n;
+}
+
+}  // namespace penink

@@ -1,0 +1,66 @@
+// A Drawing with its style applied: thinned by distance, every stroke split into width bands
+// (runs of segments whose distance-interpolated width/opacity falls in the same quantised
+// level), coloured and dashed. Coordinates stay in image pixels (origin top-left, y down);
+// depth is eye distance in metres. All writers (SVG, PS/EPS, PDF, PNG) consume this one
+// structure, so every format carries identical geometry, layers and order.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/drawing.hpp"
+#include "export/style.hpp"
+
+namespace penink {
+
+// kind: one group per layer; kind_distance: sublayers near / middle / far (depth thirds).
+enum class LayerSplit { kind, kind_distance };
+
+struct StyledPath {
+    std::vector<glm::vec2> points;  // image pixels, >= 1 point (1 point = a dot)
+    double width = 1.0;             // pixels
+    double opacity = 1.0;
+    Rgb color;
+    std::vector<double> dash;  // pixels, empty = solid
+    std::string kind;          // data-kind
+    double depth = 0.0;        // mean eye distance of the band's points, metres
+    double strength = 0.0;     // the stroke's score
+};
+
+// A drawable group: the whole layer, or one of its near/middle/far sublayers.
+struct StyledGroup {
+    std::string name;  // "ridges" or "ridges-near", ...
+    std::vector<StyledPath> paths;
+};
+
+struct StyledLayer {
+    LayerKind kind = LayerKind::surface;
+    std::string name;             // layer_name(kind)
+    std::vector<Ring> fill;       // surface mask rings (even-odd), drawn below the strokes
+    Rgb fill_color{255, 255, 255};
+    LayerStyle style;             // the style the paths were made with (common attributes)
+    std::vector<StyledGroup> groups;  // 1 (LayerSplit::kind) or 3 (kind_distance)
+};
+
+struct StyledDrawing {
+    int width = 0, height = 0;  // image pixels
+    Rgb background{255, 255, 255};
+    LayerSplit split = LayerSplit::kind;
+    std::array<StyledLayer, 7> layers;  // bottom to top, conventions.md order
+    std::map<std::string, std::string> metadata;
+};
+
+// Applies `style` to `drawing`. Strokes are dropped when hash(seed, layer, index) (splitmix64)
+// >= keep probability, which falls linearly from 1 at `near` to keep_far at `far`.
+StyledDrawing style_drawing(const Drawing& drawing, const Style& style, std::uint64_t seed,
+                            LayerSplit split = LayerSplit::kind);
+
+// The largest eye distance of any stroke point in the drawing (0 if none).
+double max_depth(const Drawing& drawing);
+
+// Total number of paths across layers and groups.
+size_t path_count(const StyledDrawing& drawing);
+
+}  // namespace penink

@@ -1,0 +1,167 @@
+// SVG writer (svg_writer.hpp).
+#include "export/svg_writer.hpp"
+
+#include "export/atomic_file.hpp"
+
+namespace penink {
+
+namespace {
+
+void attr(std::string& o, const char* name, const std::string& value) {
+    o += ' ';
+    o += name;
+    o += "=\"";
+    o += value;
+    o += '"';
+}
+
+void attr_num(std::string& o, const char* name, double value, int decimals) {
+    o += ' ';
+    o += name;
+    o += "=\"";
+    append_number(o, value, decimals);
+    o += '"';
+}
+
+std::string dash_text(const std::vector<double>& dash) {
+    std::string s;
+    for (size_t i = 0; i < dash.size(); ++i) {
+        if (i) s += ',';
+        append_number(s, dash[i], 3);
+    }
+    return s;
+}
+
+void append_point(std::string& o, glm::vec2 p) {
+    append_number(o, p.x);
+    o += ' ';
+    append_number(o, p.y);
+}
+
+void header(std::string& o, const StyledDrawing& d, const PageLayout& L, const PageOptions& page) {
+    o += "<?xml version=\"1.0\" encoding=\"UTF-8\" standalone=\"no\"?>\n";
+    o += "<!-- Created with penink (pen-and-ink landscapes) -->\n<svg";
+    attr(o, "xmlns", "http://www.w3.org/2000/svg");
+    attr(o, "xmlns:inkscape", "http://www.inkscape.org/namespaces/inkscape");
+    attr(o, "xmlns:sodipodi", "http://sodipodi.sourceforge.net/DTD/sodipodi-0.dtd");
+    attr(o, "xmlns:penink", "urn:penink");
+    attr(o, "version", "1.1");
+    attr(o, "width", format_number(L.page_w_mm, 4) + "mm");
+    attr(o, "height", format_number(L.page_h_mm, 4) + "mm");
+    const double vw = L.page_w_mm / L.scale_mm, vh = L.page_h_mm / L.scale_mm;
+    attr(o, "viewBox", format_number(-L.offset_x_mm / L.scale_mm, 4) + " " +
+                           format_number(-L.offset_y_mm / L.scale_mm, 4) + " " +
+                           format_number(vw, 4) + " " + format_number(vh, 4));
+    o += ">\n";
+    o += "<sodipodi:namedview id=\"namedview\" pagecolor=\"" + rgb_hex(d.background) +
+         "\" inkscape:document-units=\"mm\"/>\n";
+    o += "<metadata id=\"metadata\">\n";
+    for (const auto& [k, v] : merged_metadata(d.metadata, page.metadata))
+        o += "<penink:param name=\"" + xml_escape(k) + "\">" + xml_escape(v) + "</penink:param>\n";
+    o += "</metadata>\n";
+    if (!(d.background == Rgb{255, 255, 255})) {
+        o += "<rect id=\"background\"";
+        attr_num(o, "x", -L.offset_x_mm / L.scale_mm, 4);
+        attr_num(o, "y", -L.offset_y_mm / L.scale_mm, 4);
+        attr_num(o, "width", vw, 4);
+        attr_num(o, "height", vh, 4);
+        attr(o, "fill", rgb_hex(d.background));
+        o += "/>\n";
+    }
+}
+
+void surface_fill(std::string& o, const StyledLayer& l) {
+    if (l.fill.empty()) return;
+    o += "<path fill=\"" + rgb_hex(l.fill_color) + "\" fill-rule=\"evenodd\" stroke=\"none\" d=\"";
+    for (const Ring& r : l.fill) {
+        if (r.size() < 3) continue;
+        o += 'M';
+        append_point(o, r[0]);
+        o += " L";
+        for (size_t i = 1; i < r.size(); ++i) {
+            if (i > 1) o += ' ';
+            append_point(o, r[i]);
+        }
+        o += 'Z';
+    }
+    o += "\"/>\n";
+}
+
+void stroke_path(std::string& o, const StyledPath& p, const LayerStyle& ls) {
+    o += "<path d=\"M";
+    append_point(o, p.points[0]);
+    o += " L";
+    if (p.points.size() == 1) append_point(o, p.points[0]);
+    for (size_t i = 1; i < p.points.size(); ++i) {
+        if (i > 1) o += ' ';
+        append_point(o, p.points[i]);
+    }
+    o += '"';
+    if (!(p.color == ls.color)) attr(o, "stroke", rgb_hex(p.color));
+    if (format_number(p.width, 3) != format_number(ls.width, 3)) attr_num(o, "stroke-width", p.width, 3);
+    if (p.opacity < 1.0) attr_num(o, "opacity", p.opacity, 3);
+    if (p.dash != ls.dash) attr(o, "stroke-dasharray", p.dash.empty() ? "none" : dash_text(p.dash));
+    attr(o, "data-kind", xml_escape(p.kind));
+    attr_num(o, "data-depth", p.depth, 2);
+    attr_num(o, "data-strength", p.strength, 3);
+    o += "/>\n";
+}
+
+void layer_open(std::string& o, const std::string& name) {
+    o += "<g inkscape:groupmode=\"layer\" inkscape:label=\"" + name + "\" id=\"" + name + "\"";
+}
+
+void layer(std::string& o, const StyledLayer& l, bool split) {
+    layer_open(o, l.name);
+    attr(o, "fill", "none");
+    attr(o, "stroke", rgb_hex(l.style.color));
+    attr_num(o, "stroke-width", l.style.width, 3);
+    attr(o, "stroke-linecap", "round");
+    attr(o, "stroke-linejoin", "round");
+    if (!l.style.dash.empty()) attr(o, "stroke-dasharray", dash_text(l.style.dash));
+    o += ">\n";
+    surface_fill(o, l);
+    for (const StyledGroup& g : l.groups) {
+        if (split) {
+            layer_open(o, g.name);
+            o += ">\n";
+        }
+        for (const StyledPath& p : g.paths) stroke_path(o, p, l.style);
+        if (split) o += "</g>\n";
+    }
+    o += "</g>\n";
+}
+
+}  // namespace
+
+std::string xml_escape(const std::string& text) {
+    std::string s;
+    s.reserve(text.size());
+    for (char c : text) {
+        switch (c) {
+            case '&': s += "&amp;"; break;
+            case '<': s += "&lt;"; break;
+            case '>': s += "&gt;"; break;
+            case '"': s += "&quot;"; break;
+            case '\'': s += "&apos;"; break;
+            default: s += c;
+        }
+    }
+    return s;
+}
+
+std::string svg_document(const StyledDrawing& d, const PageOptions& page, const std::string& path) {
+    const PageLayout L = page_layout(d.width, d.height, page, path);
+    std::string o;
+    o.reserve(4096 + path_count(d) * 64);
+    header(o, d, L, page);
+    for (const StyledLayer& l : d.layers) layer(o, l, d.split == LayerSplit::kind_distance);
+    o += "</svg>\n";
+    return o;
+}
+
+void write_svg(const StyledDrawing& drawing, const PageOptions& page, const std::string& path) {
+    write_file_atomically(path, svg_document(drawing, page, path));
+}
+
+}  // namespace penink

@@ -1,0 +1,23 @@
+// SVG 1.1 writer with Inkscape layers: viewBox in image pixels, width/height in millimetres
+// (page or image size at dpi), one <g inkscape:groupmode="layer"> per layer in conventions.md
+// order (sublayers near/middle/far with --layers kind+distance), surface mask as an even-odd
+// white path, strokes as round-capped paths carrying data-kind/data-depth/data-strength.
+#pragma once
+#include <string>
+
+#include "export/page.hpp"
+#include "export/styled_drawing.hpp"
+
+namespace penink {
+
+// The SVG text (byte-deterministic). `path` only names the file in errors.
+std::string svg_document(const StyledDrawing& drawing, const PageOptions& page,
+                         const std::string& path = "");
+
+// Writes svg_document() atomically to `path`.
+void write_svg(const StyledDrawing& drawing, const PageOptions& page, const std::string& path);
+
+// XML text escaping (& < > " ').
+std::string xml_escape(const std::string& text);
+
+}  // namespace penink
