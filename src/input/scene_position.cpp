@@ -1,6 +1,7 @@
 #include "input/scene_position.hpp"
 
 #include <cmath>
+#include <cstdlib>
 #include <memory>
 #include <optional>
 #include <regex>
@@ -44,7 +45,7 @@ std::optional<ParsedPosition> parse_text(const std::string& text) {
     } else {
         return std::nullopt;
     }
-    p.a = std::stod(m[1].str()), p.b = std::stod(m[2].str());
+    p.a = std::strtod(m[1].str().c_str(), nullptr), p.b = std::strtod(m[2].str().c_str(), nullptr);
     if (!std::isfinite(p.a) || !std::isfinite(p.b)) return std::nullopt;
     return p;
 }
