@@ -102,7 +102,6 @@ void orient(std::array<double, 6>& gt, int w, int h, bool& flip_c, bool& flip_r)
 }
 
 Raster read_raster(const std::string& path) {
-    const QuietGdal quiet;
     GDALDatasetUniquePtr ds = open_raster(path);
     Raster r;
     r.w = ds->GetRasterXSize(), r.h = ds->GetRasterYSize();
@@ -244,6 +243,7 @@ void fill_positions(const Raster& r, const std::vector<glm::dvec2>& xy, Terrain&
 }  // namespace
 
 Terrain read_dem(const std::string& path, const DemOptions& options) {
+    const QuietGdal quiet;
     const double ve = options.vertical_exaggeration;
     if (!std::isfinite(ve) || ve <= 0.0) fail(path, "vertical exaggeration must be > 0");
     if (options.utm_zone < 0 || options.utm_zone > 60)

@@ -2,6 +2,12 @@
 // nodata nodes marked invalid; a DEM in geographic coordinates (degrees) projected node by node
 // to the standard UTM zone of its centre with GeographicLib (or `utm_zone` when > 0).
 // Node = cell centre (GDAL pixel-is-area: centre of cell (c, r) is GT(c+0.5, r+0.5)).
+// Rows/columns are flipped where needed so row 0 is north and column 0 west; rotated
+// geotransforms are applied in full. Projected CRSs keep their CRS with coordinates scaled to
+// metres (a CRS in feet gives metre positions); no CRS = metres in an unknown frame (crs_wkt "").
+// Invalid nodes (nodata value, NaN, mask/alpha band 0) keep their x, y and get z = the lowest
+// valid elevation times the exaggeration. Band scale/offset and a "ft"/"US survey foot" unit
+// are applied to elevations; otherwise they are taken as metres.
 #pragma once
 #include <string>
 
@@ -15,9 +21,11 @@ struct DemOptions {
     bool north = true;     // hemisphere for a forced zone
 };
 
-// Throws penink::Error (stage "input", file = path) with one clear line for: missing file,
-// unreadable or non-raster file, no CRS-less geotransform problems that make no grid, all-nodata
-// DEM, a DEM smaller than 2x2 nodes, non-positive exaggeration.
+// Throws penink::Error (stage "input", file = path, ExitCode::bad_input) with one line:
+// "no such file", "not a DEM raster (GDAL cannot read it)", "DEM has no valid elevation (all
+// nodata)", "DEM is too small (WxH nodes; at least 2x2 needed)", "vertical exaggeration must be
+// > 0", "UTM zone must be 1..60 (0 = standard zone), got N", or "DEM cannot be projected to UTM
+// zone ZH: <GeographicLib's reason>" (a geographic DEM too far from the zone). GDAL stays silent.
 Terrain read_dem(const std::string& path, const DemOptions& options = {});
 
 }  // namespace penink

@@ -11,7 +11,11 @@
 
 namespace penink {
 
-// Throws penink::Error(stage "scene", file = scene_file) on text it cannot parse.
+// "x y" is in the CRS's units (scaled to metres like the Terrain); UTM in the Terrain's own zone
+// and hemisphere is used as is (any datum); lon/lat goes through GeographicLib when the Terrain is
+// UTM, else OGR. Throws penink::Error(stage "scene", file = scene_file): "cannot parse position
+// \"TEXT\" (expected \"EASTING NORTHING ZONE[N|S]\", \"LON,LAT\" or \"X Y\")", or "cannot transform
+// position \"TEXT\" into the DEM's coordinate system" (Terrain without CRS, |lat| > 90, OGR fails).
 glm::dvec2 parse_scene_position(const std::string& text, const Terrain& terrain,
                                 const std::string& scene_file);
 

@@ -139,6 +139,23 @@ TEST(DemReader, ErrorTexts) {
                   "penink: input: " + ok + ": vertical exaggeration must be > 0");
 }
 
+TEST(DemReader, GdalStaysSilent) {
+    TempDir dir;
+    const std::string bad = test::write_text(dir.file("bad.tif"), "II*\0 truncated tiff");
+    ::testing::internal::CaptureStderr();
+    EXPECT_EQ(error_of(bad), "penink: input: " + bad + ": not a DEM raster (GDAL cannot read it)");
+    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+    EXPECT_EQ(CPLGetLastErrorType(), CE_None);
+}
+
+TEST(DemReader, ForcedZoneErrors) {
+    const std::string p = PENINK_SHARED_DIR "/data/jacksboro.tif";
+    EXPECT_EQ(error_of(p, {.utm_zone = 61}),
+              "penink: input: " + p + ": UTM zone must be 1..60 (0 = standard zone), got 61");
+    const std::string far = error_of(p, {.utm_zone = 40});
+    EXPECT_EQ(far.rfind("penink: input: " + p + ": DEM cannot be projected to UTM zone 40N: ", 0), 0u) << far;
+}
+
 TEST(DemReader, VolcanoGridShapeRangeAndSpacing) {
     const Terrain t = read_dem(PENINK_SOURCE_DIR "/examples/volcano.asc");
     EXPECT_EQ(t.cols, 61);
@@ -154,7 +171,7 @@ TEST(DemReader, VolcanoGridShapeRangeAndSpacing) {
     EXPECT_NE(t.crs_wkt.find("New Zealand Transverse Mercator"), std::string::npos);
     EXPECT_EQ(t.utm_zone, 0);
     EXPECT_EQ(t.origin, glm::dvec2(1756970 + 305, 5917000 + 435));
-    // R's volcano: the first (north) file row starts 100 100 101 in R order = east edge.
+    // The first (north) row of the file ends with 97: the north-east node.
     EXPECT_EQ(t.pos[t.index(60, 0)].z, 97.0f);
 }
 
