@@ -1,0 +1,43 @@
+// Hidden-line removal for object-space lines on meshes (PELs, silhouettes, feature edges,
+// textures): a depth image (eye distance per pixel in world units, +inf where empty, row 0 at
+// the top, as the GPU pass writes it), a CPU z-buffer rasteriser of a TriangleMesh that makes
+// one (reference for the GPU pass and for tests), and the split of 3D polylines into visible runs
+// by sampling about every 0.5 px against the depth image. Pixels and camera: core/camera.hpp.
+#pragma once
+#include <limits>
+#include <vector>
+
+#include "core/camera.hpp"
+#include "core/drawing.hpp"
+#include "input/mesh_reader.hpp"
+#include "lines/photic_extremum_lines.hpp"
+
+namespace penink {
+
+struct DepthImage {
+    int width = 0, height = 0;
+    std::vector<float> depth;  // width * height, row-major, row 0 top; +inf = nothing
+    float at(int x, int y) const { return depth[std::size_t(y) * width + x]; }
+};
+
+// Eye distance of the nearest triangle at each pixel centre (perspective-correct), both
+// facings; triangles with a vertex behind the near plane are skipped.
+DepthImage rasterize_depth(const TriangleMesh& mesh, const Camera& cam);
+
+struct VisibilityOptions {
+    float step_px = 0.5f;         // sampling step along the projected line
+    float rel_tolerance = 0.01f;  // visible when d <= depth * (1 + rel) + abs
+    float abs_tolerance = 0.0f;   // world units
+};
+
+// True when the world point is in front of the image content near its pixel (max depth of the
+// 3x3 neighbourhood, so lines on a silhouette survive). Outside the image: false.
+bool point_visible(const DepthImage& img, const Camera& cam, const glm::vec3& p,
+                   const VisibilityOptions& options = {});
+
+// Visible runs of each polyline as image-space strokes (pixels + eye distance per point),
+// keeping the polyline's vertices and the run ends; kind and strength are copied.
+std::vector<Stroke> visible_strokes(const std::vector<ObjectPolyline>& lines, const DepthImage& img,
+                                    const Camera& cam, const VisibilityOptions& options = {});
+
+}  // namespace penink
