@@ -112,12 +112,14 @@ bool point_visible(const DepthImage& img, const Camera& cam, const glm::vec3& p,
     double d;
     if (!project_to_pixel(cam, glm::dvec3(p), px, d)) return false;
     int x = int(std::floor(px.x)), y = int(std::floor(px.y));
-    if (x < 0 || y < 0 || x >= img.width || y >= img.height) return false;
+    if (x < 0 || y < 0 || x >= cam.width || y >= cam.height) return false;
+    if (img.width <= 0 || img.height <= 0) return true;  // no depth image: everything visible
+    if (x >= img.width || y >= img.height) return false;
     float far = 0.0f;
     for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
             int xx = std::clamp(x + dx, 0, img.width - 1), yy = std::clamp(y + dy, 0, img.height - 1);
-            far = std::max(far, img.at(xx, yy));
+            far = std::max(far, img.depth[std::size_t(yy) * img.width + xx]);
         }
     return d <= double(far) * (1.0 + o.rel_tolerance) + o.abs_tolerance;
 }

@@ -11,14 +11,12 @@
 #include "core/drawing.hpp"
 #include "input/mesh_reader.hpp"
 #include "lines/photic_extremum_lines.hpp"
+#include "lines/pixel_mask.hpp"
 
 namespace penink {
 
-struct DepthImage {
-    int width = 0, height = 0;
-    std::vector<float> depth;  // width * height, row-major, row 0 top; +inf = nothing
-    float at(int x, int y) const { return depth[std::size_t(y) * width + x]; }
-};
+// DepthImage (lines/pixel_mask.hpp): width * height eye distances, row-major, row 0 top,
+// +inf where nothing was drawn.
 
 // Eye distance of the nearest triangle at each pixel centre (perspective-correct), both
 // facings; triangles with a vertex behind the near plane are skipped.
@@ -31,7 +29,8 @@ struct VisibilityOptions {
 };
 
 // True when the world point is in front of the image content near its pixel (max depth of the
-// 3x3 neighbourhood, so lines on a silhouette survive). Outside the image: false.
+// 3x3 neighbourhood, so lines on a silhouette survive). Outside the camera image: false; an
+// empty DepthImage (0 x 0) means no occlusion test (everything inside the image is visible).
 bool point_visible(const DepthImage& img, const Camera& cam, const glm::vec3& p,
                    const VisibilityOptions& options = {});
 

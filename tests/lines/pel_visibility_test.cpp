@@ -70,9 +70,9 @@ TEST(PelVisibility, DepthImageOfASphere) {
     DepthImage img = rasterize_depth(m, cam);
     ASSERT_EQ(img.width, 200);
     ASSERT_EQ(img.height, 150);
-    EXPECT_NEAR(img.at(100, 75), 4.0f, 0.01f);  // nearest point of the sphere
-    EXPECT_TRUE(std::isinf(img.at(0, 0)));
-    EXPECT_TRUE(std::isinf(img.at(199, 149)));
+    EXPECT_NEAR(img.depth[75 * 200 + 100], 4.0f, 0.01f);  // nearest point of the sphere
+    EXPECT_TRUE(std::isinf(img.depth[0 * 200 + 0]));
+    EXPECT_TRUE(std::isinf(img.depth[149 * 200 + 199]));
     int covered = 0;
     for (float d : img.depth) covered += std::isfinite(d);
     // Projected disc: angular radius asin(1/5); focal length 100 / tan(20 deg) px.
