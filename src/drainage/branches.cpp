@@ -1,0 +1,141 @@
+#include "drainage/branches.hpp"
+
+#include <algorithm>
+
+namespace penink {
+
+namespace {
+
+DvVertex point_vertex(const DrainageGrid& g, const FlowNetwork& net, std::size_t i) {
+    const glm::dvec2 p = grid_xy(g, int(i % g.cols), int(i / g.cols));
+    return {float(p.x), float(p.y), g.z[i], normalised_flow(net, i), net.basin[i], net.order[i]};
+}
+
+// Links each branch to the branch headed by its end junction and lists upstream branches.
+void link_branches(const std::vector<std::uint32_t>& heads, const std::vector<std::uint32_t>& ends,
+                   DrainageDb& db) {
+    std::vector<std::uint32_t> count(db.branches.size() + 1, 0);
+    for (std::size_t b = 0; b < db.branches.size(); ++b) {
+        if (ends[b] == UINT32_MAX) continue;
+        const auto it = std::lower_bound(heads.begin(), heads.end(), ends[b]);
+        db.branches[b].downstream = std::int32_t(it - heads.begin());
+        ++count[db.branches[b].downstream + 1];
+    }
+    for (std::size_t b = 0; b < db.branches.size(); ++b) {
+        count[b + 1] += count[b];
+        db.branches[b].up_first = count[b];
+        db.branches[b].up_count = count[b + 1] - count[b];
+    }
+    db.upstream.assign(count.back(), 0);
+    for (std::size_t b = 0; b < db.branches.size(); ++b)
+        if (db.branches[b].downstream >= 0)
+            db.upstream[count[db.branches[b].downstream]++] = std::uint32_t(b);
+}
+
+}  // namespace
+
+void build_branches(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
+                    const FlowNetwork& net, DrainageDb& db) {
+    const GridShape shape{g.cols, g.rows, g.valid.data()};
+    const std::vector<std::uint8_t> indeg = inflow_counts(dir, shape);
+    std::vector<std::uint32_t> heads, ends;  // head cell and end junction cell per branch
+    db.vertices.clear(), db.branches.clear();
+    for (std::size_t h = 0; h < g.size(); ++h) {
+        if (!g.valid[h] || indeg[h] == 1) continue;
+        DvBranch b;
+        b.first = std::uint32_t(db.vertices.size());
+        b.basin = net.basin[h], b.order = net.order[h];
+        std::uint32_t end = UINT32_MAX;
+        for (std::size_t c = h;;) {
+            db.vertices.push_back(point_vertex(g, net, c));
+            if (!dir[c]) break;
+            const std::size_t d = d8_target(shape, c, dir[c]);
+            if (indeg[d] != 1) {
+                db.vertices.push_back(point_vertex(g, net, d));
+                end = std::uint32_t(d);
+                break;
+            }
+            c = d;
+        }
+        b.count = std::uint32_t(db.vertices.size()) - b.first;
+        heads.push_back(std::uint32_t(h)), ends.push_back(end);
+        db.branches.push_back(b);
+    }
+    link_branches(heads, ends, db);
+}
+
+namespace {
+
+// Dual corner (i, j), i in [0, cols], j in [0, rows], sits between points (i-1..i, j-1..j).
+// Edge bits: 1 north, 2 east, 4 south, 8 west; 16 marks a corner whose degree is not 2.
+struct Corners {
+    int cols, rows;  // corners per row / column
+    std::vector<std::uint8_t> bits;
+    std::size_t at(int i, int j) const { return std::size_t(j) * cols + i; }
+};
+
+constexpr int corner_di[4] = {0, 1, 0, -1}, corner_dj[4] = {-1, 0, 1, 0};
+
+Corners divide_edges(const DrainageGrid& g, const FlowNetwork& net) {
+    Corners k{g.cols + 1, g.rows + 1, std::vector<std::uint8_t>(std::size_t(g.cols + 1) * (g.rows + 1), 0)};
+    auto differ = [&](std::size_t a, std::size_t b) {
+        return g.valid[a] && g.valid[b] && net.basin[a] != net.basin[b];
+    };
+    for (int r = 0; r < g.rows; ++r)
+        for (int c = 0; c < g.cols; ++c) {
+            const std::size_t i = g.index(c, r);
+            if (c + 1 < g.cols && differ(i, i + 1))  // corners (c+1, r) - (c+1, r+1)
+                k.bits[k.at(c + 1, r)] |= 4, k.bits[k.at(c + 1, r + 1)] |= 1;
+            if (r + 1 < g.rows && differ(i, i + g.cols))  // corners (c, r+1) - (c+1, r+1)
+                k.bits[k.at(c, r + 1)] |= 2, k.bits[k.at(c + 1, r + 1)] |= 8;
+        }
+    for (std::uint8_t& b : k.bits)
+        if (b && std::popcount(unsigned(b)) != 2) b |= 16;
+    return k;
+}
+
+DvVertex corner_vertex(const DrainageGrid& g, int i, int j) {
+    glm::dvec2 sum(0.0);
+    float zmax = -1e30f;
+    int n = 0;
+    for (int r = j - 1; r <= j; ++r)
+        for (int c = i - 1; c <= i; ++c) {
+            if (c < 0 || r < 0 || c >= g.cols || r >= g.rows || !g.valid[g.index(c, r)]) continue;
+            sum += grid_xy(g, c, r), zmax = std::max(zmax, g.z[g.index(c, r)]), ++n;
+        }
+    DvVertex v;
+    v.x = float(sum.x / n), v.y = float(sum.y / n), v.z = zmax;
+    return v;
+}
+
+// Follows edges from corner (i, j) leaving by `e` until a corner of degree != 2 or the start.
+void trace(const DrainageGrid& g, Corners& k, int i, int j, int e, DrainageDb& db) {
+    DvPolyline line{std::uint32_t(db.divide_vertices.size()), 0};
+    const int i0 = i, j0 = j;
+    db.divide_vertices.push_back(corner_vertex(g, i, j));
+    for (;;) {
+        k.bits[k.at(i, j)] &= std::uint8_t(~(1u << e));
+        i += corner_di[e], j += corner_dj[e];
+        std::uint8_t& b = k.bits[k.at(i, j)];
+        b &= std::uint8_t(~(1u << ((e + 2) & 3)));
+        db.divide_vertices.push_back(corner_vertex(g, i, j));
+        if ((b & 16) || (b & 15) == 0 || (i == i0 && j == j0)) break;
+        e = std::countr_zero(unsigned(b & 15));
+    }
+    line.count = std::uint32_t(db.divide_vertices.size()) - line.first;
+    db.divides.push_back(line);
+}
+
+}  // namespace
+
+void build_divides(const DrainageGrid& g, const FlowNetwork& net, DrainageDb& db) {
+    Corners k = divide_edges(g, net);
+    db.divide_vertices.clear(), db.divides.clear();
+    for (int pass = 0; pass < 2; ++pass)  // open chains from nodes first, then closed loops
+        for (int j = 0; j < k.rows; ++j)
+            for (int i = 0; i < k.cols; ++i)
+                while ((k.bits[k.at(i, j)] & 15) && (pass == 1 || (k.bits[k.at(i, j)] & 16)))
+                    trace(g, k, i, j, std::countr_zero(unsigned(k.bits[k.at(i, j)] & 15)), db);
+}
+
+}  // namespace penink

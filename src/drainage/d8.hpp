@@ -1,0 +1,48 @@
+// D8 steepest-descent flow directions (O'Callaghan & Mark 1984) on a row-major grid (row 0 north)
+// with ESRI codes: 1=E, 2=SE, 4=S, 8=SW, 16=W, 32=NW, 64=N, 128=NE, 0 = no downhill neighbour.
+// Drop per distance: cardinal steps dx (E/W) or dy (N/S) metres, diagonals hypot(dx, dy).
+// Point classes (seed 000): pit (no downhill), ridge (no neighbour drains into it), channel (one),
+// junction (more than one).
+#pragma once
+#include <bit>
+#include <cstdint>
+#include <vector>
+
+namespace penink {
+
+// Neighbour k = 0..7 in ESRI code order E, SE, S, SW, W, NW, N, NE; code = 1 << k.
+inline constexpr int d8_dc[8] = {1, 1, 0, -1, -1, -1, 0, 1};
+inline constexpr int d8_dr[8] = {0, 1, 1, 1, 0, -1, -1, -1};
+inline int d8_index(std::uint8_t code) { return std::countr_zero(unsigned(code)); }
+
+// Row-major grid shape plus the valid mask, for neighbour walks.
+struct GridShape {
+    int cols = 0, rows = 0;
+    const std::uint8_t* valid = nullptr;  // cols*rows, 1 = data
+    std::size_t size() const { return std::size_t(cols) * rows; }
+};
+
+// Linear index of the neighbour the ESRI `code` at cell i points to.
+inline std::size_t d8_target(const GridShape& g, std::size_t i, std::uint8_t code) {
+    const int k = d8_index(code);
+    return std::size_t(std::ptrdiff_t(i) + std::ptrdiff_t(d8_dr[k]) * g.cols + d8_dc[k]);
+}
+
+// True for a valid cell on the grid border or 8-adjacent to a nodata cell: when nothing around
+// it is lower it drains out of the grid (an outlet) instead of being a pit or flat.
+bool is_boundary_cell(const GridShape& g, int c, int r);
+
+// Steepest strictly-downhill valid neighbour per valid cell (first in code order on ties), 0 when
+// none or invalid.
+std::vector<std::uint8_t> d8_directions(const std::vector<float>& z, const GridShape& g,
+                                        double dx, double dy);
+
+enum class PointClass : std::uint8_t { pit = 0, ridge = 1, channel = 2, junction = 3, none = 255 };
+
+// Number of valid neighbours whose direction points at cell (c, r).
+int d8_inflow_count(const std::vector<std::uint8_t>& dir, const GridShape& g, int c, int r);
+
+// Class of every cell from its direction and in-flow count (none for invalid cells).
+std::vector<PointClass> classify_points(const std::vector<std::uint8_t>& dir, const GridShape& g);
+
+}  // namespace penink

@@ -1,0 +1,109 @@
+#include "drainage/drainage_build.hpp"
+
+#include <algorithm>
+
+#include "core/error.hpp"
+#include "drainage/branches.hpp"
+#include "drainage/flat_resolution.hpp"
+#include "drainage/priority_flood.hpp"
+
+namespace penink {
+
+int drainage_resample_factor(const Terrain& t, const DrainageOptions& o) {
+    if (o.resample > 0) return o.resample;
+    int f = 5;
+    while (f > 1 && resampled_size(t, f) > o.max_points) --f;
+    return f;
+}
+
+namespace {
+
+void report(const DrainageProgress& p, const char* stage, double fraction) {
+    if (p) p(stage, fraction);
+}
+
+template <class... V> std::size_t bytes_of(const V&... v) {
+    return (std::size_t(0) + ... + (v.capacity() * sizeof(typename V::value_type)));
+}
+
+}  // namespace
+
+DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progress) {
+    DrainageResult res;
+    const GridShape shape{g.cols, g.rows, g.valid.data()};
+    res.stats.points = g.size();
+    res.stats.valid = std::size_t(std::count(g.valid.begin(), g.valid.end(), 1));
+    report(progress, "filling depressions", 0.0);
+    std::vector<RaisedCell> raised;
+    priority_flood_fill(g.z, shape, raised);
+    res.stats.filled = raised.size();
+    report(progress, "flow directions", 0.35);
+    res.dir = d8_directions(g.z, shape, g.dx, g.dy);
+    report(progress, "resolving flats", 0.45);
+    FlowNetwork& net = res.net;
+    res.stats.unresolved_flats = resolve_flats(g.z, shape, res.dir, net.basin, net.acc);
+    res.stats.working_bytes = bytes_of(res.dir, net.basin, net.acc, raised) + g.size();
+    restore_raised(g.z, raised);
+    raised = {};
+    report(progress, "accumulating flow", 0.55);
+    accumulate_flow(res.dir, shape, net);
+    report(progress, "labelling basins", 0.65);
+    label_basins(res.dir, shape, net);
+    res.stats.basins = net.outlet.size();
+    // accumulation holds dir, in-degree, acc, order and basin at once
+    res.stats.working_bytes = std::max(res.stats.working_bytes,
+                                       bytes_of(res.dir, net.acc, net.order, net.basin) + g.size());
+    return res;
+}
+
+DrainageDb drainage_db_from_grid(DrainageGrid& g, const DrainageProgress& progress,
+                                 DrainageResult* keep) {
+    DrainageResult res = compute_drainage(g, progress);
+    DrainageDb db;
+    db.cols = g.cols, db.rows = g.rows, db.factor = g.factor, db.origin = g.origin;
+    report(progress, "tracing branches", 0.75);
+    build_branches(g, res.dir, res.net, db);
+    report(progress, "tracing divides", 0.9);
+    build_divides(g, res.net, db);
+    res.stats.branches = db.branches.size(), res.stats.divides = db.divides.size();
+    report(progress, "done", 1.0);
+    if (keep) *keep = std::move(res);
+    return db;
+}
+
+DrainageDb build_drainage_db(const Terrain& t, const DrainageOptions& options,
+                             const DrainageProgress& progress, DrainageResult* keep) {
+    const int f = drainage_resample_factor(t, options);
+    report(progress, "resampling the PN surface", 0.0);
+    DrainageGrid g = resample_pn(t, f);
+    DrainageDb db = drainage_db_from_grid(g, progress, keep);
+    db.crs_wkt = t.crs_wkt;
+    db.fingerprint.resample = std::uint32_t(f);
+    return db;
+}
+
+DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& terrain,
+                                  const DrainageOptions& options, const DrainageLog& log,
+                                  const DrainageProgress& progress) {
+    const std::string cache = dem_path + ".dv";
+    const DrainageFingerprint fp = dem_fingerprint(dem_path, drainage_resample_factor(terrain, options));
+    auto say = [&](const std::string& m) { if (log) log(m); };
+    try {
+        DrainageDb db = read_drainage_db(cache, &fp);
+        say("drainage: using cached " + cache);
+        return db;
+    } catch (const Error& e) {
+        say(std::string(e.what()) + "; rebuilding");
+    }
+    DrainageDb db = build_drainage_db(terrain, options, progress);
+    db.fingerprint = fp;
+    try {
+        write_drainage_db(cache, db);
+        say("drainage: wrote " + cache);
+    } catch (const Error& e) {
+        say(std::string(e.what()) + "; using the drainage database built in memory");
+    }
+    return db;
+}
+
+}  // namespace penink

@@ -1,0 +1,66 @@
+// The drainage build pipeline (seed 000 sec. 3): PN resampling -> Priority-Flood filling (on the
+// grid's z in place, restored afterwards) -> D8 on the filled surface -> Barnes flat resolution ->
+// accumulation + Strahler -> basins -> branches and divides -> DrainageDb; plus the cache next to
+// the DEM (`<dem>.dv`), rebuilt when missing, stale or corrupt.
+// Working memory beyond the grid (z 4 B + valid 1 B per point): about 11 B per point (directions
+// 1, accumulation 4, basin 4, order 1, in-degree 1; flat labels/mask reuse accumulation/basin),
+// plus 8 B per filled point and the flood queues; output vertices (21 B each) come on top.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "drainage/drainage_db.hpp"
+#include "drainage/drainage_grid.hpp"
+#include "drainage/flow_network.hpp"
+#include "input/terrain.hpp"
+
+namespace penink {
+
+// Called with a stage name and the fraction of the whole build done, in [0, 1].
+using DrainageProgress = std::function<void(const std::string& stage, double fraction)>;
+using DrainageLog = std::function<void(const std::string& message)>;
+
+struct DrainageOptions {
+    int resample = 0;                      // fine nodes per DEM cell side; 0 = automatic
+    std::size_t max_points = 4'000'000;    // automatic factor: largest <= 5 within this budget
+};
+
+// The automatic resample factor: 5 (seed 000: 10 m from 50 m) lowered until the resampled grid
+// holds at most max_points (never below 1); an explicit options.resample > 0 is returned as is.
+int drainage_resample_factor(const Terrain& t, const DrainageOptions& options);
+
+struct DrainageStats {
+    std::size_t points = 0, valid = 0, filled = 0, unresolved_flats = 0;
+    std::size_t basins = 0, branches = 0, divides = 0;
+    std::size_t working_bytes = 0;  // peak bytes of the per-point working arrays (no queues)
+};
+
+// Per-point results on the drainage grid (for rasters and tests).
+struct DrainageResult {
+    std::vector<std::uint8_t> dir;  // resolved ESRI D8 codes (0 at outlets)
+    FlowNetwork net;
+    DrainageStats stats;
+};
+
+// Runs fill, directions, flats, accumulation and basins on `g` (g.z is filled during the run and
+// restored before returning).
+DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progress = {});
+
+// Everything from an already resampled grid: network, branches and divides.
+DrainageDb drainage_db_from_grid(DrainageGrid& g, const DrainageProgress& progress = {},
+                                 DrainageResult* keep = nullptr);
+
+// Resamples `t`, builds the database (fingerprint left to the caller).
+DrainageDb build_drainage_db(const Terrain& t, const DrainageOptions& options,
+                             const DrainageProgress& progress = {}, DrainageResult* keep = nullptr);
+
+// `<dem_path>.dv`, read when its fingerprint matches the DEM and options, else rebuilt and
+// written atomically; when it cannot be written the database is built in memory only. Every
+// decision is reported through `log`.
+DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& terrain,
+                                  const DrainageOptions& options, const DrainageLog& log = {},
+                                  const DrainageProgress& progress = {});
+
+}  // namespace penink

@@ -1,0 +1,87 @@
+// The drainage vertex database (DV file, seed 000 sec. 3): branches of drainage vertices (local
+// x, y, z in metres of the Terrain's world frame — easting = origin.x + x, northing = origin.y + y
+// in the projected CRS — normalised flow, Strahler order, basin) with downstream/upstream links,
+// plus the divide (ridge) polylines. Binary, little-endian, versioned, checksummed; the layout is
+// documented in drainage_db.cpp and docs of write_drainage_db.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+namespace penink {
+
+struct DvVertex {
+    float x = 0, y = 0, z = 0;  // local metres (z = original, unfilled elevation)
+    float flow = 0;             // accumulation / basin total, in (0, 1]; 0 on divides
+    std::uint32_t basin = 0;    // basin id (1-based); 0 on divides
+    std::uint8_t order = 0;     // Strahler order; 0 on divides
+    bool operator==(const DvVertex&) const = default;
+};
+
+// A run of drainage points from a source (ridge point) or junction down to the next junction or
+// outlet; a branch ending at a junction repeats the junction as its last vertex.
+struct DvBranch {
+    std::uint32_t first = 0, count = 0;      // vertices [first, first + count)
+    std::int32_t downstream = -1;            // branch starting at the end junction, -1 at outlets
+    std::uint32_t up_first = 0, up_count = 0;  // upstream branch ids in DrainageDb::upstream
+    std::uint32_t basin = 0;
+    std::uint8_t order = 0;                  // Strahler order of the branch
+    bool operator==(const DvBranch&) const = default;
+};
+
+struct DvPolyline {
+    std::uint32_t first = 0, count = 0;  // vertices in DrainageDb::divide_vertices
+    bool operator==(const DvPolyline&) const = default;
+};
+
+// What the database was built from: the DEM file (size, mtime, hash of its first and last MiB)
+// and the build options. A different fingerprint means the database is stale.
+struct DrainageFingerprint {
+    std::uint64_t file_size = 0;
+    std::int64_t mtime_ns = 0;
+    std::uint64_t content_hash = 0;
+    std::uint32_t resample = 1;
+    std::uint32_t options = 0;  // bit flags of build options (none defined yet)
+    bool operator==(const DrainageFingerprint&) const = default;
+};
+
+struct DrainageDb {
+    DrainageFingerprint fingerprint;
+    std::int32_t cols = 0, rows = 0, factor = 1;  // drainage grid
+    glm::dvec2 origin{0.0};                        // projected easting/northing of local (0, 0)
+    std::string crs_wkt;
+    std::vector<DvVertex> vertices;
+    std::vector<DvBranch> branches;
+    std::vector<std::uint32_t> upstream;  // upstream branch ids, referenced by DvBranch
+    std::vector<DvVertex> divide_vertices;
+    std::vector<DvPolyline> divides;
+    bool operator==(const DrainageDb&) const = default;
+};
+
+inline constexpr std::uint32_t drainage_db_version = 1;
+
+// 64-bit FNV-1a over little-endian 64-bit words (tail bytes one by one).
+std::uint64_t hash64(const void* data, std::size_t size, std::uint64_t seed = 0xcbf29ce484222325ull);
+
+// Fingerprint of the DEM file at `dem_path` with the given resample factor. Throws
+// penink::Error("drainage", dem_path, "cannot read DEM file") when it cannot be read.
+DrainageFingerprint dem_fingerprint(const std::string& dem_path, int resample);
+
+// Serialised bytes (header, counts, data, trailing checksum).
+std::vector<std::uint8_t> encode_drainage_db(const DrainageDb& db);
+
+// Writes atomically (temp file in the same directory + rename). Throws
+// penink::Error("drainage", path, "cannot write drainage database", internal) on failure.
+void write_drainage_db(const std::string& path, const DrainageDb& db);
+
+// Reads and checks a database: errors penink::Error("drainage", path, what) with what =
+// "cannot open drainage database", "not a drainage database (bad magic)",
+// "unsupported drainage database version N (expected M)", "truncated drainage database",
+// "drainage database checksum mismatch (file corrupt)",
+// "drainage database is stale (DEM changed)" (only when expected is given).
+DrainageDb read_drainage_db(const std::string& path, const DrainageFingerprint* expected = nullptr);
+DrainageDb decode_drainage_db(const std::vector<std::uint8_t>& bytes, const std::string& path);
+
+}  // namespace penink

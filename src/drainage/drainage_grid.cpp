@@ -1,0 +1,153 @@
+#include "drainage/drainage_grid.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "core/error.hpp"
+#include "surface/pn_triangle.hpp"
+#include "surface/surface_mesh.hpp"
+
+namespace penink {
+
+namespace {
+
+// Triangle of coarse cell (C, R) holding local point (u, v) in [0,1]^2 (u east, v south) and its
+// barycentric weights: (a, d, b) when u >= v, else (a, s, d), as in mesh_from_terrain.
+struct CellTriangle {
+    std::array<std::size_t, 3> node;
+    glm::vec3 w;
+    int which;  // 0 = (a,s,d), 1 = (a,d,b)
+};
+
+CellTriangle cell_triangle(int ccols, int C, int R, double u, double v) {
+    const std::size_t a = std::size_t(R) * ccols + C, b = a + 1;
+    const std::size_t s = a + ccols, d = s + 1;
+    if (u >= v) return {{a, d, b}, glm::vec3(float(1.0 - u), float(v), float(u - v)), 1};
+    return {{a, s, d}, glm::vec3(float(1.0 - v), float(v - u), float(u)), 0};
+}
+
+// Cell and local coordinate of fine index k along an axis of n coarse nodes.
+void locate(int k, int f, int n, int& cell, double& t) {
+    cell = std::min(k / f, n - 2);
+    t = double(k - cell * f) / f;
+}
+
+// Replaces vertices of the triangle without data by its first valid vertex (they carry zero
+// weight for every node the triangle serves), so evaluations stay finite.
+std::array<std::size_t, 3> substitute(std::array<std::size_t, 3> n,
+                                      const std::vector<std::uint8_t>& valid) {
+    std::size_t keep = n[0];
+    for (std::size_t i : n)
+        if (valid[i]) { keep = i; break; }
+    for (std::size_t& i : n)
+        if (!valid[i]) i = keep;
+    return n;
+}
+
+bool node_valid(const CellTriangle& t, const std::vector<std::uint8_t>& valid) {
+    for (int k = 0; k < 3; ++k)
+        if (t.w[k] > 0.0f && !valid[t.node[k]]) return false;
+    return true;
+}
+
+PnPatch cell_patch(const SurfaceMesh& m, const std::vector<std::uint8_t>& valid,
+                   const CellTriangle& t) {
+    const auto n = substitute(t.node, valid);
+    return pn_patch(m.pos[n[0]], m.pos[n[1]], m.pos[n[2]], m.normal[n[0]], m.normal[n[1]],
+                    m.normal[n[2]]);
+}
+
+void mean_spacing(const Terrain& t, double& dx, double& dy) {
+    double sx = 0, sy = 0;
+    std::size_t nx = 0, ny = 0;
+    for (int r = 0; r < t.rows; ++r)
+        for (int c = 0; c < t.cols; ++c) {
+            const std::size_t i = t.index(c, r);
+            if (!t.valid[i]) continue;
+            if (c + 1 < t.cols && t.valid[i + 1])
+                sx += glm::length(glm::vec2(t.pos[i + 1] - t.pos[i])), ++nx;
+            if (r + 1 < t.rows && t.valid[i + t.cols])
+                sy += glm::length(glm::vec2(t.pos[i + t.cols] - t.pos[i])), ++ny;
+        }
+    dx = nx ? sx / nx : 1.0, dy = ny ? sy / ny : 1.0;
+    if (!(dx > 0)) dx = 1.0;
+    if (!(dy > 0)) dy = 1.0;
+}
+
+// Fills the fine nodes of coarse cell (C, R): its interior and its north and west sides, plus
+// the east / south sides on the last column / row.
+void resample_cell(const Terrain& t, const SurfaceMesh& m, int C, int R, DrainageGrid& g) {
+    const int f = g.factor;
+    const CellTriangle t0 = cell_triangle(t.cols, C, R, 0.25, 0.75);
+    const CellTriangle t1 = cell_triangle(t.cols, C, R, 0.75, 0.25);
+    const PnPatch p0 = cell_patch(m, t.valid, t0), p1 = cell_patch(m, t.valid, t1);
+    const int i1 = C == t.cols - 2 ? f : f - 1, j1 = R == t.rows - 2 ? f : f - 1;
+    for (int j = 0; j <= j1; ++j)
+        for (int i = 0; i <= i1; ++i) {
+            const CellTriangle tri = cell_triangle(t.cols, C, R, double(i) / f, double(j) / f);
+            const std::size_t k = g.index(C * f + i, R * f + j);
+            if (!node_valid(tri, t.valid)) continue;
+            g.valid[k] = 1;
+            g.z[k] = pn_position(tri.which ? p1 : p0, tri.w).z;
+        }
+}
+
+}  // namespace
+
+std::size_t resampled_size(const Terrain& t, int factor) {
+    return std::size_t(std::max(t.cols - 1, 0) * std::size_t(factor) + 1) *
+           (std::size_t(std::max(t.rows - 1, 0)) * factor + 1);
+}
+
+DrainageGrid resample_pn(const Terrain& t, int factor) {
+    if (factor < 1) throw Error("drainage", t.source, "resample factor must be >= 1");
+    if (t.cols < 2 || t.rows < 2)
+        throw Error("drainage", t.source, "DEM too small for drainage (needs at least 2x2 nodes)");
+    DrainageGrid g;
+    g.factor = factor;
+    g.cols = (t.cols - 1) * factor + 1, g.rows = (t.rows - 1) * factor + 1;
+    g.z.assign(g.size(), 0.0f), g.valid.assign(g.size(), 0);
+    g.origin = t.origin;
+    g.coarse_cols = t.cols, g.coarse_rows = t.rows, g.coarse_valid = t.valid;
+    g.coarse_xy.resize(t.size());
+    for (std::size_t i = 0; i < t.size(); ++i) g.coarse_xy[i] = glm::vec2(t.pos[i]);
+    mean_spacing(t, g.dx, g.dy);
+    g.dx /= factor, g.dy /= factor;
+    const SurfaceMesh mesh = mesh_from_terrain(t);
+    for (int R = 0; R + 1 < t.rows; ++R)
+        for (int C = 0; C + 1 < t.cols; ++C) resample_cell(t, mesh, C, R, g);
+    return g;
+}
+
+DrainageGrid make_regular_grid(int cols, int rows, double spacing, std::vector<float> z,
+                               std::vector<std::uint8_t> valid) {
+    DrainageGrid g;
+    g.cols = cols, g.rows = rows, g.factor = 1, g.dx = g.dy = spacing;
+    g.z = std::move(z);
+    g.valid = valid.empty() ? std::vector<std::uint8_t>(g.size(), 1) : std::move(valid);
+    g.coarse_cols = cols, g.coarse_rows = rows, g.coarse_valid = g.valid;
+    g.coarse_xy.resize(g.size());
+    for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < cols; ++c)
+            g.coarse_xy[g.index(c, r)] = glm::vec2(float(c * spacing), float(-r * spacing));
+    return g;
+}
+
+glm::dvec2 grid_xy(const DrainageGrid& g, int c, int r) {
+    if (g.coarse_cols < 2 || g.coarse_rows < 2)
+        return glm::dvec2(c * g.dx, -r * g.dy);
+    int C, R;
+    double u, v;
+    locate(c, g.factor, g.coarse_cols, C, u);
+    locate(r, g.factor, g.coarse_rows, R, v);
+    const CellTriangle tri = cell_triangle(g.coarse_cols, C, R, u, v);
+    const auto n = substitute(tri.node, g.coarse_valid);
+    glm::dvec2 p(0.0);
+    for (int k = 0; k < 3; ++k) p += double(tri.w[k]) * glm::dvec2(g.coarse_xy[n[k]]);
+    return p;
+}
+
+}  // namespace penink

@@ -1,0 +1,72 @@
+#include "drainage/flow_network.hpp"
+
+#include "core/error.hpp"
+
+namespace penink {
+
+std::vector<std::uint8_t> inflow_counts(const std::vector<std::uint8_t>& dir, const GridShape& g) {
+    std::vector<std::uint8_t> indeg(g.size(), 0);
+    for (std::size_t i = 0; i < g.size(); ++i)
+        if (dir[i]) ++indeg[d8_target(g, i, dir[i])];
+    return indeg;
+}
+
+namespace {
+
+// While pending, order[] holds (max upstream order << 1) | (two or more at that max).
+void push_order(std::uint8_t& pending, std::uint8_t upstream) {
+    const int m = pending >> 1;
+    if (upstream > m) pending = std::uint8_t(upstream << 1);
+    else if (upstream == m) pending |= 1;
+}
+
+std::uint8_t final_order(std::uint8_t pending) {
+    const int m = pending >> 1;
+    return std::uint8_t(m == 0 ? 1 : m + (pending & 1));
+}
+
+}  // namespace
+
+void accumulate_flow(const std::vector<std::uint8_t>& dir, const GridShape& g, FlowNetwork& net) {
+    std::vector<std::uint8_t> indeg = inflow_counts(dir, g);
+    net.acc.assign(g.size(), 0);
+    net.order.assign(g.size(), 0);
+    std::size_t done = 0, valid = 0;
+    for (std::size_t s = 0; s < g.size(); ++s) {
+        if (!g.valid[s]) continue;
+        ++valid;
+        if (indeg[s] != 0 || net.acc[s] != 0) continue;  // not a source, or already walked
+        for (std::size_t c = s;;) {  // walk down while every upstream cell is done
+            net.acc[c] += 1;
+            net.order[c] = final_order(net.order[c]);
+            ++done;
+            if (!dir[c]) break;
+            const std::size_t d = d8_target(g, c, dir[c]);
+            net.acc[d] += net.acc[c];
+            push_order(net.order[d], net.order[c]);
+            if (--indeg[d] != 0) break;
+            c = d;
+        }
+    }
+    if (done != valid)
+        throw Error("drainage", "", "flow directions contain a cycle", ExitCode::internal);
+}
+
+void label_basins(const std::vector<std::uint8_t>& dir, const GridShape& g, FlowNetwork& net) {
+    net.basin.assign(g.size(), 0);
+    net.outlet.clear();
+    for (std::size_t i = 0; i < g.size(); ++i)
+        if (g.valid[i] && !dir[i]) {
+            net.outlet.push_back(std::uint32_t(i));
+            net.basin[i] = std::uint32_t(net.outlet.size());
+        }
+    for (std::size_t i = 0; i < g.size(); ++i) {
+        if (!g.valid[i] || net.basin[i]) continue;
+        std::size_t c = i;
+        while (!net.basin[c]) c = d8_target(g, c, dir[c]);
+        const std::uint32_t label = net.basin[c];
+        for (c = i; !net.basin[c]; c = d8_target(g, c, dir[c])) net.basin[c] = label;
+    }
+}
+
+}  // namespace penink

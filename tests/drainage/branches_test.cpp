@@ -1,0 +1,94 @@
+// Branches (runs between sources/junctions and the next junction/outlet) with links, and divides
+// between basins, on hand grids.
+#include <gtest/gtest.h>
+
+#include "drainage/branches.hpp"
+#include "drainage/drainage_build.hpp"
+
+namespace penink {
+namespace {
+
+TEST(Branches, TreeSplitsAtJunctions) {
+    DrainageGrid g = make_regular_grid(5, 3, 10.0, std::vector<float>(15, 0.0f));
+    for (int i = 0; i < 15; ++i) g.z[i] = float(i);
+    const std::vector<std::uint8_t> dir{2, 4, 8, 2, 4, 1, 4, 8, 2, 4, 1, 1, 1, 1, 0};
+    const GridShape s{5, 3, g.valid.data()};
+    FlowNetwork net;
+    accumulate_flow(dir, s, net);
+    label_basins(dir, s, net);
+    DrainageDb db;
+    build_branches(g, dir, net, db);
+    // heads: 9 sources + junctions at cells 6, 9, 11, 14, in row-major order
+    ASSERT_EQ(db.branches.size(), 13u);
+    const std::vector<std::uint32_t> counts{2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 4, 1};
+    for (std::size_t b = 0; b < 13; ++b) EXPECT_EQ(db.branches[b].count, counts[b]) << b;
+    // every point once, plus one repeated junction vertex per branch that ends at a junction
+    EXPECT_EQ(db.vertices.size(), 15u + 12u);
+    const DvBranch& trunk = db.branches[11];  // head cell 11 -> 12 -> 13 -> outlet 14
+    EXPECT_EQ(trunk.order, 2);
+    EXPECT_EQ(trunk.downstream, 12);
+    EXPECT_EQ(trunk.up_count, 3u);  // from J1 (cell 6), cell 7 and cell 10
+    const DvBranch& outlet = db.branches[12];
+    EXPECT_EQ(outlet.downstream, -1);
+    EXPECT_EQ(outlet.up_count, 3u);
+    EXPECT_EQ(outlet.order, 3);
+    const DvVertex& last = db.vertices[trunk.first + trunk.count - 1];
+    EXPECT_FLOAT_EQ(last.x, 40.0f);
+    EXPECT_FLOAT_EQ(last.y, -20.0f);
+    EXPECT_FLOAT_EQ(last.z, 14.0f);
+    EXPECT_FLOAT_EQ(last.flow, 1.0f);
+    EXPECT_FLOAT_EQ(db.vertices[trunk.first].flow, 8.0f / 15.0f);
+    std::vector<std::uint32_t> up(db.upstream.begin() + outlet.up_first,
+                                  db.upstream.begin() + outlet.up_first + outlet.up_count);
+    EXPECT_EQ(up, (std::vector<std::uint32_t>{8, 9, 11}));  // heads at cells 8, 9 and 11
+}
+
+TEST(Divides, RidgeBetweenTwoBasins) {
+    DrainageGrid g = make_regular_grid(5, 3, 1.0, {3, 4, 5, 4, 3, 2, 3, 4, 3, 2, 3, 4, 5, 4, 3});
+    DrainageResult res;
+    DrainageDb db = drainage_db_from_grid(g, {}, &res);
+    EXPECT_EQ(res.stats.basins, 2u);
+    ASSERT_EQ(db.divides.size(), 1u);
+    ASSERT_EQ(db.divides[0].count, 5u);
+    // corners (2,0) (2,1) (2,2) (3,2) (3,3): between points, clamped to the grid at the border
+    const std::vector<std::pair<float, float>> xy{
+        {1.5f, 0.0f}, {1.5f, -0.5f}, {1.5f, -1.5f}, {2.5f, -1.5f}, {2.5f, -2.0f}};
+    for (std::size_t k = 0; k < 5; ++k) {
+        EXPECT_FLOAT_EQ(db.divide_vertices[k].x, xy[k].first) << k;
+        EXPECT_FLOAT_EQ(db.divide_vertices[k].y, xy[k].second) << k;
+        EXPECT_EQ(db.divide_vertices[k].flow, 0.0f);
+    }
+    EXPECT_FLOAT_EQ(db.divide_vertices[0].z, 5.0f);  // higher of points (1,0) and (2,0)
+    EXPECT_FLOAT_EQ(db.divide_vertices[2].z, 5.0f);  // max of (1,1) (2,1) (1,2) (2,2)
+}
+
+TEST(Divides, SegmentsMatchBasinBoundaries) {
+    // a 7x7 pyramid pit around a nodata hole: the 8 cells around the hole are outlets (basins),
+    // divides radiate between them.
+    std::vector<float> z(49, 10.0f);
+    std::vector<std::uint8_t> valid(49, 1);
+    valid[24] = 0;
+    for (int r = 0; r < 7; ++r)
+        for (int c = 0; c < 7; ++c) z[r * 7 + c] = float(std::max(std::abs(r - 3), std::abs(c - 3)));
+    DrainageGrid g = make_regular_grid(7, 7, 1.0, z, valid);
+    DrainageDb db = drainage_db_from_grid(g);
+    std::size_t segments = 0;
+    for (const DvPolyline& p : db.divides) segments += p.count - 1;
+    // each divide segment separates two valid 4-neighbours of different basins
+    std::size_t pairs = 0;
+    DrainageResult res;
+    DrainageGrid g2 = make_regular_grid(7, 7, 1.0, z, valid);
+    drainage_db_from_grid(g2, {}, &res);
+    for (int r = 0; r < 7; ++r)
+        for (int c = 0; c < 7; ++c) {
+            const int i = r * 7 + c;
+            if (!valid[i]) continue;
+            if (c + 1 < 7 && valid[i + 1] && res.net.basin[i] != res.net.basin[i + 1]) ++pairs;
+            if (r + 1 < 7 && valid[i + 7] && res.net.basin[i] != res.net.basin[i + 7]) ++pairs;
+        }
+    EXPECT_EQ(segments, pairs);
+    EXPECT_GT(pairs, 0u);
+}
+
+}  // namespace
+}  // namespace penink

@@ -1,0 +1,151 @@
+// DV file: exact round trip, and each corruption detected with its exact error text; the cache
+// next to the DEM is written, reused, rebuilt when stale and kept in memory when unwritable.
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+#include "drainage/drainage_build.hpp"
+
+namespace penink {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path temp_dir(const std::string& name) {
+    const fs::path d = fs::temp_directory_path() / ("penink_dv_" + name + "_" + std::to_string(::getpid()));
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+
+DrainageDb sample_db() {
+    DrainageGrid g = make_regular_grid(5, 3, 1.0, {3, 4, 5, 4, 3, 2, 3, 4, 3, 2, 3, 4, 5, 4, 3});
+    g.origin = {1750000.5, 5900000.25};
+    DrainageDb db = drainage_db_from_grid(g);
+    db.crs_wkt = "PROJCS[\"NZGD2000 / New Zealand Transverse Mercator 2000\"]";
+    db.fingerprint = {1234, 5678, 0xdeadbeefcafef00dull, 1, 0};
+    return db;
+}
+
+std::vector<char> slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void spit(const fs::path& p, const std::vector<char>& b) {
+    std::ofstream(p, std::ios::binary).write(b.data(), std::streamsize(b.size()));
+}
+
+std::string read_error(const fs::path& p, const DrainageFingerprint* fp = nullptr) {
+    try {
+        read_drainage_db(p.string(), fp);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "no error";
+}
+
+TEST(DvFile, RoundTripIsExact) {
+    const fs::path d = temp_dir("rt");
+    const DrainageDb db = sample_db();
+    write_drainage_db((d / "a.dv").string(), db);
+    EXPECT_FALSE(fs::exists(d / ("a.dv.tmp-" + std::to_string(::getpid()))));
+    const DrainageDb back = read_drainage_db((d / "a.dv").string(), &db.fingerprint);
+    EXPECT_TRUE(back == db);
+    EXPECT_EQ(back.vertices.size(), 15u + db.branches.size() - 2);  // 2 outlet branches
+    EXPECT_EQ(back.origin.x, 1750000.5);
+    EXPECT_EQ(encode_drainage_db(back), encode_drainage_db(db));
+}
+
+TEST(DvFile, CorruptionsAreDetected) {
+    const fs::path d = temp_dir("bad");
+    const DrainageDb db = sample_db();
+    const fs::path p = d / "x.dv";
+    write_drainage_db(p.string(), db);
+    const std::vector<char> good = slurp(p);
+    const std::string pre = "penink: drainage: " + p.string() + ": ";
+
+    std::vector<char> b = good;
+    b[good.size() / 2] ^= 0x10;
+    spit(p, b);
+    EXPECT_EQ(read_error(p), pre + "drainage database checksum mismatch (file corrupt)");
+
+    b = good;
+    b.resize(good.size() - 30);
+    spit(p, b);
+    EXPECT_EQ(read_error(p), pre + "truncated drainage database");
+
+    b = good;
+    b[8] = 7;
+    spit(p, b);
+    EXPECT_EQ(read_error(p), pre + "unsupported drainage database version 7 (expected 1)");
+
+    b = good;
+    b[0] = 'X';
+    spit(p, b);
+    EXPECT_EQ(read_error(p), pre + "not a drainage database (bad magic)");
+
+    spit(p, good);
+    DrainageFingerprint other = db.fingerprint;
+    other.mtime_ns += 1;
+    EXPECT_EQ(read_error(p, &other), pre + "drainage database is stale (DEM changed)");
+    other = db.fingerprint;
+    other.resample = 3;
+    EXPECT_EQ(read_error(p, &other), pre + "drainage database is stale (DEM changed)");
+    EXPECT_EQ(read_error(p, &db.fingerprint), "no error");
+}
+
+Terrain small_terrain() {
+    Terrain t;
+    t.cols = 6, t.rows = 5, t.origin = {500000.0, 4000000.0};
+    for (int r = 0; r < t.rows; ++r)
+        for (int c = 0; c < t.cols; ++c) {
+            t.pos.emplace_back(c * 10.0f, -r * 10.0f, float((c - 3) * (c - 3) + r));
+            t.valid.push_back(1);
+        }
+    return t;
+}
+
+TEST(DvFile, CacheNextToDemIsReusedAndRebuilt) {
+    const fs::path d = temp_dir("cache");
+    const fs::path dem = d / "dem.asc";
+    spit(dem, std::vector<char>(100, 'a'));
+    const Terrain t = small_terrain();
+    std::vector<std::string> log;
+    auto say = [&](const std::string& m) { log.push_back(m); };
+    DrainageOptions o;
+    o.resample = 2;
+    const DrainageDb first = load_or_build_drainage(dem.string(), t, o, say);
+    ASSERT_TRUE(fs::exists(d / "dem.asc.dv"));
+    EXPECT_EQ(log.back(), "drainage: wrote " + (d / "dem.asc.dv").string());
+    EXPECT_EQ(first.cols, 11);
+    const DrainageDb again = load_or_build_drainage(dem.string(), t, o, say);
+    EXPECT_EQ(log.back(), "drainage: using cached " + (d / "dem.asc.dv").string());
+    EXPECT_TRUE(again == first);
+    spit(dem, std::vector<char>(101, 'b'));  // the DEM changed
+    load_or_build_drainage(dem.string(), t, o, say);
+    EXPECT_EQ(log[log.size() - 2], "penink: drainage: " + (d / "dem.asc.dv").string() +
+                                       ": drainage database is stale (DEM changed); rebuilding");
+    EXPECT_EQ(log.back(), "drainage: wrote " + (d / "dem.asc.dv").string());
+}
+
+TEST(DvFile, UnwritableCacheBuildsInMemory) {
+    const fs::path d = temp_dir("ro");
+    const fs::path dem = d / "dem.asc";
+    spit(dem, std::vector<char>(10, 'a'));
+    fs::create_directories(d / "dem.asc.dv" / "blocker");  // a directory where the cache would go
+    std::vector<std::string> log;
+    DrainageOptions o;
+    o.resample = 1;
+    const DrainageDb db = load_or_build_drainage(dem.string(), small_terrain(), o,
+                                                 [&](const std::string& m) { log.push_back(m); });
+    EXPECT_EQ(db.cols, 6);
+    EXPECT_EQ(log.back(), "penink: drainage: " + (d / "dem.asc.dv").string() +
+                              ": cannot write drainage database; using the drainage database "
+                              "built in memory");
+}
+
+}  // namespace
+}  // namespace penink

@@ -1,0 +1,90 @@
+// PN resampling: factor 1 reproduces the DEM nodes exactly; a plane stays a plane at factor 3.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+#include "drainage/drainage_grid.hpp"
+
+namespace penink {
+namespace {
+
+Terrain hand_terrain(int cols, int rows, double spacing, float (*height)(float, float)) {
+    Terrain t;
+    t.cols = cols, t.rows = rows, t.origin = {1000.0, 5000.0};
+    for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < cols; ++c) {
+            const float x = float(c * spacing), y = float(-r * spacing);
+            t.pos.emplace_back(x, y, height(x, y));
+            t.valid.push_back(1);
+        }
+    return t;
+}
+
+float bumpy(float x, float y) { return 50.0f * std::sin(x * 0.05f) * std::cos(y * 0.07f) + 0.3f * x; }
+float plane(float x, float y) { return 0.2f * x - 0.1f * y + 7.0f; }
+
+TEST(PnResample, FactorOneReproducesNodes) {
+    const Terrain t = hand_terrain(7, 5, 10.0, bumpy);
+    const DrainageGrid g = resample_pn(t, 1);
+    ASSERT_EQ(g.cols, 7);
+    ASSERT_EQ(g.rows, 5);
+    for (std::size_t i = 0; i < t.size(); ++i) {
+        EXPECT_EQ(g.z[i], t.pos[i].z) << i;
+        EXPECT_EQ(g.valid[i], 1);
+    }
+    EXPECT_DOUBLE_EQ(grid_xy(g, 6, 4).x, 60.0);
+    EXPECT_DOUBLE_EQ(grid_xy(g, 6, 4).y, -40.0);
+    EXPECT_DOUBLE_EQ(g.dx, 10.0);
+}
+
+TEST(PnResample, PlaneStaysPlanarAtFactorThree) {
+    const Terrain t = hand_terrain(5, 4, 10.0, plane);
+    const DrainageGrid g = resample_pn(t, 3);
+    ASSERT_EQ(g.cols, 13);
+    ASSERT_EQ(g.rows, 10);
+    EXPECT_NEAR(g.dx, 10.0 / 3.0, 1e-9);
+    for (int r = 0; r < g.rows; ++r)
+        for (int c = 0; c < g.cols; ++c) {
+            const glm::dvec2 p = grid_xy(g, c, r);
+            EXPECT_NEAR(p.x, c * 10.0 / 3.0, 1e-4);
+            EXPECT_NEAR(p.y, -r * 10.0 / 3.0, 1e-4);
+            EXPECT_NEAR(g.z[g.index(c, r)], plane(float(p.x), float(p.y)), 1e-4) << c << "," << r;
+        }
+}
+
+TEST(PnResample, NodesAtFactorMultiplesKeepElevationsAndCurvedBetween) {
+    const Terrain t = hand_terrain(6, 6, 10.0, bumpy);
+    const DrainageGrid g = resample_pn(t, 4);
+    for (int r = 0; r < t.rows; ++r)
+        for (int c = 0; c < t.cols; ++c)
+            EXPECT_NEAR(g.z[g.index(c * 4, r * 4)], t.pos[t.index(c, r)].z, 1e-4);
+    // a fine node inside a cell differs from the flat triangle (PN curvature)
+    const float flat = 0.5f * (t.pos[t.index(1, 1)].z + t.pos[t.index(2, 2)].z);
+    EXPECT_GT(std::abs(g.z[g.index(6, 6)] - flat), 1e-3f);
+}
+
+TEST(PnResample, MissingTriangleInvalidatesItsNodes) {
+    Terrain t = hand_terrain(3, 3, 10.0, plane);
+    t.valid[t.index(2, 2)] = 0;  // SE node: both triangles of cell (1,1) lose it
+    const DrainageGrid g = resample_pn(t, 2);
+    EXPECT_EQ(g.valid[g.index(4, 4)], 0);  // the missing node
+    EXPECT_EQ(g.valid[g.index(3, 3)], 0);  // on the diagonal towards it
+    EXPECT_EQ(g.valid[g.index(4, 2)], 1);  // the NE node of cell (1,1) still has data
+    EXPECT_EQ(g.valid[g.index(3, 2)], 1);  // on edge a-b of the dropped triangle
+    EXPECT_EQ(g.valid[g.index(2, 2)], 1);
+}
+
+TEST(PnResample, RejectsBadFactor) {
+    Terrain t = hand_terrain(3, 3, 10.0, plane);
+    t.source = "dem.tif";
+    try {
+        resample_pn(t, 0);
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_STREQ(e.what(), "penink: drainage: dem.tif: resample factor must be >= 1");
+    }
+}
+
+}  // namespace
+}  // namespace penink
