@@ -1,6 +1,7 @@
 #include "drainage/drainage_build.hpp"
 
 #include <algorithm>
+#include <bit>
 
 #include "core/error.hpp"
 #include "drainage/branches.hpp"
@@ -82,11 +83,18 @@ DrainageDb build_drainage_db(const Terrain& t, const DrainageOptions& options,
     return db;
 }
 
+DrainageFingerprint drainage_fingerprint(const std::string& dem_path, const Terrain& terrain,
+                                         const DrainageOptions& options) {
+    DrainageFingerprint fp = dem_fingerprint(dem_path, drainage_resample_factor(terrain, options));
+    fp.options = std::bit_cast<std::uint32_t>(float(terrain.vertical_exaggeration));
+    return fp;
+}
+
 DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& terrain,
                                   const DrainageOptions& options, const DrainageLog& log,
                                   const DrainageProgress& progress) {
     const std::string cache = dem_path + ".dv";
-    const DrainageFingerprint fp = dem_fingerprint(dem_path, drainage_resample_factor(terrain, options));
+    const DrainageFingerprint fp = drainage_fingerprint(dem_path, terrain, options);
     auto say = [&](const std::string& m) { if (log) log(m); };
     try {
         DrainageDb db = read_drainage_db(cache, &fp);

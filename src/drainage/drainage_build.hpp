@@ -56,6 +56,11 @@ DrainageDb drainage_db_from_grid(DrainageGrid& g, const DrainageProgress& progre
 DrainageDb build_drainage_db(const Terrain& t, const DrainageOptions& options,
                              const DrainageProgress& progress = {}, DrainageResult* keep = nullptr);
 
+// Fingerprint of the DEM file plus the build options: the resample factor and, in `options`, the
+// bits of the Terrain's vertical exaggeration as a float (vertex z is exaggerated).
+DrainageFingerprint drainage_fingerprint(const std::string& dem_path, const Terrain& terrain,
+                                         const DrainageOptions& options);
+
 // `<dem_path>.dv`, read when its fingerprint matches the DEM and options, else rebuilt and
 // written atomically; when it cannot be written the database is built in memory only. Every
 // decision is reported through `log`.

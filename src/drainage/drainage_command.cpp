@@ -1,0 +1,72 @@
+#include "drainage/drainage_command.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <ostream>
+
+#include "core/error.hpp"
+#include "drainage/drainage_rasters.hpp"
+#include "input/dem_reader.hpp"
+
+namespace penink {
+
+namespace {
+
+DrainageProgress progress_printer(std::ostream& log, bool quiet) {
+    if (quiet) return {};
+    return [&log, last = -1](const std::string& stage, double fraction) mutable {
+        const int pct = int(fraction * 100.0 + 0.5);
+        if (pct == last) return;
+        last = pct;
+        log << "drainage: " << pct << "% " << stage << "\n" << std::flush;
+    };
+}
+
+void print_summary(std::ostream& log, const DrainageStats& s, const DrainageDb& db, double secs) {
+    char line[400];
+    std::snprintf(line, sizeof line,
+                  "drainage: %dx%d points (factor %d), %zu valid, %zu filled, %zu basins, %zu "
+                  "branches, %zu divides, %.2f s (%.1f M points/s), working memory %.1f B/point\n",
+                  db.cols, db.rows, db.factor, s.valid, s.filled, s.basins, s.branches, s.divides,
+                  secs, s.points / secs / 1e6, double(s.working_bytes) / double(s.points));
+    log << line;
+}
+
+int run(const DrainageCommand& cmd, std::ostream& log) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const Terrain t = read_dem(cmd.dem);
+    DrainageOptions o;
+    o.resample = cmd.resample;
+    if (cmd.resample < 0) throw Error("drainage", cmd.dem, "resample factor must be >= 1 (0 = automatic)");
+    DrainageResult res;
+    DrainageDb db = build_drainage_db(t, o, progress_printer(log, cmd.quiet), &res);
+    db.fingerprint = drainage_fingerprint(cmd.dem, t, o);
+    const std::string out = cmd.output.empty() ? cmd.dem + ".dv" : cmd.output;
+    write_drainage_db(out, db);
+    if (!cmd.rasters_dir.empty()) {
+        // the grid's valid mask: exactly the points with a basin label
+        std::vector<std::uint8_t> valid(res.net.basin.size());
+        for (std::size_t i = 0; i < valid.size(); ++i) valid[i] = res.net.basin[i] != 0;
+        write_drainage_rasters(cmd.rasters_dir, drainage_georef(cmd.dem, t, db.factor), db.cols,
+                               db.rows, valid, res);
+    }
+    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (!cmd.quiet) print_summary(log, res.stats, db, secs), log << "drainage: wrote " << out << "\n";
+    return 0;
+}
+
+}  // namespace
+
+int run_drainage_command(const DrainageCommand& cmd, std::ostream& log) {
+    try {
+        return run(cmd, log);
+    } catch (const Error& e) {
+        log << e.what() << "\n";
+        return int(e.code());
+    } catch (const std::exception& e) {
+        log << format_error("drainage", cmd.dem, e.what()) << "\n";
+        return int(ExitCode::internal);
+    }
+}
+
+}  // namespace penink

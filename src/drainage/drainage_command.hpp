@@ -1,0 +1,25 @@
+// `penink drainage DEM [-o OUT.dv] [--resample F] [--rasters DIR]`: builds the drainage vertex
+// database of a DEM (seed 000 sec. 3) and writes it (default `<DEM>.dv`, the cache `render`
+// looks for), optionally with GeoTIFF rasters of the drainage grid (drainage_rasters.hpp).
+// Resample factor: F > 0 as given (1 = the DEM's own nodes); 0 = automatic: 5 (the paper's 10 m
+// from 50 m) lowered until the drainage grid holds at most 4 M points.
+#pragma once
+#include <iosfwd>
+#include <string>
+
+namespace penink {
+
+struct DrainageCommand {
+    std::string dem;          // DEM path (anything read_dem reads)
+    std::string output;       // .dv path; empty = <dem>.dv
+    int resample = 0;         // 0 = automatic
+    std::string rasters_dir;  // empty = no rasters
+    bool quiet = false;       // no progress / summary lines
+};
+
+// Runs the command, printing progress and a summary (points, basins, branches, divides, time,
+// points/s, working bytes/point) to `log`, and errors as one line `penink: ...`. Returns the exit
+// code: 0 ok, 2 bad input, 1 internal failure.
+int run_drainage_command(const DrainageCommand& cmd, std::ostream& log);
+
+}  // namespace penink

@@ -1,0 +1,89 @@
+#include "drainage/drainage_rasters.hpp"
+
+#include <filesystem>
+#include <memory>
+
+#include <gdal_priv.h>
+
+#include "core/error.hpp"
+
+namespace penink {
+
+namespace {
+
+struct DatasetCloser {
+    void operator()(GDALDataset* d) const { GDALClose(d); }
+};
+using Dataset = std::unique_ptr<GDALDataset, DatasetCloser>;
+
+// Source pixel coordinate of terrain node 0 and the step per terrain node along one axis.
+void axis_map(bool flipped, int size, int offset, double& start, double& step) {
+    start = flipped ? size - 0.5 - offset : offset + 0.5;
+    step = flipped ? -1.0 : 1.0;
+}
+
+template <class T>
+void write_raster(const std::string& path, const DrainageGeoref& geo, int cols, int rows,
+                  GDALDataType type, const std::vector<T>& data, double nodata) {
+    GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
+    char** opts = nullptr;
+    opts = CSLSetNameValue(opts, "COMPRESS", "DEFLATE");
+    opts = CSLSetNameValue(opts, "TILED", "YES");
+    Dataset ds(drv ? drv->Create(path.c_str(), cols, rows, 1, type, opts) : nullptr);
+    CSLDestroy(opts);
+    if (!ds) throw Error("drainage", path, "cannot write raster", ExitCode::internal);
+    std::array<double, 6> gt = geo.gt;
+    ds->SetGeoTransform(gt.data());
+    if (!geo.wkt.empty()) ds->SetProjection(geo.wkt.c_str());
+    GDALRasterBand* band = ds->GetRasterBand(1);
+    band->SetNoDataValue(nodata);
+    if (band->RasterIO(GF_Write, 0, 0, cols, rows, const_cast<T*>(data.data()), cols, rows, type, 0,
+                       0) != CE_None)
+        throw Error("drainage", path, "cannot write raster", ExitCode::internal);
+}
+
+}  // namespace
+
+DrainageGeoref drainage_georef(const std::string& dem_path, const Terrain& t, int f) {
+    GDALAllRegister();
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    Dataset ds(static_cast<GDALDataset*>(GDALOpen(dem_path.c_str(), GA_ReadOnly)));
+    CPLPopErrorHandler();
+    if (!ds) throw Error("drainage", dem_path, "not a DEM raster (GDAL cannot read it)");
+    std::array<double, 6> g{0.0, 1.0, 0.0, double(ds->GetRasterYSize()), 0.0, -1.0};
+    ds->GetGeoTransform(g.data());
+    DrainageGeoref geo;
+    if (const OGRSpatialReference* srs = ds->GetSpatialRef()) {
+        char* wkt = nullptr;
+        srs->exportToWkt(&wkt);
+        geo.wkt = wkt ? wkt : "";
+        CPLFree(wkt);
+    }
+    double a, sa, b, sb;  // read_dem puts west at column 0 and north at row 0
+    axis_map(g[1] < 0.0, ds->GetRasterXSize(), t.source_col0, a, sa);
+    axis_map(g[5] > 0.0, ds->GetRasterYSize(), t.source_row0, b, sb);
+    // fine pixel coordinate i' (centre i + 0.5) -> source pixel a + sa * (i' - 0.5) / f
+    const double a0 = a - 0.5 * sa / f, b0 = b - 0.5 * sb / f;
+    geo.gt = {g[0] + g[1] * a0 + g[2] * b0, g[1] * sa / f, g[2] * sb / f,
+              g[3] + g[4] * a0 + g[5] * b0, g[4] * sa / f, g[5] * sb / f};
+    return geo;
+}
+
+void write_drainage_rasters(const std::string& dir, const DrainageGeoref& geo, int cols, int rows,
+                            const std::vector<std::uint8_t>& valid, const DrainageResult& res) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (!std::filesystem::is_directory(dir))
+        throw Error("drainage", dir, "cannot create raster directory", ExitCode::internal);
+    GDALAllRegister();
+    const std::string d = (std::filesystem::path(dir) / "").string();
+    std::vector<std::uint8_t> codes = res.dir;
+    for (std::size_t i = 0; i < codes.size(); ++i)
+        if (!valid[i]) codes[i] = 255;
+    write_raster(d + "flow_direction.tif", geo, cols, rows, GDT_Byte, codes, 255.0);
+    write_raster(d + "accumulation.tif", geo, cols, rows, GDT_UInt32, res.net.acc, 0.0);
+    write_raster(d + "basin.tif", geo, cols, rows, GDT_UInt32, res.net.basin, 0.0);
+    write_raster(d + "stream_order.tif", geo, cols, rows, GDT_Byte, res.net.order, 0.0);
+}
+
+}  // namespace penink

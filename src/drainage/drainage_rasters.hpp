@@ -1,0 +1,30 @@
+// GeoTIFF rasters of the drainage grid for inspection in a GIS (written with GDAL), georeferenced
+// like the source DEM (its CRS; its geotransform scaled by the resample factor so pixel centres
+// are the drainage points): flow_direction.tif (Byte, ESRI D8 codes 1=E 2=SE 4=S 8=SW 16=W 32=NW
+// 64=N 128=NE, 0 = outlet draining off the grid, nodata 255), accumulation.tif (UInt32, points
+// draining through the cell including itself, nodata 0), basin.tif (UInt32 label, nodata 0),
+// stream_order.tif (Byte Strahler order, nodata 0).
+#pragma once
+#include <array>
+#include <string>
+
+#include "drainage/drainage_build.hpp"
+
+namespace penink {
+
+struct DrainageGeoref {
+    std::array<double, 6> gt{0.0, 1.0, 0.0, 0.0, 0.0, -1.0};  // GDAL geotransform of the grid
+    std::string wkt;                                          // CRS of the source DEM
+};
+
+// The DEM's geotransform and CRS (GDAL), turned into the drainage grid's: fine pixel (i, j) is
+// centred on drainage point (i, j). Accounts for the Terrain's crop offset and for read_dem's
+// north-up / west-left flips. Throws penink::Error("drainage", dem_path, ...) if GDAL cannot open it.
+DrainageGeoref drainage_georef(const std::string& dem_path, const Terrain& t, int factor);
+
+// Writes the four rasters into `dir` (created if missing). Throws
+// penink::Error("drainage", file, "cannot write raster", internal) on failure.
+void write_drainage_rasters(const std::string& dir, const DrainageGeoref& geo, int cols, int rows,
+                            const std::vector<std::uint8_t>& valid, const DrainageResult& res);
+
+}  // namespace penink
