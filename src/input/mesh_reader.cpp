@@ -123,7 +123,8 @@ TriangleMesh read_mesh(const std::string& path, bool weld) {
     } catch (const std::exception&) {
         ok = false;
     }
-    if (!ok) throw Error("input", path, "not a mesh (cannot read OBJ/PLY/OFF)");
+    // CGAL reports a file with vertices but no faces as a failure: that is a mesh without triangles.
+    if (!ok && (pts.empty() || !polys.empty())) throw Error("input", path, "not a mesh (cannot read OBJ/PLY/OFF)");
     std::vector<std::string> mats;
     if (ext == ".obj") mats = scan_obj_face_materials(read_text(path));
     TriangleMesh m = build_mesh(pts, polys, mats);
