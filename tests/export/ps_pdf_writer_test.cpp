@@ -1,0 +1,89 @@
+// PostScript/EPS DSC structure and layer comments; PDF optional content groups and xref.
+#include <gtest/gtest.h>
+
+#include <regex>
+
+#include "export/pdf_writer.hpp"
+#include "export/ps_writer.hpp"
+#include "fixture.hpp"
+
+using namespace penink;
+using namespace penink::test;
+
+namespace {
+
+const std::vector<std::string> kLayers = {"surface", "ridges", "creases", "pels",
+                                          "textures", "feature-edges", "silhouettes"};
+
+StyledDrawing drawing(LayerSplit split = LayerSplit::kind) {
+    return style_drawing(small_drawing(), visible_style(), 42, split);
+}
+
+std::vector<std::string> matches(const std::string& text, const std::string& pattern) {
+    std::vector<std::string> out;
+    const std::regex re(pattern);
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator(); ++it)
+        out.push_back((*it)[1]);
+    return out;
+}
+
+}  // namespace
+
+TEST(PsWriter, DscHeaderAndLayers) {
+    const std::string ps = ps_document(drawing(), PageOptions{}, false, "x.ps");
+    EXPECT_EQ(ps.rfind("%!PS-Adobe-3.0\n%%Creator: penink\n%%Title: x.ps\n%%BoundingBox: 0 0 150 120\n"
+                       "%%HiResBoundingBox: 0 0 150 120\n", 0), 0u);
+    EXPECT_NE(ps.find("%%Pages: 1\n"), std::string::npos);
+    EXPECT_NE(ps.find("<< /PageSize [150 120] >> setpagedevice"), std::string::npos);
+    EXPECT_EQ(matches(ps, "%%BeginLayer: ([^\n]+)\n"), kLayers);
+    EXPECT_EQ(matches(ps, "\\(([^)]+)\\) Ln\n"), kLayers);
+    EXPECT_EQ(matches(ps, "(%%EndLayer)\n").size(), 7u);
+    EXPECT_EQ(ps.substr(ps.size() - 6), "%%EOF\n");
+    // y flipped once: image pixel (0, 0) is the page's top-left corner (120 pt up).
+    EXPECT_NE(ps.find("0.75 0 0 -0.75 0 120 cm\n1 J 1 j\n"), std::string::npos);
+    // Opacity 0.5 of #b03020 blended toward white.
+    EXPECT_NE(ps.find(format_number(0xd8 / 255.0, 3) + " " + format_number(0x98 / 255.0, 3) + " " +
+                      format_number(0x90 / 255.0, 3) + " RG"), std::string::npos);
+}
+
+TEST(PsWriter, EpsHeaderAndSublayers) {
+    const std::string eps = ps_document(drawing(LayerSplit::kind_distance), PageOptions{}, true, "x.eps");
+    EXPECT_EQ(eps.rfind("%!PS-Adobe-3.0 EPSF-3.0\n", 0), 0u);
+    EXPECT_EQ(eps.find("setpagedevice"), std::string::npos);
+    const auto names = matches(eps, "%%BeginLayer: ([^\n]+)\n");
+    ASSERT_EQ(names.size(), 28u);
+    EXPECT_EQ(names[24], "silhouettes");
+    EXPECT_EQ(names[27], "silhouettes-far");
+}
+
+TEST(PdfWriter, OptionalContentGroups) {
+    const std::string pdf = pdf_document(drawing(), PageOptions{}, "x.pdf");
+    EXPECT_EQ(pdf.rfind("%PDF-1.5\n", 0), 0u);
+    EXPECT_EQ(matches(pdf, "<< /Type /OCG /Name \\(([^)]+)\\) >>"), kLayers);
+    EXPECT_NE(pdf.find("/OCProperties << /OCGs [6 0 R 7 0 R 8 0 R 9 0 R 10 0 R 11 0 R 12 0 R] /D << "
+                       "/Name (penink layers) /Order [6 0 R 7 0 R 8 0 R 9 0 R 10 0 R 11 0 R 12 0 R] "
+                       "/ON [6 0 R 7 0 R 8 0 R 9 0 R 10 0 R 11 0 R 12 0 R] /OFF [] >> >>"),
+              std::string::npos);
+    EXPECT_EQ(matches(pdf, "/OC (/oc[0-9]+) BDC").size(), 7u);
+    EXPECT_NE(pdf.find("/Properties << /oc0 6 0 R"), std::string::npos);
+    EXPECT_NE(pdf.find("/GS0 << /Type /ExtGState /CA 0.5 >>"), std::string::npos);
+    EXPECT_EQ(pdf.find("CreationDate"), std::string::npos);
+    EXPECT_NE(pdf.find("/MediaBox [0 0 150 120]"), std::string::npos);
+}
+
+TEST(PdfWriter, XrefOffsetsPointAtObjects) {
+    const std::string pdf = pdf_document(drawing(LayerSplit::kind_distance), PageOptions{}, "x.pdf");
+    const size_t sx = pdf.rfind("startxref\n");
+    const size_t xref = std::stoul(pdf.substr(sx + 10));
+    ASSERT_EQ(pdf.compare(xref, 5, "xref\n"), 0);
+    const auto offsets = matches(pdf.substr(xref), "([0-9]{10}) 00000 n \n");
+    ASSERT_EQ(offsets.size(), 5u + 28u);
+    for (size_t i = 0; i < offsets.size(); ++i)
+        EXPECT_EQ(pdf.compare(std::stoul(offsets[i]), std::to_string(i + 1).size() + 6,
+                              std::to_string(i + 1) + " 0 obj"), 0) << i;
+    EXPECT_NE(pdf.find("/Order [6 0 R [7 0 R 8 0 R 9 0 R] 10 0 R [11 0 R 12 0 R 13 0 R] 14 0 R ["), std::string::npos);
+}
+
+TEST(PdfWriter, StringEscapes) {
+    EXPECT_EQ(pdf_string("a(b)c\\d\xc3\xa9"), "(a\\(b\\)c\\\\d\\303\\251)");
+}

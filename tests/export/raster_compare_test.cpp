@@ -1,0 +1,152 @@
+// Our PNG against independent renderers of our SVG (rsvg-convert), PS/EPS (Ghostscript) and PDF
+// (pdftoppm) at the same size. Tolerance: anti-aliasing differs only along edges (each renderer
+// has its own coverage filter and PS blends opacity toward white instead of compositing), so we
+// require the mean absolute difference < 2 % of full scale and > 99 % of pixels within 64 levels:
+// a missing/misplaced stroke, wrong width, colour or flipped y breaks both by a wide margin.
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "export/export_drawing.hpp"
+#include "export/png_writer.hpp"
+#include "fixture.hpp"
+
+using namespace penink;
+using namespace penink::test;
+
+namespace {
+
+struct Image {
+    int w = 0, h = 0;
+    std::vector<float> rgb;  // 0..255, alpha composited over white
+};
+
+Image read_png(const std::string& path) {
+    Image im;
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) return im;
+    const OIIO::ImageSpec& spec = in->spec();
+    std::vector<float> px(size_t(spec.width) * spec.height * spec.nchannels);
+    in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data());
+    im.w = spec.width;
+    im.h = spec.height;
+    for (size_t i = 0; i < size_t(im.w) * im.h; ++i) {
+        const float* p = &px[i * spec.nchannels];
+        const float a = spec.nchannels == 4 ? p[3] : 1.0f;
+        for (int c = 0; c < 3; ++c) im.rgb.push_back(255.0f * (p[spec.nchannels >= 3 ? c : 0] + (1.0f - a)));
+    }
+    return im;
+}
+
+bool have(const char* tool) { return std::system((std::string("command -v ") + tool + " >/dev/null 2>&1").c_str()) == 0; }
+
+void expect_close(const Image& ours, const Image& theirs, const std::string& what) {
+    ASSERT_EQ(theirs.w, ours.w) << what;
+    ASSERT_EQ(theirs.h, ours.h) << what;
+    double sum = 0.0;
+    size_t within = 0, n = size_t(ours.w) * ours.h;
+    for (size_t i = 0; i < n; ++i) {
+        float worst = 0.0f;
+        for (int c = 0; c < 3; ++c) {
+            const float d = std::fabs(ours.rgb[3 * i + c] - theirs.rgb[3 * i + c]);
+            sum += d;
+            worst = std::max(worst, d);
+        }
+        within += worst <= 64.0f;
+    }
+    const double mean = sum / (3.0 * n) / 255.0;
+    std::printf("%s: mean |diff| %.3f %%, within 64 levels %.3f %%\n", what.c_str(), 100 * mean,
+                100.0 * double(within) / n);
+    EXPECT_LT(mean, 0.02) << what;
+    EXPECT_GT(double(within) / n, 0.99) << what;
+}
+
+class RasterCompare : public ::testing::Test {
+protected:
+    TempDir dir{"raster"};
+    StyledDrawing drawing = style_drawing(small_drawing(), visible_style(), 42);
+    Image ours;
+    void SetUp() override {
+        export_drawing(drawing, PageOptions{}, dir.file("ours.png"));
+        ours = read_png(dir.file("ours.png"));
+        ASSERT_EQ(ours.w, 200);
+        ASSERT_EQ(ours.h, 160);
+    }
+    Image render(const std::string& ext, const std::string& command) {
+        export_drawing(drawing, PageOptions{}, dir.file("in" + ext));
+        const std::string cmd = "cd '" + dir.path.string() + "' && " + command + " 2>err.txt";
+        EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd << "\n" << read_text(dir.file("err.txt"));
+        EXPECT_EQ(read_text(dir.file("err.txt")), "") << ext;  // no warnings from the renderer
+        return read_png(dir.file("out.png"));
+    }
+};
+
+}  // namespace
+
+TEST_F(RasterCompare, OurPngHasTheDrawing) {
+    // Pixel (100, 20) is on the silhouette (#203080), (100, 110) inside the mask hole (white).
+    const size_t on = 3 * size_t(20 * 200 + 100), hole = 3 * size_t(110 * 200 + 100);
+    EXPECT_LT(ours.rgb[on], 80.0f);
+    EXPECT_NEAR(ours.rgb[hole], 255.0f, 0.01f);
+    EXPECT_NEAR(ours.rgb[3 * size_t(140 * 200 + 60)], 216.0f, 0.01f);  // surface fill #d8d8d8
+}
+
+TEST_F(RasterCompare, SvgByRsvg) {
+    if (!have("rsvg-convert")) GTEST_SKIP() << "rsvg-convert not installed";
+    expect_close(ours, render(".svg", "rsvg-convert -w 200 -h 160 -b white -o out.png in.svg"), "svg");
+}
+
+TEST_F(RasterCompare, PsByGhostscript) {
+    if (!have("gs")) GTEST_SKIP() << "ghostscript not installed";
+    expect_close(ours, render(".ps", "gs -q -dSAFER -dBATCH -dNOPAUSE -sDEVICE=png16m -r96 "
+                                     "-dGraphicsAlphaBits=4 -sOutputFile=out.png in.ps"), "ps");
+}
+
+TEST_F(RasterCompare, EpsByGhostscript) {
+    if (!have("gs")) GTEST_SKIP() << "ghostscript not installed";
+    expect_close(ours, render(".eps", "gs -q -dSAFER -dBATCH -dNOPAUSE -dEPSCrop -sDEVICE=png16m -r96 "
+                                      "-dGraphicsAlphaBits=4 -sOutputFile=out.png in.eps"), "eps");
+}
+
+TEST_F(RasterCompare, PdfByPdftoppm) {
+    if (!have("pdftoppm")) GTEST_SKIP() << "pdftoppm not installed";
+    expect_close(ours, render(".pdf", "pdftoppm -r 96 -png -singlefile in.pdf out"), "pdf");
+}
+
+TEST(PngWriter, CapsuleAndFillCoverage) {
+    Drawing d;
+    d.width = 64;
+    d.height = 32;
+    d.layer(LayerKind::surface).fill = {{{4, 4}, {24, 4}, {24, 24}, {4, 24}}, {{9, 9}, {19, 9}, {19, 19}, {9, 19}}};
+    d.layer(LayerKind::ridges).strokes.push_back(make_stroke({{30, 10}, {60, 10}}, {1, 1}, 1, "r"));
+    Style s = default_style();
+    s.fill = Rgb{0, 0, 0};
+    s.layer(LayerKind::ridges).width = s.layer(LayerKind::ridges).width_far = 4.0;
+    const RgbImage img = rasterise(style_drawing(d, s, 1), RasterTransform{64, 32, 1.0, 0.0, 0.0});
+    const auto at = [&](int x, int y) { return int(img.rgb[3 * size_t(y * 64 + x)]); };
+    for (int y = 8; y <= 11; ++y) EXPECT_EQ(at(45, y), 0) << y;  // line covers y in [8, 12]
+    EXPECT_EQ(at(45, 7), 255);
+    EXPECT_EQ(at(45, 12), 255);
+    EXPECT_EQ(at(29, 10), 0);    // round cap reaches x = 28
+    EXPECT_EQ(at(27, 10), 255);
+    EXPECT_EQ(at(5, 5), 0);      // ring
+    EXPECT_EQ(at(14, 14), 255);  // hole (even-odd)
+    EXPECT_EQ(at(25, 5), 255);
+    int black = 0;
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 28; ++x) black += at(x, y) == 0;
+    EXPECT_EQ(black, 400 - 100);
+}
+
+TEST(PngWriter, DpiScalesTheImage) {
+    PageOptions o;
+    o.dpi = 192;
+    const RasterTransform t = png_transform(style_drawing(small_drawing(), default_style(), 1), o);
+    EXPECT_EQ(t.width, 400);
+    EXPECT_EQ(t.height, 320);
+    EXPECT_DOUBLE_EQ(t.scale, 2.0);
+}

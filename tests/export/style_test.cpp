@@ -1,0 +1,119 @@
+// Style files parse, built-ins equal the shipped files, overrides apply, bad input errors exact.
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+#include "export/style.hpp"
+#include "fixture.hpp"
+
+using namespace penink;
+using namespace penink::test;
+
+namespace {
+
+std::string style_error(const std::string& text, const TempDir& dir) {
+    const std::string path = dir.file("bad.toml");
+    write_text(path, text);
+    try {
+        load_style(path);
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::bad_input);
+        return e.what();
+    }
+    return "no error";
+}
+
+}  // namespace
+
+TEST(Style, BuiltinsEqualShippedFiles) {
+    for (const std::string& name : builtin_style_names()) {
+        const Style file = load_style(PENINK_SOURCE_DIR "/styles/" + name + ".toml");
+        EXPECT_TRUE(file == builtin_style(name)) << name;
+        EXPECT_EQ(file.name, name);
+    }
+    EXPECT_TRUE(default_style() == load_style(PENINK_SOURCE_DIR "/styles/technical.toml"));
+}
+
+TEST(Style, ShippedStylesHaveTheirCharacter) {
+    const Style tech = builtin_style("technical");
+    for (const LayerStyle& l : tech.layers) {
+        EXPECT_EQ(l.width, l.width_far);
+        EXPECT_EQ(l.sketch, 0.0);
+        EXPECT_EQ(l.keep_far, 1.0);
+        EXPECT_LE(l.width, 1.2);
+    }
+    const Style sketch = builtin_style("field-sketch");
+    for (const LayerStyle& l : sketch.layers) {
+        EXPECT_LT(l.width_far, l.width);
+        EXPECT_LT(l.opacity_far, l.opacity);
+        EXPECT_GT(l.sketch, 0.0);
+    }
+    EXPECT_LT(sketch.layer(LayerKind::textures).keep_far, 1.0);
+    EXPECT_EQ(sketch.layer(LayerKind::silhouettes).repeat, 2);
+}
+
+TEST(Style, OverridesFromSceneTable) {
+    Style s = builtin_style("field-sketch");
+    const toml::value scene = parse_toml("[style]\nnear = 0.2\n[style.ridges]\nwidth = 2.5\n"
+                                         "color = \"#ff8000\"\n[style.textures]\nvisible = false\n");
+    apply_style_overrides(s, scene.at("style"));
+    EXPECT_DOUBLE_EQ(s.near, 0.2);
+    EXPECT_DOUBLE_EQ(s.layer(LayerKind::ridges).width, 2.5);
+    EXPECT_DOUBLE_EQ(s.layer(LayerKind::ridges).width_far, 2.5);  // width alone: uniform
+    EXPECT_TRUE(s.layer(LayerKind::ridges).color == (Rgb{255, 128, 0}));
+    EXPECT_FALSE(s.layer(LayerKind::textures).visible);
+    EXPECT_DOUBLE_EQ(s.layer(LayerKind::creases).width_far, 0.35);  // untouched
+}
+
+TEST(Style, OverrideErrorNamesTheSource) {
+    Style s = default_style();
+    const Style before = s;
+    try {
+        apply_style_overrides(s, parse_toml("[foo]\nwidth = 1\n"), "scene.toml");
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_STREQ(e.what(), "penink: style: scene.toml: unknown layer \"foo\"");
+    }
+    EXPECT_TRUE(s == before);  // nothing half-applied
+}
+
+TEST(Style, BadFilesErrorExactly) {
+    TempDir dir("style");
+    const std::string p = dir.file("bad.toml");
+    const std::string prefix = "penink: style: " + p + ": ";
+    EXPECT_EQ(style_error("[foo]\nwidth = 1\n", dir), prefix + "unknown layer \"foo\"");
+    EXPECT_EQ(style_error("[ridges]\nwidth = -1\n", dir), prefix + "width must be >= 0 (in [ridges])");
+    EXPECT_EQ(style_error("[all]\nopacity = 1.5\n", dir), prefix + "opacity must be in [0, 1] (in [all])");
+    EXPECT_EQ(style_error("[ridges]\nwidht = 1\n", dir), prefix + "unknown key \"widht\" (in [ridges])");
+    EXPECT_EQ(style_error("[silhouettes]\ncolor = \"red\"\n", dir),
+              prefix + "color must be \"#rrggbb\" (got \"red\") (in [silhouettes])");
+    EXPECT_EQ(style_error("near = 0.8\nfar = 0.5\n", dir), prefix + "near must be less than far");
+    EXPECT_EQ(style_error("bands = 0\n", dir), prefix + "bands must be an integer in [1, 16]");
+    EXPECT_EQ(style_error("[pels]\ndash = [0, 0]\n", dir), prefix + "dash must not be all zeros (in [pels])");
+    EXPECT_EQ(style_error("[pels]\nrepeat = 0\n", dir), prefix + "repeat must be an integer in [1, 16] (in [pels])");
+    EXPECT_EQ(style_error("speed = 3\n", dir), prefix + "unknown key \"speed\"");
+    EXPECT_EQ(style_error("width = [\n", dir).rfind(prefix + "invalid TOML: ", 0), 0u);
+}
+
+TEST(Style, MissingFileAndUnknownBuiltin) {
+    try {
+        load_style("/nonexistent/x.toml");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_STREQ(e.what(), "penink: style: /nonexistent/x.toml: cannot open style file");
+    }
+    try {
+        builtin_style("ornate");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_STREQ(e.what(), "penink: style: ornate: unknown style \"ornate\" (use technical or field-sketch)");
+    }
+    EXPECT_EQ(resolve_style("field-sketch").name, "field-sketch");
+}
+
+TEST(Style, Colours) {
+    EXPECT_TRUE(parse_rgb("#1a2B3c") == (Rgb{0x1a, 0x2b, 0x3c}));
+    EXPECT_TRUE(parse_rgb("#fff") == (Rgb{255, 255, 255}));
+    EXPECT_EQ(rgb_hex(Rgb{0x1a, 0x2b, 0x3c}), "#1a2b3c");
+    EXPECT_THROW(parse_rgb("#12345g"), std::invalid_argument);
+    EXPECT_THROW(parse_rgb("123456"), std::invalid_argument);
+}
