@@ -24,7 +24,8 @@ DepthImage rasterize_depth(const TriangleMesh& mesh, const Camera& cam);
 
 struct VisibilityOptions {
     float step_px = 0.5f;         // sampling step along the projected line
-    float rel_tolerance = 0.01f;  // visible when d <= depth * (1 + rel) + abs
+    float rel_tolerance = 0.03f;  // visible when d <= depth * (1 + rel) + abs (0.03 keeps the
+                                  // interpolated-normal silhouettes of coarse meshes unbroken)
     float abs_tolerance = 0.0f;   // world units
 };
 
