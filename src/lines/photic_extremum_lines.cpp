@@ -83,8 +83,9 @@ std::vector<float> directional(const std::vector<glm::vec3>& grad, const std::ve
 void illumination(const TriangleMesh& mesh, const std::vector<glm::vec3>& normals,
                   const glm::vec3& eye, const PelOptions& o, std::vector<float>& phi) {
     phi.resize(mesh.positions.size());
+    const glm::vec3 fixed = glm::length(o.light_dir) > 0.0f ? glm::normalize(o.light_dir) : glm::vec3(0, 0, 1);
     for (std::size_t i = 0; i < phi.size(); ++i) {
-        glm::vec3 l = o.light_at_eye ? glm::normalize(eye - mesh.positions[i]) : o.light_dir;
+        glm::vec3 l = o.light_at_eye ? glm::normalize(eye - mesh.positions[i]) : fixed;
         float d = glm::dot(normals[i], l);
         phi[i] = o.clamp_diffuse ? std::max(0.0f, d) : d;
     }

@@ -44,7 +44,7 @@ struct PelGeometry {
 struct PelOptions {
     float threshold = 0.1f;       // tau on g (0..1); above 1 nothing is drawn
     bool light_at_eye = true;     // l = normalize(eye - p) per vertex
-    glm::vec3 light_dir{0, 0, 1}; // otherwise: unit vector towards the (directional) light
+    glm::vec3 light_dir{0, 0, 1}; // otherwise: towards the (directional) light (normalised here)
     bool clamp_diffuse = true;    // phi = max(0, n . l); false: phi = n . l
 };
 
