@@ -52,11 +52,11 @@ void append_dash_op(std::string& o, const std::vector<double>& dash) {
     o += "] 0 d\n";
 }
 
-Rgb blend_to_white(Rgb c, double opacity) {
-    const auto mix = [&](std::uint8_t v) {
-        return static_cast<std::uint8_t>(std::lround(v * opacity + 255.0 * (1.0 - opacity)));
+Rgb blend_toward(Rgb c, Rgb paper, double opacity) {
+    const auto mix = [&](std::uint8_t v, std::uint8_t p) {
+        return static_cast<std::uint8_t>(std::lround(v * opacity + p * (1.0 - opacity)));
     };
-    return Rgb{mix(c.r), mix(c.g), mix(c.b)};
+    return Rgb{mix(c.r, paper.r), mix(c.g, paper.g), mix(c.b, paper.b)};
 }
 
 }  // namespace penink

@@ -17,8 +17,9 @@ void append_ring_ops(std::string& out, const std::vector<Ring>& rings);
 void append_rgb_op(std::string& out, Rgb c, const char* op);
 // "[a b] 0 d" (an empty array is solid).
 void append_dash_op(std::string& out, const std::vector<double>& dash);
-// `c` blended toward white by `opacity` (how PostScript shows opacity on white paper).
-Rgb blend_to_white(Rgb c, double opacity);
+// `c` blended toward the paper colour by `opacity` (how PostScript shows opacity: exact for
+// a stroke over the bare page, default white).
+Rgb blend_toward(Rgb c, Rgb paper, double opacity);
 
 // Pen state of a content stream, to emit only changed operators.
 struct PenState {

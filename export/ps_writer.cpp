@@ -71,8 +71,8 @@ void header(std::string& o, const StyledDrawing& d, const PageLayout& L, bool ep
          format_number(h - L.offset_y_mm * points_per_mm, 4) + " cm\n1 J 1 j\n%%EndPageSetup\n";
 }
 
-void set_pen(std::string& o, PenState& pen, const StyledPath& p) {
-    const Rgb c = blend_to_white(p.color, p.opacity);
+void set_pen(std::string& o, PenState& pen, const StyledPath& p, Rgb paper) {
+    const Rgb c = blend_toward(p.color, paper, p.opacity);
     const std::string width = format_number(p.width, 3);
     if (!pen.valid || !(pen.color == c)) append_rgb_op(o, c, "RG");
     if (!pen.valid || pen.width != width) o += width + " w\n";
@@ -80,7 +80,7 @@ void set_pen(std::string& o, PenState& pen, const StyledPath& p) {
     pen = PenState{true, c, width, "", p.dash};
 }
 
-void layer_body(std::string& o, const StyledLayer& l, bool split) {
+void layer_body(std::string& o, const StyledLayer& l, bool split, Rgb paper) {
     if (!l.fill.empty()) {
         append_rgb_op(o, l.fill_color, "rg");
         append_ring_ops(o, l.fill);
@@ -90,7 +90,7 @@ void layer_body(std::string& o, const StyledLayer& l, bool split) {
     for (const StyledGroup& g : l.groups) {
         if (split) o += "%%BeginLayer: " + g.name + "\n";
         for (const StyledPath& p : g.paths) {
-            set_pen(o, pen, p);
+            set_pen(o, pen, p, paper);
             append_polyline_ops(o, p.points);
             o += "S\n";
         }
@@ -98,10 +98,10 @@ void layer_body(std::string& o, const StyledLayer& l, bool split) {
     }
 }
 
-void layer(std::string& o, const StyledLayer& l, bool split) {
+void layer(std::string& o, const StyledLayer& l, bool split, Rgb paper) {
     o += "%%BeginLayer: " + l.name + "\n%AI5_BeginLayer\n1 1 1 1 0 0 -1 0 0 0 Lb\n" +
          ps_string(l.name) + " Ln\nq\n";
-    layer_body(o, l, split);
+    layer_body(o, l, split, paper);
     o += "Q\nLB\n%AI5_EndLayer--\n%%EndLayer\n";
 }
 
@@ -120,7 +120,7 @@ std::string ps_document(const StyledDrawing& d, const PageOptions& page, bool ep
     std::string o;
     o.reserve(8192 + path_count(d) * 64);
     header(o, d, L, eps, page, path);
-    for (const StyledLayer& l : d.layers) layer(o, l, d.split == LayerSplit::kind_distance);
+    for (const StyledLayer& l : d.layers) layer(o, l, d.split == LayerSplit::kind_distance, d.background);
     o += "Q\nshowpage\n%%PageTrailer\n%%Trailer\nend\n%%EOF\n";
     return o;
 }

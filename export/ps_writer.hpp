@@ -1,7 +1,8 @@
 // PostScript / EPS writer (DSC 3.0): one page, y flipped by one `concat` so the body keeps
 // image-pixel coordinates; each layer bracketed by `%%BeginLayer: NAME` / `%%EndLayer` and
 // Illustrator-style `%AI5_BeginLayer ... (NAME) Ln ... %AI5_EndLayer--` markers. PostScript
-// has no transparency: a stroke's colour is blended toward white by its opacity.
+// has no transparency: a stroke's colour is blended toward the background (default white)
+// by its opacity.
 #pragma once
 #include <string>
 

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/error.hpp"
+
 namespace penink {
 
 namespace {
@@ -139,6 +141,12 @@ StyledLayer style_layer(const Layer& layer, const Style& style, const DistanceMa
 }
 
 }  // namespace
+
+LayerSplit parse_layer_split(const std::string& text) {
+    if (text == "kind") return LayerSplit::kind;
+    if (text == "kind+distance") return LayerSplit::kind_distance;
+    throw Error("export", "", "unknown --layers value \"" + text + "\" (use kind or kind+distance)");
+}
 
 double max_depth(const Drawing& drawing) {
     double m = 0.0;

@@ -18,6 +18,10 @@ namespace penink {
 // kind: one group per layer; kind_distance: sublayers near / middle / far (depth thirds).
 enum class LayerSplit { kind, kind_distance };
 
+// "kind" or "kind+distance" (the CLI's --layers); throws Error("export", "", "unknown --layers
+// value \"X\" (use kind or kind+distance)").
+LayerSplit parse_layer_split(const std::string& text);
+
 struct StyledPath {
     std::vector<glm::vec2> points;  // image pixels, >= 1 point (1 point = a dot)
     double width = 1.0;             // pixels

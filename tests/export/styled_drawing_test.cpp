@@ -3,6 +3,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/error.hpp"
 #include "export/export_drawing.hpp"
 #include "export/styled_drawing.hpp"
 #include "fixture.hpp"
@@ -117,4 +118,15 @@ TEST(StyledDrawing, PlotStats) {
     EXPECT_EQ(st.paths, 2u);
     EXPECT_DOUBLE_EQ(st.length_px, 50.0 + 10.0 + 10.0);
     EXPECT_DOUBLE_EQ(st.travel_px, 10.0);
+}
+
+TEST(StyledDrawing, ParseLayerSplit) {
+    EXPECT_EQ(parse_layer_split("kind"), LayerSplit::kind);
+    EXPECT_EQ(parse_layer_split("kind+distance"), LayerSplit::kind_distance);
+    try {
+        parse_layer_split("depth");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_STREQ(e.what(), "penink: export: unknown --layers value \"depth\" (use kind or kind+distance)");
+    }
 }
