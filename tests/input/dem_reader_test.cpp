@@ -208,10 +208,7 @@ glm::dvec2 utm_of_node(const std::string& path, int c, int r, int zone, bool& no
 
 TEST(DemReader, JacksboroIsProjectedToUtm16North) {
     const std::string p = PENINK_SHARED_DIR "/data/jacksboro.tif";
-    const auto t0 = std::chrono::steady_clock::now();
     const Terrain t = read_dem(p);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    EXPECT_LT(ms, 1000.0);  // ~25 ms on a desktop; generous for loaded CI machines
     EXPECT_EQ(t.cols, 403);
     EXPECT_EQ(t.rows, 344);
     EXPECT_EQ(t.utm_zone, 16);

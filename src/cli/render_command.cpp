@@ -1,0 +1,96 @@
+#include "cli/render_command.hpp"
+
+#include <chrono>
+#include <filesystem>
+#include <sstream>
+
+#include "cli/terrain_drawing.hpp"
+#include "core/error.hpp"
+#include "export/export_drawing.hpp"
+#include "export/styled_drawing.hpp"
+
+namespace penink {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+void check_outputs(const std::vector<std::string>& outputs) {
+    if (outputs.empty()) throw Error("cli", "", "no output file given (use -o out.svg)");
+    for (const std::string& o : outputs) {
+        const std::string ext = fs::path(o).extension().string();
+        if (ext != ".svg" && ext != ".ps" && ext != ".eps" && ext != ".pdf" && ext != ".png")
+            throw Error("export", o, "unknown output format \"" + ext + "\" (use .svg, .ps, .eps, .pdf or .png)");
+        const fs::path dir = fs::path(o).parent_path();
+        if (!dir.empty() && !fs::is_directory(dir))
+            throw Error("export", o, "cannot write file (no such directory)");
+    }
+}
+
+Scene scene_with_overrides(const RenderOptions& o) {
+    Scene scene = load_scene(o.input);
+    if (o.width != RenderOptions::unset) scene.camera.width = o.width;
+    if (o.height != RenderOptions::unset) scene.camera.height = o.height;
+    if (o.seed >= 0) scene.seed = std::uint64_t(o.seed);
+    if (o.vertical_exaggeration != 0.0) scene.vertical_exaggeration = o.vertical_exaggeration;
+    if (!o.style.empty()) scene.style = o.style;
+    validate_scene(scene);
+    return scene;
+}
+
+void log_timings(const TerrainDrawingResult& r, const Log& log) {
+    std::ostringstream s;
+    s.precision(3);
+    s << "GPU ms: TFT " << r.times.tft << ", AFT " << r.times.aft << ", SIL " << r.times.sil
+      << ", read-back " << r.times.readback << "; trace " << r.trace_ms << " ms; "
+      << r.triangles << " triangles";
+    log.info(s.str());
+}
+
+}  // namespace
+
+void add_render_command(CLI::App& app, RenderOptions& o) {
+    CLI::App* cmd = app.add_subcommand("render", "Draw a DEM (or a TOML scene) as layered vector files");
+    cmd->add_option("input", o.input, "DEM (GeoTIFF, ASCII grid, ...) or scene file (.toml)")->required();
+    cmd->add_option("-o,--output", o.outputs, "Output file, format from the extension: .svg .ps .eps .pdf .png (repeatable)")
+        ->required();
+    cmd->add_option("--style", o.style, "Style name (technical, field-sketch) or a style .toml file");
+    cmd->add_option("--page", o.page, "Physical page size: A4, A3, letter, WxHmm (default: image size at --dpi)");
+    cmd->add_option("--dpi", o.dpi, "Image pixels per inch; also the PNG resolution (default 96)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--layers", o.layers, "Layer split: kind, or kind+distance (near/middle/far sublayers)")
+        ->check(CLI::IsMember({"kind", "kind+distance"}));
+    cmd->add_option("--width", o.width, "Image width in pixels (overrides the scene)");
+    cmd->add_option("--height", o.height, "Image height in pixels (overrides the scene)");
+    cmd->add_option("--seed", o.seed, "Seed of the sketchy perturbation (same seed, same output)");
+    cmd->add_option("--vertical-exaggeration", o.vertical_exaggeration, "Scale elevations by this factor");
+    cmd->add_option("--gl", o.gl, "OpenGL backend: osmesa (software, default) or egl (GPU)")
+        ->check(CLI::IsMember({"osmesa", "egl"}));
+    cmd->add_flag("-v,--verbose", o.verbose, "Print cells used, per-pass times and line statistics");
+}
+
+int run_render(const RenderOptions& o) {
+    const auto start = std::chrono::steady_clock::now();
+    const Log log{o.verbose};
+    check_outputs(o.outputs);
+    const Scene scene = scene_with_overrides(o);
+    Style style = resolve_style(scene.style);
+    if (scene.style_overrides.is_table()) apply_style_overrides(style, scene.style_overrides, scene.file);
+    const auto context = make_gl_context(parse_gl_backend(o.gl));
+    log.info(context->description());
+    const TerrainDrawingResult result = draw_terrain(scene, *context, log);
+    log_timings(result, log);
+    const StyledDrawing styled = style_drawing(result.drawing, style, scene.seed,
+                                               o.layers == "kind" ? LayerSplit::kind : LayerSplit::kind_distance);
+    PageOptions page;
+    page.page = o.page, page.dpi = o.dpi;
+    for (const std::string& out : o.outputs) export_drawing(styled, page, out);
+    const PlotStats stats = plot_stats(styled);
+    std::ostringstream s;
+    s << stats.paths << " paths, " << stats.length_px << " px drawn, " << stats.travel_px << " px pen-up; "
+      << "total " << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s";
+    log.info(s.str());
+    return 0;
+}
+
+}  // namespace penink

@@ -1,0 +1,57 @@
+// A scene: what to draw and how, from a TOML scene file or a bare DEM path plus CLI options.
+// Keys (all optional but the input): [terrain] dem, vertical_exaggeration; [camera] position,
+// elevation, azimuth, altitude, fov, width, height; [light] azimuth, altitude; [silhouettes]
+// min_gap, separate_passes; [tessellation] target_edge_px, max_level; [creases] and [ridges]
+// slope_weight, illumination_weight, flow_weight, min_score, distance_attenuation; [style] name
+// plus per-layer overrides; seed. Angles in degrees, distances in metres (conventions.md).
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include <toml.hpp>
+
+namespace penink {
+
+struct SceneCamera {
+    std::optional<std::string> position;  // UTM "E N 18N", "lon,lat" or "x y"; none = auto-frame
+    std::optional<double> elevation;      // metres above the DEM's datum (scaled with exaggeration)
+    std::optional<double> azimuth, altitude;  // none = conventions default (from the south-west)
+    double fov = 40.0;
+    int width = 1000, height = 750;
+};
+
+struct SceneLight {
+    double azimuth = 315.0, altitude = 45.0;
+};
+
+struct CreaseParams {  // seed 000, eq. 1-6 (conventions.md)
+    double slope_weight = 1.0, illumination_weight = 1.0, flow_weight = 1.0;
+    double min_score = 0.1, distance_attenuation = 0.3;
+    bool enabled = true;
+};
+
+struct Scene {
+    std::string file;          // the scene file ("" for a bare DEM)
+    std::string dem;           // DEM path (resolved relative to the scene file)
+    double vertical_exaggeration = 1.0;
+    SceneCamera camera;
+    SceneLight light;
+    int tess_max_level = 8;
+    float tess_target_edge_px = 6.0f;
+    float silhouette_min_gap = 0.0f;
+    bool separate_passes = false;
+    CreaseParams creases, ridges;
+    std::string style = "technical";
+    std::uint64_t seed = 1;
+    toml::value style_overrides;  // the [style] table, applied over the named style
+};
+
+// A path ending in .toml is a scene file; anything else is taken as a DEM.
+// Throws penink::Error(stage "scene", file) with one line on a bad key or value.
+Scene load_scene(const std::string& input);
+
+// Checks values that must hold whatever their source (CLI overrides included).
+void validate_scene(const Scene& scene);
+
+}  // namespace penink

@@ -1,0 +1,80 @@
+#include "cli/terrain_drawing.hpp"
+
+#include <chrono>
+#include <sstream>
+
+#include "cli/terrain_view.hpp"
+#include "input/dem_reader.hpp"
+#include "lines/simplify.hpp"
+#include "lines/trace_mask_outline.hpp"
+#include "lines/trace_pixel_lines.hpp"
+#include "surface/surface_mesh.hpp"
+
+namespace penink {
+
+namespace {
+
+std::string format_camera(const Camera& c, const Terrain& t) {
+    std::ostringstream s;
+    s.precision(10);
+    s << "eye " << c.eye.x + t.origin.x << " " << c.eye.y + t.origin.y << " " << c.eye.z
+      << (t.utm_zone ? " (UTM " + std::to_string(t.utm_zone) + (t.north ? "N" : "S") + ")" : "")
+      << ", azimuth " << c.azimuth << ", altitude " << c.altitude << ", fov " << c.fov << ", "
+      << c.width << "x" << c.height;
+    return s.str();
+}
+
+void fill_metadata(const Scene& scene, const Camera& cam, const Terrain& t, Drawing& d) {
+    std::ostringstream light, params;
+    light << "azimuth " << scene.light.azimuth << ", altitude " << scene.light.altitude;
+    params << "vertical_exaggeration " << scene.vertical_exaggeration << ", tessellation max_level "
+           << scene.tess_max_level << " target_edge_px " << scene.tess_target_edge_px << ", seed "
+           << scene.seed << ", style " << scene.style;
+    d.metadata["source"] = scene.dem;
+    d.metadata["camera"] = format_camera(cam, t);
+    d.metadata["light"] = light.str();
+    d.metadata["parameters"] = params.str();
+    d.metadata["generator"] = "penink";
+}
+
+}  // namespace
+
+void add_frame_lines(const FrameImages& images, Drawing& drawing) {
+    TraceParams sil;
+    sil.min_pixels = 3, sil.max_spur = 2, sil.kind = "silhouette";
+    std::vector<Stroke> strokes = simplify_strokes(trace_pixel_lines(images.silhouettes, images.toward, sil), 0.5f);
+    const PixelMask cover = coverage_mask(images);
+    Layer& surface = drawing.layer(LayerKind::surface);
+    surface.fill = trace_mask_outline(cover, 0.5f);
+    for (Stroke& s : outline_strokes(surface.fill, images.toward, true)) strokes.push_back(std::move(s));
+    drawing.layer(LayerKind::silhouettes).strokes = std::move(strokes);
+}
+
+TerrainDrawingResult draw_terrain(const Scene& scene, GlContext& context, const Log& log) {
+    DemOptions dem_options;
+    dem_options.vertical_exaggeration = scene.vertical_exaggeration;
+    const Terrain dem = read_dem(scene.dem, dem_options);
+    log.info("read " + scene.dem + ": " + std::to_string(dem.cols) + "x" + std::to_string(dem.rows) + " nodes");
+    TerrainDrawingResult out;
+    out.camera = scene_camera(scene, dem);
+    const Terrain view = terrain_for_view(dem, out.camera, scene, log);
+    out.cells = std::size_t(view.cols - 1) * (view.rows - 1);
+    const SurfaceMesh mesh = mesh_from_terrain(view);
+    out.triangles = mesh.tri.size();
+    TerrainRenderer renderer(context.gl(), mesh, out.camera.width, out.camera.height);
+    FrameOptions options;
+    options.tessellation.max_level = scene.tess_max_level;
+    options.tessellation.target_edge_px = scene.tess_target_edge_px;
+    options.separate_passes = scene.separate_passes;
+    options.silhouette_min_gap = scene.silhouette_min_gap;
+    const FrameImages images = renderer.render(out.camera, options);
+    out.times = images.times;
+    const auto t0 = std::chrono::steady_clock::now();
+    out.drawing.width = out.camera.width, out.drawing.height = out.camera.height;
+    add_frame_lines(images, out.drawing);
+    out.trace_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    fill_metadata(scene, out.camera, view, out.drawing);
+    return out;
+}
+
+}  // namespace penink

@@ -1,0 +1,78 @@
+#include "cli/terrain_view.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "input/scene_position.hpp"
+#include "input/terrain_window.hpp"
+
+namespace penink {
+
+namespace {
+const std::string& scene_file(const Scene& s) { return s.file.empty() ? s.dem : s.file; }
+}
+
+Camera scene_camera(const Scene& scene, const Terrain& terrain) {
+    const SceneCamera& sc = scene.camera;
+    const double az = sc.azimuth.value_or(default_view_azimuth);
+    const double alt = sc.altitude.value_or(default_view_altitude);
+    glm::dvec3 lo, hi;
+    terrain_bounds(terrain, lo, hi);
+    if (!sc.position) return frame_box(lo, hi, az, alt, sc.fov, sc.width, sc.height, 0.9);
+    Camera cam;
+    const glm::dvec2 xy = parse_scene_position(*sc.position, terrain, scene_file(scene));
+    cam.eye = {xy.x, xy.y, *sc.elevation * scene.vertical_exaggeration};
+    cam.azimuth = az, cam.altitude = alt, cam.fov = sc.fov;
+    cam.width = sc.width, cam.height = sc.height;
+    fit_depth_range(cam, lo, hi);
+    return cam;
+}
+
+bool ground_height(const Terrain& t, double x, double y, double& z) {
+    // Nearest cell by search over cells (grids may be curvilinear); barycentric on its triangles.
+    for (int r = 0; r + 1 < t.rows; ++r) {
+        for (int c = 0; c + 1 < t.cols; ++c) {
+            const std::size_t a = t.index(c, r), b = t.index(c + 1, r), s = t.index(c, r + 1),
+                              d = t.index(c + 1, r + 1);
+            for (const auto& tri : {std::array<std::size_t, 3>{a, s, d}, std::array<std::size_t, 3>{a, d, b}}) {
+                if (!t.valid[tri[0]] || !t.valid[tri[1]] || !t.valid[tri[2]]) continue;
+                const glm::dvec3 p0(t.pos[tri[0]]), p1(t.pos[tri[1]]), p2(t.pos[tri[2]]);
+                const double det = (p1.x - p0.x) * (p2.y - p0.y) - (p2.x - p0.x) * (p1.y - p0.y);
+                if (std::abs(det) < 1e-12) continue;
+                const double u = ((x - p0.x) * (p2.y - p0.y) - (p2.x - p0.x) * (y - p0.y)) / det;
+                const double v = ((p1.x - p0.x) * (y - p0.y) - (x - p0.x) * (p1.y - p0.y)) / det;
+                if (u < -1e-9 || v < -1e-9 || u + v > 1 + 1e-9) continue;
+                z = p0.z + u * (p1.z - p0.z) + v * (p2.z - p0.z);
+                return true;
+            }
+        }
+    }
+    return false;
+}
+
+Terrain terrain_for_view(const Terrain& terrain, Camera& cam, const Scene& scene, const Log& log) {
+    double ground = 0.0;
+    if (scene.camera.position && ground_height(terrain, cam.eye.x, cam.eye.y, ground) && cam.eye.z <= ground) {
+        std::ostringstream msg;
+        msg << "camera is inside the terrain (elevation " << cam.eye.z / scene.vertical_exaggeration
+            << " m, ground " << ground / scene.vertical_exaggeration << " m)";
+        throw Error("scene", scene_file(scene), msg.str());
+    }
+    const GridWindow w = visible_window(terrain, view_projection(cam), 1);
+    if (w.cols() < 2 || w.rows() < 2)
+        throw Error("scene", scene_file(scene), "the camera sees no part of the DEM");
+    Terrain view = crop_terrain(terrain, w);
+    const std::size_t cells = std::size_t(w.cols() - 1) * (w.rows() - 1);
+    const std::size_t all = std::size_t(terrain.cols - 1) * (terrain.rows - 1);
+    log.info("modelled " + std::to_string(cells) + " of " + std::to_string(all) + " DEM cells (window " +
+             std::to_string(w.c0) + ".." + std::to_string(w.c1 - 1) + " x " + std::to_string(w.r0) + ".." +
+             std::to_string(w.r1 - 1) + ")");
+    glm::dvec3 lo, hi;
+    terrain_bounds(view, lo, hi);
+    fit_depth_range(cam, lo, hi);
+    return view;
+}
+
+}  // namespace penink

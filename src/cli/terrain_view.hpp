@@ -1,0 +1,25 @@
+// Places the camera of a scene over a DEM: the scene's UTM / lon,lat / x y position and
+// elevation (metres above datum, scaled with the vertical exaggeration) or, with none, the whole
+// DEM framed from the south-west, looking down at 30 degrees (conventions.md). Then crops the
+// DEM to the nodes the view needs and fits near/far planes to what is left.
+#pragma once
+#include "cli/log.hpp"
+#include "cli/scene.hpp"
+#include "core/camera.hpp"
+#include "input/terrain.hpp"
+
+namespace penink {
+
+inline constexpr double default_view_azimuth = 45.0;    // looking north-east: from the south-west
+inline constexpr double default_view_altitude = -30.0;  // looking down
+
+Camera scene_camera(const Scene& scene, const Terrain& terrain);
+
+// Elevation (world z) of the terrain surface under (x, y); false outside the DEM.
+bool ground_height(const Terrain& terrain, double x, double y, double& z);
+
+// The terrain cropped to what the camera sees (logged: cells used of all); throws
+// penink::Error(stage "scene") when the camera is below the ground or sees none of the DEM.
+Terrain terrain_for_view(const Terrain& terrain, Camera& camera, const Scene& scene, const Log& log);
+
+}  // namespace penink
