@@ -1,6 +1,7 @@
 #include "cli/commands.hpp"
 
 #include <iostream>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -9,22 +10,31 @@
 
 namespace penink {
 
+namespace {
+
+std::vector<Subcommand> register_subcommands(CLI::App& app) {
+    std::vector<Subcommand> subs;
+    subs.push_back(add_render_command(app));
+    // One line per subcommand (keep this list in this order): render, drainage, bench, batch.
+    return subs;
+}
+
+}  // namespace
+
 int run_cli(int argc, char** argv) {
     CLI::App app{"penink: pen-and-ink drawings of landscapes and models as layered vector files"};
     app.require_subcommand(1);
-    RenderOptions render;
-    add_render_command(app, render);
+    const std::vector<Subcommand> subs = register_subcommands(app);
     try {
         app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == 0) return app.exit(e);
         std::cerr << format_error("cli", "", e.what()) << "\n";
         return int(ExitCode::bad_input);
     }
     try {
-        if (app.got_subcommand("render")) return run_render(render);
+        for (const Subcommand& s : subs)
+            if (s.app->parsed()) return s.run();
     } catch (const Error& e) {
         std::cerr << e.what() << "\n";
         return int(e.code());

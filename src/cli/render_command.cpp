@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <sstream>
 
+#include <CLI/CLI.hpp>
+
 #include "cli/terrain_drawing.hpp"
 #include "core/error.hpp"
 #include "export/export_drawing.hpp"
@@ -49,7 +51,9 @@ void log_timings(const TerrainDrawingResult& r, const Log& log) {
 
 }  // namespace
 
-void add_render_command(CLI::App& app, RenderOptions& o) {
+Subcommand add_render_command(CLI::App& app) {
+    auto options = std::make_shared<RenderOptions>();
+    RenderOptions& o = *options;
     CLI::App* cmd = app.add_subcommand("render", "Draw a DEM (or a TOML scene) as layered vector files");
     cmd->add_option("input", o.input, "DEM (GeoTIFF, ASCII grid, ...) or scene file (.toml)")->required();
     cmd->add_option("-o,--output", o.outputs, "Output file, format from the extension: .svg .ps .eps .pdf .png (repeatable)")
@@ -67,6 +71,7 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
     cmd->add_option("--gl", o.gl, "OpenGL backend: osmesa (software, default) or egl (GPU)")
         ->check(CLI::IsMember({"osmesa", "egl"}));
     cmd->add_flag("-v,--verbose", o.verbose, "Print cells used, per-pass times and line statistics");
+    return {cmd, [options] { return run_render(*options); }};
 }
 
 int run_render(const RenderOptions& o) {

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
+#include "cli/commands.hpp"
 
 namespace penink {
 
@@ -24,7 +24,7 @@ struct RenderOptions {
     double vertical_exaggeration = 0.0;
 };
 
-void add_render_command(CLI::App& app, RenderOptions& options);
+Subcommand add_render_command(CLI::App& app);
 int run_render(const RenderOptions& options);
 
 }  // namespace penink
