@@ -6,7 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "cli/terrain_drawing.hpp"
+#include "cli/scene_drawing.hpp"
 #include "core/error.hpp"
 #include "export/export_drawing.hpp"
 #include "export/styled_drawing.hpp"
@@ -40,7 +40,7 @@ Scene scene_with_overrides(const RenderOptions& o) {
     return scene;
 }
 
-void log_timings(const TerrainDrawingResult& r, const Log& log) {
+void log_timings(const SceneDrawing& r, const Log& log) {
     std::ostringstream s;
     s.precision(3);
     s << "GPU ms: TFT " << r.times.tft << ", AFT " << r.times.aft << ", SIL " << r.times.sil
@@ -83,7 +83,7 @@ int run_render(const RenderOptions& o) {
     if (scene.style_overrides.is_table()) apply_style_overrides(style, scene.style_overrides, scene.file);
     const auto context = make_gl_context(parse_gl_backend(o.gl));
     log.info(context->description());
-    const TerrainDrawingResult result = draw_terrain(scene, *context, log);
+    const SceneDrawing result = draw_scene(scene, *context, log);
     log_timings(result, log);
     const StyledDrawing styled = style_drawing(result.drawing, style, scene.seed,
                                                o.layers == "kind" ? LayerSplit::kind : LayerSplit::kind_distance);

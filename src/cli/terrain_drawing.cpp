@@ -50,12 +50,12 @@ void add_frame_lines(const FrameImages& images, Drawing& drawing) {
     drawing.layer(LayerKind::silhouettes).strokes = std::move(strokes);
 }
 
-TerrainDrawingResult draw_terrain(const Scene& scene, GlContext& context, const Log& log) {
+SceneDrawing draw_terrain(const Scene& scene, GlContext& context, const Log& log) {
     DemOptions dem_options;
     dem_options.vertical_exaggeration = scene.vertical_exaggeration;
     const Terrain dem = read_dem(scene.dem, dem_options);
     log.info("read " + scene.dem + ": " + std::to_string(dem.cols) + "x" + std::to_string(dem.rows) + " nodes");
-    TerrainDrawingResult out;
+    SceneDrawing out;
     out.camera = scene_camera(scene, dem);
     const Terrain view = terrain_for_view(dem, out.camera, scene, log);
     out.cells = std::size_t(view.cols - 1) * (view.rows - 1);
