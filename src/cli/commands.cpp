@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/drainage_subcommand.hpp"
 #include "cli/render_command.hpp"
 #include "core/error.hpp"
 
@@ -15,6 +16,7 @@ namespace {
 std::vector<Subcommand> register_subcommands(CLI::App& app) {
     std::vector<Subcommand> subs;
     subs.push_back(add_render_command(app));
+    subs.push_back(add_drainage_command(app));
     // One line per subcommand (keep this list in this order): render, drainage, bench, batch.
     return subs;
 }

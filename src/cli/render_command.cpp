@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "export/export_drawing.hpp"
 #include "export/styled_drawing.hpp"
+#include "lines/finish_drawing.hpp"
 
 namespace penink {
 
@@ -40,10 +41,45 @@ Scene scene_with_overrides(const RenderOptions& o) {
     return scene;
 }
 
+// The lines stage's finishing options from the style: per-layer sketch amount, overshoot,
+// repeats and distance thinning (applied there, once, before plotter ordering).
+FinishOptions finish_options(const Style& style, std::uint64_t seed) {
+    FinishOptions f;
+    f.seed = seed;
+    f.near = float(style.near), f.far = float(style.far);
+    for (LayerKind k : all_layers) {
+        const LayerStyle& ls = style.layer(k);
+        LayerFinish& lf = f.layer(k);
+        lf.sketch = float(ls.sketch), lf.overshoot = float(ls.overshoot);
+        lf.repeat = ls.repeat, lf.keep_far = float(ls.keep_far);
+    }
+    return f;
+}
+
+// The style export applies to a finished drawing: overshoot, repeats and thinning are done.
+Style export_style(Style style) {
+    for (LayerStyle& ls : style.layers) ls.overshoot = 0.0, ls.repeat = 1, ls.keep_far = 1.0;
+    return style;
+}
+
+void log_finish(const FinishStats& stats, const Log& log) {
+    for (LayerKind k : all_layers) {
+        const LayerFinishStats& l = stats.layers[static_cast<size_t>(k)];
+        if (l.strokes_in == 0) continue;
+        std::ostringstream s;
+        s << std::fixed;
+        s.precision(0);
+        s << layer_name(k) << ": " << l.strokes_in << " strokes -> " << l.joined << " joined -> "
+          << l.strokes << " lines, " << l.length << " px drawn, pen-up " << l.travel_before
+          << " px -> " << l.travel_after << " px ordered";
+        log.info(s.str());
+    }
+}
+
 void log_timings(const SceneDrawing& r, const Log& log) {
     std::ostringstream s;
     s.precision(3);
-    s << "GPU ms: TFT " << r.times.tft << ", AFT " << r.times.aft << ", SIL " << r.times.sil
+    s << "GPU ms: TFT " << r.times.tft << ", AFT " << r.times.aft << ", SIL " << r.times.sil << ", DM " << r.times.dm << ", RIDGES " << r.times.ridges
       << ", read-back " << r.times.readback << "; trace " << r.trace_ms << " ms; "
       << r.triangles << " triangles";
     log.info(s.str());
@@ -62,6 +98,8 @@ Subcommand add_render_command(CLI::App& app) {
     cmd->add_option("--page", o.page, "Physical page size: A4, A3, letter, WxHmm (default: image size at --dpi)");
     cmd->add_option("--dpi", o.dpi, "Image pixels per inch; also the PNG resolution (default 96)")
         ->check(CLI::PositiveNumber);
+    cmd->add_option("--margin", o.margin_mm, "Blank border on each side of the page, mm (default 0)")
+        ->check(CLI::NonNegativeNumber);
     cmd->add_option("--layers", o.layers, "Layer split: kind, or kind+distance (near/middle/far sublayers)")
         ->check(CLI::IsMember({"kind", "kind+distance"}));
     cmd->add_option("--width", o.width, "Image width in pixels (overrides the scene)");
@@ -83,12 +121,13 @@ int run_render(const RenderOptions& o) {
     if (scene.style_overrides.is_table()) apply_style_overrides(style, scene.style_overrides, scene.file);
     const auto context = make_gl_context(parse_gl_backend(o.gl));
     log.info(context->description());
-    const SceneDrawing result = draw_scene(scene, *context, log);
+    SceneDrawing result = draw_scene(scene, *context, log);
     log_timings(result, log);
-    const StyledDrawing styled = style_drawing(result.drawing, style, scene.seed,
+    log_finish(finish_drawing(result.drawing, finish_options(style, scene.seed)), log);
+    const StyledDrawing styled = style_drawing(result.drawing, export_style(style), scene.seed,
                                                o.layers == "kind" ? LayerSplit::kind : LayerSplit::kind_distance);
     PageOptions page;
-    page.page = o.page, page.dpi = o.dpi;
+    page.page = o.page, page.dpi = o.dpi, page.margin_mm = o.margin_mm;
     for (const std::string& out : o.outputs) export_drawing(styled, page, out);
     const PlotStats stats = plot_stats(styled);
     std::ostringstream s;

@@ -49,6 +49,7 @@ void read_crease(const toml::value& root, const char* section, CreaseParams& p, 
     read_number(t, "flow_weight", p.flow_weight, file, section);
     read_number(t, "min_score", p.min_score, file, section);
     read_number(t, "distance_attenuation", p.distance_attenuation, file, section);
+    read_number(t, "spacing_px", p.spacing_px, file, section);
     read_key(t, "enabled", p.enabled, file, section);
 }
 
@@ -79,11 +80,18 @@ Scene parse_scene_file(const std::string& path) {
         const auto nl = what.find('\n');
         throw Error("scene", path, "not a valid TOML scene (" + what.substr(0, nl) + ")");
     }
-    if (!has_key(root, "terrain") || !has_key(root.at("terrain"), "dem"))
-        throw Error("scene", path, "missing [terrain] dem");
-    const toml::value& terrain = root.at("terrain");
+    s.table = root;
+    if (has_key(root, "mesh")) {
+        if (!has_key(root.at("mesh"), "file")) throw Error("scene", path, "missing [mesh] file");
+        read_key(root.at("mesh"), "file", s.mesh, path, "mesh");
+        if (fs::path(s.mesh).is_relative()) s.mesh = (fs::path(path).parent_path() / s.mesh).lexically_normal().string();
+    } else if (!has_key(root, "terrain") || !has_key(root.at("terrain"), "dem")) {
+        throw Error("scene", path, "missing [terrain] dem (or [mesh] file)");
+    }
+    const toml::value terrain = has_key(root, "terrain") ? root.at("terrain") : toml::value(toml::table{});
     read_key(terrain, "dem", s.dem, path, "terrain");
-    if (fs::path(s.dem).is_relative()) s.dem = (fs::path(path).parent_path() / s.dem).lexically_normal().string();
+    if (!s.dem.empty() && fs::path(s.dem).is_relative())
+        s.dem = (fs::path(path).parent_path() / s.dem).lexically_normal().string();
     read_number(terrain, "vertical_exaggeration", s.vertical_exaggeration, path, "terrain");
     read_camera(root, s.camera, path);
     if (has_key(root, "light")) {

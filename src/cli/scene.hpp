@@ -4,6 +4,7 @@
 // min_gap, separate_passes; [tessellation] target_edge_px, max_level; [creases] and [ridges]
 // slope_weight, illumination_weight, flow_weight, min_score, distance_attenuation; [style] name
 // plus per-layer overrides; seed. Angles in degrees, distances in metres (conventions.md).
+// A scene with [mesh] file draws a mesh instead (its keys: cli/mesh_scene.hpp).
 #pragma once
 #include <cstdint>
 #include <optional>
@@ -26,14 +27,18 @@ struct SceneLight {
 };
 
 struct CreaseParams {  // seed 000, eq. 1-6 (conventions.md)
-    double slope_weight = 1.0, illumination_weight = 1.0, flow_weight = 1.0;
-    double min_score = 0.1, distance_attenuation = 0.3;
+    // Defaults chosen by eye on volcano and jacksboro (README): slope and flow lead, light shades.
+    double slope_weight = 2.0, illumination_weight = 0.5, flow_weight = 4.0;
+    double min_score = 0.12, distance_attenuation = 0.1;
+    double spacing_px = 4.0;  // closest distance between drawn lines (even density), pixels
     bool enabled = true;
 };
 
 struct Scene {
     std::string file;          // the scene file ("" for a bare DEM)
     std::string dem;           // DEM path (resolved relative to the scene file)
+    std::string mesh;          // [mesh] file (resolved); mesh keys: cli/mesh_scene.hpp
+    toml::value table;         // the whole scene file (mesh keys are read from it)
     double vertical_exaggeration = 1.0;
     SceneCamera camera;
     SceneLight light;

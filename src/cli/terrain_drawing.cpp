@@ -3,7 +3,9 @@
 #include <chrono>
 #include <sstream>
 
+#include "cli/drainage_lines.hpp"
 #include "cli/terrain_view.hpp"
+#include "drainage/drainage_build.hpp"
 #include "input/dem_reader.hpp"
 #include "lines/simplify.hpp"
 #include "lines/trace_mask_outline.hpp"
@@ -69,8 +71,15 @@ SceneDrawing draw_terrain(const Scene& scene, GlContext& context, const Log& log
     options.silhouette_min_gap = scene.silhouette_min_gap;
     const FrameImages images = renderer.render(out.camera, options);
     out.times = images.times;
-    const auto t0 = std::chrono::steady_clock::now();
     out.drawing.width = out.camera.width, out.drawing.height = out.camera.height;
+    if (scene.creases.enabled || scene.ridges.enabled) {
+        const DrainageDb db = load_or_build_drainage(scene.dem, dem, DrainageOptions{},
+                                                     [&](const std::string& m) { log.info(m); });
+        DrainageLines lines(context.gl(), db, mesh);
+        lines.draw(out.camera, scene, renderer.surface_pass().toward_texture(),
+                   max_visible_distance(images.toward), out.drawing, out.times);
+    }
+    const auto t0 = std::chrono::steady_clock::now();
     add_frame_lines(images, out.drawing);
     out.trace_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     fill_metadata(scene, out.camera, view, out.drawing);

@@ -46,6 +46,8 @@ namespace penink {
     X(PFNGLUNIFORM2FPROC, Uniform2f)                                                            \
     X(PFNGLUNIFORM3FPROC, Uniform3f)                                                            \
     X(PFNGLUNIFORM4FPROC, Uniform4f)                                                            \
+    X(PFNGLUNIFORM1UIPROC, Uniform1ui)                                                          \
+    X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute)                                                \
     X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)                                              \
     X(PFNGLCREATEVERTEXARRAYSPROC, CreateVertexArrays)                                          \
     X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)                                          \

@@ -1,0 +1,59 @@
+// DM pass (seed 000, "Concurrent Drainage Network Rendering", eq. 1-6; conventions.md): scores
+// every drainage (or divide) vertex and tests it against the TFT eye-distance texture.
+//   sc = 1 - cos(slope) = 1 - n.z, ic = 1 - clamp(n . l, 0, 1), fc = flow normalised per basin,
+//   rs = (sw sc + iw ic + fw fc) / 3 - rs_min(d),  rs_min(d) = min_score + attenuation * d / D.
+// The vertex is lifted off the surface along its normal by u_lift_px pixel footprints (no depth
+// fighting) and is visible when its eye distance is within a grazing-aware tolerance of the
+// nearest toward-facing surface at its pixel. Output: rs, or PENINK_HIDDEN when not visible.
+#include "common.glsl"
+
+layout(local_size_x = 64) in;
+
+struct DmVertex {
+    vec4 position_flow;  // world x, y, z (local metres), normalised flow
+    vec4 normal;         // unit PN-surface normal, w unused
+};
+layout(std430, binding = 0) readonly buffer Vertices { DmVertex vertices[]; };
+layout(std430, binding = 1) writeonly buffer Scores { float scores[]; };
+layout(binding = 0) uniform sampler2D u_toward;
+
+uniform mat4 u_view_proj;
+uniform vec3 u_eye;
+uniform vec3 u_light;          // unit vector towards the light
+uniform vec3 u_weights;        // slope, illumination, flow weights
+uniform float u_min_score;
+uniform float u_attenuation;
+uniform float u_max_distance;  // D: largest eye distance of visible terrain in the frame
+uniform vec2 u_viewport;
+uniform float u_pixel_angle;   // world size of one pixel at unit distance
+uniform float u_lift_px;
+uniform float u_tolerance_px;
+uniform uint u_count;
+
+const float PENINK_HIDDEN = -1.0e30;
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= u_count) return;
+    vec3 p = vertices[i].position_flow.xyz;
+    float flow = vertices[i].position_flow.w;
+    vec3 n = vertices[i].normal.xyz;
+    float d = distance(p, u_eye);
+    float sc = 1.0 - clamp(n.z, 0.0, 1.0);
+    float ic = 1.0 - clamp(dot(n, u_light), 0.0, 1.0);
+    float rs_min = u_min_score + u_attenuation * d / u_max_distance;
+    float rs = dot(u_weights, vec3(sc, ic, flow)) / 3.0 - rs_min;
+
+    float footprint = d * u_pixel_angle;
+    vec3 lifted = p + n * (u_lift_px * footprint);
+    vec4 c = u_view_proj * vec4(lifted, 1.0);
+    float result = PENINK_HIDDEN;
+    if (c.w > 0.0 && all(lessThanEqual(abs(c.xyz), vec3(c.w)))) {
+        ivec2 q = clamp(ivec2(clip_to_pixels(c, u_viewport)), ivec2(0), ivec2(u_viewport) - 1);
+        float t = texelFetch(u_toward, q, 0).r;
+        float facing = abs(dot(n, normalize(u_eye - p)));
+        float tolerance = u_tolerance_px * footprint / max(facing, 0.1);
+        if (t < PENINK_FAR && distance(lifted, u_eye) <= t + tolerance) result = rs;
+    }
+    scores[i] = result;
+}

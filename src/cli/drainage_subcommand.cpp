@@ -1,0 +1,28 @@
+#include "cli/drainage_subcommand.hpp"
+
+#include <iostream>
+#include <memory>
+
+#include <CLI/CLI.hpp>
+
+#include "drainage/drainage_command.hpp"
+
+namespace penink {
+
+Subcommand add_drainage_command(CLI::App& app) {
+    auto cmd_options = std::make_shared<DrainageCommand>();
+    DrainageCommand& o = *cmd_options;
+    CLI::App* cmd = app.add_subcommand(
+        "drainage", "Build the drainage vertex database of a DEM (cached next to it as DEM.dv)");
+    cmd->add_option("dem", o.dem, "DEM (GeoTIFF, ASCII grid, ...)")->required();
+    cmd->add_option("-o,--output", o.output, "Database file (default: DEM.dv, the cache render uses)");
+    cmd->add_option("--resample", o.resample,
+                    "Fine nodes per DEM cell side (1 = the DEM's own nodes; default: 5, lowered to keep <= 4M points)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--rasters", o.rasters_dir,
+                    "Also write GeoTIFFs (flow_direction ESRI D8, accumulation, basin, stream_order) to DIR");
+    cmd->add_flag("-q,--quiet", o.quiet, "No progress or summary lines");
+    return {cmd, [cmd_options] { return run_drainage_command(*cmd_options, std::cerr); }};
+}
+
+}  // namespace penink

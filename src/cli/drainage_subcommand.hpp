@@ -1,0 +1,10 @@
+// `penink drainage DEM [-o OUT.dv] [--resample F] [--rasters DIR]`: CLI11 wiring of
+// run_drainage_command (src/drainage/drainage_command.hpp).
+#pragma once
+#include "cli/commands.hpp"
+
+namespace penink {
+
+Subcommand add_drainage_command(CLI::App& app);
+
+}  // namespace penink

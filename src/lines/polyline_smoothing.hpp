@@ -1,0 +1,16 @@
+// Smooths object-space polylines in the horizontal plane: `iterations` passes of Laplacian
+// smoothing (each interior point moves halfway to the mean of its two neighbours), end points
+// fixed so junctions stay joined. Removes the 45-degree staircase of D8 flow paths before the
+// lines are draped back on the surface. Positions in local metres; runs index into `positions`.
+#pragma once
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "lines/scored_polylines.hpp"
+
+namespace penink {
+
+void smooth_runs_xy(std::vector<glm::vec3>& positions, const std::vector<VertexRun>& runs, int iterations);
+
+}  // namespace penink

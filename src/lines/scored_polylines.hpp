@@ -1,0 +1,26 @@
+// Object-space polylines clipped by score and visibility (seed 000: creases and ridges stay exact
+// object-space lines, not traced pixels): each polyline is a run of vertices (world positions,
+// local metres) with one score each; maximal runs of >= 2 consecutive vertices with score >= 0
+// become image-space strokes (pixels, eye distance in metres; strength = mean score of the run).
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "core/camera.hpp"
+#include "core/drawing.hpp"
+
+namespace penink {
+
+struct VertexRun {
+    std::uint32_t first = 0, count = 0;  // vertices [first, first + count)
+};
+
+std::vector<Stroke> scored_runs_to_strokes(const std::vector<glm::vec3>& positions,
+                                           const std::vector<float>& scores,
+                                           const std::vector<VertexRun>& runs, const Camera& camera,
+                                           const std::string& kind);
+
+}  // namespace penink

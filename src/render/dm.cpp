@@ -1,0 +1,49 @@
+#include "render/dm.hpp"
+
+#include <cmath>
+
+#include <glm/gtc/type_ptr.hpp>
+
+namespace penink {
+
+DmPass::DmPass(const GlApi& gl, const std::vector<DmVertex>& vertices)
+    : gl_(&gl), count_(vertices.size()),
+      program_(build_program(gl, {"dm.comp.glsl"})),
+      vertices_(make_buffer(gl, vertices.data(), std::max<std::size_t>(1, vertices.size()) * sizeof(DmVertex))),
+      scores_(make_buffer(gl, nullptr, std::max<std::size_t>(1, vertices.size()) * sizeof(float), GL_DYNAMIC_READ)),
+      timer_(gl) {}
+
+double DmPass::run(const DmFrame& f, const CreaseScore& s, std::vector<float>& scores) {
+    scores.assign(count_, dm_hidden);
+    if (count_ == 0) return 0.0;
+    const Camera& cam = *f.camera;
+    const GLuint p = program_.id();
+    const auto loc = [&](const char* name) { return uniform_location(*gl_, p, name); };
+    gl_->UseProgram(p);
+    const glm::mat4 vp(view_projection(cam));
+    gl_->UniformMatrix4fv(loc("u_view_proj"), 1, GL_FALSE, glm::value_ptr(vp));
+    gl_->Uniform3f(loc("u_eye"), float(cam.eye.x), float(cam.eye.y), float(cam.eye.z));
+    gl_->Uniform3f(loc("u_light"), f.light.x, f.light.y, f.light.z);
+    gl_->Uniform3f(loc("u_weights"), s.slope_weight, s.illumination_weight, s.flow_weight);
+    gl_->Uniform1f(loc("u_min_score"), s.min_score);
+    gl_->Uniform1f(loc("u_attenuation"), s.distance_attenuation);
+    gl_->Uniform1f(loc("u_max_distance"), std::max(f.max_distance, 1e-6f));
+    gl_->Uniform2f(loc("u_viewport"), float(cam.width), float(cam.height));
+    const double pixel_angle = 2.0 * std::tan(cam.fov * M_PI / 360.0) / cam.width;
+    gl_->Uniform1f(loc("u_pixel_angle"), float(pixel_angle));
+    gl_->Uniform1f(loc("u_lift_px"), f.lift_px);
+    gl_->Uniform1f(loc("u_tolerance_px"), f.tolerance_px);
+    gl_->Uniform1ui(loc("u_count"), GLuint(count_));
+    gl_->BindTextureUnit(0, f.toward_texture);
+    gl_->BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, vertices_.id());
+    gl_->BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, scores_.id());
+    timer_.begin();
+    gl_->DispatchCompute(GLuint((count_ + 63) / 64), 1, 1);
+    timer_.end();
+    gl_->MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    gl_->GetNamedBufferSubData(scores_.id(), 0, GLsizeiptr(count_ * sizeof(float)), scores.data());
+    check_gl_error(*gl_, "DM pass");
+    return timer_.milliseconds();
+}
+
+}  // namespace penink
