@@ -33,7 +33,7 @@ uniform uint u_count;
 const float PENINK_HIDDEN = -1.0e30;
 
 void main() {
-    uint i = gl_GlobalInvocationID.x;
+    uint i = gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 64u + gl_GlobalInvocationID.x;
     if (i >= u_count) return;
     vec3 p = vertices[i].position_flow.xyz;
     float flow = vertices[i].position_flow.w;

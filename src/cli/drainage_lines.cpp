@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "drainage/stems.hpp"
 #include "lines/polyline_smoothing.hpp"
 #include "lines/spacing_thinning.hpp"
 #include "surface/terrain_locator.hpp"
@@ -10,20 +11,25 @@ namespace penink {
 
 namespace {
 
-template <typename Polyline>
+// Lays the polylines (vertex index lists) out contiguously, smooths them, drapes them on the PN
+// surface and uploads them to a DM pass.
 ScoredLineSet make_line_set(const GlApi& gl, const std::vector<DvVertex>& vertices,
-                            const std::vector<Polyline>& lines, const TerrainLocator& locator,
-                            int smoothing) {
+                            const std::vector<std::vector<std::uint32_t>>& lines,
+                            const TerrainLocator& locator, int smoothing) {
     ScoredLineSet set;
-    set.positions.resize(vertices.size());
-    for (std::size_t i = 0; i < vertices.size(); ++i) set.positions[i] = {vertices[i].x, vertices[i].y, vertices[i].z};
-    set.runs.reserve(lines.size());
-    for (const Polyline& l : lines) set.runs.push_back({l.first, l.count});
+    std::vector<float> flow;
+    for (const auto& line : lines) {
+        set.runs.push_back({std::uint32_t(set.positions.size()), std::uint32_t(line.size())});
+        for (std::uint32_t i : line) {
+            set.positions.push_back({vertices[i].x, vertices[i].y, vertices[i].z});
+            flow.push_back(vertices[i].flow);
+        }
+    }
     smooth_runs_xy(set.positions, set.runs, smoothing);
-    std::vector<DmVertex> dm(vertices.size());
-    for (std::size_t i = 0; i < vertices.size(); ++i) {
+    std::vector<DmVertex> dm(set.positions.size());
+    for (std::size_t i = 0; i < dm.size(); ++i) {
         glm::vec3& p = set.positions[i];
-        dm[i].flow = vertices[i].flow;
+        dm[i].flow = flow[i];
         SurfaceHit hit;
         // Vertices off the rendered surface are outside the view: a zero normal keeps them hidden.
         if (locator.locate(p.x, p.y, hit)) {
@@ -36,6 +42,15 @@ ScoredLineSet make_line_set(const GlApi& gl, const std::vector<DvVertex>& vertic
     }
     set.pass = std::make_unique<DmPass>(gl, dm);
     return set;
+}
+
+std::vector<std::vector<std::uint32_t>> polyline_indices(const std::vector<DvPolyline>& lines) {
+    std::vector<std::vector<std::uint32_t>> out;
+    for (const DvPolyline& l : lines) {
+        out.emplace_back(l.count);
+        for (std::uint32_t k = 0; k < l.count; ++k) out.back()[k] = l.first + k;
+    }
+    return out;
 }
 
 }  // namespace
@@ -54,8 +69,8 @@ float max_visible_distance(const DepthImage& toward) {
 
 DrainageLines::DrainageLines(const GlApi& gl, const DrainageDb& db, const SurfaceMesh& mesh) {
     const TerrainLocator locator(mesh);
-    creases_ = make_line_set(gl, db.vertices, db.branches, locator, 3);
-    ridges_ = make_line_set(gl, db.divide_vertices, db.divides, locator, 3);
+    creases_ = make_line_set(gl, db.vertices, drainage_stems(db), locator, 3);
+    ridges_ = make_line_set(gl, db.divide_vertices, polyline_indices(db.divides), locator, 3);
 }
 
 void DrainageLines::draw(const Camera& camera, const Scene& scene, GLuint toward_texture,

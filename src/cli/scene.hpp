@@ -34,6 +34,14 @@ struct CreaseParams {  // seed 000, eq. 1-6 (conventions.md)
     bool enabled = true;
 };
 
+// Divides carry no flow: ridges are scored by slope and light alone.
+inline CreaseParams ridge_defaults() {
+    CreaseParams p;
+    p.slope_weight = 2.0, p.illumination_weight = 1.0, p.flow_weight = 0.0;
+    p.min_score = 0.05, p.distance_attenuation = 0.1;
+    return p;
+}
+
 struct Scene {
     std::string file;          // the scene file ("" for a bare DEM)
     std::string dem;           // DEM path (resolved relative to the scene file)
@@ -46,7 +54,8 @@ struct Scene {
     float tess_target_edge_px = 6.0f;
     float silhouette_min_gap = 0.0f;
     bool separate_passes = false;
-    CreaseParams creases, ridges;
+    CreaseParams creases;
+    CreaseParams ridges = ridge_defaults();
     std::string style = "technical";
     std::uint64_t seed = 1;
     toml::value style_overrides;  // the [style] table, applied over the named style

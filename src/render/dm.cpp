@@ -38,11 +38,13 @@ double DmPass::run(const DmFrame& f, const CreaseScore& s, std::vector<float>& s
     gl_->BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, vertices_.id());
     gl_->BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, scores_.id());
     timer_.begin();
-    gl_->DispatchCompute(GLuint((count_ + 63) / 64), 1, 1);
+    // 2D grid of work groups: stays under GL_MAX_COMPUTE_WORK_GROUP_COUNT (65535 a side).
+    const std::size_t groups = (count_ + 63) / 64, gx = std::min<std::size_t>(groups, 32768);
+    gl_->DispatchCompute(GLuint(gx), GLuint((groups + gx - 1) / gx), 1);
     timer_.end();
     gl_->MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     gl_->GetNamedBufferSubData(scores_.id(), 0, GLsizeiptr(count_ * sizeof(float)), scores.data());
-    check_gl_error(*gl_, "DM pass");
+    check_gl_error(*gl_, "DM pass (" + std::to_string(count_) + " vertices)");
     return timer_.milliseconds();
 }
 

@@ -1,0 +1,57 @@
+#include "drainage/stems.hpp"
+
+namespace penink {
+
+namespace {
+
+// The upstream branch a branch continues: highest order, then larger flow at its last vertex.
+std::vector<std::int32_t> main_upstream(const DrainageDb& db) {
+    std::vector<std::int32_t> main(db.branches.size(), -1);
+    for (std::size_t b = 0; b < db.branches.size(); ++b) {
+        const DvBranch& br = db.branches[b];
+        float best_flow = -1.0f;
+        int best_order = -1;
+        for (std::uint32_t k = 0; k < br.up_count; ++k) {
+            const std::uint32_t u = db.upstream[br.up_first + k];
+            const DvBranch& up = db.branches[u];
+            const float flow = db.vertices[up.first + up.count - 1].flow;
+            if (up.order > best_order || (up.order == best_order && flow > best_flow)) {
+                best_order = up.order, best_flow = flow, main[b] = std::int32_t(u);
+            }
+        }
+    }
+    return main;
+}
+
+void append_branch(const DrainageDb& db, std::uint32_t b, std::vector<std::uint32_t>& stem) {
+    const DvBranch& br = db.branches[b];
+    for (std::uint32_t i = br.first; i < br.first + br.count; ++i) {
+        if (!stem.empty()) {
+            const DvVertex &last = db.vertices[stem.back()], &v = db.vertices[i];
+            if (last.x == v.x && last.y == v.y) continue;  // the shared junction vertex
+        }
+        stem.push_back(i);
+    }
+}
+
+}  // namespace
+
+std::vector<std::vector<std::uint32_t>> drainage_stems(const DrainageDb& db) {
+    const std::vector<std::int32_t> main = main_upstream(db);
+    std::vector<std::vector<std::uint32_t>> stems;
+    for (std::uint32_t b = 0; b < db.branches.size(); ++b) {
+        if (db.branches[b].up_count != 0) continue;  // stems start at sources
+        std::vector<std::uint32_t> stem;
+        std::uint32_t cur = b;
+        append_branch(db, cur, stem);
+        for (std::int32_t d = db.branches[cur].downstream; d >= 0 && main[std::size_t(d)] == std::int32_t(cur);
+             d = db.branches[cur].downstream) {
+            cur = std::uint32_t(d);
+            append_branch(db, cur, stem);
+        }
+        stems.push_back(std::move(stem));
+    }
+    return stems;
+}
+
+}  // namespace penink
