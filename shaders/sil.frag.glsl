@@ -1,7 +1,8 @@
 // SIL pass, Toward/Away algorithm (seed 001, section 3.2): pixel p is a silhouette pixel when it
 // holds a toward-facing fragment at eye distance t, an away-facing fragment behind it at a > t,
 // and one of its 8 neighbours holds a toward-facing fragment further still (> a, by the relative
-// gap u_min_gap). Neighbours with no surface at all are left to the outline of the surface mask.
+// gap u_min_gap). A neighbour with no surface at all (sky, or beyond the DEM) counts as infinitely
+// far, so skylines are silhouettes too; the DEM's cut edges have no away fragment and are not.
 #include "common.glsl"
 
 layout(binding = 0) uniform sampler2D u_toward;  // eye distance, PENINK_FAR where none
@@ -21,7 +22,7 @@ void main() {
         for (int dx = -1; dx <= 1; ++dx) {
             ivec2 q = clamp(p + ivec2(dx, dy), ivec2(0), size - 1);
             float tq = texelFetch(u_toward, q, 0).r;
-            if (tq < PENINK_FAR && tq > a * (1.0 + u_min_gap)) o_silhouette = 1.0;
+            if (tq > a * (1.0 + u_min_gap)) o_silhouette = 1.0;
         }
     }
 }

@@ -9,7 +9,9 @@
 #include "input/dem_reader.hpp"
 #include "lines/simplify.hpp"
 #include "lines/trace_mask_outline.hpp"
+#include "lines/mesh_visibility.hpp"
 #include "lines/trace_pixel_lines.hpp"
+#include "surface/boundary_curves.hpp"
 #include "surface/surface_mesh.hpp"
 
 namespace penink {
@@ -41,14 +43,19 @@ void fill_metadata(const Scene& scene, const Camera& cam, const Terrain& t, Draw
 
 }  // namespace
 
-void add_frame_lines(const FrameImages& images, Drawing& drawing) {
+void add_frame_lines(const FrameImages& images, const SurfaceMesh& mesh, const Camera& camera,
+                     Drawing& drawing) {
     TraceParams sil;
     sil.min_pixels = 3, sil.max_spur = 2, sil.kind = "silhouette";
     std::vector<Stroke> strokes = simplify_strokes(trace_pixel_lines(images.silhouettes, images.toward, sil), 0.5f);
     const PixelMask cover = coverage_mask(images);
     Layer& surface = drawing.layer(LayerKind::surface);
     surface.fill = trace_mask_outline(cover, 0.5f);
-    for (Stroke& s : outline_strokes(surface.fill, images.toward, true)) strokes.push_back(std::move(s));
+    std::vector<ObjectPolyline> boundary;
+    for (auto& line : boundary_polylines(mesh)) boundary.push_back({std::move(line), 1.0f, "outline", ""});
+    VisibilityOptions visibility;
+    visibility.rel_tolerance = 0.002f;  // terrain: the boundary lies on the rendered surface
+    for (Stroke& s : visible_strokes(boundary, images.toward, camera, visibility)) strokes.push_back(std::move(s));
     drawing.layer(LayerKind::silhouettes).strokes = std::move(strokes);
 }
 
@@ -80,7 +87,7 @@ SceneDrawing draw_terrain(const Scene& scene, GlContext& context, const Log& log
                    max_visible_distance(images.toward), out.drawing, out.times);
     }
     const auto t0 = std::chrono::steady_clock::now();
-    add_frame_lines(images, out.drawing);
+    add_frame_lines(images, mesh, out.camera, out.drawing);
     out.trace_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     fill_metadata(scene, out.camera, view, out.drawing);
     return out;

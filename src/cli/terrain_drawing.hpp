@@ -8,7 +8,9 @@ namespace penink {
 
 SceneDrawing draw_terrain(const Scene& scene, GlContext& context, const Log& log);
 
-// Surface mask rings and silhouette/outline strokes from one frame's images (lines stage).
-void add_frame_lines(const FrameImages& images, Drawing& drawing);
+// Surface mask rings and silhouette strokes from one frame's images (lines stage), and the
+// visible parts of the surface's boundary (the DEM's cut edges) as object-space outline strokes.
+void add_frame_lines(const FrameImages& images, const SurfaceMesh& mesh, const Camera& camera,
+                     Drawing& drawing);
 
 }  // namespace penink
