@@ -4,7 +4,14 @@ namespace penink {
 
 namespace {
 
-// The upstream branch a branch continues: highest order, then larger flow at its last vertex.
+// Flow of an upstream branch just above its end junction: its last vertex is the shared junction
+// (same flow for every branch joining there), so the one before it.
+float flow_above_junction(const DrainageDb& db, const DvBranch& up) {
+    const std::uint32_t k = up.count >= 2 ? up.count - 2 : 0;
+    return db.vertices[up.first + k].flow;
+}
+
+// The upstream branch a branch continues: highest order, then larger flow above the junction.
 std::vector<std::int32_t> main_upstream(const DrainageDb& db) {
     std::vector<std::int32_t> main(db.branches.size(), -1);
     for (std::size_t b = 0; b < db.branches.size(); ++b) {
@@ -14,7 +21,7 @@ std::vector<std::int32_t> main_upstream(const DrainageDb& db) {
         for (std::uint32_t k = 0; k < br.up_count; ++k) {
             const std::uint32_t u = db.upstream[br.up_first + k];
             const DvBranch& up = db.branches[u];
-            const float flow = db.vertices[up.first + up.count - 1].flow;
+            const float flow = flow_above_junction(db, up);
             if (up.order > best_order || (up.order == best_order && flow > best_flow)) {
                 best_order = up.order, best_flow = flow, main[b] = std::int32_t(u);
             }

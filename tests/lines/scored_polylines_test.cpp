@@ -1,0 +1,91 @@
+// scored_runs_to_strokes: runs split at negative scores, at hidden vertices (dm_hidden) and at
+// vertices behind the eye; strength = mean score of the kept run; pixels and eye distances from a
+// straight-down camera whose projection is known in closed form.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "lines/scored_polylines.hpp"
+
+using namespace penink;
+
+namespace {
+
+constexpr float hidden = -1.0e30f;  // render/dm.hpp's dm_hidden
+
+// Eye 100 m above the origin looking straight down, fov 90 degrees, 200x200 pixels: ground point
+// (x, y, 0) lands on pixel (100 + x, 100 - y) (north up), at eye distance sqrt(x^2 + y^2 + 100^2).
+Camera down_camera() {
+    Camera cam;
+    cam.eye = {0.0, 0.0, 100.0};
+    cam.azimuth = 0.0, cam.altitude = -90.0, cam.fov = 90.0;
+    cam.width = 200, cam.height = 200;
+    cam.near_plane = 1.0, cam.far_plane = 1000.0;
+    return cam;
+}
+
+std::vector<glm::vec3> row_of_points(int n) {
+    std::vector<glm::vec3> p;
+    for (int i = 0; i < n; ++i) p.emplace_back(float(-50 + 10 * i), float(20 - 3 * i), 0.0f);
+    return p;
+}
+
+}  // namespace
+
+TEST(ScoredPolylines, PixelsDepthAndStrengthOfOneRun) {
+    const std::vector<glm::vec3> p = row_of_points(4);
+    const std::vector<float> scores = {0.1f, 0.2f, 0.3f, 0.6f};
+    const auto strokes = scored_runs_to_strokes(p, scores, {{0, 4}}, down_camera(), "crease");
+    ASSERT_EQ(strokes.size(), 1u);
+    const Stroke& s = strokes[0];
+    EXPECT_EQ(s.kind, "crease");
+    EXPECT_NEAR(s.strength, 0.3f, 1e-6);
+    ASSERT_EQ(s.points.size(), 4u);
+    ASSERT_EQ(s.depth.size(), 4u);
+    for (int i = 0; i < 4; ++i) {
+        EXPECT_NEAR(s.points[i].x, 100.0 + p[i].x, 1e-3) << i;
+        EXPECT_NEAR(s.points[i].y, 100.0 - p[i].y, 1e-3) << i;
+        EXPECT_NEAR(s.depth[i], std::sqrt(p[i].x * p[i].x + p[i].y * p[i].y + 1e4), 1e-3) << i;
+    }
+}
+
+TEST(ScoredPolylines, RunsSplitAtNegativeAndHiddenScores) {
+    const std::vector<glm::vec3> p = row_of_points(10);
+    //                               0     1     2      3     4     5       6     7     8      9
+    const std::vector<float> scores = {0.2f, 0.4f, -0.01f, 0.5f, 0.5f, hidden, 0.3f, 0.0f, -0.5f, 0.9f};
+    const auto strokes = scored_runs_to_strokes(p, scores, {{0, 10}}, down_camera(), "ridge");
+    // Kept: [0, 1], [3, 4], [6, 7] (score 0 is drawn: rs >= 0); [9] alone is too short.
+    ASSERT_EQ(strokes.size(), 3u);
+    const int first[] = {0, 3, 6};
+    const float strength[] = {0.3f, 0.5f, 0.15f};
+    for (int k = 0; k < 3; ++k) {
+        ASSERT_EQ(strokes[k].points.size(), 2u) << k;
+        EXPECT_NEAR(strokes[k].points[0].x, 100.0 + p[first[k]].x, 1e-3) << k;
+        EXPECT_NEAR(strokes[k].points[1].x, 100.0 + p[first[k] + 1].x, 1e-3) << k;
+        EXPECT_NEAR(strokes[k].strength, strength[k], 1e-6) << k;
+        EXPECT_EQ(strokes[k].kind, "ridge");
+    }
+}
+
+TEST(ScoredPolylines, RunsAreSeparatePolylines) {
+    const std::vector<glm::vec3> p = row_of_points(7);
+    const std::vector<float> scores(7, 0.25f);
+    // Two runs [0, 3) and [3, 7), plus an empty and a one-vertex run: never joined across runs.
+    const auto strokes = scored_runs_to_strokes(p, scores, {{0, 3}, {3, 0}, {3, 4}, {6, 1}}, down_camera(), "crease");
+    ASSERT_EQ(strokes.size(), 2u);
+    EXPECT_EQ(strokes[0].points.size(), 3u);
+    EXPECT_EQ(strokes[1].points.size(), 4u);
+    EXPECT_NEAR(strokes[1].points[0].x, 100.0 + p[3].x, 1e-3);
+    EXPECT_NEAR(strokes[1].points[3].y, 100.0 - p[6].y, 1e-3);
+}
+
+TEST(ScoredPolylines, VerticesBehindTheEyeSplitTheRun) {
+    std::vector<glm::vec3> p = row_of_points(6);
+    p[2].z = 150.0f;  // above the eye, which looks down: behind it
+    const std::vector<float> scores(6, 1.0f);
+    const auto strokes = scored_runs_to_strokes(p, scores, {{0, 6}}, down_camera(), "crease");
+    ASSERT_EQ(strokes.size(), 2u);
+    EXPECT_EQ(strokes[0].points.size(), 2u);
+    EXPECT_EQ(strokes[1].points.size(), 3u);
+    EXPECT_NEAR(strokes[1].points[0].x, 100.0 + p[3].x, 1e-3);
+}
