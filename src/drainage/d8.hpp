@@ -32,10 +32,21 @@ inline std::size_t d8_target(const GridShape& g, std::size_t i, std::uint8_t cod
 // it is lower it drains out of the grid (an outlet) instead of being a pit or flat.
 bool is_boundary_cell(const GridShape& g, int c, int r);
 
-// Steepest strictly-downhill valid neighbour per valid cell (first in code order on ties), 0 when
-// none or invalid.
+// Steepest strictly-downhill valid neighbour per valid cell (first in code order on ties: the
+// lowest ESRI code), 0 when none or invalid. Interior cells of a grid without nodata take a
+// branch-free loop over precomputed neighbour offsets.
 std::vector<std::uint8_t> d8_directions(const std::vector<float>& z, const GridShape& g,
                                         double dx, double dy);
+
+// Depression-aware re-aiming (matches D8 on the unfilled DEM, as GRASS r.watershed does, without
+// creating cycles): every valid, non-raised cell next to a raised cell (raised_flags[i] & bit)
+// drains to its steepest neighbour measured on the ORIGINAL elevations, chosen among the
+// neighbours strictly lower on the FILLED surface `filled`; the original elevation of a raised
+// cell n is std::bit_cast<float>(orig_bits[n]). Cells without such a neighbour keep code 0.
+void d8_into_depressions(const std::vector<float>& filled,
+                         const std::vector<std::uint8_t>& raised_flags, std::uint8_t bit,
+                         const std::vector<std::uint32_t>& orig_bits, const GridShape& g,
+                         double dx, double dy, std::vector<std::uint8_t>& dir);
 
 enum class PointClass : std::uint8_t { pit = 0, ridge = 1, channel = 2, junction = 3, none = 255 };
 

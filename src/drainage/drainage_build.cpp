@@ -34,24 +34,26 @@ DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progres
     const GridShape shape{g.cols, g.rows, g.valid.data()};
     res.stats.points = g.size();
     res.stats.valid = std::size_t(std::count(g.valid.begin(), g.valid.end(), 1));
+    FlowNetwork& net = res.net;
+    // Lent buffers: the fill state lives in `order`, raised cells' original z in `acc`, the flat
+    // gradient in `basin`; each gets its own content later.
+    std::vector<std::uint8_t>& flags = net.order;
+    std::vector<std::uint32_t>& orig = net.acc;
     report(progress, "filling depressions", 0.0);
-    std::vector<RaisedCell> raised;
-    priority_flood_fill(g.z, shape, raised);
-    res.stats.filled = raised.size();
+    res.stats.filled = priority_flood_fill(g.z, shape, flags, orig).raised;
     report(progress, "flow directions", 0.35);
     res.dir = d8_directions(g.z, shape, g.dx, g.dy);
+    d8_into_depressions(g.z, flags, fill_raised, orig, shape, g.dx, g.dy, res.dir);
     report(progress, "resolving flats", 0.45);
-    FlowNetwork& net = res.net;
-    res.stats.unresolved_flats = resolve_flats(g.z, shape, res.dir, net.basin, net.acc);
-    res.stats.working_bytes = bytes_of(res.dir, net.basin, net.acc, raised) + g.size();
-    restore_raised(g.z, raised);
-    raised = {};
+    res.stats.unresolved_flats = resolve_flats(g.z, shape, res.dir, flags, net.basin);
+    res.stats.working_bytes = bytes_of(res.dir, flags, orig, net.basin);
+    restore_raised(g.z, flags, orig);
     report(progress, "accumulating flow", 0.55);
     accumulate_flow(res.dir, shape, net);
     report(progress, "labelling basins", 0.65);
     label_basins(res.dir, shape, net);
     res.stats.basins = net.outlet.size();
-    // accumulation holds dir, in-degree, acc, order and basin at once
+    // accumulation holds dir, in-degree, acc, order and (allocated) basin at once
     res.stats.working_bytes = std::max(res.stats.working_bytes,
                                        bytes_of(res.dir, net.acc, net.order, net.basin) + g.size());
     return res;

@@ -1,10 +1,13 @@
-// The drainage build pipeline (seed 000 sec. 3): PN resampling -> Priority-Flood filling (on the
-// grid's z in place, restored afterwards) -> D8 on the filled surface -> Barnes flat resolution ->
-// accumulation + Strahler -> basins -> branches and divides -> DrainageDb; plus the cache next to
-// the DEM (`<dem>.dv`), rebuilt when missing, stale or corrupt.
-// Working memory beyond the grid (z 4 B + valid 1 B per point): about 11 B per point (directions
-// 1, accumulation 4, basin 4, order 1, in-degree 1; flat labels/mask reuse accumulation/basin),
-// plus 8 B per filled point and the flood queues; output vertices (21 B each) come on top.
+// The drainage build pipeline (seed 000 sec. 3): PN resampling -> Priority-Flood filling (Zhou et
+// al. 2016 variant, on the grid's z in place, restored afterwards) -> D8 on the filled surface,
+// re-aimed into depressions on the original one -> Barnes flat resolution -> accumulation +
+// Strahler -> basins -> branches and divides -> DrainageDb; plus the cache next to the DEM
+// (`<dem>.dv`), rebuilt when missing, stale or corrupt.
+// Working memory beyond the grid (z 4 B + valid 1 B per point), counted in DrainageStats:
+// fill/directions/flats 10 B per point (directions 1, fill state 1, original z of raised
+// points 4 (lent by accumulation), flat gradient 4 (lent by basin)); accumulation 11 B
+// (directions 1, in-degree 1, accumulation 4, order 1, basin 4); plus queues along depression
+// rims and flat edges. Output vertices (24 B each) come on top.
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -34,7 +37,7 @@ int drainage_resample_factor(const Terrain& t, const DrainageOptions& options);
 struct DrainageStats {
     std::size_t points = 0, valid = 0, filled = 0, unresolved_flats = 0;
     std::size_t basins = 0, branches = 0, divides = 0;
-    std::size_t working_bytes = 0;  // peak bytes of the per-point working arrays (no queues)
+    std::size_t working_bytes = 0;  // peak bytes of the per-point working arrays beyond z and valid (no queues)
 };
 
 // Per-point results on the drainage grid (for rasters and tests).

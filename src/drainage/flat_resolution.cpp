@@ -1,143 +1,130 @@
 #include "drainage/flat_resolution.hpp"
 
-#include <algorithm>
-#include <cstring>
+#include <climits>
 
 namespace penink {
 
 namespace {
 
 struct Flats {
-    const std::vector<float>& z;
+    const float* z;
     const GridShape& g;
-    std::vector<std::uint8_t>& dir;
-    std::vector<std::uint32_t>& labels;
-    std::int32_t* mask;  // the mask buffer seen as signed (Barnes's FlatMask)
+    std::uint8_t* dir;
+    std::uint8_t* flags;
+    std::int32_t* mask;  // away-from-higher distance, then the combined gradient
+    std::ptrdiff_t off[8];
     std::vector<std::uint32_t> low, high;
-    std::vector<std::int32_t> flat_height;
 
-    int col(std::uint32_t i) const { return int(i % g.cols); }
-    int row(std::uint32_t i) const { return int(i / g.cols); }
     bool flat(std::uint32_t i) const {
-        return g.valid[i] && dir[i] == 0 && !is_boundary_cell(g, col(i), row(i));
+        return g.valid[i] && dir[i] == 0 &&
+               !is_boundary_cell(g, int(i % std::uint32_t(g.cols)), int(i / std::uint32_t(g.cols)));
     }
-    template <class F> void for_neighbours(std::uint32_t i, F&& f) const {
-        const int c = col(i), r = row(i);
+    // Valid neighbours of any cell (bounds checked: low edges may lie on the border).
+    template <class F> void around(std::uint32_t i, F&& f) const {
+        const int c = int(i % std::uint32_t(g.cols)), r = int(i / std::uint32_t(g.cols));
         for (int k = 0; k < 8; ++k) {
             const int nc = c + d8_dc[k], nr = r + d8_dr[k];
             if (nc < 0 || nr < 0 || nc >= g.cols || nr >= g.rows) continue;
-            const std::uint32_t n = std::uint32_t(nr) * g.cols + nc;
+            const std::uint32_t n = std::uint32_t(nr) * std::uint32_t(g.cols) + std::uint32_t(nc);
             if (g.valid[n]) f(n, k);
         }
     }
+    // Neighbours of a flat cell: all 8 exist and are valid (a flat cell is not a boundary cell).
+    template <class F> void around_flat(std::uint32_t i, F&& f) const {
+        for (int k = 0; k < 8; ++k) f(std::uint32_t(std::ptrdiff_t(i) + off[k]), k);
+    }
 };
 
-// Low edges: cells that drain (or are outlets) next to a flat cell of the same elevation.
-// High edges: flat cells next to higher terrain.
+// Low edges: cells with a direction (or outlets) next to a flat cell of the same elevation.
+// High edges: flat cells next to higher terrain. One scan of the direction bytes.
 void find_edges(Flats& s) {
     for (std::uint32_t i = 0; i < s.g.size(); ++i) {
-        if (!s.flat(i)) continue;
+        if (s.dir[i] || !s.flat(i)) continue;
         bool high = false;
-        s.for_neighbours(i, [&](std::uint32_t n, int) {
+        s.around_flat(i, [&](std::uint32_t n, int) {
             if (s.z[n] > s.z[i]) high = true;
-            else if (s.z[n] == s.z[i] && !s.flat(n)) s.low.push_back(n);
+            else if (s.z[n] == s.z[i] && !(s.flags[n] & flat_seen_low) && !s.flat(n))
+                s.flags[n] |= flat_seen_low, s.low.push_back(n);
         });
         if (high) s.high.push_back(i);
     }
-    std::sort(s.low.begin(), s.low.end());
-    s.low.erase(std::unique(s.low.begin(), s.low.end()), s.low.end());
 }
 
-// Labels each equal-elevation region reached from a low edge (Barnes's LabelFlat).
-void label_flats(Flats& s) {
-    std::uint32_t next = 1;
-    std::vector<std::uint32_t> queue;
-    for (std::uint32_t start : s.low) {
-        if (s.labels[start]) continue;
-        const std::uint32_t label = next++;
-        const float h = s.z[start];
-        queue.assign(1, start);
-        s.labels[start] = label;
-        for (std::size_t q = 0; q < queue.size(); ++q)
-            s.for_neighbours(queue[q], [&](std::uint32_t n, int) {
-                if (!s.labels[n] && s.z[n] == h) s.labels[n] = label, queue.push_back(n);
-            });
-    }
-    s.flat_height.assign(next, 0);
-}
-
-// Breadth-first levels from `seeds` over flat cells of the same label; visit(cell, level) is
-// called once per cell, returning false to skip a cell already set.
+// Breadth-first levels 1, 2, ... from `level` over flat cells of the same elevation not yet
+// marked with `bit`; visit(cell, level) is called once per cell.
 template <class Visit>
-void bfs_levels(Flats& s, std::vector<std::uint32_t> level, Visit&& visit) {
+void bfs_levels(Flats& s, std::vector<std::uint32_t> level, std::uint8_t bit, Visit&& visit) {
     std::vector<std::uint32_t> next;
+    for (std::uint32_t c : level) s.flags[c] |= bit;
     for (std::int32_t loops = 1; !level.empty(); ++loops) {
         next.clear();
         for (std::uint32_t c : level) {
-            if (!visit(c, loops)) continue;
-            s.for_neighbours(c, [&](std::uint32_t n, int) {
-                if (s.labels[n] == s.labels[c] && s.flat(n)) next.push_back(n);
+            visit(c, loops);
+            s.around(c, [&](std::uint32_t n, int) {
+                if (!(s.flags[n] & bit) && s.z[n] == s.z[c] && s.flat(n))
+                    s.flags[n] |= bit, next.push_back(n);
             });
         }
         std::swap(level, next);
     }
 }
 
-void away_from_higher(Flats& s) {
-    std::vector<std::uint32_t> seeds;
-    for (std::uint32_t h : s.high)
-        if (s.labels[h]) seeds.push_back(h);
-    bfs_levels(s, std::move(seeds), [&](std::uint32_t c, std::int32_t loops) {
-        if (s.mask[c] > 0) return false;
-        s.mask[c] = loops;
-        s.flat_height[s.labels[c]] = loops;
-        return true;
+// Flat cell i drains to its same-elevation neighbour of least gradient below its own.
+std::uint8_t masked_direction(const Flats& s, std::uint32_t i) {
+    std::int32_t best = s.mask[i];
+    std::uint8_t code = 0;
+    s.around_flat(i, [&](std::uint32_t n, int k) {
+        if (s.z[n] == s.z[i] && (s.flags[n] & flat_seen_low) && s.mask[n] < best)
+            best = s.mask[n], code = std::uint8_t(1u << k);
     });
+    return code;
 }
 
-void towards_lower(Flats& s) {
-    for (std::size_t i = 0; i < s.g.size(); ++i) s.mask[i] = -s.mask[i];
-    bfs_levels(s, s.low, [&](std::uint32_t c, std::int32_t loops) {
-        if (s.mask[c] > 0) return false;
-        s.mask[c] = s.mask[c] < 0 ? s.flat_height[s.labels[c]] + s.mask[c] + 2 * loops
-                                  : 2 * loops;
-        return true;
-    });
-}
-
-// Flat cells drain to the same-label neighbour of least combined gradient below their own.
-std::size_t masked_directions(Flats& s) {
-    std::size_t unresolved = 0;
-    for (std::uint32_t i = 0; i < s.g.size(); ++i) {
-        if (!s.labels[i] || !s.flat(i)) continue;
-        std::int32_t best = s.mask[i];
-        std::uint8_t code = 0;
-        s.for_neighbours(i, [&](std::uint32_t n, int k) {
-            if (s.labels[n] == s.labels[i] && s.mask[n] < best) best = s.mask[n], code = 1u << k;
-        });
-        s.dir[i] = code;
-        unresolved += code == 0;
+// Towards-lower BFS from the low edges (level 1, mask = lowest) combined with the away-from-higher
+// distance already in `mask`; a cell's direction is set once its neighbours' levels (one more
+// than its own at most) are final. Returns {cells left without a direction, cells reached that
+// the away-from-higher pass had seen}.
+std::pair<std::size_t, std::size_t> towards_lower(Flats& s) {
+    std::size_t unresolved = 0, seen_high = 0;
+    std::vector<std::uint32_t> level = s.low, next;
+    auto settle = [&](const std::vector<std::uint32_t>& cells) {
+        for (std::uint32_t c : cells) unresolved += (s.dir[c] = masked_direction(s, c)) == 0;
+    };
+    for (std::uint32_t c : level) s.flags[c] |= flat_seen_low, s.mask[c] = INT32_MIN;
+    for (std::int32_t loops = 2; !level.empty(); ++loops) {
+        next.clear();
+        for (std::uint32_t c : level)
+            s.around(c, [&](std::uint32_t n, int) {
+                if ((s.flags[n] & flat_seen_low) || s.z[n] != s.z[c] || !s.flat(n)) return;
+                s.flags[n] |= flat_seen_low, next.push_back(n);
+                const bool high = s.flags[n] & flat_seen_high;
+                seen_high += high;
+                s.mask[n] = 2 * loops - (high ? s.mask[n] : 0);
+            });
+        if (loops > 2) settle(level);  // level loops-1: every neighbour's mask is set now
+        std::swap(level, next);
     }
-    return unresolved;
+    return {unresolved, seen_high};
 }
 
 }  // namespace
 
 std::size_t resolve_flats(const std::vector<float>& z, const GridShape& g,
-                          std::vector<std::uint8_t>& dir, std::vector<std::uint32_t>& labels,
+                          std::vector<std::uint8_t>& dir, std::vector<std::uint8_t>& flags,
                           std::vector<std::uint32_t>& mask) {
-    labels.assign(g.size(), 0);
-    mask.assign(g.size(), 0);
-    Flats s{z, g, dir, labels, reinterpret_cast<std::int32_t*>(mask.data()), {}, {}, {}};
+    mask.resize(g.size());
+    Flats s{z.data(), g, dir.data(), flags.data(), reinterpret_cast<std::int32_t*>(mask.data()),
+            {}, {}, {}};
+    for (int k = 0; k < 8; ++k) s.off[k] = std::ptrdiff_t(d8_dr[k]) * g.cols + d8_dc[k];
     find_edges(s);
-    label_flats(s);
-    away_from_higher(s);
-    towards_lower(s);
-    std::size_t unresolved = masked_directions(s);
+    std::size_t high_cells = 0;
+    bfs_levels(s, s.high, flat_seen_high, [&](std::uint32_t c, std::int32_t h) {
+        s.mask[c] = h, ++high_cells;
+    });
+    for (std::uint32_t c : s.low) s.flags[c] &= std::uint8_t(~flat_seen_low);
+    const auto [unresolved, reached_high] = towards_lower(s);
     // flats no low edge reaches (impossible after priority-flood) stay without direction
-    for (std::uint32_t i = 0; i < g.size(); ++i)
-        if (!labels[i] && s.flat(i)) ++unresolved;
-    return unresolved;
+    return unresolved + (high_cells - reached_high);
 }
 
 }  // namespace penink

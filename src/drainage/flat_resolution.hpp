@@ -1,9 +1,13 @@
 // Drainage over flats (Barnes, Lehman & Mulla 2014, "An efficient assignment of drainage direction
 // over flat surfaces in raster digital elevation models"): each flat (connected cells of equal
 // elevation with no downhill neighbour, e.g. a filled depression) gets a combined gradient —
-// towards lower terrain (BFS from its low edges, weight 2) plus away from higher terrain (BFS from
-// its high edges) — and its cells drain down that gradient, so channels run through the middle
-// of valley floors and lakes to the spill point instead of stopping.
+// towards lower terrain (BFS from its low edges, weight 2) minus away from higher terrain (BFS
+// from its high edges) — and its cells drain down that gradient, so channels run through the
+// middle of valley floors and lakes to the spill point instead of stopping.
+// Differences from the paper, same directions: flats are told apart by elevation equality of
+// adjacent cells instead of a label raster, the per-flat offset (FlatHeight) is dropped (only
+// cells of one flat are compared) and low edges get the lowest mask, so after one scan of the
+// direction bytes only flat cells and their edges are touched.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -12,12 +16,15 @@
 
 namespace penink {
 
+// Bits of `flags` used (and cleared again) by resolve_flats; bits 0..1 belong to the fill.
+inline constexpr std::uint8_t flat_seen_high = 4, flat_seen_low = 8;
+
 // Gives every flat interior cell of `dir` (valid, code 0, not a boundary cell) a D8 code, on the
-// filled elevations `z`. labels and mask are scratch buffers (resized to cols*rows and zeroed;
-// pass the buffers that later hold accumulation and basins to save memory). Returns the number
-// of flat cells that stay without a direction (0 on a filled surface).
+// filled elevations `z`. `mask` is a scratch buffer (resized to cols*rows; pass the one that later
+// holds basins to save memory), `flags` the fill's per-cell state (bits 2..3 used, restored).
+// Returns the number of flat cells that stay without a direction (0 on a filled surface).
 std::size_t resolve_flats(const std::vector<float>& z, const GridShape& g,
-                          std::vector<std::uint8_t>& dir, std::vector<std::uint32_t>& labels,
+                          std::vector<std::uint8_t>& dir, std::vector<std::uint8_t>& flags,
                           std::vector<std::uint32_t>& mask);
 
 }  // namespace penink

@@ -6,60 +6,136 @@ namespace penink {
 
 namespace {
 
-struct Node {
+struct Open {
     float z;
     std::uint32_t i;
-    // min-heap on elevation, then index (deterministic order for equal elevations)
-    bool operator>(const Node& o) const { return z > o.z || (z == o.z && i > o.i); }
 };
 
-using OpenQueue = std::priority_queue<Node, std::vector<Node>, std::greater<Node>>;
+// min-heap on elevation (index order among equals only keeps runs reproducible; the filled
+// surface is the same for any order)
+struct Later {
+    bool operator()(const Open& a, const Open& b) const {
+        return a.z > b.z || (a.z == b.z && a.i > b.i);
+    }
+};
 
-void seed_boundary(const std::vector<float>& z, const GridShape& g, std::vector<std::uint8_t>& closed,
-                   OpenQueue& open) {
-    for (int r = 0; r < g.rows; ++r)
-        for (int c = 0; c < g.cols; ++c) {
-            const std::size_t i = std::size_t(r) * g.cols + c;
-            if (!g.valid[i] || !is_boundary_cell(g, c, r)) continue;
-            closed[i] = 1;
-            open.push({z[i], std::uint32_t(i)});
+struct Flood {
+    float* z;
+    const GridShape& g;
+    std::uint8_t* flags;
+    std::uint32_t* orig;
+    std::ptrdiff_t off[8];
+    std::priority_queue<Open, std::vector<Open>, Later> open;
+    std::vector<std::uint32_t> pit, trace;  // stacks: any order is correct within a level
+    FillStats stats;
+
+    bool on_border(std::uint32_t i) const {
+        const int c = int(i % std::uint32_t(g.cols)), r = int(i / std::uint32_t(g.cols));
+        return c == 0 || r == 0 || c == g.cols - 1 || r == g.rows - 1;
+    }
+    void push_open(std::uint32_t i) { open.push({z[i], i}), ++stats.queued; }
+    void seed(std::uint32_t i) {
+        if (flags[i]) return;
+        flags[i] = fill_closed;
+        push_open(i);
+    }
+    // Closes open neighbour n of a cell at level h: raised to h into the pit stack, or traced.
+    void close_from(std::uint32_t n, float h) {
+        flags[n] = fill_closed;
+        if (z[n] > h) return trace.push_back(n);
+        if (z[n] < h) {
+            orig[n] = std::bit_cast<std::uint32_t>(z[n]);
+            z[n] = h, flags[n] |= fill_raised, ++stats.raised;
         }
+        pit.push_back(n);
+    }
+    // Popped from the queue or the pit stack: its level is the lowest open level.
+    void spill(std::uint32_t i, bool checked) {
+        const float h = z[i];
+        if (!checked) {
+            for (int k = 0; k < 8; ++k) {
+                const std::uint32_t n = std::uint32_t(std::ptrdiff_t(i) + off[k]);
+                if (!flags[n]) close_from(n, h);
+            }
+            return;
+        }
+        const int c = int(i % std::uint32_t(g.cols)), r = int(i / std::uint32_t(g.cols));
+        for (int k = 0; k < 8; ++k) {
+            const int nc = c + d8_dc[k], nr = r + d8_dr[k];
+            if (nc < 0 || nr < 0 || nc >= g.cols || nr >= g.rows) continue;
+            const std::uint32_t n = std::uint32_t(nr) * std::uint32_t(g.cols) + std::uint32_t(nc);
+            if (!flags[n]) close_from(n, h);
+        }
+    }
+    // A traced cell (filled = own z, never on the border): its higher-or-equal open neighbours
+    // keep their own z whatever happens later, so they are closed and traced at once; an open
+    // lower neighbour could still be reached lower elsewhere, so the cell waits in the queue.
+    void climb(std::uint32_t i) {
+        const float h = z[i];
+        for (int k = 0; k < 8; ++k) {
+            const std::uint32_t n = std::uint32_t(std::ptrdiff_t(i) + off[k]);
+            if (!flags[n] && z[n] < h) return push_open(i);
+        }
+        for (int k = 0; k < 8; ++k) {
+            const std::uint32_t n = std::uint32_t(std::ptrdiff_t(i) + off[k]);
+            if (!flags[n]) flags[n] = fill_closed, trace.push_back(n);
+        }
+    }
+};
+
+void seed_boundary(Flood& f) {
+    const GridShape& g = f.g;
+    for (std::size_t i = 0; i < g.size(); ++i)
+        if (!g.valid[i]) f.flags[i] = fill_closed;  // nodata never floods
+    for (std::size_t i = 0; i < g.size(); ++i) {
+        if (g.valid[i]) continue;  // valid neighbours of nodata are outlets
+        const int c = int(i % std::size_t(g.cols)), r = int(i / std::size_t(g.cols));
+        for (int k = 0; k < 8; ++k) {
+            const int nc = c + d8_dc[k], nr = r + d8_dr[k];
+            if (nc >= 0 && nr >= 0 && nc < g.cols && nr < g.rows)
+                f.seed(std::uint32_t(nr) * std::uint32_t(g.cols) + std::uint32_t(nc));
+        }
+    }
+    for (int c = 0; c < g.cols; ++c)
+        f.seed(std::uint32_t(c)), f.seed(std::uint32_t(g.rows - 1) * g.cols + std::uint32_t(c));
+    for (int r = 1; r + 1 < g.rows; ++r)
+        f.seed(std::uint32_t(r) * g.cols), f.seed(std::uint32_t(r) * g.cols + g.cols - 1);
 }
 
 }  // namespace
 
-std::size_t priority_flood_fill(std::vector<float>& z, const GridShape& g,
-                                std::vector<RaisedCell>& raised) {
-    std::vector<std::uint8_t> closed(g.size(), 0);
-    OpenQueue open;
-    std::queue<std::uint32_t> pit;
-    seed_boundary(z, g, closed, open);
-    std::size_t visited = 0;
-    while (!open.empty() || !pit.empty()) {
-        std::uint32_t c;
-        if (!pit.empty()) c = pit.front(), pit.pop();
-        else c = open.top().i, open.pop();
-        ++visited;
-        const int cc = int(c % g.cols), cr = int(c / g.cols);
-        for (int k = 0; k < 8; ++k) {
-            const int nc = cc + d8_dc[k], nr = cr + d8_dr[k];
-            if (nc < 0 || nr < 0 || nc >= g.cols || nr >= g.rows) continue;
-            const std::uint32_t n = std::uint32_t(nr) * g.cols + nc;
-            if (closed[n] || !g.valid[n]) continue;
-            closed[n] = 1;
-            if (z[n] <= z[c]) {
-                if (z[n] < z[c]) raised.push_back({n, z[n]}), z[n] = z[c];
-                pit.push(n);
-            } else {
-                open.push({z[n], n});
-            }
+FillStats priority_flood_fill(std::vector<float>& z, const GridShape& g,
+                              std::vector<std::uint8_t>& flags,
+                              std::vector<std::uint32_t>& orig_bits) {
+    flags.assign(g.size(), 0);
+    orig_bits.resize(g.size());
+    Flood f{z.data(), g, flags.data(), orig_bits.data(), {}, {}, {}, {}, {}};
+    for (int k = 0; k < 8; ++k) f.off[k] = std::ptrdiff_t(d8_dr[k]) * g.cols + d8_dc[k];
+    seed_boundary(f);
+    for (;;) {
+        if (!f.pit.empty()) {
+            const std::uint32_t i = f.pit.back();
+            f.pit.pop_back();
+            f.spill(i, false);
+        } else if (!f.trace.empty()) {
+            const std::uint32_t i = f.trace.back();
+            f.trace.pop_back();
+            f.climb(i);
+        } else if (!f.open.empty()) {
+            const std::uint32_t i = f.open.top().i;
+            f.open.pop();
+            f.spill(i, f.on_border(i));
+        } else {
+            break;
         }
     }
-    return visited;
+    return f.stats;
 }
 
-void restore_raised(std::vector<float>& z, const std::vector<RaisedCell>& raised) {
-    for (const RaisedCell& r : raised) z[r.index] = r.z;
+void restore_raised(std::vector<float>& z, const std::vector<std::uint8_t>& flags,
+                    const std::vector<std::uint32_t>& orig_bits) {
+    for (std::size_t i = 0; i < z.size(); ++i)
+        if (flags[i] & fill_raised) z[i] = std::bit_cast<float>(orig_bits[i]);
 }
 
 }  // namespace penink

@@ -1,8 +1,12 @@
 // Depression filling by Priority-Flood (Barnes, Lehman & Mulla 2014, "Priority-flood: An optimal
-// depression-filling and watershed-labeling algorithm", Alg. 2: the epsilon-free variant with a
-// plain FIFO "pit" queue): every closed depression is raised to its spill elevation, leaving flats
-// that the flat resolution drains. Seeds are the valid boundary cells (grid border or next to
-// nodata, see d8.hpp), so every valid cell ends up with a non-ascending path to one of them.
+// depression-filling and watershed-labeling algorithm", Alg. 2, plain FIFO/stack for cells raised
+// into depressions) with the improvement of Zhou, Sun & Fu 2016 ("An efficient variant of the
+// Priority-Flood algorithm for filling depressions in raster DEMs"): cells on slopes are traced
+// uphill without the priority queue; only a traced cell that still has an open lower neighbour
+// goes through the queue. Every closed depression is raised to its spill elevation (leaving
+// flats that the flat resolution drains). Seeds are the valid boundary cells (grid border or
+// next to nodata, see d8.hpp), so every valid cell ends up with a non-ascending path to one.
+// The filled surface is unique, so the result does not depend on the queue order.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -11,18 +15,31 @@
 
 namespace penink {
 
-// A cell whose elevation the fill raised, with its elevation before filling.
-struct RaisedCell {
-    std::uint32_t index;
-    float z;
+// Bits of the per-cell fill state (`flags`); bits 2..7 are free for later stages.
+inline constexpr std::uint8_t fill_closed = 1;  // filled elevation known (or nodata)
+inline constexpr std::uint8_t fill_raised = 2;  // the fill raised the cell (filled > original)
+
+struct FillStats {
+    std::size_t raised = 0;  // cells raised into depressions
+    std::size_t queued = 0;  // cells that went through the priority queue (seeds included)
 };
 
-// Fills `z` (cols*rows, row-major) in place; appends the raised cells to `raised` (so the caller
-// can restore the original surface). Returns the number of cells visited.
-std::size_t priority_flood_fill(std::vector<float>& z, const GridShape& g,
-                                std::vector<RaisedCell>& raised);
+// Fills `z` (cols*rows, row-major, local metres) in place. `flags` is resized to cols*rows and
+// set to fill_closed (| fill_raised where raised); for every raised cell i, orig_bits[i] receives
+// std::bit_cast<uint32_t>(original z) (a uint32 buffer so the build can lend it the accumulation
+// array; resized to cols*rows, other entries left as they are).
+FillStats priority_flood_fill(std::vector<float>& z, const GridShape& g,
+                              std::vector<std::uint8_t>& flags,
+                              std::vector<std::uint32_t>& orig_bits);
 
-// Puts the original elevations of `raised` back into `z`.
-void restore_raised(std::vector<float>& z, const std::vector<RaisedCell>& raised);
+// Original elevation of cell i (z holds the filled surface).
+inline float original_z(const std::vector<float>& z, const std::vector<std::uint8_t>& flags,
+                        const std::vector<std::uint32_t>& orig_bits, std::size_t i) {
+    return flags[i] & fill_raised ? std::bit_cast<float>(orig_bits[i]) : z[i];
+}
+
+// Puts the original elevations of the raised cells back into `z`.
+void restore_raised(std::vector<float>& z, const std::vector<std::uint8_t>& flags,
+                    const std::vector<std::uint32_t>& orig_bits);
 
 }  // namespace penink

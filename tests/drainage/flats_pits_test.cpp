@@ -68,13 +68,16 @@ TEST(FlatsAndPits, PriorityFloodRaisesToTheSpillLevel) {
     z[12] = 1.0f;
     z[2] = 2.0f;
     DrainageGrid g = make_regular_grid(5, 5, 1.0, z);
-    std::vector<RaisedCell> raised;
-    priority_flood_fill(g.z, {5, 5, g.valid.data()}, raised);
-    ASSERT_EQ(raised.size(), 1u);
-    EXPECT_EQ(raised[0].index, 12u);
-    EXPECT_FLOAT_EQ(raised[0].z, 1.0f);
+    std::vector<std::uint8_t> flags;
+    std::vector<std::uint32_t> orig;
+    const FillStats st = priority_flood_fill(g.z, {5, 5, g.valid.data()}, flags, orig);
+    EXPECT_EQ(st.raised, 1u);
+    for (int i = 0; i < 25; ++i) EXPECT_EQ(flags[i], i == 12 ? 3 : 1) << i;
+    EXPECT_FLOAT_EQ(std::bit_cast<float>(orig[12]), 1.0f);
     EXPECT_FLOAT_EQ(g.z[12], 3.0f);
     EXPECT_FLOAT_EQ(g.z[2], 2.0f);
+    restore_raised(g.z, flags, orig);
+    EXPECT_EQ(g.z, z);
 }
 
 TEST(FlatsAndPits, EveryCellOfATerracedGridReachesAnOutlet) {
