@@ -1,5 +1,7 @@
 #include "render/gl_objects.hpp"
 
+#include <algorithm>
+
 #include "core/error.hpp"
 #include "render/shader_source.hpp"
 
@@ -119,12 +121,25 @@ GpuTimer::GpuTimer(const GlApi& gl) : gl_(&gl) {
     gl.CreateQueries(GL_TIME_ELAPSED, 1, &id);
     query_ = GlHandle(gl, id, [](const GlApi& g, GLuint i) { g.DeleteQueries(1, &i); });
 }
-void GpuTimer::begin() { gl_->BeginQuery(GL_TIME_ELAPSED, query_.id()); }
-void GpuTimer::end() { gl_->EndQuery(GL_TIME_ELAPSED); }
+// glFinish around the query: llvmpipe runs commands lazily at the next flush, so without it a
+// pass's work would be timed in whichever later pass first needs its results. On a GPU the query
+// still measures GPU time; the finish only serialises passes, as the paper's per-pass table needs.
+// llvmpipe's queries also miss work done inside the draw call (vertex and tessellation stages run
+// there), so the pass time is the larger of the query and the wall time between the finishes.
+void GpuTimer::begin() {
+    gl_->Finish();
+    gl_->BeginQuery(GL_TIME_ELAPSED, query_.id());
+    start_ = std::chrono::steady_clock::now();
+}
+void GpuTimer::end() {
+    gl_->Finish();
+    wall_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
+    gl_->EndQuery(GL_TIME_ELAPSED);
+}
 double GpuTimer::milliseconds() {
     GLuint64 ns = 0;
     gl_->GetQueryObjectui64v(query_.id(), GL_QUERY_RESULT, &ns);
-    return double(ns) * 1e-6;
+    return std::max(double(ns) * 1e-6, wall_ms_);
 }
 
 GLint uniform_location(const GlApi& gl, GLuint program, const char* name) {

@@ -2,6 +2,7 @@
 // timer queries) and the shader program builder: a failed compile or link throws
 // penink::Error naming the shader file and line (mapped through #include) with the driver log.
 #pragma once
+#include <chrono>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -42,7 +43,8 @@ GlHandle make_texture(const GlApi& gl, GLenum internal_format, int width, int he
 GlHandle make_framebuffer(const GlApi& gl, const std::vector<GLuint>& colour_textures,
                           GLuint depth_texture, const std::string& name);
 
-// Nanoseconds of GPU time between begin() and end(), read by result() (waits).
+// Time of one pass between begin() and end() (glFinish on both sides): the larger of the GL
+// timer query and the wall time, in milliseconds (waits for the result).
 class GpuTimer {
 public:
     explicit GpuTimer(const GlApi& gl);
@@ -53,6 +55,8 @@ public:
 private:
     const GlApi* gl_;
     GlHandle query_;
+    std::chrono::steady_clock::time_point start_;
+    double wall_ms_ = 0.0;
 };
 
 // Uniform setters by name (location looked up each call; passes set a handful per frame).
