@@ -3,11 +3,47 @@
 #include <chrono>
 #include <cmath>
 
+#include "lines/object_silhouettes.hpp"
+#include "surface/pn_tessellation.hpp"
+
 namespace penink {
 
+namespace {
+double ms_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
 TerrainRenderer::TerrainRenderer(const GlApi& gl, const SurfaceMesh& mesh, int width, int height)
-    : gl_(&gl), geometry_(gl, mesh), tft_aft_(gl, width, height), sil_(gl, width, height) {
+    : gl_(&gl), mesh_(&mesh), geometry_(gl, mesh), tft_aft_(gl, width, height), sil_(gl, width, height) {
     check_gl_error(gl, "terrain renderer set-up");
+}
+
+// Runs the chosen silhouette method; returns its time (ms) and, for the object-space method,
+// fills out.silhouettes directly.
+double TerrainRenderer::silhouettes(const Camera& camera, const FrameOptions& options, FrameImages& out) {
+    const int w = tft_aft_.width(), h = tft_aft_.height();
+    switch (options.silhouette_method) {
+        case SilhouetteMethod::toward_away:
+            return sil_.draw(tft_aft_.toward_texture(), tft_aft_.away_texture(), options.silhouette_min_gap);
+        case SilhouetteMethod::adjacency: {
+            if (!adjacency_) adjacency_ = std::make_unique<AdjacencySilPass>(*gl_, w, h);
+            const AdjacencyTimes t = adjacency_->draw(geometry_, camera, options.tessellation, tft_aft_.toward_texture(),
+                                                      tft_aft_.away_texture(), options.adjacency);
+            out.times.sil_ids = t.ids_ms;
+            return t.ids_ms + t.detect_ms;
+        }
+        case SilhouetteMethod::object_space: {
+            const auto t0 = std::chrono::steady_clock::now();
+            const PnTessellation tess = tessellate_pn_surface(*mesh_, view_projection(camera), glm::vec2(w, h),
+                                                              options.tessellation.target_edge_px,
+                                                              options.tessellation.max_level);
+            const ObjectSilhouettes sil = object_space_silhouettes(tess.pos, tess.tri, camera);
+            out.silhouettes = rasterize_polylines(silhouette_polylines(sil, true), w, h);
+            return ms_since(t0);
+        }
+    }
+    return 0.0;
 }
 
 FrameImages TerrainRenderer::render(const Camera& camera, const FrameOptions& options) {
@@ -16,16 +52,18 @@ FrameImages TerrainRenderer::render(const Camera& camera, const FrameOptions& op
                                               options.separate_passes);
     check_gl_error(*gl_, "TFT/AFT pass");
     out.times.tft = surface.tft_ms, out.times.aft = surface.aft_ms;
-    out.times.sil = sil_.draw(tft_aft_.toward_texture(), tft_aft_.away_texture(),
-                              options.silhouette_min_gap);
+    out.times.sil = silhouettes(camera, options, out);
     check_gl_error(*gl_, "SIL pass");
     const auto t0 = std::chrono::steady_clock::now();
     const int w = tft_aft_.width(), h = tft_aft_.height();
     out.toward = read_depth_image(*gl_, tft_aft_.toward_texture(), w, h);
     out.away = read_depth_image(*gl_, tft_aft_.away_texture(), w, h);
-    out.silhouettes = read_pixel_mask(*gl_, sil_.silhouette_texture(), w, h);
+    if (options.silhouette_method == SilhouetteMethod::toward_away)
+        out.silhouettes = read_pixel_mask(*gl_, sil_.silhouette_texture(), w, h);
+    else if (options.silhouette_method == SilhouetteMethod::adjacency)
+        out.silhouettes = read_pixel_mask(*gl_, adjacency_->silhouette_texture(), w, h);
     check_gl_error(*gl_, "read-back");
-    out.times.readback = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    out.times.readback = ms_since(t0);
     return out;
 }
 

@@ -1,11 +1,15 @@
 // Renders one frame of a terrain surface through the GPU passes (TFT/AFT, SIL) and reads the
 // results back for the lines stage: toward/away eye-distance images (metres, row 0 = top) and
 // the silhouette pixel mask, with each pass's GPU time (GL timer queries, as the paper's Table 3).
+// The silhouette mask comes from one of three methods: Toward/Away (seed 001, 3.2; default),
+// Adjacency (3.1, render/adjacency_sil.hpp) or object-space (CPU: exact front/back edges of the
+// CPU PN tessellation with ray-cast visibility, rasterised at 1 px; the reference, slow).
 #pragma once
 #include <memory>
 
 #include "core/camera.hpp"
 #include "lines/pixel_mask.hpp"
+#include "render/adjacency_sil.hpp"
 #include "render/readback.hpp"
 #include "render/sil.hpp"
 #include "render/surface_geometry.hpp"
@@ -13,14 +17,22 @@
 
 namespace penink {
 
+enum class SilhouetteMethod { toward_away, adjacency, object_space };
+
 struct FrameOptions {
     TessellationOptions tessellation;
+    SilhouetteMethod silhouette_method = SilhouetteMethod::toward_away;
+    AdjacencyOptions adjacency;
     bool separate_passes = false;  // TFT and AFT as two passes (paper) instead of one combined
     float silhouette_min_gap = 0.0f;
 };
 
 struct PassTimings {  // milliseconds
     double tft = 0, aft = 0, sil = 0, dm = 0, ridges = 0, lay = 0, readback = 0;
+    double pel = 0;  // CPU: photic extremum lines of a mesh frame (cli/mesh_drawing)
+    // Part of `sil` spent on the adjacency method's triangle-ID geometry pass (GPU); for the
+    // object-space method `sil` is CPU wall time (tessellation, silhouettes, rasterising).
+    double sil_ids = 0;
 };
 
 struct FrameImages {
@@ -29,6 +41,8 @@ struct FrameImages {
     PassTimings times;
 };
 
+// The renderer keeps a reference to `mesh` (the object-space method tessellates it on the CPU):
+// the mesh must outlive it.
 class TerrainRenderer {
 public:
     TerrainRenderer(const GlApi& gl, const SurfaceMesh& mesh, int width, int height);
@@ -36,11 +50,17 @@ public:
     const GlApi& gl() const { return *gl_; }
     const TftAftPass& surface_pass() const { return tft_aft_; }
 
+    // Tessellated triangles of the last adjacency frame (0 for the other methods).
+    std::size_t adjacency_triangles() const { return adjacency_ ? adjacency_->triangle_count() : 0; }
+
 private:
+    double silhouettes(const Camera& camera, const FrameOptions& options, FrameImages& out);
     const GlApi* gl_;
+    const SurfaceMesh* mesh_;
     SurfaceGeometry geometry_;
     TftAftPass tft_aft_;
     SilPass sil_;
+    std::unique_ptr<AdjacencySilPass> adjacency_;  // built on first use (its programs compile then)
 };
 
 // Pixels covered by any surface fragment (toward or away): the surface mask.
