@@ -3,7 +3,6 @@
 #include <chrono>
 #include <sstream>
 
-#include "cli/drainage_lines.hpp"
 #include "cli/terrain_view.hpp"
 #include "drainage/drainage_build.hpp"
 #include "input/dem_reader.hpp"
@@ -59,38 +58,54 @@ void add_frame_lines(const FrameImages& images, const SurfaceMesh& mesh, const C
     drawing.layer(LayerKind::silhouettes).strokes = std::move(strokes);
 }
 
-SceneDrawing draw_terrain(const Scene& scene, GlContext& context, const Log& log) {
-    DemOptions dem_options;
-    dem_options.vertical_exaggeration = scene.vertical_exaggeration;
-    const Terrain dem = read_dem(scene.dem, dem_options);
-    log.info("read " + scene.dem + ": " + std::to_string(dem.cols) + "x" + std::to_string(dem.rows) + " nodes");
-    SceneDrawing out;
-    out.camera = scene_camera(scene, dem);
-    const Terrain view = terrain_for_view(dem, out.camera, scene, log);
-    out.cells = std::size_t(view.cols - 1) * (view.rows - 1);
-    const SurfaceMesh mesh = mesh_from_terrain(view);
-    out.triangles = mesh.tri.size();
-    TerrainRenderer renderer(context.gl(), mesh, out.camera.width, out.camera.height);
+namespace {
+FrameOptions frame_options(const Scene& scene) {
     FrameOptions options;
     options.tessellation.max_level = scene.tess_max_level;
     options.tessellation.target_edge_px = scene.tess_target_edge_px;
     options.separate_passes = scene.separate_passes;
     options.silhouette_min_gap = scene.silhouette_min_gap;
-    const FrameImages images = renderer.render(out.camera, options);
+    return options;
+}
+}  // namespace
+
+TerrainFrames::TerrainFrames(GlContext& context, const Scene& scene, const Terrain& dem, Terrain terrain,
+                             int width, int height, const Log& log)
+    : context_(&context), terrain_(std::move(terrain)), mesh_(mesh_from_terrain(terrain_)),
+      renderer_(context.gl(), mesh_, width, height) {
+    if (!scene.creases.enabled && !scene.ridges.enabled) return;
+    const DrainageDb db = load_or_build_drainage(scene.dem, dem, DrainageOptions{},
+                                                 [&](const std::string& m) { log.info(m); });
+    lines_ = std::make_unique<DrainageLines>(context.gl(), db, mesh_);
+}
+
+SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
+    SceneDrawing out;
+    out.camera = camera;
+    out.cells = std::size_t(terrain_.cols - 1) * (terrain_.rows - 1);
+    out.triangles = mesh_.tri.size();
+    const FrameImages images = renderer_.render(camera, frame_options(frame));
     out.times = images.times;
-    out.drawing.width = out.camera.width, out.drawing.height = out.camera.height;
-    if (scene.creases.enabled || scene.ridges.enabled) {
-        const DrainageDb db = load_or_build_drainage(scene.dem, dem, DrainageOptions{},
-                                                     [&](const std::string& m) { log.info(m); });
-        DrainageLines lines(context.gl(), db, mesh);
-        lines.draw(out.camera, scene, renderer.surface_pass().toward_texture(),
-                   max_visible_distance(images.toward), out.drawing, out.times);
-    }
+    out.drawing.width = camera.width, out.drawing.height = camera.height;
+    if (lines_)
+        lines_->draw(camera, frame, renderer_.surface_pass().toward_texture(),
+                     max_visible_distance(images.toward), out.drawing, out.times);
     const auto t0 = std::chrono::steady_clock::now();
-    add_frame_lines(images, mesh, out.camera, out.drawing);
+    add_frame_lines(images, mesh_, camera, out.drawing);
     out.trace_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    fill_metadata(scene, out.camera, view, out.drawing);
+    fill_metadata(frame, camera, terrain_, out.drawing);
     return out;
+}
+
+SceneDrawing draw_terrain(const Scene& scene, GlContext& context, const Log& log) {
+    DemOptions dem_options;
+    dem_options.vertical_exaggeration = scene.vertical_exaggeration;
+    const Terrain dem = read_dem(scene.dem, dem_options);
+    log.info("read " + scene.dem + ": " + std::to_string(dem.cols) + "x" + std::to_string(dem.rows) + " nodes");
+    Camera camera = scene_camera(scene, dem);
+    Terrain view = terrain_for_view(dem, camera, scene, log);
+    TerrainFrames frames(context, scene, dem, std::move(view), camera.width, camera.height, log);
+    return frames.draw(camera, scene);
 }
 
 }  // namespace penink
