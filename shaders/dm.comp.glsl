@@ -4,7 +4,9 @@
 //   rs = (sw sc + iw ic + fw fc) / 3 - rs_min(d),  rs_min(d) = min_score + attenuation * d / D.
 // The vertex is lifted off the surface along its normal by u_lift_px pixel footprints (no depth
 // fighting) and is visible when its eye distance is within a grazing-aware tolerance of the
-// nearest toward-facing surface at its pixel. Output: rs, or PENINK_HIDDEN when not visible.
+// nearest toward-facing surface at its pixel, or when that pixel holds no surface (a silhouette
+// vertex lifted past the outline). Vertices with a zero normal (off the rendered surface) and
+// outside the frustum are hidden. Output: rs, or PENINK_HIDDEN when not visible.
 #include "common.glsl"
 
 layout(local_size_x = 64) in;
@@ -48,12 +50,16 @@ void main() {
     vec3 lifted = p + n * (u_lift_px * footprint);
     vec4 c = u_view_proj * vec4(lifted, 1.0);
     float result = PENINK_HIDDEN;
-    if (c.w > 0.0 && all(lessThanEqual(abs(c.xyz), vec3(c.w)))) {
+    // A zero normal marks a vertex off the rendered surface: never drawn.
+    bool on_surface = dot(n, n) > 0.25;
+    if (on_surface && c.w > 0.0 && all(lessThanEqual(abs(c.xyz), vec3(c.w)))) {
         ivec2 q = clamp(ivec2(clip_to_pixels(c, u_viewport)), ivec2(0), ivec2(u_viewport) - 1);
         float t = texelFetch(u_toward, q, 0).r;
         float facing = abs(dot(n, normalize(u_eye - p)));
         float tolerance = u_tolerance_px * footprint / max(facing, 0.1);
-        if (t < PENINK_FAR && distance(lifted, u_eye) <= t + tolerance) result = rs;
+        // No surface at the pixel: the vertex sits on a silhouette (a crest against the sky, the
+        // DEM's edge) and the lift took it past the outline; nothing lies in front of it.
+        if (t >= PENINK_FAR || distance(lifted, u_eye) <= t + tolerance) result = rs;
     }
     scores[i] = result;
 }

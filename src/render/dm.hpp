@@ -2,7 +2,9 @@
 // conventions.md (rs = (sw sc + iw ic + fw fc)/3 - rs_min(d)) and tests their visibility against
 // the TFT eye-distance texture, in a compute shader (shaders/dm.comp.glsl). The same pass scores
 // basin-divide vertices for the ridges layer. Input: world positions (local metres), unit PN
-// normals, normalised flow; output: per-vertex rs, or dm_hidden for vertices not visible.
+// normals (zero for a vertex off the rendered surface: always hidden), normalised flow; output:
+// per-vertex rs, or dm_hidden for vertices not visible (outside the frustum, or farther than the
+// TFT surface at their pixel; a pixel with no surface counts as visible: silhouette vertices).
 #pragma once
 #include <vector>
 
