@@ -1,0 +1,100 @@
+// PN triangles (Vlachos et al. 2001) against hand-computed control points, and the surface mesh's
+// triangles and normals against values worked out by hand.
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "input/synthetic_terrain.hpp"
+#include "surface/pn_triangle.hpp"
+#include "surface/surface_mesh.hpp"
+
+using namespace penink;
+
+namespace {
+
+void expect_vec(const glm::vec3& a, const glm::vec3& b, float tol = 1e-6f) {
+    EXPECT_NEAR(a.x, b.x, tol);
+    EXPECT_NEAR(a.y, b.y, tol);
+    EXPECT_NEAR(a.z, b.z, tol);
+}
+
+}  // namespace
+
+// Flat triangle with normals tilted outward. By hand, for p0=(0,0,0), p1=(3,0,0), p2=(0,3,0),
+// n0=(0,0,1), n1=(0.6,0,0.8), n2=(0,0,1):
+//   w01 = (p1-p0).n0 = 0 -> b210 = (2p0+p1)/3 = (1,0,0)
+//   w10 = (p0-p1).n1 = -1.8 -> b120 = (2p1+p0 + 1.8 n1)/3 = (6+1.08, 0, 1.44)/3 = (2.36, 0, 0.48)
+//   w12 = (p2-p1).n1 = -1.8 -> b021 = (2p1+p2 + 1.8 n1)/3 = (7.08, 3, 1.44)/3 = (2.36, 1, 0.48)
+//   b012 = (2p2+p1)/3 = (1,2,0), b102 = (2p2+p0)/3 = (0,2,0), b201 = (2p0+p2)/3 = (0,1,0)
+//   E = mean of the six = (6.72, 6, 0.96)/6 = (1.12, 1, 0.16); V = (1,1,0)
+//   b111 = E + (E - V)/2 = (1.18, 1, 0.24)
+TEST(PnTriangle, ControlPointsMatchHandComputation) {
+    const glm::vec3 p0(0, 0, 0), p1(3, 0, 0), p2(0, 3, 0), n0(0, 0, 1), n1(0.6f, 0, 0.8f), n2(0, 0, 1);
+    const PnPatch q = pn_patch(p0, p1, p2, n0, n1, n2);
+    expect_vec(q.b[0], p0), expect_vec(q.b[1], p1), expect_vec(q.b[2], p2);
+    expect_vec(q.b[3], {1, 0, 0});
+    expect_vec(q.b[4], {2.36f, 0, 0.48f});
+    expect_vec(q.b[5], {2.36f, 1, 0.48f});
+    expect_vec(q.b[6], {1, 2, 0});
+    expect_vec(q.b[7], {0, 2, 0});
+    expect_vec(q.b[8], {0, 1, 0});
+    expect_vec(q.b[9], {1.18f, 1, 0.24f});
+    // Corners interpolate the vertices and their normals.
+    expect_vec(pn_position(q, {1, 0, 0}), p0), expect_vec(pn_position(q, {0, 1, 0}), p1);
+    expect_vec(pn_normal(q, {0, 1, 0}), n1);
+    // Centre: sum of b_ijk * 3!/(i!j!k!) / 27 = (b300+b030+b003)/27 + 3(sum of edge points)/27
+    //        + 6 b111/27 = (3,3,0)/27 + 3(6.72,6,0.96)/27 + 6(1.18,1,0.24)/27.
+    const glm::vec3 centre = (glm::vec3(3, 3, 0) + 3.0f * glm::vec3(6.72f, 6, 0.96f) + 6.0f * glm::vec3(1.18f, 1, 0.24f)) / 27.0f;
+    expect_vec(pn_position(q, glm::vec3(1.0f / 3.0f)), centre, 1e-5f);
+}
+
+TEST(PnTriangle, PlanarPatchStaysPlanar) {
+    const glm::vec3 n(0, 0, 1);
+    const PnPatch q = pn_patch({0, 0, 5}, {10, 0, 5}, {0, 10, 5}, n, n, n);
+    for (float u = 0; u <= 1.0f; u += 0.25f)
+        for (float v = 0; u + v <= 1.0f; v += 0.25f) {
+            const glm::vec3 p = pn_position(q, {1 - u - v, u, v});
+            EXPECT_NEAR(p.z, 5.0f, 1e-5f);
+            EXPECT_NEAR(p.x, 10 * u, 1e-4f);  // on a plane PN reproduces the linear map
+            expect_vec(pn_normal(q, {1 - u - v, u, v}), n);
+        }
+}
+
+TEST(PnTriangle, SphereVerticesBulgeTowardTheSphere) {
+    // Vertices on the unit sphere with exact normals: the patch centre moves outward, closer to r=1.
+    const glm::vec3 a = glm::normalize(glm::vec3(1, 0, 0.2f)), b = glm::normalize(glm::vec3(0, 1, 0.2f)),
+                    c = glm::normalize(glm::vec3(0, 0, 1));
+    const PnPatch q = pn_patch(a, b, c, a, b, c);
+    const float flat = glm::length((a + b + c) / 3.0f), curved = glm::length(pn_position(q, glm::vec3(1.0f / 3.0f)));
+    // For this octant-sized patch (vertices ~80 degrees apart) the flat centre is at r = 0.70 and
+    // the cubic PN centre at r = 0.84: it halves the distance to the sphere (it cannot reach it).
+    EXPECT_LT(flat, 0.71f);
+    EXPECT_GT(curved, 0.84f);
+    EXPECT_LT(1.0f - curved, 0.6f * (1.0f - flat));
+}
+
+TEST(SurfaceMesh, TwoCounterClockwiseTrianglesPerCellAndNormals) {
+    // 3x2 nodes of z = x (a 45-degree slope rising east), 10 m spacing.
+    const Terrain t = terrain_from_function(3, 2, 10.0, [](double x, double) { return x; });
+    const SurfaceMesh m = mesh_from_terrain(t);
+    ASSERT_EQ(m.tri.size(), 4u);
+    EXPECT_EQ(m.tri[0], glm::uvec3(0, 3, 4));  // NW, SW, SE
+    EXPECT_EQ(m.tri[1], glm::uvec3(0, 4, 1));  // NW, SE, NE
+    const glm::vec3 expected = glm::normalize(glm::vec3(-1, 0, 1));
+    for (const glm::vec3& n : m.face_normal) expect_vec(n, expected, 1e-6f);
+    for (const glm::vec3& n : m.normal) expect_vec(n, expected, 1e-6f);
+}
+
+TEST(SurfaceMesh, VertexNormalIsNormalisedSumOfIncidentFaceNormals) {
+    // A roof ridge along y: z = 10 - |x|. The ridge vertex sees faces of both sides.
+    const Terrain t = terrain_from_function(3, 2, 10.0, [](double x, double) { return 10.0 - std::abs(x); });
+    const SurfaceMesh m = mesh_from_terrain(t);
+    // Node 1 (top middle) lies in 1 west-side face (0,4,1) and 2 east-side faces (1,4,5), (1,5,2).
+    const glm::vec3 west = glm::normalize(glm::vec3(-1, 0, 1)), east = glm::normalize(glm::vec3(1, 0, 1));
+    expect_vec(m.normal[1], glm::normalize(west + 2.0f * east), 1e-6f);
+    // Nodata: a missing node drops the triangles touching it.
+    Terrain holes = t;
+    holes.valid[5] = 0;
+    EXPECT_EQ(mesh_from_terrain(holes).tri.size(), 2u);
+}
