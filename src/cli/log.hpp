@@ -7,7 +7,11 @@ namespace penink {
 
 struct Log {
     bool verbose = false;
-    void info(const std::string& msg) const { if (verbose) std::cerr << "penink: " << msg << "\n"; }
+    void info(const std::string& msg) const {
+        if (!verbose) return;
+        // Messages that quote an error already carry the prefix.
+        std::cerr << (msg.rfind("penink: ", 0) == 0 ? "" : "penink: ") << msg << "\n";
+    }
 };
 
 }  // namespace penink

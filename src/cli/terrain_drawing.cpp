@@ -1,6 +1,8 @@
 #include "cli/terrain_drawing.hpp"
 
 #include <chrono>
+#include <cstdio>
+#include <unistd.h>
 #include <sstream>
 
 #include "cli/terrain_view.hpp"
@@ -74,8 +76,13 @@ TerrainFrames::TerrainFrames(GlContext& context, const Scene& scene, const Terra
     : context_(&context), terrain_(std::move(terrain)), mesh_(mesh_from_terrain(terrain_)),
       renderer_(context.gl(), mesh_, width, height) {
     if (!scene.creases.enabled && !scene.ridges.enabled) return;
-    const DrainageDb db = load_or_build_drainage(scene.dem, dem, DrainageOptions{},
-                                                 [&](const std::string& m) { log.info(m); });
+    const bool tty = isatty(2);
+    const DrainageDb db = load_or_build_drainage(
+        scene.dem, dem, DrainageOptions{}, [&](const std::string& m) { log.info(m); },
+        [tty](const std::string& stage, double fraction) {  // long builds show progress on a terminal
+            if (tty) std::fprintf(stderr, "\rpenink: building drainage database: %-12s %3d%%%s", stage.c_str(),
+                                  int(fraction * 100.0 + 0.5), fraction >= 1.0 ? "\n" : "");
+        });
     lines_ = std::make_unique<DrainageLines>(context.gl(), db, mesh_);
 }
 
