@@ -108,14 +108,14 @@ void d8_into_depressions(const std::vector<float>& filled,
         dir[x] = steepest_checked(fx, g, c, r, st.inv, original,
                                   [&](std::size_t n) { return filled[n] < fx; });
     };
-    for (std::size_t p = 0; p < g.size(); ++p) {
-        if (!(raised_flags[p] & bit)) continue;
-        const int c = int(p % std::size_t(g.cols)), r = int(p / std::size_t(g.cols));
-        for (int k = 0; k < 8; ++k) {
-            const int nc = c + d8_dc[k], nr = r + d8_dr[k];
-            if (nc >= 0 && nr >= 0 && nc < g.cols && nr < g.rows) reaim(nc, nr);
+    for (int r = 0; r < g.rows; ++r)
+        for (int c = 0; c < g.cols; ++c) {
+            if (!(raised_flags[std::size_t(r) * g.cols + c] & bit)) continue;
+            for (int k = 0; k < 8; ++k) {
+                const int nc = c + d8_dc[k], nr = r + d8_dr[k];
+                if (nc >= 0 && nr >= 0 && nc < g.cols && nr < g.rows) reaim(nc, nr);
+            }
         }
-    }
 }
 
 int d8_inflow_count(const std::vector<std::uint8_t>& dir, const GridShape& g, int c, int r) {

@@ -1,5 +1,7 @@
 #include "drainage/flat_resolution.hpp"
 
+#include "drainage/priority_flood.hpp"
+
 #include <climits>
 
 namespace penink {
@@ -16,8 +18,7 @@ struct Flats {
     std::vector<std::uint32_t> low, high;
 
     bool flat(std::uint32_t i) const {
-        return g.valid[i] && dir[i] == 0 &&
-               !is_boundary_cell(g, int(i % std::uint32_t(g.cols)), int(i / std::uint32_t(g.cols)));
+        return dir[i] == 0 && g.valid[i] && !(flags[i] & fill_boundary);
     }
     // Valid neighbours of any cell (bounds checked: low edges may lie on the border).
     template <class F> void around(std::uint32_t i, F&& f) const {
@@ -51,7 +52,7 @@ void find_edges(Flats& s) {
 }
 
 // Breadth-first levels 1, 2, ... from `level` over flat cells of the same elevation not yet
-// marked with `bit`; visit(cell, level) is called once per cell.
+// marked with `bit` (seeds are flat cells); visit(cell, level) is called once per cell.
 template <class Visit>
 void bfs_levels(Flats& s, std::vector<std::uint32_t> level, std::uint8_t bit, Visit&& visit) {
     std::vector<std::uint32_t> next;
@@ -60,7 +61,7 @@ void bfs_levels(Flats& s, std::vector<std::uint32_t> level, std::uint8_t bit, Vi
         next.clear();
         for (std::uint32_t c : level) {
             visit(c, loops);
-            s.around(c, [&](std::uint32_t n, int) {
+            s.around_flat(c, [&](std::uint32_t n, int) {
                 if (!(s.flags[n] & bit) && s.z[n] == s.z[c] && s.flat(n))
                     s.flags[n] |= bit, next.push_back(n);
             });
@@ -93,14 +94,17 @@ std::pair<std::size_t, std::size_t> towards_lower(Flats& s) {
     for (std::uint32_t c : level) s.flags[c] |= flat_seen_low, s.mask[c] = INT32_MIN;
     for (std::int32_t loops = 2; !level.empty(); ++loops) {
         next.clear();
-        for (std::uint32_t c : level)
-            s.around(c, [&](std::uint32_t n, int) {
-                if ((s.flags[n] & flat_seen_low) || s.z[n] != s.z[c] || !s.flat(n)) return;
-                s.flags[n] |= flat_seen_low, next.push_back(n);
-                const bool high = s.flags[n] & flat_seen_high;
-                seen_high += high;
-                s.mask[n] = 2 * loops - (high ? s.mask[n] : 0);
-            });
+        auto reach = [&](std::uint32_t c, std::uint32_t n) {
+            if ((s.flags[n] & flat_seen_low) || s.z[n] != s.z[c] || !s.flat(n)) return;
+            s.flags[n] |= flat_seen_low, next.push_back(n);
+            const bool high = s.flags[n] & flat_seen_high;
+            seen_high += high;
+            s.mask[n] = 2 * loops - (high ? s.mask[n] : 0);
+        };
+        for (std::uint32_t c : level) {  // low edges may lie on the border, flat cells never
+            if (loops == 2) s.around(c, [&](std::uint32_t n, int) { reach(c, n); });
+            else s.around_flat(c, [&](std::uint32_t n, int) { reach(c, n); });
+        }
         if (loops > 2) settle(level);  // level loops-1: every neighbour's mask is set now
         std::swap(level, next);
     }

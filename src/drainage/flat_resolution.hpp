@@ -16,12 +16,13 @@
 
 namespace penink {
 
-// Bits of `flags` used (and cleared again) by resolve_flats; bits 0..1 belong to the fill.
+// Bits of `flags` used by resolve_flats (left set); bits 0, 1 and 4 belong to the fill.
 inline constexpr std::uint8_t flat_seen_high = 4, flat_seen_low = 8;
 
 // Gives every flat interior cell of `dir` (valid, code 0, not a boundary cell) a D8 code, on the
 // filled elevations `z`. `mask` is a scratch buffer (resized to cols*rows; pass the one that later
-// holds basins to save memory), `flags` the fill's per-cell state (bits 2..3 used, restored).
+// holds basins to save memory), `flags` the fill's per-cell state
+// (priority_flood.hpp: fill_boundary marks the boundary cells; bits 2..3 are set here).
 // Returns the number of flat cells that stay without a direction (0 on a filled surface).
 std::size_t resolve_flats(const std::vector<float>& z, const GridShape& g,
                           std::vector<std::uint8_t>& dir, std::vector<std::uint8_t>& flags,

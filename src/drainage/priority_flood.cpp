@@ -26,7 +26,9 @@ struct Flood {
     std::uint32_t* orig;
     std::ptrdiff_t off[8];
     std::priority_queue<Open, std::vector<Open>, Later> open;
-    std::vector<std::uint32_t> pit, trace;  // stacks: any order is correct within a level
+    std::vector<std::uint32_t> pit;     // a stack: any order is correct within a level
+    std::queue<std::uint32_t> trace;    // FIFO: climbing breadth-first from the spill reaches a
+                                        // cell's lower neighbours first, keeping it off the queue
     FillStats stats;
 
     bool on_border(std::uint32_t i) const {
@@ -36,13 +38,13 @@ struct Flood {
     void push_open(std::uint32_t i) { open.push({z[i], i}), ++stats.queued; }
     void seed(std::uint32_t i) {
         if (flags[i]) return;
-        flags[i] = fill_closed;
+        flags[i] = fill_closed | fill_boundary;
         push_open(i);
     }
     // Closes open neighbour n of a cell at level h: raised to h into the pit stack, or traced.
     void close_from(std::uint32_t n, float h) {
         flags[n] = fill_closed;
-        if (z[n] > h) return trace.push_back(n);
+        if (z[n] > h) return trace.push(n);
         if (z[n] < h) {
             orig[n] = std::bit_cast<std::uint32_t>(z[n]);
             z[n] = h, flags[n] |= fill_raised, ++stats.raised;
@@ -69,17 +71,17 @@ struct Flood {
     }
     // A traced cell (filled = own z, never on the border): its higher-or-equal open neighbours
     // keep their own z whatever happens later, so they are closed and traced at once; an open
-    // lower neighbour could still be reached lower elsewhere, so the cell waits in the queue.
+    // lower neighbour could still be reached lower elsewhere, so the cell also waits in the queue.
     void climb(std::uint32_t i) {
         const float h = z[i];
+        bool lower = false;
         for (int k = 0; k < 8; ++k) {
             const std::uint32_t n = std::uint32_t(std::ptrdiff_t(i) + off[k]);
-            if (!flags[n] && z[n] < h) return push_open(i);
+            if (flags[n]) continue;
+            if (z[n] < h) lower = true;
+            else flags[n] = fill_closed, trace.push(n);
         }
-        for (int k = 0; k < 8; ++k) {
-            const std::uint32_t n = std::uint32_t(std::ptrdiff_t(i) + off[k]);
-            if (!flags[n]) flags[n] = fill_closed, trace.push_back(n);
-        }
+        if (lower) push_open(i);
     }
 };
 
@@ -118,8 +120,8 @@ FillStats priority_flood_fill(std::vector<float>& z, const GridShape& g,
             f.pit.pop_back();
             f.spill(i, false);
         } else if (!f.trace.empty()) {
-            const std::uint32_t i = f.trace.back();
-            f.trace.pop_back();
+            const std::uint32_t i = f.trace.front();
+            f.trace.pop();
             f.climb(i);
         } else if (!f.open.empty()) {
             const std::uint32_t i = f.open.top().i;

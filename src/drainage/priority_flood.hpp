@@ -15,9 +15,10 @@
 
 namespace penink {
 
-// Bits of the per-cell fill state (`flags`); bits 2..7 are free for later stages.
+// Bits of the per-cell fill state (`flags`); bits 2, 3 and 5..7 are free for later stages.
 inline constexpr std::uint8_t fill_closed = 1;  // filled elevation known (or nodata)
 inline constexpr std::uint8_t fill_raised = 2;  // the fill raised the cell (filled > original)
+inline constexpr std::uint8_t fill_boundary = 16;  // a seed: valid boundary cell (d8.hpp)
 
 struct FillStats {
     std::size_t raised = 0;  // cells raised into depressions
@@ -25,7 +26,7 @@ struct FillStats {
 };
 
 // Fills `z` (cols*rows, row-major, local metres) in place. `flags` is resized to cols*rows and
-// set to fill_closed (| fill_raised where raised); for every raised cell i, orig_bits[i] receives
+// set to fill_closed (| fill_raised where raised, | fill_boundary on seeds); for every raised cell i, orig_bits[i] receives
 // std::bit_cast<uint32_t>(original z) (a uint32 buffer so the build can lend it the accumulation
 // array; resized to cols*rows, other entries left as they are).
 FillStats priority_flood_fill(std::vector<float>& z, const GridShape& g,

@@ -72,7 +72,10 @@ TEST(FlatsAndPits, PriorityFloodRaisesToTheSpillLevel) {
     std::vector<std::uint32_t> orig;
     const FillStats st = priority_flood_fill(g.z, {5, 5, g.valid.data()}, flags, orig);
     EXPECT_EQ(st.raised, 1u);
-    for (int i = 0; i < 25; ++i) EXPECT_EQ(flags[i], i == 12 ? 3 : 1) << i;
+    for (int i = 0; i < 25; ++i) {
+        const bool border = i < 5 || i >= 20 || i % 5 == 0 || i % 5 == 4;
+        EXPECT_EQ(flags[i], i == 12 ? 3 : border ? 1 | fill_boundary : 1) << i;
+    }
     EXPECT_FLOAT_EQ(std::bit_cast<float>(orig[12]), 1.0f);
     EXPECT_FLOAT_EQ(g.z[12], 3.0f);
     EXPECT_FLOAT_EQ(g.z[2], 2.0f);

@@ -1,0 +1,130 @@
+// The Zhou et al. (2016) Priority-Flood variant gives exactly the filled surface of the textbook
+// Priority-Flood (Barnes et al. 2014, Alg. 1) on random grids with pits, flats and nodata, keeps
+// slope cells out of the priority queue, and D8 next to a depression aims into it (the unfilled
+// DEM's steepest descent, as GRASS r.watershed) without creating cycles.
+#include <bit>
+#include <cstdint>
+#include <queue>
+
+#include <gtest/gtest.h>
+
+#include "drainage/drainage_build.hpp"
+#include "drainage/priority_flood.hpp"
+
+namespace penink {
+namespace {
+
+std::uint64_t splitmix64(std::uint64_t& s) {
+    std::uint64_t x = (s += 0x9e3779b97f4a7c15ull);
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+    return x ^ (x >> 31);
+}
+
+// Reference: every cell through one priority queue, filled = max(own z, level it was reached at).
+std::vector<float> reference_fill(std::vector<float> z, const GridShape& g) {
+    using Node = std::pair<float, std::uint32_t>;
+    std::priority_queue<Node, std::vector<Node>, std::greater<Node>> open;
+    std::vector<std::uint8_t> closed(g.size(), 0);
+    for (int r = 0; r < g.rows; ++r)
+        for (int c = 0; c < g.cols; ++c) {
+            const std::uint32_t i = std::uint32_t(r * g.cols + c);
+            if (g.valid[i] && is_boundary_cell(g, c, r)) closed[i] = 1, open.push({z[i], i});
+        }
+    while (!open.empty()) {
+        const auto [h, i] = open.top();
+        open.pop();
+        for (int k = 0; k < 8; ++k) {
+            const int nc = int(i) % g.cols + d8_dc[k], nr = int(i) / g.cols + d8_dr[k];
+            if (nc < 0 || nr < 0 || nc >= g.cols || nr >= g.rows) continue;
+            const std::uint32_t n = std::uint32_t(nr * g.cols + nc);
+            if (closed[n] || !g.valid[n]) continue;
+            closed[n] = 1;
+            z[n] = std::max(z[n], h);
+            open.push({z[n], n});
+        }
+    }
+    return z;
+}
+
+// Random grid: white noise (many pits) quantised to 4 levels plus a gentle slope (flats), with
+// random nodata cells.
+DrainageGrid random_grid(int cols, int rows, std::uint64_t seed, int nodata_per_mille) {
+    std::vector<float> z(std::size_t(cols) * rows);
+    std::vector<std::uint8_t> valid(z.size(), 1);
+    for (std::size_t i = 0; i < z.size(); ++i) {
+        const std::uint64_t b = splitmix64(seed);
+        z[i] = float(b & 3) + 0.5f * float((i % cols) / 7);
+        valid[i] = int((b >> 8) % 1000) >= nodata_per_mille;
+    }
+    return make_regular_grid(cols, rows, 1.0, z, valid);
+}
+
+TEST(PriorityFlood, EqualsTheTextbookFillOnRandomGrids) {
+    for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+        DrainageGrid g = random_grid(40 + int(seed) * 3, 31 + int(seed), seed, seed % 3 ? 50 : 0);
+        const GridShape s{g.cols, g.rows, g.valid.data()};
+        const std::vector<float> original = g.z;
+        const std::vector<float> expected = reference_fill(g.z, s);
+        std::vector<std::uint8_t> flags;
+        std::vector<std::uint32_t> orig;
+        const FillStats st = priority_flood_fill(g.z, s, flags, orig);
+        std::size_t raised = 0;
+        for (std::size_t i = 0; i < g.size(); ++i) {
+            if (!g.valid[i]) continue;
+            ASSERT_EQ(g.z[i], expected[i]) << "seed " << seed << " cell " << i;
+            ASSERT_EQ(bool(flags[i] & fill_raised), expected[i] > original[i]);
+            if (!(flags[i] & fill_raised)) continue;
+            ++raised;
+            ASSERT_EQ(std::bit_cast<float>(orig[i]), original[i]);
+        }
+        EXPECT_GT(raised, 0u);
+        EXPECT_EQ(st.raised, raised);
+        restore_raised(g.z, flags, orig);
+        EXPECT_EQ(g.z, original);
+    }
+}
+
+TEST(PriorityFlood, SlopeCellsBypassThePriorityQueue) {
+    // A plane rising to the north-east: only the border seeds go through the queue.
+    const int n = 100;
+    std::vector<float> z(n * n);
+    for (int r = 0; r < n; ++r)
+        for (int c = 0; c < n; ++c) z[r * n + c] = float(c + (n - r));
+    DrainageGrid g = make_regular_grid(n, n, 1.0, z);
+    std::vector<std::uint8_t> flags;
+    std::vector<std::uint32_t> orig;
+    const FillStats st = priority_flood_fill(g.z, {n, n, g.valid.data()}, flags, orig);
+    EXPECT_EQ(st.raised, 0u);
+    EXPECT_LE(st.queued, std::size_t(4 * n));
+    EXPECT_EQ(g.z, z);
+}
+
+TEST(PriorityFlood, RimCellsDrainIntoTheDepressionSpillCellsDoNot) {
+    // 7x7, walls 20 except the outlet (3,0) = 0; a channel (3,1) = 1, (3,2) = 2 leads to a pit
+    // (3,3) = -10 that fills to 2 (its spill is (3,2)). Cell (2,4) = 3 with (2,3) = 2.2: on the
+    // filled surface west (drop 0.8) beats south-west (1 / sqrt 2); on the unfilled DEM, as in
+    // GRASS r.watershed, south-west into the pit is steepest. The spill cell (3,2) must keep
+    // draining west, not back into the pit (which would close a cycle).
+    const int n = 7;
+    std::vector<float> z(n * n, 20.0f);
+    for (int r = 1; r < n - 1; ++r)
+        for (int c = 1; c < n - 1; ++c) z[r * n + c] = 10.0f;
+    z[3 * n + 0] = 0.0f, z[3 * n + 1] = 1.0f, z[3 * n + 2] = 2.0f, z[3 * n + 3] = -10.0f;
+    z[2 * n + 4] = 3.0f, z[2 * n + 3] = 2.2f;
+    DrainageGrid g = make_regular_grid(n, n, 1.0, z);
+    DrainageResult res = compute_drainage(g);
+    EXPECT_EQ(g.z, z);
+    EXPECT_EQ(res.stats.filled, 1u);
+    EXPECT_EQ(res.dir[2 * n + 4], 8);   // south-west, into the pit
+    EXPECT_EQ(res.dir[2 * n + 3], 4);   // south, into the pit
+    EXPECT_EQ(res.dir[3 * n + 2], 16);  // the spill drains west
+    EXPECT_EQ(res.dir[3 * n + 3], 16);  // the pit (a one-cell flat) drains to its spill
+    std::uint64_t total = 0;  // acyclic: everything reaches an outlet
+    for (std::uint32_t o : res.net.outlet) total += res.net.acc[o];
+    EXPECT_EQ(total, std::uint64_t(n) * n);
+    EXPECT_EQ(res.stats.unresolved_flats, 0u);
+}
+
+}  // namespace
+}  // namespace penink
