@@ -109,6 +109,7 @@ Scene parse_scene_file(const std::string& path) {
         read_number(root.at("silhouettes"), "min_gap", gap, path, "silhouettes");
         s.silhouette_min_gap = float(gap);
         read_key(root.at("silhouettes"), "separate_passes", s.separate_passes, path, "silhouettes");
+        read_key(root.at("silhouettes"), "method", s.silhouette_method, path, "silhouettes");
     }
     read_crease(root, "creases", s.creases, path);
     read_crease(root, "ridges", s.ridges, path);
@@ -150,6 +151,10 @@ void validate_scene(const Scene& s) {
         throw Error("scene", f, "tessellation max_level must be between 1 and 64");
     if (!(s.tess_target_edge_px > 0.0f))
         throw Error("scene", f, "tessellation target_edge_px must be > 0");
+    if (s.silhouette_method != "toward-away" && s.silhouette_method != "adjacency" &&
+        s.silhouette_method != "object-space")
+        throw Error("scene", f, "[silhouettes] method must be \"toward-away\", \"adjacency\" or \"object-space\" (got \"" +
+                                    s.silhouette_method + "\")");
     if (s.camera.position.has_value() != s.camera.elevation.has_value())
         throw Error("scene", f, "camera position and elevation go together (give both or neither)");
 }

@@ -53,6 +53,7 @@ struct Scene {
     int tess_max_level = 8;
     float tess_target_edge_px = 6.0f;
     float silhouette_min_gap = 0.0f;
+    std::string silhouette_method = "toward-away";  // "toward-away" | "adjacency" | "object-space"
     bool separate_passes = false;
     CreaseParams creases;
     CreaseParams ridges = ridge_defaults();

@@ -67,6 +67,9 @@ FrameOptions frame_options(const Scene& scene) {
     options.tessellation.target_edge_px = scene.tess_target_edge_px;
     options.separate_passes = scene.separate_passes;
     options.silhouette_min_gap = scene.silhouette_min_gap;
+    options.silhouette_method = scene.silhouette_method == "adjacency"      ? SilhouetteMethod::adjacency
+                                : scene.silhouette_method == "object-space" ? SilhouetteMethod::object_space
+                                                                            : SilhouetteMethod::toward_away;
     return options;
 }
 }  // namespace
