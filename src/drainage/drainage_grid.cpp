@@ -116,6 +116,11 @@ DrainageGrid resample_pn(const Terrain& t, int factor) {
     for (std::size_t i = 0; i < t.size(); ++i) g.coarse_xy[i] = glm::vec2(t.pos[i]);
     mean_spacing(t, g.dx, g.dy);
     g.dx /= factor, g.dy /= factor;
+    if (factor == 1) {  // the PN patch interpolates its corners: the nodes themselves
+        g.valid = t.valid;
+        for (std::size_t i = 0; i < t.size(); ++i) g.z[i] = t.valid[i] ? t.pos[i].z : 0.0f;
+        return g;
+    }
     const SurfaceMesh mesh = mesh_from_terrain(t);
     for (int R = 0; R + 1 < t.rows; ++R)
         for (int C = 0; C + 1 < t.cols; ++C) resample_cell(t, mesh, C, R, g);
