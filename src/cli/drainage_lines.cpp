@@ -1,6 +1,9 @@
 #include "cli/drainage_lines.hpp"
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <unordered_map>
 
 #include "drainage/stems.hpp"
 #include "lines/polyline_smoothing.hpp"
@@ -11,8 +14,31 @@ namespace penink {
 
 namespace {
 
-// Lays the polylines (vertex index lists) out contiguously, smooths them, drapes them on the PN
-// surface and uploads them to a DM pass.
+std::uint64_t xy_key(const glm::vec3& p) {
+    return (std::uint64_t(std::bit_cast<std::uint32_t>(p.x)) << 32) | std::bit_cast<std::uint32_t>(p.y);
+}
+
+// A line ending where another passes through (a tributary at its junction with the main stem)
+// keeps its end point fixed while smoothing moves the other line's junction vertex: the end
+// follows that vertex so the two stay joined. `before` holds the positions before smoothing.
+void rejoin_line_ends(const std::vector<glm::vec3>& before, const std::vector<VertexRun>& runs,
+                      std::vector<glm::vec3>& positions) {
+    std::unordered_map<std::uint64_t, std::uint32_t> interior;
+    for (const VertexRun& r : runs)
+        for (std::uint32_t k = 1; k + 1 < r.count; ++k) interior.emplace(xy_key(before[r.first + k]), r.first + k);
+    for (const VertexRun& r : runs) {
+        if (r.count < 2) continue;
+        for (const std::uint32_t end : {r.first, r.first + r.count - 1}) {
+            const auto it = interior.find(xy_key(before[end]));
+            if (it == interior.end()) continue;
+            positions[end].x = positions[it->second].x;
+            positions[end].y = positions[it->second].y;
+        }
+    }
+}
+
+// Lays the polylines (vertex index lists) out contiguously, smooths them (line ends that meet
+// another line's interior follow it), drapes them on the PN surface and uploads them to a DM pass.
 ScoredLineSet make_line_set(const GlApi& gl, const std::vector<DvVertex>& vertices,
                             const std::vector<std::vector<std::uint32_t>>& lines,
                             const TerrainLocator& locator, int smoothing) {
@@ -25,7 +51,9 @@ ScoredLineSet make_line_set(const GlApi& gl, const std::vector<DvVertex>& vertic
             flow.push_back(vertices[i].flow);
         }
     }
+    const std::vector<glm::vec3> before = set.positions;
     smooth_runs_xy(set.positions, set.runs, smoothing);
+    rejoin_line_ends(before, set.runs, set.positions);
     std::vector<DmVertex> dm(set.positions.size());
     for (std::size_t i = 0; i < dm.size(); ++i) {
         glm::vec3& p = set.positions[i];

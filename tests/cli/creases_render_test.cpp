@@ -22,6 +22,7 @@
 #include "drainage/drainage_build.hpp"
 #include "drainage/stems.hpp"
 #include "input/dem_reader.hpp"
+#include "input/synthetic_terrain.hpp"
 #include "surface/surface_mesh.hpp"
 
 using namespace penink;
@@ -249,6 +250,65 @@ TEST(CreasesRender, RidgesAndCreasesSwitchIndependently) {
         if (std::isfinite(v)) far = std::max(far, v);
     EXPECT_EQ(D, far);
     EXPECT_GT(D, 0.0f);
+}
+
+namespace {
+
+// Branch from `from` in `steps` 10 m steps of `dir` (order, downstream as given).
+void add_branch(DrainageDb& db, glm::vec2 from, glm::vec2 dir, int steps, std::uint8_t order, std::int32_t down) {
+    DvBranch b;
+    b.first = std::uint32_t(db.vertices.size()), b.count = std::uint32_t(steps + 1);
+    b.order = order, b.downstream = down, b.basin = 1;
+    for (int k = 0; k <= steps; ++k) {
+        const glm::vec2 p = from + dir * (10.0f * k);
+        db.vertices.push_back({p.x, p.y, 0.0f, 0.1f * float(k + 1), 1, order});
+    }
+    db.branches.push_back(b);
+}
+
+}  // namespace
+
+TEST(CreasesRender, TributaryStaysJoinedToSmoothedMainStem) {
+    // Flat ground; A (order 2) comes from the west to J = (0, 0) and turns south as C; B (order 1)
+    // comes from the north and ends at J. Smoothing rounds the main stem's corner at J.
+    DrainageDb db;
+    add_branch(db, {-50, 0}, {1, 0}, 5, 2, 2);   // A
+    add_branch(db, {0, 50}, {0, -1}, 5, 1, 2);   // B
+    add_branch(db, {0, 0}, {0, -1}, 5, 2, -1);   // C
+    db.upstream = {0, 1};
+    db.branches[2].up_first = 0, db.branches[2].up_count = 2;
+    db.branches[0].up_first = db.branches[1].up_first = 0;
+    const SurfaceMesh mesh = mesh_from_terrain(terrain_from_function(21, 21, 10.0, [](double, double) { return 0.0; }));
+    Camera cam;  // 200 m above the origin, straight down, 1 px per metre: (x, y) -> (200 + x, 200 - y)
+    cam.eye = {0.0, 0.0, 200.0};
+    cam.azimuth = 0.0, cam.altitude = -90.0, cam.fov = 90.0, cam.width = 400, cam.height = 400;
+    cam.near_plane = 1.0, cam.far_plane = 1000.0;
+    GlContext& ctx = test_context();
+    TerrainRenderer renderer(ctx.gl(), mesh, cam.width, cam.height);
+    const FrameImages img = renderer.render(cam, {});
+    DrainageLines lines(ctx.gl(), db, mesh);
+    Scene s;
+    s.creases.min_score = -10.0, s.creases.distance_attenuation = 0.0, s.creases.spacing_px = 0.0;
+    s.ridges.enabled = false;
+    Drawing d;
+    PassTimings t;
+    lines.draw(cam, s, renderer.surface_pass().toward_texture(), max_visible_distance(img.toward), d, t);
+    const std::vector<Stroke>& st = d.layer(LayerKind::creases).strokes;
+    ASSERT_EQ(st.size(), 2u);
+    const Stroke& main = st[0].points.size() == 11 ? st[0] : st[1];
+    const Stroke& trib = st[0].points.size() == 11 ? st[1] : st[0];
+    ASSERT_EQ(main.points.size(), 11u);  // A + C, J once
+    ASSERT_EQ(trib.points.size(), 6u);
+    EXPECT_NEAR(main.points.front().x, 150.0f, 1e-3);  // sources and outlet stay put
+    EXPECT_NEAR(main.points.back().y, 250.0f, 1e-3);
+    EXPECT_NEAR(trib.points.front().y, 150.0f, 1e-3);
+    // The corner moved inside the bend (towards south-west: +y down, -x) by metres...
+    const glm::vec2 j = main.points[5];
+    EXPECT_LT(j.x, 199.0f);
+    EXPECT_GT(j.y, 201.0f);
+    // ...and the tributary's end went with it.
+    EXPECT_NEAR(trib.points.back().x, j.x, 1e-3);
+    EXPECT_NEAR(trib.points.back().y, j.y, 1e-3);
 }
 
 TEST(CreasesRender, DisabledCreasesLeaveAnEmptyLayer) {
