@@ -15,6 +15,7 @@ uniform mat4 u_view_proj;
 uniform vec2 u_viewport;     // pixels
 uniform float u_target_px;   // wanted tessellated edge length, pixels
 uniform float u_max_level;
+uniform int u_no_cull;       // 1: keep every patch (bench: culling off); unset = 0 = cull
 
 float edge_level(vec4 a, vec4 b) {
     if (a.w <= 0.0 || b.w <= 0.0) return u_max_level;
@@ -32,7 +33,7 @@ void main() {
     pn_n = n;
     vec4 c[10];
     for (int i = 0; i < 10; ++i) c[i] = u_view_proj * vec4(b[i], 1.0);
-    if (outside_frustum(c)) {
+    if (u_no_cull == 0 && outside_frustum(c)) {
         gl_TessLevelOuter[0] = gl_TessLevelOuter[1] = gl_TessLevelOuter[2] = 0.0;
         gl_TessLevelInner[0] = 0.0;
         return;

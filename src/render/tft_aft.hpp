@@ -13,6 +13,7 @@ namespace penink {
 struct TessellationOptions {
     float target_edge_px = 8.0f;  // tessellate until edges are about this long on screen
     int max_level = 16;           // 1 = flat triangles (no refinement)
+    bool cull_patches = true;     // skip patches whose control hull is outside the frustum
 };
 
 struct TftAftTimes {
