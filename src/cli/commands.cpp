@@ -5,6 +5,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/batch_command.hpp"
+#include "cli/bench_command.hpp"
 #include "cli/drainage_subcommand.hpp"
 #include "cli/render_command.hpp"
 #include "core/error.hpp"
@@ -17,6 +19,8 @@ std::vector<Subcommand> register_subcommands(CLI::App& app) {
     std::vector<Subcommand> subs;
     subs.push_back(add_render_command(app));
     subs.push_back(add_drainage_command(app));
+    subs.push_back(add_bench_command(app));
+    subs.push_back(add_batch_command(app));
     // One line per subcommand (keep this list in this order): render, drainage, bench, batch.
     return subs;
 }

@@ -1,0 +1,312 @@
+#include "cli/batch_command.hpp"
+
+#include <chrono>
+#include <iostream>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+
+#include "cli/progress_bar.hpp"
+#include "cli/terrain_drawing.hpp"
+#include "cli/terrain_view.hpp"
+#include "core/error.hpp"
+#include "export/atomic_file.hpp"
+#include "export/export_drawing.hpp"
+#include "export/styled_drawing.hpp"
+#include "input/dem_reader.hpp"
+#include "input/scene_position.hpp"
+#include "input/terrain_window.hpp"
+#include "lines/finish_drawing.hpp"
+
+namespace penink {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+// The "what" of an error from another stage, re-reported against the CSV line.
+std::string error_what(const Error& e) {
+    const std::string prefix = format_error(e.stage(), e.file(), "");
+    const std::string msg = e.what();
+    return msg.rfind(prefix, 0) == 0 ? msg.substr(prefix.size()) : msg;
+}
+
+FinishOptions finish_options(const Style& style, std::uint64_t seed) {  // as penink render
+    FinishOptions f;
+    f.seed = seed;
+    f.near = float(style.near), f.far = float(style.far);
+    for (LayerKind k : all_layers) {
+        const LayerStyle& ls = style.layer(k);
+        LayerFinish& lf = f.layer(k);
+        lf.sketch = float(ls.sketch), lf.overshoot = float(ls.overshoot);
+        lf.repeat = ls.repeat, lf.keep_far = float(ls.keep_far);
+    }
+    return f;
+}
+
+Style export_style(Style style) {  // finish_drawing has applied these already
+    for (LayerStyle& ls : style.layers) ls.overshoot = 0.0, ls.repeat = 1, ls.keep_far = 1.0;
+    return style;
+}
+
+std::vector<std::string> parse_formats(const std::string& text) {
+    std::vector<std::string> out;
+    std::stringstream s(text);
+    for (std::string f; std::getline(s, f, ',');) {
+        if (f != "png" && f != "svg" && f != "ps" && f != "eps" && f != "pdf")
+            throw Error("cli", "", "--formats: unknown format \"" + f + "\" (use png, svg, ps, eps, pdf)");
+        out.push_back(f);
+    }
+    if (out.empty()) throw Error("cli", "", "--formats: no format given");
+    return out;
+}
+
+Scene batch_scene(const BatchOptions& o) {
+    Scene scene = load_scene(o.input);
+    if (o.width != BatchOptions::unset) scene.camera.width = o.width;
+    if (o.height != BatchOptions::unset) scene.camera.height = o.height;
+    if (o.seed >= 0) scene.seed = std::uint64_t(o.seed);
+    if (!o.style.empty()) scene.style = o.style;
+    validate_scene(scene);
+    if (is_mesh_scene(scene)) throw Error("batch", o.input, "batch draws terrains (a DEM or a scene with [terrain])");
+    return scene;
+}
+
+void write_text(const fs::path& p, const std::string& text) { write_file_atomically(p.string(), text); }
+
+}  // namespace
+
+Camera flight_camera(const Scene& scene, const Terrain& dem, const FlightRecord& r, const std::string& csv) {
+    Camera cam;
+    glm::dvec2 xy;
+    try {
+        xy = parse_scene_position(r.position, dem, csv);
+    } catch (const Error& e) {
+        throw Error("batch", csv, "line " + std::to_string(r.line) + ": " + error_what(e));
+    }
+    cam.eye = {xy.x, xy.y, r.elevation * scene.vertical_exaggeration};
+    cam.azimuth = r.azimuth, cam.altitude = r.altitude, cam.fov = scene.camera.fov;
+    cam.width = scene.camera.width, cam.height = scene.camera.height;
+    double ground = 0.0;
+    if (ground_height(dem, xy.x, xy.y, ground) && cam.eye.z <= ground) {
+        std::ostringstream m;
+        m << "line " << r.line << ": camera is inside the terrain (elevation " << r.elevation << " m, ground "
+          << ground / scene.vertical_exaggeration << " m)";
+        throw Error("batch", csv, m.str());
+    }
+    return cam;
+}
+
+Scene frame_scene(const Scene& scene, const FlightRecord& r) {
+    Scene s = scene;
+    if (r.light_azimuth) s.light.azimuth = *r.light_azimuth;
+    if (r.light_altitude) s.light.altitude = *r.light_altitude;
+    if (r.min_score) s.creases.min_score = *r.min_score;
+    return s;
+}
+
+namespace {
+bool window_empty(const GridWindow& w) { return w.cols() < 2 || w.rows() < 2; }
+
+GridWindow window_union(const std::vector<GridWindow>& windows) {
+    GridWindow u;
+    bool any = false;
+    for (const GridWindow& w : windows) {
+        if (window_empty(w)) continue;
+        if (!any) u = w, any = true;
+        u.c0 = std::min(u.c0, w.c0), u.r0 = std::min(u.r0, w.r0);
+        u.c1 = std::max(u.c1, w.c1), u.r1 = std::max(u.r1, w.r1);
+    }
+    return u;
+}
+}  // namespace
+
+GridWindow union_window(const Terrain& dem, const std::vector<Camera>& cameras) {
+    std::vector<GridWindow> windows;
+    for (const Camera& c : cameras) windows.push_back(visible_window(dem, view_projection(c), 1));
+    return window_union(windows);
+}
+
+double export_frame(Drawing& drawing, const Style& style, std::uint64_t seed, const std::vector<std::string>& paths) {
+    const auto t0 = Clock::now();
+    finish_drawing(drawing, finish_options(style, seed));
+    const StyledDrawing styled = style_drawing(drawing, export_style(style), seed, LayerSplit::kind);
+    for (const std::string& p : paths) export_drawing(styled, PageOptions{}, p);
+    return ms_since(t0);
+}
+
+std::string timings_csv(const std::vector<FrameTiming>& frames) {
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(3);
+    s << "frame,warmup,tft,aft,dm,sil,ridges,lay,readback,trace,total\n";
+    for (const FrameTiming& f : frames) {
+        const PassTimings& t = f.times;
+        s << f.frame << "," << (f.warmup ? 1 : 0) << "," << t.tft << "," << t.aft << "," << t.dm << "," << t.sil
+          << "," << t.ridges << "," << f.lay << "," << t.readback << "," << f.trace << "," << f.total << "\n";
+    }
+    return s.str();
+}
+
+namespace {
+
+void table_row(std::ostream& s, const std::string& name, const std::vector<FrameTiming>& frames, bool warmup,
+               double wall_s) {
+    FrameTiming m;
+    int n = 0;
+    for (const FrameTiming& f : frames) {
+        if (f.warmup != warmup) continue;
+        ++n;
+        m.times.tft += f.times.tft, m.times.aft += f.times.aft, m.times.dm += f.times.dm;
+        m.times.sil += f.times.sil, m.times.ridges += f.times.ridges, m.times.readback += f.times.readback;
+        m.lay += f.lay, m.trace += f.trace, m.total += f.total;
+    }
+    if (n == 0) return;
+    const PassTimings& t = m.times;
+    const double k = 1.0 / n;
+    s << "| " << name << " | " << n << " | " << t.tft * k << " | " << t.aft * k << " | " << t.dm * k << " | "
+      << t.sil * k << " | " << t.ridges * k << " | " << m.lay * k << " | " << t.readback * k << " | " << m.trace * k
+      << " | " << m.total * k << " | " << 1000.0 / ((t.tft + t.dm) * k) << " | "
+      << 1000.0 / ((t.tft + t.aft + t.sil) * k) << " | " << (wall_s > 0 ? n / wall_s : 0.0) << " |\n";
+}
+
+}  // namespace
+
+std::string timings_markdown(const std::vector<FrameTiming>& frames, const BatchSummary& b) {
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(1);
+    s << "# penink batch timings\n\n"
+      << "- scene: " << b.scene << ", " << b.width << "x" << b.height << " pixels\n"
+      << "- machine: " << b.machine << "\n"
+      << "- modelled: " << b.cells << " of " << b.dem_cells << " DEM cells; set-up " << std::setprecision(3)
+      << b.setup_s << " s (DEM, mesh, GPU upload, drainage)\n" << std::setprecision(1)
+      << "- mean ms per frame and pass; TFT holds the whole TFT+AFT pass when they run combined (AFT 0);"
+         " LAY = finish, style and export of the frame's files; trace = images to polylines (CPU)\n"
+      << "- CREASEfps = 1000/(TFT+DM), SILHfps = 1000/(TFT+AFT+SIL), TOTALfps = frames / wall seconds\n\n"
+      << "| frames | n | TFT | AFT | DM | SIL | RIDGES | LAY | read-back | trace | total | CREASEfps | SILHfps | TOTALfps |\n"
+      << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    table_row(s, "warm-up", frames, true, b.warmup_wall_s);
+    table_row(s, "after warm-up", frames, false, b.frames_wall_s);
+    return s.str();
+}
+
+Subcommand add_batch_command(CLI::App& app) {
+    auto options = std::make_shared<BatchOptions>();
+    BatchOptions& o = *options;
+    CLI::App* cmd = app.add_subcommand(
+        "batch",
+        "Draw one frame per record of a flight path (animation); frames DIR/frame_0001.png/.svg and timings.\n"
+        "The CSV and every camera are checked before the first frame is drawn: a bad path writes nothing.\n"
+        "Frames are written whole (atomically); a run stopped part way leaves frame_0001..k complete.");
+    cmd->add_option("input", o.input, "DEM or terrain scene file (.toml)")->required();
+    cmd->add_option("--path", o.path,
+                    "Flight path CSV with a header row. Columns: position (\"E N 18N\", \"lon,lat\" quoted, or \"x y\"), "
+                    "elevation (m), azimuth, altitude (deg); optional light_azimuth, light_altitude (deg), min_score "
+                    "(crease threshold); an empty optional cell keeps the scene's value")
+        ->required();
+    cmd->add_option("--out", o.out_dir, "Output directory (created when missing)")->required();
+    cmd->add_option("--formats", o.formats, "Comma-separated frame formats: png, svg, ps, eps, pdf (default png,svg)");
+    cmd->add_option("--warmup", o.warmup, "First N frames timed apart (shader JIT, caches); default 1")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_flag("--whole-dem", o.whole_dem, "Model the whole DEM (default: the union of the frames' visible windows)");
+    cmd->add_option("--width", o.width, "Image width in pixels (overrides the scene)");
+    cmd->add_option("--height", o.height, "Image height in pixels (overrides the scene)");
+    cmd->add_option("--style", o.style, "Style name (technical, field-sketch) or a style .toml file");
+    cmd->add_option("--seed", o.seed, "Seed of the sketchy perturbation");
+    cmd->add_option("--gl", o.gl, "OpenGL backend: osmesa (software, default) or egl (GPU)")
+        ->check(CLI::IsMember({"osmesa", "egl"}));
+    cmd->add_flag("-v,--verbose", o.verbose, "Print the modelled cells and set-up steps");
+    return {cmd, [options] { return run_batch(*options); }};
+}
+
+namespace {
+
+struct Flight {
+    Scene scene;
+    Style style;
+    Terrain dem, model;
+    std::vector<FlightRecord> records;
+    std::vector<Camera> cameras;
+};
+
+// Everything checked before the first frame: scene, CSV, each camera; then the modelled window.
+Flight prepare_flight(const BatchOptions& o, const Log& log) {
+    Flight f;
+    f.scene = batch_scene(o);
+    f.style = resolve_style(f.scene.style);
+    if (f.scene.style_overrides.is_table()) apply_style_overrides(f.style, f.scene.style_overrides, f.scene.file);
+    f.records = read_flight_path(o.path);
+    DemOptions dem_options;
+    dem_options.vertical_exaggeration = f.scene.vertical_exaggeration;
+    f.dem = read_dem(f.scene.dem, dem_options);
+    std::vector<GridWindow> windows;
+    for (const FlightRecord& r : f.records) {
+        f.cameras.push_back(flight_camera(f.scene, f.dem, r, o.path));
+        windows.push_back(visible_window(f.dem, view_projection(f.cameras.back()), 1));
+        if (window_empty(windows.back()))
+            throw Error("batch", o.path, "line " + std::to_string(r.line) + ": the camera sees no part of the DEM");
+    }
+    const GridWindow w = o.whole_dem ? GridWindow{0, 0, f.dem.cols, f.dem.rows} : window_union(windows);
+    f.model = crop_terrain(f.dem, w);
+    glm::dvec3 lo, hi;
+    terrain_bounds(f.model, lo, hi);
+    for (Camera& c : f.cameras) fit_depth_range(c, lo, hi);
+    log.info("modelled " + std::to_string(std::size_t(w.cols() - 1) * (w.rows() - 1)) + " of " +
+             std::to_string(std::size_t(f.dem.cols - 1) * (f.dem.rows - 1)) + " DEM cells for " +
+             std::to_string(f.records.size()) + " frames");
+    return f;
+}
+
+std::vector<std::string> frame_paths(const fs::path& dir, int frame, const std::vector<std::string>& formats) {
+    std::ostringstream name;
+    name << "frame_" << std::setw(4) << std::setfill('0') << frame;
+    std::vector<std::string> paths;
+    for (const std::string& f : formats) paths.push_back((dir / (name.str() + "." + f)).string());
+    return paths;
+}
+
+}  // namespace
+
+int run_batch(const BatchOptions& o) {
+    const auto start = Clock::now();
+    const Log log{o.verbose};
+    const std::vector<std::string> formats = parse_formats(o.formats);
+    Flight f = prepare_flight(o, log);
+    std::error_code ec;
+    fs::create_directories(o.out_dir, ec);
+    if (!fs::is_directory(o.out_dir)) throw Error("batch", o.out_dir, "cannot create the output directory");
+    const auto context = make_gl_context(parse_gl_backend(o.gl));
+    BatchSummary summary;
+    summary.machine = context->description(), summary.scene = o.input;
+    summary.width = f.scene.camera.width, summary.height = f.scene.camera.height;
+    summary.cells = std::size_t(f.model.cols - 1) * (f.model.rows - 1);
+    summary.dem_cells = std::size_t(f.dem.cols - 1) * (f.dem.rows - 1);
+    TerrainFrames frames(*context, f.scene, f.dem, f.model, summary.width, summary.height, log);
+    summary.setup_s = ms_since(start) / 1000.0;
+    std::vector<FrameTiming> timings;
+    ProgressBar bar(std::cerr, stderr_is_terminal(), "batch", int(f.records.size()));
+    for (std::size_t i = 0; i < f.records.size(); ++i) {
+        const auto t0 = Clock::now();
+        FrameTiming t;
+        t.frame = int(i) + 1, t.warmup = int(i) < o.warmup;
+        SceneDrawing d = frames.draw(f.cameras[i], frame_scene(f.scene, f.records[i]));
+        t.times = d.times, t.trace = d.trace_ms;
+        t.lay = export_frame(d.drawing, f.style, f.scene.seed, frame_paths(o.out_dir, t.frame, formats));
+        t.total = ms_since(t0);
+        (t.warmup ? summary.warmup_wall_s : summary.frames_wall_s) += t.total / 1000.0;
+        timings.push_back(t);
+        bar.step(fs::path(frame_paths(o.out_dir, t.frame, formats)[0]).stem().string(), t.total);
+    }
+    bar.finish();
+    write_text(fs::path(o.out_dir) / "timings.csv", timings_csv(timings));
+    const std::string md = timings_markdown(timings, summary);
+    write_text(fs::path(o.out_dir) / "timings.md", md);
+    std::cout << md;
+    return 0;
+}
+
+}  // namespace penink

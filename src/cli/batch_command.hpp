@@ -1,0 +1,71 @@
+// `penink batch SCENE --path path.csv --out DIR`: an animation (seed 000, section 3). The
+// terrain is read and modelled once (the union of the DEM windows every frame sees), then one
+// frame per flight-path record (cli/flight_path.hpp) is drawn, styled and finished like
+// `penink render` and written as DIR/frame_0001.png / .svg. Per-frame pass times (ms) go to
+// DIR/timings.csv and a summary in the form of the paper's Tables 1-4 to DIR/timings.md
+// (warm-up frames in their own row, outside the means).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "cli/commands.hpp"
+#include "cli/flight_path.hpp"
+#include "cli/scene_drawing.hpp"
+#include "export/style.hpp"
+#include "input/terrain.hpp"
+
+namespace penink {
+
+struct BatchOptions {
+    std::string input, path, out_dir;
+    std::string formats = "png,svg";
+    int warmup = 1;
+    bool whole_dem = false;  // model the whole DEM instead of the union of the frames' windows
+    std::string style, gl = "osmesa";
+    static constexpr int unset = -2147483647;
+    int width = unset, height = unset;
+    long long seed = -1;
+    bool verbose = false;
+};
+
+struct FrameTiming {
+    int frame = 0;         // 1-based
+    bool warmup = false;
+    PassTimings times;     // GPU passes, ms
+    double trace = 0;      // CPU: images -> polylines, ms
+    double lay = 0;        // CPU: finish, style and export of the frame's files, ms
+    double total = 0;      // wall time of the whole frame, ms
+};
+
+// The camera of one record over `dem` (its near/far fitted to `model`); errors name the CSV
+// and line: "line N: cannot parse position ...", "line N: camera is inside the terrain (...)".
+Camera flight_camera(const Scene& scene, const Terrain& dem, const FlightRecord& record, const std::string& csv);
+
+// The scene with one record's per-frame values (light; min_score sets the creases' threshold).
+Scene frame_scene(const Scene& scene, const FlightRecord& record);
+
+// The smallest window holding every camera's visible window (margin 1 node); empty when none.
+GridWindow union_window(const Terrain& dem, const std::vector<Camera>& cameras);
+
+// "frame,warmup,tft,aft,dm,sil,ridges,lay,readback,trace,total" and one row per frame.
+std::string timings_csv(const std::vector<FrameTiming>& frames);
+
+struct BatchSummary {
+    std::string machine, scene;
+    int width = 0, height = 0;
+    std::size_t cells = 0, dem_cells = 0;
+    double setup_s = 0, warmup_wall_s = 0, frames_wall_s = 0;
+};
+
+// Markdown: the run's context and one table (mean ms per pass, CREASEfps = 1000/(TFT+DM),
+// SILHfps = 1000/(TFT+AFT+SIL), TOTALfps = frames / wall s), warm-up row first.
+std::string timings_markdown(const std::vector<FrameTiming>& frames, const BatchSummary& summary);
+
+// Finishes (sketch, thinning, plotter order), styles and writes one drawing to every path, as
+// `penink render` does; returns the wall time in ms.
+double export_frame(Drawing& drawing, const Style& style, std::uint64_t seed, const std::vector<std::string>& paths);
+
+Subcommand add_batch_command(CLI::App& app);
+int run_batch(const BatchOptions& options);
+
+}  // namespace penink

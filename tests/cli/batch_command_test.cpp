@@ -1,0 +1,71 @@
+// `penink batch` end to end on volcano at a tiny size: one frame file per record and format,
+// timings.csv with the named columns and one row per frame (warm-up flagged), timings.md in the
+// table form, plain progress lines when stderr is not a terminal, and exact CSV / camera errors
+// that leave no output directory behind.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <sstream>
+
+#include "cli_support.hpp"
+
+using namespace penink::test;
+
+namespace {
+
+const std::string volcano = PENINK_SOURCE_DIR "/examples/volcano.asc";
+const std::string head = "position,elevation,azimuth,altitude,light_azimuth,light_altitude,min_score\n";
+
+std::vector<std::string> lines_of(const std::string& text) {
+    std::vector<std::string> out;
+    std::istringstream s(text);
+    for (std::string l; std::getline(s, l);) out.push_back(l);
+    return out;
+}
+
+}  // namespace
+
+TEST(BatchCommand, ThreeFramesAndTimings) {
+    const auto dir = fresh_dir("batch3");
+    write_text(dir / "path.csv", head + "\"1756568 5916728\",400,45,-20,300,40,\n"
+                                        "\"1756409 5916935\",400,60,-20,,,0.3\n"
+                                        "\"1756309 5917176\",400,75,-20,320,30,\n");
+    const RunResult r = run_penink("batch " + volcano + " --path path.csv --out frames --width 160 --height 120", dir);
+    ASSERT_EQ(r.code, 0) << r.output;
+    for (const char* f : {"frame_0001.png", "frame_0001.svg", "frame_0002.png", "frame_0002.svg", "frame_0003.png",
+                          "frame_0003.svg"})
+        EXPECT_TRUE(std::filesystem::file_size(dir / "frames" / f) > 100) << f;
+    EXPECT_EQ(file_count(dir / "frames"), 8u);  // 6 frames + timings.csv + timings.md
+    const auto csv = lines_of(read_text(dir / "frames" / "timings.csv"));
+    ASSERT_EQ(csv.size(), 4u);
+    EXPECT_EQ(csv[0], "frame,warmup,tft,aft,dm,sil,ridges,lay,readback,trace,total");
+    EXPECT_EQ(csv[1].rfind("1,1,", 0), 0u);
+    EXPECT_EQ(csv[3].rfind("3,0,", 0), 0u);
+    EXPECT_EQ(std::count(csv[2].begin(), csv[2].end(), ','), 10);
+    const std::string md = read_text(dir / "frames" / "timings.md");
+    EXPECT_NE(md.find("| warm-up | 1 |"), std::string::npos) << md;
+    EXPECT_NE(md.find("| after warm-up | 2 |"), std::string::npos) << md;
+    EXPECT_NE(md.find("CREASEfps | SILHfps | TOTALfps |"), std::string::npos);
+    // Not a terminal: one plain progress line per frame, no carriage returns.
+    EXPECT_NE(r.output.find("penink: batch: 1/3 frame_0001 "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("penink: batch: 3/3 frame_0003 "), std::string::npos);
+    EXPECT_EQ(r.output.find('\r'), std::string::npos);
+}
+
+TEST(BatchCommand, BadCsvWritesNothing) {
+    const auto dir = fresh_dir("batchbad");
+    write_text(dir / "path.csv", head + "\"1756568 5916728\",400,45,-20,,,\n\"1756409 5916935\",400,sixty,-20,,,\n");
+    RunResult r = run_penink("batch " + volcano + " --path path.csv --out frames --width 160 --height 120", dir);
+    EXPECT_EQ(r.code, 2);
+    EXPECT_EQ(r.output, "penink: batch: path.csv: line 3: azimuth: not a number (\"sixty\")\n");
+    EXPECT_FALSE(std::filesystem::exists(dir / "frames"));
+    write_text(dir / "up.csv", head + "\"1756568 5916728\",400,45,-20,,,\n\"1756568 5916728\",400,45,80,,,\n");
+    r = run_penink("batch " + volcano + " --path up.csv --out frames --width 160 --height 120", dir);
+    EXPECT_EQ(r.code, 2);
+    EXPECT_EQ(r.output, "penink: batch: up.csv: line 3: the camera sees no part of the DEM\n");
+    EXPECT_FALSE(std::filesystem::exists(dir / "frames"));
+    write_text(dir / "low.csv", head + "\"1757270 5917440\",120,45,-20,,,\n");
+    r = run_penink("batch " + volcano + " --path low.csv --out frames", dir);
+    EXPECT_EQ(r.code, 2);
+    EXPECT_EQ(r.output, "penink: batch: low.csv: line 2: camera is inside the terrain (elevation 120 m, ground 159.5 m)\n");
+}

@@ -1,0 +1,84 @@
+// `penink bench` with a tiny sweep on volcano: bench.csv has one row per (method, level) plus
+// the ten "model no more than a scene needs" rows, accuracy values in [0, 1], and the chart is an
+// SVG that rsvg-convert renders. Plus the chart writer's series from rows (unit).
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "cli/bench_command.hpp"
+#include "cli_support.hpp"
+
+using namespace penink::test;
+
+namespace {
+
+std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
+    std::vector<std::vector<std::string>> rows;
+    std::istringstream s(text);
+    for (std::string l; std::getline(s, l);) {
+        rows.emplace_back();
+        std::istringstream f(l);
+        for (std::string c; std::getline(f, c, ',');) rows.back().push_back(c);
+    }
+    return rows;
+}
+
+}  // namespace
+
+TEST(BenchCommand, TinySweepWritesCsvAndChart) {
+    const auto dir = fresh_dir("bench");
+    const RunResult r = run_penink("bench " PENINK_SOURCE_DIR "/examples/volcano.asc --out out --levels 1,2 "
+                                   "--sizes 120x90 --methods toward-away,adjacency --frames 1 --warmup 0 "
+                                   "--needs-size 120x90",
+                                   dir);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto rows = csv_rows(read_text(dir / "out" / "bench.csv"));
+    ASSERT_EQ(rows.size(), 1u + 4u + 10u);
+    EXPECT_EQ(rows[0][0], "group");
+    EXPECT_EQ(rows[0].size(), 21u);
+    EXPECT_EQ(rows[1][4], "toward-away");
+    EXPECT_EQ(rows[1][5], "1");
+    EXPECT_EQ(rows[4][4], "adjacency");
+    EXPECT_EQ(rows[4][5], "2");
+    for (std::size_t i = 1; i < rows.size(); ++i) {
+        ASSERT_EQ(rows[i].size(), 21u);
+        EXPECT_EQ(rows[i][0], i <= 4 ? "sweep" : "needs");
+        EXPECT_GT(std::stod(rows[i][10]), 0.0);  // ms per frame
+        for (int c = 14; c <= 17; ++c) {
+            EXPECT_GE(std::stod(rows[i][std::size_t(c)]), 0.0);
+            EXPECT_LE(std::stod(rows[i][std::size_t(c)]), 1.0);
+        }
+    }
+    EXPECT_EQ(rows[5][1], "scene");
+    EXPECT_EQ(rows[10][1], "zoom4");
+    // Toward/Away's silhouette pixels lie on the reference (2 px); at 120x90 it finds a third of it.
+    EXPECT_GE(std::stod(rows[2][16]), 0.95);
+    EXPECT_GT(std::stod(rows[2][17]), 0.3);
+    // Zoomed in, cropping models fewer cells than the whole DEM (60 x 86 cells).
+    EXPECT_LT(std::stoul(rows[10][9]), 5160u);
+    EXPECT_EQ(rows[13][9], "5160");
+    const std::string svg = read_text(dir / "out" / "speed_accuracy.svg");
+    EXPECT_NE(svg.find("toward-away 120x90"), std::string::npos);
+    EXPECT_NE(svg.find("adjacency 120x90"), std::string::npos);
+    EXPECT_EQ(std::system(("rsvg-convert -o '" + (dir / "chart.png").string() + "' '" +
+                           (dir / "out" / "speed_accuracy.svg").string() + "'").c_str()),
+              0);
+    EXPECT_GT(std::filesystem::file_size(dir / "chart.png"), 1000u);
+}
+
+TEST(BenchChart, SeriesPerMethodAndSize) {
+    std::vector<penink::BenchRow> rows(3);
+    rows[0].group = rows[1].group = rows[2].group = "sweep";
+    rows[0].method = rows[1].method = "toward-away", rows[2].method = "adjacency";
+    rows[0].width = rows[1].width = rows[2].width = 100, rows[0].height = rows[1].height = rows[2].height = 50;
+    rows[0].level = 1, rows[1].level = 4, rows[2].level = 1;
+    rows[0].ms = 10, rows[1].ms = 40, rows[2].ms = 12;
+    rows[1].p1 = 1.0, rows[1].r1 = 0.5;
+    const auto series = penink::bench_chart_series(rows);
+    ASSERT_EQ(series.size(), 2u);
+    EXPECT_EQ(series[0].name, "toward-away 100x50");
+    ASSERT_EQ(series[0].points.size(), 2u);
+    EXPECT_NEAR(series[0].points[1].accuracy, 2.0 / 3.0, 1e-12);  // F1 of 1 and 0.5
+    EXPECT_EQ(series[0].points[1].label, "L4");
+    EXPECT_EQ(series[1].colour, "#d62728");
+}
