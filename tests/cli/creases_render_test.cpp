@@ -40,6 +40,14 @@ fs::path volcano_dir(const std::string& name) {
     return dir;
 }
 
+// Removes a test's directory when the test passed (kept for inspection when it failed).
+struct Cleanup {
+    fs::path dir;
+    ~Cleanup() {
+        if (!::testing::Test::HasFailure()) fs::remove_all(dir);
+    }
+};
+
 struct PathStats {
     std::size_t count = 0, points = 0;
     double length = 0.0;
@@ -81,6 +89,7 @@ std::string scene_with_creases(const std::string& creases_keys) {
 
 TEST(CreasesRender, DefaultRenderDrawsCreasesAndRidgesAndCachesDrainage) {
     const fs::path dir = volcano_dir("default");
+    const Cleanup cleanup{dir};
     const RunResult r = run_penink("render volcano.asc --width 300 --height 225 -o x.svg --verbose", dir);
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("rebuilding"), std::string::npos) << r.output;  // no cache yet
@@ -120,6 +129,7 @@ TEST(CreasesRender, DefaultRenderDrawsCreasesAndRidgesAndCachesDrainage) {
 
 TEST(CreasesRender, HighMinScoreRemovesAllCreases) {
     const fs::path dir = volcano_dir("minscore");
+    const Cleanup cleanup{dir};
     write_text(dir / "scene.toml", scene_with_creases("min_score = 0.35"));
     RunResult r = run_penink("render scene.toml -o some.svg", dir);
     ASSERT_EQ(r.code, 0) << r.output;
@@ -313,6 +323,7 @@ TEST(CreasesRender, TributaryStaysJoinedToSmoothedMainStem) {
 
 TEST(CreasesRender, DisabledCreasesLeaveAnEmptyLayer) {
     const fs::path dir = volcano_dir("disabled");
+    const Cleanup cleanup{dir};
     write_text(dir / "scene.toml", scene_with_creases("enabled = false"));
     const RunResult r = run_penink("render scene.toml -o out.svg", dir);
     ASSERT_EQ(r.code, 0) << r.output;
@@ -339,6 +350,7 @@ RunResult render_with_damaged_cache(const fs::path& dir, std::string& good,
 
 TEST(CreasesRender, CorruptCacheIsRebuilt) {
     const fs::path dir = volcano_dir("corrupt");
+    const Cleanup cleanup{dir};
     std::string good;
     const RunResult r = render_with_damaged_cache(dir, good, [](std::string b) {
         b[b.size() / 2] = char(b[b.size() / 2] ^ 0x40);  // one bit in the middle of the data
@@ -354,6 +366,7 @@ TEST(CreasesRender, CorruptCacheIsRebuilt) {
 
 TEST(CreasesRender, TruncatedCacheIsRebuilt) {
     const fs::path dir = volcano_dir("truncated");
+    const Cleanup cleanup{dir};
     std::string good;
     const RunResult r = render_with_damaged_cache(dir, good, [](std::string b) { return b.substr(0, b.size() / 3); });
     ASSERT_EQ(r.code, 0) << r.output;
@@ -365,6 +378,7 @@ TEST(CreasesRender, TruncatedCacheIsRebuilt) {
 
 TEST(CreasesRender, StaleCacheIsRebuilt) {
     const fs::path dir = volcano_dir("stale");
+    const Cleanup cleanup{dir};
     ASSERT_EQ(run_penink("drainage volcano.asc -q", dir).code, 0);
     const std::string before = read_text(dir / "volcano.asc.dv");
     // One elevation edited: the DEM's fingerprint changes.
@@ -381,6 +395,7 @@ TEST(CreasesRender, StaleCacheIsRebuilt) {
 
 TEST(CreasesRender, DrainageSubcommandWritesRasters) {
     const fs::path dir = volcano_dir("drainage");
+    const Cleanup cleanup{dir};
     const RunResult r = run_penink("drainage volcano.asc --resample 1 --rasters rasters", dir);
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("drainage: wrote volcano.asc.dv"), std::string::npos) << r.output;
