@@ -1,12 +1,12 @@
-// PNG output through OpenImageIO (png_writer.hpp).
+// PNG output (png_writer.hpp), encoded by export/png_encode.hpp.
 #include "export/png_writer.hpp"
 
-#include <OpenImageIO/imageio.h>
-
 #include <cmath>
+#include <stdexcept>
 
 #include "core/error.hpp"
 #include "export/atomic_file.hpp"
+#include "export/png_encode.hpp"
 
 namespace penink {
 
@@ -29,26 +29,17 @@ RasterTransform png_transform(const StyledDrawing& d, const PageOptions& page, c
 void write_png(const StyledDrawing& d, const PageOptions& page, const std::string& path) {
     const RasterTransform t = png_transform(d, page, path);
     const RgbImage img = rasterise(d, t);
-    const auto fail = [&](const std::string& why) {
-        return Error("export", path, "cannot write file (" + why + ")");
-    };
-    write_atomically(path, [&](const std::string& temp) {
-        auto out = OIIO::ImageOutput::create("png");
-        if (!out) throw fail("no PNG support in OpenImageIO");
-        OIIO::ImageSpec spec(img.width, img.height, 3, OIIO::TypeDesc::UINT8);
-        spec.attribute("ResolutionUnit", "in");
-        spec.attribute("XResolution", float(page.dpi));
-        spec.attribute("YResolution", float(page.dpi));
-        spec.attribute("Software", "penink");
-        std::string description;
-        for (const auto& [k, v] : merged_metadata(d.metadata, page.metadata))
-            description += k + ": " + v + "\n";
-        if (!description.empty()) spec.attribute("ImageDescription", description);
-        if (!out->open(temp, spec)) throw fail(out->geterror());
-        const bool ok = out->write_image(OIIO::TypeDesc::UINT8, img.rgb.data());
-        const bool closed = out->close();
-        if (!ok || !closed) throw fail(out->geterror());
-    });
+    std::string description;
+    for (const auto& [k, v] : merged_metadata(d.metadata, page.metadata)) description += k + ": " + v + "\n";
+    std::vector<std::pair<std::string, std::string>> text = {{"Software", "penink"}};
+    if (!description.empty()) text.emplace_back("Description", description);
+    std::string bytes;
+    try {
+        bytes = encode_png(img, page.dpi, text);
+    } catch (const std::runtime_error& e) {
+        throw Error("export", path, std::string("cannot write file (") + e.what() + ")");
+    }
+    write_file_atomically(path, bytes);
 }
 
 }  // namespace penink

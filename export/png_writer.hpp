@@ -1,5 +1,5 @@
-// PNG writer: rasterises the StyledDrawing (rasterise.hpp) and writes 8-bit RGB through
-// OpenImageIO. Resolution: one image pixel = dpi/96 PNG pixels without a page; with a page,
+// PNG writer: rasterises the StyledDrawing (rasterise.hpp) and writes 8-bit RGB (encoded by
+// png_encode.hpp, zlib loaded on first use; no OpenImageIO in the penink binary). Resolution: one image pixel = dpi/96 PNG pixels without a page; with a page,
 // the whole page at `dpi` (page size in mm * dpi / 25.4), the drawing placed as in SVG/PDF.
 #pragma once
 #include <string>

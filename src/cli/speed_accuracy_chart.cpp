@@ -30,6 +30,12 @@ std::string escape(const std::string& s) {
     return o;
 }
 
+std::string tick_label(double ms) {  // 0.5, 1, 2, 50, 1000
+    std::ostringstream s;
+    s << std::setprecision(ms < 1.0 ? 1 : 0) << std::fixed << ms;
+    return s.str();
+}
+
 Frame plot_frame(const std::vector<ChartSeries>& series, const ChartText& text) {
     Frame f;
     f.right = text.width - 230.0, f.bottom = text.height - 70.0;
@@ -53,7 +59,7 @@ void axes(std::ostream& s, const Frame& f, const ChartText& text) {
             const double x = f.x(ms);
             s << "<line x1=\"" << x << "\" y1=\"" << f.top << "\" x2=\"" << x << "\" y2=\"" << f.bottom
               << "\" stroke=\"#dddddd\"/>\n<text x=\"" << x << "\" y=\"" << f.bottom + 18
-              << "\" text-anchor=\"middle\">" << ms << "</text>\n";
+              << "\" text-anchor=\"middle\">" << tick_label(ms) << "</text>\n";
         }
     for (int i = 0; i <= 10; i += 2) {
         const double y = f.y(i / 10.0);
