@@ -1,0 +1,101 @@
+// Finishing a Drawing for export (seed 002, 4.3 for the sketchy part): per layer, strokes
+// (image pixels, origin top-left, y down; depth = eye distance in metres / world units) are
+// joined end to end, simplified (Douglas-Peucker, px), stripped of tiny strokes, thinned by
+// distance, perturbed / overshot / repeated, and put in pen-plotter order (greedy nearest end).
+//
+// Which layers are perturbed where:
+//  - image space (LayerFinish::space == SketchSpace::image, the default for every layer:
+//    silhouettes, outlines, PELs, textures, feature edges): finish_drawing moves the end points
+//    of each finished stroke in the image plane (sketch_copies), extends open ends by the
+//    overshoot and adds repeat-1 extra strokes, each perturbed on its own.
+//  - object space (SketchSpace::object; meant for the terrain's ridges and creases, which live on
+//    the surface): the caller perturbs each 3D polyline within the local surface plane BEFORE
+//    projecting it, with sketch_object_copies() below (one copy per repeat), and marks the layer
+//    object. finish_drawing then neither perturbs nor repeats it (it still joins, simplifies,
+//    drops, thins, overshoots in the image and orders it).
+// Overshoot, repeat and distance thinning are applied here, exactly once: a Style handed to
+// export's style_drawing() after finish_drawing must have overshoot 0, repeat 1, keep_far 1
+// (render_command.cpp does this). Every random number derives from (seed, stroke_geometry_id,
+// k) (splitmix64), so the same seed gives the same drawing whatever the processing order.
+#pragma once
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "core/drawing.hpp"
+
+namespace penink {
+
+enum class SketchSpace { image, object };
+
+struct LayerFinish {
+    float sketch = 0.0f;     // end point perturbation radius, px (0 = none)
+    float overshoot = 0.0f;  // extension of both ends of open strokes, px
+    int repeat = 1;          // times each stroke is drawn (>= 1), each perturbed on its own
+    float keep_far = 1.0f;   // share of strokes kept at the far distance (1 = no thinning)
+    SketchSpace space = SketchSpace::image;
+};
+
+struct FinishOptions {
+    std::uint64_t seed = 0;
+    float join_tolerance = 1.0f;      // px: stroke ends closer than this are joined
+    float simplify_tolerance = 0.4f;  // px: Douglas-Peucker tolerance
+    float min_length = 2.0f;          // px: shorter strokes (pen-down length) are dropped
+    // Distance thinning: fractions of the drawing's largest eye distance (export's Style
+    // near/far); keep probability falls linearly from 1 at near to keep_far at far.
+    float near = 0.0f, far = 1.0f;
+    glm::vec2 home{0.0f, 0.0f};       // plotter pen start (image pixels)
+    std::array<LayerFinish, 7> layers;  // indexed by LayerKind
+    LayerFinish& layer(LayerKind k) { return layers[static_cast<std::size_t>(k)]; }
+    const LayerFinish& layer(LayerKind k) const { return layers[static_cast<std::size_t>(k)]; }
+};
+
+struct LayerFinishStats {
+    std::size_t strokes_in = 0;   // strokes before joining
+    std::size_t joined = 0;       // after joining (and dropping)
+    std::size_t strokes = 0;      // final strokes (after thinning and repeats)
+    double length = 0.0;          // final pen-down length, px
+    double travel_before = 0.0;   // pen-up travel before ordering, px
+    double travel_after = 0.0;    // pen-up travel after ordering, px
+};
+
+struct FinishStats {
+    std::array<LayerFinishStats, 7> layers;  // indexed by LayerKind
+};
+
+// Finishes every layer's strokes in place (surface fill rings are left alone). Steps per layer:
+// join (same kind, junctions of >= 3 ends kept) -> simplify -> drop strokes shorter than
+// min_length -> join again (drops can leave 2-end nodes) -> distance thinning -> sketch /
+// overshoot / repeat (image-space layers) -> plotter order from `home`.
+FinishStats finish_drawing(Drawing& drawing, const FinishOptions& options);
+
+// Strokes of one layer through the same steps; `max_depth` is the drawing's largest depth.
+std::vector<Stroke> finish_strokes(std::vector<Stroke> strokes, const FinishOptions& options,
+                                   const LayerFinish& layer, double max_depth, LayerFinishStats& stats);
+
+// Object-space sketchiness hook for surface lines (ridges, creases): a 3D polyline (world units)
+// with one surface normal per point and its eye distance per point.
+struct ObjectLine {
+    std::vector<glm::vec3> points, normals;
+    std::vector<float> depth;  // eye distance per point (world units)
+};
+
+// World size of one image pixel at eye distance `depth` for a perspective camera with
+// horizontal field of view fov_deg and an image `width_px` wide: depth * 2 tan(fov/2) / width.
+float world_per_pixel(float depth, float fov_deg, int width_px);
+
+// Order-independent id of a 3D polyline (point count and end points' bits).
+std::uint64_t object_line_id(const ObjectLine& line);
+
+// The line and repeat-1 extra copies, each perturbed within the local tangent planes
+// (sketch_polyline_3d) by up to amount_px image pixels converted to world units at the line's
+// mean depth. amount_px <= 0 gives `repeat` unperturbed copies. Throws penink::Error (from
+// sketch_polyline_3d) when normals are not one per point.
+std::vector<ObjectLine> sketch_object_copies(const ObjectLine& line, float amount_px, int repeat,
+                                             float fov_deg, int width_px, std::uint64_t seed);
+
+}  // namespace penink
