@@ -14,6 +14,7 @@ struct RenderOptions {
     std::string style;           // name or path; "" = the scene's
     std::string page;            // "A4", "WxHmm", "" = image size
     double dpi = 96.0;
+    double margin_mm = 0.0;      // --margin: blank border on each side, mm
     std::string layers = "kind";  // "kind" or "kind+distance"
     std::string gl = "osmesa";
     bool verbose = false;
