@@ -356,7 +356,8 @@ int run_bench(const BenchOptions& o) {
     }
     write_file_atomically((fs::path(o.out_dir) / "bench.csv").string(), bench_csv(run.rows));
     ChartText text;
-    text.title = "penink bench: " + fs::path(o.input).filename().string() + " (" + context->description() + ")";
+    text.title = "penink bench: " + fs::path(o.input).filename().string() + ", silhouettes against the exact reference";
+    text.subtitle = context->description();
     text.y_label = "silhouette accuracy: F1 of precision and recall at 1 px";
     write_speed_accuracy_chart((fs::path(o.out_dir) / "speed_accuracy.svg").string(), bench_chart_series(run.rows), text);
     std::cout << bench_table(run.rows);

@@ -5,6 +5,8 @@
 #include <iomanip>
 #include <sstream>
 
+#include <glm/vec2.hpp>
+
 #include "export/atomic_file.hpp"
 
 namespace penink {
@@ -12,7 +14,7 @@ namespace penink {
 namespace {
 
 struct Frame {  // plot area in SVG pixels and the log10 time range
-    double left = 80, top = 50, right = 0, bottom = 0;
+    double left = 80, top = 60, right = 0, bottom = 0;
     double lo = 0, hi = 1;  // log10(ms)
     double x(double ms) const { return left + (std::log10(ms) - lo) / (hi - lo) * (right - left); }
     double y(double a) const { return bottom - std::clamp(a, 0.0, 1.0) * (bottom - top); }
@@ -70,8 +72,9 @@ void axes(std::ostream& s, const Frame& f, const ChartText& text) {
     s << "<text x=\"" << (f.left + f.right) / 2 << "\" y=\"" << f.bottom + 45 << "\" text-anchor=\"middle\">"
       << escape(text.x_label) << "</text>\n<text transform=\"translate(25," << (f.top + f.bottom) / 2
       << ") rotate(-90)\" text-anchor=\"middle\">" << escape(text.y_label) << "</text>\n<text x=\""
-      << (f.left + f.right) / 2 << "\" y=\"30\" text-anchor=\"middle\" font-size=\"16\">" << escape(text.title)
-      << "</text>\n";
+      << text.width / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"16\">" << escape(text.title)
+      << "</text>\n<text x=\"" << text.width / 2 << "\" y=\"40\" text-anchor=\"middle\" font-size=\"11\">"
+      << escape(text.subtitle) << "</text>\n";
 }
 
 void curve(std::ostream& s, const Frame& f, const ChartSeries& c) {
@@ -80,14 +83,21 @@ void curve(std::ostream& s, const Frame& f, const ChartSeries& c) {
     for (const ChartPoint& p : c.points)
         if (p.ms > 0) s << f.x(p.ms) << "," << f.y(p.accuracy) << " ";
     s << "\"/>\n";
+    // A point drawn where the previous label would overlap its own shares it: "L2" + "L4" -> "L2,4".
+    std::vector<std::pair<glm::dvec2, std::string>> labels;
     for (const ChartPoint& p : c.points) {
         if (p.ms <= 0) continue;
-        s << "<circle cx=\"" << f.x(p.ms) << "\" cy=\"" << f.y(p.accuracy) << "\" r=\"3.5\" fill=\"" << c.colour
-          << "\"/>\n";
-        if (!p.label.empty())
-            s << "<text x=\"" << f.x(p.ms) + 5 << "\" y=\"" << f.y(p.accuracy) - 5 << "\" font-size=\"10\">"
-              << escape(p.label) << "</text>\n";
+        const glm::dvec2 at(f.x(p.ms), f.y(p.accuracy));
+        s << "<circle cx=\"" << at.x << "\" cy=\"" << at.y << "\" r=\"3.5\" fill=\"" << c.colour << "\"/>\n";
+        if (p.label.empty()) continue;
+        if (!labels.empty() && std::abs(labels.back().first.x - at.x) < 20.0 && std::abs(labels.back().first.y - at.y) < 10.0)
+            labels.back().second += "," + p.label.substr(p.label.find_first_of("0123456789") == std::string::npos
+                                                             ? 0 : p.label.find_first_of("0123456789"));
+        else
+            labels.emplace_back(at, p.label);
     }
+    for (const auto& [at, text] : labels)
+        s << "<text x=\"" << at.x + 5 << "\" y=\"" << at.y - 5 << "\" font-size=\"10\">" << escape(text) << "</text>\n";
     s << "</g>\n";
 }
 

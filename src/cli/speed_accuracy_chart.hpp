@@ -20,7 +20,7 @@ struct ChartSeries {
 };
 
 struct ChartText {
-    std::string title, x_label = "time per frame (ms, log scale)", y_label = "accuracy";
+    std::string title, subtitle, x_label = "time per frame (ms, log scale)", y_label = "accuracy";
     int width = 900, height = 560;
 };
 
