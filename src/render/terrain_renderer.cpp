@@ -31,7 +31,7 @@ double TerrainRenderer::silhouettes(const Camera& camera, const FrameOptions& op
             const AdjacencyTimes t = adjacency_->draw(geometry_, camera, options.tessellation, tft_aft_.toward_texture(),
                                                       tft_aft_.away_texture(), options.adjacency);
             out.times.sil_ids = t.ids_ms;
-            return t.ids_ms + t.detect_ms;
+            return t.ids_ms + t.detect_ms + t.walk_ms + t.lines_ms;
         }
         case SilhouetteMethod::object_space: {
             const auto t0 = std::chrono::steady_clock::now();

@@ -52,6 +52,8 @@ public:
 
     // Tessellated triangles of the last adjacency frame (0 for the other methods).
     std::size_t adjacency_triangles() const { return adjacency_ ? adjacency_->triangle_count() : 0; }
+    // The adjacency pass itself (null until the first adjacency frame), for tests.
+    const AdjacencySilPass* adjacency_pass() const { return adjacency_.get(); }
 
 private:
     double silhouettes(const Camera& camera, const FrameOptions& options, FrameImages& out);
