@@ -24,7 +24,7 @@ struct MeshScene {
     glm::dvec3 up{0, 1, 0};                 // [camera] up, mesh frame (default: the mesh's up)
     std::optional<glm::dvec3> light;        // [light] direction, mesh frame, towards the light
     bool pels = true;
-    float pel_threshold = 0.2f;   // tau on the normalised |grad phi| (0..1)
+    float pel_threshold = 0.1f;   // tau on the normalised |grad phi| (0..1)
     int smoothing = 0;            // normal smoothing iterations
     bool features = true;
     float crease_angle = 40.0f;   // degrees
