@@ -10,6 +10,7 @@
 #include "input/dem_reader.hpp"
 #include "lines/simplify.hpp"
 #include "lines/trace_mask_outline.hpp"
+#include "lines/frustum_clip.hpp"
 #include "lines/mesh_visibility.hpp"
 #include "lines/trace_pixel_lines.hpp"
 #include "surface/boundary_curves.hpp"
@@ -53,7 +54,8 @@ void add_frame_lines(const FrameImages& images, const SurfaceMesh& mesh, const C
     Layer& surface = drawing.layer(LayerKind::surface);
     surface.fill = trace_mask_outline(cover, 0.5f);
     std::vector<ObjectPolyline> boundary;
-    for (auto& line : boundary_polylines(mesh)) boundary.push_back({std::move(line), 1.0f, "outline", ""});
+    for (auto& line : clip_polylines_to_frustum(boundary_polylines(mesh), view_projection(camera)))
+        boundary.push_back({std::move(line), 1.0f, "outline", ""});
     VisibilityOptions visibility;
     visibility.rel_tolerance = 0.002f;  // terrain: the boundary lies on the rendered surface
     for (Stroke& s : visible_strokes(boundary, images.toward, camera, visibility)) strokes.push_back(std::move(s));
