@@ -1,7 +1,9 @@
 #include "cli/drainage_lines.hpp"
 
 #include <bit>
+#include <algorithm>
 #include <cmath>
+#include <thread>
 #include <cstdint>
 #include <unordered_map>
 
@@ -37,6 +39,34 @@ void rejoin_line_ends(const std::vector<glm::vec3>& before, const std::vector<Ve
     }
 }
 
+// Drapes a smoothed vertex back on the PN surface and gives it the surface normal. Vertices off
+// the rendered surface are outside the view: a zero normal keeps them hidden in the DM pass.
+void drape_vertex(const TerrainLocator& locator, float flow, glm::vec3& p, DmVertex& out) {
+    SurfaceHit hit;
+    out.flow = flow;
+    out.normal = glm::vec3(0.0f);
+    if (locator.locate(p.x, p.y, hit)) {
+        glm::vec3 on_surface;
+        locator.pn_position_normal_at(hit, on_surface, out.normal);
+        p.z = on_surface.z;
+    }
+    out.position = p;
+}
+
+// Runs f(begin, end) over [0, n) split across the hardware threads (independent items, so the
+// result does not depend on the split).
+template <typename F>
+void parallel_ranges(std::size_t n, F&& f) {
+    const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 8);
+    if (n < 20000 || threads == 1) return f(0, n);
+    std::vector<std::thread> pool;
+    const std::size_t chunk = (n + threads - 1) / threads;
+    for (std::size_t t = 1; t < threads; ++t)
+        pool.emplace_back([&, t] { f(std::min(n, t * chunk), std::min(n, (t + 1) * chunk)); });
+    f(0, std::min(n, chunk));
+    for (std::thread& th : pool) th.join();
+}
+
 // Lays the polylines (vertex index lists) out contiguously, smooths them (line ends that meet
 // another line's interior follow it), drapes them on the PN surface and uploads them to a DM pass.
 ScoredLineSet make_line_set(const GlApi& gl, const std::vector<DvVertex>& vertices,
@@ -55,19 +85,9 @@ ScoredLineSet make_line_set(const GlApi& gl, const std::vector<DvVertex>& vertic
     smooth_runs_xy(set.positions, set.runs, smoothing);
     rejoin_line_ends(before, set.runs, set.positions);
     std::vector<DmVertex> dm(set.positions.size());
-    for (std::size_t i = 0; i < dm.size(); ++i) {
-        glm::vec3& p = set.positions[i];
-        dm[i].flow = flow[i];
-        SurfaceHit hit;
-        // Vertices off the rendered surface are outside the view: a zero normal keeps them hidden.
-        if (locator.locate(p.x, p.y, hit)) {
-            p.z = locator.pn_position_at(hit).z;  // drape the smoothed line back on the surface
-            dm[i].normal = locator.pn_normal_at(hit);
-        } else {
-            dm[i].normal = glm::vec3(0.0f);
-        }
-        dm[i].position = p;
-    }
+    parallel_ranges(dm.size(), [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) drape_vertex(locator, flow[i], set.positions[i], dm[i]);
+    });
     set.pass = std::make_unique<DmPass>(gl, dm);
     return set;
 }

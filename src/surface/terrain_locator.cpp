@@ -89,4 +89,12 @@ glm::vec3 TerrainLocator::pn_normal_at(const SurfaceHit& hit) const {
     return pn_normal(p, hit.bary);
 }
 
+void TerrainLocator::pn_position_normal_at(const SurfaceHit& hit, glm::vec3& position, glm::vec3& normal) const {
+    const glm::uvec3 v = mesh_->tri[hit.triangle];
+    const PnPatch p = pn_patch(mesh_->pos[v.x], mesh_->pos[v.y], mesh_->pos[v.z], mesh_->normal[v.x],
+                               mesh_->normal[v.y], mesh_->normal[v.z]);
+    position = pn_position(p, hit.bary);
+    normal = pn_normal(p, hit.bary);
+}
+
 }  // namespace penink

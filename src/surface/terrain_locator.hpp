@@ -26,6 +26,8 @@ public:
     // PN-surface position and unit normal at a hit.
     glm::vec3 pn_position_at(const SurfaceHit& hit) const;
     glm::vec3 pn_normal_at(const SurfaceHit& hit) const;
+    // Both at once (one patch set-up).
+    void pn_position_normal_at(const SurfaceHit& hit, glm::vec3& position, glm::vec3& normal) const;
 
 private:
     const SurfaceMesh* mesh_;
