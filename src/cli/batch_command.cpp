@@ -1,4 +1,5 @@
 #include "cli/batch_command.hpp"
+#include "cli/drawing_style.hpp"
 
 #include <chrono>
 #include <iostream>
@@ -34,24 +35,6 @@ std::string error_what(const Error& e) {
     const std::string prefix = format_error(e.stage(), e.file(), "");
     const std::string msg = e.what();
     return msg.rfind(prefix, 0) == 0 ? msg.substr(prefix.size()) : msg;
-}
-
-FinishOptions finish_options(const Style& style, std::uint64_t seed) {  // as penink render
-    FinishOptions f;
-    f.seed = seed;
-    f.near = float(style.near), f.far = float(style.far);
-    for (LayerKind k : all_layers) {
-        const LayerStyle& ls = style.layer(k);
-        LayerFinish& lf = f.layer(k);
-        lf.sketch = float(ls.sketch), lf.overshoot = float(ls.overshoot);
-        lf.repeat = ls.repeat, lf.keep_far = float(ls.keep_far);
-    }
-    return f;
-}
-
-Style export_style(Style style) {  // finish_drawing has applied these already
-    for (LayerStyle& ls : style.layers) ls.overshoot = 0.0, ls.repeat = 1, ls.keep_far = 1.0;
-    return style;
 }
 
 std::vector<std::string> parse_formats(const std::string& text) {
@@ -134,7 +117,7 @@ GridWindow union_window(const Terrain& dem, const std::vector<Camera>& cameras) 
 
 double export_frame(Drawing& drawing, const Style& style, std::uint64_t seed, const std::vector<std::string>& paths) {
     const auto t0 = Clock::now();
-    finish_drawing(drawing, finish_options(style, seed));
+    finish_drawing(drawing, finish_options(style, seed, true));
     const StyledDrawing styled = style_drawing(drawing, export_style(style), seed, LayerSplit::kind);
     for (const std::string& p : paths) export_drawing(styled, PageOptions{}, p);
     return ms_since(t0);
@@ -237,8 +220,8 @@ struct Flight {
 Flight prepare_flight(const BatchOptions& o, const Log& log) {
     Flight f;
     f.scene = batch_scene(o);
-    f.style = resolve_style(f.scene.style);
-    if (f.scene.style_overrides.is_table()) apply_style_overrides(f.style, f.scene.style_overrides, f.scene.file);
+    f.style = scene_style(f.scene);
+    apply_object_sketch(f.scene, f.style);
     f.records = read_flight_path(o.path);
     DemOptions dem_options;
     dem_options.vertical_exaggeration = f.scene.vertical_exaggeration;

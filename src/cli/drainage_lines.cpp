@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "drainage/stems.hpp"
+#include "lines/finish_drawing.hpp"
 #include "lines/polyline_smoothing.hpp"
 #include "lines/spacing_thinning.hpp"
 #include "surface/terrain_locator.hpp"
@@ -88,6 +89,8 @@ ScoredLineSet make_line_set(const GlApi& gl, const std::vector<DvVertex>& vertic
     parallel_ranges(dm.size(), [&](std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i) drape_vertex(locator, flow[i], set.positions[i], dm[i]);
     });
+    set.normals.resize(dm.size());
+    for (std::size_t i = 0; i < dm.size(); ++i) set.normals[i] = dm[i].normal;
     set.pass = std::make_unique<DmPass>(gl, dm);
     return set;
 }
@@ -97,6 +100,28 @@ std::vector<std::vector<std::uint32_t>> polyline_indices(const std::vector<DvPol
     for (const DvPolyline& l : lines) {
         out.emplace_back(l.count);
         for (std::uint32_t k = 0; k < l.count; ++k) out.back()[k] = l.first + k;
+    }
+    return out;
+}
+
+// Visible, scored runs of a line set as image strokes; with sketchiness, each run is perturbed
+// within the surface's tangent planes (and repeated) before it is projected.
+std::vector<Stroke> line_strokes(const ScoredLineSet& set, const std::vector<float>& scores,
+                                 const Camera& camera, const std::string& kind, float sketch_px,
+                                 int repeat, std::uint64_t seed) {
+    if (sketch_px <= 0.0f && repeat <= 1) return scored_runs_to_strokes(set.positions, scores, set.runs, camera, kind);
+    std::vector<Stroke> out;
+    for (const VertexRun& run : drawn_runs(set.positions, scores, set.runs, camera)) {
+        ObjectLine line;
+        for (std::uint32_t i = run.first; i < run.first + run.count; ++i) {
+            line.points.push_back(set.positions[i]);
+            line.normals.push_back(set.normals[i]);
+            line.depth.push_back(float(glm::length(glm::dvec3(set.positions[i]) - camera.eye)));
+        }
+        const float strength = mean_score(scores, run);
+        for (const ObjectLine& copy : sketch_object_copies(line, sketch_px, std::max(repeat, 1), float(camera.fov),
+                                                           camera.width, seed))
+            out.push_back(project_stroke(copy.points, camera, strength, kind));
     }
     return out;
 }
@@ -132,13 +157,13 @@ void DrainageLines::draw(const Camera& camera, const Scene& scene, GLuint toward
     if (scene.creases.enabled) {
         times.dm = creases_.pass->run(frame, crease_score(scene.creases), scores);
         drawing.layer(LayerKind::creases).strokes = thin_by_spacing(
-            scored_runs_to_strokes(creases_.positions, scores, creases_.runs, camera, "crease"),
+            line_strokes(creases_, scores, camera, "crease", scene.crease_sketch_px, scene.crease_repeat, scene.seed),
             float(scene.creases.spacing_px));
     }
     if (scene.ridges.enabled) {
         times.ridges = ridges_.pass->run(frame, crease_score(scene.ridges), scores);
         drawing.layer(LayerKind::ridges).strokes = thin_by_spacing(
-            scored_runs_to_strokes(ridges_.positions, scores, ridges_.runs, camera, "ridge"),
+            line_strokes(ridges_, scores, camera, "ridge", scene.ridge_sketch_px, scene.ridge_repeat, scene.seed),
             float(scene.ridges.spacing_px));
     }
 }

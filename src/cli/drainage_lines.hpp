@@ -17,7 +17,7 @@ namespace penink {
 
 // One vertex set (branches or divides) ready for the DM pass.
 struct ScoredLineSet {
-    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> positions, normals;
     std::vector<VertexRun> runs;
     std::unique_ptr<DmPass> pass;
 };

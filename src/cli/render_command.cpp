@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/drawing_style.hpp"
 #include "cli/scene_drawing.hpp"
 #include "core/error.hpp"
 #include "export/export_drawing.hpp"
@@ -39,27 +40,6 @@ Scene scene_with_overrides(const RenderOptions& o) {
     if (!o.style.empty()) scene.style = o.style;
     validate_scene(scene);
     return scene;
-}
-
-// The lines stage's finishing options from the style: per-layer sketch amount, overshoot,
-// repeats and distance thinning (applied there, once, before plotter ordering).
-FinishOptions finish_options(const Style& style, std::uint64_t seed) {
-    FinishOptions f;
-    f.seed = seed;
-    f.near = float(style.near), f.far = float(style.far);
-    for (LayerKind k : all_layers) {
-        const LayerStyle& ls = style.layer(k);
-        LayerFinish& lf = f.layer(k);
-        lf.sketch = float(ls.sketch), lf.overshoot = float(ls.overshoot);
-        lf.repeat = ls.repeat, lf.keep_far = float(ls.keep_far);
-    }
-    return f;
-}
-
-// The style export applies to a finished drawing: overshoot, repeats and thinning are done.
-Style export_style(Style style) {
-    for (LayerStyle& ls : style.layers) ls.overshoot = 0.0, ls.repeat = 1, ls.keep_far = 1.0;
-    return style;
 }
 
 void log_finish(const FinishStats& stats, const Log& log) {
@@ -116,14 +96,15 @@ int run_render(const RenderOptions& o) {
     const auto start = std::chrono::steady_clock::now();
     const Log log{o.verbose};
     check_outputs(o.outputs);
-    const Scene scene = scene_with_overrides(o);
-    Style style = resolve_style(scene.style);
-    if (scene.style_overrides.is_table()) apply_style_overrides(style, scene.style_overrides, scene.file);
+    Scene scene = scene_with_overrides(o);
+    const Style style = scene_style(scene);
+    const bool terrain = !is_mesh_scene(scene);
+    if (terrain) apply_object_sketch(scene, style);
     const auto context = make_gl_context(parse_gl_backend(o.gl));
     log.info(context->description());
     SceneDrawing result = draw_scene(scene, *context, log);
     log_timings(result, log);
-    log_finish(finish_drawing(result.drawing, finish_options(style, scene.seed)), log);
+    log_finish(finish_drawing(result.drawing, finish_options(style, scene.seed, terrain)), log);
     const StyledDrawing styled = style_drawing(result.drawing, export_style(style), scene.seed,
                                                o.layers == "kind" ? LayerSplit::kind : LayerSplit::kind_distance);
     PageOptions page;

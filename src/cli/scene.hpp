@@ -58,6 +58,10 @@ struct Scene {
     CreaseParams creases;
     CreaseParams ridges = ridge_defaults();
     std::string style = "technical";
+    // Object-space sketchiness of creases and ridges (seed 002, 4.3: end points moved within the
+    // surface's tangent plane), pixels, and strokes per line; set from the style by the command.
+    float crease_sketch_px = 0.0f, ridge_sketch_px = 0.0f;
+    int crease_repeat = 1, ridge_repeat = 1;
     std::uint64_t seed = 1;
     toml::value style_overrides;  // the [style] table, applied over the named style
 };

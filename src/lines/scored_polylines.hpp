@@ -18,6 +18,17 @@ struct VertexRun {
     std::uint32_t first = 0, count = 0;  // vertices [first, first + count)
 };
 
+// The maximal sub-runs of >= 2 vertices with score >= 0 that lie in front of the camera.
+std::vector<VertexRun> drawn_runs(const std::vector<glm::vec3>& positions, const std::vector<float>& scores,
+                                  const std::vector<VertexRun>& runs, const Camera& camera);
+
+// Mean score of a run's vertices.
+float mean_score(const std::vector<float>& scores, VertexRun run);
+
+// World points -> image stroke (pixels, eye distances); points behind the eye are skipped.
+Stroke project_stroke(const std::vector<glm::vec3>& points, const Camera& camera, float strength,
+                      const std::string& kind);
+
 std::vector<Stroke> scored_runs_to_strokes(const std::vector<glm::vec3>& positions,
                                            const std::vector<float>& scores,
                                            const std::vector<VertexRun>& runs, const Camera& camera,
