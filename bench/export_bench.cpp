@@ -52,7 +52,7 @@ StyledDrawing make_million() {
         l.repeat = 1;
         l.overshoot = 0.0;
     }
-    return style_drawing(synthetic(10000, 101, 4000), style, 1);
+    return style_drawing(synthetic(10000, 101, 4000), style);
 }
 
 const StyledDrawing& million() {
@@ -83,7 +83,7 @@ void BM_ExportFile(benchmark::State& state, const char* ext) {
 }
 
 void BM_RasterisePng(benchmark::State& state) {
-    const StyledDrawing d = style_drawing(synthetic(200, 101, 1000), builtin_style("technical"), 1);
+    const StyledDrawing d = style_drawing(synthetic(200, 101, 1000), builtin_style("technical"));
     for (auto _ : state) {
         RgbImage img = rasterise(d, png_transform(d, PageOptions{}));
         benchmark::DoNotOptimize(img.rgb.data());

@@ -1,4 +1,4 @@
-// Styling a Drawing: distance thinning, overshoot, width bands, sublayers (styled_drawing.hpp).
+// Styling a Drawing: width bands, colours, dashes, sublayers (styled_drawing.hpp).
 #include "export/styled_drawing.hpp"
 
 #include <algorithm>
@@ -9,21 +9,6 @@
 namespace penink {
 
 namespace {
-
-std::uint64_t splitmix64(std::uint64_t x) {
-    x += 0x9e3779b97f4a7c15ull;
-    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-    return x ^ (x >> 31);
-}
-
-// Uniform in [0, 1) from (seed, layer, stroke index), 53 random bits.
-double stroke_hash01(std::uint64_t seed, int layer, size_t index) {
-    std::uint64_t h = splitmix64(seed);
-    h = splitmix64(h ^ static_cast<std::uint64_t>(layer));
-    h = splitmix64(h ^ static_cast<std::uint64_t>(index));
-    return static_cast<double>(h >> 11) * 0x1.0p-53;
-}
 
 // Maps eye distances to t in [0, 1] between the style's near and far distances.
 struct DistanceMap {
@@ -49,21 +34,6 @@ double mean_depth(const Stroke& s, size_t from, size_t to) {  // [from, to]
     double sum = 0.0;
     for (size_t i = from; i <= to; ++i) sum += s.depth[i];
     return sum / double(to - from + 1);
-}
-
-// Extends the two ends of an open stroke by `length` pixels along its end directions.
-Stroke with_overshoot(const Stroke& s, double length) {
-    Stroke out = s;
-    const size_t n = s.points.size();
-    if (length <= 0.0 || n < 2 || s.points.front() == s.points.back()) return out;
-    const auto extend = [&](glm::vec2 end, glm::vec2 inner) {
-        const glm::vec2 d = end - inner;
-        const float len = std::sqrt(d.x * d.x + d.y * d.y);
-        return len > 0.0f ? end + d * float(length / len) : end;
-    };
-    out.points.front() = extend(s.points[0], s.points[1]);
-    out.points.back() = extend(s.points[n - 1], s.points[n - 2]);
-    return out;
 }
 
 StyledPath band_path(const Stroke& s, size_t from, size_t to, int level, const LayerStyle& ls,
@@ -112,8 +82,7 @@ size_t distance_group(double depth, double max_depth) {
     return f < 1.0 / 3.0 ? 0 : (f < 2.0 / 3.0 ? 1 : 2);
 }
 
-StyledLayer style_layer(const Layer& layer, const Style& style, const DistanceMap& dm,
-                        std::uint64_t seed, LayerSplit split) {
+StyledLayer style_layer(const Layer& layer, const Style& style, const DistanceMap& dm, LayerSplit split) {
     StyledLayer out;
     out.kind = layer.kind;
     out.name = std::string(layer_name(layer.kind));
@@ -124,18 +93,12 @@ StyledLayer style_layer(const Layer& layer, const Style& style, const DistanceMa
     if (split == LayerSplit::kind) out.groups.push_back({out.name, {}});
     else for (const char* g : {"-near", "-middle", "-far"}) out.groups.push_back({out.name + g, {}});
     if (!ls.visible) return out;
-    const int layer_index = static_cast<int>(layer.kind);
-    for (size_t i = 0; i < layer.strokes.size(); ++i) {
-        const Stroke& s = layer.strokes[i];
+    for (const Stroke& s : layer.strokes) {
         if (s.points.empty()) continue;
-        const double keep = 1.0 - (1.0 - ls.keep_far) * dm.t(mean_depth(s, 0, s.points.size() - 1));
-        if (stroke_hash01(seed, layer_index, i) >= keep) continue;
-        const std::vector<StyledPath> bands = split_bands(with_overshoot(s, ls.overshoot), ls, dm, style.bands);
-        for (int r = 0; r < std::max(1, ls.repeat); ++r)
-            for (const StyledPath& p : bands) {
-                const size_t g = split == LayerSplit::kind ? 0 : distance_group(p.depth, dm.max_depth);
-                out.groups[g].paths.push_back(p);
-            }
+        for (const StyledPath& p : split_bands(s, ls, dm, style.bands)) {
+            const size_t g = split == LayerSplit::kind ? 0 : distance_group(p.depth, dm.max_depth);
+            out.groups[g].paths.push_back(p);
+        }
     }
     return out;
 }
@@ -156,8 +119,7 @@ double max_depth(const Drawing& drawing) {
     return m;
 }
 
-StyledDrawing style_drawing(const Drawing& drawing, const Style& style, std::uint64_t seed,
-                            LayerSplit split) {
+StyledDrawing style_drawing(const Drawing& drawing, const Style& style, LayerSplit split) {
     StyledDrawing out;
     out.width = drawing.width;
     out.height = drawing.height;
@@ -166,7 +128,7 @@ StyledDrawing style_drawing(const Drawing& drawing, const Style& style, std::uin
     out.metadata = drawing.metadata;
     const DistanceMap dm{max_depth(drawing), style.near, style.far};
     for (size_t i = 0; i < drawing.layers.size(); ++i)
-        out.layers[i] = style_layer(drawing.layers[i], style, dm, seed, split);
+        out.layers[i] = style_layer(drawing.layers[i], style, dm, split);
     return out;
 }
 

@@ -1,4 +1,5 @@
-// A Drawing with its style applied: thinned by distance, every stroke split into width bands
+// A finished Drawing with its style applied (thinning by distance, overshoot, repeats and
+// sketchiness happen before, in the lines stage: lines/finish_drawing.hpp): every stroke split into width bands
 // (runs of segments whose distance-interpolated width/opacity falls in the same quantised
 // level), coloured and dashed. Coordinates stay in image pixels (origin top-left, y down);
 // depth is eye distance in metres. All writers (SVG, PS/EPS, PDF, PNG) consume this one
@@ -56,10 +57,8 @@ struct StyledDrawing {
     std::map<std::string, std::string> metadata;
 };
 
-// Applies `style` to `drawing`. Strokes are dropped when hash(seed, layer, index) (splitmix64)
-// >= keep probability, which falls linearly from 1 at `near` to keep_far at `far`.
-StyledDrawing style_drawing(const Drawing& drawing, const Style& style, std::uint64_t seed,
-                            LayerSplit split = LayerSplit::kind);
+// Applies `style`'s colours, widths (by distance, in bands), opacity and dashes to `drawing`.
+StyledDrawing style_drawing(const Drawing& drawing, const Style& style, LayerSplit split = LayerSplit::kind);
 
 // The largest eye distance of any stroke point in the drawing (0 if none).
 double max_depth(const Drawing& drawing);

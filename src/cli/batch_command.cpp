@@ -118,7 +118,7 @@ GridWindow union_window(const Terrain& dem, const std::vector<Camera>& cameras) 
 double export_frame(Drawing& drawing, const Style& style, std::uint64_t seed, const std::vector<std::string>& paths) {
     const auto t0 = Clock::now();
     finish_drawing(drawing, finish_options(style, seed, true));
-    const StyledDrawing styled = style_drawing(drawing, export_style(style), seed, LayerSplit::kind);
+    const StyledDrawing styled = style_drawing(drawing, style, LayerSplit::kind);
     for (const std::string& p : paths) export_drawing(styled, PageOptions{}, p);
     return ms_since(t0);
 }

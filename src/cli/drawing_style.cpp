@@ -29,9 +29,4 @@ FinishOptions finish_options(const Style& style, std::uint64_t seed, bool object
     return f;
 }
 
-Style export_style(Style style) {
-    for (LayerStyle& ls : style.layers) ls.overshoot = 0.0, ls.repeat = 1, ls.keep_far = 1.0;
-    return style;
-}
-
 }  // namespace penink

@@ -20,7 +20,4 @@ void apply_object_sketch(Scene& scene, const Style& style);
 // marked object-space (already perturbed and repeated by the terrain path).
 FinishOptions finish_options(const Style& style, std::uint64_t seed, bool object_space_terrain_lines);
 
-// The style export applies to a finished drawing: overshoot, repeats and thinning are done.
-Style export_style(Style style);
-
 }  // namespace penink

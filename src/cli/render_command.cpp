@@ -105,7 +105,7 @@ int run_render(const RenderOptions& o) {
     SceneDrawing result = draw_scene(scene, *context, log);
     log_timings(result, log);
     log_finish(finish_drawing(result.drawing, finish_options(style, scene.seed, terrain)), log);
-    const StyledDrawing styled = style_drawing(result.drawing, export_style(style), scene.seed,
+    const StyledDrawing styled = style_drawing(result.drawing, style,
                                                o.layers == "kind" ? LayerSplit::kind : LayerSplit::kind_distance);
     PageOptions page;
     page.page = o.page, page.dpi = o.dpi, page.margin_mm = o.margin_mm;

@@ -13,9 +13,8 @@
 //    projecting it, with sketch_object_copies() below (one copy per repeat), and marks the layer
 //    object. finish_drawing then neither perturbs nor repeats it (it still joins, simplifies,
 //    drops, thins, overshoots in the image and orders it).
-// Overshoot, repeat and distance thinning are applied here, exactly once: a Style handed to
-// export's style_drawing() after finish_drawing must have overshoot 0, repeat 1, keep_far 1
-// (render_command.cpp does this). Every random number derives from (seed, stroke_geometry_id,
+// Overshoot, repeat and distance thinning are applied here, exactly once (export's
+// style_drawing() only colours, sizes and groups). Every random number derives from (seed, stroke_geometry_id,
 // k) (splitmix64), so the same seed gives the same drawing whatever the processing order.
 #pragma once
 #include <array>

@@ -29,7 +29,7 @@ std::string error_of(const std::function<void()>& f) {
     return "no error";
 }
 
-StyledDrawing drawing() { return style_drawing(small_drawing(), default_style(), 1); }
+StyledDrawing drawing() { return style_drawing(small_drawing(), default_style()); }
 
 }  // namespace
 

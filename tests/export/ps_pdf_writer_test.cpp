@@ -16,7 +16,7 @@ const std::vector<std::string> kLayers = {"surface", "ridges", "creases", "pels"
                                           "textures", "feature-edges", "silhouettes"};
 
 StyledDrawing drawing(LayerSplit split = LayerSplit::kind) {
-    return style_drawing(small_drawing(), visible_style(), 42, split);
+    return style_drawing(small_drawing(), visible_style(), split);
 }
 
 std::vector<std::string> matches(const std::string& text, const std::string& pattern) {

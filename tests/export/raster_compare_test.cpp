@@ -68,7 +68,7 @@ void expect_close(const Image& ours, const Image& theirs, const std::string& wha
 class RasterCompare : public ::testing::Test {
 protected:
     TempDir dir{"raster"};
-    StyledDrawing drawing = style_drawing(small_drawing(), visible_style(), 42);
+    StyledDrawing drawing = style_drawing(small_drawing(), visible_style());
     Image ours;
     void SetUp() override {
         export_drawing(drawing, PageOptions{}, dir.file("ours.png"));
@@ -126,7 +126,7 @@ TEST(PngWriter, CapsuleAndFillCoverage) {
     Style s = default_style();
     s.fill = Rgb{0, 0, 0};
     s.layer(LayerKind::ridges).width = s.layer(LayerKind::ridges).width_far = 4.0;
-    const RgbImage img = rasterise(style_drawing(d, s, 1), RasterTransform{64, 32, 1.0, 0.0, 0.0});
+    const RgbImage img = rasterise(style_drawing(d, s), RasterTransform{64, 32, 1.0, 0.0, 0.0});
     const auto at = [&](int x, int y) { return int(img.rgb[3 * size_t(y * 64 + x)]); };
     for (int y = 8; y <= 11; ++y) EXPECT_EQ(at(45, y), 0) << y;  // line covers y in [8, 12]
     EXPECT_EQ(at(45, 7), 255);
@@ -145,7 +145,7 @@ TEST(PngWriter, CapsuleAndFillCoverage) {
 TEST(PngWriter, DpiScalesTheImage) {
     PageOptions o;
     o.dpi = 192;
-    const RasterTransform t = png_transform(style_drawing(small_drawing(), default_style(), 1), o);
+    const RasterTransform t = png_transform(style_drawing(small_drawing(), default_style()), o);
     EXPECT_EQ(t.width, 400);
     EXPECT_EQ(t.height, 320);
     EXPECT_DOUBLE_EQ(t.scale, 2.0);

@@ -1,4 +1,5 @@
-// Distance thinning, width bands and near/middle/far sublayers give the expected counts.
+// Width bands and near/middle/far sublayers give the expected counts (thinning, overshoot and
+// repeats are the lines stage's: tests/lines/finish_drawing_test.cpp).
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
@@ -29,7 +30,7 @@ size_t pels(const StyledDrawing& s) { return s.layers[size_t(LayerKind::pels)].g
 }  // namespace
 
 TEST(StyledDrawing, TechnicalKeepsEveryStrokeAsOnePath) {
-    const StyledDrawing s = style_drawing(small_drawing(), default_style(), 1);
+    const StyledDrawing s = style_drawing(small_drawing(), default_style());
     EXPECT_EQ(path_count(s), 5u);
     const StyledPath& ridge = s.layers[size_t(LayerKind::ridges)].groups[0].paths[0];
     EXPECT_EQ(ridge.points.size(), 5u);
@@ -40,7 +41,7 @@ TEST(StyledDrawing, TechnicalKeepsEveryStrokeAsOnePath) {
 }
 
 TEST(StyledDrawing, WidthBandsShareBoundaryPoints) {
-    const StyledDrawing s = style_drawing(small_drawing(), visible_style(), 1);
+    const StyledDrawing s = style_drawing(small_drawing(), visible_style());
     // Ridge segments' mean depths 200 400 650 900 of D = 1000 -> levels 1 1 2 3 (4 bands).
     const auto& paths = s.layers[size_t(LayerKind::ridges)].groups[0].paths;
     ASSERT_EQ(paths.size(), 3u);
@@ -56,32 +57,11 @@ TEST(StyledDrawing, WidthBandsShareBoundaryPoints) {
     EXPECT_NEAR(paths[2].depth, 900.0, 1e-9);
 }
 
-TEST(StyledDrawing, ThinningFollowsKeepFar) {
-    Style style = default_style();
-    style.layer(LayerKind::pels).keep_far = 0.3;
-    const size_t far_kept = pels(style_drawing(strokes_at(1000, 2000), style, 7));
-    EXPECT_NEAR(double(far_kept), 600.0, 80.0);  // binomial(2000, 0.3): sd 20
-    EXPECT_EQ(pels(style_drawing(strokes_at(0, 2000), style, 7)), 2000u);   // near: all
-    const size_t middle = pels(style_drawing(strokes_at(500, 2000), style, 7));
-    EXPECT_NEAR(double(middle), 1300.0, 90.0);  // keep 1 - 0.7 * 0.5 = 0.65
-    // Deterministic per seed, different between seeds.
-    const StyledDrawing a = style_drawing(strokes_at(1000, 300), style, 7);
-    const StyledDrawing b = style_drawing(strokes_at(1000, 300), style, 7);
-    const StyledDrawing c = style_drawing(strokes_at(1000, 300), style, 8);
-    const auto ys = [](const StyledDrawing& s) {
-        std::vector<float> v;
-        for (const StyledPath& p : s.layers[size_t(LayerKind::pels)].groups[0].paths) v.push_back(p.points[0].y);
-        return v;
-    };
-    EXPECT_EQ(ys(a), ys(b));
-    EXPECT_NE(ys(a), ys(c));
-}
-
 TEST(StyledDrawing, KindDistanceSublayers) {
     Drawing d = strokes_at(100, 3);  // near third
     for (float depth : {400.f, 500.f, 700.f, 900.f, 950.f})
         d.layer(LayerKind::pels).strokes.push_back(make_stroke({{1, 1}, {2, 2}}, {depth, depth}, 1, "pel"));
-    const StyledDrawing s = style_drawing(d, default_style(), 1, LayerSplit::kind_distance);
+    const StyledDrawing s = style_drawing(d, default_style(), LayerSplit::kind_distance);
     const StyledLayer& l = s.layers[size_t(LayerKind::pels)];
     ASSERT_EQ(l.groups.size(), 3u);
     EXPECT_EQ(l.groups[0].name, "pels-near");
@@ -93,18 +73,13 @@ TEST(StyledDrawing, KindDistanceSublayers) {
     EXPECT_EQ(s.layers[0].groups.size(), 3u);  // every layer, even empty ones
 }
 
-TEST(StyledDrawing, OvershootRepeatAndVisibility) {
+TEST(StyledDrawing, InvisibleLayerIsWrittenEmpty) {
     Style style = default_style();
-    apply_style_overrides(style, parse_toml("[ridges]\novershoot = 5\nrepeat = 3\n[creases]\nvisible = false\n"));
-    const StyledDrawing s = style_drawing(small_drawing(), style, 1);
-    const auto& ridges = s.layers[size_t(LayerKind::ridges)].groups[0].paths;
-    ASSERT_EQ(ridges.size(), 3u);
-    const glm::vec2 first = ridges[0].points.front();  // (20,70) pushed 5 px away from (60,65)
-    const glm::vec2 dir = glm::normalize(glm::vec2(20, 70) - glm::vec2(60, 65));
-    EXPECT_NEAR(first.x, 20 + 5 * dir.x, 1e-4);
-    EXPECT_NEAR(first.y, 70 + 5 * dir.y, 1e-4);
+    apply_style_overrides(style, parse_toml("[creases]\nvisible = false\n"));
+    const StyledDrawing s = style_drawing(small_drawing(), style);
     EXPECT_TRUE(s.layers[size_t(LayerKind::creases)].groups[0].paths.empty());
-    // The closed silhouette is not extended.
+    EXPECT_EQ(s.layers[size_t(LayerKind::creases)].name, "creases");
+    // Strokes are passed on as they are: the closed silhouette keeps its first point.
     const auto& sil = s.layers[size_t(LayerKind::silhouettes)].groups[0].paths[0];
     EXPECT_EQ(sil.points.front(), glm::vec2(10, 60));
 }
@@ -114,7 +89,7 @@ TEST(StyledDrawing, PlotStats) {
     d.width = d.height = 100;
     d.layer(LayerKind::ridges).strokes.push_back(make_stroke({{0, 0}, {30, 40}}, {1, 1}, 1, "r"));
     d.layer(LayerKind::silhouettes).strokes.push_back(make_stroke({{30, 50}, {30, 60}, {40, 60}}, {1, 1, 1}, 1, "s"));
-    const PlotStats st = plot_stats(style_drawing(d, default_style(), 1));
+    const PlotStats st = plot_stats(style_drawing(d, default_style()));
     EXPECT_EQ(st.paths, 2u);
     EXPECT_DOUBLE_EQ(st.length_px, 50.0 + 10.0 + 10.0);
     EXPECT_DOUBLE_EQ(st.travel_px, 10.0);

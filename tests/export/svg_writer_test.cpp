@@ -14,7 +14,7 @@ using namespace penink::test;
 namespace {
 
 StyledDrawing golden_drawing(LayerSplit split = LayerSplit::kind) {
-    return style_drawing(small_drawing(), visible_style(), 42, split);
+    return style_drawing(small_drawing(), visible_style(), split);
 }
 
 // inkscape:label values of the layer groups, in document order.
