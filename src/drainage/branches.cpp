@@ -1,26 +1,50 @@
 #include "drainage/branches.hpp"
 
 #include <algorithm>
+#include <bit>
 
 namespace penink {
 
 namespace {
 
+// Local x, y of drainage point i: at factor 1 the coarse node itself (what grid_xy gives there,
+// weight 1 on the node), else grid_xy.
+glm::dvec2 point_xy(const DrainageGrid& g, std::size_t i) {
+    if (g.factor == 1 && g.coarse_xy.size() == g.size()) return glm::dvec2(g.coarse_xy[i]);
+    return grid_xy(g, int(i % g.cols), int(i / g.cols));
+}
+
 DvVertex point_vertex(const DrainageGrid& g, const FlowNetwork& net, std::size_t i) {
-    const glm::dvec2 p = grid_xy(g, int(i % g.cols), int(i / g.cols));
+    const glm::dvec2 p = point_xy(g, i);
     return {float(p.x), float(p.y), g.z[i], normalised_flow(net, i), net.basin[i], net.order[i]};
 }
 
-// Links each branch to the branch headed by its end junction and lists upstream branches.
-void link_branches(const std::vector<std::uint32_t>& heads, const std::vector<std::uint32_t>& ends,
-                   DrainageDb& db) {
-    std::vector<std::uint32_t> count(db.branches.size() + 1, 0);
-    for (std::size_t b = 0; b < db.branches.size(); ++b) {
-        if (ends[b] == UINT32_MAX) continue;
-        const auto it = std::lower_bound(heads.begin(), heads.end(), ends[b]);
-        db.branches[b].downstream = std::int32_t(it - heads.begin());
-        ++count[db.branches[b].downstream + 1];
+// Rank of head cells in row-major order (= branch id): one bit per cell plus a running count
+// per 64-bit word.
+struct HeadRank {
+    std::vector<std::uint64_t> bits;
+    std::vector<std::uint32_t> before;
+    std::uint32_t of(std::size_t cell) const {
+        const std::uint64_t below = (std::uint64_t(1) << (cell & 63)) - 1;
+        return before[cell >> 6] + std::uint32_t(std::popcount(bits[cell >> 6] & below));
     }
+};
+
+HeadRank head_rank(const DrainageGrid& g, const std::vector<std::uint8_t>& indeg) {
+    HeadRank h{std::vector<std::uint64_t>((g.size() + 63) / 64, 0), {}};
+    for (std::size_t i = 0; i < g.size(); ++i)
+        if (g.valid[i] && indeg[i] != 1) h.bits[i >> 6] |= std::uint64_t(1) << (i & 63);
+    h.before.resize(h.bits.size());
+    std::uint32_t n = 0;
+    for (std::size_t w = 0; w < h.bits.size(); ++w) h.before[w] = n, n += std::uint32_t(std::popcount(h.bits[w]));
+    return h;
+}
+
+// Upstream lists from the downstream links, in branch order.
+void link_upstream(DrainageDb& db) {
+    std::vector<std::uint32_t> count(db.branches.size() + 1, 0);
+    for (const DvBranch& b : db.branches)
+        if (b.downstream >= 0) ++count[std::size_t(b.downstream) + 1];
     for (std::size_t b = 0; b < db.branches.size(); ++b) {
         count[b + 1] += count[b];
         db.branches[b].up_first = count[b];
@@ -38,30 +62,32 @@ void build_branches(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
                     const FlowNetwork& net, DrainageDb& db) {
     const GridShape shape{g.cols, g.rows, g.valid.data()};
     const std::vector<std::uint8_t> indeg = inflow_counts(dir, shape);
-    std::vector<std::uint32_t> heads, ends;  // head cell and end junction cell per branch
+    const HeadRank rank = head_rank(g, indeg);
+    const std::size_t heads = rank.bits.empty() ? 0 : rank.before.back() + std::popcount(rank.bits.back());
+    std::size_t valid = 0;
+    for (std::uint8_t v : g.valid) valid += v;
     db.vertices.clear(), db.branches.clear();
+    db.vertices.reserve(valid + heads), db.branches.reserve(heads);
     for (std::size_t h = 0; h < g.size(); ++h) {
         if (!g.valid[h] || indeg[h] == 1) continue;
         DvBranch b;
         b.first = std::uint32_t(db.vertices.size());
         b.basin = net.basin[h], b.order = net.order[h];
-        std::uint32_t end = UINT32_MAX;
         for (std::size_t c = h;;) {
             db.vertices.push_back(point_vertex(g, net, c));
             if (!dir[c]) break;
             const std::size_t d = d8_target(shape, c, dir[c]);
             if (indeg[d] != 1) {
                 db.vertices.push_back(point_vertex(g, net, d));
-                end = std::uint32_t(d);
+                b.downstream = std::int32_t(rank.of(d));
                 break;
             }
             c = d;
         }
         b.count = std::uint32_t(db.vertices.size()) - b.first;
-        heads.push_back(std::uint32_t(h)), ends.push_back(end);
         db.branches.push_back(b);
     }
-    link_branches(heads, ends, db);
+    link_upstream(db);
 }
 
 namespace {

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <ostream>
 
 #include "core/error.hpp"
@@ -12,11 +13,32 @@ namespace penink {
 
 namespace {
 
-DrainageProgress progress_printer(std::ostream& log, bool quiet) {
-    if (quiet) return {};
-    return [&log, last = -1](const std::string& stage, double fraction) mutable {
+using Clock = std::chrono::steady_clock;
+
+// Per-stage wall times, printed when the environment variable PENINK_DRAINAGE_TIMES is set (for
+// profiling: bench/compare_grass.sh shows them).
+struct StageTimer {
+    std::ostream& log;
+    bool on = std::getenv("PENINK_DRAINAGE_TIMES") != nullptr;
+    std::string stage = "reading the DEM";
+    Clock::time_point since = Clock::now();
+    void next(const std::string& name) {
+        const Clock::time_point now = Clock::now();
+        if (on) {
+            char line[160];
+            std::snprintf(line, sizeof line, "drainage: time %-26s %.3f s\n", stage.c_str(),
+                          std::chrono::duration<double>(now - since).count());
+            log << line << std::flush;
+        }
+        stage = name, since = now;
+    }
+};
+
+DrainageProgress progress_printer(std::ostream& log, bool quiet, StageTimer& timer) {
+    return [&log, &timer, quiet, last = -1](const std::string& stage, double fraction) mutable {
+        timer.next(stage);
         const int pct = int(fraction * 100.0 + 0.5);
-        if (pct == last) return;
+        if (quiet || pct == last) return;
         last = pct;
         log << "drainage: " << pct << "% " << stage << "\n" << std::flush;
     };
@@ -33,16 +55,19 @@ void print_summary(std::ostream& log, const DrainageStats& s, const DrainageDb& 
 }
 
 int run(const DrainageCommand& cmd, std::ostream& log) {
-    const auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = Clock::now();
+    StageTimer timer{log};
     const Terrain t = read_dem(cmd.dem);
     DrainageOptions o;
     o.resample = cmd.resample;
     if (cmd.resample < 0) throw Error("drainage", cmd.dem, "resample factor must be >= 1 (0 = automatic)");
     DrainageResult res;
-    DrainageDb db = build_drainage_db(t, o, progress_printer(log, cmd.quiet), &res);
+    DrainageDb db = build_drainage_db(t, o, progress_printer(log, cmd.quiet, timer), &res);
+    timer.next("writing the database");
     db.fingerprint = drainage_fingerprint(cmd.dem, t, o);
     const std::string out = cmd.output.empty() ? cmd.dem + ".dv" : cmd.output;
     write_drainage_db(out, db);
+    timer.next("writing rasters");
     if (!cmd.rasters_dir.empty()) {
         // the grid's valid mask: exactly the points with a basin label
         std::vector<std::uint8_t> valid(res.net.basin.size());
@@ -50,7 +75,8 @@ int run(const DrainageCommand& cmd, std::ostream& log) {
         write_drainage_rasters(cmd.rasters_dir, drainage_georef(cmd.dem, t, db.factor), db.cols,
                                db.rows, valid, res);
     }
-    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    timer.next("");
+    const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
     if (!cmd.quiet) print_summary(log, res.stats, db, secs), log << "drainage: wrote " << out << "\n";
     return 0;
 }

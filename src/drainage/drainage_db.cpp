@@ -1,4 +1,5 @@
-// DV file layout (version 1, all little-endian):
+// DV file layout (version 2, all little-endian; compact: what the builder's invariants give is
+// not stored, see canonical()):
 //   char[8]  magic "PNKDV\0\0\0"
 //   u32      format version
 //   u32      reserved (0)
@@ -6,16 +7,20 @@
 //   fingerprint: u64 DEM size, i64 DEM mtime (ns), u64 DEM hash, u32 resample, u32 options
 //   i32 cols, rows, factor; f64 origin easting, northing; u32 n + n bytes of CRS WKT
 //   u64 counts: vertices, branches, upstream links, divide vertices, divides
-//   vertices: f32 x, y, z, flow; u32 basin; u8 order                      (21 bytes each)
-//   branches: u32 first, count; i32 downstream; u32 up_first, up_count, basin; u8 order (25)
-//   upstream: u32 branch ids
-//   divide vertices as vertices; divides: u32 first, count
+//   branches: u32 count; i32 downstream; u32 basin; u8 order                   (13 bytes each)
+//             (first = running sum of counts; upstream lists follow from downstream)
+//   branch vertices: f32 x, y, z, flow (16 bytes each), branch by branch, without the end
+//             junction of a branch with a downstream branch (= that branch's first vertex);
+//             basin and order are the branch's (the end junction's: the downstream branch's)
+//   divides: u32 count (first = running sum); divide vertices: f32 x, y, z (flow, basin, order 0)
 //   u64      hash64 (FNV-1a, 64-bit words) of every byte before it
 #include "drainage/drainage_db.hpp"
 
 #include <bit>
 #include <chrono>
+#include <cstdio>
 #include <cstring>
+#include <functional>
 #include <filesystem>
 #include <fstream>
 
@@ -32,14 +37,32 @@ namespace {
 constexpr char magic[8] = {'P', 'N', 'K', 'D', 'V', 0, 0, 0};
 constexpr std::size_t prefix_bytes = 8 + 4 + 4 + 8;  // magic, version, reserved, total length
 
-struct Writer {
-    std::vector<std::uint8_t> buf;
-    template <class T> void put(T v) {
-        const auto* p = reinterpret_cast<const std::uint8_t*>(&v);
-        buf.insert(buf.end(), p, p + sizeof(T));
+// Output bytes in a fixed buffer, hashed (hash64 chained over 8-byte aligned chunks, so the
+// result equals hashing the whole file at once) and handed to `out` whenever it fills.
+struct Sink {
+    std::vector<std::uint8_t> buf = std::vector<std::uint8_t>(std::size_t(1) << 22);
+    std::size_t n = 0;
+    std::uint64_t hash = hash64(nullptr, 0);
+    std::function<void(const std::uint8_t*, std::size_t)> out;
+    void drain() {  // hands over the whole 8-byte words, keeps the tail
+        const std::size_t whole = n & ~std::size_t(7);
+        hash = hash64(buf.data(), whole, hash);
+        out(buf.data(), whole);
+        std::memmove(buf.data(), buf.data() + whole, n - whole);
+        n -= whole;
     }
-    void vertex(const DvVertex& v) {
-        put(v.x), put(v.y), put(v.z), put(v.flow), put(v.basin), put(v.order);
+    void bytes(const void* p, std::size_t k) {
+        if (n + k > buf.size()) drain();
+        std::memcpy(buf.data() + n, p, k);
+        n += k;
+    }
+    template <class T> void put(T v) { bytes(&v, sizeof(T)); }
+    void finish() {  // hash of every byte so far, appended; everything handed over
+        hash = hash64(buf.data(), n, hash);
+        const std::uint64_t h = hash;
+        std::memcpy(buf.data() + n, &h, 8);
+        out(buf.data(), n + 8);
+        n = 0;
     }
 };
 
@@ -47,9 +70,11 @@ struct Reader {
     const std::vector<std::uint8_t>& buf;
     std::size_t pos;
     std::string path;
+    [[noreturn]] void corrupt() const {
+        throw Error("drainage", path, "drainage database checksum mismatch (file corrupt)");
+    }
     void need(std::size_t n) const {
-        if (n > buf.size() - pos)
-            throw Error("drainage", path, "drainage database checksum mismatch (file corrupt)");
+        if (n > buf.size() - pos) corrupt();
     }
     template <class T> T get() {
         need(sizeof(T));
@@ -58,22 +83,107 @@ struct Reader {
         pos += sizeof(T);
         return v;
     }
-    DvVertex vertex() {
-        DvVertex v;
-        v.x = get<float>(), v.y = get<float>(), v.z = get<float>(), v.flow = get<float>();
-        v.basin = get<std::uint32_t>(), v.order = get<std::uint8_t>();
-        return v;
-    }
 };
 
-void put_header(Writer& w, const DrainageDb& db) {
-    w.buf.insert(w.buf.end(), magic, magic + 8);
-    w.put(drainage_db_version), w.put(std::uint32_t(0)), w.put(std::uint64_t(0));
+// Whether `db` has the shape drainage_db_from_grid gives it, which the compact layout relies on:
+// branches' vertices consecutive; a branch ending at a junction repeats the downstream branch's
+// first vertex; vertex basin = branch basin, vertex order = branch order (the repeated junction:
+// the downstream branch's); upstream lists derived from `downstream` in branch order; divide
+// vertices with flow, basin and order 0 and consecutive polylines.
+bool canonical(const DrainageDb& db) {
+    const std::size_t nb = db.branches.size();
+    std::vector<std::uint32_t> ups(nb + 1, 0);
+    std::size_t next = 0;
+    for (const DvBranch& b : db.branches) {
+        const bool junction = b.downstream >= 0;
+        if (b.first != next || b.count < 1u + junction || b.downstream >= std::int64_t(nb) ||
+            b.downstream < -1 || b.first + std::size_t(b.count) > db.vertices.size())
+            return false;
+        next += b.count;
+        for (std::uint32_t k = 0; k + junction < b.count; ++k) {
+            const DvVertex& v = db.vertices[b.first + k];
+            if (v.basin != b.basin || v.order != b.order) return false;
+        }
+        if (junction) {
+            const DvBranch& d = db.branches[std::size_t(b.downstream)];
+            if (d.count < 1 || d.first >= db.vertices.size() ||
+                !(db.vertices[b.first + b.count - 1] == db.vertices[d.first]))
+                return false;
+            ++ups[std::size_t(b.downstream) + 1];
+        }
+    }
+    if (next != db.vertices.size()) return false;
+    for (std::size_t b = 0; b < nb; ++b) {
+        ups[b + 1] += ups[b];
+        if (db.branches[b].up_first != ups[b] || db.branches[b].up_count != ups[b + 1] - ups[b])
+            return false;
+    }
+    if (db.upstream.size() != ups[nb]) return false;
+    for (std::size_t b = 0; b < nb; ++b)
+        if (const std::int32_t d = db.branches[b].downstream; d >= 0)
+            if (db.upstream[ups[std::size_t(d)]++] != b) return false;
+    next = 0;
+    for (const DvPolyline& p : db.divides) {
+        if (p.first != next) return false;
+        next += p.count;
+    }
+    if (next != db.divide_vertices.size()) return false;
+    for (const DvVertex& v : db.divide_vertices)
+        if (v.flow != 0.0f || v.basin != 0 || v.order != 0) return false;
+    return true;
+}
+
+std::size_t stored_vertices(const DrainageDb& db) {
+    std::size_t n = db.vertices.size();
+    for (const DvBranch& b : db.branches) n -= b.downstream >= 0;
+    return n;
+}
+
+std::size_t header_bytes(const DrainageDb& db) {
+    return prefix_bytes + 32 + 12 + 16 + 4 + db.crs_wkt.size();
+}
+
+std::size_t encoded_size(const DrainageDb& db) {
+    return header_bytes(db) + 5 * 8 + db.branches.size() * 13 + stored_vertices(db) * 16 +
+           db.divides.size() * 4 + db.divide_vertices.size() * 12 + 8;
+}
+
+void put_header(Sink& w, const DrainageDb& db) {
+    w.bytes(magic, 8);
+    w.put(drainage_db_version), w.put(std::uint32_t(0)), w.put(std::uint64_t(encoded_size(db)));
     const DrainageFingerprint& f = db.fingerprint;
     w.put(f.file_size), w.put(f.mtime_ns), w.put(f.content_hash), w.put(f.resample), w.put(f.options);
     w.put(db.cols), w.put(db.rows), w.put(db.factor), w.put(db.origin.x), w.put(db.origin.y);
     w.put(std::uint32_t(db.crs_wkt.size()));
-    w.buf.insert(w.buf.end(), db.crs_wkt.begin(), db.crs_wkt.end());
+    w.bytes(db.crs_wkt.data(), db.crs_wkt.size());
+}
+
+void put_body(Sink& w, const DrainageDb& db) {
+    w.put(std::uint64_t(db.vertices.size())), w.put(std::uint64_t(db.branches.size()));
+    w.put(std::uint64_t(db.upstream.size())), w.put(std::uint64_t(db.divide_vertices.size()));
+    w.put(std::uint64_t(db.divides.size()));
+    for (const DvBranch& b : db.branches)
+        w.put(b.count), w.put(b.downstream), w.put(b.basin), w.put(b.order);
+    for (const DvBranch& b : db.branches)
+        for (std::uint32_t k = 0; k + (b.downstream >= 0) < b.count; ++k) {
+            const DvVertex& v = db.vertices[b.first + k];
+            const float xyzf[4] = {v.x, v.y, v.z, v.flow};
+            w.bytes(xyzf, 16);
+        }
+    for (const DvPolyline& p : db.divides) w.put(p.count);
+    for (const DvVertex& v : db.divide_vertices) {
+        const float xyz[3] = {v.x, v.y, v.z};
+        w.bytes(xyz, 12);
+    }
+}
+
+void encode(const DrainageDb& db, Sink& w) {
+    if (!canonical(db))
+        throw Error("drainage", "", "drainage database is not in the shape the builder gives it",
+                    ExitCode::internal);
+    put_header(w, db);
+    put_body(w, db);
+    w.finish();
 }
 
 void get_header(Reader& r, DrainageDb& db) {
@@ -90,30 +200,75 @@ void get_header(Reader& r, DrainageDb& db) {
     r.pos += n;
 }
 
-void get_body(Reader& r, DrainageDb& db) {
-    const std::uint64_t counts[5] = {r.get<std::uint64_t>(), r.get<std::uint64_t>(),
-                                     r.get<std::uint64_t>(), r.get<std::uint64_t>(),
-                                     r.get<std::uint64_t>()};
-    const std::size_t sizes[5] = {21, 25, 4, 21, 8};
-    for (int k = 0; k < 5; ++k)
-        if (counts[k] > (r.buf.size() - r.pos) / sizes[k]) r.need(r.buf.size());
-    db.vertices.resize(counts[0]);
-    for (DvVertex& v : db.vertices) v = r.vertex();
-    db.branches.resize(counts[1]);
+// Branches: first from the running count, upstream lists from `downstream`.
+void get_branches(Reader& r, DrainageDb& db, std::uint64_t upstream_count) {
+    std::vector<std::uint32_t> ups(db.branches.size() + 1, 0);
+    std::uint64_t next = 0;
     for (DvBranch& b : db.branches) {
-        b.first = r.get<std::uint32_t>(), b.count = r.get<std::uint32_t>();
-        b.downstream = r.get<std::int32_t>(), b.up_first = r.get<std::uint32_t>();
-        b.up_count = r.get<std::uint32_t>(), b.basin = r.get<std::uint32_t>();
-        b.order = r.get<std::uint8_t>();
+        b.first = std::uint32_t(next);
+        b.count = r.get<std::uint32_t>(), b.downstream = r.get<std::int32_t>();
+        b.basin = r.get<std::uint32_t>(), b.order = r.get<std::uint8_t>();
+        if (b.downstream < -1 || b.downstream >= std::int64_t(db.branches.size()) ||
+            b.count < 1u + (b.downstream >= 0))
+            r.corrupt();
+        next += b.count;
+        if (b.downstream >= 0) ++ups[std::size_t(b.downstream) + 1];
     }
-    db.upstream.resize(counts[2]);
-    for (std::uint32_t& u : db.upstream) u = r.get<std::uint32_t>();
-    db.divide_vertices.resize(counts[3]);
-    for (DvVertex& v : db.divide_vertices) v = r.vertex();
-    db.divides.resize(counts[4]);
-    for (DvPolyline& p : db.divides) p.first = r.get<std::uint32_t>(), p.count = r.get<std::uint32_t>();
+    if (next != db.vertices.size()) r.corrupt();
+    for (std::size_t b = 0; b < db.branches.size(); ++b) {
+        ups[b + 1] += ups[b];
+        db.branches[b].up_first = ups[b], db.branches[b].up_count = ups[b + 1] - ups[b];
+    }
+    if (ups.back() != upstream_count) r.corrupt();
+    db.upstream.resize(upstream_count);
+    for (std::size_t b = 0; b < db.branches.size(); ++b)
+        if (const std::int32_t d = db.branches[b].downstream; d >= 0)
+            db.upstream[ups[std::size_t(d)]++] = std::uint32_t(b);
 }
 
+void get_vertices(Reader& r, DrainageDb& db) {
+    for (const DvBranch& b : db.branches) {
+        const std::uint32_t stored = b.count - (b.downstream >= 0);
+        r.need(std::size_t(stored) * 16);
+        for (std::uint32_t k = 0; k < stored; ++k) {
+            DvVertex& v = db.vertices[b.first + k];
+            float xyzf[4];
+            std::memcpy(xyzf, r.buf.data() + r.pos, 16);
+            r.pos += 16;
+            v = {xyzf[0], xyzf[1], xyzf[2], xyzf[3], b.basin, b.order};
+        }
+    }
+    for (const DvBranch& b : db.branches)  // the end junction: the downstream branch's head
+        if (b.downstream >= 0)
+            db.vertices[b.first + b.count - 1] = db.vertices[db.branches[std::size_t(b.downstream)].first];
+}
+
+void get_divides(Reader& r, DrainageDb& db) {
+    std::uint64_t next = 0;
+    for (DvPolyline& p : db.divides) p.first = std::uint32_t(next), p.count = r.get<std::uint32_t>(), next += p.count;
+    if (next != db.divide_vertices.size()) r.corrupt();
+    r.need(db.divide_vertices.size() * 12);
+    for (DvVertex& v : db.divide_vertices) {
+        float xyz[3];
+        std::memcpy(xyz, r.buf.data() + r.pos, 12);
+        r.pos += 12;
+        v = {xyz[0], xyz[1], xyz[2], 0.0f, 0, 0};
+    }
+}
+
+void get_body(Reader& r, DrainageDb& db) {
+    std::uint64_t counts[5];
+    for (std::uint64_t& c : counts) c = r.get<std::uint64_t>();
+    const std::size_t min_sizes[5] = {16, 13, 0, 12, 4};  // bytes each needs at least
+    for (int k = 0; k < 5; ++k)
+        if (counts[k] > r.buf.size() || (min_sizes[k] && counts[k] > (r.buf.size() - r.pos) / min_sizes[k] * 2))
+            r.corrupt();
+    db.vertices.resize(counts[0]), db.branches.resize(counts[1]);
+    db.divide_vertices.resize(counts[3]), db.divides.resize(counts[4]);
+    get_branches(r, db, counts[2]);
+    get_vertices(r, db);
+    get_divides(r, db);
+}
 std::uint64_t read_u64(const std::vector<std::uint8_t>& b, std::size_t at) {
     std::uint64_t v;
     std::memcpy(&v, b.data() + at, 8);
@@ -136,27 +291,13 @@ std::uint64_t hash64(const void* data, std::size_t size, std::uint64_t h) {
 }
 
 std::vector<std::uint8_t> encode_drainage_db(const DrainageDb& db) {
-    Writer w;
-    put_header(w, db);
-    w.put(std::uint64_t(db.vertices.size())), w.put(std::uint64_t(db.branches.size()));
-    w.put(std::uint64_t(db.upstream.size())), w.put(std::uint64_t(db.divide_vertices.size()));
-    w.put(std::uint64_t(db.divides.size()));
-    w.buf.reserve(w.buf.size() + db.vertices.size() * 21 + db.branches.size() * 29 +
-                  db.divide_vertices.size() * 21 + db.divides.size() * 8 + 8);
-    for (const DvVertex& v : db.vertices) w.vertex(v);
-    for (const DvBranch& b : db.branches) {
-        w.put(b.first), w.put(b.count), w.put(b.downstream), w.put(b.up_first);
-        w.put(b.up_count), w.put(b.basin), w.put(b.order);
-    }
-    for (std::uint32_t u : db.upstream) w.put(u);
-    for (const DvVertex& v : db.divide_vertices) w.vertex(v);
-    for (const DvPolyline& p : db.divides) w.put(p.first), w.put(p.count);
-    const std::uint64_t total = w.buf.size() + 8;
-    std::memcpy(w.buf.data() + 16, &total, 8);
-    w.put(hash64(w.buf.data(), w.buf.size()));
-    return w.buf;
+    std::vector<std::uint8_t> bytes;
+    bytes.reserve(encoded_size(db));
+    Sink w;
+    w.out = [&](const std::uint8_t* p, std::size_t n) { bytes.insert(bytes.end(), p, p + n); };
+    encode(db, w);
+    return bytes;
 }
-
 DrainageDb decode_drainage_db(const std::vector<std::uint8_t>& b, const std::string& path) {
     if (b.size() < 8 || std::memcmp(b.data(), magic, 8) != 0)
         throw Error("drainage", path, "not a drainage database (bad magic)");
@@ -183,10 +324,12 @@ DrainageDb decode_drainage_db(const std::vector<std::uint8_t>& b, const std::str
 
 DrainageDb read_drainage_db(const std::string& path, const DrainageFingerprint* expected) {
     std::error_code ec;
-    std::ifstream in(path, std::ios::binary);
-    if (!std::filesystem::is_regular_file(path, ec) || !in)
-        throw Error("drainage", path, "cannot open drainage database");
-    std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::FILE* in = std::filesystem::is_regular_file(path, ec) ? std::fopen(path.c_str(), "rb") : nullptr;
+    if (!in) throw Error("drainage", path, "cannot open drainage database");
+    std::vector<std::uint8_t> bytes(std::size_t(std::filesystem::file_size(path, ec)));
+    const std::size_t got = ec ? 0 : std::fread(bytes.data(), 1, bytes.size(), in);
+    std::fclose(in);
+    bytes.resize(got);
     DrainageDb db = decode_drainage_db(bytes, path);
     if (expected && !(db.fingerprint == *expected))
         throw Error("drainage", path, "drainage database is stale (DEM changed)");
@@ -194,26 +337,31 @@ DrainageDb read_drainage_db(const std::string& path, const DrainageFingerprint* 
 }
 
 void write_drainage_db(const std::string& path, const DrainageDb& db) {
-    const std::vector<std::uint8_t> bytes = encode_drainage_db(db);
     const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-        out.close();
-        if (!out) {
-            std::error_code ec;
-            std::filesystem::remove(tmp, ec);
-            throw Error("drainage", path, "cannot write drainage database", ExitCode::internal);
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
+    auto fail = [&](std::FILE* f) {
+        if (f) std::fclose(f);
+        std::error_code ec;
         std::filesystem::remove(tmp, ec);
         throw Error("drainage", path, "cannot write drainage database", ExitCode::internal);
+    };
+    std::FILE* out = std::fopen(tmp.c_str(), "wb");
+    if (!out) fail(nullptr);
+    bool ok = true;
+    Sink w;
+    w.out = [&](const std::uint8_t* p, std::size_t n) { ok = ok && std::fwrite(p, 1, n, out) == n; };
+    try {
+        encode(db, w);
+    } catch (...) {
+        std::fclose(out);
+        std::error_code ec;
+        std::filesystem::remove(tmp, ec);
+        throw;
     }
+    if (!ok || std::fclose(out) != 0) fail(nullptr);
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) fail(nullptr);
 }
-
 DrainageFingerprint dem_fingerprint(const std::string& dem_path, int resample) {
     namespace fs = std::filesystem;
     std::error_code ec;

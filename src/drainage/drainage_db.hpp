@@ -60,7 +60,7 @@ struct DrainageDb {
     bool operator==(const DrainageDb&) const = default;
 };
 
-inline constexpr std::uint32_t drainage_db_version = 1;
+inline constexpr std::uint32_t drainage_db_version = 2;
 
 // 64-bit FNV-1a over little-endian 64-bit words (tail bytes one by one).
 std::uint64_t hash64(const void* data, std::size_t size, std::uint64_t seed = 0xcbf29ce484222325ull);
@@ -69,10 +69,13 @@ std::uint64_t hash64(const void* data, std::size_t size, std::uint64_t seed = 0x
 // penink::Error("drainage", dem_path, "cannot read DEM file") when it cannot be read.
 DrainageFingerprint dem_fingerprint(const std::string& dem_path, int resample);
 
-// Serialised bytes (header, counts, data, trailing checksum).
+// Serialised bytes (header, counts, data, trailing checksum). The compact layout needs `db` in
+// the shape drainage_db_from_grid gives it (see drainage_db.cpp); other databases throw
+// penink::Error("drainage", "", "drainage database is not in the shape the builder gives it",
+// internal).
 std::vector<std::uint8_t> encode_drainage_db(const DrainageDb& db);
 
-// Writes atomically (temp file in the same directory + rename). Throws
+// Streams the encoding (4 MiB buffer) to a temp file in the same directory, then renames it. Throws
 // penink::Error("drainage", path, "cannot write drainage database", internal) on failure.
 void write_drainage_db(const std::string& path, const DrainageDb& db);
 
