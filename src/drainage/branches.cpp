@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <thread>
 
 namespace penink {
 
@@ -58,6 +59,45 @@ void link_upstream(DrainageDb& db) {
 
 }  // namespace
 
+namespace {
+
+struct Tracer {
+    const DrainageGrid& g;
+    const std::vector<std::uint8_t>& dir;
+    const FlowNetwork& net;
+    const std::vector<std::uint8_t>& indeg;
+    const HeadRank& rank;
+    GridShape shape{g.cols, g.rows, g.valid.data()};
+
+    // Branches headed in cells [h0, h1), in cell order, appended to `vertices` / `branches`.
+    void run(std::size_t h0, std::size_t h1, std::vector<DvVertex>& vertices,
+             std::vector<DvBranch>& branches) const {
+        for (std::size_t h = h0; h < h1; ++h) {
+            if (!g.valid[h] || indeg[h] == 1) continue;
+            DvBranch b;
+            b.first = std::uint32_t(vertices.size());
+            b.basin = net.basin[h], b.order = net.order[h];
+            for (std::size_t c = h;;) {
+                vertices.push_back(point_vertex(g, net, c));
+                if (!dir[c]) break;
+                const std::size_t d = d8_target(shape, c, dir[c]);
+                if (indeg[d] != 1) {
+                    vertices.push_back(point_vertex(g, net, d));
+                    b.downstream = std::int32_t(rank.of(d));
+                    break;
+                }
+                c = d;
+            }
+            b.count = std::uint32_t(vertices.size()) - b.first;
+            branches.push_back(b);
+        }
+    }
+};
+
+}  // namespace
+
+// Two threads: the heads in the north and the south half of the grid, concatenated (the same
+// vertices and branches as one pass in cell order; reserve only claims address space).
 void build_branches(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
                     const FlowNetwork& net, DrainageDb& db) {
     const GridShape shape{g.cols, g.rows, g.valid.data()};
@@ -68,25 +108,18 @@ void build_branches(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
     for (std::uint8_t v : g.valid) valid += v;
     db.vertices.clear(), db.branches.clear();
     db.vertices.reserve(valid + heads), db.branches.reserve(heads);
-    for (std::size_t h = 0; h < g.size(); ++h) {
-        if (!g.valid[h] || indeg[h] == 1) continue;
-        DvBranch b;
-        b.first = std::uint32_t(db.vertices.size());
-        b.basin = net.basin[h], b.order = net.order[h];
-        for (std::size_t c = h;;) {
-            db.vertices.push_back(point_vertex(g, net, c));
-            if (!dir[c]) break;
-            const std::size_t d = d8_target(shape, c, dir[c]);
-            if (indeg[d] != 1) {
-                db.vertices.push_back(point_vertex(g, net, d));
-                b.downstream = std::int32_t(rank.of(d));
-                break;
-            }
-            c = d;
-        }
-        b.count = std::uint32_t(db.vertices.size()) - b.first;
-        db.branches.push_back(b);
-    }
+    const Tracer tracer{g, dir, net, indeg, rank};
+    const std::size_t mid = std::size_t(g.rows / 2) * g.cols;
+    std::vector<DvVertex> south_v;
+    std::vector<DvBranch> south_b;
+    south_v.reserve(valid + heads), south_b.reserve(heads);
+    std::thread south([&] { tracer.run(mid, g.size(), south_v, south_b); });
+    tracer.run(0, mid, db.vertices, db.branches);
+    south.join();
+    const std::uint32_t shift = std::uint32_t(db.vertices.size());
+    for (DvBranch& b : south_b) b.first += shift;
+    db.vertices.insert(db.vertices.end(), south_v.begin(), south_v.end());
+    db.branches.insert(db.branches.end(), south_b.begin(), south_b.end());
     link_upstream(db);
 }
 

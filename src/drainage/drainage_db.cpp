@@ -1,5 +1,5 @@
 // DV file layout (version 2, all little-endian; compact: what the builder's invariants give is
-// not stored, see canonical()):
+// not stored, see layout_ok and derived_ok):
 //   char[8]  magic "PNKDV\0\0\0"
 //   u32      format version
 //   u32      reserved (0)
@@ -21,6 +21,7 @@
 #include <cstdio>
 #include <cstring>
 #include <functional>
+#include <thread>
 #include <filesystem>
 #include <fstream>
 
@@ -85,34 +86,43 @@ struct Reader {
     }
 };
 
-// Whether `db` has the shape drainage_db_from_grid gives it, which the compact layout relies on:
-// branches' vertices consecutive; a branch ending at a junction repeats the downstream branch's
-// first vertex; vertex basin = branch basin, vertex order = branch order (the repeated junction:
-// the downstream branch's); upstream lists derived from `downstream` in branch order; divide
-// vertices with flow, basin and order 0 and consecutive polylines.
-bool canonical(const DrainageDb& db) {
-    const std::size_t nb = db.branches.size();
-    std::vector<std::uint32_t> ups(nb + 1, 0);
+// Whether `db` has the shape drainage_db_from_grid gives it, which the compact layout relies on,
+// in two checks. layout_ok (sequential, run before anything is encoded): branches' and divides'
+// vertices consecutive, downstream links in range. derived_ok (random access, run beside the
+// encoding): a branch ending at a junction repeats the downstream branch's first vertex; vertex
+// basin = branch basin, vertex order = branch order; upstream lists derived from `downstream` in
+// branch order; divide vertices with flow, basin and order 0.
+bool layout_ok(const DrainageDb& db) {
     std::size_t next = 0;
     for (const DvBranch& b : db.branches) {
-        const bool junction = b.downstream >= 0;
-        if (b.first != next || b.count < 1u + junction || b.downstream >= std::int64_t(nb) ||
-            b.downstream < -1 || b.first + std::size_t(b.count) > db.vertices.size())
+        if (b.first != next || b.count < 1u + (b.downstream >= 0) || b.downstream < -1 ||
+            b.downstream >= std::int64_t(db.branches.size()))
             return false;
         next += b.count;
+    }
+    if (next != db.vertices.size()) return false;
+    next = 0;
+    for (const DvPolyline& p : db.divides) {
+        if (p.first != next) return false;
+        next += p.count;
+    }
+    return next == db.divide_vertices.size();
+}
+
+bool derived_ok(const DrainageDb& db) {
+    const std::size_t nb = db.branches.size();
+    std::vector<std::uint32_t> ups(nb + 1, 0);
+    for (const DvBranch& b : db.branches) {
+        const bool junction = b.downstream >= 0;
         for (std::uint32_t k = 0; k + junction < b.count; ++k) {
             const DvVertex& v = db.vertices[b.first + k];
             if (v.basin != b.basin || v.order != b.order) return false;
         }
-        if (junction) {
-            const DvBranch& d = db.branches[std::size_t(b.downstream)];
-            if (d.count < 1 || d.first >= db.vertices.size() ||
-                !(db.vertices[b.first + b.count - 1] == db.vertices[d.first]))
-                return false;
-            ++ups[std::size_t(b.downstream) + 1];
-        }
+        if (!junction) continue;
+        if (!(db.vertices[b.first + b.count - 1] == db.vertices[db.branches[std::size_t(b.downstream)].first]))
+            return false;
+        ++ups[std::size_t(b.downstream) + 1];
     }
-    if (next != db.vertices.size()) return false;
     for (std::size_t b = 0; b < nb; ++b) {
         ups[b + 1] += ups[b];
         if (db.branches[b].up_first != ups[b] || db.branches[b].up_count != ups[b + 1] - ups[b])
@@ -122,12 +132,6 @@ bool canonical(const DrainageDb& db) {
     for (std::size_t b = 0; b < nb; ++b)
         if (const std::int32_t d = db.branches[b].downstream; d >= 0)
             if (db.upstream[ups[std::size_t(d)]++] != b) return false;
-    next = 0;
-    for (const DvPolyline& p : db.divides) {
-        if (p.first != next) return false;
-        next += p.count;
-    }
-    if (next != db.divide_vertices.size()) return false;
     for (const DvVertex& v : db.divide_vertices)
         if (v.flow != 0.0f || v.basin != 0 || v.order != 0) return false;
     return true;
@@ -177,13 +181,24 @@ void put_body(Sink& w, const DrainageDb& db) {
     }
 }
 
+// The random-access check runs on a second thread while the bytes are produced; `w` may have
+// handed out bytes when it throws.
 void encode(const DrainageDb& db, Sink& w) {
-    if (!canonical(db))
-        throw Error("drainage", "", "drainage database is not in the shape the builder gives it",
-                    ExitCode::internal);
-    put_header(w, db);
-    put_body(w, db);
-    w.finish();
+    const Error not_canonical("drainage", "", "drainage database is not in the shape the builder gives it",
+                              ExitCode::internal);
+    if (!layout_ok(db)) throw not_canonical;
+    bool derived = false;
+    std::thread check([&] { derived = derived_ok(db); });
+    try {
+        put_header(w, db);
+        put_body(w, db);
+        w.finish();
+    } catch (...) {
+        check.join();
+        throw;
+    }
+    check.join();
+    if (!derived) throw not_canonical;
 }
 
 void get_header(Reader& r, DrainageDb& db) {
