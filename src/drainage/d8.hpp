@@ -34,7 +34,8 @@ bool is_boundary_cell(const GridShape& g, int c, int r);
 
 // Steepest strictly-downhill valid neighbour per valid cell (first in code order on ties: the
 // lowest ESRI code), 0 when none or invalid. Interior cells of a grid without nodata take a
-// branch-free loop over precomputed neighbour offsets.
+// branch-free loop over precomputed neighbour offsets; the south half of the rows runs on a
+// second thread.
 std::vector<std::uint8_t> d8_directions(const std::vector<float>& z, const GridShape& g,
                                         double dx, double dy);
 
