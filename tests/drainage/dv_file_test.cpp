@@ -1,5 +1,6 @@
 // DV file: exact round trip, and each corruption detected with its exact error text; the cache
 // next to the DEM is written, reused, rebuilt when stale and kept in memory when unwritable.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -57,6 +58,29 @@ TEST(DvFile, RoundTripIsExact) {
     EXPECT_EQ(back.vertices.size(), 15u + db.branches.size() - 2);  // 2 outlet branches
     EXPECT_EQ(back.origin.x, 1750000.5);
     EXPECT_EQ(encode_drainage_db(back), encode_drainage_db(db));
+}
+
+TEST(DvFile, CompactLayoutSizeAndShapeCheck) {
+    const DrainageDb db = sample_db();
+    std::size_t junction_ends = 0;
+    for (const DvBranch& b : db.branches) junction_ends += b.downstream >= 0;
+    ASSERT_GT(junction_ends, 0u);
+    // header 88 + WKT, counts 40, branches 13 B, stored vertices 16 B, divides 4 + 12 B, hash 8
+    const std::size_t expect = 88 + db.crs_wkt.size() + 40 + 13 * db.branches.size() +
+                               16 * (db.vertices.size() - junction_ends) + 4 * db.divides.size() +
+                               12 * db.divide_vertices.size() + 8;
+    EXPECT_EQ(encode_drainage_db(db).size(), expect);
+    DrainageDb odd = db;  // a junction vertex that is not the downstream branch's head
+    const DvBranch& b = *std::find_if(odd.branches.begin(), odd.branches.end(),
+                                      [](const DvBranch& x) { return x.downstream >= 0; });
+    odd.vertices[b.first + b.count - 1].z += 1.0f;
+    std::string what;
+    try {
+        encode_drainage_db(odd);
+    } catch (const Error& e) {
+        what = e.what();
+    }
+    EXPECT_EQ(what, "penink: drainage: drainage database is not in the shape the builder gives it");
 }
 
 TEST(DvFile, CorruptionsAreDetected) {
