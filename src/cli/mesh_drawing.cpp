@@ -1,5 +1,7 @@
 #include "cli/mesh_drawing.hpp"
 
+#include "input/mesh_subdivision.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -242,6 +244,7 @@ void log_mesh_timings(const MeshLines& l, std::size_t triangles, const Log& log)
 SceneDrawing draw_mesh(const Scene& scene, GlContext& context, const Log& log) {
     const MeshScene ms = load_mesh_scene(scene);
     TriangleMesh mesh = read_mesh(ms.path);
+    loop_subdivide(mesh, ms.subdivide);
     if (ms.y_up) mesh_y_up_to_z_up(mesh);
     glm::vec3 lo, hi;
     mesh_bounds(mesh, lo, hi);
@@ -250,9 +253,9 @@ SceneDrawing draw_mesh(const Scene& scene, GlContext& context, const Log& log) {
              " materials");
     SceneDrawing out;
     out.triangles = mesh.triangles.size();
-    out.camera = mesh_camera(scene, ms, lo, hi);
-    TerrainRenderer renderer(context.gl(), surface_mesh_from(mesh, mesh_vertex_normals(mesh)), out.camera.width,
-                             out.camera.height);
+    out.camera = mesh_camera(scene, ms, mesh.positions, lo, hi);
+    const SurfaceMesh surface = surface_mesh_from(mesh, mesh_vertex_normals(mesh));  // outlives the renderer
+    TerrainRenderer renderer(context.gl(), surface, out.camera.width, out.camera.height);
     FrameOptions options;
     options.tessellation.max_level = 1;  // the lines lie on the flat triangles
     const FrameImages images = renderer.render(out.camera, options);

@@ -99,6 +99,11 @@ MeshScene load_mesh_scene(const Scene& s) {
     if (up != "y" && up != "z") bad(s, "mesh", "up", "use \"y\" or \"z\"");
     ms.y_up = up == "y";
     ms.up = ms.y_up ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
+    float subdivide = 0.0f;
+    read_float(s, "mesh", "subdivide", subdivide);
+    if (subdivide < 0.0f || subdivide > 4.0f || subdivide != std::floor(subdivide))
+        bad(s, "mesh", "subdivide", "must be a whole number from 0 to 4");
+    ms.subdivide = int(subdivide);
     ms.eye = read_vec3(s, "camera", "eye");
     ms.target = read_vec3(s, "camera", "target");
     if (auto u = read_vec3(s, "camera", "up")) ms.up = *u;
@@ -128,13 +133,15 @@ glm::dvec3 mesh_to_world(const MeshScene& ms, const glm::dvec3& v) {
     return ms.y_up ? glm::dvec3(v.x, -v.z, v.y) : v;
 }
 
-Camera mesh_camera(const Scene& s, const MeshScene& ms, const glm::dvec3& lo, const glm::dvec3& hi) {
+Camera mesh_camera(const Scene& s, const MeshScene& ms, const std::vector<glm::vec3>& points,
+                   const glm::dvec3& lo, const glm::dvec3& hi) {
     const SceneCamera& sc = s.camera;
     if (ms.eye.has_value() != ms.target.has_value())
         throw Error("scene", scene_name(s), "camera eye and target go together (give both or neither)");
     if (!ms.eye) {
-        return frame_box(lo, hi, sc.azimuth.value_or(default_view_azimuth),
-                         sc.altitude.value_or(default_view_altitude), sc.fov, sc.width, sc.height, 0.9);
+        const std::vector<glm::dvec3> pts(points.begin(), points.end());
+        return frame_points(pts, sc.azimuth.value_or(default_view_azimuth),
+                            sc.altitude.value_or(default_view_altitude), sc.fov, sc.width, sc.height, 0.9);
     }
     const glm::dvec3 eye = mesh_to_world(ms, *ms.eye), d = mesh_to_world(ms, *ms.target) - eye;
     if (!(glm::length(d) > 0.0)) throw Error("scene", scene_name(s), "camera eye and target coincide");

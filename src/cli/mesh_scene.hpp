@@ -20,6 +20,7 @@ namespace penink {
 struct MeshScene {
     std::string path;             // mesh file (resolved relative to the scene file)
     bool y_up = true;             // [mesh] up = "y" (default) or "z"
+    int subdivide = 0;            // [mesh] subdivide: Loop subdivision iterations (0..4)
     std::optional<glm::dvec3> eye, target;  // [camera], mesh frame
     glm::dvec3 up{0, 1, 0};                 // [camera] up, mesh frame (default: the mesh's up)
     std::optional<glm::dvec3> light;        // [light] direction, mesh frame, towards the light
@@ -48,7 +49,8 @@ glm::dvec3 mesh_to_world(const MeshScene& ms, const glm::dvec3& v);
 // south-west, 30 degrees down) filling 90 % of the width. Near/far fitted to the box.
 // Throws Error("scene", ...) when only one of eye/target is given, they coincide, or `up` is
 // not roughly the mesh's up axis.
-Camera mesh_camera(const Scene& scene, const MeshScene& ms, const glm::dvec3& lo, const glm::dvec3& hi);
+Camera mesh_camera(const Scene& scene, const MeshScene& ms, const std::vector<glm::vec3>& points,
+                   const glm::dvec3& lo, const glm::dvec3& hi);
 
 // Folder of the texture library: [textures] library, else $PENINK_TEXTURES, else the first of
 // <scene dir>/textures, <mesh dir>/../textures, <exe dir>/../examples/textures,

@@ -14,13 +14,27 @@ namespace {
 const std::string& scene_file(const Scene& s) { return s.file.empty() ? s.dem : s.file; }
 }
 
+std::vector<glm::dvec3> frame_samples(const Terrain& t) {
+    std::vector<glm::dvec3> pts;
+    const std::size_t step = std::max<std::size_t>(1, t.size() / 20000);  // enough to frame by
+    for (std::size_t i = 0; i < t.size(); i += step)
+        if (t.valid[i]) pts.emplace_back(t.pos[i]);
+    for (int c = 0; c < t.cols; ++c)  // the edges decide the frame: keep all of them
+        for (int r : {0, t.rows - 1})
+            if (t.valid[t.index(c, r)]) pts.emplace_back(t.pos[t.index(c, r)]);
+    for (int r = 0; r < t.rows; ++r)
+        for (int c : {0, t.cols - 1})
+            if (t.valid[t.index(c, r)]) pts.emplace_back(t.pos[t.index(c, r)]);
+    return pts;
+}
+
 Camera scene_camera(const Scene& scene, const Terrain& terrain) {
     const SceneCamera& sc = scene.camera;
     const double az = sc.azimuth.value_or(default_view_azimuth);
     const double alt = sc.altitude.value_or(default_view_altitude);
     glm::dvec3 lo, hi;
     terrain_bounds(terrain, lo, hi);
-    if (!sc.position) return frame_box(lo, hi, az, alt, sc.fov, sc.width, sc.height, 0.9);
+    if (!sc.position) return frame_points(frame_samples(terrain), az, alt, sc.fov, sc.width, sc.height, 0.9);
     Camera cam;
     const glm::dvec2 xy = parse_scene_position(*sc.position, terrain, scene_file(scene));
     cam.eye = {xy.x, xy.y, *sc.elevation * scene.vertical_exaggeration};

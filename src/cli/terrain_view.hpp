@@ -3,6 +3,8 @@
 // DEM framed from the south-west, looking down at 30 degrees (conventions.md). Then crops the
 // DEM to the nodes the view needs and fits near/far planes to what is left.
 #pragma once
+#include <vector>
+
 #include "cli/log.hpp"
 #include "cli/scene.hpp"
 #include "core/camera.hpp"
@@ -14,6 +16,9 @@ inline constexpr double default_view_azimuth = 45.0;    // looking north-east: f
 inline constexpr double default_view_altitude = -30.0;  // looking down
 
 Camera scene_camera(const Scene& scene, const Terrain& terrain);
+
+// Points the automatic camera frames: every edge node and a subsample of the rest.
+std::vector<glm::dvec3> frame_samples(const Terrain& terrain);
 
 // Elevation (world z) of the terrain surface under (x, y); false outside the DEM.
 bool ground_height(const Terrain& terrain, double x, double y, double& z);

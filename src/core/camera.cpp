@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
+#include <glm/common.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace penink {
@@ -45,30 +47,42 @@ bool project_to_pixel(const Camera& cam, const glm::dvec3& world, glm::dvec2& pi
 
 Camera frame_box(const glm::dvec3& lo, const glm::dvec3& hi, double azimuth, double altitude,
                  double fov, int width, int height, double fill) {
+    std::vector<glm::dvec3> corners;
+    for (int i = 0; i < 8; ++i) corners.emplace_back(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
+    return frame_points(corners, azimuth, altitude, fov, width, height, fill);
+}
+
+Camera frame_points(const std::vector<glm::dvec3>& points, double azimuth, double altitude, double fov,
+                    int width, int height, double fill) {
     Camera cam;
     cam.azimuth = azimuth, cam.altitude = altitude, cam.fov = fov;
     cam.width = width, cam.height = height;
+    glm::dvec3 lo(1e300), hi(-1e300);
+    for (const glm::dvec3& p : points) lo = glm::min(lo, p), hi = glm::max(hi, p);
     const glm::dvec3 centre = (lo + hi) * 0.5, d = direction_from_angles(azimuth, altitude);
-    // Start far enough to see the bounding sphere, then scale distance so the projected
-    // horizontal extent of the box corners is `fill` of the image width.
+    // Start far enough to see the bounding sphere; then, step by step, slide the eye sideways so
+    // the projected points are centred in the image, and scale the distance so they span `fill`
+    // of the width, or of the height when that is the tighter fit.
     const double radius = glm::length(hi - lo) * 0.5;
-    double dist = radius / std::sin(fov * deg / 2.0);
-    for (int it = 0; it < 3; ++it) {
-        cam.eye = centre - d * dist;
+    const double tan_x = std::tan(fov * deg / 2.0), tan_y = tan_x * double(height) / double(width);
+    double dist = radius / std::sin(std::atan(std::min(tan_x, tan_y)));
+    glm::dvec3 shift(0.0);
+    for (int it = 0; it < 12; ++it) {  // converges geometrically; 12 steps reach ~1e-3
+        cam.eye = centre + shift - d * dist;
         fit_depth_range(cam, lo, hi);
         const glm::dmat4 v = view_matrix(cam);
-        double xmax = 0.0;
-        for (int i = 0; i < 8; ++i) {
-            const glm::dvec3 p(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
+        double xl = 1e300, xr = -1e300, yl = 1e300, yr = -1e300;  // projected extent, tan units
+        for (const glm::dvec3& p : points) {
             const glm::dvec4 e = v * glm::dvec4(p, 1.0);
-            xmax = std::max(xmax, std::abs(e.x) / std::max(-e.z, 1e-9));
+            const double sx = e.x / std::max(-e.z, 1e-9), sy = e.y / std::max(-e.z, 1e-9);
+            xl = std::min(xl, sx), xr = std::max(xr, sx), yl = std::min(yl, sy), yr = std::max(yr, sy);
         }
-        const double want = std::tan(fov * deg / 2.0) * fill;
-        // Distance to the nearest box point stays roughly fixed; scale the centre distance.
-        dist *= xmax / want;
+        const glm::dmat4 inv = glm::inverse(v);  // camera right and up in the world
+        shift += (glm::dvec3(inv[0]) * (xl + xr) + glm::dvec3(inv[1]) * (yl + yr)) * (0.5 * dist);
+        dist *= std::max((xr - xl) / (2.0 * tan_x * fill), (yr - yl) / (2.0 * tan_y * fill));
         dist = std::max(dist, radius * 1.05);
     }
-    cam.eye = centre - d * dist;
+    cam.eye = centre + shift - d * dist;
     fit_depth_range(cam, lo, hi);
     return cam;
 }

@@ -2,6 +2,8 @@
 // terrain the local frame is metres relative to Terrain::origin). Angles in degrees: azimuth
 // clockwise from grid north, altitude above the horizontal; fov is the horizontal field of view.
 #pragma once
+#include <vector>
+
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -34,10 +36,16 @@ glm::dmat4 view_projection(const Camera& cam);
 // World point -> image pixel (origin top-left, y down) and eye distance; false when behind.
 bool project_to_pixel(const Camera& cam, const glm::dvec3& world, glm::dvec2& pixel, double& depth);
 
-// Camera looking at the box [lo, hi] from azimuth/altitude, placed so the box spans about
-// `fill` of the image width (conventions.md default: from the south-west, looking down).
+// Camera looking at the box [lo, hi] from azimuth/altitude, placed so the box is centred and
+// spans `fill` of the image width, or of its height when that is the tighter fit
+// (conventions.md default: from the south-west, looking down).
 Camera frame_box(const glm::dvec3& lo, const glm::dvec3& hi, double azimuth, double altitude,
                  double fov, int width, int height, double fill = 0.9);
+
+// The same for a set of points (e.g. a model's vertices): the points themselves (not their box's
+// empty corners) are centred in the image and span `fill` of its width or height.
+Camera frame_points(const std::vector<glm::dvec3>& points, double azimuth, double altitude, double fov,
+                    int width, int height, double fill = 0.9);
 
 // Sets near/far from the box so everything in it lies inside the depth range.
 void fit_depth_range(Camera& cam, const glm::dvec3& lo, const glm::dvec3& hi);

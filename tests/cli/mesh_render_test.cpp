@@ -169,8 +169,10 @@ TEST(MeshRender, HouseTexturesInsideFootprintAndSeeded) {
     glm::dvec2 lo(1e9), hi(-1e9);  // bounds of the surface mask
     for (const Path& r : fill)
         for (const glm::dvec2& q : r) lo = glm::min(lo, q), hi = glm::max(hi, q);
-    EXPECT_GT(hi.x - lo.x, 0.8 * 300);  // auto framing fills ~90 % of the width
-    EXPECT_LT(hi.x - lo.x, 0.97 * 300);
+    // Auto framing fills ~90 % of the width or of the height, whichever is the tighter fit.
+    const double framed = std::max((hi.x - lo.x) / 300.0, (hi.y - lo.y) / 225.0);
+    EXPECT_GT(framed, 0.8);
+    EXPECT_LT(framed, 0.97);
     std::size_t outside = 0, points = 0;
     for (const Path& p : textures)
         for (const glm::dvec2& q : p) outside += !inside_fill(fill, q, 1.0), ++points;
