@@ -62,16 +62,8 @@ std::string content(const StyledDrawing& d, const PageLayout& L, const std::vect
                     AlphaNames& alphas) {
     std::string o;
     o.reserve(4096 + path_count(d) * 64);
-    const double w = L.page_w_mm * points_per_mm, h = L.page_h_mm * points_per_mm;
     o += "q\n";
-    if (!(d.background == Rgb{255, 255, 255})) {
-        append_rgb_op(o, d.background, "rg");
-        o += "0 0 " + format_number(w, 3) + " " + format_number(h, 3) + " re f\n";
-    }
-    const double k = L.scale_mm * points_per_mm;
-    o += format_number(k, 6) + " 0 0 " + format_number(-k, 6) + " " +
-         format_number(L.offset_x_mm * points_per_mm, 4) + " " +
-         format_number(h - L.offset_y_mm * points_per_mm, 4) + " cm\n1 J 1 j\n";
+    append_page_setup(o, d, L, "re f");
     size_t oc = 0;
     for (const StyledLayer& l : d.layers) {
         o += "/OC /oc" + std::to_string(oc++) + " BDC\nq\n";

@@ -59,4 +59,16 @@ Rgb blend_toward(Rgb c, Rgb paper, double opacity) {
     return Rgb{mix(c.r, paper.r), mix(c.g, paper.g), mix(c.b, paper.b)};
 }
 
+void append_page_setup(std::string& o, const StyledDrawing& d, const PageLayout& L, const char* rect_fill) {
+    const double w = L.page_w_mm * points_per_mm, h = L.page_h_mm * points_per_mm;
+    if (!(d.background == Rgb{255, 255, 255})) {
+        append_rgb_op(o, d.background, "rg");
+        o += "0 0 " + format_number(w, 3) + " " + format_number(h, 3) + " " + rect_fill + "\n";
+    }
+    const double k = L.scale_mm * points_per_mm;
+    o += format_number(k, 6) + " 0 0 " + format_number(-k, 6) + " " +
+         format_number(L.offset_x_mm * points_per_mm, 4) + " " +
+         format_number(h - L.offset_y_mm * points_per_mm, 4) + " cm\n1 J 1 j\n";
+}
+
 }  // namespace penink

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "export/page.hpp"
 #include "export/styled_drawing.hpp"
 
 namespace penink {
@@ -17,6 +18,9 @@ void append_ring_ops(std::string& out, const std::vector<Ring>& rings);
 void append_rgb_op(std::string& out, Rgb c, const char* op);
 // "[a b] 0 d" (an empty array is solid).
 void append_dash_op(std::string& out, const std::vector<double>& dash);
+// Page background (when not white; `rect_fill` is "re f" in PDF, "rectfill" in PS) and the
+// transform from image pixels (y down) to page points (y up), with round caps and joins.
+void append_page_setup(std::string& out, const StyledDrawing& d, const PageLayout& layout, const char* rect_fill);
 // `c` blended toward the paper colour by `opacity` (how PostScript shows opacity: exact for
 // a stroke over the bare page, default white).
 Rgb blend_toward(Rgb c, Rgb paper, double opacity);

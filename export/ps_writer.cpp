@@ -61,14 +61,8 @@ void header(std::string& o, const StyledDrawing& d, const PageLayout& L, bool ep
     o += "%%BeginSetup\npenink_dict begin\n";
     if (!eps) o += "<< /PageSize [" + format_number(w, 3) + " " + format_number(h, 3) + "] >> setpagedevice\n";
     o += "%%EndSetup\n%%Page: 1 1\n%%BeginPageSetup\nq\n";
-    if (!(d.background == Rgb{255, 255, 255})) {
-        append_rgb_op(o, d.background, "rg");
-        o += "0 0 " + format_number(w, 3) + " " + format_number(h, 3) + " rectfill\n";
-    }
-    const double k = L.scale_mm * points_per_mm;
-    o += format_number(k, 6) + " 0 0 " + format_number(-k, 6) + " " +
-         format_number(L.offset_x_mm * points_per_mm, 4) + " " +
-         format_number(h - L.offset_y_mm * points_per_mm, 4) + " cm\n1 J 1 j\n%%EndPageSetup\n";
+    append_page_setup(o, d, L, "rectfill");
+    o += "%%EndPageSetup\n";
 }
 
 void set_pen(std::string& o, PenState& pen, const StyledPath& p, Rgb paper) {
