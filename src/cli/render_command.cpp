@@ -70,8 +70,8 @@ void log_timings(const SceneDrawing& r, const Log& log) {
 Subcommand add_render_command(CLI::App& app) {
     auto options = std::make_shared<RenderOptions>();
     RenderOptions& o = *options;
-    CLI::App* cmd = app.add_subcommand("render", "Draw a DEM (or a TOML scene) as layered vector files");
-    cmd->add_option("input", o.input, "DEM (GeoTIFF, ASCII grid, ...) or scene file (.toml)")->required();
+    CLI::App* cmd = app.add_subcommand("render", "Draw a DEM, a mesh (OBJ/PLY/OFF) or a TOML scene as layered vector files");
+    cmd->add_option("input", o.input, "DEM (GeoTIFF, ASCII grid, ...), mesh (.obj .ply .off) or scene file (.toml)")->required();
     cmd->add_option("-o,--output", o.outputs, "Output file, format from the extension: .svg .ps .eps .pdf .png (repeatable)")
         ->required();
     cmd->add_option("--style", o.style, "Style name (technical, field-sketch) or a style .toml file");
