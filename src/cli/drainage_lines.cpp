@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <thread>
+
+#include <glm/common.hpp>
 #include <cstdint>
 #include <unordered_map>
 
@@ -126,6 +128,29 @@ std::vector<Stroke> line_strokes(const ScoredLineSet& set, const std::vector<flo
     return out;
 }
 
+// The pieces of each line inside the plan box [lo, hi] (one vertex beyond it at each cut, so
+// lines run to the edge): a view cropped to part of a large DEM scores only what it models.
+std::vector<std::vector<std::uint32_t>> lines_in_box(const std::vector<std::vector<std::uint32_t>>& lines,
+                                                     const std::vector<DvVertex>& v, glm::vec2 lo, glm::vec2 hi) {
+    std::vector<std::vector<std::uint32_t>> out;
+    const auto inside = [&](std::uint32_t i) {
+        return v[i].x >= lo.x && v[i].x <= hi.x && v[i].y >= lo.y && v[i].y <= hi.y;
+    };
+    for (const auto& line : lines) {
+        std::size_t k = 0;
+        while (k < line.size()) {
+            while (k < line.size() && !inside(line[k])) ++k;
+            if (k == line.size()) break;
+            std::size_t end = k;
+            while (end < line.size() && inside(line[end])) ++end;
+            const std::size_t a = k > 0 ? k - 1 : k, b = std::min(end + 1, line.size());
+            out.emplace_back(line.begin() + std::ptrdiff_t(a), line.begin() + std::ptrdiff_t(b));
+            k = end;
+        }
+    }
+    return out;
+}
+
 }  // namespace
 
 CreaseScore crease_score(const CreaseParams& p) {
@@ -142,8 +167,12 @@ float max_visible_distance(const DepthImage& toward) {
 
 DrainageLines::DrainageLines(const GlApi& gl, const DrainageDb& db, const SurfaceMesh& mesh) {
     const TerrainLocator locator(mesh);
-    creases_ = make_line_set(gl, db.vertices, drainage_stems(db), locator, 3);
-    ridges_ = make_line_set(gl, db.divide_vertices, polyline_indices(db.divides), locator, 3);
+    glm::vec2 lo(1e30f), hi(-1e30f);  // plan extent of the rendered surface
+    for (const glm::uvec3& t : mesh.tri)
+        for (int k = 0; k < 3; ++k) lo = glm::min(lo, glm::vec2(mesh.pos[t[k]])), hi = glm::max(hi, glm::vec2(mesh.pos[t[k]]));
+    creases_ = make_line_set(gl, db.vertices, lines_in_box(drainage_stems(db), db.vertices, lo, hi), locator, 3);
+    ridges_ = make_line_set(gl, db.divide_vertices, lines_in_box(polyline_indices(db.divides), db.divide_vertices, lo, hi),
+                            locator, 3);
 }
 
 void DrainageLines::draw(const Camera& camera, const Scene& scene, GLuint toward_texture,
