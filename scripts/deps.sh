@@ -5,6 +5,7 @@ set -euo pipefail
 pkgs=(
   cmake g++ make pkg-config            # build
   libosmesa6-dev libgl-dev libegl-dev  # headless OpenGL 4.5 core (OSMesa), EGL for GPUs
+  libegl-mesa0 libgl1-mesa-dri         # Mesa's EGL (surfaceless llvmpipe): tests the --gl egl path without a GPU
   libglm-dev                           # vector maths
   libgdal-dev                          # DEM input (GeoTIFF, ASCII grid, ...)
   libgeographiclib-dev                 # geographic -> UTM

@@ -54,6 +54,7 @@ public:
     }
     ~OsMesaContext() override { OSMesaDestroyContext(ctx_); }
     std::string description() const override { return describe("OSMesa"); }
+    void make_current() override { OSMesaMakeCurrent(ctx_, buffer_.data(), GL_UNSIGNED_BYTE, 1, 1); }
     GlBackend backend() const override { return GlBackend::osmesa; }
 
 private:
@@ -67,20 +68,15 @@ void* egl_proc(const char* name) { return reinterpret_cast<void*>(eglGetProcAddr
 class EglContext final : public GlContext {
 public:
     EglContext() {
-        display_ = eglGetDisplay(EGL_DEFAULT_DISPLAY);
+        display_ = headless_display();
         EGLint major = 0, minor = 0;
         if (display_ == EGL_NO_DISPLAY || !eglInitialize(display_, &major, &minor))
             fail("cannot initialise an EGL display");
-        const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
-        EGLConfig config;
-        EGLint count = 0;
-        if (!eglChooseConfig(display_, config_attribs, &config, 1, &count) || count < 1)
-            fail("no EGL config with desktop OpenGL");
         eglBindAPI(EGL_OPENGL_API);
         const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
                                       EGL_CONTEXT_OPENGL_PROFILE_MASK,
                                       EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
-        ctx_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, ctx_attribs);
+        ctx_ = eglCreateContext(display_, context_config(), EGL_NO_CONTEXT, ctx_attribs);
         if (ctx_ == EGL_NO_CONTEXT) fail("cannot create an OpenGL 4.5 core context with EGL");
         if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx_))
             fail("cannot make the EGL context current (surfaceless)");
@@ -92,9 +88,42 @@ public:
         eglTerminate(display_);
     }
     std::string description() const override { return describe("EGL"); }
+    void make_current() override { eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx_); }
     GlBackend backend() const override { return GlBackend::egl; }
 
 private:
+    // A display with no window system: the first EGL device (a GPU, EGL_EXT_platform_device),
+    // else Mesa's surfaceless platform, else the default display.
+    static EGLDisplay headless_display() {
+        const auto query_devices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+        const auto platform_display =
+            reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+        if (query_devices && platform_display) {
+            EGLDeviceEXT devices[8];
+            EGLint count = 0;
+            if (query_devices(8, devices, &count) && count > 0) {
+                const EGLDisplay d = platform_display(EGL_PLATFORM_DEVICE_EXT, devices[0], nullptr);
+                if (d != EGL_NO_DISPLAY) return d;
+            }
+        }
+        if (platform_display) {
+            const EGLDisplay d = platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+            if (d != EGL_NO_DISPLAY) return d;
+        }
+        return eglGetDisplay(EGL_DEFAULT_DISPLAY);
+    }
+    // No config is needed to render into framebuffer objects (EGL_KHR_no_config_context); older
+    // drivers get any desktop-GL config.
+    EGLConfig context_config() {
+        const char* ext = eglQueryString(display_, EGL_EXTENSIONS);
+        if (ext && std::string(ext).find("EGL_KHR_no_config_context") != std::string::npos) return EGL_NO_CONFIG_KHR;
+        const EGLint attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+        EGLConfig config;
+        EGLint count = 0;
+        if (!eglChooseConfig(display_, attribs, &config, 1, &count) || count < 1)
+            fail("no EGL config with desktop OpenGL");
+        return config;
+    }
     [[noreturn]] void fail(const char* what) {
         if (display_ != EGL_NO_DISPLAY) eglTerminate(display_);
         throw Error("render", "", what, ExitCode::internal);

@@ -17,6 +17,8 @@ public:
     const GlApi& gl() const { return gl_; }
     virtual std::string description() const = 0;  // "OSMesa: llvmpipe (LLVM 15.0.6, 256 bits), 4.5 (Core Profile) Mesa 22.3.6"
     virtual GlBackend backend() const = 0;
+    // Makes this context current on the calling thread again (after another one was).
+    virtual void make_current() = 0;
 
 protected:
     GlApi gl_;

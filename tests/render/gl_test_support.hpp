@@ -8,6 +8,7 @@ namespace penink::test {
 
 inline GlContext& test_context() {
     static std::unique_ptr<GlContext> ctx = make_gl_context(GlBackend::osmesa);
+    ctx->make_current();  // another test may have made its own context current
     return *ctx;
 }
 
