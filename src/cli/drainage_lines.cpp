@@ -71,8 +71,8 @@ void parallel_ranges(std::size_t n, F&& f) {
 }
 
 // Lays the polylines (vertex index lists) out contiguously, smooths them (line ends that meet
-// another line's interior follow it), drapes them on the PN surface and uploads them to a DM pass.
-ScoredLineSet make_line_set(const GlApi& gl, const std::vector<DvVertex>& vertices,
+// another line's interior follow it) and drapes them on the PN surface, ready for a DM pass.
+ScoredLineSet make_line_set(const std::vector<DvVertex>& vertices,
                             const std::vector<std::vector<std::uint32_t>>& lines,
                             const TerrainLocator& locator, int smoothing) {
     ScoredLineSet set;
@@ -93,7 +93,7 @@ ScoredLineSet make_line_set(const GlApi& gl, const std::vector<DvVertex>& vertic
     });
     set.normals.resize(dm.size());
     for (std::size_t i = 0; i < dm.size(); ++i) set.normals[i] = dm[i].normal;
-    set.pass = std::make_unique<DmPass>(gl, dm);
+    set.upload = std::move(dm);
     return set;
 }
 
@@ -165,15 +165,28 @@ float max_visible_distance(const DepthImage& toward) {
     return d;
 }
 
-DrainageLines::DrainageLines(const GlApi& gl, const DrainageDb& db, const SurfaceMesh& mesh) {
+DrainageLineData prepare_drainage_lines(const DrainageDb& db, const SurfaceMesh& mesh) {
     const TerrainLocator locator(mesh);
     glm::vec2 lo(1e30f), hi(-1e30f);  // plan extent of the rendered surface
     for (const glm::uvec3& t : mesh.tri)
         for (int k = 0; k < 3; ++k) lo = glm::min(lo, glm::vec2(mesh.pos[t[k]])), hi = glm::max(hi, glm::vec2(mesh.pos[t[k]]));
-    creases_ = make_line_set(gl, db.vertices, lines_in_box(drainage_stems(db), db.vertices, lo, hi), locator, 3);
-    ridges_ = make_line_set(gl, db.divide_vertices, lines_in_box(polyline_indices(db.divides), db.divide_vertices, lo, hi),
-                            locator, 3);
+    DrainageLineData data;
+    data.creases = make_line_set(db.vertices, lines_in_box(drainage_stems(db), db.vertices, lo, hi), locator, 3);
+    data.ridges = make_line_set(db.divide_vertices, lines_in_box(polyline_indices(db.divides), db.divide_vertices, lo, hi),
+                                locator, 3);
+    return data;
 }
+
+DrainageLines::DrainageLines(const GlApi& gl, DrainageLineData data)
+    : creases_(std::move(data.creases)), ridges_(std::move(data.ridges)) {
+    for (ScoredLineSet* set : {&creases_, &ridges_}) {
+        set->pass = std::make_unique<DmPass>(gl, set->upload);
+        set->upload = {};
+    }
+}
+
+DrainageLines::DrainageLines(const GlApi& gl, const DrainageDb& db, const SurfaceMesh& mesh)
+    : DrainageLines(gl, prepare_drainage_lines(db, mesh)) {}
 
 void DrainageLines::draw(const Camera& camera, const Scene& scene, GLuint toward_texture,
                          float max_distance, Drawing& drawing, PassTimings& times) {

@@ -19,13 +19,23 @@ namespace penink {
 struct ScoredLineSet {
     std::vector<glm::vec3> positions, normals;
     std::vector<VertexRun> runs;
+    std::vector<DmVertex> upload;  // prepared vertices, moved to the GPU by DrainageLines
     std::unique_ptr<DmPass> pass;
 };
+
+// The CPU half of DrainageLines (stems, cropping to the surface, smoothing, draping, normals):
+// needs no GL context, so it can run on another thread while the frame renders.
+struct DrainageLineData {
+    ScoredLineSet creases, ridges;
+};
+DrainageLineData prepare_drainage_lines(const DrainageDb& db, const SurfaceMesh& mesh);
 
 class DrainageLines {
 public:
     // `mesh` is the rendered (cropped) surface: vertices outside it are never visible.
     DrainageLines(const GlApi& gl, const DrainageDb& db, const SurfaceMesh& mesh);
+    // Uploads prepared data (the GL half).
+    DrainageLines(const GlApi& gl, DrainageLineData data);
     // Adds the creases and ridges of one frame; DM and RIDGES GPU times go into `times`.
     void draw(const Camera& camera, const Scene& scene, GLuint toward_texture, float max_distance,
               Drawing& drawing, PassTimings& times);

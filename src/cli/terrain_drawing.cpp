@@ -82,13 +82,19 @@ TerrainFrames::TerrainFrames(GlContext& context, const Scene& scene, const Terra
       renderer_(context.gl(), mesh_, width, height) {
     if (!scene.creases.enabled && !scene.ridges.enabled) return;
     const bool tty = isatty(2);
-    const DrainageDb db = load_or_build_drainage(
+    DrainageDb db = load_or_build_drainage(
         scene.dem, dem, DrainageOptions{}, [&](const std::string& m) { log.info(m); },
         [tty](const std::string& stage, double fraction) {  // long builds show progress on a terminal
             if (tty) std::fprintf(stderr, "\rpenink: building drainage database: %-12s %3d%%%s", stage.c_str(),
                                   int(fraction * 100.0 + 0.5), fraction >= 1.0 ? "\n" : "");
         });
-    lines_ = std::make_unique<DrainageLines>(context.gl(), db, mesh_);
+    pending_lines_ = std::async(std::launch::async, [this, db = std::move(db)] {
+        return prepare_drainage_lines(db, mesh_);
+    });
+}
+
+TerrainFrames::~TerrainFrames() {
+    if (pending_lines_.valid()) pending_lines_.wait();
 }
 
 SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
@@ -99,6 +105,8 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
     const FrameImages images = renderer_.render(camera, frame_options(frame));
     out.times = images.times;
     out.drawing.width = camera.width, out.drawing.height = camera.height;
+    if (pending_lines_.valid())
+        lines_ = std::make_unique<DrainageLines>(context_->gl(), pending_lines_.get());
     if (lines_)
         lines_->draw(camera, frame, renderer_.surface_pass().toward_texture(),
                      max_visible_distance(images.toward), out.drawing, out.times);

@@ -2,6 +2,7 @@
 // -> GPU passes (TFT/AFT, SIL) -> traced, simplified polylines in the named layers of a
 // Drawing (image pixels, eye distances in metres), with per-pass timings.
 #pragma once
+#include <future>
 #include <memory>
 
 #include "cli/drainage_lines.hpp"
@@ -18,6 +19,9 @@ class TerrainFrames {
 public:
     TerrainFrames(GlContext& context, const Scene& scene, const Terrain& dem, Terrain terrain,
                   int width, int height, const Log& log);
+    TerrainFrames(const TerrainFrames&) = delete;  // the line preparation thread holds &mesh_
+    TerrainFrames& operator=(const TerrainFrames&) = delete;
+    ~TerrainFrames();
     // One frame: camera plus the scene's per-frame values (light, creases, ridges, tessellation).
     SceneDrawing draw(const Camera& camera, const Scene& frame);
     const SurfaceMesh& mesh() const { return mesh_; }
@@ -28,6 +32,7 @@ private:
     SurfaceMesh mesh_;
     TerrainRenderer renderer_;
     std::unique_ptr<DrainageLines> lines_;
+    std::future<DrainageLineData> pending_lines_;  // prepared on another core during the first frame
 };
 
 // Surface mask rings and silhouette strokes from one frame's images (lines stage), and the
