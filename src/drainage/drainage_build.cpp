@@ -1,6 +1,11 @@
 #include "drainage/drainage_build.hpp"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+#include <unistd.h>
 #include <bit>
 
 #include "core/error.hpp"
@@ -92,10 +97,34 @@ DrainageFingerprint drainage_fingerprint(const std::string& dem_path, const Terr
     return fp;
 }
 
+std::string drainage_cache_path(const std::string& dem_path, bool folder_writable, const std::string& user_cache) {
+    if (folder_writable || user_cache.empty()) return dem_path + ".dv";
+    const std::string absolute = std::filesystem::absolute(dem_path).lexically_normal().string();
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash64(absolute.data(), absolute.size())));
+    const std::string name = std::filesystem::path(dem_path).filename().string();
+    return (std::filesystem::path(user_cache) / "penink" / (name + "-" + hex + ".dv")).string();
+}
+
+std::string drainage_cache_path(const std::string& dem_path) {
+    std::filesystem::path folder = std::filesystem::path(dem_path).parent_path();
+    if (folder.empty()) folder = ".";
+    const bool writable = ::access(folder.c_str(), W_OK) == 0;
+    std::string user_cache;
+    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) user_cache = xdg;
+    else if (const char* home = std::getenv("HOME"); home && *home) user_cache = std::string(home) + "/.cache";
+    const std::string path = drainage_cache_path(dem_path, writable, user_cache);
+    if (!writable && !user_cache.empty()) {
+        std::error_code ec;  // a folder that cannot be made shows up as a failed write, logged
+        std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ec);
+    }
+    return path;
+}
+
 DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& terrain,
                                   const DrainageOptions& options, const DrainageLog& log,
                                   const DrainageProgress& progress) {
-    const std::string cache = dem_path + ".dv";
+    const std::string cache = drainage_cache_path(dem_path);
     const DrainageFingerprint fp = drainage_fingerprint(dem_path, terrain, options);
     auto say = [&](const std::string& m) { if (log) log(m); };
     try {

@@ -64,9 +64,15 @@ DrainageDb build_drainage_db(const Terrain& t, const DrainageOptions& options,
 DrainageFingerprint drainage_fingerprint(const std::string& dem_path, const Terrain& terrain,
                                          const DrainageOptions& options);
 
-// `<dem_path>.dv`, read when its fingerprint matches the DEM and options, else rebuilt and
-// written atomically; when it cannot be written the database is built in memory only. Every
-// decision is reported through `log`.
+// Where the cache of a DEM lives: beside it (`<dem>.dv`) when its folder is writable, else in
+// the user's cache folder: `<user_cache>/penink/<file name>-<16 hex digits of a hash of the
+// absolute path>.dv`, user_cache = $XDG_CACHE_HOME, else $HOME/.cache ("" when neither is set).
+std::string drainage_cache_path(const std::string& dem_path);
+std::string drainage_cache_path(const std::string& dem_path, bool folder_writable, const std::string& user_cache);
+
+// The cache (drainage_cache_path), read when its fingerprint matches the DEM and options, else
+// rebuilt and written atomically; when it cannot be written the database is built in memory
+// only. Every decision is reported through `log`.
 DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& terrain,
                                   const DrainageOptions& options, const DrainageLog& log = {},
                                   const DrainageProgress& progress = {});
