@@ -67,11 +67,7 @@ std::string content(const StyledDrawing& d, const PageLayout& L, const std::vect
     size_t oc = 0;
     for (const StyledLayer& l : d.layers) {
         o += "/OC /oc" + std::to_string(oc++) + " BDC\nq\n";
-        if (!l.fill.empty()) {
-            append_rgb_op(o, l.fill_color, "rg");
-            append_ring_ops(o, l.fill);
-            o += "f*\n";
-        }
+        append_layer_fill(o, l);
         PenState pen;
         for (const StyledGroup& g : l.groups) {
             const bool split = d.split == LayerSplit::kind_distance;

@@ -59,6 +59,13 @@ Rgb blend_toward(Rgb c, Rgb paper, double opacity) {
     return Rgb{mix(c.r, paper.r), mix(c.g, paper.g), mix(c.b, paper.b)};
 }
 
+void append_layer_fill(std::string& o, const StyledLayer& l) {
+    if (l.fill.empty()) return;
+    append_rgb_op(o, l.fill_color, "rg");
+    append_ring_ops(o, l.fill);
+    o += "f*\n";
+}
+
 void append_page_setup(std::string& o, const StyledDrawing& d, const PageLayout& L, const char* rect_fill) {
     const double w = L.page_w_mm * points_per_mm, h = L.page_h_mm * points_per_mm;
     if (!(d.background == Rgb{255, 255, 255})) {

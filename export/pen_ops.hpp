@@ -18,6 +18,8 @@ void append_ring_ops(std::string& out, const std::vector<Ring>& rings);
 void append_rgb_op(std::string& out, Rgb c, const char* op);
 // "[a b] 0 d" (an empty array is solid).
 void append_dash_op(std::string& out, const std::vector<double>& dash);
+// The layer's surface mask (even-odd fill in its colour), when it has one.
+void append_layer_fill(std::string& out, const StyledLayer& layer);
 // Page background (when not white; `rect_fill` is "re f" in PDF, "rectfill" in PS) and the
 // transform from image pixels (y down) to page points (y up), with round caps and joins.
 void append_page_setup(std::string& out, const StyledDrawing& d, const PageLayout& layout, const char* rect_fill);

@@ -75,11 +75,7 @@ void set_pen(std::string& o, PenState& pen, const StyledPath& p, Rgb paper) {
 }
 
 void layer_body(std::string& o, const StyledLayer& l, bool split, Rgb paper) {
-    if (!l.fill.empty()) {
-        append_rgb_op(o, l.fill_color, "rg");
-        append_ring_ops(o, l.fill);
-        o += "f*\n";
-    }
+    append_layer_fill(o, l);
     PenState pen;
     for (const StyledGroup& g : l.groups) {
         if (split) o += "%%BeginLayer: " + g.name + "\n";
