@@ -7,6 +7,7 @@
 
 #include <unistd.h>
 #include <bit>
+#include <thread>
 
 #include "core/error.hpp"
 #include "drainage/branches.hpp"
@@ -69,10 +70,16 @@ DrainageDb drainage_db_from_grid(DrainageGrid& g, const DrainageProgress& progre
     DrainageResult res = compute_drainage(g, progress);
     DrainageDb db;
     db.cols = g.cols, db.rows = g.rows, db.factor = g.factor, db.origin = g.origin;
-    report(progress, "tracing branches", 0.75);
-    build_branches(g, res.dir, res.net, db);
-    report(progress, "tracing divides", 0.9);
-    build_divides(g, res.net, db);
+    report(progress, "tracing branches and divides", 0.75);
+    // divides read the same grid and network and fill other members of db: traced meanwhile
+    std::thread divides([&] { build_divides(g, res.net, db); });
+    try {
+        build_branches(g, res.dir, res.net, db);
+    } catch (...) {
+        divides.join();
+        throw;
+    }
+    divides.join();
     res.stats.branches = db.branches.size(), res.stats.divides = db.divides.size();
     report(progress, "done", 1.0);
     if (keep) *keep = std::move(res);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <thread>
 
 #include <glm/geometric.hpp>
 
@@ -112,15 +113,19 @@ DrainageGrid resample_pn(const Terrain& t, int factor) {
     g.z.assign(g.size(), 0.0f), g.valid.assign(g.size(), 0);
     g.origin = t.origin;
     g.coarse_cols = t.cols, g.coarse_rows = t.rows, g.coarse_valid = t.valid;
-    g.coarse_xy.resize(t.size());
-    for (std::size_t i = 0; i < t.size(); ++i) g.coarse_xy[i] = glm::vec2(t.pos[i]);
-    mean_spacing(t, g.dx, g.dy);
-    g.dx /= factor, g.dy /= factor;
+    // the spacing (one sequential sum, as before) on a second thread while the nodes are copied
+    g.coarse_xy.resize(t.size());  // allocations before the thread: nothing below throws
+    if (factor == 1) g.valid = t.valid;
+    std::thread spacing([&] { mean_spacing(t, g.dx, g.dy); });
     if (factor == 1) {  // the PN patch interpolates its corners: the nodes themselves
-        g.valid = t.valid;
-        for (std::size_t i = 0; i < t.size(); ++i) g.z[i] = t.valid[i] ? t.pos[i].z : 0.0f;
-        return g;
+        for (std::size_t i = 0; i < t.size(); ++i)
+            g.coarse_xy[i] = glm::vec2(t.pos[i]), g.z[i] = t.valid[i] ? t.pos[i].z : 0.0f;
+    } else {
+        for (std::size_t i = 0; i < t.size(); ++i) g.coarse_xy[i] = glm::vec2(t.pos[i]);
     }
+    spacing.join();
+    g.dx /= factor, g.dy /= factor;
+    if (factor == 1) return g;
     const SurfaceMesh mesh = mesh_from_terrain(t);
     for (int R = 0; R + 1 < t.rows; ++R)
         for (int C = 0; C + 1 < t.cols; ++C) resample_cell(t, mesh, C, R, g);

@@ -75,22 +75,16 @@ bool is_nodata(double v, bool has_nodata, double nodata, GDALDataType type) {
     return v == nodata;
 }
 
-// Validity from NaN, the nodata value and any per-dataset or alpha mask.
-std::vector<std::uint8_t> read_validity(GDALRasterBand& band, const std::vector<double>& raw,
-                                        const std::string& path) {
-    int has = 0;
-    const double nodata = band.GetNoDataValue(&has);
-    std::vector<std::uint8_t> valid(raw.size());
-    for (std::size_t i = 0; i < raw.size(); ++i)
-        valid[i] = !is_nodata(raw[i], has != 0, nodata, band.GetRasterDataType());
+// The per-dataset or alpha mask of the band (source order), empty when it has none beyond the
+// nodata value.
+std::vector<std::uint8_t> read_mask(GDALRasterBand& band, const std::string& path) {
     const int flags = band.GetMaskFlags();
-    if (flags & (GMF_ALL_VALID | GMF_NODATA)) return valid;
-    std::vector<std::uint8_t> mask(raw.size());
+    if (flags & (GMF_ALL_VALID | GMF_NODATA)) return {};
+    std::vector<std::uint8_t> mask(std::size_t(band.GetXSize()) * band.GetYSize());
     if (band.GetMaskBand()->RasterIO(GF_Read, 0, 0, band.GetXSize(), band.GetYSize(), mask.data(),
                                      band.GetXSize(), band.GetYSize(), GDT_Byte, 0, 0) != CE_None)
         fail(path, "not a DEM raster (GDAL cannot read it)");
-    for (std::size_t i = 0; i < raw.size(); ++i) valid[i] = valid[i] && mask[i] != 0;
-    return valid;
+    return mask;
 }
 
 // Flips the geotransform (and says which axes to flip) so row 0 is north and column 0 west.
@@ -99,6 +93,41 @@ void orient(std::array<double, 6>& gt, int w, int h, bool& flip_c, bool& flip_r)
     flip_r = gt[5] > 0.0;
     if (flip_c) gt = {gt[0] + w * gt[1], -gt[1], gt[2], gt[3] + w * gt[4], -gt[4], gt[5]};
     if (flip_r) gt = {gt[0] + h * gt[2], gt[1], -gt[2], gt[3] + h * gt[5], gt[4], -gt[5]};
+}
+
+// Reads the band as T (float where that holds its values exactly: the same doubles, half the
+// memory) and fills r.elev / r.valid in our orientation in one pass: validity from NaN, the
+// nodata value and the mask; elevations scaled to metres; non-finite results invalid.
+template <class T>
+void read_band(GDALRasterBand& band, Raster& r, bool flip_c, bool flip_r, const std::string& path) {
+    std::vector<T> raw(std::size_t(r.w) * r.h);
+    const GDALDataType as = sizeof(T) == 4 ? GDT_Float32 : GDT_Float64;
+    if (band.RasterIO(GF_Read, 0, 0, r.w, r.h, raw.data(), r.w, r.h, as, 0, 0) != CE_None)
+        fail(path, "not a DEM raster (GDAL cannot read it)");
+    const std::vector<std::uint8_t> mask = read_mask(band, path);
+    int has = 0, has_scale = 0, has_offset = 0;
+    const double nodata = band.GetNoDataValue(&has);
+    const GDALDataType type = band.GetRasterDataType();
+    const double scale = band.GetScale(&has_scale), offset = band.GetOffset(&has_offset);
+    const double unit = vertical_unit(band);
+    r.elev.resize(raw.size()), r.valid.resize(raw.size());
+    for (int row = 0; row < r.h; ++row) {
+        const std::size_t src_row = std::size_t(flip_r ? r.h - 1 - row : row) * r.w;
+        const std::size_t dst_row = std::size_t(row) * r.w;
+        for (int c = 0; c < r.w; ++c) {
+            const std::size_t src = src_row + (flip_c ? r.w - 1 - c : c), dst = dst_row + c;
+            const double v = double(raw[src]);
+            const double e = (v * (has_scale ? scale : 1.0) + (has_offset ? offset : 0.0)) * unit;
+            r.elev[dst] = e;
+            r.valid[dst] = !is_nodata(v, has != 0, nodata, type) && (mask.empty() || mask[src]) &&
+                           std::isfinite(e);
+        }
+    }
+}
+
+// Band types whose every value a float holds exactly.
+bool float_exact(GDALDataType t) {
+    return t == GDT_Float32 || t == GDT_Byte || t == GDT_Int16 || t == GDT_UInt16;
 }
 
 Raster read_raster(const std::string& path) {
@@ -110,24 +139,10 @@ Raster read_raster(const std::string& path) {
     if (const OGRSpatialReference* s = ds->GetSpatialRef(); s && !s->IsEmpty())
         r.srs.reset(s->Clone());
     GDALRasterBand& band = *ds->GetRasterBand(1);
-    std::vector<double> raw(std::size_t(r.w) * r.h);
-    if (band.RasterIO(GF_Read, 0, 0, r.w, r.h, raw.data(), r.w, r.h, GDT_Float64, 0, 0) != CE_None)
-        fail(path, "not a DEM raster (GDAL cannot read it)");
-    const std::vector<std::uint8_t> valid = read_validity(band, raw, path);
-    int has_scale = 0, has_offset = 0;
-    const double scale = band.GetScale(&has_scale), offset = band.GetOffset(&has_offset);
-    const double unit = vertical_unit(band);
     bool flip_c = false, flip_r = false;
     orient(r.gt, r.w, r.h, flip_c, flip_r);
-    r.elev.resize(raw.size()), r.valid.resize(raw.size());
-    for (int row = 0; row < r.h; ++row)
-        for (int c = 0; c < r.w; ++c) {
-            const std::size_t src = std::size_t(flip_r ? r.h - 1 - row : row) * r.w + (flip_c ? r.w - 1 - c : c);
-            const std::size_t dst = std::size_t(row) * r.w + c;
-            r.valid[dst] = valid[src];
-            r.elev[dst] = (raw[src] * (has_scale ? scale : 1.0) + (has_offset ? offset : 0.0)) * unit;
-            if (!std::isfinite(r.elev[dst])) r.valid[dst] = 0;
-        }
+    if (float_exact(band.GetRasterDataType())) read_band<float>(band, r, flip_c, flip_r, path);
+    else read_band<double>(band, r, flip_c, flip_r, path);
     return r;
 }
 
@@ -136,16 +151,29 @@ glm::dvec2 affine(const std::array<double, 6>& gt, int c, int r) {
     return {gt[0] + x * gt[1] + y * gt[2], gt[3] + x * gt[4] + y * gt[5]};
 }
 
-// Node centres in the source CRS, scaled by `unit` (metres or degrees per CRS unit).
+// Node centre (c, row) in the source CRS, scaled by `unit` (metres or degrees per CRS unit).
+glm::dvec2 scaled_node(const Raster& r, double unit, double offset_x, int c, int row) {
+    const glm::dvec2 p = affine(r.gt, c, row);
+    return {p.x * unit + offset_x, p.y * unit};
+}
+
+// Every node centre, scaled_node in row-major order.
 std::vector<glm::dvec2> node_coordinates(const Raster& r, double unit, double offset_x) {
     std::vector<glm::dvec2> xy(std::size_t(r.w) * r.h);
     for (int row = 0; row < r.h; ++row)
-        for (int c = 0; c < r.w; ++c) {
-            const glm::dvec2 p = affine(r.gt, c, row);
-            xy[std::size_t(row) * r.w + c] = {p.x * unit + offset_x, p.y * unit};
-        }
+        for (int c = 0; c < r.w; ++c) xy[std::size_t(row) * r.w + c] = scaled_node(r, unit, offset_x, c, row);
     return xy;
 }
+
+// World (projected CRS) coordinates of the nodes: projected node by node for a geographic DEM,
+// else scaled_node with `unit` computed when asked (no per-node array for a projected grid).
+struct WorldXY {
+    double unit = 1.0;
+    std::vector<glm::dvec2> projected;  // empty: scaled_node(r, unit, 0, c, row)
+    glm::dvec2 at(const Raster& r, int c, int row) const {
+        return projected.empty() ? scaled_node(r, unit, 0.0, c, row) : projected[std::size_t(row) * r.w + c];
+    }
+};
 
 // Projects lon/lat degrees in [begin, end) to UTM/UPS `zone` in hemisphere `north`.
 void project_range(glm::dvec2* begin, glm::dvec2* end, int zone, bool north) {
@@ -196,22 +224,23 @@ void project_geographic(std::vector<glm::dvec2>& xy, const DemOptions& options, 
 }
 
 // Node coordinates in the world CRS (metres); sets crs_wkt, utm_zone, north.
-std::vector<glm::dvec2> world_coordinates(const Raster& r, const DemOptions& options, Terrain& t,
-                                          const std::string& path) {
-    if (!r.srs) return node_coordinates(r, 1.0, 0.0);
+WorldXY world_coordinates(const Raster& r, const DemOptions& options, Terrain& t, const std::string& path) {
+    WorldXY w;
+    if (!r.srs) return w;
     if (r.srs->IsGeographic()) {
         const double deg = r.srs->GetAngularUnits(nullptr) * 180.0 / pi;
         const double unit = std::abs(deg - 1.0) < 1e-9 ? 1.0 : deg;
-        std::vector<glm::dvec2> xy = node_coordinates(r, unit, r.srs->GetPrimeMeridian(nullptr));
+        w.projected = node_coordinates(r, unit, r.srs->GetPrimeMeridian(nullptr));
         t.source_geographic = true;
-        project_geographic(xy, options, t, path);
-        return xy;
+        project_geographic(w.projected, options, t, path);
+        return w;
     }
     int north = 1;
     t.utm_zone = r.srs->GetUTMZone(&north);
     t.north = north != 0;
     t.crs_wkt = srs_wkt(*r.srs);
-    return node_coordinates(r, r.srs->IsProjected() ? r.srs->GetLinearUnits(nullptr) : 1.0, 0.0);
+    w.unit = r.srs->IsProjected() ? r.srs->GetLinearUnits(nullptr) : 1.0;
+    return w;
 }
 
 void check_grid(const Raster& r, const std::string& path) {
@@ -223,21 +252,26 @@ void check_grid(const Raster& r, const std::string& path) {
     fail(path, "DEM has no valid elevation (all nodata)");
 }
 
-void fill_positions(const Raster& r, const std::vector<glm::dvec2>& xy, Terrain& t) {
+void fill_positions(const Raster& r, const WorldXY& xy, Terrain& t) {
     glm::dvec2 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
     double emin = std::numeric_limits<double>::max(), emax = -emin;
-    for (std::size_t i = 0; i < xy.size(); ++i) {
-        lo = glm::min(lo, xy[i]), hi = glm::max(hi, xy[i]);
-        if (r.valid[i]) emin = std::min(emin, r.elev[i]), emax = std::max(emax, r.elev[i]);
-    }
+    for (int row = 0; row < r.h; ++row)
+        for (int c = 0; c < r.w; ++c) {
+            const glm::dvec2 p = xy.at(r, c, row);
+            lo = glm::min(lo, p), hi = glm::max(hi, p);
+            const std::size_t i = std::size_t(row) * r.w + c;
+            if (r.valid[i]) emin = std::min(emin, r.elev[i]), emax = std::max(emax, r.elev[i]);
+        }
     t.origin = glm::round(0.5 * (lo + hi));
     t.elevation_min = emin, t.elevation_max = emax;
-    t.pos.resize(xy.size());
+    t.pos.resize(std::size_t(r.w) * r.h);
     const double s = t.vertical_exaggeration;
-    for (std::size_t i = 0; i < xy.size(); ++i) {
-        const glm::dvec2 p = xy[i] - t.origin;
-        t.pos[i] = glm::vec3(float(p.x), float(p.y), float((r.valid[i] ? r.elev[i] : emin) * s));
-    }
+    for (int row = 0; row < r.h; ++row)
+        for (int c = 0; c < r.w; ++c) {
+            const std::size_t i = std::size_t(row) * r.w + c;
+            const glm::dvec2 p = xy.at(r, c, row) - t.origin;
+            t.pos[i] = glm::vec3(float(p.x), float(p.y), float((r.valid[i] ? r.elev[i] : emin) * s));
+        }
 }
 
 }  // namespace
@@ -255,7 +289,7 @@ Terrain read_dem(const std::string& path, const DemOptions& options) {
     t.vertical_exaggeration = ve;
     t.source = path;
     t.geotransform = r.gt;
-    const std::vector<glm::dvec2> xy = world_coordinates(r, options, t, path);
+    const WorldXY xy = world_coordinates(r, options, t, path);
     fill_positions(r, xy, t);
     t.valid = std::move(r.valid);
     return t;
