@@ -1,5 +1,7 @@
 #include "drainage/priority_flood.hpp"
 
+#include <algorithm>
+#include <bit>
 #include <queue>
 
 namespace penink {
@@ -7,15 +9,40 @@ namespace penink {
 namespace {
 
 struct Open {
-    float z;
+    std::uint32_t key;  // order_key(z)
     std::uint32_t i;
 };
 
-// min-heap on elevation (index order among equals only keeps runs reproducible; the filled
-// surface is the same for any order)
-struct Later {
-    bool operator()(const Open& a, const Open& b) const {
-        return a.z > b.z || (a.z == b.z && a.i > b.i);
+// Unsigned key ordered like the float elevation (-0 and +0 alike; valid z are never NaN).
+std::uint32_t order_key(float z) {
+    const std::uint32_t b = std::bit_cast<std::uint32_t>(z == 0.0f ? 0.0f : z);
+    return (b & 0x80000000u) ? ~b : (b | 0x80000000u);
+}
+
+// Monotone min-queue (radix heap, Ahuja, Mehlhorn, Orlin & Tarjan 1990): exact as long as no key
+// pushed is below the last key popped, which holds here: every cell queued is at or above the
+// level being spilled. Bucket k holds keys whose highest bit differing from `last` is k-1.
+struct RadixHeap {
+    std::vector<Open> bucket[33];
+    std::uint32_t last = 0;
+    std::size_t count = 0;
+
+    static int slot(std::uint32_t x) { return x ? 32 - std::countl_zero(x) : 0; }
+    bool empty() const { return count == 0; }
+    void push(Open o) { bucket[slot(o.key ^ last)].push_back(o), ++count; }
+    Open pop() {
+        if (bucket[0].empty()) {
+            int k = 1;
+            while (bucket[k].empty()) ++k;
+            std::uint32_t low = bucket[k].front().key;
+            for (const Open& o : bucket[k]) low = std::min(low, o.key);
+            last = low;
+            for (const Open& o : bucket[k]) bucket[slot(o.key ^ last)].push_back(o);
+            bucket[k].clear();
+        }
+        const Open o = bucket[0].back();
+        bucket[0].pop_back(), --count;
+        return o;
     }
 };
 
@@ -25,7 +52,7 @@ struct Flood {
     std::uint8_t* flags;
     std::uint32_t* orig;
     std::ptrdiff_t off[8];
-    std::priority_queue<Open, std::vector<Open>, Later> open;
+    RadixHeap open;
     std::vector<std::uint32_t> pit;     // a stack: any order is correct within a level
     std::queue<std::uint32_t> trace;    // FIFO: climbing breadth-first from the spill reaches a
                                         // cell's lower neighbours first, keeping it off the queue
@@ -35,7 +62,7 @@ struct Flood {
         const int c = int(i % std::uint32_t(g.cols)), r = int(i / std::uint32_t(g.cols));
         return c == 0 || r == 0 || c == g.cols - 1 || r == g.rows - 1;
     }
-    void push_open(std::uint32_t i) { open.push({z[i], i}), ++stats.queued; }
+    void push_open(std::uint32_t i) { open.push({order_key(z[i]), i}), ++stats.queued; }
     void seed(std::uint32_t i) {
         if (flags[i]) return;
         flags[i] = fill_closed | fill_boundary;
@@ -124,8 +151,7 @@ FillStats priority_flood_fill(std::vector<float>& z, const GridShape& g,
             f.trace.pop();
             f.climb(i);
         } else if (!f.open.empty()) {
-            const std::uint32_t i = f.open.top().i;
-            f.open.pop();
+            const std::uint32_t i = f.open.pop().i;
             f.spill(i, f.on_border(i));
         } else {
             break;
