@@ -126,5 +126,33 @@ TEST(PriorityFlood, RimCellsDrainIntoTheDepressionSpillCellsDoNot) {
     EXPECT_EQ(res.stats.unresolved_flats, 0u);
 }
 
+
+// The queue keys elevations by their bits: below-sea-level grids (negative z, -0 next to +0)
+// and widely spread magnitudes must still fill exactly like the textbook algorithm.
+TEST(PriorityFlood, EqualsTheTextbookFillAcrossZeroAndMagnitudes) {
+    for (std::uint64_t seed = 21; seed <= 26; ++seed) {
+        DrainageGrid g = random_grid(37, 29, seed, seed % 2 ? 40 : 0);
+        std::uint64_t bits = seed;
+        for (std::size_t i = 0; i < g.size(); ++i) {
+            const std::uint64_t b = splitmix64(bits);
+            const float scale = (b >> 20) % 5 == 0 ? 1000.0f : 0.001f * float(1 + (b >> 24) % 7);
+            g.z[i] = (g.z[i] - 3.0f) * scale;
+            if ((b >> 30) % 9 == 0) g.z[i] = (b >> 40) % 2 ? -0.0f : 0.0f;
+        }
+        const GridShape s{g.cols, g.rows, g.valid.data()};
+        const std::vector<float> expected = reference_fill(g.z, s);
+        std::vector<std::uint8_t> flags;
+        std::vector<std::uint32_t> orig;
+        priority_flood_fill(g.z, s, flags, orig);
+        std::size_t raised = 0;
+        for (std::size_t i = 0; i < g.size(); ++i) {
+            if (!g.valid[i]) continue;
+            ASSERT_EQ(g.z[i], expected[i]) << "seed " << seed << " cell " << i;
+            raised += (flags[i] & fill_raised) != 0;
+        }
+        EXPECT_GT(raised, 10u);
+    }
+}
+
 }  // namespace
 }  // namespace penink
