@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
 
 #include <unistd.h>
@@ -33,6 +34,27 @@ template <class... V> std::size_t bytes_of(const V&... v) {
     return (std::size_t(0) + ... + (v.capacity() * sizeof(typename V::value_type)));
 }
 
+// Accumulation (upstream to downstream) and basin labels (downstream walks) read only the
+// directions and write different arrays: one on a second thread. A cycle throws from either.
+void accumulate_and_label(const std::vector<std::uint8_t>& dir, const GridShape& shape, FlowNetwork& net) {
+    std::exception_ptr basin_error;
+    std::thread basins([&] {
+        try {
+            label_basins(dir, shape, net);
+        } catch (...) {
+            basin_error = std::current_exception();
+        }
+    });
+    try {
+        accumulate_flow(dir, shape, net);
+    } catch (...) {
+        basins.join();
+        throw;
+    }
+    basins.join();
+    if (basin_error) std::rethrow_exception(basin_error);
+}
+
 }  // namespace
 
 DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progress) {
@@ -54,10 +76,8 @@ DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progres
     res.stats.unresolved_flats = resolve_flats(g.z, shape, res.dir, flags, net.basin);
     res.stats.working_bytes = bytes_of(res.dir, flags, orig, net.basin);
     restore_raised(g.z, flags, orig);
-    report(progress, "accumulating flow", 0.55);
-    accumulate_flow(res.dir, shape, net);
-    report(progress, "labelling basins", 0.65);
-    label_basins(res.dir, shape, net);
+    report(progress, "accumulating flow and basins", 0.55);
+    accumulate_and_label(res.dir, shape, net);
     res.stats.basins = net.outlet.size();
     // accumulation holds dir, in-degree, acc, order and (allocated) basin at once
     res.stats.working_bytes = std::max(res.stats.working_bytes,

@@ -60,10 +60,15 @@ void label_basins(const std::vector<std::uint8_t>& dir, const GridShape& g, Flow
             net.outlet.push_back(std::uint32_t(i));
             net.basin[i] = std::uint32_t(net.outlet.size());
         }
+    std::size_t steps = 0;  // every path is walked at most twice: more means a cycle
     for (std::size_t i = 0; i < g.size(); ++i) {
         if (!g.valid[i] || net.basin[i]) continue;
         std::size_t c = i;
-        while (!net.basin[c]) c = d8_target(g, c, dir[c]);
+        while (!net.basin[c]) {
+            if (++steps > 2 * g.size())
+                throw Error("drainage", "", "flow directions contain a cycle", ExitCode::internal);
+            c = d8_target(g, c, dir[c]);
+        }
         const std::uint32_t label = net.basin[c];
         for (c = i; !net.basin[c]; c = d8_target(g, c, dir[c])) net.basin[c] = label;
     }

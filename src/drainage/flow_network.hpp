@@ -26,7 +26,8 @@ std::vector<std::uint8_t> inflow_counts(const std::vector<std::uint8_t>& dir, co
 void accumulate_flow(const std::vector<std::uint8_t>& dir, const GridShape& g, FlowNetwork& net);
 
 // Fills net.basin and net.outlet: outlets numbered in row-major order, every other cell gets the
-// label of the outlet its flow path ends in (each path walked at most twice: O(n)).
+// label of the outlet its flow path ends in (each path walked at most twice: O(n)). Throws
+// like accumulate_flow when the directions contain a cycle (it may run beside it on a thread).
 void label_basins(const std::vector<std::uint8_t>& dir, const GridShape& g, FlowNetwork& net);
 
 // acc / basin total at cell i (0 for invalid cells); 1 at every outlet.

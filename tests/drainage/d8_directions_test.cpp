@@ -101,6 +101,19 @@ TEST(Flow, CycleIsAnInternalError) {
     }
 }
 
+// Basin labelling runs beside the accumulation: on a cycle it must stop and say so too.
+TEST(Flow, CycleStopsBasinLabelling) {
+    DrainageGrid g = make_regular_grid(3, 1, 1.0, {0, 0, 0});
+    const std::vector<std::uint8_t> dir{0, 1, 16};  // outlet, then cells 1 and 2 point at each other
+    FlowNetwork net;
+    try {
+        label_basins(dir, shape_of(g), net);
+        FAIL() << "no error";
+    } catch (const std::exception& e) {
+        EXPECT_STREQ(e.what(), "penink: drainage: flow directions contain a cycle");
+    }
+}
+
 TEST(D8, NodataNeighboursMakeBoundaryCells) {
     std::vector<std::uint8_t> valid(49, 1);
     valid[3 * 7 + 3] = 0;
