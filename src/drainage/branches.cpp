@@ -15,9 +15,10 @@ glm::dvec2 point_xy(const DrainageGrid& g, std::size_t i) {
     return grid_xy(g, int(i % g.cols), int(i / g.cols));
 }
 
-DvVertex point_vertex(const DrainageGrid& g, const FlowNetwork& net, std::size_t i) {
+// `total` is the accumulation at the outlet of the point's basin (as normalised_flow divides).
+DvVertex point_vertex(const DrainageGrid& g, const FlowNetwork& net, std::size_t i, double total) {
     const glm::dvec2 p = point_xy(g, i);
-    return {float(p.x), float(p.y), g.z[i], normalised_flow(net, i), net.basin[i], net.order[i]};
+    return {float(p.x), float(p.y), g.z[i], float(double(net.acc[i]) / total), net.basin[i], net.order[i]};
 }
 
 // Rank of head cells in row-major order (= branch id): one bit per cell plus a running count
@@ -77,12 +78,14 @@ struct Tracer {
             DvBranch b;
             b.first = std::uint32_t(vertices.size());
             b.basin = net.basin[h], b.order = net.order[h];
+            // a flow path stays in its basin: one basin total for the branch and its end
+            const double total = net.acc[net.outlet[b.basin - 1]];
             for (std::size_t c = h;;) {
-                vertices.push_back(point_vertex(g, net, c));
+                vertices.push_back(point_vertex(g, net, c, total));
                 if (!dir[c]) break;
                 const std::size_t d = d8_target(shape, c, dir[c]);
                 if (indeg[d] != 1) {
-                    vertices.push_back(point_vertex(g, net, d));
+                    vertices.push_back(point_vertex(g, net, d, total));
                     b.downstream = std::int32_t(rank.of(d));
                     break;
                 }
