@@ -3,9 +3,11 @@
 // into depressions) with the improvement of Zhou, Sun & Fu 2016 ("An efficient variant of the
 // Priority-Flood algorithm for filling depressions in raster DEMs"): cells on slopes are traced
 // uphill without the priority queue; only a traced cell that still has an open lower neighbour
-// goes through the queue. Every closed depression is raised to its spill elevation (leaving
-// flats that the flat resolution drains). Seeds are the valid boundary cells (grid border or
-// next to nodata, see d8.hpp), so every valid cell ends up with a non-ascending path to one.
+// goes through the queue, a radix heap on order-preserving elevation keys (Ahuja et al. 1990:
+// exact, since no cell is queued below the level being spilled). Every closed depression is
+// raised to its spill elevation (leaving flats that the flat resolution drains). Seeds are the
+// valid boundary cells (grid border or next to nodata, see d8.hpp), so every valid cell ends up
+// with a non-ascending path to one.
 // The filled surface is unique, so the result does not depend on the queue order.
 #pragma once
 #include <cstdint>
