@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <exception>
 #include <thread>
 
 namespace penink {
@@ -119,11 +120,26 @@ void build_branches(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
     std::thread south([&] { tracer.run(mid, g.size(), south_v, south_b); });
     tracer.run(0, mid, db.vertices, db.branches);
     south.join();
+    // the south half joined on: branches and upstream links on a second thread, vertices here
     const std::uint32_t shift = std::uint32_t(db.vertices.size());
-    for (DvBranch& b : south_b) b.first += shift;
-    db.vertices.insert(db.vertices.end(), south_v.begin(), south_v.end());
-    db.branches.insert(db.branches.end(), south_b.begin(), south_b.end());
-    link_upstream(db);
+    std::exception_ptr link_error;
+    std::thread links([&] {
+        try {
+            for (DvBranch& b : south_b) b.first += shift;
+            db.branches.insert(db.branches.end(), south_b.begin(), south_b.end());
+            link_upstream(db);
+        } catch (...) {
+            link_error = std::current_exception();
+        }
+    });
+    try {
+        db.vertices.insert(db.vertices.end(), south_v.begin(), south_v.end());
+    } catch (...) {
+        links.join();
+        throw;
+    }
+    links.join();
+    if (link_error) std::rethrow_exception(link_error);
 }
 
 namespace {
