@@ -59,6 +59,7 @@ struct Sink {
     }
     template <class T> void put(T v) { bytes(&v, sizeof(T)); }
     void finish() {  // hash of every byte so far, appended; everything handed over
+        if (n + 8 > buf.size()) drain();  // a full buffer has no room for the hash
         hash = hash64(buf.data(), n, hash);
         const std::uint64_t h = hash;
         std::memcpy(buf.data() + n, &h, 8);
