@@ -51,6 +51,16 @@ void AdjacencySilPass::set_hash_uniforms(GLuint program) const {
     gl_->BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, table_buf_.id());
 }
 
+void AdjacencySilPass::bind_frame_inputs(GLuint program, GLuint toward_texture, GLuint away_texture) const {
+    set_hash_uniforms(program);
+    gl_->BindTextureUnit(0, toward_texture);
+    gl_->BindTextureUnit(1, away_texture);
+    gl_->BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, counter_.id());
+    gl_->BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, triangles_buf_.id());
+    gl_->BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, pixel_ids_.id());
+    gl_->BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, flags_buf_.id());
+}
+
 double AdjacencySilPass::draw_ids(const SurfaceGeometry& surface, const Camera& camera, const TessellationOptions& tess,
                                   GLuint toward_texture, GLuint away_texture) {
     const GLuint p = id_program_.id();
@@ -63,13 +73,7 @@ double AdjacencySilPass::draw_ids(const SurfaceGeometry& surface, const Camera& 
     gl_->Uniform1f(uniform_location(*gl_, p, "u_max_level"), float(std::max(1, tess.max_level)));
     gl_->Uniform3f(uniform_location(*gl_, p, "u_eye"), eye.x, eye.y, eye.z);
     gl_->Uniform1i(uniform_location(*gl_, p, "u_width"), width_);
-    set_hash_uniforms(p);
-    gl_->BindTextureUnit(0, toward_texture);
-    gl_->BindTextureUnit(1, away_texture);
-    gl_->BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, counter_.id());
-    gl_->BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, triangles_buf_.id());
-    gl_->BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, pixel_ids_.id());
-    gl_->BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, flags_buf_.id());
+    bind_frame_inputs(p, toward_texture, away_texture);
     gl_->BindFramebuffer(GL_FRAMEBUFFER, fb_.id());  // scratch target; the detection rewrites it
     gl_->Disable(GL_DEPTH_TEST), gl_->Disable(GL_BLEND), gl_->Disable(GL_CULL_FACE);
     ids_timer_.begin();
@@ -84,13 +88,7 @@ double AdjacencySilPass::detect(GLuint toward_texture, GLuint away_texture, cons
     gl_->UseProgram(p);
     gl_->Uniform1f(uniform_location(*gl_, p, "u_tolerance"), options.tolerance);
     gl_->Uniform1i(uniform_location(*gl_, p, "u_radius"), std::clamp(options.radius, 0, 4));
-    set_hash_uniforms(p);
-    gl_->BindTextureUnit(0, toward_texture);
-    gl_->BindTextureUnit(1, away_texture);
-    gl_->BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, counter_.id());
-    gl_->BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, triangles_buf_.id());
-    gl_->BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, pixel_ids_.id());
-    gl_->BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, flags_buf_.id());
+    bind_frame_inputs(p, toward_texture, away_texture);
     gl_->BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, edges_buf_.id());
     gl_->BindFramebuffer(GL_FRAMEBUFFER, fb_.id());
     gl_->BindVertexArray(empty_vao_.id());

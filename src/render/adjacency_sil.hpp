@@ -56,6 +56,8 @@ private:
     double draw_lines(const Camera& camera, GLuint toward_texture, const AdjacencyOptions& options);
     void reset_buffers();
     void set_hash_uniforms(GLuint program) const;
+    // Hash uniforms, the TFT/AFT textures and the counter/triangle/ID/flag buffers of a frame.
+    void bind_frame_inputs(GLuint program, GLuint toward_texture, GLuint away_texture) const;
     bool grow_on_overflow();
     const GlApi* gl_;
     int width_, height_;
