@@ -26,14 +26,19 @@ std::string extension(const std::string& path) {
 
 }  // namespace
 
+void check_output_format(const std::string& path) {
+    const std::string ext = extension(path);
+    if (ext != ".svg" && ext != ".ps" && ext != ".eps" && ext != ".pdf" && ext != ".png")
+        throw Error("export", path, "unknown output format \"" + ext + "\" (use .svg, .ps, .eps, .pdf or .png)");
+}
+
 void export_drawing(const StyledDrawing& drawing, const PageOptions& page, const std::string& path) {
+    check_output_format(path);
     const std::string ext = extension(path);
     if (ext == ".svg") return write_svg(drawing, page, path);
     if (ext == ".ps" || ext == ".eps") return write_ps(drawing, page, path);
     if (ext == ".pdf") return write_pdf(drawing, page, path);
-    if (ext == ".png") return write_png(drawing, page, path);
-    throw Error("export", path, "unknown output format \"" + ext +
-                                    "\" (use .svg, .ps, .eps, .pdf or .png)");
+    return write_png(drawing, page, path);
 }
 
 PlotStats plot_stats(const StyledDrawing& drawing) {

@@ -12,6 +12,10 @@ namespace penink {
 
 // Writes `drawing` to `path` in the format named by its extension (case-insensitive).
 // Unknown: Error("export", path, "unknown output format \".xyz\" (use .svg, .ps, .eps, .pdf or .png)").
+// Throws penink::Error("export", path, "unknown output format ...") unless the extension
+// (case-insensitive) is one export_drawing writes: .svg .ps .eps .pdf .png.
+void check_output_format(const std::string& path);
+
 void export_drawing(const StyledDrawing& drawing, const PageOptions& page, const std::string& path);
 
 struct PlotStats {

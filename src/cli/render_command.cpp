@@ -22,9 +22,7 @@ namespace fs = std::filesystem;
 void check_outputs(const std::vector<std::string>& outputs) {
     if (outputs.empty()) throw Error("cli", "", "no output file given (use -o out.svg)");
     for (const std::string& o : outputs) {
-        const std::string ext = fs::path(o).extension().string();
-        if (ext != ".svg" && ext != ".ps" && ext != ".eps" && ext != ".pdf" && ext != ".png")
-            throw Error("export", o, "unknown output format \"" + ext + "\" (use .svg, .ps, .eps, .pdf or .png)");
+        check_output_format(o);
         const fs::path dir = fs::path(o).parent_path();
         if (!dir.empty() && !fs::is_directory(dir))
             throw Error("export", o, "cannot write file (no such directory)");
