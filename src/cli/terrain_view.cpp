@@ -7,6 +7,8 @@
 #include "core/error.hpp"
 #include "input/scene_position.hpp"
 #include "input/terrain_window.hpp"
+#include "surface/surface_mesh.hpp"
+#include "surface/terrain_locator.hpp"
 
 namespace penink {
 
@@ -45,25 +47,13 @@ Camera scene_camera(const Scene& scene, const Terrain& terrain) {
 }
 
 bool ground_height(const Terrain& t, double x, double y, double& z) {
-    // Nearest cell by search over cells (grids may be curvilinear); barycentric on its triangles.
-    for (int r = 0; r + 1 < t.rows; ++r) {
-        for (int c = 0; c + 1 < t.cols; ++c) {
-            const std::size_t a = t.index(c, r), b = t.index(c + 1, r), s = t.index(c, r + 1),
-                              d = t.index(c + 1, r + 1);
-            for (const auto& tri : {std::array<std::size_t, 3>{a, s, d}, std::array<std::size_t, 3>{a, d, b}}) {
-                if (!t.valid[tri[0]] || !t.valid[tri[1]] || !t.valid[tri[2]]) continue;
-                const glm::dvec3 p0(t.pos[tri[0]]), p1(t.pos[tri[1]]), p2(t.pos[tri[2]]);
-                const double det = (p1.x - p0.x) * (p2.y - p0.y) - (p2.x - p0.x) * (p1.y - p0.y);
-                if (std::abs(det) < 1e-12) continue;
-                const double u = ((x - p0.x) * (p2.y - p0.y) - (p2.x - p0.x) * (y - p0.y)) / det;
-                const double v = ((p1.x - p0.x) * (y - p0.y) - (x - p0.x) * (p1.y - p0.y)) / det;
-                if (u < -1e-9 || v < -1e-9 || u + v > 1 + 1e-9) continue;
-                z = p0.z + u * (p1.z - p0.z) + v * (p2.z - p0.z);
-                return true;
-            }
-        }
-    }
-    return false;
+    const SurfaceMesh mesh = mesh_from_terrain(t);
+    SurfaceHit hit;
+    if (!TerrainLocator(mesh).locate(x, y, hit)) return false;
+    const glm::uvec3 v = mesh.tri[hit.triangle];  // the flat triangles the DEM's cells make
+    z = double(hit.bary.x) * mesh.pos[v.x].z + double(hit.bary.y) * mesh.pos[v.y].z +
+        double(hit.bary.z) * mesh.pos[v.z].z;
+    return true;
 }
 
 Terrain terrain_for_view(const Terrain& terrain, Camera& cam, const Scene& scene, const Log& log) {
