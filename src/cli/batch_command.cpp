@@ -64,7 +64,8 @@ void write_text(const fs::path& p, const std::string& text) { write_file_atomica
 
 }  // namespace
 
-Camera flight_camera(const Scene& scene, const Terrain& dem, const FlightRecord& r, const std::string& csv) {
+Camera flight_camera(const Scene& scene, const Terrain& dem, const TerrainGround& terrain_ground, const FlightRecord& r,
+                     const std::string& csv) {
     Camera cam;
     glm::dvec2 xy;
     try {
@@ -76,7 +77,7 @@ Camera flight_camera(const Scene& scene, const Terrain& dem, const FlightRecord&
     cam.azimuth = r.azimuth, cam.altitude = r.altitude, cam.fov = scene.camera.fov;
     cam.width = scene.camera.width, cam.height = scene.camera.height;
     double ground = 0.0;
-    if (ground_height(dem, xy.x, xy.y, ground) && cam.eye.z <= ground) {
+    if (terrain_ground.height(xy.x, xy.y, ground) && cam.eye.z <= ground) {
         std::ostringstream m;
         m << "line " << r.line << ": camera is inside the terrain (elevation " << r.elevation << " m, ground "
           << ground / scene.vertical_exaggeration << " m)";
@@ -227,8 +228,9 @@ Flight prepare_flight(const BatchOptions& o, const Log& log) {
     dem_options.vertical_exaggeration = f.scene.vertical_exaggeration;
     f.dem = read_dem(f.scene.dem, dem_options);
     std::vector<GridWindow> windows;
+    const TerrainGround ground(f.dem);
     for (const FlightRecord& r : f.records) {
-        f.cameras.push_back(flight_camera(f.scene, f.dem, r, o.path));
+        f.cameras.push_back(flight_camera(f.scene, f.dem, ground, r, o.path));
         windows.push_back(visible_window(f.dem, view_projection(f.cameras.back()), 1));
         if (window_empty(windows.back()))
             throw Error("batch", o.path, "line " + std::to_string(r.line) + ": the camera sees no part of the DEM");

@@ -11,6 +11,7 @@
 #include "cli/commands.hpp"
 #include "cli/flight_path.hpp"
 #include "cli/scene_drawing.hpp"
+#include "cli/terrain_view.hpp"
 #include "export/style.hpp"
 #include "input/terrain.hpp"
 
@@ -39,7 +40,8 @@ struct FrameTiming {
 
 // The camera of one record over `dem` (its near/far fitted to `model`); errors name the CSV
 // and line: "line N: cannot parse position ...", "line N: camera is inside the terrain (...)".
-Camera flight_camera(const Scene& scene, const Terrain& dem, const FlightRecord& record, const std::string& csv);
+Camera flight_camera(const Scene& scene, const Terrain& dem, const TerrainGround& ground, const FlightRecord& record,
+                     const std::string& csv);
 
 // The scene with one record's per-frame values (light; min_score sets the creases' threshold).
 Scene frame_scene(const Scene& scene, const FlightRecord& record);

@@ -7,8 +7,6 @@
 #include "core/error.hpp"
 #include "input/scene_position.hpp"
 #include "input/terrain_window.hpp"
-#include "surface/surface_mesh.hpp"
-#include "surface/terrain_locator.hpp"
 
 namespace penink {
 
@@ -46,15 +44,18 @@ Camera scene_camera(const Scene& scene, const Terrain& terrain) {
     return cam;
 }
 
-bool ground_height(const Terrain& t, double x, double y, double& z) {
-    const SurfaceMesh mesh = mesh_from_terrain(t);
+TerrainGround::TerrainGround(const Terrain& terrain) : mesh_(mesh_from_terrain(terrain)), locator_(mesh_) {}
+
+bool TerrainGround::height(double x, double y, double& z) const {
     SurfaceHit hit;
-    if (!TerrainLocator(mesh).locate(x, y, hit)) return false;
-    const glm::uvec3 v = mesh.tri[hit.triangle];  // the flat triangles the DEM's cells make
-    z = double(hit.bary.x) * mesh.pos[v.x].z + double(hit.bary.y) * mesh.pos[v.y].z +
-        double(hit.bary.z) * mesh.pos[v.z].z;
+    if (!locator_.locate(x, y, hit)) return false;
+    const glm::uvec3 v = mesh_.tri[hit.triangle];  // the flat triangles the DEM's cells make
+    z = double(hit.bary.x) * mesh_.pos[v.x].z + double(hit.bary.y) * mesh_.pos[v.y].z +
+        double(hit.bary.z) * mesh_.pos[v.z].z;
     return true;
 }
+
+bool ground_height(const Terrain& t, double x, double y, double& z) { return TerrainGround(t).height(x, y, z); }
 
 Terrain terrain_for_view(const Terrain& terrain, Camera& cam, const Scene& scene, const Log& log) {
     double ground = 0.0;
