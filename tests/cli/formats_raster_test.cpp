@@ -10,12 +10,11 @@
 // listed by Ghostscript's PDF interpreter (poppler's pdfinfo does not print OCGs).
 #include <gtest/gtest.h>
 
-#include <OpenImageIO/imageio.h>
-
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
+#include "../raster_image.hpp"
 #include "cli_support.hpp"
 
 using namespace penink::test;
@@ -24,49 +23,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Image {
-    int w = 0, h = 0;
-    std::vector<float> rgb;  // 0..255, alpha composited over white
-};
+using Image = RasterImage;
 
-Image read_png(const fs::path& path) {
-    Image im;
-    auto in = OIIO::ImageInput::open(path.string());
-    if (!in) return im;
-    const OIIO::ImageSpec& spec = in->spec();
-    std::vector<float> px(size_t(spec.width) * spec.height * spec.nchannels);
-    in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data());
-    im.w = spec.width, im.h = spec.height;
-    for (size_t i = 0; i < size_t(im.w) * im.h; ++i) {
-        const float* p = &px[i * spec.nchannels];
-        const float a = spec.nchannels == 4 ? p[3] : 1.0f;
-        for (int c = 0; c < 3; ++c) im.rgb.push_back(255.0f * (p[spec.nchannels >= 3 ? c : 0] * a + (1.0f - a)));
-    }
-    return im;
-}
-
-bool have(const char* tool) { return std::system((std::string("command -v ") + tool + " >/dev/null 2>&1").c_str()) == 0; }
-
-struct Diff {
-    double mean = 1.0, within = 0.0;  // mean |diff| / 255, share of pixels within 64 levels
-};
-
-Diff compare(const Image& a, const Image& b) {
-    Diff d;
-    if (a.w != b.w || a.h != b.h || a.rgb.empty()) return d;
-    double sum = 0.0;
-    size_t within = 0, n = size_t(a.w) * a.h;
-    for (size_t i = 0; i < n; ++i) {
-        float worst = 0.0f;
-        for (int c = 0; c < 3; ++c) {
-            const float e = std::fabs(a.rgb[3 * i + c] - b.rgb[3 * i + c]);
-            sum += e, worst = std::max(worst, e);
-        }
-        within += worst <= 64.0f;
-    }
-    d.mean = sum / (3.0 * n) / 255.0, d.within = double(within) / n;
-    return d;
-}
+Image read_png(const fs::path& path) { return read_rgb_over_white(path.string()); }
 
 class Formats : public ::testing::Test {
 protected:
@@ -89,7 +48,7 @@ protected:
         const Image theirs = read_png(dir / "out.png");
         ASSERT_EQ(theirs.w, 200) << what;
         ASSERT_EQ(theirs.h, 150) << what;
-        const Diff d = compare(ours, theirs);
+        const RasterDiff d = raster_diff(ours, theirs);
         std::printf("%s vs our PNG: mean |diff| %.3f %%, within 64 levels %.3f %%\n", what.c_str(), 100 * d.mean,
                     100 * d.within);
         EXPECT_LT(d.mean, 0.025) << what;
@@ -110,34 +69,34 @@ TEST_F(Formats, PngIsNotBlankAndAShiftIsCaught) {
         for (int x = 0; x < ours.w; ++x)
             for (int c = 0; c < 3; ++c)
                 shifted.rgb[3 * size_t(y * ours.w + x) + c] = ours.rgb[3 * size_t(y * ours.w + std::max(x - 2, 0)) + c];
-    const Diff d = compare(ours, shifted);
+    const RasterDiff d = raster_diff(ours, shifted);
     EXPECT_TRUE(d.mean >= 0.025 || d.within <= 0.985) << d.mean << " " << d.within;
 }
 
 TEST_F(Formats, SvgByRsvgConvert) {
-    if (!have("rsvg-convert")) GTEST_SKIP() << "rsvg-convert not installed";
+    if (!have_tool("rsvg-convert")) GTEST_SKIP() << "rsvg-convert not installed";
     expect_match("svg", "rsvg-convert -w 200 -h 150 -o out.png v.svg");
 }
 
 TEST_F(Formats, PsByGhostscript) {
-    if (!have("gs")) GTEST_SKIP() << "ghostscript not installed";
+    if (!have_tool("gs")) GTEST_SKIP() << "ghostscript not installed";
     expect_match("ps", "gs -q -dSAFER -dBATCH -dNOPAUSE -sDEVICE=png16m -r96 -dGraphicsAlphaBits=4 "
                        "-sOutputFile=out.png v.ps");
 }
 
 TEST_F(Formats, EpsByGhostscript) {
-    if (!have("gs")) GTEST_SKIP() << "ghostscript not installed";
+    if (!have_tool("gs")) GTEST_SKIP() << "ghostscript not installed";
     expect_match("eps", "gs -q -dSAFER -dBATCH -dNOPAUSE -dEPSCrop -sDEVICE=png16m -r96 -dGraphicsAlphaBits=4 "
                         "-sOutputFile=out.png v.eps");
 }
 
 TEST_F(Formats, PdfByPdftoppm) {
-    if (!have("pdftoppm")) GTEST_SKIP() << "pdftoppm not installed";
+    if (!have_tool("pdftoppm")) GTEST_SKIP() << "pdftoppm not installed";
     expect_match("pdf", "pdftoppm -r 96 -png -singlefile v.pdf out");
 }
 
 TEST_F(Formats, PdfLayersListedByGhostscript) {
-    if (!have("gs")) GTEST_SKIP() << "ghostscript not installed";
+    if (!have_tool("gs")) GTEST_SKIP() << "ghostscript not installed";
     // Ghostscript's PostScript-side PDF reader walks /Root /OCProperties /OCGs and prints names.
     const std::string cmd = "cd '" + dir.string() +
                             "' && gs -q -dNODISPLAY -dNOSAFER -dNEWPDF=false -c \"(v.pdf) (r) file runpdfbegin "

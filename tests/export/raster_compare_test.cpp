@@ -5,14 +5,13 @@
 // a missing/misplaced stroke, wrong width, colour or flipped y breaks both by a wide margin.
 #include <gtest/gtest.h>
 
-#include <OpenImageIO/imageio.h>
-
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
 #include "export/export_drawing.hpp"
 #include "export/png_writer.hpp"
+#include "../raster_image.hpp"
 #include "fixture.hpp"
 
 using namespace penink;
@@ -20,49 +19,17 @@ using namespace penink::test;
 
 namespace {
 
-struct Image {
-    int w = 0, h = 0;
-    std::vector<float> rgb;  // 0..255, alpha composited over white
-};
+using Image = RasterImage;
 
-Image read_png(const std::string& path) {
-    Image im;
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) return im;
-    const OIIO::ImageSpec& spec = in->spec();
-    std::vector<float> px(size_t(spec.width) * spec.height * spec.nchannels);
-    in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data());
-    im.w = spec.width;
-    im.h = spec.height;
-    for (size_t i = 0; i < size_t(im.w) * im.h; ++i) {
-        const float* p = &px[i * spec.nchannels];
-        const float a = spec.nchannels == 4 ? p[3] : 1.0f;
-        for (int c = 0; c < 3; ++c) im.rgb.push_back(255.0f * (p[spec.nchannels >= 3 ? c : 0] + (1.0f - a)));
-    }
-    return im;
-}
-
-bool have(const char* tool) { return std::system((std::string("command -v ") + tool + " >/dev/null 2>&1").c_str()) == 0; }
+Image read_png(const std::string& path) { return read_rgb_over_white(path); }
 
 void expect_close(const Image& ours, const Image& theirs, const std::string& what) {
     ASSERT_EQ(theirs.w, ours.w) << what;
     ASSERT_EQ(theirs.h, ours.h) << what;
-    double sum = 0.0;
-    size_t within = 0, n = size_t(ours.w) * ours.h;
-    for (size_t i = 0; i < n; ++i) {
-        float worst = 0.0f;
-        for (int c = 0; c < 3; ++c) {
-            const float d = std::fabs(ours.rgb[3 * i + c] - theirs.rgb[3 * i + c]);
-            sum += d;
-            worst = std::max(worst, d);
-        }
-        within += worst <= 64.0f;
-    }
-    const double mean = sum / (3.0 * n) / 255.0;
-    std::printf("%s: mean |diff| %.3f %%, within 64 levels %.3f %%\n", what.c_str(), 100 * mean,
-                100.0 * double(within) / n);
-    EXPECT_LT(mean, 0.02) << what;
-    EXPECT_GT(double(within) / n, 0.99) << what;
+    const RasterDiff d = raster_diff(ours, theirs);
+    std::printf("%s: mean |diff| %.3f %%, within 64 levels %.3f %%\n", what.c_str(), 100 * d.mean, 100.0 * d.within);
+    EXPECT_LT(d.mean, 0.02) << what;
+    EXPECT_GT(d.within, 0.99) << what;
 }
 
 class RasterCompare : public ::testing::Test {
@@ -96,24 +63,24 @@ TEST_F(RasterCompare, OurPngHasTheDrawing) {
 }
 
 TEST_F(RasterCompare, SvgByRsvg) {
-    if (!have("rsvg-convert")) GTEST_SKIP() << "rsvg-convert not installed";
+    if (!have_tool("rsvg-convert")) GTEST_SKIP() << "rsvg-convert not installed";
     expect_close(ours, render(".svg", "rsvg-convert -w 200 -h 160 -b white -o out.png in.svg"), "svg");
 }
 
 TEST_F(RasterCompare, PsByGhostscript) {
-    if (!have("gs")) GTEST_SKIP() << "ghostscript not installed";
+    if (!have_tool("gs")) GTEST_SKIP() << "ghostscript not installed";
     expect_close(ours, render(".ps", "gs -q -dSAFER -dBATCH -dNOPAUSE -sDEVICE=png16m -r96 "
                                      "-dGraphicsAlphaBits=4 -sOutputFile=out.png in.ps"), "ps");
 }
 
 TEST_F(RasterCompare, EpsByGhostscript) {
-    if (!have("gs")) GTEST_SKIP() << "ghostscript not installed";
+    if (!have_tool("gs")) GTEST_SKIP() << "ghostscript not installed";
     expect_close(ours, render(".eps", "gs -q -dSAFER -dBATCH -dNOPAUSE -dEPSCrop -sDEVICE=png16m -r96 "
                                       "-dGraphicsAlphaBits=4 -sOutputFile=out.png in.eps"), "eps");
 }
 
 TEST_F(RasterCompare, PdfByPdftoppm) {
-    if (!have("pdftoppm")) GTEST_SKIP() << "pdftoppm not installed";
+    if (!have_tool("pdftoppm")) GTEST_SKIP() << "pdftoppm not installed";
     expect_close(ours, render(".pdf", "pdftoppm -r 96 -png -singlefile in.pdf out"), "pdf");
 }
 
