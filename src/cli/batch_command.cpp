@@ -50,12 +50,7 @@ std::vector<std::string> parse_formats(const std::string& text) {
 }
 
 Scene batch_scene(const BatchOptions& o) {
-    Scene scene = load_scene(o.input);
-    if (o.width != BatchOptions::unset) scene.camera.width = o.width;
-    if (o.height != BatchOptions::unset) scene.camera.height = o.height;
-    if (o.seed >= 0) scene.seed = std::uint64_t(o.seed);
-    if (!o.style.empty()) scene.style = o.style;
-    validate_scene(scene);
+    Scene scene = load_scene_with_overrides(o);
     if (is_mesh_scene(scene)) throw Error("batch", o.input, "batch draws terrains (a DEM or a scene with [terrain])");
     return scene;
 }
@@ -197,12 +192,7 @@ Subcommand add_batch_command(CLI::App& app) {
     cmd->add_option("--warmup", o.warmup, "First N frames timed apart (shader JIT, caches); default 1")
         ->check(CLI::NonNegativeNumber);
     cmd->add_flag("--whole-dem", o.whole_dem, "Model the whole DEM (default: the union of the frames' visible windows)");
-    cmd->add_option("--width", o.width, "Image width in pixels (overrides the scene)");
-    cmd->add_option("--height", o.height, "Image height in pixels (overrides the scene)");
-    cmd->add_option("--style", o.style, "Style name (technical, field-sketch) or a style .toml file");
-    cmd->add_option("--seed", o.seed, "Seed of the sketchy perturbation");
-    cmd->add_option("--gl", o.gl, "OpenGL backend: osmesa (software, default) or egl (GPU)")
-        ->check(CLI::IsMember({"osmesa", "egl"}));
+    add_scene_override_options(cmd, o);
     cmd->add_flag("-v,--verbose", o.verbose, "Print the modelled cells and set-up steps");
     return {cmd, [options] { return run_batch(*options); }};
 }

@@ -11,21 +11,18 @@
 #include "cli/commands.hpp"
 #include "cli/flight_path.hpp"
 #include "cli/scene_drawing.hpp"
+#include "cli/scene_overrides.hpp"
 #include "cli/terrain_view.hpp"
 #include "export/style.hpp"
 #include "input/terrain.hpp"
 
 namespace penink {
 
-struct BatchOptions {
-    std::string input, path, out_dir;
+struct BatchOptions : SceneOverrides {
+    std::string path, out_dir;
     std::string formats = "png,svg";
     int warmup = 1;
     bool whole_dem = false;  // model the whole DEM instead of the union of the frames' windows
-    std::string style, gl = "osmesa";
-    static constexpr int unset = -2147483647;
-    int width = unset, height = unset;
-    long long seed = -1;
     bool verbose = false;
 };
 

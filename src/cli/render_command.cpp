@@ -29,16 +29,6 @@ void check_outputs(const std::vector<std::string>& outputs) {
     }
 }
 
-Scene scene_with_overrides(const RenderOptions& o) {
-    Scene scene = load_scene(o.input);
-    if (o.width != RenderOptions::unset) scene.camera.width = o.width;
-    if (o.height != RenderOptions::unset) scene.camera.height = o.height;
-    if (o.seed >= 0) scene.seed = std::uint64_t(o.seed);
-    if (o.vertical_exaggeration != 0.0) scene.vertical_exaggeration = o.vertical_exaggeration;
-    if (!o.style.empty()) scene.style = o.style;
-    validate_scene(scene);
-    return scene;
-}
 
 void log_finish(const FinishStats& stats, const Log& log) {
     for (LayerKind k : all_layers) {
@@ -72,7 +62,6 @@ Subcommand add_render_command(CLI::App& app) {
     cmd->add_option("input", o.input, "DEM (GeoTIFF, ASCII grid, ...), mesh (.obj .ply .off) or scene file (.toml)")->required();
     cmd->add_option("-o,--output", o.outputs, "Output file, format from the extension: .svg .ps .eps .pdf .png (repeatable)")
         ->required();
-    cmd->add_option("--style", o.style, "Style name (technical, field-sketch) or a style .toml file");
     cmd->add_option("--page", o.page, "Physical page size: A4, A3, letter, WxHmm (default: image size at --dpi)");
     cmd->add_option("--dpi", o.dpi, "Image pixels per inch; also the PNG resolution (default 96)")
         ->check(CLI::PositiveNumber);
@@ -80,12 +69,7 @@ Subcommand add_render_command(CLI::App& app) {
         ->check(CLI::NonNegativeNumber);
     cmd->add_option("--layers", o.layers, "Layer split: kind, or kind+distance (near/middle/far sublayers)")
         ->check(CLI::IsMember({"kind", "kind+distance"}));
-    cmd->add_option("--width", o.width, "Image width in pixels (overrides the scene)");
-    cmd->add_option("--height", o.height, "Image height in pixels (overrides the scene)");
-    cmd->add_option("--seed", o.seed, "Seed of the sketchy perturbation (same seed, same output)");
-    cmd->add_option("--vertical-exaggeration", o.vertical_exaggeration, "Scale elevations by this factor");
-    cmd->add_option("--gl", o.gl, "OpenGL backend: osmesa (software, default) or egl (GPU)")
-        ->check(CLI::IsMember({"osmesa", "egl"}));
+    add_scene_override_options(cmd, o);
     cmd->add_flag("-v,--verbose", o.verbose, "Print cells used, per-pass times and line statistics");
     return {cmd, [options] { return run_render(*options); }};
 }
@@ -94,7 +78,7 @@ int run_render(const RenderOptions& o) {
     const auto start = std::chrono::steady_clock::now();
     const Log log{o.verbose};
     check_outputs(o.outputs);
-    Scene scene = scene_with_overrides(o);
+    Scene scene = load_scene_with_overrides(o);
     const Style style = scene_style(scene);
     const bool terrain = !is_mesh_scene(scene);
     if (terrain) apply_object_sketch(scene, style);

@@ -1,0 +1,31 @@
+// Command-line values that override a scene's (shared by render and batch): the input, style,
+// OpenGL back-end, image size, seed and vertical exaggeration, their CLI11 options, and the scene
+// loaded with them applied and validated.
+#pragma once
+#include <string>
+
+#include "cli/scene.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace penink {
+
+struct SceneOverrides {
+    std::string input;           // DEM, mesh or scene file
+    std::string style;           // name or path; "" = the scene's
+    std::string gl = "osmesa";
+    static constexpr int unset = -2147483647;  // (any int is a value the check must see)
+    int width = unset, height = unset;
+    long long seed = -1;                       // < 0: the scene's
+    double vertical_exaggeration = 0.0;        // 0: the scene's
+};
+
+// --width --height --style --seed --vertical-exaggeration --gl
+void add_scene_override_options(CLI::App* cmd, SceneOverrides& o);
+
+// load_scene(o.input) with the overrides applied, then validate_scene.
+Scene load_scene_with_overrides(const SceneOverrides& o);
+
+}  // namespace penink
