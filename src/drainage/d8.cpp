@@ -1,6 +1,7 @@
 #include "drainage/d8.hpp"
 
-#include <cmath>
+#include "drainage/d8_steepest.hpp"
+
 #include <thread>
 
 namespace penink {
@@ -16,95 +17,78 @@ bool is_boundary_cell(const GridShape& g, int c, int r) {
 
 namespace {
 
-struct Steps {
-    std::ptrdiff_t off[8];
-    float inv[8];  // 1 / distance to neighbour k
-};
-
-Steps steps_of(const GridShape& g, double dx, double dy) {
-    Steps st{};
-    const double diag = std::hypot(dx, dy);
-    for (int k = 0; k < 8; ++k) {
-        st.off[k] = std::ptrdiff_t(d8_dr[k]) * g.cols + d8_dc[k];
-        st.inv[k] = float(1.0 / (d8_dc[k] && d8_dr[k] ? diag : (d8_dc[k] ? dx : dy)));
-    }
-    return st;
-}
-
 // Steepest descent of an interior cell with all 8 neighbours valid: no branches but selects.
-inline std::uint8_t steepest_dense(const float* z, std::size_t i, const Steps& st) {
+// `tie` is set when another neighbour has exactly the steepest slope.
+inline std::uint8_t steepest_dense(const float* z, std::size_t i, const D8Steps& st, bool& tie) {
     const float zi = z[i];
     float best = 0.0f;
     unsigned code = 0;
+    bool tied = false;
     for (int k = 0; k < 8; ++k) {
         const float s = (zi - z[std::ptrdiff_t(i) + st.off[k]]) * st.inv[k];
         const bool better = s > best;
+        tied = better ? false : (tied | (s == best));
         best = better ? s : best;
         code = better ? (1u << k) : code;
     }
+    tie = tied && code != 0;
     return std::uint8_t(code);
 }
 
-// Any cell: bounds- and validity-checked. `zn(n)` gives the elevation compared against, `ok(n)`
-// whether neighbour n may be a target.
-template <class Zn, class Ok>
-std::uint8_t steepest_checked(float zi, const GridShape& g, int c, int r, const float* inv,
-                              Zn&& zn, Ok&& ok) {
-    float best = 0.0f;
-    std::uint8_t code = 0;
-    for (int k = 0; k < 8; ++k) {
-        const int nc = c + d8_dc[k], nr = r + d8_dr[k];
-        if (nc < 0 || nr < 0 || nc >= g.cols || nr >= g.rows) continue;
-        const std::size_t n = std::size_t(nr) * g.cols + nc;
-        if (!g.valid[n] || !ok(n)) continue;
-        const float s = (zi - zn(n)) * inv[k];
-        if (s > best) best = s, code = std::uint8_t(1u << k);
-    }
-    return code;
-}
-
-void directions_row(const float* z, const GridShape& g, const Steps& st, int r, bool dense,
-                    std::uint8_t* dir) {
+void directions_row(const float* z, const GridShape& g, const D8Steps& st, int r, bool dense,
+                    std::uint8_t* dir, std::vector<std::uint32_t>* ties) {
     const bool edge_row = r == 0 || r == g.rows - 1;
     const std::size_t row0 = std::size_t(r) * g.cols;
+    auto note = [&](std::size_t i, bool tie) {
+        if (tie && ties) ties->push_back(std::uint32_t(i));
+    };
     auto checked = [&](int c) {
         const std::size_t i = row0 + c;
         if (!g.valid[i]) return;
-        dir[i] = steepest_checked(z[i], g, c, r, st.inv, [&](std::size_t n) { return z[n]; },
-                                  [](std::size_t) { return true; });
+        const D8Choice d = d8_steepest(z[i], g, c, r, st, [&](std::size_t n) { return z[n]; },
+                                       [](std::size_t) { return true; });
+        dir[i] = d.code, note(i, d.tie);
     };
     if (edge_row || !dense) {
         for (int c = 0; c < g.cols; ++c) checked(c);
         return;
     }
     checked(0);
-    for (int c = 1; c + 1 < g.cols; ++c) dir[row0 + c] = steepest_dense(z, row0 + c, st);
+    for (int c = 1; c + 1 < g.cols; ++c) {
+        bool tie;
+        dir[row0 + c] = steepest_dense(z, row0 + c, st, tie);
+        note(row0 + c, tie);
+    }
     if (g.cols > 1) checked(g.cols - 1);
 }
 
 }  // namespace
 
 std::vector<std::uint8_t> d8_directions(const std::vector<float>& z, const GridShape& g,
-                                        double dx, double dy) {
+                                        double dx, double dy, std::vector<std::uint32_t>* ties) {
     std::vector<std::uint8_t> dir(g.size(), 0);
-    const Steps st = steps_of(g, dx, dy);
+    const D8Steps st = d8_steps(g, dx, dy);
     bool dense = true;
     for (std::size_t i = 0; i < g.size() && dense; ++i) dense = g.valid[i] != 0;
     // rows are independent: the south half on a second thread (same bytes as one pass)
     const int mid = g.rows / 2;
+    std::vector<std::uint32_t> south_ties;
     std::thread south([&] {
-        for (int r = mid; r < g.rows; ++r) directions_row(z.data(), g, st, r, dense, dir.data());
+        for (int r = mid; r < g.rows; ++r)
+            directions_row(z.data(), g, st, r, dense, dir.data(), ties ? &south_ties : nullptr);
     });
-    for (int r = 0; r < mid; ++r) directions_row(z.data(), g, st, r, dense, dir.data());
+    for (int r = 0; r < mid; ++r) directions_row(z.data(), g, st, r, dense, dir.data(), ties);
     south.join();
+    if (ties) ties->insert(ties->end(), south_ties.begin(), south_ties.end());
     return dir;
 }
 
 void d8_into_depressions(const std::vector<float>& filled,
                          const std::vector<std::uint8_t>& raised_flags, std::uint8_t bit,
                          const std::vector<std::uint32_t>& orig_bits, const GridShape& g,
-                         double dx, double dy, std::vector<std::uint8_t>& dir) {
-    const Steps st = steps_of(g, dx, dy);
+                         double dx, double dy, std::vector<std::uint8_t>& dir,
+                         std::vector<std::uint32_t>* ties) {
+    const D8Steps st = d8_steps(g, dx, dy);
     auto original = [&](std::size_t n) {
         return raised_flags[n] & bit ? std::bit_cast<float>(orig_bits[n]) : filled[n];
     };
@@ -112,8 +96,10 @@ void d8_into_depressions(const std::vector<float>& filled,
         const std::size_t x = std::size_t(r) * g.cols + c;
         if (!g.valid[x] || (raised_flags[x] & bit)) return;
         const float fx = filled[x];  // = its original elevation
-        dir[x] = steepest_checked(fx, g, c, r, st.inv, original,
-                                  [&](std::size_t n) { return filled[n] < fx; });
+        const D8Choice d = d8_steepest(fx, g, c, r, st, original,
+                                       [&](std::size_t n) { return filled[n] < fx; });
+        dir[x] = d.code;
+        if (d.tie && ties) ties->push_back(std::uint32_t(x));
     };
     for (int r = 0; r < g.rows; ++r)
         for (int c = 0; c < g.cols; ++c) {

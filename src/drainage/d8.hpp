@@ -35,19 +35,23 @@ bool is_boundary_cell(const GridShape& g, int c, int r);
 // Steepest strictly-downhill valid neighbour per valid cell (first in code order on ties: the
 // lowest ESRI code), 0 when none or invalid. Interior cells of a grid without nodata take a
 // branch-free loop over precomputed neighbour offsets; the south half of the rows runs on a
-// second thread.
+// second thread. When `ties` is given, the cells whose steepest slope is shared by two or more
+// neighbours are appended to it (for break_d8_ties, d8_ties.hpp).
 std::vector<std::uint8_t> d8_directions(const std::vector<float>& z, const GridShape& g,
-                                        double dx, double dy);
+                                        double dx, double dy,
+                                        std::vector<std::uint32_t>* ties = nullptr);
 
 // Depression-aware re-aiming (matches D8 on the unfilled DEM, as GRASS r.watershed does, without
 // creating cycles): every valid, non-raised cell next to a raised cell (raised_flags[i] & bit)
 // drains to its steepest neighbour measured on the ORIGINAL elevations, chosen among the
 // neighbours strictly lower on the FILLED surface `filled`; the original elevation of a raised
 // cell n is std::bit_cast<float>(orig_bits[n]). Cells without such a neighbour keep code 0.
+// Re-aimed cells with tied steepest neighbours are appended to `ties` when given (maybe twice).
 void d8_into_depressions(const std::vector<float>& filled,
                          const std::vector<std::uint8_t>& raised_flags, std::uint8_t bit,
                          const std::vector<std::uint32_t>& orig_bits, const GridShape& g,
-                         double dx, double dy, std::vector<std::uint8_t>& dir);
+                         double dx, double dy, std::vector<std::uint8_t>& dir,
+                         std::vector<std::uint32_t>* ties = nullptr);
 
 enum class PointClass : std::uint8_t { pit = 0, ridge = 1, channel = 2, junction = 3, none = 255 };
 

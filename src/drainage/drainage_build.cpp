@@ -12,6 +12,8 @@
 
 #include "core/error.hpp"
 #include "drainage/branches.hpp"
+#include "drainage/d8_ties.hpp"
+#include "drainage/depression_drainage.hpp"
 #include "drainage/flat_resolution.hpp"
 #include "drainage/priority_flood.hpp"
 
@@ -70,10 +72,15 @@ DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progres
     report(progress, "filling depressions", 0.0);
     res.stats.filled = priority_flood_fill(g.z, shape, flags, orig).raised;
     report(progress, "flow directions", 0.35);
-    res.dir = d8_directions(g.z, shape, g.dx, g.dy);
-    d8_into_depressions(g.z, flags, fill_raised, orig, shape, g.dx, g.dy, res.dir);
+    std::vector<std::uint32_t> ties;
+    res.dir = d8_directions(g.z, shape, g.dx, g.dy, &ties);
+    d8_into_depressions(g.z, flags, fill_raised, orig, shape, g.dx, g.dy, res.dir, &ties);
     report(progress, "resolving flats", 0.45);
-    res.stats.unresolved_flats = resolve_flats(g.z, shape, res.dir, flags, net.basin);
+    res.stats.unresolved_flats = resolve_flats(g.z, shape, res.dir, flags, net.basin, &ties);
+    report(progress, "draining depressions, breaking ties", 0.5);
+    res.stats.outflow = drain_depressions(g.z, flags, orig, shape, g.dx, g.dy, res.dir, &ties);
+    break_d8_ties(ties, g.z, flags, orig, net.basin, shape, g.dx, g.dy, res.dir);
+    res.stats.ties = ties.size();  // deduplicated by break_d8_ties
     res.stats.working_bytes = bytes_of(res.dir, flags, orig, net.basin);
     restore_raised(g.z, flags, orig);
     report(progress, "accumulating flow and basins", 0.55);

@@ -1,6 +1,7 @@
 // The drainage build pipeline (seed 000 sec. 3): PN resampling -> Priority-Flood filling (Zhou et
 // al. 2016 variant, on the grid's z in place, restored afterwards) -> D8 on the filled surface,
-// re-aimed into depressions on the original one -> Barnes flat resolution -> accumulation +
+// re-aimed into depressions on the original one -> Barnes flat resolution -> raised cells down
+// the original slopes (depression_drainage.hpp) -> ties broken downstream (d8_ties.hpp) -> accumulation +
 // Strahler -> basins -> branches and divides -> DrainageDb; plus the cache next to the DEM
 // (`<dem>.dv`), rebuilt when missing, stale or corrupt.
 // Working memory beyond the grid (z 4 B + valid 1 B per point), counted in DrainageStats:
@@ -36,6 +37,8 @@ int drainage_resample_factor(const Terrain& t, const DrainageOptions& options);
 
 struct DrainageStats {
     std::size_t points = 0, valid = 0, filled = 0, unresolved_flats = 0;
+    std::size_t outflow = 0;  // cells on depressions' outflow paths (depression_drainage.hpp)
+    std::size_t ties = 0;     // cells reported with tied steepest neighbours (d8_ties.hpp)
     std::size_t basins = 0, branches = 0, divides = 0;
     std::size_t working_bytes = 0;  // peak bytes of the per-point working arrays beyond z and valid (no queues)
 };

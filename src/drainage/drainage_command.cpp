@@ -47,9 +47,11 @@ DrainageProgress progress_printer(std::ostream& log, bool quiet, StageTimer& tim
 void print_summary(std::ostream& log, const DrainageStats& s, const DrainageDb& db, double secs) {
     char line[400];
     std::snprintf(line, sizeof line,
-                  "drainage: %dx%d points (factor %d), %zu valid, %zu filled, %zu basins, %zu "
-                  "branches, %zu divides, %.2f s (%.1f M points/s), working memory %.1f B/point\n",
-                  db.cols, db.rows, db.factor, s.valid, s.filled, s.basins, s.branches, s.divides,
+                  "drainage: %dx%d points (factor %d), %zu valid, %zu filled, %zu on outflow paths, "
+                  "%zu tied, %zu basins, %zu branches, %zu divides, %.2f s (%.1f M points/s), "
+                  "working memory %.1f B/point\n",
+                  db.cols, db.rows, db.factor, s.valid, s.filled, s.outflow, s.ties, s.basins,
+                  s.branches, s.divides,
                   secs, s.points / secs / 1e6, double(s.working_bytes) / double(s.points));
     log << line;
 }

@@ -1,4 +1,4 @@
-// DV file layout (version 2, all little-endian; compact: what the builder's invariants give is
+// DV file layout (versions 2 and 3, all little-endian; compact: what the builder's invariants give is
 // not stored, see layout_ok and derived_ok):
 //   char[8]  magic "PNKDV\0\0\0"
 //   u32      format version

@@ -60,7 +60,9 @@ struct DrainageDb {
     bool operator==(const DrainageDb&) const = default;
 };
 
-inline constexpr std::uint32_t drainage_db_version = 2;
+// 3: layout of 2; directions with downstream tie-breaking and depressions drained down their
+// original slopes (d8_ties.hpp, depression_drainage.hpp): files of 2 hold other networks, rebuilt.
+inline constexpr std::uint32_t drainage_db_version = 3;
 
 // 64-bit FNV-1a over little-endian 64-bit words (tail bytes one by one).
 std::uint64_t hash64(const void* data, std::size_t size, std::uint64_t seed = 0xcbf29ce484222325ull);

@@ -16,6 +16,7 @@ struct Flats {
     std::int32_t* mask;  // away-from-higher distance, then the combined gradient
     std::ptrdiff_t off[8];
     std::vector<std::uint32_t> low, high;
+    std::vector<std::uint32_t>* ties;  // flat cells with two or more neighbours of least mask
 
     bool flat(std::uint32_t i) const {
         return dir[i] == 0 && g.valid[i] && !(flags[i] & fill_boundary);
@@ -70,14 +71,18 @@ void bfs_levels(Flats& s, std::vector<std::uint32_t> level, std::uint8_t bit, Vi
     }
 }
 
-// Flat cell i drains to its same-elevation neighbour of least gradient below its own.
+// Flat cell i drains to its same-elevation neighbour of least gradient below its own (the
+// first in code order when several share it: the cell is then noted in s.ties).
 std::uint8_t masked_direction(const Flats& s, std::uint32_t i) {
     std::int32_t best = s.mask[i];
     std::uint8_t code = 0;
+    bool tie = false;
     s.around_flat(i, [&](std::uint32_t n, int k) {
-        if (s.z[n] == s.z[i] && (s.flags[n] & flat_seen_low) && s.mask[n] < best)
-            best = s.mask[n], code = std::uint8_t(1u << k);
+        if (s.z[n] != s.z[i] || !(s.flags[n] & flat_seen_low)) return;
+        if (s.mask[n] < best) best = s.mask[n], code = std::uint8_t(1u << k), tie = false;
+        else if (code && s.mask[n] == best) tie = true;
     });
+    if (tie && s.ties) s.ties->push_back(i);
     return code;
 }
 
@@ -115,10 +120,10 @@ std::pair<std::size_t, std::size_t> towards_lower(Flats& s) {
 
 std::size_t resolve_flats(const std::vector<float>& z, const GridShape& g,
                           std::vector<std::uint8_t>& dir, std::vector<std::uint8_t>& flags,
-                          std::vector<std::uint32_t>& mask) {
+                          std::vector<std::uint32_t>& mask, std::vector<std::uint32_t>* ties) {
     mask.resize(g.size());
     Flats s{z.data(), g, dir.data(), flags.data(), reinterpret_cast<std::int32_t*>(mask.data()),
-            {}, {}, {}};
+            {}, {}, {}, ties};
     for (int k = 0; k < 8; ++k) s.off[k] = std::ptrdiff_t(d8_dr[k]) * g.cols + d8_dc[k];
     find_edges(s);
     std::size_t high_cells = 0;

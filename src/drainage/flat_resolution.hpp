@@ -24,8 +24,12 @@ inline constexpr std::uint8_t flat_seen_high = 4, flat_seen_low = 8;
 // holds basins to save memory), `flags` the fill's per-cell state
 // (priority_flood.hpp: fill_boundary marks the boundary cells; bits 2..3 are set here).
 // Returns the number of flat cells that stay without a direction (0 on a filled surface).
+// Afterwards `mask` holds, for every cell marked flat_seen_low, its combined gradient as int32
+// (INT32_MIN on low edges); flat cells with several neighbours of least gradient are appended to
+// `ties` when given (break_d8_ties settles them).
 std::size_t resolve_flats(const std::vector<float>& z, const GridShape& g,
                           std::vector<std::uint8_t>& dir, std::vector<std::uint8_t>& flags,
-                          std::vector<std::uint32_t>& mask);
+                          std::vector<std::uint32_t>& mask,
+                          std::vector<std::uint32_t>* ties = nullptr);
 
 }  // namespace penink

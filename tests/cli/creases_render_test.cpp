@@ -217,8 +217,9 @@ TEST(CreasesRender, RaisingMinScoreRemovesCreasesInProcess) {
             EXPECT_LE(now.points, previous.points) << "spacing " << spacing << " min_score " << min_score;
             // Not a theorem (a run can split in two), but holds on volcano at every step.
             EXPECT_LE(now.strokes, previous.strokes) << "spacing " << spacing << " min_score " << min_score;
-            if (spacing == 0.0 && previous.points != SIZE_MAX)  // scores only shift: segments are a subset
+            if (spacing == 0.0 && previous.points != SIZE_MAX) {  // scores only shift: segments are a subset
                 for (const auto& seg : now.segments) EXPECT_TRUE(previous.segments.count(seg)) << min_score;
+            }
             RecordProperty("spacing" + std::to_string(int(spacing)) + "_min" + std::to_string(int(min_score * 100)) +
                                "_strokes_length",
                            std::to_string(now.strokes) + " " + std::to_string(int(now.length)));

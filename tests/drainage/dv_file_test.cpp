@@ -104,7 +104,7 @@ TEST(DvFile, CorruptionsAreDetected) {
     b = good;
     b[8] = 7;
     spit(p, b);
-    EXPECT_EQ(read_error(p), pre + "unsupported drainage database version 7 (expected 2)");
+    EXPECT_EQ(read_error(p), pre + "unsupported drainage database version 7 (expected 3)");
 
     b = good;
     b[0] = 'X';

@@ -1,0 +1,122 @@
+#include "drainage/d8_ties.hpp"
+
+#include <algorithm>
+#include <array>
+#include <climits>
+#include <bit>
+#include <limits>
+
+#include "drainage/d8_steepest.hpp"
+#include "drainage/depression_drainage.hpp"
+#include "drainage/flat_resolution.hpp"
+#include "drainage/priority_flood.hpp"
+
+namespace penink {
+
+namespace {
+
+struct Ties {
+    const std::vector<float>& filled;
+    const std::vector<std::uint8_t>& flags;
+    const std::vector<std::uint32_t>& orig;
+    const GridShape& g;
+    D8Steps st;
+    const std::vector<std::uint8_t>& dir;
+    const std::int32_t* mask;  // flat gradients (flat_resolution.hpp)
+    int depth;
+
+    float original(std::size_t n) const { return original_z(filled, flags, orig, n); }
+    bool flat_cell(std::size_t i) const {
+        return (flags[i] & flat_seen_low) && !(flags[i] & fill_raised) && mask[i] != INT32_MIN;
+    }
+    // Sorting key: lower cells first; on one level D8 cells, then flat cells nearer the exit.
+    std::int64_t rank(std::size_t i) const { return flat_cell(i) ? std::int64_t(mask[i]) - INT32_MIN + 1 : 0; }
+
+    // Flat cell: bit k for every flat-resolved neighbour of least gradient below its own.
+    unsigned least_mask_set(std::size_t i) const {
+        std::int32_t best = mask[i];
+        unsigned set = 0;
+        for (int k = 0; k < 8; ++k) {
+            const std::size_t n = std::size_t(std::ptrdiff_t(i) + st.off[k]);
+            if (filled[n] != filled[i] || !(flags[n] & flat_seen_low)) continue;
+            if (mask[n] < best) best = mask[n], set = 1u << k;
+            else if (set && mask[n] == best) set |= 1u << k;
+        }
+        return set;
+    }
+
+    // Bit k set for every admissible neighbour k with the steepest slope (stage rules above).
+    unsigned steepest_set(std::size_t i) const {
+        if (flat_cell(i)) return least_mask_set(i);
+        const int c = int(i % std::size_t(g.cols)), r = int(i / std::size_t(g.cols));
+        const bool raised = flags[i] & fill_raised;
+        const float zi = original(i), level = filled[i];
+        float best = 0.0f;
+        unsigned set = 0;
+        for (int k = 0; k < 8; ++k) {
+            const int nc = c + d8_dc[k], nr = r + d8_dr[k];
+            if (nc < 0 || nr < 0 || nc >= g.cols || nr >= g.rows) continue;
+            const std::size_t n = std::size_t(nr) * g.cols + nc;
+            if (!g.valid[n] || (raised ? original(n) >= zi : filled[n] >= level)) continue;
+            const float s = (zi - original(n)) * st.inv[k];
+            if (s > best) best = s, set = 1u << k;
+            else if (s == best && set) set |= 1u << k;
+        }
+        return set;
+    }
+
+    // Original elevations along the path from n, `depth` entries; past the grid's edge: -inf.
+    void path_key(std::size_t n, float* key) const {
+        for (int j = 0; j < depth; ++j) {
+            key[j] = original(n);
+            if (!dir[n]) {
+                std::fill(key + j + 1, key + depth, -std::numeric_limits<float>::infinity());
+                return;
+            }
+            n = d8_target(g, n, dir[n]);
+        }
+    }
+
+    std::uint8_t choose(std::size_t i, unsigned set) const {
+        std::array<float, 64> best{}, key{};
+        std::uint8_t code = 0;
+        for (int k = 0; k < 8; ++k) {
+            if (!(set >> k & 1)) continue;
+            path_key(std::size_t(std::ptrdiff_t(i) + st.off[k]), key.data());
+            if (!code || std::lexicographical_compare(key.begin(), key.begin() + depth, best.begin(),
+                                                      best.begin() + depth))
+                best = key, code = std::uint8_t(1u << k);
+        }
+        return code;
+    }
+};
+
+}  // namespace
+
+std::size_t break_d8_ties(std::vector<std::uint32_t>& ties, const std::vector<float>& filled,
+                          const std::vector<std::uint8_t>& flags,
+                          const std::vector<std::uint32_t>& orig_bits,
+                          const std::vector<std::uint32_t>& flat_mask, const GridShape& g,
+                          double dx, double dy, std::vector<std::uint8_t>& dir, int depth) {
+    Ties t{filled, flags, orig_bits, g, d8_steps(g, dx, dy), dir,
+           reinterpret_cast<const std::int32_t*>(flat_mask.data()), std::clamp(depth, 1, 64)};
+    std::sort(ties.begin(), ties.end());
+    ties.erase(std::unique(ties.begin(), ties.end()), ties.end());
+    std::sort(ties.begin(), ties.end(), [&](std::uint32_t a, std::uint32_t b) {
+        if (filled[a] != filled[b]) return filled[a] < filled[b];
+        const std::int64_t ra = t.rank(a), rb = t.rank(b);
+        return ra != rb ? ra < rb : a < b;
+    });
+    std::size_t changed = 0;
+    for (const std::uint32_t i : ties) {
+        if (flags[i] & depression_outflow) continue;
+        const unsigned set = t.steepest_set(i);
+        if (std::popcount(set) < 2) continue;
+        const std::uint8_t code = t.choose(i, set);
+        changed += code != dir[i];
+        dir[i] = code;
+    }
+    return changed;
+}
+
+}  // namespace penink

@@ -1,0 +1,32 @@
+// Drainage inside filled depressions on the real terrain (as GRASS r.watershed's A* search drains
+// them; cf. the breaching/filling hybrids of Lindsay 2016): once the flat resolution has drained
+// every filled depression to its spill point over the filled surface, each raised cell with a
+// strictly lower neighbour on the ORIGINAL DEM drains to its steepest such neighbour, so streams
+// run down the depression's slopes to its low points. The low points (no lower original
+// neighbour) keep the flat-resolved path from them to the spill — the depression's outflow,
+// marked `depression_outflow` in the fill flags — and every cell on that path keeps its direction.
+// No cycle is possible: a lower original neighbour of a raised cell is raised too, steps off the
+// outflow paths strictly descend the original DEM until they meet a low point or a path, and a
+// path leaves the filled flat to strictly lower ground.
+// Grid: row-major, row 0 north, dx / dy metres; elevations in metres.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "drainage/d8.hpp"
+
+namespace penink {
+
+// Bit of the fill flags (priority_flood.hpp, flat_resolution.hpp use bits 0..4).
+inline constexpr std::uint8_t depression_outflow = 32;
+
+// `filled`: the filled surface; `flags`/`orig_bits`: the fill's state (fill_raised and original
+// elevations of raised cells); `dir`: flat-resolved ESRI codes, re-aimed in place. Raised cells
+// whose steepest original descent is tied are appended to `ties` when given. Returns the number
+// of cells on outflow paths.
+std::size_t drain_depressions(const std::vector<float>& filled, std::vector<std::uint8_t>& flags,
+                              const std::vector<std::uint32_t>& orig_bits, const GridShape& g,
+                              double dx, double dy, std::vector<std::uint8_t>& dir,
+                              std::vector<std::uint32_t>* ties = nullptr);
+
+}  // namespace penink
