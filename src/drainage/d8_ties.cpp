@@ -22,7 +22,8 @@ struct Ties {
     const GridShape& g;
     D8Steps st;
     const std::vector<std::uint8_t>& dir;
-    const std::int32_t* mask;  // flat gradients (flat_resolution.hpp)
+    const std::vector<std::uint32_t>& flat_mask;  // flat gradients as int32 (flat_resolution.hpp)
+    const std::int32_t* mask;
     int depth;
 
     float original(std::size_t n) const { return original_z(filled, flags, orig, n); }
@@ -32,22 +33,9 @@ struct Ties {
     // Sorting key: lower cells first; on one level D8 cells, then flat cells nearer the exit.
     std::int64_t rank(std::size_t i) const { return flat_cell(i) ? std::int64_t(mask[i]) - INT32_MIN + 1 : 0; }
 
-    // Flat cell: bit k for every flat-resolved neighbour of least gradient below its own.
-    unsigned least_mask_set(std::size_t i) const {
-        std::int32_t best = mask[i];
-        unsigned set = 0;
-        for (int k = 0; k < 8; ++k) {
-            const std::size_t n = std::size_t(std::ptrdiff_t(i) + st.off[k]);
-            if (filled[n] != filled[i] || !(flags[n] & flat_seen_low)) continue;
-            if (mask[n] < best) best = mask[n], set = 1u << k;
-            else if (set && mask[n] == best) set |= 1u << k;
-        }
-        return set;
-    }
-
     // Bit k set for every admissible neighbour k with the steepest slope (stage rules above).
     unsigned steepest_set(std::size_t i) const {
-        if (flat_cell(i)) return least_mask_set(i);
+        if (flat_cell(i)) return flat_candidates(filled, g, flags, flat_mask, i);
         const int c = int(i % std::size_t(g.cols)), r = int(i / std::size_t(g.cols));
         const bool raised = flags[i] & fill_raised;
         const float zi = original(i), level = filled[i];
@@ -98,7 +86,7 @@ std::size_t break_d8_ties(std::vector<std::uint32_t>& ties, const std::vector<fl
                           const std::vector<std::uint32_t>& orig_bits,
                           const std::vector<std::uint32_t>& flat_mask, const GridShape& g,
                           double dx, double dy, std::vector<std::uint8_t>& dir, int depth) {
-    Ties t{filled, flags, orig_bits, g, d8_steps(g, dx, dy), dir,
+    Ties t{filled, flags, orig_bits, g, d8_steps(g, dx, dy), dir, flat_mask,
            reinterpret_cast<const std::int32_t*>(flat_mask.data()), std::clamp(depth, 1, 64)};
     std::sort(ties.begin(), ties.end());
     ties.erase(std::unique(ties.begin(), ties.end()), ties.end());

@@ -3,6 +3,7 @@
 #include <bit>
 
 #include "drainage/d8_steepest.hpp"
+#include "drainage/flat_resolution.hpp"
 #include "drainage/priority_flood.hpp"
 
 namespace penink {
@@ -13,27 +14,38 @@ struct Depressions {
     const std::vector<float>& filled;
     std::vector<std::uint8_t>& flags;
     const std::vector<std::uint32_t>& orig;
+    const std::vector<std::uint32_t>& flat_mask;
     const GridShape& g;
     D8Steps st;
     std::vector<std::uint8_t>& dir;
 
     float original(std::size_t n) const { return original_z(filled, flags, orig, n); }
-    bool raised(std::size_t i) const { return g.valid[i] && (flags[i] & fill_raised); }
 
-    // Steepest descent of raised cell (c, r) on the original elevations.
-    D8Choice descent(int c, int r) const {
-        const std::size_t i = std::size_t(r) * g.cols + c;
-        const float zi = original(i);
-        return d8_steepest(zi, g, c, r, st, [&](std::size_t n) { return original(n); },
-                           [&](std::size_t n) { return original(n) < zi; });
+    // Steepest original descent of raised cell i. A raised cell is never a boundary cell, so
+    // its 8 neighbours exist and are valid.
+    D8Choice descent(std::size_t i) const {
+        const float zi = std::bit_cast<float>(orig[i]);
+        D8Choice out;
+        float best = 0.0f;
+        for (int k = 0; k < 8; ++k) {
+            const float s = (zi - original(std::size_t(std::ptrdiff_t(i) + st.off[k]))) * st.inv[k];
+            if (s > best) best = s, out.code = std::uint8_t(1u << k), out.tie = false;
+            else if (s == best && out.code) out.tie = true;
+        }
+        return out;
     }
 
     // Marks the flat-resolved path from low point p until it steps down off the filled flat,
-    // reaches an outlet or joins a path already marked.
+    // reaches an outlet or joins a path already marked; raised cells on it get their flat code
+    // back (the descent pass has re-aimed them).
     std::size_t mark_outflow(std::size_t p) {
         std::size_t marked = 0;
         for (std::size_t c = p; !(flags[c] & depression_outflow);) {
             flags[c] |= depression_outflow, ++marked;
+            if (flags[c] & fill_raised) {
+                const unsigned set = flat_candidates(filled, g, flags, flat_mask, c);
+                dir[c] = std::uint8_t(set & -set);
+            }
             if (!dir[c]) break;
             const std::size_t n = d8_target(g, c, dir[c]);
             if (filled[n] < filled[c]) break;
@@ -46,25 +58,21 @@ struct Depressions {
 }  // namespace
 
 std::size_t drain_depressions(const std::vector<float>& filled, std::vector<std::uint8_t>& flags,
-                              const std::vector<std::uint32_t>& orig_bits, const GridShape& g,
+                              const std::vector<std::uint32_t>& orig_bits,
+                              const std::vector<std::uint32_t>& flat_mask, const GridShape& g,
                               double dx, double dy, std::vector<std::uint8_t>& dir,
                               std::vector<std::uint32_t>* ties) {
-    Depressions d{filled, flags, orig_bits, g, d8_steps(g, dx, dy), dir};
+    Depressions d{filled, flags, orig_bits, flat_mask, g, d8_steps(g, dx, dy), dir};
+    std::vector<std::uint32_t> low;
+    for (std::size_t i = 0; i < g.size(); ++i) {  // down the original slopes, low points noted
+        if (!(flags[i] & fill_raised)) continue;
+        const D8Choice s = d.descent(i);
+        if (!s.code) { low.push_back(std::uint32_t(i)); continue; }
+        dir[i] = s.code;
+        if (s.tie && ties) ties->push_back(std::uint32_t(i));
+    }
     std::size_t marked = 0;
-    for (int r = 0; r < g.rows; ++r)  // the low points' outflow paths first, on flat directions
-        for (int c = 0; c < g.cols; ++c) {
-            const std::size_t i = std::size_t(r) * g.cols + c;
-            if (d.raised(i) && !(flags[i] & depression_outflow) && !d.descent(c, r).code)
-                marked += d.mark_outflow(i);
-        }
-    for (int r = 0; r < g.rows; ++r)  // then everything else down the original slopes
-        for (int c = 0; c < g.cols; ++c) {
-            const std::size_t i = std::size_t(r) * g.cols + c;
-            if (!d.raised(i) || (flags[i] & depression_outflow)) continue;
-            const D8Choice s = d.descent(c, r);
-            dir[i] = s.code;
-            if (s.tie && ties) ties->push_back(std::uint32_t(i));
-        }
+    for (const std::uint32_t p : low) marked += d.mark_outflow(p);
     return marked;
 }
 

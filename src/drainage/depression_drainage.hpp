@@ -21,11 +21,13 @@ namespace penink {
 inline constexpr std::uint8_t depression_outflow = 32;
 
 // `filled`: the filled surface; `flags`/`orig_bits`: the fill's state (fill_raised and original
-// elevations of raised cells); `dir`: flat-resolved ESRI codes, re-aimed in place. Raised cells
-// whose steepest original descent is tied are appended to `ties` when given. Returns the number
-// of cells on outflow paths.
+// elevations of raised cells); `flat_mask`: the flat gradients resolve_flats left; `dir`:
+// flat-resolved ESRI codes, re-aimed in place. Raised cells whose steepest original descent is
+// tied are appended to `ties` when given (those later found on an outflow path are skipped by
+// break_d8_ties). Returns the number of cells on outflow paths.
 std::size_t drain_depressions(const std::vector<float>& filled, std::vector<std::uint8_t>& flags,
-                              const std::vector<std::uint32_t>& orig_bits, const GridShape& g,
+                              const std::vector<std::uint32_t>& orig_bits,
+                              const std::vector<std::uint32_t>& flat_mask, const GridShape& g,
                               double dx, double dy, std::vector<std::uint8_t>& dir,
                               std::vector<std::uint32_t>* ties = nullptr);
 

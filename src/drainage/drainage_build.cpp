@@ -78,7 +78,7 @@ DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progres
     report(progress, "resolving flats", 0.45);
     res.stats.unresolved_flats = resolve_flats(g.z, shape, res.dir, flags, net.basin, &ties);
     report(progress, "draining depressions, breaking ties", 0.5);
-    res.stats.outflow = drain_depressions(g.z, flags, orig, shape, g.dx, g.dy, res.dir, &ties);
+    res.stats.outflow = drain_depressions(g.z, flags, orig, net.basin, shape, g.dx, g.dy, res.dir, &ties);
     break_d8_ties(ties, g.z, flags, orig, net.basin, shape, g.dx, g.dy, res.dir);
     res.stats.ties = ties.size();  // deduplicated by break_d8_ties
     res.stats.working_bytes = bytes_of(res.dir, flags, orig, net.basin);

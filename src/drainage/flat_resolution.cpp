@@ -2,6 +2,7 @@
 
 #include "drainage/priority_flood.hpp"
 
+#include <bit>
 #include <climits>
 
 namespace penink {
@@ -71,20 +72,40 @@ void bfs_levels(Flats& s, std::vector<std::uint32_t> level, std::uint8_t bit, Vi
     }
 }
 
-// Flat cell i drains to its same-elevation neighbour of least gradient below its own (the
-// first in code order when several share it: the cell is then noted in s.ties).
-std::uint8_t masked_direction(const Flats& s, std::uint32_t i) {
-    std::int32_t best = s.mask[i];
-    std::uint8_t code = 0;
-    bool tie = false;
-    s.around_flat(i, [&](std::uint32_t n, int k) {
-        if (s.z[n] != s.z[i] || !(s.flags[n] & flat_seen_low)) return;
-        if (s.mask[n] < best) best = s.mask[n], code = std::uint8_t(1u << k), tie = false;
-        else if (code && s.mask[n] == best) tie = true;
-    });
-    if (tie && s.ties) s.ties->push_back(i);
-    return code;
+// Bit k for every same-elevation neighbour k of flat cell i with the least gradient below its own.
+unsigned least_gradient(const float* z, const std::uint8_t* flags, const std::int32_t* mask,
+                        const std::ptrdiff_t* off, std::uint32_t i) {
+    std::int32_t best = mask[i];
+    unsigned set = 0;
+    for (int k = 0; k < 8; ++k) {
+        const std::uint32_t n = std::uint32_t(std::ptrdiff_t(i) + off[k]);
+        if (z[n] != z[i] || !(flags[n] & flat_seen_low)) continue;
+        if (mask[n] < best) best = mask[n], set = 1u << k;
+        else if (set && mask[n] == best) set |= 1u << k;
+    }
+    return set;
 }
+
+// Flat cell i drains to the first such neighbour in code order (noted in s.ties when several).
+std::uint8_t masked_direction(const Flats& s, std::uint32_t i) {
+    const unsigned set = least_gradient(s.z, s.flags, s.mask, s.off, i);
+    // raised cells are re-aimed or keep this code as an outflow path (depression_drainage.hpp)
+    if (std::popcount(set) > 1 && s.ties && !(s.flags[i] & fill_raised)) s.ties->push_back(i);
+    return std::uint8_t(set & -set);
+}
+
+}  // namespace
+
+unsigned flat_candidates(const std::vector<float>& z, const GridShape& g,
+                         const std::vector<std::uint8_t>& flags,
+                         const std::vector<std::uint32_t>& mask, std::size_t i) {
+    std::ptrdiff_t off[8];
+    for (int k = 0; k < 8; ++k) off[k] = std::ptrdiff_t(d8_dr[k]) * g.cols + d8_dc[k];
+    return least_gradient(z.data(), flags.data(), reinterpret_cast<const std::int32_t*>(mask.data()),
+                          off, std::uint32_t(i));
+}
+
+namespace {
 
 // Towards-lower BFS from the low edges (level 1, mask = lowest) combined with the away-from-higher
 // distance already in `mask`; a cell's direction is set once its neighbours' levels (one more

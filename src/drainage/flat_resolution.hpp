@@ -26,10 +26,17 @@ inline constexpr std::uint8_t flat_seen_high = 4, flat_seen_low = 8;
 // Returns the number of flat cells that stay without a direction (0 on a filled surface).
 // Afterwards `mask` holds, for every cell marked flat_seen_low, its combined gradient as int32
 // (INT32_MIN on low edges); flat cells with several neighbours of least gradient are appended to
-// `ties` when given (break_d8_ties settles them).
+// `ties` when given, raised cells excepted (break_d8_ties settles them).
 std::size_t resolve_flats(const std::vector<float>& z, const GridShape& g,
                           std::vector<std::uint8_t>& dir, std::vector<std::uint8_t>& flags,
                           std::vector<std::uint32_t>& mask,
                           std::vector<std::uint32_t>* ties = nullptr);
+
+// Flat cell i (flat_seen_low set, not a low edge): bit k set for each neighbour k of least
+// gradient, from `flags` and `mask` as resolve_flats left them; resolve_flats gave the cell the
+// lowest of these codes.
+unsigned flat_candidates(const std::vector<float>& z, const GridShape& g,
+                         const std::vector<std::uint8_t>& flags,
+                         const std::vector<std::uint32_t>& mask, std::size_t i);
 
 }  // namespace penink
