@@ -40,5 +40,18 @@ TEST(D8Ties, SouthDropsSoonerMirrored) {
     EXPECT_EQ(res.dir[2 * W + 3], 4);
 }
 
+TEST(D8Ties, AFlatCellBetweenTwoExitsTakesTheOneThatDropsSooner) {
+    // (3, 2) at 10 m has no lower neighbour; its flat neighbours N (3, 1) and S (3, 3), also at
+    // 10 m, are exits draining to (3, 0) at 0 m and (3, 4) at 8 m: equal flat gradients.
+    std::vector<float> z(W * H, 20.0f);
+    auto set = [&](int c, int r, float v) { z[std::size_t(r) * W + c] = v; };
+    set(3, 2, 10.0f), set(3, 1, 10.0f), set(3, 3, 10.0f), set(3, 0, 0.0f), set(3, 4, 8.0f);
+    DrainageGrid g = make_regular_grid(W, H, 10.0, z);
+    const DrainageResult res = compute_drainage(g);
+    EXPECT_EQ(res.dir[1 * W + 3], 64);
+    EXPECT_EQ(res.dir[3 * W + 3], 4);
+    EXPECT_EQ(res.dir[2 * W + 3], 64);  // the flat resolution alone gives S (4), the lower code
+}
+
 }  // namespace
 }  // namespace penink
