@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <iostream>
 #include <unistd.h>
 #include <sstream>
 
@@ -121,6 +122,7 @@ SceneDrawing draw_terrain(const Scene& scene, GlContext& context, const Log& log
     DemOptions dem_options;
     dem_options.vertical_exaggeration = scene.vertical_exaggeration;
     const Terrain dem = read_dem(scene.dem, dem_options);
+    if (const std::string w = missing_crs_warning(dem); !w.empty()) std::cerr << w << "\n";
     log.info("read " + scene.dem + ": " + std::to_string(dem.cols) + "x" + std::to_string(dem.rows) + " nodes");
     Camera camera = scene_camera(scene, dem);
     Terrain view = terrain_for_view(dem, camera, scene, log);

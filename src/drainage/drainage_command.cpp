@@ -60,6 +60,7 @@ int run(const DrainageCommand& cmd, std::ostream& log) {
     const auto t0 = Clock::now();
     StageTimer timer{log};
     const Terrain t = read_dem(cmd.dem);
+    if (const std::string w = missing_crs_warning(t); !w.empty()) log << w << "\n";
     DrainageOptions o;
     o.resample = cmd.resample;
     if (cmd.resample < 0) throw Error("drainage", cmd.dem, "resample factor must be >= 1 (0 = automatic)");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <future>
 #include <limits>
 #include <memory>
@@ -293,6 +294,23 @@ Terrain read_dem(const std::string& path, const DemOptions& options) {
     fill_positions(r, xy, t);
     t.valid = std::move(r.valid);
     return t;
+}
+
+std::string missing_crs_warning(const Terrain& t) {
+    if (!t.crs_wkt.empty() || t.source_geographic || t.cols < 1 || t.rows < 1) return "";
+    const auto& g = t.geotransform;
+    const double cell = std::max(std::hypot(g[1], g[4]), std::hypot(g[2], g[5]));
+    if (!(cell > 0.0 && cell < 0.01)) return "";
+    for (const double c : {0.0, double(t.cols)})
+        for (const double r : {0.0, double(t.rows)}) {  // the grid's corners, source units
+            const double x = g[0] + (t.source_col0 + c) * g[1] + (t.source_row0 + r) * g[2];
+            const double y = g[3] + (t.source_col0 + c) * g[4] + (t.source_row0 + r) * g[5];
+            if (x < -180.0 || x > 360.0 || y < -90.0 || y > 90.0) return "";
+        }
+    char size[32];
+    std::snprintf(size, sizeof size, "%.6g", cell);
+    return "penink: warning: input: " + t.source + ": no CRS and a cell size of " + size +
+           ": if these are degrees, add the CRS (e.g. a .prj); positions are taken as metres";
 }
 
 }  // namespace penink

@@ -28,4 +28,11 @@ struct DemOptions {
 // zone ZH: <GeographicLib's reason>" (a geographic DEM too far from the zone). GDAL stays silent.
 Terrain read_dem(const std::string& path, const DemOptions& options = {});
 
+// For a DEM read without a CRS whose grid looks like longitude/latitude degrees (cell size below
+// 0.01 and every node within -180..360 x -90..90): the warning line
+// "penink: warning: input: FILE: no CRS and a cell size of S: if these are degrees, add the CRS
+// (e.g. a .prj); positions are taken as metres", else "" (positions in metres would put the
+// relief some 100,000 times too steep).
+std::string missing_crs_warning(const Terrain& t);
+
 }  // namespace penink

@@ -259,3 +259,25 @@ TEST(DemReader, SouthernHemisphereGeographic) {
 
 }  // namespace
 }  // namespace penink
+
+namespace penink {
+namespace {
+
+TEST(DemReader, DegreesWithoutACrsAreWarnedAbout) {
+    TempDir dir;
+    const std::string deg = test::write_asc(dir.file("d.asc"), 3, {{1, 2, 3}, {4, 5, 6}}, -84.41375, 36.44625, 0.000833333);
+    EXPECT_EQ(missing_crs_warning(read_dem(deg)),
+              "penink: warning: input: " + deg + ": no CRS and a cell size of 0.000833333: if these are "
+              "degrees, add the CRS (e.g. a .prj); positions are taken as metres");
+    const std::string metres = test::write_asc(dir.file("m.asc"), 3, {{1, 2, 3}, {4, 5, 6}}, 1000, 2000, 10);
+    EXPECT_EQ(missing_crs_warning(read_dem(metres)), "");
+    // a small cell far outside the longitude/latitude range: metres in a local frame
+    const std::string local = test::write_asc(dir.file("l.asc"), 3, {{1, 2, 3}, {4, 5, 6}}, 5000, 7000, 0.001);
+    EXPECT_EQ(missing_crs_warning(read_dem(local)), "");
+    const std::string tif = test::write_tif(dir.file("g.tif"), 2, 2, {1, 2, 3, 4},
+                                            {-84.4, 0.000833, 0, 36.4, 0, -0.000833}, 4326);
+    EXPECT_EQ(missing_crs_warning(read_dem(tif)), "");  // geographic CRS known: projected to UTM
+}
+
+}  // namespace
+}  // namespace penink
