@@ -17,48 +17,27 @@ bool is_boundary_cell(const GridShape& g, int c, int r) {
 
 namespace {
 
-// Steepest descent of an interior cell with all 8 neighbours valid: no branches but selects.
-// `tie` is set when another neighbour has exactly the steepest slope.
-inline std::uint8_t steepest_dense(const float* z, std::size_t i, const D8Steps& st, bool& tie) {
-    const float zi = z[i];
-    float best = 0.0f;
-    unsigned code = 0;
-    bool tied = false;
-    for (int k = 0; k < 8; ++k) {
-        const float s = (zi - z[std::ptrdiff_t(i) + st.off[k]]) * st.inv[k];
-        const bool better = s > best;
-        tied = better ? false : (tied | (s == best));
-        best = better ? s : best;
-        code = better ? (1u << k) : code;
-    }
-    tie = tied && code != 0;
-    return std::uint8_t(code);
-}
-
 void directions_row(const float* z, const GridShape& g, const D8Steps& st, int r, bool dense,
                     std::uint8_t* dir, std::vector<std::uint32_t>* ties) {
     const bool edge_row = r == 0 || r == g.rows - 1;
     const std::size_t row0 = std::size_t(r) * g.cols;
-    auto note = [&](std::size_t i, bool tie) {
-        if (tie && ties) ties->push_back(std::uint32_t(i));
+    auto take = [&](std::size_t i, const D8Choice& d) {
+        dir[i] = d.code();
+        if (ties && d.tie()) ties->push_back(std::uint32_t(i));
     };
     auto checked = [&](int c) {
         const std::size_t i = row0 + c;
-        if (!g.valid[i]) return;
-        const D8Choice d = d8_steepest(z[i], g, c, r, st, [&](std::size_t n) { return z[n]; },
-                                       [](std::size_t) { return true; });
-        dir[i] = d.code, note(i, d.tie);
+        if (g.valid[i])
+            take(i, d8_steepest(z[i], g, c, r, st, [&](std::size_t n) { return z[n]; },
+                                [](std::size_t) { return true; }));
     };
     if (edge_row || !dense) {
         for (int c = 0; c < g.cols; ++c) checked(c);
         return;
     }
     checked(0);
-    for (int c = 1; c + 1 < g.cols; ++c) {
-        bool tie;
-        dir[row0 + c] = steepest_dense(z, row0 + c, st, tie);
-        note(row0 + c, tie);
-    }
+    for (std::size_t i = row0 + 1; i + 1 < row0 + g.cols; ++i)
+        take(i, d8_steepest_dense(z[i], i, st, [&](std::size_t n) { return z[n]; }));
     if (g.cols > 1) checked(g.cols - 1);
 }
 
@@ -98,8 +77,8 @@ void d8_into_depressions(const std::vector<float>& filled,
         const float fx = filled[x];  // = its original elevation
         const D8Choice d = d8_steepest(fx, g, c, r, st, original,
                                        [&](std::size_t n) { return filled[n] < fx; });
-        dir[x] = d.code;
-        if (d.tie && ties) ties->push_back(std::uint32_t(x));
+        dir[x] = d.code();
+        if (ties && d.tie()) ties->push_back(std::uint32_t(x));
     };
     for (int r = 0; r < g.rows; ++r)
         for (int c = 0; c < g.cols; ++c) {

@@ -4,7 +4,9 @@
 // Point classes (seed 000): pit (no downhill), ridge (no neighbour drains into it), channel (one),
 // junction (more than one).
 #pragma once
+#include <array>
 #include <bit>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -21,6 +23,13 @@ struct GridShape {
     const std::uint8_t* valid = nullptr;  // cols*rows, 1 = data
     std::size_t size() const { return std::size_t(cols) * rows; }
 };
+
+// Linear index offsets of the 8 neighbours (code order) on a grid of g.cols columns.
+inline std::array<std::ptrdiff_t, 8> d8_offsets(const GridShape& g) {
+    std::array<std::ptrdiff_t, 8> off{};
+    for (int k = 0; k < 8; ++k) off[k] = std::ptrdiff_t(d8_dr[k]) * g.cols + d8_dc[k];
+    return off;
+}
 
 // Linear index of the neighbour the ESRI `code` at cell i points to.
 inline std::size_t d8_target(const GridShape& g, std::size_t i, std::uint8_t code) {

@@ -1,8 +1,10 @@
 // The steepest-descent choice shared by the D8 stages (d8.cpp, depression_drainage.cpp,
-// d8_ties.cpp): per-neighbour offsets and inverse distances (metres) of a grid, and the steepest
-// admissible neighbour of one cell with a flag telling whether another neighbour ties with it
-// exactly (same float drop / distance), so a later pass can break the tie (d8_ties.hpp).
+// d8_ties.cpp): per-neighbour offsets and inverse distances (metres) of a grid, and the set of
+// admissible neighbours of one cell with exactly the steepest drop / distance (float), whose
+// lowest code is the D8 direction; a set of two or more is a tie for d8_ties.hpp.
 #pragma once
+#include <array>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -12,42 +14,55 @@
 namespace penink {
 
 struct D8Steps {
-    std::ptrdiff_t off[8];  // linear index offset of neighbour k
+    std::array<std::ptrdiff_t, 8> off;  // linear index offset of neighbour k (d8_offsets)
     float inv[8];           // 1 / distance to neighbour k (cardinal dx or dy, diagonal hypot)
 };
 
 inline D8Steps d8_steps(const GridShape& g, double dx, double dy) {
-    D8Steps st{};
+    D8Steps st{d8_offsets(g), {}};
     const double diag = std::hypot(dx, dy);
-    for (int k = 0; k < 8; ++k) {
-        st.off[k] = std::ptrdiff_t(d8_dr[k]) * g.cols + d8_dc[k];
+    for (int k = 0; k < 8; ++k)
         st.inv[k] = float(1.0 / (d8_dc[k] && d8_dr[k] ? diag : (d8_dc[k] ? dx : dy)));
-    }
     return st;
 }
 
 struct D8Choice {
-    std::uint8_t code = 0;  // ESRI code of the steepest neighbour (lowest code on ties), 0 = none
-    bool tie = false;       // another admissible neighbour has exactly the same slope
+    unsigned steepest = 0;  // bit k for every admissible neighbour k of the steepest slope (> 0)
+    std::uint8_t code() const { return std::uint8_t(steepest & -steepest); }  // lowest; 0 = none
+    bool tie() const { return std::popcount(steepest) > 1; }
 };
 
-// Steepest strictly-downhill neighbour of valid cell (c, r) at elevation zi: bounds- and
-// validity-checked; `zn(n)` gives the elevation compared against, `ok(n)` whether neighbour n
-// may be a target at all.
+// Takes slope s to neighbour k into the running maximum `best` and its set (no branches).
+inline void d8_take(float s, int k, float& best, unsigned& set) {
+    const bool better = s > best;
+    set = better ? 1u << k : (s == best ? set | 1u << k : set);
+    best = better ? s : best;
+}
+
+// Steepest strictly-downhill neighbours of cell i at elevation zi when all 8 neighbours exist
+// and are admissible (an interior cell, no nodata around); `zn(n)` gives neighbour n's elevation.
+template <class Zn>
+D8Choice d8_steepest_dense(float zi, std::size_t i, const D8Steps& st, Zn&& zn) {
+    float best = 0.0f;
+    unsigned set = 0;
+    for (int k = 0; k < 8; ++k)
+        d8_take((zi - zn(std::size_t(std::ptrdiff_t(i) + st.off[k]))) * st.inv[k], k, best, set);
+    return {best > 0.0f ? set : 0u};
+}
+
+// The same for any valid cell (c, r): bounds- and validity-checked; `ok(n)` tells whether
+// neighbour n may be a target at all.
 template <class Zn, class Ok>
 D8Choice d8_steepest(float zi, const GridShape& g, int c, int r, const D8Steps& st, Zn&& zn, Ok&& ok) {
-    D8Choice out;
     float best = 0.0f;
+    unsigned set = 0;
     for (int k = 0; k < 8; ++k) {
         const int nc = c + d8_dc[k], nr = r + d8_dr[k];
         if (nc < 0 || nr < 0 || nc >= g.cols || nr >= g.rows) continue;
         const std::size_t n = std::size_t(nr) * g.cols + nc;
-        if (!g.valid[n] || !ok(n)) continue;
-        const float s = (zi - zn(n)) * st.inv[k];
-        if (s > best) best = s, out.code = std::uint8_t(1u << k), out.tie = false;
-        else if (s == best && out.code) out.tie = true;
+        if (g.valid[n] && ok(n)) d8_take((zi - zn(n)) * st.inv[k], k, best, set);
     }
-    return out;
+    return {best > 0.0f ? set : 0u};
 }
 
 }  // namespace penink

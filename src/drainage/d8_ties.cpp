@@ -23,34 +23,33 @@ struct Ties {
     D8Steps st;
     const std::vector<std::uint8_t>& dir;
     const std::vector<std::uint32_t>& flat_mask;  // flat gradients as int32 (flat_resolution.hpp)
-    const std::int32_t* mask;
     int depth;
 
     float original(std::size_t n) const { return original_z(filled, flags, orig, n); }
+    std::int32_t gradient(std::size_t i) const { return std::int32_t(flat_mask[i]); }
     bool flat_cell(std::size_t i) const {
-        return (flags[i] & flat_seen_low) && !(flags[i] & fill_raised) && mask[i] != INT32_MIN;
+        return (flags[i] & flat_seen_low) && !(flags[i] & fill_raised) && gradient(i) != INT32_MIN;
     }
-    // Sorting key: lower cells first; on one level D8 cells, then flat cells nearer the exit.
-    std::int64_t rank(std::size_t i) const { return flat_cell(i) ? std::int64_t(mask[i]) - INT32_MIN + 1 : 0; }
+    // Settling order: lower cells first; on one level D8 cells, then flat cells nearer the exit,
+    // then by index (duplicates end up next to each other).
+    bool before(std::uint32_t a, std::uint32_t b) const {
+        if (filled[a] != filled[b]) return filled[a] < filled[b];
+        const std::int64_t ra = rank(a), rb = rank(b);
+        return ra != rb ? ra < rb : a < b;
+    }
+    std::int64_t rank(std::size_t i) const {
+        return flat_cell(i) ? std::int64_t(gradient(i)) - INT32_MIN + 1 : 0;
+    }
 
     // Bit k set for every admissible neighbour k with the steepest slope (stage rules above).
     unsigned steepest_set(std::size_t i) const {
         if (flat_cell(i)) return flat_candidates(filled, g, flags, flat_mask, i);
         const int c = int(i % std::size_t(g.cols)), r = int(i / std::size_t(g.cols));
-        const bool raised = flags[i] & fill_raised;
         const float zi = original(i), level = filled[i];
-        float best = 0.0f;
-        unsigned set = 0;
-        for (int k = 0; k < 8; ++k) {
-            const int nc = c + d8_dc[k], nr = r + d8_dr[k];
-            if (nc < 0 || nr < 0 || nc >= g.cols || nr >= g.rows) continue;
-            const std::size_t n = std::size_t(nr) * g.cols + nc;
-            if (!g.valid[n] || (raised ? original(n) >= zi : filled[n] >= level)) continue;
-            const float s = (zi - original(n)) * st.inv[k];
-            if (s > best) best = s, set = 1u << k;
-            else if (s == best && set) set |= 1u << k;
-        }
-        return set;
+        const bool raised = flags[i] & fill_raised;
+        auto zn = [&](std::size_t n) { return original(n); };
+        auto ok = [&](std::size_t n) { return raised ? original(n) < zi : filled[n] < level; };
+        return d8_steepest(zi, g, c, r, st, zn, ok).steepest;
     }
 
     // Original elevations along the path from n, `depth` entries; past the grid's edge: -inf.
@@ -86,15 +85,9 @@ std::size_t break_d8_ties(std::vector<std::uint32_t>& ties, const std::vector<fl
                           const std::vector<std::uint32_t>& orig_bits,
                           const std::vector<std::uint32_t>& flat_mask, const GridShape& g,
                           double dx, double dy, std::vector<std::uint8_t>& dir, int depth) {
-    Ties t{filled, flags, orig_bits, g, d8_steps(g, dx, dy), dir, flat_mask,
-           reinterpret_cast<const std::int32_t*>(flat_mask.data()), std::clamp(depth, 1, 64)};
-    std::sort(ties.begin(), ties.end());
+    Ties t{filled, flags, orig_bits, g, d8_steps(g, dx, dy), dir, flat_mask, std::clamp(depth, 1, 64)};
+    std::sort(ties.begin(), ties.end(), [&](std::uint32_t a, std::uint32_t b) { return t.before(a, b); });
     ties.erase(std::unique(ties.begin(), ties.end()), ties.end());
-    std::sort(ties.begin(), ties.end(), [&](std::uint32_t a, std::uint32_t b) {
-        if (filled[a] != filled[b]) return filled[a] < filled[b];
-        const std::int64_t ra = t.rank(a), rb = t.rank(b);
-        return ra != rb ? ra < rb : a < b;
-    });
     std::size_t changed = 0;
     for (const std::uint32_t i : ties) {
         if (flags[i] & depression_outflow) continue;

@@ -24,15 +24,8 @@ struct Depressions {
     // Steepest original descent of raised cell i. A raised cell is never a boundary cell, so
     // its 8 neighbours exist and are valid.
     D8Choice descent(std::size_t i) const {
-        const float zi = std::bit_cast<float>(orig[i]);
-        D8Choice out;
-        float best = 0.0f;
-        for (int k = 0; k < 8; ++k) {
-            const float s = (zi - original(std::size_t(std::ptrdiff_t(i) + st.off[k]))) * st.inv[k];
-            if (s > best) best = s, out.code = std::uint8_t(1u << k), out.tie = false;
-            else if (s == best && out.code) out.tie = true;
-        }
-        return out;
+        return d8_steepest_dense(std::bit_cast<float>(orig[i]), i, st,
+                                 [&](std::size_t n) { return original(n); });
     }
 
     // Marks the flat-resolved path from low point p until it steps down off the filled flat,
@@ -67,9 +60,9 @@ std::size_t drain_depressions(const std::vector<float>& filled, std::vector<std:
     for (std::size_t i = 0; i < g.size(); ++i) {  // down the original slopes, low points noted
         if (!(flags[i] & fill_raised)) continue;
         const D8Choice s = d.descent(i);
-        if (!s.code) { low.push_back(std::uint32_t(i)); continue; }
-        dir[i] = s.code;
-        if (s.tie && ties) ties->push_back(std::uint32_t(i));
+        if (!s.steepest) { low.push_back(std::uint32_t(i)); continue; }
+        dir[i] = s.code();
+        if (ties && s.tie()) ties->push_back(std::uint32_t(i));
     }
     std::size_t marked = 0;
     for (const std::uint32_t p : low) marked += d.mark_outflow(p);

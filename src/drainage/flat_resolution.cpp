@@ -2,6 +2,7 @@
 
 #include "drainage/priority_flood.hpp"
 
+#include <array>
 #include <bit>
 #include <climits>
 
@@ -15,7 +16,7 @@ struct Flats {
     std::uint8_t* dir;
     std::uint8_t* flags;
     std::int32_t* mask;  // away-from-higher distance, then the combined gradient
-    std::ptrdiff_t off[8];
+    std::array<std::ptrdiff_t, 8> off;
     std::vector<std::uint32_t> low, high;
     std::vector<std::uint32_t>* ties;  // flat cells with two or more neighbours of least mask
 
@@ -88,7 +89,7 @@ unsigned least_gradient(const float* z, const std::uint8_t* flags, const std::in
 
 // Flat cell i drains to the first such neighbour in code order (noted in s.ties when several).
 std::uint8_t masked_direction(const Flats& s, std::uint32_t i) {
-    const unsigned set = least_gradient(s.z, s.flags, s.mask, s.off, i);
+    const unsigned set = least_gradient(s.z, s.flags, s.mask, s.off.data(), i);
     // raised cells are re-aimed or keep this code as an outflow path (depression_drainage.hpp)
     if (std::popcount(set) > 1 && s.ties && !(s.flags[i] & fill_raised)) s.ties->push_back(i);
     return std::uint8_t(set & -set);
@@ -99,10 +100,8 @@ std::uint8_t masked_direction(const Flats& s, std::uint32_t i) {
 unsigned flat_candidates(const std::vector<float>& z, const GridShape& g,
                          const std::vector<std::uint8_t>& flags,
                          const std::vector<std::uint32_t>& mask, std::size_t i) {
-    std::ptrdiff_t off[8];
-    for (int k = 0; k < 8; ++k) off[k] = std::ptrdiff_t(d8_dr[k]) * g.cols + d8_dc[k];
     return least_gradient(z.data(), flags.data(), reinterpret_cast<const std::int32_t*>(mask.data()),
-                          off, std::uint32_t(i));
+                          d8_offsets(g).data(), std::uint32_t(i));
 }
 
 namespace {
@@ -144,8 +143,7 @@ std::size_t resolve_flats(const std::vector<float>& z, const GridShape& g,
                           std::vector<std::uint32_t>& mask, std::vector<std::uint32_t>* ties) {
     mask.resize(g.size());
     Flats s{z.data(), g, dir.data(), flags.data(), reinterpret_cast<std::int32_t*>(mask.data()),
-            {}, {}, {}, ties};
-    for (int k = 0; k < 8; ++k) s.off[k] = std::ptrdiff_t(d8_dr[k]) * g.cols + d8_dc[k];
+            d8_offsets(g), {}, {}, ties};
     find_edges(s);
     std::size_t high_cells = 0;
     bfs_levels(s, s.high, flat_seen_high, [&](std::uint32_t c, std::int32_t h) {

@@ -51,7 +51,7 @@ struct Flood {
     const GridShape& g;
     std::uint8_t* flags;
     std::uint32_t* orig;
-    std::ptrdiff_t off[8];
+    std::array<std::ptrdiff_t, 8> off;
     RadixHeap open;
     std::vector<std::uint32_t> pit;     // a stack: any order is correct within a level
     std::queue<std::uint32_t> trace;    // FIFO: climbing breadth-first from the spill reaches a
@@ -138,8 +138,7 @@ FillStats priority_flood_fill(std::vector<float>& z, const GridShape& g,
                               std::vector<std::uint32_t>& orig_bits) {
     flags.assign(g.size(), 0);
     orig_bits.resize(g.size());
-    Flood f{z.data(), g, flags.data(), orig_bits.data(), {}, {}, {}, {}, {}};
-    for (int k = 0; k < 8; ++k) f.off[k] = std::ptrdiff_t(d8_dr[k]) * g.cols + d8_dc[k];
+    Flood f{z.data(), g, flags.data(), orig_bits.data(), d8_offsets(g), {}, {}, {}, {}};
     seed_boundary(f);
     for (;;) {
         if (!f.pit.empty()) {
