@@ -16,7 +16,6 @@
 #include "export/atomic_file.hpp"
 #include "export/export_drawing.hpp"
 #include "export/styled_drawing.hpp"
-#include "input/dem_reader.hpp"
 #include "input/scene_position.hpp"
 #include "input/terrain_window.hpp"
 #include "lines/finish_drawing.hpp"
@@ -214,9 +213,7 @@ Flight prepare_flight(const BatchOptions& o, const Log& log) {
     f.style = scene_style(f.scene);
     apply_object_sketch(f.scene, f.style);
     f.records = read_flight_path(o.path);
-    DemOptions dem_options;
-    dem_options.vertical_exaggeration = f.scene.vertical_exaggeration;
-    f.dem = read_dem(f.scene.dem, dem_options);
+    f.dem = read_scene_dem(f.scene);
     std::vector<GridWindow> windows;
     const TerrainGround ground(f.dem);
     for (const FlightRecord& r : f.records) {

@@ -16,7 +16,6 @@
 #include "cli/terrain_view.hpp"
 #include "core/error.hpp"
 #include "export/atomic_file.hpp"
-#include "input/dem_reader.hpp"
 #include "lines/line_accuracy.hpp"
 #include "lines/object_silhouettes.hpp"
 #include "surface/pn_tessellation.hpp"
@@ -340,9 +339,7 @@ int run_bench(const BenchOptions& o) {
     const std::vector<std::string> methods = split(o.methods);
     for (const std::string& m : methods) parse_method(m);
     const Scene scene = bench_scene(o.input);
-    DemOptions dem_options;
-    dem_options.vertical_exaggeration = scene.vertical_exaggeration;
-    const Terrain dem = read_dem(scene.dem, dem_options);
+    const Terrain dem = read_scene_dem(scene);
     std::error_code ec;
     fs::create_directories(o.out_dir, ec);
     if (!fs::is_directory(o.out_dir)) throw Error("bench", o.out_dir, "cannot create the output directory");

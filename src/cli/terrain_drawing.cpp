@@ -2,13 +2,11 @@
 
 #include <chrono>
 #include <cstdio>
-#include <iostream>
 #include <unistd.h>
 #include <sstream>
 
 #include "cli/terrain_view.hpp"
 #include "drainage/drainage_build.hpp"
-#include "input/dem_reader.hpp"
 #include "lines/simplify.hpp"
 #include "lines/trace_mask_outline.hpp"
 #include "lines/frustum_clip.hpp"
@@ -119,10 +117,7 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
 }
 
 SceneDrawing draw_terrain(const Scene& scene, GlContext& context, const Log& log) {
-    DemOptions dem_options;
-    dem_options.vertical_exaggeration = scene.vertical_exaggeration;
-    const Terrain dem = read_dem(scene.dem, dem_options);
-    if (const std::string w = missing_crs_warning(dem); !w.empty()) std::cerr << w << "\n";
+    const Terrain dem = read_scene_dem(scene);
     log.info("read " + scene.dem + ": " + std::to_string(dem.cols) + "x" + std::to_string(dem.rows) + " nodes");
     Camera camera = scene_camera(scene, dem);
     Terrain view = terrain_for_view(dem, camera, scene, log);

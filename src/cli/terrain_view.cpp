@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <sstream>
 
 #include "core/error.hpp"
+#include "input/dem_reader.hpp"
 #include "input/scene_position.hpp"
 #include "input/terrain_window.hpp"
 
@@ -26,6 +28,14 @@ std::vector<glm::dvec3> frame_samples(const Terrain& t) {
         for (int c : {0, t.cols - 1})
             if (t.valid[t.index(c, r)]) pts.emplace_back(t.pos[t.index(c, r)]);
     return pts;
+}
+
+Terrain read_scene_dem(const Scene& scene) {
+    DemOptions options;
+    options.vertical_exaggeration = scene.vertical_exaggeration;
+    Terrain dem = read_dem(scene.dem, options);
+    if (const std::string w = missing_crs_warning(dem); !w.empty()) std::cerr << w << "\n";
+    return dem;
 }
 
 Camera scene_camera(const Scene& scene, const Terrain& terrain) {

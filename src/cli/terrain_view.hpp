@@ -17,6 +17,10 @@ namespace penink {
 inline constexpr double default_view_azimuth = 45.0;    // looking north-east: from the south-west
 inline constexpr double default_view_altitude = -30.0;  // looking down
 
+// The scene's DEM, read with its vertical exaggeration; a missing-CRS warning
+// (missing_crs_warning, dem_reader.hpp) goes to stderr.
+Terrain read_scene_dem(const Scene& scene);
+
 Camera scene_camera(const Scene& scene, const Terrain& terrain);
 
 // Points the automatic camera frames: every edge node and a subsample of the rest.
