@@ -162,6 +162,22 @@ struct Frame {  // volcano at 300x225 from the default viewpoint, drainage built
     }
 };
 
+// A Frame rendered once (toward/away surface and depth) with its drainage lines uploaded; draws
+// the creases and ridges of any variant of its scene.
+struct RenderedFrame : Frame {
+    TerrainRenderer renderer{test_context().gl(), mesh, camera.width, camera.height};
+    FrameImages img = renderer.render(camera, {});
+    DrainageLines lines{test_context().gl(), db, mesh};
+    float D = max_visible_distance(img.toward);
+
+    Drawing draw(const Scene& s) {
+        Drawing d;
+        PassTimings t;
+        lines.draw(camera, s, renderer.surface_pass().toward_texture(), D, d, t);
+        return d;
+    }
+};
+
 struct LayerStats {
     std::size_t strokes = 0, points = 0, outside = 0;
     double length = 0.0;
@@ -192,15 +208,10 @@ LayerStats layer_stats(const Layer& layer, const std::string& kind, const Camera
 }  // namespace
 
 TEST(CreasesRender, RaisingMinScoreRemovesCreasesInProcess) {
-    const Frame f;
-    GlContext& ctx = test_context();
-    TerrainRenderer renderer(ctx.gl(), f.mesh, f.camera.width, f.camera.height);
-    const FrameImages img = renderer.render(f.camera, {});
-    DrainageLines lines(ctx.gl(), f.db, f.mesh);
+    RenderedFrame f;
     std::size_t stem_vertices = 0;
     for (const auto& stem : drainage_stems(f.db)) stem_vertices += stem.size();
-    EXPECT_EQ(lines.crease_vertices(), stem_vertices);
-    const float D = max_visible_distance(img.toward);
+    EXPECT_EQ(f.lines.crease_vertices(), stem_vertices);
     for (double spacing : {0.0, 4.0}) {  // without and with even-spacing thinning
         LayerStats previous;
         previous.length = 1e300, previous.points = SIZE_MAX, previous.strokes = SIZE_MAX;
@@ -208,9 +219,7 @@ TEST(CreasesRender, RaisingMinScoreRemovesCreasesInProcess) {
         for (double min_score : {-0.2, 0.0, 0.1, 0.2, 0.35, 0.5, 0.8, 1.2, 2.5}) {
             Scene s = f.scene;
             s.creases.min_score = min_score, s.creases.spacing_px = spacing;
-            Drawing d;
-            PassTimings t;
-            lines.draw(f.camera, s, renderer.surface_pass().toward_texture(), D, d, t);
+            const Drawing d = f.draw(s);
             const LayerStats now = layer_stats(d.layer(LayerKind::creases), "crease", f.camera);
             EXPECT_EQ(now.outside, 0u);
             EXPECT_LE(now.length, previous.length + 1e-3) << "spacing " << spacing << " min_score " << min_score;
@@ -232,20 +241,13 @@ TEST(CreasesRender, RaisingMinScoreRemovesCreasesInProcess) {
 }
 
 TEST(CreasesRender, RidgesAndCreasesSwitchIndependently) {
-    const Frame f;
-    GlContext& ctx = test_context();
-    TerrainRenderer renderer(ctx.gl(), f.mesh, f.camera.width, f.camera.height);
-    const FrameImages img = renderer.render(f.camera, {});
-    DrainageLines lines(ctx.gl(), f.db, f.mesh);
-    const float D = max_visible_distance(img.toward);
+    RenderedFrame f;
     Scene s = f.scene;
-    Drawing both, no_ridges, no_creases;
-    PassTimings t;
-    lines.draw(f.camera, s, renderer.surface_pass().toward_texture(), D, both, t);
+    const Drawing both = f.draw(s);
     s.ridges.enabled = false;
-    lines.draw(f.camera, s, renderer.surface_pass().toward_texture(), D, no_ridges, t);
+    const Drawing no_ridges = f.draw(s);
     s.ridges.enabled = true, s.creases.enabled = false;
-    lines.draw(f.camera, s, renderer.surface_pass().toward_texture(), D, no_creases, t);
+    const Drawing no_creases = f.draw(s);
     const LayerStats c = layer_stats(both.layer(LayerKind::creases), "crease", f.camera);
     const LayerStats r = layer_stats(both.layer(LayerKind::ridges), "ridge", f.camera);
     EXPECT_GT(c.strokes, 5u);
@@ -257,10 +259,10 @@ TEST(CreasesRender, RidgesAndCreasesSwitchIndependently) {
     EXPECT_EQ(layer_stats(no_creases.layer(LayerKind::ridges), "ridge", f.camera).segments, r.segments);
     // D: the largest finite eye distance of the frame.
     float far = 0.0f;
-    for (float v : img.toward.depth)
+    for (float v : f.img.toward.depth)
         if (std::isfinite(v)) far = std::max(far, v);
-    EXPECT_EQ(D, far);
-    EXPECT_GT(D, 0.0f);
+    EXPECT_EQ(f.D, far);
+    EXPECT_GT(f.D, 0.0f);
 }
 
 namespace {

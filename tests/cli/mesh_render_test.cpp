@@ -191,21 +191,23 @@ TEST(MeshRender, BadMeshFile) {
 
 TEST(MeshRender, BadMeshSceneKeys) {
     const auto dir = cube_scene("badscene");
-    write_text(dir / "up.toml", "[mesh]\nfile = \"cube.obj\"\nup = \"x\"\n");
-    RunResult r = run_penink("render up.toml -o out.svg", dir);
-    EXPECT_EQ(r.code, 2);
-    EXPECT_EQ(r.output, "penink: scene: up.toml: [mesh] up: use \"y\" or \"z\"\n");
-    write_text(dir / "eye.toml", "[mesh]\nfile = \"cube.obj\"\n[camera]\neye = [1, 2, 3]\n");
-    r = run_penink("render eye.toml -o out.svg", dir);
-    EXPECT_EQ(r.code, 2);
-    EXPECT_EQ(r.output, "penink: scene: eye.toml: camera eye and target go together (give both or neither)\n");
-    write_text(dir / "roll.toml", "[mesh]\nfile = \"cube.obj\"\n[camera]\neye = [3, 2, 3]\ntarget = [0, 0, 0]\nup = [1, 0, 0]\n");
-    r = run_penink("render roll.toml -o out.svg", dir);
-    EXPECT_EQ(r.code, 2);
-    EXPECT_EQ(r.output, "penink: scene: roll.toml: camera up must be roughly the mesh's up axis (roll is not supported)\n");
-    write_text(dir / "missing.toml", "[mesh]\nfile = \"nosuch.off\"\n");
-    r = run_penink("render missing.toml -o out.svg", dir);
-    EXPECT_EQ(r.code, 2);
-    EXPECT_EQ(r.output, "penink: input: nosuch.off: no such file\n");
+    const struct {
+        const char* scene;
+        std::string text, error;
+    } cases[] = {
+        {"up.toml", "[mesh]\nfile = \"cube.obj\"\nup = \"x\"\n",
+         "penink: scene: up.toml: [mesh] up: use \"y\" or \"z\"\n"},
+        {"eye.toml", "[mesh]\nfile = \"cube.obj\"\n[camera]\neye = [1, 2, 3]\n",
+         "penink: scene: eye.toml: camera eye and target go together (give both or neither)\n"},
+        {"roll.toml", "[mesh]\nfile = \"cube.obj\"\n[camera]\neye = [3, 2, 3]\ntarget = [0, 0, 0]\nup = [1, 0, 0]\n",
+         "penink: scene: roll.toml: camera up must be roughly the mesh's up axis (roll is not supported)\n"},
+        {"missing.toml", "[mesh]\nfile = \"nosuch.off\"\n", "penink: input: nosuch.off: no such file\n"},
+    };
+    for (const auto& c : cases) {
+        write_text(dir / c.scene, c.text);
+        const RunResult r = run_penink(std::string("render ") + c.scene + " -o out.svg", dir);
+        EXPECT_EQ(r.code, 2) << c.scene;
+        EXPECT_EQ(r.output, c.error);
+    }
     EXPECT_EQ(file_count(dir), 6u);  // cube.obj, cube.toml and the four scenes: no output
 }

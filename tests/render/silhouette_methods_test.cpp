@@ -79,6 +79,22 @@ void report(const char* name, const char* method, const Scored& s) {
                 s.acc.mean_drawn_to_reference, s.acc.mean_reference_to_drawn, s.ms, s.ids_ms);
 }
 
+// The analytic reference of a case and the three methods scored against it, each reported.
+struct Methods {
+    std::vector<ImagePolyline> ref;
+    Scored ta, adj, obj;
+};
+
+Methods run_methods(const Case& c, const char* name) {
+    Methods m;
+    m.ref = analytic_silhouettes(c.shape, c.cam, true);
+    m.ta = run(c, SilhouetteMethod::toward_away, m.ref);
+    m.adj = run(c, SilhouetteMethod::adjacency, m.ref);
+    m.obj = run(c, SilhouetteMethod::object_space, m.ref);
+    report(name, "toward-away", m.ta), report(name, "adjacency", m.adj), report(name, "object", m.obj);
+    return m;
+}
+
 }  // namespace
 
 // Measured here (llvmpipe, 400x300, default tessellation 8 px / max 16), precision / recall:
@@ -94,11 +110,7 @@ void report(const char* name, const char* method, const Scored& s) {
 
 TEST(SilhouetteMethods, GaussianHillAtGrazingView) {
     const Case c = hill_case();
-    const auto ref = analytic_silhouettes(c.shape, c.cam, true);
-    const Scored ta = run(c, SilhouetteMethod::toward_away, ref);
-    const Scored adj = run(c, SilhouetteMethod::adjacency, ref);
-    const Scored obj = run(c, SilhouetteMethod::object_space, ref);
-    report("hill", "toward-away", ta), report("hill", "adjacency", adj), report("hill", "object", obj);
+    const auto [ref, ta, adj, obj] = run_methods(c, "hill");
     EXPECT_GT(ta.acc.reference_length, 200.0);
     EXPECT_GE(ta.acc.at(1.5).recall, 0.95);
     EXPECT_GE(ta.acc.at(1.5).precision, 0.90);
@@ -114,11 +126,7 @@ TEST(SilhouetteMethods, GaussianHillAtGrazingView) {
 
 TEST(SilhouetteMethods, CliffTopSeenFromTheHighSide) {
     const Case c = cliff_case();
-    const auto ref = analytic_silhouettes(c.shape, c.cam, true);
-    const Scored ta = run(c, SilhouetteMethod::toward_away, ref);
-    const Scored adj = run(c, SilhouetteMethod::adjacency, ref);
-    const Scored obj = run(c, SilhouetteMethod::object_space, ref);
-    report("cliff", "toward-away", ta), report("cliff", "adjacency", adj), report("cliff", "object", obj);
+    const auto [ref, ta, adj, obj] = run_methods(c, "cliff");
     EXPECT_NEAR(ta.acc.reference_length, 400.0, 1.0);  // the edge crosses the whole image
     EXPECT_GE(ta.acc.at(1.0).recall, 0.99);
     EXPECT_GE(ta.acc.at(1.0).precision, 0.99);
@@ -130,11 +138,7 @@ TEST(SilhouetteMethods, CliffTopSeenFromTheHighSide) {
 
 TEST(SilhouetteMethods, HemisphereBump) {
     const Case c = sphere_case();
-    const auto ref = analytic_silhouettes(c.shape, c.cam, true);
-    const Scored ta = run(c, SilhouetteMethod::toward_away, ref);
-    const Scored adj = run(c, SilhouetteMethod::adjacency, ref);
-    const Scored obj = run(c, SilhouetteMethod::object_space, ref);
-    report("sphere", "toward-away", ta), report("sphere", "adjacency", adj), report("sphere", "object", obj);
+    const auto [ref, ta, adj, obj] = run_methods(c, "sphere");
     EXPECT_GT(ta.acc.reference_length, 150.0);
     EXPECT_GE(ta.acc.at(1.5).recall, 0.97);
     EXPECT_GE(adj.acc.at(1.5).recall, 0.97);
@@ -144,11 +148,7 @@ TEST(SilhouetteMethods, HemisphereBump) {
 
 TEST(SilhouetteMethods, RidgeSeenEdgeOn) {
     const Case c = ridge_case();
-    const auto ref = analytic_silhouettes(c.shape, c.cam, true);
-    const Scored ta = run(c, SilhouetteMethod::toward_away, ref);
-    const Scored adj = run(c, SilhouetteMethod::adjacency, ref);
-    const Scored obj = run(c, SilhouetteMethod::object_space, ref);
-    report("ridge", "toward-away", ta), report("ridge", "adjacency", adj), report("ridge", "object", obj);
+    const auto [ref, ta, adj, obj] = run_methods(c, "ridge");
     EXPECT_GT(ta.acc.reference_length, 100.0);
     EXPECT_GE(ta.acc.at(2.0).recall, 0.9);
     EXPECT_GE(adj.acc.at(2.0).recall, 0.95);
