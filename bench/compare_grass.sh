@@ -7,13 +7,15 @@
 # env: PENINK=path/to/penink (default build/penink), REPEAT=3 (best of REPEAT runs is reported).
 #
 # Comparison sets (interior cells = not on the border, no nodata neighbour), all on the DEM:
-#  - "non-flat": an interior cell with a strictly lower 8-neighbour (drop / distance, diagonal
-#    distance hypot(dx, dy));
-#  - "unambiguous" (the set the >= 98 % target is checked on): non-flat cells whose steepest
-#    descent is unique (no tie between neighbours) and that lie outside filled depressions
-#    (filled elevation == own elevation). Ties and depression interiors have no single right
-#    answer: GRASS breaks ties by its A* search order and routes depressions along its search
-#    tree, penink by the lowest ESRI code and Barnes flat resolution.
+#  - "non-flat" (the set for the >= 98 % target): an interior cell with a strictly lower
+#    8-neighbour (drop / distance, diagonal distance hypot(dx, dy));
+#  - "unambiguous": non-flat cells whose steepest descent is unique (no tie between neighbours)
+#    and that lie outside filled depressions (filled elevation == own elevation). Elsewhere GRASS
+#    follows its A* search order and penink the downstream tie-breaking and depression drainage
+#    of d8_ties.hpp / depression_drainage.hpp, which agree with it on most but not all cells.
+#  - "no flat or edge cell upstream": non-flat cells whose upstream area in GRASS's tree holds no
+#    flat interior cell (no lower neighbour) and no edge cell: accumulation there depends only
+#    on the directions of non-flat cells.
 #  - accumulation "determined": unambiguous cells that no ambiguous cell (edge, flat, tie,
 #    depression) can drain into under any resolution of the ambiguity, i.e. whose upstream area
 #    follows from the DEM alone; every D8 tool must agree there.
