@@ -62,34 +62,6 @@ std::vector<std::uint8_t> d8_directions(const std::vector<float>& z, const GridS
     return dir;
 }
 
-void d8_into_depressions(const std::vector<float>& filled,
-                         const std::vector<std::uint8_t>& raised_flags, std::uint8_t bit,
-                         const std::vector<std::uint32_t>& orig_bits, const GridShape& g,
-                         double dx, double dy, std::vector<std::uint8_t>& dir,
-                         std::vector<std::uint32_t>* ties) {
-    const D8Steps st = d8_steps(g, dx, dy);
-    auto original = [&](std::size_t n) {
-        return raised_flags[n] & bit ? std::bit_cast<float>(orig_bits[n]) : filled[n];
-    };
-    auto reaim = [&](int c, int r) {
-        const std::size_t x = std::size_t(r) * g.cols + c;
-        if (!g.valid[x] || (raised_flags[x] & bit)) return;
-        const float fx = filled[x];  // = its original elevation
-        const D8Choice d = d8_steepest(fx, g, c, r, st, original,
-                                       [&](std::size_t n) { return filled[n] < fx; });
-        dir[x] = d.code();
-        if (ties && d.tie()) ties->push_back(std::uint32_t(x));
-    };
-    for (int r = 0; r < g.rows; ++r)
-        for (int c = 0; c < g.cols; ++c) {
-            if (!(raised_flags[std::size_t(r) * g.cols + c] & bit)) continue;
-            for (int k = 0; k < 8; ++k) {
-                const int nc = c + d8_dc[k], nr = r + d8_dr[k];
-                if (nc >= 0 && nr >= 0 && nc < g.cols && nr < g.rows) reaim(nc, nr);
-            }
-        }
-}
-
 int d8_inflow_count(const std::vector<std::uint8_t>& dir, const GridShape& g, int c, int r) {
     int n = 0;
     for (int k = 0; k < 8; ++k) {

@@ -50,18 +50,6 @@ std::vector<std::uint8_t> d8_directions(const std::vector<float>& z, const GridS
                                         double dx, double dy,
                                         std::vector<std::uint32_t>* ties = nullptr);
 
-// Depression-aware re-aiming (matches D8 on the unfilled DEM, as GRASS r.watershed does, without
-// creating cycles): every valid, non-raised cell next to a raised cell (raised_flags[i] & bit)
-// drains to its steepest neighbour measured on the ORIGINAL elevations, chosen among the
-// neighbours strictly lower on the FILLED surface `filled`; the original elevation of a raised
-// cell n is std::bit_cast<float>(orig_bits[n]). Cells without such a neighbour keep code 0.
-// Re-aimed cells with tied steepest neighbours are appended to `ties` when given (maybe twice).
-void d8_into_depressions(const std::vector<float>& filled,
-                         const std::vector<std::uint8_t>& raised_flags, std::uint8_t bit,
-                         const std::vector<std::uint32_t>& orig_bits, const GridShape& g,
-                         double dx, double dy, std::vector<std::uint8_t>& dir,
-                         std::vector<std::uint32_t>* ties = nullptr);
-
 enum class PointClass : std::uint8_t { pit = 0, ridge = 1, channel = 2, junction = 3, none = 255 };
 
 // Number of valid neighbours whose direction points at cell (c, r).

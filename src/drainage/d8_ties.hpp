@@ -9,7 +9,8 @@
 // Candidates are recomputed as the stages chose them: a raised cell off the outflow paths
 // (depression_drainage.hpp) among neighbours lower on the original DEM; a flat cell among its
 // neighbours of least flat gradient (flat_resolution.hpp); any other cell among neighbours lower
-// on the filled surface, slopes on the original elevations (d8.hpp).
+// on the filled surface, slopes on the original elevations (d8.hpp, the rims:
+// depression_drainage.hpp).
 #pragma once
 #include <cstdint>
 #include <vector>

@@ -1,5 +1,6 @@
-// Drainage inside filled depressions on the real terrain (as GRASS r.watershed's A* search drains
-// them; cf. the breaching/filling hybrids of Lindsay 2016): once the flat resolution has drained
+// Drainage into and inside filled depressions on the real terrain (as GRASS r.watershed's A*
+// search drains them; cf. the breaching/filling hybrids of Lindsay 2016): the rims drain into the
+// lake down their original slopes; once the flat resolution has drained
 // every filled depression to its spill point over the filled surface, each raised cell with a
 // strictly lower neighbour on the ORIGINAL DEM drains to its steepest such neighbour, so streams
 // run down the depression's slopes to its low points. The low points (no lower original
@@ -20,6 +21,20 @@ namespace penink {
 // Bit of the fill flags (priority_flood.hpp, flat_resolution.hpp use bits 0..4).
 inline constexpr std::uint8_t depression_outflow = 32;
 
+// Rims first (before the flat resolution; matches D8 on the unfilled DEM, as GRASS r.watershed
+// does, without creating cycles): every valid, non-raised cell next to a raised cell drains to
+// its steepest neighbour measured on the ORIGINAL elevations, chosen among the neighbours
+// strictly lower on the FILLED surface, so a slope drains into the lake as on the real terrain
+// and a spill cell cannot point back into its own depression. Cells without such a neighbour
+// keep code 0. Re-aimed cells with tied steepest neighbours are appended to `ties` when given
+// (maybe twice).
+void drain_rims_into_depressions(const std::vector<float>& filled,
+                                 const std::vector<std::uint8_t>& flags,
+                                 const std::vector<std::uint32_t>& orig_bits, const GridShape& g,
+                                 double dx, double dy, std::vector<std::uint8_t>& dir,
+                                 std::vector<std::uint32_t>* ties = nullptr);
+
+// Then inside, after the flat resolution.
 // `filled`: the filled surface; `flags`/`orig_bits`: the fill's state (fill_raised and original
 // elevations of raised cells); `flat_mask`: the flat gradients resolve_flats left; `dir`:
 // flat-resolved ESRI codes, re-aimed in place. Raised cells whose steepest original descent is

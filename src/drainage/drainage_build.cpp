@@ -74,7 +74,7 @@ DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progres
     report(progress, "flow directions", 0.35);
     std::vector<std::uint32_t> ties;
     res.dir = d8_directions(g.z, shape, g.dx, g.dy, &ties);
-    d8_into_depressions(g.z, flags, fill_raised, orig, shape, g.dx, g.dy, res.dir, &ties);
+    drain_rims_into_depressions(g.z, flags, orig, shape, g.dx, g.dy, res.dir, &ties);
     report(progress, "resolving flats", 0.45);
     res.stats.unresolved_flats = resolve_flats(g.z, shape, res.dir, flags, net.basin, &ties);
     report(progress, "draining depressions, breaking ties", 0.5);
