@@ -1,10 +1,11 @@
-// DV file layout (versions 2 and 3, all little-endian; compact: what the builder's invariants give is
+// DV file layout (version 4; 2 and 3 lacked the routing u32, all little-endian; compact: what the builder's invariants give is
 // not stored, see layout_ok and derived_ok):
 //   char[8]  magic "PNKDV\0\0\0"
 //   u32      format version
 //   u32      reserved (0)
 //   u64      total file length in bytes (checksum included)
-//   fingerprint: u64 DEM size, i64 DEM mtime (ns), u64 DEM hash, u32 resample, u32 options
+//   fingerprint: u64 DEM size, i64 DEM mtime (ns), u64 DEM hash, u32 resample, u32 options,
+//            u32 routing
 //   i32 cols, rows, factor; f64 origin easting, northing; u32 n + n bytes of CRS WKT
 //   u64 counts: vertices, branches, upstream links, divide vertices, divides
 //   branches: u32 count; i32 downstream; u32 basin; u8 order                   (13 bytes each)
@@ -145,7 +146,7 @@ std::size_t stored_vertices(const DrainageDb& db) {
 }
 
 std::size_t header_bytes(const DrainageDb& db) {
-    return prefix_bytes + 32 + 12 + 16 + 4 + db.crs_wkt.size();
+    return prefix_bytes + 36 + 12 + 16 + 4 + db.crs_wkt.size();
 }
 
 std::size_t encoded_size(const DrainageDb& db) {
@@ -157,7 +158,7 @@ void put_header(Sink& w, const DrainageDb& db) {
     w.bytes(magic, 8);
     w.put(drainage_db_version), w.put(std::uint32_t(0)), w.put(std::uint64_t(encoded_size(db)));
     const DrainageFingerprint& f = db.fingerprint;
-    w.put(f.file_size), w.put(f.mtime_ns), w.put(f.content_hash), w.put(f.resample), w.put(f.options);
+    w.put(f.file_size), w.put(f.mtime_ns), w.put(f.content_hash), w.put(f.resample), w.put(f.options), w.put(f.routing);
     w.put(db.cols), w.put(db.rows), w.put(db.factor), w.put(db.origin.x), w.put(db.origin.y);
     w.put(std::uint32_t(db.crs_wkt.size()));
     w.bytes(db.crs_wkt.data(), db.crs_wkt.size());
@@ -207,7 +208,7 @@ void get_header(Reader& r, DrainageDb& db) {
     DrainageFingerprint& f = db.fingerprint;
     f.file_size = r.get<std::uint64_t>(), f.mtime_ns = r.get<std::int64_t>();
     f.content_hash = r.get<std::uint64_t>(), f.resample = r.get<std::uint32_t>();
-    f.options = r.get<std::uint32_t>();
+    f.options = r.get<std::uint32_t>(), f.routing = r.get<std::uint32_t>();
     db.cols = r.get<std::int32_t>(), db.rows = r.get<std::int32_t>(), db.factor = r.get<std::int32_t>();
     db.origin.x = r.get<double>(), db.origin.y = r.get<double>();
     const std::uint32_t n = r.get<std::uint32_t>();

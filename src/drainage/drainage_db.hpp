@@ -43,7 +43,8 @@ struct DrainageFingerprint {
     std::int64_t mtime_ns = 0;
     std::uint64_t content_hash = 0;
     std::uint32_t resample = 1;
-    std::uint32_t options = 0;  // bit flags of build options (none defined yet)
+    std::uint32_t options = 0;  // float bits of the Terrain's vertical exaggeration
+    std::uint32_t routing = 0;  // flow routing method (DrainageRouting in drainage_build.hpp)
     bool operator==(const DrainageFingerprint&) const = default;
 };
 
@@ -62,7 +63,8 @@ struct DrainageDb {
 
 // 3: layout of 2; directions with downstream tie-breaking and depressions drained down their
 // original slopes (d8_ties.hpp, depression_drainage.hpp): files of 2 hold other networks, rebuilt.
-inline constexpr std::uint32_t drainage_db_version = 3;
+// 4: the fingerprint gains the routing method (u32 after options).
+inline constexpr std::uint32_t drainage_db_version = 4;
 
 // 64-bit FNV-1a over little-endian 64-bit words (tail bytes one by one).
 std::uint64_t hash64(const void* data, std::size_t size, std::uint64_t seed = 0xcbf29ce484222325ull);

@@ -26,7 +26,7 @@ DrainageDb sample_db() {
     g.origin = {1750000.5, 5900000.25};
     DrainageDb db = drainage_db_from_grid(g);
     db.crs_wkt = "PROJCS[\"NZGD2000 / New Zealand Transverse Mercator 2000\"]";
-    db.fingerprint = {1234, 5678, 0xdeadbeefcafef00dull, 1, 0};
+    db.fingerprint = {1234, 5678, 0xdeadbeefcafef00dull, 1, 0, 1};
     return db;
 }
 
@@ -65,8 +65,8 @@ TEST(DvFile, CompactLayoutSizeAndShapeCheck) {
     std::size_t junction_ends = 0;
     for (const DvBranch& b : db.branches) junction_ends += b.downstream >= 0;
     ASSERT_GT(junction_ends, 0u);
-    // header 88 + WKT, counts 40, branches 13 B, stored vertices 16 B, divides 4 + 12 B, hash 8
-    const std::size_t expect = 88 + db.crs_wkt.size() + 40 + 13 * db.branches.size() +
+    // header 92 + WKT, counts 40, branches 13 B, stored vertices 16 B, divides 4 + 12 B, hash 8
+    const std::size_t expect = 92 + db.crs_wkt.size() + 40 + 13 * db.branches.size() +
                                16 * (db.vertices.size() - junction_ends) + 4 * db.divides.size() +
                                12 * db.divide_vertices.size() + 8;
     EXPECT_EQ(encode_drainage_db(db).size(), expect);
@@ -104,7 +104,7 @@ TEST(DvFile, CorruptionsAreDetected) {
     b = good;
     b[8] = 7;
     spit(p, b);
-    EXPECT_EQ(read_error(p), pre + "unsupported drainage database version 7 (expected 3)");
+    EXPECT_EQ(read_error(p), pre + "unsupported drainage database version 7 (expected 4)");
 
     b = good;
     b[0] = 'X';
@@ -117,6 +117,9 @@ TEST(DvFile, CorruptionsAreDetected) {
     EXPECT_EQ(read_error(p, &other), pre + "drainage database is stale (DEM changed)");
     other = db.fingerprint;
     other.resample = 3;
+    EXPECT_EQ(read_error(p, &other), pre + "drainage database is stale (DEM changed)");
+    other = db.fingerprint;
+    other.routing = 0;  // built with another routing method
     EXPECT_EQ(read_error(p, &other), pre + "drainage database is stale (DEM changed)");
     EXPECT_EQ(read_error(p, &db.fingerprint), "no error");
 }
