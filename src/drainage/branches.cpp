@@ -5,6 +5,8 @@
 #include <exception>
 #include <thread>
 
+#include "core/error.hpp"
+
 namespace penink {
 
 namespace {
@@ -19,7 +21,7 @@ glm::dvec2 point_xy(const DrainageGrid& g, std::size_t i) {
 // `total` is the accumulation at the outlet of the point's basin (as normalised_flow divides).
 DvVertex point_vertex(const DrainageGrid& g, const FlowNetwork& net, std::size_t i, double total) {
     const glm::dvec2 p = point_xy(g, i);
-    return {float(p.x), float(p.y), g.z[i], float(double(net.acc[i]) / total), net.basin[i], net.order[i]};
+    return {float(p.x), float(p.y), g.z[i], float(double(net.acc[i]) / total)};
 }
 
 // Rank of head cells in row-major order (= branch id): one bit per cell plus a running count
@@ -71,37 +73,69 @@ struct Tracer {
     const HeadRank& rank;
     GridShape shape{g.cols, g.rows, g.valid.data()};
 
-    // Branches headed in cells [h0, h1), in cell order, appended to `vertices` / `branches`.
-    void run(std::size_t h0, std::size_t h1, std::vector<DvVertex>& vertices,
-             std::vector<DvBranch>& branches) const {
-        for (std::size_t h = h0; h < h1; ++h) {
-            if (!g.valid[h] || indeg[h] == 1) continue;
-            DvBranch b;
-            b.first = std::uint32_t(vertices.size());
-            b.basin = net.basin[h], b.order = net.order[h];
-            // a flow path stays in its basin: one basin total for the branch and its end
-            const double total = net.acc[net.outlet[b.basin - 1]];
-            for (std::size_t c = h;;) {
-                vertices.push_back(point_vertex(g, net, c, total));
-                if (!dir[c]) break;
-                const std::size_t d = d8_target(shape, c, dir[c]);
-                if (indeg[d] != 1) {
-                    vertices.push_back(point_vertex(g, net, d, total));
-                    b.downstream = std::int32_t(rank.of(d));
-                    break;
-                }
-                c = d;
+    bool is_head(std::size_t h) const { return g.valid[h] && indeg[h] != 1; }
+
+    // The branch headed at cell h: its vertices appended to `out`, its record (first left 0).
+    DvBranch trace(std::size_t h, std::vector<DvVertex>& out) const {
+        DvBranch b;
+        b.basin = net.basin[h], b.order = net.order[h];
+        // a flow path stays in its basin: one basin total for the branch and its end
+        const double total = net.acc[net.outlet[b.basin - 1]];
+        const std::size_t start = out.size();
+        for (std::size_t c = h;;) {
+            out.push_back(point_vertex(g, net, c, total));
+            if (!dir[c]) break;
+            const std::size_t d = d8_target(shape, c, dir[c]);
+            if (indeg[d] != 1) {
+                out.push_back(point_vertex(g, net, d, total));
+                b.downstream = std::int32_t(rank.of(d));
+                break;
             }
-            b.count = std::uint32_t(vertices.size()) - b.first;
-            branches.push_back(b);
+            c = d;
         }
+        b.count = std::uint32_t(out.size() - start);
+        return b;
+    }
+
+    // Heads in [h0, h1) in cell order, their vertices written forward from `at`; returns the end.
+    std::size_t forward(std::size_t h0, std::size_t h1, std::size_t at, DrainageDb& db) const {
+        std::vector<DvVertex> run;
+        for (std::size_t h = h0; h < h1; ++h) {
+            if (!is_head(h)) continue;
+            run.clear();
+            DvBranch b = trace(h, run);
+            b.first = std::uint32_t(at);
+            std::copy(run.begin(), run.end(), db.vertices.begin() + std::ptrdiff_t(at));
+            at += run.size();
+            db.branches[rank.of(h)] = b;
+        }
+        return at;
+    }
+
+    // Heads in [h0, h1) in reverse cell order, their vertices written backward ending at `end`;
+    // returns the start (so the two halves meet with neither gap nor copy).
+    std::size_t backward(std::size_t h0, std::size_t h1, std::size_t end, DrainageDb& db) const {
+        std::vector<DvVertex> run;
+        for (std::size_t h = h1; h-- > h0;) {
+            if (!is_head(h)) continue;
+            run.clear();
+            DvBranch b = trace(h, run);
+            end -= run.size();
+            b.first = std::uint32_t(end);
+            std::copy(run.begin(), run.end(), db.vertices.begin() + std::ptrdiff_t(end));
+            db.branches[rank.of(h)] = b;
+        }
+        return end;
     }
 };
 
 }  // namespace
 
-// Two threads: the heads in the north and the south half of the grid, concatenated (the same
-// vertices and branches as one pass in cell order; reserve only claims address space).
+// Sizes are known before tracing: every valid point is stored once, plus the repeated end
+// junction of each branch that does not end at an outlet (one branch per basin does). Two
+// threads trace the heads of the north half forward from the start and those of the south half
+// backward from the end of the one vertex array: the same result as one pass in cell order,
+// without a second copy of the vertices.
 void build_branches(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
                     const FlowNetwork& net, DrainageDb& db) {
     const GridShape shape{g.cols, g.rows, g.valid.data()};
@@ -110,36 +144,32 @@ void build_branches(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
     const std::size_t heads = rank.bits.empty() ? 0 : rank.before.back() + std::popcount(rank.bits.back());
     std::size_t valid = 0;
     for (std::uint8_t v : g.valid) valid += v;
-    db.vertices.clear(), db.branches.clear();
-    db.vertices.reserve(valid + heads), db.branches.reserve(heads);
+    db.vertices.assign(valid + heads - net.outlet.size(), DvVertex{});
+    db.branches.assign(heads, DvBranch{});
     const Tracer tracer{g, dir, net, indeg, rank};
     const std::size_t mid = std::size_t(g.rows / 2) * g.cols;
-    std::vector<DvVertex> south_v;
-    std::vector<DvBranch> south_b;
-    south_v.reserve(valid + heads), south_b.reserve(heads);
-    std::thread south([&] { tracer.run(mid, g.size(), south_v, south_b); });
-    tracer.run(0, mid, db.vertices, db.branches);
-    south.join();
-    // the south half joined on: branches and upstream links on a second thread, vertices here
-    const std::uint32_t shift = std::uint32_t(db.vertices.size());
-    std::exception_ptr link_error;
-    std::thread links([&] {
+    std::size_t south_start = 0;
+    std::exception_ptr south_error;
+    std::thread south([&] {
         try {
-            for (DvBranch& b : south_b) b.first += shift;
-            db.branches.insert(db.branches.end(), south_b.begin(), south_b.end());
-            link_upstream(db);
+            south_start = tracer.backward(mid, g.size(), db.vertices.size(), db);
         } catch (...) {
-            link_error = std::current_exception();
+            south_error = std::current_exception();
         }
     });
+    std::size_t north_end = 0;
     try {
-        db.vertices.insert(db.vertices.end(), south_v.begin(), south_v.end());
+        north_end = tracer.forward(0, mid, 0, db);
     } catch (...) {
-        links.join();
+        south.join();
         throw;
     }
-    links.join();
-    if (link_error) std::rethrow_exception(link_error);
+    south.join();
+    if (south_error) std::rethrow_exception(south_error);
+    if (north_end != south_start)
+        throw Error("drainage", "", "branch vertices do not fill the database (a point off every branch)",
+                    ExitCode::internal);
+    link_upstream(db);
 }
 
 namespace {

@@ -12,8 +12,7 @@
 //             (first = running sum of counts; upstream lists follow from downstream)
 //   branch vertices: f32 x, y, z, flow (16 bytes each), branch by branch, without the end
 //             junction of a branch with a downstream branch (= that branch's first vertex);
-//             basin and order are the branch's (the end junction's: the downstream branch's)
-//   divides: u32 count (first = running sum); divide vertices: f32 x, y, z (flow, basin, order 0)
+//   divides: u32 count (first = running sum); divide vertices: f32 x, y, z (flow 0)
 //   u64      hash64 (FNV-1a, 64-bit words) of every byte before it
 #include "drainage/drainage_db.hpp"
 
@@ -91,9 +90,8 @@ struct Reader {
 // Whether `db` has the shape drainage_db_from_grid gives it, which the compact layout relies on,
 // in two checks. layout_ok (sequential, run before anything is encoded): branches' and divides'
 // vertices consecutive, downstream links in range. derived_ok (random access, run beside the
-// encoding): a branch ending at a junction repeats the downstream branch's first vertex; vertex
-// basin = branch basin, vertex order = branch order; upstream lists derived from `downstream` in
-// branch order; divide vertices with flow, basin and order 0.
+// encoding): a branch ending at a junction repeats the downstream branch's first vertex; upstream
+// lists derived from `downstream` in branch order; divide vertices with flow 0.
 bool layout_ok(const DrainageDb& db) {
     std::size_t next = 0;
     for (const DvBranch& b : db.branches) {
@@ -115,12 +113,7 @@ bool derived_ok(const DrainageDb& db) {
     const std::size_t nb = db.branches.size();
     std::vector<std::uint32_t> ups(nb + 1, 0);
     for (const DvBranch& b : db.branches) {
-        const bool junction = b.downstream >= 0;
-        for (std::uint32_t k = 0; k + junction < b.count; ++k) {
-            const DvVertex& v = db.vertices[b.first + k];
-            if (v.basin != b.basin || v.order != b.order) return false;
-        }
-        if (!junction) continue;
+        if (b.downstream < 0) continue;
         if (!(db.vertices[b.first + b.count - 1] == db.vertices[db.branches[std::size_t(b.downstream)].first]))
             return false;
         ++ups[std::size_t(b.downstream) + 1];
@@ -135,7 +128,7 @@ bool derived_ok(const DrainageDb& db) {
         if (const std::int32_t d = db.branches[b].downstream; d >= 0)
             if (db.upstream[ups[std::size_t(d)]++] != b) return false;
     for (const DvVertex& v : db.divide_vertices)
-        if (v.flow != 0.0f || v.basin != 0 || v.order != 0) return false;
+        if (v.flow != 0.0f) return false;
     return true;
 }
 
@@ -252,7 +245,7 @@ void get_vertices(Reader& r, DrainageDb& db) {
             float xyzf[4];
             std::memcpy(xyzf, r.buf.data() + r.pos, 16);
             r.pos += 16;
-            v = {xyzf[0], xyzf[1], xyzf[2], xyzf[3], b.basin, b.order};
+            v = {xyzf[0], xyzf[1], xyzf[2], xyzf[3]};
         }
     }
     for (const DvBranch& b : db.branches)  // the end junction: the downstream branch's head
@@ -269,7 +262,7 @@ void get_divides(Reader& r, DrainageDb& db) {
         float xyz[3];
         std::memcpy(xyz, r.buf.data() + r.pos, 12);
         r.pos += 12;
-        v = {xyz[0], xyz[1], xyz[2], 0.0f, 0, 0};
+        v = {xyz[0], xyz[1], xyz[2], 0.0f};
     }
 }
 

@@ -12,11 +12,10 @@
 
 namespace penink {
 
+// 16 bytes; a vertex's basin and Strahler order are its branch's (DvBranch).
 struct DvVertex {
     float x = 0, y = 0, z = 0;  // local metres (z = original, unfilled elevation)
     float flow = 0;             // accumulation / basin total, in (0, 1]; 0 on divides
-    std::uint32_t basin = 0;    // basin id (1-based); 0 on divides
-    std::uint8_t order = 0;     // Strahler order; 0 on divides
     bool operator==(const DvVertex&) const = default;
 };
 

@@ -274,7 +274,7 @@ void add_branch(DrainageDb& db, glm::vec2 from, glm::vec2 dir, int steps, std::u
     b.order = order, b.downstream = down, b.basin = 1;
     for (int k = 0; k <= steps; ++k) {
         const glm::vec2 p = from + dir * (10.0f * k);
-        db.vertices.push_back({p.x, p.y, 0.0f, 0.1f * float(k + 1), 1, order});
+        db.vertices.push_back({p.x, p.y, 0.0f, 0.1f * float(k + 1)});
     }
     db.branches.push_back(b);
 }

@@ -31,7 +31,7 @@ DrainageDb make_db(const std::vector<BranchSpec>& spec) {
         b.count = std::uint32_t(s.xy.size());
         b.order = s.order, b.downstream = s.downstream, b.basin = 1;
         for (std::size_t k = 0; k < s.xy.size(); ++k)
-            db.vertices.push_back({s.xy[k].first, s.xy[k].second, 10.0f, s.flow[k], 1, s.order});
+            db.vertices.push_back({s.xy[k].first, s.xy[k].second, 10.0f, s.flow[k]});
         db.branches.push_back(b);
     }
     for (std::size_t d = 0; d < db.branches.size(); ++d) {
