@@ -71,6 +71,7 @@ struct Tracer {
     const FlowNetwork& net;
     const std::vector<std::uint8_t>& indeg;
     const HeadRank& rank;
+    std::vector<double> basin_total;  // accumulation at each basin's outlet: a small table
     GridShape shape{g.cols, g.rows, g.valid.data()};
 
     bool is_head(std::size_t h) const { return g.valid[h] && indeg[h] != 1; }
@@ -80,7 +81,7 @@ struct Tracer {
         DvBranch b;
         b.basin = net.basin[h], b.order = net.order[h];
         // a flow path stays in its basin: one basin total for the branch and its end
-        const double total = net.acc[net.outlet[b.basin - 1]];
+        const double total = basin_total[b.basin - 1];
         const std::size_t start = out.size();
         for (std::size_t c = h;;) {
             out.push_back(point_vertex(g, net, c, total));
@@ -146,7 +147,9 @@ void build_branches(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
     for (std::uint8_t v : g.valid) valid += v;
     db.vertices.assign(valid + heads - net.outlet.size(), DvVertex{});
     db.branches.assign(heads, DvBranch{});
-    const Tracer tracer{g, dir, net, indeg, rank};
+    std::vector<double> totals(net.outlet.size());
+    for (std::size_t b = 0; b < totals.size(); ++b) totals[b] = net.acc[net.outlet[b]];
+    const Tracer tracer{g, dir, net, indeg, rank, std::move(totals)};
     const std::size_t mid = std::size_t(g.rows / 2) * g.cols;
     std::size_t south_start = 0;
     std::exception_ptr south_error;
