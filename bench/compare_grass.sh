@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Compares penink's D8 flow directions and accumulation with GRASS GIS `r.watershed -s` (single
-# flow direction) on a DEM (default examples/volcano.asc, NZTM EPSG:2193) and times both on it.
+# flow direction) on a DEM (default examples/volcano.asc, NZTM EPSG:2193) and times both on it,
+# for each of penink's two routings: priority-flood (the default, first) and least-cost (GRASS's
+# own least-cost search, `--routing least-cost`).
 # Usage: bench/compare_grass.sh [DEM] [EPSG]          agreement + timing
 #        bench/compare_grass.sh --synthetic N [EPSG]  timing only, on an N x N fractal DEM
 #                                                     (r.surf.fractal, 10 m cells, GeoTIFF)
@@ -69,42 +71,52 @@ grass --tmp-location "EPSG:$epsg" --exec bash "$tmp/inside.sh" >"$tmp/grass.out"
     || { cat "$tmp/grass.err" >&2; exit 1; }
 grass_s=$(awk '/^grass_seconds/ { print $2 }' "$tmp/grass.out")
 
-best=999999
-for k in $(seq "$repeat"); do
-    t0=$(date +%s.%N)
-    PENINK_DRAINAGE_TIMES=1 "$penink" drainage "$dem" --resample 1 -o "$tmp/ours.dv" >"$tmp/penink.log" 2>&1 \
-        || { cat "$tmp/penink.log" >&2; exit 1; }
-    t1=$(date +%s.%N)
-    if [ "$(echo "$t1 - $t0 < $best" | bc -l)" = 1 ]; then
-        best=$(echo "$t1 - $t0" | bc -l); cp "$tmp/penink.log" "$tmp/best.log"
-    fi
-done
-inner=$(grep -oE '[0-9.]+ s \(' "$tmp/best.log" | grep -oE '^[0-9.]+')
-cells=$(grep -oE '[0-9]+x[0-9]+ points' "$tmp/best.log")
-ratio=$(echo "$grass_s / $best" | bc -l)
-printf "DEM %s (%s)\n" "$(basename "$dem")" "$cells"
-echo "penink stage times (best run, PENINK_DRAINAGE_TIMES):"
-grep -E '^drainage: time ' "$tmp/best.log" | sed 's/^drainage: time /  /'
-printf "time (best of %d): penink drainage %.3f s whole command (in-process %s s), r.watershed -s %.3f s\n" \
-    "$repeat" "$best" "$inner" "$grass_s"
-printf "ratio r.watershed / penink: %.2fx whole command, %.2fx in-process (target: whole command >= 3x: %s)\n" \
-    "$ratio" "$(echo "$grass_s / ($inner + 0.0005)" | bc -l)" \
-    "$([ "$(echo "$ratio >= 3" | bc -l)" = 1 ] && echo met || echo NOT met)"
+# Times one routing (best of $repeat whole commands) and prints its stage times and ratio.
+time_routing() {
+    local routing=$1 best=999999 t0 t1 inner cells ratio
+    for k in $(seq "$repeat"); do
+        t0=$(date +%s.%N)
+        PENINK_DRAINAGE_TIMES=1 "$penink" drainage "$dem" --resample 1 --routing "$routing" -o "$tmp/ours.dv" \
+            >"$tmp/penink.log" 2>&1 || { cat "$tmp/penink.log" >&2; exit 1; }
+        t1=$(date +%s.%N)
+        if [ "$(echo "$t1 - $t0 < $best" | bc -l)" = 1 ]; then
+            best=$(echo "$t1 - $t0" | bc -l); cp "$tmp/penink.log" "$tmp/best.log"
+        fi
+    done
+    inner=$(grep -oE '[0-9.]+ s \(' "$tmp/best.log" | grep -oE '^[0-9.]+')
+    cells=$(grep -oE '[0-9]+x[0-9]+ points' "$tmp/best.log")
+    ratio=$(echo "$grass_s / $best" | bc -l)
+    printf "== routing %s ==\n" "$routing"
+    printf "DEM %s (%s)\n" "$(basename "$dem")" "$cells"
+    echo "penink stage times (best run, PENINK_DRAINAGE_TIMES):"
+    grep -E '^drainage: time ' "$tmp/best.log" | sed 's/^drainage: time /  /'
+    printf "time (best of %d): penink drainage --routing %s %.3f s whole command (in-process %s s), r.watershed -s %.3f s\n" \
+        "$repeat" "$routing" "$best" "$inner" "$grass_s"
+    printf "ratio r.watershed / penink: %.2fx whole command, %.2fx in-process (target: whole command >= 3x: %s)\n" \
+        "$ratio" "$(echo "$grass_s / ($inner + 0.0005)" | bc -l)" \
+        "$([ "$(echo "$ratio >= 3" | bc -l)" = 1 ] && echo met || echo NOT met)"
+}
+for routing in priority-flood least-cost; do time_routing "$routing"; done
 [ "$synthetic" -gt 0 ] && exit 0
 
-"$penink" drainage "$dem" --resample 1 -o "$tmp/ours.dv" --rasters "$tmp/ours" >/dev/null 2>&1
-cat >"$tmp/export.sh" <<INSIDE
-r.in.gdal -o --quiet input="$tmp/ours/flow_direction.tif" output=odir
-r.in.gdal -o --quiet input="$tmp/ours/accumulation.tif" output=oacc
+# penink's rasters for one routing, read back through GRASS as ASCII grids odir-R.asc, oacc-R.asc.
+export_routing() {
+    local routing=$1
+    "$penink" drainage "$dem" --resample 1 --routing "$routing" -o "$tmp/ours.dv" --rasters "$tmp/ours-$routing" \
+        >/dev/null 2>&1
+    cat >"$tmp/export.sh" <<INSIDE
+r.in.gdal -o --quiet input="$tmp/ours-$routing/flow_direction.tif" output=odir
+r.in.gdal -o --quiet input="$tmp/ours-$routing/accumulation.tif" output=oacc
 g.region raster=odir
-r.out.gdal --quiet -c input=odir output="$tmp/odir.asc" format=AAIGrid
-r.out.gdal --quiet -c input=oacc output="$tmp/oacc.asc" format=AAIGrid
+r.out.gdal --quiet -c input=odir output="$tmp/odir-$routing.asc" format=AAIGrid
+r.out.gdal --quiet -c input=oacc output="$tmp/oacc-$routing.asc" format=AAIGrid
 INSIDE
-grass --tmp-location "EPSG:$epsg" --exec bash "$tmp/export.sh" >/dev/null 2>"$tmp/grass.err" \
-    || { cat "$tmp/grass.err" >&2; exit 1; }
-python3 - "$tmp" <<'PY'
+    grass --tmp-location "EPSG:$epsg" --exec bash "$tmp/export.sh" >/dev/null 2>"$tmp/grass.err" \
+        || { cat "$tmp/grass.err" >&2; exit 1; }
+}
+cat >"$tmp/agree.py" <<'PY'
 import heapq, math, sys
-d = sys.argv[1]
+d, routing = sys.argv[1], sys.argv[2]
 def grid(name):
     head, vals = {}, []
     for line in open(f"{d}/{name}.asc"):
@@ -115,7 +127,7 @@ def grid(name):
     return int(head["ncols"]), int(head["nrows"]), float(head["cellsize"]), [None if v == nd else v for v in vals]
 W, H, cs, z = grid("dem")
 _, _, _, gd = grid("gdrain"); _, _, _, ga = grid("gacc")
-_, _, _, od = grid("odir"); _, _, _, oa = grid("oacc")
+_, _, _, od = grid(f"odir-{routing}"); _, _, _, oa = grid(f"oacc-{routing}")
 DC, DR = [1, 1, 0, -1, -1, -1, 0, 1], [0, 1, 1, 1, 0, -1, -1, -1]
 DIST = [cs * (math.sqrt(2) if DC[k] and DR[k] else 1) for k in range(8)]
 G2E = {1: 128, 2: 64, 3: 32, 4: 16, 5: 8, 6: 4, 7: 2, 8: 1}
@@ -164,12 +176,19 @@ while stack:
     if 0 <= r < H and 0 <= c < W and valid[r * W + c] and not flowin[r * W + c]:
         flowin[r * W + c] = True; stack.append(r * W + c)
 flatfree = [i for i in nonflat if not flowin[i]]
+print(f"== agreement with r.watershed -s, routing {routing} ==")
 print(f"non-flat interior cells: {len(nonflat)}; unambiguous: {len(unamb)}; no flat or edge cell "
       f"upstream: {len(flatfree)}; accumulation determined: {len(determined)}")
 print(f"flow direction agreement, all non-flat cells:       {pct(nonflat, same_dir):6.2f} %")
 print(f"flow direction agreement, unambiguous cells:        {pct(unamb, same_dir):6.2f} %")
+interior = [i for i in range(W * H) if not edge[i]]
+print(f"flow direction agreement, all {len(interior)} interior cells: {pct(interior, same_dir):6.2f} %")
 print(f"accumulation exact, all non-flat cells:             {pct(nonflat, same_acc):6.2f} %")
 print(f"accumulation within 10 %, all non-flat cells:       {pct(nonflat, near_acc):6.2f} %")
 print(f"accumulation exact, no flat or edge cell upstream:  {pct(flatfree, same_acc):6.2f} %")
 print(f"accumulation exact, determined cells:               {pct(determined, same_acc):6.2f} %")
 PY
+for routing in priority-flood least-cost; do
+    export_routing "$routing"
+    python3 "$tmp/agree.py" "$tmp" "$routing"
+done

@@ -1,6 +1,7 @@
 #include "cli/drainage_subcommand.hpp"
 
 #include <iostream>
+#include <string>
 #include <memory>
 
 #include <CLI/CLI.hpp>
@@ -21,8 +22,17 @@ Subcommand add_drainage_command(CLI::App& app) {
         ->check(CLI::NonNegativeNumber);
     cmd->add_option("--rasters", o.rasters_dir,
                     "Also write GeoTIFFs (flow_direction ESRI D8, accumulation, basin, stream_order) to DIR");
+    auto routing = std::make_shared<std::string>("priority-flood");
+    cmd->add_option("--routing", *routing,
+                    "Flow routing: priority-flood (default: fill, flats, ties) or least-cost "
+                    "(the least-cost search of GRASS r.watershed -s)")
+        ->check(CLI::IsMember({"priority-flood", "least-cost"}));
     cmd->add_flag("-q,--quiet", o.quiet, "No progress or summary lines");
-    return {cmd, [cmd_options] { return run_drainage_command(*cmd_options, std::cerr); }};
+    return {cmd, [cmd_options, routing] {
+                cmd_options->routing = *routing == "least-cost" ? DrainageRouting::least_cost
+                                                                : DrainageRouting::priority_flood;
+                return run_drainage_command(*cmd_options, std::cerr);
+            }};
 }
 
 }  // namespace penink

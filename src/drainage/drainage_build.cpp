@@ -15,6 +15,7 @@
 #include "drainage/d8_ties.hpp"
 #include "drainage/depression_drainage.hpp"
 #include "drainage/flat_resolution.hpp"
+#include "drainage/least_cost_routing.hpp"
 #include "drainage/priority_flood.hpp"
 
 namespace penink {
@@ -57,16 +58,12 @@ void accumulate_and_label(const std::vector<std::uint8_t>& dir, const GridShape&
     if (basin_error) std::rethrow_exception(basin_error);
 }
 
-}  // namespace
-
-DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progress) {
-    DrainageResult res;
-    const GridShape shape{g.cols, g.rows, g.valid.data()};
-    res.stats.points = g.size();
-    res.stats.valid = std::size_t(std::count(g.valid.begin(), g.valid.end(), 1));
+// Priority-flood routing: fill, D8, rims, flats, depressions, ties; g.z restored afterwards.
+// The fill state, raised cells' original z and the flat gradient borrow net.order, net.acc and
+// net.basin, which get their own content later.
+void priority_flood_directions(DrainageGrid& g, const GridShape& shape, const DrainageProgress& progress,
+                               DrainageResult& res) {
     FlowNetwork& net = res.net;
-    // Lent buffers: the fill state lives in `order`, raised cells' original z in `acc`, the flat
-    // gradient in `basin`; each gets its own content later.
     std::vector<std::uint8_t>& flags = net.order;
     std::vector<std::uint32_t>& orig = net.acc;
     report(progress, "filling depressions", 0.0);
@@ -83,6 +80,23 @@ DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progres
     res.stats.ties = ties.size();  // deduplicated by break_d8_ties
     res.stats.working_bytes = bytes_of(res.dir, flags, orig, net.basin);
     restore_raised(g.z, flags, orig);
+}
+
+}  // namespace
+
+DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progress, DrainageRouting routing) {
+    DrainageResult res;
+    const GridShape shape{g.cols, g.rows, g.valid.data()};
+    res.stats.points = g.size();
+    res.stats.valid = std::size_t(std::count(g.valid.begin(), g.valid.end(), 1));
+    if (routing == DrainageRouting::least_cost) {
+        report(progress, "least-cost search", 0.05);
+        res.dir = least_cost_directions(g.z, shape, g.dx, g.dy);
+        res.stats.working_bytes = 2 * res.dir.size();  // directions + search state (queue aside)
+    } else {
+        priority_flood_directions(g, shape, progress, res);
+    }
+    FlowNetwork& net = res.net;
     report(progress, "accumulating flow and basins", 0.55);
     accumulate_and_label(res.dir, shape, net);
     res.stats.basins = net.outlet.size();
@@ -93,8 +107,8 @@ DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progres
 }
 
 DrainageDb drainage_db_from_grid(DrainageGrid& g, const DrainageProgress& progress,
-                                 DrainageResult* keep) {
-    DrainageResult res = compute_drainage(g, progress);
+                                 DrainageResult* keep, DrainageRouting routing) {
+    DrainageResult res = compute_drainage(g, progress, routing);
     DrainageDb db;
     db.cols = g.cols, db.rows = g.rows, db.factor = g.factor, db.origin = g.origin;
     report(progress, "tracing branches and divides", 0.75);
@@ -118,7 +132,7 @@ DrainageDb build_drainage_db(const Terrain& t, const DrainageOptions& options,
     const int f = drainage_resample_factor(t, options);
     report(progress, "resampling the PN surface", 0.0);
     DrainageGrid g = resample_pn(t, f);
-    DrainageDb db = drainage_db_from_grid(g, progress, keep);
+    DrainageDb db = drainage_db_from_grid(g, progress, keep, options.routing);
     db.crs_wkt = t.crs_wkt;
     db.fingerprint.resample = std::uint32_t(f);
     return db;
@@ -128,6 +142,7 @@ DrainageFingerprint drainage_fingerprint(const std::string& dem_path, const Terr
                                          const DrainageOptions& options) {
     DrainageFingerprint fp = dem_fingerprint(dem_path, drainage_resample_factor(terrain, options));
     fp.options = std::bit_cast<std::uint32_t>(float(terrain.vertical_exaggeration));
+    fp.routing = std::uint32_t(options.routing);
     return fp;
 }
 

@@ -1,8 +1,11 @@
-// The drainage build pipeline (seed 000 sec. 3): PN resampling -> Priority-Flood filling (Zhou et
+// The drainage build pipeline (seed 000 sec. 3): PN resampling -> flow directions -> accumulation +
+// Strahler -> basins -> branches and divides -> DrainageDb. Directions by one of two routings:
+// priority_flood (default): Priority-Flood filling (Zhou et
 // al. 2016 variant, on the grid's z in place, restored afterwards) -> D8 on the filled surface,
 // re-aimed into depressions on the original one -> Barnes flat resolution -> raised cells down
-// the original slopes (depression_drainage.hpp) -> ties broken downstream (d8_ties.hpp) -> accumulation +
-// Strahler -> basins -> branches and divides -> DrainageDb; plus the cache next to the DEM
+// the original slopes (depression_drainage.hpp) -> ties broken downstream (d8_ties.hpp);
+// least_cost: GRASS r.watershed's least-cost search on the unfilled grid (least_cost_routing.hpp).
+// Plus the cache next to the DEM
 // (`<dem>.dv`), rebuilt when missing, stale or corrupt.
 // Working memory beyond the grid (z 4 B + valid 1 B per point), counted in DrainageStats:
 // fill/directions/flats 10 B per point (directions 1, fill state 1, original z of raised
@@ -26,9 +29,15 @@ namespace penink {
 using DrainageProgress = std::function<void(const std::string& stage, double fraction)>;
 using DrainageLog = std::function<void(const std::string& message)>;
 
+// How flow directions are found: priority_flood = fill + D8 + Barnes flats + tie and depression
+// passes (the default); least_cost = least-cost search as GRASS r.watershed -s does it
+// (least_cost_routing.hpp). The value is stored in the DV fingerprint.
+enum class DrainageRouting : std::uint32_t { priority_flood = 0, least_cost = 1 };
+
 struct DrainageOptions {
     int resample = 0;                      // fine nodes per DEM cell side; 0 = automatic
     std::size_t max_points = 4'000'000;    // automatic factor: largest <= 5 within this budget
+    DrainageRouting routing = DrainageRouting::priority_flood;
 };
 
 // The automatic resample factor: 5 (seed 000: 10 m from 50 m) lowered until the resampled grid
@@ -50,20 +59,23 @@ struct DrainageResult {
     DrainageStats stats;
 };
 
-// Runs fill, directions, flats, accumulation and basins on `g` (g.z is filled during the run and
-// restored before returning).
-DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progress = {});
+// Runs directions (priority_flood: fill, D8, flats, depressions, ties; least_cost: the search
+// alone, the stats it does not use stay 0), accumulation and basins on `g` (g.z is filled during
+// a priority_flood run and restored before returning).
+DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progress = {},
+                                DrainageRouting routing = DrainageRouting::priority_flood);
 
 // Everything from an already resampled grid: network, branches and divides.
 DrainageDb drainage_db_from_grid(DrainageGrid& g, const DrainageProgress& progress = {},
-                                 DrainageResult* keep = nullptr);
+                                 DrainageResult* keep = nullptr,
+                                 DrainageRouting routing = DrainageRouting::priority_flood);
 
-// Resamples `t`, builds the database (fingerprint left to the caller).
+// Resamples `t`, builds the database with options.routing (fingerprint left to the caller).
 DrainageDb build_drainage_db(const Terrain& t, const DrainageOptions& options,
                              const DrainageProgress& progress = {}, DrainageResult* keep = nullptr);
 
-// Fingerprint of the DEM file plus the build options: the resample factor and, in `options`, the
-// bits of the Terrain's vertical exaggeration as a float (vertex z is exaggerated).
+// Fingerprint of the DEM file plus the build options: the resample factor, in `options` the bits
+// of the Terrain's vertical exaggeration as a float (vertex z is exaggerated), and the routing.
 DrainageFingerprint drainage_fingerprint(const std::string& dem_path, const Terrain& terrain,
                                          const DrainageOptions& options);
 

@@ -63,6 +63,7 @@ int run(const DrainageCommand& cmd, std::ostream& log) {
     if (const std::string w = missing_crs_warning(t); !w.empty()) log << w << "\n";
     DrainageOptions o;
     o.resample = cmd.resample;
+    o.routing = cmd.routing;
     if (cmd.resample < 0) throw Error("drainage", cmd.dem, "resample factor must be >= 1 (0 = automatic)");
     DrainageResult res;
     DrainageDb db = build_drainage_db(t, o, progress_printer(log, cmd.quiet, timer), &res);

@@ -1,11 +1,14 @@
-// `penink drainage DEM [-o OUT.dv] [--resample F] [--rasters DIR]`: builds the drainage vertex
-// database of a DEM (seed 000 sec. 3) and writes it (default `<DEM>.dv`, the cache `render`
-// looks for), optionally with GeoTIFF rasters of the drainage grid (drainage_rasters.hpp).
+// `penink drainage DEM [-o OUT.dv] [--resample F] [--rasters DIR] [--routing R]`: builds the
+// drainage vertex database of a DEM (seed 000 sec. 3) and writes it (default `<DEM>.dv`, the cache
+// `render` looks for), optionally with GeoTIFF rasters of the drainage grid (drainage_rasters.hpp).
+// Routing: priority-flood (default) or least-cost (GRASS r.watershed -s; drainage_build.hpp).
 // Resample factor: F > 0 as given (1 = the DEM's own nodes); 0 = automatic: 5 (the paper's 10 m
 // from 50 m) lowered until the drainage grid holds at most 4 M points.
 #pragma once
 #include <iosfwd>
 #include <string>
+
+#include "drainage/drainage_build.hpp"
 
 namespace penink {
 
@@ -15,6 +18,7 @@ struct DrainageCommand {
     int resample = 0;         // 0 = automatic
     std::string rasters_dir;  // empty = no rasters
     bool quiet = false;       // no progress / summary lines
+    DrainageRouting routing = DrainageRouting::priority_flood;
 };
 
 // Runs the command, printing progress and a summary (points, basins, branches, divides, time,

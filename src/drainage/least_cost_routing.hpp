@@ -1,0 +1,34 @@
+// Least-cost search flow routing (Ehlschlaeger 1989; Metz, Mitasova & Harmon 2011, HESS 15: the
+// method of GRASS GIS `r.watershed -s`): ESRI D8 directions (d8.hpp codes, 0 = drains off the
+// grid) from the unfilled elevations z (metres, row-major, row 0 north; spacing dx east, dy south
+// in metres) by a search that spreads uphill from the boundary cells, lowest cell first.
+//
+// The search, as r.watershed does it (GRASS 8.2, checked against it on volcano.asc):
+//  - Priority: the cell's own elevation, then the insertion counter (equal elevations leave the
+//    queue oldest first). Elevations are compared as floats; GRASS rounds floating-point DEMs to
+//    millimetres (integer DEMs such as volcano compare identically), so on float DEMs cells less
+//    than 1 mm apart may be ordered differently from GRASS.
+//  - Seeds, in row-major order: every valid cell on the grid border or next to nodata; a seed
+//    drains off the grid (code 0) unless redirected.
+//  - A popped cell c visits its neighbours in GRASS's order S, N, W, E, NE, SW, SE, NW. A
+//    neighbour n not yet queued is queued (key z_n) and drains to c, unless it is diagonal and
+//    the diagonal-bias check skips it: with slope(n) = (z_n - z_c) / distance when z_n > z_c
+//    (else 0; 0 for cells already popped), n is skipped when an orthogonal neighbour o of c that
+//    is adjacent to n has slope(o) > 0 and slope(n) < (z_n - z_o) / |o n| (n is reached later).
+//    A queued, unpopped seed still draining off the grid is redirected to c.
+//  - Directions never change otherwise; depressions are not filled: the search enters them from
+//    their spill and their cells drain along the search tree back to it.
+// O(n log n) with a 4-ary heap of 16-byte entries; 1 B of state per cell besides the directions.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "drainage/d8.hpp"
+
+namespace penink {
+
+// ESRI D8 code per cell (0 for outlets and invalid cells); every valid cell reaches an outlet.
+std::vector<std::uint8_t> least_cost_directions(const std::vector<float>& z, const GridShape& shape,
+                                                double dx, double dy);
+
+}  // namespace penink
