@@ -1,5 +1,6 @@
 #include "drainage/least_cost_routing.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 
@@ -13,23 +14,31 @@ constexpr int visit_order[8] = {2, 6, 4, 0, 7, 3, 1, 5};
 
 enum CellState : std::uint8_t { fresh = 0, queued = 1, worked = 2, nodata = 3 };
 
-// Min-priority queue on (elevation, insertion counter): a 4-ary heap of 16-byte entries whose
-// key packs an order-preserving image of the float's bits above the counter, so one unsigned
-// compare orders by elevation and then oldest first.
+// Min-priority queue on (elevation, insertion counter). The key packs an order-preserving image
+// of the float's bits above the counter, so one unsigned compare orders by elevation and then
+// oldest first. The search pops mostly upwards, so most keys go to a radix heap (Ahuja, Mehlhorn,
+// Orlin & Tarjan 1990), exact for keys at or above the last key it popped; the few keys below
+// that (cells inside depressions, entered from their spill) wait in a small binary heap, which
+// is always popped first: all its keys lie below every key in the radix heap.
 class SearchQueue {
 public:
-    explicit SearchQueue(std::size_t reserve) { heap_.reserve(reserve); }
-    bool empty() const { return heap_.empty(); }
+    bool empty() const { return low_.empty() && count_ == 0; }
     void push(float z, std::uint32_t cell) {
-        heap_.push_back({(std::uint64_t(ordered_bits(z)) << 32) | counter_++, cell});
-        sift_up(heap_.size() - 1);
+        const Entry e{(std::uint64_t(ordered_bits(z)) << 32) | counter_++, cell};
+        if (e.key < last_) low_.push_back(e), std::push_heap(low_.begin(), low_.end(), later);
+        else bucket_[slot(e.key ^ last_)].push_back(e), ++count_;
     }
     std::uint32_t pop() {
-        const std::uint32_t top = heap_.front().cell;
-        const Entry last = heap_.back();
-        heap_.pop_back();
-        if (!heap_.empty()) sift_down(last);
-        return top;
+        if (!low_.empty()) {
+            std::pop_heap(low_.begin(), low_.end(), later);
+            const std::uint32_t cell = low_.back().cell;
+            low_.pop_back();
+            return cell;
+        }
+        if (bucket_[0].empty()) refill();
+        const std::uint32_t cell = bucket_[0].back().cell;
+        bucket_[0].pop_back(), --count_;
+        return cell;
     }
 
 private:
@@ -37,56 +46,47 @@ private:
         std::uint64_t key;
         std::uint32_t cell;
     };
+    static bool later(const Entry& a, const Entry& b) { return a.key > b.key; }
     // -0 and +0 map to one key (as float comparison treats them); negatives below positives.
     static std::uint32_t ordered_bits(float z) {
         const std::uint32_t b = std::bit_cast<std::uint32_t>(z + 0.0f);
         return (b & 0x80000000u) ? ~b : (b | 0x80000000u);
     }
-    void sift_up(std::size_t i) {
-        const Entry e = heap_[i];
-        while (i > 0) {
-            const std::size_t p = (i - 1) / 4;
-            if (heap_[p].key <= e.key) break;
-            heap_[i] = heap_[p];
-            i = p;
-        }
-        heap_[i] = e;
+    // Bucket k holds keys whose highest bit differing from last_ is bit k-1 (0: equal to last_).
+    static int slot(std::uint64_t x) { return x ? 64 - std::countl_zero(x) : 0; }
+    // Moves the first non-empty bucket's least key to last_ and spreads the bucket out.
+    void refill() {
+        int k = 1;
+        while (bucket_[k].empty()) ++k;
+        std::uint64_t least = bucket_[k].front().key;
+        for (const Entry& e : bucket_[k]) least = std::min(least, e.key);
+        last_ = least;
+        for (const Entry& e : bucket_[k]) bucket_[slot(e.key ^ last_)].push_back(e);
+        bucket_[k].clear();
     }
-    // Moves `e` into the hole at the root, down to where its smallest child is not smaller.
-    void sift_down(const Entry& e) {
-        const std::size_t n = heap_.size();
-        std::size_t i = 0;
-        for (;;) {
-            const std::size_t first = 4 * i + 1;
-            if (first >= n) break;
-            std::size_t best = first;
-            const std::size_t end = first + 4 < n ? first + 4 : n;
-            for (std::size_t ch = first + 1; ch < end; ++ch)
-                if (heap_[ch].key < heap_[best].key) best = ch;
-            if (e.key <= heap_[best].key) break;
-            heap_[i] = heap_[best];
-            i = best;
-        }
-        heap_[i] = e;
-    }
-    std::vector<Entry> heap_;
+    std::vector<Entry> bucket_[65];
+    std::vector<Entry> low_;  // binary min-heap of the keys below last_
+    std::uint64_t last_ = 0;
+    std::size_t count_ = 0;
     std::uint32_t counter_ = 0;
 };
 
-// The search state: directions being assigned, per-cell state and the queue.
+// The search: one byte per cell holds its state (low 2 bits) and, above, 1 + the d8 index of
+// the direction it drains to (0: none yet, off the grid), so one load answers both questions;
+// the bytes become ESRI codes at the end.
 class LeastCostSearch {
 public:
     LeastCostSearch(const std::vector<float>& z, const GridShape& shape, double dx, double dy)
-        : z_(z), g_(shape), off_(d8_offsets(shape)), dx_(dx), dy_(dy), dir_(shape.size(), 0),
-          state_(shape.size()), queue_(std::size_t(2) * (shape.cols + shape.rows) + 16) {
+        : z_(z), g_(shape), off_(d8_offsets(shape)), dx_(dx), dy_(dy), cell_(shape.size()) {
         for (int k = 0; k < 8; ++k) dist_[k] = d8_dc[k] && d8_dr[k] ? std::hypot(dx, dy) : d8_dc[k] ? dx : dy;
-        for (std::size_t i = 0; i < g_.size(); ++i) state_[i] = g_.valid[i] ? fresh : nodata;
+        for (std::size_t i = 0; i < g_.size(); ++i) cell_[i] = g_.valid[i] ? fresh : nodata;
     }
 
     std::vector<std::uint8_t> run() {
         seed();
         while (!queue_.empty()) visit(queue_.pop());
-        return std::move(dir_);
+        for (std::uint8_t& b : cell_) b = b >> 2 ? std::uint8_t(1u << ((b >> 2) - 1)) : 0;
+        return std::move(cell_);
     }
 
 private:
@@ -95,12 +95,12 @@ private:
         for (int r = 0; r < g_.rows; ++r)
             for (int c = 0; c < g_.cols; ++c) {
                 const std::size_t i = std::size_t(r) * g_.cols + c;
-                if (state_[i] == fresh && is_boundary_cell(g_, c, r)) state_[i] = queued, queue_.push(z_[i], std::uint32_t(i));
+                if (cell_[i] == fresh && is_boundary_cell(g_, c, r)) cell_[i] = queued, queue_.push(z_[i], std::uint32_t(i));
             }
     }
 
     void visit(std::size_t c) {
-        state_[c] = worked;
+        cell_[c] = std::uint8_t((cell_[c] & ~3u) | worked);
         const int r = int(c / std::size_t(g_.cols)), col = int(c % std::size_t(g_.cols));
         const bool inner = r > 0 && r < g_.rows - 1 && col > 0 && col < g_.cols - 1;
         const float zc = z_[c];
@@ -108,18 +108,17 @@ private:
         for (const int k : visit_order) {
             if (!inner && !on_grid(r + d8_dr[k], col + d8_dc[k])) continue;
             const std::size_t n = std::size_t(std::ptrdiff_t(c) + off_[k]);
-            const std::uint8_t s = state_[n];
-            if (s == worked || s == nodata) continue;
+            const std::uint8_t b = cell_[n];
+            if ((b & 3) >= worked) continue;  // popped or nodata
             slope[k] = z_[n] > zc ? (double(z_[n]) - zc) / dist_[k] : 0.0;
-            const bool draining_seed = s == queued && dir_[n] == 0;  // a seed still draining off the grid
-            if (s == queued && !draining_seed) continue;
+            if (b != fresh && b != queued) continue;  // queued with a direction: stays
             if (d8_dc[k] && d8_dr[k] && slope[k] > 0 && diagonal_biased(c, n, k, slope)) continue;
-            const std::uint8_t toward_c = std::uint8_t(1u << ((k + 4) & 7));
-            if (draining_seed) {
-                if (slope[k] > 0) dir_[n] = toward_c;  // redirected inward, only from lower ground
+            const std::uint8_t toward_c = std::uint8_t((((k + 4) & 7) + 1) << 2 | queued);
+            if (b == queued) {  // a seed still draining off the grid: redirected, only from lower ground
+                if (slope[k] > 0) cell_[n] = toward_c;
                 continue;
             }
-            state_[n] = queued, dir_[n] = toward_c;
+            cell_[n] = toward_c;
             queue_.push(z_[n], std::uint32_t(n));
         }
     }
@@ -144,7 +143,7 @@ private:
     GridShape g_;
     std::array<std::ptrdiff_t, 8> off_;
     double dx_, dy_, dist_[8];
-    std::vector<std::uint8_t> dir_, state_;
+    std::vector<std::uint8_t> cell_;
     SearchQueue queue_;
 };
 

@@ -22,7 +22,9 @@
 //    neighbours with slope(o) > 0, or redirecting seeds from equal ground, agrees on 75 %.)
 //  - Directions never change otherwise; depressions are not filled: the search enters them from
 //    their spill and their cells drain along the search tree back to it.
-// O(n log n) with a 4-ary heap of 16-byte entries; 1 B of state per cell besides the directions.
+// Queue: a radix heap of 16-byte entries for the keys at or above the level being searched, a
+// binary heap for the few below it (inside depressions); one byte per cell holds state and
+// direction. 4.2 M cells (2048^2 fractal) in about 0.56 s.
 #pragma once
 #include <cstdint>
 #include <vector>
