@@ -29,8 +29,7 @@ Subcommand add_drainage_command(CLI::App& app) {
         ->check(CLI::IsMember({"priority-flood", "least-cost"}));
     cmd->add_flag("-q,--quiet", o.quiet, "No progress or summary lines");
     return {cmd, [cmd_options, routing] {
-                cmd_options->routing = *routing == "least-cost" ? DrainageRouting::least_cost
-                                                                : DrainageRouting::priority_flood;
+                cmd_options->routing = *drainage_routing_named(*routing);  // checked by IsMember
                 return run_drainage_command(*cmd_options, std::cerr);
             }};
 }

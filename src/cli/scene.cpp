@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "core/error.hpp"
+#include "drainage/drainage_build.hpp"
 
 namespace penink {
 
@@ -113,6 +114,7 @@ Scene parse_scene_file(const std::string& path) {
     }
     read_crease(root, "creases", s.creases, path);
     read_crease(root, "ridges", s.ridges, path);
+    if (has_key(root, "drainage")) read_key(root.at("drainage"), "routing", s.drainage_routing, path, "drainage");
     if (has_key(root, "style")) {
         s.style_overrides = root.at("style");
         read_key(root.at("style"), "name", s.style, path, "style");
@@ -155,6 +157,9 @@ void validate_scene(const Scene& s) {
         s.silhouette_method != "object-space")
         throw Error("scene", f, "[silhouettes] method must be \"toward-away\", \"adjacency\" or \"object-space\" (got \"" +
                                     s.silhouette_method + "\")");
+    if (!drainage_routing_named(s.drainage_routing))
+        throw Error("scene", f, "[drainage] routing must be \"priority-flood\" or \"least-cost\" (got \"" +
+                                    s.drainage_routing + "\")");
     if (s.camera.position.has_value() != s.camera.elevation.has_value())
         throw Error("scene", f, "camera position and elevation go together (give both or neither)");
 }

@@ -57,6 +57,7 @@ struct Scene {
     bool separate_passes = false;
     CreaseParams creases;
     CreaseParams ridges = ridge_defaults();
+    std::string drainage_routing = "priority-flood";  // [drainage] routing (drainage_build.hpp)
     std::string style = "technical";
     // Object-space sketchiness of creases and ridges (seed 002, 4.3: end points moved within the
     // surface's tangent plane), pixels, and strokes per line; set from the style by the command.

@@ -81,8 +81,10 @@ TerrainFrames::TerrainFrames(GlContext& context, const Scene& scene, const Terra
       renderer_(context.gl(), mesh_, width, height) {
     if (!scene.creases.enabled && !scene.ridges.enabled) return;
     const bool tty = isatty(2);
+    DrainageOptions options;
+    options.routing = *drainage_routing_named(scene.drainage_routing);  // validate_scene checked it
     DrainageDb db = load_or_build_drainage(
-        scene.dem, dem, DrainageOptions{}, [&](const std::string& m) { log.info(m); },
+        scene.dem, dem, options, [&](const std::string& m) { log.info(m); },
         [tty](const std::string& stage, double fraction) {  // long builds show progress on a terminal
             if (tty) std::fprintf(stderr, "\rpenink: building drainage database: %-12s %3d%%%s", stage.c_str(),
                                   int(fraction * 100.0 + 0.5), fraction >= 1.0 ? "\n" : "");

@@ -20,6 +20,12 @@
 
 namespace penink {
 
+std::optional<DrainageRouting> drainage_routing_named(const std::string& name) {
+    if (name == "priority-flood") return DrainageRouting::priority_flood;
+    if (name == "least-cost") return DrainageRouting::least_cost;
+    return std::nullopt;
+}
+
 int drainage_resample_factor(const Terrain& t, const DrainageOptions& o) {
     if (o.resample > 0) return o.resample;
     int f = 5;

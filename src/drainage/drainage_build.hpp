@@ -15,6 +15,7 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,10 @@ using DrainageLog = std::function<void(const std::string& message)>;
 // passes (the default); least_cost = least-cost search as GRASS r.watershed -s does it
 // (least_cost_routing.hpp). The value is stored in the DV fingerprint.
 enum class DrainageRouting : std::uint32_t { priority_flood = 0, least_cost = 1 };
+
+// The routing named "priority-flood" or "least-cost" (CLI --routing, scene [drainage] routing);
+// nullopt for any other name.
+std::optional<DrainageRouting> drainage_routing_named(const std::string& name);
 
 struct DrainageOptions {
     int resample = 0;                      // fine nodes per DEM cell side; 0 = automatic
