@@ -4,6 +4,8 @@
 #include <bit>
 #include <cmath>
 
+#include "drainage/radix_heap.hpp"
+
 namespace penink {
 
 namespace {
@@ -14,60 +16,33 @@ constexpr int visit_order[8] = {2, 6, 4, 0, 7, 3, 1, 5};
 
 enum CellState : std::uint8_t { fresh = 0, queued = 1, worked = 2, nodata = 3 };
 
-// Min-priority queue on (elevation, insertion counter). The key packs an order-preserving image
-// of the float's bits above the counter, so one unsigned compare orders by elevation and then
-// oldest first. The search pops mostly upwards, so most keys go to a radix heap (Ahuja, Mehlhorn,
-// Orlin & Tarjan 1990), exact for keys at or above the last key it popped; the few keys below
-// that (cells inside depressions, entered from their spill) wait in a small binary heap, which
-// is always popped first: all its keys lie below every key in the radix heap.
+// Min-priority queue on (elevation, insertion counter). The key packs float_order_key of the
+// elevation above the counter, so one unsigned compare orders by elevation and then oldest first.
+// The search pops mostly upwards, so most keys go to a radix heap, exact for keys at or above the
+// last key it popped; the few keys below that (cells inside depressions, entered from their
+// spill) wait in a small binary heap, which is always popped first: all its keys lie below every
+// key in the radix heap.
 class SearchQueue {
 public:
-    bool empty() const { return low_.empty() && count_ == 0; }
+    bool empty() const { return low_.empty() && radix_.empty(); }
     void push(float z, std::uint32_t cell) {
-        const Entry e{(std::uint64_t(ordered_bits(z)) << 32) | counter_++, cell};
-        if (e.key < last_) low_.push_back(e), std::push_heap(low_.begin(), low_.end(), later);
-        else bucket_[slot(e.key ^ last_)].push_back(e), ++count_;
+        const std::uint64_t key = (std::uint64_t(float_order_key(z)) << 32) | counter_++;
+        if (key < radix_.last()) low_.push_back({key, cell}), std::push_heap(low_.begin(), low_.end(), later);
+        else radix_.push(key, cell);
     }
     std::uint32_t pop() {
-        if (!low_.empty()) {
-            std::pop_heap(low_.begin(), low_.end(), later);
-            const std::uint32_t cell = low_.back().cell;
-            low_.pop_back();
-            return cell;
-        }
-        if (bucket_[0].empty()) refill();
-        const std::uint32_t cell = bucket_[0].back().cell;
-        bucket_[0].pop_back(), --count_;
+        if (low_.empty()) return radix_.pop().cell;
+        std::pop_heap(low_.begin(), low_.end(), later);
+        const std::uint32_t cell = low_.back().cell;
+        low_.pop_back();
         return cell;
     }
 
 private:
-    struct Entry {
-        std::uint64_t key;
-        std::uint32_t cell;
-    };
+    using Entry = RadixHeap<std::uint64_t>::Entry;
     static bool later(const Entry& a, const Entry& b) { return a.key > b.key; }
-    // -0 and +0 map to one key (as float comparison treats them); negatives below positives.
-    static std::uint32_t ordered_bits(float z) {
-        const std::uint32_t b = std::bit_cast<std::uint32_t>(z + 0.0f);
-        return (b & 0x80000000u) ? ~b : (b | 0x80000000u);
-    }
-    // Bucket k holds keys whose highest bit differing from last_ is bit k-1 (0: equal to last_).
-    static int slot(std::uint64_t x) { return x ? 64 - std::countl_zero(x) : 0; }
-    // Moves the first non-empty bucket's least key to last_ and spreads the bucket out.
-    void refill() {
-        int k = 1;
-        while (bucket_[k].empty()) ++k;
-        std::uint64_t least = bucket_[k].front().key;
-        for (const Entry& e : bucket_[k]) least = std::min(least, e.key);
-        last_ = least;
-        for (const Entry& e : bucket_[k]) bucket_[slot(e.key ^ last_)].push_back(e);
-        bucket_[k].clear();
-    }
-    std::vector<Entry> bucket_[65];
-    std::vector<Entry> low_;  // binary min-heap of the keys below last_
-    std::uint64_t last_ = 0;
-    std::size_t count_ = 0;
+    RadixHeap<std::uint64_t> radix_;
+    std::vector<Entry> low_;  // binary min-heap of the keys below radix_.last()
     std::uint32_t counter_ = 0;
 };
 

@@ -4,47 +4,11 @@
 #include <bit>
 #include <queue>
 
+#include "drainage/radix_heap.hpp"
+
 namespace penink {
 
 namespace {
-
-struct Open {
-    std::uint32_t key;  // order_key(z)
-    std::uint32_t i;
-};
-
-// Unsigned key ordered like the float elevation (-0 and +0 alike; valid z are never NaN).
-std::uint32_t order_key(float z) {
-    const std::uint32_t b = std::bit_cast<std::uint32_t>(z == 0.0f ? 0.0f : z);
-    return (b & 0x80000000u) ? ~b : (b | 0x80000000u);
-}
-
-// Monotone min-queue (radix heap, Ahuja, Mehlhorn, Orlin & Tarjan 1990): exact as long as no key
-// pushed is below the last key popped, which holds here: every cell queued is at or above the
-// level being spilled. Bucket k holds keys whose highest bit differing from `last` is k-1.
-struct RadixHeap {
-    std::vector<Open> bucket[33];
-    std::uint32_t last = 0;
-    std::size_t count = 0;
-
-    static int slot(std::uint32_t x) { return x ? 32 - std::countl_zero(x) : 0; }
-    bool empty() const { return count == 0; }
-    void push(Open o) { bucket[slot(o.key ^ last)].push_back(o), ++count; }
-    Open pop() {
-        if (bucket[0].empty()) {
-            int k = 1;
-            while (bucket[k].empty()) ++k;
-            std::uint32_t low = bucket[k].front().key;
-            for (const Open& o : bucket[k]) low = std::min(low, o.key);
-            last = low;
-            for (const Open& o : bucket[k]) bucket[slot(o.key ^ last)].push_back(o);
-            bucket[k].clear();
-        }
-        const Open o = bucket[0].back();
-        bucket[0].pop_back(), --count;
-        return o;
-    }
-};
 
 struct Flood {
     float* z;
@@ -52,7 +16,7 @@ struct Flood {
     std::uint8_t* flags;
     std::uint32_t* orig;
     std::array<std::ptrdiff_t, 8> off;
-    RadixHeap open;
+    RadixHeap<std::uint32_t> open;  // exact: every cell queued is at or above the level spilled
     std::vector<std::uint32_t> pit;     // a stack: any order is correct within a level
     std::queue<std::uint32_t> trace;    // FIFO: climbing breadth-first from the spill reaches a
                                         // cell's lower neighbours first, keeping it off the queue
@@ -62,7 +26,7 @@ struct Flood {
         const int c = int(i % std::uint32_t(g.cols)), r = int(i / std::uint32_t(g.cols));
         return c == 0 || r == 0 || c == g.cols - 1 || r == g.rows - 1;
     }
-    void push_open(std::uint32_t i) { open.push({order_key(z[i]), i}), ++stats.queued; }
+    void push_open(std::uint32_t i) { open.push(float_order_key(z[i]), i), ++stats.queued; }
     void seed(std::uint32_t i) {
         if (flags[i]) return;
         flags[i] = fill_closed | fill_boundary;
@@ -150,7 +114,7 @@ FillStats priority_flood_fill(std::vector<float>& z, const GridShape& g,
             f.trace.pop();
             f.climb(i);
         } else if (!f.open.empty()) {
-            const std::uint32_t i = f.open.pop().i;
+            const std::uint32_t i = f.open.pop().cell;
             f.spill(i, f.on_border(i));
         } else {
             break;
