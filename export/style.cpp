@@ -61,6 +61,8 @@ Style default_style() {
     set_width(s.layer(LayerKind::textures), 0.4, 0.4);
     set_width(s.layer(LayerKind::feature_edges), 0.8, 0.8);
     set_width(s.layer(LayerKind::silhouettes), 1.2, 1.2);
+    // silhouette fragments of small bumps read as dashes: drawn from 8 px on
+    s.layer(LayerKind::silhouettes).min_length = 8.0;
     return s;
 }
 

@@ -35,6 +35,7 @@ struct LayerStyle {
     double sketch = 0.0;                      // endpoint perturbation (lines stage), pixels
     double overshoot = 0.0;                   // extension of open stroke ends, pixels
     int repeat = 1;                           // times each stroke is drawn (plotter passes)
+    double min_length = 2.0;                  // shorter strokes (pen-down length, pixels) are dropped
     bool visible = true;                      // false: the layer is written empty
     bool operator==(const LayerStyle&) const = default;
 };

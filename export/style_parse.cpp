@@ -79,6 +79,7 @@ void apply_layer_key(LayerStyle& l, const std::string& key, const toml::value& v
     else if (key == "dash") l.dash = dash_array(v, table);
     else if (key == "sketch") l.sketch = number_at_least(v, key, table, 0.0);
     else if (key == "overshoot") l.overshoot = number_at_least(v, key, table, 0.0);
+    else if (key == "min_length") l.min_length = number_at_least(v, key, table, 0.0);
     else if (key == "repeat") {
         if (!v.is_integer() || v.as_integer() < 1 || v.as_integer() > 16)
             throw StyleProblem("repeat must be an integer in [1, 16]" + where(table));

@@ -22,7 +22,7 @@ FinishOptions finish_options(const Style& style, std::uint64_t seed, bool object
         const LayerStyle& ls = style.layer(k);
         LayerFinish& lf = f.layer(k);
         lf.sketch = float(ls.sketch), lf.overshoot = float(ls.overshoot);
-        lf.repeat = ls.repeat, lf.keep_far = float(ls.keep_far);
+        lf.repeat = ls.repeat, lf.keep_far = float(ls.keep_far), lf.min_length = float(ls.min_length);
         if (object_space_terrain_lines && (k == LayerKind::creases || k == LayerKind::ridges))
             lf.space = SketchSpace::object;
     }

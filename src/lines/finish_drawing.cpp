@@ -33,12 +33,12 @@ float mean_depth(const Stroke& s) {
 }
 
 // Join, simplify, drop short strokes, and join again where drops left 2-end nodes.
-std::vector<Stroke> join_and_clean(std::vector<Stroke> strokes, const FinishOptions& o) {
+std::vector<Stroke> join_and_clean(std::vector<Stroke> strokes, const FinishOptions& o, const LayerFinish& l) {
     for (Stroke& s : strokes)
         if (s.depth.size() != s.points.size()) s.depth.resize(s.points.size(), 0.0f);
     strokes = simplify_strokes(join_strokes(std::move(strokes), o.join_tolerance), o.simplify_tolerance);
     const std::size_t before = strokes.size();
-    std::erase_if(strokes, [&](const Stroke& s) { return s.points.empty() || stroke_length(s) < o.min_length; });
+    std::erase_if(strokes, [&](const Stroke& s) { return s.points.empty() || stroke_length(s) < l.min_length; });
     if (strokes.size() != before)
         strokes = simplify_strokes(join_strokes(std::move(strokes), o.join_tolerance), o.simplify_tolerance);
     return strokes;
@@ -71,7 +71,7 @@ std::vector<Stroke> sketch_all(const std::vector<Stroke>& strokes, const FinishO
 std::vector<Stroke> finish_strokes(std::vector<Stroke> strokes, const FinishOptions& options,
                                    const LayerFinish& layer, double max_depth, LayerFinishStats& stats) {
     stats.strokes_in = strokes.size();
-    strokes = join_and_clean(std::move(strokes), options);
+    strokes = join_and_clean(std::move(strokes), options, layer);
     stats.joined = strokes.size();
     thin_by_distance(strokes, options, layer, max_depth);
     strokes = sketch_all(strokes, options, layer);

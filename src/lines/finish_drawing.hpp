@@ -36,6 +36,7 @@ struct LayerFinish {
     float overshoot = 0.0f;  // extension of both ends of open strokes, px
     int repeat = 1;          // times each stroke is drawn (>= 1), each perturbed on its own
     float keep_far = 1.0f;   // share of strokes kept at the far distance (1 = no thinning)
+    float min_length = 2.0f; // px: shorter strokes (pen-down length) are dropped
     SketchSpace space = SketchSpace::image;
 };
 
@@ -43,7 +44,6 @@ struct FinishOptions {
     std::uint64_t seed = 0;
     float join_tolerance = 1.0f;      // px: stroke ends closer than this are joined
     float simplify_tolerance = 0.4f;  // px: Douglas-Peucker tolerance
-    float min_length = 2.0f;          // px: shorter strokes (pen-down length) are dropped
     // Distance thinning: fractions of the drawing's largest eye distance (export's Style
     // near/far); keep probability falls linearly from 1 at near to keep_far at far.
     float near = 0.0f, far = 1.0f;
@@ -67,8 +67,8 @@ struct FinishStats {
 };
 
 // Finishes every layer's strokes in place (surface fill rings are left alone). Steps per layer:
-// join (same kind, junctions of >= 3 ends kept) -> simplify -> drop strokes shorter than
-// min_length -> join again (drops can leave 2-end nodes) -> distance thinning -> sketch /
+// join (same kind, junctions of >= 3 ends kept) -> simplify -> drop strokes shorter than the
+// layer's min_length -> join again (drops can leave 2-end nodes) -> distance thinning -> sketch /
 // overshoot / repeat (image-space layers) -> plotter order from `home`.
 FinishStats finish_drawing(Drawing& drawing, const FinishOptions& options);
 

@@ -49,6 +49,10 @@ TEST(Style, ShippedStylesHaveTheirCharacter) {
     }
     EXPECT_LT(sketch.layer(LayerKind::textures).keep_far, 1.0);
     EXPECT_EQ(sketch.layer(LayerKind::silhouettes).repeat, 2);
+    // silhouettes drop fragments under 8 px in both styles, other layers only under 2 px
+    for (const Style* s : {&tech, &sketch})
+        for (LayerKind k : all_layers)
+            EXPECT_EQ(s->layer(k).min_length, k == LayerKind::silhouettes ? 8.0 : 2.0) << layer_name(k);
 }
 
 TEST(Style, OverridesFromSceneTable) {
@@ -61,6 +65,8 @@ TEST(Style, OverridesFromSceneTable) {
     EXPECT_DOUBLE_EQ(s.layer(LayerKind::ridges).width_far, 2.5);  // width alone: uniform
     EXPECT_TRUE(s.layer(LayerKind::ridges).color == (Rgb{255, 128, 0}));
     EXPECT_FALSE(s.layer(LayerKind::textures).visible);
+    apply_style_overrides(s, parse_toml("[style.silhouettes]\nmin_length = 0\n").at("style"));
+    EXPECT_EQ(s.layer(LayerKind::silhouettes).min_length, 0.0);
     EXPECT_DOUBLE_EQ(s.layer(LayerKind::creases).width_far, 0.35);  // untouched
 }
 
@@ -90,6 +96,8 @@ TEST(Style, BadFilesErrorExactly) {
     EXPECT_EQ(style_error("bands = 0\n", dir), prefix + "bands must be an integer in [1, 16]");
     EXPECT_EQ(style_error("[pels]\ndash = [0, 0]\n", dir), prefix + "dash must not be all zeros (in [pels])");
     EXPECT_EQ(style_error("[pels]\nrepeat = 0\n", dir), prefix + "repeat must be an integer in [1, 16] (in [pels])");
+    EXPECT_EQ(style_error("[silhouettes]\nmin_length = -2\n", dir),
+              prefix + "min_length must be >= 0 (in [silhouettes])");
     EXPECT_EQ(style_error("speed = 3\n", dir), prefix + "unknown key \"speed\"");
     EXPECT_EQ(style_error("width = [\n", dir).rfind(prefix + "invalid TOML: ", 0), 0u);
 }

@@ -172,6 +172,20 @@ TEST(FinishDrawing, LeavesSurfaceFillAndFinishesEveryLayer) {
     EXPECT_NEAR(st.layers[size_t(LayerKind::silhouettes)].length, 20.0, 1e-4);
 }
 
+// min_length is the layer's: a 6 px stroke survives the default 2 px, not a layer's 8 px.
+TEST(FinishDrawing, MinimumLengthIsPerLayer) {
+    Drawing d;
+    d.width = d.height = 100;
+    d.layer(LayerKind::silhouettes).strokes = {dense({0, 0}, {6, 0}, 7), dense({0, 50}, {20, 50}, 21)};
+    d.layer(LayerKind::ridges).strokes = {dense({0, 9}, {6, 9}, 7, "ridge")};
+    FinishOptions o = plain();
+    o.layer(LayerKind::silhouettes).min_length = 8.0f;
+    finish_drawing(d, o);
+    ASSERT_EQ(d.layer(LayerKind::silhouettes).strokes.size(), 1u);
+    EXPECT_NEAR(length(d.layer(LayerKind::silhouettes).strokes[0]), 20.0, 1e-4);
+    EXPECT_EQ(d.layer(LayerKind::ridges).strokes.size(), 1u);
+}
+
 TEST(FinishDrawing, ObjectCopiesStayInTheTangentPlane) {
     EXPECT_NEAR(world_per_pixel(100.0f, 90.0f, 200), 1.0f, 1e-5f);
     ObjectLine line;
