@@ -4,11 +4,9 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <future>
 #include <limits>
 #include <memory>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <GeographicLib/UTMUPS.hpp>
@@ -21,6 +19,7 @@
 
 #include "core/error.hpp"
 #include "input/crs_util.hpp"
+#include "input/utm_projection.hpp"
 
 namespace penink {
 
@@ -166,7 +165,8 @@ std::vector<glm::dvec2> node_coordinates(const Raster& r, double unit, double of
     return xy;
 }
 
-// World (projected CRS) coordinates of the nodes: projected node by node for a geographic DEM,
+// World (projected CRS) coordinates of the nodes: projected to UTM for a geographic DEM
+// (utm_projection.hpp),
 // else scaled_node with `unit` computed when asked (no per-node array for a projected grid).
 struct WorldXY {
     double unit = 1.0;
@@ -176,36 +176,8 @@ struct WorldXY {
     }
 };
 
-// Projects lon/lat degrees in [begin, end) to UTM/UPS `zone` in hemisphere `north`.
-void project_range(glm::dvec2* begin, glm::dvec2* end, int zone, bool north) {
-    for (glm::dvec2* p = begin; p != end; ++p) {
-        int z = 0;
-        bool n = true;
-        double x = 0, y = 0, gamma = 0, k = 0;
-        GeographicLib::UTMUPS::Forward(p->y, p->x, z, n, x, y, gamma, k, zone);
-        if (n != north) GeographicLib::UTMUPS::Transfer(z, n, x, y, z, north, x, y, z);
-        *p = {x, y};
-    }
-}
-
-// Projects every node in parallel chunks (each node independently: same result for any
-// number of threads); rethrows the first GeographicLib error.
-void project_all(std::vector<glm::dvec2>& xy, int zone, bool north) {
-    const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 16);
-    const std::size_t chunks = xy.size() < 20000 ? 1 : threads;
-    const std::size_t step = (xy.size() + chunks - 1) / chunks;
-    std::vector<std::future<void>> jobs;
-    for (std::size_t i = 0; i < xy.size(); i += step) {
-        glm::dvec2* b = xy.data() + i;
-        glm::dvec2* e = xy.data() + std::min(i + step, xy.size());
-        jobs.push_back(std::async(std::launch::async, project_range, b, e, zone, north));
-    }
-    for (auto& j : jobs) j.wait();
-    for (auto& j : jobs) j.get();
-}
-
 // Projects lon/lat degrees (in place) to UTM/UPS; fills the world CRS of `t`.
-void project_geographic(std::vector<glm::dvec2>& xy, const DemOptions& options, Terrain& t,
+void project_geographic(std::vector<glm::dvec2>& xy, int w, const DemOptions& options, Terrain& t,
                         const std::string& path) {
     const glm::dvec2 centre = 0.5 * (xy.front() + xy.back());
     int zone = options.utm_zone;
@@ -215,7 +187,7 @@ void project_geographic(std::vector<glm::dvec2>& xy, const DemOptions& options, 
             zone = GeographicLib::UTMUPS::StandardZone(centre.y, centre.x);
             north = centre.y >= 0.0;
         }
-        project_all(xy, zone, north);
+        project_rows_to_utm(xy, w, zone, north);
     } catch (const GeographicLib::GeographicErr& e) {
         fail(path, "DEM cannot be projected to UTM zone " + std::to_string(zone) + (north ? "N" : "S") +
                        ": " + e.what());
@@ -233,7 +205,7 @@ WorldXY world_coordinates(const Raster& r, const DemOptions& options, Terrain& t
         const double unit = std::abs(deg - 1.0) < 1e-9 ? 1.0 : deg;
         w.projected = node_coordinates(r, unit, r.srs->GetPrimeMeridian(nullptr));
         t.source_geographic = true;
-        project_geographic(w.projected, options, t, path);
+        project_geographic(w.projected, r.w, options, t, path);
         return w;
     }
     int north = 1;

@@ -1,0 +1,73 @@
+#include "input/utm_projection.hpp"
+
+#include <algorithm>
+#include <future>
+#include <thread>
+
+#include <GeographicLib/UTMUPS.hpp>
+
+namespace penink {
+
+namespace {
+
+glm::dvec2 project_node(glm::dvec2 lonlat, int zone, bool north) {
+    int z = 0;
+    bool n = true;
+    double x = 0, y = 0, gamma = 0, k = 0;
+    GeographicLib::UTMUPS::Forward(lonlat.y, lonlat.x, z, n, x, y, gamma, k, zone);
+    if (n != north) GeographicLib::UTMUPS::Transfer(z, n, x, y, z, north, x, y, z);
+    return {x, y};
+}
+
+// Cubic through the exact nodes s[0..3] (columns) with values v[0..3], at column c.
+glm::dvec2 lagrange4(const int* s, const glm::dvec2* v, int c) {
+    glm::dvec2 sum(0.0);
+    for (int i = 0; i < 4; ++i) {
+        double l = 1.0;
+        for (int j = 0; j < 4; ++j)
+            if (j != i) l *= double(c - s[j]) / double(s[i] - s[j]);
+        sum += l * v[i];
+    }
+    return sum;
+}
+
+// One row of w nodes: exact at the sample columns (multiples of step, and w - 1), cubic between.
+void project_row(glm::dvec2* row, int w, int zone, bool north, int step) {
+    if (step <= 1 || w < 4 * step) {
+        for (int c = 0; c < w; ++c) row[c] = project_node(row[c], zone, north);
+        return;
+    }
+    std::vector<int> s;
+    for (int c = 0; c < w - 1; c += step) s.push_back(c);
+    s.push_back(w - 1);
+    std::vector<glm::dvec2> v(s.size());
+    for (std::size_t i = 0; i < s.size(); ++i) v[i] = project_node(row[s[i]], zone, north);
+    for (std::size_t i = 0; i + 1 < s.size(); ++i) {
+        // the window of four samples around interval i, shifted inwards at the row's ends
+        const std::size_t first = std::min(i == 0 ? 0 : i - 1, s.size() - 4);
+        row[s[i]] = v[i];
+        for (int c = s[i] + 1; c < s[i + 1]; ++c) row[c] = lagrange4(&s[first], &v[first], c);
+    }
+    row[w - 1] = v.back();
+}
+
+}  // namespace
+
+void project_rows_to_utm(std::vector<glm::dvec2>& lonlat, int w, int zone, bool north, int step) {
+    const std::size_t rows = w > 0 ? lonlat.size() / std::size_t(w) : 0;
+    const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 16);
+    const std::size_t chunks = std::min(rows, lonlat.size() < 20000 ? std::size_t(1) : threads);
+    if (chunks == 0) return;
+    const std::size_t per = (rows + chunks - 1) / chunks;
+    std::vector<std::future<void>> jobs;
+    for (std::size_t r0 = 0; r0 < rows; r0 += per) {
+        const std::size_t r1 = std::min(rows, r0 + per);
+        jobs.push_back(std::async(std::launch::async, [&, r0, r1] {
+            for (std::size_t r = r0; r < r1; ++r) project_row(lonlat.data() + r * std::size_t(w), w, zone, north, step);
+        }));
+    }
+    for (auto& j : jobs) j.wait();
+    for (auto& j : jobs) j.get();
+}
+
+}  // namespace penink

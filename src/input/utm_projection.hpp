@@ -1,0 +1,21 @@
+// Projection of a DEM's lon/lat node grid (degrees, w nodes per row, row-major) to UTM/UPS
+// easting/northing (metres, GeographicLib UTMUPS, zone and hemisphere given). Along a row the
+// map is a smooth function of the column, so every `step`-th node (and the last) is projected
+// exactly and the nodes between are interpolated by the cubic through the four nearest exact
+// nodes (Lagrange): on 16-node steps of 3" cells the result differs from projecting every node
+// by < 1 µm (tests/input/utm_projection_test.cpp), at about a tenth of the cost. Rows are
+// projected in parallel chunks; the result does not depend on the number of threads.
+#pragma once
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+namespace penink {
+
+// In place: lonlat[i] = (longitude, latitude) in degrees -> (easting, northing) in metres.
+// step 1 projects every node. Throws GeographicLib::GeographicErr when a node cannot be
+// projected (the first and last node of every row are always projected exactly, so a row
+// leaving the zone's range is caught: longitude and latitude are linear along a row).
+void project_rows_to_utm(std::vector<glm::dvec2>& lonlat, int w, int zone, bool north, int step = 16);
+
+}  // namespace penink
