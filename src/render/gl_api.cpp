@@ -4,7 +4,7 @@
 
 namespace penink {
 
-GlApi load_gl_api(GlProcLoader loader) {
+GlApi load_gl_api(const GlProcLoader& loader) {
     GlApi gl;
 #define PENINK_GL_LOAD(type, name)                                                           \
     gl.name = reinterpret_cast<type>(loader("gl" #name));                                    \

@@ -2,6 +2,7 @@
 // context's own GetProcAddress (OSMesa does not export every core function, e.g.
 // glGetQueryObjectui64v). Owned by a GlContext; passes receive it as `const GlApi&`.
 #pragma once
+#include <functional>
 #include <string>
 
 #define GL_GLEXT_PROTOTYPES 0
@@ -92,10 +93,10 @@ struct GlApi {
 #undef PENINK_GL_MEMBER
 };
 
-using GlProcLoader = void* (*)(const char* name);
+using GlProcLoader = std::function<void*(const char* name)>;
 
 // Loads every entry point; throws penink::Error(stage "render") naming the first one missing.
-GlApi load_gl_api(GlProcLoader loader);
+GlApi load_gl_api(const GlProcLoader& loader);
 
 // Throws penink::Error(stage "render", file = where, ExitCode::internal) if glGetError reports
 // anything (all pending errors are drained and named).

@@ -2,13 +2,8 @@
 
 #include <vector>
 
-#include <GL/osmesa.h>
-#ifdef PENINK_HAVE_EGL
-#include <EGL/egl.h>
-#include <EGL/eglext.h>
-#endif
-
 #include "core/error.hpp"
+#include "render/gl_library.hpp"
 
 namespace penink {
 
@@ -20,7 +15,7 @@ std::string GlContext::describe(const char* backend_name) const {
     return std::string(backend_name) + ": " + str(GL_RENDERER) + ", OpenGL " + str(GL_VERSION);
 }
 
-void GlContext::init_api(GlProcLoader loader) {
+void GlContext::init_api(const GlProcLoader& loader) {
     gl_ = load_gl_api(loader);
     // First timer query of a context returns garbage on llvmpipe: issue a throwaway one.
     GLuint q = 0;
@@ -35,69 +30,66 @@ void GlContext::init_api(GlProcLoader loader) {
 
 namespace {
 
-void* osmesa_proc(const char* name) { return reinterpret_cast<void*>(OSMesaGetProcAddress(name)); }
-
 class OsMesaContext final : public GlContext {
 public:
     OsMesaContext() {
         const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24,
                                OSMESA_PROFILE, OSMESA_CORE_PROFILE,
                                OSMESA_CONTEXT_MAJOR_VERSION, 4, OSMESA_CONTEXT_MINOR_VERSION, 5, 0};
-        ctx_ = OSMesaCreateContextAttribs(attribs, nullptr);
+        ctx_ = os_.CreateContextAttribs(attribs, nullptr);
         if (!ctx_) throw Error("render", "", "cannot create an OpenGL 4.5 core context with OSMesa",
                                ExitCode::internal);
-        if (!OSMesaMakeCurrent(ctx_, buffer_.data(), GL_UNSIGNED_BYTE, 1, 1)) {
-            OSMesaDestroyContext(ctx_);
+        if (!os_.MakeCurrent(ctx_, buffer_.data(), GL_UNSIGNED_BYTE, 1, 1)) {
+            os_.DestroyContext(ctx_);
             throw Error("render", "", "cannot make the OSMesa context current", ExitCode::internal);
         }
-        init_api(&osmesa_proc);
+        init_api([this](const char* name) { return reinterpret_cast<void*>(os_.GetProcAddress(name)); });
     }
-    ~OsMesaContext() override { OSMesaDestroyContext(ctx_); }
+    ~OsMesaContext() override { os_.DestroyContext(ctx_); }
     std::string description() const override { return describe("OSMesa"); }
-    void make_current() override { OSMesaMakeCurrent(ctx_, buffer_.data(), GL_UNSIGNED_BYTE, 1, 1); }
+    void make_current() override { os_.MakeCurrent(ctx_, buffer_.data(), GL_UNSIGNED_BYTE, 1, 1); }
     GlBackend backend() const override { return GlBackend::osmesa; }
 
 private:
+    OsMesaLibrary os_;  // first member: loaded before, closed after the context
     OSMesaContext ctx_ = nullptr;
     std::vector<unsigned char> buffer_ = std::vector<unsigned char>(4);
 };
 
 #ifdef PENINK_HAVE_EGL
-void* egl_proc(const char* name) { return reinterpret_cast<void*>(eglGetProcAddress(name)); }
-
 class EglContext final : public GlContext {
 public:
     EglContext() {
         display_ = headless_display();
         EGLint major = 0, minor = 0;
-        if (display_ == EGL_NO_DISPLAY || !eglInitialize(display_, &major, &minor))
+        if (display_ == EGL_NO_DISPLAY || !egl_.Initialize(display_, &major, &minor))
             fail("cannot initialise an EGL display");
-        eglBindAPI(EGL_OPENGL_API);
+        egl_.BindAPI(EGL_OPENGL_API);
         const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
                                       EGL_CONTEXT_OPENGL_PROFILE_MASK,
                                       EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
-        ctx_ = eglCreateContext(display_, context_config(), EGL_NO_CONTEXT, ctx_attribs);
+        ctx_ = egl_.CreateContext(display_, context_config(), EGL_NO_CONTEXT, ctx_attribs);
         if (ctx_ == EGL_NO_CONTEXT) fail("cannot create an OpenGL 4.5 core context with EGL");
-        if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx_))
+        if (!egl_.MakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx_))
             fail("cannot make the EGL context current (surfaceless)");
-        init_api(&egl_proc);
+        init_api([this](const char* name) { return reinterpret_cast<void*>(egl_.GetProcAddress(name)); });
     }
     ~EglContext() override {
-        eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-        if (ctx_ != EGL_NO_CONTEXT) eglDestroyContext(display_, ctx_);
-        eglTerminate(display_);
+        egl_.MakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        if (ctx_ != EGL_NO_CONTEXT) egl_.DestroyContext(display_, ctx_);
+        egl_.Terminate(display_);
     }
     std::string description() const override { return describe("EGL"); }
-    void make_current() override { eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx_); }
+    void make_current() override { egl_.MakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx_); }
     GlBackend backend() const override { return GlBackend::egl; }
 
 private:
     // A display with no window system: the first EGL device (a GPU, EGL_EXT_platform_device),
     // else Mesa's surfaceless platform, else the default display.
-    static EGLDisplay headless_display() {
-        const auto query_devices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+    EGLDisplay headless_display() const {
+        const auto query_devices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(egl_.GetProcAddress("eglQueryDevicesEXT"));
         const auto platform_display =
-            reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+            reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(egl_.GetProcAddress("eglGetPlatformDisplayEXT"));
         if (query_devices && platform_display) {
             EGLDeviceEXT devices[8];
             EGLint count = 0;
@@ -110,24 +102,25 @@ private:
             const EGLDisplay d = platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
             if (d != EGL_NO_DISPLAY) return d;
         }
-        return eglGetDisplay(EGL_DEFAULT_DISPLAY);
+        return egl_.GetDisplay(EGL_DEFAULT_DISPLAY);
     }
     // No config is needed to render into framebuffer objects (EGL_KHR_no_config_context); older
     // drivers get any desktop-GL config.
     EGLConfig context_config() {
-        const char* ext = eglQueryString(display_, EGL_EXTENSIONS);
+        const char* ext = egl_.QueryString(display_, EGL_EXTENSIONS);
         if (ext && std::string(ext).find("EGL_KHR_no_config_context") != std::string::npos) return EGL_NO_CONFIG_KHR;
         const EGLint attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
         EGLConfig config;
         EGLint count = 0;
-        if (!eglChooseConfig(display_, attribs, &config, 1, &count) || count < 1)
+        if (!egl_.ChooseConfig(display_, attribs, &config, 1, &count) || count < 1)
             fail("no EGL config with desktop OpenGL");
         return config;
     }
     [[noreturn]] void fail(const char* what) {
-        if (display_ != EGL_NO_DISPLAY) eglTerminate(display_);
+        if (display_ != EGL_NO_DISPLAY) egl_.Terminate(display_);
         throw Error("render", "", what, ExitCode::internal);
     }
+    EglLibrary egl_;  // first member: loaded before, closed after the display
     EGLDisplay display_ = EGL_NO_DISPLAY;
     EGLContext ctx_ = EGL_NO_CONTEXT;
 };

@@ -23,7 +23,7 @@ public:
 protected:
     GlApi gl_;
     std::string describe(const char* backend_name) const;
-    void init_api(GlProcLoader loader);
+    void init_api(const GlProcLoader& loader);
 };
 
 // Parses "osmesa" / "egl"; throws penink::Error(stage "render") otherwise.

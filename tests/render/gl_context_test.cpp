@@ -4,6 +4,7 @@
 
 #include "core/error.hpp"
 #include "render/gl_context.hpp"
+#include "render/gl_library.hpp"
 
 using namespace penink;
 
@@ -26,5 +27,25 @@ TEST(GlContext, BackendNames) {
         FAIL();
     } catch (const Error& e) {
         EXPECT_STREQ(e.what(), "penink: render: unknown OpenGL backend \"vulkan\" (use osmesa or egl)");
+    }
+}
+
+// The GL libraries are opened at context creation (gl_library.hpp): a library that does not load
+// and a symbol it lacks are errors naming the library.
+TEST(GlContext, LibraryAndSymbolErrorsNameTheLibrary) {
+    try {
+        SharedLibrary missing({"libpenink-no-such-gl.so.9"});
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_STREQ(e.what(), "penink: render: libpenink-no-such-gl.so.9: cannot load the OpenGL library "
+                               "(libpenink-no-such-gl.so.9: cannot open shared object file: No such file or directory)");
+    }
+    const OsMesaLibrary osmesa;
+    EXPECT_NE(osmesa.GetProcAddress, nullptr);
+    try {
+        osmesa.lib.symbol("OSMesaNoSuchEntryPoint");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_STREQ(e.what(), "penink: render: libOSMesa.so.8: has no OSMesaNoSuchEntryPoint");
     }
 }
