@@ -6,6 +6,11 @@
 # Usage: bench/compare_grass.sh [DEM] [EPSG]          agreement + timing
 #        bench/compare_grass.sh --synthetic N [EPSG]  timing only, on an N x N fractal DEM
 #                                                     (r.surf.fractal, 10 m cells, GeoTIFF)
+#        bench/compare_grass.sh --refined RES DEM EPSG  timing only, on DEM resampled bicubically
+#                                                     (r.resamp.interp) to cells of RES (CRS units,
+#                                                     or d:m:s for degrees), e.g. a real landscape
+#                                                     of millions of cells: --refined 0:00:00.6
+#                                                     ../shared/data/jacksboro.tif 4326
 # env: PENINK=path/to/penink (default build/penink), REPEAT=3 (best of REPEAT runs is reported).
 #
 # Comparison sets (interior cells = not on the border, no nodata neighbour), all on the DEM:
@@ -29,11 +34,16 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 penink=${PENINK:-$root/build/penink}
 repeat=${REPEAT:-3}
 synthetic=0
+refined=""
 if [ "${1:-}" = "--synthetic" ]; then synthetic=${2:?size}; shift 2; fi
+if [ "${1:-}" = "--refined" ]; then refined=${2:?resolution}; shift 2; fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 if [ "$synthetic" -gt 0 ]; then
     dem=$tmp/fractal.tif; epsg=${1:-2193}
+elif [ -n "$refined" ]; then
+    source_dem=$(realpath "${1:?DEM}"); dem=$tmp/refined.tif; epsg=${2:?EPSG}
+    synthetic=1  # timing only
 else
     dem=$(realpath "${1:-$root/examples/volcano.asc}"); epsg=${2:-2193}
 fi
@@ -44,7 +54,13 @@ fi
 
 cat >"$tmp/inside.sh" <<INSIDE
 set -e
-if [ $synthetic -gt 0 ]; then
+if [ -n "$refined" ]; then
+    r.in.gdal -o --quiet input="$source_dem" output=source
+    g.region raster=source
+    g.region nsres=$refined ewres=$refined
+    r.resamp.interp --quiet input=source output=dem method=bicubic
+    r.out.gdal --quiet -c -f input=dem output="$dem" format=GTiff type=Float32
+elif [ $synthetic -gt 0 ]; then
     g.region -s n=$((5000000 + synthetic * 10)) s=5000000 e=$((1700000 + synthetic * 10)) w=1700000 res=10
     r.surf.fractal --quiet output=frac dimension=2.05 number=0
     r.mapcalc --quiet expression="dem = float(frac * 0.05)" # metres, plenty of pits and flats
