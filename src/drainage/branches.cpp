@@ -75,6 +75,10 @@ struct Tracer {
     GridShape shape{g.cols, g.rows, g.valid.data()};
 
     bool is_head(std::size_t h) const { return g.valid[h] && indeg[h] != 1; }
+    [[noreturn]] static void overflow() {
+        throw Error("drainage", "", "branch vertices overflow the database (a point on two branches)",
+                    ExitCode::internal);
+    }
 
     // The branch headed at cell h: its vertices appended to `out`, its record (first left 0).
     DvBranch trace(std::size_t h, std::vector<DvVertex>& out) const {
@@ -105,6 +109,7 @@ struct Tracer {
             if (!is_head(h)) continue;
             run.clear();
             DvBranch b = trace(h, run);
+            if (run.size() > db.vertices.size() - at) overflow();
             b.first = std::uint32_t(at);
             std::copy(run.begin(), run.end(), db.vertices.begin() + std::ptrdiff_t(at));
             at += run.size();
@@ -121,6 +126,7 @@ struct Tracer {
             if (!is_head(h)) continue;
             run.clear();
             DvBranch b = trace(h, run);
+            if (run.size() > end) overflow();
             end -= run.size();
             b.first = std::uint32_t(end);
             std::copy(run.begin(), run.end(), db.vertices.begin() + std::ptrdiff_t(end));
