@@ -157,14 +157,6 @@ glm::dvec2 scaled_node(const Raster& r, double unit, double offset_x, int c, int
     return {p.x * unit + offset_x, p.y * unit};
 }
 
-// Every node centre, scaled_node in row-major order.
-std::vector<glm::dvec2> node_coordinates(const Raster& r, double unit, double offset_x) {
-    std::vector<glm::dvec2> xy(std::size_t(r.w) * r.h);
-    for (int row = 0; row < r.h; ++row)
-        for (int c = 0; c < r.w; ++c) xy[std::size_t(row) * r.w + c] = scaled_node(r, unit, offset_x, c, row);
-    return xy;
-}
-
 // World (projected CRS) coordinates of the nodes: projected to UTM for a geographic DEM
 // (utm_projection.hpp),
 // else scaled_node with `unit` computed when asked (no per-node array for a projected grid).
@@ -176,10 +168,13 @@ struct WorldXY {
     }
 };
 
-// Projects lon/lat degrees (in place) to UTM/UPS; fills the world CRS of `t`.
-void project_geographic(std::vector<glm::dvec2>& xy, int w, const DemOptions& options, Terrain& t,
-                        const std::string& path) {
-    const glm::dvec2 centre = 0.5 * (xy.front() + xy.back());
+// The nodes (lon/lat degrees: scaled_node with unit and prime meridian) projected to UTM/UPS;
+// fills the world CRS of `t`.
+std::vector<glm::dvec2> project_geographic(const Raster& r, double unit, double meridian, const DemOptions& options,
+                                           Terrain& t, const std::string& path) {
+    const NodeLonLat lonlat = [&](int c, int row) { return scaled_node(r, unit, meridian, c, row); };
+    const glm::dvec2 centre = 0.5 * (lonlat(0, 0) + lonlat(r.w - 1, r.h - 1));
+    std::vector<glm::dvec2> xy;
     int zone = options.utm_zone;
     bool north = options.north;
     try {
@@ -187,13 +182,14 @@ void project_geographic(std::vector<glm::dvec2>& xy, int w, const DemOptions& op
             zone = GeographicLib::UTMUPS::StandardZone(centre.y, centre.x);
             north = centre.y >= 0.0;
         }
-        project_rows_to_utm(xy, w, zone, north);
+        xy = project_grid_to_utm(r.w, r.h, lonlat, zone, north);
     } catch (const GeographicLib::GeographicErr& e) {
         fail(path, "DEM cannot be projected to UTM zone " + std::to_string(zone) + (north ? "N" : "S") +
                        ": " + e.what());
     }
     t.utm_zone = zone, t.north = north;
     t.crs_wkt = utm_wkt(zone, north);
+    return xy;
 }
 
 // Node coordinates in the world CRS (metres); sets crs_wkt, utm_zone, north.
@@ -203,9 +199,8 @@ WorldXY world_coordinates(const Raster& r, const DemOptions& options, Terrain& t
     if (r.srs->IsGeographic()) {
         const double deg = r.srs->GetAngularUnits(nullptr) * 180.0 / pi;
         const double unit = std::abs(deg - 1.0) < 1e-9 ? 1.0 : deg;
-        w.projected = node_coordinates(r, unit, r.srs->GetPrimeMeridian(nullptr));
         t.source_geographic = true;
-        project_geographic(w.projected, r.w, options, t, path);
+        w.projected = project_geographic(r, unit, r.srs->GetPrimeMeridian(nullptr), options, t, path);
         return w;
     }
     int north = 1;

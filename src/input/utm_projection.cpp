@@ -1,6 +1,7 @@
 #include "input/utm_projection.hpp"
 
 #include <algorithm>
+#include <array>
 #include <future>
 #include <thread>
 
@@ -31,43 +32,67 @@ glm::dvec2 lagrange4(const int* s, const glm::dvec2* v, int c) {
     return sum;
 }
 
-// One row of w nodes: exact at the sample columns (multiples of step, and w - 1), cubic between.
-void project_row(glm::dvec2* row, int w, int zone, bool north, int step) {
+// Weights of the cubic through equally spaced samples at -1, 0, 1, 2 (units of the step) at
+// t = k / step, k = 1 .. step - 1: the same for every interior interval of every row.
+std::vector<std::array<double, 4>> uniform_weights(int step) {
+    std::vector<std::array<double, 4>> w(std::size_t(std::max(step, 1)));
+    for (int k = 1; k < step; ++k) {
+        const double t = double(k) / step;
+        w[std::size_t(k)] = {-t * (t - 1) * (t - 2) / 6, (t + 1) * (t - 1) * (t - 2) / 2,
+                             -(t + 1) * t * (t - 2) / 2, (t + 1) * t * (t - 1) / 6};
+    }
+    return w;
+}
+
+// One row of w nodes: exact at the sample columns (multiples of step, and w - 1), cubic between
+// (precomputed weights where the four samples are equally spaced, general Lagrange at the ends).
+void project_row(glm::dvec2* row, int w, int r, const NodeLonLat& lonlat, int zone, bool north, int step,
+                 const std::vector<std::array<double, 4>>& weights) {
     if (step <= 1 || w < 4 * step) {
-        for (int c = 0; c < w; ++c) row[c] = project_node(row[c], zone, north);
+        for (int c = 0; c < w; ++c) row[c] = project_node(lonlat(c, r), zone, north);
         return;
     }
     std::vector<int> s;
     for (int c = 0; c < w - 1; c += step) s.push_back(c);
     s.push_back(w - 1);
     std::vector<glm::dvec2> v(s.size());
-    for (std::size_t i = 0; i < s.size(); ++i) v[i] = project_node(row[s[i]], zone, north);
+    for (std::size_t i = 0; i < s.size(); ++i) v[i] = project_node(lonlat(s[i], r), zone, north);
     for (std::size_t i = 0; i + 1 < s.size(); ++i) {
         // the window of four samples around interval i, shifted inwards at the row's ends
         const std::size_t first = std::min(i == 0 ? 0 : i - 1, s.size() - 4);
+        const bool uniform = first + 1 == i && s[first + 3] - s[first] == 3 * step;
         row[s[i]] = v[i];
-        for (int c = s[i] + 1; c < s[i + 1]; ++c) row[c] = lagrange4(&s[first], &v[first], c);
+        for (int c = s[i] + 1; c < s[i + 1]; ++c) {
+            if (!uniform) { row[c] = lagrange4(&s[first], &v[first], c); continue; }
+            const std::array<double, 4>& k = weights[std::size_t(c - s[i])];
+            row[c] = k[0] * v[first] + k[1] * v[first + 1] + k[2] * v[first + 2] + k[3] * v[first + 3];
+        }
     }
     row[w - 1] = v.back();
 }
 
 }  // namespace
 
-void project_rows_to_utm(std::vector<glm::dvec2>& lonlat, int w, int zone, bool north, int step) {
-    const std::size_t rows = w > 0 ? lonlat.size() / std::size_t(w) : 0;
+std::vector<glm::dvec2> project_grid_to_utm(int w, int h, const NodeLonLat& lonlat, int zone, bool north,
+                                            int step) {
+    std::vector<glm::dvec2> out(std::size_t(std::max(w, 0)) * std::size_t(std::max(h, 0)));
+    const std::size_t rows = std::size_t(std::max(h, 0));
     const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 16);
-    const std::size_t chunks = std::min(rows, lonlat.size() < 20000 ? std::size_t(1) : threads);
-    if (chunks == 0) return;
+    const std::size_t chunks = std::min(rows, out.size() < 20000 ? std::size_t(1) : threads);
+    if (chunks == 0) return out;
     const std::size_t per = (rows + chunks - 1) / chunks;
+    const std::vector<std::array<double, 4>> weights = uniform_weights(step);
     std::vector<std::future<void>> jobs;
     for (std::size_t r0 = 0; r0 < rows; r0 += per) {
         const std::size_t r1 = std::min(rows, r0 + per);
         jobs.push_back(std::async(std::launch::async, [&, r0, r1] {
-            for (std::size_t r = r0; r < r1; ++r) project_row(lonlat.data() + r * std::size_t(w), w, zone, north, step);
+            for (std::size_t r = r0; r < r1; ++r)
+                project_row(out.data() + r * std::size_t(w), w, int(r), lonlat, zone, north, step, weights);
         }));
     }
     for (auto& j : jobs) j.wait();
     for (auto& j : jobs) j.get();
+    return out;
 }
 
 }  // namespace penink

@@ -6,16 +6,21 @@
 // by < 1 µm (tests/input/utm_projection_test.cpp), at about a tenth of the cost. Rows are
 // projected in parallel chunks; the result does not depend on the number of threads.
 #pragma once
+#include <functional>
 #include <vector>
 
 #include <glm/vec2.hpp>
 
 namespace penink {
 
-// In place: lonlat[i] = (longitude, latitude) in degrees -> (easting, northing) in metres.
-// step 1 projects every node. Throws GeographicLib::GeographicErr when a node cannot be
-// projected (the first and last node of every row are always projected exactly, so a row
-// leaving the zone's range is caught: longitude and latitude are linear along a row).
-void project_rows_to_utm(std::vector<glm::dvec2>& lonlat, int w, int zone, bool north, int step = 16);
+// lonlat(c, r) = (longitude, latitude) in degrees of node (c, r), linear in c along a row (an
+// affine grid); asked only at the exactly projected nodes.
+using NodeLonLat = std::function<glm::dvec2(int c, int r)>;
+
+// (easting, northing) in metres of the w x h nodes, row-major. step 1 projects every node.
+// Throws GeographicLib::GeographicErr when a node cannot be projected (the first and last node
+// of every row are always projected exactly, so a row leaving the zone's range is caught).
+std::vector<glm::dvec2> project_grid_to_utm(int w, int h, const NodeLonLat& lonlat, int zone, bool north,
+                                            int step = 16);
 
 }  // namespace penink

@@ -30,13 +30,17 @@ std::vector<glm::dvec2> grid(int w, const std::vector<double>& lats, double lon0
     return ll;
 }
 
-double max_error(std::vector<glm::dvec2> ll, int w, int zone, bool north, int step = 16) {
-    const std::vector<glm::dvec2> in = ll;
-    project_rows_to_utm(ll, w, zone, north, step);
+std::vector<glm::dvec2> project(const std::vector<glm::dvec2>& ll, int w, int zone, bool north, int step = 16) {
+    const int h = int(ll.size()) / w;
+    return project_grid_to_utm(w, h, [&](int c, int r) { return ll[std::size_t(r) * w + c]; }, zone, north, step);
+}
+
+double max_error(const std::vector<glm::dvec2>& ll, int w, int zone, bool north, int step = 16) {
+    const std::vector<glm::dvec2> out = project(ll, w, zone, north, step);
     double worst = 0.0;
-    for (std::size_t i = 0; i < in.size(); ++i) {
-        const glm::dvec2 e = exact(in[i], zone, north);
-        worst = std::max({worst, std::abs(ll[i].x - e.x), std::abs(ll[i].y - e.y)});
+    for (std::size_t i = 0; i < ll.size(); ++i) {
+        const glm::dvec2 e = exact(ll[i], zone, north);
+        worst = std::max({worst, std::abs(out[i].x - e.x), std::abs(out[i].y - e.y)});
     }
     return worst;
 }
@@ -67,8 +71,8 @@ TEST(UtmProjection, ShortRowsAndStepOneAreExact) {
 
 TEST(UtmProjection, ANodeOutsideTheZonesRangeThrows) {
     // jacksboro's longitudes forced into zone 40 (57 E): GeographicLib refuses, as it does node by node
-    std::vector<glm::dvec2> ll = grid(400, {36.7}, -84.4, 3.0 / 3600.0, 0.0);
-    EXPECT_THROW(project_rows_to_utm(ll, 400, 40, true), GeographicLib::GeographicErr);
+    const std::vector<glm::dvec2> ll = grid(400, {36.7}, -84.4, 3.0 / 3600.0, 0.0);
+    EXPECT_THROW(project(ll, 400, 40, true), GeographicLib::GeographicErr);
 }
 
 }  // namespace
