@@ -6,12 +6,13 @@
 #include <optional>
 #include <regex>
 
-#include <GeographicLib/UTMUPS.hpp>
+#include <GeographicLib/Constants.hpp>
 #include <cpl_error.h>
 #include <ogr_spatialref.h>
 
 #include "core/error.hpp"
 #include "input/crs_util.hpp"
+#include "input/utm_projection.hpp"
 
 namespace penink {
 
@@ -69,12 +70,7 @@ std::optional<glm::dvec2> ogr_transform(const OGRSpatialReference& from, const s
 // UTM/UPS easting/northing of lon/lat in the terrain's zone and hemisphere (GeographicLib).
 std::optional<glm::dvec2> lonlat_to_terrain_utm(double lon, double lat, const Terrain& t) {
     try {
-        int zone = 0;
-        bool north = true;
-        double x = 0, y = 0;
-        GeographicLib::UTMUPS::Forward(lat, lon, zone, north, x, y, t.utm_zone);
-        if (north != t.north) GeographicLib::UTMUPS::Transfer(zone, north, x, y, zone, t.north, x, y, zone);
-        return glm::dvec2(x, y);
+        return project_to_utm({lon, lat}, t.utm_zone, t.north);
     } catch (const GeographicLib::GeographicErr&) {
         return std::nullopt;
     }

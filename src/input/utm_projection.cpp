@@ -11,15 +11,6 @@ namespace penink {
 
 namespace {
 
-glm::dvec2 project_node(glm::dvec2 lonlat, int zone, bool north) {
-    int z = 0;
-    bool n = true;
-    double x = 0, y = 0, gamma = 0, k = 0;
-    GeographicLib::UTMUPS::Forward(lonlat.y, lonlat.x, z, n, x, y, gamma, k, zone);
-    if (n != north) GeographicLib::UTMUPS::Transfer(z, n, x, y, z, north, x, y, z);
-    return {x, y};
-}
-
 // Cubic through the exact nodes s[0..3] (columns) with values v[0..3], at column c.
 glm::dvec2 lagrange4(const int* s, const glm::dvec2* v, int c) {
     glm::dvec2 sum(0.0);
@@ -49,14 +40,14 @@ std::vector<std::array<double, 4>> uniform_weights(int step) {
 void project_row(glm::dvec2* row, int w, int r, const NodeLonLat& lonlat, int zone, bool north, int step,
                  const std::vector<std::array<double, 4>>& weights) {
     if (step <= 1 || w < 4 * step) {
-        for (int c = 0; c < w; ++c) row[c] = project_node(lonlat(c, r), zone, north);
+        for (int c = 0; c < w; ++c) row[c] = project_to_utm(lonlat(c, r), zone, north);
         return;
     }
     std::vector<int> s;
     for (int c = 0; c < w - 1; c += step) s.push_back(c);
     s.push_back(w - 1);
     std::vector<glm::dvec2> v(s.size());
-    for (std::size_t i = 0; i < s.size(); ++i) v[i] = project_node(lonlat(s[i], r), zone, north);
+    for (std::size_t i = 0; i < s.size(); ++i) v[i] = project_to_utm(lonlat(s[i], r), zone, north);
     for (std::size_t i = 0; i + 1 < s.size(); ++i) {
         // the window of four samples around interval i, shifted inwards at the row's ends
         const std::size_t first = std::min(i == 0 ? 0 : i - 1, s.size() - 4);
@@ -72,6 +63,15 @@ void project_row(glm::dvec2* row, int w, int r, const NodeLonLat& lonlat, int zo
 }
 
 }  // namespace
+
+glm::dvec2 project_to_utm(glm::dvec2 lonlat, int zone, bool north) {
+    int z = 0;
+    bool n = true;
+    double x = 0, y = 0, gamma = 0, k = 0;
+    GeographicLib::UTMUPS::Forward(lonlat.y, lonlat.x, z, n, x, y, gamma, k, zone);
+    if (n != north) GeographicLib::UTMUPS::Transfer(z, n, x, y, z, north, x, y, z);
+    return {x, y};
+}
 
 std::vector<glm::dvec2> project_grid_to_utm(int w, int h, const NodeLonLat& lonlat, int zone, bool north,
                                             int step) {

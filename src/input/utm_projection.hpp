@@ -13,6 +13,11 @@
 
 namespace penink {
 
+// One point: (longitude, latitude) in degrees -> (easting, northing) in metres in UTM/UPS `zone`,
+// transferred to hemisphere `north` when the point lies in the other one. Throws
+// GeographicLib::GeographicErr when it cannot be projected in that zone.
+glm::dvec2 project_to_utm(glm::dvec2 lonlat, int zone, bool north);
+
 // lonlat(c, r) = (longitude, latitude) in degrees of node (c, r), linear in c along a row (an
 // affine grid); asked only at the exactly projected nodes.
 using NodeLonLat = std::function<glm::dvec2(int c, int r)>;
