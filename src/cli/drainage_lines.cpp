@@ -72,7 +72,7 @@ void parallel_ranges(std::size_t n, F&& f) {
 
 // Lays the polylines (vertex index lists) out contiguously, smooths them (line ends that meet
 // another line's interior follow it) and drapes them on the PN surface, ready for a DM pass.
-ScoredLineSet make_line_set(const std::vector<DvVertex>& vertices,
+ScoredLineSet make_line_set(const DvVertices& vertices,
                             const std::vector<std::vector<std::uint32_t>>& lines,
                             const TerrainLocator& locator, int smoothing) {
     ScoredLineSet set;
@@ -131,7 +131,7 @@ std::vector<Stroke> line_strokes(const ScoredLineSet& set, const std::vector<flo
 // The pieces of each line inside the plan box [lo, hi] (one vertex beyond it at each cut, so
 // lines run to the edge): a view cropped to part of a large DEM scores only what it models.
 std::vector<std::vector<std::uint32_t>> lines_in_box(const std::vector<std::vector<std::uint32_t>>& lines,
-                                                     const std::vector<DvVertex>& v, glm::vec2 lo, glm::vec2 hi) {
+                                                     const DvVertices& v, glm::vec2 lo, glm::vec2 hi) {
     std::vector<std::vector<std::uint32_t>> out;
     const auto inside = [&](std::uint32_t i) {
         return v[i].x >= lo.x && v[i].x <= hi.x && v[i].y >= lo.y && v[i].y <= hi.y;

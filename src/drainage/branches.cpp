@@ -151,7 +151,8 @@ void build_branches(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
     const std::size_t heads = rank.bits.empty() ? 0 : rank.before.back() + std::popcount(rank.bits.back());
     std::size_t valid = 0;
     for (std::uint8_t v : g.valid) valid += v;
-    db.vertices.assign(valid + heads - net.outlet.size(), DvVertex{});
+    db.vertices.clear();
+    db.vertices.resize(valid + heads - net.outlet.size());  // untouched: the threads fault their halves
     db.branches.assign(heads, DvBranch{});
     std::vector<double> totals(net.outlet.size());
     for (std::size_t b = 0; b < totals.size(); ++b) totals[b] = net.acc[net.outlet[b]];
@@ -220,7 +221,7 @@ DvVertex corner_vertex(const DrainageGrid& g, int i, int j) {
             if (c < 0 || r < 0 || c >= g.cols || r >= g.rows || !g.valid[g.index(c, r)]) continue;
             sum += grid_xy(g, c, r), zmax = std::max(zmax, g.z[g.index(c, r)]), ++n;
         }
-    DvVertex v;
+    DvVertex v{};
     v.x = float(sum.x / n), v.y = float(sum.y / n), v.z = zmax;
     return v;
 }

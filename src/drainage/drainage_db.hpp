@@ -5,6 +5,8 @@
 // documented in drainage_db.cpp and docs of write_drainage_db.
 #pragma once
 #include <cstdint>
+#include <memory>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -12,12 +14,30 @@
 
 namespace penink {
 
-// 16 bytes; a vertex's basin and Strahler order are its branch's (DvBranch).
+// 16 bytes; a vertex's basin and Strahler order are its branch's (DvBranch). Trivial (no member
+// initialisers): DvVertex{} is all zeros, a DvVertices element made by resize is left as the
+// memory was (see UninitAllocator).
 struct DvVertex {
-    float x = 0, y = 0, z = 0;  // local metres (z = original, unfilled elevation)
-    float flow = 0;             // accumulation / basin total, in (0, 1]; 0 on divides
+    float x, y, z;  // local metres (z = original, unfilled elevation)
+    float flow;     // accumulation / basin total, in (0, 1]; 0 on divides
     bool operator==(const DvVertex&) const = default;
 };
+
+// std::allocator whose construct without arguments default-initialises (a no-op for trivial
+// types) instead of value-initialising, so vector::resize claims memory without touching it:
+// the threads that fill a large array then take its first-touch page faults in parallel.
+template <class T> struct UninitAllocator : std::allocator<T> {
+    template <class U> struct rebind {
+        using other = UninitAllocator<U>;
+    };
+    UninitAllocator() = default;
+    template <class U> UninitAllocator(const UninitAllocator<U>&) noexcept {}
+    template <class U, class... A> void construct(U* p, A&&... args) {
+        if constexpr (sizeof...(A) == 0) ::new (static_cast<void*>(p)) U;
+        else ::new (static_cast<void*>(p)) U(std::forward<A>(args)...);
+    }
+};
+using DvVertices = std::vector<DvVertex, UninitAllocator<DvVertex>>;
 
 // A run of drainage points from a source (ridge point) or junction down to the next junction or
 // outlet; a branch ending at a junction repeats the junction as its last vertex.
@@ -52,10 +72,10 @@ struct DrainageDb {
     std::int32_t cols = 0, rows = 0, factor = 1;  // drainage grid
     glm::dvec2 origin{0.0};                        // projected easting/northing of local (0, 0)
     std::string crs_wkt;
-    std::vector<DvVertex> vertices;
+    DvVertices vertices;
     std::vector<DvBranch> branches;
     std::vector<std::uint32_t> upstream;  // upstream branch ids, referenced by DvBranch
-    std::vector<DvVertex> divide_vertices;
+    DvVertices divide_vertices;
     std::vector<DvPolyline> divides;
     bool operator==(const DrainageDb&) const = default;
 };
