@@ -43,6 +43,51 @@ TEST(Branches, TreeSplitsAtJunctions) {
     EXPECT_EQ(up, (std::vector<std::uint32_t>{8, 9, 11}));  // heads at cells 8, 9 and 11
 }
 
+// The two tracing threads (north half forward, south half backward in one array) give what one
+// walk in cell order gives: on a 61 x 47 grid of hashed heights (pits, ties, many basins), branch
+// b starts at the b-th head cell in row-major order, follows the directions to the next head
+// (repeated as its last vertex, whose branch is `downstream`) or an outlet, and its vertices
+// carry the cell's position, elevation and flow, laid out one branch after another.
+TEST(Branches, TwoThreadsGiveTheSequentialWalk) {
+    const int cols = 61, rows = 47;
+    std::vector<float> z(std::size_t(cols) * rows);
+    for (std::size_t i = 0; i < z.size(); ++i)
+        z[i] = float((i * 2654435761u >> 7) % 13) + 0.05f * float(i / cols);  // terraced noise
+    DrainageGrid g = make_regular_grid(cols, rows, 10.0, z);
+    DrainageResult res;
+    const DrainageDb db = drainage_db_from_grid(g, {}, &res);
+    const GridShape s{cols, rows, g.valid.data()};
+    const std::vector<std::uint8_t> indeg = inflow_counts(res.dir, s);
+    std::vector<std::int64_t> branch_of(z.size(), -1);
+    std::int64_t next = 0;
+    for (std::size_t h = 0; h < z.size(); ++h)
+        if (indeg[h] != 1) branch_of[h] = next++;
+    ASSERT_EQ(std::size_t(next), db.branches.size());
+    ASSERT_GT(next, 500);  // both halves hold many branches
+    std::size_t first = 0;
+    for (std::size_t h = 0; h < z.size(); ++h) {
+        if (branch_of[h] < 0) continue;
+        const DvBranch& b = db.branches[std::size_t(branch_of[h])];
+        ASSERT_EQ(b.first, first) << h;
+        std::size_t c = h, k = 0;
+        bool at_junction = false;
+        for (;; ++k) {
+            const DvVertex& v = db.vertices[b.first + k];
+            EXPECT_EQ(v.x, float(double(c % cols) * 10.0)) << h << " " << k;
+            EXPECT_EQ(v.y, float(-double(c / cols) * 10.0)) << h << " " << k;
+            EXPECT_EQ(v.z, g.z[c]) << h << " " << k;
+            EXPECT_EQ(v.flow, normalised_flow(res.net, c)) << h << " " << k;
+            if ((at_junction = k > 0 && indeg[c] != 1)) break;  // the end junction
+            if (!res.dir[c]) break;             // an outlet
+            c = d8_target(s, c, res.dir[c]);
+        }
+        EXPECT_EQ(b.count, k + 1) << h;
+        EXPECT_EQ(b.downstream, at_junction ? branch_of[c] : -1) << h;
+        first += b.count;
+    }
+    EXPECT_EQ(first, db.vertices.size());
+}
+
 TEST(Divides, RidgeBetweenTwoBasins) {
     DrainageGrid g = make_regular_grid(5, 3, 1.0, {3, 4, 5, 4, 3, 2, 3, 4, 3, 2, 3, 4, 5, 4, 3});
     DrainageResult res;
