@@ -82,7 +82,8 @@ struct Tracer {
 
     // The branch headed at cell h: its vertices appended to `out`, its record (first left 0).
     DvBranch trace(std::size_t h, std::vector<DvVertex>& out) const {
-        DvBranch b;
+        DvBranch b{};
+        b.downstream = -1;
         b.basin = net.basin[h], b.order = net.order[h];
         // a flow path stays in its basin: one basin total for the branch and its end
         const double total = basin_total[b.basin - 1];
@@ -153,7 +154,8 @@ void build_branches(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
     for (std::uint8_t v : g.valid) valid += v;
     db.vertices.clear();
     db.vertices.resize(valid + heads - net.outlet.size());  // untouched: the threads fault their halves
-    db.branches.assign(heads, DvBranch{});
+    db.branches.clear();
+    db.branches.resize(heads);  // untouched: every record is written by the thread tracing it
     std::vector<double> totals(net.outlet.size());
     for (std::size_t b = 0; b < totals.size(); ++b) totals[b] = net.acc[net.outlet[b]];
     const Tracer tracer{g, dir, net, indeg, rank, std::move(totals)};

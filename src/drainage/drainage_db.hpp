@@ -40,15 +40,17 @@ template <class T> struct UninitAllocator : std::allocator<T> {
 using DvVertices = std::vector<DvVertex, UninitAllocator<DvVertex>>;
 
 // A run of drainage points from a source (ridge point) or junction down to the next junction or
-// outlet; a branch ending at a junction repeats the junction as its last vertex.
+// outlet; a branch ending at a junction repeats the junction as its last vertex. Trivial like
+// DvVertex (DvBranch{} is all zeros: set downstream to -1 for an outlet branch).
 struct DvBranch {
-    std::uint32_t first = 0, count = 0;      // vertices [first, first + count)
-    std::int32_t downstream = -1;            // branch starting at the end junction, -1 at outlets
-    std::uint32_t up_first = 0, up_count = 0;  // upstream branch ids in DrainageDb::upstream
-    std::uint32_t basin = 0;
-    std::uint8_t order = 0;                  // Strahler order of the branch
+    std::uint32_t first, count;          // vertices [first, first + count)
+    std::int32_t downstream;             // branch starting at the end junction, -1 at outlets
+    std::uint32_t up_first, up_count;    // upstream branch ids in DrainageDb::upstream
+    std::uint32_t basin;
+    std::uint8_t order;                  // Strahler order of the branch
     bool operator==(const DvBranch&) const = default;
 };
+using DvBranches = std::vector<DvBranch, UninitAllocator<DvBranch>>;
 
 struct DvPolyline {
     std::uint32_t first = 0, count = 0;  // vertices in DrainageDb::divide_vertices
@@ -73,7 +75,7 @@ struct DrainageDb {
     glm::dvec2 origin{0.0};                        // projected easting/northing of local (0, 0)
     std::string crs_wkt;
     DvVertices vertices;
-    std::vector<DvBranch> branches;
+    DvBranches branches;
     std::vector<std::uint32_t> upstream;  // upstream branch ids, referenced by DvBranch
     DvVertices divide_vertices;
     std::vector<DvPolyline> divides;

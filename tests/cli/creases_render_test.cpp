@@ -269,7 +269,7 @@ namespace {
 
 // Branch from `from` in `steps` 10 m steps of `dir` (order, downstream as given).
 void add_branch(DrainageDb& db, glm::vec2 from, glm::vec2 dir, int steps, std::uint8_t order, std::int32_t down) {
-    DvBranch b;
+    DvBranch b{};
     b.first = std::uint32_t(db.vertices.size()), b.count = std::uint32_t(steps + 1);
     b.order = order, b.downstream = down, b.basin = 1;
     for (int k = 0; k <= steps; ++k) {

@@ -26,7 +26,7 @@ struct BranchSpec {
 DrainageDb make_db(const std::vector<BranchSpec>& spec) {
     DrainageDb db;
     for (const BranchSpec& s : spec) {
-        DvBranch b;
+        DvBranch b{};
         b.first = std::uint32_t(db.vertices.size());
         b.count = std::uint32_t(s.xy.size());
         b.order = s.order, b.downstream = s.downstream, b.basin = 1;
