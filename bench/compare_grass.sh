@@ -35,6 +35,7 @@ penink=${PENINK:-$root/build/penink}
 repeat=${REPEAT:-3}
 synthetic=0
 refined=""
+source_dem=""
 if [ "${1:-}" = "--synthetic" ]; then synthetic=${2:?size}; shift 2; fi
 if [ "${1:-}" = "--refined" ]; then refined=${2:?resolution}; shift 2; fi
 tmp=$(mktemp -d)
