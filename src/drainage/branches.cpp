@@ -137,6 +137,32 @@ struct Tracer {
     }
 };
 
+// North heads (cells before `mid`) forward from the start of db.vertices on this thread, south
+// heads backward from its end on a second one; the two must meet exactly.
+void trace_halves(const Tracer& tracer, std::size_t mid, DrainageDb& db) {
+    std::size_t south_start = 0;
+    std::exception_ptr south_error;
+    std::thread south([&] {
+        try {
+            south_start = tracer.backward(mid, tracer.g.size(), db.vertices.size(), db);
+        } catch (...) {
+            south_error = std::current_exception();
+        }
+    });
+    std::size_t north_end = 0;
+    try {
+        north_end = tracer.forward(0, mid, 0, db);
+    } catch (...) {
+        south.join();
+        throw;
+    }
+    south.join();
+    if (south_error) std::rethrow_exception(south_error);
+    if (north_end != south_start)
+        throw Error("drainage", "", "branch vertices do not fill the database (a point off every branch)",
+                    ExitCode::internal);
+}
+
 }  // namespace
 
 // Sizes are known before tracing: every valid point is stored once, plus the repeated end
@@ -158,29 +184,7 @@ void build_branches(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
     db.branches.resize(heads);  // untouched: every record is written by the thread tracing it
     std::vector<double> totals(net.outlet.size());
     for (std::size_t b = 0; b < totals.size(); ++b) totals[b] = net.acc[net.outlet[b]];
-    const Tracer tracer{g, dir, net, indeg, rank, std::move(totals)};
-    const std::size_t mid = std::size_t(g.rows / 2) * g.cols;
-    std::size_t south_start = 0;
-    std::exception_ptr south_error;
-    std::thread south([&] {
-        try {
-            south_start = tracer.backward(mid, g.size(), db.vertices.size(), db);
-        } catch (...) {
-            south_error = std::current_exception();
-        }
-    });
-    std::size_t north_end = 0;
-    try {
-        north_end = tracer.forward(0, mid, 0, db);
-    } catch (...) {
-        south.join();
-        throw;
-    }
-    south.join();
-    if (south_error) std::rethrow_exception(south_error);
-    if (north_end != south_start)
-        throw Error("drainage", "", "branch vertices do not fill the database (a point off every branch)",
-                    ExitCode::internal);
+    trace_halves(Tracer{g, dir, net, indeg, rank, std::move(totals)}, std::size_t(g.rows / 2) * g.cols, db);
     link_upstream(db);
 }
 
