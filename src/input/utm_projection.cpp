@@ -11,32 +11,26 @@ namespace penink {
 
 namespace {
 
-// Cubic through the exact nodes s[0..3] (columns) with values v[0..3], at column c.
-glm::dvec2 lagrange4(const int* s, const glm::dvec2* v, int c) {
-    glm::dvec2 sum(0.0);
-    for (int i = 0; i < 4; ++i) {
-        double l = 1.0;
+// Lagrange weights of the cubic through the nodes at columns s[0..3], evaluated at column c.
+std::array<double, 4> cubic_weights(const int* s, int c) {
+    std::array<double, 4> l{1.0, 1.0, 1.0, 1.0};
+    for (int i = 0; i < 4; ++i)
         for (int j = 0; j < 4; ++j)
-            if (j != i) l *= double(c - s[j]) / double(s[i] - s[j]);
-        sum += l * v[i];
-    }
-    return sum;
+            if (j != i) l[std::size_t(i)] *= double(c - s[j]) / double(s[i] - s[j]);
+    return l;
 }
 
-// Weights of the cubic through equally spaced samples at -1, 0, 1, 2 (units of the step) at
-// t = k / step, k = 1 .. step - 1: the same for every interior interval of every row.
+// The weights for equally spaced nodes (-step, 0, step, 2 step) at k = 1 .. step - 1: the same for
+// every interior interval of every row, so computed once.
 std::vector<std::array<double, 4>> uniform_weights(int step) {
     std::vector<std::array<double, 4>> w(std::size_t(std::max(step, 1)));
-    for (int k = 1; k < step; ++k) {
-        const double t = double(k) / step;
-        w[std::size_t(k)] = {-t * (t - 1) * (t - 2) / 6, (t + 1) * (t - 1) * (t - 2) / 2,
-                             -(t + 1) * t * (t - 2) / 2, (t + 1) * t * (t - 1) / 6};
-    }
+    const int s[4] = {-step, 0, step, 2 * step};
+    for (int k = 1; k < step; ++k) w[std::size_t(k)] = cubic_weights(s, k);
     return w;
 }
 
 // One row of w nodes: exact at the sample columns (multiples of step, and w - 1), cubic between
-// (precomputed weights where the four samples are equally spaced, general Lagrange at the ends).
+// (weights computed once where the four samples are equally spaced, per node at the row's ends).
 void project_row(glm::dvec2* row, int w, int r, const NodeLonLat& lonlat, int zone, bool north, int step,
                  const std::vector<std::array<double, 4>>& weights) {
     if (step <= 1 || w < 4 * step) {
@@ -54,8 +48,7 @@ void project_row(glm::dvec2* row, int w, int r, const NodeLonLat& lonlat, int zo
         const bool uniform = first + 1 == i && s[first + 3] - s[first] == 3 * step;
         row[s[i]] = v[i];
         for (int c = s[i] + 1; c < s[i + 1]; ++c) {
-            if (!uniform) { row[c] = lagrange4(&s[first], &v[first], c); continue; }
-            const std::array<double, 4>& k = weights[std::size_t(c - s[i])];
+            const std::array<double, 4> k = uniform ? weights[std::size_t(c - s[i])] : cubic_weights(&s[first], c);
             row[c] = k[0] * v[first] + k[1] * v[first + 1] + k[2] * v[first + 2] + k[3] * v[first + 3];
         }
     }
