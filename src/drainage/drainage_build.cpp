@@ -98,7 +98,7 @@ DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progres
     if (routing == DrainageRouting::least_cost) {
         report(progress, "least-cost search", 0.05);
         res.dir = least_cost_directions(g.z, shape, g.dx, g.dy);
-        res.stats.working_bytes = 2 * res.dir.size();  // directions + search state (queue aside)
+        res.stats.working_bytes = res.dir.size();  // one byte per cell: search state, then direction (queue aside)
     } else {
         priority_flood_directions(g, shape, progress, res);
     }

@@ -157,9 +157,8 @@ glm::dvec2 scaled_node(const Raster& r, double unit, double offset_x, int c, int
     return {p.x * unit + offset_x, p.y * unit};
 }
 
-// World (projected CRS) coordinates of the nodes: projected to UTM for a geographic DEM
-// (utm_projection.hpp),
-// else scaled_node with `unit` computed when asked (no per-node array for a projected grid).
+// World (projected CRS) coordinates of the nodes: for a geographic DEM projected to UTM
+// (utm_projection.hpp) into one array, else scaled_node with `unit`, computed when asked.
 struct WorldXY {
     double unit = 1.0;
     std::vector<glm::dvec2> projected;  // empty: scaled_node(r, unit, 0, c, row)
