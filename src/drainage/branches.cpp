@@ -76,7 +76,7 @@ struct Tracer {
 
     bool is_head(std::size_t h) const { return g.valid[h] && indeg[h] != 1; }
     [[noreturn]] static void overflow() {
-        throw Error("drainage", "", "branch vertices overflow the database (a point on two branches)",
+        throw Error("drainage", "", "branches overflow the database (a point or a head counted twice)",
                     ExitCode::internal);
     }
 
@@ -103,35 +103,37 @@ struct Tracer {
         return b;
     }
 
-    // Heads in [h0, h1) in cell order, their vertices written forward from `at`; returns the end.
-    std::size_t forward(std::size_t h0, std::size_t h1, std::size_t at, DrainageDb& db) const {
+    // Heads in [h0, h1) in cell order: their vertices written forward from `at`, their records
+    // from branch `id` on (both advanced past them); returns the end of the vertices.
+    std::size_t forward(std::size_t h0, std::size_t h1, std::size_t at, std::uint32_t& id, DrainageDb& db) const {
         std::vector<DvVertex> run;
         for (std::size_t h = h0; h < h1; ++h) {
             if (!is_head(h)) continue;
             run.clear();
             DvBranch b = trace(h, run);
-            if (run.size() > db.vertices.size() - at) overflow();
+            if (run.size() > db.vertices.size() - at || id >= db.branches.size()) overflow();
             b.first = std::uint32_t(at);
             std::copy(run.begin(), run.end(), db.vertices.begin() + std::ptrdiff_t(at));
             at += run.size();
-            db.branches[rank.of(h)] = b;
+            db.branches[id++] = b;
         }
         return at;
     }
 
-    // Heads in [h0, h1) in reverse cell order, their vertices written backward ending at `end`;
-    // returns the start (so the two halves meet with neither gap nor copy).
-    std::size_t backward(std::size_t h0, std::size_t h1, std::size_t end, DrainageDb& db) const {
+    // Heads in [h0, h1) in reverse cell order: their vertices written backward ending at `end`,
+    // their records backward ending before branch `id`; returns the start of the vertices (so the
+    // two halves meet with neither gap nor copy).
+    std::size_t backward(std::size_t h0, std::size_t h1, std::size_t end, std::uint32_t& id, DrainageDb& db) const {
         std::vector<DvVertex> run;
         for (std::size_t h = h1; h-- > h0;) {
             if (!is_head(h)) continue;
             run.clear();
             DvBranch b = trace(h, run);
-            if (run.size() > end) overflow();
+            if (run.size() > end || id == 0) overflow();
             end -= run.size();
             b.first = std::uint32_t(end);
             std::copy(run.begin(), run.end(), db.vertices.begin() + std::ptrdiff_t(end));
-            db.branches[rank.of(h)] = b;
+            db.branches[--id] = b;
         }
         return end;
     }
@@ -141,24 +143,25 @@ struct Tracer {
 // heads backward from its end on a second one; the two must meet exactly.
 void trace_halves(const Tracer& tracer, std::size_t mid, DrainageDb& db) {
     std::size_t south_start = 0;
+    std::uint32_t north_id = 0, south_id = std::uint32_t(db.branches.size());
     std::exception_ptr south_error;
     std::thread south([&] {
         try {
-            south_start = tracer.backward(mid, tracer.g.size(), db.vertices.size(), db);
+            south_start = tracer.backward(mid, tracer.g.size(), db.vertices.size(), south_id, db);
         } catch (...) {
             south_error = std::current_exception();
         }
     });
     std::size_t north_end = 0;
     try {
-        north_end = tracer.forward(0, mid, 0, db);
+        north_end = tracer.forward(0, mid, 0, north_id, db);
     } catch (...) {
         south.join();
         throw;
     }
     south.join();
     if (south_error) std::rethrow_exception(south_error);
-    if (north_end != south_start)
+    if (north_end != south_start || north_id != south_id)
         throw Error("drainage", "", "branch vertices do not fill the database (a point off every branch)",
                     ExitCode::internal);
 }
