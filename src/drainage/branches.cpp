@@ -84,7 +84,7 @@ struct Tracer {
     DvBranch trace(std::size_t h, std::vector<DvVertex>& out) const {
         DvBranch b{};
         b.downstream = -1;
-        b.basin = net.basin[h], b.order = net.order[h];
+        b.basin = net.basin[h], b.order = net.order[h], b.head_acc = net.acc[h];
         // a flow path stays in its basin: one basin total for the branch and its end
         const double total = basin_total[b.basin - 1];
         const std::size_t start = out.size();

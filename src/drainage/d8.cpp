@@ -31,13 +31,24 @@ void directions_row(const float* z, const GridShape& g, const D8Steps& st, int r
             take(i, d8_steepest(z[i], g, c, r, st, [&](std::size_t n) { return z[n]; },
                                 [](std::size_t) { return true; }));
     };
-    if (edge_row || !dense) {
+    if (edge_row) {
         for (int c = 0; c < g.cols; ++c) checked(c);
         return;
     }
     checked(0);
-    for (std::size_t i = row0 + 1; i + 1 < row0 + g.cols; ++i)
-        take(i, d8_steepest_dense(z[i], i, st, [&](std::size_t n) { return z[n]; }));
+    auto zn = [&](std::size_t n) { return z[n]; };
+    if (dense) {
+        for (std::size_t i = row0 + 1; i + 1 < row0 + g.cols; ++i) take(i, d8_steepest_dense(z[i], i, st, zn));
+    } else {  // the dense loop wherever the 3x3 block is all data (e.g. all but a nodata rim)
+        const std::uint8_t* v = g.valid;
+        for (std::size_t i = row0 + 1; i + 1 < row0 + g.cols; ++i) {
+            const std::size_t n = i - g.cols, s = i + g.cols;
+            if (v[n - 1] & v[n] & v[n + 1] & v[i - 1] & v[i] & v[i + 1] & v[s - 1] & v[s] & v[s + 1])
+                take(i, d8_steepest_dense(z[i], i, st, zn));
+            else
+                checked(int(i - row0));
+        }
+    }
     if (g.cols > 1) checked(g.cols - 1);
 }
 

@@ -29,7 +29,7 @@ inline D8Steps d8_steps(const GridShape& g, double dx, double dy) {
 struct D8Choice {
     unsigned steepest = 0;  // bit k for every admissible neighbour k of the steepest slope (> 0)
     std::uint8_t code() const { return std::uint8_t(steepest & -steepest); }  // lowest; 0 = none
-    bool tie() const { return std::popcount(steepest) > 1; }
+    bool tie() const { return (steepest & (steepest - 1)) != 0; }  // two or more bits
 };
 
 // Takes slope s to neighbour k into the running maximum `best` and its set (no branches).

@@ -92,7 +92,7 @@ std::size_t break_d8_ties(std::vector<std::uint32_t>& ties, const std::vector<fl
     for (const std::uint32_t i : ties) {
         if (flags[i] & depression_outflow) continue;
         const unsigned set = t.steepest_set(i);
-        if (std::popcount(set) < 2) continue;
+        if ((set & (set - 1)) == 0) continue;  // fewer than two neighbours
         const std::uint8_t code = t.choose(i, set);
         changed += code != dir[i];
         dir[i] = code;

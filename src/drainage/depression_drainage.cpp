@@ -1,6 +1,7 @@
 #include "drainage/depression_drainage.hpp"
 
 #include <bit>
+#include <vector>
 
 #include "drainage/d8_steepest.hpp"
 #include "drainage/flat_resolution.hpp"
@@ -66,12 +67,19 @@ void drain_rims_into_depressions(const std::vector<float>& filled,
         dir[x] = d.code();
         if (ties && d.tie()) ties->push_back(std::uint32_t(x));
     };
+    // each rim cell (not raised, next to a raised one) once: a bit per cell marks those done
+    std::vector<std::uint64_t> done((g.size() + 63) / 64, 0);
     for (int r = 0; r < g.rows; ++r)
         for (int c = 0; c < g.cols; ++c) {
             if (!(flags[std::size_t(r) * g.cols + c] & fill_raised)) continue;
             for (int k = 0; k < 8; ++k) {
                 const int nc = c + d8_dc[k], nr = r + d8_dr[k];
-                if (nc >= 0 && nr >= 0 && nc < g.cols && nr < g.rows) reaim(nc, nr);
+                if (nc < 0 || nr < 0 || nc >= g.cols || nr >= g.rows) continue;
+                const std::size_t n = std::size_t(nr) * g.cols + nc;
+                const std::uint64_t bit = std::uint64_t(1) << (n & 63);
+                if (done[n >> 6] & bit) continue;
+                done[n >> 6] |= bit;
+                reaim(nc, nr);
             }
         }
 }

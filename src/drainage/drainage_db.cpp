@@ -1,4 +1,4 @@
-// DV file layout (version 4; 2 and 3 lacked the routing u32, all little-endian; compact: what the builder's invariants give is
+// DV file layout (version 5, all little-endian; compact: what the builder's invariants give is
 // not stored, see layout_ok and derived_ok):
 //   char[8]  magic "PNKDV\0\0\0"
 //   u32      format version
@@ -8,12 +8,18 @@
 //            u32 routing
 //   i32 cols, rows, factor; f64 origin easting, northing; u32 n + n bytes of CRS WKT
 //   u64 counts: vertices, branches, upstream links, divide vertices, divides
-//   branches: u32 count; i32 downstream; u32 basin; u8 order                   (13 bytes each)
-//             (first = running sum of counts; upstream lists follow from downstream)
-//   branch vertices: f32 x, y, z, flow (16 bytes each), branch by branch, without the end
-//             junction of a branch with a downstream branch (= that branch's first vertex);
+//   branches: varint count; varint link: 0 for an outlet branch, else zigzag(downstream - own
+//             id); u8 order; varint basin; varint head_acc (varint: LEB128, 7 bits a byte, low
+//             first; zigzag: 2d for d >= 0, -2d - 1 below). first = running sum of counts;
+//             upstream lists follow from the links
+//   branch vertices: f32 x, y, z (12 bytes each), branch by branch, without the end junction of
+//             a branch with a downstream branch (= that branch's first vertex); the flow of
+//             vertex k is (head_acc + k) / the basin's total, the total being the accumulation
+//             at the last vertex of the basin's outlet branch (head_acc + count - 1)
 //   divides: u32 count (first = running sum); divide vertices: f32 x, y, z (flow 0)
 //   u64      hash64 (FNV-1a, 64-bit words) of every byte before it
+// Versions 2-4 stored each vertex's flow (16 bytes) and fixed 13-byte branches without head_acc;
+// 4 added the routing.
 #include "drainage/drainage_db.hpp"
 
 #include <bit>
@@ -21,7 +27,7 @@
 #include <cstdio>
 #include <cstring>
 #include <functional>
-#include <thread>
+#include <future>
 #include <filesystem>
 #include <fstream>
 
@@ -38,28 +44,55 @@ namespace {
 constexpr char magic[8] = {'P', 'N', 'K', 'D', 'V', 0, 0, 0};
 constexpr std::size_t prefix_bytes = 8 + 4 + 4 + 8;  // magic, version, reserved, total length
 
-// Output bytes in a fixed buffer, hashed (hash64 chained over 8-byte aligned chunks, so the
-// result equals hashing the whole file at once) and handed to `out` whenever it fills.
+// Output bytes in a fixed buffer; each full buffer is hashed (hash64 chained over 8-byte aligned
+// chunks, so the result equals hashing the whole file at once) and handed to `out` on a second
+// thread while the next one fills (one buffer in flight, so chunks stay in order).
 struct Sink {
-    std::vector<std::uint8_t> buf = std::vector<std::uint8_t>(std::size_t(1) << 22);
+    std::vector<std::uint8_t> buf = std::vector<std::uint8_t>(std::size_t(1) << 22), spare = buf;
     std::size_t n = 0;
     std::uint64_t hash = hash64(nullptr, 0);
     std::function<void(const std::uint8_t*, std::size_t)> out;
+    std::future<void> flight;
+    ~Sink() {
+        if (flight.valid()) flight.wait();
+    }
     void drain() {  // hands over the whole 8-byte words, keeps the tail
         const std::size_t whole = n & ~std::size_t(7);
-        hash = hash64(buf.data(), whole, hash);
-        out(buf.data(), whole);
-        std::memmove(buf.data(), buf.data() + whole, n - whole);
+        if (flight.valid()) flight.get();
+        std::swap(buf, spare);
+        std::memcpy(buf.data(), spare.data() + whole, n - whole);
+        flight = std::async(std::launch::async, [this, whole] {
+            hash = hash64(spare.data(), whole, hash);
+            out(spare.data(), whole);
+        });
         n -= whole;
     }
+    void room(std::size_t k) {  // at least k bytes free in buf (grown for k larger than it)
+        if (n + k <= buf.size()) return;
+        drain();
+        if (n + k <= buf.size()) return;
+        if (flight.valid()) flight.get();
+        buf.resize(n + k), spare.resize(n + k);
+    }
     void bytes(const void* p, std::size_t k) {
-        if (n + k > buf.size()) drain();
+        room(k);
         std::memcpy(buf.data() + n, p, k);
         n += k;
     }
     template <class T> void put(T v) { bytes(&v, sizeof(T)); }
+    void varint(std::uint64_t v) {
+        std::uint8_t b[10];
+        int k = 0;
+        for (; v >= 0x80; v >>= 7) b[k++] = std::uint8_t(v | 0x80);
+        b[k++] = std::uint8_t(v);
+        bytes(b, std::size_t(k));
+    }
     void finish() {  // hash of every byte so far, appended; everything handed over
-        if (n + 8 > buf.size()) drain();  // a full buffer has no room for the hash
+        if (flight.valid()) flight.get();
+        if (n + 8 > buf.size()) {  // a full buffer has no room for the hash
+            drain();
+            flight.get();
+        }
         hash = hash64(buf.data(), n, hash);
         const std::uint64_t h = hash;
         std::memcpy(buf.data() + n, &h, 8);
@@ -67,6 +100,15 @@ struct Sink {
         n = 0;
     }
 };
+
+std::size_t varint_size(std::uint64_t v) { return (std::size_t(std::bit_width(v | 1)) + 6) / 7; }
+
+// The link of branch `id`: 0 at an outlet, else the zigzag of the step to its downstream branch.
+std::uint64_t branch_link(const DvBranch& b, std::size_t id) {
+    if (b.downstream < 0) return 0;
+    const std::int64_t d = std::int64_t(b.downstream) - std::int64_t(id);
+    return d >= 0 ? std::uint64_t(d) << 1 : (std::uint64_t(-d) << 1) - 1;
+}
 
 struct Reader {
     const std::vector<std::uint8_t>& buf;
@@ -85,18 +127,50 @@ struct Reader {
         pos += sizeof(T);
         return v;
     }
+    std::uint64_t varint() {
+        std::uint64_t v = 0;
+        for (int shift = 0; shift < 64; shift += 7) {
+            need(1);
+            const std::uint8_t b = buf[pos++];
+            v |= std::uint64_t(b & 0x7f) << shift;
+            if (!(b & 0x80)) return v;
+        }
+        corrupt();
+    }
 };
 
+// Accumulation at the outlet of basin b at total[b - 1], from the basin's outlet branch. False
+// unless every basin id is in 1..outlet branches and each outlet branch has its own.
+bool basin_totals(const DrainageDb& db, std::vector<double>& total) {
+    std::size_t outlets = 0;
+    for (const DvBranch& b : db.branches) outlets += b.downstream < 0;
+    total.assign(outlets, 0.0);
+    for (const DvBranch& b : db.branches) {
+        if (b.basin < 1 || b.basin > outlets) return false;
+        if (b.downstream >= 0) continue;
+        if (total[b.basin - 1] != 0.0) return false;
+        total[b.basin - 1] = double(std::uint64_t(b.head_acc) + b.count - 1);
+    }
+    return true;
+}
+
+// Normalised flow at vertex k of branch b (as the builder's normalised_flow gives it).
+float branch_flow(const DvBranch& b, std::uint32_t k, const std::vector<double>& total) {
+    return float(double(std::uint64_t(b.head_acc) + k) / total[b.basin - 1]);
+}
+
 // Whether `db` has the shape drainage_db_from_grid gives it, which the compact layout relies on,
-// in two checks. layout_ok (sequential, run before anything is encoded): branches' and divides'
-// vertices consecutive, downstream links in range. derived_ok (random access, run beside the
-// encoding): a branch ending at a junction repeats the downstream branch's first vertex; upstream
-// lists derived from `downstream` in branch order; divide vertices with flow 0.
+// in two checks. layout_ok (sequential, cheap; encode refuses a database failing it): branches'
+// and divides' vertices consecutive, downstream links in range, basins of the outlet branches
+// numbered 1..outlets. derived_ok (what is not stored; the builder's invariants, checked by
+// drainage_db_canonical): a branch ending at a junction repeats the downstream branch's first
+// vertex; upstream lists derived from `downstream` in branch order; divide vertices with flow 0;
+// vertex flows as head_acc and the basin totals give them (branch_flow).
 bool layout_ok(const DrainageDb& db) {
-    std::size_t next = 0;
+    std::size_t next = 0, id = 0;
     for (const DvBranch& b : db.branches) {
         if (b.first != next || b.count < 1u + (b.downstream >= 0) || b.downstream < -1 ||
-            b.downstream >= std::int64_t(db.branches.size()))
+            b.downstream >= std::int64_t(db.branches.size()) || b.downstream == std::int64_t(id++))
             return false;
         next += b.count;
     }
@@ -106,7 +180,8 @@ bool layout_ok(const DrainageDb& db) {
         if (p.first != next) return false;
         next += p.count;
     }
-    return next == db.divide_vertices.size();
+    std::vector<double> total;
+    return next == db.divide_vertices.size() && basin_totals(db, total);
 }
 
 bool derived_ok(const DrainageDb& db) {
@@ -129,22 +204,31 @@ bool derived_ok(const DrainageDb& db) {
             if (db.upstream[ups[std::size_t(d)]++] != b) return false;
     for (const DvVertex& v : db.divide_vertices)
         if (v.flow != 0.0f) return false;
+    std::vector<double> total;
+    if (!basin_totals(db, total)) return false;
+    for (const DvBranch& b : db.branches)
+        for (std::uint32_t k = 0; k + (b.downstream >= 0) < b.count; ++k)
+            if (db.vertices[b.first + k].flow != branch_flow(b, k, total)) return false;
     return true;
-}
-
-std::size_t stored_vertices(const DrainageDb& db) {
-    std::size_t n = db.vertices.size();
-    for (const DvBranch& b : db.branches) n -= b.downstream >= 0;
-    return n;
 }
 
 std::size_t header_bytes(const DrainageDb& db) {
     return prefix_bytes + 36 + 12 + 16 + 4 + db.crs_wkt.size();
 }
 
+// Bytes of the branch records and the vertices stored (all but repeated end junctions).
+std::size_t body_bytes(const DrainageDb& db) {
+    std::size_t n = 0, vertices = db.vertices.size();
+    for (std::size_t id = 0; id < db.branches.size(); ++id) {
+        const DvBranch& b = db.branches[id];
+        n += varint_size(b.count) + varint_size(branch_link(b, id)) + 1 + varint_size(b.basin) + varint_size(b.head_acc);
+        vertices -= b.downstream >= 0;
+    }
+    return n + vertices * 12;
+}
+
 std::size_t encoded_size(const DrainageDb& db) {
-    return header_bytes(db) + 5 * 8 + db.branches.size() * 13 + stored_vertices(db) * 16 +
-           db.divides.size() * 4 + db.divide_vertices.size() * 12 + 8;
+    return header_bytes(db) + 5 * 8 + body_bytes(db) + db.divides.size() * 4 + db.divide_vertices.size() * 12 + 8;
 }
 
 void put_header(Sink& w, const DrainageDb& db) {
@@ -161,14 +245,18 @@ void put_body(Sink& w, const DrainageDb& db) {
     w.put(std::uint64_t(db.vertices.size())), w.put(std::uint64_t(db.branches.size()));
     w.put(std::uint64_t(db.upstream.size())), w.put(std::uint64_t(db.divide_vertices.size()));
     w.put(std::uint64_t(db.divides.size()));
-    for (const DvBranch& b : db.branches)
-        w.put(b.count), w.put(b.downstream), w.put(b.basin), w.put(b.order);
-    for (const DvBranch& b : db.branches)
-        for (std::uint32_t k = 0; k + (b.downstream >= 0) < b.count; ++k) {
-            const DvVertex& v = db.vertices[b.first + k];
-            const float xyzf[4] = {v.x, v.y, v.z, v.flow};
-            w.bytes(xyzf, 16);
-        }
+    for (std::size_t id = 0; id < db.branches.size(); ++id) {
+        const DvBranch& b = db.branches[id];
+        w.varint(b.count), w.varint(branch_link(b, id)), w.put(b.order), w.varint(b.basin), w.varint(b.head_acc);
+    }
+    for (const DvBranch& b : db.branches) {
+        const std::uint32_t stored = b.count - (b.downstream >= 0);
+        w.room(std::size_t(stored) * 12);
+        std::uint8_t* out = w.buf.data() + w.n;
+        for (std::uint32_t k = 0; k < stored; ++k, out += 12)
+            std::memcpy(out, &db.vertices[b.first + k], 12);  // x, y, z
+        w.n += std::size_t(stored) * 12;
+    }
     for (const DvPolyline& p : db.divides) w.put(p.count);
     for (const DvVertex& v : db.divide_vertices) {
         const float xyz[3] = {v.x, v.y, v.z};
@@ -176,24 +264,13 @@ void put_body(Sink& w, const DrainageDb& db) {
     }
 }
 
-// The random-access check runs on a second thread while the bytes are produced; `w` may have
-// handed out bytes when it throws.
+// `w` may have handed out bytes when it throws.
 void encode(const DrainageDb& db, Sink& w) {
-    const Error not_canonical("drainage", "", "drainage database is not in the shape the builder gives it",
-                              ExitCode::internal);
-    if (!layout_ok(db)) throw not_canonical;
-    bool derived = false;
-    std::thread check([&] { derived = derived_ok(db); });
-    try {
-        put_header(w, db);
-        put_body(w, db);
-        w.finish();
-    } catch (...) {
-        check.join();
-        throw;
-    }
-    check.join();
-    if (!derived) throw not_canonical;
+    if (!layout_ok(db))
+        throw Error("drainage", "", "drainage database is not in the shape the builder gives it", ExitCode::internal);
+    put_header(w, db);
+    put_body(w, db);
+    w.finish();
 }
 
 void get_header(Reader& r, DrainageDb& db) {
@@ -212,40 +289,49 @@ void get_header(Reader& r, DrainageDb& db) {
 
 // Branches: first from the running count, upstream lists from `downstream`.
 void get_branches(Reader& r, DrainageDb& db, std::uint64_t upstream_count) {
-    std::vector<std::uint32_t> ups(db.branches.size() + 1, 0);
+    const std::size_t nb = db.branches.size();
+    std::vector<std::uint32_t> ups(nb + 1, 0);
     std::uint64_t next = 0;
-    for (DvBranch& b : db.branches) {
+    for (std::size_t id = 0; id < nb; ++id) {
+        DvBranch& b = db.branches[id];
+        b = DvBranch{};
         b.first = std::uint32_t(next);
-        b.count = r.get<std::uint32_t>(), b.downstream = r.get<std::int32_t>();
-        b.basin = r.get<std::uint32_t>(), b.order = r.get<std::uint8_t>();
-        if (b.downstream < -1 || b.downstream >= std::int64_t(db.branches.size()) ||
-            b.count < 1u + (b.downstream >= 0))
-            r.corrupt();
+        const std::uint64_t count = r.varint(), link = r.varint();
+        const std::int64_t step = (link & 1) ? -std::int64_t((link + 1) >> 1) : std::int64_t(link >> 1);
+        const std::int64_t down = link ? std::int64_t(id) + step : -1;
+        if (count > 0xffffffffu || down < -1 || down >= std::int64_t(nb) || count < 1u + (down >= 0)) r.corrupt();
+        b.count = std::uint32_t(count), b.downstream = std::int32_t(down);
+        b.order = r.get<std::uint8_t>();
+        const std::uint64_t basin = r.varint(), head_acc = r.varint();
+        if (basin > 0xffffffffu || head_acc > 0xffffffffu) r.corrupt();
+        b.basin = std::uint32_t(basin), b.head_acc = std::uint32_t(head_acc);
         next += b.count;
-        if (b.downstream >= 0) ++ups[std::size_t(b.downstream) + 1];
+        if (down >= 0) ++ups[std::size_t(down) + 1];
     }
     if (next != db.vertices.size()) r.corrupt();
-    for (std::size_t b = 0; b < db.branches.size(); ++b) {
+    for (std::size_t b = 0; b < nb; ++b) {
         ups[b + 1] += ups[b];
         db.branches[b].up_first = ups[b], db.branches[b].up_count = ups[b + 1] - ups[b];
     }
     if (ups.back() != upstream_count) r.corrupt();
     db.upstream.resize(upstream_count);
-    for (std::size_t b = 0; b < db.branches.size(); ++b)
+    for (std::size_t b = 0; b < nb; ++b)
         if (const std::int32_t d = db.branches[b].downstream; d >= 0)
             db.upstream[ups[std::size_t(d)]++] = std::uint32_t(b);
 }
 
+// Vertices x, y, z as stored, flow from the branch's head_acc and its basin's total.
 void get_vertices(Reader& r, DrainageDb& db) {
+    std::vector<double> total;
+    if (!basin_totals(db, total)) r.corrupt();
     for (const DvBranch& b : db.branches) {
         const std::uint32_t stored = b.count - (b.downstream >= 0);
-        r.need(std::size_t(stored) * 16);
+        r.need(std::size_t(stored) * 12);
         for (std::uint32_t k = 0; k < stored; ++k) {
-            DvVertex& v = db.vertices[b.first + k];
-            float xyzf[4];
-            std::memcpy(xyzf, r.buf.data() + r.pos, 16);
-            r.pos += 16;
-            v = {xyzf[0], xyzf[1], xyzf[2], xyzf[3]};
+            float xyz[3];
+            std::memcpy(xyz, r.buf.data() + r.pos, 12);
+            r.pos += 12;
+            db.vertices[b.first + k] = {xyz[0], xyz[1], xyz[2], branch_flow(b, k, total)};
         }
     }
     for (const DvBranch& b : db.branches)  // the end junction: the downstream branch's head
@@ -269,7 +355,7 @@ void get_divides(Reader& r, DrainageDb& db) {
 void get_body(Reader& r, DrainageDb& db) {
     std::uint64_t counts[5];
     for (std::uint64_t& c : counts) c = r.get<std::uint64_t>();
-    const std::size_t min_sizes[5] = {16, 13, 0, 12, 4};  // bytes each needs at least
+    const std::size_t min_sizes[5] = {12, 5, 0, 12, 4};  // bytes each needs at least
     for (int k = 0; k < 5; ++k)
         if (counts[k] > r.buf.size() || (min_sizes[k] && counts[k] > (r.buf.size() - r.pos) / min_sizes[k] * 2))
             r.corrupt();
@@ -299,6 +385,8 @@ std::uint64_t hash64(const void* data, std::size_t size, std::uint64_t h) {
     for (; i < size; ++i) h = (h ^ p[i]) * prime;
     return h;
 }
+
+bool drainage_db_canonical(const DrainageDb& db) { return layout_ok(db) && derived_ok(db); }
 
 std::vector<std::uint8_t> encode_drainage_db(const DrainageDb& db) {
     std::vector<std::uint8_t> bytes;
@@ -368,7 +456,11 @@ void write_drainage_db(const std::string& path, const DrainageDb& db) {
         throw;
     }
     if (!ok || std::fclose(out) != 0) fail(nullptr);
+    // The old file is removed first: renaming over an existing file makes ext4 (auto_da_alloc)
+    // write the new one out at once, as long again as the whole build's writing. The file is
+    // self-checking (length, checksum), so a crash leaving it short only costs a rebuild.
     std::error_code ec;
+    std::filesystem::remove(path, ec);
     std::filesystem::rename(tmp, path, ec);
     if (ec) fail(nullptr);
 }

@@ -12,6 +12,8 @@
 
 #include <glm/vec2.hpp>
 
+#include "core/big_allocator.hpp"
+
 namespace penink {
 
 // 16 bytes; a vertex's basin and Strahler order are its branch's (DvBranch). Trivial (no member
@@ -23,20 +25,6 @@ struct DvVertex {
     bool operator==(const DvVertex&) const = default;
 };
 
-// std::allocator whose construct without arguments default-initialises (a no-op for trivial
-// types) instead of value-initialising, so vector::resize claims memory without touching it:
-// the threads that fill a large array then take its first-touch page faults in parallel.
-template <class T> struct UninitAllocator : std::allocator<T> {
-    template <class U> struct rebind {
-        using other = UninitAllocator<U>;
-    };
-    UninitAllocator() = default;
-    template <class U> UninitAllocator(const UninitAllocator<U>&) noexcept {}
-    template <class U, class... A> void construct(U* p, A&&... args) {
-        if constexpr (sizeof...(A) == 0) ::new (static_cast<void*>(p)) U;
-        else ::new (static_cast<void*>(p)) U(std::forward<A>(args)...);
-    }
-};
 using DvVertices = std::vector<DvVertex, UninitAllocator<DvVertex>>;
 
 // A run of drainage points from a source (ridge point) or junction down to the next junction or
@@ -47,6 +35,7 @@ struct DvBranch {
     std::int32_t downstream;             // branch starting at the end junction, -1 at outlets
     std::uint32_t up_first, up_count;    // upstream branch ids in DrainageDb::upstream
     std::uint32_t basin;
+    std::uint32_t head_acc;              // accumulation at the head (points): vertex k has head_acc + k
     std::uint8_t order;                  // Strahler order of the branch
     bool operator==(const DvBranch&) const = default;
 };
@@ -85,7 +74,9 @@ struct DrainageDb {
 // 3: layout of 2; directions with downstream tie-breaking and depressions drained down their
 // original slopes (d8_ties.hpp, depression_drainage.hpp): files of 2 hold other networks, rebuilt.
 // 4: the fingerprint gains the routing method (u32 after options).
-inline constexpr std::uint32_t drainage_db_version = 4;
+// 5: branches carry their head's accumulation (DvBranch::head_acc) and are stored as varints;
+// vertex flow is not stored but follows from it (12-byte vertices).
+inline constexpr std::uint32_t drainage_db_version = 5;
 
 // 64-bit FNV-1a over little-endian 64-bit words (tail bytes one by one).
 std::uint64_t hash64(const void* data, std::size_t size, std::uint64_t seed = 0xcbf29ce484222325ull);
@@ -94,10 +85,16 @@ std::uint64_t hash64(const void* data, std::size_t size, std::uint64_t seed = 0x
 // penink::Error("drainage", dem_path, "cannot read DEM file") when it cannot be read.
 DrainageFingerprint dem_fingerprint(const std::string& dem_path, int resample);
 
+// Whether `db` has the shape drainage_db_from_grid gives it, all of which the compact layout
+// relies on (drainage_db.cpp): the database read back from its encoding is then `db` exactly.
+bool drainage_db_canonical(const DrainageDb& db);
+
 // Serialised bytes (header, counts, data, trailing checksum). The compact layout needs `db` in
-// the shape drainage_db_from_grid gives it (see drainage_db.cpp); other databases throw
-// penink::Error("drainage", "", "drainage database is not in the shape the builder gives it",
-// internal).
+// the shape drainage_db_from_grid gives it; a database whose layout breaks it (vertex ranges,
+// links, basin ids: cheap checks) throws penink::Error("drainage", "", "drainage database is not
+// in the shape the builder gives it", internal); what is derived on reading (repeated junction
+// vertices, upstream lists, flows) is the builder's invariant, not checked here (see
+// drainage_db_canonical).
 std::vector<std::uint8_t> encode_drainage_db(const DrainageDb& db);
 
 // Streams the encoding (4 MiB buffer) to a temp file in the same directory, then renames it. Throws

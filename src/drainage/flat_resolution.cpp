@@ -91,7 +91,7 @@ unsigned least_gradient(const float* z, const std::uint8_t* flags, const std::in
 std::uint8_t masked_direction(const Flats& s, std::uint32_t i) {
     const unsigned set = least_gradient(s.z, s.flags, s.mask, s.off.data(), i);
     // raised cells are re-aimed or keep this code as an outflow path (depression_drainage.hpp)
-    if (std::popcount(set) > 1 && s.ties && !(s.flags[i] & fill_raised)) s.ties->push_back(i);
+    if ((set & (set - 1)) != 0 && s.ties && !(s.flags[i] & fill_raised)) s.ties->push_back(i);
     return std::uint8_t(set & -set);
 }
 

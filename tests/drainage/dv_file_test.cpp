@@ -1,6 +1,7 @@
 // DV file: exact round trip, and each corruption detected with its exact error text; the cache
 // next to the DEM is written, reused, rebuilt when stale and kept in memory when unwritable.
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -60,23 +61,69 @@ TEST(DvFile, RoundTripIsExact) {
     EXPECT_EQ(encode_drainage_db(back), encode_drainage_db(db));
 }
 
+// Rough ground with pits, flats and many basins: orders above 3, thousands of branches.
+DrainageDb rough_db(int cols = 120, int rows = 90) {
+    std::vector<float> z(std::size_t(cols) * rows);
+    std::uint32_t h = 12345;
+    for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < cols; ++c) {
+            h = h * 1664525u + 1013904223u;
+            const float noise = float(h >> 28);  // 0..15: ties and pits
+            z[std::size_t(r) * cols + c] = 40.0f * std::sin(c * 0.11f) * std::cos(r * 0.07f) + 0.5f * noise;
+        }
+    DrainageGrid g = make_regular_grid(cols, rows, 10.0, std::move(z));
+    return drainage_db_from_grid(g);
+}
+
+TEST(DvFile, FlowsFromHeadAccumulationRoundTripExactly) {
+    const DrainageDb db = rough_db();
+    int max_order = 0;
+    std::size_t outlets = 0;
+    for (const DvBranch& b : db.branches) max_order = std::max(max_order, int(b.order)), outlets += b.downstream < 0;
+    EXPECT_GE(max_order, 4);
+    EXPECT_GT(outlets, 10u);
+    EXPECT_GT(db.branches.size(), 1000u);
+    const std::vector<std::uint8_t> bytes = encode_drainage_db(db);
+    EXPECT_TRUE(decode_drainage_db(bytes, "rough.dv") == db);
+    EXPECT_TRUE(drainage_db_canonical(db));
+    DrainageDb wrong = db;  // a flow that head_acc does not give
+    wrong.vertices[wrong.branches[0].first].flow *= 0.5f;
+    EXPECT_FALSE(drainage_db_canonical(wrong));
+    wrong = db;
+    wrong.branches.back().head_acc += 1;
+    EXPECT_FALSE(drainage_db_canonical(wrong));
+}
+
+TEST(DvFile, FileOfSeveralWriteBuffersRoundTrips) {  // 4 MiB buffers hashed and written in turn
+    const fs::path d = temp_dir("big");
+    const DrainageDb db = rough_db(1000, 800);
+    write_drainage_db((d / "big.dv").string(), db);
+    EXPECT_GT(fs::file_size(d / "big.dv"), std::uintmax_t(9) << 20);
+    EXPECT_TRUE(read_drainage_db((d / "big.dv").string()) == db);
+}
+
 TEST(DvFile, CompactLayoutSizeAndShapeCheck) {
     const DrainageDb db = sample_db();
     std::size_t junction_ends = 0;
     for (const DvBranch& b : db.branches) junction_ends += b.downstream >= 0;
     ASSERT_GT(junction_ends, 0u);
-    // header 92 + WKT, counts 40, branches 13 B, stored vertices 16 B, divides 4 + 12 B, hash 8
-    const std::size_t expect = 92 + db.crs_wkt.size() + 40 + 13 * db.branches.size() +
-                               16 * (db.vertices.size() - junction_ends) + 4 * db.divides.size() +
+    // header 92 + WKT, counts 40, branches 5 B (count, link, order, basin, head_acc: one byte
+    // each here), stored vertices 12 B, divides 4 + 12 B, hash 8
+    const std::size_t expect = 92 + db.crs_wkt.size() + 40 + 5 * db.branches.size() +
+                               12 * (db.vertices.size() - junction_ends) + 4 * db.divides.size() +
                                12 * db.divide_vertices.size() + 8;
     EXPECT_EQ(encode_drainage_db(db).size(), expect);
     DrainageDb odd = db;  // a junction vertex that is not the downstream branch's head
     const DvBranch& b = *std::find_if(odd.branches.begin(), odd.branches.end(),
                                       [](const DvBranch& x) { return x.downstream >= 0; });
     odd.vertices[b.first + b.count - 1].z += 1.0f;
+    EXPECT_TRUE(drainage_db_canonical(db));
+    EXPECT_FALSE(drainage_db_canonical(odd));
+    DrainageDb broken = db;  // a layout the encoding cannot hold is refused
+    broken.branches[0].basin = 0;
     std::string what;
     try {
-        encode_drainage_db(odd);
+        encode_drainage_db(broken);
     } catch (const Error& e) {
         what = e.what();
     }
@@ -104,7 +151,7 @@ TEST(DvFile, CorruptionsAreDetected) {
     b = good;
     b[8] = 7;
     spit(p, b);
-    EXPECT_EQ(read_error(p), pre + "unsupported drainage database version 7 (expected 4)");
+    EXPECT_EQ(read_error(p), pre + "unsupported drainage database version 7 (expected 5)");
 
     b = good;
     b[0] = 'X';

@@ -93,7 +93,9 @@ TEST(DrainageStems, EveryVertexOnceJunctionsOncePerJoiningStem) {
     EXPECT_EQ((at[{5.0f, 0.0f}]), 2);   // J1: end of A, and inside the main stem
     EXPECT_EQ((at[{5.0f, -3.0f}]), 2);  // J2: end of D, and inside the main stem
     for (const auto& [p, n] : at)
-        if (p != std::pair{5.0f, 0.0f} && p != std::pair{5.0f, -3.0f}) EXPECT_EQ(n, 1);
+        if (p != std::pair{5.0f, 0.0f} && p != std::pair{5.0f, -3.0f}) {
+            EXPECT_EQ(n, 1);
+        }
     // Consecutive stem vertices are grid neighbours (no jump across the network).
     for (const auto& s : stems)
         for (std::size_t k = 1; k < s.size(); ++k) {

@@ -1,0 +1,45 @@
+// Allocators for the large per-cell arrays of a grid (millions of elements): blocks of 2 MiB and
+// more are mapped 2 MiB-aligned and advised for transparent huge pages (madvise MADV_HUGEPAGE),
+// so first touch takes one page fault per 2 MiB instead of one per 4 KiB (the kernel's THP mode
+// "madvise", Debian's default; elsewhere the advice is harmless). Smaller blocks come from
+// operator new. BigAllocator value-initialises like std::allocator; UninitAllocator leaves a
+// trivial element made by resize untouched (the threads that fill it then fault in parallel).
+#pragma once
+#include <cstddef>
+#include <memory>
+#include <new>
+#include <utility>
+
+namespace penink {
+
+inline constexpr std::size_t big_block_bytes = std::size_t(2) << 20;
+
+// Throws std::bad_alloc when the memory cannot be had.
+void* allocate_big(std::size_t bytes);
+void deallocate_big(void* p, std::size_t bytes) noexcept;
+
+template <class T> struct BigAllocator {
+    using value_type = T;
+    BigAllocator() = default;
+    template <class U> BigAllocator(const BigAllocator<U>&) noexcept {}
+    T* allocate(std::size_t n) {
+        if (n > std::size_t(-1) / sizeof(T)) throw std::bad_array_new_length();
+        return static_cast<T*>(allocate_big(n * sizeof(T)));
+    }
+    void deallocate(T* p, std::size_t n) noexcept { deallocate_big(p, n * sizeof(T)); }
+    template <class U> bool operator==(const BigAllocator<U>&) const noexcept { return true; }
+};
+
+template <class T> struct UninitAllocator : BigAllocator<T> {
+    template <class U> struct rebind {
+        using other = UninitAllocator<U>;
+    };
+    UninitAllocator() = default;
+    template <class U> UninitAllocator(const UninitAllocator<U>&) noexcept {}
+    template <class U, class... A> void construct(U* p, A&&... args) {
+        if constexpr (sizeof...(A) == 0) ::new (static_cast<void*>(p)) U;
+        else ::new (static_cast<void*>(p)) U(std::forward<A>(args)...);
+    }
+};
+
+}  // namespace penink
