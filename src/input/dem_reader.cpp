@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <limits>
 #include <memory>
+#include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,7 +19,9 @@
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
+#include "core/big_allocator.hpp"
 #include "core/error.hpp"
+#include "core/parallel_chunks.hpp"
 #include "input/crs_util.hpp"
 #include "input/utm_projection.hpp"
 
@@ -27,13 +31,25 @@ namespace {
 
 constexpr double pi = 3.14159265358979323846;
 
-// The band's values in our orientation (row 0 north, column 0 west), metres.
+// The band as read: values in source order (float where that holds them exactly: the same
+// doubles, half the memory) and their conversion to metres; in our orientation (row 0 north,
+// column 0 west) the valid mask and the range of valid elevations (metres).
 struct Raster {
     int w = 0, h = 0;
-    std::vector<double> elev;
+    std::vector<float, BigAllocator<float>> raw_f;  // one of the two holds the values
+    std::vector<double, BigAllocator<double>> raw_d;
+    double scale = 1.0, offset = 0.0, unit = 1.0;  // metres = (value * scale + offset) * unit
+    bool flip_c = false, flip_r = false;
     std::vector<std::uint8_t> valid;
+    double emin = std::numeric_limits<double>::max(), emax = -std::numeric_limits<double>::max();
     std::array<double, 6> gt{0, 1, 0, 0, 0, -1};
     std::unique_ptr<OGRSpatialReference> srs;  // null when the dataset has none
+
+    std::size_t source(std::size_t row, int c) const {
+        return (flip_r ? std::size_t(h) - 1 - row : row) * std::size_t(w) + std::size_t(flip_c ? w - 1 - c : c);
+    }
+    double value(std::size_t src) const { return raw_f.empty() ? raw_d[src] : double(raw_f[src]); }
+    double metres(double v) const { return (v * scale + offset) * unit; }
 };
 
 [[noreturn]] void fail(const std::string& path, const std::string& what) {
@@ -95,12 +111,18 @@ void orient(std::array<double, 6>& gt, int w, int h, bool& flip_c, bool& flip_r)
     if (flip_r) gt = {gt[0] + h * gt[2], gt[1], -gt[2], gt[3] + h * gt[5], gt[4], -gt[5]};
 }
 
-// Reads the band as T (float where that holds its values exactly: the same doubles, half the
-// memory) and fills r.elev / r.valid in our orientation in one pass: validity from NaN, the
-// nodata value and the mask; elevations scaled to metres; non-finite results invalid.
+// Rows per parallel chunk of a per-node loop: chunks of at least 64 K nodes.
+std::size_t rows_per_chunk(const Raster& r) { return std::max<std::size_t>(1, 65536 / std::size_t(r.w)); }
+
+// Reads the band as T into r.raw_f / r.raw_d and in one pass fills r.valid (from NaN, the nodata
+// value and the mask; a non-finite elevation is invalid too) and r.emin / r.emax.
 template <class T>
-void read_band(GDALRasterBand& band, Raster& r, bool flip_c, bool flip_r, const std::string& path) {
-    std::vector<T> raw(std::size_t(r.w) * r.h);
+void read_band(GDALRasterBand& band, Raster& r, const std::string& path) {
+    auto& raw = [&]() -> auto& {
+        if constexpr (sizeof(T) == 4) return r.raw_f;
+        else return r.raw_d;
+    }();
+    raw.resize(std::size_t(r.w) * r.h);
     const GDALDataType as = sizeof(T) == 4 ? GDT_Float32 : GDT_Float64;
     if (band.RasterIO(GF_Read, 0, 0, r.w, r.h, raw.data(), r.w, r.h, as, 0, 0) != CE_None)
         fail(path, "not a DEM raster (GDAL cannot read it)");
@@ -109,20 +131,22 @@ void read_band(GDALRasterBand& band, Raster& r, bool flip_c, bool flip_r, const 
     const double nodata = band.GetNoDataValue(&has);
     const GDALDataType type = band.GetRasterDataType();
     const double scale = band.GetScale(&has_scale), offset = band.GetOffset(&has_offset);
-    const double unit = vertical_unit(band);
-    r.elev.resize(raw.size()), r.valid.resize(raw.size());
-    for (int row = 0; row < r.h; ++row) {
-        const std::size_t src_row = std::size_t(flip_r ? r.h - 1 - row : row) * r.w;
-        const std::size_t dst_row = std::size_t(row) * r.w;
-        for (int c = 0; c < r.w; ++c) {
-            const std::size_t src = src_row + (flip_c ? r.w - 1 - c : c), dst = dst_row + c;
-            const double v = double(raw[src]);
-            const double e = (v * (has_scale ? scale : 1.0) + (has_offset ? offset : 0.0)) * unit;
-            r.elev[dst] = e;
-            r.valid[dst] = !is_nodata(v, has != 0, nodata, type) && (mask.empty() || mask[src]) &&
-                           std::isfinite(e);
-        }
-    }
+    r.scale = has_scale ? scale : 1.0, r.offset = has_offset ? offset : 0.0, r.unit = vertical_unit(band);
+    r.valid.resize(raw.size());
+    std::mutex merge;
+    parallel_chunks(std::size_t(r.h), rows_per_chunk(r), [&](std::size_t r0, std::size_t r1) {
+        double lo = std::numeric_limits<double>::max(), hi = -lo;
+        for (std::size_t row = r0; row < r1; ++row)
+            for (int c = 0; c < r.w; ++c) {
+                const std::size_t src = r.source(row, c);
+                const double v = double(raw[src]), e = r.metres(v);
+                const bool ok = !is_nodata(v, has != 0, nodata, type) && (mask.empty() || mask[src]) && std::isfinite(e);
+                r.valid[row * r.w + c] = ok;
+                if (ok) lo = std::min(lo, e), hi = std::max(hi, e);
+            }
+        const std::lock_guard<std::mutex> lock(merge);  // min / max: the same in any order
+        r.emin = std::min(r.emin, lo), r.emax = std::max(r.emax, hi);
+    });
 }
 
 // Band types whose every value a float holds exactly.
@@ -139,10 +163,9 @@ Raster read_raster(const std::string& path) {
     if (const OGRSpatialReference* s = ds->GetSpatialRef(); s && !s->IsEmpty())
         r.srs.reset(s->Clone());
     GDALRasterBand& band = *ds->GetRasterBand(1);
-    bool flip_c = false, flip_r = false;
-    orient(r.gt, r.w, r.h, flip_c, flip_r);
-    if (float_exact(band.GetRasterDataType())) read_band<float>(band, r, flip_c, flip_r, path);
-    else read_band<double>(band, r, flip_c, flip_r, path);
+    orient(r.gt, r.w, r.h, r.flip_c, r.flip_r);
+    if (float_exact(band.GetRasterDataType())) read_band<float>(band, r, path);
+    else read_band<double>(band, r, path);
     return r;
 }
 
@@ -157,56 +180,76 @@ glm::dvec2 scaled_node(const Raster& r, double unit, double offset_x, int c, int
     return {p.x * unit + offset_x, p.y * unit};
 }
 
-// World (projected CRS) coordinates of the nodes: for a geographic DEM projected to UTM
-// (utm_projection.hpp) into one array, else scaled_node with `unit`, computed when asked.
-struct WorldXY {
-    double unit = 1.0;
-    std::vector<glm::dvec2> projected;  // empty: scaled_node(r, unit, 0, c, row)
-    glm::dvec2 at(const Raster& r, int c, int row) const {
-        return projected.empty() ? scaled_node(r, unit, 0.0, c, row) : projected[std::size_t(row) * r.w + c];
-    }
-};
-
-// The nodes (lon/lat degrees: scaled_node with unit and prime meridian) projected to UTM/UPS;
-// fills the world CRS of `t`.
-std::vector<glm::dvec2> project_geographic(const Raster& r, double unit, double meridian, const DemOptions& options,
-                                           Terrain& t, const std::string& path) {
-    const NodeLonLat lonlat = [&](int c, int row) { return scaled_node(r, unit, meridian, c, row); };
-    const glm::dvec2 centre = 0.5 * (lonlat(0, 0) + lonlat(r.w - 1, r.h - 1));
-    std::vector<glm::dvec2> xy;
-    int zone = options.utm_zone;
-    bool north = options.north;
-    try {
-        if (zone <= 0) {
-            zone = GeographicLib::UTMUPS::StandardZone(centre.y, centre.x);
-            north = centre.y >= 0.0;
-        }
-        xy = project_grid_to_utm(r.w, r.h, lonlat, zone, north);
-    } catch (const GeographicLib::GeographicErr& e) {
-        fail(path, "DEM cannot be projected to UTM zone " + std::to_string(zone) + (north ? "N" : "S") +
-                       ": " + e.what());
-    }
-    t.utm_zone = zone, t.north = north;
-    t.crs_wkt = utm_wkt(zone, north);
-    return xy;
+[[noreturn]] void fail_utm(const std::string& path, int zone, bool north, const GeographicLib::GeographicErr& e) {
+    fail(path, "DEM cannot be projected to UTM zone " + std::to_string(zone) + (north ? "N" : "S") + ": " + e.what());
 }
 
-// Node coordinates in the world CRS (metres); sets crs_wkt, utm_zone, north.
+// World (projected CRS) coordinates of the nodes, a row at a time: scaled_node with `unit`, or
+// for a geographic DEM the nodes projected to UTM/UPS (utm_projection.hpp); lo / hi bound them.
+struct WorldXY {
+    double unit = 1.0;
+    std::optional<UtmRowProjector> utm;
+    NodeLonLat lonlat;  // with utm
+    glm::dvec2 lo{std::numeric_limits<double>::max()}, hi{-std::numeric_limits<double>::max()};
+
+    void row(const Raster& r, int row, glm::dvec2* out) const {
+        if (utm) return utm->row(row, out);
+        for (int c = 0; c < r.w; ++c) out[c] = scaled_node(r, unit, 0.0, c, row);
+    }
+    // A row's first or last node (what row() gives there: projected exactly).
+    glm::dvec2 row_end(const Raster& r, int c, int row) const {
+        return utm ? project_to_utm(lonlat(c, row), utm->zone(), utm->north()) : scaled_node(r, unit, 0.0, c, row);
+    }
+    void take(glm::dvec2 p) { lo = glm::min(lo, p), hi = glm::max(hi, p); }
+};
+
+// lo / hi of every node. On a grid without rotation terms, x along a row and y along a column
+// are monotone (affine; UTM easting in longitude at a fixed latitude, northing in latitude at a
+// fixed longitude), so the extremes lie on the first and last rows and the rows' ends: only
+// those are visited; otherwise every row is.
+void bound_nodes(const Raster& r, WorldXY& xy) {
+    std::vector<glm::dvec2> line(std::size_t(r.w));
+    const bool axis_aligned = r.gt[2] == 0.0 && r.gt[4] == 0.0;
+    for (int row = 0; row < r.h; ++row) {
+        if (axis_aligned && row != 0 && row != r.h - 1) {
+            xy.take(xy.row_end(r, 0, row)), xy.take(xy.row_end(r, r.w - 1, row));
+            continue;
+        }
+        xy.row(r, row, line.data());
+        for (const glm::dvec2& p : line) xy.take(p);
+    }
+}
+
+// Node coordinates in the world CRS (metres) and their bounds; sets crs_wkt, utm_zone, north.
 WorldXY world_coordinates(const Raster& r, const DemOptions& options, Terrain& t, const std::string& path) {
     WorldXY w;
-    if (!r.srs) return w;
-    if (r.srs->IsGeographic()) {
+    if (r.srs && r.srs->IsGeographic()) {
         const double deg = r.srs->GetAngularUnits(nullptr) * 180.0 / pi;
-        const double unit = std::abs(deg - 1.0) < 1e-9 ? 1.0 : deg;
+        const double unit = std::abs(deg - 1.0) < 1e-9 ? 1.0 : deg, meridian = r.srs->GetPrimeMeridian(nullptr);
         t.source_geographic = true;
-        w.projected = project_geographic(r, unit, r.srs->GetPrimeMeridian(nullptr), options, t, path);
+        w.lonlat = [&r, unit, meridian](int c, int row) { return scaled_node(r, unit, meridian, c, row); };
+        const glm::dvec2 centre = 0.5 * (w.lonlat(0, 0) + w.lonlat(r.w - 1, r.h - 1));
+        int zone = options.utm_zone;
+        bool north = options.north;
+        try {
+            if (zone <= 0) zone = GeographicLib::UTMUPS::StandardZone(centre.y, centre.x), north = centre.y >= 0.0;
+            w.utm.emplace(r.w, w.lonlat, zone, north);
+            bound_nodes(r, w);  // projects every row's ends: a row out of the zone's range fails here
+        } catch (const GeographicLib::GeographicErr& e) {
+            fail_utm(path, zone, north, e);
+        }
+        t.utm_zone = zone, t.north = north;
+        t.crs_wkt = utm_wkt(zone, north);
         return w;
     }
-    int north = 1;
-    t.utm_zone = r.srs->GetUTMZone(&north);
-    t.north = north != 0;
-    t.crs_wkt = srs_wkt(*r.srs);
-    w.unit = r.srs->IsProjected() ? r.srs->GetLinearUnits(nullptr) : 1.0;
+    if (r.srs) {
+        int north = 1;
+        t.utm_zone = r.srs->GetUTMZone(&north);
+        t.north = north != 0;
+        t.crs_wkt = srs_wkt(*r.srs);
+        w.unit = r.srs->IsProjected() ? r.srs->GetLinearUnits(nullptr) : 1.0;
+    }
+    bound_nodes(r, w);
     return w;
 }
 
@@ -219,26 +262,29 @@ void check_grid(const Raster& r, const std::string& path) {
     fail(path, "DEM has no valid elevation (all nodata)");
 }
 
-void fill_positions(const Raster& r, const WorldXY& xy, Terrain& t) {
-    glm::dvec2 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-    double emin = std::numeric_limits<double>::max(), emax = -emin;
-    for (int row = 0; row < r.h; ++row)
-        for (int c = 0; c < r.w; ++c) {
-            const glm::dvec2 p = xy.at(r, c, row);
-            lo = glm::min(lo, p), hi = glm::max(hi, p);
-            const std::size_t i = std::size_t(row) * r.w + c;
-            if (r.valid[i]) emin = std::min(emin, r.elev[i]), emax = std::max(emax, r.elev[i]);
-        }
-    t.origin = glm::round(0.5 * (lo + hi));
-    t.elevation_min = emin, t.elevation_max = emax;
+// t.pos: x, y relative to the bounds' rounded centre (t.origin), z the elevation (the lowest
+// valid one at nodata nodes) times the vertical exaggeration; rows in parallel.
+void fill_positions(const Raster& r, const WorldXY& xy, Terrain& t, const std::string& path) {
+    t.origin = glm::round(0.5 * (xy.lo + xy.hi));
+    t.elevation_min = r.emin, t.elevation_max = r.emax;
     t.pos.resize(std::size_t(r.w) * r.h);
     const double s = t.vertical_exaggeration;
-    for (int row = 0; row < r.h; ++row)
-        for (int c = 0; c < r.w; ++c) {
-            const std::size_t i = std::size_t(row) * r.w + c;
-            const glm::dvec2 p = xy.at(r, c, row) - t.origin;
-            t.pos[i] = glm::vec3(float(p.x), float(p.y), float((r.valid[i] ? r.elev[i] : emin) * s));
+    parallel_chunks(std::size_t(r.h), rows_per_chunk(r), [&](std::size_t r0, std::size_t r1) {
+        std::vector<glm::dvec2> line(std::size_t(r.w));
+        for (std::size_t row = r0; row < r1; ++row) {
+            try {
+                xy.row(r, int(row), line.data());
+            } catch (const GeographicLib::GeographicErr& e) {
+                fail_utm(path, t.utm_zone, t.north, e);
+            }
+            for (int c = 0; c < r.w; ++c) {
+                const std::size_t i = row * r.w + c;
+                const glm::dvec2 p = line[std::size_t(c)] - t.origin;
+                const double e = r.valid[i] ? r.metres(r.value(r.source(row, c))) : r.emin;
+                t.pos[i] = glm::vec3(float(p.x), float(p.y), float(e * s));
+            }
         }
+    });
 }
 
 }  // namespace
@@ -257,7 +303,7 @@ Terrain read_dem(const std::string& path, const DemOptions& options) {
     t.source = path;
     t.geotransform = r.gt;
     const WorldXY xy = world_coordinates(r, options, t, path);
-    fill_positions(r, xy, t);
+    fill_positions(r, xy, t, path);
     t.valid = std::move(r.valid);
     return t;
 }

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <array>
-#include <future>
-#include <thread>
 
 #include <GeographicLib/UTMUPS.hpp>
+
+#include "core/parallel_chunks.hpp"
 
 namespace penink {
 
@@ -66,25 +66,20 @@ glm::dvec2 project_to_utm(glm::dvec2 lonlat, int zone, bool north) {
     return {x, y};
 }
 
-std::vector<glm::dvec2> project_grid_to_utm(int w, int h, const NodeLonLat& lonlat, int zone, bool north,
-                                            int step) {
-    std::vector<glm::dvec2> out(std::size_t(std::max(w, 0)) * std::size_t(std::max(h, 0)));
-    const std::size_t rows = std::size_t(std::max(h, 0));
-    const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 16);
-    const std::size_t chunks = std::min(rows, out.size() < 20000 ? std::size_t(1) : threads);
-    if (chunks == 0) return out;
-    const std::size_t per = (rows + chunks - 1) / chunks;
-    const std::vector<std::array<double, 4>> weights = uniform_weights(step);
-    std::vector<std::future<void>> jobs;
-    for (std::size_t r0 = 0; r0 < rows; r0 += per) {
-        const std::size_t r1 = std::min(rows, r0 + per);
-        jobs.push_back(std::async(std::launch::async, [&, r0, r1] {
-            for (std::size_t r = r0; r < r1; ++r)
-                project_row(out.data() + r * std::size_t(w), w, int(r), lonlat, zone, north, step, weights);
-        }));
-    }
-    for (auto& j : jobs) j.wait();
-    for (auto& j : jobs) j.get();
+UtmRowProjector::UtmRowProjector(int w, NodeLonLat lonlat, int zone, bool north, int step)
+    : w_(w), zone_(zone), step_(step), north_(north), lonlat_(std::move(lonlat)), weights_(uniform_weights(step)) {}
+
+void UtmRowProjector::row(int r, glm::dvec2* out) const {
+    project_row(out, w_, r, lonlat_, zone_, north_, step_, weights_);
+}
+
+UtmNodes project_grid_to_utm(int w, int h, const NodeLonLat& lonlat, int zone, bool north, int step) {
+    UtmNodes out(std::size_t(std::max(w, 0)) * std::size_t(std::max(h, 0)));
+    const UtmRowProjector rows(w, lonlat, zone, north, step);
+    const std::size_t min_rows = std::max<std::size_t>(1, 20000 / std::size_t(std::max(w, 1)));
+    parallel_chunks(std::size_t(std::max(h, 0)), min_rows, [&](std::size_t r0, std::size_t r1) {
+        for (std::size_t r = r0; r < r1; ++r) rows.row(int(r), out.data() + r * std::size_t(w));
+    });
     return out;
 }
 

@@ -6,10 +6,13 @@
 // by < 1 µm (tests/input/utm_projection_test.cpp), at about a tenth of the cost. Rows are
 // projected in parallel chunks; the result does not depend on the number of threads.
 #pragma once
+#include <array>
 #include <functional>
 #include <vector>
 
 #include <glm/vec2.hpp>
+
+#include "core/big_allocator.hpp"
 
 namespace penink {
 
@@ -22,10 +25,27 @@ glm::dvec2 project_to_utm(glm::dvec2 lonlat, int zone, bool north);
 // affine grid); asked only at the exactly projected nodes.
 using NodeLonLat = std::function<glm::dvec2(int c, int r)>;
 
+// One row of w nodes at a time, as project_grid_to_utm gives it (for callers that use each row
+// once and need not hold the whole grid). Throws like project_grid_to_utm.
+class UtmRowProjector {
+public:
+    UtmRowProjector(int w, NodeLonLat lonlat, int zone, bool north, int step = 16);
+    void row(int r, glm::dvec2* out) const;  // out: w nodes
+    int zone() const { return zone_; }
+    bool north() const { return north_; }
+
+private:
+    int w_, zone_, step_;
+    bool north_;
+    NodeLonLat lonlat_;
+    std::vector<std::array<double, 4>> weights_;  // cubic weights of equally spaced samples
+};
+
+using UtmNodes = std::vector<glm::dvec2, BigAllocator<glm::dvec2>>;
+
 // (easting, northing) in metres of the w x h nodes, row-major. step 1 projects every node.
 // Throws GeographicLib::GeographicErr when a node cannot be projected (the first and last node
 // of every row are always projected exactly, so a row leaving the zone's range is caught).
-std::vector<glm::dvec2> project_grid_to_utm(int w, int h, const NodeLonLat& lonlat, int zone, bool north,
-                                            int step = 16);
+UtmNodes project_grid_to_utm(int w, int h, const NodeLonLat& lonlat, int zone, bool north, int step = 16);
 
 }  // namespace penink

@@ -21,13 +21,13 @@ std::vector<glm::dvec2> grid(int w, const std::vector<double>& lats, double lon0
     return ll;
 }
 
-std::vector<glm::dvec2> project(const std::vector<glm::dvec2>& ll, int w, int zone, bool north, int step = 16) {
+UtmNodes project(const std::vector<glm::dvec2>& ll, int w, int zone, bool north, int step = 16) {
     const int h = int(ll.size()) / w;
     return project_grid_to_utm(w, h, [&](int c, int r) { return ll[std::size_t(r) * w + c]; }, zone, north, step);
 }
 
 double max_error(const std::vector<glm::dvec2>& ll, int w, int zone, bool north, int step = 16) {
-    const std::vector<glm::dvec2> out = project(ll, w, zone, north, step);
+    const UtmNodes out = project(ll, w, zone, north, step);
     double worst = 0.0;
     for (std::size_t i = 0; i < ll.size(); ++i) {
         const glm::dvec2 e = project_to_utm(ll[i], zone, north);  // node by node
