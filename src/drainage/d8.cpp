@@ -55,20 +55,23 @@ void directions_row(const float* z, const GridShape& g, const D8Steps& st, int r
 }  // namespace
 
 std::vector<std::uint8_t> d8_directions(const std::vector<float>& z, const GridShape& g,
-                                        double dx, double dy, std::vector<std::uint32_t>* ties) {
+                                        double dx, double dy, std::vector<std::uint32_t>* ties,
+                                        bool two_threads) {
     std::vector<std::uint8_t> dir(g.size(), 0);
     const D8Steps st = d8_steps(g, dx, dy);
     bool dense = true;
     for (std::size_t i = 0; i < g.size() && dense; ++i) dense = g.valid[i] != 0;
     // rows are independent: the south half on a second thread (same bytes as one pass)
-    const int mid = g.rows / 2;
+    const int mid = two_threads ? g.rows / 2 : g.rows;
     std::vector<std::uint32_t> south_ties;
-    std::thread south([&] {
-        for (int r = mid; r < g.rows; ++r)
-            directions_row(z.data(), g, st, r, dense, dir.data(), ties ? &south_ties : nullptr);
-    });
+    std::thread south;
+    if (mid < g.rows)
+        south = std::thread([&] {
+            for (int r = mid; r < g.rows; ++r)
+                directions_row(z.data(), g, st, r, dense, dir.data(), ties ? &south_ties : nullptr);
+        });
     for (int r = 0; r < mid; ++r) directions_row(z.data(), g, st, r, dense, dir.data(), ties);
-    south.join();
+    if (south.joinable()) south.join();
     if (ties) ties->insert(ties->end(), south_ties.begin(), south_ties.end());
     return dir;
 }

@@ -44,11 +44,12 @@ bool is_boundary_cell(const GridShape& g, int c, int r);
 // Steepest strictly-downhill valid neighbour per valid cell (first in code order on ties: the
 // lowest ESRI code), 0 when none or invalid. Interior cells whose 3x3 block is all data take a
 // branch-free loop over precomputed neighbour offsets; the south half of the rows runs on a
-// second thread. When `ties` is given, the cells whose steepest slope is shared by two or more
-// neighbours are appended to it (for break_d8_ties, d8_ties.hpp).
+// second thread (unless two_threads is false). When `ties` is given, the cells whose steepest
+// slope is shared by two or more neighbours are appended to it (for break_d8_ties, d8_ties.hpp).
 std::vector<std::uint8_t> d8_directions(const std::vector<float>& z, const GridShape& g,
                                         double dx, double dy,
-                                        std::vector<std::uint32_t>* ties = nullptr);
+                                        std::vector<std::uint32_t>* ties = nullptr,
+                                        bool two_threads = true);
 
 enum class PointClass : std::uint8_t { pit = 0, ridge = 1, channel = 2, junction = 3, none = 255 };
 

@@ -14,9 +14,9 @@
 #include "drainage/branches.hpp"
 #include "drainage/d8_ties.hpp"
 #include "drainage/depression_drainage.hpp"
+#include "drainage/fill_directions.hpp"
 #include "drainage/flat_resolution.hpp"
 #include "drainage/least_cost_routing.hpp"
-#include "drainage/priority_flood.hpp"
 
 namespace penink {
 
@@ -72,11 +72,10 @@ void priority_flood_directions(DrainageGrid& g, const GridShape& shape, const Dr
     FlowNetwork& net = res.net;
     std::vector<std::uint8_t>& flags = net.order;
     std::vector<std::uint32_t>& orig = net.acc;
-    report(progress, "filling depressions", 0.0);
-    res.stats.filled = priority_flood_fill(g.z, shape, flags, orig).raised;
-    report(progress, "flow directions", 0.35);
+    report(progress, "filling depressions, flow directions", 0.0);
     std::vector<std::uint32_t> ties;
-    res.dir = d8_directions(g.z, shape, g.dx, g.dy, &ties);
+    res.stats.filled = fill_with_directions(g.z, shape, g.dx, g.dy, flags, orig, res.dir, ties).raised;
+    report(progress, "draining into depressions", 0.35);
     drain_rims_into_depressions(g.z, flags, orig, shape, g.dx, g.dy, res.dir, &ties);
     report(progress, "resolving flats", 0.45);
     res.stats.unresolved_flats = resolve_flats(g.z, shape, res.dir, flags, net.basin, &ties);
@@ -85,7 +84,7 @@ void priority_flood_directions(DrainageGrid& g, const GridShape& shape, const Dr
     break_d8_ties(ties, g.z, flags, orig, net.basin, shape, g.dx, g.dy, res.dir);
     res.stats.ties = ties.size();  // deduplicated by break_d8_ties
     res.stats.working_bytes = bytes_of(res.dir, flags, orig, net.basin);
-    restore_raised(g.z, flags, orig);
+    swap_raised(g.z, flags, orig);
 }
 
 }  // namespace

@@ -10,14 +10,20 @@ namespace penink {
 
 namespace {
 
+// z is only read: a raised cell's filled level goes to level[] (float bits) and rides on the pit
+// stack with it, so another thread may read z meanwhile.
 struct Flood {
-    float* z;
+    const float* z;
     const GridShape& g;
     std::uint8_t* flags;
-    std::uint32_t* orig;
+    std::uint32_t* level;
     std::array<std::ptrdiff_t, 8> off;
     RadixHeap<std::uint32_t> open;  // exact: every cell queued is at or above the level spilled
-    std::vector<std::uint32_t> pit;     // a stack: any order is correct within a level
+    struct Pit {
+        std::uint32_t cell;
+        float h;  // its filled level
+    };
+    std::vector<Pit> pit;               // a stack: any order is correct within a level
     std::queue<std::uint32_t> trace;    // FIFO: climbing breadth-first from the spill reaches a
                                         // cell's lower neighbours first, keeping it off the queue
     FillStats stats;
@@ -36,15 +42,11 @@ struct Flood {
     void close_from(std::uint32_t n, float h) {
         flags[n] = fill_closed;
         if (z[n] > h) return trace.push(n);
-        if (z[n] < h) {
-            orig[n] = std::bit_cast<std::uint32_t>(z[n]);
-            z[n] = h, flags[n] |= fill_raised, ++stats.raised;
-        }
-        pit.push_back(n);
+        if (z[n] < h) level[n] = std::bit_cast<std::uint32_t>(h), flags[n] |= fill_raised, ++stats.raised;
+        pit.push_back({n, h});
     }
-    // Popped from the queue or the pit stack: its level is the lowest open level.
-    void spill(std::uint32_t i, bool checked) {
-        const float h = z[i];
+    // Popped from the queue or the pit stack at level h, the lowest open level.
+    void spill(std::uint32_t i, float h, bool checked) {
         if (!checked) {
             for (int k = 0; k < 8; ++k) {
                 const std::uint32_t n = std::uint32_t(std::ptrdiff_t(i) + off[k]);
@@ -97,25 +99,24 @@ void seed_boundary(Flood& f) {
 
 }  // namespace
 
-FillStats priority_flood_fill(std::vector<float>& z, const GridShape& g,
-                              std::vector<std::uint8_t>& flags,
-                              std::vector<std::uint32_t>& orig_bits) {
+FillStats priority_flood_levels(const std::vector<float>& z, const GridShape& g, std::vector<std::uint8_t>& flags,
+                                std::vector<std::uint32_t>& level_bits) {
     flags.assign(g.size(), 0);
-    orig_bits.resize(g.size());
-    Flood f{z.data(), g, flags.data(), orig_bits.data(), d8_offsets(g), {}, {}, {}, {}};
+    level_bits.resize(g.size());
+    Flood f{z.data(), g, flags.data(), level_bits.data(), d8_offsets(g), {}, {}, {}, {}};
     seed_boundary(f);
     for (;;) {
         if (!f.pit.empty()) {
-            const std::uint32_t i = f.pit.back();
+            const Flood::Pit p = f.pit.back();
             f.pit.pop_back();
-            f.spill(i, false);
+            f.spill(p.cell, p.h, false);
         } else if (!f.trace.empty()) {
             const std::uint32_t i = f.trace.front();
             f.trace.pop();
             f.climb(i);
         } else if (!f.open.empty()) {
             const std::uint32_t i = f.open.pop().cell;
-            f.spill(i, f.on_border(i));
+            f.spill(i, z[i], f.on_border(i));
         } else {
             break;
         }
@@ -123,10 +124,19 @@ FillStats priority_flood_fill(std::vector<float>& z, const GridShape& g,
     return f.stats;
 }
 
-void restore_raised(std::vector<float>& z, const std::vector<std::uint8_t>& flags,
-                    const std::vector<std::uint32_t>& orig_bits) {
+void swap_raised(std::vector<float>& z, const std::vector<std::uint8_t>& flags, std::vector<std::uint32_t>& bits) {
     for (std::size_t i = 0; i < z.size(); ++i)
-        if (flags[i] & fill_raised) z[i] = std::bit_cast<float>(orig_bits[i]);
+        if (flags[i] & fill_raised) {
+            const std::uint32_t zi = std::bit_cast<std::uint32_t>(z[i]);
+            z[i] = std::bit_cast<float>(bits[i]), bits[i] = zi;
+        }
+}
+
+FillStats priority_flood_fill(std::vector<float>& z, const GridShape& g, std::vector<std::uint8_t>& flags,
+                              std::vector<std::uint32_t>& orig_bits) {
+    const FillStats st = priority_flood_levels(z, g, flags, orig_bits);
+    swap_raised(z, flags, orig_bits);
+    return st;
 }
 
 }  // namespace penink

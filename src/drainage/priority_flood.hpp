@@ -30,19 +30,25 @@ struct FillStats {
 // Fills `z` (cols*rows, row-major, local metres) in place. `flags` is resized to cols*rows and
 // set to fill_closed (| fill_raised where raised, | fill_boundary on seeds); for every raised cell i, orig_bits[i] receives
 // std::bit_cast<uint32_t>(original z) (a uint32 buffer so the build can lend it the accumulation
-// array; resized to cols*rows, other entries left as they are).
+// array; resized to cols*rows, other entries left as they are). = priority_flood_levels, then
+// swap_raised.
 FillStats priority_flood_fill(std::vector<float>& z, const GridShape& g,
                               std::vector<std::uint8_t>& flags,
                               std::vector<std::uint32_t>& orig_bits);
+
+// The same fill leaving `z` as it is (only read: another thread may read it meanwhile): the
+// filled level of every raised cell i goes to level_bits[i] (float bits).
+FillStats priority_flood_levels(const std::vector<float>& z, const GridShape& g, std::vector<std::uint8_t>& flags,
+                                std::vector<std::uint32_t>& level_bits);
+
+// Exchanges z[i] with the float bits in bits[i] at every raised cell: after priority_flood_levels
+// z becomes the filled surface and bits the original elevations; done again, z is the original.
+void swap_raised(std::vector<float>& z, const std::vector<std::uint8_t>& flags, std::vector<std::uint32_t>& bits);
 
 // Original elevation of cell i (z holds the filled surface).
 inline float original_z(const std::vector<float>& z, const std::vector<std::uint8_t>& flags,
                         const std::vector<std::uint32_t>& orig_bits, std::size_t i) {
     return flags[i] & fill_raised ? std::bit_cast<float>(orig_bits[i]) : z[i];
 }
-
-// Puts the original elevations of the raised cells back into `z`.
-void restore_raised(std::vector<float>& z, const std::vector<std::uint8_t>& flags,
-                    const std::vector<std::uint32_t>& orig_bits);
 
 }  // namespace penink

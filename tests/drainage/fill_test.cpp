@@ -2,6 +2,7 @@
 // Priority-Flood (Barnes et al. 2014, Alg. 1) on random grids with pits, flats and nodata, keeps
 // slope cells out of the priority queue, and D8 next to a depression aims into it (the unfilled
 // DEM's steepest descent, as GRASS r.watershed) without creating cycles.
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <queue>
@@ -9,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "drainage/drainage_build.hpp"
+#include "drainage/fill_directions.hpp"
 #include "drainage/priority_flood.hpp"
 
 namespace penink {
@@ -80,7 +82,7 @@ TEST(PriorityFlood, EqualsTheTextbookFillOnRandomGrids) {
         }
         EXPECT_GT(raised, 0u);
         EXPECT_EQ(st.raised, raised);
-        restore_raised(g.z, flags, orig);
+        swap_raised(g.z, flags, orig);
         EXPECT_EQ(g.z, original);
     }
 }
@@ -151,6 +153,32 @@ TEST(PriorityFlood, EqualsTheTextbookFillAcrossZeroAndMagnitudes) {
             raised += (flags[i] & fill_raised) != 0;
         }
         EXPECT_GT(raised, 10u);
+    }
+}
+
+// The fill and the directions on two threads (D8 of the original DEM, redone near raised cells)
+// give what the fill and then D8 on the filled surface give: z, flags, original bits, directions
+// and the set of tied cells, on random grids with pits, ties (4 levels) and nodata.
+TEST(FillWithDirections, EqualsFillThenDirections) {
+    for (std::uint64_t seed = 31; seed <= 38; ++seed) {
+        DrainageGrid a = random_grid(45 + int(seed), 33, seed, seed % 2 ? 60 : 0);
+        DrainageGrid b = a;
+        const GridShape s{a.cols, a.rows, a.valid.data()};
+        std::vector<std::uint8_t> flags_a, flags_b, dir_b;
+        std::vector<std::uint32_t> orig_a, orig_b, ties_a, ties_b;
+        const FillStats st_a = priority_flood_fill(a.z, s, flags_a, orig_a);
+        const std::vector<std::uint8_t> dir_a = d8_directions(a.z, s, a.dx, a.dy, &ties_a);
+        const FillStats st_b = fill_with_directions(b.z, s, b.dx, b.dy, flags_b, orig_b, dir_b, ties_b);
+        EXPECT_GT(st_a.raised, 20u);
+        EXPECT_EQ(st_b.raised, st_a.raised);
+        EXPECT_EQ(b.z, a.z);
+        EXPECT_EQ(flags_b, flags_a);
+        EXPECT_EQ(dir_b, dir_a) << "seed " << seed;
+        for (std::size_t i = 0; i < a.size(); ++i)
+            if (flags_a[i] & fill_raised) ASSERT_EQ(orig_b[i], orig_a[i]);
+        std::sort(ties_a.begin(), ties_a.end()), std::sort(ties_b.begin(), ties_b.end());
+        EXPECT_GT(ties_a.size(), 50u);
+        EXPECT_EQ(ties_b, ties_a);
     }
 }
 

@@ -79,7 +79,7 @@ TEST(FlatsAndPits, PriorityFloodRaisesToTheSpillLevel) {
     EXPECT_FLOAT_EQ(std::bit_cast<float>(orig[12]), 1.0f);
     EXPECT_FLOAT_EQ(g.z[12], 3.0f);
     EXPECT_FLOAT_EQ(g.z[2], 2.0f);
-    restore_raised(g.z, flags, orig);
+    swap_raised(g.z, flags, orig);
     EXPECT_EQ(g.z, z);
 }
 
