@@ -110,19 +110,19 @@ DrainageGrid resample_pn(const Terrain& t, int factor) {
     DrainageGrid g;
     g.factor = factor;
     g.cols = (t.cols - 1) * factor + 1, g.rows = (t.rows - 1) * factor + 1;
-    g.z.assign(g.size(), 0.0f), g.valid.assign(g.size(), 0);
     g.origin = t.origin;
     g.coarse_cols = t.cols, g.coarse_rows = t.rows, g.coarse_valid = t.valid;
-    // the spacing (one sequential sum, as before) on a second thread while the nodes are copied
-    g.coarse_xy.resize(t.size());  // allocations before the thread: nothing below throws
-    if (factor == 1) g.valid = t.valid;
+    g.valid = factor == 1 ? t.valid : std::vector<std::uint8_t>(g.size(), 0);
+    // each array written once (reserved, then appended: no zero-fill first); allocations before
+    // the thread: nothing below throws. The spacing (one sequential sum, as before) on a second
+    // thread while the nodes are copied.
+    g.coarse_xy.reserve(t.size());
+    if (factor == 1) g.z.reserve(g.size());
+    else g.z.assign(g.size(), 0.0f);
     std::thread spacing([&] { mean_spacing(t, g.dx, g.dy); });
-    if (factor == 1) {  // the PN patch interpolates its corners: the nodes themselves
-        for (std::size_t i = 0; i < t.size(); ++i)
-            g.coarse_xy[i] = glm::vec2(t.pos[i]), g.z[i] = t.valid[i] ? t.pos[i].z : 0.0f;
-    } else {
-        for (std::size_t i = 0; i < t.size(); ++i) g.coarse_xy[i] = glm::vec2(t.pos[i]);
-    }
+    for (std::size_t i = 0; i < t.size(); ++i) g.coarse_xy.emplace_back(t.pos[i]);
+    if (factor == 1)  // the PN patch interpolates its corners: the nodes themselves
+        for (std::size_t i = 0; i < t.size(); ++i) g.z.push_back(t.valid[i] ? t.pos[i].z : 0.0f);
     spacing.join();
     g.dx /= factor, g.dy /= factor;
     if (factor == 1) return g;
