@@ -1,11 +1,14 @@
 #include "drainage/branches.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <exception>
 #include <thread>
+#include <utility>
 
 #include "core/error.hpp"
+#include "core/parallel_chunks.hpp"
 
 namespace penink {
 
@@ -35,13 +38,22 @@ struct HeadRank {
     }
 };
 
-HeadRank head_rank(const DrainageGrid& g, const std::vector<std::uint8_t>& indeg) {
-    HeadRank h{std::vector<std::uint64_t>((g.size() + 63) / 64, 0), {}};
-    for (std::size_t i = 0; i < g.size(); ++i)
-        if (g.valid[i] && indeg[i] != 1) h.bits[i >> 6] |= std::uint64_t(1) << (i & 63);
-    h.before.resize(h.bits.size());
+// Also counts the valid cells (`valid`). Words of bits in parallel chunks, then the running sum.
+HeadRank head_rank(const DrainageGrid& g, const std::vector<std::uint8_t>& indeg, std::size_t& valid) {
+    HeadRank h{std::vector<std::uint64_t>((g.size() + 63) / 64, 0), std::vector<std::uint32_t>((g.size() + 63) / 64)};
+    std::atomic<std::size_t> total{0};
+    parallel_chunks(h.bits.size(), 4096, [&](std::size_t w0, std::size_t w1) {
+        std::size_t n = 0;
+        for (std::size_t i = w0 * 64; i < std::min(g.size(), w1 * 64); ++i) {
+            n += g.valid[i];
+            if (g.valid[i] && indeg[i] != 1) h.bits[i >> 6] |= std::uint64_t(1) << (i & 63);
+        }
+        for (std::size_t w = w0; w < w1; ++w) h.before[w] = std::uint32_t(std::popcount(h.bits[w]));
+        total += n;
+    });
     std::uint32_t n = 0;
-    for (std::size_t w = 0; w < h.bits.size(); ++w) h.before[w] = n, n += std::uint32_t(std::popcount(h.bits[w]));
+    for (std::uint32_t& b : h.before) n += std::exchange(b, n);  // counts -> running sums before
+    valid = total;
     return h;
 }
 
@@ -176,11 +188,11 @@ void trace_halves(const Tracer& tracer, std::size_t mid, DrainageDb& db) {
 void build_branches(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
                     const FlowNetwork& net, DrainageDb& db) {
     const GridShape shape{g.cols, g.rows, g.valid.data()};
-    const std::vector<std::uint8_t> indeg = inflow_counts(dir, shape);
-    const HeadRank rank = head_rank(g, indeg);
-    const std::size_t heads = rank.bits.empty() ? 0 : rank.before.back() + std::popcount(rank.bits.back());
+    const std::vector<std::uint8_t> own = net.indeg.size() == g.size() ? std::vector<std::uint8_t>() : inflow_counts(dir, shape);
+    const std::vector<std::uint8_t>& indeg = own.empty() ? net.indeg : own;
     std::size_t valid = 0;
-    for (std::uint8_t v : g.valid) valid += v;
+    const HeadRank rank = head_rank(g, indeg, valid);
+    const std::size_t heads = rank.bits.empty() ? 0 : rank.before.back() + std::popcount(rank.bits.back());
     db.vertices.clear();
     db.vertices.resize(valid + heads - net.outlet.size());  // untouched: the threads fault their halves
     db.branches.clear();

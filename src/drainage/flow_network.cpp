@@ -28,14 +28,18 @@ std::uint8_t final_order(std::uint8_t pending) {
 }  // namespace
 
 void accumulate_flow(const std::vector<std::uint8_t>& dir, const GridShape& g, FlowNetwork& net) {
-    std::vector<std::uint8_t> indeg = inflow_counts(dir, g);
+    // the in-degree (at most 8) in the low 4 bits, a copy counted down as upstream cells are
+    // done in the high 4 bits: all zero again once the walk is through
+    net.indeg = inflow_counts(dir, g);
+    std::vector<std::uint8_t>& in = net.indeg;
+    for (std::uint8_t& b : in) b = std::uint8_t(b | b << 4);
     net.acc.assign(g.size(), 0);
     net.order.assign(g.size(), 0);
     std::size_t done = 0, valid = 0;
     for (std::size_t s = 0; s < g.size(); ++s) {
         if (!g.valid[s]) continue;
         ++valid;
-        if (indeg[s] != 0 || net.acc[s] != 0) continue;  // not a source, or already walked
+        if (in[s] != 0 || net.acc[s] != 0) continue;  // not a source, or already walked
         for (std::size_t c = s;;) {  // walk down while every upstream cell is done
             net.acc[c] += 1;
             net.order[c] = final_order(net.order[c]);
@@ -44,7 +48,8 @@ void accumulate_flow(const std::vector<std::uint8_t>& dir, const GridShape& g, F
             const std::size_t d = d8_target(g, c, dir[c]);
             net.acc[d] += net.acc[c];
             push_order(net.order[d], net.order[c]);
-            if (--indeg[d] != 0) break;
+            in[d] = std::uint8_t(in[d] - 16);
+            if (in[d] >> 4) break;
             c = d;
         }
     }

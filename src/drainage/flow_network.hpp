@@ -16,12 +16,13 @@ struct FlowNetwork {
     std::vector<std::uint8_t> order;    // Strahler order (1 at sources); 0 invalid
     std::vector<std::uint32_t> basin;   // basin id 1..B; 0 invalid
     std::vector<std::uint32_t> outlet;  // outlet cell of basin b at outlet[b - 1], in index order
+    std::vector<std::uint8_t> indeg;    // inflow_counts of the directions (kept for the branches)
 };
 
 // In-degree (number of valid neighbours draining into the cell) of every cell.
 std::vector<std::uint8_t> inflow_counts(const std::vector<std::uint8_t>& dir, const GridShape& g);
 
-// Fills net.acc and net.order (reusing their storage). Throws penink::Error("drainage", "",
+// Fills net.acc, net.order (reusing their storage) and net.indeg. Throws penink::Error("drainage", "",
 // "flow directions contain a cycle", internal) when some cell never reaches an outlet.
 void accumulate_flow(const std::vector<std::uint8_t>& dir, const GridShape& g, FlowNetwork& net);
 

@@ -54,6 +54,8 @@ TEST(Flow, SlopeAccumulationAndOrder) {
     accumulate_flow(dir, shape_of(g), net);
     EXPECT_EQ(net.acc, (std::vector<std::uint32_t>{1, 1, 1, 2, 2, 2, 3, 6, 9}));
     EXPECT_EQ(net.order, (std::vector<std::uint8_t>{1, 1, 1, 1, 1, 1, 1, 2, 2}));
+    EXPECT_EQ(net.indeg, inflow_counts(dir, shape_of(g)));  // kept whole for the branches
+    EXPECT_EQ(net.indeg, (std::vector<std::uint8_t>{0, 0, 0, 1, 1, 1, 1, 2, 2}));
 }
 
 TEST(Flow, RidgeBasinsAndNormalisedFlow) {
