@@ -6,6 +6,7 @@
 #include <cstring>
 #include <exception>
 #include <filesystem>
+#include <new>
 
 #include <unistd.h>
 #include <bit>
@@ -120,9 +121,13 @@ DrainageDb drainage_db_from_grid(DrainageGrid& g, const DrainageProgress& progre
     // is much of the tracing's time, and the fill leaves a core idle for most of its run.
     std::thread claim([&] {
         const std::size_t valid = std::size_t(std::count(g.valid.begin(), g.valid.end(), 1));
-        db.vertices.reserve(2 * valid);
-        db.vertices.resize(valid);
-        std::memset(static_cast<void*>(db.vertices.data()), 0, valid * sizeof(DvVertex));
+        try {
+            db.vertices.reserve(2 * valid);
+            db.vertices.resize(valid);
+            std::memset(static_cast<void*>(db.vertices.data()), 0, valid * sizeof(DvVertex));
+        } catch (const std::bad_alloc&) {  // only a head start: build_branches sizes the array
+            db.vertices = DvVertices();
+        }
     });
     DrainageResult res;
     try {
