@@ -1,6 +1,7 @@
 #include "input/dem_reader.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -240,6 +241,33 @@ TEST(DemReader, JacksboroForcedZoneAndAscii) {
     ASSERT_EQ(a.size(), b.size());
     EXPECT_EQ(a.origin, b.origin);
     for (std::size_t i = 0; i < a.size(); i += 97) ASSERT_NEAR(glm::distance(a.pos[i], b.pos[i]), 0.0, 0.05) << i;
+}
+
+// The origin is the rounded centre of the bounds of ALL projected nodes, although the reader visits
+// only the first and last rows and the rows' ends on an axis-aligned grid (every row when the
+// geotransform rotates): checked against every node projected on its own, west of the zone's
+// central meridian (curved rows), on an axis-aligned and a rotated grid.
+TEST(DemReader, GeographicOriginIsTheCentreOfAllNodes) {
+    TempDir dir;
+    const int w = 90, h = 40;
+    const std::vector<float> z(std::size_t(w) * h, 100.0f);
+    for (const double rot : {0.0, 0.0021}) {
+        const std::array<double, 6> gt{-89.95, 0.011, rot, 37.2, rot * 0.5, -0.009};
+        const std::string p = test::write_tif(dir.file(rot ? "rot.tif" : "axis.tif"), w, h, z, gt, 4326);
+        const Terrain t = read_dem(p);
+        glm::dvec2 lo(1e300), hi(-1e300);
+        for (int r = 0; r < h; ++r)
+            for (int c = 0; c < w; ++c) {
+                int zone = 0;
+                bool north = true;
+                double x, y;
+                const double lon = gt[0] + (c + 0.5) * gt[1] + (r + 0.5) * gt[2];
+                const double lat = gt[3] + (c + 0.5) * gt[4] + (r + 0.5) * gt[5];
+                GeographicLib::UTMUPS::Forward(lat, lon, zone, north, x, y, t.utm_zone);
+                lo = glm::min(lo, glm::dvec2(x, y)), hi = glm::max(hi, glm::dvec2(x, y));
+            }
+        EXPECT_EQ(t.origin, glm::round(0.5 * (lo + hi))) << "rotation " << rot;
+    }
 }
 
 TEST(DemReader, SouthernHemisphereGeographic) {
