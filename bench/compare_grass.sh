@@ -11,7 +11,7 @@
 #                                                     or d:m:s for degrees), e.g. a real landscape
 #                                                     of millions of cells: --refined 0:00:00.6
 #                                                     ../shared/data/jacksboro.tif 4326
-# env: PENINK=path/to/penink (default build/penink), REPEAT=3 (best of REPEAT runs is reported).
+# env: PENINK=path/to/penink (default build/penink), REPEAT=5 (best of REPEAT runs is reported).
 #
 # Comparison sets (interior cells = not on the border, no nodata neighbour), all on the DEM:
 #  - "non-flat" (the issue's set for the >= 98 % target): an interior cell with a strictly lower
@@ -32,7 +32,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 penink=${PENINK:-$root/build/penink}
-repeat=${REPEAT:-3}
+repeat=${REPEAT:-5}
 synthetic=0
 timing_only=0  # --synthetic and --refined: no agreement tables
 refined=""
