@@ -148,8 +148,8 @@ bool basin_totals(const DrainageDb& db, std::vector<double>& total) {
     for (const DvBranch& b : db.branches) {
         if (b.basin < 1 || b.basin > outlets) return false;
         if (b.downstream >= 0) continue;
-        if (total[b.basin - 1] != 0.0) return false;
-        total[b.basin - 1] = double(std::uint64_t(b.head_acc) + b.count - 1);
+        if (total[b.basin - 1] != 0.0 || std::uint64_t(b.head_acc) + b.count < 2) return false;
+        total[b.basin - 1] = double(std::uint64_t(b.head_acc) + b.count - 1);  // >= 1
     }
     return true;
 }
