@@ -83,7 +83,6 @@ struct Tracer {
     const FlowNetwork& net;
     const std::vector<std::uint8_t>& indeg;
     const HeadRank& rank;
-    std::vector<double> basin_total;  // accumulation at each basin's outlet: a small table
     GridShape shape{g.cols, g.rows, g.valid.data()};
 
     bool is_head(std::size_t h) const { return g.valid[h] && indeg[h] != 1; }
@@ -92,88 +91,75 @@ struct Tracer {
                     ExitCode::internal);
     }
 
-    // The branch headed at cell h: its vertices appended to `out`, its record (first left 0).
-    DvBranch trace(std::size_t h, std::vector<DvVertex>& out) const {
-        DvBranch b{};
-        b.downstream = -1;
-        b.basin = net.basin[h], b.order = net.order[h], b.head_acc = net.acc[h];
-        // a flow path stays in its basin: one basin total for the branch and its end
-        const double total = basin_total[b.basin - 1];
-        const std::size_t start = out.size();
+    // Walks the branch headed at cell h: emit(cell) for each of its points and, when it ends at
+    // a junction, for that junction too (the downstream branch's head, repeated as its last
+    // vertex); returns the downstream branch's id, -1 at an outlet.
+    template <class Emit> std::int32_t walk(std::size_t h, Emit&& emit) const {
         for (std::size_t c = h;;) {
-            out.push_back(point_vertex(g, net, c, total));
-            if (!dir[c]) break;
+            emit(c);
+            if (!dir[c]) return -1;
             const std::size_t d = d8_target(shape, c, dir[c]);
             if (indeg[d] != 1) {
-                out.push_back(point_vertex(g, net, d, total));
-                b.downstream = std::int32_t(rank.of(d));
-                break;
+                emit(d);
+                return std::int32_t(rank.of(d));
             }
             c = d;
         }
-        b.count = std::uint32_t(out.size() - start);
-        return b;
     }
 
-    // Heads in [h0, h1) in cell order: their vertices written forward from `at`, their records
-    // from branch `id` on (both advanced past them); returns the end of the vertices.
-    std::size_t forward(std::size_t h0, std::size_t h1, std::size_t at, std::uint32_t& id, DrainageDb& db) const {
-        std::vector<DvVertex> run;
-        for (std::size_t h = h0; h < h1; ++h) {
-            if (!is_head(h)) continue;
-            run.clear();
-            DvBranch b = trace(h, run);
-            if (run.size() > db.vertices.size() - at || id >= db.branches.size()) overflow();
-            b.first = std::uint32_t(at);
-            std::copy(run.begin(), run.end(), db.vertices.begin() + std::ptrdiff_t(at));
-            at += run.size();
-            db.branches[id++] = b;
+    // Calls f(head, id, south) for every head with its branch id (heads in cell order): those
+    // before cell `mid` on this thread from id 0 up, the rest on a second thread (south = true)
+    // from the last id down. The two must meet.
+    template <class F> void each_head(std::size_t mid, std::uint32_t heads, F&& f) const {
+        std::uint32_t north_id = 0, south_id = heads;
+        std::exception_ptr south_error;
+        std::thread south([&] {
+            try {
+                for (std::size_t h = g.size(); h-- > mid;)
+                    if (is_head(h)) south_id == 0 ? overflow() : f(h, --south_id, true);
+            } catch (...) {
+                south_error = std::current_exception();
+            }
+        });
+        try {
+            for (std::size_t h = 0; h < mid; ++h)
+                if (is_head(h)) north_id >= heads ? overflow() : f(h, north_id++, false);
+        } catch (...) {
+            south.join();
+            throw;
         }
-        return at;
-    }
-
-    // Heads in [h0, h1) in reverse cell order: their vertices written backward ending at `end`,
-    // their records backward ending before branch `id`; returns the start of the vertices (so the
-    // two halves meet with neither gap nor copy).
-    std::size_t backward(std::size_t h0, std::size_t h1, std::size_t end, std::uint32_t& id, DrainageDb& db) const {
-        std::vector<DvVertex> run;
-        for (std::size_t h = h1; h-- > h0;) {
-            if (!is_head(h)) continue;
-            run.clear();
-            DvBranch b = trace(h, run);
-            if (run.size() > end || id == 0) overflow();
-            end -= run.size();
-            b.first = std::uint32_t(end);
-            std::copy(run.begin(), run.end(), db.vertices.begin() + std::ptrdiff_t(end));
-            db.branches[--id] = b;
-        }
-        return end;
+        south.join();
+        if (south_error) std::rethrow_exception(south_error);
+        if (north_id != south_id) overflow();
     }
 };
 
-// North heads (cells before `mid`) forward from the start of db.vertices on this thread, south
-// heads backward from its end on a second one; the two must meet exactly.
-void trace_halves(const Tracer& tracer, std::size_t mid, DrainageDb& db) {
-    std::size_t south_start = 0;
-    std::uint32_t north_id = 0, south_id = std::uint32_t(db.branches.size());
-    std::exception_ptr south_error;
-    std::thread south([&] {
-        try {
-            south_start = tracer.backward(mid, tracer.g.size(), db.vertices.size(), south_id, db);
-        } catch (...) {
-            south_error = std::current_exception();
-        }
+std::size_t mid_cell(const DrainageGrid& g) { return std::size_t(g.rows / 2) * g.cols; }
+
+// North heads forward from the start of db.vertices, south heads backward from its end (each
+// half on its own thread, each_head); the two must meet exactly.
+void trace_halves(const Tracer& tracer, DrainageDb& db) {
+    std::vector<double> total(tracer.net.outlet.size());  // accumulation at each basin's outlet
+    for (std::size_t b = 0; b < total.size(); ++b) total[b] = tracer.net.acc[tracer.net.outlet[b]];
+    std::vector<DvVertex> run[2];
+    std::size_t at[2] = {0, db.vertices.size()};  // north: next free; south: first written
+    tracer.each_head(mid_cell(tracer.g), std::uint32_t(db.branches.size()), [&](std::size_t h, std::uint32_t id, bool south) {
+        const FlowNetwork& net = tracer.net;
+        DvBranch b{};
+        b.basin = net.basin[h], b.order = net.order[h], b.head_acc = net.acc[h];
+        const double t = total[b.basin - 1];  // a flow path stays in its basin
+        std::vector<DvVertex>& r = run[south];
+        r.clear();
+        b.downstream = tracer.walk(h, [&](std::size_t c) { r.push_back(point_vertex(tracer.g, net, c, t)); });
+        b.count = std::uint32_t(r.size());
+        // each half bounds itself by the array's ends (the other half's cursor is its thread's)
+        if (south ? r.size() > at[1] : r.size() > db.vertices.size() - at[0]) Tracer::overflow();
+        b.first = std::uint32_t(south ? (at[1] -= r.size()) : at[0]);
+        std::copy(r.begin(), r.end(), db.vertices.begin() + std::ptrdiff_t(b.first));
+        if (!south) at[0] += r.size();
+        db.branches[id] = b;
     });
-    std::size_t north_end = 0;
-    try {
-        north_end = tracer.forward(0, mid, 0, north_id, db);
-    } catch (...) {
-        south.join();
-        throw;
-    }
-    south.join();
-    if (south_error) std::rethrow_exception(south_error);
-    if (north_end != south_start || north_id != south_id)
+    if (at[0] != at[1])
         throw Error("drainage", "", "branch vertices do not fill the database (a point off every branch)",
                     ExitCode::internal);
 }
@@ -197,9 +183,7 @@ void build_branches(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
     db.vertices.resize(valid + heads - net.outlet.size());  // untouched: the threads fault their halves
     db.branches.clear();
     db.branches.resize(heads);  // untouched: every record is written by the thread tracing it
-    std::vector<double> totals(net.outlet.size());
-    for (std::size_t b = 0; b < totals.size(); ++b) totals[b] = net.acc[net.outlet[b]];
-    trace_halves(Tracer{g, dir, net, indeg, rank, std::move(totals)}, std::size_t(g.rows / 2) * g.cols, db);
+    trace_halves(Tracer{g, dir, net, indeg, rank}, db);
     link_upstream(db);
 }
 

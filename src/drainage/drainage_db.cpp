@@ -53,7 +53,8 @@ struct Sink {
     std::uint64_t hash = hash64(nullptr, 0);
     std::function<void(const std::uint8_t*, std::size_t)> out;
     std::future<void> flight;
-    ~Sink() {
+    ~Sink() { wait(); }
+    void wait() {
         if (flight.valid()) flight.wait();
     }
     void drain() {  // hands over the whole 8-byte words, keeps the tail
@@ -102,13 +103,6 @@ struct Sink {
 };
 
 std::size_t varint_size(std::uint64_t v) { return (std::size_t(std::bit_width(v | 1)) + 6) / 7; }
-
-// The link of branch `id`: 0 at an outlet, else the zigzag of the step to its downstream branch.
-std::uint64_t branch_link(const DvBranch& b, std::size_t id) {
-    if (b.downstream < 0) return 0;
-    const std::int64_t d = std::int64_t(b.downstream) - std::int64_t(id);
-    return d >= 0 ? std::uint64_t(d) << 1 : (std::uint64_t(-d) << 1) - 1;
-}
 
 struct Reader {
     const std::vector<std::uint8_t>& buf;
@@ -216,24 +210,62 @@ std::size_t header_bytes(const DrainageDb& db) {
     return prefix_bytes + 36 + 12 + 16 + 4 + db.crs_wkt.size();
 }
 
-// Bytes of the branch records and the vertices stored (all but repeated end junctions).
-std::size_t body_bytes(const DrainageDb& db) {
-    std::size_t n = 0, vertices = db.vertices.size();
-    for (std::size_t id = 0; id < db.branches.size(); ++id) {
-        const DvBranch& b = db.branches[id];
-        n += varint_size(b.count) + varint_size(branch_link(b, id)) + 1 + varint_size(b.basin) + varint_size(b.head_acc);
-        vertices -= b.downstream >= 0;
+// The branches of a DrainageDb in the builder's shape.
+class DbBranches : public DvBranchSource {
+public:
+    explicit DbBranches(const DrainageDb& db) : db_(db) {}
+    std::size_t branch_count() const override { return db_.branches.size(); }
+    std::size_t vertex_count() const override { return db_.vertices.size(); }
+    DvBranchRecord record(std::size_t id) const override {
+        const DvBranch& b = db_.branches[id];
+        return {b.count, b.downstream, b.order, b.basin, b.head_acc};
     }
-    return n + vertices * 12;
+    void stored_xyz(std::size_t id, std::uint8_t* out) const override {
+        const DvBranch& b = db_.branches[id];
+        for (std::uint32_t k = 0; k + (b.downstream >= 0) < b.count; ++k, out += 12)
+            std::memcpy(out, &db_.vertices[b.first + k], 12);  // x, y, z
+    }
+
+private:
+    const DrainageDb& db_;
+};
+
+std::uint32_t stored_count(const DvBranchRecord& r) { return r.count - (r.downstream >= 0); }
+
+// The link of branch `id`: 0 at an outlet, else the zigzag of the step to its downstream branch.
+std::uint64_t record_link(const DvBranchRecord& r, std::size_t id) {
+    if (r.downstream < 0) return 0;
+    const std::int64_t d = std::int64_t(r.downstream) - std::int64_t(id);
+    return d >= 0 ? std::uint64_t(d) << 1 : (std::uint64_t(-d) << 1) - 1;
 }
 
-std::size_t encoded_size(const DrainageDb& db) {
-    return header_bytes(db) + 5 * 8 + body_bytes(db) + db.divides.size() * 4 + db.divide_vertices.size() * 12 + 8;
+// Bytes of the branch records and of the vertices stored (all but repeated end junctions), and
+// the number of upstream links (branches with a downstream one).
+struct BodySize {
+    std::size_t bytes = 0, links = 0;
+};
+
+BodySize body_size(const DvBranchSource& src) {
+    BodySize s;
+    std::size_t stored = 0;
+    for (std::size_t id = 0; id < src.branch_count(); ++id) {
+        const DvBranchRecord r = src.record(id);
+        s.bytes += varint_size(r.count) + varint_size(record_link(r, id)) + 1 + varint_size(r.basin) +
+                   varint_size(r.head_acc);
+        stored += stored_count(r);
+        s.links += r.downstream >= 0;
+    }
+    s.bytes += stored * 12;
+    return s;
 }
 
-void put_header(Sink& w, const DrainageDb& db) {
+std::size_t encoded_size(const DrainageDb& meta, const BodySize& body) {
+    return header_bytes(meta) + 5 * 8 + body.bytes + meta.divides.size() * 4 + meta.divide_vertices.size() * 12 + 8;
+}
+
+void put_header(Sink& w, const DrainageDb& db, std::size_t total_bytes) {
     w.bytes(magic, 8);
-    w.put(drainage_db_version), w.put(std::uint32_t(0)), w.put(std::uint64_t(encoded_size(db)));
+    w.put(drainage_db_version), w.put(std::uint32_t(0)), w.put(std::uint64_t(total_bytes));
     const DrainageFingerprint& f = db.fingerprint;
     w.put(f.file_size), w.put(f.mtime_ns), w.put(f.content_hash), w.put(f.resample), w.put(f.options), w.put(f.routing);
     w.put(db.cols), w.put(db.rows), w.put(db.factor), w.put(db.origin.x), w.put(db.origin.y);
@@ -241,36 +273,39 @@ void put_header(Sink& w, const DrainageDb& db) {
     w.bytes(db.crs_wkt.data(), db.crs_wkt.size());
 }
 
-void put_body(Sink& w, const DrainageDb& db) {
-    w.put(std::uint64_t(db.vertices.size())), w.put(std::uint64_t(db.branches.size()));
-    w.put(std::uint64_t(db.upstream.size())), w.put(std::uint64_t(db.divide_vertices.size()));
-    w.put(std::uint64_t(db.divides.size()));
-    for (std::size_t id = 0; id < db.branches.size(); ++id) {
-        const DvBranch& b = db.branches[id];
-        w.varint(b.count), w.varint(branch_link(b, id)), w.put(b.order), w.varint(b.basin), w.varint(b.head_acc);
+void put_body(Sink& w, const DrainageDb& meta, const DvBranchSource& src, const BodySize& body) {
+    w.put(std::uint64_t(src.vertex_count())), w.put(std::uint64_t(src.branch_count()));
+    w.put(std::uint64_t(body.links)), w.put(std::uint64_t(meta.divide_vertices.size()));
+    w.put(std::uint64_t(meta.divides.size()));
+    for (std::size_t id = 0; id < src.branch_count(); ++id) {
+        const DvBranchRecord r = src.record(id);
+        w.varint(r.count), w.varint(record_link(r, id)), w.put(r.order), w.varint(r.basin), w.varint(r.head_acc);
     }
-    for (const DvBranch& b : db.branches) {
-        const std::uint32_t stored = b.count - (b.downstream >= 0);
-        w.room(std::size_t(stored) * 12);
-        std::uint8_t* out = w.buf.data() + w.n;
-        for (std::uint32_t k = 0; k < stored; ++k, out += 12)
-            std::memcpy(out, &db.vertices[b.first + k], 12);  // x, y, z
-        w.n += std::size_t(stored) * 12;
+    for (std::size_t id = 0; id < src.branch_count(); ++id) {
+        const std::size_t bytes = std::size_t(stored_count(src.record(id))) * 12;
+        w.room(bytes);
+        src.stored_xyz(id, w.buf.data() + w.n);
+        w.n += bytes;
     }
-    for (const DvPolyline& p : db.divides) w.put(p.count);
-    for (const DvVertex& v : db.divide_vertices) {
+    for (const DvPolyline& p : meta.divides) w.put(p.count);
+    for (const DvVertex& v : meta.divide_vertices) {
         const float xyz[3] = {v.x, v.y, v.z};
         w.bytes(xyz, 12);
     }
 }
 
 // `w` may have handed out bytes when it throws.
+void encode(const DrainageDb& meta, const DvBranchSource& src, Sink& w) {
+    const BodySize body = body_size(src);
+    put_header(w, meta, encoded_size(meta, body));
+    put_body(w, meta, src, body);
+    w.finish();
+}
+
 void encode(const DrainageDb& db, Sink& w) {
     if (!layout_ok(db))
         throw Error("drainage", "", "drainage database is not in the shape the builder gives it", ExitCode::internal);
-    put_header(w, db);
-    put_body(w, db);
-    w.finish();
+    encode(db, DbBranches(db), w);
 }
 
 void get_header(Reader& r, DrainageDb& db) {
@@ -390,7 +425,6 @@ bool drainage_db_canonical(const DrainageDb& db) { return layout_ok(db) && deriv
 
 std::vector<std::uint8_t> encode_drainage_db(const DrainageDb& db) {
     std::vector<std::uint8_t> bytes;
-    bytes.reserve(encoded_size(db));
     Sink w;
     w.out = [&](const std::uint8_t* p, std::size_t n) { bytes.insert(bytes.end(), p, p + n); };
     encode(db, w);
@@ -434,7 +468,10 @@ DrainageDb read_drainage_db(const std::string& path, const DrainageFingerprint* 
     return db;
 }
 
-void write_drainage_db(const std::string& path, const DrainageDb& db) {
+namespace {
+
+// Streams encode_into(sink) to a temp file in the same directory, then renames it.
+void write_encoded(const std::string& path, const std::function<void(Sink&)>& encode_into) {
     const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
     auto fail = [&](std::FILE* f) {
         if (f) std::fclose(f);
@@ -445,15 +482,18 @@ void write_drainage_db(const std::string& path, const DrainageDb& db) {
     std::FILE* out = std::fopen(tmp.c_str(), "wb");
     if (!out) fail(nullptr);
     bool ok = true;
-    Sink w;
-    w.out = [&](const std::uint8_t* p, std::size_t n) { ok = ok && std::fwrite(p, 1, n, out) == n; };
-    try {
-        encode(db, w);
-    } catch (...) {
-        std::fclose(out);
-        std::error_code ec;
-        std::filesystem::remove(tmp, ec);
-        throw;
+    {
+        Sink w;
+        w.out = [&](const std::uint8_t* p, std::size_t n) { ok = ok && std::fwrite(p, 1, n, out) == n; };
+        try {
+            encode_into(w);
+        } catch (...) {
+            w.wait();  // the buffer in flight, before the file goes
+            std::fclose(out);
+            std::error_code ec;
+            std::filesystem::remove(tmp, ec);
+            throw;
+        }
     }
     if (!ok || std::fclose(out) != 0) fail(nullptr);
     // The old file is removed first: renaming over an existing file makes ext4 (auto_da_alloc)
@@ -464,6 +504,17 @@ void write_drainage_db(const std::string& path, const DrainageDb& db) {
     std::filesystem::rename(tmp, path, ec);
     if (ec) fail(nullptr);
 }
+
+}  // namespace
+
+void write_drainage_db(const std::string& path, const DrainageDb& db) {
+    write_encoded(path, [&](Sink& w) { encode(db, w); });
+}
+
+void write_drainage_db(const std::string& path, const DrainageDb& meta, const DvBranchSource& branches) {
+    write_encoded(path, [&](Sink& w) { encode(meta, branches, w); });
+}
+
 DrainageFingerprint dem_fingerprint(const std::string& dem_path, int resample) {
     namespace fs = std::filesystem;
     std::error_code ec;

@@ -85,6 +85,28 @@ std::uint64_t hash64(const void* data, std::size_t size, std::uint64_t seed = 0x
 // penink::Error("drainage", dem_path, "cannot read DEM file") when it cannot be read.
 DrainageFingerprint dem_fingerprint(const std::string& dem_path, int resample);
 
+// One branch as the DV file stores it (DvBranch without the derived first / upstream fields).
+struct DvBranchRecord {
+    std::uint32_t count;      // vertices, the repeated end junction included
+    std::int32_t downstream;  // -1 at an outlet
+    std::uint8_t order;
+    std::uint32_t basin, head_acc;
+};
+
+// The branches an encoding is written from, asked for in id order: a DrainageDb's (what
+// encode_drainage_db / write_drainage_db use) or the drainage network's own, streamed without
+// holding the vertices (NetworkBranches, branches.hpp).
+class DvBranchSource {
+public:
+    virtual ~DvBranchSource() = default;
+    virtual std::size_t branch_count() const = 0;
+    virtual std::size_t vertex_count() const = 0;  // repeated end junctions included
+    virtual DvBranchRecord record(std::size_t id) const = 0;
+    // f32 x, y, z (12 bytes each, little-endian) of the branch's vertices but a repeated end
+    // junction, to `out`.
+    virtual void stored_xyz(std::size_t id, std::uint8_t* out) const = 0;
+};
+
 // Whether `db` has the shape drainage_db_from_grid gives it, all of which the compact layout
 // relies on (drainage_db.cpp): the database read back from its encoding is then `db` exactly.
 bool drainage_db_canonical(const DrainageDb& db);
@@ -100,6 +122,10 @@ std::vector<std::uint8_t> encode_drainage_db(const DrainageDb& db);
 // Streams the encoding (4 MiB buffer) to a temp file in the same directory, then renames it. Throws
 // penink::Error("drainage", path, "cannot write drainage database", internal) on failure.
 void write_drainage_db(const std::string& path, const DrainageDb& db);
+
+// The same file for the header and divides of `meta` (its vertices and branches unused) with the
+// branches and vertices of `branches`, which must have the builder's shape (not checked).
+void write_drainage_db(const std::string& path, const DrainageDb& meta, const DvBranchSource& branches);
 
 // Reads and checks a database: errors penink::Error("drainage", path, what) with what =
 // "cannot open drainage database", "not a drainage database (bad magic)",
