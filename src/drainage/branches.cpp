@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <bit>
+#include <cstring>
 #include <exception>
 #include <thread>
 #include <utility>
@@ -21,10 +22,17 @@ glm::dvec2 point_xy(const DrainageGrid& g, std::size_t i) {
     return grid_xy(g, int(i % g.cols), int(i / g.cols));
 }
 
+// x, y, z of drainage point i (flow 0).
+DvVertex point_xyz(const DrainageGrid& g, std::size_t i) {
+    const glm::dvec2 p = point_xy(g, i);
+    return {float(p.x), float(p.y), g.z[i], 0.0f};
+}
+
 // `total` is the accumulation at the outlet of the point's basin (as normalised_flow divides).
 DvVertex point_vertex(const DrainageGrid& g, const FlowNetwork& net, std::size_t i, double total) {
-    const glm::dvec2 p = point_xy(g, i);
-    return {float(p.x), float(p.y), g.z[i], float(double(net.acc[i]) / total)};
+    DvVertex v = point_xyz(g, i);
+    v.flow = float(double(net.acc[i]) / total);
+    return v;
 }
 
 // Rank of head cells in row-major order (= branch id): one bit per cell plus a running count
@@ -185,6 +193,54 @@ void build_branches(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
     db.branches.resize(heads);  // untouched: every record is written by the thread tracing it
     trace_halves(Tracer{g, dir, net, indeg, rank}, db);
     link_upstream(db);
+}
+
+struct NetworkBranches::Walks {
+    const std::vector<std::uint8_t> own_indeg;  // when net has none
+    HeadRank rank;
+    Tracer tracer;
+    std::vector<std::uint32_t> head, count;  // per branch
+    std::vector<std::int32_t> down;
+    std::size_t vertices = 0;
+
+    Walks(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net)
+        : own_indeg(net.indeg.size() == g.size() ? std::vector<std::uint8_t>()
+                                                 : inflow_counts(dir, GridShape{g.cols, g.rows, g.valid.data()})),
+          tracer{g, dir, net, own_indeg.empty() ? net.indeg : own_indeg, rank} {
+        std::size_t valid = 0;
+        rank = head_rank(g, tracer.indeg, valid);
+        const std::size_t heads = rank.bits.empty() ? 0 : rank.before.back() + std::popcount(rank.bits.back());
+        head.resize(heads), count.resize(heads), down.resize(heads);
+        tracer.each_head(mid_cell(g), std::uint32_t(heads), [&](std::size_t h, std::uint32_t id, bool) {
+            std::uint32_t n = 0;
+            down[id] = tracer.walk(h, [&](std::size_t) { ++n; });
+            head[id] = std::uint32_t(h), count[id] = n;
+        });
+        vertices = valid + heads - net.outlet.size();
+    }
+};
+
+NetworkBranches::NetworkBranches(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net)
+    : w_(std::make_unique<Walks>(g, dir, net)) {}
+NetworkBranches::~NetworkBranches() = default;
+std::size_t NetworkBranches::branch_count() const { return w_->head.size(); }
+std::size_t NetworkBranches::vertex_count() const { return w_->vertices; }
+
+DvBranchRecord NetworkBranches::record(std::size_t id) const {
+    const FlowNetwork& net = w_->tracer.net;
+    const std::size_t h = w_->head[id];
+    return {w_->count[id], w_->down[id], net.order[h], net.basin[h], net.acc[h]};
+}
+
+void NetworkBranches::stored_xyz(std::size_t id, std::uint8_t* out) const {
+    const Tracer& t = w_->tracer;
+    std::uint32_t left = w_->count[id] - (w_->down[id] >= 0);  // the end junction is not stored
+    t.walk(w_->head[id], [&](std::size_t c) {
+        if (left == 0) return;
+        const DvVertex v = point_xyz(t.g, c);
+        std::memcpy(out, &v, 12);
+        out += 12, --left;
+    });
 }
 
 namespace {

@@ -6,6 +6,8 @@
 // edges between them, chained at dual corners into polylines (corner = mean x, y of its valid
 // surrounding points, z = their highest elevation; flow 0).
 #pragma once
+#include <memory>
+
 #include "drainage/drainage_db.hpp"
 #include "drainage/drainage_grid.hpp"
 #include "drainage/flow_network.hpp"
@@ -16,6 +18,25 @@ namespace penink {
 // z comes from g.z (pass the original, unfilled elevations).
 void build_branches(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
                     const FlowNetwork& net, DrainageDb& db);
+
+// The branches of a drainage network as the DV encoder asks for them (DvBranchSource), without
+// holding their vertices: each branch's head, vertex count and downstream branch are found by
+// walking it once (two threads, as build_branches), its vertices walked again when asked for.
+// Gives the bytes build_branches' DrainageDb encodes to. g, dir and net must outlive it; net
+// needs indeg (accumulate_flow) or it is counted here.
+class NetworkBranches : public DvBranchSource {
+public:
+    NetworkBranches(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net);
+    ~NetworkBranches() override;
+    std::size_t branch_count() const override;
+    std::size_t vertex_count() const override;
+    DvBranchRecord record(std::size_t id) const override;
+    void stored_xyz(std::size_t id, std::uint8_t* out) const override;
+
+private:
+    struct Walks;
+    std::unique_ptr<Walks> w_;
+};
 
 // Fills db.divide_vertices and db.divides.
 void build_divides(const DrainageGrid& g, const FlowNetwork& net, DrainageDb& db);

@@ -89,6 +89,27 @@ void priority_flood_directions(DrainageGrid& g, const GridShape& shape, const Dr
     swap_raised(g.z, flags, orig);
 }
 
+// Runs f() while the divides are traced into `db` on a second thread (they read the same grid
+// and network and fill other members of db).
+template <class F> void with_divides(const DrainageGrid& g, const FlowNetwork& net, DrainageDb& db, F&& f) {
+    std::exception_ptr divides_error;
+    std::thread divides([&] {
+        try {
+            build_divides(g, net, db);
+        } catch (...) {
+            divides_error = std::current_exception();
+        }
+    });
+    try {
+        f();
+    } catch (...) {
+        divides.join();
+        throw;
+    }
+    divides.join();
+    if (divides_error) std::rethrow_exception(divides_error);
+}
+
 }  // namespace
 
 DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progress, DrainageRouting routing) {
@@ -139,19 +160,30 @@ DrainageDb drainage_db_from_grid(DrainageGrid& g, const DrainageProgress& progre
     claim.join();
     db.cols = g.cols, db.rows = g.rows, db.factor = g.factor, db.origin = g.origin;
     report(progress, "tracing branches and divides", 0.75);
-    // divides read the same grid and network and fill other members of db: traced meanwhile
-    std::thread divides([&] { build_divides(g, res.net, db); });
-    try {
-        build_branches(g, res.dir, res.net, db);
-    } catch (...) {
-        divides.join();
-        throw;
-    }
-    divides.join();
+    with_divides(g, res.net, db, [&] { build_branches(g, res.dir, res.net, db); });
     res.stats.branches = db.branches.size(), res.stats.divides = db.divides.size();
     report(progress, "done", 1.0);
     if (keep) *keep = std::move(res);
     return db;
+}
+
+DrainageDb build_and_write_drainage_db(const Terrain& t, const DrainageOptions& options, const DrainageFingerprint& fp,
+                                       const std::string& path, const DrainageProgress& progress, DrainageResult* keep) {
+    report(progress, "resampling the PN surface", 0.0);
+    DrainageGrid g = resample_pn(t, drainage_resample_factor(t, options));
+    DrainageResult res = compute_drainage(g, progress, options.routing);
+    DrainageDb meta;
+    meta.cols = g.cols, meta.rows = g.rows, meta.factor = g.factor, meta.origin = g.origin;
+    meta.crs_wkt = t.crs_wkt, meta.fingerprint = fp;
+    report(progress, "tracing branches and divides", 0.75);
+    std::optional<NetworkBranches> branches;
+    with_divides(g, res.net, meta, [&] { branches.emplace(g, res.dir, res.net); });
+    res.stats.branches = branches->branch_count(), res.stats.divides = meta.divides.size();
+    report(progress, "writing the database", 0.9);
+    write_drainage_db(path, meta, *branches);
+    report(progress, "done", 1.0);
+    if (keep) *keep = std::move(res);
+    return meta;
 }
 
 DrainageDb build_drainage_db(const Terrain& t, const DrainageOptions& options,

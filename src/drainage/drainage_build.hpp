@@ -79,6 +79,14 @@ DrainageDb drainage_db_from_grid(DrainageGrid& g, const DrainageProgress& progre
 DrainageDb build_drainage_db(const Terrain& t, const DrainageOptions& options,
                              const DrainageProgress& progress = {}, DrainageResult* keep = nullptr);
 
+// What `penink drainage` does: the build of build_drainage_db with fingerprint `fp`, written to
+// `path` (write_drainage_db: temp file, renamed) straight from the network (NetworkBranches,
+// branches.hpp: no vertex array held; the same bytes). Returns the database without its branches
+// and vertices (grid, origin, CRS, fingerprint, divides); `keep` as build_drainage_db.
+DrainageDb build_and_write_drainage_db(const Terrain& t, const DrainageOptions& options, const DrainageFingerprint& fp,
+                                       const std::string& path, const DrainageProgress& progress = {},
+                                       DrainageResult* keep = nullptr);
+
 // Fingerprint of the DEM file plus the build options: the resample factor, in `options` the bits
 // of the Terrain's vertical exaggeration as a float (vertex z is exaggerated), and the routing.
 DrainageFingerprint drainage_fingerprint(const std::string& dem_path, const Terrain& terrain,

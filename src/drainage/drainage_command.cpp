@@ -66,11 +66,9 @@ int run(const DrainageCommand& cmd, std::ostream& log) {
     o.routing = cmd.routing;
     if (cmd.resample < 0) throw Error("drainage", cmd.dem, "resample factor must be >= 1 (0 = automatic)");
     DrainageResult res;
-    DrainageDb db = build_drainage_db(t, o, progress_printer(log, cmd.quiet, timer), &res);
-    timer.next("writing the database");
-    db.fingerprint = drainage_fingerprint(cmd.dem, t, o);
     const std::string out = cmd.output.empty() ? cmd.dem + ".dv" : cmd.output;
-    write_drainage_db(out, db);
+    const DrainageDb db = build_and_write_drainage_db(t, o, drainage_fingerprint(cmd.dem, t, o), out,
+                                                      progress_printer(log, cmd.quiet, timer), &res);
     timer.next("writing rasters");
     if (!cmd.rasters_dir.empty()) {
         // the grid's valid mask: exactly the points with a basin label

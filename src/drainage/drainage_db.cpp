@@ -22,12 +22,15 @@
 // 4 added the routing.
 #include "drainage/drainage_db.hpp"
 
+#include <algorithm>
 #include <bit>
+#include <exception>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <functional>
 #include <future>
+#include <thread>
 #include <filesystem>
 #include <fstream>
 
@@ -241,8 +244,9 @@ std::uint64_t record_link(const DvBranchRecord& r, std::size_t id) {
 
 // Bytes of the branch records and of the vertices stored (all but repeated end junctions), and
 // the number of upstream links (branches with a downstream one).
+// Also the vertex bytes of the second half of the branches (from branch count / 2 on).
 struct BodySize {
-    std::size_t bytes = 0, links = 0;
+    std::size_t bytes = 0, links = 0, second_half = 0;
 };
 
 BodySize body_size(const DvBranchSource& src) {
@@ -254,9 +258,19 @@ BodySize body_size(const DvBranchSource& src) {
                    varint_size(r.head_acc);
         stored += stored_count(r);
         s.links += r.downstream >= 0;
+        if (id == src.branch_count() / 2) s.second_half = stored - stored_count(r);
     }
+    s.second_half = (stored - s.second_half) * 12;
     s.bytes += stored * 12;
     return s;
+}
+
+// The vertices of branches [b0, b1), written from `out` on.
+void put_vertices(const DvBranchSource& src, std::size_t b0, std::size_t b1, std::uint8_t* out) {
+    for (std::size_t id = b0; id < b1; ++id) {
+        src.stored_xyz(id, out);
+        out += std::size_t(stored_count(src.record(id))) * 12;
+    }
 }
 
 std::size_t encoded_size(const DrainageDb& meta, const BodySize& body) {
@@ -281,12 +295,33 @@ void put_body(Sink& w, const DrainageDb& meta, const DvBranchSource& src, const 
         const DvBranchRecord r = src.record(id);
         w.varint(r.count), w.varint(record_link(r, id)), w.put(r.order), w.varint(r.basin), w.varint(r.head_acc);
     }
-    for (std::size_t id = 0; id < src.branch_count(); ++id) {
-        const std::size_t bytes = std::size_t(stored_count(src.record(id))) * 12;
-        w.room(bytes);
-        src.stored_xyz(id, w.buf.data() + w.n);
-        w.n += bytes;
+    // vertices: the second half of the branches walked on a second thread into a buffer (untouched
+    // until it writes), appended after the first half
+    const std::size_t nb = src.branch_count(), mid = nb / 2;
+    std::vector<std::uint8_t, UninitAllocator<std::uint8_t>> second(body.second_half);
+    std::exception_ptr second_error;
+    std::thread walker([&] {
+        try {
+            put_vertices(src, mid, nb, second.data());
+        } catch (...) {
+            second_error = std::current_exception();
+        }
+    });
+    try {
+        for (std::size_t id = 0; id < mid; ++id) {
+            const std::size_t bytes = std::size_t(stored_count(src.record(id))) * 12;
+            w.room(bytes);
+            src.stored_xyz(id, w.buf.data() + w.n);
+            w.n += bytes;
+        }
+    } catch (...) {
+        walker.join();
+        throw;
     }
+    walker.join();
+    if (second_error) std::rethrow_exception(second_error);
+    for (std::size_t at = 0; at < second.size(); at += std::size_t(1) << 20)
+        w.bytes(second.data() + at, std::min(second.size() - at, std::size_t(1) << 20));
     for (const DvPolyline& p : meta.divides) w.put(p.count);
     for (const DvVertex& v : meta.divide_vertices) {
         const float xyz[3] = {v.x, v.y, v.z};

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
+#include "drainage/branches.hpp"
 #include "drainage/drainage_build.hpp"
 
 namespace penink {
@@ -100,6 +101,43 @@ TEST(DvFile, FileOfSeveralWriteBuffersRoundTrips) {  // 4 MiB buffers hashed and
     write_drainage_db((d / "big.dv").string(), db);
     EXPECT_GT(fs::file_size(d / "big.dv"), std::uintmax_t(9) << 20);
     EXPECT_TRUE(read_drainage_db((d / "big.dv").string()) == db);
+}
+
+Terrain small_terrain();
+
+// The network streamed to the file (NetworkBranches: no vertex array) gives the very bytes the
+// built DrainageDb encodes to: small, rough, with nodata, resampled.
+TEST(DvFile, StreamedNetworkWritesTheDatabasesBytes) {
+    const fs::path d = temp_dir("stream");
+    std::vector<DrainageGrid> grids;
+    grids.push_back(make_regular_grid(5, 3, 1.0, {3, 4, 5, 4, 3, 2, 3, 4, 3, 2, 3, 4, 5, 4, 3}));
+    DrainageGrid rough = make_regular_grid(150, 110, 10.0, std::vector<float>(150 * 110));
+    std::vector<std::uint8_t> holes(rough.size(), 1);
+    std::uint32_t h = 99;
+    for (std::size_t i = 0; i < rough.size(); ++i) {
+        h = h * 1664525u + 1013904223u;
+        rough.z[i] = 30.0f * std::sin(float(i % 150) * 0.09f) + float(h >> 29) + 0.2f * float(i / 150);
+        holes[i] = (h >> 8) % 50 != 0;
+    }
+    grids.push_back(rough);
+    grids.push_back(make_regular_grid(150, 110, 10.0, rough.z, holes));
+    Terrain t = small_terrain();
+    grids.push_back(resample_pn(t, 3));
+    for (std::size_t k = 0; k < grids.size(); ++k) {
+        DrainageGrid& g = grids[k];
+        DrainageResult res;
+        DrainageDb db = drainage_db_from_grid(g, {}, &res);
+        db.crs_wkt = "LOCAL_CS[\"test\"]", db.fingerprint = {1, 2, 3, 1, 0, 0};
+        ASSERT_TRUE(drainage_db_canonical(db));
+        write_drainage_db((d / "db.dv").string(), db);
+        const NetworkBranches streamed(g, res.dir, res.net);
+        EXPECT_EQ(streamed.branch_count(), db.branches.size());
+        EXPECT_EQ(streamed.vertex_count(), db.vertices.size());
+        DrainageDb meta = db;
+        meta.vertices.clear(), meta.branches.clear(), meta.upstream.clear();
+        write_drainage_db((d / "net.dv").string(), meta, streamed);
+        EXPECT_EQ(slurp(d / "net.dv"), slurp(d / "db.dv")) << "grid " << k;
+    }
 }
 
 TEST(DvFile, CompactLayoutSizeAndShapeCheck) {

@@ -175,7 +175,9 @@ TEST(FillWithDirections, EqualsFillThenDirections) {
         EXPECT_EQ(flags_b, flags_a);
         EXPECT_EQ(dir_b, dir_a) << "seed " << seed;
         for (std::size_t i = 0; i < a.size(); ++i)
-            if (flags_a[i] & fill_raised) ASSERT_EQ(orig_b[i], orig_a[i]);
+            if (flags_a[i] & fill_raised) {
+                ASSERT_EQ(orig_b[i], orig_a[i]);
+            }
         std::sort(ties_a.begin(), ties_a.end()), std::sort(ties_b.begin(), ties_b.end());
         EXPECT_GT(ties_a.size(), 50u);
         EXPECT_EQ(ties_b, ties_a);
