@@ -167,10 +167,11 @@ DrainageDb drainage_db_from_grid(DrainageGrid& g, const DrainageProgress& progre
     return db;
 }
 
-DrainageDb build_and_write_drainage_db(const Terrain& t, const DrainageOptions& options, const DrainageFingerprint& fp,
+DrainageDb build_and_write_drainage_db(Terrain& t, const DrainageOptions& options, const DrainageFingerprint& fp,
                                        const std::string& path, const DrainageProgress& progress, DrainageResult* keep) {
     report(progress, "resampling the PN surface", 0.0);
     DrainageGrid g = resample_pn(t, drainage_resample_factor(t, options));
+    std::vector<glm::vec3>().swap(t.pos);  // the grid holds what is needed: the memory goes back
     DrainageResult res = compute_drainage(g, progress, options.routing);
     DrainageDb meta;
     meta.cols = g.cols, meta.rows = g.rows, meta.factor = g.factor, meta.origin = g.origin;

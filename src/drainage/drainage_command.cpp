@@ -59,7 +59,7 @@ void print_summary(std::ostream& log, const DrainageStats& s, const DrainageDb& 
 int run(const DrainageCommand& cmd, std::ostream& log) {
     const auto t0 = Clock::now();
     StageTimer timer{log};
-    const Terrain t = read_dem(cmd.dem);
+    Terrain t = read_dem(cmd.dem);  // its positions are released once resampled
     if (const std::string w = missing_crs_warning(t); !w.empty()) log << w << "\n";
     DrainageOptions o;
     o.resample = cmd.resample;
