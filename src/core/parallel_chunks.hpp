@@ -1,7 +1,8 @@
 // Runs f(begin, end) over consecutive chunks of [0, n) on up to hardware_concurrency threads (the
 // calling one included): one chunk when n is below `min_chunk`. For loops over grid rows whose
 // iterations write disjoint data; f must not depend on the chunking. The first exception thrown
-// by a chunk is rethrown after all have finished.
+// by a chunk is rethrown after all have finished. parallel_collect: each chunk appends to its own
+// vector, joined in chunk order (what one pass over [0, n) appends).
 #pragma once
 #include <algorithm>
 #include <cstddef>
@@ -12,10 +13,15 @@
 
 namespace penink {
 
-template <class F> void parallel_chunks(std::size_t n, std::size_t min_chunk, F&& f) {
+// Chunk length for n items: n split over up to hardware_concurrency chunks of >= min_chunk.
+inline std::size_t chunk_length(std::size_t n, std::size_t min_chunk) {
     const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 16);
     const std::size_t chunks = std::clamp<std::size_t>(n / std::max<std::size_t>(min_chunk, 1), 1, threads);
-    const std::size_t per = (n + chunks - 1) / chunks;
+    return std::max<std::size_t>((n + chunks - 1) / chunks, 1);
+}
+
+template <class F> void parallel_chunks(std::size_t n, std::size_t min_chunk, F&& f) {
+    const std::size_t per = chunk_length(n, min_chunk);
     std::vector<std::future<void>> rest;
     for (std::size_t b = per; b < n; b += per)
         rest.push_back(std::async(std::launch::async, [&f, b, e = std::min(n, b + per)] { f(b, e); }));
@@ -33,6 +39,16 @@ template <class F> void parallel_chunks(std::size_t n, std::size_t min_chunk, F&
         }
     }
     if (first) std::rethrow_exception(first);
+}
+
+// f(begin, end, out) appends to `out`, its chunk's own vector.
+template <class T, class F> std::vector<T> parallel_collect(std::size_t n, std::size_t min_chunk, F&& f) {
+    const std::size_t per = chunk_length(n, min_chunk);
+    std::vector<std::vector<T>> parts((n + per - 1) / per);
+    parallel_chunks(n, min_chunk, [&](std::size_t b, std::size_t e) { f(b, e, parts[b / per]); });
+    std::vector<T> all;
+    for (auto& p : parts) all.insert(all.end(), p.begin(), p.end());
+    return all;
 }
 
 }  // namespace penink

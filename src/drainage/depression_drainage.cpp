@@ -1,8 +1,10 @@
 #include "drainage/depression_drainage.hpp"
 
 #include <bit>
+#include <utility>
 #include <vector>
 
+#include "core/parallel_chunks.hpp"
 #include "drainage/d8_steepest.hpp"
 #include "drainage/flat_resolution.hpp"
 #include "drainage/priority_flood.hpp"
@@ -49,6 +51,16 @@ struct Depressions {
     }
 };
 
+// Whether cell (c, r) has a raised neighbour.
+bool next_to_raised(const GridShape& g, const std::vector<std::uint8_t>& flags, int c, int r) {
+    for (int k = 0; k < 8; ++k) {
+        const int nc = c + d8_dc[k], nr = r + d8_dr[k];
+        if (nc >= 0 && nr >= 0 && nc < g.cols && nr < g.rows && (flags[std::size_t(nr) * g.cols + nc] & fill_raised))
+            return true;
+    }
+    return false;
+}
+
 }  // namespace
 
 void drain_rims_into_depressions(const std::vector<float>& filled,
@@ -58,30 +70,22 @@ void drain_rims_into_depressions(const std::vector<float>& filled,
                                  std::vector<std::uint32_t>* ties) {
     const D8Steps st = d8_steps(g, dx, dy);
     auto original = [&](std::size_t n) { return original_z(filled, flags, orig_bits, n); };
-    auto reaim = [&](int c, int r) {
-        const std::size_t x = std::size_t(r) * g.cols + c;
-        if (!g.valid[x] || (flags[x] & fill_raised)) return;
-        const float fx = filled[x];  // = its original elevation
-        const D8Choice d = d8_steepest(fx, g, c, r, st, original,
-                                       [&](std::size_t n) { return filled[n] < fx; });
-        dir[x] = d.code();
-        if (ties && d.tie()) ties->push_back(std::uint32_t(x));
-    };
-    // each rim cell (not raised, next to a raised one) once: a bit per cell marks those done
-    std::vector<std::uint64_t> done((g.size() + 63) / 64, 0);
-    for (int r = 0; r < g.rows; ++r)
-        for (int c = 0; c < g.cols; ++c) {
-            if (!(flags[std::size_t(r) * g.cols + c] & fill_raised)) continue;
-            for (int k = 0; k < 8; ++k) {
-                const int nc = c + d8_dc[k], nr = r + d8_dr[k];
-                if (nc < 0 || nr < 0 || nc >= g.cols || nr >= g.rows) continue;
-                const std::size_t n = std::size_t(nr) * g.cols + nc;
-                const std::uint64_t bit = std::uint64_t(1) << (n & 63);
-                if (done[n >> 6] & bit) continue;
-                done[n >> 6] |= bit;
-                reaim(nc, nr);
-            }
-        }
+    // each rim cell (valid, not raised, next to a raised one) re-aimed once; rows in parallel
+    // chunks (a cell writes only its own direction), the tied ones collected in row order
+    const std::vector<std::uint32_t> tied = parallel_collect<std::uint32_t>(
+        std::size_t(g.rows), 64, [&](std::size_t r0, std::size_t r1, std::vector<std::uint32_t>& out) {
+            for (int r = int(r0); r < int(r1); ++r)
+                for (int c = 0; c < g.cols; ++c) {
+                    const std::size_t x = std::size_t(r) * g.cols + c;
+                    if (!g.valid[x] || (flags[x] & fill_raised) || !next_to_raised(g, flags, c, r)) continue;
+                    const float fx = filled[x];  // = its original elevation
+                    const D8Choice d = d8_steepest(fx, g, c, r, st, original,
+                                                   [&](std::size_t n) { return filled[n] < fx; });
+                    dir[x] = d.code();
+                    if (d.tie()) out.push_back(std::uint32_t(x));
+                }
+        });
+    if (ties) ties->insert(ties->end(), tied.begin(), tied.end());
 }
 
 std::size_t drain_depressions(const std::vector<float>& filled, std::vector<std::uint8_t>& flags,
@@ -90,14 +94,25 @@ std::size_t drain_depressions(const std::vector<float>& filled, std::vector<std:
                               double dx, double dy, std::vector<std::uint8_t>& dir,
                               std::vector<std::uint32_t>* ties) {
     Depressions d{filled, flags, orig_bits, flat_mask, g, d8_steps(g, dx, dy), dir};
+    // down the original slopes (cells in parallel chunks: each writes its own direction), low
+    // points (first) and tied cells (second) noted in cell order
+    const std::vector<std::pair<std::uint32_t, bool>> noted = parallel_collect<std::pair<std::uint32_t, bool>>(
+        g.size(), 1 << 16, [&](std::size_t i0, std::size_t i1, std::vector<std::pair<std::uint32_t, bool>>& out) {
+            for (std::size_t i = i0; i < i1; ++i) {
+                if (!(flags[i] & fill_raised)) continue;
+                const D8Choice s = d.descent(i);
+                if (!s.steepest) {
+                    out.push_back({std::uint32_t(i), true});
+                    continue;
+                }
+                dir[i] = s.code();
+                if (s.tie()) out.push_back({std::uint32_t(i), false});
+            }
+        });
     std::vector<std::uint32_t> low;
-    for (std::size_t i = 0; i < g.size(); ++i) {  // down the original slopes, low points noted
-        if (!(flags[i] & fill_raised)) continue;
-        const D8Choice s = d.descent(i);
-        if (!s.steepest) { low.push_back(std::uint32_t(i)); continue; }
-        dir[i] = s.code();
-        if (ties && s.tie()) ties->push_back(std::uint32_t(i));
-    }
+    for (const auto& [i, is_low] : noted)
+        if (is_low) low.push_back(i);
+        else if (ties) ties->push_back(i);
     std::size_t marked = 0;
     for (const std::uint32_t p : low) marked += d.mark_outflow(p);
     return marked;
