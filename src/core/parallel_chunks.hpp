@@ -2,7 +2,7 @@
 // calling one included): one chunk when n is below `min_chunk`. For loops over grid rows whose
 // iterations write disjoint data; f must not depend on the chunking. The first exception thrown
 // by a chunk is rethrown after all have finished. parallel_collect: each chunk appends to its own
-// vector, joined in chunk order (what one pass over [0, n) appends).
+// vector, joined in chunk order (what one pass over [0, n) appends). run_beside: two jobs at once.
 #pragma once
 #include <algorithm>
 #include <cstddef>
@@ -39,6 +39,27 @@ template <class F> void parallel_chunks(std::size_t n, std::size_t min_chunk, F&
         }
     }
     if (first) std::rethrow_exception(first);
+}
+
+// Runs `beside` on a second thread while `here` runs on this one; returns when both are done and
+// then rethrows the exception either threw (here's first).
+template <class Beside, class Here> void run_beside(Beside&& beside, Here&& here) {
+    std::exception_ptr beside_error;
+    std::thread t([&] {
+        try {
+            beside();
+        } catch (...) {
+            beside_error = std::current_exception();
+        }
+    });
+    try {
+        here();
+    } catch (...) {
+        t.join();
+        throw;
+    }
+    t.join();
+    if (beside_error) std::rethrow_exception(beside_error);
 }
 
 // f(begin, end, out) appends to `out`, its chunk's own vector.

@@ -120,24 +120,15 @@ struct Tracer {
     // from the last id down. The two must meet.
     template <class F> void each_head(std::size_t mid, std::uint32_t heads, F&& f) const {
         std::uint32_t north_id = 0, south_id = heads;
-        std::exception_ptr south_error;
-        std::thread south([&] {
-            try {
+        run_beside(
+            [&] {
                 for (std::size_t h = g.size(); h-- > mid;)
                     if (is_head(h)) south_id == 0 ? overflow() : f(h, --south_id, true);
-            } catch (...) {
-                south_error = std::current_exception();
-            }
-        });
-        try {
-            for (std::size_t h = 0; h < mid; ++h)
-                if (is_head(h)) north_id >= heads ? overflow() : f(h, north_id++, false);
-        } catch (...) {
-            south.join();
-            throw;
-        }
-        south.join();
-        if (south_error) std::rethrow_exception(south_error);
+            },
+            [&] {
+                for (std::size_t h = 0; h < mid; ++h)
+                    if (is_head(h)) north_id >= heads ? overflow() : f(h, north_id++, false);
+            });
         if (north_id != south_id) overflow();
     }
 };

@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "core/error.hpp"
+#include "core/parallel_chunks.hpp"
 #include "drainage/branches.hpp"
 #include "drainage/d8_ties.hpp"
 #include "drainage/depression_drainage.hpp"
@@ -48,22 +49,7 @@ template <class... V> std::size_t bytes_of(const V&... v) {
 // Accumulation (upstream to downstream) and basin labels (downstream walks) read only the
 // directions and write different arrays: one on a second thread. A cycle throws from either.
 void accumulate_and_label(const std::vector<std::uint8_t>& dir, const GridShape& shape, FlowNetwork& net) {
-    std::exception_ptr basin_error;
-    std::thread basins([&] {
-        try {
-            label_basins(dir, shape, net);
-        } catch (...) {
-            basin_error = std::current_exception();
-        }
-    });
-    try {
-        accumulate_flow(dir, shape, net);
-    } catch (...) {
-        basins.join();
-        throw;
-    }
-    basins.join();
-    if (basin_error) std::rethrow_exception(basin_error);
+    run_beside([&] { label_basins(dir, shape, net); }, [&] { accumulate_flow(dir, shape, net); });
 }
 
 // Priority-flood routing: fill, D8, rims, flats, depressions, ties; g.z restored afterwards.
@@ -92,22 +78,7 @@ void priority_flood_directions(DrainageGrid& g, const GridShape& shape, const Dr
 // Runs f() while the divides are traced into `db` on a second thread (they read the same grid
 // and network and fill other members of db).
 template <class F> void with_divides(const DrainageGrid& g, const FlowNetwork& net, DrainageDb& db, F&& f) {
-    std::exception_ptr divides_error;
-    std::thread divides([&] {
-        try {
-            build_divides(g, net, db);
-        } catch (...) {
-            divides_error = std::current_exception();
-        }
-    });
-    try {
-        f();
-    } catch (...) {
-        divides.join();
-        throw;
-    }
-    divides.join();
-    if (divides_error) std::rethrow_exception(divides_error);
+    run_beside([&] { build_divides(g, net, db); }, f);
 }
 
 }  // namespace
@@ -140,24 +111,19 @@ DrainageDb drainage_db_from_grid(DrainageGrid& g, const DrainageProgress& progre
     // The vertex array (a vertex per valid point at least, at most two) is claimed and its first
     // part touched on a second thread while the network is computed: first touch of fresh memory
     // is much of the tracing's time, and the fill leaves a core idle for most of its run.
-    std::thread claim([&] {
-        const std::size_t valid = std::size_t(std::count(g.valid.begin(), g.valid.end(), 1));
-        try {
-            db.vertices.reserve(2 * valid);
-            db.vertices.resize(valid);
-            std::memset(static_cast<void*>(db.vertices.data()), 0, valid * sizeof(DvVertex));
-        } catch (const std::bad_alloc&) {  // only a head start: build_branches sizes the array
-            db.vertices = DvVertices();
-        }
-    });
     DrainageResult res;
-    try {
-        res = compute_drainage(g, progress, routing);
-    } catch (...) {
-        claim.join();
-        throw;
-    }
-    claim.join();
+    run_beside(
+        [&] {
+            const std::size_t valid = std::size_t(std::count(g.valid.begin(), g.valid.end(), 1));
+            try {
+                db.vertices.reserve(2 * valid);
+                db.vertices.resize(valid);
+                std::memset(static_cast<void*>(db.vertices.data()), 0, valid * sizeof(DvVertex));
+            } catch (const std::bad_alloc&) {  // only a head start: build_branches sizes the array
+                db.vertices = DvVertices();
+            }
+        },
+        [&] { res = compute_drainage(g, progress, routing); });
     db.cols = g.cols, db.rows = g.rows, db.factor = g.factor, db.origin = g.origin;
     report(progress, "tracing branches and divides", 0.75);
     with_divides(g, res.net, db, [&] { build_branches(g, res.dir, res.net, db); });

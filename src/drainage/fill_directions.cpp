@@ -5,6 +5,7 @@
 #include <exception>
 #include <thread>
 
+#include "core/parallel_chunks.hpp"
 #include "drainage/d8_steepest.hpp"
 
 namespace penink {
@@ -51,23 +52,9 @@ void redo_marked(const std::vector<float>& z, const GridShape& g, double dx, dou
 FillStats fill_with_directions(std::vector<float>& z, const GridShape& g, double dx, double dy,
                                std::vector<std::uint8_t>& flags, std::vector<std::uint32_t>& orig_bits,
                                std::vector<std::uint8_t>& dir, std::vector<std::uint32_t>& ties) {
-    std::exception_ptr d8_error;
-    std::thread original([&] {  // reads z and g only, like the fill
-        try {
-            dir = d8_directions(z, g, dx, dy, &ties, false);
-        } catch (...) {
-            d8_error = std::current_exception();
-        }
-    });
     FillStats st;
-    try {
-        st = priority_flood_levels(z, g, flags, orig_bits);
-    } catch (...) {
-        original.join();
-        throw;
-    }
-    original.join();
-    if (d8_error) std::rethrow_exception(d8_error);
+    run_beside([&] { dir = d8_directions(z, g, dx, dy, &ties, false); },  // reads z and g only, like the fill
+               [&] { st = priority_flood_levels(z, g, flags, orig_bits); });
     swap_raised(z, flags, orig_bits);
     redo_marked(z, g, dx, dy, near_raised(g, flags), dir, ties);
     return st;

@@ -1,0 +1,185 @@
+// Reading DV files (layout in drainage_db.cpp): every length, count, link and basin checked
+// before it is used, the checksum before anything is decoded.
+#include "drainage/drainage_db.hpp"
+
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include "core/error.hpp"
+#include "drainage/dv_format.hpp"
+
+namespace penink {
+
+namespace {
+
+using namespace dv;
+
+struct Reader {
+    const std::vector<std::uint8_t>& buf;
+    std::size_t pos;
+    std::string path;
+    [[noreturn]] void corrupt() const {
+        throw Error("drainage", path, "drainage database checksum mismatch (file corrupt)");
+    }
+    void need(std::size_t n) const {
+        if (n > buf.size() - pos) corrupt();
+    }
+    template <class T> T get() {
+        need(sizeof(T));
+        T v;
+        std::memcpy(&v, buf.data() + pos, sizeof(T));
+        pos += sizeof(T);
+        return v;
+    }
+    std::uint64_t varint() {
+        std::uint64_t v = 0;
+        for (int shift = 0; shift < 64; shift += 7) {
+            need(1);
+            const std::uint8_t b = buf[pos++];
+            v |= std::uint64_t(b & 0x7f) << shift;
+            if (!(b & 0x80)) return v;
+        }
+        corrupt();
+    }
+};
+
+void get_header(Reader& r, DrainageDb& db) {
+    r.pos = prefix_bytes;
+    DrainageFingerprint& f = db.fingerprint;
+    f.file_size = r.get<std::uint64_t>(), f.mtime_ns = r.get<std::int64_t>();
+    f.content_hash = r.get<std::uint64_t>(), f.resample = r.get<std::uint32_t>();
+    f.options = r.get<std::uint32_t>(), f.routing = r.get<std::uint32_t>();
+    db.cols = r.get<std::int32_t>(), db.rows = r.get<std::int32_t>(), db.factor = r.get<std::int32_t>();
+    db.origin.x = r.get<double>(), db.origin.y = r.get<double>();
+    const std::uint32_t n = r.get<std::uint32_t>();
+    r.need(n);
+    db.crs_wkt.assign(reinterpret_cast<const char*>(r.buf.data() + r.pos), n);
+    r.pos += n;
+}
+
+// Branches: first from the running count, upstream lists from `downstream`.
+void get_branches(Reader& r, DrainageDb& db, std::uint64_t upstream_count) {
+    const std::size_t nb = db.branches.size();
+    std::vector<std::uint32_t> ups(nb + 1, 0);
+    std::uint64_t next = 0;
+    for (std::size_t id = 0; id < nb; ++id) {
+        DvBranch& b = db.branches[id];
+        b = DvBranch{};
+        b.first = std::uint32_t(next);
+        const std::uint64_t count = r.varint(), link = r.varint();
+        const std::int64_t step = (link & 1) ? -std::int64_t((link + 1) >> 1) : std::int64_t(link >> 1);
+        const std::int64_t down = link ? std::int64_t(id) + step : -1;
+        if (count > 0xffffffffu || down < -1 || down >= std::int64_t(nb) || count < 1u + (down >= 0)) r.corrupt();
+        b.count = std::uint32_t(count), b.downstream = std::int32_t(down);
+        b.order = r.get<std::uint8_t>();
+        const std::uint64_t basin = r.varint(), head_acc = r.varint();
+        if (basin > 0xffffffffu || head_acc > 0xffffffffu) r.corrupt();
+        b.basin = std::uint32_t(basin), b.head_acc = std::uint32_t(head_acc);
+        next += b.count;
+        if (down >= 0) ++ups[std::size_t(down) + 1];
+    }
+    if (next != db.vertices.size()) r.corrupt();
+    for (std::size_t b = 0; b < nb; ++b) {
+        ups[b + 1] += ups[b];
+        db.branches[b].up_first = ups[b], db.branches[b].up_count = ups[b + 1] - ups[b];
+    }
+    if (ups.back() != upstream_count) r.corrupt();
+    db.upstream.resize(upstream_count);
+    for (std::size_t b = 0; b < nb; ++b)
+        if (const std::int32_t d = db.branches[b].downstream; d >= 0)
+            db.upstream[ups[std::size_t(d)]++] = std::uint32_t(b);
+}
+
+// Vertices x, y, z as stored, flow from the branch's head_acc and its basin's total.
+void get_vertices(Reader& r, DrainageDb& db) {
+    std::vector<double> total;
+    if (!basin_totals(db, total)) r.corrupt();
+    for (const DvBranch& b : db.branches) {
+        const std::uint32_t stored = b.count - (b.downstream >= 0);
+        r.need(std::size_t(stored) * 12);
+        for (std::uint32_t k = 0; k < stored; ++k) {
+            float xyz[3];
+            std::memcpy(xyz, r.buf.data() + r.pos, 12);
+            r.pos += 12;
+            db.vertices[b.first + k] = {xyz[0], xyz[1], xyz[2], branch_flow(b, k, total)};
+        }
+    }
+    for (const DvBranch& b : db.branches)  // the end junction: the downstream branch's head
+        if (b.downstream >= 0)
+            db.vertices[b.first + b.count - 1] = db.vertices[db.branches[std::size_t(b.downstream)].first];
+}
+
+void get_divides(Reader& r, DrainageDb& db) {
+    std::uint64_t next = 0;
+    for (DvPolyline& p : db.divides) p.first = std::uint32_t(next), p.count = r.get<std::uint32_t>(), next += p.count;
+    if (next != db.divide_vertices.size()) r.corrupt();
+    r.need(db.divide_vertices.size() * 12);
+    for (DvVertex& v : db.divide_vertices) {
+        float xyz[3];
+        std::memcpy(xyz, r.buf.data() + r.pos, 12);
+        r.pos += 12;
+        v = {xyz[0], xyz[1], xyz[2], 0.0f};
+    }
+}
+
+void get_body(Reader& r, DrainageDb& db) {
+    std::uint64_t counts[5];
+    for (std::uint64_t& c : counts) c = r.get<std::uint64_t>();
+    const std::size_t min_sizes[5] = {12, 5, 0, 12, 4};  // bytes each needs at least
+    for (int k = 0; k < 5; ++k)
+        if (counts[k] > r.buf.size() || (min_sizes[k] && counts[k] > (r.buf.size() - r.pos) / min_sizes[k] * 2))
+            r.corrupt();
+    db.vertices.resize(counts[0]), db.branches.resize(counts[1]);
+    db.divide_vertices.resize(counts[3]), db.divides.resize(counts[4]);
+    get_branches(r, db, counts[2]);
+    get_vertices(r, db);
+    get_divides(r, db);
+}
+std::uint64_t read_u64(const std::vector<std::uint8_t>& b, std::size_t at) {
+    std::uint64_t v;
+    std::memcpy(&v, b.data() + at, 8);
+    return v;
+}
+
+}  // namespace
+
+DrainageDb decode_drainage_db(const std::vector<std::uint8_t>& b, const std::string& path) {
+    if (b.size() < 8 || std::memcmp(b.data(), magic, 8) != 0)
+        throw Error("drainage", path, "not a drainage database (bad magic)");
+    if (b.size() < prefix_bytes) throw Error("drainage", path, "truncated drainage database");
+    std::uint32_t version;
+    std::memcpy(&version, b.data() + 8, 4);
+    if (version != drainage_db_version)
+        throw Error("drainage", path,
+                    "unsupported drainage database version " + std::to_string(version) +
+                        " (expected " + std::to_string(drainage_db_version) + ")");
+    const std::uint64_t total = read_u64(b, 16);
+    if (b.size() < total || total < prefix_bytes + 8)
+        throw Error("drainage", path, "truncated drainage database");
+    if (b.size() != total || hash64(b.data(), b.size() - 8) != read_u64(b, b.size() - 8))
+        throw Error("drainage", path, "drainage database checksum mismatch (file corrupt)");
+    DrainageDb db;
+    Reader r{b, 0, path};
+    get_header(r, db);
+    get_body(r, db);
+    if (r.pos + 8 != b.size())
+        throw Error("drainage", path, "drainage database checksum mismatch (file corrupt)");
+    return db;
+}
+
+DrainageDb read_drainage_db(const std::string& path, const DrainageFingerprint* expected) {
+    std::error_code ec;
+    std::FILE* in = std::filesystem::is_regular_file(path, ec) ? std::fopen(path.c_str(), "rb") : nullptr;
+    if (!in) throw Error("drainage", path, "cannot open drainage database");
+    std::vector<std::uint8_t> bytes(std::size_t(std::filesystem::file_size(path, ec)));
+    const std::size_t got = ec ? 0 : std::fread(bytes.data(), 1, bytes.size(), in);
+    std::fclose(in);
+    bytes.resize(got);
+    DrainageDb db = decode_drainage_db(bytes, path);
+    if (expected && !(db.fingerprint == *expected))
+        throw Error("drainage", path, "drainage database is stale (DEM changed)");
+    return db;
+}
+
+}  // namespace penink
