@@ -2,13 +2,26 @@
 
 #include <algorithm>
 #include <bit>
-#include <queue>
 
 #include "drainage/radix_heap.hpp"
 
 namespace penink {
 
 namespace {
+
+// A first-in first-out queue in one vector (cheaper than std::queue's deque): reset to its start
+// whenever it runs empty.
+struct Fifo {
+    std::vector<std::uint32_t> cells;
+    std::size_t head = 0;
+    bool empty() const { return head == cells.size(); }
+    void push(std::uint32_t c) { cells.push_back(c); }
+    std::uint32_t pop() {
+        const std::uint32_t c = cells[head++];
+        if (head == cells.size()) cells.clear(), head = 0;
+        return c;
+    }
+};
 
 // z is only read: a raised cell's filled level goes to level[] (float bits) and rides on the pit
 // stack with it, so another thread may read z meanwhile.
@@ -24,14 +37,10 @@ struct Flood {
         float h;  // its filled level
     };
     std::vector<Pit> pit;               // a stack: any order is correct within a level
-    std::queue<std::uint32_t> trace;    // FIFO: climbing breadth-first from the spill reaches a
+    Fifo trace;                         // FIFO: climbing breadth-first from the spill reaches a
                                         // cell's lower neighbours first, keeping it off the queue
     FillStats stats;
 
-    bool on_border(std::uint32_t i) const {
-        const int c = int(i % std::uint32_t(g.cols)), r = int(i / std::uint32_t(g.cols));
-        return c == 0 || r == 0 || c == g.cols - 1 || r == g.rows - 1;
-    }
     void push_open(std::uint32_t i) { open.push(float_order_key(z[i]), i), ++stats.queued; }
     void seed(std::uint32_t i) {
         if (flags[i]) return;
@@ -111,12 +120,13 @@ FillStats priority_flood_levels(const std::vector<float>& z, const GridShape& g,
             f.pit.pop_back();
             f.spill(p.cell, p.h, false);
         } else if (!f.trace.empty()) {
-            const std::uint32_t i = f.trace.front();
-            f.trace.pop();
+            const std::uint32_t i = f.trace.pop();
             f.climb(i);
         } else if (!f.open.empty()) {
-            const std::uint32_t i = f.open.pop().cell;
-            f.spill(i, z[i], f.on_border(i));
+            // the level from the key (no load of z[i], a cache miss in elevation order); every
+            // cell on the grid's border is a seed, so only seeds need checked neighbours
+            const auto e = f.open.pop();
+            f.spill(e.cell, float_of_order_key(e.key), f.flags[e.cell] & fill_boundary);
         } else {
             break;
         }

@@ -18,6 +18,11 @@ inline std::uint32_t float_order_key(float z) {
     return (b & 0x80000000u) ? ~b : (b | 0x80000000u);
 }
 
+// The elevation a float_order_key came from (-0 comes back as +0).
+inline float float_of_order_key(std::uint32_t k) {
+    return std::bit_cast<float>((k & 0x80000000u) ? (k & 0x7fffffffu) : ~k);
+}
+
 template <class Key> class RadixHeap {
 public:
     struct Entry {
