@@ -194,11 +194,11 @@ struct WorldXY {
 
     void row(const Raster& r, int row, glm::dvec2* out) const {
         if (utm) return utm->row(row, out);
-        for (int c = 0; c < r.w; ++c) out[c] = scaled_node(r, unit, 0.0, c, row);
+        for (int c = 0; c < r.w; ++c) out[c] = affine_node_world(r.gt, unit, c, row);
     }
     // A row's first or last node (what row() gives there: projected exactly).
     glm::dvec2 row_end(const Raster& r, int c, int row) const {
-        return utm ? project_to_utm(lonlat(c, row), utm->zone(), utm->north()) : scaled_node(r, unit, 0.0, c, row);
+        return utm ? project_to_utm(lonlat(c, row), utm->zone(), utm->north()) : affine_node_world(r.gt, unit, c, row);
     }
     void take(glm::dvec2 p) { lo = glm::min(lo, p), hi = glm::max(hi, p); }
 };
@@ -303,6 +303,7 @@ Terrain read_dem(const std::string& path, const DemOptions& options) {
     t.source = path;
     t.geotransform = r.gt;
     const WorldXY xy = world_coordinates(r, options, t, path);
+    if (!xy.utm) t.xy_unit = xy.unit;  // an affine grid: affine_node_xy gives pos.xy
     fill_positions(r, xy, t, path);
     t.valid = std::move(r.valid);
     return t;

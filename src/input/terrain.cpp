@@ -22,6 +22,21 @@ Terrain crop_terrain(const Terrain& t, GridWindow w) {
     return out;
 }
 
+glm::dvec2 affine_node_world(const std::array<double, 6>& gt, double unit, int c, int r) {
+    const double x = c + 0.5, y = r + 0.5;
+    return {(gt[0] + x * gt[1] + y * gt[2]) * unit, (gt[3] + x * gt[4] + y * gt[5]) * unit};
+}
+
+glm::vec2 affine_node_xy(const AffineNodes& a, glm::dvec2 origin, int c, int r) {
+    return glm::vec2(affine_node_world(a.gt, a.unit, c + a.col0, r + a.row0) - origin);
+}
+
+bool terrain_affine(const Terrain& t, AffineNodes& out) {
+    if (!(t.xy_unit > 0.0)) return false;
+    out = {t.geotransform, t.xy_unit, t.source_col0, t.source_row0};
+    return true;
+}
+
 bool terrain_bounds(const Terrain& t, glm::dvec3& lo, glm::dvec3& hi) {
     bool any = false;
     for (std::size_t i = 0; i < t.size(); ++i) {

@@ -29,11 +29,32 @@ struct Terrain {
     // source_row0 + r + 0.5), in the source CRS's units (degrees when source_geographic).
     std::array<double, 6> geotransform{0, 1, 0, 0, 0, -1};
     bool source_geographic = false;
+    // > 0: pos.xy of node (c, r) is affine_node_xy(terrain_affine) (a DEM in a projected or no CRS: an affine
+    // grid, geotransform in CRS units times xy_unit metres); 0: no such formula (e.g. geographic).
+    double xy_unit = 0.0;
     double elevation_min = 0.0, elevation_max = 0.0;  // valid elevations, metres, unexaggerated
 
     std::size_t index(int c, int r) const { return std::size_t(r) * cols + c; }
     std::size_t size() const { return std::size_t(cols) * rows; }
 };
+
+// The affine grid a DEM's nodes lie on: world x, y (metres) of source node (c, r), c counted from
+// the west and r from the north after orientation, = geotransform at the node centre times unit.
+struct AffineNodes {
+    std::array<double, 6> gt{0, 1, 0, 0, 0, -1};
+    double unit = 1.0;
+    int col0 = 0, row0 = 0;  // source node of this grid's node (0, 0)
+    bool operator==(const AffineNodes&) const = default;
+};
+
+glm::dvec2 affine_node_world(const std::array<double, 6>& gt, double unit, int c, int r);
+
+// Local x, y (floats, relative to `origin`) of node (c, r) of a grid on `a`: exactly what the
+// DEM reader stores in Terrain::pos.
+glm::vec2 affine_node_xy(const AffineNodes& a, glm::dvec2 origin, int c, int r);
+
+// The affine grid of t's nodes, when t.xy_unit > 0.
+bool terrain_affine(const Terrain& t, AffineNodes& out);
 
 // Node range [c0, c1) x [r0, r1) of a Terrain.
 struct GridWindow {

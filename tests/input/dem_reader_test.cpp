@@ -270,6 +270,25 @@ TEST(DemReader, GeographicOriginIsTheCentreOfAllNodes) {
     }
 }
 
+// A projected DEM's nodes are an affine grid whose formula gives every stored position exactly
+// (the drainage database stores cells instead of x, y on it), also in a cropped window; a
+// geographic DEM has none.
+TEST(DemReader, ProjectedNodesFollowTheirAffineGridExactly) {
+    const Terrain full = read_dem(PENINK_SHARED_DIR "/data/volcano.asc");
+    const Terrain window = crop_terrain(full, {7, 11, 50, 80});
+    for (const Terrain* t : {&full, &window}) {
+        AffineNodes a;
+        ASSERT_TRUE(terrain_affine(*t, a));
+        for (int r = 0; r < t->rows; ++r)
+            for (int c = 0; c < t->cols; ++c) {
+                const glm::vec3& p = t->pos[t->index(c, r)];
+                ASSERT_EQ(affine_node_xy(a, t->origin, c, r), glm::vec2(p.x, p.y)) << c << " " << r;
+            }
+    }
+    AffineNodes none;
+    EXPECT_FALSE(terrain_affine(read_dem(PENINK_SHARED_DIR "/data/jacksboro.tif"), none));
+}
+
 TEST(DemReader, SouthernHemisphereGeographic) {
     TempDir dir;  // around Auckland: zone 60 south
     const std::string p = test::write_tif(dir.file("akl.tif"), 3, 3, {1, 2, 3, 4, 5, 6, 7, 8, 9},
