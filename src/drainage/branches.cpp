@@ -234,6 +234,26 @@ void NetworkBranches::stored_xyz(std::size_t id, std::uint8_t* out) const {
     });
 }
 
+const AffineNodes* NetworkBranches::grid_nodes() const {
+    const DrainageGrid& g = w_->tracer.g;
+    return g.factor == 1 && g.has_affine && g.coarse_xy.size() == g.size() ? &g.affine : nullptr;
+}
+
+std::uint32_t NetworkBranches::head_cell(std::size_t id) const { return w_->head[id]; }
+
+void NetworkBranches::stored_steps_z(std::size_t id, std::uint8_t* out) const {
+    const Tracer& t = w_->tracer;
+    std::uint32_t left = w_->count[id] - (w_->down[id] >= 0);  // the end junction is not stored
+    std::size_t prev = 0;
+    bool first = true;
+    t.walk(w_->head[id], [&](std::size_t c) {
+        if (left == 0) return;
+        if (!first) *out++ = std::uint8_t(d8_index(t.dir[prev]));
+        std::memcpy(out, &t.g.z[c], 4);
+        out += 4, --left, prev = c, first = false;
+    });
+}
+
 namespace {
 
 // Dual corner (i, j), i in [0, cols], j in [0, rows], sits between points (i-1..i, j-1..j).

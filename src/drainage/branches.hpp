@@ -32,6 +32,10 @@ public:
     std::size_t vertex_count() const override;
     DvBranchRecord record(std::size_t id) const override;
     void stored_xyz(std::size_t id, std::uint8_t* out) const override;
+    // Grid positions when the grid is the Terrain's own (factor 1) on an affine grid.
+    const AffineNodes* grid_nodes() const override;
+    std::uint32_t head_cell(std::size_t id) const override;
+    void stored_steps_z(std::size_t id, std::uint8_t* out) const override;
 
 private:
     struct Walks;

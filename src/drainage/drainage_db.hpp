@@ -13,6 +13,7 @@
 #include <glm/vec2.hpp>
 
 #include "core/big_allocator.hpp"
+#include "input/terrain.hpp"
 
 namespace penink {
 
@@ -76,7 +77,9 @@ struct DrainageDb {
 // 4: the fingerprint gains the routing method (u32 after options).
 // 5: branches carry their head's accumulation (DvBranch::head_acc) and are stored as varints;
 // vertex flow is not stored but follows from it (12-byte vertices).
-inline constexpr std::uint32_t drainage_db_version = 5;
+// 6: positions either explicit (x, y, z) or, on an affine grid at factor 1, as cells: each
+// branch's head cell and a step per vertex (5-byte vertices).
+inline constexpr std::uint32_t drainage_db_version = 6;
 
 // 64-bit FNV-1a over little-endian 64-bit words (tail bytes one by one).
 std::uint64_t hash64(const void* data, std::size_t size, std::uint64_t seed = 0xcbf29ce484222325ull);
@@ -105,6 +108,14 @@ public:
     // f32 x, y, z (12 bytes each, little-endian) of the branch's vertices but a repeated end
     // junction, to `out`.
     virtual void stored_xyz(std::size_t id, std::uint8_t* out) const = 0;
+    // Grid positions: non-null when every vertex is a node of the drainage grid (cols wide) lying
+    // on this affine grid (x, y = affine_node_xy at the node); the file then stores cells, not x, y.
+    virtual const AffineNodes* grid_nodes() const { return nullptr; }
+    // With grid_nodes: the branch's head cell, and its stored vertices as f32 z for the head then
+    // u8 step + f32 z for each next one (step = ESRI code index 0..7 of the move from the vertex
+    // before: d8.hpp), to `out`.
+    virtual std::uint32_t head_cell(std::size_t id) const { return 0; }
+    virtual void stored_steps_z(std::size_t id, std::uint8_t* out) const {}
 };
 
 // Whether `db` has the shape drainage_db_from_grid gives it, all of which the compact layout

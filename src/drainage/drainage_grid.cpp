@@ -111,6 +111,7 @@ DrainageGrid resample_pn(const Terrain& t, int factor) {
     g.factor = factor;
     g.cols = (t.cols - 1) * factor + 1, g.rows = (t.rows - 1) * factor + 1;
     g.origin = t.origin;
+    g.has_affine = terrain_affine(t, g.affine);
     g.coarse_cols = t.cols, g.coarse_rows = t.rows, g.coarse_valid = t.valid;
     g.valid = factor == 1 ? t.valid : std::vector<std::uint8_t>(g.size(), 0);
     // each array written once (reserved, then appended: no zero-fill first); allocations before

@@ -23,6 +23,10 @@ struct DrainageGrid {
     int coarse_cols = 0, coarse_rows = 0;
     std::vector<glm::vec2> coarse_xy;
     std::vector<std::uint8_t> coarse_valid;
+    // The coarse nodes lie on an affine grid (Terrain::xy_unit > 0): at factor 1, coarse_xy[i] =
+    // affine_node_xy(affine, origin, c, r) exactly.
+    bool has_affine = false;
+    AffineNodes affine;
 
     std::size_t index(int c, int r) const { return std::size_t(r) * cols + c; }
     std::size_t size() const { return std::size_t(cols) * rows; }

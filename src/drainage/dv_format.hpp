@@ -16,7 +16,12 @@ inline constexpr std::size_t prefix_bytes = 8 + 4 + 4 + 8;  // magic, version, r
 // Bytes of a LEB128 varint.
 inline std::size_t varint_size(std::uint64_t v) { return (std::size_t(std::bit_width(v | 1)) + 6) / 7; }
 
-// Bytes up to the counts: prefix, fingerprint, grid, origin, CRS.
+// How vertex positions are stored (the byte after the CRS): x, y per vertex, or grid cells on an
+// affine grid (then f64 gt[6], f64 unit, i32 col0, row0 follow).
+inline constexpr std::uint8_t positions_explicit = 0, positions_grid = 1;
+inline std::size_t positions_bytes(bool grid) { return 1 + (grid ? 6 * 8 + 8 + 8 : 0); }
+
+// Bytes up to the positions byte: prefix, fingerprint, grid, origin, CRS.
 inline std::size_t header_bytes(const DrainageDb& db) { return prefix_bytes + 36 + 12 + 16 + 4 + db.crs_wkt.size(); }
 
 // Accumulation at the outlet of basin b at total[b - 1], from the basin's outlet branch. False

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "core/error.hpp"
+#include "drainage/d8.hpp"
 #include "drainage/dv_format.hpp"
 
 namespace penink {
@@ -44,7 +45,14 @@ struct Reader {
     }
 };
 
-void get_header(Reader& r, DrainageDb& db) {
+// How the file stores vertex positions (dv_format.hpp) and, on grid nodes, each branch's head cell.
+struct Positions {
+    bool grid = false;
+    AffineNodes nodes;
+    std::vector<std::uint32_t> head;
+};
+
+void get_header(Reader& r, DrainageDb& db, Positions& pos) {
     r.pos = prefix_bytes;
     DrainageFingerprint& f = db.fingerprint;
     f.file_size = r.get<std::uint64_t>(), f.mtime_ns = r.get<std::int64_t>();
@@ -56,13 +64,21 @@ void get_header(Reader& r, DrainageDb& db) {
     r.need(n);
     db.crs_wkt.assign(reinterpret_cast<const char*>(r.buf.data() + r.pos), n);
     r.pos += n;
+    const std::uint8_t mode = r.get<std::uint8_t>();
+    if (mode != positions_explicit && mode != positions_grid) r.corrupt();
+    pos.grid = mode == positions_grid;
+    if (!pos.grid) return;
+    for (double& v : pos.nodes.gt) v = r.get<double>();
+    pos.nodes.unit = r.get<double>(), pos.nodes.col0 = r.get<std::int32_t>(), pos.nodes.row0 = r.get<std::int32_t>();
+    if (db.cols < 1 || db.rows < 1) r.corrupt();
 }
 
 // Branches: first from the running count, upstream lists from `downstream`.
-void get_branches(Reader& r, DrainageDb& db, std::uint64_t upstream_count) {
+void get_branches(Reader& r, DrainageDb& db, std::uint64_t upstream_count, Positions& pos) {
     const std::size_t nb = db.branches.size();
     std::vector<std::uint32_t> ups(nb + 1, 0);
-    std::uint64_t next = 0;
+    std::uint64_t next = 0, head = 0;
+    if (pos.grid) pos.head.resize(nb);
     for (std::size_t id = 0; id < nb; ++id) {
         DvBranch& b = db.branches[id];
         b = DvBranch{};
@@ -76,6 +92,11 @@ void get_branches(Reader& r, DrainageDb& db, std::uint64_t upstream_count) {
         const std::uint64_t basin = r.varint(), head_acc = r.varint();
         if (basin > 0xffffffffu || head_acc > 0xffffffffu) r.corrupt();
         b.basin = std::uint32_t(basin), b.head_acc = std::uint32_t(head_acc);
+        if (pos.grid) {
+            head += r.varint();
+            if (head >= std::uint64_t(db.cols) * std::uint64_t(db.rows)) r.corrupt();
+            pos.head[id] = std::uint32_t(head);
+        }
         next += b.count;
         if (down >= 0) ++ups[std::size_t(down) + 1];
     }
@@ -91,19 +112,44 @@ void get_branches(Reader& r, DrainageDb& db, std::uint64_t upstream_count) {
             db.upstream[ups[std::size_t(d)]++] = std::uint32_t(b);
 }
 
-// Vertices x, y, z as stored, flow from the branch's head_acc and its basin's total.
-void get_vertices(Reader& r, DrainageDb& db) {
+// A branch's stored vertices on grid nodes: from its head cell, a step (ESRI code index) before
+// each next vertex's z; x, y where the affine grid puts the cell.
+void get_grid_vertices(Reader& r, const DrainageDb& db, const Positions& pos, std::size_t id, DvVertex* out,
+                       std::uint32_t stored) {
+    if (stored == 0) return;
+    r.need(std::size_t(stored) * 5 - 1);
+    int c = int(pos.head[id] % std::uint32_t(db.cols)), row = int(pos.head[id] / std::uint32_t(db.cols));
+    for (std::uint32_t k = 0; k < stored; ++k) {
+        if (k > 0) {
+            const std::uint8_t step = r.buf[r.pos++];
+            if (step > 7) r.corrupt();
+            c += d8_dc[step], row += d8_dr[step];
+            if (c < 0 || row < 0 || c >= db.cols || row >= db.rows) r.corrupt();
+        }
+        float z;
+        std::memcpy(&z, r.buf.data() + r.pos, 4);
+        r.pos += 4;
+        const glm::vec2 xy = affine_node_xy(pos.nodes, db.origin, c, row);
+        out[k] = {xy.x, xy.y, z, 0.0f};
+    }
+}
+
+// Vertices as stored (x, y, z or on grid nodes), flow from the branch's head_acc and its basin's
+// total.
+void get_vertices(Reader& r, DrainageDb& db, const Positions& pos) {
     std::vector<double> total;
     if (!basin_totals(db, total)) r.corrupt();
-    for (const DvBranch& b : db.branches) {
+    for (std::size_t id = 0; id < db.branches.size(); ++id) {
+        const DvBranch& b = db.branches[id];
         const std::uint32_t stored = b.count - (b.downstream >= 0);
-        r.need(std::size_t(stored) * 12);
-        for (std::uint32_t k = 0; k < stored; ++k) {
-            float xyz[3];
-            std::memcpy(xyz, r.buf.data() + r.pos, 12);
-            r.pos += 12;
-            db.vertices[b.first + k] = {xyz[0], xyz[1], xyz[2], branch_flow(b, k, total)};
+        DvVertex* out = db.vertices.data() + b.first;
+        if (pos.grid) {
+            get_grid_vertices(r, db, pos, id, out, stored);
+        } else {
+            r.need(std::size_t(stored) * 12);
+            for (std::uint32_t k = 0; k < stored; ++k, r.pos += 12) std::memcpy(&out[k], r.buf.data() + r.pos, 12);
         }
+        for (std::uint32_t k = 0; k < stored; ++k) out[k].flow = branch_flow(b, k, total);
     }
     for (const DvBranch& b : db.branches)  // the end junction: the downstream branch's head
         if (b.downstream >= 0)
@@ -123,17 +169,17 @@ void get_divides(Reader& r, DrainageDb& db) {
     }
 }
 
-void get_body(Reader& r, DrainageDb& db) {
+void get_body(Reader& r, DrainageDb& db, Positions& pos) {
     std::uint64_t counts[5];
     for (std::uint64_t& c : counts) c = r.get<std::uint64_t>();
-    const std::size_t min_sizes[5] = {12, 5, 0, 12, 4};  // bytes each needs at least
+    const std::size_t min_sizes[5] = {4, 5, 0, 12, 4};  // bytes each needs at least
     for (int k = 0; k < 5; ++k)
         if (counts[k] > r.buf.size() || (min_sizes[k] && counts[k] > (r.buf.size() - r.pos) / min_sizes[k] * 2))
             r.corrupt();
     db.vertices.resize(counts[0]), db.branches.resize(counts[1]);
     db.divide_vertices.resize(counts[3]), db.divides.resize(counts[4]);
-    get_branches(r, db, counts[2]);
-    get_vertices(r, db);
+    get_branches(r, db, counts[2], pos);
+    get_vertices(r, db, pos);
     get_divides(r, db);
 }
 std::uint64_t read_u64(const std::vector<std::uint8_t>& b, std::size_t at) {
@@ -161,8 +207,9 @@ DrainageDb decode_drainage_db(const std::vector<std::uint8_t>& b, const std::str
         throw Error("drainage", path, "drainage database checksum mismatch (file corrupt)");
     DrainageDb db;
     Reader r{b, 0, path};
-    get_header(r, db);
-    get_body(r, db);
+    Positions pos;
+    get_header(r, db, pos);
+    get_body(r, db, pos);
     if (r.pos + 8 != b.size())
         throw Error("drainage", path, "drainage database checksum mismatch (file corrupt)");
     return db;

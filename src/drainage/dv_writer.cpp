@@ -110,42 +110,56 @@ std::uint64_t record_link(const DvBranchRecord& r, std::size_t id) {
     return d >= 0 ? std::uint64_t(d) << 1 : (std::uint64_t(-d) << 1) - 1;
 }
 
-// Bytes of the branch records and of the vertices stored (all but repeated end junctions), and
-// the number of upstream links (branches with a downstream one).
-// Also the vertex bytes of the second half of the branches (from branch count / 2 on).
+// Bytes of branch b's stored vertices: 12 each with explicit positions; on grid nodes 4 for the
+// head and 5 for each next one.
+std::size_t vertex_bytes(const DvBranchRecord& r, bool grid) {
+    const std::size_t n = stored_count(r);
+    return grid ? (n ? 5 * n - 1 : 0) : 12 * n;
+}
+
+// Bytes of the branch records and of the vertices stored (all but repeated end junctions), the
+// number of upstream links (branches with a downstream one) and the vertex bytes of the second
+// half of the branches (from branch count / 2 on).
 struct BodySize {
     std::size_t bytes = 0, links = 0, second_half = 0;
 };
 
 BodySize body_size(const DvBranchSource& src) {
+    const bool grid = src.grid_nodes() != nullptr;
     BodySize s;
-    std::size_t stored = 0;
+    std::size_t head = 0;
     for (std::size_t id = 0; id < src.branch_count(); ++id) {
         const DvBranchRecord r = src.record(id);
         s.bytes += varint_size(r.count) + varint_size(record_link(r, id)) + 1 + varint_size(r.basin) +
-                   varint_size(r.head_acc);
-        stored += stored_count(r);
+                   varint_size(r.head_acc) + vertex_bytes(r, grid);
+        if (grid) s.bytes += varint_size(src.head_cell(id) - head), head = src.head_cell(id);
         s.links += r.downstream >= 0;
-        if (id == src.branch_count() / 2) s.second_half = stored - stored_count(r);
+        if (id >= src.branch_count() / 2) s.second_half += vertex_bytes(r, grid);
     }
-    s.second_half = (stored - s.second_half) * 12;
-    s.bytes += stored * 12;
     return s;
+}
+
+// The stored vertices of branch `id` to `out` (x, y, z, or steps and z on grid nodes).
+void put_branch_vertices(const DvBranchSource& src, bool grid, std::size_t id, std::uint8_t* out) {
+    if (grid) src.stored_steps_z(id, out);
+    else src.stored_xyz(id, out);
 }
 
 // The vertices of branches [b0, b1), written from `out` on.
 void put_vertices(const DvBranchSource& src, std::size_t b0, std::size_t b1, std::uint8_t* out) {
+    const bool grid = src.grid_nodes() != nullptr;
     for (std::size_t id = b0; id < b1; ++id) {
-        src.stored_xyz(id, out);
-        out += std::size_t(stored_count(src.record(id))) * 12;
+        put_branch_vertices(src, grid, id, out);
+        out += vertex_bytes(src.record(id), grid);
     }
 }
 
-std::size_t encoded_size(const DrainageDb& meta, const BodySize& body) {
-    return header_bytes(meta) + 5 * 8 + body.bytes + meta.divides.size() * 4 + meta.divide_vertices.size() * 12 + 8;
+std::size_t encoded_size(const DrainageDb& meta, const DvBranchSource& src, const BodySize& body) {
+    return header_bytes(meta) + positions_bytes(src.grid_nodes() != nullptr) + 5 * 8 + body.bytes +
+           meta.divides.size() * 4 + meta.divide_vertices.size() * 12 + 8;
 }
 
-void put_header(Sink& w, const DrainageDb& db, std::size_t total_bytes) {
+void put_header(Sink& w, const DrainageDb& db, const AffineNodes* grid, std::size_t total_bytes) {
     w.bytes(magic, 8);
     w.put(drainage_db_version), w.put(std::uint32_t(0)), w.put(std::uint64_t(total_bytes));
     const DrainageFingerprint& f = db.fingerprint;
@@ -153,15 +167,22 @@ void put_header(Sink& w, const DrainageDb& db, std::size_t total_bytes) {
     w.put(db.cols), w.put(db.rows), w.put(db.factor), w.put(db.origin.x), w.put(db.origin.y);
     w.put(std::uint32_t(db.crs_wkt.size()));
     w.bytes(db.crs_wkt.data(), db.crs_wkt.size());
+    w.put(std::uint8_t(grid ? positions_grid : positions_explicit));
+    if (!grid) return;
+    for (double v : grid->gt) w.put(v);
+    w.put(grid->unit), w.put(std::int32_t(grid->col0)), w.put(std::int32_t(grid->row0));
 }
 
 void put_body(Sink& w, const DrainageDb& meta, const DvBranchSource& src, const BodySize& body) {
+    const bool grid = src.grid_nodes() != nullptr;
     w.put(std::uint64_t(src.vertex_count())), w.put(std::uint64_t(src.branch_count()));
     w.put(std::uint64_t(body.links)), w.put(std::uint64_t(meta.divide_vertices.size()));
     w.put(std::uint64_t(meta.divides.size()));
+    std::uint32_t head = 0;
     for (std::size_t id = 0; id < src.branch_count(); ++id) {
         const DvBranchRecord r = src.record(id);
         w.varint(r.count), w.varint(record_link(r, id)), w.put(r.order), w.varint(r.basin), w.varint(r.head_acc);
+        if (grid) w.varint(src.head_cell(id) - head), head = src.head_cell(id);
     }
     // vertices: the second half of the branches walked on a second thread into a buffer (untouched
     // until it writes), appended after the first half
@@ -170,9 +191,9 @@ void put_body(Sink& w, const DrainageDb& meta, const DvBranchSource& src, const 
     run_beside([&] { put_vertices(src, mid, nb, second.data()); },
                [&] {
                    for (std::size_t id = 0; id < mid; ++id) {
-                       const std::size_t bytes = std::size_t(stored_count(src.record(id))) * 12;
+                       const std::size_t bytes = vertex_bytes(src.record(id), grid);
                        w.room(bytes);
-                       src.stored_xyz(id, w.buf.data() + w.n);
+                       put_branch_vertices(src, grid, id, w.buf.data() + w.n);
                        w.n += bytes;
                    }
                });
@@ -188,7 +209,7 @@ void put_body(Sink& w, const DrainageDb& meta, const DvBranchSource& src, const 
 // `w` may have handed out bytes when it throws.
 void encode(const DrainageDb& meta, const DvBranchSource& src, Sink& w) {
     const BodySize body = body_size(src);
-    put_header(w, meta, encoded_size(meta, body));
+    put_header(w, meta, src.grid_nodes(), encoded_size(meta, src, body));
     put_body(w, meta, src, body);
     w.finish();
 }

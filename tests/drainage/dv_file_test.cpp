@@ -2,6 +2,7 @@
 // next to the DEM is written, reused, rebuilt when stale and kept in memory when unwritable.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -10,6 +11,7 @@
 #include "core/error.hpp"
 #include "drainage/branches.hpp"
 #include "drainage/drainage_build.hpp"
+#include "input/dem_reader.hpp"
 
 namespace penink {
 namespace {
@@ -140,14 +142,42 @@ TEST(DvFile, StreamedNetworkWritesTheDatabasesBytes) {
     }
 }
 
+// On a projected DEM at factor 1 the file stores cells (a head cell per branch, a step per vertex:
+// 5 instead of 12 bytes) and reads back to the database built in memory, x and y included.
+TEST(DvFile, GridPositionsOnAnAffineDemReadBackExactly) {
+    const fs::path d = temp_dir("grid");
+    Terrain t = read_dem(PENINK_SHARED_DIR "/data/volcano.asc");
+    DrainageOptions o;
+    o.resample = 1;
+    DrainageDb built = build_drainage_db(t, o);
+    built.crs_wkt = t.crs_wkt, built.fingerprint = {7, 8, 9, 1, 0, 0};
+    write_drainage_db((d / "explicit.dv").string(), built);
+    build_and_write_drainage_db(t, o, built.fingerprint, (d / "grid.dv").string());
+    EXPECT_TRUE(t.pos.empty());  // released once resampled
+    EXPECT_TRUE(read_drainage_db((d / "grid.dv").string()) == built);
+    EXPECT_TRUE(read_drainage_db((d / "explicit.dv").string()) == built);
+    const double ratio = double(fs::file_size(d / "grid.dv")) / double(fs::file_size(d / "explicit.dv"));
+    EXPECT_LT(ratio, 0.75) << fs::file_size(d / "grid.dv") << " vs " << fs::file_size(d / "explicit.dv");
+    // an unknown positions mode is refused even with a matching checksum
+    std::vector<char> b = slurp(d / "grid.dv");
+    const std::size_t mode_at = 92 + built.crs_wkt.size();
+    ASSERT_EQ(b[mode_at], 1);
+    b[mode_at] = 2;
+    const std::uint64_t h = hash64(b.data(), b.size() - 8);
+    std::memcpy(b.data() + b.size() - 8, &h, 8);
+    spit(d / "bad.dv", b);
+    EXPECT_EQ(read_error(d / "bad.dv"),
+              "penink: drainage: " + (d / "bad.dv").string() + ": drainage database checksum mismatch (file corrupt)");
+}
+
 TEST(DvFile, CompactLayoutSizeAndShapeCheck) {
     const DrainageDb db = sample_db();
     std::size_t junction_ends = 0;
     for (const DvBranch& b : db.branches) junction_ends += b.downstream >= 0;
     ASSERT_GT(junction_ends, 0u);
-    // header 92 + WKT, counts 40, branches 5 B (count, link, order, basin, head_acc: one byte
-    // each here), stored vertices 12 B, divides 4 + 12 B, hash 8
-    const std::size_t expect = 92 + db.crs_wkt.size() + 40 + 5 * db.branches.size() +
+    // header 92 + WKT + positions byte, counts 40, branches 5 B (count, link, order, basin,
+    // head_acc: one byte each here), stored vertices 12 B, divides 4 + 12 B, hash 8
+    const std::size_t expect = 92 + db.crs_wkt.size() + 1 + 40 + 5 * db.branches.size() +
                                12 * (db.vertices.size() - junction_ends) + 4 * db.divides.size() +
                                12 * db.divide_vertices.size() + 8;
     EXPECT_EQ(encode_drainage_db(db).size(), expect);
@@ -189,7 +219,7 @@ TEST(DvFile, CorruptionsAreDetected) {
     b = good;
     b[8] = 7;
     spit(p, b);
-    EXPECT_EQ(read_error(p), pre + "unsupported drainage database version 7 (expected 5)");
+    EXPECT_EQ(read_error(p), pre + "unsupported drainage database version 7 (expected 6)");
 
     b = good;
     b[0] = 'X';
