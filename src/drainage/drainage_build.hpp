@@ -1,7 +1,8 @@
 // The drainage build pipeline (seed 000 sec. 3): PN resampling -> flow directions -> accumulation +
 // Strahler -> basins -> branches and divides -> DrainageDb. Directions by one of two routings:
 // priority_flood (default): Priority-Flood filling (Zhou et
-// al. 2016 variant, on the grid's z in place, restored afterwards) -> D8 on the filled surface,
+// al. 2016 variant; the grid's z holds the filled surface until the end) and D8 on the filled
+// surface on two threads (fill_directions.hpp),
 // re-aimed into depressions on the original one -> Barnes flat resolution -> raised cells down
 // the original slopes (depression_drainage.hpp) -> ties broken downstream (d8_ties.hpp);
 // least_cost: GRASS r.watershed's least-cost search on the unfilled grid (least_cost_routing.hpp).
@@ -11,7 +12,8 @@
 // fill/directions/flats 10 B per point (directions 1, fill state 1, original z of raised
 // points 4 (lent by accumulation), flat gradient 4 (lent by basin)); accumulation 11 B
 // (directions 1, in-degree 1, accumulation 4, order 1, basin 4); plus queues along depression
-// rims and flat edges. Output vertices (24 B each) come on top.
+// rims and flat edges. An in-memory database's vertices (16 B each) and branches (32 B) come on
+// top; `penink drainage` streams them to the file instead (build_and_write_drainage_db).
 #pragma once
 #include <cstdint>
 #include <functional>
