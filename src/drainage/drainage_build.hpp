@@ -1,7 +1,8 @@
 // The drainage build pipeline (seed 000 sec. 3): PN resampling -> flow directions -> accumulation +
 // Strahler -> basins -> branches and divides -> DrainageDb. Directions by one of two routings:
 // priority_flood (default): Priority-Flood filling (Zhou et
-// al. 2016 variant; the grid's z holds the filled surface until the end) and D8 on the filled
+// al. 2016 variant; the grid's z holds the filled surface until the directions are set, then the
+// original again) and D8 on the filled
 // surface on two threads (fill_directions.hpp),
 // re-aimed into depressions on the original one -> Barnes flat resolution -> raised cells down
 // the original slopes (depression_drainage.hpp) -> ties broken downstream (d8_ties.hpp);
