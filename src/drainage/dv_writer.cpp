@@ -60,12 +60,12 @@ struct Sink {
         n += k;
     }
     template <class T> void put(T v) { bytes(&v, sizeof(T)); }
-    void varint(std::uint64_t v) {
-        std::uint8_t b[10];
-        int k = 0;
-        for (; v >= 0x80; v >>= 7) b[k++] = std::uint8_t(v | 0x80);
-        b[k++] = std::uint8_t(v);
-        bytes(b, std::size_t(k));
+    void varint(std::uint64_t v) {  // LEB128 straight into the buffer
+        room(10);
+        std::uint8_t* p = buf.data() + n;
+        for (; v >= 0x80; v >>= 7) *p++ = std::uint8_t(v | 0x80);
+        *p++ = std::uint8_t(v);
+        n = std::size_t(p - buf.data());
     }
     void finish() {  // hash of every byte so far, appended; everything handed over
         if (flight.valid()) flight.get();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 
+#include "core/parallel_chunks.hpp"
 #include "drainage/radix_heap.hpp"
 
 namespace penink {
@@ -135,11 +136,13 @@ FillStats priority_flood_levels(const std::vector<float>& z, const GridShape& g,
 }
 
 void swap_raised(std::vector<float>& z, const std::vector<std::uint8_t>& flags, std::vector<std::uint32_t>& bits) {
-    for (std::size_t i = 0; i < z.size(); ++i)
-        if (flags[i] & fill_raised) {
-            const std::uint32_t zi = std::bit_cast<std::uint32_t>(z[i]);
-            z[i] = std::bit_cast<float>(bits[i]), bits[i] = zi;
-        }
+    parallel_chunks(z.size(), std::size_t(1) << 18, [&](std::size_t i0, std::size_t i1) {
+        for (std::size_t i = i0; i < i1; ++i)
+            if (flags[i] & fill_raised) {
+                const std::uint32_t zi = std::bit_cast<std::uint32_t>(z[i]);
+                z[i] = std::bit_cast<float>(bits[i]), bits[i] = zi;
+            }
+    });
 }
 
 FillStats priority_flood_fill(std::vector<float>& z, const GridShape& g, std::vector<std::uint8_t>& flags,
