@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include "drainage/drainage_command.hpp"
+#include "drainage/drainage_build.hpp"
+#include "input/dem_reader.hpp"
 #include "drainage/drainage_db.hpp"
 
 namespace penink {
@@ -45,6 +47,13 @@ TEST(DrainageCommand, VolcanoRastersAndDatabase) {
     EXPECT_EQ(db.cols, 61);
     EXPECT_EQ(db.rows, 87);
     EXPECT_EQ(db.fingerprint.resample, 1u);
+    {  // the streamed file (grid positions) reads back to the database a render builds in memory
+        DrainageOptions o;
+        o.resample = 1;
+        DrainageDb built = build_drainage_db(read_dem(cmd.dem), o);
+        built.fingerprint = db.fingerprint;
+        EXPECT_TRUE(db == built);
+    }
 
     GDALAllRegister();
     int w = 0, h = 0;
