@@ -27,7 +27,9 @@ void* allocate_big(std::size_t bytes) {
     if (start > base) ::munmap(m, start - base);
     if (const std::size_t tail = base + size + big_block_bytes - (start + size)) ::munmap(reinterpret_cast<void*>(start + size), tail);
     void* p = reinterpret_cast<void*>(start);
+#ifdef MADV_HUGEPAGE  // Linux; elsewhere plain pages
     ::madvise(p, size, MADV_HUGEPAGE);
+#endif
     return p;
 }
 
