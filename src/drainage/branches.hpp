@@ -22,8 +22,9 @@ void build_branches(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
 // The branches of a drainage network as the DV encoder asks for them (DvBranchSource), without
 // holding their vertices: each branch's head, vertex count and downstream branch are found by
 // walking it once (two threads, as build_branches), its vertices walked again when asked for.
-// Gives the bytes build_branches' DrainageDb encodes to. g, dir and net must outlive it; net
-// needs indeg (accumulate_flow) or it is counted here.
+// Gives the bytes build_branches' DrainageDb encodes to, or, on an affine grid at factor 1
+// (grid_nodes), a smaller file of cells that reads back to that DrainageDb. g, dir and net must
+// outlive it; net needs indeg (accumulate_flow) or it is counted here.
 class NetworkBranches : public DvBranchSource {
 public:
     NetworkBranches(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net);
