@@ -65,26 +65,6 @@ HeadRank head_rank(const DrainageGrid& g, const std::vector<std::uint8_t>& indeg
     return h;
 }
 
-// Upstream lists from the downstream links, in branch order.
-void link_upstream(DrainageDb& db) {
-    std::vector<std::uint32_t> count(db.branches.size() + 1, 0);
-    for (const DvBranch& b : db.branches)
-        if (b.downstream >= 0) ++count[std::size_t(b.downstream) + 1];
-    for (std::size_t b = 0; b < db.branches.size(); ++b) {
-        count[b + 1] += count[b];
-        db.branches[b].up_first = count[b];
-        db.branches[b].up_count = count[b + 1] - count[b];
-    }
-    db.upstream.assign(count.back(), 0);
-    for (std::size_t b = 0; b < db.branches.size(); ++b)
-        if (db.branches[b].downstream >= 0)
-            db.upstream[count[db.branches[b].downstream]++] = std::uint32_t(b);
-}
-
-}  // namespace
-
-namespace {
-
 struct Tracer {
     const DrainageGrid& g;
     const std::vector<std::uint8_t>& dir;
@@ -183,7 +163,7 @@ void build_branches(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
     db.branches.clear();
     db.branches.resize(heads);  // untouched: every record is written by the thread tracing it
     trace_halves(Tracer{g, dir, net, indeg, rank}, db);
-    link_upstream(db);
+    link_upstream(db.branches, db.upstream);
 }
 
 struct NetworkBranches::Walks {

@@ -82,23 +82,14 @@ namespace {
 using namespace dv;
 
 bool derived_ok(const DrainageDb& db) {
-    const std::size_t nb = db.branches.size();
-    std::vector<std::uint32_t> ups(nb + 1, 0);
-    for (const DvBranch& b : db.branches) {
-        if (b.downstream < 0) continue;
-        if (!(db.vertices[b.first + b.count - 1] == db.vertices[db.branches[std::size_t(b.downstream)].first]))
+    for (const DvBranch& b : db.branches)
+        if (b.downstream >= 0 &&
+            !(db.vertices[b.first + b.count - 1] == db.vertices[db.branches[std::size_t(b.downstream)].first]))
             return false;
-        ++ups[std::size_t(b.downstream) + 1];
-    }
-    for (std::size_t b = 0; b < nb; ++b) {
-        ups[b + 1] += ups[b];
-        if (db.branches[b].up_first != ups[b] || db.branches[b].up_count != ups[b + 1] - ups[b])
-            return false;
-    }
-    if (db.upstream.size() != ups[nb]) return false;
-    for (std::size_t b = 0; b < nb; ++b)
-        if (const std::int32_t d = db.branches[b].downstream; d >= 0)
-            if (db.upstream[ups[std::size_t(d)]++] != b) return false;
+    DvBranches linked = db.branches;  // upstream lists as the reader derives them
+    std::vector<std::uint32_t> upstream;
+    link_upstream(linked, upstream);
+    if (!(linked == db.branches) || upstream != db.upstream) return false;
     for (const DvVertex& v : db.divide_vertices)
         if (v.flow != 0.0f) return false;
     std::vector<double> total;
@@ -110,6 +101,20 @@ bool derived_ok(const DrainageDb& db) {
 }
 
 }  // namespace
+
+void link_upstream(DvBranches& branches, std::vector<std::uint32_t>& upstream) {
+    std::vector<std::uint32_t> count(branches.size() + 1, 0);
+    for (const DvBranch& b : branches)
+        if (b.downstream >= 0) ++count[std::size_t(b.downstream) + 1];
+    for (std::size_t b = 0; b < branches.size(); ++b) {
+        count[b + 1] += count[b];
+        branches[b].up_first = count[b];
+        branches[b].up_count = count[b + 1] - count[b];
+    }
+    upstream.assign(count.back(), 0);
+    for (std::size_t b = 0; b < branches.size(); ++b)
+        if (branches[b].downstream >= 0) upstream[count[std::size_t(branches[b].downstream)]++] = std::uint32_t(b);
+}
 
 std::uint64_t hash64(const void* data, std::size_t size, std::uint64_t h) {
     constexpr std::uint64_t prime = 0x100000001b3ull;

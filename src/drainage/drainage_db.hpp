@@ -118,6 +118,10 @@ public:
     virtual void stored_steps_z(std::size_t id, std::uint8_t* out) const {}
 };
 
+// Every branch's up_first / up_count and the upstream id list they index, from the downstream
+// links (in range, -1 at outlets), upstream branches in branch order.
+void link_upstream(DvBranches& branches, std::vector<std::uint32_t>& upstream);
+
 // Whether `db` has the shape drainage_db_from_grid gives it, all of which the compact layout
 // relies on (drainage_db.cpp): the database read back from its encoding is then `db` exactly.
 bool drainage_db_canonical(const DrainageDb& db);

@@ -76,7 +76,6 @@ void get_header(Reader& r, DrainageDb& db, Positions& pos) {
 // Branches: first from the running count, upstream lists from `downstream`.
 void get_branches(Reader& r, DrainageDb& db, std::uint64_t upstream_count, Positions& pos) {
     const std::size_t nb = db.branches.size();
-    std::vector<std::uint32_t> ups(nb + 1, 0);
     std::uint64_t next = 0, head = 0;
     if (pos.grid) pos.head.resize(nb);
     for (std::size_t id = 0; id < nb; ++id) {
@@ -98,18 +97,10 @@ void get_branches(Reader& r, DrainageDb& db, std::uint64_t upstream_count, Posit
             pos.head[id] = std::uint32_t(head);
         }
         next += b.count;
-        if (down >= 0) ++ups[std::size_t(down) + 1];
     }
     if (next != db.vertices.size()) r.corrupt();
-    for (std::size_t b = 0; b < nb; ++b) {
-        ups[b + 1] += ups[b];
-        db.branches[b].up_first = ups[b], db.branches[b].up_count = ups[b + 1] - ups[b];
-    }
-    if (ups.back() != upstream_count) r.corrupt();
-    db.upstream.resize(upstream_count);
-    for (std::size_t b = 0; b < nb; ++b)
-        if (const std::int32_t d = db.branches[b].downstream; d >= 0)
-            db.upstream[ups[std::size_t(d)]++] = std::uint32_t(b);
+    link_upstream(db.branches, db.upstream);
+    if (db.upstream.size() != upstream_count) r.corrupt();
 }
 
 // A branch's stored vertices on grid nodes: from its head cell, a step (ESRI code index) before
