@@ -4,8 +4,6 @@
 #include <atomic>
 #include <bit>
 #include <cstring>
-#include <exception>
-#include <thread>
 #include <utility>
 
 #include "core/error.hpp"
@@ -15,10 +13,13 @@ namespace penink {
 
 namespace {
 
+// Whether the drainage points are the coarse nodes themselves (factor 1).
+bool points_are_nodes(const DrainageGrid& g) { return g.factor == 1 && g.coarse_xy.size() == g.size(); }
+
 // Local x, y of drainage point i: at factor 1 the coarse node itself (what grid_xy gives there,
 // weight 1 on the node), else grid_xy.
 glm::dvec2 point_xy(const DrainageGrid& g, std::size_t i) {
-    if (g.factor == 1 && g.coarse_xy.size() == g.size()) return glm::dvec2(g.coarse_xy[i]);
+    if (points_are_nodes(g)) return glm::dvec2(g.coarse_xy[i]);
     return grid_xy(g, int(i % g.cols), int(i / g.cols));
 }
 
@@ -65,6 +66,29 @@ HeadRank head_rank(const DrainageGrid& g, const std::vector<std::uint8_t>& indeg
     return h;
 }
 
+// The branch heads of a network (valid cells whose in-degree is not 1), ranked in row-major order
+// (= branch ids), with the in-degrees they come from (the network's, or counted when it has
+// none), how many there are and how many vertices the branches hold: every valid point once plus
+// the repeated end junction of each branch that does not end at an outlet (one per basin does).
+// Not movable: `indeg` may refer to own_indeg.
+struct Heads {
+    const std::vector<std::uint8_t> own_indeg;
+    const std::vector<std::uint8_t>& indeg;
+    HeadRank rank;
+    std::size_t count = 0, vertices = 0;
+
+    Heads(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net)
+        : own_indeg(net.indeg.size() == g.size() ? std::vector<std::uint8_t>()
+                                                 : inflow_counts(dir, GridShape{g.cols, g.rows, g.valid.data()})),
+          indeg(own_indeg.empty() ? net.indeg : own_indeg) {
+        std::size_t valid = 0;
+        rank = head_rank(g, indeg, valid);
+        count = rank.bits.empty() ? 0 : rank.before.back() + std::popcount(rank.bits.back());
+        vertices = valid + count - net.outlet.size();
+    }
+    Heads(const Heads&) = delete;
+};
+
 struct Tracer {
     const DrainageGrid& g;
     const std::vector<std::uint8_t>& dir;
@@ -80,15 +104,16 @@ struct Tracer {
     }
 
     // Walks the branch headed at cell h: emit(cell) for each of its points and, when it ends at
-    // a junction, for that junction too (the downstream branch's head, repeated as its last
-    // vertex); returns the downstream branch's id, -1 at an outlet.
-    template <class Emit> std::int32_t walk(std::size_t h, Emit&& emit) const {
+    // a junction and end_too is set, for that junction too (the downstream branch's head,
+    // repeated as its last vertex; a DV file does not store it); returns the downstream branch's
+    // id, -1 at an outlet.
+    template <class Emit> std::int32_t walk(std::size_t h, Emit&& emit, bool end_too = true) const {
         for (std::size_t c = h;;) {
             emit(c);
             if (!dir[c]) return -1;
             const std::size_t d = d8_target(shape, c, dir[c]);
             if (indeg[d] != 1) {
-                emit(d);
+                if (end_too) emit(d);
                 return std::int32_t(rank.of(d));
             }
             c = d;
@@ -152,42 +177,29 @@ void trace_halves(const Tracer& tracer, DrainageDb& db) {
 // without a second copy of the vertices.
 void build_branches(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
                     const FlowNetwork& net, DrainageDb& db) {
-    const GridShape shape{g.cols, g.rows, g.valid.data()};
-    const std::vector<std::uint8_t> own = net.indeg.size() == g.size() ? std::vector<std::uint8_t>() : inflow_counts(dir, shape);
-    const std::vector<std::uint8_t>& indeg = own.empty() ? net.indeg : own;
-    std::size_t valid = 0;
-    const HeadRank rank = head_rank(g, indeg, valid);
-    const std::size_t heads = rank.bits.empty() ? 0 : rank.before.back() + std::popcount(rank.bits.back());
+    const Heads heads(g, dir, net);
     db.vertices.clear();
-    db.vertices.resize(valid + heads - net.outlet.size());  // untouched: the threads fault their halves
+    db.vertices.resize(heads.vertices);  // untouched: the threads fault their halves
     db.branches.clear();
-    db.branches.resize(heads);  // untouched: every record is written by the thread tracing it
-    trace_halves(Tracer{g, dir, net, indeg, rank}, db);
+    db.branches.resize(heads.count);  // untouched: every record is written by the thread tracing it
+    trace_halves(Tracer{g, dir, net, heads.indeg, heads.rank}, db);
     link_upstream(db.branches, db.upstream);
 }
 
 struct NetworkBranches::Walks {
-    const std::vector<std::uint8_t> own_indeg;  // when net has none
-    HeadRank rank;
+    Heads heads;
     Tracer tracer;
     std::vector<std::uint32_t> head, count;  // per branch
     std::vector<std::int32_t> down;
-    std::size_t vertices = 0;
 
     Walks(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net)
-        : own_indeg(net.indeg.size() == g.size() ? std::vector<std::uint8_t>()
-                                                 : inflow_counts(dir, GridShape{g.cols, g.rows, g.valid.data()})),
-          tracer{g, dir, net, own_indeg.empty() ? net.indeg : own_indeg, rank} {
-        std::size_t valid = 0;
-        rank = head_rank(g, tracer.indeg, valid);
-        const std::size_t heads = rank.bits.empty() ? 0 : rank.before.back() + std::popcount(rank.bits.back());
-        head.resize(heads), count.resize(heads), down.resize(heads);
-        tracer.each_head(mid_cell(g), std::uint32_t(heads), [&](std::size_t h, std::uint32_t id, bool) {
+        : heads(g, dir, net), tracer{g, dir, net, heads.indeg, heads.rank},
+          head(heads.count), count(heads.count), down(heads.count) {
+        tracer.each_head(mid_cell(g), std::uint32_t(heads.count), [&](std::size_t h, std::uint32_t id, bool) {
             std::uint32_t n = 0;
             down[id] = tracer.walk(h, [&](std::size_t) { ++n; });
             head[id] = std::uint32_t(h), count[id] = n;
         });
-        vertices = valid + heads - net.outlet.size();
     }
 };
 
@@ -195,7 +207,7 @@ NetworkBranches::NetworkBranches(const DrainageGrid& g, const std::vector<std::u
     : w_(std::make_unique<Walks>(g, dir, net)) {}
 NetworkBranches::~NetworkBranches() = default;
 std::size_t NetworkBranches::branch_count() const { return w_->head.size(); }
-std::size_t NetworkBranches::vertex_count() const { return w_->vertices; }
+std::size_t NetworkBranches::vertex_count() const { return w_->heads.vertices; }
 
 DvBranchRecord NetworkBranches::record(std::size_t id) const {
     const FlowNetwork& net = w_->tracer.net;
@@ -205,33 +217,28 @@ DvBranchRecord NetworkBranches::record(std::size_t id) const {
 
 void NetworkBranches::stored_xyz(std::size_t id, std::uint8_t* out) const {
     const Tracer& t = w_->tracer;
-    std::uint32_t left = w_->count[id] - (w_->down[id] >= 0);  // the end junction is not stored
     t.walk(w_->head[id], [&](std::size_t c) {
-        if (left == 0) return;
         const DvVertex v = point_xyz(t.g, c);
         std::memcpy(out, &v, 12);
-        out += 12, --left;
-    });
+        out += 12;
+    }, false);
 }
 
 const AffineNodes* NetworkBranches::grid_nodes() const {
     const DrainageGrid& g = w_->tracer.g;
-    return g.factor == 1 && g.has_affine && g.coarse_xy.size() == g.size() ? &g.affine : nullptr;
+    return points_are_nodes(g) && g.has_affine ? &g.affine : nullptr;
 }
 
 std::uint32_t NetworkBranches::head_cell(std::size_t id) const { return w_->head[id]; }
 
 void NetworkBranches::stored_steps_z(std::size_t id, std::uint8_t* out) const {
     const Tracer& t = w_->tracer;
-    std::uint32_t left = w_->count[id] - (w_->down[id] >= 0);  // the end junction is not stored
-    std::size_t prev = 0;
-    bool first = true;
-    t.walk(w_->head[id], [&](std::size_t c) {
-        if (left == 0) return;
-        if (!first) *out++ = std::uint8_t(d8_index(t.dir[prev]));
+    const std::size_t h = w_->head[id];
+    t.walk(h, [&, prev = h](std::size_t c) mutable {
+        if (c != h) *out++ = std::uint8_t(d8_index(t.dir[prev]));  // the step from the vertex before
         std::memcpy(out, &t.g.z[c], 4);
-        out += 4, --left, prev = c, first = false;
-    });
+        out += 4, prev = c;
+    }, false);
 }
 
 namespace {
