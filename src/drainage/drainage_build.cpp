@@ -3,14 +3,11 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <exception>
 #include <filesystem>
-#include <new>
 
 #include <unistd.h>
 #include <bit>
-#include <thread>
 
 #include "core/error.hpp"
 #include "core/parallel_chunks.hpp"
@@ -75,6 +72,13 @@ void priority_flood_directions(DrainageGrid& g, const GridShape& shape, const Dr
     swap_raised(g.z, flags, orig);
 }
 
+// A database of `g`'s size, factor and origin, nothing in it yet.
+DrainageDb grid_database(const DrainageGrid& g) {
+    DrainageDb db;
+    db.cols = g.cols, db.rows = g.rows, db.factor = g.factor, db.origin = g.origin;
+    return db;
+}
+
 // Runs f() while the divides are traced into `db` on a second thread (they read the same grid
 // and network and fill other members of db).
 template <class F> void with_divides(const DrainageGrid& g, const FlowNetwork& net, DrainageDb& db, F&& f) {
@@ -107,24 +111,8 @@ DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progres
 
 DrainageDb drainage_db_from_grid(DrainageGrid& g, const DrainageProgress& progress,
                                  DrainageResult* keep, DrainageRouting routing) {
-    DrainageDb db;
-    // The vertex array (a vertex per valid point at least, at most two) is claimed and its first
-    // part touched on a second thread while the network is computed: first touch of fresh memory
-    // is much of the tracing's time, and the fill leaves a core idle for most of its run.
-    DrainageResult res;
-    run_beside(
-        [&] {
-            const std::size_t valid = std::size_t(std::count(g.valid.begin(), g.valid.end(), 1));
-            try {
-                db.vertices.reserve(2 * valid);
-                db.vertices.resize(valid);
-                std::memset(static_cast<void*>(db.vertices.data()), 0, valid * sizeof(DvVertex));
-            } catch (const std::bad_alloc&) {  // only a head start: build_branches sizes the array
-                db.vertices = DvVertices();
-            }
-        },
-        [&] { res = compute_drainage(g, progress, routing); });
-    db.cols = g.cols, db.rows = g.rows, db.factor = g.factor, db.origin = g.origin;
+    DrainageResult res = compute_drainage(g, progress, routing);
+    DrainageDb db = grid_database(g);
     report(progress, "tracing branches and divides", 0.75);
     with_divides(g, res.net, db, [&] { build_branches(g, res.dir, res.net, db); });
     res.stats.branches = db.branches.size(), res.stats.divides = db.divides.size();
@@ -139,8 +127,7 @@ DrainageDb build_and_write_drainage_db(Terrain& t, const DrainageOptions& option
     DrainageGrid g = resample_pn(t, drainage_resample_factor(t, options));
     std::vector<glm::vec3>().swap(t.pos);  // the grid holds what is needed: the memory goes back
     DrainageResult res = compute_drainage(g, progress, options.routing);
-    DrainageDb meta;
-    meta.cols = g.cols, meta.rows = g.rows, meta.factor = g.factor, meta.origin = g.origin;
+    DrainageDb meta = grid_database(g);
     meta.crs_wkt = t.crs_wkt, meta.fingerprint = fp;
     report(progress, "tracing branches and divides", 0.75);
     std::optional<NetworkBranches> branches;
