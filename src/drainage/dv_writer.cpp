@@ -33,12 +33,15 @@ struct Sink {
     std::function<void(const std::uint8_t*, std::size_t)> out;
     std::future<void> flight;
     ~Sink() { wait(); }
-    void wait() {
+    void wait() {  // for the buffer in flight (its error stays in it)
         if (flight.valid()) flight.wait();
+    }
+    void land() {  // the buffer in flight written, its error rethrown
+        if (flight.valid()) flight.get();
     }
     void drain() {  // hands over the whole 8-byte words, keeps the tail
         const std::size_t whole = n & ~std::size_t(7);
-        if (flight.valid()) flight.get();
+        land();
         std::swap(buf, spare);
         std::memcpy(buf.data(), spare.data() + whole, n - whole);
         flight = std::async(std::launch::async, [this, whole] {
@@ -51,7 +54,7 @@ struct Sink {
         if (n + k <= buf.size()) return;
         drain();
         if (n + k <= buf.size()) return;
-        if (flight.valid()) flight.get();
+        land();
         buf.resize(n + k), spare.resize(n + k);
     }
     void bytes(const void* p, std::size_t k) {
@@ -68,10 +71,10 @@ struct Sink {
         n = std::size_t(p - buf.data());
     }
     void finish() {  // hash of every byte so far, appended; everything handed over
-        if (flight.valid()) flight.get();
+        land();
         if (n + 8 > buf.size()) {  // a full buffer has no room for the hash
             drain();
-            flight.get();
+            land();
         }
         hash = hash64(buf.data(), n, hash);
         const std::uint64_t h = hash;
