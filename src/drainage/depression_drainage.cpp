@@ -51,16 +51,6 @@ struct Depressions {
     }
 };
 
-// Whether cell (c, r) has a raised neighbour.
-bool next_to_raised(const GridShape& g, const std::vector<std::uint8_t>& flags, int c, int r) {
-    for (int k = 0; k < 8; ++k) {
-        const int nc = c + d8_dc[k], nr = r + d8_dr[k];
-        if (nc >= 0 && nr >= 0 && nc < g.cols && nr < g.rows && (flags[std::size_t(nr) * g.cols + nc] & fill_raised))
-            return true;
-    }
-    return false;
-}
-
 }  // namespace
 
 void drain_rims_into_depressions(const std::vector<float>& filled,

@@ -14,10 +14,7 @@ namespace {
 
 // Whether the 3x3 block around cell (c, r) holds a raised cell.
 bool near_raised(const GridShape& g, const std::vector<std::uint8_t>& flags, int c, int r) {
-    for (int nr = std::max(r - 1, 0); nr <= std::min(r + 1, g.rows - 1); ++nr)
-        for (int nc = std::max(c - 1, 0); nc <= std::min(c + 1, g.cols - 1); ++nc)
-            if (flags[std::size_t(nr) * g.cols + nc] & fill_raised) return true;
-    return false;
+    return (flags[std::size_t(r) * g.cols + c] & fill_raised) || next_to_raised(g, flags, c, r);
 }
 
 // Directions (and ties) of the cells near raised ones taken again on z, the filled surface;

@@ -135,6 +135,15 @@ FillStats priority_flood_levels(const std::vector<float>& z, const GridShape& g,
     return f.stats;
 }
 
+bool next_to_raised(const GridShape& g, const std::vector<std::uint8_t>& flags, int c, int r) {
+    for (int k = 0; k < 8; ++k) {
+        const int nc = c + d8_dc[k], nr = r + d8_dr[k];
+        if (nc >= 0 && nr >= 0 && nc < g.cols && nr < g.rows && (flags[std::size_t(nr) * g.cols + nc] & fill_raised))
+            return true;
+    }
+    return false;
+}
+
 void swap_raised(std::vector<float>& z, const std::vector<std::uint8_t>& flags, std::vector<std::uint32_t>& bits) {
     parallel_chunks(z.size(), std::size_t(1) << 18, [&](std::size_t i0, std::size_t i1) {
         for (std::size_t i = i0; i < i1; ++i)

@@ -41,6 +41,9 @@ FillStats priority_flood_fill(std::vector<float>& z, const GridShape& g,
 FillStats priority_flood_levels(const std::vector<float>& z, const GridShape& g, std::vector<std::uint8_t>& flags,
                                 std::vector<std::uint32_t>& level_bits);
 
+// Whether cell (c, r) has a raised neighbour (one of its 8, on the grid), from the fill's flags.
+bool next_to_raised(const GridShape& g, const std::vector<std::uint8_t>& flags, int c, int r);
+
 // Exchanges z[i] with the float bits in bits[i] at every raised cell: after priority_flood_levels
 // z becomes the filled surface and bits the original elevations; done again, z is the original.
 void swap_raised(std::vector<float>& z, const std::vector<std::uint8_t>& flags, std::vector<std::uint32_t>& bits);
