@@ -257,9 +257,8 @@ void check_grid(const Raster& r, const std::string& path) {
     if (r.w < 2 || r.h < 2)
         fail(path, "DEM is too small (" + std::to_string(r.w) + "x" + std::to_string(r.h) +
                        " nodes; at least 2x2 needed)");
-    for (std::uint8_t v : r.valid)
-        if (v) return;
-    fail(path, "DEM has no valid elevation (all nodata)");
+    if (r.emin > r.emax)  // the band pass widened the range at every valid node: none was
+        fail(path, "DEM has no valid elevation (all nodata)");
 }
 
 // t.pos: x, y relative to the bounds' rounded centre (t.origin), z the elevation (the lowest
