@@ -13,15 +13,11 @@ namespace penink {
 
 namespace {
 
-// Whether the drainage points are the coarse nodes themselves (factor 1).
-bool points_are_nodes(const DrainageGrid& g) { return g.factor == 1 && g.coarse_xy.size() == g.size(); }
+// Whether the drainage points are the nodes of an affine grid (factor 1): grid_xy computes them.
+bool points_are_nodes(const DrainageGrid& g) { return g.factor == 1 && g.has_affine; }
 
-// Local x, y of drainage point i: at factor 1 the coarse node itself (what grid_xy gives there,
-// weight 1 on the node), else grid_xy.
-glm::dvec2 point_xy(const DrainageGrid& g, std::size_t i) {
-    if (points_are_nodes(g)) return glm::dvec2(g.coarse_xy[i]);
-    return grid_xy(g, int(i % g.cols), int(i / g.cols));
-}
+// Local x, y of drainage point i.
+glm::dvec2 point_xy(const DrainageGrid& g, std::size_t i) { return grid_xy(g, int(i % g.cols), int(i / g.cols)); }
 
 // x, y, z of drainage point i (flow 0).
 DvVertex point_xyz(const DrainageGrid& g, std::size_t i) {
@@ -226,7 +222,7 @@ void NetworkBranches::stored_xyz(std::size_t id, std::uint8_t* out) const {
 
 const AffineNodes* NetworkBranches::grid_nodes() const {
     const DrainageGrid& g = w_->tracer.g;
-    return points_are_nodes(g) && g.has_affine ? &g.affine : nullptr;
+    return points_are_nodes(g) ? &g.affine : nullptr;
 }
 
 std::uint32_t NetworkBranches::head_cell(std::size_t id) const { return w_->head[id]; }

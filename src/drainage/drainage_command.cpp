@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <ostream>
 
 #include "core/error.hpp"
@@ -22,12 +23,16 @@ struct StageTimer {
     bool on = std::getenv("PENINK_DRAINAGE_TIMES") != nullptr;
     std::string stage = "reading the DEM";
     Clock::time_point since = Clock::now();
+    double cpu0 = 0;
     void next(const std::string& name) {
         const Clock::time_point now = Clock::now();
         if (on) {
             char line[160];
-            std::snprintf(line, sizeof line, "drainage: time %-26s %.3f s\n", stage.c_str(),
-                          std::chrono::duration<double>(now - since).count());
+            timespec ts; clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+            const double cpu = ts.tv_sec + ts.tv_nsec * 1e-9;
+            std::snprintf(line, sizeof line, "drainage: time %-26s %.3f s cpu %.3f\n", stage.c_str(),
+                          std::chrono::duration<double>(now - since).count(), cpu - cpu0);
+            cpu0 = cpu;
             log << line << std::flush;
         }
         stage = name, since = now;

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <thread>
 
 #include <glm/geometric.hpp>
 
 #include "core/error.hpp"
+#include "core/parallel_chunks.hpp"
 #include "surface/pn_triangle.hpp"
 #include "surface/surface_mesh.hpp"
 
@@ -61,19 +61,31 @@ PnPatch cell_patch(const SurfaceMesh& m, const std::vector<std::uint8_t>& valid,
                     m.normal[n[2]]);
 }
 
+// Mean length of the x, y steps between valid neighbours along rows (dx) and columns (dy), summed
+// over fixed blocks of rows in parallel and the blocks' sums added in order: the same doubles
+// whatever the number of threads.
 void mean_spacing(const Terrain& t, double& dx, double& dy) {
-    double sx = 0, sy = 0;
-    std::size_t nx = 0, ny = 0;
-    for (int r = 0; r < t.rows; ++r)
-        for (int c = 0; c < t.cols; ++c) {
-            const std::size_t i = t.index(c, r);
-            if (!t.valid[i]) continue;
-            if (c + 1 < t.cols && t.valid[i + 1])
-                sx += glm::length(glm::vec2(t.pos[i + 1] - t.pos[i])), ++nx;
-            if (r + 1 < t.rows && t.valid[i + t.cols])
-                sy += glm::length(glm::vec2(t.pos[i + t.cols] - t.pos[i])), ++ny;
-        }
-    dx = nx ? sx / nx : 1.0, dy = ny ? sy / ny : 1.0;
+    constexpr std::size_t block_rows = 64;
+    struct Sum {
+        double sx = 0, sy = 0;
+        std::size_t nx = 0, ny = 0;
+    };
+    std::vector<Sum> block((std::size_t(t.rows) + block_rows - 1) / block_rows);
+    parallel_chunks(block.size(), 1, [&](std::size_t b0, std::size_t b1) {
+        for (std::size_t b = b0; b < b1; ++b)
+            for (int r = int(b * block_rows); r < std::min(t.rows, int((b + 1) * block_rows)); ++r)
+                for (int c = 0; c < t.cols; ++c) {
+                    const std::size_t i = t.index(c, r);
+                    if (!t.valid[i]) continue;
+                    if (c + 1 < t.cols && t.valid[i + 1])
+                        block[b].sx += glm::length(glm::vec2(t.pos[i + 1] - t.pos[i])), ++block[b].nx;
+                    if (r + 1 < t.rows && t.valid[i + t.cols])
+                        block[b].sy += glm::length(glm::vec2(t.pos[i + t.cols] - t.pos[i])), ++block[b].ny;
+                }
+    });
+    Sum s;
+    for (const Sum& b : block) s.sx += b.sx, s.sy += b.sy, s.nx += b.nx, s.ny += b.ny;
+    dx = s.nx ? s.sx / s.nx : 1.0, dy = s.ny ? s.sy / s.ny : 1.0;
     if (!(dx > 0)) dx = 1.0;
     if (!(dy > 0)) dy = 1.0;
 }
@@ -114,19 +126,18 @@ DrainageGrid resample_pn(const Terrain& t, int factor) {
     g.has_affine = terrain_affine(t, g.affine);
     g.coarse_cols = t.cols, g.coarse_rows = t.rows, g.coarse_valid = t.valid;
     g.valid = factor == 1 ? t.valid : std::vector<std::uint8_t>(g.size(), 0);
-    // each array written once (reserved, then appended: no zero-fill first); allocations before
-    // the thread: nothing below throws. The spacing (one sequential sum, as before) on a second
-    // thread while the nodes are copied.
-    g.coarse_xy.reserve(t.size());
-    if (factor == 1) g.z.reserve(g.size());
-    else g.z.assign(g.size(), 0.0f);
-    std::thread spacing([&] { mean_spacing(t, g.dx, g.dy); });
-    for (std::size_t i = 0; i < t.size(); ++i) g.coarse_xy.emplace_back(t.pos[i]);
-    if (factor == 1)  // the PN patch interpolates its corners: the nodes themselves
-        for (std::size_t i = 0; i < t.size(); ++i) g.z.push_back(t.valid[i] ? t.pos[i].z : 0.0f);
-    spacing.join();
+    mean_spacing(t, g.dx, g.dy);
     g.dx /= factor, g.dy /= factor;
-    if (factor == 1) return g;
+    // x, y: at factor 1 on an affine grid node_xy computes them, else interpolated from these
+    if (factor > 1 || !g.has_affine) g.coarse_xy.assign(t.pos.begin(), t.pos.end());
+    if (factor == 1) {  // the PN patch interpolates its corners: the nodes themselves
+        g.z.resize(g.size());
+        parallel_chunks(g.size(), std::size_t(1) << 18, [&](std::size_t i0, std::size_t i1) {
+            for (std::size_t i = i0; i < i1; ++i) g.z[i] = t.valid[i] ? t.pos[i].z : 0.0f;
+        });
+        return g;
+    }
+    g.z.assign(g.size(), 0.0f);
     const SurfaceMesh mesh = mesh_from_terrain(t);
     for (int R = 0; R + 1 < t.rows; ++R)
         for (int C = 0; C + 1 < t.cols; ++C) resample_cell(t, mesh, C, R, g);
@@ -148,6 +159,10 @@ DrainageGrid make_regular_grid(int cols, int rows, double spacing, std::vector<f
 }
 
 glm::dvec2 grid_xy(const DrainageGrid& g, int c, int r) {
+    if (g.factor == 1) {  // the node itself (the interpolation puts weight 1 on it)
+        if (g.has_affine) return glm::dvec2(affine_node_xy(g.affine, g.origin, c, r));
+        if (g.coarse_xy.size() == g.size()) return glm::dvec2(g.coarse_xy[g.index(c, r)]);
+    }
     if (g.coarse_cols < 2 || g.coarse_rows < 2)
         return glm::dvec2(c * g.dx, -r * g.dy);
     int C, R;

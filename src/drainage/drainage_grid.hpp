@@ -19,12 +19,13 @@ struct DrainageGrid {
     std::vector<std::uint8_t> valid;  // 1 where the node lies on a valid surface triangle
     double dx = 1.0, dy = 1.0;        // mean fine spacing east (column step) / south (row step), m
     glm::dvec2 origin{0.0};           // projected easting/northing of local (0, 0)
-    // Coarse nodes the x, y positions are interpolated from (the Terrain's node x, y and mask).
+    // Coarse nodes the x, y positions are interpolated from (the Terrain's node x, y and mask);
+    // coarse_xy is left empty at factor 1 on an affine grid, where grid_xy computes them.
     int coarse_cols = 0, coarse_rows = 0;
     std::vector<glm::vec2> coarse_xy;
     std::vector<std::uint8_t> coarse_valid;
-    // The coarse nodes lie on an affine grid (Terrain::xy_unit > 0): at factor 1, coarse_xy[i] =
-    // affine_node_xy(affine, origin, c, r) exactly.
+    // The coarse nodes lie on an affine grid (Terrain::xy_unit > 0): node (c, r)'s x, y is
+    // affine_node_xy(affine, origin, c, r), exactly the Terrain's pos.xy.
     bool has_affine = false;
     AffineNodes affine;
 
@@ -47,7 +48,8 @@ DrainageGrid resample_pn(const Terrain& t, int factor);
 DrainageGrid make_regular_grid(int cols, int rows, double spacing, std::vector<float> z,
                                std::vector<std::uint8_t> valid = {});
 
-// Local x, y (metres) of fine node (c, r), interpolated like the resampler does.
+// Local x, y (metres) of fine node (c, r), interpolated like the resampler does (at factor 1 the
+// node's own: from the affine grid or coarse_xy).
 glm::dvec2 grid_xy(const DrainageGrid& g, int c, int r);
 
 }  // namespace penink
