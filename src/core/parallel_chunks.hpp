@@ -3,11 +3,15 @@
 // iterations write disjoint data; f must not depend on the chunking. The first exception thrown
 // by a chunk is rethrown after all have finished. parallel_collect: each chunk appends to its own
 // vector, joined in chunk order (what one pass over [0, n) appends). run_beside: two jobs at once.
+// ordered_parts: parts made in parallel, used in order (a stream encoded on all cores).
 #pragma once
 #include <algorithm>
+#include <atomic>
+#include <condition_variable>
 #include <cstddef>
 #include <exception>
 #include <future>
+#include <mutex>
 #include <thread>
 #include <vector>
 
@@ -70,6 +74,72 @@ template <class T, class F> std::vector<T> parallel_collect(std::size_t n, std::
     std::vector<T> all;
     for (auto& p : parts) all.insert(all.end(), p.begin(), p.end());
     return all;
+}
+
+// Makes parts 0..n-1 on up to hardware_concurrency threads, make(p, out) filling `out` (a buffer
+// reused from part to part: clear it first), and hands them to use(out) on the calling thread in
+// order 0, 1, ..., n-1, with at most `ahead` parts made and not yet used (the memory it holds).
+// The first exception (from make or use) stops the parts not yet started and is rethrown once
+// every thread has stopped.
+template <class Buffer, class Make, class Use>
+void ordered_parts(std::size_t n, std::size_t ahead, Make&& make, Use&& use) {
+    ahead = std::max<std::size_t>(ahead, 1);
+    struct Slot {
+        Buffer out;
+        bool ready = false;
+    };
+    std::vector<Slot> slot(std::min(ahead, std::max<std::size_t>(n, 1)));
+    std::mutex m;
+    std::condition_variable cv;
+    std::size_t used = 0, next = 0;  // parts used / handed to a maker so far
+    std::exception_ptr error;
+    auto maker = [&] {
+        for (;;) {
+            std::size_t p;
+            {
+                std::unique_lock<std::mutex> lock(m);
+                cv.wait(lock, [&] { return error || next >= n || next < used + slot.size(); });
+                if (error || next >= n) return;
+                p = next++;
+            }
+            Slot& s = slot[p % slot.size()];
+            try {
+                make(p, s.out);
+            } catch (...) {
+                const std::lock_guard<std::mutex> lock(m);
+                if (!error) error = std::current_exception();
+                cv.notify_all();
+                return;
+            }
+            const std::lock_guard<std::mutex> lock(m);
+            s.ready = true;
+            cv.notify_all();
+        }
+    };
+    const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 16);
+    std::vector<std::thread> pool;
+    for (std::size_t t = 0; t < std::min(threads, n); ++t) pool.emplace_back(maker);
+    for (; used < n;) {
+        Slot& s = slot[used % slot.size()];
+        {
+            std::unique_lock<std::mutex> lock(m);
+            cv.wait(lock, [&] { return error || s.ready; });
+            if (error) break;
+        }
+        try {
+            use(static_cast<const Buffer&>(s.out));
+        } catch (...) {
+            const std::lock_guard<std::mutex> lock(m);
+            if (!error) error = std::current_exception();
+            cv.notify_all();
+            break;
+        }
+        const std::lock_guard<std::mutex> lock(m);
+        s.ready = false, ++used;
+        cv.notify_all();
+    }
+    for (std::thread& t : pool) t.join();
+    if (error) std::rethrow_exception(error);
 }
 
 }  // namespace penink

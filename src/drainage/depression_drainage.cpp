@@ -62,18 +62,13 @@ void drain_rims_into_depressions(const std::vector<float>& filled,
     auto original = [&](std::size_t n) { return original_z(filled, flags, orig_bits, n); };
     // each rim cell (valid, not raised, next to a raised one) re-aimed once; rows in parallel
     // chunks (a cell writes only its own direction), the tied ones collected in row order
-    const std::vector<std::uint32_t> tied = parallel_collect<std::uint32_t>(
-        std::size_t(g.rows), 64, [&](std::size_t r0, std::size_t r1, std::vector<std::uint32_t>& out) {
-            for (int r = int(r0); r < int(r1); ++r)
-                for (int c = 0; c < g.cols; ++c) {
-                    const std::size_t x = std::size_t(r) * g.cols + c;
-                    if (!g.valid[x] || (flags[x] & fill_raised) || !next_to_raised(g, flags, c, r)) continue;
-                    const float fx = filled[x];  // = its original elevation
-                    const D8Choice d = d8_steepest(fx, g, c, r, st, original,
-                                                   [&](std::size_t n) { return filled[n] < fx; });
-                    dir[x] = d.code();
-                    if (d.tie()) out.push_back(std::uint32_t(x));
-                }
+    const std::vector<std::uint32_t> tied = collect_near_raised(
+        g, flags, [&](int c, int r, std::size_t x, std::vector<std::uint32_t>& out) {
+            if (flags[x] & fill_raised) return;
+            const float fx = filled[x];  // = its original elevation
+            const D8Choice d = d8_steepest(fx, g, c, r, st, original, [&](std::size_t n) { return filled[n] < fx; });
+            dir[x] = d.code();
+            if (d.tie()) out.push_back(std::uint32_t(x));
         });
     if (ties) ties->insert(ties->end(), tied.begin(), tied.end());
 }

@@ -23,6 +23,13 @@ namespace {
 
 using namespace dv;
 
+// LEB128 varint of v at p (at most 10 bytes); returns the byte after it.
+std::uint8_t* put_varint(std::uint8_t* p, std::uint64_t v) {
+    for (; v >= 0x80; v >>= 7) *p++ = std::uint8_t(v | 0x80);
+    *p++ = std::uint8_t(v);
+    return p;
+}
+
 // Output bytes in a fixed buffer; each full buffer is hashed (hash64 chained over 8-byte aligned
 // chunks, so the result equals hashing the whole file at once) and handed to `out` on a second
 // thread while the next one fills (one buffer in flight, so chunks stay in order).
@@ -63,13 +70,6 @@ struct Sink {
         n += k;
     }
     template <class T> void put(T v) { bytes(&v, sizeof(T)); }
-    void varint(std::uint64_t v) {  // LEB128 straight into the buffer
-        room(10);
-        std::uint8_t* p = buf.data() + n;
-        for (; v >= 0x80; v >>= 7) *p++ = std::uint8_t(v | 0x80);
-        *p++ = std::uint8_t(v);
-        n = std::size_t(p - buf.data());
-    }
     void finish() {  // hash of every byte so far, appended; everything handed over
         land();
         if (n + 8 > buf.size()) {  // a full buffer has no room for the hash
@@ -120,40 +120,67 @@ std::size_t vertex_bytes(const DvBranchRecord& r, bool grid) {
     return grid ? (n ? 5 * n - 1 : 0) : 12 * n;
 }
 
-// Bytes of the branch records and of the vertices stored (all but repeated end junctions), the
-// number of upstream links (branches with a downstream one) and the vertex bytes of the second
-// half of the branches (from branch count / 2 on).
+// Bytes of the branch records and of the vertices stored (all but repeated end junctions) and the
+// number of upstream links (branches with a downstream one).
 struct BodySize {
-    std::size_t bytes = 0, links = 0, second_half = 0;
+    std::size_t bytes = 0, links = 0;
 };
+
+// Branches per part of the body (its records, then its vertices, are made as one part each).
+constexpr std::size_t branches_per_part = std::size_t(1) << 16;
+
+std::size_t part_count(const DvBranchSource& src) { return (src.branch_count() + branches_per_part - 1) / branches_per_part; }
+
+// The head cell of the branch before `id` (0 before the first): head cells are stored as deltas.
+std::uint32_t head_before(const DvBranchSource& src, std::size_t id) { return id ? src.head_cell(id - 1) : 0; }
 
 BodySize body_size(const DvBranchSource& src) {
     const bool grid = src.grid_nodes() != nullptr;
-    BodySize s;
-    std::size_t head = 0;
-    for (std::size_t id = 0; id < src.branch_count(); ++id) {
-        const DvBranchRecord r = src.record(id);
-        s.bytes += varint_size(r.count) + varint_size(record_link(r, id)) + 1 + varint_size(r.basin) +
-                   varint_size(r.head_acc) + vertex_bytes(r, grid);
-        if (grid) s.bytes += varint_size(src.head_cell(id) - head), head = src.head_cell(id);
-        s.links += r.downstream >= 0;
-        if (id >= src.branch_count() / 2) s.second_half += vertex_bytes(r, grid);
-    }
-    return s;
+    std::vector<BodySize> part(part_count(src));
+    parallel_chunks(part.size(), 1, [&](std::size_t p0, std::size_t p1) {
+        for (std::size_t p = p0; p < p1; ++p) {
+            const std::size_t b0 = p * branches_per_part, b1 = std::min(src.branch_count(), b0 + branches_per_part);
+            std::uint32_t head = grid ? head_before(src, b0) : 0;
+            BodySize& s = part[p];
+            for (std::size_t id = b0; id < b1; ++id) {
+                const DvBranchRecord r = src.record(id);
+                s.bytes += varint_size(r.count) + varint_size(record_link(r, id)) + 1 + varint_size(r.basin) +
+                           varint_size(r.head_acc) + vertex_bytes(r, grid);
+                if (grid) s.bytes += varint_size(src.head_cell(id) - head), head = src.head_cell(id);
+                s.links += r.downstream >= 0;
+            }
+        }
+    });
+    BodySize all;
+    for (const BodySize& s : part) all.bytes += s.bytes, all.links += s.links;
+    return all;
 }
 
-// The stored vertices of branch `id` to `out` (x, y, z, or steps and z on grid nodes).
-void put_branch_vertices(const DvBranchSource& src, bool grid, std::size_t id, std::uint8_t* out) {
-    if (grid) src.stored_steps_z(id, out);
-    else src.stored_xyz(id, out);
-}
-
-// The vertices of branches [b0, b1), written from `out` on.
-void put_vertices(const DvBranchSource& src, std::size_t b0, std::size_t b1, std::uint8_t* out) {
-    const bool grid = src.grid_nodes() != nullptr;
+// The records of branches [b0, b1) to `out`.
+void put_records(const DvBranchSource& src, bool grid, std::size_t b0, std::size_t b1, std::vector<std::uint8_t>& out) {
+    out.resize((b1 - b0) * (5 * 10 + 1));  // at most: five varints and the order byte each
+    std::uint8_t* p = out.data();
+    std::uint32_t head = grid ? head_before(src, b0) : 0;
     for (std::size_t id = b0; id < b1; ++id) {
-        put_branch_vertices(src, grid, id, out);
-        out += vertex_bytes(src.record(id), grid);
+        const DvBranchRecord r = src.record(id);
+        p = put_varint(p, r.count), p = put_varint(p, record_link(r, id));
+        *p++ = r.order;
+        p = put_varint(p, r.basin), p = put_varint(p, r.head_acc);
+        if (grid) p = put_varint(p, src.head_cell(id) - head), head = src.head_cell(id);
+    }
+    out.resize(std::size_t(p - out.data()));
+}
+
+// The stored vertices of branches [b0, b1) to `out` (x, y, z, or steps and z on grid nodes).
+void put_vertices(const DvBranchSource& src, bool grid, std::size_t b0, std::size_t b1, std::vector<std::uint8_t>& out) {
+    std::size_t bytes = 0;
+    for (std::size_t id = b0; id < b1; ++id) bytes += vertex_bytes(src.record(id), grid);
+    out.resize(bytes);
+    std::uint8_t* p = out.data();
+    for (std::size_t id = b0; id < b1; ++id) {
+        if (grid) src.stored_steps_z(id, p);
+        else src.stored_xyz(id, p);
+        p += vertex_bytes(src.record(id), grid);
     }
 }
 
@@ -181,27 +208,18 @@ void put_body(Sink& w, const DrainageDb& meta, const DvBranchSource& src, const 
     w.put(std::uint64_t(src.vertex_count())), w.put(std::uint64_t(src.branch_count()));
     w.put(std::uint64_t(body.links)), w.put(std::uint64_t(meta.divide_vertices.size()));
     w.put(std::uint64_t(meta.divides.size()));
-    std::uint32_t head = 0;
-    for (std::size_t id = 0; id < src.branch_count(); ++id) {
-        const DvBranchRecord r = src.record(id);
-        w.varint(r.count), w.varint(record_link(r, id)), w.put(r.order), w.varint(r.basin), w.varint(r.head_acc);
-        if (grid) w.varint(src.head_cell(id) - head), head = src.head_cell(id);
-    }
-    // vertices: the second half of the branches walked on a second thread into a buffer (untouched
-    // until it writes), appended after the first half
-    const std::size_t nb = src.branch_count(), mid = nb / 2;
-    std::vector<std::uint8_t, UninitAllocator<std::uint8_t>> second(body.second_half);
-    run_beside([&] { put_vertices(src, mid, nb, second.data()); },
-               [&] {
-                   for (std::size_t id = 0; id < mid; ++id) {
-                       const std::size_t bytes = vertex_bytes(src.record(id), grid);
-                       w.room(bytes);
-                       put_branch_vertices(src, grid, id, w.buf.data() + w.n);
-                       w.n += bytes;
-                   }
-               });
-    for (std::size_t at = 0; at < second.size(); at += std::size_t(1) << 20)
-        w.bytes(second.data() + at, std::min(second.size() - at, std::size_t(1) << 20));
+    // parts made on all cores, written in order: the records of each block of branches, then
+    // the vertices of each block
+    const std::size_t parts = part_count(src);
+    ordered_parts<std::vector<std::uint8_t>>(
+        2 * parts, 4,
+        [&](std::size_t p, std::vector<std::uint8_t>& out) {
+            const std::size_t b0 = (p % parts) * branches_per_part;
+            const std::size_t b1 = std::min(src.branch_count(), b0 + branches_per_part);
+            if (p < parts) put_records(src, grid, b0, b1, out);
+            else put_vertices(src, grid, b0, b1, out);
+        },
+        [&](const std::vector<std::uint8_t>& out) { w.bytes(out.data(), out.size()); });
     for (const DvPolyline& p : meta.divides) w.put(p.count);
     for (const DvVertex& v : meta.divide_vertices) {
         const float xyz[3] = {v.x, v.y, v.z};

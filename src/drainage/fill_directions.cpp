@@ -26,16 +26,11 @@ void redo_near_raised(const std::vector<float>& z, const GridShape& g, double dx
     std::erase_if(ties, [&](std::uint32_t i) { return near_raised(g, flags, int(i % cols), int(i / cols)); });
     const D8Steps st = d8_steps(g, dx, dy);
     auto zn = [&](std::size_t n) { return z[n]; };
-    const std::vector<std::uint32_t> tied = parallel_collect<std::uint32_t>(
-        std::size_t(g.rows), 64, [&](std::size_t r0, std::size_t r1, std::vector<std::uint32_t>& out) {
-            for (int r = int(r0); r < int(r1); ++r)
-                for (int c = 0; c < g.cols; ++c) {
-                    const std::size_t i = std::size_t(r) * g.cols + c;
-                    if (!g.valid[i] || !near_raised(g, flags, c, r)) continue;
-                    const D8Choice d = d8_steepest(z[i], g, c, r, st, zn, [](std::size_t) { return true; });
-                    dir[i] = d.code();
-                    if (d.tie()) out.push_back(std::uint32_t(i));
-                }
+    const std::vector<std::uint32_t> tied = collect_near_raised(
+        g, flags, [&](int c, int r, std::size_t i, std::vector<std::uint32_t>& out) {
+            const D8Choice d = d8_steepest(z[i], g, c, r, st, zn, [](std::size_t) { return true; });
+            dir[i] = d.code();
+            if (d.tie()) out.push_back(std::uint32_t(i));
         });
     ties.insert(ties.end(), tied.begin(), tied.end());
 }

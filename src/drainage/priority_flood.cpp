@@ -144,6 +144,20 @@ bool next_to_raised(const GridShape& g, const std::vector<std::uint8_t>& flags, 
     return false;
 }
 
+// column[c]: the raised bit of rows r-1..r+1 in column c, then spread to columns c-1..c+1
+// (plain byte loops the compiler vectorises).
+void near_raised_row(const GridShape& g, const std::vector<std::uint8_t>& flags, int r,
+                     std::vector<std::uint8_t>& column, std::uint8_t* near) {
+    const std::size_t w = std::size_t(g.cols);
+    const std::uint8_t* row = flags.data() + std::size_t(r) * w;
+    const std::uint8_t* above = r > 0 ? row - w : row;
+    const std::uint8_t* below = r + 1 < g.rows ? row + w : row;
+    column.resize(w + 2);
+    column[0] = column[w + 1] = 0;
+    for (std::size_t c = 0; c < w; ++c) column[c + 1] = (above[c] | row[c] | below[c]) & fill_raised;
+    for (std::size_t c = 0; c < w; ++c) near[c] = column[c] | column[c + 1] | column[c + 2];
+}
+
 void swap_raised(std::vector<float>& z, const std::vector<std::uint8_t>& flags, std::vector<std::uint32_t>& bits) {
     parallel_chunks(z.size(), std::size_t(1) << 18, [&](std::size_t i0, std::size_t i1) {
         for (std::size_t i = i0; i < i1; ++i)

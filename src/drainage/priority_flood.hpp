@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/parallel_chunks.hpp"
 #include "drainage/d8.hpp"
 
 namespace penink {
@@ -43,6 +44,29 @@ FillStats priority_flood_levels(const std::vector<float>& z, const GridShape& g,
 
 // Whether cell (c, r) has a raised neighbour (one of its 8, on the grid), from the fill's flags.
 bool next_to_raised(const GridShape& g, const std::vector<std::uint8_t>& flags, int c, int r);
+
+// Row r at once: near[c] != 0 exactly where the 3x3 block around (c, r) on the grid holds a
+// raised cell (the cell itself or next_to_raised). near has g.cols bytes; `column` is scratch.
+void near_raised_row(const GridShape& g, const std::vector<std::uint8_t>& flags, int r,
+                     std::vector<std::uint8_t>& column, std::uint8_t* near);
+
+// Calls f(c, r, i, out) for every valid cell i = (c, r) near a raised cell (near_raised_row), rows
+// in parallel chunks (f may write cell i's own data only); returns what the calls appended to
+// `out`, in row-major order.
+template <class F>
+std::vector<std::uint32_t> collect_near_raised(const GridShape& g, const std::vector<std::uint8_t>& flags, F&& f) {
+    return parallel_collect<std::uint32_t>(
+        std::size_t(g.rows), 64, [&](std::size_t r0, std::size_t r1, std::vector<std::uint32_t>& out) {
+            std::vector<std::uint8_t> column, near(std::size_t(g.cols));
+            for (int r = int(r0); r < int(r1); ++r) {
+                near_raised_row(g, flags, r, column, near.data());
+                for (int c = 0; c < g.cols; ++c) {
+                    const std::size_t i = std::size_t(r) * g.cols + c;
+                    if (near[std::size_t(c)] && g.valid[i]) f(c, r, i, out);
+                }
+            }
+        });
+}
 
 // Exchanges z[i] with the float bits in bits[i] at every raised cell: after priority_flood_levels
 // z becomes the filled surface and bits the original elevations; done again, z is the original.

@@ -184,5 +184,26 @@ TEST(FillWithDirections, EqualsFillThenDirections) {
     }
 }
 
+TEST(PriorityFlood, NearRaisedRowIsTheThreeByThreeBlock) {
+    const int cols = 37, rows = 11;
+    std::vector<std::uint8_t> valid(std::size_t(cols) * rows, 1), flags(valid.size(), fill_closed);
+    std::uint32_t state = 12345;
+    for (std::uint8_t& f : flags)  // a sprinkle of raised cells, some on the borders
+        if ((state = state * 1664525u + 1013904223u) >> 28 == 0) f |= fill_raised;
+    const GridShape g{cols, rows, valid.data()};
+    std::vector<std::uint8_t> column, near(static_cast<std::size_t>(cols));
+    std::size_t hits = 0;
+    for (int r = 0; r < rows; ++r) {
+        near_raised_row(g, flags, r, column, near.data());
+        for (int c = 0; c < cols; ++c) {
+            const bool self = flags[std::size_t(r) * cols + c] & fill_raised;
+            ASSERT_EQ(near[std::size_t(c)] != 0, self || next_to_raised(g, flags, c, r)) << c << "," << r;
+            hits += near[std::size_t(c)] != 0;
+        }
+    }
+    EXPECT_GT(hits, 0u);
+    EXPECT_LT(hits, flags.size());
+}
+
 }  // namespace
 }  // namespace penink
