@@ -2,9 +2,13 @@
 
 #include "drainage/priority_flood.hpp"
 
+#include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <climits>
+
+#include "core/parallel_chunks.hpp"
 
 namespace penink {
 
@@ -20,9 +24,7 @@ struct Flats {
     std::vector<std::uint32_t> low, high;
     std::vector<std::uint32_t>* ties;  // flat cells with two or more neighbours of least mask
 
-    bool flat(std::uint32_t i) const {
-        return dir[i] == 0 && g.valid[i] && !(flags[i] & fill_boundary);
-    }
+    bool flat(std::uint32_t i) const { return flags[i] & flat_interior; }
     // Valid neighbours of any cell (bounds checked: low edges may lie on the border).
     template <class F> void around(std::uint32_t i, F&& f) const {
         const int c = int(i % std::uint32_t(g.cols)), r = int(i / std::uint32_t(g.cols));
@@ -39,35 +41,63 @@ struct Flats {
     }
 };
 
-// Low edges: cells with a direction (or outlets) next to a flat cell of the same elevation.
-// High edges: flat cells next to higher terrain. One scan of the direction bytes.
+// One bit per cell: a BFS's own "seen" marks (the two BFS run at once and leave `flags` alone).
+struct CellBits {
+    std::vector<std::uint64_t> w;
+    explicit CellBits(std::size_t n) : w((n + 63) / 64, 0) {}
+    bool test_and_set(std::uint32_t i) {
+        const std::uint64_t b = std::uint64_t(1) << (i & 63), old = w[i >> 6];
+        w[i >> 6] = old | b;
+        return old & b;
+    }
+};
+
+// Low edges: cells with a direction (or outlets) next to a flat cell of the same elevation, each
+// once, in the order a scan of the cells first meets them. High edges: flat cells next to higher
+// terrain, in cell order. Rows in parallel chunks (low candidates with repeats), joined in chunk
+// order, then the repeats dropped.
 void find_edges(Flats& s) {
-    for (std::uint32_t i = 0; i < s.g.size(); ++i) {
-        if (s.dir[i] || !s.flat(i)) continue;
-        bool high = false;
-        s.around_flat(i, [&](std::uint32_t n, int) {
-            if (s.z[n] > s.z[i]) high = true;
-            else if (s.z[n] == s.z[i] && !(s.flags[n] & flat_seen_low) && !s.flat(n))
-                s.flags[n] |= flat_seen_low, s.low.push_back(n);
-        });
-        if (high) s.high.push_back(i);
+    parallel_chunks(s.g.size(), std::size_t(1) << 18, [&](std::size_t i0, std::size_t i1) {
+        for (std::size_t i = i0; i < i1; ++i)
+            if (s.dir[i] == 0 && s.g.valid[i] && !(s.flags[i] & fill_boundary)) s.flags[i] |= flat_interior;
+    });
+    const std::size_t cols = std::size_t(s.g.cols), rows = std::size_t(s.g.rows), per = chunk_length(rows, 64);
+    std::vector<std::vector<std::uint32_t>> low((rows + per - 1) / per), high(low.size());
+    parallel_chunks(rows, 64, [&](std::size_t r0, std::size_t r1) {
+        std::vector<std::uint32_t>&lo = low[r0 / per], &hi = high[r0 / per];
+        for (std::uint32_t i = std::uint32_t(r0 * cols); i < r1 * cols; ++i) {
+            if (!s.flat(i)) continue;
+            bool up = false;
+            s.around_flat(i, [&](std::uint32_t n, int) {
+                if (s.z[n] > s.z[i]) up = true;
+                else if (s.z[n] == s.z[i] && !s.flat(n)) lo.push_back(n);
+            });
+            if (up) hi.push_back(i);
+        }
+    });
+    CellBits seen(s.g.size());
+    for (std::size_t k = 0; k < low.size(); ++k) {
+        for (std::uint32_t n : low[k])
+            if (!seen.test_and_set(n)) s.low.push_back(n);
+        s.high.insert(s.high.end(), high[k].begin(), high[k].end());
     }
 }
 
-// Breadth-first levels 1, 2, ... from `level` over flat cells of the same elevation not yet
-// marked with `bit` (seeds are flat cells); visit(cell, level) is called once per cell.
+// Breadth-first levels 1, 2, ... from `level` over flat cells of the same elevation not yet in
+// `seen` (seeds are flat cells); visit(cell, level) is called once per cell.
 template <class Visit>
-void bfs_levels(Flats& s, std::vector<std::uint32_t> level, std::uint8_t bit, Visit&& visit) {
+void bfs_levels(const Flats& s, std::vector<std::uint32_t> level, CellBits& seen, Visit&& visit) {
     std::vector<std::uint32_t> next;
-    for (std::uint32_t c : level) s.flags[c] |= bit;
+    for (std::uint32_t c : level) seen.test_and_set(c);
     for (std::int32_t loops = 1; !level.empty(); ++loops) {
         next.clear();
         for (std::uint32_t c : level) {
             visit(c, loops);
-            s.around_flat(c, [&](std::uint32_t n, int) {
-                if (!(s.flags[n] & bit) && s.z[n] == s.z[c] && s.flat(n))
-                    s.flags[n] |= bit, next.push_back(n);
-            });
+            auto reach = [&](std::uint32_t n, int) {
+                if (s.z[n] == s.z[c] && s.flat(n) && !seen.test_and_set(n)) next.push_back(n);
+            };
+            if (loops == 1) s.around(c, reach);  // low edges may lie on the border, flat cells never
+            else s.around_flat(c, reach);
         }
         std::swap(level, next);
     }
@@ -87,11 +117,11 @@ unsigned least_gradient(const float* z, const std::uint8_t* flags, const std::in
     return set;
 }
 
-// Flat cell i drains to the first such neighbour in code order (noted in s.ties when several).
-std::uint8_t masked_direction(const Flats& s, std::uint32_t i) {
+// Flat cell i drains to the first such neighbour in code order (noted in `ties` when several).
+std::uint8_t masked_direction(const Flats& s, std::uint32_t i, std::vector<std::uint32_t>& ties) {
     const unsigned set = least_gradient(s.z, s.flags, s.mask, s.off.data(), i);
     // raised cells are re-aimed or keep this code as an outflow path (depression_drainage.hpp)
-    if ((set & (set - 1)) != 0 && s.ties && !(s.flags[i] & fill_raised)) s.ties->push_back(i);
+    if ((set & (set - 1)) != 0 && s.ties && !(s.flags[i] & fill_raised)) ties.push_back(i);
     return std::uint8_t(set & -set);
 }
 
@@ -106,38 +136,35 @@ unsigned flat_candidates(const std::vector<float>& z, const GridShape& g,
 
 namespace {
 
-// Towards-lower BFS from the low edges (level 1, mask = lowest) combined with the away-from-higher
-// distance already in `mask`; a cell's direction is set once its neighbours' levels (one more
-// than its own at most) are final. Returns {cells left without a direction, cells reached that
-// the away-from-higher pass had seen}.
-std::pair<std::size_t, std::size_t> towards_lower(Flats& s) {
-    std::size_t unresolved = 0, seen_high = 0;
-    std::vector<std::uint32_t> level = s.low, next;
-    auto settle = [&](const std::vector<std::uint32_t>& cells) {
-        for (std::uint32_t c : cells) unresolved += (s.dir[c] = masked_direction(s, c)) == 0;
-    };
-    for (std::uint32_t c : level) s.flags[c] |= flat_seen_low, s.mask[c] = INT32_MIN;
-    for (std::int32_t loops = 2; !level.empty(); ++loops) {
-        next.clear();
-        auto reach = [&](std::uint32_t c, std::uint32_t n) {
-            if ((s.flags[n] & flat_seen_low) || s.z[n] != s.z[c] || !s.flat(n)) return;
-            s.flags[n] |= flat_seen_low, next.push_back(n);
-            const bool high = s.flags[n] & flat_seen_high;
-            seen_high += high;
-            s.mask[n] = 2 * loops - (high ? s.mask[n] : 0);
-        };
-        for (std::uint32_t c : level) {  // low edges may lie on the border, flat cells never
-            if (loops == 2) s.around(c, [&](std::uint32_t n, int) { reach(c, n); });
-            else s.around_flat(c, [&](std::uint32_t n, int) { reach(c, n); });
+// The cells the towards-lower BFS reached (low edges first, level 1) with their level.
+struct Reached {
+    std::uint32_t cell;
+    std::int32_t level;
+};
+
+// Combined gradient of every reached cell from its towards-lower level and the away-from-higher
+// distance in mask (cells marked in `high`): 2 * level - away; low edges INT32_MIN. Parallel
+// chunks (each cell written once); returns how many reached cells the away pass had seen.
+std::size_t combine(Flats& s, const std::vector<Reached>& low, const CellBits& high) {
+    std::atomic<std::size_t> seen_high{0};
+    parallel_chunks(low.size(), 1 << 16, [&](std::size_t k0, std::size_t k1) {
+        std::size_t n = 0;
+        for (std::size_t k = k0; k < k1; ++k) {
+            const auto [c, level] = low[k];
+            const bool h = high.w[c >> 6] >> (c & 63) & 1;
+            n += h && level > 1;
+            s.mask[c] = level == 1 ? INT32_MIN : 2 * level - (h ? s.mask[c] : 0);
         }
-        if (loops > 2) settle(level);  // level loops-1: every neighbour's mask is set now
-        std::swap(level, next);
-    }
-    return {unresolved, seen_high};
+        seen_high += n;
+    });
+    return seen_high;
 }
 
 }  // namespace
 
+// The away-from-higher BFS (distances into mask) and the towards-lower BFS (levels kept in a
+// list) on two threads, each with its own seen bits; then the gradients combined and every flat
+// cell reached settled (its neighbours' gradients all final), in the list's order.
 std::size_t resolve_flats(const std::vector<float>& z, const GridShape& g,
                           std::vector<std::uint8_t>& dir, std::vector<std::uint8_t>& flags,
                           std::vector<std::uint32_t>& mask, std::vector<std::uint32_t>* ties) {
@@ -145,12 +172,25 @@ std::size_t resolve_flats(const std::vector<float>& z, const GridShape& g,
     Flats s{z.data(), g, dir.data(), flags.data(), reinterpret_cast<std::int32_t*>(mask.data()),
             d8_offsets(g), {}, {}, ties};
     find_edges(s);
+    CellBits high(g.size()), low_seen(g.size());
     std::size_t high_cells = 0;
-    bfs_levels(s, s.high, flat_seen_high, [&](std::uint32_t c, std::int32_t h) {
-        s.mask[c] = h, ++high_cells;
-    });
-    for (std::uint32_t c : s.low) s.flags[c] &= std::uint8_t(~flat_seen_low);
-    const auto [unresolved, reached_high] = towards_lower(s);
+    std::vector<Reached> low;
+    run_beside([&] { bfs_levels(s, s.high, high, [&](std::uint32_t c, std::int32_t h) { s.mask[c] = h, ++high_cells; }); },
+               [&] { bfs_levels(s, s.low, low_seen, [&](std::uint32_t c, std::int32_t l) { low.push_back({c, l}); }); });
+    const std::size_t reached_high = combine(s, low, high);
+    for (const Reached& r : low) flags[r.cell] |= flat_seen_low;
+    for (std::size_t w = 0; w < high.w.size(); ++w)
+        for (std::uint64_t b = high.w[w]; b; b &= b - 1) flags[w * 64 + std::size_t(std::countr_zero(b))] |= flat_seen_high;
+    std::atomic<std::size_t> unresolved{0};
+    constexpr std::uint8_t settle = flat_interior | flat_seen_low;  // reached flat cells, in cell order
+    const std::vector<std::uint32_t> tied = parallel_collect<std::uint32_t>(
+        g.size(), std::size_t(1) << 18, [&](std::size_t i0, std::size_t i1, std::vector<std::uint32_t>& out) {
+            std::size_t none = 0;
+            for (std::size_t i = i0; i < i1; ++i)
+                if ((flags[i] & settle) == settle) none += (dir[i] = masked_direction(s, std::uint32_t(i), out)) == 0;
+            unresolved += none;
+        });
+    if (ties) ties->insert(ties->end(), tied.begin(), tied.end());
     // flats no low edge reaches (impossible after priority-flood) stay without direction
     return unresolved + (high_cells - reached_high);
 }

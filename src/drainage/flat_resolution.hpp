@@ -7,7 +7,9 @@
 // Differences from the paper, same directions: flats are told apart by elevation equality of
 // adjacent cells instead of a label raster, the per-flat offset (FlatHeight) is dropped (only
 // cells of one flat are compared) and low edges get the lowest mask, so after one scan of the
-// direction bytes only flat cells and their edges are touched.
+// direction bytes only flat cells and their edges are touched. The two BFS run at once on two
+// threads (each with its own visited bits), then the gradients are combined and the flat cells
+// settled in parallel chunks: the same codes as one thread, in any order.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -18,11 +20,12 @@ namespace penink {
 
 // Bits of `flags` used by resolve_flats (left set); bits 0, 1 and 4 belong to the fill.
 inline constexpr std::uint8_t flat_seen_high = 4, flat_seen_low = 8;
+inline constexpr std::uint8_t flat_interior = 64;  // a flat interior cell (what resolve_flats gave a code)
 
 // Gives every flat interior cell of `dir` (valid, code 0, not a boundary cell) a D8 code, on the
 // filled elevations `z`. `mask` is a scratch buffer (resized to cols*rows; pass the one that later
 // holds basins to save memory), `flags` the fill's per-cell state
-// (priority_flood.hpp: fill_boundary marks the boundary cells; bits 2..3 are set here).
+// (priority_flood.hpp: fill_boundary marks the boundary cells; bits 2, 3 and 6 are set here).
 // Returns the number of flat cells that stay without a direction (0 on a filled surface).
 // Afterwards `mask` holds, for every cell marked flat_seen_low, its combined gradient as int32
 // (INT32_MIN on low edges); flat cells with several neighbours of least gradient are appended to
