@@ -124,8 +124,7 @@ DrainageDb drainage_db_from_grid(DrainageGrid& g, const DrainageProgress& progre
 DrainageDb build_and_write_drainage_db(Terrain& t, const DrainageOptions& options, const DrainageFingerprint& fp,
                                        const std::string& path, const DrainageProgress& progress, DrainageResult* keep) {
     report(progress, "resampling the PN surface", 0.0);
-    DrainageGrid g = resample_pn(t, drainage_resample_factor(t, options));
-    std::vector<glm::vec3>().swap(t.pos);  // the grid holds what is needed: the memory goes back
+    DrainageGrid g = resample_pn_releasing(t, drainage_resample_factor(t, options));  // memory back
     DrainageResult res = compute_drainage(g, progress, options.routing);
     DrainageDb meta = grid_database(g);
     meta.crs_wkt = t.crs_wkt, meta.fingerprint = fp;

@@ -84,8 +84,9 @@ DrainageDb build_drainage_db(const Terrain& t, const DrainageOptions& options,
 
 // What `penink drainage` does: the build of build_drainage_db with fingerprint `fp`, written to
 // `path` (write_drainage_db: temp file, renamed) straight from the network (NetworkBranches,
-// branches.hpp: no vertex array held; the same bytes). t.pos is released (emptied) once the grid
-// is resampled, the rest of `t` kept. Returns the database without its branches and vertices
+// branches.hpp: no vertex array held; the same bytes). t.pos and t.z are released (emptied) once
+// the grid is resampled (resample_pn_releasing: `t` may be a heights-only read at factor 1), the
+// rest of `t` kept. Returns the database without its branches and vertices
 // (grid, origin, CRS, fingerprint, divides); `keep` as build_drainage_db.
 DrainageDb build_and_write_drainage_db(Terrain& t, const DrainageOptions& options, const DrainageFingerprint& fp,
                                        const std::string& path, const DrainageProgress& progress = {},

@@ -64,7 +64,9 @@ void print_summary(std::ostream& log, const DrainageStats& s, const DrainageDb& 
 int run(const DrainageCommand& cmd, std::ostream& log) {
     const auto t0 = Clock::now();
     StageTimer timer{log};
-    Terrain t = read_dem(cmd.dem);  // its positions are released once resampled
+    DemOptions read;
+    read.heights_only = cmd.resample == 1;  // factor 1 needs no positions on an affine grid
+    Terrain t = read_dem(cmd.dem, read);  // its positions (or heights) are released once resampled
     if (const std::string w = missing_crs_warning(t); !w.empty()) log << w << "\n";
     DrainageOptions o;
     o.resample = cmd.resample;

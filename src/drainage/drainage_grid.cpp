@@ -61,6 +61,31 @@ PnPatch cell_patch(const SurfaceMesh& m, const std::vector<std::uint8_t>& valid,
                     m.normal[n[2]]);
 }
 
+// x, y of the nodes, a row at a time (t.cols of them): the Terrain's pos, or after a heights-only
+// read (pos empty) affine_node_xy on its grid. Without rotation terms (gt[2] = gt[4] = 0) the
+// other coordinate's term adds zero, so x depends on the column only and y on the row only: the
+// columns' x are computed once, the same floats.
+struct RowXY {
+    const Terrain& t;
+    AffineNodes a;
+    std::vector<float> xs;  // per column, on an axis-aligned heights-only grid
+
+    explicit RowXY(const Terrain& terrain) : t(terrain) {
+        terrain_affine(t, a);
+        if (!t.pos.empty() || a.gt[2] != 0.0 || a.gt[4] != 0.0) return;
+        xs.resize(std::size_t(t.cols));
+        for (int c = 0; c < t.cols; ++c) xs[std::size_t(c)] = affine_node_xy(a, t.origin, c, 0).x;
+    }
+    void row(int r, std::vector<glm::vec2>& out) const {
+        out.resize(std::size_t(t.cols));
+        const float y = xs.empty() ? 0.0f : affine_node_xy(a, t.origin, 0, r).y;
+        for (int c = 0; c < t.cols; ++c)
+            out[std::size_t(c)] = !t.pos.empty() ? glm::vec2(t.pos[t.index(c, r)])
+                                  : xs.empty()   ? affine_node_xy(a, t.origin, c, r)
+                                                 : glm::vec2(xs[std::size_t(c)], y);
+    }
+};
+
 // Mean length of the x, y steps between valid neighbours along rows (dx) and columns (dy), summed
 // over fixed blocks of rows in parallel and the blocks' sums added in order: the same doubles
 // whatever the number of threads.
@@ -70,18 +95,26 @@ void mean_spacing(const Terrain& t, double& dx, double& dy) {
         double sx = 0, sy = 0;
         std::size_t nx = 0, ny = 0;
     };
+    const RowXY xy(t);
     std::vector<Sum> block((std::size_t(t.rows) + block_rows - 1) / block_rows);
     parallel_chunks(block.size(), 1, [&](std::size_t b0, std::size_t b1) {
-        for (std::size_t b = b0; b < b1; ++b)
-            for (int r = int(b * block_rows); r < std::min(t.rows, int((b + 1) * block_rows)); ++r)
+        std::vector<glm::vec2> row, below;
+        for (std::size_t b = b0; b < b1; ++b) {
+            const int r0 = int(b * block_rows), r1 = std::min(t.rows, int((b + 1) * block_rows));
+            xy.row(r0, below);
+            for (int r = r0; r < r1; ++r) {
+                std::swap(row, below);
+                if (r + 1 < t.rows) xy.row(r + 1, below);
                 for (int c = 0; c < t.cols; ++c) {
                     const std::size_t i = t.index(c, r);
                     if (!t.valid[i]) continue;
                     if (c + 1 < t.cols && t.valid[i + 1])
-                        block[b].sx += glm::length(glm::vec2(t.pos[i + 1] - t.pos[i])), ++block[b].nx;
+                        block[b].sx += glm::length(row[std::size_t(c) + 1] - row[std::size_t(c)]), ++block[b].nx;
                     if (r + 1 < t.rows && t.valid[i + t.cols])
-                        block[b].sy += glm::length(glm::vec2(t.pos[i + t.cols] - t.pos[i])), ++block[b].ny;
+                        block[b].sy += glm::length(below[std::size_t(c)] - row[std::size_t(c)]), ++block[b].ny;
                 }
+            }
+        }
     });
     Sum s;
     for (const Sum& b : block) s.sx += b.sx, s.sy += b.sy, s.nx += b.nx, s.ny += b.ny;
@@ -115,7 +148,11 @@ std::size_t resampled_size(const Terrain& t, int factor) {
            (std::size_t(std::max(t.rows - 1, 0)) * factor + 1);
 }
 
-DrainageGrid resample_pn(const Terrain& t, int factor) {
+namespace {
+
+// The grid of t at `factor`, everything but z: size, origin, affine grid, masks, spacing, and the
+// coarse x, y where grid_xy needs them (not at factor 1 on an affine grid).
+DrainageGrid grid_frame(const Terrain& t, int factor) {
     if (factor < 1) throw Error("drainage", t.source, "resample factor must be >= 1");
     if (t.cols < 2 || t.rows < 2)
         throw Error("drainage", t.source, "DEM too small for drainage (needs at least 2x2 nodes)");
@@ -124,23 +161,53 @@ DrainageGrid resample_pn(const Terrain& t, int factor) {
     g.cols = (t.cols - 1) * factor + 1, g.rows = (t.rows - 1) * factor + 1;
     g.origin = t.origin;
     g.has_affine = terrain_affine(t, g.affine);
+    if (t.pos.empty() && (factor > 1 || !g.has_affine))  // a heights-only read (DemOptions)
+        throw Error("drainage", t.source, "DEM read without positions resamples at factor 1 only", ExitCode::internal);
     g.coarse_cols = t.cols, g.coarse_rows = t.rows, g.coarse_valid = t.valid;
     g.valid = factor == 1 ? t.valid : std::vector<std::uint8_t>(g.size(), 0);
     mean_spacing(t, g.dx, g.dy);
     g.dx /= factor, g.dy /= factor;
-    // x, y: at factor 1 on an affine grid node_xy computes them, else interpolated from these
     if (factor > 1 || !g.has_affine) g.coarse_xy.assign(t.pos.begin(), t.pos.end());
-    if (factor == 1) {  // the PN patch interpolates its corners: the nodes themselves
-        g.z.resize(g.size());
-        parallel_chunks(g.size(), std::size_t(1) << 18, [&](std::size_t i0, std::size_t i1) {
-            for (std::size_t i = i0; i < i1; ++i) g.z[i] = t.valid[i] ? t.pos[i].z : 0.0f;
-        });
+    return g;
+}
+
+// z at factor 1 (the PN patch interpolates its corners: the nodes themselves), 0 at nodata.
+void node_heights(const Terrain& t, DrainageGrid& g) {
+    g.z.resize(g.size());
+    parallel_chunks(g.size(), std::size_t(1) << 18, [&](std::size_t i0, std::size_t i1) {
+        for (std::size_t i = i0; i < i1; ++i) g.z[i] = !t.valid[i] ? 0.0f : t.pos.empty() ? t.z[i] : t.pos[i].z;
+    });
+}
+
+}  // namespace
+
+DrainageGrid resample_pn(const Terrain& t, int factor) {
+    DrainageGrid g = grid_frame(t, factor);
+    if (factor == 1) {
+        node_heights(t, g);
         return g;
     }
     g.z.assign(g.size(), 0.0f);
     const SurfaceMesh mesh = mesh_from_terrain(t);
     for (int R = 0; R + 1 < t.rows; ++R)
         for (int C = 0; C + 1 < t.cols; ++C) resample_cell(t, mesh, C, R, g);
+    return g;
+}
+
+DrainageGrid resample_pn_releasing(Terrain& t, int factor) {
+    DrainageGrid g;
+    if (factor == 1 && !t.z.empty()) {  // heights-only: z taken over, 0 at nodata
+        g = grid_frame(t, factor);
+        g.z = std::move(t.z);
+        parallel_chunks(g.size(), std::size_t(1) << 18, [&](std::size_t i0, std::size_t i1) {
+            for (std::size_t i = i0; i < i1; ++i)
+                if (!g.valid[i]) g.z[i] = 0.0f;
+        });
+    } else {
+        g = resample_pn(t, factor);
+    }
+    std::vector<glm::vec3>().swap(t.pos);
+    std::vector<float>().swap(t.z);
     return g;
 }
 

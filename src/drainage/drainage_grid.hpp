@@ -41,7 +41,12 @@ std::size_t resampled_size(const Terrain& t, int factor);
 // triangle (the regular grid for a regular DEM). A node is valid when every triangle vertex with
 // a non-zero barycentric weight holds data. factor 1 reproduces the node elevations exactly.
 // Throws penink::Error("drainage", t.source, ...) for factor < 1 or a grid under 2x2 nodes.
+// A heights-only Terrain (DemOptions::heights_only: pos empty, z set) resamples at factor 1 only
+// (else penink::Error "drainage", ExitCode::internal).
 DrainageGrid resample_pn(const Terrain& t, int factor);
+
+// resample_pn, then t's positions and heights released (a heights-only t's z becomes the grid's).
+DrainageGrid resample_pn_releasing(Terrain& t, int factor);
 
 // A grid of hand-given elevations at regular spacing (x = c*spacing, y = -r*spacing), factor 1;
 // `valid` empty means all valid. Used by tests and benchmarks.

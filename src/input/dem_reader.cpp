@@ -261,11 +261,14 @@ void check_grid(const Raster& r, const std::string& path) {
         fail(path, "DEM has no valid elevation (all nodata)");
 }
 
-// t.pos: x, y relative to the bounds' rounded centre (t.origin), z the elevation (the lowest
-// valid one at nodata nodes) times the vertical exaggeration; rows in parallel.
+// Elevation of node (c, row), metres: the lowest valid one at nodata nodes.
+double node_elevation(const Raster& r, std::size_t row, int c) {
+    return r.valid[row * r.w + c] ? r.metres(r.value(r.source(row, c))) : r.emin;
+}
+
+// t.pos: x, y relative to the bounds' rounded centre (t.origin), z the node elevation times the
+// vertical exaggeration; rows in parallel.
 void fill_positions(const Raster& r, const WorldXY& xy, Terrain& t, const std::string& path) {
-    t.origin = glm::round(0.5 * (xy.lo + xy.hi));
-    t.elevation_min = r.emin, t.elevation_max = r.emax;
     t.pos.resize(std::size_t(r.w) * r.h);
     const double s = t.vertical_exaggeration;
     parallel_chunks(std::size_t(r.h), rows_per_chunk(r), [&](std::size_t r0, std::size_t r1) {
@@ -277,12 +280,20 @@ void fill_positions(const Raster& r, const WorldXY& xy, Terrain& t, const std::s
                 fail_utm(path, t.utm_zone, t.north, e);
             }
             for (int c = 0; c < r.w; ++c) {
-                const std::size_t i = row * r.w + c;
                 const glm::dvec2 p = line[std::size_t(c)] - t.origin;
-                const double e = r.valid[i] ? r.metres(r.value(r.source(row, c))) : r.emin;
-                t.pos[i] = glm::vec3(float(p.x), float(p.y), float(e * s));
+                t.pos[row * r.w + c] = glm::vec3(float(p.x), float(p.y), float(node_elevation(r, row, c) * s));
             }
         }
+    });
+}
+
+// A heights-only read: t.z what fill_positions puts in pos[i].z.
+void fill_heights(const Raster& r, Terrain& t) {
+    t.z.resize(std::size_t(r.w) * r.h);
+    const double s = t.vertical_exaggeration;
+    parallel_chunks(std::size_t(r.h), rows_per_chunk(r), [&](std::size_t r0, std::size_t r1) {
+        for (std::size_t row = r0; row < r1; ++row)
+            for (int c = 0; c < r.w; ++c) t.z[row * r.w + c] = float(node_elevation(r, row, c) * s);
     });
 }
 
@@ -303,7 +314,10 @@ Terrain read_dem(const std::string& path, const DemOptions& options) {
     t.geotransform = r.gt;
     const WorldXY xy = world_coordinates(r, options, t, path);
     if (!xy.utm) t.xy_unit = xy.unit;  // an affine grid: affine_node_xy gives pos.xy
-    fill_positions(r, xy, t, path);
+    t.origin = glm::round(0.5 * (xy.lo + xy.hi));
+    t.elevation_min = r.emin, t.elevation_max = r.emax;
+    if (options.heights_only && !xy.utm) fill_heights(r, t);
+    else fill_positions(r, xy, t, path);
     t.valid = std::move(r.valid);
     return t;
 }

@@ -5,6 +5,8 @@
 
 #include "core/error.hpp"
 #include "drainage/drainage_grid.hpp"
+#include "input/dem_reader.hpp"
+#include "tests/input/test_grids.hpp"
 
 namespace penink {
 namespace {
@@ -73,6 +75,28 @@ TEST(PnResample, MissingTriangleInvalidatesItsNodes) {
     EXPECT_EQ(g.valid[g.index(4, 2)], 1);  // the NE node of cell (1,1) still has data
     EXPECT_EQ(g.valid[g.index(3, 2)], 1);  // on edge a-b of the dropped triangle
     EXPECT_EQ(g.valid[g.index(2, 2)], 1);
+}
+
+TEST(PnResample, HeightsOnlyTerrainGivesTheSameGridAtFactorOne) {
+    test::TempDir dir;
+    const double c = std::cos(0.3), s = std::sin(0.3), nodata = -9999;
+    const std::string rotated = test::write_tif(dir.file("r.tif"), 4, 3, {1, 2, 3, 4, 5, -9999, 7, 8, 9, 10, 11, 12},
+                                                {1000, 10 * c, 10 * s, 5000, 10 * s, -10 * c}, 2193, &nodata);
+    DemOptions heights;
+    heights.heights_only = true;
+    for (const std::string& p : {std::string(PENINK_SOURCE_DIR "/examples/volcano.asc"), rotated}) {
+        const DrainageGrid full = resample_pn(read_dem(p), 1);
+        Terrain h = read_dem(p, heights);
+        EXPECT_THROW(resample_pn(h, 2), Error);  // positions needed between the nodes
+        const DrainageGrid g = resample_pn_releasing(h, 1);
+        EXPECT_TRUE(h.z.empty());
+        EXPECT_EQ(g.z, full.z);  // nodata nodes 0 in both
+        EXPECT_EQ(g.valid, full.valid);
+        EXPECT_EQ(g.dx, full.dx);  // the same floats summed in the same order
+        EXPECT_EQ(g.dy, full.dy);
+        for (int r = 0; r < g.rows; ++r)
+            for (int col = 0; col < g.cols; ++col) ASSERT_EQ(grid_xy(g, col, r), grid_xy(full, col, r)) << p;
+    }
 }
 
 TEST(PnResample, RejectsBadFactor) {

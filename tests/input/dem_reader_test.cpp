@@ -289,6 +289,34 @@ TEST(DemReader, ProjectedNodesFollowTheirAffineGridExactly) {
     EXPECT_FALSE(terrain_affine(read_dem(PENINK_SHARED_DIR "/data/jacksboro.tif"), none));
 }
 
+TEST(DemReader, HeightsOnlyReadKeepsTheElevationsAndLeavesPositionsOut) {
+    TempDir dir;
+    const double c = std::cos(0.3), s = std::sin(0.3), nodata = -9999;
+    const std::string rotated = test::write_tif(dir.file("r.tif"), 4, 3, {1, 2, 3, 4, 5, -9999, 7, 8, 9, 10, 11, 12},
+                                                {1000, 10 * c, 10 * s, 5000, 10 * s, -10 * c}, 2193, &nodata);
+    DemOptions heights;
+    heights.heights_only = true;
+    heights.vertical_exaggeration = 2.5;
+    for (const std::string& p : {std::string(PENINK_SOURCE_DIR "/examples/volcano.asc"), rotated}) {
+        DemOptions full_options;
+        full_options.vertical_exaggeration = 2.5;
+        const Terrain full = read_dem(p, full_options), h = read_dem(p, heights);
+        EXPECT_TRUE(h.pos.empty());
+        ASSERT_EQ(h.z.size(), full.pos.size());
+        for (std::size_t i = 0; i < full.pos.size(); ++i) ASSERT_EQ(h.z[i], full.pos[i].z) << p << " " << i;
+        EXPECT_EQ(h.valid, full.valid);
+        EXPECT_EQ(h.origin, full.origin);
+        EXPECT_EQ(h.xy_unit, full.xy_unit);
+        EXPECT_EQ(h.elevation_min, full.elevation_min);
+        EXPECT_EQ(h.elevation_max, full.elevation_max);
+        EXPECT_EQ(h.crs_wkt, full.crs_wkt);
+    }
+    // a geographic DEM has no affine grid in metres: positions are read anyway
+    const Terrain geo = read_dem(PENINK_SHARED_DIR "/data/jacksboro.tif", heights);
+    EXPECT_EQ(geo.pos.size(), geo.size());
+    EXPECT_TRUE(geo.z.empty());
+}
+
 TEST(DemReader, SouthernHemisphereGeographic) {
     TempDir dir;  // around Auckland: zone 60 south
     const std::string p = test::write_tif(dir.file("akl.tif"), 3, 3, {1, 2, 3, 4, 5, 6, 7, 8, 9},

@@ -151,7 +151,9 @@ TEST(DmPass, MinScoreAndAttenuationActAsTheFormulaSays) {
         std::size_t n = 0;
         for (std::size_t i = 0; i < sc.size(); ++i) {
             n += sc[i] >= 0.0f;
-            if (base[i] != dm_hidden) EXPECT_NEAR(sc[i], base[i] - min_score, 1e-5);
+            if (base[i] != dm_hidden) {
+                EXPECT_NEAR(sc[i], base[i] - min_score, 1e-5);
+            }
         }
         EXPECT_LE(n, previous) << "min_score " << min_score;
         RecordProperty("drawn_at_min_score_" + std::to_string(int(min_score * 10)), int(n));
@@ -241,7 +243,9 @@ TEST(DmPass, ZeroNormalMeansOffSurfaceAndHidden) {
     const std::vector<float> scores = run_dm(off, renderer, max_distance(img.toward), CreaseScore{});
     std::size_t drawn = 0;
     for (std::size_t i = 0; i < scores.size(); ++i) {
-        if (i % 2 == 0) EXPECT_EQ(scores[i], dm_hidden) << i;
+        if (i % 2 == 0) {
+            EXPECT_EQ(scores[i], dm_hidden) << i;
+        }
         drawn += i % 2 == 1 && scores[i] != dm_hidden;
     }
     EXPECT_GT(drawn, 300u);

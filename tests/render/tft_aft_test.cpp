@@ -65,7 +65,9 @@ TEST(TftAft, SeparatePassesAgreeWithCombined) {
     for (std::size_t i = 0; i < a.toward.depth.size(); ++i) {
         const float ta = a.toward.depth[i], tb = b.toward.depth[i];
         EXPECT_EQ(std::isfinite(ta), std::isfinite(tb)) << i;
-        if (std::isfinite(ta) && std::isfinite(tb)) EXPECT_NEAR(ta, tb, 1e-3 * ta) << i;
+        if (std::isfinite(ta) && std::isfinite(tb)) {
+            EXPECT_NEAR(ta, tb, 1e-3 * ta) << i;
+        }
         away += std::isfinite(a.away.depth[i]);
     }
     EXPECT_GT(away, 50u);  // the far side of the hill faces away
