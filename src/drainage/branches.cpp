@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "core/parallel_chunks.hpp"
+#include "drainage/dv_format.hpp"
 
 namespace penink {
 
@@ -40,6 +41,14 @@ struct HeadRank {
     std::uint32_t of(std::size_t cell) const {
         const std::uint64_t below = (std::uint64_t(1) << (cell & 63)) - 1;
         return before[cell >> 6] + std::uint32_t(std::popcount(bits[cell >> 6] & below));
+    }
+    // The head of rank k (< the number of heads): the word holding it by binary search, then its
+    // (k - before)-th set bit.
+    std::size_t select(std::uint32_t k) const {
+        const std::size_t w = std::size_t(std::upper_bound(before.begin(), before.end(), k) - before.begin()) - 1;
+        std::uint64_t b = bits[w];
+        for (std::uint32_t skip = k - before[w]; skip > 0; --skip) b &= b - 1;
+        return w * 64 + std::size_t(std::countr_zero(b));
     }
 };
 
@@ -185,56 +194,57 @@ void build_branches(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
 struct NetworkBranches::Walks {
     Heads heads;
     Tracer tracer;
-    std::vector<std::uint32_t> head, count;  // per branch
-    std::vector<std::int32_t> down;
+    std::size_t links;
 
     Walks(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net)
         : heads(g, dir, net), tracer{g, dir, net, heads.indeg, heads.rank},
-          head(heads.count), count(heads.count), down(heads.count) {
-        tracer.each_head(mid_cell(g), std::uint32_t(heads.count), [&](std::size_t h, std::uint32_t id, bool) {
-            std::uint32_t n = 0;
-            down[id] = tracer.walk(h, [&](std::size_t) { ++n; });
-            head[id] = std::uint32_t(h), count[id] = n;
-        });
-    }
+          links(heads.count - net.outlet.size()) {}
 };
 
 NetworkBranches::NetworkBranches(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net)
     : w_(std::make_unique<Walks>(g, dir, net)) {}
 NetworkBranches::~NetworkBranches() = default;
-std::size_t NetworkBranches::branch_count() const { return w_->head.size(); }
+std::size_t NetworkBranches::branch_count() const { return w_->heads.count; }
 std::size_t NetworkBranches::vertex_count() const { return w_->heads.vertices; }
-
-DvBranchRecord NetworkBranches::record(std::size_t id) const {
-    const FlowNetwork& net = w_->tracer.net;
-    const std::size_t h = w_->head[id];
-    return {w_->count[id], w_->down[id], net.order[h], net.basin[h], net.acc[h]};
-}
-
-void NetworkBranches::stored_xyz(std::size_t id, std::uint8_t* out) const {
-    const Tracer& t = w_->tracer;
-    t.walk(w_->head[id], [&](std::size_t c) {
-        const DvVertex v = point_xyz(t.g, c);
-        std::memcpy(out, &v, 12);
-        out += 12;
-    }, false);
-}
+std::size_t NetworkBranches::link_count() const { return w_->links; }
 
 const AffineNodes* NetworkBranches::grid_nodes() const {
     const DrainageGrid& g = w_->tracer.g;
     return points_are_nodes(g) ? &g.affine : nullptr;
 }
 
-std::uint32_t NetworkBranches::head_cell(std::size_t id) const { return w_->head[id]; }
-
-void NetworkBranches::stored_steps_z(std::size_t id, std::uint8_t* out) const {
+// Each branch walked once into `cells` (the end junction included), then its record and stored
+// vertices: x, y, z, or on grid nodes the step from the vertex before and z (dv_format.hpp).
+void NetworkBranches::encode(std::size_t b0, std::size_t b1, DvBytes& out) const {
+    using namespace dv;
+    if (b0 >= b1) return;
     const Tracer& t = w_->tracer;
-    const std::size_t h = w_->head[id];
-    t.walk(h, [&, prev = h](std::size_t c) mutable {
-        if (c != h) *out++ = std::uint8_t(d8_index(t.dir[prev]));  // the step from the vertex before
-        std::memcpy(out, &t.g.z[c], 4);
-        out += 4, prev = c;
-    }, false);
+    const FlowNetwork& net = t.net;
+    const bool grid = grid_nodes() != nullptr;
+    std::vector<std::uint32_t> cells;
+    std::size_t h = t.rank.select(std::uint32_t(b0));
+    std::uint32_t before = b0 ? std::uint32_t(t.rank.select(std::uint32_t(b0 - 1))) : 0;
+    for (std::size_t id = b0; id < b1; ++id, ++h) {
+        while (!t.is_head(h)) ++h;
+        cells.clear();
+        const std::int32_t down = t.walk(h, [&](std::size_t c) { cells.push_back(std::uint32_t(c)); });
+        const DvBranchRecord r{std::uint32_t(cells.size()), down, net.order[h], net.basin[h], net.acc[h]};
+        const std::size_t at = out.size();
+        out.resize(at + max_record_bytes + vertex_bytes(r, grid));
+        std::uint8_t* p = put_record(out.data() + at, r, id, grid, std::uint32_t(h) - before);
+        for (std::uint32_t k = 0; k < stored_count(r); ++k) {
+            const std::size_t c = cells[k];
+            if (grid) {
+                if (k > 0) *p++ = std::uint8_t(d8_index(t.dir[cells[k - 1]]));  // the step from the vertex before
+                std::memcpy(p, &t.g.z[c], 4), p += 4;
+            } else {
+                const DvVertex v = point_xyz(t.g, c);
+                std::memcpy(p, &v, 12), p += 12;
+            }
+        }
+        out.resize(std::size_t(p - out.data()));
+        before = std::uint32_t(h);
+    }
 }
 
 namespace {
@@ -249,21 +259,32 @@ struct Corners {
 
 constexpr int corner_di[4] = {0, 1, 0, -1}, corner_dj[4] = {-1, 0, 1, 0};
 
+// Bits of a corner from the basins (0: invalid or off the grid) of its up-left, up-right,
+// down-left and down-right points: no branch, so a row of corners vectorises.
+inline std::uint8_t corner_bits(std::uint32_t ul, std::uint32_t ur, std::uint32_t dl, std::uint32_t dr) {
+    auto differ = [](std::uint32_t a, std::uint32_t b) { return unsigned((a != 0) & (b != 0) & (a != b)); };
+    const unsigned b = differ(ul, ur) | differ(ur, dr) << 1 | differ(dl, dr) << 2 | differ(ul, dl) << 3;
+    const unsigned degree = (b & 1) + (b >> 1 & 1) + (b >> 2 & 1) + (b >> 3 & 1);
+    return std::uint8_t(b | ((b != 0) & (degree != 2)) << 4);
+}
+
+// Each corner's bits from its (up to) four surrounding points' basins (0 where invalid or off the
+// grid), corner rows in parallel chunks: an edge leaves corner (i, j) north between points
+// (i-1, j-1) and (i, j-1), east between (i, j-1) and (i, j), south between (i-1, j) and (i, j),
+// west between (i-1, j-1) and (i-1, j), when both are valid and their basins differ.
 Corners divide_edges(const DrainageGrid& g, const FlowNetwork& net) {
-    Corners k{g.cols + 1, g.rows + 1, std::vector<std::uint8_t>(std::size_t(g.cols + 1) * (g.rows + 1), 0)};
-    auto differ = [&](std::size_t a, std::size_t b) {
-        return g.valid[a] && g.valid[b] && net.basin[a] != net.basin[b];
-    };
-    for (int r = 0; r < g.rows; ++r)
-        for (int c = 0; c < g.cols; ++c) {
-            const std::size_t i = g.index(c, r);
-            if (c + 1 < g.cols && differ(i, i + 1))  // corners (c+1, r) - (c+1, r+1)
-                k.bits[k.at(c + 1, r)] |= 4, k.bits[k.at(c + 1, r + 1)] |= 1;
-            if (r + 1 < g.rows && differ(i, i + g.cols))  // corners (c, r+1) - (c+1, r+1)
-                k.bits[k.at(c, r + 1)] |= 2, k.bits[k.at(c + 1, r + 1)] |= 8;
+    Corners k{g.cols + 1, g.rows + 1, std::vector<std::uint8_t>(std::size_t(g.cols + 1) * (g.rows + 1))};
+    const std::vector<std::uint32_t> none(std::size_t(g.cols), 0);  // the rows beyond the grid
+    parallel_chunks(std::size_t(k.rows), 64, [&](std::size_t j0, std::size_t j1) {
+        for (int j = int(j0); j < int(j1); ++j) {
+            const std::uint32_t* up = j > 0 ? net.basin.data() + g.index(0, j - 1) : none.data();
+            const std::uint32_t* down = j < g.rows ? net.basin.data() + g.index(0, j) : none.data();
+            std::uint8_t* out = k.bits.data() + k.at(0, j);
+            out[0] = corner_bits(0, up[0], 0, down[0]);
+            for (int i = 1; i < g.cols; ++i) out[i] = corner_bits(up[i - 1], up[i], down[i - 1], down[i]);
+            out[g.cols] = corner_bits(up[g.cols - 1], 0, down[g.cols - 1], 0);
         }
-    for (std::uint8_t& b : k.bits)
-        if (b && std::popcount(unsigned(b)) != 2) b |= 16;
+    });
     return k;
 }
 

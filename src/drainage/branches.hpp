@@ -20,23 +20,21 @@ void build_branches(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
                     const FlowNetwork& net, DrainageDb& db);
 
 // The branches of a drainage network as the DV encoder asks for them (DvBranchSource), without
-// holding their vertices: each branch's head, vertex count and downstream branch are found by
-// walking it once (two threads, as build_branches), its vertices walked again when asked for.
-// Gives the bytes build_branches' DrainageDb encodes to, or, on an affine grid at factor 1
-// (grid_nodes), a smaller file of cells that reads back to that DrainageDb. g, dir and net must
-// outlive it; net needs indeg (accumulate_flow) or it is counted here.
+// holding their vertices: heads ranked in cell order (= branch ids) up front, each branch walked
+// when its range is encoded (from any thread). Gives the bytes build_branches' DrainageDb encodes
+// to, or, on an affine grid at factor 1 (grid_nodes), a smaller file of cells that reads back to
+// that DrainageDb. g, dir and net must outlive it; net needs indeg (accumulate_flow) or it is
+// counted here.
 class NetworkBranches : public DvBranchSource {
 public:
     NetworkBranches(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net);
     ~NetworkBranches() override;
     std::size_t branch_count() const override;
     std::size_t vertex_count() const override;
-    DvBranchRecord record(std::size_t id) const override;
-    void stored_xyz(std::size_t id, std::uint8_t* out) const override;
+    std::size_t link_count() const override;
     // Grid positions when the grid is the Terrain's own (factor 1) on an affine grid.
     const AffineNodes* grid_nodes() const override;
-    std::uint32_t head_cell(std::size_t id) const override;
-    void stored_steps_z(std::size_t id, std::uint8_t* out) const override;
+    void encode(std::size_t b0, std::size_t b1, DvBytes& out) const override;
 
 private:
     struct Walks;

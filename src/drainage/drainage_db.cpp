@@ -1,25 +1,31 @@
-// DV file layout (version 5, all little-endian; compact: what the builder's invariants give is
+// DV file layout (version 7, all little-endian; compact: what the builder's invariants give is
 // not stored, see layout_ok and derived_ok):
 //   char[8]  magic "PNKDV\0\0\0"
 //   u32      format version
 //   u32      reserved (0)
-//   u64      total file length in bytes (checksum included)
+//   u64      total file length in bytes (checksum included); written last, after the branches
+//            have been streamed (dv_format.hpp: total_length_at)
 //   fingerprint: u64 DEM size, i64 DEM mtime (ns), u64 DEM hash, u32 resample, u32 options,
 //            u32 routing
 //   i32 cols, rows, factor; f64 origin easting, northing; u32 n + n bytes of CRS WKT
+//   u8 positions: 0 explicit, 1 grid cells (then f64 gt[6], f64 unit, i32 col0, row0)
 //   u64 counts: vertices, branches, upstream links, divide vertices, divides
-//   branches: varint count; varint link: 0 for an outlet branch, else zigzag(downstream - own
-//             id); u8 order; varint basin; varint head_acc (varint: LEB128, 7 bits a byte, low
-//             first; zigzag: 2d for d >= 0, -2d - 1 below). first = running sum of counts;
-//             upstream lists follow from the links
-//   branch vertices: f32 x, y, z (12 bytes each), branch by branch, without the end junction of
-//             a branch with a downstream branch (= that branch's first vertex); the flow of
-//             vertex k is (head_acc + k) / the basin's total, the total being the accumulation
-//             at the last vertex of the basin's outlet branch (head_acc + count - 1)
+//   branches, each a record then its stored vertices:
+//     record: varint count; varint link: 0 for an outlet branch, else zigzag(downstream - own
+//             id); u8 order; varint basin; varint head_acc; with grid positions varint head cell
+//             minus the branch before's (varint: LEB128, 7 bits a byte, low first; zigzag: 2d for
+//             d >= 0, -2d - 1 below). first = running sum of counts; upstream lists follow from
+//             the links
+//     vertices: all but the end junction of a branch with a downstream branch (= that branch's
+//             first vertex): f32 x, y, z (12 bytes each), or with grid positions f32 z for the
+//             head and u8 step (ESRI code index of the move) + f32 z for each next one; the flow
+//             of vertex k is (head_acc + k) / the basin's total, the total being the
+//             accumulation at the last vertex of the basin's outlet branch (head_acc + count - 1)
 //   divides: u32 count (first = running sum); divide vertices: f32 x, y, z (flow 0)
-//   u64      hash64 (FNV-1a, 64-bit words) of every byte before it
+//   u64      checksum: hash64 (FNV-1a, 64-bit words) of every byte before it with the total
+//            length read as 0, then of the total length (dv_format.hpp: file_hash)
 // Versions 2-4 stored each vertex's flow (16 bytes) and fixed 13-byte branches without head_acc;
-// 4 added the routing.
+// 4 added the routing; 5 varint records; 6 grid positions; 7 vertices after each record.
 #include "drainage/drainage_db.hpp"
 
 #include <bit>

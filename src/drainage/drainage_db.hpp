@@ -79,7 +79,9 @@ struct DrainageDb {
 // vertex flow is not stored but follows from it (12-byte vertices).
 // 6: positions either explicit (x, y, z) or, on an affine grid at factor 1, as cells: each
 // branch's head cell and a step per vertex (5-byte vertices).
-inline constexpr std::uint32_t drainage_db_version = 6;
+// 7: each branch's vertices follow its record; the total length is written last into the header
+// and hashed last (so a writer can stream branches it has not counted).
+inline constexpr std::uint32_t drainage_db_version = 7;
 
 // 64-bit FNV-1a over little-endian 64-bit words (tail bytes one by one).
 std::uint64_t hash64(const void* data, std::size_t size, std::uint64_t seed = 0xcbf29ce484222325ull);
@@ -96,26 +98,26 @@ struct DvBranchRecord {
     std::uint32_t basin, head_acc;
 };
 
-// The branches an encoding is written from, asked for in id order: a DrainageDb's (what
-// encode_drainage_db / write_drainage_db use) or the drainage network's own, streamed without
-// holding the vertices (NetworkBranches, branches.hpp).
+// Encoded bytes of a part of a file; growing it leaves the new bytes unwritten (UninitAllocator),
+// so encoders size it for the most they may write and trim it after.
+using DvBytes = std::vector<std::uint8_t, UninitAllocator<std::uint8_t>>;
+
+// The branches an encoding is written from: a DrainageDb's (what encode_drainage_db /
+// write_drainage_db use) or the drainage network's own, streamed without holding the vertices
+// (NetworkBranches, branches.hpp). encode() is called for consecutive ranges of branch ids from
+// several threads at once.
 class DvBranchSource {
 public:
     virtual ~DvBranchSource() = default;
     virtual std::size_t branch_count() const = 0;
     virtual std::size_t vertex_count() const = 0;  // repeated end junctions included
-    virtual DvBranchRecord record(std::size_t id) const = 0;
-    // f32 x, y, z (12 bytes each, little-endian) of the branch's vertices but a repeated end
-    // junction, to `out`.
-    virtual void stored_xyz(std::size_t id, std::uint8_t* out) const = 0;
+    virtual std::size_t link_count() const = 0;    // branches with a downstream branch
     // Grid positions: non-null when every vertex is a node of the drainage grid (cols wide) lying
     // on this affine grid (x, y = affine_node_xy at the node); the file then stores cells, not x, y.
     virtual const AffineNodes* grid_nodes() const { return nullptr; }
-    // With grid_nodes: the branch's head cell, and its stored vertices as f32 z for the head then
-    // u8 step + f32 z for each next one (step = ESRI code index 0..7 of the move from the vertex
-    // before: d8.hpp), to `out`.
-    virtual std::uint32_t head_cell(std::size_t id) const { return 0; }
-    virtual void stored_steps_z(std::size_t id, std::uint8_t* out) const {}
+    // Appends branches [b0, b1) to `out` as the file stores them (dv_format.hpp: put_branch):
+    // each its record, then its vertices but a repeated end junction.
+    virtual void encode(std::size_t b0, std::size_t b1, DvBytes& out) const = 0;
 };
 
 // Every branch's up_first / up_count and the upstream id list they index, from the downstream

@@ -24,6 +24,55 @@ inline std::size_t positions_bytes(bool grid) { return 1 + (grid ? 6 * 8 + 8 + 8
 // Bytes up to the positions byte: prefix, fingerprint, grid, origin, CRS.
 inline std::size_t header_bytes(const DrainageDb& db) { return prefix_bytes + 36 + 12 + 16 + 4 + db.crs_wkt.size(); }
 
+// LEB128 varint of v at p (at most 10 bytes); returns the byte after it.
+inline std::uint8_t* put_varint(std::uint8_t* p, std::uint64_t v) {
+    for (; v >= 0x80; v >>= 7) *p++ = std::uint8_t(v | 0x80);
+    *p++ = std::uint8_t(v);
+    return p;
+}
+
+// Vertices of a branch the file stores (all but a repeated end junction).
+inline std::uint32_t stored_count(const DvBranchRecord& r) { return r.count - (r.downstream >= 0); }
+
+// Bytes of a branch's stored vertices: 12 each with explicit positions; on grid nodes 4 for the
+// head and 5 for each next one.
+inline std::size_t vertex_bytes(const DvBranchRecord& r, bool grid) {
+    const std::size_t n = stored_count(r);
+    return grid ? (n ? 5 * n - 1 : 0) : 12 * n;
+}
+
+// Most bytes a branch record takes: five varints, the order byte and (grid) the head-cell delta.
+inline constexpr std::size_t max_record_bytes = 6 * 10 + 1;
+
+// Appends the record of branch `id` at p (the head-cell delta from the branch before only on grid
+// nodes); returns the byte after it. Its vertices follow (vertex_bytes of them).
+inline std::uint8_t* put_record(std::uint8_t* p, const DvBranchRecord& r, std::size_t id, bool grid,
+                                std::uint32_t head_delta) {
+    std::uint64_t link = 0;  // 0 at an outlet, else the zigzag of the step to the downstream branch
+    if (r.downstream >= 0) {
+        const std::int64_t d = std::int64_t(r.downstream) - std::int64_t(id);
+        link = d >= 0 ? std::uint64_t(d) << 1 : (std::uint64_t(-d) << 1) - 1;
+    }
+    p = put_varint(p, r.count), p = put_varint(p, link);
+    *p++ = r.order;
+    p = put_varint(p, r.basin), p = put_varint(p, r.head_acc);
+    return grid ? put_varint(p, head_delta) : p;
+}
+
+// Where the total file length sits: written as 0 while streaming and filled in at the end; the
+// checksum hashes it as 0 in place and then once more as the last word (file_hash).
+inline constexpr std::size_t total_length_at = 16;
+
+// The checksum of file bytes [0, n) (n a multiple of 8 past the header) with the total length
+// field read as 0 and the total hashed last.
+inline std::uint64_t file_hash(const std::uint8_t* b, std::size_t n, std::uint64_t total) {
+    const std::uint64_t zero = 0;
+    std::uint64_t h = hash64(b, total_length_at);
+    h = hash64(&zero, 8, h);
+    h = hash64(b + total_length_at + 8, n - total_length_at - 8, h);
+    return hash64(&total, 8, h);
+}
+
 // Accumulation at the outlet of basin b at total[b - 1], from the basin's outlet branch. False
 // unless every basin id is in 1..outlet branches, each outlet branch has its own and its total
 // is at least one point.

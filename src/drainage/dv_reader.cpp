@@ -45,11 +45,10 @@ struct Reader {
     }
 };
 
-// How the file stores vertex positions (dv_format.hpp) and, on grid nodes, each branch's head cell.
+// How the file stores vertex positions (dv_format.hpp).
 struct Positions {
     bool grid = false;
     AffineNodes nodes;
-    std::vector<std::uint32_t> head;
 };
 
 void get_header(Reader& r, DrainageDb& db, Positions& pos) {
@@ -73,43 +72,13 @@ void get_header(Reader& r, DrainageDb& db, Positions& pos) {
     if (db.cols < 1 || db.rows < 1) r.corrupt();
 }
 
-// Branches: first from the running count, upstream lists from `downstream`.
-void get_branches(Reader& r, DrainageDb& db, std::uint64_t upstream_count, Positions& pos) {
-    const std::size_t nb = db.branches.size();
-    std::uint64_t next = 0, head = 0;
-    if (pos.grid) pos.head.resize(nb);
-    for (std::size_t id = 0; id < nb; ++id) {
-        DvBranch& b = db.branches[id];
-        b = DvBranch{};
-        b.first = std::uint32_t(next);
-        const std::uint64_t count = r.varint(), link = r.varint();
-        const std::int64_t step = (link & 1) ? -std::int64_t((link + 1) >> 1) : std::int64_t(link >> 1);
-        const std::int64_t down = link ? std::int64_t(id) + step : -1;
-        if (count > 0xffffffffu || down < -1 || down >= std::int64_t(nb) || count < 1u + (down >= 0)) r.corrupt();
-        b.count = std::uint32_t(count), b.downstream = std::int32_t(down);
-        b.order = r.get<std::uint8_t>();
-        const std::uint64_t basin = r.varint(), head_acc = r.varint();
-        if (basin > 0xffffffffu || head_acc > 0xffffffffu) r.corrupt();
-        b.basin = std::uint32_t(basin), b.head_acc = std::uint32_t(head_acc);
-        if (pos.grid) {
-            head += r.varint();
-            if (head >= std::uint64_t(db.cols) * std::uint64_t(db.rows)) r.corrupt();
-            pos.head[id] = std::uint32_t(head);
-        }
-        next += b.count;
-    }
-    if (next != db.vertices.size()) r.corrupt();
-    link_upstream(db.branches, db.upstream);
-    if (db.upstream.size() != upstream_count) r.corrupt();
-}
-
 // A branch's stored vertices on grid nodes: from its head cell, a step (ESRI code index) before
 // each next vertex's z; x, y where the affine grid puts the cell.
-void get_grid_vertices(Reader& r, const DrainageDb& db, const Positions& pos, std::size_t id, DvVertex* out,
+void get_grid_vertices(Reader& r, const DrainageDb& db, const Positions& pos, std::uint32_t head, DvVertex* out,
                        std::uint32_t stored) {
     if (stored == 0) return;
     r.need(std::size_t(stored) * 5 - 1);
-    int c = int(pos.head[id] % std::uint32_t(db.cols)), row = int(pos.head[id] / std::uint32_t(db.cols));
+    int c = int(head % std::uint32_t(db.cols)), row = int(head / std::uint32_t(db.cols));
     for (std::uint32_t k = 0; k < stored; ++k) {
         if (k > 0) {
             const std::uint8_t step = r.buf[r.pos++];
@@ -125,23 +94,54 @@ void get_grid_vertices(Reader& r, const DrainageDb& db, const Positions& pos, st
     }
 }
 
-// Vertices as stored (x, y, z or on grid nodes), flow from the branch's head_acc and its basin's
-// total.
-void get_vertices(Reader& r, DrainageDb& db, const Positions& pos) {
-    std::vector<double> total;
-    if (!basin_totals(db, total)) r.corrupt();
+// One branch record (first from the running count `next`); on grid nodes its head cell from the
+// running `head`.
+DvBranch get_record(Reader& r, const DrainageDb& db, std::size_t id, std::uint64_t next, bool grid, std::uint64_t& head) {
+    const std::size_t nb = db.branches.size();
+    DvBranch b{};
+    b.first = std::uint32_t(next);
+    const std::uint64_t count = r.varint(), link = r.varint();
+    const std::int64_t step = (link & 1) ? -std::int64_t((link + 1) >> 1) : std::int64_t(link >> 1);
+    const std::int64_t down = link ? std::int64_t(id) + step : -1;
+    if (count > 0xffffffffu || down < -1 || down >= std::int64_t(nb) || count < 1u + (down >= 0)) r.corrupt();
+    if (count > db.vertices.size() - next) r.corrupt();
+    b.count = std::uint32_t(count), b.downstream = std::int32_t(down);
+    b.order = r.get<std::uint8_t>();
+    const std::uint64_t basin = r.varint(), head_acc = r.varint();
+    if (basin > 0xffffffffu || head_acc > 0xffffffffu) r.corrupt();
+    b.basin = std::uint32_t(basin), b.head_acc = std::uint32_t(head_acc);
+    if (grid) {
+        head += r.varint();
+        if (head >= std::uint64_t(db.cols) * std::uint64_t(db.rows)) r.corrupt();
+    }
+    return b;
+}
+
+// Branches, each its record then its stored vertices (x, y, z or on grid nodes); upstream lists
+// from the links; flow from each branch's head_acc and its basin's total; end junctions copied
+// from the downstream branch's head.
+void get_branches(Reader& r, DrainageDb& db, std::uint64_t upstream_count, const Positions& pos) {
+    std::uint64_t next = 0, head = 0;
     for (std::size_t id = 0; id < db.branches.size(); ++id) {
-        const DvBranch& b = db.branches[id];
+        const DvBranch b = db.branches[id] = get_record(r, db, id, next, pos.grid, head);
         const std::uint32_t stored = b.count - (b.downstream >= 0);
         DvVertex* out = db.vertices.data() + b.first;
         if (pos.grid) {
-            get_grid_vertices(r, db, pos, id, out, stored);
+            get_grid_vertices(r, db, pos, std::uint32_t(head), out, stored);
         } else {
             r.need(std::size_t(stored) * 12);
             for (std::uint32_t k = 0; k < stored; ++k, r.pos += 12) std::memcpy(&out[k], r.buf.data() + r.pos, 12);
         }
-        for (std::uint32_t k = 0; k < stored; ++k) out[k].flow = branch_flow(b, k, total);
+        next += b.count;
     }
+    if (next != db.vertices.size()) r.corrupt();
+    link_upstream(db.branches, db.upstream);
+    if (db.upstream.size() != upstream_count) r.corrupt();
+    std::vector<double> total;
+    if (!basin_totals(db, total)) r.corrupt();
+    for (const DvBranch& b : db.branches)
+        for (std::uint32_t k = 0; k + (b.downstream >= 0) < b.count; ++k)
+            db.vertices[b.first + k].flow = branch_flow(b, k, total);
     for (const DvBranch& b : db.branches)  // the end junction: the downstream branch's head
         if (b.downstream >= 0)
             db.vertices[b.first + b.count - 1] = db.vertices[db.branches[std::size_t(b.downstream)].first];
@@ -170,7 +170,6 @@ void get_body(Reader& r, DrainageDb& db, Positions& pos) {
     db.vertices.resize(counts[0]), db.branches.resize(counts[1]);
     db.divide_vertices.resize(counts[3]), db.divides.resize(counts[4]);
     get_branches(r, db, counts[2], pos);
-    get_vertices(r, db, pos);
     get_divides(r, db);
 }
 std::uint64_t read_u64(const std::vector<std::uint8_t>& b, std::size_t at) {
@@ -191,10 +190,10 @@ DrainageDb decode_drainage_db(const std::vector<std::uint8_t>& b, const std::str
         throw Error("drainage", path,
                     "unsupported drainage database version " + std::to_string(version) +
                         " (expected " + std::to_string(drainage_db_version) + ")");
-    const std::uint64_t total = read_u64(b, 16);
+    const std::uint64_t total = read_u64(b, total_length_at);
     if (b.size() < total || total < prefix_bytes + 8)
         throw Error("drainage", path, "truncated drainage database");
-    if (b.size() != total || hash64(b.data(), b.size() - 8) != read_u64(b, b.size() - 8))
+    if (b.size() != total || file_hash(b.data(), b.size() - 8, total) != read_u64(b, b.size() - 8))
         throw Error("drainage", path, "drainage database checksum mismatch (file corrupt)");
     DrainageDb db;
     Reader r{b, 0, path};

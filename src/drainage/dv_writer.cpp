@@ -23,13 +23,6 @@ namespace {
 
 using namespace dv;
 
-// LEB128 varint of v at p (at most 10 bytes); returns the byte after it.
-std::uint8_t* put_varint(std::uint8_t* p, std::uint64_t v) {
-    for (; v >= 0x80; v >>= 7) *p++ = std::uint8_t(v | 0x80);
-    *p++ = std::uint8_t(v);
-    return p;
-}
-
 // Output bytes in a fixed buffer; each full buffer is hashed (hash64 chained over 8-byte aligned
 // chunks, so the result equals hashing the whole file at once) and handed to `out` on a second
 // thread while the next one fills (one buffer in flight, so chunks stay in order).
@@ -55,7 +48,7 @@ struct Sink {
             hash = hash64(spare.data(), whole, hash);
             out(spare.data(), whole);
         });
-        n -= whole;
+        n -= whole, total += whole;
     }
     void room(std::size_t k) {  // at least k bytes free in buf (grown for k larger than it)
         if (n + k <= buf.size()) return;
@@ -70,17 +63,22 @@ struct Sink {
         n += k;
     }
     template <class T> void put(T v) { bytes(&v, sizeof(T)); }
-    void finish() {  // hash of every byte so far, appended; everything handed over
+    std::uint64_t total = 0;  // bytes handed over so far
+    // The checksum (file_hash: total length hashed last) appended and everything handed over;
+    // returns the file's length, which the caller writes at total_length_at.
+    std::uint64_t finish() {
         land();
-        if (n + 8 > buf.size()) {  // a full buffer has no room for the hash
+        if (n + 16 > buf.size()) {  // no room for the hash: the full words first
             drain();
             land();
         }
+        const std::uint64_t length = total + n + 8;
         hash = hash64(buf.data(), n, hash);
-        const std::uint64_t h = hash;
-        std::memcpy(buf.data() + n, &h, 8);
+        hash = hash64(&length, 8, hash);
+        std::memcpy(buf.data() + n, &hash, 8);
         out(buf.data(), n + 8);
         n = 0;
+        return length;
     }
 };
 
@@ -90,108 +88,30 @@ public:
     explicit DbBranches(const DrainageDb& db) : db_(db) {}
     std::size_t branch_count() const override { return db_.branches.size(); }
     std::size_t vertex_count() const override { return db_.vertices.size(); }
-    DvBranchRecord record(std::size_t id) const override {
-        const DvBranch& b = db_.branches[id];
-        return {b.count, b.downstream, b.order, b.basin, b.head_acc};
-    }
-    void stored_xyz(std::size_t id, std::uint8_t* out) const override {
-        const DvBranch& b = db_.branches[id];
-        for (std::uint32_t k = 0; k + (b.downstream >= 0) < b.count; ++k, out += 12)
-            std::memcpy(out, &db_.vertices[b.first + k], 12);  // x, y, z
+    std::size_t link_count() const override { return db_.upstream.size(); }
+    void encode(std::size_t b0, std::size_t b1, DvBytes& out) const override {
+        for (std::size_t id = b0; id < b1; ++id) {
+            const DvBranch& b = db_.branches[id];
+            const DvBranchRecord r{b.count, b.downstream, b.order, b.basin, b.head_acc};
+            const std::size_t at = out.size();
+            out.resize(at + max_record_bytes + vertex_bytes(r, false));
+            std::uint8_t* p = put_record(out.data() + at, r, id, false, 0);
+            for (std::uint32_t k = 0; k < stored_count(r); ++k, p += 12)
+                std::memcpy(p, &db_.vertices[b.first + k], 12);  // x, y, z
+            out.resize(std::size_t(p - out.data()));
+        }
     }
 
 private:
     const DrainageDb& db_;
 };
 
-std::uint32_t stored_count(const DvBranchRecord& r) { return r.count - (r.downstream >= 0); }
+// Branches per part of the body (made on any core, written in order).
+constexpr std::size_t branches_per_part = std::size_t(1) << 15;
 
-// The link of branch `id`: 0 at an outlet, else the zigzag of the step to its downstream branch.
-std::uint64_t record_link(const DvBranchRecord& r, std::size_t id) {
-    if (r.downstream < 0) return 0;
-    const std::int64_t d = std::int64_t(r.downstream) - std::int64_t(id);
-    return d >= 0 ? std::uint64_t(d) << 1 : (std::uint64_t(-d) << 1) - 1;
-}
-
-// Bytes of branch b's stored vertices: 12 each with explicit positions; on grid nodes 4 for the
-// head and 5 for each next one.
-std::size_t vertex_bytes(const DvBranchRecord& r, bool grid) {
-    const std::size_t n = stored_count(r);
-    return grid ? (n ? 5 * n - 1 : 0) : 12 * n;
-}
-
-// Bytes of the branch records and of the vertices stored (all but repeated end junctions) and the
-// number of upstream links (branches with a downstream one).
-struct BodySize {
-    std::size_t bytes = 0, links = 0;
-};
-
-// Branches per part of the body (its records, then its vertices, are made as one part each).
-constexpr std::size_t branches_per_part = std::size_t(1) << 16;
-
-std::size_t part_count(const DvBranchSource& src) { return (src.branch_count() + branches_per_part - 1) / branches_per_part; }
-
-// The head cell of the branch before `id` (0 before the first): head cells are stored as deltas.
-std::uint32_t head_before(const DvBranchSource& src, std::size_t id) { return id ? src.head_cell(id - 1) : 0; }
-
-BodySize body_size(const DvBranchSource& src) {
-    const bool grid = src.grid_nodes() != nullptr;
-    std::vector<BodySize> part(part_count(src));
-    parallel_chunks(part.size(), 1, [&](std::size_t p0, std::size_t p1) {
-        for (std::size_t p = p0; p < p1; ++p) {
-            const std::size_t b0 = p * branches_per_part, b1 = std::min(src.branch_count(), b0 + branches_per_part);
-            std::uint32_t head = grid ? head_before(src, b0) : 0;
-            BodySize& s = part[p];
-            for (std::size_t id = b0; id < b1; ++id) {
-                const DvBranchRecord r = src.record(id);
-                s.bytes += varint_size(r.count) + varint_size(record_link(r, id)) + 1 + varint_size(r.basin) +
-                           varint_size(r.head_acc) + vertex_bytes(r, grid);
-                if (grid) s.bytes += varint_size(src.head_cell(id) - head), head = src.head_cell(id);
-                s.links += r.downstream >= 0;
-            }
-        }
-    });
-    BodySize all;
-    for (const BodySize& s : part) all.bytes += s.bytes, all.links += s.links;
-    return all;
-}
-
-// The records of branches [b0, b1) to `out`.
-void put_records(const DvBranchSource& src, bool grid, std::size_t b0, std::size_t b1, std::vector<std::uint8_t>& out) {
-    out.resize((b1 - b0) * (5 * 10 + 1));  // at most: five varints and the order byte each
-    std::uint8_t* p = out.data();
-    std::uint32_t head = grid ? head_before(src, b0) : 0;
-    for (std::size_t id = b0; id < b1; ++id) {
-        const DvBranchRecord r = src.record(id);
-        p = put_varint(p, r.count), p = put_varint(p, record_link(r, id));
-        *p++ = r.order;
-        p = put_varint(p, r.basin), p = put_varint(p, r.head_acc);
-        if (grid) p = put_varint(p, src.head_cell(id) - head), head = src.head_cell(id);
-    }
-    out.resize(std::size_t(p - out.data()));
-}
-
-// The stored vertices of branches [b0, b1) to `out` (x, y, z, or steps and z on grid nodes).
-void put_vertices(const DvBranchSource& src, bool grid, std::size_t b0, std::size_t b1, std::vector<std::uint8_t>& out) {
-    std::size_t bytes = 0;
-    for (std::size_t id = b0; id < b1; ++id) bytes += vertex_bytes(src.record(id), grid);
-    out.resize(bytes);
-    std::uint8_t* p = out.data();
-    for (std::size_t id = b0; id < b1; ++id) {
-        if (grid) src.stored_steps_z(id, p);
-        else src.stored_xyz(id, p);
-        p += vertex_bytes(src.record(id), grid);
-    }
-}
-
-std::size_t encoded_size(const DrainageDb& meta, const DvBranchSource& src, const BodySize& body) {
-    return header_bytes(meta) + positions_bytes(src.grid_nodes() != nullptr) + 5 * 8 + body.bytes +
-           meta.divides.size() * 4 + meta.divide_vertices.size() * 12 + 8;
-}
-
-void put_header(Sink& w, const DrainageDb& db, const AffineNodes* grid, std::size_t total_bytes) {
+void put_header(Sink& w, const DrainageDb& db, const AffineNodes* grid) {
     w.bytes(magic, 8);
-    w.put(drainage_db_version), w.put(std::uint32_t(0)), w.put(std::uint64_t(total_bytes));
+    w.put(drainage_db_version), w.put(std::uint32_t(0)), w.put(std::uint64_t(0));  // length: at the end
     const DrainageFingerprint& f = db.fingerprint;
     w.put(f.file_size), w.put(f.mtime_ns), w.put(f.content_hash), w.put(f.resample), w.put(f.options), w.put(f.routing);
     w.put(db.cols), w.put(db.rows), w.put(db.factor), w.put(db.origin.x), w.put(db.origin.y);
@@ -203,23 +123,18 @@ void put_header(Sink& w, const DrainageDb& db, const AffineNodes* grid, std::siz
     w.put(grid->unit), w.put(std::int32_t(grid->col0)), w.put(std::int32_t(grid->row0));
 }
 
-void put_body(Sink& w, const DrainageDb& meta, const DvBranchSource& src, const BodySize& body) {
-    const bool grid = src.grid_nodes() != nullptr;
+void put_body(Sink& w, const DrainageDb& meta, const DvBranchSource& src) {
     w.put(std::uint64_t(src.vertex_count())), w.put(std::uint64_t(src.branch_count()));
-    w.put(std::uint64_t(body.links)), w.put(std::uint64_t(meta.divide_vertices.size()));
+    w.put(std::uint64_t(src.link_count())), w.put(std::uint64_t(meta.divide_vertices.size()));
     w.put(std::uint64_t(meta.divides.size()));
-    // parts made on all cores, written in order: the records of each block of branches, then
-    // the vertices of each block
-    const std::size_t parts = part_count(src);
-    ordered_parts<std::vector<std::uint8_t>>(
-        2 * parts, 4,
-        [&](std::size_t p, std::vector<std::uint8_t>& out) {
-            const std::size_t b0 = (p % parts) * branches_per_part;
-            const std::size_t b1 = std::min(src.branch_count(), b0 + branches_per_part);
-            if (p < parts) put_records(src, grid, b0, b1, out);
-            else put_vertices(src, grid, b0, b1, out);
+    const std::size_t nb = src.branch_count(), parts = (nb + branches_per_part - 1) / branches_per_part;
+    ordered_parts<DvBytes>(
+        parts, 4,
+        [&](std::size_t p, DvBytes& out) {
+            out.clear();
+            src.encode(p * branches_per_part, std::min(nb, (p + 1) * branches_per_part), out);
         },
-        [&](const std::vector<std::uint8_t>& out) { w.bytes(out.data(), out.size()); });
+        [&](const DvBytes& out) { w.bytes(out.data(), out.size()); });
     for (const DvPolyline& p : meta.divides) w.put(p.count);
     for (const DvVertex& v : meta.divide_vertices) {
         const float xyz[3] = {v.x, v.y, v.z};
@@ -227,22 +142,23 @@ void put_body(Sink& w, const DrainageDb& meta, const DvBranchSource& src, const 
     }
 }
 
-// `w` may have handed out bytes when it throws.
-void encode(const DrainageDb& meta, const DvBranchSource& src, Sink& w) {
-    const BodySize body = body_size(src);
-    put_header(w, meta, src.grid_nodes(), encoded_size(meta, src, body));
-    put_body(w, meta, src, body);
-    w.finish();
+// `w` may have handed out bytes when it throws. Returns the file's length (to be written at
+// total_length_at).
+std::uint64_t encode(const DrainageDb& meta, const DvBranchSource& src, Sink& w) {
+    put_header(w, meta, src.grid_nodes());
+    put_body(w, meta, src);
+    return w.finish();
 }
 
-void encode(const DrainageDb& db, Sink& w) {
+std::uint64_t encode(const DrainageDb& db, Sink& w) {
     if (!layout_ok(db))
         throw Error("drainage", "", "drainage database is not in the shape the builder gives it", ExitCode::internal);
-    encode(db, DbBranches(db), w);
+    return encode(db, DbBranches(db), w);
 }
 
-// Streams encode_into(sink) to a temp file in the same directory, then renames it.
-void write_encoded(const std::string& path, const std::function<void(Sink&)>& encode_into) {
+// Streams encode_into(sink) (which returns the file's length) to a temp file in the same
+// directory, writes the length into the header, then renames the file.
+void write_encoded(const std::string& path, const std::function<std::uint64_t(Sink&)>& encode_into) {
     const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
     auto fail = [&](std::FILE* f) {
         if (f) std::fclose(f);
@@ -257,7 +173,8 @@ void write_encoded(const std::string& path, const std::function<void(Sink&)>& en
         Sink w;
         w.out = [&](const std::uint8_t* p, std::size_t n) { ok = ok && std::fwrite(p, 1, n, out) == n; };
         try {
-            encode_into(w);
+            const std::uint64_t length = encode_into(w);
+            ok = ok && std::fseek(out, long(total_length_at), SEEK_SET) == 0 && std::fwrite(&length, 8, 1, out) == 1;
         } catch (...) {
             w.wait();  // the buffer in flight, before the file goes
             std::fclose(out);
@@ -282,16 +199,17 @@ std::vector<std::uint8_t> encode_drainage_db(const DrainageDb& db) {
     std::vector<std::uint8_t> bytes;
     Sink w;
     w.out = [&](const std::uint8_t* p, std::size_t n) { bytes.insert(bytes.end(), p, p + n); };
-    encode(db, w);
+    const std::uint64_t length = encode(db, w);
+    std::memcpy(bytes.data() + total_length_at, &length, 8);
     return bytes;
 }
 
 void write_drainage_db(const std::string& path, const DrainageDb& db) {
-    write_encoded(path, [&](Sink& w) { encode(db, w); });
+    write_encoded(path, [&](Sink& w) { return encode(db, w); });
 }
 
 void write_drainage_db(const std::string& path, const DrainageDb& meta, const DvBranchSource& branches) {
-    write_encoded(path, [&](Sink& w) { encode(meta, branches, w); });
+    write_encoded(path, [&](Sink& w) { return encode(meta, branches, w); });
 }
 
 }  // namespace penink

@@ -217,9 +217,9 @@ TEST(DvFile, CorruptionsAreDetected) {
     EXPECT_EQ(read_error(p), pre + "truncated drainage database");
 
     b = good;
-    b[8] = 7;
+    b[8] = 6;
     spit(p, b);
-    EXPECT_EQ(read_error(p), pre + "unsupported drainage database version 7 (expected 6)");
+    EXPECT_EQ(read_error(p), pre + "unsupported drainage database version 6 (expected 7)");
 
     b = good;
     b[0] = 'X';
