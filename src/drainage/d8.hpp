@@ -42,8 +42,8 @@ inline std::size_t d8_target(const GridShape& g, std::size_t i, std::uint8_t cod
 bool is_boundary_cell(const GridShape& g, int c, int r);
 
 // Steepest strictly-downhill valid neighbour per valid cell (first in code order on ties: the
-// lowest ESRI code), 0 when none or invalid. Interior cells whose 3x3 block is all data take a
-// branch-free loop over precomputed neighbour offsets; the south half of the rows runs on a
+// lowest ESRI code), 0 when none or invalid. Runs of interior cells whose 3x3 block is all data
+// take a branch-free loop the compiler vectorises across cells; the south half of the rows runs on a
 // second thread (unless two_threads is false). When `ties` is given, the cells whose steepest
 // slope is shared by two or more neighbours are appended to it (for break_d8_ties, d8_ties.hpp).
 std::vector<std::uint8_t> d8_directions(const std::vector<float>& z, const GridShape& g,

@@ -50,8 +50,8 @@ void accumulate_and_label(const std::vector<std::uint8_t>& dir, const GridShape&
 }
 
 // Priority-flood routing: fill, D8, rims, flats, depressions, ties; g.z restored afterwards.
-// The fill state, raised cells' original z and the flat gradient borrow net.order, net.acc and
-// net.basin, which get their own content later.
+// The fill state, raised cells' original z and the fill's labels then the flat gradient borrow
+// net.order, net.acc and net.basin, which get their own content later.
 void priority_flood_directions(DrainageGrid& g, const GridShape& shape, const DrainageProgress& progress,
                                DrainageResult& res) {
     FlowNetwork& net = res.net;
@@ -59,7 +59,7 @@ void priority_flood_directions(DrainageGrid& g, const GridShape& shape, const Dr
     std::vector<std::uint32_t>& orig = net.acc;
     report(progress, "filling depressions, flow directions", 0.0);
     std::vector<std::uint32_t> ties;
-    res.stats.filled = fill_with_directions(g.z, shape, g.dx, g.dy, flags, orig, res.dir, ties).raised;
+    res.stats.filled = fill_with_directions(g.z, shape, g.dx, g.dy, flags, orig, res.dir, ties, net.basin).raised;
     report(progress, "draining into depressions", 0.35);
     drain_rims_into_depressions(g.z, flags, orig, shape, g.dx, g.dy, res.dir, &ties);
     report(progress, "resolving flats", 0.45);

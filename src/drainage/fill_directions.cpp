@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "core/parallel_chunks.hpp"
+#include "drainage/banded_fill.hpp"
 #include "drainage/d8_steepest.hpp"
 
 namespace penink {
@@ -39,8 +40,16 @@ void redo_near_raised(const std::vector<float>& z, const GridShape& g, double dx
 
 FillStats fill_with_directions(std::vector<float>& z, const GridShape& g, double dx, double dy,
                                std::vector<std::uint8_t>& flags, std::vector<std::uint32_t>& orig_bits,
-                               std::vector<std::uint8_t>& dir, std::vector<std::uint32_t>& ties) {
+                               std::vector<std::uint8_t>& dir, std::vector<std::uint32_t>& ties,
+                               std::vector<std::uint32_t>& scratch, int bands) {
     FillStats st;
+    if (bands <= 0) bands = fill_bands(g.rows);
+    if (bands > 1) {  // the fill takes every core, then D8 on the filled surface
+        st = priority_flood_levels_banded(z, g, flags, orig_bits, scratch, bands);
+        swap_raised(z, flags, orig_bits);
+        dir = d8_directions(z, g, dx, dy, &ties);
+        return st;
+    }
     run_beside([&] { dir = d8_directions(z, g, dx, dy, &ties, false); },  // reads z and g only, like the fill
                [&] { st = priority_flood_levels(z, g, flags, orig_bits); });
     swap_raised(z, flags, orig_bits);

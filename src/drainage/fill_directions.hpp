@@ -1,8 +1,9 @@
-// Depression filling (priority_flood.hpp) and D8 directions on the filled surface (d8.hpp) on two
-// threads at once: the fill runs on one (priority_flood_levels leaves z as it is) while the other
-// takes the D8 directions of the ORIGINAL elevations; a cell's filled and original 3x3 blocks
-// differ only where the block holds a raised cell, and those cells are redone on the filled
-// surface afterwards. Grid: row-major, row 0 north, dx / dy metres, z local metres.
+// Depression filling (priority_flood.hpp) and D8 directions on the filled surface (d8.hpp) on all
+// cores: the fill in row bands (banded_fill.hpp), then D8 in two halves; or, on one band, the fill
+// on one thread (priority_flood_levels leaves z as it is) while another takes the D8 directions
+// of the ORIGINAL elevations: a cell's filled and original 3x3 blocks differ only where the block
+// holds a raised cell, and those cells are redone on the filled surface afterwards.
+// Grid: row-major, row 0 north, dx / dy metres, z local metres.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -14,9 +15,13 @@ namespace penink {
 
 // What priority_flood_fill(z, g, flags, orig_bits) and then dir = d8_directions(z, g, dx, dy,
 // &ties) give: z filled, flags and orig_bits as the fill leaves them, dir, and ties holding the
-// same cells (in another order: break_d8_ties sorts them).
+// same cells (in another order: break_d8_ties sorts them). With several `bands` (0: fill_bands, one
+// per core) the fill runs in row bands on all cores (banded_fill.hpp) with `scratch` as its label
+// array (resized; pass one a later stage fills anew), then D8 on the filled surface; with one band
+// the fill runs beside D8 on the original surface, the cells near raised ones redone after.
 FillStats fill_with_directions(std::vector<float>& z, const GridShape& g, double dx, double dy,
                                std::vector<std::uint8_t>& flags, std::vector<std::uint32_t>& orig_bits,
-                               std::vector<std::uint8_t>& dir, std::vector<std::uint32_t>& ties);
+                               std::vector<std::uint8_t>& dir, std::vector<std::uint32_t>& ties,
+                               std::vector<std::uint32_t>& scratch, int bands = 0);
 
 }  // namespace penink

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "drainage/banded_fill.hpp"
 #include "drainage/drainage_build.hpp"
 #include "drainage/fill_directions.hpp"
 #include "drainage/priority_flood.hpp"
@@ -168,12 +169,14 @@ TEST(FillWithDirections, EqualsFillThenDirections) {
         std::vector<std::uint32_t> orig_a, orig_b, ties_a, ties_b;
         const FillStats st_a = priority_flood_fill(a.z, s, flags_a, orig_a);
         const std::vector<std::uint8_t> dir_a = d8_directions(a.z, s, a.dx, a.dy, &ties_a);
-        const FillStats st_b = fill_with_directions(b.z, s, b.dx, b.dy, flags_b, orig_b, dir_b, ties_b);
+        std::vector<std::uint32_t> labels;
+        const int bands = int(seed % 3) + 1;  // 1: the fill beside D8; 2, 3: banded, D8 after
+        const FillStats st_b = fill_with_directions(b.z, s, b.dx, b.dy, flags_b, orig_b, dir_b, ties_b, labels, bands);
         EXPECT_GT(st_a.raised, 20u);
         EXPECT_EQ(st_b.raised, st_a.raised);
         EXPECT_EQ(b.z, a.z);
         EXPECT_EQ(flags_b, flags_a);
-        EXPECT_EQ(dir_b, dir_a) << "seed " << seed;
+        EXPECT_EQ(dir_b, dir_a) << "seed " << seed << " bands " << bands;
         for (std::size_t i = 0; i < a.size(); ++i)
             if (flags_a[i] & fill_raised) {
                 ASSERT_EQ(orig_b[i], orig_a[i]);
@@ -181,6 +184,34 @@ TEST(FillWithDirections, EqualsFillThenDirections) {
         std::sort(ties_a.begin(), ties_a.end()), std::sort(ties_b.begin(), ties_b.end());
         EXPECT_GT(ties_a.size(), 50u);
         EXPECT_EQ(ties_b, ties_a);
+    }
+}
+
+// Bands flooded on their own and joined through their labels' water levels give the one-thread
+// fill bit for bit, whatever the number of bands: depressions across band rows, nodata on them,
+// a plateau of equal cells, and levels -0 / +0.
+TEST(BandedFill, EqualsTheOneThreadFill) {
+    for (std::uint64_t seed = 51; seed <= 62; ++seed) {
+        DrainageGrid a = random_grid(40 + int(seed % 7), 30 + int(seed % 5), seed, seed % 3 ? 80 : 0);
+        if (seed % 4 == 0)  // a flat-floored basin straddling the bands' shared rows
+            for (int r = 8; r < 22; ++r)
+                for (int c = 5; c < 30; ++c) a.z[a.index(c, r)] = r == 8 || r == 21 || c == 5 || c == 29 ? 9.0f : 1.0f;
+        if (seed % 5 == 0)
+            for (float& v : a.z) v = v < 2.0f ? -0.0f : v - 2.0f;  // -0 and +0 spill levels
+        const GridShape s{a.cols, a.rows, a.valid.data()};
+        std::vector<std::uint8_t> flags_a, flags_b;
+        std::vector<std::uint32_t> level_a, level_b, labels;
+        const FillStats st_a = priority_flood_levels(a.z, s, flags_a, level_a);
+        for (const int bands : {2, 3, 5, 8}) {
+            const FillStats st_b = priority_flood_levels_banded(a.z, s, flags_b, level_b, labels, bands);
+            ASSERT_EQ(st_b.raised, st_a.raised) << seed << " " << bands;
+            ASSERT_EQ(flags_b, flags_a) << seed << " " << bands;
+            for (std::size_t i = 0; i < a.size(); ++i)
+                if (flags_a[i] & fill_raised) {
+                    ASSERT_EQ(level_b[i], level_a[i]) << seed << " " << bands << " cell " << i;
+                }
+        }
+        EXPECT_GT(st_a.raised, 10u);
     }
 }
 
