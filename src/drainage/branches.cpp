@@ -33,6 +33,14 @@ DvVertex point_vertex(const DrainageGrid& g, const FlowNetwork& net, std::size_t
     return v;
 }
 
+// Bits set in x, without the libgcc call std::popcount makes on baseline x86-64 (no POPCNT).
+inline std::uint32_t bit_count(std::uint64_t x) {
+    x -= (x >> 1) & 0x5555555555555555ull;
+    x = (x & 0x3333333333333333ull) + ((x >> 2) & 0x3333333333333333ull);
+    x = (x + (x >> 4)) & 0x0f0f0f0f0f0f0f0full;
+    return std::uint32_t((x * 0x0101010101010101ull) >> 56);
+}
+
 // Rank of head cells in row-major order (= branch id): one bit per cell plus a running count
 // per 64-bit word.
 struct HeadRank {
@@ -40,7 +48,7 @@ struct HeadRank {
     std::vector<std::uint32_t> before;
     std::uint32_t of(std::size_t cell) const {
         const std::uint64_t below = (std::uint64_t(1) << (cell & 63)) - 1;
-        return before[cell >> 6] + std::uint32_t(std::popcount(bits[cell >> 6] & below));
+        return before[cell >> 6] + bit_count(bits[cell >> 6] & below);
     }
     // The head of rank k (< the number of heads): the word holding it by binary search, then its
     // (k - before)-th set bit.
@@ -62,7 +70,7 @@ HeadRank head_rank(const DrainageGrid& g, const std::vector<std::uint8_t>& indeg
             n += g.valid[i];
             if (g.valid[i] && indeg[i] != 1) h.bits[i >> 6] |= std::uint64_t(1) << (i & 63);
         }
-        for (std::size_t w = w0; w < w1; ++w) h.before[w] = std::uint32_t(std::popcount(h.bits[w]));
+        for (std::size_t w = w0; w < w1; ++w) h.before[w] = bit_count(h.bits[w]);
         total += n;
     });
     std::uint32_t n = 0;
@@ -88,7 +96,7 @@ struct Heads {
           indeg(own_indeg.empty() ? net.indeg : own_indeg) {
         std::size_t valid = 0;
         rank = head_rank(g, indeg, valid);
-        count = rank.bits.empty() ? 0 : rank.before.back() + std::popcount(rank.bits.back());
+        count = rank.bits.empty() ? 0 : rank.before.back() + bit_count(rank.bits.back());
         vertices = valid + count - net.outlet.size();
     }
     Heads(const Heads&) = delete;
@@ -222,10 +230,14 @@ void NetworkBranches::encode(std::size_t b0, std::size_t b1, DvBytes& out) const
     const FlowNetwork& net = t.net;
     const bool grid = grid_nodes() != nullptr;
     std::vector<std::uint32_t> cells;
-    std::size_t h = t.rank.select(std::uint32_t(b0));
+    const std::size_t first = t.rank.select(std::uint32_t(b0));
     std::uint32_t before = b0 ? std::uint32_t(t.rank.select(std::uint32_t(b0 - 1))) : 0;
-    for (std::size_t id = b0; id < b1; ++id, ++h) {
-        while (!t.is_head(h)) ++h;
+    std::size_t word = first >> 6;  // heads taken from the rank's bits, a word at a time
+    std::uint64_t bits = t.rank.bits[word] & (~std::uint64_t(0) << (first & 63));
+    for (std::size_t id = b0; id < b1; ++id) {
+        while (!bits) bits = t.rank.bits[++word];
+        const std::size_t h = word * 64 + std::size_t(std::countr_zero(bits));
+        bits &= bits - 1;
         cells.clear();
         const std::int32_t down = t.walk(h, [&](std::size_t c) { cells.push_back(std::uint32_t(c)); });
         const DvBranchRecord r{std::uint32_t(cells.size()), down, net.order[h], net.basin[h], net.acc[h]};
