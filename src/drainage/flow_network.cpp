@@ -1,5 +1,7 @@
 #include "drainage/flow_network.hpp"
 
+#include <array>
+
 #include "core/error.hpp"
 
 namespace penink {
@@ -35,21 +37,29 @@ void accumulate_flow(const std::vector<std::uint8_t>& dir, const GridShape& g, F
     for (std::uint8_t& b : in) b = std::uint8_t(b | b << 4);
     net.acc.assign(g.size(), 0);
     net.order.assign(g.size(), 0);
+    // raw restrict pointers and a local offset table: the byte stores would otherwise make the
+    // compiler reload every vector's data pointer at each step
+    std::uint32_t* __restrict acc = net.acc.data();
+    std::uint8_t* __restrict order = net.order.data();
+    std::uint8_t* __restrict count = in.data();
+    const std::uint8_t* __restrict code = dir.data();
+    const std::uint8_t* __restrict valid_cell = g.valid;
+    const std::array<std::ptrdiff_t, 8> off = d8_offsets(g);
     std::size_t done = 0, valid = 0;
     for (std::size_t s = 0; s < g.size(); ++s) {
-        if (!g.valid[s]) continue;
+        if (!valid_cell[s]) continue;
         ++valid;
-        if (in[s] != 0 || net.acc[s] != 0) continue;  // not a source, or already walked
+        if (count[s] != 0 || acc[s] != 0) continue;  // not a source, or already walked
         for (std::size_t c = s;;) {  // walk down while every upstream cell is done
-            net.acc[c] += 1;
-            net.order[c] = final_order(net.order[c]);
+            acc[c] += 1;
+            order[c] = final_order(order[c]);
             ++done;
-            if (!dir[c]) break;
-            const std::size_t d = d8_target(g, c, dir[c]);
-            net.acc[d] += net.acc[c];
-            push_order(net.order[d], net.order[c]);
-            in[d] = std::uint8_t(in[d] - 16);
-            if (in[d] >> 4) break;
+            if (!code[c]) break;
+            const std::size_t d = std::size_t(std::ptrdiff_t(c) + off[std::size_t(d8_index(code[c]))]);
+            acc[d] += acc[c];
+            push_order(order[d], order[c]);
+            count[d] = std::uint8_t(count[d] - 16);
+            if (count[d] >> 4) break;
             c = d;
         }
     }
@@ -65,17 +75,22 @@ void label_basins(const std::vector<std::uint8_t>& dir, const GridShape& g, Flow
             net.outlet.push_back(std::uint32_t(i));
             net.basin[i] = std::uint32_t(net.outlet.size());
         }
+    std::uint32_t* __restrict basin = net.basin.data();  // as in accumulate_flow
+    const std::uint8_t* __restrict code = dir.data();
+    const std::uint8_t* __restrict valid = g.valid;
+    const std::array<std::ptrdiff_t, 8> off = d8_offsets(g);
+    auto next = [&](std::size_t c) { return std::size_t(std::ptrdiff_t(c) + off[std::size_t(d8_index(code[c]))]); };
     std::size_t steps = 0;  // every path is walked at most twice: more means a cycle
     for (std::size_t i = 0; i < g.size(); ++i) {
-        if (!g.valid[i] || net.basin[i]) continue;
+        if (!valid[i] || basin[i]) continue;
         std::size_t c = i;
-        while (!net.basin[c]) {
+        while (!basin[c]) {
             if (++steps > 2 * g.size())
                 throw Error("drainage", "", "flow directions contain a cycle", ExitCode::internal);
-            c = d8_target(g, c, dir[c]);
+            c = next(c);
         }
-        const std::uint32_t label = net.basin[c];
-        for (c = i; !net.basin[c]; c = d8_target(g, c, dir[c])) net.basin[c] = label;
+        const std::uint32_t label = basin[c];
+        for (c = i; !basin[c]; c = next(c)) basin[c] = label;
     }
 }
 
