@@ -39,43 +39,24 @@ void dense_run(const float* __restrict z, std::size_t i0, std::size_t i1, const 
 
 void directions_row(const float* z, const GridShape& g, const D8Steps& st, int r, bool dense,
                     std::uint8_t* dir, std::vector<std::uint32_t>* ties, std::vector<std::uint8_t>& tie) {
-    const bool edge_row = r == 0 || r == g.rows - 1;
     const std::size_t row0 = std::size_t(r) * g.cols;
-    auto checked = [&](int c) {
-        const std::size_t i = row0 + c;
-        if (!g.valid[i]) return;
-        const D8Choice d = d8_steepest(z[i], g, c, r, st, [&](std::size_t n) { return z[n]; },
-                                       [](std::size_t) { return true; });
-        dir[i] = d.code();
-        if (ties && d.tie()) ties->push_back(std::uint32_t(i));
-    };
-    auto run = [&](std::size_t i0, std::size_t i1) {  // dense cells [i0, i1), ties in cell order
-        dense_run(z, i0, i1, st, dir, tie.data());
-        if (ties)
-            for (std::size_t i = i0; i < i1; ++i)
-                if (tie[i - i0]) ties->push_back(std::uint32_t(i));
-    };
     tie.resize(std::size_t(g.cols));
-    if (edge_row || g.cols < 3) {
-        for (int c = 0; c < g.cols; ++c) checked(c);
-        return;
-    }
-    checked(0);
-    if (dense) {
-        run(row0 + 1, row0 + g.cols - 1);
-    } else {  // dense runs wherever the 3x3 block is all data (e.g. all but a nodata rim)
-        const std::uint8_t* v = g.valid;
-        std::size_t start = row0 + 1;
-        for (std::size_t i = row0 + 1; i + 1 < row0 + g.cols; ++i) {
-            const std::size_t n = i - g.cols, s = i + g.cols;
-            if (v[n - 1] & v[n] & v[n + 1] & v[i - 1] & v[i] & v[i + 1] & v[s - 1] & v[s] & v[s + 1]) continue;
-            run(start, i);
-            checked(int(i - row0));
-            start = i + 1;
-        }
-        run(start, row0 + g.cols - 1);
-    }
-    checked(g.cols - 1);
+    dense_runs(
+        g, r, dense,
+        [&](std::size_t i0, std::size_t i1) {  // ties in cell order
+            dense_run(z, i0, i1, st, dir, tie.data());
+            if (ties)
+                for (std::size_t i = i0; i < i1; ++i)
+                    if (tie[i - i0]) ties->push_back(std::uint32_t(i));
+        },
+        [&](int c) {
+            const std::size_t i = row0 + c;
+            if (!g.valid[i]) return;
+            const D8Choice d = d8_steepest(z[i], g, c, r, st, [&](std::size_t n) { return z[n]; },
+                                           [](std::size_t) { return true; });
+            dir[i] = d.code();
+            if (ties && d.tie()) ties->push_back(std::uint32_t(i));
+        });
 }
 
 }  // namespace
@@ -85,8 +66,7 @@ std::vector<std::uint8_t> d8_directions(const std::vector<float>& z, const GridS
                                         bool two_threads) {
     std::vector<std::uint8_t> dir(g.size(), 0);
     const D8Steps st = d8_steps(g, dx, dy);
-    bool dense = true;
-    for (std::size_t i = 0; i < g.size() && dense; ++i) dense = g.valid[i] != 0;
+    const bool dense = all_valid(g);
     // rows are independent: the south half on a second thread (same bytes as one pass)
     const int mid = two_threads ? g.rows / 2 : g.rows;
     std::vector<std::uint32_t> south_ties;

@@ -65,4 +65,37 @@ D8Choice d8_steepest(float zi, const GridShape& g, int c, int r, const D8Steps& 
     return {best > 0.0f ? set : 0u};
 }
 
+// Row r of the grid split, in column order, into maximal runs of interior cells whose 3x3 block
+// is all data (run(i0, i1): cell indices) and the other cells (single(c)); `all_valid`: the grid
+// has no nodata (no per-cell test). The runs are what the vectorised kernels take.
+template <class Run, class Single>
+void dense_runs(const GridShape& g, int r, bool all_valid, Run&& run, Single&& single) {
+    const std::size_t row0 = std::size_t(r) * g.cols;
+    if (r == 0 || r == g.rows - 1 || g.cols < 3) {
+        for (int c = 0; c < g.cols; ++c) single(c);
+        return;
+    }
+    single(0);
+    std::size_t start = row0 + 1;
+    if (!all_valid) {
+        const std::uint8_t* v = g.valid;
+        for (std::size_t i = row0 + 1; i + 1 < row0 + g.cols; ++i) {
+            const std::size_t n = i - g.cols, s = i + g.cols;
+            if (v[n - 1] & v[n] & v[n + 1] & v[i - 1] & v[i] & v[i + 1] & v[s - 1] & v[s] & v[s + 1]) continue;
+            if (start < i) run(start, i);
+            single(int(i - row0));
+            start = i + 1;
+        }
+    }
+    if (start < row0 + g.cols - 1) run(start, row0 + g.cols - 1);
+    single(g.cols - 1);
+}
+
+// Whether the grid has no nodata cell.
+inline bool all_valid(const GridShape& g) {
+    for (std::size_t i = 0; i < g.size(); ++i)
+        if (!g.valid[i]) return false;
+    return true;
+}
+
 }  // namespace penink
