@@ -93,6 +93,11 @@ void ordered_parts(std::size_t n, std::size_t ahead, Make&& make, Use&& use) {
     std::condition_variable cv;
     std::size_t used = 0, next = 0;  // parts used / handed to a maker so far
     std::exception_ptr error;
+    auto fail = [&] {  // from a catch block: the first error kept, every waiting thread woken
+        const std::lock_guard<std::mutex> lock(m);
+        if (!error) error = std::current_exception();
+        cv.notify_all();
+    };
     auto maker = [&] {
         for (;;) {
             std::size_t p;
@@ -106,10 +111,7 @@ void ordered_parts(std::size_t n, std::size_t ahead, Make&& make, Use&& use) {
             try {
                 make(p, s.out);
             } catch (...) {
-                const std::lock_guard<std::mutex> lock(m);
-                if (!error) error = std::current_exception();
-                cv.notify_all();
-                return;
+                return fail();
             }
             const std::lock_guard<std::mutex> lock(m);
             s.ready = true;
@@ -129,9 +131,7 @@ void ordered_parts(std::size_t n, std::size_t ahead, Make&& make, Use&& use) {
         try {
             use(static_cast<const Buffer&>(s.out));
         } catch (...) {
-            const std::lock_guard<std::mutex> lock(m);
-            if (!error) error = std::current_exception();
-            cv.notify_all();
+            fail();
             break;
         }
         const std::lock_guard<std::mutex> lock(m);
