@@ -27,8 +27,8 @@ struct Fill {
     const std::vector<float>& z;
     const GridShape& g;
     std::vector<std::uint8_t>& flags;
-    std::vector<std::uint32_t>& level;
-    std::vector<std::uint32_t>& labels;
+    CellWords& level;
+    CellWords& labels;
     int bands;
 
     // The filled level band b's flood gave cell i.
@@ -158,7 +158,7 @@ int fill_bands(int rows) {
 }
 
 FillStats priority_flood_levels_banded(const std::vector<float>& z, const GridShape& g, std::vector<std::uint8_t>& flags,
-                                       std::vector<std::uint32_t>& level_bits, std::vector<std::uint32_t>& labels,
+                                       CellWords& level_bits, CellWords& labels,
                                        int bands) {
     bands = std::clamp(bands, 1, std::max(1, g.rows / 2));
     if (bands == 1) return priority_flood_levels(z, g, flags, level_bits);

@@ -20,7 +20,7 @@ namespace penink {
 // counts the bands' queues), the rows split into `bands` bands (1: priority_flood_levels itself).
 // `labels` is scratch (resized to cols*rows; pass an array a later stage fills anew).
 FillStats priority_flood_levels_banded(const std::vector<float>& z, const GridShape& g, std::vector<std::uint8_t>& flags,
-                                       std::vector<std::uint32_t>& level_bits, std::vector<std::uint32_t>& labels,
+                                       CellWords& level_bits, CellWords& labels,
                                        int bands);
 
 // Bands for a grid of `rows` rows on this machine: one per hardware thread, each at least 256 rows.

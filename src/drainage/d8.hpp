@@ -4,6 +4,7 @@
 // Point classes (seed 000): pit (no downhill), ridge (no neighbour drains into it), channel (one),
 // junction (more than one).
 #pragma once
+#include "core/big_allocator.hpp"
 #include <array>
 #include <bit>
 #include <cstddef>
@@ -11,6 +12,12 @@
 #include <vector>
 
 namespace penink {
+
+// Per-cell 32-bit values (accumulation, basin labels, and the fill's and flats' scratch that
+// borrows their arrays): grown without zero-filling (UninitAllocator: large blocks mapped with
+// huge pages, first touched where they are written, on the threads that write them); every
+// reader reads only what a stage wrote.
+using CellWords = std::vector<std::uint32_t, UninitAllocator<std::uint32_t>>;
 
 // Neighbour k = 0..7 in ESRI code order E, SE, S, SW, W, NW, N, NE; code = 1 << k.
 inline constexpr int d8_dc[8] = {1, 1, 0, -1, -1, -1, 0, 1};

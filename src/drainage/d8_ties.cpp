@@ -18,11 +18,11 @@ namespace {
 struct Ties {
     const std::vector<float>& filled;
     const std::vector<std::uint8_t>& flags;
-    const std::vector<std::uint32_t>& orig;
+    const CellWords& orig;
     const GridShape& g;
     D8Steps st;
     const std::vector<std::uint8_t>& dir;
-    const std::vector<std::uint32_t>& flat_mask;  // flat gradients as int32 (flat_resolution.hpp)
+    const CellWords& flat_mask;  // flat gradients as int32 (flat_resolution.hpp)
     int depth;
 
     float original(std::size_t n) const { return original_z(filled, flags, orig, n); }
@@ -82,8 +82,8 @@ struct Ties {
 
 std::size_t break_d8_ties(std::vector<std::uint32_t>& ties, const std::vector<float>& filled,
                           const std::vector<std::uint8_t>& flags,
-                          const std::vector<std::uint32_t>& orig_bits,
-                          const std::vector<std::uint32_t>& flat_mask, const GridShape& g,
+                          const CellWords& orig_bits,
+                          const CellWords& flat_mask, const GridShape& g,
                           double dx, double dy, std::vector<std::uint8_t>& dir, int depth) {
     Ties t{filled, flags, orig_bits, g, d8_steps(g, dx, dy), dir, flat_mask, std::clamp(depth, 1, 64)};
     std::sort(ties.begin(), ties.end(), [&](std::uint32_t a, std::uint32_t b) { return t.before(a, b); });

@@ -26,8 +26,8 @@ namespace penink {
 // cells nearer their exit first). Returns the number of cells whose direction changed.
 std::size_t break_d8_ties(std::vector<std::uint32_t>& ties, const std::vector<float>& filled,
                           const std::vector<std::uint8_t>& flags,
-                          const std::vector<std::uint32_t>& orig_bits,
-                          const std::vector<std::uint32_t>& flat_mask, const GridShape& g,
+                          const CellWords& orig_bits,
+                          const CellWords& flat_mask, const GridShape& g,
                           double dx, double dy, std::vector<std::uint8_t>& dir, int depth = 16);
 
 }  // namespace penink

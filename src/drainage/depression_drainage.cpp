@@ -16,8 +16,8 @@ namespace {
 struct Depressions {
     const std::vector<float>& filled;
     std::vector<std::uint8_t>& flags;
-    const std::vector<std::uint32_t>& orig;
-    const std::vector<std::uint32_t>& flat_mask;
+    const CellWords& orig;
+    const CellWords& flat_mask;
     const GridShape& g;
     D8Steps st;
     std::vector<std::uint8_t>& dir;
@@ -55,7 +55,7 @@ struct Depressions {
 
 void drain_rims_into_depressions(const std::vector<float>& filled,
                                  const std::vector<std::uint8_t>& flags,
-                                 const std::vector<std::uint32_t>& orig_bits, const GridShape& g,
+                                 const CellWords& orig_bits, const GridShape& g,
                                  double dx, double dy, std::vector<std::uint8_t>& dir,
                                  std::vector<std::uint32_t>* ties) {
     const D8Steps st = d8_steps(g, dx, dy);
@@ -74,8 +74,8 @@ void drain_rims_into_depressions(const std::vector<float>& filled,
 }
 
 std::size_t drain_depressions(const std::vector<float>& filled, std::vector<std::uint8_t>& flags,
-                              const std::vector<std::uint32_t>& orig_bits,
-                              const std::vector<std::uint32_t>& flat_mask, const GridShape& g,
+                              const CellWords& orig_bits,
+                              const CellWords& flat_mask, const GridShape& g,
                               double dx, double dy, std::vector<std::uint8_t>& dir,
                               std::vector<std::uint32_t>* ties) {
     Depressions d{filled, flags, orig_bits, flat_mask, g, d8_steps(g, dx, dy), dir};

@@ -30,7 +30,7 @@ inline constexpr std::uint8_t depression_outflow = 32;
 // (maybe twice).
 void drain_rims_into_depressions(const std::vector<float>& filled,
                                  const std::vector<std::uint8_t>& flags,
-                                 const std::vector<std::uint32_t>& orig_bits, const GridShape& g,
+                                 const CellWords& orig_bits, const GridShape& g,
                                  double dx, double dy, std::vector<std::uint8_t>& dir,
                                  std::vector<std::uint32_t>* ties = nullptr);
 
@@ -41,8 +41,8 @@ void drain_rims_into_depressions(const std::vector<float>& filled,
 // tied are appended to `ties` when given (those later found on an outflow path are skipped by
 // break_d8_ties). Returns the number of cells on outflow paths.
 std::size_t drain_depressions(const std::vector<float>& filled, std::vector<std::uint8_t>& flags,
-                              const std::vector<std::uint32_t>& orig_bits,
-                              const std::vector<std::uint32_t>& flat_mask, const GridShape& g,
+                              const CellWords& orig_bits,
+                              const CellWords& flat_mask, const GridShape& g,
                               double dx, double dy, std::vector<std::uint8_t>& dir,
                               std::vector<std::uint32_t>* ties = nullptr);
 

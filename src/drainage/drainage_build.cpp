@@ -56,7 +56,7 @@ void priority_flood_directions(DrainageGrid& g, const GridShape& shape, const Dr
                                DrainageResult& res) {
     FlowNetwork& net = res.net;
     std::vector<std::uint8_t>& flags = net.order;
-    std::vector<std::uint32_t>& orig = net.acc;
+    CellWords& orig = net.acc;
     report(progress, "filling depressions, flow directions", 0.0);
     std::vector<std::uint32_t> ties;
     res.stats.filled = fill_with_directions(g.z, shape, g.dx, g.dy, flags, orig, res.dir, ties, net.basin).raised;

@@ -22,9 +22,9 @@ void axis_map(bool flipped, int size, int offset, double& start, double& step) {
     step = flipped ? -1.0 : 1.0;
 }
 
-template <class T>
+template <class T, class A>
 void write_raster(const std::string& path, const DrainageGeoref& geo, int cols, int rows,
-                  GDALDataType type, const std::vector<T>& data, double nodata) {
+                  GDALDataType type, const std::vector<T, A>& data, double nodata) {
     GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
     char** opts = nullptr;
     opts = CSLSetNameValue(opts, "COMPRESS", "DEFLATE");

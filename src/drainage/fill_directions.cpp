@@ -39,9 +39,9 @@ void redo_near_raised(const std::vector<float>& z, const GridShape& g, double dx
 }  // namespace
 
 FillStats fill_with_directions(std::vector<float>& z, const GridShape& g, double dx, double dy,
-                               std::vector<std::uint8_t>& flags, std::vector<std::uint32_t>& orig_bits,
+                               std::vector<std::uint8_t>& flags, CellWords& orig_bits,
                                std::vector<std::uint8_t>& dir, std::vector<std::uint32_t>& ties,
-                               std::vector<std::uint32_t>& scratch, int bands) {
+                               CellWords& scratch, int bands) {
     FillStats st;
     if (bands <= 0) bands = fill_bands(g.rows);
     if (bands > 1) {  // the fill takes every core, then D8 on the filled surface

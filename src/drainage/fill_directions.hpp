@@ -20,8 +20,8 @@ namespace penink {
 // array (resized; pass one a later stage fills anew), then D8 on the filled surface; with one band
 // the fill runs beside D8 on the original surface, the cells near raised ones redone after.
 FillStats fill_with_directions(std::vector<float>& z, const GridShape& g, double dx, double dy,
-                               std::vector<std::uint8_t>& flags, std::vector<std::uint32_t>& orig_bits,
+                               std::vector<std::uint8_t>& flags, CellWords& orig_bits,
                                std::vector<std::uint8_t>& dir, std::vector<std::uint32_t>& ties,
-                               std::vector<std::uint32_t>& scratch, int bands = 0);
+                               CellWords& scratch, int bands = 0);
 
 }  // namespace penink

@@ -129,7 +129,7 @@ std::uint8_t masked_direction(const Flats& s, std::uint32_t i, std::vector<std::
 
 unsigned flat_candidates(const std::vector<float>& z, const GridShape& g,
                          const std::vector<std::uint8_t>& flags,
-                         const std::vector<std::uint32_t>& mask, std::size_t i) {
+                         const CellWords& mask, std::size_t i) {
     return least_gradient(z.data(), flags.data(), reinterpret_cast<const std::int32_t*>(mask.data()),
                           d8_offsets(g).data(), std::uint32_t(i));
 }
@@ -167,7 +167,7 @@ std::size_t combine(Flats& s, const std::vector<Reached>& low, const CellBits& h
 // cell reached settled (its neighbours' gradients all final), in the list's order.
 std::size_t resolve_flats(const std::vector<float>& z, const GridShape& g,
                           std::vector<std::uint8_t>& dir, std::vector<std::uint8_t>& flags,
-                          std::vector<std::uint32_t>& mask, std::vector<std::uint32_t>* ties) {
+                          CellWords& mask, std::vector<std::uint32_t>* ties) {
     mask.resize(g.size());
     Flats s{z.data(), g, dir.data(), flags.data(), reinterpret_cast<std::int32_t*>(mask.data()),
             d8_offsets(g), {}, {}, ties};

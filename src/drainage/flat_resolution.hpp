@@ -32,7 +32,7 @@ inline constexpr std::uint8_t flat_interior = 64;  // a flat interior cell (what
 // `ties` when given, raised cells excepted (break_d8_ties settles them).
 std::size_t resolve_flats(const std::vector<float>& z, const GridShape& g,
                           std::vector<std::uint8_t>& dir, std::vector<std::uint8_t>& flags,
-                          std::vector<std::uint32_t>& mask,
+                          CellWords& mask,
                           std::vector<std::uint32_t>* ties = nullptr);
 
 // Flat cell i (flat_seen_low set, not a low edge): bit k set for each neighbour k of least
@@ -40,6 +40,6 @@ std::size_t resolve_flats(const std::vector<float>& z, const GridShape& g,
 // lowest of these codes.
 unsigned flat_candidates(const std::vector<float>& z, const GridShape& g,
                          const std::vector<std::uint8_t>& flags,
-                         const std::vector<std::uint32_t>& mask, std::size_t i);
+                         const CellWords& mask, std::size_t i);
 
 }  // namespace penink

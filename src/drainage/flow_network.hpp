@@ -12,9 +12,9 @@
 namespace penink {
 
 struct FlowNetwork {
-    std::vector<std::uint32_t> acc;     // points draining through each cell (incl. itself); 0 invalid
+    CellWords acc;     // points draining through each cell (incl. itself); 0 invalid
     std::vector<std::uint8_t> order;    // Strahler order (1 at sources); 0 invalid
-    std::vector<std::uint32_t> basin;   // basin id 1..B; 0 invalid
+    CellWords basin;   // basin id 1..B; 0 invalid
     std::vector<std::uint32_t> outlet;  // outlet cell of basin b at outlet[b - 1], in index order
     std::vector<std::uint8_t> indeg;    // inflow_counts of the directions (kept for the branches)
 };

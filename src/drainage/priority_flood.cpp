@@ -9,7 +9,7 @@
 namespace penink {
 
 FillStats priority_flood_levels(const std::vector<float>& z, const GridShape& g, std::vector<std::uint8_t>& flags,
-                                std::vector<std::uint32_t>& level_bits) {
+                                CellWords& level_bits) {
     flags.assign(g.size(), 0);
     level_bits.resize(g.size());
     flood::Flood f{z.data(), g, flags.data(), level_bits.data(), d8_offsets(g), {}, {}, {}, {}, 0, g.rows, nullptr};
@@ -41,7 +41,7 @@ void near_raised_row(const GridShape& g, const std::vector<std::uint8_t>& flags,
     for (std::size_t c = 0; c < w; ++c) near[c] = column[c] | column[c + 1] | column[c + 2];
 }
 
-void swap_raised(std::vector<float>& z, const std::vector<std::uint8_t>& flags, std::vector<std::uint32_t>& bits) {
+void swap_raised(std::vector<float>& z, const std::vector<std::uint8_t>& flags, CellWords& bits) {
     parallel_chunks(z.size(), std::size_t(1) << 18, [&](std::size_t i0, std::size_t i1) {
         for (std::size_t i = i0; i < i1; ++i)
             if (flags[i] & fill_raised) {
@@ -52,7 +52,7 @@ void swap_raised(std::vector<float>& z, const std::vector<std::uint8_t>& flags, 
 }
 
 FillStats priority_flood_fill(std::vector<float>& z, const GridShape& g, std::vector<std::uint8_t>& flags,
-                              std::vector<std::uint32_t>& orig_bits) {
+                              CellWords& orig_bits) {
     const FillStats st = priority_flood_levels(z, g, flags, orig_bits);
     swap_raised(z, flags, orig_bits);
     return st;

@@ -35,12 +35,12 @@ struct FillStats {
 // swap_raised.
 FillStats priority_flood_fill(std::vector<float>& z, const GridShape& g,
                               std::vector<std::uint8_t>& flags,
-                              std::vector<std::uint32_t>& orig_bits);
+                              CellWords& orig_bits);
 
 // The same fill leaving `z` as it is (only read: another thread may read it meanwhile): the
 // filled level of every raised cell i goes to level_bits[i] (float bits).
 FillStats priority_flood_levels(const std::vector<float>& z, const GridShape& g, std::vector<std::uint8_t>& flags,
-                                std::vector<std::uint32_t>& level_bits);
+                                CellWords& level_bits);
 
 // Whether cell (c, r) has a raised neighbour (one of its 8, on the grid), from the fill's flags.
 bool next_to_raised(const GridShape& g, const std::vector<std::uint8_t>& flags, int c, int r);
@@ -70,11 +70,11 @@ std::vector<std::uint32_t> collect_near_raised(const GridShape& g, const std::ve
 
 // Exchanges z[i] with the float bits in bits[i] at every raised cell: after priority_flood_levels
 // z becomes the filled surface and bits the original elevations; done again, z is the original.
-void swap_raised(std::vector<float>& z, const std::vector<std::uint8_t>& flags, std::vector<std::uint32_t>& bits);
+void swap_raised(std::vector<float>& z, const std::vector<std::uint8_t>& flags, CellWords& bits);
 
 // Original elevation of cell i (z holds the filled surface).
 inline float original_z(const std::vector<float>& z, const std::vector<std::uint8_t>& flags,
-                        const std::vector<std::uint32_t>& orig_bits, std::size_t i) {
+                        const CellWords& orig_bits, std::size_t i) {
     return flags[i] & fill_raised ? std::bit_cast<float>(orig_bits[i]) : z[i];
 }
 

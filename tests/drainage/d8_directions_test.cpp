@@ -52,7 +52,7 @@ TEST(Flow, SlopeAccumulationAndOrder) {
     const auto dir = d8_directions(g.z, shape_of(g), g.dx, g.dy);
     FlowNetwork net;
     accumulate_flow(dir, shape_of(g), net);
-    EXPECT_EQ(net.acc, (std::vector<std::uint32_t>{1, 1, 1, 2, 2, 2, 3, 6, 9}));
+    EXPECT_EQ(net.acc, (CellWords{1, 1, 1, 2, 2, 2, 3, 6, 9}));
     EXPECT_EQ(net.order, (std::vector<std::uint8_t>{1, 1, 1, 1, 1, 1, 1, 2, 2}));
     EXPECT_EQ(net.indeg, inflow_counts(dir, shape_of(g)));  // kept whole for the branches
     EXPECT_EQ(net.indeg, (std::vector<std::uint8_t>{0, 0, 0, 1, 1, 1, 1, 2, 2}));
@@ -65,8 +65,8 @@ TEST(Flow, RidgeBasinsAndNormalisedFlow) {
     accumulate_flow(dir, shape_of(g), net);
     label_basins(dir, shape_of(g), net);
     EXPECT_EQ(net.outlet, (std::vector<std::uint32_t>{5, 9}));
-    EXPECT_EQ(net.basin, (std::vector<std::uint32_t>{1, 1, 2, 2, 2, 1, 1, 2, 2, 2, 1, 1, 1, 2, 2}));
-    EXPECT_EQ(net.acc, (std::vector<std::uint32_t>{1, 1, 1, 1, 1, 7, 2, 1, 3, 8, 1, 1, 1, 1, 1}));
+    EXPECT_EQ(net.basin, (CellWords{1, 1, 2, 2, 2, 1, 1, 2, 2, 2, 1, 1, 1, 2, 2}));
+    EXPECT_EQ(net.acc, (CellWords{1, 1, 1, 1, 1, 7, 2, 1, 3, 8, 1, 1, 1, 1, 1}));
     EXPECT_EQ(net.acc[5] + net.acc[9], 15u);  // total flow at outlets = number of points
     EXPECT_FLOAT_EQ(normalised_flow(net, 5), 1.0f);
     EXPECT_FLOAT_EQ(normalised_flow(net, 9), 1.0f);

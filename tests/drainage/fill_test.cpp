@@ -70,7 +70,7 @@ TEST(PriorityFlood, EqualsTheTextbookFillOnRandomGrids) {
         const std::vector<float> original = g.z;
         const std::vector<float> expected = reference_fill(g.z, s);
         std::vector<std::uint8_t> flags;
-        std::vector<std::uint32_t> orig;
+        CellWords orig;
         const FillStats st = priority_flood_fill(g.z, s, flags, orig);
         std::size_t raised = 0;
         for (std::size_t i = 0; i < g.size(); ++i) {
@@ -96,7 +96,7 @@ TEST(PriorityFlood, SlopeCellsBypassThePriorityQueue) {
         for (int c = 0; c < n; ++c) z[r * n + c] = float(c + (n - r));
     DrainageGrid g = make_regular_grid(n, n, 1.0, z);
     std::vector<std::uint8_t> flags;
-    std::vector<std::uint32_t> orig;
+    CellWords orig;
     const FillStats st = priority_flood_fill(g.z, {n, n, g.valid.data()}, flags, orig);
     EXPECT_EQ(st.raised, 0u);
     EXPECT_LE(st.queued, std::size_t(4 * n));
@@ -145,7 +145,7 @@ TEST(PriorityFlood, EqualsTheTextbookFillAcrossZeroAndMagnitudes) {
         const GridShape s{g.cols, g.rows, g.valid.data()};
         const std::vector<float> expected = reference_fill(g.z, s);
         std::vector<std::uint8_t> flags;
-        std::vector<std::uint32_t> orig;
+        CellWords orig;
         priority_flood_fill(g.z, s, flags, orig);
         std::size_t raised = 0;
         for (std::size_t i = 0; i < g.size(); ++i) {
@@ -166,10 +166,11 @@ TEST(FillWithDirections, EqualsFillThenDirections) {
         DrainageGrid b = a;
         const GridShape s{a.cols, a.rows, a.valid.data()};
         std::vector<std::uint8_t> flags_a, flags_b, dir_b;
-        std::vector<std::uint32_t> orig_a, orig_b, ties_a, ties_b;
+        CellWords orig_a, orig_b;
+        std::vector<std::uint32_t> ties_a, ties_b;
         const FillStats st_a = priority_flood_fill(a.z, s, flags_a, orig_a);
         const std::vector<std::uint8_t> dir_a = d8_directions(a.z, s, a.dx, a.dy, &ties_a);
-        std::vector<std::uint32_t> labels;
+        CellWords labels;
         const int bands = int(seed % 3) + 1;  // 1: the fill beside D8; 2, 3: banded, D8 after
         const FillStats st_b = fill_with_directions(b.z, s, b.dx, b.dy, flags_b, orig_b, dir_b, ties_b, labels, bands);
         EXPECT_GT(st_a.raised, 20u);
@@ -200,7 +201,7 @@ TEST(BandedFill, EqualsTheOneThreadFill) {
             for (float& v : a.z) v = v < 2.0f ? -0.0f : v - 2.0f;  // -0 and +0 spill levels
         const GridShape s{a.cols, a.rows, a.valid.data()};
         std::vector<std::uint8_t> flags_a, flags_b;
-        std::vector<std::uint32_t> level_a, level_b, labels;
+        CellWords level_a, level_b, labels;
         const FillStats st_a = priority_flood_levels(a.z, s, flags_a, level_a);
         for (const int bands : {2, 3, 5, 8}) {
             const FillStats st_b = priority_flood_levels_banded(a.z, s, flags_b, level_b, labels, bands);

@@ -69,7 +69,7 @@ TEST(FlatsAndPits, PriorityFloodRaisesToTheSpillLevel) {
     z[2] = 2.0f;
     DrainageGrid g = make_regular_grid(5, 5, 1.0, z);
     std::vector<std::uint8_t> flags;
-    std::vector<std::uint32_t> orig;
+    CellWords orig;
     const FillStats st = priority_flood_fill(g.z, {5, 5, g.valid.data()}, flags, orig);
     EXPECT_EQ(st.raised, 1u);
     for (int i = 0; i < 25; ++i) {
