@@ -199,7 +199,7 @@ void build_branches(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
     link_upstream(db.branches, db.upstream);
 }
 
-struct NetworkBranches::Walks {
+struct NetworkBranches::Walks {  // the heads and a tracer over them; each encode() walks its branches
     Heads heads;
     Tracer tracer;
     std::size_t links;
@@ -221,39 +221,60 @@ const AffineNodes* NetworkBranches::grid_nodes() const {
     return points_are_nodes(g) ? &g.affine : nullptr;
 }
 
-// Each branch walked once into `cells` (the end junction included), then its record and stored
-// vertices: x, y, z, or on grid nodes the step from the vertex before and z (dv_format.hpp).
-void NetworkBranches::encode(std::size_t b0, std::size_t b1, DvBytes& out) const {
-    using namespace dv;
-    if (b0 >= b1) return;
-    const Tracer& t = w_->tracer;
-    const FlowNetwork& net = t.net;
-    const bool grid = grid_nodes() != nullptr;
-    std::vector<std::uint32_t> cells;
-    const std::size_t first = t.rank.select(std::uint32_t(b0));
-    std::uint32_t before = b0 ? std::uint32_t(t.rank.select(std::uint32_t(b0 - 1))) : 0;
-    std::size_t word = first >> 6;  // heads taken from the rank's bits, a word at a time
-    std::uint64_t bits = t.rank.bits[word] & (~std::uint64_t(0) << (first & 63));
-    for (std::size_t id = b0; id < b1; ++id) {
-        while (!bits) bits = t.rank.bits[++word];
+namespace {
+
+// The heads from rank k on, in rank (= cell) order: the rank's bit words scanned a word at a time.
+struct HeadCursor {
+    const HeadRank& rank;
+    std::size_t word = 0;
+    std::uint64_t bits = 0;
+    HeadCursor(const HeadRank& r, std::uint32_t k) : rank(r) {
+        const std::size_t h = r.select(k);
+        word = h >> 6, bits = r.bits[word] & (~std::uint64_t(0) << (h & 63));
+    }
+    std::size_t next() {
+        while (!bits) bits = rank.bits[++word];
         const std::size_t h = word * 64 + std::size_t(std::countr_zero(bits));
         bits &= bits - 1;
+        return h;
+    }
+};
+
+// Appends the stored vertices of a branch walked into `cells` (its end junction included) at p:
+// x, y, z, or on grid nodes the step from the vertex before and z (dv_format.hpp).
+std::uint8_t* put_cells(std::uint8_t* p, const Tracer& t, bool grid, const std::vector<std::uint32_t>& cells,
+                        std::uint32_t stored) {
+    for (std::uint32_t k = 0; k < stored; ++k) {
+        if (!grid) {
+            const DvVertex v = point_xyz(t.g, cells[k]);
+            std::memcpy(p, &v, 12), p += 12;
+            continue;
+        }
+        if (k > 0) *p++ = std::uint8_t(d8_index(t.dir[cells[k - 1]]));
+        std::memcpy(p, &t.g.z[cells[k]], 4), p += 4;
+    }
+    return p;
+}
+
+}  // namespace
+
+// Each branch walked once into `cells`, then its record and its stored vertices appended.
+void NetworkBranches::encode(std::size_t b0, std::size_t b1, DvBytes& out) const {
+    if (b0 >= b1) return;
+    const Tracer& t = w_->tracer;
+    const bool grid = grid_nodes() != nullptr;
+    std::vector<std::uint32_t> cells;
+    HeadCursor heads(t.rank, std::uint32_t(b0));
+    std::uint32_t before = b0 ? std::uint32_t(t.rank.select(std::uint32_t(b0 - 1))) : 0;  // head deltas
+    for (std::size_t id = b0; id < b1; ++id) {
+        const std::size_t h = heads.next();
         cells.clear();
         const std::int32_t down = t.walk(h, [&](std::size_t c) { cells.push_back(std::uint32_t(c)); });
-        const DvBranchRecord r{std::uint32_t(cells.size()), down, net.order[h], net.basin[h], net.acc[h]};
+        const DvBranchRecord r{std::uint32_t(cells.size()), down, t.net.order[h], t.net.basin[h], t.net.acc[h]};
         const std::size_t at = out.size();
-        out.resize(at + max_record_bytes + vertex_bytes(r, grid));
-        std::uint8_t* p = put_record(out.data() + at, r, id, grid, std::uint32_t(h) - before);
-        for (std::uint32_t k = 0; k < stored_count(r); ++k) {
-            const std::size_t c = cells[k];
-            if (grid) {
-                if (k > 0) *p++ = std::uint8_t(d8_index(t.dir[cells[k - 1]]));  // the step from the vertex before
-                std::memcpy(p, &t.g.z[c], 4), p += 4;
-            } else {
-                const DvVertex v = point_xyz(t.g, c);
-                std::memcpy(p, &v, 12), p += 12;
-            }
-        }
+        out.resize(at + dv::max_record_bytes + dv::vertex_bytes(r, grid));
+        std::uint8_t* p = dv::put_record(out.data() + at, r, id, grid, std::uint32_t(h) - before);
+        p = put_cells(p, t, grid, cells, dv::stored_count(r));
         out.resize(std::size_t(p - out.data()));
         before = std::uint32_t(h);
     }
