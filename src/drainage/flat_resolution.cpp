@@ -160,6 +160,30 @@ std::size_t combine(Flats& s, const std::vector<Reached>& low, const CellBits& h
     return seen_high;
 }
 
+// The reached cells' bits in flags: flat_seen_low for the towards-lower search's, flat_seen_high
+// for the away-from-higher one's (what flat_candidates and d8_ties read afterwards).
+void mark_reached(Flats& s, const std::vector<Reached>& low, const CellBits& high) {
+    for (const Reached& r : low) s.flags[r.cell] |= flat_seen_low;
+    for (std::size_t w = 0; w < high.w.size(); ++w)
+        for (std::uint64_t b = high.w[w]; b; b &= b - 1) s.flags[w * 64 + std::size_t(std::countr_zero(b))] |= flat_seen_high;
+}
+
+// Every reached flat cell's direction from the combined gradients (its neighbours' all final), in
+// parallel chunks in cell order, the tied ones appended to s.ties; returns how many got none.
+std::size_t settle_flats(Flats& s) {
+    std::atomic<std::size_t> unresolved{0};
+    constexpr std::uint8_t settle = flat_interior | flat_seen_low;
+    const std::vector<std::uint32_t> tied = parallel_collect<std::uint32_t>(
+        s.g.size(), std::size_t(1) << 18, [&](std::size_t i0, std::size_t i1, std::vector<std::uint32_t>& out) {
+            std::size_t none = 0;
+            for (std::size_t i = i0; i < i1; ++i)
+                if ((s.flags[i] & settle) == settle) none += (s.dir[i] = masked_direction(s, std::uint32_t(i), out)) == 0;
+            unresolved += none;
+        });
+    if (s.ties) s.ties->insert(s.ties->end(), tied.begin(), tied.end());
+    return unresolved;
+}
+
 }  // namespace
 
 // The away-from-higher BFS (distances into mask) and the towards-lower BFS (levels kept in a
@@ -178,21 +202,9 @@ std::size_t resolve_flats(const std::vector<float>& z, const GridShape& g,
     run_beside([&] { bfs_levels(s, s.high, high, [&](std::uint32_t c, std::int32_t h) { s.mask[c] = h, ++high_cells; }); },
                [&] { bfs_levels(s, s.low, low_seen, [&](std::uint32_t c, std::int32_t l) { low.push_back({c, l}); }); });
     const std::size_t reached_high = combine(s, low, high);
-    for (const Reached& r : low) flags[r.cell] |= flat_seen_low;
-    for (std::size_t w = 0; w < high.w.size(); ++w)
-        for (std::uint64_t b = high.w[w]; b; b &= b - 1) flags[w * 64 + std::size_t(std::countr_zero(b))] |= flat_seen_high;
-    std::atomic<std::size_t> unresolved{0};
-    constexpr std::uint8_t settle = flat_interior | flat_seen_low;  // reached flat cells, in cell order
-    const std::vector<std::uint32_t> tied = parallel_collect<std::uint32_t>(
-        g.size(), std::size_t(1) << 18, [&](std::size_t i0, std::size_t i1, std::vector<std::uint32_t>& out) {
-            std::size_t none = 0;
-            for (std::size_t i = i0; i < i1; ++i)
-                if ((flags[i] & settle) == settle) none += (dir[i] = masked_direction(s, std::uint32_t(i), out)) == 0;
-            unresolved += none;
-        });
-    if (ties) ties->insert(ties->end(), tied.begin(), tied.end());
+    mark_reached(s, low, high);
     // flats no low edge reaches (impossible after priority-flood) stay without direction
-    return unresolved + (high_cells - reached_high);
+    return settle_flats(s) + (high_cells - reached_high);
 }
 
 }  // namespace penink
