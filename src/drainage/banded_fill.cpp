@@ -75,6 +75,22 @@ bool row_has_label(const Fill& s, int r) {
     return any != 0;
 }
 
+// The spills from the cells of row r to their east, south-west, south and south-east neighbours.
+void row_spills(const Fill& s, int r, Spills& out) {
+    const GridShape& g = s.g;
+    for (int c = 0; c < g.cols; ++c) {
+        const std::size_t i = std::size_t(r) * g.cols + c;
+        if (!g.valid[i]) continue;
+        const int nc[4] = {c + 1, c - 1, c, c + 1}, nr[4] = {r, r + 1, r + 1, r + 1};
+        for (int k = 0; k < 4; ++k) {
+            if (nc[k] < 0 || nc[k] >= g.cols || nr[k] >= g.rows) continue;
+            const std::size_t n = std::size_t(nr[k]) * g.cols + nc[k];
+            if (g.valid[n] && s.labels[n] != s.labels[i])
+                note_spill(out, s.labels[i], s.labels[n], std::max(s.local(i), s.local(n)));
+        }
+    }
+}
+
 // Spills between 8-adjacent valid cells of different labels (each pair from its first cell in cell
 // order): the higher of their local levels. Rows in parallel chunks (rows r and r + 1 both all
 // ocean skipped), the chunks' maps merged.
@@ -88,20 +104,8 @@ Spills spill_edges(const Fill& s) {
     std::vector<Spills> part((std::size_t(g.rows) + per - 1) / per);
     parallel_chunks(std::size_t(g.rows), 64, [&](std::size_t r0, std::size_t r1) {
         Spills& out = part[r0 / per];
-        for (int r = int(r0); r < int(r1); ++r) {
-            if (!labelled[std::size_t(r)] && (r + 1 == g.rows || !labelled[std::size_t(r) + 1])) continue;
-            for (int c = 0; c < g.cols; ++c) {
-                const std::size_t i = std::size_t(r) * g.cols + c;
-                if (!g.valid[i]) continue;
-                const int nc[4] = {c + 1, c - 1, c, c + 1}, nr[4] = {r, r + 1, r + 1, r + 1};
-                for (int k = 0; k < 4; ++k) {
-                    if (nc[k] < 0 || nc[k] >= g.cols || nr[k] >= g.rows) continue;
-                    const std::size_t n = std::size_t(nr[k]) * g.cols + nc[k];
-                    if (g.valid[n] && s.labels[n] != s.labels[i])
-                        note_spill(out, s.labels[i], s.labels[n], std::max(s.local(i), s.local(n)));
-                }
-            }
-        }
+        for (int r = int(r0); r < int(r1); ++r)
+            if (labelled[std::size_t(r)] || (r + 1 < g.rows && labelled[std::size_t(r) + 1])) row_spills(s, r, out);
     });
     for (std::size_t k = 1; k < part.size(); ++k)
         for (const auto& [key, w] : part[k]) note_spill(part[0], std::uint32_t(key >> 32), std::uint32_t(key), w);
