@@ -75,8 +75,30 @@ bool row_has_label(const Fill& s, int r) {
     return any != 0;
 }
 
+// Spills noted through the last pair seen: along a watershed boundary the same two labels meet
+// cell after cell, so the map is touched once per run of one pair instead of once per cell.
+struct SpillRun {
+    Spills& out;
+    std::uint64_t key = ~std::uint64_t(0);
+    float least = 0.0f;
+    void note(std::uint32_t a, std::uint32_t b, float w) {
+        if (a > b) std::swap(a, b);
+        const std::uint64_t k = std::uint64_t(a) << 32 | b;
+        if (k == key) {
+            least = std::min(least, w);
+            return;
+        }
+        flush();
+        key = k, least = w;
+    }
+    void flush() {
+        if (key != ~std::uint64_t(0)) note_spill(out, std::uint32_t(key >> 32), std::uint32_t(key), least);
+    }
+    ~SpillRun() { flush(); }
+};
+
 // The spills from the cells of row r to their east, south-west, south and south-east neighbours.
-void row_spills(const Fill& s, int r, Spills& out) {
+void row_spills(const Fill& s, int r, SpillRun& out) {
     const GridShape& g = s.g;
     for (int c = 0; c < g.cols; ++c) {
         const std::size_t i = std::size_t(r) * g.cols + c;
@@ -86,7 +108,7 @@ void row_spills(const Fill& s, int r, Spills& out) {
             if (nc[k] < 0 || nc[k] >= g.cols || nr[k] >= g.rows) continue;
             const std::size_t n = std::size_t(nr[k]) * g.cols + nc[k];
             if (g.valid[n] && s.labels[n] != s.labels[i])
-                note_spill(out, s.labels[i], s.labels[n], std::max(s.local(i), s.local(n)));
+                out.note(s.labels[i], s.labels[n], std::max(s.local(i), s.local(n)));
         }
     }
 }
@@ -103,7 +125,7 @@ Spills spill_edges(const Fill& s) {
     const std::size_t per = chunk_length(std::size_t(g.rows), 64);
     std::vector<Spills> part((std::size_t(g.rows) + per - 1) / per);
     parallel_chunks(std::size_t(g.rows), 64, [&](std::size_t r0, std::size_t r1) {
-        Spills& out = part[r0 / per];
+        SpillRun out{part[r0 / per]};
         for (int r = int(r0); r < int(r1); ++r)
             if (labelled[std::size_t(r)] || (r + 1 < g.rows && labelled[std::size_t(r) + 1])) row_spills(s, r, out);
     });
