@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
     mallopt(M_TRIM_THRESHOLD, 1 << 30);
 #endif
     const int code = penink::run_cli(argc, argv);
-    std::cout.flush(), std::cerr.flush();
+    std::cout.flush(), std::cerr.flush(), std::clog.flush();
     std::fflush(nullptr);
     std::_Exit(code);
 }
