@@ -44,9 +44,16 @@ template <class... V> std::size_t bytes_of(const V&... v) {
 }
 
 // Accumulation (upstream to downstream) and basin labels (downstream walks) read only the
-// directions and write different arrays: one on a second thread. A cycle throws from either.
-void accumulate_and_label(const std::vector<std::uint8_t>& dir, const GridShape& shape, FlowNetwork& net) {
-    run_beside([&] { label_basins(dir, shape, net); }, [&] { accumulate_flow(dir, shape, net); });
+// directions and write different arrays: one on a second thread, which then traces the divides
+// into `divides` when given (they need the basins only). A cycle throws from either.
+void accumulate_and_label(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const GridShape& shape,
+                          FlowNetwork& net, DrainageDb* divides) {
+    run_beside(
+        [&] {
+            label_basins(dir, shape, net);
+            if (divides) build_divides(g, net, *divides);
+        },
+        [&] { accumulate_flow(dir, shape, net); });
 }
 
 // Priority-flood routing: fill, D8, rims, flats, depressions, ties; g.z restored afterwards.
@@ -79,15 +86,10 @@ DrainageDb grid_database(const DrainageGrid& g) {
     return db;
 }
 
-// Runs f() while the divides are traced into `db` on a second thread (they read the same grid
-// and network and fill other members of db).
-template <class F> void with_divides(const DrainageGrid& g, const FlowNetwork& net, DrainageDb& db, F&& f) {
-    run_beside([&] { build_divides(g, net, db); }, f);
-}
-
 }  // namespace
 
-DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progress, DrainageRouting routing) {
+DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progress, DrainageRouting routing,
+                                DrainageDb* divides) {
     DrainageResult res;
     const GridShape shape{g.cols, g.rows, g.valid.data()};
     res.stats.points = g.size();
@@ -101,7 +103,7 @@ DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progres
     }
     FlowNetwork& net = res.net;
     report(progress, "accumulating flow and basins", 0.55);
-    accumulate_and_label(res.dir, shape, net);
+    accumulate_and_label(g, res.dir, shape, net, divides);
     res.stats.basins = net.outlet.size();
     // accumulation holds dir, in-degree, acc, order and (allocated) basin at once
     res.stats.working_bytes = std::max(res.stats.working_bytes,
@@ -111,10 +113,10 @@ DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progres
 
 DrainageDb drainage_db_from_grid(DrainageGrid& g, const DrainageProgress& progress,
                                  DrainageResult* keep, DrainageRouting routing) {
-    DrainageResult res = compute_drainage(g, progress, routing);
     DrainageDb db = grid_database(g);
+    DrainageResult res = compute_drainage(g, progress, routing, &db);
     report(progress, "tracing branches and divides", 0.75);
-    with_divides(g, res.net, db, [&] { build_branches(g, res.dir, res.net, db); });
+    build_branches(g, res.dir, res.net, db);
     res.stats.branches = db.branches.size(), res.stats.divides = db.divides.size();
     report(progress, "done", 1.0);
     if (keep) *keep = std::move(res);
@@ -125,15 +127,14 @@ DrainageDb build_and_write_drainage_db(Terrain& t, const DrainageOptions& option
                                        const std::string& path, const DrainageProgress& progress, DrainageResult* keep) {
     report(progress, "resampling the PN surface", 0.0);
     DrainageGrid g = resample_pn_releasing(t, drainage_resample_factor(t, options));  // memory back
-    DrainageResult res = compute_drainage(g, progress, options.routing);
     DrainageDb meta = grid_database(g);
     meta.crs_wkt = t.crs_wkt, meta.fingerprint = fp;
+    DrainageResult res = compute_drainage(g, progress, options.routing, &meta);
     report(progress, "tracing branches and divides", 0.75);
-    std::optional<NetworkBranches> branches;
-    with_divides(g, res.net, meta, [&] { branches.emplace(g, res.dir, res.net); });
-    res.stats.branches = branches->branch_count(), res.stats.divides = meta.divides.size();
+    const NetworkBranches branches(g, res.dir, res.net);
+    res.stats.branches = branches.branch_count(), res.stats.divides = meta.divides.size();
     report(progress, "writing the database", 0.9);
-    write_drainage_db(path, meta, *branches);
+    write_drainage_db(path, meta, branches);
     report(progress, "done", 1.0);
     if (keep) *keep = std::move(res);
     return meta;

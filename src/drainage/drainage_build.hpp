@@ -69,9 +69,11 @@ struct DrainageResult {
 
 // Runs directions (priority_flood: fill, D8, flats, depressions, ties; least_cost: the search
 // alone, the stats it does not use stay 0), accumulation and basins on `g` (g.z is filled during
-// a priority_flood run and restored before returning).
+// a priority_flood run and restored before returning). With `divides`, the basin divides are
+// traced into it (build_divides) on the basins' thread while the accumulation finishes.
 DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progress = {},
-                                DrainageRouting routing = DrainageRouting::priority_flood);
+                                DrainageRouting routing = DrainageRouting::priority_flood,
+                                DrainageDb* divides = nullptr);
 
 // Everything from an already resampled grid: network, branches and divides.
 DrainageDb drainage_db_from_grid(DrainageGrid& g, const DrainageProgress& progress = {},
