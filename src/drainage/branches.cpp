@@ -271,11 +271,8 @@ void NetworkBranches::encode(std::size_t b0, std::size_t b1, DvBytes& out) const
         cells.clear();
         const std::int32_t down = t.walk(h, [&](std::size_t c) { cells.push_back(std::uint32_t(c)); });
         const DvBranchRecord r{std::uint32_t(cells.size()), down, t.net.order[h], t.net.basin[h], t.net.acc[h]};
-        const std::size_t at = out.size();
-        out.resize(at + dv::max_record_bytes + dv::vertex_bytes(r, grid));
-        std::uint8_t* p = dv::put_record(out.data() + at, r, id, grid, std::uint32_t(h) - before);
-        p = put_cells(p, t, grid, cells, dv::stored_count(r));
-        out.resize(std::size_t(p - out.data()));
+        dv::append_branch(out, r, id, grid, std::uint32_t(h) - before,
+                          [&](std::uint8_t* p) { return put_cells(p, t, grid, cells, dv::stored_count(r)); });
         before = std::uint32_t(h);
     }
 }

@@ -115,7 +115,7 @@ public:
     // Grid positions: non-null when every vertex is a node of the drainage grid (cols wide) lying
     // on this affine grid (x, y = affine_node_xy at the node); the file then stores cells, not x, y.
     virtual const AffineNodes* grid_nodes() const { return nullptr; }
-    // Appends branches [b0, b1) to `out` as the file stores them (dv_format.hpp: put_branch):
+    // Appends branches [b0, b1) to `out` as the file stores them (dv_format.hpp: append_branch):
     // each its record, then its vertices but a repeated end junction.
     virtual void encode(std::size_t b0, std::size_t b1, DvBytes& out) const = 0;
 };

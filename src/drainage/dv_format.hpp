@@ -1,7 +1,6 @@
 // The DV file layout shared by its writer (dv_writer.cpp) and reader (dv_reader.cpp); the layout
 // itself is set out at the top of drainage_db.cpp. Internal to src/drainage.
 #pragma once
-#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -13,16 +12,9 @@ namespace penink::dv {
 inline constexpr char magic[8] = {'P', 'N', 'K', 'D', 'V', 0, 0, 0};
 inline constexpr std::size_t prefix_bytes = 8 + 4 + 4 + 8;  // magic, version, reserved, total length
 
-// Bytes of a LEB128 varint.
-inline std::size_t varint_size(std::uint64_t v) { return (std::size_t(std::bit_width(v | 1)) + 6) / 7; }
-
 // How vertex positions are stored (the byte after the CRS): x, y per vertex, or grid cells on an
 // affine grid (then f64 gt[6], f64 unit, i32 col0, row0 follow).
 inline constexpr std::uint8_t positions_explicit = 0, positions_grid = 1;
-inline std::size_t positions_bytes(bool grid) { return 1 + (grid ? 6 * 8 + 8 + 8 : 0); }
-
-// Bytes up to the positions byte: prefix, fingerprint, grid, origin, CRS.
-inline std::size_t header_bytes(const DrainageDb& db) { return prefix_bytes + 36 + 12 + 16 + 4 + db.crs_wkt.size(); }
 
 // LEB128 varint of v at p (at most 10 bytes); returns the byte after it.
 inline std::uint8_t* put_varint(std::uint8_t* p, std::uint64_t v) {
@@ -57,6 +49,18 @@ inline std::uint8_t* put_record(std::uint8_t* p, const DvBranchRecord& r, std::s
     *p++ = r.order;
     p = put_varint(p, r.basin), p = put_varint(p, r.head_acc);
     return grid ? put_varint(p, head_delta) : p;
+}
+
+// Appends branch `id` to `out` as the file stores it: its record (put_record), then its stored
+// vertices, which put_vertices(p) writes from p on and returns the byte after (at most
+// vertex_bytes of them; `out` is trimmed to what was written).
+template <class PutVertices>
+void append_branch(DvBytes& out, const DvBranchRecord& r, std::size_t id, bool grid, std::uint32_t head_delta,
+                   PutVertices&& put_vertices) {
+    const std::size_t at = out.size();
+    out.resize(at + max_record_bytes + vertex_bytes(r, grid));
+    std::uint8_t* p = put_vertices(put_record(out.data() + at, r, id, grid, head_delta));
+    out.resize(std::size_t(p - out.data()));
 }
 
 // Where the total file length sits: written as 0 while streaming and filled in at the end; the

@@ -93,12 +93,11 @@ public:
         for (std::size_t id = b0; id < b1; ++id) {
             const DvBranch& b = db_.branches[id];
             const DvBranchRecord r{b.count, b.downstream, b.order, b.basin, b.head_acc};
-            const std::size_t at = out.size();
-            out.resize(at + max_record_bytes + vertex_bytes(r, false));
-            std::uint8_t* p = put_record(out.data() + at, r, id, false, 0);
-            for (std::uint32_t k = 0; k < stored_count(r); ++k, p += 12)
-                std::memcpy(p, &db_.vertices[b.first + k], 12);  // x, y, z
-            out.resize(std::size_t(p - out.data()));
+            append_branch(out, r, id, false, 0, [&](std::uint8_t* p) {
+                for (std::uint32_t k = 0; k < stored_count(r); ++k, p += 12)
+                    std::memcpy(p, &db_.vertices[b.first + k], 12);  // x, y, z
+                return p;
+            });
         }
     }
 
