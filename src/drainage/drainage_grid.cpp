@@ -62,7 +62,7 @@ PnPatch cell_patch(const SurfaceMesh& m, const std::vector<std::uint8_t>& valid,
 }
 
 // x, y of the nodes, a row at a time (t.cols of them): the Terrain's pos, or after a heights-only
-// read (pos empty) affine_node_xy on its grid. Without rotation terms (gt[2] = gt[4] = 0) the
+// read (pos empty) its xy (a geographic DEM) or affine_node_xy on its grid. Without rotation terms (gt[2] = gt[4] = 0) the
 // other coordinate's term adds zero, so x depends on the column only and y on the row only: the
 // columns' x are computed once, the same floats.
 struct RowXY {
@@ -72,7 +72,7 @@ struct RowXY {
 
     explicit RowXY(const Terrain& terrain) : t(terrain) {
         terrain_affine(t, a);
-        if (!t.pos.empty() || a.gt[2] != 0.0 || a.gt[4] != 0.0) return;
+        if (!t.pos.empty() || !t.xy.empty() || a.gt[2] != 0.0 || a.gt[4] != 0.0) return;
         xs.resize(std::size_t(t.cols));
         for (int c = 0; c < t.cols; ++c) xs[std::size_t(c)] = affine_node_xy(a, t.origin, c, 0).x;
     }
@@ -81,6 +81,7 @@ struct RowXY {
         const float y = xs.empty() ? 0.0f : affine_node_xy(a, t.origin, 0, r).y;
         for (int c = 0; c < t.cols; ++c)
             out[std::size_t(c)] = !t.pos.empty() ? glm::vec2(t.pos[t.index(c, r)])
+                                  : !t.xy.empty() ? t.xy[t.index(c, r)]
                                   : xs.empty()   ? affine_node_xy(a, t.origin, c, r)
                                                  : glm::vec2(xs[std::size_t(c)], y);
     }
@@ -161,13 +162,13 @@ DrainageGrid grid_frame(const Terrain& t, int factor) {
     g.cols = (t.cols - 1) * factor + 1, g.rows = (t.rows - 1) * factor + 1;
     g.origin = t.origin;
     g.has_affine = terrain_affine(t, g.affine);
-    if (t.pos.empty() && (factor > 1 || !g.has_affine))  // a heights-only read (DemOptions)
+    if (t.pos.empty() && (factor > 1 || (!g.has_affine && t.xy.empty())))  // a heights-only read (DemOptions)
         throw Error("drainage", t.source, "DEM read without positions resamples at factor 1 only", ExitCode::internal);
     g.coarse_cols = t.cols, g.coarse_rows = t.rows, g.coarse_valid = t.valid;
     g.valid = factor == 1 ? t.valid : std::vector<std::uint8_t>(g.size(), 0);
     mean_spacing(t, g.dx, g.dy);
     g.dx /= factor, g.dy /= factor;
-    if (factor > 1 || !g.has_affine) g.coarse_xy.assign(t.pos.begin(), t.pos.end());
+    if (!t.pos.empty() && (factor > 1 || !g.has_affine)) g.coarse_xy.assign(t.pos.begin(), t.pos.end());
     return g;
 }
 
@@ -199,6 +200,7 @@ DrainageGrid resample_pn_releasing(Terrain& t, int factor) {
     if (factor == 1 && !t.z.empty()) {  // heights-only: z taken over, 0 at nodata
         g = grid_frame(t, factor);
         g.z = std::move(t.z);
+        if (!t.xy.empty()) g.coarse_xy = std::move(t.xy);  // a geographic DEM's nodes in UTM
         parallel_chunks(g.size(), std::size_t(1) << 18, [&](std::size_t i0, std::size_t i1) {
             for (std::size_t i = i0; i < i1; ++i)
                 if (!g.valid[i]) g.z[i] = 0.0f;
@@ -208,6 +210,7 @@ DrainageGrid resample_pn_releasing(Terrain& t, int factor) {
     }
     std::vector<glm::vec3>().swap(t.pos);
     std::vector<float>().swap(t.z);
+    std::vector<glm::vec2>().swap(t.xy);
     return g;
 }
 

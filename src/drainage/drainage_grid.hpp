@@ -45,7 +45,8 @@ std::size_t resampled_size(const Terrain& t, int factor);
 // (else penink::Error "drainage", ExitCode::internal).
 DrainageGrid resample_pn(const Terrain& t, int factor);
 
-// resample_pn, then t's positions and heights released (a heights-only t's z becomes the grid's).
+// resample_pn, then t's positions and heights released (a heights-only t's z becomes the grid's,
+// and its xy, where it has them, the grid's coarse_xy).
 DrainageGrid resample_pn_releasing(Terrain& t, int factor);
 
 // A grid of hand-given elevations at regular spacing (x = c*spacing, y = -r*spacing), factor 1;

@@ -27,7 +27,7 @@ using namespace dv;
 // chunks, so the result equals hashing the whole file at once) and handed to `out` on a second
 // thread while the next one fills (one buffer in flight, so chunks stay in order).
 struct Sink {
-    std::vector<std::uint8_t> buf = std::vector<std::uint8_t>(std::size_t(1) << 22), spare = buf;
+    DvBytes buf = DvBytes(std::size_t(1) << 22), spare = DvBytes(buf.size());  // unwritten until filled
     std::size_t n = 0;
     std::uint64_t hash = hash64(nullptr, 0);
     std::function<void(const std::uint8_t*, std::size_t)> out;

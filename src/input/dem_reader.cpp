@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -16,6 +17,7 @@
 #include <cpl_conv.h>
 #include <cpl_error.h>
 #include <cpl_vsi.h>
+#include <gdal_frmts.h>
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
@@ -40,6 +42,10 @@ struct Raster {
     std::vector<double, BigAllocator<double>> raw_d;
     double scale = 1.0, offset = 0.0, unit = 1.0;  // metres = (value * scale + offset) * unit
     bool flip_c = false, flip_r = false;
+    GDALDataType type = GDT_Unknown;
+    std::vector<std::uint8_t> mask;  // source order; empty: none beyond the nodata value
+    bool has_nodata = false;
+    double nodata = 0.0;
     std::vector<std::uint8_t> valid;
     double emin = std::numeric_limits<double>::max(), emax = -std::numeric_limits<double>::max();
     std::array<double, 6> gt{0, 1, 0, 0, 0, -1};
@@ -65,12 +71,20 @@ struct QuietGdal {
     }
 };
 
+GDALDatasetUniquePtr open_with(const std::string& path, const char* const* drivers) {
+    return GDALDatasetUniquePtr(GDALDataset::FromHandle(
+        GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, drivers, nullptr, nullptr)));
+}
+
+// A GeoTIFF is opened with GDAL's GTiff driver alone; any other file once every driver is
+// registered (GDALAllRegister: ~2 ms, so only when needed).
 GDALDatasetUniquePtr open_raster(const std::string& path) {
-    GDALAllRegister();
     VSIStatBufL st;
     if (VSIStatExL(path.c_str(), &st, VSI_STAT_EXISTS_FLAG) != 0) fail(path, "no such file");
-    GDALDatasetUniquePtr ds(GDALDataset::FromHandle(
-        GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+    GDALRegister_GTiff();
+    const char* const gtiff[] = {"GTiff", nullptr};
+    GDALDatasetUniquePtr ds = open_with(path, gtiff);
+    if (!ds) GDALAllRegister(), ds = open_with(path, nullptr);
     if (!ds || ds->GetRasterCount() < 1 || ds->GetRasterXSize() < 1 || ds->GetRasterYSize() < 1)
         fail(path, "not a DEM raster (GDAL cannot read it)");
     return ds;
@@ -114,8 +128,8 @@ void orient(std::array<double, 6>& gt, int w, int h, bool& flip_c, bool& flip_r)
 // Rows per parallel chunk of a per-node loop: chunks of at least 64 K nodes.
 std::size_t rows_per_chunk(const Raster& r) { return std::max<std::size_t>(1, 65536 / std::size_t(r.w)); }
 
-// Reads the band as T into r.raw_f / r.raw_d and in one pass fills r.valid (from NaN, the nodata
-// value and the mask; a non-finite elevation is invalid too) and r.emin / r.emax.
+// Reads the band as T into r.raw_f / r.raw_d, with its mask, nodata value, scale and offset (not
+// its unit: GDAL's GeoTIFF driver builds the spatial reference for that).
 template <class T>
 void read_band(GDALRasterBand& band, Raster& r, const std::string& path) {
     auto& raw = [&]() -> auto& {
@@ -126,12 +140,19 @@ void read_band(GDALRasterBand& band, Raster& r, const std::string& path) {
     const GDALDataType as = sizeof(T) == 4 ? GDT_Float32 : GDT_Float64;
     if (band.RasterIO(GF_Read, 0, 0, r.w, r.h, raw.data(), r.w, r.h, as, 0, 0) != CE_None)
         fail(path, "not a DEM raster (GDAL cannot read it)");
-    const std::vector<std::uint8_t> mask = read_mask(band, path);
+    r.mask = read_mask(band, path);
     int has = 0, has_scale = 0, has_offset = 0;
-    const double nodata = band.GetNoDataValue(&has);
-    const GDALDataType type = band.GetRasterDataType();
+    r.nodata = band.GetNoDataValue(&has), r.has_nodata = has != 0;
     const double scale = band.GetScale(&has_scale), offset = band.GetOffset(&has_offset);
-    r.scale = has_scale ? scale : 1.0, r.offset = has_offset ? offset : 0.0, r.unit = vertical_unit(band);
+    r.scale = has_scale ? scale : 1.0, r.offset = has_offset ? offset : 0.0;
+}
+
+// r.valid (from NaN, the nodata value and the mask; a non-finite elevation is invalid too) and
+// in r.emin / r.emax the range of the valid values scaled (value * scale + offset, before the
+// vertical unit, which GDAL's GeoTIFF driver takes from the spatial reference: so this runs beside
+// its build), in one pass over the values read (raw: r.raw_f or r.raw_d). range_to_metres after.
+template <class Raw>
+void classify_values(Raster& r, const Raw& raw) {
     r.valid.resize(raw.size());
     std::mutex merge;
     parallel_chunks(std::size_t(r.h), rows_per_chunk(r), [&](std::size_t r0, std::size_t r1) {
@@ -139,8 +160,9 @@ void read_band(GDALRasterBand& band, Raster& r, const std::string& path) {
         for (std::size_t row = r0; row < r1; ++row)
             for (int c = 0; c < r.w; ++c) {
                 const std::size_t src = r.source(row, c);
-                const double v = double(raw[src]), e = r.metres(v);
-                const bool ok = !is_nodata(v, has != 0, nodata, type) && (mask.empty() || mask[src]) && std::isfinite(e);
+                const double v = double(raw[src]), e = v * r.scale + r.offset;
+                const bool ok = !is_nodata(v, r.has_nodata, r.nodata, r.type) && (r.mask.empty() || r.mask[src]) &&
+                                std::isfinite(e);
                 r.valid[row * r.w + c] = ok;
                 if (ok) lo = std::min(lo, e), hi = std::max(hi, e);
             }
@@ -149,24 +171,44 @@ void read_band(GDALRasterBand& band, Raster& r, const std::string& path) {
     });
 }
 
+void classify_values(Raster& r) {
+    if (r.raw_f.empty()) classify_values(r, r.raw_d);
+    else classify_values(r, r.raw_f);
+}
+
+// r.emin / r.emax from scaled values to metres: x -> x * unit (unit in (0, 1], vertical_unit) is
+// monotone and keeps finite values finite, so this is the range and the validity that scaling
+// every value to metres first gives.
+void range_to_metres(Raster& r) { r.emin *= r.unit, r.emax *= r.unit; }
+
 // Band types whose every value a float holds exactly.
 bool float_exact(GDALDataType t) {
     return t == GDT_Float32 || t == GDT_Byte || t == GDT_Int16 || t == GDT_UInt16;
 }
 
-Raster read_raster(const std::string& path) {
-    GDALDatasetUniquePtr ds = open_raster(path);
+// Size and geotransform (oriented: row 0 north, column 0 west) of the raster; no values yet.
+Raster raster_header(GDALDataset& ds) {
     Raster r;
-    r.w = ds->GetRasterXSize(), r.h = ds->GetRasterYSize();
+    r.w = ds.GetRasterXSize(), r.h = ds.GetRasterYSize();
     // No geotransform: pixel units as metres, row 0 on top (north).
-    if (ds->GetGeoTransform(r.gt.data()) != CE_None) r.gt = {0.0, 1.0, 0.0, double(r.h), 0.0, -1.0};
-    if (const OGRSpatialReference* s = ds->GetSpatialRef(); s && !s->IsEmpty())
-        r.srs.reset(s->Clone());
-    GDALRasterBand& band = *ds->GetRasterBand(1);
+    if (ds.GetGeoTransform(r.gt.data()) != CE_None) r.gt = {0.0, 1.0, 0.0, double(r.h), 0.0, -1.0};
     orient(r.gt, r.w, r.h, r.flip_c, r.flip_r);
-    if (float_exact(band.GetRasterDataType())) read_band<float>(band, r, path);
-    else read_band<double>(band, r, path);
     return r;
+}
+
+// The first band of `path` into r's values, valid mask and range, through a handle of its own
+// opened by `driver` (a GDAL dataset serves one thread at a time): it runs beside the spatial
+// reference's build.
+void read_values(const std::string& path, const std::string& driver, Raster& r) {
+    const QuietGdal quiet;  // GDAL's error handlers are per thread
+    const char* const drivers[] = {driver.c_str(), nullptr};
+    GDALDatasetUniquePtr ds = open_with(path, drivers);
+    if (!ds || ds->GetRasterCount() < 1) fail(path, "not a DEM raster (GDAL cannot read it)");
+    GDALRasterBand& band = *ds->GetRasterBand(1);
+    r.type = band.GetRasterDataType();
+    if (float_exact(r.type)) read_band<float>(band, r, path);
+    else read_band<double>(band, r, path);
+    classify_values(r);
 }
 
 glm::dvec2 affine(const std::array<double, 6>& gt, int c, int r) {
@@ -287,13 +329,27 @@ void fill_positions(const Raster& r, const WorldXY& xy, Terrain& t, const std::s
     });
 }
 
-// A heights-only read: t.z what fill_positions puts in pos[i].z.
-void fill_heights(const Raster& r, Terrain& t) {
+// A heights-only read: t.z what fill_positions puts in pos[i].z and, for a geographic DEM, t.xy
+// its pos[i].x, y.
+void fill_heights(const Raster& r, const WorldXY& xy, Terrain& t, const std::string& path) {
     t.z.resize(std::size_t(r.w) * r.h);
+    if (xy.utm) t.xy.resize(t.z.size());
     const double s = t.vertical_exaggeration;
     parallel_chunks(std::size_t(r.h), rows_per_chunk(r), [&](std::size_t r0, std::size_t r1) {
-        for (std::size_t row = r0; row < r1; ++row)
+        std::vector<glm::dvec2> line(xy.utm ? std::size_t(r.w) : 0);
+        for (std::size_t row = r0; row < r1; ++row) {
             for (int c = 0; c < r.w; ++c) t.z[row * r.w + c] = float(node_elevation(r, row, c) * s);
+            if (!xy.utm) continue;
+            try {
+                xy.row(r, int(row), line.data());
+            } catch (const GeographicLib::GeographicErr& e) {
+                fail_utm(path, t.utm_zone, t.north, e);
+            }
+            for (int c = 0; c < r.w; ++c) {
+                const glm::dvec2 p = line[std::size_t(c)] - t.origin;
+                t.xy[row * r.w + c] = glm::vec2(float(p.x), float(p.y));
+            }
+        }
     });
 }
 
@@ -305,19 +361,36 @@ Terrain read_dem(const std::string& path, const DemOptions& options) {
     if (!std::isfinite(ve) || ve <= 0.0) fail(path, "vertical exaggeration must be > 0");
     if (options.utm_zone < 0 || options.utm_zone > 60)
         fail(path, "UTM zone must be 1..60 (0 = standard zone), got " + std::to_string(options.utm_zone));
-    Raster r = read_raster(path);
-    check_grid(r, path);
+    GDALDatasetUniquePtr ds = open_raster(path);
+    Raster r = raster_header(*ds);
     Terrain t;
     t.cols = r.w, t.rows = r.h;
     t.vertical_exaggeration = ve;
     t.source = path;
     t.geotransform = r.gt;
-    const WorldXY xy = world_coordinates(r, options, t, path);
-    if (!xy.utm) t.xy_unit = xy.unit;  // an affine grid: affine_node_xy gives pos.xy
-    t.origin = glm::round(0.5 * (xy.lo + xy.hi));
+    // The spatial reference (PROJ's database: ~15 ms) and the nodes' bounds here while another
+    // thread reads the values; errors in the order of a sequential read: the band's, the grid's,
+    // then the projection's.
+    std::optional<WorldXY> xy;
+    std::exception_ptr crs_error;
+    const std::string driver = ds->GetDriver()->GetDescription();
+    run_beside([&] { read_values(path, driver, r); }, [&] {
+        try {
+            if (const OGRSpatialReference* s = ds->GetSpatialRef(); s && !s->IsEmpty()) r.srs.reset(s->Clone());
+            r.unit = vertical_unit(*ds->GetRasterBand(1));  // from the georeferencing just loaded
+            xy.emplace(world_coordinates(r, options, t, path));
+        } catch (...) {
+            crs_error = std::current_exception();
+        }
+    });
+    range_to_metres(r);
+    check_grid(r, path);
+    if (crs_error) std::rethrow_exception(crs_error);
+    if (!xy->utm) t.xy_unit = xy->unit;  // an affine grid: affine_node_xy gives pos.xy
+    t.origin = glm::round(0.5 * (xy->lo + xy->hi));
     t.elevation_min = r.emin, t.elevation_max = r.emax;
-    if (options.heights_only && !xy.utm) fill_heights(r, t);
-    else fill_positions(r, xy, t, path);
+    if (options.heights_only) fill_heights(r, *xy, t, path);
+    else fill_positions(r, *xy, t, path);
     t.valid = std::move(r.valid);
     return t;
 }

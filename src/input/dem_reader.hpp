@@ -19,8 +19,9 @@ struct DemOptions {
     double vertical_exaggeration = 1.0;
     int utm_zone = 0;      // force this UTM zone for geographic DEMs (0 = standard zone of centre)
     bool north = true;     // hemisphere for a forced zone
-    // Only the elevations (Terrain::z, pos left empty) when the grid is affine (a projected or no
-    // CRS): for the drainage build at factor 1, which needs no positions. Ignored otherwise.
+    // Only the elevations (Terrain::z, pos left empty), and for a geographic DEM the projected
+    // x, y apart (Terrain::xy): for the drainage build at factor 1, which needs no positions on
+    // an affine grid and takes x, y over as they are on a UTM one.
     bool heights_only = false;
 };
 

@@ -21,9 +21,10 @@ struct Terrain {
     bool north = true;        // UTM hemisphere
     double vertical_exaggeration = 1.0;
     std::vector<glm::vec3> pos;    // cols*rows node positions, row-major, local metres
-    // A heights-only read (DemOptions::heights_only, affine grids): pos is empty and z holds what
-    // pos[i].z would (x, y are affine_node_xy's); empty otherwise.
+    // A heights-only read (DemOptions::heights_only): pos is empty and z holds what pos[i].z would;
+    // x, y are affine_node_xy's on an affine grid, else (a geographic DEM) in xy. Empty otherwise.
     std::vector<float> z;
+    std::vector<glm::vec2> xy;
     std::vector<std::uint8_t> valid;  // 1 where the node has data (not nodata)
     std::string source;       // file it came from (for messages)
     int source_col0 = 0, source_row0 = 0;  // where this grid starts in the source DEM (after cropping)

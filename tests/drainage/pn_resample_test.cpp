@@ -84,12 +84,16 @@ TEST(PnResample, HeightsOnlyTerrainGivesTheSameGridAtFactorOne) {
                                                 {1000, 10 * c, 10 * s, 5000, 10 * s, -10 * c}, 2193, &nodata);
     DemOptions heights;
     heights.heights_only = true;
-    for (const std::string& p : {std::string(PENINK_SOURCE_DIR "/examples/volcano.asc"), rotated}) {
+    // volcano and the rotated grid are affine; jacksboro is geographic (its UTM x, y come in h.xy)
+    for (const std::string& p : {std::string(PENINK_SOURCE_DIR "/examples/volcano.asc"), rotated,
+                                 std::string(PENINK_SHARED_DIR "/data/jacksboro.tif")}) {
         const DrainageGrid full = resample_pn(read_dem(p), 1);
         Terrain h = read_dem(p, heights);
         EXPECT_THROW(resample_pn(h, 2), Error);  // positions needed between the nodes
         const DrainageGrid g = resample_pn_releasing(h, 1);
         EXPECT_TRUE(h.z.empty());
+        EXPECT_TRUE(h.xy.empty());
+        EXPECT_EQ(g.coarse_xy, full.coarse_xy);
         EXPECT_EQ(g.z, full.z);  // nodata nodes 0 in both
         EXPECT_EQ(g.valid, full.valid);
         EXPECT_EQ(g.dx, full.dx);  // the same floats summed in the same order

@@ -289,6 +289,12 @@ TEST(DemReader, ProjectedNodesFollowTheirAffineGridExactly) {
     EXPECT_FALSE(terrain_affine(read_dem(PENINK_SHARED_DIR "/data/jacksboro.tif"), none));
 }
 
+// The same options with positions read.
+DemOptions heights_full(DemOptions o) {
+    o.heights_only = false;
+    return o;
+}
+
 TEST(DemReader, HeightsOnlyReadKeepsTheElevationsAndLeavesPositionsOut) {
     TempDir dir;
     const double c = std::cos(0.3), s = std::sin(0.3), nodata = -9999;
@@ -311,10 +317,21 @@ TEST(DemReader, HeightsOnlyReadKeepsTheElevationsAndLeavesPositionsOut) {
         EXPECT_EQ(h.elevation_max, full.elevation_max);
         EXPECT_EQ(h.crs_wkt, full.crs_wkt);
     }
-    // a geographic DEM has no affine grid in metres: positions are read anyway
+    EXPECT_TRUE(read_dem(rotated, heights).xy.empty());  // x, y from the affine grid
+    // a geographic DEM has no affine grid in metres: its nodes' UTM x, y come apart, in xy
+    const Terrain full = read_dem(PENINK_SHARED_DIR "/data/jacksboro.tif", heights_full(heights));
     const Terrain geo = read_dem(PENINK_SHARED_DIR "/data/jacksboro.tif", heights);
-    EXPECT_EQ(geo.pos.size(), geo.size());
-    EXPECT_TRUE(geo.z.empty());
+    EXPECT_TRUE(geo.pos.empty());
+    ASSERT_EQ(geo.z.size(), full.pos.size());
+    ASSERT_EQ(geo.xy.size(), full.pos.size());
+    for (std::size_t i = 0; i < full.pos.size(); ++i) {
+        ASSERT_EQ(geo.z[i], full.pos[i].z) << i;
+        ASSERT_EQ(geo.xy[i], glm::vec2(full.pos[i])) << i;
+    }
+    EXPECT_EQ(geo.valid, full.valid);
+    EXPECT_EQ(geo.origin, full.origin);
+    EXPECT_EQ(geo.crs_wkt, full.crs_wkt);
+    EXPECT_EQ(geo.utm_zone, full.utm_zone);
 }
 
 TEST(DemReader, SouthernHemisphereGeographic) {
