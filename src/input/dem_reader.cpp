@@ -303,9 +303,10 @@ void check_grid(const Raster& r, const std::string& path) {
         fail(path, "DEM has no valid elevation (all nodata)");
 }
 
-// Elevation of node (c, row), metres: the lowest valid one at nodata nodes.
-double node_elevation(const Raster& r, std::size_t row, int c) {
-    return r.valid[row * r.w + c] ? r.metres(r.value(r.source(row, c))) : r.emin;
+// Elevation of node (c, row), metres (vertical unit `unit`): `emin`, the lowest valid one, at
+// nodata nodes.
+double node_elevation(const Raster& r, std::size_t row, int c, double unit, double emin) {
+    return r.valid[row * r.w + c] ? (r.value(r.source(row, c)) * r.scale + r.offset) * unit : emin;
 }
 
 // t.pos: x, y relative to the bounds' rounded centre (t.origin), z the node elevation times the
@@ -323,23 +324,30 @@ void fill_positions(const Raster& r, const WorldXY& xy, Terrain& t, const std::s
             }
             for (int c = 0; c < r.w; ++c) {
                 const glm::dvec2 p = line[std::size_t(c)] - t.origin;
-                t.pos[row * r.w + c] = glm::vec3(float(p.x), float(p.y), float(node_elevation(r, row, c) * s));
+                const double z = node_elevation(r, row, c, r.unit, r.emin) * s;
+                t.pos[row * r.w + c] = glm::vec3(float(p.x), float(p.y), float(z));
             }
         }
     });
 }
 
-// A heights-only read: t.z what fill_positions puts in pos[i].z and, for a geographic DEM, t.xy
-// its pos[i].x, y.
-void fill_heights(const Raster& r, const WorldXY& xy, Terrain& t, const std::string& path) {
-    t.z.resize(std::size_t(r.w) * r.h);
-    if (xy.utm) t.xy.resize(t.z.size());
-    const double s = t.vertical_exaggeration;
+// A heights-only read's z: what fill_positions puts in pos[i].z (s: the vertical exaggeration)
+// when the vertical unit is `unit` and the lowest valid elevation `emin` metres.
+void fill_heights(const Raster& r, double unit, double emin, double s, std::vector<float>& z) {
+    z.resize(std::size_t(r.w) * r.h);
     parallel_chunks(std::size_t(r.h), rows_per_chunk(r), [&](std::size_t r0, std::size_t r1) {
-        std::vector<glm::dvec2> line(xy.utm ? std::size_t(r.w) : 0);
+        for (std::size_t row = r0; row < r1; ++row)
+            for (int c = 0; c < r.w; ++c) z[row * r.w + c] = float(node_elevation(r, row, c, unit, emin) * s);
+    });
+}
+
+// A heights-only read of a geographic DEM: t.xy what fill_positions puts in pos[i].x, y (t.origin
+// set).
+void fill_xy(const Raster& r, const WorldXY& xy, Terrain& t, const std::string& path) {
+    t.xy.resize(std::size_t(r.w) * r.h);
+    parallel_chunks(std::size_t(r.h), rows_per_chunk(r), [&](std::size_t r0, std::size_t r1) {
+        std::vector<glm::dvec2> line(std::size_t(r.w));
         for (std::size_t row = r0; row < r1; ++row) {
-            for (int c = 0; c < r.w; ++c) t.z[row * r.w + c] = float(node_elevation(r, row, c) * s);
-            if (!xy.utm) continue;
             try {
                 xy.row(r, int(row), line.data());
             } catch (const GeographicLib::GeographicErr& e) {
@@ -351,6 +359,14 @@ void fill_heights(const Raster& r, const WorldXY& xy, Terrain& t, const std::str
             }
         }
     });
+}
+
+// The values of `path` read, classified and (heights not null) turned into heights as if the
+// vertical unit were metres (most DEMs; read_dem redoes them otherwise), on this thread while
+// the calling one builds the spatial reference, which GDAL's GeoTIFF driver takes the unit from.
+void read_heights(const std::string& path, const std::string& driver, double s, Raster& r, std::vector<float>* heights) {
+    read_values(path, driver, r);
+    if (heights && r.emin <= r.emax) fill_heights(r, 1.0, r.emin, s, *heights);  // emin: scaled = metres
 }
 
 }  // namespace
@@ -368,17 +384,20 @@ Terrain read_dem(const std::string& path, const DemOptions& options) {
     t.vertical_exaggeration = ve;
     t.source = path;
     t.geotransform = r.gt;
-    // The spatial reference (PROJ's database: ~15 ms) and the nodes' bounds here while another
-    // thread reads the values; errors in the order of a sequential read: the band's, the grid's,
-    // then the projection's.
+    // The spatial reference (PROJ's database: ~15 ms), the nodes' bounds and a geographic DEM's
+    // UTM x, y here while another thread reads the values; errors in the order of a sequential
+    // read: the band's, the grid's, then the projection's.
     std::optional<WorldXY> xy;
     std::exception_ptr crs_error;
     const std::string driver = ds->GetDriver()->GetDescription();
-    run_beside([&] { read_values(path, driver, r); }, [&] {
+    std::vector<float>* heights = options.heights_only ? &t.z : nullptr;
+    run_beside([&] { read_heights(path, driver, ve, r, heights); }, [&] {
         try {
             if (const OGRSpatialReference* s = ds->GetSpatialRef(); s && !s->IsEmpty()) r.srs.reset(s->Clone());
             r.unit = vertical_unit(*ds->GetRasterBand(1));  // from the georeferencing just loaded
             xy.emplace(world_coordinates(r, options, t, path));
+            t.origin = glm::round(0.5 * (xy->lo + xy->hi));
+            if (heights && xy->utm) fill_xy(r, *xy, t, path);
         } catch (...) {
             crs_error = std::current_exception();
         }
@@ -387,10 +406,9 @@ Terrain read_dem(const std::string& path, const DemOptions& options) {
     check_grid(r, path);
     if (crs_error) std::rethrow_exception(crs_error);
     if (!xy->utm) t.xy_unit = xy->unit;  // an affine grid: affine_node_xy gives pos.xy
-    t.origin = glm::round(0.5 * (xy->lo + xy->hi));
     t.elevation_min = r.emin, t.elevation_max = r.emax;
-    if (options.heights_only) fill_heights(r, *xy, t, path);
-    else fill_positions(r, *xy, t, path);
+    if (!heights) fill_positions(r, *xy, t, path);
+    else if (r.unit != 1.0) fill_heights(r, r.unit, r.emin, ve, t.z);  // not metres after all
     t.valid = std::move(r.valid);
     return t;
 }

@@ -194,6 +194,29 @@ TEST(DemReader, ProjectedFeetAreConvertedToMetres) {
     EXPECT_EQ(t.pos[0].z, 1.0f);  // elevations stay metres
 }
 
+TEST(DemReader, ElevationsInFeetAreConvertedInBothReads) {
+    TempDir dir;  // band unit "ft"; the heights-only read takes the values as metres first, then redoes them
+    const double nodata = -9999;
+    const std::string p = test::write_tif(dir.file("zft.tif"), 3, 2, {10, 20, -9999, 40, 50, 60},
+                                          {1000, 10, 0, 5000, 0, -10}, 2193, &nodata);
+    {
+        GDALDatasetUniquePtr ds(GDALDataset::Open(p.c_str(), GDAL_OF_RASTER | GDAL_OF_UPDATE));
+        ds->GetRasterBand(1)->SetUnitType("ft");
+    }
+    DemOptions heights, full;
+    heights.heights_only = true;
+    heights.vertical_exaggeration = full.vertical_exaggeration = 2.0;
+    const Terrain f = read_dem(p, full), h = read_dem(p, heights);
+    EXPECT_EQ(f.elevation_min, 10 * 0.3048);
+    EXPECT_EQ(f.elevation_max, 60 * 0.3048);
+    EXPECT_EQ(f.pos[1].z, float(20 * 0.3048 * 2.0));
+    EXPECT_EQ(f.pos[2].z, float(10 * 0.3048 * 2.0));  // nodata: the lowest valid elevation
+    ASSERT_EQ(h.z.size(), f.pos.size());
+    for (std::size_t i = 0; i < h.z.size(); ++i) EXPECT_EQ(h.z[i], f.pos[i].z) << i;
+    EXPECT_EQ(h.elevation_min, f.elevation_min);
+    EXPECT_EQ(h.elevation_max, f.elevation_max);
+}
+
 // Independent UTM coordinates of node (c, r) of a geographic file, from its geotransform.
 glm::dvec2 utm_of_node(const std::string& path, int c, int r, int zone, bool& north) {
     GDALAllRegister();
