@@ -283,7 +283,7 @@ namespace {
 // Edge bits: 1 north, 2 east, 4 south, 8 west; 16 marks a corner whose degree is not 2.
 struct Corners {
     int cols, rows;  // corners per row / column
-    std::vector<std::uint8_t> bits;
+    DvBytes bits;    // every corner's written by divide_edges
     std::size_t at(int i, int j) const { return std::size_t(j) * cols + i; }
 };
 
@@ -299,23 +299,35 @@ inline std::uint8_t corner_bits(std::uint32_t ul, std::uint32_t ur, std::uint32_
 }
 
 // Each corner's bits from its (up to) four surrounding points' basins (0 where invalid or off the
-// grid), corner rows in parallel chunks: an edge leaves corner (i, j) north between points
-// (i-1, j-1) and (i, j-1), east between (i, j-1) and (i, j), south between (i-1, j) and (i, j),
-// west between (i-1, j-1) and (i-1, j), when both are valid and their basins differ.
+// grid): an edge leaves corner (i, j) north between points (i-1, j-1) and (i, j-1), east between
+// (i, j-1) and (i, j), south between (i-1, j) and (i, j), west between (i-1, j-1) and (i-1, j),
+// when both are valid and their basins differ. On the calling thread: it runs beside the
+// accumulation, which has the other core.
 Corners divide_edges(const DrainageGrid& g, const FlowNetwork& net) {
-    Corners k{g.cols + 1, g.rows + 1, std::vector<std::uint8_t>(std::size_t(g.cols + 1) * (g.rows + 1))};
+    Corners k{g.cols + 1, g.rows + 1, DvBytes(std::size_t(g.cols + 1) * (g.rows + 1))};
     const std::vector<std::uint32_t> none(std::size_t(g.cols), 0);  // the rows beyond the grid
-    parallel_chunks(std::size_t(k.rows), 64, [&](std::size_t j0, std::size_t j1) {
-        for (int j = int(j0); j < int(j1); ++j) {
-            const std::uint32_t* up = j > 0 ? net.basin.data() + g.index(0, j - 1) : none.data();
-            const std::uint32_t* down = j < g.rows ? net.basin.data() + g.index(0, j) : none.data();
-            std::uint8_t* out = k.bits.data() + k.at(0, j);
-            out[0] = corner_bits(0, up[0], 0, down[0]);
-            for (int i = 1; i < g.cols; ++i) out[i] = corner_bits(up[i - 1], up[i], down[i - 1], down[i]);
-            out[g.cols] = corner_bits(up[g.cols - 1], 0, down[g.cols - 1], 0);
-        }
-    });
+    for (int j = 0; j < k.rows; ++j) {
+        const std::uint32_t* up = j > 0 ? net.basin.data() + g.index(0, j - 1) : none.data();
+        const std::uint32_t* down = j < g.rows ? net.basin.data() + g.index(0, j) : none.data();
+        std::uint8_t* out = k.bits.data() + k.at(0, j);
+        out[0] = corner_bits(0, up[0], 0, down[0]);
+        for (int i = 1; i < g.cols; ++i) out[i] = corner_bits(up[i - 1], up[i], down[i - 1], down[i]);
+        out[g.cols] = corner_bits(up[g.cols - 1], 0, down[g.cols - 1], 0);
+    }
     return k;
+}
+
+// The next corner at or after `at` with an edge (k.bits.size() when none): eight corners at a time
+// through the many without one.
+std::size_t next_with_edge(const Corners& k, std::size_t at) {
+    constexpr std::uint64_t edge_bits = 0x0f0f0f0f0f0f0f0full;
+    const std::size_t n = k.bits.size();
+    for (std::uint64_t w; at + 8 <= n; at += 8) {
+        std::memcpy(&w, k.bits.data() + at, 8);
+        if (w & edge_bits) break;
+    }
+    while (at < n && !(k.bits[at] & 15)) ++at;
+    return at;
 }
 
 DvVertex corner_vertex(const DrainageGrid& g, int i, int j) {
@@ -356,10 +368,11 @@ void build_divides(const DrainageGrid& g, const FlowNetwork& net, DrainageDb& db
     Corners k = divide_edges(g, net);
     db.divide_vertices.clear(), db.divides.clear();
     for (int pass = 0; pass < 2; ++pass)  // open chains from nodes first, then closed loops
-        for (int j = 0; j < k.rows; ++j)
-            for (int i = 0; i < k.cols; ++i)
-                while ((k.bits[k.at(i, j)] & 15) && (pass == 1 || (k.bits[k.at(i, j)] & 16)))
-                    trace(g, k, i, j, std::countr_zero(unsigned(k.bits[k.at(i, j)] & 15)), db);
+        for (std::size_t at = next_with_edge(k, 0); at < k.bits.size(); at = next_with_edge(k, at + 1)) {
+            const int i = int(at % std::size_t(k.cols)), j = int(at / std::size_t(k.cols));
+            while ((k.bits[at] & 15) && (pass == 1 || (k.bits[at] & 16)))
+                trace(g, k, i, j, std::countr_zero(unsigned(k.bits[at] & 15)), db);
+        }
 }
 
 }  // namespace penink
