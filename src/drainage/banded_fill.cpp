@@ -97,20 +97,42 @@ struct SpillRun {
     ~SpillRun() { flush(); }
 };
 
-// The spills from the cells of row r to their east, south-west, south and south-east neighbours.
+// The spills from cell (c, r) to its east, south-west, south and south-east neighbours.
+void cell_spills(const Fill& s, int c, int r, SpillRun& out) {
+    const GridShape& g = s.g;
+    const std::size_t i = std::size_t(r) * g.cols + c;
+    if (!g.valid[i]) return;
+    const int nc[4] = {c + 1, c - 1, c, c + 1}, nr[4] = {r, r + 1, r + 1, r + 1};
+    for (int k = 0; k < 4; ++k) {
+        if (nc[k] < 0 || nc[k] >= g.cols || nr[k] >= g.rows) continue;
+        const std::size_t n = std::size_t(nr[k]) * g.cols + nc[k];
+        if (g.valid[n] && s.labels[n] != s.labels[i]) out.note(s.labels[i], s.labels[n], std::max(s.local(i), s.local(n)));
+    }
+}
+
+// The spills from the cells of row r (cell_spills). A spill needs two labels, so the interior
+// cells whose four neighbours carry their own label (nodata's is 0, like the ocean's) are passed
+// over, 64 at a time by a mask built without branches.
 void row_spills(const Fill& s, int r, SpillRun& out) {
     const GridShape& g = s.g;
-    for (int c = 0; c < g.cols; ++c) {
-        const std::size_t i = std::size_t(r) * g.cols + c;
-        if (!g.valid[i]) continue;
-        const int nc[4] = {c + 1, c - 1, c, c + 1}, nr[4] = {r, r + 1, r + 1, r + 1};
-        for (int k = 0; k < 4; ++k) {
-            if (nc[k] < 0 || nc[k] >= g.cols || nr[k] >= g.rows) continue;
-            const std::size_t n = std::size_t(nr[k]) * g.cols + nc[k];
-            if (g.valid[n] && s.labels[n] != s.labels[i])
-                out.note(s.labels[i], s.labels[n], std::max(s.local(i), s.local(n)));
-        }
+    if (r + 1 >= g.rows || g.cols < 3) {
+        for (int c = 0; c < g.cols; ++c) cell_spills(s, c, r, out);
+        return;
     }
+    const std::uint32_t* l = s.labels.data() + std::size_t(r) * g.cols;
+    const std::uint32_t* d = l + g.cols;
+    cell_spills(s, 0, r, out);
+    for (int c0 = 1; c0 < g.cols - 1; c0 += 64) {
+        const int n = std::min(64, g.cols - 1 - c0);
+        std::uint64_t differ = 0;
+        for (int k = 0; k < n; ++k) {
+            const int c = c0 + k;
+            const bool x = (l[c] != l[c + 1]) | (l[c] != d[c - 1]) | (l[c] != d[c]) | (l[c] != d[c + 1]);
+            differ |= std::uint64_t(x) << k;
+        }
+        for (; differ; differ &= differ - 1) cell_spills(s, c0 + std::countr_zero(differ), r, out);
+    }
+    cell_spills(s, g.cols - 1, r, out);
 }
 
 // Spills between 8-adjacent valid cells of different labels (each pair from its first cell in cell

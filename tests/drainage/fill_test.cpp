@@ -190,10 +190,12 @@ TEST(FillWithDirections, EqualsFillThenDirections) {
 
 // Bands flooded on their own and joined through their labels' water levels give the one-thread
 // fill bit for bit, whatever the number of bands: depressions across band rows, nodata on them,
-// a plateau of equal cells, and levels -0 / +0.
+// a plateau of equal cells, and levels -0 / +0; rows of more than 64 cells too (the spill scan
+// passes over them 64 at a time).
 TEST(BandedFill, EqualsTheOneThreadFill) {
     for (std::uint64_t seed = 51; seed <= 62; ++seed) {
-        DrainageGrid a = random_grid(40 + int(seed % 7), 30 + int(seed % 5), seed, seed % 3 ? 80 : 0);
+        const int cols = (seed % 2 ? 40 : 150) + int(seed % 7);
+        DrainageGrid a = random_grid(cols, 30 + int(seed % 5), seed, seed % 3 ? 80 : 0);
         if (seed % 4 == 0)  // a flat-floored basin straddling the bands' shared rows
             for (int r = 8; r < 22; ++r)
                 for (int c = 5; c < 30; ++c) a.z[a.index(c, r)] = r == 8 || r == 21 || c == 5 || c == 29 ? 9.0f : 1.0f;
