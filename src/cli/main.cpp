@@ -18,6 +18,10 @@ int main(int argc, char** argv) {
     // shootdown on every core) and the kernel zero-filling new ones: 3-10 % of a drainage build.
     mallopt(M_MMAP_THRESHOLD, 32 << 20);
     mallopt(M_TRIM_THRESHOLD, 1 << 30);
+    // A heap grows 16 MiB at a time (address space only until touched): the worker threads'
+    // heaps otherwise grow a page per mprotect (some 700 calls in a 1 M-cell build, GDAL's
+    // blocks among them), each holding up the other threads' page faults.
+    mallopt(M_TOP_PAD, 16 << 20);
 #endif
     const int code = penink::run_cli(argc, argv);
     std::cout.flush(), std::cerr.flush(), std::clog.flush();
