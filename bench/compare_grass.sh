@@ -12,7 +12,8 @@
 #                                                     of millions of cells: --refined 0:00:00.6
 #                                                     ../shared/data/jacksboro.tif 4326
 # env: PENINK=path/to/penink (default build/penink), REPEAT=5 (best of REPEAT runs is reported; the
-# runs of r.watershed and of penink's two routings alternate).
+# runs of r.watershed and of penink's two routings alternate), SEED=1 (--synthetic: the fractal's
+# random seed, GRASS_RANDOM_SEED, so a run can be repeated on the same surface).
 #
 # Comparison sets (interior cells = not on the border, no nodata neighbour), all on the DEM:
 #  - "non-flat" (the set for the >= 98 % target): an interior cell with a strictly lower
@@ -97,8 +98,8 @@ if [ $timing_only -eq 0 ]; then
     r.out.gdal --quiet -c input=gacc output="$tmp/gacc.asc" format=AAIGrid
 fi
 INSIDE
-grass --tmp-location "EPSG:$epsg" --exec bash "$tmp/inside.sh" >"$tmp/grass.out" 2>"$tmp/grass.err" \
-    || { cat "$tmp/grass.err" >&2; exit 1; }
+GRASS_RANDOM_SEED=${SEED:-1} grass --tmp-location "EPSG:$epsg" --exec bash "$tmp/inside.sh" >"$tmp/grass.out" \
+    2>"$tmp/grass.err" || { cat "$tmp/grass.err" >&2; exit 1; }
 grass_s=$(awk '/^grass_seconds/ { print $2 }' "$tmp/grass.out")
 
 # Prints one routing's best whole-command time (timed beside r.watershed's, above), its stage

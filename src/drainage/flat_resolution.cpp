@@ -143,8 +143,9 @@ struct Reached {
 };
 
 // Combined gradient of every reached cell from its towards-lower level and the away-from-higher
-// distance in mask (cells marked in `high`): 2 * level - away; low edges INT32_MIN. Parallel
-// chunks (each cell written once); returns how many reached cells the away pass had seen.
+// distance in mask (cells marked in `high`): 2 * level - away; low edges INT32_MIN; each reached
+// cell's flat_seen_low bit set. Parallel chunks (each cell written once); returns how many reached
+// cells the away pass had seen.
 std::size_t combine(Flats& s, const std::vector<Reached>& low, const CellBits& high) {
     std::atomic<std::size_t> seen_high{0};
     parallel_chunks(low.size(), 1 << 16, [&](std::size_t k0, std::size_t k1) {
@@ -154,18 +155,20 @@ std::size_t combine(Flats& s, const std::vector<Reached>& low, const CellBits& h
             const bool h = high.w[c >> 6] >> (c & 63) & 1;
             n += h && level > 1;
             s.mask[c] = level == 1 ? INT32_MIN : 2 * level - (h ? s.mask[c] : 0);
+            s.flags[c] |= flat_seen_low;
         }
         seen_high += n;
     });
     return seen_high;
 }
 
-// The reached cells' bits in flags: flat_seen_low for the towards-lower search's, flat_seen_high
-// for the away-from-higher one's (what flat_candidates and d8_ties read afterwards).
-void mark_reached(Flats& s, const std::vector<Reached>& low, const CellBits& high) {
-    for (const Reached& r : low) s.flags[r.cell] |= flat_seen_low;
-    for (std::size_t w = 0; w < high.w.size(); ++w)
-        for (std::uint64_t b = high.w[w]; b; b &= b - 1) s.flags[w * 64 + std::size_t(std::countr_zero(b))] |= flat_seen_high;
+// The away-from-higher search's cells get flat_seen_high (flat_seen_low came with combine: what
+// flat_candidates and d8_ties read afterwards); words of bits in parallel chunks.
+void mark_seen_high(Flats& s, const CellBits& high) {
+    parallel_chunks(high.w.size(), 1 << 12, [&](std::size_t w0, std::size_t w1) {
+        for (std::size_t w = w0; w < w1; ++w)
+            for (std::uint64_t b = high.w[w]; b; b &= b - 1) s.flags[w * 64 + std::size_t(std::countr_zero(b))] |= flat_seen_high;
+    });
 }
 
 // Every reached flat cell's direction from the combined gradients (its neighbours' all final), in
@@ -202,7 +205,7 @@ std::size_t resolve_flats(const std::vector<float>& z, const GridShape& g,
     run_beside([&] { bfs_levels(s, s.high, high, [&](std::uint32_t c, std::int32_t h) { s.mask[c] = h, ++high_cells; }); },
                [&] { bfs_levels(s, s.low, low_seen, [&](std::uint32_t c, std::int32_t l) { low.push_back({c, l}); }); });
     const std::size_t reached_high = combine(s, low, high);
-    mark_reached(s, low, high);
+    mark_seen_high(s, high);
     // flats no low edge reaches (impossible after priority-flood) stay without direction
     return settle_flats(s) + (high_cells - reached_high);
 }
