@@ -1,5 +1,6 @@
 #include "drainage/depression_drainage.hpp"
 
+#include <atomic>
 #include <bit>
 #include <utility>
 #include <vector>
@@ -32,12 +33,16 @@ struct Depressions {
     }
 
     // Marks the flat-resolved path from low point p until it steps down off the filled flat,
-    // reaches an outlet or joins a path already marked; raised cells on it get their flat code
-    // back (the descent pass has re-aimed them).
-    std::size_t mark_outflow(std::size_t p) {
+    // reaches an outlet or joins a path already marked (`claimed`: the first path to reach a
+    // cell owns it); raised cells on it get their flat code back (the descent pass has re-aimed
+    // them). A cell's outflow code depends on nothing any path changes, so the marked cells and
+    // their codes are the same whatever order the low points are taken in.
+    std::size_t mark_outflow(std::size_t p, std::uint64_t* claimed) {
         std::size_t marked = 0;
-        for (std::size_t c = p; !(flags[c] & depression_outflow);) {
-            flags[c] |= depression_outflow, ++marked;
+        for (std::size_t c = p;;) {
+            const std::uint64_t bit = std::uint64_t(1) << (c & 63);
+            if (std::atomic_ref<std::uint64_t>(claimed[c >> 6]).fetch_or(bit, std::memory_order_relaxed) & bit) break;
+            ++marked;
             if (flags[c] & fill_raised) {
                 const unsigned set = flat_candidates(filled, g, flags, flat_mask, c);
                 dir[c] = std::uint8_t(set & -set);
@@ -47,6 +52,23 @@ struct Depressions {
             if (filled[n] < filled[c]) break;
             c = n;
         }
+        return marked;
+    }
+
+    // mark_outflow from every low point, in parallel chunks, then the marked cells flagged
+    // depression_outflow; returns how many.
+    std::size_t mark_outflows(const std::vector<std::uint32_t>& low) {
+        std::vector<std::uint64_t> claimed((g.size() + 63) / 64, 0);
+        std::atomic<std::size_t> marked{0};
+        parallel_chunks(low.size(), 1024, [&](std::size_t k0, std::size_t k1) {
+            std::size_t n = 0;
+            for (std::size_t k = k0; k < k1; ++k) n += mark_outflow(low[k], claimed.data());
+            marked += n;
+        });
+        parallel_chunks(claimed.size(), 1 << 12, [&](std::size_t w0, std::size_t w1) {
+            for (std::size_t w = w0; w < w1; ++w)
+                for (std::uint64_t b = claimed[w]; b; b &= b - 1) flags[w * 64 + std::size_t(std::countr_zero(b))] |= depression_outflow;
+        });
         return marked;
     }
 };
@@ -98,9 +120,7 @@ std::size_t drain_depressions(const std::vector<float>& filled, std::vector<std:
     for (const auto& [i, is_low] : noted)
         if (is_low) low.push_back(i);
         else if (ties) ties->push_back(i);
-    std::size_t marked = 0;
-    for (const std::uint32_t p : low) marked += d.mark_outflow(p);
-    return marked;
+    return d.mark_outflows(low);
 }
 
 }  // namespace penink
