@@ -50,6 +50,7 @@ struct CellBits {
         w[i >> 6] = old | b;
         return old & b;
     }
+    bool test(std::uint32_t i) const { return w[i >> 6] >> (i & 63) & 1; }
 };
 
 // Low edges: cells with a direction (or outlets) next to a flat cell of the same elevation, each
@@ -93,8 +94,10 @@ void bfs_levels(const Flats& s, std::vector<std::uint32_t> level, CellBits& seen
         next.clear();
         for (std::uint32_t c : level) {
             visit(c, loops);
+            // most neighbours inside a flat were seen already: their bit (a small array) before
+            // their elevation and flags
             auto reach = [&](std::uint32_t n, int) {
-                if (s.z[n] == s.z[c] && s.flat(n) && !seen.test_and_set(n)) next.push_back(n);
+                if (!seen.test(n) && s.z[n] == s.z[c] && s.flat(n)) seen.test_and_set(n), next.push_back(n);
             };
             if (loops == 1) s.around(c, reach);  // low edges may lie on the border, flat cells never
             else s.around_flat(c, reach);
