@@ -76,9 +76,10 @@ struct RowXY {
         xs.resize(std::size_t(t.cols));
         for (int c = 0; c < t.cols; ++c) xs[std::size_t(c)] = affine_node_xy(a, t.origin, c, 0).x;
     }
+    float y(int r) const { return affine_node_xy(a, t.origin, 0, r).y; }  // a row's, with xs
     void row(int r, std::vector<glm::vec2>& out) const {
         out.resize(std::size_t(t.cols));
-        const float y = xs.empty() ? 0.0f : affine_node_xy(a, t.origin, 0, r).y;
+        const float y = xs.empty() ? 0.0f : this->y(r);
         for (int c = 0; c < t.cols; ++c)
             out[std::size_t(c)] = !t.pos.empty() ? glm::vec2(t.pos[t.index(c, r)])
                                   : !t.xy.empty() ? t.xy[t.index(c, r)]
@@ -98,10 +99,28 @@ void mean_spacing(const Terrain& t, double& dx, double& dy) {
     };
     const RowXY xy(t);
     std::vector<Sum> block((std::size_t(t.rows) + block_rows - 1) / block_rows);
+    // On an axis-aligned heights-only grid a step's length is the column's along rows and the
+    // row's along columns (the other coordinate's difference is 0): the same floats, each made once.
+    std::vector<float> along_row;
+    if (!xy.xs.empty())
+        for (int c = 0; c + 1 < t.cols; ++c)
+            along_row.push_back(glm::length(glm::vec2(xy.xs[std::size_t(c) + 1] - xy.xs[std::size_t(c)], 0.0f)));
     parallel_chunks(block.size(), 1, [&](std::size_t b0, std::size_t b1) {
         std::vector<glm::vec2> row, below;
         for (std::size_t b = b0; b < b1; ++b) {
             const int r0 = int(b * block_rows), r1 = std::min(t.rows, int((b + 1) * block_rows));
+            if (!along_row.empty()) {
+                for (int r = r0; r < r1; ++r) {
+                    const float ly = r + 1 < t.rows ? glm::length(glm::vec2(0.0f, xy.y(r + 1) - xy.y(r))) : 0.0f;
+                    for (int c = 0; c < t.cols; ++c) {
+                        const std::size_t i = t.index(c, r);
+                        if (!t.valid[i]) continue;
+                        if (c + 1 < t.cols && t.valid[i + 1]) block[b].sx += along_row[std::size_t(c)], ++block[b].nx;
+                        if (r + 1 < t.rows && t.valid[i + t.cols]) block[b].sy += ly, ++block[b].ny;
+                    }
+                }
+                continue;
+            }
             xy.row(r0, below);
             for (int r = r0; r < r1; ++r) {
                 std::swap(row, below);
