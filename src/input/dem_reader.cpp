@@ -309,11 +309,10 @@ double node_elevation(const Raster& r, std::size_t row, int c, double unit, doub
     return r.valid[row * r.w + c] ? (r.value(r.source(row, c)) * r.scale + r.offset) * unit : emin;
 }
 
-// t.pos: x, y relative to the bounds' rounded centre (t.origin), z the node elevation times the
-// vertical exaggeration; rows in parallel.
-void fill_positions(const Raster& r, const WorldXY& xy, Terrain& t, const std::string& path) {
-    t.pos.resize(std::size_t(r.w) * r.h);
-    const double s = t.vertical_exaggeration;
+// f(node index, row, c, x, y) for every node, x, y its world coordinates relative to the bounds'
+// rounded centre (t.origin) as floats; rows in parallel.
+template <class F>
+void each_node_xy(const Raster& r, const WorldXY& xy, const Terrain& t, const std::string& path, F&& f) {
     parallel_chunks(std::size_t(r.h), rows_per_chunk(r), [&](std::size_t r0, std::size_t r1) {
         std::vector<glm::dvec2> line(std::size_t(r.w));
         for (std::size_t row = r0; row < r1; ++row) {
@@ -324,10 +323,18 @@ void fill_positions(const Raster& r, const WorldXY& xy, Terrain& t, const std::s
             }
             for (int c = 0; c < r.w; ++c) {
                 const glm::dvec2 p = line[std::size_t(c)] - t.origin;
-                const double z = node_elevation(r, row, c, r.unit, r.emin) * s;
-                t.pos[row * r.w + c] = glm::vec3(float(p.x), float(p.y), float(z));
+                f(row * r.w + c, row, c, float(p.x), float(p.y));
             }
         }
+    });
+}
+
+// t.pos: each_node_xy's x, y and z the node elevation times the vertical exaggeration.
+void fill_positions(const Raster& r, const WorldXY& xy, Terrain& t, const std::string& path) {
+    t.pos.resize(std::size_t(r.w) * r.h);
+    const double s = t.vertical_exaggeration;
+    each_node_xy(r, xy, t, path, [&](std::size_t i, std::size_t row, int c, float x, float y) {
+        t.pos[i] = glm::vec3(x, y, float(node_elevation(r, row, c, r.unit, r.emin) * s));
     });
 }
 
@@ -345,20 +352,7 @@ void fill_heights(const Raster& r, double unit, double emin, double s, std::vect
 // set).
 void fill_xy(const Raster& r, const WorldXY& xy, Terrain& t, const std::string& path) {
     t.xy.resize(std::size_t(r.w) * r.h);
-    parallel_chunks(std::size_t(r.h), rows_per_chunk(r), [&](std::size_t r0, std::size_t r1) {
-        std::vector<glm::dvec2> line(std::size_t(r.w));
-        for (std::size_t row = r0; row < r1; ++row) {
-            try {
-                xy.row(r, int(row), line.data());
-            } catch (const GeographicLib::GeographicErr& e) {
-                fail_utm(path, t.utm_zone, t.north, e);
-            }
-            for (int c = 0; c < r.w; ++c) {
-                const glm::dvec2 p = line[std::size_t(c)] - t.origin;
-                t.xy[row * r.w + c] = glm::vec2(float(p.x), float(p.y));
-            }
-        }
-    });
+    each_node_xy(r, xy, t, path, [&](std::size_t i, std::size_t, int, float x, float y) { t.xy[i] = glm::vec2(x, y); });
 }
 
 // The values of `path` read, classified and (heights not null) turned into heights as if the
