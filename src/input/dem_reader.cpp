@@ -275,7 +275,7 @@ WorldXY world_coordinates(const Raster& r, const DemOptions& options, Terrain& t
         bool north = options.north;
         try {
             if (zone <= 0) zone = GeographicLib::UTMUPS::StandardZone(centre.y, centre.x), north = centre.y >= 0.0;
-            w.utm.emplace(r.w, w.lonlat, zone, north);
+            w.utm.emplace(r.w, r.h, w.lonlat, zone, north);  // the lattice form: a DEM is affine
             bound_nodes(r, w);  // projects every row's ends: a row out of the zone's range fails here
         } catch (const GeographicLib::GeographicErr& e) {
             fail_utm(path, zone, north, e);

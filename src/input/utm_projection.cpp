@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <utility>
 
 #include <GeographicLib/UTMUPS.hpp>
 
@@ -29,23 +30,29 @@ std::vector<std::array<double, 4>> uniform_weights(int step) {
     return w;
 }
 
-// One row of w nodes: exact at the sample columns (multiples of step, and w - 1), cubic between
-// (weights computed once where the four samples are equally spaced, per node at the row's ends).
-void project_row(glm::dvec2* row, int w, int r, const NodeLonLat& lonlat, int zone, bool north, int step,
-                 const std::vector<std::array<double, 4>>& weights) {
-    if (step <= 1 || w < 4 * step) {
-        for (int c = 0; c < w; ++c) row[c] = project_to_utm(lonlat(c, r), zone, north);
-        return;
-    }
+// The sample indices of n nodes: every step-th and the last (n >= 2).
+std::vector<int> samples(int n, int step) {
     std::vector<int> s;
-    for (int c = 0; c < w - 1; c += step) s.push_back(c);
-    s.push_back(w - 1);
-    std::vector<glm::dvec2> v(s.size());
-    for (std::size_t i = 0; i < s.size(); ++i) v[i] = project_to_utm(lonlat(s[i], r), zone, north);
+    for (int i = 0; i < n - 1; i += step) s.push_back(i);
+    s.push_back(n - 1);
+    return s;
+}
+
+// Whether n nodes are interpolated between samples (else every node is exact).
+bool interpolated(int n, int step) { return step > 1 && n >= 4 * step; }
+
+// The first of the four samples around interval i of s (shifted inwards at the ends) and whether
+// they are equally spaced (their cubic weights then computed once: `weights`).
+std::pair<std::size_t, bool> window(const std::vector<int>& s, std::size_t i, int step) {
+    const std::size_t first = std::min(i == 0 ? 0 : i - 1, s.size() - 4);
+    return {first, first + 1 == i && s[first + 3] - s[first] == 3 * step};
+}
+
+// One row of w nodes from its values v at the sample columns s: those exact, cubic between.
+void interpolate_row(glm::dvec2* row, int w, const std::vector<int>& s, const std::vector<glm::dvec2>& v, int step,
+                     const std::vector<std::array<double, 4>>& weights) {
     for (std::size_t i = 0; i + 1 < s.size(); ++i) {
-        // the window of four samples around interval i, shifted inwards at the row's ends
-        const std::size_t first = std::min(i == 0 ? 0 : i - 1, s.size() - 4);
-        const bool uniform = first + 1 == i && s[first + 3] - s[first] == 3 * step;
+        const auto [first, uniform] = window(s, i, step);
         row[s[i]] = v[i];
         for (int c = s[i] + 1; c < s[i + 1]; ++c) {
             const std::array<double, 4> k = uniform ? weights[std::size_t(c - s[i])] : cubic_weights(&s[first], c);
@@ -67,10 +74,44 @@ glm::dvec2 project_to_utm(glm::dvec2 lonlat, int zone, bool north) {
 }
 
 UtmRowProjector::UtmRowProjector(int w, NodeLonLat lonlat, int zone, bool north, int step)
-    : w_(w), zone_(zone), step_(step), north_(north), lonlat_(std::move(lonlat)), weights_(uniform_weights(step)) {}
+    : w_(w), zone_(zone), step_(step), north_(north), lonlat_(std::move(lonlat)), weights_(uniform_weights(step)) {
+    if (interpolated(w, step)) cols_ = samples(w, step);
+}
 
+UtmRowProjector::UtmRowProjector(int w, int h, NodeLonLat lonlat, int zone, bool north, int step)
+    : UtmRowProjector(w, std::move(lonlat), zone, north, step) {
+    if (cols_.empty() || !interpolated(h, step)) return;
+    rows_ = samples(h, step);
+    lattice_.resize(rows_.size() * cols_.size());
+    parallel_chunks(rows_.size(), 4, [&](std::size_t t0, std::size_t t1) {
+        for (std::size_t t = t0; t < t1; ++t)
+            for (std::size_t k = 0; k < cols_.size(); ++k) lattice_[t * cols_.size() + k] = exact(cols_[k], rows_[t]);
+    });
+}
+
+glm::dvec2 UtmRowProjector::exact(int c, int r) const { return project_to_utm(lonlat_(c, r), zone_, north_); }
+
+glm::dvec2 UtmRowProjector::from_lattice(std::size_t k, int r) const {
+    const std::size_t t = std::size_t(std::upper_bound(rows_.begin(), rows_.end(), r) - rows_.begin()) - 1;
+    const std::size_t n = cols_.size();
+    if (rows_[t] == r) return lattice_[t * n + k];
+    const auto [first, uniform] = window(rows_, t, step_);
+    const std::array<double, 4> w = uniform ? weights_[std::size_t(r - rows_[t])] : cubic_weights(&rows_[first], r);
+    return w[0] * lattice_[first * n + k] + w[1] * lattice_[(first + 1) * n + k] + w[2] * lattice_[(first + 2) * n + k] +
+           w[3] * lattice_[(first + 3) * n + k];
+}
+
+// Exact at the sample columns (their values from the lattice, the row's two ends always
+// projected), cubic between.
 void UtmRowProjector::row(int r, glm::dvec2* out) const {
-    project_row(out, w_, r, lonlat_, zone_, north_, step_, weights_);
+    if (cols_.empty()) {
+        for (int c = 0; c < w_; ++c) out[c] = exact(c, r);
+        return;
+    }
+    std::vector<glm::dvec2> v(cols_.size());
+    for (std::size_t k = 0; k < cols_.size(); ++k)
+        v[k] = lattice_.empty() || k == 0 || k + 1 == cols_.size() ? exact(cols_[k], r) : from_lattice(k, r);
+    interpolate_row(out, w_, cols_, v, step_, weights_);
 }
 
 UtmNodes project_grid_to_utm(int w, int h, const NodeLonLat& lonlat, int zone, bool north, int step) {

@@ -1,7 +1,9 @@
 // Row-wise UTM projection (utm_projection.hpp) against projecting every node with GeographicLib:
 // the cubic between exact nodes every 16 columns stays within 1 µm, also across a whole 6° zone
 // (and beyond its edge), near the equator, at high latitude, in the other hemisphere and on a
-// rotated grid (latitude changing along the row); rows too short to interpolate are exact.
+// rotated grid (latitude changing along the row); rows too short to interpolate are exact. The
+// lattice form (exact rows every 16 rows, cubic along the columns between) stays within 1 µm on
+// affine grids too, its rows' ends exact.
 #include <cmath>
 #include <vector>
 
@@ -64,6 +66,51 @@ TEST(UtmProjection, ANodeOutsideTheZonesRangeThrows) {
     // jacksboro's longitudes forced into zone 40 (57 E): GeographicLib refuses, as it does node by node
     const std::vector<glm::dvec2> ll = grid(400, {36.7}, -84.4, 3.0 / 3600.0, 0.0);
     EXPECT_THROW(project(ll, 400, 40, true), GeographicLib::GeographicErr);
+}
+
+// Largest difference between the lattice form's rows of an affine w x h grid (node (c, r) at
+// lon0 + c * dlon + r * dlon_r, lat0 - r * dlat + c * dlat_c) and projecting every node; `ends`
+// set when the rows' two ends were exact.
+double max_lattice_error(int w, int h, double lon0, double lat0, double dlon, double dlat, double dlon_r, double dlat_c,
+                         int zone, bool& ends) {
+    const NodeLonLat ll = [=](int c, int r) { return glm::dvec2(lon0 + c * dlon + r * dlon_r, lat0 - r * dlat + c * dlat_c); };
+    const UtmRowProjector rows(w, h, ll, zone, true);
+    std::vector<glm::dvec2> out(std::size_t(w), glm::dvec2(0.0));
+    double worst = 0.0;
+    ends = true;
+    for (int r = 0; r < h; ++r) {
+        rows.row(r, out.data());
+        for (int c = 0; c < w; ++c) {
+            const glm::dvec2 e = project_to_utm(ll(c, r), zone, true);
+            worst = std::max({worst, std::abs(out[std::size_t(c)].x - e.x), std::abs(out[std::size_t(c)].y - e.y)});
+            if ((c == 0 || c == w - 1) && out[std::size_t(c)] != e) ends = false;
+        }
+    }
+    return worst;
+}
+
+TEST(UtmProjection, LatticeRowsOfAffineGridsStayWithinOneMicrometre) {
+    const double cell = 3.0 / 3600.0;
+    bool ends = false;
+    // 3" cells, 1.5 degrees square over zone 17's west edge at mid latitude; 601 rows: an odd last
+    // lattice interval (600 = 37 * 16 + 8)
+    EXPECT_LT(max_lattice_error(1800, 601, -84.6, 37.5, cell, cell, 0.0, 0.0, 17, ends), 1e-6);
+    EXPECT_TRUE(ends);
+    // high latitude, and a rotated grid (both coordinates changing along rows and columns)
+    EXPECT_LT(max_lattice_error(700, 500, -81.0, 71.0, cell, cell, 0.0, 0.0, 17, ends), 1e-6);
+    EXPECT_LT(max_lattice_error(700, 500, 6.0, 46.0, cell, cell, 0.2 * cell, 0.3 * cell, 32, ends), 1e-6);
+    EXPECT_TRUE(ends);
+}
+
+TEST(UtmProjection, LatticeFormOfAShortGridIsTheRowForm) {
+    const double cell = 1.0 / 3600.0;  // 40 rows < 4 lattice steps: every row's samples exact
+    const NodeLonLat ll = [=](int c, int r) { return glm::dvec2(-84.4 + c * cell, 36.7 - r * cell); };
+    const UtmRowProjector lattice(500, 40, ll, 16, true), rows(500, ll, 16, true);
+    std::vector<glm::dvec2> a(500), b(500);
+    for (int r = 0; r < 40; ++r) {
+        lattice.row(r, a.data()), rows.row(r, b.data());
+        ASSERT_EQ(a, b) << r;
+    }
 }
 
 }  // namespace
