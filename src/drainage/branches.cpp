@@ -66,11 +66,15 @@ HeadRank head_rank(const DrainageGrid& g, const std::vector<std::uint8_t>& indeg
     std::atomic<std::size_t> total{0};
     parallel_chunks(h.bits.size(), 4096, [&](std::size_t w0, std::size_t w1) {
         std::size_t n = 0;
-        for (std::size_t i = w0 * 64; i < std::min(g.size(), w1 * 64); ++i) {
-            n += g.valid[i];
-            if (g.valid[i] && indeg[i] != 1) h.bits[i >> 6] |= std::uint64_t(1) << (i & 63);
+        for (std::size_t w = w0; w < w1; ++w) {  // a word of 64 cells at a time, without branches
+            const std::size_t i0 = w * 64, i1 = std::min(g.size(), i0 + 64);
+            std::uint64_t bits = 0;
+            for (std::size_t i = i0; i < i1; ++i) {
+                n += g.valid[i];
+                bits |= std::uint64_t((g.valid[i] != 0) & (indeg[i] != 1)) << (i - i0);
+            }
+            h.bits[w] = bits, h.before[w] = bit_count(bits);
         }
-        for (std::size_t w = w0; w < w1; ++w) h.before[w] = bit_count(h.bits[w]);
         total += n;
     });
     std::uint32_t n = 0;
