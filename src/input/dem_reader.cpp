@@ -196,15 +196,10 @@ Raster raster_header(GDALDataset& ds) {
     return r;
 }
 
-// The first band of `path` into r's values, valid mask and range, through a handle of its own
-// opened by `driver` (a GDAL dataset serves one thread at a time): it runs beside the spatial
-// reference's build.
-void read_values(const std::string& path, const std::string& driver, Raster& r) {
-    const QuietGdal quiet;  // GDAL's error handlers are per thread
-    const char* const drivers[] = {driver.c_str(), nullptr};
-    GDALDatasetUniquePtr ds = open_with(path, drivers);
-    if (!ds || ds->GetRasterCount() < 1) fail(path, "not a DEM raster (GDAL cannot read it)");
-    GDALRasterBand& band = *ds->GetRasterBand(1);
+// The first band of `ds` into r's values, valid mask and range.
+void read_values(GDALDataset& ds, Raster& r, const std::string& path) {
+    if (ds.GetRasterCount() < 1) fail(path, "not a DEM raster (GDAL cannot read it)");
+    GDALRasterBand& band = *ds.GetRasterBand(1);
     r.type = band.GetRasterDataType();
     if (float_exact(r.type)) read_band<float>(band, r, path);
     else read_band<double>(band, r, path);
@@ -355,12 +350,22 @@ void fill_xy(const Raster& r, const WorldXY& xy, Terrain& t, const std::string& 
     each_node_xy(r, xy, t, path, [&](std::size_t i, std::size_t, int, float x, float y) { t.xy[i] = glm::vec2(x, y); });
 }
 
-// The values of `path` read, classified and (heights not null) turned into heights as if the
-// vertical unit were metres (most DEMs; read_dem redoes them otherwise), on this thread while
-// the calling one builds the spatial reference, which GDAL's GeoTIFF driver takes the unit from.
-void read_heights(const std::string& path, const std::string& driver, double s, Raster& r, std::vector<float>* heights) {
-    read_values(path, driver, r);
+// The values of `ds` read, classified and (heights not null) turned into heights as if the
+// vertical unit were metres (most DEMs; read_dem redoes them otherwise): they need no spatial
+// reference, which GDAL's GeoTIFF driver takes the unit from.
+void read_heights(GDALDataset& ds, const std::string& path, double s, Raster& r, std::vector<float>* heights) {
+    read_values(ds, r, path);
     if (heights && r.emin <= r.emax) fill_heights(r, 1.0, r.emin, s, *heights);  // emin: scaled = metres
+}
+
+// read_heights through a handle of its own opened by `driver` (a GDAL dataset serves one thread
+// at a time), to run beside the spatial reference's build.
+void read_heights(const std::string& path, const std::string& driver, double s, Raster& r, std::vector<float>* heights) {
+    const QuietGdal quiet;  // GDAL's error handlers are per thread
+    const char* const drivers[] = {driver.c_str(), nullptr};
+    GDALDatasetUniquePtr ds = open_with(path, drivers);
+    if (!ds) fail(path, "not a DEM raster (GDAL cannot read it)");
+    read_heights(*ds, path, s, r, heights);
 }
 
 }  // namespace
@@ -379,13 +384,15 @@ Terrain read_dem(const std::string& path, const DemOptions& options) {
     t.source = path;
     t.geotransform = r.gt;
     // The spatial reference (PROJ's database: ~15 ms), the nodes' bounds and a geographic DEM's
-    // UTM x, y here while another thread reads the values; errors in the order of a sequential
+    // UTM x, y here while another thread reads the values, for a GeoTIFF: GDAL's GTiff driver
+    // builds the spatial reference when first asked, other drivers (an ASCII grid's .prj) as
+    // they open, which a second handle would do again. Errors in the order of a sequential
     // read: the band's, the grid's, then the projection's.
     std::optional<WorldXY> xy;
     std::exception_ptr crs_error;
     const std::string driver = ds->GetDriver()->GetDescription();
     std::vector<float>* heights = options.heights_only ? &t.z : nullptr;
-    run_beside([&] { read_heights(path, driver, ve, r, heights); }, [&] {
+    auto crs = [&] {
         try {
             if (const OGRSpatialReference* s = ds->GetSpatialRef(); s && !s->IsEmpty()) r.srs.reset(s->Clone());
             r.unit = vertical_unit(*ds->GetRasterBand(1));  // from the georeferencing just loaded
@@ -395,7 +402,13 @@ Terrain read_dem(const std::string& path, const DemOptions& options) {
         } catch (...) {
             crs_error = std::current_exception();
         }
-    });
+    };
+    if (driver == "GTiff") {
+        run_beside([&] { read_heights(path, driver, ve, r, heights); }, crs);
+    } else {
+        read_heights(*ds, path, ve, r, heights);
+        crs();
+    }
     range_to_metres(r);
     check_grid(r, path);
     if (crs_error) std::rethrow_exception(crs_error);
