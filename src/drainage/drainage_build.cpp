@@ -70,7 +70,8 @@ void priority_flood_directions(DrainageGrid& g, const GridShape& shape, const Dr
     report(progress, "draining into depressions", 0.35);
     drain_rims_into_depressions(g.z, flags, orig, shape, g.dx, g.dy, res.dir, &ties);
     report(progress, "resolving flats", 0.45);
-    res.stats.unresolved_flats = resolve_flats(g.z, shape, res.dir, flags, net.basin, &ties);
+    // raised cells get their codes from drain_depressions
+    res.stats.unresolved_flats = resolve_flats(g.z, shape, res.dir, flags, net.basin, &ties, false);
     report(progress, "draining depressions, breaking ties", 0.5);
     res.stats.outflow = drain_depressions(g.z, flags, orig, net.basin, shape, g.dx, g.dy, res.dir, &ties);
     break_d8_ties(ties, g.z, flags, orig, net.basin, shape, g.dx, g.dy, res.dir);

@@ -175,15 +175,17 @@ void mark_seen_high(Flats& s, const CellBits& high) {
 }
 
 // Every reached flat cell's direction from the combined gradients (its neighbours' all final), in
-// parallel chunks in cell order, the tied ones appended to s.ties; returns how many got none.
-std::size_t settle_flats(Flats& s) {
+// parallel chunks in cell order (raised cells only with raised_too), the tied ones appended to
+// s.ties; returns how many got none.
+std::size_t settle_flats(Flats& s, bool raised_too) {
     std::atomic<std::size_t> unresolved{0};
     constexpr std::uint8_t settle = flat_interior | flat_seen_low;
+    const std::uint8_t look = settle | (raised_too ? 0 : fill_raised);
     const std::vector<std::uint32_t> tied = parallel_collect<std::uint32_t>(
         s.g.size(), std::size_t(1) << 18, [&](std::size_t i0, std::size_t i1, std::vector<std::uint32_t>& out) {
             std::size_t none = 0;
             for (std::size_t i = i0; i < i1; ++i)
-                if ((s.flags[i] & settle) == settle) none += (s.dir[i] = masked_direction(s, std::uint32_t(i), out)) == 0;
+                if ((s.flags[i] & look) == settle) none += (s.dir[i] = masked_direction(s, std::uint32_t(i), out)) == 0;
             unresolved += none;
         });
     if (s.ties) s.ties->insert(s.ties->end(), tied.begin(), tied.end());
@@ -197,7 +199,7 @@ std::size_t settle_flats(Flats& s) {
 // cell reached settled (its neighbours' gradients all final), in the list's order.
 std::size_t resolve_flats(const std::vector<float>& z, const GridShape& g,
                           std::vector<std::uint8_t>& dir, std::vector<std::uint8_t>& flags,
-                          CellWords& mask, std::vector<std::uint32_t>* ties) {
+                          CellWords& mask, std::vector<std::uint32_t>* ties, bool raised_too) {
     mask.resize(g.size());
     Flats s{z.data(), g, dir.data(), flags.data(), reinterpret_cast<std::int32_t*>(mask.data()),
             d8_offsets(g), {}, {}, ties};
@@ -210,7 +212,7 @@ std::size_t resolve_flats(const std::vector<float>& z, const GridShape& g,
     const std::size_t reached_high = combine(s, low, high);
     mark_seen_high(s, high);
     // flats no low edge reaches (impossible after priority-flood) stay without direction
-    return settle_flats(s) + (high_cells - reached_high);
+    return settle_flats(s, raised_too) + (high_cells - reached_high);
 }
 
 }  // namespace penink

@@ -29,11 +29,13 @@ inline constexpr std::uint8_t flat_interior = 64;  // a flat interior cell (what
 // Returns the number of flat cells that stay without a direction (0 on a filled surface).
 // Afterwards `mask` holds, for every cell marked flat_seen_low, its combined gradient as int32
 // (INT32_MIN on low edges); flat cells with several neighbours of least gradient are appended to
-// `ties` when given, raised cells excepted (break_d8_ties settles them).
+// `ties` when given, raised cells excepted (break_d8_ties settles them). With raised_too false the
+// cells the fill raised keep code 0 (for drain_depressions, which gives every one of them its
+// code, from flat_candidates where it keeps the flat's).
 std::size_t resolve_flats(const std::vector<float>& z, const GridShape& g,
                           std::vector<std::uint8_t>& dir, std::vector<std::uint8_t>& flags,
                           CellWords& mask,
-                          std::vector<std::uint32_t>* ties = nullptr);
+                          std::vector<std::uint32_t>* ties = nullptr, bool raised_too = true);
 
 // Flat cell i (flat_seen_low set, not a low edge): bit k set for each neighbour k of least
 // gradient, from `flags` and `mask` as resolve_flats left them; resolve_flats gave the cell the
