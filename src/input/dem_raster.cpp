@@ -1,0 +1,166 @@
+#include "input/dem_raster.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+
+#include <cpl_vsi.h>
+#include <gdal_frmts.h>
+
+#include "core/error.hpp"
+#include "core/parallel_chunks.hpp"
+
+namespace penink::dem {
+
+void fail(const std::string& path, const std::string& what) { throw Error("input", path, what, ExitCode::bad_input); }
+
+namespace {
+
+GDALDatasetUniquePtr open_with(const std::string& path, const char* const* drivers) {
+    return GDALDatasetUniquePtr(GDALDataset::FromHandle(
+        GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, drivers, nullptr, nullptr)));
+}
+
+bool is_nodata(double v, bool has_nodata, double nodata, GDALDataType type) {
+    if (std::isnan(v)) return true;
+    if (!has_nodata) return false;
+    if (type == GDT_Float32) return float(v) == float(nodata);
+    return v == nodata;
+}
+
+// The per-dataset or alpha mask of the band (source order), empty when it has none beyond the
+// nodata value.
+std::vector<std::uint8_t> read_mask(GDALRasterBand& band, const std::string& path) {
+    const int flags = band.GetMaskFlags();
+    if (flags & (GMF_ALL_VALID | GMF_NODATA)) return {};
+    std::vector<std::uint8_t> mask(std::size_t(band.GetXSize()) * band.GetYSize());
+    if (band.GetMaskBand()->RasterIO(GF_Read, 0, 0, band.GetXSize(), band.GetYSize(), mask.data(),
+                                     band.GetXSize(), band.GetYSize(), GDT_Byte, 0, 0) != CE_None)
+        fail(path, "not a DEM raster (GDAL cannot read it)");
+    return mask;
+}
+
+// Flips the geotransform (and says which axes to flip) so row 0 is north and column 0 west.
+void orient(std::array<double, 6>& gt, int w, int h, bool& flip_c, bool& flip_r) {
+    flip_c = gt[1] < 0.0;
+    flip_r = gt[5] > 0.0;
+    if (flip_c) gt = {gt[0] + w * gt[1], -gt[1], gt[2], gt[3] + w * gt[4], -gt[4], gt[5]};
+    if (flip_r) gt = {gt[0] + h * gt[2], gt[1], -gt[2], gt[3] + h * gt[5], gt[4], -gt[5]};
+}
+
+// Reads the band as T into r.raw_f / r.raw_d, with its mask, nodata value, scale and offset (not
+// its unit: GDAL's GeoTIFF driver builds the spatial reference for that).
+template <class T>
+void read_band(GDALRasterBand& band, Raster& r, const std::string& path) {
+    auto& raw = [&]() -> auto& {
+        if constexpr (sizeof(T) == 4) return r.raw_f;
+        else return r.raw_d;
+    }();
+    raw.resize(std::size_t(r.w) * r.h);
+    const GDALDataType as = sizeof(T) == 4 ? GDT_Float32 : GDT_Float64;
+    if (band.RasterIO(GF_Read, 0, 0, r.w, r.h, raw.data(), r.w, r.h, as, 0, 0) != CE_None)
+        fail(path, "not a DEM raster (GDAL cannot read it)");
+    r.mask = read_mask(band, path);
+    int has = 0, has_scale = 0, has_offset = 0;
+    r.nodata = band.GetNoDataValue(&has), r.has_nodata = has != 0;
+    const double scale = band.GetScale(&has_scale), offset = band.GetOffset(&has_offset);
+    r.scale = has_scale ? scale : 1.0, r.offset = has_offset ? offset : 0.0;
+}
+
+// r.valid (from NaN, the nodata value and the mask; a non-finite elevation is invalid too) and
+// in r.emin / r.emax the range of the valid values scaled (value * scale + offset, before the
+// vertical unit, which GDAL's GeoTIFF driver takes from the spatial reference: so this runs beside
+// its build), in one pass over the values read (raw: r.raw_f or r.raw_d). range_to_metres after.
+template <class Raw>
+void classify_values(Raster& r, const Raw& raw) {
+    r.valid.resize(raw.size());
+    std::mutex merge;
+    parallel_chunks(std::size_t(r.h), rows_per_chunk(r), [&](std::size_t r0, std::size_t r1) {
+        double lo = std::numeric_limits<double>::max(), hi = -lo;
+        for (std::size_t row = r0; row < r1; ++row)
+            for (int c = 0; c < r.w; ++c) {
+                const std::size_t src = r.source(row, c);
+                const double v = double(raw[src]), e = v * r.scale + r.offset;
+                const bool ok = !is_nodata(v, r.has_nodata, r.nodata, r.type) && (r.mask.empty() || r.mask[src]) &&
+                                std::isfinite(e);
+                r.valid[row * r.w + c] = ok;
+                if (ok) lo = std::min(lo, e), hi = std::max(hi, e);
+            }
+        const std::lock_guard<std::mutex> lock(merge);  // min / max: the same in any order
+        r.emin = std::min(r.emin, lo), r.emax = std::max(r.emax, hi);
+    });
+}
+
+void classify_values(Raster& r) {
+    if (r.raw_f.empty()) classify_values(r, r.raw_d);
+    else classify_values(r, r.raw_f);
+}
+
+// Band types whose every value a float holds exactly.
+bool float_exact(GDALDataType t) {
+    return t == GDT_Float32 || t == GDT_Byte || t == GDT_Int16 || t == GDT_UInt16;
+}
+
+// The first band of `ds` into r's values, valid mask and range.
+void read_values(GDALDataset& ds, Raster& r, const std::string& path) {
+    if (ds.GetRasterCount() < 1) fail(path, "not a DEM raster (GDAL cannot read it)");
+    GDALRasterBand& band = *ds.GetRasterBand(1);
+    r.type = band.GetRasterDataType();
+    if (float_exact(r.type)) read_band<float>(band, r, path);
+    else read_band<double>(band, r, path);
+    classify_values(r);
+}
+
+}  // namespace
+
+GDALDatasetUniquePtr open_raster(const std::string& path) {
+    VSIStatBufL st;
+    if (VSIStatExL(path.c_str(), &st, VSI_STAT_EXISTS_FLAG) != 0) fail(path, "no such file");
+    GDALRegister_GTiff();
+    const char* const gtiff[] = {"GTiff", nullptr};
+    GDALDatasetUniquePtr ds = open_with(path, gtiff);
+    if (!ds) GDALAllRegister(), ds = open_with(path, nullptr);
+    if (!ds || ds->GetRasterCount() < 1 || ds->GetRasterXSize() < 1 || ds->GetRasterYSize() < 1)
+        fail(path, "not a DEM raster (GDAL cannot read it)");
+    return ds;
+}
+
+double vertical_unit(GDALRasterBand& band) {
+    const std::string u = band.GetUnitType();
+    if (u == "ft" || u == "foot" || u == "feet" || u == "international foot") return 0.3048;
+    if (u == "US survey foot" || u == "ftUS" || u == "us-ft") return 1200.0 / 3937.0;
+    return 1.0;
+}
+
+std::size_t rows_per_chunk(const Raster& r) { return std::max<std::size_t>(1, 65536 / std::size_t(r.w)); }
+
+Raster raster_header(GDALDataset& ds) {
+    Raster r;
+    r.w = ds.GetRasterXSize(), r.h = ds.GetRasterYSize();
+    // No geotransform: pixel units as metres, row 0 on top (north).
+    if (ds.GetGeoTransform(r.gt.data()) != CE_None) r.gt = {0.0, 1.0, 0.0, double(r.h), 0.0, -1.0};
+    orient(r.gt, r.w, r.h, r.flip_c, r.flip_r);
+    return r;
+}
+
+void fill_heights(const Raster& r, double unit, double emin, double s, std::vector<float>& z) {
+    z.resize(std::size_t(r.w) * r.h);
+    parallel_chunks(std::size_t(r.h), rows_per_chunk(r), [&](std::size_t r0, std::size_t r1) {
+        for (std::size_t row = r0; row < r1; ++row)
+            for (int c = 0; c < r.w; ++c) z[row * r.w + c] = float(node_elevation(r, row, c, unit, emin) * s);
+    });
+}
+void read_heights(GDALDataset& ds, const std::string& path, double s, Raster& r, std::vector<float>* heights) {
+    read_values(ds, r, path);
+    if (heights && r.emin <= r.emax) fill_heights(r, 1.0, r.emin, s, *heights);  // emin: scaled = metres
+}
+
+void read_heights(const std::string& path, const std::string& driver, double s, Raster& r, std::vector<float>* heights) {
+    const QuietGdal quiet;  // GDAL's error handlers are per thread
+    const char* const drivers[] = {driver.c_str(), nullptr};
+    GDALDatasetUniquePtr ds = open_with(path, drivers);
+    if (!ds) fail(path, "not a DEM raster (GDAL cannot read it)");
+    read_heights(*ds, path, s, r, heights);
+}
+
+}  // namespace penink::dem
