@@ -321,7 +321,8 @@ Corners divide_edges(const DrainageGrid& g, const FlowNetwork& net) {
             std::uint64_t differ = 0;
             for (int q = 0; q < n; ++q) {
                 const int i = i0 + q;
-                const bool x = (up[i - 1] != up[i]) | (up[i] != down[i]) | (down[i - 1] != down[i]) | (up[i - 1] != down[i - 1]);
+                // the four basins all alike unless one of three steps around the corner differs
+                const bool x = (up[i - 1] != up[i]) | (up[i] != down[i]) | (down[i] != down[i - 1]);
                 differ |= std::uint64_t(x) << q;
             }
             std::memset(out + i0, 0, std::size_t(n));

@@ -1,5 +1,7 @@
 // Branches (runs between sources/junctions and the next junction/outlet) with links, and divides
 // between basins, on hand grids.
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "drainage/branches.hpp"
@@ -133,6 +135,30 @@ TEST(Divides, SegmentsMatchBasinBoundaries) {
         }
     EXPECT_EQ(segments, pairs);
     EXPECT_GT(pairs, 0u);
+}
+
+
+TEST(Divides, SegmentsMatchBasinBoundariesOnAWideGrid) {
+    // rows of 150 cells (the corner scan goes 64 at a time), many basins draining to the border
+    const int cols = 150, rows = 40;
+    std::vector<float> z(std::size_t(cols) * rows);
+    for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < cols; ++c)
+            z[std::size_t(r) * cols + c] = float(5.0 + 3.0 * std::sin(0.37 * c) + 2.0 * std::cos(0.23 * r + 0.11 * c) +
+                                                 0.01 * ((c * 7919 + r * 104729) % 13));
+    DrainageResult res;
+    DrainageGrid g = make_regular_grid(cols, rows, 1.0, z, {});
+    const DrainageDb db = drainage_db_from_grid(g, {}, &res);
+    std::size_t segments = 0, pairs = 0;
+    for (const DvPolyline& p : db.divides) segments += p.count - 1;
+    for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < cols; ++c) {
+            const std::size_t i = std::size_t(r) * cols + c;
+            if (c + 1 < cols && res.net.basin[i] != res.net.basin[i + 1]) ++pairs;
+            if (r + 1 < rows && res.net.basin[i] != res.net.basin[i + cols]) ++pairs;
+        }
+    EXPECT_EQ(segments, pairs);
+    EXPECT_GT(pairs, 100u);
 }
 
 }  // namespace
