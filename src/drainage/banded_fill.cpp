@@ -106,7 +106,8 @@ void cell_spills(const Fill& s, int c, int r, SpillRun& out) {
     for (int k = 0; k < 4; ++k) {
         if (nc[k] < 0 || nc[k] >= g.cols || nr[k] >= g.rows) continue;
         const std::size_t n = std::size_t(nr[k]) * g.cols + nc[k];
-        if (g.valid[n] && s.labels[n] != s.labels[i]) out.note(s.labels[i], s.labels[n], std::max(s.local(i), s.local(n)));
+        if (g.valid[n] && s.labels[n] != s.labels[i])
+            out.note(s.labels[i], s.labels[n], std::max(s.local(i), s.local(n)));
     }
 }
 

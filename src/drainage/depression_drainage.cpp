@@ -67,7 +67,8 @@ struct Depressions {
         });
         parallel_chunks(claimed.size(), 1 << 12, [&](std::size_t w0, std::size_t w1) {
             for (std::size_t w = w0; w < w1; ++w)
-                for (std::uint64_t b = claimed[w]; b; b &= b - 1) flags[w * 64 + std::size_t(std::countr_zero(b))] |= depression_outflow;
+                for (std::uint64_t b = claimed[w]; b; b &= b - 1)
+                    flags[w * 64 + std::size_t(std::countr_zero(b))] |= depression_outflow;
         });
         return marked;
     }

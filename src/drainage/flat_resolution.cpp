@@ -170,7 +170,8 @@ std::size_t combine(Flats& s, const std::vector<Reached>& low, const CellBits& h
 void mark_seen_high(Flats& s, const CellBits& high) {
     parallel_chunks(high.w.size(), 1 << 12, [&](std::size_t w0, std::size_t w1) {
         for (std::size_t w = w0; w < w1; ++w)
-            for (std::uint64_t b = high.w[w]; b; b &= b - 1) s.flags[w * 64 + std::size_t(std::countr_zero(b))] |= flat_seen_high;
+            for (std::uint64_t b = high.w[w]; b; b &= b - 1)
+                s.flags[w * 64 + std::size_t(std::countr_zero(b))] |= flat_seen_high;
     });
 }
 
