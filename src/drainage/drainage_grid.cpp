@@ -64,8 +64,7 @@ PnPatch cell_patch(const SurfaceMesh& m, const std::vector<std::uint8_t>& valid,
 // x, y of the nodes, a row at a time (t.cols of them): the Terrain's pos, or after a heights-only
 // read (pos empty) its xy (a geographic DEM) or affine_node_xy on its grid. Without rotation
 // terms (gt[2] = gt[4] = 0) the other coordinate's term adds zero, so x depends on the column
-// only and y on the row only: the
-// columns' x are computed once, the same floats.
+// only and y on the row only: the columns' x are computed once, the same floats.
 struct RowXY {
     const Terrain& t;
     AffineNodes a;
