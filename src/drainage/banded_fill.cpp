@@ -181,18 +181,23 @@ std::vector<float> water_levels(const Spills& spills, std::size_t labels) {
 }
 
 // Every labelled cell raised to its label's water level where that is above its local level
-// (+0.0f: levels come out of the queue as +0, never -0, as in the one-thread fill); the band-edge
-// marks cleared. Returns the number of raised cells.
+// (+0.0f: levels come out of the queue as +0, never -0, as in the one-thread fill), cells of label
+// 0 (the grid's boundary's and nodata) passed over at once; the band-edge marks cleared (they lie
+// on the bands' first and last rows). Returns how many cells it raised that their band had not.
 std::size_t raise_to_water(Fill& s, const std::vector<float>& water) {
+    const GridShape& g = s.g;
+    for (int b = 0; b < s.bands; ++b)
+        for (const int r : {band_row(b, s.bands, g.rows), band_row(b + 1, s.bands, g.rows) - 1})
+            for (std::size_t i = std::size_t(r) * g.cols; i < std::size_t(r + 1) * g.cols; ++i)
+                s.flags[i] &= std::uint8_t(~flood::band_edge);
     std::atomic<std::size_t> raised{0};
-    parallel_chunks(s.g.size(), std::size_t(1) << 18, [&](std::size_t i0, std::size_t i1) {
+    parallel_chunks(g.size(), std::size_t(1) << 18, [&](std::size_t i0, std::size_t i1) {
         std::size_t n = 0;
         for (std::size_t i = i0; i < i1; ++i) {
-            if (!s.g.valid[i]) continue;
-            s.flags[i] &= std::uint8_t(~flood::band_edge);
-            if (const std::uint32_t l = s.labels[i]; l && water[l] > s.local(i))
-                s.level[i] = std::bit_cast<std::uint32_t>(water[l] + 0.0f), s.flags[i] |= fill_raised;
-            n += (s.flags[i] & fill_raised) != 0;
+            const std::uint32_t l = s.labels[i];
+            if (!l || !(water[l] > s.local(i))) continue;
+            n += (s.flags[i] & fill_raised) == 0;
+            s.level[i] = std::bit_cast<std::uint32_t>(water[l] + 0.0f), s.flags[i] |= fill_raised;
         }
         raised += n;
     });
@@ -220,8 +225,8 @@ FillStats priority_flood_levels_banded(const std::vector<float>& z, const GridSh
         for (std::size_t b = b0; b < b1; ++b) band[b] = flood_band(s, int(b));
     });
     FillStats st;
-    for (const FillStats& b : band) st.queued += b.queued;
-    st.raised = raise_to_water(s, water_levels(spill_edges(s), first_label(bands, g.cols)));
+    for (const FillStats& b : band) st.queued += b.queued, st.raised += b.raised;
+    st.raised += raise_to_water(s, water_levels(spill_edges(s), first_label(bands, g.cols)));
     return st;
 }
 
