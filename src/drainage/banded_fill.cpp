@@ -10,6 +10,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "core/bit_blocks.hpp"
 #include "core/parallel_chunks.hpp"
 #include "drainage/flood.hpp"
 
@@ -113,7 +114,7 @@ void cell_spills(const Fill& s, int c, int r, SpillRun& out) {
 
 // The spills from the cells of row r (cell_spills). A spill needs two labels, so the interior
 // cells whose four neighbours carry their own label (nodata's is 0, like the ocean's) are passed
-// over, 64 at a time by a mask built without branches.
+// over (each_where).
 void row_spills(const Fill& s, int r, SpillRun& out) {
     const GridShape& g = s.g;
     if (r + 1 >= g.rows || g.cols < 3) {
@@ -123,16 +124,9 @@ void row_spills(const Fill& s, int r, SpillRun& out) {
     const std::uint32_t* l = s.labels.data() + std::size_t(r) * g.cols;
     const std::uint32_t* d = l + g.cols;
     cell_spills(s, 0, r, out);
-    for (int c0 = 1; c0 < g.cols - 1; c0 += 64) {
-        const int n = std::min(64, g.cols - 1 - c0);
-        std::uint64_t differ = 0;
-        for (int k = 0; k < n; ++k) {
-            const int c = c0 + k;
-            const bool x = (l[c] != l[c + 1]) | (l[c] != d[c - 1]) | (l[c] != d[c]) | (l[c] != d[c + 1]);
-            differ |= std::uint64_t(x) << k;
-        }
-        for (; differ; differ &= differ - 1) cell_spills(s, c0 + std::countr_zero(differ), r, out);
-    }
+    each_where(
+        1, g.cols - 1, [&](int c) { return (l[c] != l[c + 1]) | (l[c] != d[c - 1]) | (l[c] != d[c]) | (l[c] != d[c + 1]); },
+        [&](int c) { cell_spills(s, c, r, out); });
     cell_spills(s, g.cols - 1, r, out);
 }
 

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <utility>
 
+#include "core/bit_blocks.hpp"
 #include "core/error.hpp"
 #include "core/parallel_chunks.hpp"
 #include "drainage/dv_format.hpp"
@@ -315,22 +316,12 @@ Corners divide_edges(const DrainageGrid& g, const FlowNetwork& net) {
         const std::uint32_t* down = j < g.rows ? net.basin.data() + g.index(0, j) : none.data();
         std::uint8_t* out = k.bits.data() + k.at(0, j);
         out[0] = corner_bits(0, up[0], 0, down[0]);
-        // most corners lie inside one basin: found 64 at a time by a mask built without branches
-        for (int i0 = 1; i0 < g.cols; i0 += 64) {
-            const int n = std::min(64, g.cols - i0);
-            std::uint64_t differ = 0;
-            for (int q = 0; q < n; ++q) {
-                const int i = i0 + q;
-                // the four basins all alike unless one of three steps around the corner differs
-                const bool x = (up[i - 1] != up[i]) | (up[i] != down[i]) | (down[i] != down[i - 1]);
-                differ |= std::uint64_t(x) << q;
-            }
-            std::memset(out + i0, 0, std::size_t(n));
-            for (; differ; differ &= differ - 1) {
-                const int i = i0 + std::countr_zero(differ);
-                out[i] = corner_bits(up[i - 1], up[i], down[i - 1], down[i]);
-            }
-        }
+        // most corners lie inside one basin (bits 0): the four basins are alike unless one of
+        // three steps around the corner differs
+        std::memset(out + 1, 0, std::size_t(g.cols - 1));
+        each_where(
+            1, g.cols, [&](int i) { return (up[i - 1] != up[i]) | (up[i] != down[i]) | (down[i] != down[i - 1]); },
+            [&](int i) { out[i] = corner_bits(up[i - 1], up[i], down[i - 1], down[i]); });
         out[g.cols] = corner_bits(up[g.cols - 1], 0, down[g.cols - 1], 0);
     }
     return k;
