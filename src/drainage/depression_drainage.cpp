@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/bit_blocks.hpp"
 #include "core/parallel_chunks.hpp"
 #include "drainage/d8_steepest.hpp"
 #include "drainage/flat_resolution.hpp"
@@ -65,11 +66,7 @@ struct Depressions {
             for (std::size_t k = k0; k < k1; ++k) n += mark_outflow(low[k], claimed.data());
             marked += n;
         });
-        parallel_chunks(claimed.size(), 1 << 12, [&](std::size_t w0, std::size_t w1) {
-            for (std::size_t w = w0; w < w1; ++w)
-                for (std::uint64_t b = claimed[w]; b; b &= b - 1)
-                    flags[w * 64 + std::size_t(std::countr_zero(b))] |= depression_outflow;
-        });
+        set_flag_at_bits(claimed, flags.data(), depression_outflow);
         return marked;
     }
 };

@@ -8,6 +8,7 @@
 #include <bit>
 #include <climits>
 
+#include "core/bit_blocks.hpp"
 #include "core/parallel_chunks.hpp"
 
 namespace penink {
@@ -165,16 +166,6 @@ std::size_t combine(Flats& s, const std::vector<Reached>& low, const CellBits& h
     return seen_high;
 }
 
-// The away-from-higher search's cells get flat_seen_high (flat_seen_low came with combine: what
-// flat_candidates and d8_ties read afterwards); words of bits in parallel chunks.
-void mark_seen_high(Flats& s, const CellBits& high) {
-    parallel_chunks(high.w.size(), 1 << 12, [&](std::size_t w0, std::size_t w1) {
-        for (std::size_t w = w0; w < w1; ++w)
-            for (std::uint64_t b = high.w[w]; b; b &= b - 1)
-                s.flags[w * 64 + std::size_t(std::countr_zero(b))] |= flat_seen_high;
-    });
-}
-
 // Every reached flat cell's direction from the combined gradients (its neighbours' all final), in
 // parallel chunks in cell order (raised cells only with raised_too), the tied ones appended to
 // s.ties; returns how many got none.
@@ -211,7 +202,9 @@ std::size_t resolve_flats(const std::vector<float>& z, const GridShape& g,
     run_beside([&] { bfs_levels(s, s.high, high, [&](std::uint32_t c, std::int32_t h) { s.mask[c] = h, ++high_cells; }); },
                [&] { bfs_levels(s, s.low, low_seen, [&](std::uint32_t c, std::int32_t l) { low.push_back({c, l}); }); });
     const std::size_t reached_high = combine(s, low, high);
-    mark_seen_high(s, high);
+    // the away-from-higher search's cells get flat_seen_high (flat_seen_low came with combine:
+    // what flat_candidates and d8_ties read afterwards)
+    set_flag_at_bits(high.w, s.flags, flat_seen_high);
     // flats no low edge reaches (impossible after priority-flood) stay without direction
     return settle_flats(s, raised_too) + (high_cells - reached_high);
 }
