@@ -88,17 +88,28 @@ struct RowXY {
     }
 };
 
+// Sums of the x, y step lengths between valid neighbours along rows (sx, nx) and columns (sy, ny).
+struct StepSums {
+    double sx = 0, sy = 0;
+    std::size_t nx = 0, ny = 0;
+    // Row r's steps: along(c) from column c to c + 1, down(c) from row r to r + 1.
+    template <class Along, class Down> void add_row(const Terrain& t, int r, Along&& along, Down&& down) {
+        for (int c = 0; c < t.cols; ++c) {
+            const std::size_t i = t.index(c, r);
+            if (!t.valid[i]) continue;
+            if (c + 1 < t.cols && t.valid[i + 1]) sx += along(c), ++nx;
+            if (r + 1 < t.rows && t.valid[i + t.cols]) sy += down(c), ++ny;
+        }
+    }
+};
+
 // Mean length of the x, y steps between valid neighbours along rows (dx) and columns (dy), summed
 // over fixed blocks of rows in parallel and the blocks' sums added in order: the same doubles
 // whatever the number of threads.
 void mean_spacing(const Terrain& t, double& dx, double& dy) {
     constexpr std::size_t block_rows = 64;
-    struct Sum {
-        double sx = 0, sy = 0;
-        std::size_t nx = 0, ny = 0;
-    };
     const RowXY xy(t);
-    std::vector<Sum> block((std::size_t(t.rows) + block_rows - 1) / block_rows);
+    std::vector<StepSums> block((std::size_t(t.rows) + block_rows - 1) / block_rows);
     // On an axis-aligned heights-only grid a step's length is the column's along rows and the
     // row's along columns (the other coordinate's difference is 0): the same floats, each made once.
     std::vector<float> along_row;
@@ -112,12 +123,7 @@ void mean_spacing(const Terrain& t, double& dx, double& dy) {
             if (!along_row.empty()) {
                 for (int r = r0; r < r1; ++r) {
                     const float ly = r + 1 < t.rows ? glm::length(glm::vec2(0.0f, xy.y(r + 1) - xy.y(r))) : 0.0f;
-                    for (int c = 0; c < t.cols; ++c) {
-                        const std::size_t i = t.index(c, r);
-                        if (!t.valid[i]) continue;
-                        if (c + 1 < t.cols && t.valid[i + 1]) block[b].sx += along_row[std::size_t(c)], ++block[b].nx;
-                        if (r + 1 < t.rows && t.valid[i + t.cols]) block[b].sy += ly, ++block[b].ny;
-                    }
+                    block[b].add_row(t, r, [&](int c) { return along_row[std::size_t(c)]; }, [&](int) { return ly; });
                 }
                 continue;
             }
@@ -125,19 +131,14 @@ void mean_spacing(const Terrain& t, double& dx, double& dy) {
             for (int r = r0; r < r1; ++r) {
                 std::swap(row, below);
                 if (r + 1 < t.rows) xy.row(r + 1, below);
-                for (int c = 0; c < t.cols; ++c) {
-                    const std::size_t i = t.index(c, r);
-                    if (!t.valid[i]) continue;
-                    if (c + 1 < t.cols && t.valid[i + 1])
-                        block[b].sx += glm::length(row[std::size_t(c) + 1] - row[std::size_t(c)]), ++block[b].nx;
-                    if (r + 1 < t.rows && t.valid[i + t.cols])
-                        block[b].sy += glm::length(below[std::size_t(c)] - row[std::size_t(c)]), ++block[b].ny;
-                }
+                block[b].add_row(
+                    t, r, [&](int c) { return glm::length(row[std::size_t(c) + 1] - row[std::size_t(c)]); },
+                    [&](int c) { return glm::length(below[std::size_t(c)] - row[std::size_t(c)]); });
             }
         }
     });
-    Sum s;
-    for (const Sum& b : block) s.sx += b.sx, s.sy += b.sy, s.nx += b.nx, s.ny += b.ny;
+    StepSums s;
+    for (const StepSums& b : block) s.sx += b.sx, s.sy += b.sy, s.nx += b.nx, s.ny += b.ny;
     dx = s.nx ? s.sx / s.nx : 1.0, dy = s.ny ? s.sy / s.ny : 1.0;
     if (!(dx > 0)) dx = 1.0;
     if (!(dy > 0)) dy = 1.0;
