@@ -41,23 +41,34 @@ std::vector<int> samples(int n, int step) {
 // Whether n nodes are interpolated between samples (else every node is exact).
 bool interpolated(int n, int step) { return step > 1 && n >= 4 * step; }
 
-// The first of the four samples around interval i of s (shifted inwards at the ends) and whether
-// they are equally spaced (their cubic weights then computed once: `weights`).
-std::pair<std::size_t, bool> window(const std::vector<int>& s, std::size_t i, int step) {
-    const std::size_t first = std::min(i == 0 ? 0 : i - 1, s.size() - 4);
-    return {first, first + 1 == i && s[first + 3] - s[first] == 3 * step};
+// The four samples around interval i of s (shifted inwards at the ends): the first of them and
+// whether they are equally spaced (their cubic weights then computed once: `weights`).
+struct Window {
+    std::size_t first;
+    bool uniform;
+    Window(const std::vector<int>& s, std::size_t i, int step)
+        : first(std::min(i == 0 ? 0 : i - 1, s.size() - 4)),
+          uniform(first + 1 == i && s[first + 3] - s[first] == 3 * step) {}
+    // The cubic's weights at index x inside interval i (s[i] < x < s[i + 1]).
+    std::array<double, 4> at(const std::vector<int>& s, std::size_t i, int x,
+                             const std::vector<std::array<double, 4>>& weights) const {
+        return uniform ? weights[std::size_t(x - s[i])] : cubic_weights(&s[first], x);
+    }
+};
+
+// The cubic through a, b, c, d with weights k.
+glm::dvec2 cubic(const std::array<double, 4>& k, glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, glm::dvec2 d) {
+    return k[0] * a + k[1] * b + k[2] * c + k[3] * d;
 }
 
 // One row of w nodes from its values v at the sample columns s: those exact, cubic between.
 void interpolate_row(glm::dvec2* row, int w, const std::vector<int>& s, const std::vector<glm::dvec2>& v, int step,
                      const std::vector<std::array<double, 4>>& weights) {
     for (std::size_t i = 0; i + 1 < s.size(); ++i) {
-        const auto [first, uniform] = window(s, i, step);
+        const Window win(s, i, step);
+        const std::size_t f = win.first;
         row[s[i]] = v[i];
-        for (int c = s[i] + 1; c < s[i + 1]; ++c) {
-            const std::array<double, 4> k = uniform ? weights[std::size_t(c - s[i])] : cubic_weights(&s[first], c);
-            row[c] = k[0] * v[first] + k[1] * v[first + 1] + k[2] * v[first + 2] + k[3] * v[first + 3];
-        }
+        for (int c = s[i] + 1; c < s[i + 1]; ++c) row[c] = cubic(win.at(s, i, c, weights), v[f], v[f + 1], v[f + 2], v[f + 3]);
     }
     row[w - 1] = v.back();
 }
@@ -95,10 +106,9 @@ glm::dvec2 UtmRowProjector::from_lattice(std::size_t k, int r) const {
     const std::size_t t = std::size_t(std::upper_bound(rows_.begin(), rows_.end(), r) - rows_.begin()) - 1;
     const std::size_t n = cols_.size();
     if (rows_[t] == r) return lattice_[t * n + k];
-    const auto [first, uniform] = window(rows_, t, step_);
-    const std::array<double, 4> w = uniform ? weights_[std::size_t(r - rows_[t])] : cubic_weights(&rows_[first], r);
-    return w[0] * lattice_[first * n + k] + w[1] * lattice_[(first + 1) * n + k] + w[2] * lattice_[(first + 2) * n + k] +
-           w[3] * lattice_[(first + 3) * n + k];
+    const Window win(rows_, t, step_);
+    auto at = [&](std::size_t j) { return lattice_[(win.first + j) * n + k]; };
+    return cubic(win.at(rows_, t, r, weights_), at(0), at(1), at(2), at(3));
 }
 
 // Exact at the sample columns (their values from the lattice, the row's two ends always
