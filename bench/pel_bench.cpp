@@ -10,29 +10,15 @@
 #include <benchmark/benchmark.h>
 
 #include "lines/photic_extremum_lines.hpp"
+#include "support/spheres.hpp"
 #include "surface/mesh_normals.hpp"
 
 namespace penink {
 namespace {
 
 TriangleMesh bumpy_sphere(int n) {
-    TriangleMesh m;
-    const int rings = n / 2;
-    for (int i = 0; i <= rings; ++i)
-        for (int j = 0; j <= n; ++j) {
-            double v = M_PI * i / rings, u = 2 * M_PI * j / n;
-            double r = 1.0 + 0.05 * std::sin(7 * u) * std::sin(5 * v);
-            m.positions.emplace_back(r * std::sin(v) * std::cos(u), r * std::sin(v) * std::sin(u), r * std::cos(v));
-        }
-    auto id = [&](int i, int j) { return unsigned(i * (n + 1) + j); };
-    for (int i = 0; i < rings; ++i)
-        for (int j = 0; j < n; ++j) {
-            m.triangles.emplace_back(id(i, j), id(i + 1, j), id(i + 1, j + 1));
-            m.triangles.emplace_back(id(i, j), id(i + 1, j + 1), id(i, j + 1));
-        }
-    m.material.assign(m.triangles.size(), 0);
-    m.material_names = {"default"};
-    return m;
+    return test::uv_sphere(n, 1.0, test::UvLayout::grid,
+                           [](double u, double v) { return 0.05 * std::sin(7 * u) * std::sin(5 * v); });
 }
 
 void BM_Pel(benchmark::State& state) {

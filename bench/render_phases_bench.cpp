@@ -9,9 +9,9 @@
 #include <string>
 
 #include "cli/batch_command.hpp"
-#include "cli/drainage_lines.hpp"
-#include "cli/terrain_drawing.hpp"
-#include "cli/terrain_view.hpp"
+#include "scene/drainage_lines.hpp"
+#include "scene/terrain_frames.hpp"
+#include "scene/terrain_view.hpp"
 #include "drainage/drainage_build.hpp"
 #include "export/style.hpp"
 #include "input/dem_reader.hpp"

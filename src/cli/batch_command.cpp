@@ -1,40 +1,28 @@
 #include "cli/batch_command.hpp"
-#include "cli/drawing_style.hpp"
 
-#include <chrono>
-#include <iostream>
 #include <filesystem>
 #include <iomanip>
+#include <iostream>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
 
-#include "cli/progress_bar.hpp"
-#include "cli/terrain_drawing.hpp"
-#include "cli/terrain_view.hpp"
 #include "core/error.hpp"
+#include "core/progress_bar.hpp"
+#include "core/stopwatch.hpp"
 #include "export/atomic_file.hpp"
 #include "export/export_drawing.hpp"
 #include "export/styled_drawing.hpp"
-#include "input/scene_position.hpp"
-#include "input/terrain_window.hpp"
 #include "lines/finish_drawing.hpp"
+#include "scene/flight_frames.hpp"
+#include "scene/scene_style.hpp"
+#include "scene/terrain_frames.hpp"
 
 namespace penink {
 
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
-
-// The "what" of an error from another stage, re-reported against the CSV line.
-std::string error_what(const Error& e) {
-    const std::string prefix = format_error(e.stage(), e.file(), "");
-    const std::string msg = e.what();
-    return msg.rfind(prefix, 0) == 0 ? msg.substr(prefix.size()) : msg;
-}
 
 std::vector<std::string> parse_formats(const std::string& text) {
     std::vector<std::string> out;
@@ -57,58 +45,6 @@ Scene batch_scene(const BatchOptions& o) {
 void write_text(const fs::path& p, const std::string& text) { write_file_atomically(p.string(), text); }
 
 }  // namespace
-
-Camera flight_camera(const Scene& scene, const Terrain& dem, const TerrainGround& terrain_ground, const FlightRecord& r,
-                     const std::string& csv) {
-    Camera cam;
-    glm::dvec2 xy;
-    try {
-        xy = parse_scene_position(r.position, dem, csv);
-    } catch (const Error& e) {
-        throw Error("batch", csv, "line " + std::to_string(r.line) + ": " + error_what(e));
-    }
-    cam.eye = {xy.x, xy.y, r.elevation * scene.vertical_exaggeration};
-    cam.azimuth = r.azimuth, cam.altitude = r.altitude, cam.fov = scene.camera.fov;
-    cam.width = scene.camera.width, cam.height = scene.camera.height;
-    double ground = 0.0;
-    if (terrain_ground.height(xy.x, xy.y, ground) && cam.eye.z <= ground) {
-        std::ostringstream m;
-        m << "line " << r.line << ": camera is inside the terrain (elevation " << r.elevation << " m, ground "
-          << ground / scene.vertical_exaggeration << " m)";
-        throw Error("batch", csv, m.str());
-    }
-    return cam;
-}
-
-Scene frame_scene(const Scene& scene, const FlightRecord& r) {
-    Scene s = scene;
-    if (r.light_azimuth) s.light.azimuth = *r.light_azimuth;
-    if (r.light_altitude) s.light.altitude = *r.light_altitude;
-    if (r.min_score) s.creases.min_score = *r.min_score;
-    return s;
-}
-
-namespace {
-bool window_empty(const GridWindow& w) { return w.cols() < 2 || w.rows() < 2; }
-
-GridWindow window_union(const std::vector<GridWindow>& windows) {
-    GridWindow u;
-    bool any = false;
-    for (const GridWindow& w : windows) {
-        if (window_empty(w)) continue;
-        if (!any) u = w, any = true;
-        u.c0 = std::min(u.c0, w.c0), u.r0 = std::min(u.r0, w.r0);
-        u.c1 = std::max(u.c1, w.c1), u.r1 = std::max(u.r1, w.r1);
-    }
-    return u;
-}
-}  // namespace
-
-GridWindow union_window(const Terrain& dem, const std::vector<Camera>& cameras) {
-    std::vector<GridWindow> windows;
-    for (const Camera& c : cameras) windows.push_back(visible_window(dem, view_projection(c), 1));
-    return window_union(windows);
-}
 
 double export_frame(Drawing& drawing, const Style& style, std::uint64_t seed, const std::vector<std::string>& paths) {
     const auto t0 = Clock::now();
@@ -198,41 +134,6 @@ Subcommand add_batch_command(CLI::App& app) {
 
 namespace {
 
-struct Flight {
-    Scene scene;
-    Style style;
-    Terrain dem, model;
-    std::vector<FlightRecord> records;
-    std::vector<Camera> cameras;
-};
-
-// Everything checked before the first frame: scene, CSV, each camera; then the modelled window.
-Flight prepare_flight(const BatchOptions& o, const Log& log) {
-    Flight f;
-    f.scene = batch_scene(o);
-    f.style = scene_style(f.scene);
-    apply_object_sketch(f.scene, f.style);
-    f.records = read_flight_path(o.path);
-    f.dem = read_scene_dem(f.scene);
-    std::vector<GridWindow> windows;
-    const TerrainGround ground(f.dem);
-    for (const FlightRecord& r : f.records) {
-        f.cameras.push_back(flight_camera(f.scene, f.dem, ground, r, o.path));
-        windows.push_back(visible_window(f.dem, view_projection(f.cameras.back()), 1));
-        if (window_empty(windows.back()))
-            throw Error("batch", o.path, "line " + std::to_string(r.line) + ": the camera sees no part of the DEM");
-    }
-    const GridWindow w = o.whole_dem ? GridWindow{0, 0, f.dem.cols, f.dem.rows} : window_union(windows);
-    f.model = crop_terrain(f.dem, w);
-    glm::dvec3 lo, hi;
-    terrain_bounds(f.model, lo, hi);
-    for (Camera& c : f.cameras) fit_depth_range(c, lo, hi);
-    log.info("modelled " + std::to_string(std::size_t(w.cols() - 1) * (w.rows() - 1)) + " of " +
-             std::to_string(std::size_t(f.dem.cols - 1) * (f.dem.rows - 1)) + " DEM cells for " +
-             std::to_string(f.records.size()) + " frames");
-    return f;
-}
-
 std::vector<std::string> frame_paths(const fs::path& dir, int frame, const std::vector<std::string>& formats) {
     std::ostringstream name;
     name << "frame_" << std::setw(4) << std::setfill('0') << frame;
@@ -247,17 +148,20 @@ int run_batch(const BatchOptions& o) {
     const auto start = Clock::now();
     const Log log{o.verbose};
     const std::vector<std::string> formats = parse_formats(o.formats);
-    Flight f = prepare_flight(o, log);
+    Scene scene = batch_scene(o);
+    const Style style = scene_style(scene);
+    apply_object_sketch(scene, style);
+    const Flight f = plan_flight(scene, o.path, o.whole_dem, log);
     std::error_code ec;
     fs::create_directories(o.out_dir, ec);
     if (!fs::is_directory(o.out_dir)) throw Error("batch", o.out_dir, "cannot create the output directory");
     const auto context = make_gl_context(parse_gl_backend(o.gl));
     BatchSummary summary;
     summary.machine = context->description(), summary.scene = o.input;
-    summary.width = f.scene.camera.width, summary.height = f.scene.camera.height;
+    summary.width = scene.camera.width, summary.height = scene.camera.height;
     summary.cells = std::size_t(f.model.cols - 1) * (f.model.rows - 1);
     summary.dem_cells = std::size_t(f.dem.cols - 1) * (f.dem.rows - 1);
-    TerrainFrames frames(*context, f.scene, f.dem, f.model, summary.width, summary.height, log);
+    TerrainFrames frames(*context, scene, f.dem, f.model, summary.width, summary.height, log);
     summary.setup_s = ms_since(start) / 1000.0;
     std::vector<FrameTiming> timings;
     ProgressBar bar(std::cerr, stderr_is_terminal(), "batch", int(f.records.size()));
@@ -265,9 +169,9 @@ int run_batch(const BatchOptions& o) {
         const auto t0 = Clock::now();
         FrameTiming t;
         t.frame = int(i) + 1, t.warmup = int(i) < o.warmup;
-        SceneDrawing d = frames.draw(f.cameras[i], frame_scene(f.scene, f.records[i]));
+        SceneDrawing d = frames.draw(f.cameras[i], frame_scene(scene, f.records[i]));
         t.times = d.times, t.trace = d.trace_ms;
-        t.lay = export_frame(d.drawing, f.style, f.scene.seed, frame_paths(o.out_dir, t.frame, formats));
+        t.lay = export_frame(d.drawing, style, scene.seed, frame_paths(o.out_dir, t.frame, formats));
         t.total = ms_since(t0);
         (t.warmup ? summary.warmup_wall_s : summary.frames_wall_s) += t.total / 1000.0;
         timings.push_back(t);

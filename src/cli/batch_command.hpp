@@ -9,12 +9,9 @@
 #include <vector>
 
 #include "cli/commands.hpp"
-#include "cli/flight_path.hpp"
-#include "cli/scene_drawing.hpp"
+#include "scene/frame_source.hpp"
 #include "cli/scene_overrides.hpp"
-#include "cli/terrain_view.hpp"
 #include "export/style.hpp"
-#include "input/terrain.hpp"
 
 namespace penink {
 
@@ -34,17 +31,6 @@ struct FrameTiming {
     double lay = 0;        // CPU: finish, style and export of the frame's files, ms
     double total = 0;      // wall time of the whole frame, ms
 };
-
-// The camera of one record over `dem` (its near/far fitted to `model`); errors name the CSV
-// and line: "line N: cannot parse position ...", "line N: camera is inside the terrain (...)".
-Camera flight_camera(const Scene& scene, const Terrain& dem, const TerrainGround& ground, const FlightRecord& record,
-                     const std::string& csv);
-
-// The scene with one record's per-frame values (light; min_score sets the creases' threshold).
-Scene frame_scene(const Scene& scene, const FlightRecord& record);
-
-// The smallest window holding every camera's visible window (margin 1 node); empty when none.
-GridWindow union_window(const Terrain& dem, const std::vector<Camera>& cameras);
 
 // "frame,warmup,tft,aft,dm,sil,ridges,lay,readback,trace,total" and one row per frame.
 std::string timings_csv(const std::vector<FrameTiming>& frames);

@@ -1,57 +1,23 @@
-// `penink bench SCENE_OR_DEM --out DIR`: speed against accuracy of the silhouette path. Sweeps
-// image size x silhouette method (Toward/Away, Adjacency, object-space) x tessellation max_level;
-// for each, time per frame = median wall ms of k frames after warm-up (TFT/AFT + SIL + read-back
-// + tracing; creases cost the same in every row) and accuracy of the SIL mask against the exact
-// reference: object-space silhouettes (lines/object_silhouettes.hpp) of the PN surface tessellated
-// to ref_edge_px on screen at the largest size (max level 16), all visible runs, scaled to the
-// smaller sizes; precision / recall at 1 and 2 px and
-// mean distances (lines/line_accuracy.hpp). Then "model no more than a scene needs" rows:
-// projected-size tessellation vs a fixed level, frustum culling, DEM window cropping, each on/off,
-// for the scene's camera and a 4x zoom (fov / 4) where most of the DEM is out of view.
-// Writes DIR/bench.csv, DIR/speed_accuracy.svg; prints a table.
+// `penink bench SCENE_OR_DEM --out DIR`: speed against accuracy of the silhouette path
+// (scene/speed_accuracy.hpp). Writes DIR/bench.csv, DIR/speed_accuracy.svg; prints a table.
 #pragma once
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli/commands.hpp"
-#include "cli/speed_accuracy_chart.hpp"
+#include "scene/speed_accuracy.hpp"
 
 namespace penink {
 
 struct BenchOptions {
     std::string input, out_dir;
-    std::string levels = "1,2,4,8";
-    std::string sizes = "500x375,1000x750,2000x1500";
-    std::string methods = "toward-away,adjacency,object-space";
-    int frames = 3, warmup = 1;
-    double ref_edge_px = 3.0;  // at the largest size; smaller sizes reuse it scaled
-    bool needs = true;          // the "model no more than a scene needs" rows
-    std::string needs_size;     // their image size WxH; "" = the scene's
+    // Lists as given on the command line; "" = the sweep's defaults (SpeedAccuracyConfig).
+    std::string levels, sizes, methods, needs_size;
+    SpeedAccuracyConfig config;  // frames, warmup, ref_edge_px, needs
     std::string gl = "osmesa";
     bool verbose = false;
 };
-
-struct BenchRow {
-    std::string group;     // "sweep" or "needs"
-    std::string view;      // "scene" or "zoom4"
-    int width = 0, height = 0;
-    std::string method;    // toward-away | adjacency | object-space
-    int level = 0;         // tessellation max_level
-    bool adaptive = true, culling = true, cropping = true;
-    std::size_t cells = 0;
-    double ms = 0;         // median wall ms per frame
-    double tft = 0, aft = 0, sil = 0;  // GPU ms of that frame's passes (median frame)
-    double p1 = 0, r1 = 0, p2 = 0, r2 = 0, drawn_to_ref = 0, ref_to_drawn = 0;
-    double ref_ms = 0;     // time to compute the reference for this view (once per view)
-};
-
-// CSV header and rows (fixed precision).
-std::string bench_csv(const std::vector<BenchRow>& rows);
-// Human-readable table (fixed-width columns).
-std::string bench_table(const std::vector<BenchRow>& rows);
-// Chart series from the sweep rows: one colour per method, one dash per image size, points in
-// level order labelled "L<level>"; y = F1 score at 1 px.
-std::vector<ChartSeries> bench_chart_series(const std::vector<BenchRow>& rows);
 
 // "1,2,4" -> {1,2,4}; "500x375,..." -> sizes. Errors: Error("cli", "", "--levels: ...").
 std::vector<int> parse_int_list(const std::string& text, const std::string& option);

@@ -6,7 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "drainage/drainage_command.hpp"
+#include "cli/drainage_command.hpp"
 
 namespace penink {
 

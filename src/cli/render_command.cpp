@@ -6,8 +6,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "cli/drawing_style.hpp"
-#include "cli/scene_drawing.hpp"
+#include "scene/scene_style.hpp"
+#include "scene/frame_source.hpp"
 #include "core/error.hpp"
 #include "export/export_drawing.hpp"
 #include "export/styled_drawing.hpp"

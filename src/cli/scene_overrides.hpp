@@ -4,7 +4,7 @@
 #pragma once
 #include <string>
 
-#include "cli/scene.hpp"
+#include "scene/scene.hpp"
 
 namespace CLI {
 class App;

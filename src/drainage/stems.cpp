@@ -61,4 +61,35 @@ std::vector<std::vector<std::uint32_t>> drainage_stems(const DrainageDb& db) {
     return stems;
 }
 
+std::vector<std::vector<std::uint32_t>> divide_polylines(const DrainageDb& db) {
+    const std::vector<DvPolyline>& lines = db.divides;
+    std::vector<std::vector<std::uint32_t>> out;
+    for (const DvPolyline& l : lines) {
+        out.emplace_back(l.count);
+        for (std::uint32_t k = 0; k < l.count; ++k) out.back()[k] = l.first + k;
+    }
+    return out;
+}
+
+std::vector<std::vector<std::uint32_t>> lines_in_box(const std::vector<std::vector<std::uint32_t>>& lines,
+                                                     const DvVertices& v, glm::vec2 lo, glm::vec2 hi) {
+    std::vector<std::vector<std::uint32_t>> out;
+    const auto inside = [&](std::uint32_t i) {
+        return v[i].x >= lo.x && v[i].x <= hi.x && v[i].y >= lo.y && v[i].y <= hi.y;
+    };
+    for (const auto& line : lines) {
+        std::size_t k = 0;
+        while (k < line.size()) {
+            while (k < line.size() && !inside(line[k])) ++k;
+            if (k == line.size()) break;
+            std::size_t end = k;
+            while (end < line.size() && inside(line[end])) ++end;
+            const std::size_t a = k > 0 ? k - 1 : k, b = std::min(end + 1, line.size());
+            out.emplace_back(line.begin() + std::ptrdiff_t(a), line.begin() + std::ptrdiff_t(b));
+            k = end;
+        }
+    }
+    return out;
+}
+
 }  // namespace penink

@@ -7,10 +7,21 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/vec2.hpp>
+
 #include "drainage/drainage_db.hpp"
 
 namespace penink {
 
 std::vector<std::vector<std::uint32_t>> drainage_stems(const DrainageDb& db);
+
+// The basin divides as vertex index lists into DrainageDb::divide_vertices.
+std::vector<std::vector<std::uint32_t>> divide_polylines(const DrainageDb& db);
+
+// The pieces of each line (index lists into `vertices`) inside the plan box [lo, hi], local
+// metres, with one vertex beyond the box at each cut so lines run to its edge: a view cropped to
+// part of a large DEM scores only what it models.
+std::vector<std::vector<std::uint32_t>> lines_in_box(const std::vector<std::vector<std::uint32_t>>& lines,
+                                                     const DvVertices& vertices, glm::vec2 lo, glm::vec2 hi);
 
 }  // namespace penink

@@ -8,8 +8,6 @@
 #include <sstream>
 #include <tuple>
 
-#include <glm/common.hpp>
-
 #include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/Simple_cartesian.h>
 
@@ -132,20 +130,6 @@ TriangleMesh read_mesh(const std::string& path, bool weld) {
     if (m.triangles.empty()) throw Error("input", path, "mesh has no triangles");
     m.source = path;
     return m;
-}
-
-void mesh_y_up_to_z_up(TriangleMesh& mesh) {
-    for (auto& p : mesh.positions) p = glm::vec3(p.x, -p.z, p.y);
-}
-
-bool mesh_bounds(const TriangleMesh& mesh, glm::vec3& lo, glm::vec3& hi) {
-    if (mesh.positions.empty()) return false;
-    lo = hi = mesh.positions[0];
-    for (const auto& p : mesh.positions) {
-        lo = glm::min(lo, p);
-        hi = glm::max(hi, p);
-    }
-    return true;
 }
 
 }  // namespace penink

@@ -3,21 +3,12 @@
 // per-face material of OBJ `usemtl` groups (scanned here, CGAL drops them).
 // Faces of files without materials all get material 0 named "default".
 #pragma once
-#include <cstdint>
 #include <string>
 #include <vector>
 
-#include <glm/vec3.hpp>
+#include "core/triangle_mesh.hpp"
 
 namespace penink {
-
-struct TriangleMesh {
-    std::vector<glm::vec3> positions;       // vertex positions, file units
-    std::vector<glm::uvec3> triangles;      // vertex indices, file winding (CCW = front)
-    std::vector<std::uint32_t> material;    // per triangle: index into material_names
-    std::vector<std::string> material_names;  // at least one entry ("default")
-    std::string source;                     // file it came from (for messages)
-};
 
 // Reads path (.obj, .ply, .off; extension case-insensitive). Throws penink::Error("input", path,
 // ...) with "no such file", "not a mesh (cannot read OBJ/PLY/OFF)", "mesh has no triangles" or
@@ -32,11 +23,5 @@ void weld_mesh(TriangleMesh& mesh);
 // Per-face material names of an OBJ text, one per polygon face (`f` line) in file order;
 // faces before any `usemtl` are "default". Exposed for tests.
 std::vector<std::string> scan_obj_face_materials(const std::string& obj_text);
-
-// Rotates a y-up mesh into the z-up world frame of conventions.md: (x, y, z) -> (x, -z, y).
-void mesh_y_up_to_z_up(TriangleMesh& mesh);
-
-// Axis-aligned bounds of the positions; false for an empty mesh.
-bool mesh_bounds(const TriangleMesh& mesh, glm::vec3& lo, glm::vec3& hi);
 
 }  // namespace penink

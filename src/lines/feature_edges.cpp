@@ -128,4 +128,68 @@ FaceGroups planar_face_groups(const TriangleMesh& mesh, const std::vector<MeshEd
     return g;
 }
 
+namespace {
+
+bool is_sharp(EdgeKind k) { return k == EdgeKind::crease || k == EdgeKind::nonmanifold; }
+
+bool faces_eye(const TriangleMesh& m, int f, const glm::vec3& eye) {
+    const glm::uvec3& t = m.triangles[f];
+    const glm::vec3 &a = m.positions[t.x], &b = m.positions[t.y], &c = m.positions[t.z];
+    return glm::dot(glm::cross(b - a, c - a), eye - a) > 0.0f;
+}
+
+unsigned find_root(std::vector<unsigned>& parent, unsigned i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+}
+
+// Corner (3 * face + k) of face f at vertex v.
+unsigned corner_of(const TriangleMesh& m, int f, unsigned v) {
+    const glm::uvec3& t = m.triangles[f];
+    return 3u * unsigned(f) + (t.x == v ? 0u : t.y == v ? 1u : 2u);
+}
+
+}  // namespace
+
+FeatureSplit split_feature_edges(const TriangleMesh& mesh, const std::vector<MeshEdge>& edges,
+                                 const glm::vec3& eye) {
+    FeatureSplit out;
+    out.sharp.assign(mesh.positions.size(), 0);
+    for (const MeshEdge& e : edges) {
+        if (e.kind == EdgeKind::none) continue;
+        if (is_sharp(e.kind)) out.sharp[e.a] = out.sharp[e.b] = 1;
+        if (e.face_count == 2 && !faces_eye(mesh, e.face0, eye) && !faces_eye(mesh, e.face1, eye))
+            continue;  // between two faces turned away: hidden on a closed surface
+        const bool contour = is_sharp(e.kind) && e.face0 >= 0 && e.face1 >= 0 &&
+                             faces_eye(mesh, e.face0, eye) != faces_eye(mesh, e.face1, eye);
+        (contour ? out.contours : out.features).push_back(e);
+    }
+    return out;
+}
+
+TriangleMesh split_at_creases(const TriangleMesh& mesh, const std::vector<MeshEdge>& edges) {
+    std::vector<unsigned> parent(mesh.triangles.size() * 3);
+    for (unsigned i = 0; i < parent.size(); ++i) parent[i] = i;
+    for (const MeshEdge& e : edges) {  // join the corners of smooth manifold edges
+        if (is_sharp(e.kind) || e.face_count != 2) continue;
+        for (unsigned v : {e.a, e.b}) {
+            const unsigned r0 = find_root(parent, corner_of(mesh, e.face0, v));
+            const unsigned r1 = find_root(parent, corner_of(mesh, e.face1, v));
+            parent[std::max(r0, r1)] = std::min(r0, r1);
+        }
+    }
+    TriangleMesh out = mesh;
+    out.positions.clear();
+    std::vector<unsigned> index(parent.size(), ~0u);
+    for (unsigned c = 0; c < parent.size(); ++c) {  // new vertices in corner order: deterministic
+        const unsigned r = find_root(parent, c);
+        if (index[r] == ~0u) {
+            index[r] = unsigned(out.positions.size());
+            out.positions.push_back(mesh.positions[mesh.triangles[c / 3][c % 3]]);
+        }
+        out.triangles[c / 3][c % 3] = index[r];
+    }
+    return out;
+}
+
 }  // namespace penink

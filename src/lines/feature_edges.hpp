@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "input/mesh_reader.hpp"
+#include "core/triangle_mesh.hpp"
 #include "lines/photic_extremum_lines.hpp"
 
 namespace penink {
@@ -51,5 +51,21 @@ struct FaceGroups {
 };
 FaceGroups planar_face_groups(const TriangleMesh& mesh, const std::vector<MeshEdge>& edges,
                               float planar_angle = 1.0f);
+
+// Crease / contour split of the feature edges for an eye: a crease or non-manifold edge between
+// a face turned toward the eye and one turned away is a silhouette, not a feature edge.
+// Edges between two faces turned away are left out (hidden on a closed surface; the depth test
+// alone lets a few pixels of them through where they meet the outline).
+// `sharp` marks the vertices on a crease or non-manifold edge.
+struct FeatureSplit {
+    std::vector<MeshEdge> features, contours;
+    std::vector<char> sharp;  // per vertex
+};
+FeatureSplit split_feature_edges(const TriangleMesh& mesh, const std::vector<MeshEdge>& edges,
+                                 const glm::vec3& eye);
+
+// The mesh with its vertices split at crease and non-manifold edges (one vertex per smooth fan
+// of corners), so vertex normals never average across a crease; same triangles and materials.
+TriangleMesh split_at_creases(const TriangleMesh& mesh, const std::vector<MeshEdge>& edges);
 
 }  // namespace penink

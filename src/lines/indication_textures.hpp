@@ -16,7 +16,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "input/mesh_reader.hpp"
+#include "core/triangle_mesh.hpp"
 #include "lines/feature_edges.hpp"
 #include "lines/photic_extremum_lines.hpp"
 

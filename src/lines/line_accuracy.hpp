@@ -14,7 +14,7 @@
 #include <glm/vec2.hpp>
 
 #include "core/drawing.hpp"
-#include "lines/pixel_mask.hpp"
+#include "core/pixel_mask.hpp"
 
 namespace penink {
 

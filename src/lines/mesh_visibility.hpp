@@ -9,13 +9,13 @@
 
 #include "core/camera.hpp"
 #include "core/drawing.hpp"
-#include "input/mesh_reader.hpp"
+#include "core/triangle_mesh.hpp"
 #include "lines/photic_extremum_lines.hpp"
-#include "lines/pixel_mask.hpp"
+#include "core/pixel_mask.hpp"
 
 namespace penink {
 
-// DepthImage (lines/pixel_mask.hpp): width * height eye distances, row-major, row 0 top,
+// DepthImage (core/pixel_mask.hpp): width * height eye distances, row-major, row 0 top,
 // +inf where nothing was drawn.
 
 // Eye distance of the nearest triangle at each pixel centre (perspective-correct), both

@@ -9,17 +9,10 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/stopwatch.hpp"
+
 namespace penink {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point& t0) {
-    auto t1 = Clock::now();
-    double ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
-    t0 = t1;
-    return ms;
-}
 
 std::uint64_t edge_key(unsigned i, unsigned j) {
     if (i > j) std::swap(i, j);
@@ -168,18 +161,18 @@ PelResult photic_extremum_lines(const TriangleMesh& mesh, const PelGeometry& geo
     PelField& f = r.field;
     auto start = Clock::now(), t0 = start;
     illumination(mesh, normals, eye, options, f.phi);
-    r.timings.illumination = ms_since(t0);
+    r.timings.illumination = lap_ms(t0);
     std::vector<glm::vec3> grad = vertex_gradient(mesh, geom, normals, f.phi);
-    r.timings.gradient = ms_since(t0);
+    r.timings.gradient = lap_ms(t0);
     normalise_gradient(grad, f);
-    r.timings.magnitude = ms_since(t0);
+    r.timings.magnitude = lap_ms(t0);
     f.dw = directional(vertex_gradient(mesh, geom, normals, f.g), f.w);
-    r.timings.derivative1 = ms_since(t0);
+    r.timings.derivative1 = lap_ms(t0);
     f.dw2 = directional(vertex_gradient(mesh, geom, normals, f.dw), f.w);
-    r.timings.derivative2 = ms_since(t0);
+    r.timings.derivative2 = lap_ms(t0);
     r.segments = extract_pels(mesh, f, options.threshold);
-    r.timings.extraction = ms_since(t0);
-    r.timings.total = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    r.timings.extraction = lap_ms(t0);
+    r.timings.total = ms_since(start);
     return r;
 }
 
@@ -260,6 +253,17 @@ std::vector<ObjectPolyline> chain_segments(const std::vector<ObjectSegment>& seg
         out.push_back(std::move(pl));
     }
     return out;
+}
+
+std::vector<ObjectSegment> curved_only(std::vector<ObjectSegment> segs, const std::vector<glm::vec3>& n) {
+    std::erase_if(segs, [&](const ObjectSegment& s) {
+        if (s.edge_a == ~std::uint64_t(0) || s.edge_b == ~std::uint64_t(0)) return false;
+        const unsigned v[4] = {unsigned(s.edge_a >> 32), unsigned(s.edge_a), unsigned(s.edge_b >> 32), unsigned(s.edge_b)};
+        float spread = 0.0f;
+        for (int i = 1; i < 4; ++i) spread = std::max(spread, glm::length(n[v[i]] - n[v[0]]));
+        return spread < 1e-3f;
+    });
+    return segs;
 }
 
 }  // namespace penink

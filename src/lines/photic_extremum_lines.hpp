@@ -14,7 +14,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "input/mesh_reader.hpp"
+#include "core/triangle_mesh.hpp"
 
 namespace penink {
 
@@ -89,5 +89,10 @@ std::vector<ObjectSegment> mesh_silhouettes(const TriangleMesh& mesh,
 // polylines, deterministic order; strength = mean of the segments' strengths.
 std::vector<ObjectPolyline> chain_segments(const std::vector<ObjectSegment>& segments,
                                            const std::string& kind);
+
+// The segments outside flat-shaded triangles: a segment whose two edges' four vertex normals
+// (`normals`, per vertex) are all equal (within 1e-3) lies in a planar fan, where phi only varies
+// with the light direction and its extrema mean nothing. Keyless segments are kept.
+std::vector<ObjectSegment> curved_only(std::vector<ObjectSegment> segments, const std::vector<glm::vec3>& normals);
 
 }  // namespace penink

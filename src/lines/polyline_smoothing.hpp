@@ -13,4 +13,11 @@ namespace penink {
 
 void smooth_runs_xy(std::vector<glm::vec3>& positions, const std::vector<VertexRun>& runs, int iterations);
 
+// A line ending where another passes through (a tributary at its junction with the main stem)
+// keeps its end point fixed while smoothing moves the other line's junction vertex: the end
+// follows that vertex (in x, y) so the two stay joined. `before` holds the positions before
+// smoothing; an end matches an interior vertex of any run at the bit-identical x, y.
+void rejoin_line_ends(const std::vector<glm::vec3>& before, const std::vector<VertexRun>& runs,
+                      std::vector<glm::vec3>& positions);
+
 }  // namespace penink

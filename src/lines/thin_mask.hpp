@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "lines/pixel_mask.hpp"
+#include "core/pixel_mask.hpp"
 
 namespace penink {
 

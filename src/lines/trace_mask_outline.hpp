@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/drawing.hpp"
-#include "lines/pixel_mask.hpp"
+#include "core/pixel_mask.hpp"
 
 namespace penink {
 

@@ -13,7 +13,7 @@ DmPass::DmPass(const GlApi& gl, const std::vector<DmVertex>& vertices)
       scores_(make_buffer(gl, nullptr, std::max<std::size_t>(1, vertices.size()) * sizeof(float), GL_DYNAMIC_READ)),
       timer_(gl) {}
 
-double DmPass::run(const DmFrame& f, const CreaseScore& s, std::vector<float>& scores) {
+double DmPass::run(const DmFrame& f, const CreaseParams& s, std::vector<float>& scores) {
     scores.assign(count_, dm_hidden);
     if (count_ == 0) return 0.0;
     const Camera& cam = *f.camera;
@@ -24,9 +24,9 @@ double DmPass::run(const DmFrame& f, const CreaseScore& s, std::vector<float>& s
     gl_->UniformMatrix4fv(loc("u_view_proj"), 1, GL_FALSE, glm::value_ptr(vp));
     gl_->Uniform3f(loc("u_eye"), float(cam.eye.x), float(cam.eye.y), float(cam.eye.z));
     gl_->Uniform3f(loc("u_light"), f.light.x, f.light.y, f.light.z);
-    gl_->Uniform3f(loc("u_weights"), s.slope_weight, s.illumination_weight, s.flow_weight);
-    gl_->Uniform1f(loc("u_min_score"), s.min_score);
-    gl_->Uniform1f(loc("u_attenuation"), s.distance_attenuation);
+    gl_->Uniform3f(loc("u_weights"), float(s.slope_weight), float(s.illumination_weight), float(s.flow_weight));
+    gl_->Uniform1f(loc("u_min_score"), float(s.min_score));
+    gl_->Uniform1f(loc("u_attenuation"), float(s.distance_attenuation));
     gl_->Uniform1f(loc("u_max_distance"), std::max(f.max_distance, 1e-6f));
     gl_->Uniform2f(loc("u_viewport"), float(cam.width), float(cam.height));
     const double pixel_angle = 2.0 * std::tan(cam.fov * M_PI / 360.0) / cam.width;

@@ -11,6 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include "core/camera.hpp"
+#include "core/crease_params.hpp"
 #include "render/gl_objects.hpp"
 
 namespace penink {
@@ -24,10 +25,6 @@ struct DmVertex {
     float unused = 0.0f;
 };
 
-struct CreaseScore {  // conventions.md, seed 000 eq. 1-6
-    float slope_weight = 1.0f, illumination_weight = 1.0f, flow_weight = 1.0f;
-    float min_score = 0.1f, distance_attenuation = 0.3f;
-};
 
 struct DmFrame {
     const Camera* camera = nullptr;
@@ -41,7 +38,7 @@ class DmPass {
 public:
     DmPass(const GlApi& gl, const std::vector<DmVertex>& vertices);
     // Returns GPU milliseconds; fills `scores` (one per vertex).
-    double run(const DmFrame& frame, const CreaseScore& score, std::vector<float>& scores);
+    double run(const DmFrame& frame, const CreaseParams& score, std::vector<float>& scores);
     std::size_t size() const { return count_; }
 
 private:

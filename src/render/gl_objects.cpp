@@ -27,8 +27,7 @@ std::string one_line(std::string s) {
     return s;
 }
 
-GLuint compile_shader(const GlApi& gl, const std::string& file) {
-    const AssembledShader src = assemble_shader(file);
+GLuint compile_shader(const GlApi& gl, const std::string& file, const AssembledShader& src) {
     const GLuint shader = gl.CreateShader(stage_of(file));
     const char* text = src.text.c_str();
     gl.ShaderSource(shader, 1, &text, nullptr);
@@ -47,14 +46,14 @@ GLuint compile_shader(const GlApi& gl, const std::string& file) {
     return shader;
 }
 
-}  // namespace
-
-GlHandle build_program(const GlApi& gl, const std::vector<std::string>& files) {
+// files[i] is assembled as sources[i].
+GlHandle link_program(const GlApi& gl, const std::vector<std::string>& files,
+                      const std::vector<AssembledShader>& sources) {
     GlHandle program(gl, gl.CreateProgram(), [](const GlApi& g, GLuint id) { g.DeleteProgram(id); });
     std::vector<GLuint> shaders;
     try {
-        for (const std::string& f : files) {
-            shaders.push_back(compile_shader(gl, f));
+        for (std::size_t i = 0; i < files.size(); ++i) {
+            shaders.push_back(compile_shader(gl, files[i], sources[i]));
             gl.AttachShader(program.id(), shaders.back());
         }
     } catch (...) {
@@ -73,6 +72,24 @@ GlHandle build_program(const GlApi& gl, const std::vector<std::string>& files) {
         throw Error("render", files.front(), "program link failed: " + one_line(log), ExitCode::internal);
     }
     return program;
+}
+
+}  // namespace
+
+GlHandle build_program(const GlApi& gl, const std::vector<std::string>& files) {
+    std::vector<AssembledShader> sources;
+    for (const std::string& f : files) sources.push_back(assemble_shader(f));
+    return link_program(gl, files, sources);
+}
+
+GlHandle build_program_from_text(const GlApi& gl, const std::vector<ShaderFile>& sources) {
+    std::vector<std::string> files;
+    std::vector<AssembledShader> assembled;
+    for (const ShaderFile& f : sources) {
+        files.push_back(f.name);
+        assembled.push_back(assemble_shader(f));
+    }
+    return link_program(gl, files, assembled);
 }
 
 GlHandle make_buffer(const GlApi& gl, const void* data, std::size_t bytes, GLenum usage) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "render/gl_api.hpp"
+#include "render/shader_source.hpp"
 
 namespace penink {
 
@@ -35,6 +36,10 @@ private:
 // Builds a program from embedded shader files (e.g. {"tft_aft.vert.glsl", ...}); the stage is
 // taken from the file name (.vert .tesc .tese .geom .frag .comp).
 GlHandle build_program(const GlApi& gl, const std::vector<std::string>& files);
+// The same from caller-supplied shader texts ({name, text}, e.g. a test's own shader embedded in
+// its binary): stage and error locations from each name, `#include`s resolved against the
+// embedded shaders (render/shader_source.hpp).
+GlHandle build_program_from_text(const GlApi& gl, const std::vector<ShaderFile>& sources);
 
 GlHandle make_buffer(const GlApi& gl, const void* data, std::size_t bytes, GLenum usage = GL_STATIC_DRAW);
 GlHandle make_vertex_array(const GlApi& gl);

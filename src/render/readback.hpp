@@ -2,7 +2,7 @@
 // of the image (GL's row 0 is the bottom): R32F eye distances -> DepthImage (+inf where the
 // pass wrote PENINK_FAR), R8 masks -> PixelMask.
 #pragma once
-#include "lines/pixel_mask.hpp"
+#include "core/pixel_mask.hpp"
 #include "render/gl_api.hpp"
 
 namespace penink {

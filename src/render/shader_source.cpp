@@ -15,12 +15,12 @@ std::string shader_text(const std::string& name) {
 
 namespace {
 
-void append_file(const std::string& name, AssembledShader& out, int depth) {
+void append_file(const std::string& name, const std::string& text, AssembledShader& out, int depth) {
     if (depth > 8) throw Error("render", name, "#include nested too deeply", ExitCode::internal);
     const int index = int(out.files.size());
     out.files.push_back(name);
     out.text += "#line 1 " + std::to_string(index) + "\n";
-    std::istringstream in(shader_text(name));
+    std::istringstream in(text);
     std::string line;
     static const std::regex include_re(R"(^\s*#include\s+\"([^\"]+)\"\s*$)");
     int number = 0;
@@ -30,7 +30,7 @@ void append_file(const std::string& name, AssembledShader& out, int depth) {
         if (line.rfind("#version", 0) == 0) {
             out.text += "\n";  // the version line is emitted once, first
         } else if (std::regex_match(line, m, include_re)) {
-            append_file(m[1].str(), out, depth + 1);
+            append_file(m[1].str(), shader_text(m[1].str()), out, depth + 1);
             out.text += "#line " + std::to_string(number + 1) + " " + std::to_string(index) + "\n";
         } else {
             out.text += line + "\n";
@@ -41,9 +41,14 @@ void append_file(const std::string& name, AssembledShader& out, int depth) {
 }  // namespace
 
 AssembledShader assemble_shader(const std::string& name) {
+    const std::string text = shader_text(name);
+    return assemble_shader(ShaderFile{name.c_str(), text.c_str()});
+}
+
+AssembledShader assemble_shader(const ShaderFile& file) {
     AssembledShader out;
     out.text = "#version 450 core\n";
-    append_file(name, out, 0);
+    append_file(file.name, file.source, out, 0);
     return out;
 }
 

@@ -9,7 +9,7 @@
 namespace penink {
 
 struct ShaderFile {
-    const char* name;    // file name inside shaders/, e.g. "tft.vert.glsl"
+    const char* name;    // file name, e.g. "tft.vert.glsl" (inside shaders/ for the embedded ones)
     const char* source;  // file text
 };
 
@@ -25,6 +25,9 @@ struct AssembledShader {
     std::vector<std::string> files;
 };
 AssembledShader assemble_shader(const std::string& name);
+// The same for a caller-supplied file (e.g. a test's own shader): `file.source` is files[0] and
+// named file.name in the markers; its `#include`s resolve against the embedded shaders.
+AssembledShader assemble_shader(const ShaderFile& file);
 
 // Rewrites a driver log, replacing "S:L(" prefixes with "file:L(" using `files`.
 std::string map_log_to_files(const std::string& log, const std::vector<std::string>& files);

@@ -1,26 +1,17 @@
 #include "render/terrain_renderer.hpp"
 
-#include <chrono>
 #include <cmath>
 
-#include "lines/object_silhouettes.hpp"
-#include "surface/pn_tessellation.hpp"
+#include "core/stopwatch.hpp"
 
 namespace penink {
 
-namespace {
-double ms_since(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-}  // namespace
-
 TerrainRenderer::TerrainRenderer(const GlApi& gl, const SurfaceMesh& mesh, int width, int height)
-    : gl_(&gl), mesh_(&mesh), geometry_(gl, mesh), tft_aft_(gl, width, height), sil_(gl, width, height) {
+    : gl_(&gl), geometry_(gl, mesh), tft_aft_(gl, width, height), sil_(gl, width, height) {
     check_gl_error(gl, "terrain renderer set-up");
 }
 
-// Runs the chosen silhouette method; returns its time (ms) and, for the object-space method,
-// fills out.silhouettes directly.
+// Runs the chosen GPU silhouette method; returns its time (ms).
 double TerrainRenderer::silhouettes(const Camera& camera, const FrameOptions& options, FrameImages& out) {
     const int w = tft_aft_.width(), h = tft_aft_.height();
     switch (options.silhouette_method) {
@@ -33,15 +24,8 @@ double TerrainRenderer::silhouettes(const Camera& camera, const FrameOptions& op
             out.times.sil_ids = t.ids_ms;
             return t.ids_ms + t.detect_ms + t.walk_ms + t.lines_ms;
         }
-        case SilhouetteMethod::object_space: {
-            const auto t0 = std::chrono::steady_clock::now();
-            const PnTessellation tess = tessellate_pn_surface(*mesh_, view_projection(camera), glm::vec2(w, h),
-                                                              options.tessellation.target_edge_px,
-                                                              options.tessellation.max_level);
-            const ObjectSilhouettes sil = object_space_silhouettes(tess.pos, tess.tri, camera);
-            out.silhouettes = rasterize_polylines(silhouette_polylines(sil, true), w, h);
-            return ms_since(t0);
-        }
+        case SilhouetteMethod::object_space:  // drawn by the caller on the CPU
+            return 0.0;
     }
     return 0.0;
 }
@@ -54,7 +38,7 @@ FrameImages TerrainRenderer::render(const Camera& camera, const FrameOptions& op
     out.times.tft = surface.tft_ms, out.times.aft = surface.aft_ms;
     out.times.sil = silhouettes(camera, options, out);
     check_gl_error(*gl_, "SIL pass");
-    const auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = Clock::now();
     const int w = tft_aft_.width(), h = tft_aft_.height();
     out.toward = read_depth_image(*gl_, tft_aft_.toward_texture(), w, h);
     out.away = read_depth_image(*gl_, tft_aft_.away_texture(), w, h);

@@ -1,14 +1,14 @@
 // Renders one frame of a terrain surface through the GPU passes (TFT/AFT, SIL) and reads the
 // results back for the lines stage: toward/away eye-distance images (metres, row 0 = top) and
 // the silhouette pixel mask, with each pass's GPU time (GL timer queries, as the paper's Table 3).
-// The silhouette mask comes from one of three methods: Toward/Away (seed 001, 3.2; default),
-// Adjacency (3.1, render/adjacency_sil.hpp) or object-space (CPU: exact front/back edges of the
-// CPU PN tessellation with ray-cast visibility, rasterised at 1 px; the reference, slow).
+// The silhouette mask comes from one of the GPU methods: Toward/Away (seed 001, 3.2; default) or
+// Adjacency (3.1, render/adjacency_sil.hpp). With object_space no SIL pass runs and the mask is
+// left empty: the caller draws those silhouettes on the CPU (scene/terrain_frames.hpp).
 #pragma once
 #include <memory>
 
 #include "core/camera.hpp"
-#include "lines/pixel_mask.hpp"
+#include "core/pixel_mask.hpp"
 #include "render/adjacency_sil.hpp"
 #include "render/readback.hpp"
 #include "render/sil.hpp"
@@ -30,8 +30,8 @@ struct FrameOptions {
 struct PassTimings {  // milliseconds
     double tft = 0, aft = 0, sil = 0, dm = 0, ridges = 0, lay = 0, readback = 0;
     double pel = 0;  // CPU: photic extremum lines of a mesh frame (cli/mesh_drawing)
-    // Part of `sil` spent on the adjacency method's triangle-ID geometry pass (GPU); for the
-    // object-space method `sil` is CPU wall time (tessellation, silhouettes, rasterising).
+    // Part of `sil` spent on the adjacency method's triangle-ID geometry pass (GPU). For the
+    // object-space method the caller sets `sil` to its CPU wall time.
     double sil_ids = 0;
 };
 
@@ -41,8 +41,7 @@ struct FrameImages {
     PassTimings times;
 };
 
-// The renderer keeps a reference to `mesh` (the object-space method tessellates it on the CPU):
-// the mesh must outlive it.
+// The mesh is uploaded once; the renderer keeps no reference to it.
 class TerrainRenderer {
 public:
     TerrainRenderer(const GlApi& gl, const SurfaceMesh& mesh, int width, int height);
@@ -58,7 +57,6 @@ public:
 private:
     double silhouettes(const Camera& camera, const FrameOptions& options, FrameImages& out);
     const GlApi* gl_;
-    const SurfaceMesh* mesh_;
     SurfaceGeometry geometry_;
     TftAftPass tft_aft_;
     SilPass sil_;

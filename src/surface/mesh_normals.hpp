@@ -1,4 +1,4 @@
-// Vertex normals of a TriangleMesh (input/mesh_reader.hpp): unit face normals, area- or
+// Vertex normals of a TriangleMesh (core/triangle_mesh.hpp): unit face normals, area- or
 // angle-weighted vertex normals (Max 1999 / Thuermer & Wuethrich 1998), and Laplacian normal
 // smoothing for noisy scans (umbrella average of neighbour normals, k iterations), plus the
 // conversion to the renderer's SurfaceMesh. Units and frame are the mesh's own.
@@ -7,7 +7,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "input/mesh_reader.hpp"
+#include "core/triangle_mesh.hpp"
 #include "surface/surface_mesh.hpp"
 
 namespace penink {

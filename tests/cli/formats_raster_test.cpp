@@ -14,7 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "../raster_image.hpp"
+#include "support/raster_image.hpp"
 #include "cli_support.hpp"
 
 using namespace penink::test;

@@ -6,7 +6,7 @@
 #include "core/error.hpp"
 #include "drainage/drainage_grid.hpp"
 #include "input/dem_reader.hpp"
-#include "tests/input/test_grids.hpp"
+#include "support/test_grids.hpp"
 
 namespace penink {
 namespace {

@@ -1,15 +1,14 @@
 // Shared test data for the export tests: a small fixed Drawing (200 x 160 pixels, strokes in
-// several layers, a surface ring with a hole), a style with visible pens, and temp folders.
+// several layers, a surface ring with a hole), a style with visible pens, and temp folders
+// (support/temp_dir.hpp).
 #pragma once
-#include <unistd.h>
-
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 
 #include "core/drawing.hpp"
 #include "export/style.hpp"
+#include "support/temp_dir.hpp"
 
 namespace penink::test {
 
@@ -68,19 +67,6 @@ inline Style visible_style() {
     )"));
     return s;
 }
-
-// A fresh empty folder under the system temp directory, removed by the destructor.
-struct TempDir {
-    std::filesystem::path path;
-    explicit TempDir(const std::string& name) {
-        path = std::filesystem::temp_directory_path() /
-               ("penink-export-" + name + "-" + std::to_string(::getpid()));
-        std::filesystem::remove_all(path);
-        std::filesystem::create_directories(path);
-    }
-    ~TempDir() { std::filesystem::remove_all(path); }
-    std::string file(const std::string& name) const { return (path / name).string(); }
-};
 
 inline std::string read_text(const std::string& path) {
     std::ifstream in(path, std::ios::binary);

@@ -11,7 +11,7 @@
 
 #include "export/export_drawing.hpp"
 #include "export/png_writer.hpp"
-#include "../raster_image.hpp"
+#include "support/raster_image.hpp"
 #include "fixture.hpp"
 
 using namespace penink;

@@ -11,7 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/error.hpp"
-#include "test_grids.hpp"
+#include "support/test_grids.hpp"
 
 namespace penink {
 namespace {

@@ -5,7 +5,7 @@
 
 #include "core/error.hpp"
 #include "input/dem_reader.hpp"
-#include "test_grids.hpp"
+#include "support/test_grids.hpp"
 
 namespace penink {
 namespace {

@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "lines/feature_edges.hpp"
+#include "support/spheres.hpp"
 
 using namespace penink;
 
@@ -24,32 +25,6 @@ TriangleMesh cube() {
         m.triangles.emplace_back(q[0], q[2], q[3]);
     }
     m.material.assign(12, 0);
-    m.material_names = {"default"};
-    return m;
-}
-
-// UV sphere with `n` segments around and n/2 rings, radius 1, shared seam and poles.
-TriangleMesh uv_sphere(int n) {
-    TriangleMesh m;
-    int rings = n / 2;
-    m.positions.emplace_back(0, 0, 1);
-    for (int i = 1; i < rings; ++i)
-        for (int j = 0; j < n; ++j) {
-            double th = M_PI * i / rings, ph = 2 * M_PI * j / n;
-            m.positions.emplace_back(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th));
-        }
-    m.positions.emplace_back(0, 0, -1);
-    auto v = [&](int i, int j) { return unsigned(1 + (i - 1) * n + (j % n)); };
-    unsigned south = unsigned(m.positions.size() - 1);
-    for (int j = 0; j < n; ++j) {
-        m.triangles.emplace_back(0, v(1, j), v(1, j + 1));
-        m.triangles.emplace_back(south, v(rings - 1, j + 1), v(rings - 1, j));
-        for (int i = 1; i + 1 < rings; ++i) {
-            m.triangles.emplace_back(v(i, j), v(i + 1, j), v(i + 1, j + 1));
-            m.triangles.emplace_back(v(i, j), v(i + 1, j + 1), v(i, j + 1));
-        }
-    }
-    m.material.assign(m.triangles.size(), 0);
     m.material_names = {"default"};
     return m;
 }
@@ -131,7 +106,7 @@ TEST(FeatureEdges, NonManifoldEdgeIsACrease) {
 }
 
 TEST(FeatureEdges, SmoothSphereHasNoneAtSixtyDegrees) {
-    TriangleMesh m = uv_sphere(48);
+    TriangleMesh m = test::uv_sphere(48, 1.0, test::UvLayout::closed);  // shared seam and poles
     FeatureOptions o;
     o.crease_angle = 60.0f;
     EXPECT_TRUE(feature_edges(m, o).empty());

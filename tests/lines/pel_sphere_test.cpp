@@ -16,46 +16,15 @@
 
 #include <cmath>
 #include <cstdint>
-#include <map>
 
 #include <glm/geometric.hpp>
 
 #include "lines/photic_extremum_lines.hpp"
+#include "support/spheres.hpp"
 
 using namespace penink;
 
 namespace {
-
-// Icosphere: icosahedron subdivided `level` times, projected on the sphere of radius r.
-TriangleMesh icosphere(int level, float r) {
-    const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
-    TriangleMesh m;
-    m.positions = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                   {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-    m.triangles = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                   {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
-                   {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
-    for (int l = 0; l < level; ++l) {
-        std::map<std::uint64_t, unsigned> mid;
-        auto midpoint = [&](unsigned a, unsigned b) {
-            std::uint64_t key = (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
-            auto it = mid.find(key);
-            if (it != mid.end()) return it->second;
-            m.positions.push_back(0.5f * (m.positions[a] + m.positions[b]));
-            return mid[key] = unsigned(m.positions.size() - 1);
-        };
-        std::vector<glm::uvec3> next;
-        for (auto f : m.triangles) {
-            unsigned ab = midpoint(f.x, f.y), bc = midpoint(f.y, f.z), ca = midpoint(f.z, f.x);
-            next.insert(next.end(), {{f.x, ab, ca}, {f.y, bc, ab}, {f.z, ca, bc}, {ab, bc, ca}});
-        }
-        m.triangles = next;
-    }
-    for (auto& p : m.positions) p = r * glm::normalize(p);
-    m.material.assign(m.triangles.size(), 0);
-    m.material_names = {"default"};
-    return m;
-}
 
 std::vector<glm::vec3> radial_normals(const TriangleMesh& m) {
     std::vector<glm::vec3> n;
@@ -115,7 +84,7 @@ PelOptions directional(glm::vec3 l, float tau) {
 
 TEST(PelSphere, DirectionalLightGivesTheTerminatorGreatCircle) {
     const float r = 2.0f;
-    TriangleMesh m = icosphere(5, r);  // 20480 triangles
+    TriangleMesh m = test::icosphere(5, r);  // 20480 triangles
     glm::vec3 l = glm::normalize(glm::vec3(1.0f, 0.5f, 2.0f));
     PelResult res = photic_extremum_lines(m, pel_geometry(m), radial_normals(m), glm::vec3(0, 0, 10),
                                           directional(l, 0.5f));
@@ -134,7 +103,7 @@ TEST(PelSphere, DirectionalLightGivesTheTerminatorGreatCircle) {
 
 TEST(PelSphere, LightAtTheEyeGivesTheClosedFormCircle) {
     const float r = 1.0f;
-    TriangleMesh m = icosphere(5, r);
+    TriangleMesh m = test::icosphere(5, r);
     glm::vec3 eye(0.0f, -4.0f, 3.0f);  // d = |e| = 5
     const double c_star = closed_form_pel_cos(r, 5.0);
     EXPECT_NEAR(c_star, 0.38, 0.02);  // the closed form itself (not the rim at 0.2)
@@ -159,7 +128,7 @@ TEST(PelSphere, LightAtTheEyeGivesTheClosedFormCircle) {
 }
 
 TEST(PelSphere, ThresholdAboveTheMaximumLeavesNothing) {
-    TriangleMesh m = icosphere(4, 1.0f);
+    TriangleMesh m = test::icosphere(4, 1.0f);
     glm::vec3 l = glm::normalize(glm::vec3(0.3f, -1.0f, 0.5f));
     auto geom = pel_geometry(m);
     auto n = radial_normals(m);
@@ -179,7 +148,7 @@ TEST(PelSphere, ThresholdAboveTheMaximumLeavesNothing) {
 // 0.0005, 0.073, 0.13, 0.23, 0.37, and the drawn length grows 6.3, 16, 25, 42, 69.
 TEST(PelSphere, NormalNoiseDegradesMonotonically) {
     const float r = 1.0f;
-    TriangleMesh m = icosphere(5, r);
+    TriangleMesh m = test::icosphere(5, r);
     glm::vec3 l = glm::normalize(glm::vec3(1.0f, 0.5f, 2.0f));
     auto geom = pel_geometry(m);
     const float amps[] = {0.0f, 0.0005f, 0.001f, 0.002f, 0.005f};

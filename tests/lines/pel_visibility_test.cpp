@@ -6,30 +6,11 @@
 #include <glm/geometric.hpp>
 
 #include "lines/mesh_visibility.hpp"
+#include "support/spheres.hpp"
 
 using namespace penink;
 
 namespace {
-
-TriangleMesh uv_sphere(int n, float r) {
-    TriangleMesh m;
-    int rings = n / 2;
-    for (int i = 0; i <= rings; ++i)
-        for (int j = 0; j <= n; ++j) {
-            double th = M_PI * i / rings, ph = 2 * M_PI * j / n;
-            m.positions.emplace_back(r * std::sin(th) * std::cos(ph), r * std::sin(th) * std::sin(ph),
-                                     r * std::cos(th));
-        }
-    auto v = [&](int i, int j) { return unsigned(i * (n + 1) + j); };
-    for (int i = 0; i < rings; ++i)
-        for (int j = 0; j < n; ++j) {
-            m.triangles.emplace_back(v(i, j), v(i + 1, j), v(i + 1, j + 1));
-            m.triangles.emplace_back(v(i, j), v(i + 1, j + 1), v(i, j + 1));
-        }
-    m.material.assign(m.triangles.size(), 0);
-    m.material_names = {"default"};
-    return m;
-}
 
 // Circle of radius rho in the plane y = y0, centred on the y axis.
 ObjectPolyline circle_at_y(float y0, float rho) {
@@ -65,7 +46,7 @@ double image_length(const std::vector<Stroke>& strokes) {
 }  // namespace
 
 TEST(PelVisibility, DepthImageOfASphere) {
-    TriangleMesh m = uv_sphere(64, 1.0f);
+    TriangleMesh m = test::uv_sphere(64, 1.0f);
     Camera cam = looking_north(5.0f);
     DepthImage img = rasterize_depth(m, cam);
     ASSERT_EQ(img.width, 200);
@@ -81,7 +62,7 @@ TEST(PelVisibility, DepthImageOfASphere) {
 }
 
 TEST(PelVisibility, FrontCircleVisibleBackCircleHidden) {
-    TriangleMesh m = uv_sphere(64, 1.0f);
+    TriangleMesh m = test::uv_sphere(64, 1.0f);
     Camera cam = looking_north(5.0f);
     DepthImage img = rasterize_depth(m, cam);
     // Slightly outside the sphere so the faceted surface never covers the circle.
@@ -102,7 +83,7 @@ TEST(PelVisibility, FrontCircleVisibleBackCircleHidden) {
 }
 
 TEST(PelVisibility, LineBehindTheSphereIsSplitAtItsOutline) {
-    TriangleMesh m = uv_sphere(64, 1.0f);
+    TriangleMesh m = test::uv_sphere(64, 1.0f);
     Camera cam = looking_north(5.0f);
     DepthImage img = rasterize_depth(m, cam);
     // Horizontal line at y = 2 behind the sphere from x = -2.4 to 2.4, eye distance 7 along y. It is
@@ -123,7 +104,7 @@ TEST(PelVisibility, LineBehindTheSphereIsSplitAtItsOutline) {
 }
 
 TEST(PelVisibility, SilhouetteOfTheSphereStaysVisible) {
-    TriangleMesh m = uv_sphere(96, 1.0f);
+    TriangleMesh m = test::uv_sphere(96, 1.0f);
     Camera cam = looking_north(5.0f);
     DepthImage img = rasterize_depth(m, cam);
     std::vector<glm::vec3> n;

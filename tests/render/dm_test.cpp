@@ -10,8 +10,8 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "gl_test_support.hpp"
-#include "input/synthetic_terrain.hpp"
+#include "support/gl_test_context.hpp"
+#include "support/synthetic_terrain.hpp"
 #include "render/dm.hpp"
 #include "render/terrain_renderer.hpp"
 
@@ -55,7 +55,7 @@ bool inside_by(const Camera& cam, const glm::vec3& p, double margin) {
     return px.x >= margin && px.y >= margin && px.x <= cam.width - margin && px.y <= cam.height - margin;
 }
 
-double expected_score(const DmVertex& v, const Camera& cam, glm::dvec3 light, const CreaseScore& s, double D) {
+double expected_score(const DmVertex& v, const Camera& cam, glm::dvec3 light, const CreaseParams& s, double D) {
     const glm::dvec3 n(v.normal);
     const double sc = 1.0 - n.z, ic = 1.0 - std::clamp(glm::dot(n, light), 0.0, 1.0);
     const double d = glm::length(glm::dvec3(v.position) - cam.eye);
@@ -98,7 +98,7 @@ struct PlaneScene {
     }
 };
 
-std::vector<float> run_dm(const PlaneScene& s, TerrainRenderer& r, float D, const CreaseScore& score) {
+std::vector<float> run_dm(const PlaneScene& s, TerrainRenderer& r, float D, const CreaseParams& score) {
     DmPass pass(test::test_context().gl(), s.vertices);
     DmFrame f;
     f.camera = &s.cam, f.light = glm::vec3(s.light), f.max_distance = D;
@@ -117,7 +117,7 @@ TEST(DmPass, TiltedPlaneScoresMatchClosedForm) {
     const FrameImages img = renderer.render(s.cam, {});
     const float D = max_distance(img.toward);
     ASSERT_GT(D, 1000.0f);
-    const CreaseScore score{2.0f, 0.5f, 4.0f, 0.12f, 0.3f};
+    const CreaseParams score{2.0f, 0.5f, 4.0f, 0.12f, 0.3f};
     const std::vector<float> scores = run_dm(s, renderer, D, score);
     std::size_t checked = 0, outside = 0;
     for (std::size_t i = 0; i < s.vertices.size(); ++i) {
@@ -141,7 +141,7 @@ TEST(DmPass, MinScoreAndAttenuationActAsTheFormulaSays) {
     TerrainRenderer renderer(test::test_context().gl(), s.mesh, s.cam.width, s.cam.height);
     const FrameImages img = renderer.render(s.cam, {});
     const float D = max_distance(img.toward);
-    CreaseScore score{2.0f, 0.5f, 4.0f, 0.0f, 0.0f};
+    CreaseParams score{2.0f, 0.5f, 4.0f, 0.0f, 0.0f};
     const std::vector<float> base = run_dm(s, renderer, D, score);
     std::size_t previous = s.vertices.size() + 1;
     std::vector<std::size_t> counts;
@@ -197,7 +197,7 @@ TEST(DmPass, VerticesBehindARidgeAreHidden) {
     f.camera = &cam, f.max_distance = max_distance(img.toward);
     f.toward_texture = renderer.surface_pass().toward_texture();
     std::vector<float> scores;
-    pass.run(f, CreaseScore{}, scores);
+    pass.run(f, CreaseParams{}, scores);
     // March the eye ray: hidden when the ridge rises >= 5 m above it at least 80 m before the
     // vertex, visible when the ray stays >= 2 m above the ground until 10 m before it.
     std::size_t hidden = 0, visible = 0;
@@ -240,7 +240,7 @@ TEST(DmPass, ZeroNormalMeansOffSurfaceAndHidden) {
     const FrameImages img = renderer.render(s.cam, {});
     PlaneScene off = s;
     for (std::size_t i = 0; i < off.vertices.size(); i += 2) off.vertices[i].normal = glm::vec3(0.0f);
-    const std::vector<float> scores = run_dm(off, renderer, max_distance(img.toward), CreaseScore{});
+    const std::vector<float> scores = run_dm(off, renderer, max_distance(img.toward), CreaseParams{});
     std::size_t drawn = 0;
     for (std::size_t i = 0; i < scores.size(); ++i) {
         if (i % 2 == 0) {
@@ -259,7 +259,7 @@ TEST(DmPass, EmptyVertexSetReturnsNoScores) {
     DmFrame f;
     f.camera = &s.cam, f.max_distance = 1000.0f, f.toward_texture = renderer.surface_pass().toward_texture();
     std::vector<float> scores(5, 1.0f);
-    pass.run(f, CreaseScore{}, scores);
+    pass.run(f, CreaseParams{}, scores);
     EXPECT_TRUE(scores.empty());
     EXPECT_EQ(pass.size(), 0u);
 }

@@ -7,8 +7,8 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "gl_test_support.hpp"
-#include "render/pn_eval.hpp"
+#include "support/gl_test_context.hpp"
+#include "support/pn_eval.hpp"
 #include "surface/pn_triangle.hpp"
 
 using namespace penink;

@@ -9,8 +9,8 @@
 
 #include <gtest/gtest.h>
 
-#include "gl_test_support.hpp"
-#include "input/synthetic_terrain.hpp"
+#include "support/gl_test_context.hpp"
+#include "support/synthetic_terrain.hpp"
 #include "render/terrain_renderer.hpp"
 
 using namespace penink;

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "core/camera.hpp"
-#include "input/synthetic_terrain.hpp"
+#include "support/synthetic_terrain.hpp"
 #include "surface/pn_tessellation.hpp"
 
 using namespace penink;

@@ -5,7 +5,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "input/synthetic_terrain.hpp"
+#include "support/synthetic_terrain.hpp"
 #include "surface/pn_triangle.hpp"
 #include "surface/surface_mesh.hpp"
 

@@ -1,0 +1,107 @@
+#include "cli/drainage_command.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <ostream>
+
+#include "core/error.hpp"
+#include "drainage/drainage_rasters.hpp"
+#include "input/dem_reader.hpp"
+
+namespace penink {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Per-stage wall times, printed when the environment variable PENINK_DRAINAGE_TIMES is set (for
+// profiling: bench/compare_grass.sh shows them).
+struct StageTimer {
+    std::ostream& log;
+    bool on = std::getenv("PENINK_DRAINAGE_TIMES") != nullptr;
+    std::string stage = "reading the DEM";
+    Clock::time_point since = Clock::now();
+    double cpu0 = 0;
+    void next(const std::string& name) {
+        const Clock::time_point now = Clock::now();
+        if (on) {
+            char line[160];
+            timespec ts; clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+            const double cpu = ts.tv_sec + ts.tv_nsec * 1e-9;
+            std::snprintf(line, sizeof line, "drainage: time %-26s %.3f s cpu %.3f\n", stage.c_str(),
+                          std::chrono::duration<double>(now - since).count(), cpu - cpu0);
+            cpu0 = cpu;
+            log << line << std::flush;
+        }
+        stage = name, since = now;
+    }
+};
+
+DrainageProgress progress_printer(std::ostream& log, bool quiet, StageTimer& timer) {
+    return [&log, &timer, quiet, last = -1](const std::string& stage, double fraction) mutable {
+        timer.next(stage);
+        const int pct = int(fraction * 100.0 + 0.5);
+        if (quiet || pct == last) return;
+        last = pct;
+        log << "drainage: " << pct << "% " << stage << "\n" << std::flush;
+    };
+}
+
+void print_summary(std::ostream& log, const DrainageStats& s, const DrainageDb& db, double secs) {
+    char line[400];
+    std::snprintf(line, sizeof line,
+                  "drainage: %dx%d points (factor %d), %zu valid, %zu filled, %zu on outflow paths, "
+                  "%zu tied, %zu basins, %zu branches, %zu divides, %.2f s (%.1f M points/s), "
+                  "working memory %.1f B/point\n",
+                  db.cols, db.rows, db.factor, s.valid, s.filled, s.outflow, s.ties, s.basins,
+                  s.branches, s.divides,
+                  secs, s.points / secs / 1e6, double(s.working_bytes) / double(s.points));
+    log << line;
+}
+
+int run(const DrainageCommand& cmd, std::ostream& log) {
+    const auto t0 = Clock::now();
+    StageTimer timer{log};
+    DemOptions read;
+    read.heights_only = cmd.resample == 1;  // factor 1 needs no positions on an affine grid
+    Terrain t = read_dem(cmd.dem, read);  // its positions (or heights) are released once resampled
+    if (const std::string w = missing_crs_warning(t); !w.empty()) log << w << "\n";
+    DrainageOptions o;
+    o.resample = cmd.resample;
+    o.routing = cmd.routing;
+    if (cmd.resample < 0) throw Error("drainage", cmd.dem, "resample factor must be >= 1 (0 = automatic)");
+    DrainageResult res;
+    const std::string out = cmd.output.empty() ? cmd.dem + ".dv" : cmd.output;
+    const DrainageDb db = build_and_write_drainage_db(t, o, drainage_fingerprint(cmd.dem, t, o), out,
+                                                      progress_printer(log, cmd.quiet, timer), &res);
+    timer.next("writing rasters");
+    if (!cmd.rasters_dir.empty()) {
+        // the grid's valid mask: exactly the points with a basin label
+        std::vector<std::uint8_t> valid(res.net.basin.size());
+        for (std::size_t i = 0; i < valid.size(); ++i) valid[i] = res.net.basin[i] != 0;
+        write_drainage_rasters(cmd.rasters_dir, drainage_georef(cmd.dem, t, db.factor), db.cols,
+                               db.rows, valid, res);
+    }
+    timer.next("");
+    const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
+    if (!cmd.quiet) print_summary(log, res.stats, db, secs), log << "drainage: wrote " << out << "\n";
+    return 0;
+}
+
+}  // namespace
+
+int run_drainage_command(const DrainageCommand& cmd, std::ostream& log) {
+    try {
+        return run(cmd, log);
+    } catch (const Error& e) {
+        log << e.what() << "\n";
+        return int(e.code());
+    } catch (const std::exception& e) {
+        log << format_error("drainage", cmd.dem, e.what()) << "\n";
+        return int(ExitCode::internal);
+    }
+}
+
+}  // namespace penink

@@ -1,0 +1,26 @@
+#include "scene/frame_source.hpp"
+
+#include <filesystem>
+
+#include "scene/mesh_frames.hpp"
+#include "scene/terrain_frames.hpp"
+
+namespace penink {
+
+bool is_mesh_scene(const Scene& scene) {
+    if (!scene.mesh.empty()) return true;
+    std::string ext = std::filesystem::path(scene.dem).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".obj" || ext == ".ply" || ext == ".off";
+}
+
+SceneView open_scene_view(const Scene& scene, GlContext& context, const Log& log) {
+    return is_mesh_scene(scene) ? open_mesh_view(scene, context, log) : open_terrain_view(scene, context, log);
+}
+
+SceneDrawing draw_scene(const Scene& scene, GlContext& context, const Log& log) {
+    SceneView view = open_scene_view(scene, context, log);
+    return view.frames->draw(view.camera, scene);
+}
+
+}  // namespace penink

@@ -1,0 +1,49 @@
+// The scene layer's one interface to drawing: a FrameSource turns a camera (plus the scene's
+// per-frame values: light, creases, ridges, tessellation, silhouette method) into a Drawing,
+// whatever the input: a DEM (scene/terrain_frames.hpp: drainage creases and ridges,
+// silhouettes) or a triangle mesh (scene/mesh_frames.hpp: PELs, silhouettes, feature edges,
+// textures). `penink render` draws one frame of the scene's own view, `batch` one per flight
+// record, `bench` one per configuration. Drawings are in image pixels with eye distances in metres
+// (world units for meshes); each carries the camera used and per-pass timings.
+#pragma once
+#include <memory>
+
+#include "core/drawing.hpp"
+#include "core/log.hpp"
+#include "core/pixel_mask.hpp"
+#include "render/gl_context.hpp"
+#include "render/terrain_renderer.hpp"
+#include "scene/scene.hpp"
+
+namespace penink {
+
+struct SceneDrawing {
+    Drawing drawing;
+    Camera camera;
+    PassTimings times;     // GPU ms per pass
+    double trace_ms = 0;   // CPU: read-back images -> polylines
+    std::size_t cells = 0, triangles = 0;
+    PixelMask silhouette_mask;  // the frame's silhouette pixels before tracing (terrains)
+};
+
+class FrameSource {
+public:
+    virtual ~FrameSource() = default;
+    virtual SceneDrawing draw(const Camera& camera, const Scene& frame) = 0;
+};
+
+// A scene's input set up for its own view: the camera (placed, or auto-framed) and the frames.
+struct SceneView {
+    Camera camera;
+    std::unique_ptr<FrameSource> frames;
+};
+
+// True when the scene's input is a mesh (.obj .ply .off, or a scene with [mesh]).
+bool is_mesh_scene(const Scene& scene);
+
+SceneView open_scene_view(const Scene& scene, GlContext& context, const Log& log);
+
+// One frame of the scene's own view.
+SceneDrawing draw_scene(const Scene& scene, GlContext& context, const Log& log);
+
+}  // namespace penink

@@ -1,0 +1,70 @@
+// A scene: what to draw and how, from a TOML scene file or a bare DEM path plus CLI options.
+// Keys (all optional but the input): [terrain] dem, vertical_exaggeration; [camera] position,
+// elevation, azimuth, altitude, fov, width, height; [light] azimuth, altitude; [silhouettes]
+// min_gap, separate_passes, method; [tessellation] target_edge_px, max_level, cull; [creases] and [ridges]
+// slope_weight, illumination_weight, flow_weight, min_score, distance_attenuation; [style] name
+// plus per-layer overrides; seed. Angles in degrees, distances in metres (conventions.md).
+// A scene with [mesh] file draws a mesh instead (its keys: scene/mesh_scene.hpp).
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include <toml.hpp>
+
+#include "core/crease_params.hpp"
+#include "render/terrain_renderer.hpp"
+
+namespace penink {
+
+struct SceneCamera {
+    std::optional<std::string> position;  // UTM "E N 18N", "lon,lat" or "x y"; none = auto-frame
+    std::optional<double> elevation;      // metres above the DEM's datum (scaled with exaggeration)
+    std::optional<double> azimuth, altitude;  // none = conventions default (from the south-west)
+    double fov = 40.0;
+    int width = 1000, height = 750;
+};
+
+struct SceneLight {
+    double azimuth = 315.0, altitude = 45.0;
+};
+
+struct Scene {
+    std::string file;          // the scene file ("" for a bare DEM)
+    std::string dem;           // DEM path (resolved relative to the scene file)
+    std::string mesh;          // [mesh] file (resolved); mesh keys: scene/mesh_scene.hpp
+    toml::value table;         // the whole scene file (mesh keys are read from it)
+    double vertical_exaggeration = 1.0;
+    SceneCamera camera;
+    SceneLight light;
+    int tess_max_level = 8;
+    float tess_target_edge_px = 6.0f;
+    float silhouette_min_gap = 0.0f;
+    SilhouetteMethod silhouette_method = SilhouetteMethod::toward_away;  // [silhouettes] method
+    bool cull_patches = true;  // [tessellation] cull: leave out patches outside the view
+    bool separate_passes = false;
+    CreaseParams creases = crease_defaults();
+    CreaseParams ridges = ridge_defaults();
+    std::string drainage_routing = "priority-flood";  // [drainage] routing (drainage_build.hpp)
+    std::string style = "technical";
+    // Object-space sketchiness of creases and ridges (seed 002, 4.3: end points moved within the
+    // surface's tangent plane), pixels, and strokes per line; set from the style by the command.
+    float crease_sketch_px = 0.0f, ridge_sketch_px = 0.0f;
+    int crease_repeat = 1, ridge_repeat = 1;
+    std::uint64_t seed = 1;
+    toml::value style_overrides;  // the [style] table, applied over the named style
+};
+
+// Silhouette methods by their scene and command-line names: "toward-away", "adjacency",
+// "object-space"; nullopt for any other name.
+std::optional<SilhouetteMethod> silhouette_method_named(const std::string& name);
+const char* silhouette_method_name(SilhouetteMethod method);
+
+// A path ending in .toml is a scene file; anything else is taken as a DEM.
+// Throws penink::Error(stage "scene", file) with one line on a bad key or value.
+Scene load_scene(const std::string& input);
+
+// Checks values that must hold whatever their source (CLI overrides included).
+void validate_scene(const Scene& scene);
+
+}  // namespace penink

@@ -1,0 +1,32 @@
+#include "scene/scene_style.hpp"
+
+namespace penink {
+
+Style scene_style(const Scene& scene) {
+    Style style = resolve_style(scene.style);
+    if (scene.style_overrides.is_table()) apply_style_overrides(style, scene.style_overrides, scene.file);
+    return style;
+}
+
+void apply_object_sketch(Scene& scene, const Style& style) {
+    const LayerStyle &creases = style.layer(LayerKind::creases), &ridges = style.layer(LayerKind::ridges);
+    scene.crease_sketch_px = float(creases.sketch), scene.crease_repeat = creases.repeat;
+    scene.ridge_sketch_px = float(ridges.sketch), scene.ridge_repeat = ridges.repeat;
+}
+
+FinishOptions finish_options(const Style& style, std::uint64_t seed, bool object_space_terrain_lines) {
+    FinishOptions f;
+    f.seed = seed;
+    f.near = float(style.near), f.far = float(style.far);
+    for (LayerKind k : all_layers) {
+        const LayerStyle& ls = style.layer(k);
+        LayerFinish& lf = f.layer(k);
+        lf.sketch = float(ls.sketch), lf.overshoot = float(ls.overshoot);
+        lf.repeat = ls.repeat, lf.keep_far = float(ls.keep_far), lf.min_length = float(ls.min_length);
+        if (object_space_terrain_lines && (k == LayerKind::creases || k == LayerKind::ridges))
+            lf.space = SketchSpace::object;
+    }
+    return f;
+}
+
+}  // namespace penink

@@ -1,0 +1,144 @@
+#include "scene/terrain_frames.hpp"
+
+#include <iostream>
+#include <sstream>
+
+#include "core/progress_bar.hpp"
+#include "core/stopwatch.hpp"
+#include "drainage/drainage_build.hpp"
+#include "lines/object_silhouettes.hpp"
+#include "lines/simplify.hpp"
+#include "lines/trace_mask_outline.hpp"
+#include "lines/frustum_clip.hpp"
+#include "lines/mesh_visibility.hpp"
+#include "lines/trace_pixel_lines.hpp"
+#include "scene/terrain_view.hpp"
+#include "surface/boundary_curves.hpp"
+#include "surface/pn_tessellation.hpp"
+
+namespace penink {
+
+namespace {
+
+std::string format_camera(const Camera& c, const Terrain& t) {
+    std::ostringstream s;
+    s.precision(10);
+    s << "eye " << c.eye.x + t.origin.x << " " << c.eye.y + t.origin.y << " " << c.eye.z
+      << (t.utm_zone ? " (UTM " + std::to_string(t.utm_zone) + (t.north ? "N" : "S") + ")" : "")
+      << ", azimuth " << c.azimuth << ", altitude " << c.altitude << ", fov " << c.fov << ", "
+      << c.width << "x" << c.height;
+    return s.str();
+}
+
+void fill_metadata(const Scene& scene, const Camera& cam, const Terrain& t, Drawing& d) {
+    std::ostringstream light, params;
+    light << "azimuth " << scene.light.azimuth << ", altitude " << scene.light.altitude;
+    params << "vertical_exaggeration " << scene.vertical_exaggeration << ", tessellation max_level "
+           << scene.tess_max_level << " target_edge_px " << scene.tess_target_edge_px << ", seed "
+           << scene.seed << ", style " << scene.style;
+    d.metadata["source"] = scene.dem;
+    d.metadata["camera"] = format_camera(cam, t);
+    d.metadata["light"] = light.str();
+    d.metadata["parameters"] = params.str();
+    d.metadata["generator"] = "penink";
+}
+
+}  // namespace
+
+PixelMask object_space_silhouette_mask(const SurfaceMesh& mesh, const Camera& camera,
+                                       const TessellationOptions& tessellation) {
+    const PnTessellation tess = tessellate_pn_surface(mesh, view_projection(camera), glm::vec2(camera.width, camera.height),
+                                                      tessellation.target_edge_px, tessellation.max_level);
+    const ObjectSilhouettes sil = object_space_silhouettes(tess.pos, tess.tri, camera);
+    return rasterize_polylines(silhouette_polylines(sil, true), camera.width, camera.height);
+}
+
+void add_frame_lines(const FrameImages& images, const SurfaceMesh& mesh, const Camera& camera,
+                     Drawing& drawing) {
+    TraceParams sil;
+    sil.min_pixels = 3, sil.max_spur = 2, sil.kind = "silhouette";
+    std::vector<Stroke> strokes = simplify_strokes(trace_pixel_lines(images.silhouettes, images.toward, sil), 0.5f);
+    const PixelMask cover = coverage_mask(images);
+    Layer& surface = drawing.layer(LayerKind::surface);
+    surface.fill = trace_mask_outline(cover, 0.5f);
+    std::vector<ObjectPolyline> boundary;
+    for (auto& line : clip_polylines_to_frustum(boundary_polylines(mesh), view_projection(camera)))
+        boundary.push_back({std::move(line), 1.0f, "outline", ""});
+    VisibilityOptions visibility;
+    visibility.rel_tolerance = 0.002f;  // terrain: the boundary lies on the rendered surface
+    for (Stroke& s : visible_strokes(boundary, images.toward, camera, visibility)) strokes.push_back(std::move(s));
+    drawing.layer(LayerKind::silhouettes).strokes = std::move(strokes);
+}
+
+namespace {
+FrameOptions frame_options(const Scene& scene) {
+    FrameOptions options;
+    options.tessellation.max_level = scene.tess_max_level;
+    options.tessellation.target_edge_px = scene.tess_target_edge_px;
+    options.separate_passes = scene.separate_passes;
+    options.silhouette_min_gap = scene.silhouette_min_gap;
+    options.tessellation.cull_patches = scene.cull_patches;
+    options.silhouette_method = scene.silhouette_method;
+    return options;
+}
+}  // namespace
+
+TerrainFrames::TerrainFrames(GlContext& context, const Scene& scene, const Terrain& dem, Terrain terrain,
+                             int width, int height, const Log& log)
+    : context_(&context), terrain_(std::move(terrain)), mesh_(mesh_from_terrain(terrain_)),
+      renderer_(context.gl(), mesh_, width, height) {
+    if (!scene.creases.enabled && !scene.ridges.enabled) return;
+    StageProgress progress(std::cerr, stderr_is_terminal(), "building drainage database");
+    DrainageOptions options;
+    options.routing = *drainage_routing_named(scene.drainage_routing);  // validate_scene checked it
+    DrainageDb db = load_or_build_drainage(
+        scene.dem, dem, options, [&](const std::string& m) { log.info(m); },
+        [&progress](const std::string& stage, double fraction) { progress.update(stage, fraction); });
+    pending_lines_ = std::async(std::launch::async, [this, db = std::move(db)] {
+        return prepare_drainage_lines(db, mesh_);
+    });
+}
+
+TerrainFrames::~TerrainFrames() {
+    if (pending_lines_.valid()) pending_lines_.wait();
+}
+
+SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
+    SceneDrawing out;
+    out.camera = camera;
+    out.cells = std::size_t(terrain_.cols - 1) * (terrain_.rows - 1);
+    out.triangles = mesh_.tri.size();
+    const FrameOptions options = frame_options(frame);
+    FrameImages images = renderer_.render(camera, options);
+    out.times = images.times;
+    if (options.silhouette_method == SilhouetteMethod::object_space) {
+        const auto t0 = Clock::now();
+        images.silhouettes = object_space_silhouette_mask(mesh_, camera, options.tessellation);
+        out.times.sil = ms_since(t0);
+    }
+    out.drawing.width = camera.width, out.drawing.height = camera.height;
+    if (pending_lines_.valid())
+        lines_ = std::make_unique<DrainageLines>(context_->gl(), pending_lines_.get());
+    if (lines_)
+        lines_->draw(camera, frame, renderer_.surface_pass().toward_texture(),
+                     max_visible_distance(images.toward), out.drawing, out.times);
+    const auto t0 = Clock::now();
+    add_frame_lines(images, mesh_, camera, out.drawing);
+    out.trace_ms = ms_since(t0);
+    out.silhouette_mask = std::move(images.silhouettes);
+    fill_metadata(frame, camera, terrain_, out.drawing);
+    return out;
+}
+
+SceneView open_terrain_view(const Scene& scene, GlContext& context, const Log& log) {
+    const Terrain dem = read_scene_dem(scene);
+    log.info("read " + scene.dem + ": " + std::to_string(dem.cols) + "x" + std::to_string(dem.rows) + " nodes");
+    SceneView view;
+    view.camera = scene_camera(scene, dem);
+    Terrain model = terrain_for_view(dem, view.camera, scene, log);
+    view.frames = std::make_unique<TerrainFrames>(context, scene, dem, std::move(model), view.camera.width,
+                                                  view.camera.height, log);
+    return view;
+}
+
+}  // namespace penink

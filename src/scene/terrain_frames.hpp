@@ -1,0 +1,52 @@
+// The terrain frames of the scene layer: DEM -> terrain cropped to the view -> PN surface
+// -> GPU passes (TFT/AFT, SIL; DM for creases and ridges) or the CPU object-space silhouettes
+// -> traced, simplified polylines in the named layers of a Drawing (image pixels, eye
+// distances in metres), with per-pass timings.
+#pragma once
+#include <future>
+#include <memory>
+
+#include "scene/drainage_lines.hpp"
+#include "scene/frame_source.hpp"
+#include "surface/surface_mesh.hpp"
+
+namespace penink {
+
+// The scene's DEM read, its camera placed, the DEM cropped to that view and set up for frames.
+SceneView open_terrain_view(const Scene& scene, GlContext& context, const Log& log);
+
+// A terrain set up once and drawn in many frames (render, batch, bench): its surface mesh and GPU
+// copy, and its drainage lines. `terrain` is what gets modelled (cropped to the view for a single
+// frame, the whole DEM for a flight); `dem` is the whole DEM the drainage cache belongs to.
+class TerrainFrames : public FrameSource {
+public:
+    TerrainFrames(GlContext& context, const Scene& scene, const Terrain& dem, Terrain terrain,
+                  int width, int height, const Log& log);
+    TerrainFrames(const TerrainFrames&) = delete;  // the line preparation thread holds &mesh_
+    TerrainFrames& operator=(const TerrainFrames&) = delete;
+    ~TerrainFrames() override;
+    // One frame: camera plus the scene's per-frame values (light, creases, ridges, tessellation,
+    // silhouette method).
+    SceneDrawing draw(const Camera& camera, const Scene& frame) override;
+    const SurfaceMesh& mesh() const { return mesh_; }
+
+private:
+    GlContext* context_;
+    Terrain terrain_;
+    SurfaceMesh mesh_;
+    TerrainRenderer renderer_;
+    std::unique_ptr<DrainageLines> lines_;
+    std::future<DrainageLineData> pending_lines_;  // prepared on another core during the first frame
+};
+
+// Object-space silhouettes (the exact front/back edges of the CPU PN tessellation, ray-cast
+// visibility; Mower's silhouette paper's reference) rasterised at 1 px into a width x height mask.
+PixelMask object_space_silhouette_mask(const SurfaceMesh& mesh, const Camera& camera,
+                                       const TessellationOptions& tessellation);
+
+// Surface mask rings and silhouette strokes from one frame's images (lines stage), and the
+// visible parts of the surface's boundary (the DEM's cut edges) as object-space outline strokes.
+void add_frame_lines(const FrameImages& images, const SurfaceMesh& mesh, const Camera& camera,
+                     Drawing& drawing);
+
+}  // namespace penink

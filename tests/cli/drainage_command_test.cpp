@@ -1,0 +1,125 @@
+// `penink drainage` on volcano.asc at the DEM's own resolution: the .dv file and the four
+// GeoTIFFs, georeferenced like the DEM, with consistent contents; the routing reaches the file.
+#include <filesystem>
+#include <set>
+#include <sstream>
+
+#include <unistd.h>
+
+#include <gdal_priv.h>
+#include <gtest/gtest.h>
+
+#include "cli/drainage_command.hpp"
+#include "drainage/drainage_build.hpp"
+#include "input/dem_reader.hpp"
+#include "drainage/drainage_db.hpp"
+
+namespace penink {
+namespace {
+
+namespace fs = std::filesystem;
+
+template <class T> std::vector<T> read_band(const fs::path& p, GDALDataType type, int& w, int& h,
+                                            double* gt) {
+    GDALDataset* ds = static_cast<GDALDataset*>(GDALOpen(p.string().c_str(), GA_ReadOnly));
+    if (!ds) return {};
+    w = ds->GetRasterXSize(), h = ds->GetRasterYSize();
+    ds->GetGeoTransform(gt);
+    std::vector<T> v(std::size_t(w) * h);
+    if (ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, w, h, v.data(), w, h, type, 0, 0) != CE_None)
+        v.clear();
+    GDALClose(ds);
+    return v;
+}
+
+TEST(DrainageCommand, VolcanoRastersAndDatabase) {
+    const fs::path d = fs::temp_directory_path() / ("penink_dcmd_" + std::to_string(::getpid()));
+    fs::remove_all(d);
+    fs::create_directories(d);
+    fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.asc", d / "volcano.asc");
+    if (fs::exists(PENINK_SOURCE_DIR "/examples/volcano.prj"))
+        fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.prj", d / "volcano.prj");
+    DrainageCommand cmd;
+    cmd.dem = (d / "volcano.asc").string();
+    cmd.resample = 1;
+    cmd.rasters_dir = (d / "rasters").string();
+    std::ostringstream log;
+    ASSERT_EQ(run_drainage_command(cmd, log), 0) << log.str();
+    const DrainageDb db = read_drainage_db(cmd.dem + ".dv");
+    EXPECT_EQ(db.cols, 61);
+    EXPECT_EQ(db.rows, 87);
+    EXPECT_EQ(db.fingerprint.resample, 1u);
+    {  // the streamed file (grid positions) reads back to the database a render builds in memory
+        DrainageOptions o;
+        o.resample = 1;
+        DrainageDb built = build_drainage_db(read_dem(cmd.dem), o);
+        built.fingerprint = db.fingerprint;
+        EXPECT_TRUE(db == built);
+    }
+
+    GDALAllRegister();
+    int w = 0, h = 0;
+    double gt[6];
+    const auto dir = read_band<std::uint8_t>(d / "rasters/flow_direction.tif", GDT_Byte, w, h, gt);
+    ASSERT_EQ(w, 61);
+    ASSERT_EQ(h, 87);
+    EXPECT_DOUBLE_EQ(gt[1], 10.0);
+    EXPECT_DOUBLE_EQ(gt[5], -10.0);
+    const std::set<int> codes{0, 1, 2, 4, 8, 16, 32, 64, 128};
+    for (std::uint8_t c : dir) EXPECT_TRUE(codes.count(c)) << int(c);
+    const auto acc = read_band<std::uint32_t>(d / "rasters/accumulation.tif", GDT_UInt32, w, h, gt);
+    const auto basin = read_band<std::uint32_t>(d / "rasters/basin.tif", GDT_UInt32, w, h, gt);
+    const auto order = read_band<std::uint8_t>(d / "rasters/stream_order.tif", GDT_Byte, w, h, gt);
+    ASSERT_EQ(acc.size(), 61u * 87u);
+    ASSERT_EQ(basin.size(), acc.size());
+    ASSERT_EQ(order.size(), acc.size());
+    std::uint64_t at_outlets = 0;
+    for (std::size_t i = 0; i < dir.size(); ++i) {
+        if (dir[i] == 0) at_outlets += acc[i];
+        EXPECT_GE(order[i], 1);
+        EXPECT_GE(basin[i], 1u);
+    }
+    EXPECT_EQ(at_outlets, 61u * 87u);  // every point drains to exactly one outlet
+    // one vertex per point plus one per branch ending at a junction
+    std::size_t ends = 0;
+    for (const DvBranch& b : db.branches) ends += b.downstream >= 0;
+    EXPECT_EQ(db.vertices.size(), 61u * 87u + ends);
+    fs::remove_all(d);
+}
+
+TEST(DrainageCommand, MissingDemIsBadInput) {
+    DrainageCommand cmd;
+    cmd.dem = "/nonexistent/dem.tif";
+    std::ostringstream log;
+    EXPECT_EQ(run_drainage_command(cmd, log), 2);
+    EXPECT_EQ(log.str(), "penink: input: /nonexistent/dem.tif: no such file\n");
+}
+
+TEST(DrainageCommand, RoutingReachesTheFingerprint) {
+    const fs::path d = fs::temp_directory_path() / ("penink_lcr_" + std::to_string(::getpid()));
+    fs::remove_all(d);
+    fs::create_directories(d);
+    fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.asc", d / "volcano.asc");
+    DrainageCommand cmd;
+    cmd.dem = (d / "volcano.asc").string();
+    cmd.resample = 1;
+    cmd.quiet = true;
+    std::ostringstream log;
+    cmd.output = (d / "pf.dv").string();
+    ASSERT_EQ(run_drainage_command(cmd, log), 0) << log.str();
+    cmd.routing = DrainageRouting::least_cost;
+    cmd.output = (d / "lc.dv").string();
+    ASSERT_EQ(run_drainage_command(cmd, log), 0) << log.str();
+    const DrainageDb pf_db = read_drainage_db((d / "pf.dv").string());
+    const DrainageDb lc_db = read_drainage_db((d / "lc.dv").string());
+    EXPECT_EQ(pf_db.fingerprint.routing, 0u);
+    EXPECT_EQ(lc_db.fingerprint.routing, 1u);
+    EXPECT_NE(pf_db.branches.size(), lc_db.branches.size());
+    DrainageFingerprint expected = pf_db.fingerprint;
+    expected.routing = 1;
+    EXPECT_TRUE(lc_db.fingerprint == expected);  // the routing is all that differs
+    fs::remove_all(d);
+}
+
+}  // namespace
+}  // namespace penink

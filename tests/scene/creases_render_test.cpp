@@ -1,0 +1,425 @@
+// Creases and ridges through the binary: `penink render` of volcano.asc writes `creases` and
+// `ridges` layers of object-space paths, raising [creases] min_score removes lines, enabled =
+// false empties the layer; the drainage cache `<DEM>.dv` is written next to the DEM, reused, and
+// rebuilt when corrupt or stale; `penink drainage --rasters` writes the four GeoTIFFs.
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <regex>
+
+#include <set>
+#include <tuple>
+
+#include <gdal_priv.h>
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "support/gl_test_context.hpp"
+#include "scene/drainage_lines.hpp"
+#include "core/log.hpp"
+#include "scene/terrain_view.hpp"
+#include "../cli/cli_support.hpp"
+#include "drainage/drainage_build.hpp"
+#include "drainage/stems.hpp"
+#include "input/dem_reader.hpp"
+#include "support/synthetic_terrain.hpp"
+#include "surface/surface_mesh.hpp"
+
+using namespace penink;
+using namespace penink::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A temp dir holding a copy of volcano.asc (and its .prj), so the .dv cache lands there.
+fs::path volcano_dir(const std::string& name) {
+    const fs::path dir = fresh_dir("creases_" + name);
+    fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.asc", dir / "volcano.asc");
+    if (fs::exists(PENINK_SOURCE_DIR "/examples/volcano.prj"))
+        fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.prj", dir / "volcano.prj");
+    return dir;
+}
+
+// Removes a test's directory when the test passed (kept for inspection when it failed).
+struct Cleanup {
+    fs::path dir;
+    ~Cleanup() {
+        if (!::testing::Test::HasFailure()) fs::remove_all(dir);
+    }
+};
+
+struct PathStats {
+    std::size_t count = 0, points = 0;
+    double length = 0.0;
+    std::size_t wrong_kind = 0, outside = 0;
+};
+
+// The <g> of layer `id` (layers are not nested without --layers splits).
+std::string layer_text(const std::string& svg, const std::string& id) {
+    const std::size_t a = svg.find("inkscape:label=\"" + id + "\" id=\"" + id + "\"");
+    if (a == std::string::npos) return "<missing>";
+    return svg.substr(a, svg.find("</g>", a) - a);
+}
+
+PathStats path_stats(const std::string& layer, const std::string& kind, double width, double height) {
+    PathStats s;
+    static const std::regex path_re("<path d=\"([^\"]*)\"([^>]*)/>");
+    static const std::regex num_re("-?[0-9]+(\\.[0-9]+)?");
+    for (auto it = std::sregex_iterator(layer.begin(), layer.end(), path_re); it != std::sregex_iterator(); ++it) {
+        ++s.count;
+        if ((*it)[2].str().find("data-kind=\"" + kind + "\"") == std::string::npos) ++s.wrong_kind;
+        const std::string d = (*it)[1].str();
+        std::vector<double> v;
+        for (auto n = std::sregex_iterator(d.begin(), d.end(), num_re); n != std::sregex_iterator(); ++n)
+            v.push_back(std::stod(n->str()));
+        for (std::size_t k = 0; k + 1 < v.size(); k += 2) {
+            ++s.points;
+            if (v[k] < -0.01 || v[k] > width + 0.01 || v[k + 1] < -0.01 || v[k + 1] > height + 0.01) ++s.outside;
+            if (k >= 2) s.length += std::hypot(v[k] - v[k - 2], v[k + 1] - v[k - 1]);
+        }
+    }
+    return s;
+}
+
+std::string scene_with_creases(const std::string& creases_keys) {
+    return "[terrain]\ndem = \"volcano.asc\"\n[camera]\nwidth = 300\nheight = 225\n[creases]\n" + creases_keys + "\n";
+}
+
+}  // namespace
+
+TEST(CreasesRender, DefaultRenderDrawsCreasesAndRidgesAndCachesDrainage) {
+    const fs::path dir = volcano_dir("default");
+    const Cleanup cleanup{dir};
+    const RunResult r = run_penink("render volcano.asc --width 300 --height 225 -o x.svg --verbose", dir);
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("rebuilding"), std::string::npos) << r.output;  // no cache yet
+    EXPECT_NE(r.output.find("drainage: wrote volcano.asc.dv"), std::string::npos) << r.output;
+    ASSERT_TRUE(fs::exists(dir / "volcano.asc.dv"));
+    const std::string svg = read_text(dir / "x.svg");
+    const PathStats creases = path_stats(layer_text(svg, "creases"), "crease", 300, 225);
+    const PathStats ridges = path_stats(layer_text(svg, "ridges"), "ridge", 300, 225);
+    RecordProperty("crease_paths", int(creases.count));
+    RecordProperty("crease_length_px", int(creases.length));
+    RecordProperty("ridge_paths", int(ridges.count));
+    RecordProperty("ridge_length_px", int(ridges.length));
+    EXPECT_GT(creases.count, 5u);
+    EXPECT_GT(ridges.count, 0u);
+    EXPECT_GT(creases.length, 200.0);
+    EXPECT_EQ(creases.wrong_kind, 0u);
+    EXPECT_EQ(ridges.wrong_kind, 0u);
+    EXPECT_EQ(creases.outside, 0u);
+    EXPECT_EQ(ridges.outside, 0u);
+    // Layer order of conventions.md: surface, ridges, creases, ..., silhouettes.
+    const std::size_t ps = svg.find("id=\"surface\""), pr = svg.find("id=\"ridges\""), pc = svg.find("id=\"creases\""),
+                      pl = svg.find("id=\"silhouettes\"");
+    EXPECT_LT(ps, pr);
+    EXPECT_LT(pr, pc);
+    EXPECT_LT(pc, pl);
+    ASSERT_NE(pl, std::string::npos);
+
+    // Second render: the cache is read, and the drawing is byte-identical.
+    const auto mtime = fs::last_write_time(dir / "volcano.asc.dv");
+    const RunResult again = run_penink("render volcano.asc --width 300 --height 225 -o y.svg --verbose", dir);
+    ASSERT_EQ(again.code, 0) << again.output;
+    EXPECT_NE(again.output.find("drainage: using cached volcano.asc.dv"), std::string::npos) << again.output;
+    EXPECT_EQ(again.output.find("rebuilding"), std::string::npos) << again.output;
+    EXPECT_EQ(fs::last_write_time(dir / "volcano.asc.dv"), mtime);
+    EXPECT_EQ(read_text(dir / "y.svg"), svg);
+}
+
+TEST(CreasesRender, HighMinScoreRemovesAllCreases) {
+    const fs::path dir = volcano_dir("minscore");
+    const Cleanup cleanup{dir};
+    write_text(dir / "scene.toml", scene_with_creases("min_score = 0.35"));
+    RunResult r = run_penink("render scene.toml -o some.svg", dir);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const PathStats some = path_stats(layer_text(read_text(dir / "some.svg"), "creases"), "crease", 300, 225);
+    // rs <= (2 + 0.5 + 4) / 3 - 2.5 < 0 everywhere with the default weights.
+    write_text(dir / "scene.toml", scene_with_creases("min_score = 2.5"));
+    r = run_penink("render scene.toml -o none.svg", dir);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const std::string none = read_text(dir / "none.svg");
+    EXPECT_GT(some.count, 0u);
+    EXPECT_EQ(path_stats(layer_text(none, "creases"), "crease", 300, 225).count, 0u);
+    EXPECT_GT(path_stats(layer_text(none, "ridges"), "ridge", 300, 225).count, 0u);  // [ridges] untouched
+}
+
+namespace {
+
+struct Frame {  // volcano at 300x225 from the default viewpoint, drainage built in memory
+    Scene scene;
+    Terrain dem;
+    Camera camera;
+    SurfaceMesh mesh;
+    DrainageDb db;
+    Frame() {
+        scene.dem = PENINK_SOURCE_DIR "/examples/volcano.asc";
+        scene.camera.width = 300, scene.camera.height = 225;
+        dem = read_dem(scene.dem);
+        camera = scene_camera(scene, dem);
+        mesh = mesh_from_terrain(terrain_for_view(dem, camera, scene, Log{}));
+        db = build_drainage_db(dem, DrainageOptions{});
+    }
+};
+
+// A Frame rendered once (toward/away surface and depth) with its drainage lines uploaded; draws
+// the creases and ridges of any variant of its scene.
+struct RenderedFrame : Frame {
+    TerrainRenderer renderer{test_context().gl(), mesh, camera.width, camera.height};
+    FrameImages img = renderer.render(camera, {});
+    DrainageLines lines{test_context().gl(), db, mesh};
+    float D = max_visible_distance(img.toward);
+
+    Drawing draw(const Scene& s) {
+        Drawing d;
+        PassTimings t;
+        lines.draw(camera, s, renderer.surface_pass().toward_texture(), D, d, t);
+        return d;
+    }
+};
+
+struct LayerStats {
+    std::size_t strokes = 0, points = 0, outside = 0;
+    double length = 0.0;
+    std::set<std::tuple<int, int, int, int>> segments;  // rounded to 1/100 px
+};
+
+LayerStats layer_stats(const Layer& layer, const std::string& kind, const Camera& cam) {
+    LayerStats s;
+    for (const Stroke& st : layer.strokes) {
+        ++s.strokes;
+        EXPECT_EQ(st.kind, kind);
+        EXPECT_GE(st.strength, 0.0f);
+        EXPECT_EQ(st.depth.size(), st.points.size());
+        for (std::size_t i = 0; i < st.points.size(); ++i) {
+            const glm::vec2 p = st.points[i];
+            ++s.points;
+            s.outside += p.x < 0 || p.y < 0 || p.x > cam.width || p.y > cam.height;
+            if (i == 0) continue;
+            const glm::vec2 q = st.points[i - 1];
+            s.length += glm::length(p - q);
+            s.segments.insert({int(std::lround(q.x * 100)), int(std::lround(q.y * 100)), int(std::lround(p.x * 100)),
+                               int(std::lround(p.y * 100))});
+        }
+    }
+    return s;
+}
+
+}  // namespace
+
+TEST(CreasesRender, RaisingMinScoreRemovesCreasesInProcess) {
+    RenderedFrame f;
+    std::size_t stem_vertices = 0;
+    for (const auto& stem : drainage_stems(f.db)) stem_vertices += stem.size();
+    EXPECT_EQ(f.lines.crease_vertices(), stem_vertices);
+    for (double spacing : {0.0, 4.0}) {  // without and with even-spacing thinning
+        LayerStats previous;
+        previous.length = 1e300, previous.points = SIZE_MAX, previous.strokes = SIZE_MAX;
+        std::vector<std::size_t> strokes;
+        for (double min_score : {-0.2, 0.0, 0.1, 0.2, 0.35, 0.5, 0.8, 1.2, 2.5}) {
+            Scene s = f.scene;
+            s.creases.min_score = min_score, s.creases.spacing_px = spacing;
+            const Drawing d = f.draw(s);
+            const LayerStats now = layer_stats(d.layer(LayerKind::creases), "crease", f.camera);
+            EXPECT_EQ(now.outside, 0u);
+            EXPECT_LE(now.length, previous.length + 1e-3) << "spacing " << spacing << " min_score " << min_score;
+            EXPECT_LE(now.points, previous.points) << "spacing " << spacing << " min_score " << min_score;
+            // Not a theorem (a run can split in two), but holds on volcano at every step.
+            EXPECT_LE(now.strokes, previous.strokes) << "spacing " << spacing << " min_score " << min_score;
+            if (spacing == 0.0 && previous.points != SIZE_MAX) {  // scores only shift: segments are a subset
+                for (const auto& seg : now.segments) EXPECT_TRUE(previous.segments.count(seg)) << min_score;
+            }
+            RecordProperty("spacing" + std::to_string(int(spacing)) + "_min" + std::to_string(int(min_score * 100)) +
+                               "_strokes_length",
+                           std::to_string(now.strokes) + " " + std::to_string(int(now.length)));
+            strokes.push_back(now.strokes);
+            previous = now;
+        }
+        EXPECT_GT(strokes[1], strokes[5]);
+        EXPECT_EQ(strokes.back(), 0u);
+    }
+}
+
+TEST(CreasesRender, RidgesAndCreasesSwitchIndependently) {
+    RenderedFrame f;
+    Scene s = f.scene;
+    const Drawing both = f.draw(s);
+    s.ridges.enabled = false;
+    const Drawing no_ridges = f.draw(s);
+    s.ridges.enabled = true, s.creases.enabled = false;
+    const Drawing no_creases = f.draw(s);
+    const LayerStats c = layer_stats(both.layer(LayerKind::creases), "crease", f.camera);
+    const LayerStats r = layer_stats(both.layer(LayerKind::ridges), "ridge", f.camera);
+    EXPECT_GT(c.strokes, 5u);
+    EXPECT_GT(r.strokes, 0u);
+    EXPECT_EQ(r.outside, 0u);
+    EXPECT_TRUE(no_ridges.layer(LayerKind::ridges).strokes.empty());
+    EXPECT_EQ(layer_stats(no_ridges.layer(LayerKind::creases), "crease", f.camera).segments, c.segments);
+    EXPECT_TRUE(no_creases.layer(LayerKind::creases).strokes.empty());
+    EXPECT_EQ(layer_stats(no_creases.layer(LayerKind::ridges), "ridge", f.camera).segments, r.segments);
+    // D: the largest finite eye distance of the frame.
+    float far = 0.0f;
+    for (float v : f.img.toward.depth)
+        if (std::isfinite(v)) far = std::max(far, v);
+    EXPECT_EQ(f.D, far);
+    EXPECT_GT(f.D, 0.0f);
+}
+
+namespace {
+
+// Branch from `from` in `steps` 10 m steps of `dir` (order, downstream as given).
+void add_branch(DrainageDb& db, glm::vec2 from, glm::vec2 dir, int steps, std::uint8_t order, std::int32_t down) {
+    DvBranch b{};
+    b.first = std::uint32_t(db.vertices.size()), b.count = std::uint32_t(steps + 1);
+    b.order = order, b.downstream = down, b.basin = 1;
+    for (int k = 0; k <= steps; ++k) {
+        const glm::vec2 p = from + dir * (10.0f * k);
+        db.vertices.push_back({p.x, p.y, 0.0f, 0.1f * float(k + 1)});
+    }
+    db.branches.push_back(b);
+}
+
+}  // namespace
+
+TEST(CreasesRender, TributaryStaysJoinedToSmoothedMainStem) {
+    // Flat ground; A (order 2) comes from the west to J = (0, 0) and turns south as C; B (order 1)
+    // comes from the north and ends at J. Smoothing rounds the main stem's corner at J.
+    DrainageDb db;
+    add_branch(db, {-50, 0}, {1, 0}, 5, 2, 2);   // A
+    add_branch(db, {0, 50}, {0, -1}, 5, 1, 2);   // B
+    add_branch(db, {0, 0}, {0, -1}, 5, 2, -1);   // C
+    db.upstream = {0, 1};
+    db.branches[2].up_first = 0, db.branches[2].up_count = 2;
+    db.branches[0].up_first = db.branches[1].up_first = 0;
+    const SurfaceMesh mesh = mesh_from_terrain(terrain_from_function(21, 21, 10.0, [](double, double) { return 0.0; }));
+    Camera cam;  // 200 m above the origin, straight down, 1 px per metre: (x, y) -> (200 + x, 200 - y)
+    cam.eye = {0.0, 0.0, 200.0};
+    cam.azimuth = 0.0, cam.altitude = -90.0, cam.fov = 90.0, cam.width = 400, cam.height = 400;
+    cam.near_plane = 1.0, cam.far_plane = 1000.0;
+    GlContext& ctx = test_context();
+    TerrainRenderer renderer(ctx.gl(), mesh, cam.width, cam.height);
+    const FrameImages img = renderer.render(cam, {});
+    DrainageLines lines(ctx.gl(), db, mesh);
+    Scene s;
+    s.creases.min_score = -10.0, s.creases.distance_attenuation = 0.0, s.creases.spacing_px = 0.0;
+    s.ridges.enabled = false;
+    Drawing d;
+    PassTimings t;
+    lines.draw(cam, s, renderer.surface_pass().toward_texture(), max_visible_distance(img.toward), d, t);
+    const std::vector<Stroke>& st = d.layer(LayerKind::creases).strokes;
+    ASSERT_EQ(st.size(), 2u);
+    const Stroke& main = st[0].points.size() == 11 ? st[0] : st[1];
+    const Stroke& trib = st[0].points.size() == 11 ? st[1] : st[0];
+    ASSERT_EQ(main.points.size(), 11u);  // A + C, J once
+    ASSERT_EQ(trib.points.size(), 6u);
+    EXPECT_NEAR(main.points.front().x, 150.0f, 1e-3);  // sources and outlet stay put
+    EXPECT_NEAR(main.points.back().y, 250.0f, 1e-3);
+    EXPECT_NEAR(trib.points.front().y, 150.0f, 1e-3);
+    // The corner moved inside the bend (towards south-west: +y down, -x) by metres...
+    const glm::vec2 j = main.points[5];
+    EXPECT_LT(j.x, 199.0f);
+    EXPECT_GT(j.y, 201.0f);
+    // ...and the tributary's end went with it.
+    EXPECT_NEAR(trib.points.back().x, j.x, 1e-3);
+    EXPECT_NEAR(trib.points.back().y, j.y, 1e-3);
+}
+
+TEST(CreasesRender, DisabledCreasesLeaveAnEmptyLayer) {
+    const fs::path dir = volcano_dir("disabled");
+    const Cleanup cleanup{dir};
+    write_text(dir / "scene.toml", scene_with_creases("enabled = false"));
+    const RunResult r = run_penink("render scene.toml -o out.svg", dir);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const std::string svg = read_text(dir / "out.svg");
+    ASSERT_NE(layer_text(svg, "creases"), "<missing>");
+    EXPECT_EQ(path_stats(layer_text(svg, "creases"), "crease", 300, 225).count, 0u);
+    EXPECT_GT(path_stats(layer_text(svg, "ridges"), "ridge", 300, 225).count, 0u);
+}
+
+namespace {
+
+// Writes the cache with `penink drainage` (automatic factor, as render uses), replaces it by
+// `damage(good bytes)` and renders: returns the render's output; `good` gets the intact bytes.
+RunResult render_with_damaged_cache(const fs::path& dir, std::string& good,
+                                    const std::function<std::string(std::string)>& damage) {
+    EXPECT_EQ(run_penink("drainage volcano.asc -q", dir).code, 0);
+    good = read_text(dir / "volcano.asc.dv");
+    EXPECT_GT(good.size(), 1000u);
+    std::ofstream(dir / "volcano.asc.dv", std::ios::binary) << damage(good);
+    return run_penink("render volcano.asc --width 300 --height 225 -o out.svg --verbose", dir);
+}
+
+}  // namespace
+
+TEST(CreasesRender, CorruptCacheIsRebuilt) {
+    const fs::path dir = volcano_dir("corrupt");
+    const Cleanup cleanup{dir};
+    std::string good;
+    const RunResult r = render_with_damaged_cache(dir, good, [](std::string b) {
+        b[b.size() / 2] = char(b[b.size() / 2] ^ 0x40);  // one bit in the middle of the data
+        return b;
+    });
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("penink: drainage: volcano.asc.dv: drainage database checksum mismatch (file corrupt); "
+                            "rebuilding\n"),
+              std::string::npos) << r.output;
+    EXPECT_EQ(read_text(dir / "volcano.asc.dv"), good);  // rebuilt, deterministically
+    EXPECT_GT(path_stats(layer_text(read_text(dir / "out.svg"), "creases"), "crease", 300, 225).count, 0u);
+}
+
+TEST(CreasesRender, TruncatedCacheIsRebuilt) {
+    const fs::path dir = volcano_dir("truncated");
+    const Cleanup cleanup{dir};
+    std::string good;
+    const RunResult r = render_with_damaged_cache(dir, good, [](std::string b) { return b.substr(0, b.size() / 3); });
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("penink: drainage: volcano.asc.dv: truncated drainage database; rebuilding\n"),
+              std::string::npos) << r.output;
+    EXPECT_EQ(read_text(dir / "volcano.asc.dv"), good);
+    EXPECT_GT(path_stats(layer_text(read_text(dir / "out.svg"), "creases"), "crease", 300, 225).count, 0u);
+}
+
+TEST(CreasesRender, StaleCacheIsRebuilt) {
+    const fs::path dir = volcano_dir("stale");
+    const Cleanup cleanup{dir};
+    ASSERT_EQ(run_penink("drainage volcano.asc -q", dir).code, 0);
+    const std::string before = read_text(dir / "volcano.asc.dv");
+    // One elevation edited: the DEM's fingerprint changes.
+    std::string dem = read_text(dir / "volcano.asc");
+    const std::size_t last = dem.find_last_of("0123456789");
+    dem[last] = dem[last] == '9' ? '8' : char(dem[last] + 1);
+    std::ofstream(dir / "volcano.asc", std::ios::binary) << dem;
+    const RunResult s = run_penink("render volcano.asc --width 300 --height 225 -o d.svg --verbose", dir);
+    ASSERT_EQ(s.code, 0) << s.output;
+    EXPECT_NE(s.output.find("penink: drainage: volcano.asc.dv: drainage database is stale (DEM changed); rebuilding"),
+              std::string::npos) << s.output;
+    EXPECT_NE(read_text(dir / "volcano.asc.dv"), before);
+}
+
+TEST(CreasesRender, DrainageSubcommandWritesRasters) {
+    const fs::path dir = volcano_dir("drainage");
+    const Cleanup cleanup{dir};
+    const RunResult r = run_penink("drainage volcano.asc --resample 1 --rasters rasters", dir);
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("drainage: wrote volcano.asc.dv"), std::string::npos) << r.output;
+    EXPECT_TRUE(fs::exists(dir / "volcano.asc.dv"));
+    GDALAllRegister();
+    for (const char* name : {"flow_direction", "accumulation", "basin", "stream_order"}) {
+        const fs::path p = dir / "rasters" / (std::string(name) + ".tif");
+        GDALDataset* ds = static_cast<GDALDataset*>(GDALOpen(p.string().c_str(), GA_ReadOnly));
+        ASSERT_NE(ds, nullptr) << p;
+        EXPECT_EQ(ds->GetRasterXSize(), 61) << name;
+        EXPECT_EQ(ds->GetRasterYSize(), 87) << name;
+        double gt[6];
+        ASSERT_EQ(ds->GetGeoTransform(gt), CE_None) << name;
+        EXPECT_DOUBLE_EQ(gt[1], 10.0) << name;
+        EXPECT_DOUBLE_EQ(gt[5], -10.0) << name;
+        EXPECT_NE(std::string(ds->GetProjectionRef()).find("Zealand"), std::string::npos) << name;
+        GDALClose(ds);
+    }
+    // -q: nothing printed; a bad factor is one error line with exit code 2.
+    const RunResult q = run_penink("drainage volcano.asc --resample 1 -q -o quiet.dv", dir);
+    EXPECT_EQ(q.code, 0);
+    EXPECT_EQ(q.output, "");
+    EXPECT_EQ(read_text(dir / "quiet.dv"), read_text(dir / "volcano.asc.dv"));
+}

@@ -1,0 +1,34 @@
+// Sphere meshes for tests and benchmarks, centred on the origin, in the mesh's own units (the
+// radius), z-up with counter-clockwise (outward-facing) triangles and every triangle of
+// material 0 "default":
+// - uv_sphere: longitude u = 2 pi j / n (from +x towards +y, j = 0..n) and colatitude
+//   v = pi i / (n / 2) (from the +z pole, i = 0..n/2); vertex (i, j) at
+//   rho(u, v) (sin v cos u, sin v sin u, cos v) with rho = radius + bump(u, v) (no bump: radius),
+//   all in double and rounded to float at the end. Two layouts of the same lattice: `grid` keeps
+//   the seam column j = n and one vertex per pole-row node ((n/2 + 1) (n + 1) vertices, row-major
+//   by i then j; 2 triangles per cell, those touching a pole degenerate: n/2 * n * 2 triangles);
+//   `closed` shares the seam and has one vertex per pole (exactly (0, 0, +-radius), no bump; a closed
+//   2-manifold: north pole, rings i = 1..n/2-1 of n vertices, south pole; per column j the north
+//   fan triangle, the south fan triangle, then 2 triangles per band).
+// - icosphere: the icosahedron (12 vertices at (+-1, +-t, 0) and cyclic permutations, t the golden
+//   ratio) subdivided `level` times by edge midpoints (new vertices appended in order of first
+//   use, each triangle split into its 3 corners then the middle one), every vertex then pushed to
+//   the sphere of radius r: 20 * 4^level triangles.
+#pragma once
+#include <functional>
+
+#include "core/triangle_mesh.hpp"
+
+namespace penink::test {
+
+enum class UvLayout { grid, closed };
+
+// Radial offset added to the radius at longitude u, colatitude v (radians).
+using RadialBump = std::function<double(double u, double v)>;
+
+// n segments around (n even), n / 2 rings.
+TriangleMesh uv_sphere(int n, double radius = 1.0, UvLayout layout = UvLayout::grid, const RadialBump& bump = {});
+
+TriangleMesh icosphere(int level, float r);
+
+}  // namespace penink::test
