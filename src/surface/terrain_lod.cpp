@@ -1,0 +1,503 @@
+#include "surface/terrain_lod.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <initializer_list>
+#include <limits>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/vec4.hpp>
+
+#include "core/parallel_chunks.hpp"
+
+namespace penink {
+
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+int padded_levels(int cols, int rows) {
+    int k = 0;
+    while ((1 << k) + 1 < std::max(cols, rows)) ++k;
+    return k;
+}
+
+void check_terrain(const Terrain& t) {
+    if (t.cols < 0 || t.rows < 0 || t.pos.size() != t.size() || t.valid.size() != t.size())
+        throw std::invalid_argument("terrain lod: terrain positions/valid flags do not match its grid");
+    if (std::max(t.cols, t.rows) > (1 << 30))
+        throw std::invalid_argument("terrain lod: grid too large");
+}
+
+// Rows [0, n] of a level in parallel when there are enough of them.
+template <class F> void each_row(int first, int last, int step, std::size_t work_per_row, F&& f) {
+    if (last < first) return;
+    const std::size_t count = std::size_t((last - first) / step + 1);
+    const std::size_t min_rows = std::max<std::size_t>(1, (1u << 16) / std::max<std::size_t>(work_per_row, 1));
+    parallel_chunks(count, min_rows, [&](std::size_t b, std::size_t e) {
+        for (std::size_t k = b; k < e; ++k) f(first + int(k) * step);
+    });
+}
+
+// An upper bound on the largest singular value, over the full-resolution triangles, of the plan
+// positions' piecewise-linear map from grid units (column, row) to metres: for a triangle's
+// Jacobian [u v], sigma^2 = the largest eigenvalue of [[u.u, u.v], [u.v, v.v]] <=
+// max(u.u, v.v) + |u.v| (Gershgorin; equal on a grid with perpendicular axes).
+double plan_lipschitz(const Terrain& t) {
+    auto bound2 = [](float ux, float uy, float vx, float vy) {
+        return std::max(ux * ux + uy * uy, vx * vx + vy * vy) + std::abs(ux * vx + uy * vy);
+    };
+    const std::size_t rows = std::size_t(std::max(t.rows - 1, 0));
+    const std::size_t per = chunk_length(rows, 64);
+    std::vector<float> part((rows + per - 1) / per + 1, 0.0f);
+    parallel_chunks(rows, 64, [&](std::size_t b, std::size_t e) {
+        float best = 0.0f;
+        for (std::size_t r = b; r < e; ++r) {
+            const glm::vec3* p = &t.pos[t.index(0, int(r))];
+            const glm::vec3* q = &t.pos[t.index(0, int(r) + 1)];
+            for (int c = 0; c + 1 < t.cols; ++c) {
+                // Triangles {a, s, d}: columns d - s, rows s - a; {a, d, b}: columns b - a, rows d - b.
+                const glm::vec3 a = p[c], b = p[c + 1], sw = q[c], d = q[c + 1];
+                best = std::max(best, bound2(d.x - sw.x, d.y - sw.y, sw.x - a.x, sw.y - a.y));
+                best = std::max(best, bound2(b.x - a.x, b.y - a.y, d.x - b.x, d.y - b.y));
+            }
+        }
+        part[b / per] = best;
+    });
+    return std::sqrt(double(*std::max_element(part.begin(), part.end())));
+}
+
+}  // namespace
+
+TerrainLod build_terrain_lod(const Terrain& t) {
+    check_terrain(t);
+    const double ex = t.vertical_exaggeration;
+    if (!(ex > 0.0) || !std::isfinite(ex)) throw std::invalid_argument("terrain lod: vertical exaggeration must be > 0");
+    TerrainLod lod;
+    lod.cols = t.cols, lod.rows = t.rows;
+    lod.levels = padded_levels(t.cols, t.rows);
+    const int n = 1 << lod.levels, side = n + 1;
+    const std::size_t N = std::size_t(side) * side;
+    lod.error.assign(N, 0.0f);
+    lod.radius.assign(N, 0.0f);
+    if (t.cols < 2 || t.rows < 2) return lod;
+
+    // Unexaggerated heights (0 where invalid: such nodes only ever feed forced, +inf, nodes) and
+    // the invalid mask of the padded square.
+    std::vector<float> h(N, 0.0f);
+    std::vector<std::uint8_t> bad(N, 1), wide(N, 0);
+    float zmin = kInf, zmax = -kInf;
+    for (int r = 0; r < t.rows; ++r) {
+        for (int c = 0; c < t.cols; ++c) {
+            const std::size_t i = t.index(c, r), p = std::size_t(r) * side + c;
+            if (!t.valid[i]) continue;
+            const float z = float(double(t.pos[i].z) / ex);
+            h[p] = z, bad[p] = 0;
+            zmin = std::min(zmin, z), zmax = std::max(zmax, z);
+        }
+    }
+    lod.z_min = zmin <= zmax ? zmin : 0.0f, lod.z_max = zmin <= zmax ? zmax : 0.0f;
+    // forced = bad dilated by the 3x3 square (rows, then columns).
+    for (int r = 0; r < side; ++r) {
+        const std::uint8_t* b = &bad[std::size_t(r) * side];
+        std::uint8_t* w = &wide[std::size_t(r) * side];
+        for (int c = 0; c < side; ++c) w[c] = std::uint8_t(b[c] | (c > 0 ? b[c - 1] : 0) | (c < n ? b[c + 1] : 0));
+    }
+    std::vector<std::uint8_t>& forced = bad;
+    for (int r = 0; r < side; ++r) {
+        const std::uint8_t* up = &wide[std::size_t(r > 0 ? r - 1 : r) * side];
+        const std::uint8_t* mid = &wide[std::size_t(r) * side];
+        const std::uint8_t* dn = &wide[std::size_t(r < n ? r + 1 : r) * side];
+        std::uint8_t* f = &forced[std::size_t(r) * side];
+        for (int c = 0; c < side; ++c) f[c] = std::uint8_t(up[c] | mid[c] | dn[c]);
+    }
+    wide = {};
+
+    // Signed deviation bounds, bottom-up: up in lod.error, lo in lod.radius for now.
+    float* up = lod.error.data();
+    float* lo = lod.radius.data();
+    auto at = [side](int c, int r) { return std::size_t(r) * side + c; };
+    // Node m split of hypotenuse a-b, children k[0..cnt).
+    auto settle = [&](std::size_t m, std::size_t a, std::size_t b, const std::size_t* k, int cnt) {
+        const float d = h[m] - 0.5f * (h[a] + h[b]);
+        float cu = 0.0f, cl = 0.0f;
+        for (int i = 0; i < cnt; ++i) cu = std::max(cu, up[k[i]]), cl = std::min(cl, lo[k[i]]);
+        up[m] = forced[m] ? kInf : cu + std::max(0.0f, d);
+        lo[m] = cl + std::min(0.0f, d);
+    };
+    for (int s = 2; s <= n; s *= 2) {
+        const int half = s / 2, q = s / 4;
+        // Edge nodes: midpoints of the sides of the s-squares; children the centres of the
+        // s/2-squares around them (none at s = 2).
+        each_row(0, n, half, std::size_t(n / s) + 1, [&](int r) {
+            const bool horizontal = r % s == 0;  // on a row of square sides: hypotenuse along the row
+            for (int c = horizontal ? half : 0; c <= n; c += s) {
+                std::size_t k[4];
+                int cnt = 0;
+                if (q > 0) {
+                    for (const int dr : {-q, q}) {
+                        if (r + dr < 0 || r + dr > n) continue;
+                        for (const int dc : {-q, q})
+                            if (c + dc >= 0 && c + dc <= n) k[cnt++] = at(c + dc, r + dr);
+                    }
+                }
+                if (horizontal) settle(at(c, r), at(c - half, r), at(c + half, r), k, cnt);
+                else settle(at(c, r), at(c, r - half), at(c, r + half), k, cnt);
+            }
+        });
+        // Centre nodes of the s-squares: the square's diagonal passes through the centre of its
+        // 2s-square (the root square's: NW-SE); children the midpoints of its 4 sides.
+        each_row(half, n - half, s, std::size_t(n / s), [&](int r) {
+            for (int c = half; c < n; c += s) {
+                const bool nwse = ((c / s) & 1) == ((r / s) & 1);
+                const std::size_t k[4] = {at(c - half, r), at(c + half, r), at(c, r - half), at(c, r + half)};
+                if (nwse) settle(at(c, r), at(c - half, r - half), at(c + half, r + half), k, 4);
+                else settle(at(c, r), at(c + half, r - half), at(c - half, r + half), k, 4);
+            }
+        });
+    }
+    h = {};
+    forced = {};
+    parallel_chunks(N, 1 << 18, [&](std::size_t b, std::size_t e) {
+        for (std::size_t i = b; i < e; ++i) up[i] = std::max(up[i], -lo[i]), lo[i] = 0.0f;
+    });
+
+    // Nested plan radii. L: a Lipschitz constant of the nodes' plan positions over the grid
+    // (plan_lipschitz: |xy(p) - xy(q)| <= L |p - q|, grid units, for any nodes p, q; the cell
+    // side on a square grid). A node's radius is L times a grid-unit radius nested exactly over
+    // its children's distances: R(edge, 2) = 1 (the finest diamonds' corners), R(centre, s) =
+    // R(edge, s) + s/2, R(edge, 2s) = R(centre, s) + s/sqrt(2). Padding nodes take the same
+    // values (positions clamped to the DEM are L-Lipschitz too).
+    const float lip = float(plan_lipschitz(t));
+    const double grow = 1.0 + 1e-5;  // rounding of L, of the products and of the sums below
+    float* rad = lod.radius.data();
+    double r_centre = 0.0;  // R of the centre nodes of the previous level
+    for (int s = 2; s <= n; s *= 2) {
+        const int half = s / 2;
+        const double r_edge = s == 2 ? 1.0 : r_centre + (s / 4) * std::sqrt(2.0);
+        r_centre = r_edge + half;
+        const float re = float(lip * r_edge * grow), rc = float(lip * r_centre * grow);
+        each_row(0, n, half, std::size_t(n / s) + 1, [&](int r) {
+            for (int c = (r % s == 0) ? half : 0; c <= n; c += s) rad[at(c, r)] = re;
+        });
+        each_row(half, n - half, s, std::size_t(n / s), [&](int r) {
+            for (int c = half; c < n; c += s) rad[at(c, r)] = rc;
+        });
+    }
+    return lod;
+}
+
+double lod_pixel_scale(const Camera& cam) {
+    const double aspect = double(cam.width) / double(cam.height);
+    const double tx = std::tan(cam.fov * kDeg / 2.0), ty = tx / aspect;
+    const double focal = double(cam.height) / (2.0 * ty);
+    return focal * (1.0 + tx * tx + ty * ty);
+}
+
+namespace {
+
+// Map from DEM node to (output vertex + 1) in the low 30 bits, plus two flags; kept per thread
+// between selections and reset entry by entry.
+constexpr std::uint32_t kIndexMask = (1u << 30) - 1, kActiveFlag = 1u << 31, kCellFlag = 1u << 30;
+
+struct Scratch {
+    std::vector<std::uint32_t> map;
+    std::vector<std::uint32_t> touched;
+};
+thread_local Scratch scratch;
+
+struct ScratchReset {
+    ~ScratchReset() {
+        for (const std::uint32_t i : scratch.touched) scratch.map[i] = 0;
+        scratch.touched.clear();
+    }
+};
+
+struct Frustum {
+    glm::dvec4 plane[6];
+    // 0 outside, 1 crossing, 2 inside (plane x >= 0 inside).
+    int classify(const glm::dvec3& lo, const glm::dvec3& hi) const {
+        bool inside = true;
+        for (const glm::dvec4& p : plane) {
+            const glm::dvec3 far(p.x >= 0 ? hi.x : lo.x, p.y >= 0 ? hi.y : lo.y, p.z >= 0 ? hi.z : lo.z);
+            if (p.x * far.x + p.y * far.y + p.z * far.z + p.w < 0.0) return 0;
+            const glm::dvec3 near(p.x >= 0 ? lo.x : hi.x, p.y >= 0 ? lo.y : hi.y, p.z >= 0 ? lo.z : hi.z);
+            if (p.x * near.x + p.y * near.y + p.z * near.z + p.w < 0.0) inside = false;
+        }
+        return inside ? 2 : 1;
+    }
+};
+
+Frustum frustum_of(const Camera& cam) {
+    const glm::dmat4 m = view_projection(cam);
+    auto row = [&](int i) { return glm::dvec4(m[0][i], m[1][i], m[2][i], m[3][i]); };
+    Frustum f;
+    f.plane[0] = row(3) + row(0), f.plane[1] = row(3) - row(0);
+    f.plane[2] = row(3) + row(1), f.plane[3] = row(3) - row(1);
+    f.plane[4] = row(3) + row(2), f.plane[5] = row(3) - row(2);
+    return f;
+}
+
+struct Item {
+    int ac, ar, bc, br, cc, cr;  // hypotenuse a-b, right angle at c; grid (column, row)
+    bool inside;                 // an ancestor's box lies inside the frustum
+};
+
+class Selector {
+public:
+    Selector(const TerrainLod& lod, const Terrain& t, const Camera& cam, const LodOptions& o, std::vector<std::uint32_t>* nodes)
+        : lod_(lod), t_(t), side_(lod.side()), cols_(t.cols), rows_(t.rows), nodes_(nodes) {
+        const double ex = t.vertical_exaggeration;
+        ex_ = ex;
+        scale_ = ex * lod_pixel_scale(cam);
+        tol_ = std::max(0.0, double(o.tolerance_px));
+        min_radius_ = std::max(0.0, double(o.min_radius_px)) / lod_pixel_scale(cam);  // metres at unit distance
+        near_ = std::max(cam.near_plane, 1e-6);
+        eye_ = cam.eye;
+        zlo_ = double(lod.z_min) * ex, zhi_ = double(lod.z_max) * ex;
+        const double slack = 1e-6 * std::max(std::abs(zlo_), std::abs(zhi_)) + 1e-6;
+        zlo_ -= slack, zhi_ += slack;
+        const double vz = std::max({0.0, eye_.z - zhi_, zlo_ - eye_.z});
+        vz2_ = vz * vz;
+        frustum_ = frustum_of(cam);
+    }
+
+    SurfaceMesh run(LodSelection* stats) {
+        if (scratch.map.size() < t_.size()) scratch.map.assign(t_.size(), 0);
+        ScratchReset reset;
+        const int n = side_ - 1;
+        std::vector<Item> stack;
+        stack.reserve(256);
+        // Root: the square halved along its NW-SE diagonal, both halves counter-clockwise from above.
+        stack.push_back({0, 0, n, n, n, 0, false});
+        stack.push_back({n, n, 0, 0, 0, n, false});
+        while (!stack.empty()) {
+            Item it = stack.back();
+            stack.pop_back();
+            const int c0 = std::min({it.ac, it.bc, it.cc}), r0 = std::min({it.ar, it.br, it.cr});
+            if (c0 >= cols_ - 1 || r0 >= rows_ - 1) continue;  // only padding cells
+            if (std::abs(it.ac - it.bc) == 1 && std::abs(it.ar - it.br) == 1) {
+                leaf(it);
+                continue;
+            }
+            const int mc = (it.ac + it.bc) / 2, mr = (it.ar + it.br) / 2;
+            const float err = lod_.error[lod_.index(mc, mr)];
+            if (!it.inside) {
+                const int cls = classify_triangle(it, err);
+                if (cls == 0) continue;
+                it.inside = cls == 2;
+            }
+            if (active(mc, mr)) {
+                count_active(mc, mr);
+                // Children keep the orientation: (b, c, m) and (c, a, m); the first pushed last.
+                stack.push_back({it.bc, it.br, it.cc, it.cr, mc, mr, it.inside});
+                stack.push_back({it.cc, it.cr, it.ac, it.ar, mc, mr, it.inside});
+                continue;
+            }
+            if (ok(it.ac, it.ar) && ok(it.bc, it.br) && ok(it.cc, it.cr)) emit(it.ac, it.ar, it.bc, it.br, it.cc, it.cr);
+        }
+        if (stats) *stats = {out_.tri.size(), out_.pos.size(), active_count_};
+        return std::move(out_);
+    }
+
+private:
+    const TerrainLod& lod_;
+    const Terrain& t_;
+    int side_, cols_, rows_;
+    std::vector<std::uint32_t>* nodes_;
+    double ex_ = 1.0, scale_ = 1.0, tol_ = 1.0, min_radius_ = 0.0, near_ = 1.0, zlo_ = 0.0, zhi_ = 0.0, vz2_ = 0.0;
+    glm::dvec3 eye_{0.0};
+    Frustum frustum_;
+    SurfaceMesh out_;
+    std::size_t active_count_ = 0;
+
+    bool in_dem(int c, int r) const { return c < cols_ && r < rows_; }
+    bool ok(int c, int r) const { return in_dem(c, r) && t_.valid[t_.index(c, r)]; }
+
+    // Lindstrom & Pascucci's test: error projected at the distance from the eye to the node's
+    // bounding region exceeds the tolerance. Monotone from a node to its parents.
+    bool active(int c, int r) const {
+        const std::size_t k = lod_.index(c, r);
+        const float err = lod_.error[k];
+        if (!(err < kInf)) return true;  // forced (or NaN)
+        if (!(err > 0.0f)) return false;
+        if (!in_dem(c, r)) return true;  // cannot happen: padding nodes are forced
+        const glm::vec3& p = t_.pos[t_.index(c, r)];
+        const double dx = double(p.x) - eye_.x, dy = double(p.y) - eye_.y;
+        const double rad = double(lod_.radius[k]), plan = std::sqrt(dx * dx + dy * dy) - rad;
+        const double d = std::max(std::sqrt((plan > 0.0 ? plan * plan : 0.0) + vz2_), near_);
+        return double(err) * scale_ > tol_ * d && (min_radius_ <= 0.0 || rad > min_radius_ * d);
+    }
+
+    void touch(std::size_t id) {
+        if (scratch.map[id] == 0) scratch.touched.push_back(std::uint32_t(id));
+    }
+
+    void count_active(int c, int r) {
+        if (!in_dem(c, r)) return;
+        const std::size_t id = t_.index(c, r);
+        if (scratch.map[id] & kActiveFlag) return;
+        touch(id);
+        scratch.map[id] |= kActiveFlag;
+        ++active_count_;
+    }
+
+    std::uint32_t vertex(int c, int r) {
+        const std::size_t id = t_.index(c, r);
+        std::uint32_t& e = scratch.map[id];
+        if (e & kIndexMask) return (e & kIndexMask) - 1;
+        if (out_.pos.size() >= kIndexMask) throw std::length_error("terrain lod: too many vertices");
+        touch(id);
+        const std::uint32_t v = std::uint32_t(out_.pos.size());
+        e |= v + 1;
+        out_.pos.push_back(t_.pos[id]);
+        out_.normal.push_back(full_res_normal(c, r));
+        if (nodes_) nodes_->push_back(std::uint32_t(id));
+        return v;
+    }
+
+    static glm::vec3 face_normal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+        const glm::vec3 n = glm::cross(b - a, c - a);
+        const float len = glm::length(n);
+        return len > 0.0f ? n / len : glm::vec3(0, 0, 1);
+    }
+
+    // compute_normals(mesh_from_terrain(t)) at node (c, r): its up-to-6 full-resolution triangles
+    // in the order that mesh lists them (cells row by row; {NW, SW, SE} before {NW, SE, NE}).
+    glm::vec3 full_res_normal(int c, int r) const {
+        const std::vector<glm::vec3>& p = t_.pos;
+        const std::vector<std::uint8_t>& v = t_.valid;
+        glm::vec3 sum(0.0f);
+        auto tri = [&](std::size_t a, std::size_t b, std::size_t d) {
+            if (v[a] && v[b] && v[d]) sum += face_normal(p[a], p[b], p[d]);
+        };
+        auto id = [&](int cc, int rr) { return t_.index(cc, rr); };
+        if (c > 0 && r > 0) {  // node is the SE corner of cell (c-1, r-1)
+            tri(id(c - 1, r - 1), id(c - 1, r), id(c, r));
+            tri(id(c - 1, r - 1), id(c, r), id(c, r - 1));
+        }
+        if (c + 1 < cols_ && r > 0) tri(id(c, r - 1), id(c, r), id(c + 1, r));      // SW of cell (c, r-1)
+        if (c > 0 && r + 1 < rows_) tri(id(c - 1, r), id(c, r + 1), id(c, r));      // NE of cell (c-1, r)
+        if (c + 1 < cols_ && r + 1 < rows_) {                                        // NW of cell (c, r)
+            tri(id(c, r), id(c, r + 1), id(c + 1, r + 1));
+            tri(id(c, r), id(c + 1, r + 1), id(c + 1, r));
+        }
+        const float len = glm::length(sum);
+        return len > 1e-12f ? sum / len : glm::vec3(0, 0, 1);
+    }
+
+    void emit(int ac, int ar, int bc, int br, int cc, int cr) {
+        const glm::uvec3 tri(vertex(ac, ar), vertex(bc, br), vertex(cc, cr));
+        out_.tri.push_back(tri);
+        out_.face_normal.push_back(face_normal(out_.pos[tri.x], out_.pos[tri.y], out_.pos[tri.z]));
+    }
+
+    // Box of the DEM nodes of a triangle, culled against the frustum.
+    int classify_triangle(const Item& it, float err) const {
+        glm::dvec3 lo, hi;
+        if (err < kInf && ok(it.ac, it.ar) && ok(it.bc, it.br) && ok(it.cc, it.cr)) {
+            // Every node inside lies within err (times e) of the triangle's plane, and (on an
+            // affine grid) inside the plan triangle of its corners.
+            const glm::dvec3 a(t_.pos[t_.index(it.ac, it.ar)]), b(t_.pos[t_.index(it.bc, it.br)]),
+                c(t_.pos[t_.index(it.cc, it.cr)]);
+            lo = glm::min(glm::min(a, b), c), hi = glm::max(glm::max(a, b), c);
+            const double dz = double(err) * ex_;
+            lo.z -= dz, hi.z += dz;
+        } else {
+            // Forced: the grid box clipped to the DEM, all elevations.
+            const int c0 = std::min({it.ac, it.bc, it.cc}), r0 = std::min({it.ar, it.br, it.cr});
+            const int c1 = std::min({std::max({it.ac, it.bc, it.cc}), cols_ - 1});
+            const int r1 = std::min({std::max({it.ar, it.br, it.cr}), rows_ - 1});
+            lo = glm::dvec3(1e300), hi = glm::dvec3(-1e300);
+            for (const int c : {c0, c1})
+                for (const int r : {r0, r1}) {
+                    const glm::dvec3 p(t_.pos[t_.index(c, r)]);
+                    lo = glm::min(lo, p), hi = glm::max(hi, p);
+                }
+            lo.z = zlo_, hi.z = zhi_;
+        }
+        // 1 % of the plan size: the bulge of a curvilinear (geographic) grid's interior nodes
+        // beyond the corners' plan box, and rounding.
+        const double m = 0.01 * std::max(hi.x - lo.x, hi.y - lo.y) + 1e-3;
+        lo -= glm::dvec3(m, m, 1e-3), hi += glm::dvec3(m, m, 1e-3);
+        return frustum_.classify(lo, hi);
+    }
+
+    bool visible(std::initializer_list<std::size_t> ids) const {
+        glm::dvec3 lo(1e300), hi(-1e300);
+        for (const std::size_t i : ids) {
+            const glm::dvec3 p(t_.pos[i]);
+            lo = glm::min(lo, p), hi = glm::max(hi, p);
+        }
+        const glm::dvec3 m(1e-3);
+        return frustum_.classify(lo - m, hi + m) != 0;
+    }
+
+    // A half-cell. Kept as is when its diagonal is NW-SE (the full-resolution split) or the other
+    // half of the cell is coarser; else both halves are selected and the cell is emitted once,
+    // as the full-resolution mesh splits it.
+    void leaf(const Item& it) {
+        const bool nwse = (it.ac - it.bc) == (it.ar - it.br);
+        const int oc = it.ac + it.bc - it.cc, orr = it.ar + it.br - it.cr;  // the other half's right angle
+        if (nwse || !active(oc, orr)) {
+            if (!(ok(it.ac, it.ar) && ok(it.bc, it.br) && ok(it.cc, it.cr))) return;
+            if (!it.inside && !visible({t_.index(it.ac, it.ar), t_.index(it.bc, it.br), t_.index(it.cc, it.cr)}))
+                return;
+            emit(it.ac, it.ar, it.bc, it.br, it.cc, it.cr);
+            return;
+        }
+        const int c = std::min(it.ac, it.bc), r = std::min(it.ar, it.br);  // NW corner, inside the DEM
+        const std::size_t nw = t_.index(c, r);
+        if (scratch.map[nw] & kCellFlag) return;
+        touch(nw);
+        scratch.map[nw] |= kCellFlag;
+        const bool vnw = ok(c, r), vne = ok(c + 1, r), vsw = ok(c, r + 1), vse = ok(c + 1, r + 1);
+        const bool first = vnw && vsw && vse, second = vnw && vse && vne;
+        if (!first && !second) return;
+        // The cell box: the other half may lie beyond this triangle's ancestors' boxes.
+        if (!visible_cell(c, r, vnw, vne, vsw, vse)) return;
+        if (first) emit(c, r, c, r + 1, c + 1, r + 1);
+        if (second) emit(c, r, c + 1, r + 1, c + 1, r);
+    }
+
+    bool visible_cell(int c, int r, bool vnw, bool vne, bool vsw, bool vse) const {
+        glm::dvec3 lo(1e300), hi(-1e300);
+        auto add = [&](bool v, int cc, int rr) {
+            if (!v) return;
+            const glm::dvec3 p(t_.pos[t_.index(cc, rr)]);
+            lo = glm::min(lo, p), hi = glm::max(hi, p);
+        };
+        add(vnw, c, r), add(vne, c + 1, r), add(vsw, c, r + 1), add(vse, c + 1, r + 1);
+        const glm::dvec3 m(1e-3);
+        return frustum_.classify(lo - m, hi + m) != 0;
+    }
+};
+
+}  // namespace
+
+SurfaceMesh select_lod_mesh(const TerrainLod& lod, const Terrain& t, const Camera& camera, const LodOptions& options,
+                            LodSelection* stats, std::vector<std::uint32_t>* vertex_nodes) {
+    check_terrain(t);
+    if (lod.cols != t.cols || lod.rows != t.rows || lod.error.size() != std::size_t(lod.side()) * lod.side() ||
+        lod.radius.size() != lod.error.size())
+        throw std::invalid_argument("terrain lod: the lod was built for another grid");
+    if (vertex_nodes) vertex_nodes->clear();
+    if (t.cols < 2 || t.rows < 2) {
+        if (stats) *stats = {};
+        return {};
+    }
+    Selector s(lod, t, camera, options, vertex_nodes);
+    return s.run(stats);
+}
+
+SurfaceMesh select_lod_mesh(const TerrainLod& lod, const Terrain& t, const Camera& camera, float tolerance_px,
+                            LodSelection* stats, std::vector<std::uint32_t>* vertex_nodes) {
+    LodOptions o;
+    o.tolerance_px = tolerance_px;
+    return select_lod_mesh(lod, t, camera, o, stats, vertex_nodes);
+}
+
+}  // namespace penink

@@ -1,0 +1,118 @@
+// View-dependent, crack-free level of detail for a terrain grid: a frame of W x H pixels gets a
+// triangle mesh whose size follows the image, not the DEM.
+//
+// Follows Lindstrom & Pascucci 2001, "Visualization of Large Terrains Made Easy" (IEEE Vis), on
+// the right-triangle bintree of Evans, Kirkpatrick & Townsend 1997 (RTIN, "Right-Triangulated
+// Irregular Networks"): the DEM's cols x rows nodes sit in the top-left corner of a padded square
+// of side 2^levels + 1; the square is halved along its NW-SE diagonal and every right triangle is
+// split by longest-edge bisection (the midpoint of its hypotenuse). Each grid node is the split
+// vertex of the (up to) two triangles sharing that hypotenuse (its "diamond") and carries
+//  - error: a bound, in metres of UNEXAGGERATED elevation, on the vertical distance between
+//    either diamond triangle and the DEM at every grid node inside it. Built bottom-up in O(N):
+//    with delta = h(m) - (h(a) + h(b)) / 2 the split vertex's offset from the hypotenuse,
+//    up(m) = max over the 4 child nodes of up + max(0, delta), lo(m) likewise with min, and
+//    error = max(up, -lo) (a child triangle's plane differs from its parent's by delta times a
+//    barycentric coordinate, so these bounds are rigorous at the nodes, and nested:
+//    error(m) >= error(child)). +inf where the triangle must split: a node with a nodata or
+//    padding node in its 3x3 neighbourhood, and (by nesting) all its ancestors. Between nodes
+//    the full-resolution surface and the coarse plane are both linear on small pieces; the
+//    bound is stated (and tested) at the nodes, as in Lindstrom & Pascucci.
+//  - radius: a plan (x, y) bounding-circle radius in metres, centred on the node, nested
+//    (radius(m) >= radius(child) + |m - child|), covering the node's diamond and every
+//    descendant: L times the grid-unit radius of the node's level (1 at the finest split nodes,
+//    then + the distance to the children at each level), L the plan positions' Lipschitz
+//    constant over the grid (the full-resolution triangles' largest singular value, bounded
+//    by Gershgorin: the cell side on a square grid; a rigorous bound on curvilinear grids). Plan
+//    suffices: a point q under m satisfies |eye - q|^2 = |eye.xy - q.xy|^2 + (eye.z - q.z)^2 >=
+//    max(0, |eye.xy - m.xy| - radius)^2 + max(0, eye.z - z_max*e, z_min*e - eye.z)^2 for any
+//    vertical exaggeration e, with z_min, z_max the DEM's valid elevation range (stored
+//    unexaggerated), and this lower bound keeps the nesting (so activation stays monotone).
+// A node is active (its triangles split) when
+//     error * e * scale / max(D, near_plane) > tolerance_px   (nearer points are clipped anyway),
+// D the lower bound above, scale = lod_pixel_scale(camera): the focal length in pixels,
+// height / (2 tan(vfov / 2)), times 1 + tan^2(hfov/2) + tan^2(vfov/2), the largest magnification
+// of a displacement perpendicular to the view ray anywhere in the frame (1 on the axis). No
+// cosine of the view angle: a grazing view turns a vertical error into skyline displacement.
+// Because error grows and D shrinks from a node to its parents, a node's parents are active
+// whenever it is: the selected triangles form a conforming bintree mesh (no T-junctions) for any
+// view, which frustum culling only thins (culling drops whole triangles, never changes a split).
+//
+// Diagonals: RTIN's finest triangles alternate the cell diagonal (a cell (c, r) is split NW-SE
+// when (c + r) is even, NE-SW otherwise). Where both halves of a cell are selected (full
+// resolution), the cell is emitted as the full-resolution mesh emits it (surface_mesh.hpp: NW-SE,
+// triangles {NW, SW, SE}, {NW, SE, NE}, each kept when its three nodes hold data): the cell's
+// sides are unchanged, so this stays crack-free, and next to nodata (always refined to full
+// resolution) the holes keep the full-resolution outline exactly. A cell at the edge of the
+// refined region may keep RTIN's NE-SW diagonal.
+// Padding: nodes outside the DEM are invalid; triangles wholly outside are skipped, triangles
+// touching them are refined to full resolution and then dropped, so the mesh covers exactly the
+// cells the full-resolution mesh covers (a DEM of 2^k + 1 nodes a side needs no padding).
+//
+// Frames and units: grid node (c, r) is Terrain node (c, r) (row 0 north); positions are the
+// Terrain's local metres, z exaggerated as in Terrain::pos; error unexaggerated metres; radius
+// plan metres. Memory: 8 bytes per padded node (error + radius).
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/camera.hpp"
+#include "input/terrain.hpp"
+#include "surface/surface_mesh.hpp"
+
+namespace penink {
+
+// Built once per DEM, independent of view, light and vertical exaggeration.
+struct TerrainLod {
+    int cols = 0, rows = 0;      // the DEM grid
+    int levels = 0;              // padded side = 2^levels + 1
+    std::vector<float> error;    // per padded node (index(c, r)), metres of elevation, unexaggerated; +inf: must split
+    std::vector<float> radius;   // per padded node, nested plan bounding-circle radius, metres
+    float z_min = 0.0f, z_max = 0.0f;  // range of the valid elevations, metres, unexaggerated
+
+    int side() const { return (1 << levels) + 1; }
+    std::size_t index(int c, int r) const { return std::size_t(r) * std::size_t(side()) + std::size_t(c); }
+};
+
+// From a Terrain whose pos.z is elevation * t.vertical_exaggeration (divided out: errors are
+// unexaggerated). O(N); throws std::invalid_argument on an inconsistent Terrain.
+TerrainLod build_terrain_lod(const Terrain& t);
+
+struct LodSelection {
+    std::size_t triangles = 0, vertices = 0;
+    std::size_t active_nodes = 0;  // distinct DEM nodes at which a visited triangle was split
+};
+
+// Pixels of image displacement per metre of error at unit distance (see the header comment).
+double lod_pixel_scale(const Camera& camera);
+
+// The frame's mesh: triangles counter-clockwise seen from above, vertices only the nodes used
+// (compact indices, in order of first use), positions = the DEM nodes' pos (exaggerated, as in
+// t), vertex normals = the full-resolution mesh's vertex normal at that node (as
+// compute_normals(mesh_from_terrain(t))), face normals of the selected triangles. Triangles
+// whose bounding box (plan box of the vertices, z widened by the error bound) lies outside the
+// camera frustum are left out, and so are triangles with a nodata node. Errors are multiplied by
+// t.vertical_exaggeration. tolerance_px: largest projected vertical error, pixels.
+// vertex_nodes (optional): the DEM node index t.index(c, r) of each output vertex.
+// Time and memory follow the selected triangles (a top-down traversal with an explicit stack);
+// a per-thread scratch of 4 bytes per DEM node (vertex numbering) is allocated by a thread's
+// first call, kept, and reset entry by entry.
+SurfaceMesh select_lod_mesh(const TerrainLod& lod, const Terrain& t, const Camera& camera, float tolerance_px = 1.0f,
+                            LodSelection* stats = nullptr, std::vector<std::uint32_t>* vertex_nodes = nullptr);
+
+struct LodOptions {
+    float tolerance_px = 1.0f;  // largest projected vertical error, pixels
+    // A size floor: a node whose nested radius projects (at the same distance bound) to at most
+    // this many pixels is not split, unless forced (nodata, padding). Radii and that distance
+    // are nested like the errors, so the mesh stays crack-free. It caps the triangles of a frame
+    // on DEMs rough at the cell scale (cliffs, noise, a DEM far finer than the pixels), where the
+    // error test alone refines down to sub-pixel triangles; there the tolerance no longer holds.
+    // A split node's radius is about 2.4 times its triangles' half hypotenuse. 0: no floor.
+    float min_radius_px = 0.0f;
+};
+
+// The same with options.
+SurfaceMesh select_lod_mesh(const TerrainLod& lod, const Terrain& t, const Camera& camera, const LodOptions& options,
+                            LodSelection* stats = nullptr, std::vector<std::uint32_t>* vertex_nodes = nullptr);
+
+}  // namespace penink
