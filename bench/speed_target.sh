@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Speed target of issue 6 (item 7): the whole process `penink render examples/volcano.toml` at
+# Speed target: the whole process `penink render examples/volcano.toml` at
 # 1000x1000 with silhouettes, creases and ridges (drainage cache examples/volcano.asc.dv present),
 # wall time per run (median and min of N runs, warm shader cache after the first), next to the
 # process start-up alone (`penink --help`) and the shared libraries it loads. Then one -v run for

@@ -1,4 +1,4 @@
-// Adjacency SIL, shared by the detection and walk passes (seed 001, 3.1): the triangle list
+// Adjacency SIL, shared by the detection and walk passes (Mower, "Fast Image-Space Silhouette Extraction", 3.1): the triangle list
 // (3 eye-relative corners per ID, metres; w of corner 0 = 1 for toward-facing), per-triangle
 // flags (bits 0-2: T's edge i appended, 3-5: A's edge j appended, 6/7: hash neighbours looked up
 // as toward/away), the silhouette edge list (2 points per edge; w holds the toward and away IDs

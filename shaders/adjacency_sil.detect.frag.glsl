@@ -1,4 +1,4 @@
-// Adjacency SIL, edge detection (seed 001, 3.1): a full-screen pass over the triangle-ID raster.
+// Adjacency SIL, edge detection (Mower, "Fast Image-Space Silhouette Extraction", 3.1): a full-screen pass over the triangle-ID raster.
 // Pixel p whose nearest surface is toward-facing (triangle T, visible at p) tests T against every
 // distinct away-facing triangle A whose ID lies in the (2 u_radius + 1)^2 neighbourhood of p;
 // when they share an edge in 3-space, the edge lies on the contour and is appended to the edge

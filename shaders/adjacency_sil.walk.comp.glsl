@@ -1,4 +1,4 @@
-// Adjacency SIL, contour walk (seed 001, 3.1): for each silhouette edge e = (v, w) appended in
+// Adjacency SIL, contour walk (Mower, "Fast Image-Space Silhouette Extraction", 3.1): for each silhouette edge e = (v, w) appended in
 // the previous round (IDs u_first .. u_end - 1 of the edge list), walk the fan of triangles
 // around each end point starting at e's toward triangle, away from e, across shared edges found
 // in the edge hash table, until the facing flips: that edge is the contour's next edge at the end

@@ -1,4 +1,4 @@
-// DM pass (seed 000, "Concurrent Drainage Network Rendering", eq. 1-6; conventions.md): scores
+// DM pass (Mower, "Concurrent Drainage Network Rendering", eq. 1-6; conventions.md): scores
 // every drainage (or divide) vertex and tests it against the TFT eye-distance texture.
 //   sc = 1 - cos(slope) = 1 - n.z, ic = 1 - clamp(n . l, 0, 1), fc = flow normalised per basin,
 //   rs = (sw sc + iw ic + fw fc) / 3 - rs_min(d),  rs_min(d) = min_score + attenuation * d / D.

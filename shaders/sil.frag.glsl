@@ -1,4 +1,4 @@
-// SIL pass, Toward/Away algorithm (seed 001, section 3.2): pixel p is a silhouette pixel when it
+// SIL pass, Toward/Away algorithm (Mower, "Fast Image-Space Silhouette Extraction", section 3.2): pixel p is a silhouette pixel when it
 // holds a toward-facing fragment at eye distance t, an away-facing fragment behind it at a > t
 // (at p, or at an 8-neighbour: a back-facing sliver thinner than a pixel can miss p's centre;
 // measured on volcano at 1000x750: recall within 1 px 0.63 -> 0.77, precision within 2 px stays

@@ -1,4 +1,4 @@
-// `penink batch SCENE --path path.csv --out DIR`: an animation (seed 000, section 3). The
+// `penink batch SCENE --path path.csv --out DIR`: an animation (Mower, "Concurrent Drainage Network Rendering", section 3). The
 // terrain is read and modelled once (the union of the DEM windows every frame sees), then one
 // frame per flight-path record (cli/flight_path.hpp) is drawn, styled and finished like
 // `penink render` and written as DIR/frame_0001.png / .svg. Per-frame pass times (ms) go to

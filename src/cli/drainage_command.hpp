@@ -1,5 +1,5 @@
 // `penink drainage DEM [-o OUT.dv] [--resample F] [--rasters DIR] [--routing R]`: builds the
-// drainage vertex database of a DEM (seed 000 sec. 3) and writes it (default `<DEM>.dv`, the cache
+// drainage vertex database of a DEM (Mower, "Concurrent Drainage Network Rendering" sec. 3) and writes it (default `<DEM>.dv`, the cache
 // `render` looks for), optionally with GeoTIFF rasters of the drainage grid (drainage_rasters.hpp).
 // Routing: priority-flood (default) or least-cost (GRASS r.watershed -s; drainage_build.hpp).
 // Resample factor: F > 0 as given (1 = the DEM's own nodes); 0 = automatic: 5 (the paper's 10 m

@@ -1,4 +1,4 @@
-// Drainage lines and divides as vertex lists (seed 000 sec. 3): every drainage point belongs to
+// Drainage lines and divides as vertex lists (Mower, "Concurrent Drainage Network Rendering" sec. 3): every drainage point belongs to
 // one branch — a run from a source (ridge point, no inflow) or a junction (inflow > 1) down
 // through single-inflow points to the next junction (repeated as the branch's last vertex) or
 // an outlet; all flow paths are kept (thresholding happens at render time by the score).

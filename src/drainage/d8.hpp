@@ -1,7 +1,7 @@
 // D8 steepest-descent flow directions (O'Callaghan & Mark 1984) on a row-major grid (row 0 north)
 // with ESRI codes: 1=E, 2=SE, 4=S, 8=SW, 16=W, 32=NW, 64=N, 128=NE, 0 = no downhill neighbour.
 // Drop per distance: cardinal steps dx (E/W) or dy (N/S) metres, diagonals hypot(dx, dy).
-// Point classes (seed 000): pit (no downhill), ridge (no neighbour drains into it), channel (one),
+// Point classes (Mower, "Concurrent Drainage Network Rendering"): pit (no downhill), ridge (no neighbour drains into it), channel (one),
 // junction (more than one).
 #pragma once
 #include "core/big_allocator.hpp"

@@ -1,4 +1,4 @@
-// The drainage build pipeline (seed 000 sec. 3): PN resampling -> flow directions -> accumulation +
+// The drainage build pipeline (Mower, "Concurrent Drainage Network Rendering" sec. 3): PN resampling -> flow directions -> accumulation +
 // Strahler -> basins -> branches and divides -> DrainageDb. Directions by one of two routings:
 // priority_flood (default): Priority-Flood filling (Zhou et
 // al. 2016 variant; the grid's z holds the filled surface until the directions are set, then the
@@ -48,7 +48,7 @@ struct DrainageOptions {
     DrainageRouting routing = DrainageRouting::priority_flood;
 };
 
-// The automatic resample factor: 5 (seed 000: 10 m from 50 m) lowered until the resampled grid
+// The automatic resample factor: 5 (Mower, "Concurrent Drainage Network Rendering": 10 m from 50 m) lowered until the resampled grid
 // holds at most max_points (never below 1); an explicit options.resample > 0 is returned as is.
 int drainage_resample_factor(const Terrain& t, const DrainageOptions& options);
 

@@ -1,4 +1,4 @@
-// The drainage vertex database (DV file, seed 000 sec. 3): branches of drainage vertices (local
+// The drainage vertex database (DV file, Mower, "Concurrent Drainage Network Rendering" sec. 3): branches of drainage vertices (local
 // x, y, z in metres of the Terrain's world frame — easting = origin.x + x, northing = origin.y + y
 // in the projected CRS — normalised flow, Strahler order, basin) with downstream/upstream links,
 // plus the divide (ridge) polylines. Binary, little-endian, versioned, checksummed; the layout is

@@ -1,7 +1,7 @@
 // The regular grid the drainage network is computed on: fine nodes (cols x rows, row 0 north) with
 // an elevation z (local metres, world frame of the Terrain) and a valid mask. It is the PN-triangle
 // surface (Vlachos et al. 2001) of the Terrain resampled `factor` times finer in grid index space
-// (seed 000 resamples a 50 m DEM at 10 m); node (fc, fr) lies at coarse index (fc/f, fr/f).
+// (Mower, "Concurrent Drainage Network Rendering" resamples a 50 m DEM at 10 m); node (fc, fr) lies at coarse index (fc/f, fr/f).
 #pragma once
 #include <cstdint>
 #include <vector>

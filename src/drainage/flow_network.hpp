@@ -1,4 +1,4 @@
-// Flow accumulation, Strahler order and basins on resolved D8 directions (seed 000, sec. 3):
+// Flow accumulation, Strahler order and basins on resolved D8 directions (Mower, "Concurrent Drainage Network Rendering", sec. 3):
 // accumulated flow = inflow + 1 per point (the point counts itself), computed in O(n) by a
 // topological walk (in-degree counting, no recursion); Strahler (1957) order per point; basins
 // labelled by outlet (a valid cell with code 0: it drains off the grid or is a kept pit), basin

@@ -1,4 +1,4 @@
-// Finishing a Drawing for export (seed 002, 4.3 for the sketchy part): per layer, strokes
+// Finishing a Drawing for export (Potter et al., "NPR-Style 3D Line Textures", 4.3 for the sketchy part): per layer, strokes
 // (image pixels, origin top-left, y down; depth = eye distance in metres / world units) are
 // joined end to end, simplified (Douglas-Peucker, px), stripped of tiny strokes, thinned by
 // distance, perturbed / overshot / repeated, and put in pen-plotter order (greedy nearest end).

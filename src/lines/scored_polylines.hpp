@@ -1,4 +1,4 @@
-// Object-space polylines clipped by score and visibility (seed 000: creases and ridges stay exact
+// Object-space polylines clipped by score and visibility (Mower, "Concurrent Drainage Network Rendering": creases and ridges stay exact
 // object-space lines, not traced pixels): each polyline is a run of vertices (world positions,
 // local metres) with one score each; maximal runs of >= 2 consecutive vertices with score >= 0
 // become image-space strokes (pixels, eye distance in metres; strength = mean score of the run).

@@ -1,4 +1,4 @@
-// Sketchy rendering (seed 002, section 4.3 "Sketchy Rendering": end points perturbed): seeded
+// Sketchy rendering (Potter et al., "NPR-Style 3D Line Textures", section 4.3 "Sketchy Rendering": end points perturbed): seeded
 // perturbation of strokes in image pixels (end points moved up to `amount` px in a random
 // direction, interior points following smoothly, optional overshoot and repeated strokes), and
 // of 3D polylines in world units within each point's tangent plane. Random numbers come from

@@ -1,4 +1,4 @@
-// Adjacency SIL pass (seed 001, 3.1), beside Toward/Away: after the TFT/AFT pass has written the
+// Adjacency SIL pass (Mower, "Fast Image-Space Silhouette Extraction", 3.1), beside Toward/Away: after the TFT/AFT pass has written the
 // nearest toward/away eye distances, a second geometry pass (same PN tessellation program plus a
 // geometry stage) stores every tessellated triangle (eye-relative corners, metres, and its facing)
 // in an SSBO and the ID of the nearest toward- and away-facing triangle of each pixel in a

@@ -1,4 +1,5 @@
-// DM pass (seed 000): scores drainage vertices on the GPU with the crease score of
+// DM pass: drainage-vertex rendering ("DM" as the timing tables of Mower, "Concurrent Drainage
+// Network Rendering", name the pass; penink batch's timings.md keeps the name): scores drainage vertices on the GPU with the crease score of
 // conventions.md (rs = (sw sc + iw ic + fw fc)/3 - rs_min(d)) and tests their visibility against
 // the TFT eye-distance texture, in a compute shader (shaders/dm.comp.glsl). The same pass scores
 // basin-divide vertices for the ridges layer. Input: world positions (local metres), unit PN

@@ -1,4 +1,4 @@
-// SIL pass, Toward/Away algorithm (seed 001, 3.2): a full-screen pass over the TFT and AFT
+// SIL pass, Toward/Away algorithm (Mower, "Fast Image-Space Silhouette Extraction", 3.2): a full-screen pass over the TFT and AFT
 // eye-distance textures producing an R8 silhouette-pixel texture (1 = silhouette), same size.
 #pragma once
 #include "render/gl_objects.hpp"

@@ -1,7 +1,7 @@
 // Renders one frame of a terrain surface through the GPU passes (TFT/AFT, SIL) and reads the
 // results back for the lines stage: toward/away eye-distance images (metres, row 0 = top) and
 // the silhouette pixel mask, with each pass's GPU time (GL timer queries, as the paper's Table 3).
-// The silhouette mask comes from one of the GPU methods: Toward/Away (seed 001, 3.2; default) or
+// The silhouette mask comes from one of the GPU methods: Toward/Away (Mower, "Fast Image-Space Silhouette Extraction", 3.2; default) or
 // Adjacency (3.1, render/adjacency_sil.hpp). With object_space no SIL pass runs and the mask is
 // left empty: the caller draws those silhouettes on the CPU (scene/terrain_frames.hpp).
 #pragma once

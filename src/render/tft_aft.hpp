@@ -1,4 +1,4 @@
-// TFT / AFT passes (seed 001): the PN-triangle surface (tessellated in TCS/TES, level from the
+// TFT / AFT passes (Mower, "Fast Image-Space Silhouette Extraction"): the PN-triangle surface (tessellated in TCS/TES, level from the
 // projected edge length) rendered into two R32F eye-distance textures (metres; PENINK_FAR = 1e30
 // where no fragment): the nearest toward-facing and the nearest away-facing fragment per pixel.
 // Combined mode does both in one geometry pass (gl_FrontFacing + MIN blending, same result);

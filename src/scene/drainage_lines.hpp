@@ -1,4 +1,4 @@
-// Creases and ridges of a terrain frame (seed 000): the drainage database's branch and divide
+// Creases and ridges of a terrain frame (Mower, "Concurrent Drainage Network Rendering"): the drainage database's branch and divide
 // vertices, with PN-surface normals looked up under them, uploaded once to DM passes; per frame
 // each is scored and visibility-tested on the GPU and clipped into object-space strokes for the
 // `creases` and `ridges` layers.

@@ -1,4 +1,4 @@
-// A flight path for `penink batch` (seed 000, section 3: animation): a CSV file with a header
+// A flight path for `penink batch` (Mower, "Concurrent Drainage Network Rendering", section 3: animation): a CSV file with a header
 // row naming its columns, one camera (and optional light / crease threshold) per record.
 // Columns (any order, names case-insensitive): position (UTM "E N 18N", "lon,lat" quoted, or
 // "x y" in the DEM's CRS: conventions.md), elevation (metres above the DEM's datum), azimuth,

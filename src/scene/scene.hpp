@@ -47,7 +47,7 @@ struct Scene {
     CreaseParams ridges = ridge_defaults();
     std::string drainage_routing = "priority-flood";  // [drainage] routing (drainage_build.hpp)
     std::string style = "technical";
-    // Object-space sketchiness of creases and ridges (seed 002, 4.3: end points moved within the
+    // Object-space sketchiness of creases and ridges (Potter et al., "NPR-Style 3D Line Textures", 4.3: end points moved within the
     // surface's tangent plane), pixels, and strokes per line; set from the style by the command.
     float crease_sketch_px = 0.0f, ridge_sketch_px = 0.0f;
     int crease_repeat = 1, ridge_repeat = 1;

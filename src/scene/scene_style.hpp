@@ -1,6 +1,6 @@
 // What a command does with a scene's style around drawing: resolves it (named or file, plus the
 // scene's [style] overrides), hands the object-space sketchiness of creases and ridges to the
-// terrain path (perturbed within the surface plane, seed 002 4.3), and splits the rest between
+// terrain path (perturbed within the surface plane, Potter et al., "NPR-Style 3D Line Textures" 4.3), and splits the rest between
 // the lines stage (finish_drawing: overshoot, repeats, thinning, image-space sketch) and export.
 #pragma once
 #include <cstdint>

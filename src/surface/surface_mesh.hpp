@@ -1,7 +1,7 @@
 // Triangle surface with per-face and per-vertex normals. From a Terrain: two counter-clockwise
 // (seen from above, z up) triangles per grid cell split along the NW-SE diagonal, a triangle kept
 // when its three nodes hold data; vertex i is grid node i (local metres, world frame).
-// Vertex normal = normalised sum of the unit normals of incident faces (as in seed 000).
+// Vertex normal = normalised sum of the unit normals of incident faces (as in Mower, "Concurrent Drainage Network Rendering").
 #pragma once
 #include <vector>
 

@@ -1,4 +1,4 @@
-// `penink render` on meshes (issue 5): a cube seen from a corner (feature edges and silhouettes
+// `penink render` on meshes: a cube seen from a corner (feature edges and silhouettes
 // on the projected cube edges), the example house (textures inside the model's footprint),
 // determinism per seed, and bad mesh / scene input (one-line error, exit 2, no output).
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Toward/Away silhouettes (seed 001, 3.2) against the closed form: a Gaussian hill seen at a
+// Toward/Away silhouettes (Mower, "Fast Image-Space Silhouette Extraction", 3.2) against the closed form: a Gaussian hill seen at a
 // grazing angle. The exact silhouette is the visible part of the contour generator
 // n(p) . (eye - p) = 0 of the analytic surface, with farther terrain behind it. We require that
 // >= 95 % of its projected length lies within 1.5 px of a detected silhouette pixel centre.
