@@ -49,6 +49,24 @@ std::vector<int> parse_int_list(const std::string& text, const std::string& opti
     return out;
 }
 
+std::vector<float> parse_tolerances(const std::string& text) {
+    std::vector<float> out;
+    for (const std::string& f : split(text)) {
+        std::size_t used = 0;
+        double v = -1.0;
+        try {
+            v = std::stod(f, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (used != f.size() || f.empty() || !(v >= 0.0 && v <= 1000.0))
+            throw Error("cli", "", "--tolerances: \"" + f + "\" is not a number of pixels between 0 and 1000");
+        out.push_back(float(v));
+    }
+    if (out.empty()) throw Error("cli", "", "--tolerances: empty list");
+    return out;
+}
+
 std::vector<std::pair<int, int>> parse_sizes(const std::string& text) {
     std::vector<std::pair<int, int>> out;
     for (const std::string& f : split(text)) {
@@ -95,6 +113,8 @@ Subcommand add_bench_command(CLI::App& app) {
     cmd->add_option("--out", o.out_dir, "Output directory (created when missing)")->required();
     cmd->add_option("--levels", o.levels, "Tessellation max_level values (default " + joined(c.levels, number) + ")");
     cmd->add_option("--sizes", o.sizes, "Image sizes WxH (default " + joined(c.sizes, size_text) + ")");
+    cmd->add_option("--tolerances", o.tolerances,
+                    "Level-of-detail tolerances, pixels (0 = full resolution; default: the scene's [surface] tolerance_px)");
     cmd->add_option("--methods", o.methods, "Silhouette methods (default " + joined(c.methods, method) + ")");
     cmd->add_option("--frames", c.frames, "Frames timed per configuration, median reported")
         ->check(CLI::PositiveNumber)->capture_default_str();
@@ -118,6 +138,7 @@ int run_bench(const BenchOptions& o) {
         config.methods.clear();
         for (const std::string& m : split(o.methods)) config.methods.push_back(parse_method(m));
     }
+    if (!o.tolerances.empty()) config.tolerances = parse_tolerances(o.tolerances);
     if (!o.needs_size.empty()) config.needs_size = parse_sizes(o.needs_size).front();
     const Scene scene = bench_scene(o.input);
     const Terrain dem = read_scene_dem(scene);

@@ -13,7 +13,7 @@ namespace penink {
 struct BenchOptions {
     std::string input, out_dir;
     // Lists as given on the command line; "" = the sweep's defaults (SpeedAccuracyConfig).
-    std::string levels, sizes, methods, needs_size;
+    std::string levels, sizes, methods, tolerances, needs_size;
     SpeedAccuracyConfig config;  // frames, warmup, ref_edge_px, needs
     std::string gl = "osmesa";
     bool verbose = false;
@@ -22,6 +22,8 @@ struct BenchOptions {
 // "1,2,4" -> {1,2,4}; "500x375,..." -> sizes. Errors: Error("cli", "", "--levels: ...").
 std::vector<int> parse_int_list(const std::string& text, const std::string& option);
 std::vector<std::pair<int, int>> parse_sizes(const std::string& text);
+// "0,0.5,1" -> pixels in [0, 1000]. Errors: Error("cli", "", "--tolerances: ...").
+std::vector<float> parse_tolerances(const std::string& text);
 
 Subcommand add_bench_command(CLI::App& app);
 int run_bench(const BenchOptions& options);

@@ -11,6 +11,11 @@ TerrainRenderer::TerrainRenderer(const GlApi& gl, const SurfaceMesh& mesh, int w
     check_gl_error(gl, "terrain renderer set-up");
 }
 
+void TerrainRenderer::set_surface(const SurfaceMesh& mesh) {
+    geometry_ = SurfaceGeometry(*gl_, mesh);
+    check_gl_error(*gl_, "surface upload (" + std::to_string(mesh.tri.size()) + " triangles)");
+}
+
 // Runs the chosen GPU silhouette method; returns its time (ms).
 double TerrainRenderer::silhouettes(const Camera& camera, const FrameOptions& options, FrameImages& out) {
     const int w = tft_aft_.width(), h = tft_aft_.height();

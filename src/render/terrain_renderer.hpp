@@ -29,7 +29,8 @@ struct FrameOptions {
 
 struct PassTimings {  // milliseconds
     double tft = 0, aft = 0, sil = 0, dm = 0, ridges = 0, lay = 0, readback = 0;
-    double pel = 0;  // CPU: photic extremum lines of a mesh frame (cli/mesh_drawing)
+    double pel = 0;     // CPU: photic extremum lines of a mesh frame (scene/mesh_frames)
+    double select = 0;  // CPU: the frame's level-of-detail mesh selected and uploaded (scene/terrain_frames)
     // Part of `sil` spent on the adjacency method's triangle-ID geometry pass (GPU). For the
     // object-space method the caller sets `sil` to its CPU wall time.
     double sil_ids = 0;
@@ -41,10 +42,14 @@ struct FrameImages {
     PassTimings times;
 };
 
-// The mesh is uploaded once; the renderer keeps no reference to it.
+// The mesh is uploaded at construction or by set_surface (a frame's level-of-detail mesh); the
+// renderer keeps no reference to it.
 class TerrainRenderer {
 public:
     TerrainRenderer(const GlApi& gl, const SurfaceMesh& mesh, int width, int height);
+    // Replaces the uploaded surface.
+    void set_surface(const SurfaceMesh& mesh);
+    std::size_t triangle_count() const { return geometry_.triangle_count(); }
     FrameImages render(const Camera& camera, const FrameOptions& options);
     const GlApi& gl() const { return *gl_; }
     const TftAftPass& surface_pass() const { return tft_aft_; }

@@ -6,6 +6,7 @@
 #include "core/error.hpp"
 #include "input/scene_position.hpp"
 #include "input/terrain_window.hpp"
+#include "surface/grid_ground.hpp"
 
 namespace penink {
 
@@ -33,8 +34,7 @@ GridWindow window_union(const std::vector<GridWindow>& windows) {
 }
 }  // namespace
 
-Camera flight_camera(const Scene& scene, const Terrain& dem, const TerrainGround& terrain_ground, const FlightRecord& r,
-                     const std::string& csv) {
+Camera flight_camera(const Scene& scene, const Terrain& dem, const FlightRecord& r, const std::string& csv) {
     Camera cam;
     glm::dvec2 xy;
     try {
@@ -46,7 +46,7 @@ Camera flight_camera(const Scene& scene, const Terrain& dem, const TerrainGround
     cam.azimuth = r.azimuth, cam.altitude = r.altitude, cam.fov = scene.camera.fov;
     cam.width = scene.camera.width, cam.height = scene.camera.height;
     double ground = 0.0;
-    if (terrain_ground.height(xy.x, xy.y, ground) && cam.eye.z <= ground) {
+    if (grid_ground_height(dem, xy.x, xy.y, ground) && cam.eye.z <= ground) {
         std::ostringstream m;
         m << "line " << r.line << ": camera is inside the terrain (elevation " << r.elevation << " m, ground "
           << ground / scene.vertical_exaggeration << " m)";
@@ -74,9 +74,8 @@ Flight plan_flight(const Scene& scene, const std::string& csv, bool whole_dem, c
     f.records = read_flight_path(csv);
     f.dem = read_scene_dem(scene);
     std::vector<GridWindow> windows;
-    const TerrainGround ground(f.dem);
     for (const FlightRecord& r : f.records) {
-        f.cameras.push_back(flight_camera(scene, f.dem, ground, r, csv));
+        f.cameras.push_back(flight_camera(scene, f.dem, r, csv));
         windows.push_back(visible_window(f.dem, view_projection(f.cameras.back()), 1));
         if (window_empty(windows.back()))
             throw Error("batch", csv, "line " + std::to_string(r.line) + ": the camera sees no part of the DEM");

@@ -18,8 +18,7 @@ namespace penink {
 
 // The camera of one record over `dem`; errors name the CSV and line: "line N: cannot parse
 // position ...", "line N: camera is inside the terrain (...)".
-Camera flight_camera(const Scene& scene, const Terrain& dem, const TerrainGround& ground, const FlightRecord& record,
-                     const std::string& csv);
+Camera flight_camera(const Scene& scene, const Terrain& dem, const FlightRecord& record, const std::string& csv);
 
 // The scene with one record's per-frame values (light; min_score sets the creases' threshold).
 Scene frame_scene(const Scene& scene, const FlightRecord& record);

@@ -106,6 +106,12 @@ Scene parse_scene_file(const std::string& path) {
         read_key(root.at("tessellation"), "max_level", s.tess_max_level, path, "tessellation");
         read_key(root.at("tessellation"), "cull", s.cull_patches, path, "tessellation");
     }
+    if (has_key(root, "surface")) {
+        double tolerance = s.surface_tolerance_px, min_radius = s.surface_min_radius_px;
+        read_number(root.at("surface"), "tolerance_px", tolerance, path, "surface");
+        read_number(root.at("surface"), "min_radius_px", min_radius, path, "surface");
+        s.surface_tolerance_px = float(tolerance), s.surface_min_radius_px = float(min_radius);
+    }
     if (has_key(root, "silhouettes")) {
         double gap = s.silhouette_min_gap;
         read_number(root.at("silhouettes"), "min_gap", gap, path, "silhouettes");
@@ -173,6 +179,10 @@ void validate_scene(const Scene& s) {
         throw Error("scene", f, "vertical exaggeration must be > 0");
     if (s.tess_max_level < 1 || s.tess_max_level > 64)
         throw Error("scene", f, "tessellation max_level must be between 1 and 64");
+    if (!(s.surface_tolerance_px >= 0.0f && s.surface_tolerance_px <= 1000.0f))
+        throw Error("scene", f, "[surface] tolerance_px must be between 0 and 1000");
+    if (!(s.surface_min_radius_px >= 0.0f && s.surface_min_radius_px <= 1000.0f))
+        throw Error("scene", f, "[surface] min_radius_px must be between 0 and 1000");
     if (!(s.tess_target_edge_px > 0.0f))
         throw Error("scene", f, "tessellation target_edge_px must be > 0");
     if (!drainage_routing_named(s.drainage_routing))

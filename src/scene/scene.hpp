@@ -1,7 +1,8 @@
 // A scene: what to draw and how, from a TOML scene file or a bare DEM path plus CLI options.
 // Keys (all optional but the input): [terrain] dem, vertical_exaggeration; [camera] position,
 // elevation, azimuth, altitude, fov, width, height; [light] azimuth, altitude; [silhouettes]
-// min_gap, separate_passes, method; [tessellation] target_edge_px, max_level, cull; [creases] and [ridges]
+// min_gap, separate_passes, method; [surface] tolerance_px, min_radius_px; [tessellation]
+// target_edge_px, max_level, cull; [creases] and [ridges]
 // slope_weight, illumination_weight, flow_weight, min_score, distance_attenuation; [style] name
 // plus per-layer overrides; seed. Angles in degrees, distances in metres (conventions.md).
 // A scene with [mesh] file draws a mesh instead (its keys: scene/mesh_scene.hpp).
@@ -37,6 +38,11 @@ struct Scene {
     double vertical_exaggeration = 1.0;
     SceneCamera camera;
     SceneLight light;
+    // [surface] level of detail (surface/terrain_lod.hpp): largest projected vertical error of the
+    // frame's mesh against the DEM, pixels (0 = the full-resolution mesh), and the size floor: a
+    // triangle whose bounding circle projects under min_radius_px pixels is not split further.
+    float surface_tolerance_px = 1.0f;
+    float surface_min_radius_px = 2.0f;
     int tess_max_level = 8;
     float tess_target_edge_px = 6.0f;
     float silhouette_min_gap = 0.0f;

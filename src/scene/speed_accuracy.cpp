@@ -26,11 +26,11 @@ double f1(double p, double r) { return p + r > 0 ? 2 * p * r / (p + r) : 0.0; }
 std::string bench_csv(const std::vector<BenchRow>& rows) {
     std::ostringstream s;
     s << std::fixed << std::setprecision(3);
-    s << "group,view,width,height,method,max_level,adaptive,culling,cropping,cells,ms_per_frame,tft_ms,aft_ms,sil_ms,"
+    s << "group,view,width,height,method,max_level,tolerance_px,adaptive,culling,cropping,cells,ms_per_frame,tft_ms,aft_ms,sil_ms,"
          "precision_1px,recall_1px,precision_2px,recall_2px,mean_drawn_to_ref_px,mean_ref_to_drawn_px,reference_ms\n";
     for (const BenchRow& r : rows)
         s << r.group << "," << r.view << "," << r.width << "," << r.height << "," << r.method << "," << r.level << ","
-          << r.adaptive << "," << r.culling << "," << r.cropping << "," << r.cells << "," << r.ms << "," << r.tft
+          << r.tolerance_px << "," << r.adaptive << "," << r.culling << "," << r.cropping << "," << r.cells << "," << r.ms << "," << r.tft
           << "," << r.aft << "," << r.sil << "," << r.p1 << "," << r.r1 << "," << r.p2 << "," << r.r2 << ","
           << r.drawn_to_ref << "," << r.ref_to_drawn << "," << r.ref_ms << "\n";
     return s.str();
@@ -39,13 +39,14 @@ std::string bench_csv(const std::vector<BenchRow>& rows) {
 std::string bench_table(const std::vector<BenchRow>& rows) {
     std::ostringstream s;
     s << std::fixed;
-    s << "group  view   size       method        L  adapt cull crop  cells    ms/frame    TFT     SIL    P@1   R@1   "
+    s << "group  view   size       method        L   tol  adapt cull crop  cells    ms/frame    TFT     SIL    P@1   R@1   "
          "P@2   R@2   d->r  r->d\n";
     for (const BenchRow& r : rows) {
         std::ostringstream size;
         size << r.width << "x" << r.height;
         s << std::left << std::setw(7) << r.group << std::setw(7) << r.view << std::setw(11) << size.str()
-          << std::setw(14) << r.method << std::right << std::setw(2) << r.level << "  " << std::setw(5)
+          << std::setw(14) << r.method << std::right << std::setw(2) << r.level << std::setprecision(1) << std::setw(6)
+          << r.tolerance_px << std::setw(5)
           << (r.adaptive ? "on" : "off") << std::setw(5) << (r.culling ? "on" : "off") << std::setw(5)
           << (r.cropping ? "on" : "off") << std::setw(7) << r.cells << std::setprecision(1) << std::setw(12) << r.ms
           << std::setw(8) << r.tft << std::setw(8) << r.sil << std::setprecision(3) << std::setw(7) << r.p1
@@ -60,10 +61,12 @@ std::vector<ChartSeries> bench_chart_series(const std::vector<BenchRow>& rows) {
         {"toward-away", "#1f77b4"}, {"adjacency", "#d62728"}, {"object-space", "#2ca02c"}};
     const std::vector<std::string> dashes = {"", "8,4", "2,3", "12,3,3,3"};
     std::vector<ChartSeries> series;
-    std::vector<std::string> sizes;
+    std::vector<std::string> sizes;  // one dash per image size and tolerance
     for (const BenchRow& r : rows) {
         if (r.group != "sweep") continue;
-        const std::string size = std::to_string(r.width) + "x" + std::to_string(r.height);
+        std::ostringstream tol;
+        tol << r.tolerance_px;
+        const std::string size = std::to_string(r.width) + "x" + std::to_string(r.height) + " tol " + tol.str() + " px";
         auto si = std::find(sizes.begin(), sizes.end(), size);
         if (si == sizes.end()) sizes.push_back(size), si = sizes.end() - 1;
         const std::string name = r.method + " " + size;
@@ -139,7 +142,7 @@ struct ReferenceCache {
     void compute(const BenchView& v) {
         const auto t0 = Clock::now();
         const glm::vec2 viewport(float(v.camera.width), float(v.camera.height));
-        const PnTessellation t = tessellate_pn_surface(v.frames->mesh(), view_projection(v.camera), viewport, float(edge_px), 16);
+        const PnTessellation t = tessellate_pn_surface(mesh_from_terrain(v.frames->terrain()), view_projection(v.camera), viewport, float(edge_px), 16);
         entries.push_back({v.camera, silhouette_polylines(object_space_silhouettes(t.pos, t.tri, v.camera), false), 0});
         entries.back().ms = ms_since(t0);
     }
@@ -191,25 +194,33 @@ struct BenchRun {
 
 void sweep(BenchRun& run) {
     const SpeedAccuracyConfig& c = run.config;
-    ProgressBar bar(std::cerr, stderr_is_terminal(), "bench", int(c.sizes.size() * c.methods.size() * c.levels.size()));
+    const std::vector<float> tolerances = c.tolerances.empty() ? std::vector<float>{run.scene.surface_tolerance_px}
+                                                               : c.tolerances;
+    ProgressBar bar(std::cerr, stderr_is_terminal(), "bench",
+                    int(tolerances.size() * c.sizes.size() * c.methods.size() * c.levels.size()));
     const auto largest = *std::max_element(c.sizes.begin(), c.sizes.end());
     run.references.compute(*make_view(run.scene, run.dem, run.context, largest.first, largest.second, false, true, run.log));
     for (const auto& [w, h] : c.sizes) {
         auto view = make_view(run.scene, run.dem, run.context, w, h, false, true, run.log);
         run.references.fill(*view);
-        for (const SilhouetteMethod m : c.methods) {
-            for (std::size_t li = 0; li < c.levels.size(); ++li) {
-                const int level = c.levels[li];
-                Scene frame = silhouettes_only(run.scene);
-                frame.silhouette_method = m;
-                frame.tess_max_level = level;
-                BenchRow row;
-                row.group = "sweep", row.method = silhouette_method_name(m), row.level = level;
-                const bool cpu = m == SilhouetteMethod::object_space;
-                // One frame for the CPU method (no JIT); programs warm up once per view and method.
-                measure(*view, frame, cpu ? 1 : c.frames, cpu || li > 0 ? 0 : c.warmup, view->reference, row);
-                run.rows.push_back(row);
-                bar.step(row.method + " " + std::to_string(w) + "x" + std::to_string(h) + " L" + std::to_string(level), row.ms);
+        for (const float tolerance : tolerances) {
+            for (const SilhouetteMethod m : c.methods) {
+                for (std::size_t li = 0; li < c.levels.size(); ++li) {
+                    const int level = c.levels[li];
+                    Scene frame = silhouettes_only(run.scene);
+                    frame.silhouette_method = m;
+                    frame.tess_max_level = level;
+                    frame.surface_tolerance_px = tolerance;
+                    BenchRow row;
+                    row.group = "sweep", row.method = silhouette_method_name(m), row.level = level;
+                    row.tolerance_px = tolerance;
+                    const bool cpu = m == SilhouetteMethod::object_space;
+                    // One frame for the CPU method (no JIT); programs warm up once per view and method.
+                    measure(*view, frame, cpu ? 1 : c.frames, cpu || li > 0 ? 0 : c.warmup, view->reference, row);
+                    run.rows.push_back(row);
+                    bar.step(row.method + " " + std::to_string(w) + "x" + std::to_string(h) + " L" +
+                                 std::to_string(level), row.ms);
+                }
             }
         }
     }
@@ -237,6 +248,7 @@ void needs_rows(BenchRun& run, int level, int w, int h) {
             frame.cull_patches = c.culling;
             BenchRow row;
             row.group = "needs", row.method = silhouette_method_name(frame.silhouette_method), row.level = level;
+            row.tolerance_px = frame.surface_tolerance_px;
             row.adaptive = c.adaptive, row.culling = c.culling, row.cropping = c.cropping;
             measure(c.cropping ? *cropped : *whole, frame, run.config.frames, warmup, cropped->reference, row);
             row.ref_ms = cropped->ref_ms;

@@ -34,7 +34,8 @@ void fill_metadata(const Scene& scene, const Camera& cam, const Terrain& t, Draw
     std::ostringstream light, params;
     light << "azimuth " << scene.light.azimuth << ", altitude " << scene.light.altitude;
     params << "vertical_exaggeration " << scene.vertical_exaggeration << ", tessellation max_level "
-           << scene.tess_max_level << " target_edge_px " << scene.tess_target_edge_px << ", seed "
+           << scene.tess_max_level << " target_edge_px " << scene.tess_target_edge_px << ", surface tolerance_px "
+           << scene.surface_tolerance_px << " min_radius_px " << scene.surface_min_radius_px << ", seed "
            << scene.seed << ", style " << scene.style;
     d.metadata["source"] = scene.dem;
     d.metadata["camera"] = format_camera(cam, t);
@@ -85,8 +86,10 @@ FrameOptions frame_options(const Scene& scene) {
 
 TerrainFrames::TerrainFrames(GlContext& context, const Scene& scene, const Terrain& dem, Terrain terrain,
                              int width, int height, const Log& log)
-    : context_(&context), terrain_(std::move(terrain)), mesh_(mesh_from_terrain(terrain_)),
-      renderer_(context.gl(), mesh_, width, height) {
+    : context_(&context), terrain_(std::move(terrain)), lod_(build_terrain_lod(terrain_)), width_(width),
+      height_(height) {
+    log.info("level-of-detail pyramid: " + std::to_string(lod_.side()) + "^2 nodes (" + std::to_string(terrain_.cols) +
+             "x" + std::to_string(terrain_.rows) + " modelled)");
     if (!scene.creases.enabled && !scene.ridges.enabled) return;
     StageProgress progress(std::cerr, stderr_is_terminal(), "building drainage database");
     DrainageOptions options;
@@ -95,7 +98,7 @@ TerrainFrames::TerrainFrames(GlContext& context, const Scene& scene, const Terra
         scene.dem, dem, options, [&](const std::string& m) { log.info(m); },
         [&progress](const std::string& stage, double fraction) { progress.update(stage, fraction); });
     pending_lines_ = std::async(std::launch::async, [this, db = std::move(db)] {
-        return prepare_drainage_lines(db, mesh_);
+        return prepare_drainage_lines(db, mesh_from_terrain(terrain_));
     });
 }
 
@@ -103,13 +106,27 @@ TerrainFrames::~TerrainFrames() {
     if (pending_lines_.valid()) pending_lines_.wait();
 }
 
+SurfaceMesh TerrainFrames::frame_mesh(const Camera& camera, const Scene& frame) const {
+    if (frame.surface_tolerance_px <= 0.0f) return mesh_from_terrain(terrain_);
+    LodOptions lod;
+    lod.tolerance_px = frame.surface_tolerance_px;
+    lod.min_radius_px = frame.surface_min_radius_px;
+    return select_lod_mesh(lod_, terrain_, camera, lod);
+}
+
 SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
     SceneDrawing out;
     out.camera = camera;
     out.cells = std::size_t(terrain_.cols - 1) * (terrain_.rows - 1);
+    const auto t_select = Clock::now();
+    mesh_ = frame_mesh(camera, frame);
+    out.times.select = ms_since(t_select);
     out.triangles = mesh_.tri.size();
+    if (renderer_) renderer_->set_surface(mesh_);
+    else renderer_ = std::make_unique<TerrainRenderer>(context_->gl(), mesh_, width_, height_);
     const FrameOptions options = frame_options(frame);
-    FrameImages images = renderer_.render(camera, options);
+    FrameImages images = renderer_->render(camera, options);
+    images.times.select = out.times.select;
     out.times = images.times;
     if (options.silhouette_method == SilhouetteMethod::object_space) {
         const auto t0 = Clock::now();
@@ -120,7 +137,7 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
     if (pending_lines_.valid())
         lines_ = std::make_unique<DrainageLines>(context_->gl(), pending_lines_.get());
     if (lines_)
-        lines_->draw(camera, frame, renderer_.surface_pass().toward_texture(),
+        lines_->draw(camera, frame, renderer_->surface_pass().toward_texture(),
                      max_visible_distance(images.toward), out.drawing, out.times);
     const auto t0 = Clock::now();
     add_frame_lines(images, mesh_, camera, out.drawing);

@@ -9,32 +9,43 @@
 #include "scene/drainage_lines.hpp"
 #include "scene/frame_source.hpp"
 #include "surface/surface_mesh.hpp"
+#include "surface/terrain_lod.hpp"
 
 namespace penink {
 
 // The scene's DEM read, its camera placed, the DEM cropped to that view and set up for frames.
 SceneView open_terrain_view(const Scene& scene, GlContext& context, const Log& log);
 
-// A terrain set up once and drawn in many frames (render, batch, bench): its surface mesh and GPU
-// copy, and its drainage lines. `terrain` is what gets modelled (cropped to the view for a single
-// frame, the whole DEM for a flight); `dem` is the whole DEM the drainage cache belongs to.
+// A terrain set up once and drawn in many frames (render, batch, bench): its level-of-detail
+// pyramid (surface/terrain_lod.hpp), from which each frame selects the mesh its camera needs
+// ([surface] tolerance_px; 0 = the full-resolution mesh), its GPU copy, and its drainage lines.
+// `terrain` is what gets modelled (cropped to the view for a single frame, the union of the
+// frames' windows for a flight); `dem` is the whole DEM the drainage cache belongs to.
 class TerrainFrames : public FrameSource {
 public:
     TerrainFrames(GlContext& context, const Scene& scene, const Terrain& dem, Terrain terrain,
                   int width, int height, const Log& log);
-    TerrainFrames(const TerrainFrames&) = delete;  // the line preparation thread holds &mesh_
+    TerrainFrames(const TerrainFrames&) = delete;  // the line preparation thread holds &terrain_
     TerrainFrames& operator=(const TerrainFrames&) = delete;
     ~TerrainFrames() override;
     // One frame: camera plus the scene's per-frame values (light, creases, ridges, tessellation,
     // silhouette method).
     SceneDrawing draw(const Camera& camera, const Scene& frame) override;
+    // The modelled terrain (local metres, exaggerated z).
+    const Terrain& terrain() const { return terrain_; }
+    // The surface mesh of the last frame drawn (empty before the first).
     const SurfaceMesh& mesh() const { return mesh_; }
 
 private:
+    // The frame's surface: the level-of-detail selection, or the whole grid at tolerance 0.
+    SurfaceMesh frame_mesh(const Camera& camera, const Scene& frame) const;
+
     GlContext* context_;
     Terrain terrain_;
+    TerrainLod lod_;
     SurfaceMesh mesh_;
-    TerrainRenderer renderer_;
+    int width_, height_;
+    std::unique_ptr<TerrainRenderer> renderer_;  // made with the first frame's mesh
     std::unique_ptr<DrainageLines> lines_;
     std::future<DrainageLineData> pending_lines_;  // prepared on another core during the first frame
 };

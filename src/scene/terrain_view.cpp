@@ -9,6 +9,7 @@
 #include "input/dem_reader.hpp"
 #include "input/scene_position.hpp"
 #include "input/terrain_window.hpp"
+#include "surface/grid_ground.hpp"
 
 namespace penink {
 
@@ -54,22 +55,9 @@ Camera scene_camera(const Scene& scene, const Terrain& terrain) {
     return cam;
 }
 
-TerrainGround::TerrainGround(const Terrain& terrain) : mesh_(mesh_from_terrain(terrain)), locator_(mesh_) {}
-
-bool TerrainGround::height(double x, double y, double& z) const {
-    SurfaceHit hit;
-    if (!locator_.locate(x, y, hit)) return false;
-    const glm::uvec3 v = mesh_.tri[hit.triangle];  // the flat triangles the DEM's cells make
-    z = double(hit.bary.x) * mesh_.pos[v.x].z + double(hit.bary.y) * mesh_.pos[v.y].z +
-        double(hit.bary.z) * mesh_.pos[v.z].z;
-    return true;
-}
-
-bool ground_height(const Terrain& t, double x, double y, double& z) { return TerrainGround(t).height(x, y, z); }
-
 Terrain terrain_for_view(const Terrain& terrain, Camera& cam, const Scene& scene, const Log& log) {
     double ground = 0.0;
-    if (scene.camera.position && ground_height(terrain, cam.eye.x, cam.eye.y, ground) && cam.eye.z <= ground) {
+    if (scene.camera.position && grid_ground_height(terrain, cam.eye.x, cam.eye.y, ground) && cam.eye.z <= ground) {
         std::ostringstream msg;
         msg << "camera is inside the terrain (elevation " << cam.eye.z / scene.vertical_exaggeration
             << " m, ground " << ground / scene.vertical_exaggeration << " m)";

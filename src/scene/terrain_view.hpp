@@ -9,8 +9,6 @@
 #include "scene/scene.hpp"
 #include "core/camera.hpp"
 #include "input/terrain.hpp"
-#include "surface/surface_mesh.hpp"
-#include "surface/terrain_locator.hpp"
 
 namespace penink {
 
@@ -25,24 +23,6 @@ Camera scene_camera(const Scene& scene, const Terrain& terrain);
 
 // Points the automatic camera frames: every edge node and a subsample of the rest.
 std::vector<glm::dvec3> frame_samples(const Terrain& terrain);
-
-// Elevation (world z) of the terrain's flat triangles under plan points (x, y): the surface set up
-// once for many queries (a flight path's cameras).
-class TerrainGround {
-public:
-    explicit TerrainGround(const Terrain& terrain);
-    TerrainGround(const TerrainGround&) = delete;  // the locator points at mesh_
-    TerrainGround& operator=(const TerrainGround&) = delete;
-    // False outside the DEM.
-    bool height(double x, double y, double& z) const;
-
-private:
-    SurfaceMesh mesh_;
-    TerrainLocator locator_;
-};
-
-// One query: TerrainGround(terrain).height(x, y, z).
-bool ground_height(const Terrain& terrain, double x, double y, double& z);
 
 // The terrain cropped to what the camera sees (logged: cells used of all); throws
 // penink::Error(stage "scene") when the camera is below the ground or sees none of the DEM.

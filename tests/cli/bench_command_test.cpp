@@ -28,36 +28,44 @@ std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
 TEST(BenchCommand, TinySweepWritesCsvAndChart) {
     const auto dir = fresh_dir("bench");
     const RunResult r = run_penink("bench " PENINK_SOURCE_DIR "/examples/volcano.asc --out out --levels 1,2 "
-                                   "--sizes 240x180 --methods toward-away,adjacency --frames 1 --warmup 0 "
+                                   "--sizes 240x180 --tolerances 0,1 --methods toward-away,adjacency --frames 1 --warmup 0 "
                                    "--needs-size 120x90",
                                    dir);
     ASSERT_EQ(r.code, 0) << r.output;
     const auto rows = csv_rows(read_text(dir / "out" / "bench.csv"));
-    ASSERT_EQ(rows.size(), 1u + 4u + 10u);
+    // Sweep: tolerance 0 (full resolution) then 1 px, each toward-away L1, L2, adjacency L1, L2.
+    ASSERT_EQ(rows.size(), 1u + 8u + 10u);
     EXPECT_EQ(rows[0][0], "group");
-    EXPECT_EQ(rows[0].size(), 21u);
+    EXPECT_EQ(rows[0].size(), 22u);
+    EXPECT_EQ(rows[0][6], "tolerance_px");
     EXPECT_EQ(rows[1][4], "toward-away");
     EXPECT_EQ(rows[1][5], "1");
+    EXPECT_EQ(rows[1][6], "0.000");
+    EXPECT_EQ(rows[5][6], "1.000");
     EXPECT_EQ(rows[4][4], "adjacency");
     EXPECT_EQ(rows[4][5], "2");
     for (std::size_t i = 1; i < rows.size(); ++i) {
-        ASSERT_EQ(rows[i].size(), 21u);
-        EXPECT_EQ(rows[i][0], i <= 4 ? "sweep" : "needs");
-        EXPECT_GT(std::stod(rows[i][10]), 0.0);  // ms per frame
-        for (int c = 14; c <= 17; ++c) {
+        ASSERT_EQ(rows[i].size(), 22u);
+        EXPECT_EQ(rows[i][0], i <= 8 ? "sweep" : "needs");
+        EXPECT_GT(std::stod(rows[i][11]), 0.0);  // ms per frame
+        for (int c = 15; c <= 18; ++c) {
             EXPECT_GE(std::stod(rows[i][std::size_t(c)]), 0.0);
             EXPECT_LE(std::stod(rows[i][std::size_t(c)]), 1.0);
         }
     }
-    EXPECT_EQ(rows[5][1], "scene");
-    EXPECT_EQ(rows[10][1], "zoom4");
-    // Toward/Away's silhouette pixels lie on the reference (2 px); at 240x180 it finds 0.41 of it
-    // (volcano at exaggeration 1 has few, short silhouettes: at 120x90 they are a few pixels).
-    EXPECT_GE(std::stod(rows[2][16]), 0.95);
-    EXPECT_GT(std::stod(rows[2][17]), 0.3);
+    EXPECT_EQ(rows[9][1], "scene");
+    EXPECT_EQ(rows[14][1], "zoom4");
+    // Toward/Away's silhouette pixels lie on the reference (2 px); at 240x180 at full resolution it
+    // finds 0.46 of it (volcano at exaggeration 1 has few, short silhouettes: at 120x90 they are a
+    // few pixels). At 1 px tolerance the coarser mesh loses the smallest bumps' silhouettes (0.24
+    // measured) but what it draws still lies on the reference.
+    EXPECT_GE(std::stod(rows[2][17]), 0.95);
+    EXPECT_GT(std::stod(rows[2][18]), 0.3);
+    EXPECT_GE(std::stod(rows[6][17]), 0.95);
+    EXPECT_GT(std::stod(rows[6][18]), 0.15);
     // Zoomed in, cropping models fewer cells than the whole DEM (60 x 86 cells).
-    EXPECT_LT(std::stoul(rows[10][9]), 5160u);
-    EXPECT_EQ(rows[13][9], "5160");
+    EXPECT_LT(std::stoul(rows[14][10]), 5160u);
+    EXPECT_EQ(rows[17][10], "5160");
     const std::string svg = read_text(dir / "out" / "speed_accuracy.svg");
     EXPECT_NE(svg.find("toward-away 240x180"), std::string::npos);
     EXPECT_NE(svg.find("adjacency 240x180"), std::string::npos);
@@ -77,9 +85,14 @@ TEST(BenchChart, SeriesPerMethodAndSize) {
     rows[1].p1 = 1.0, rows[1].r1 = 0.5;
     const auto series = penink::bench_chart_series(rows);
     ASSERT_EQ(series.size(), 2u);
-    EXPECT_EQ(series[0].name, "toward-away 100x50");
+    EXPECT_EQ(series[0].name, "toward-away 100x50 tol 0 px");
     ASSERT_EQ(series[0].points.size(), 2u);
     EXPECT_NEAR(series[0].points[1].accuracy, 2.0 / 3.0, 1e-12);  // F1 of 1 and 0.5
     EXPECT_EQ(series[0].points[1].label, "L4");
     EXPECT_EQ(series[1].colour, "#d62728");
+    rows[1].tolerance_px = 1.5;  // another tolerance: a series of its own, another dash
+    const auto split = penink::bench_chart_series(rows);
+    ASSERT_EQ(split.size(), 3u);
+    EXPECT_EQ(split[1].name, "toward-away 100x50 tol 1.5 px");
+    EXPECT_NE(split[1].dash, split[0].dash);
 }
