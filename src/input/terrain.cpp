@@ -1,6 +1,7 @@
 #include "input/terrain.hpp"
 
 #include <algorithm>
+#include <limits>
 
 #include <glm/common.hpp>
 
@@ -38,14 +39,15 @@ bool terrain_affine(const Terrain& t, AffineNodes& out) {
 }
 
 bool terrain_bounds(const Terrain& t, glm::dvec3& lo, glm::dvec3& hi) {
+    // Floats compared as stored (exact), widened to double once at the end.
+    glm::vec3 l(std::numeric_limits<float>::infinity()), h(-std::numeric_limits<float>::infinity());
     bool any = false;
     for (std::size_t i = 0; i < t.size(); ++i) {
         if (!t.valid[i]) continue;
-        const glm::dvec3 p(t.pos[i]);
-        lo = any ? glm::min(lo, p) : p;
-        hi = any ? glm::max(hi, p) : p;
+        l = glm::min(l, t.pos[i]), h = glm::max(h, t.pos[i]);
         any = true;
     }
+    if (any) lo = glm::dvec3(l), hi = glm::dvec3(h);
     return any;
 }
 

@@ -43,9 +43,9 @@ Camera scene_camera(const Scene& scene, const Terrain& terrain) {
     const SceneCamera& sc = scene.camera;
     const double az = sc.azimuth.value_or(default_view_azimuth);
     const double alt = sc.altitude.value_or(default_view_altitude);
+    if (!sc.position) return frame_points(frame_samples(terrain), az, alt, sc.fov, sc.width, sc.height, 0.9);
     glm::dvec3 lo, hi;
     terrain_bounds(terrain, lo, hi);
-    if (!sc.position) return frame_points(frame_samples(terrain), az, alt, sc.fov, sc.width, sc.height, 0.9);
     Camera cam;
     const glm::dvec2 xy = parse_scene_position(*sc.position, terrain, scene_file(scene));
     cam.eye = {xy.x, xy.y, *sc.elevation * scene.vertical_exaggeration};

@@ -1,6 +1,7 @@
 #include "surface/boundary_curves.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <map>
 #include <utility>
 
@@ -10,18 +11,27 @@ namespace penink {
 
 namespace {
 
-using Edge = std::pair<unsigned, unsigned>;
+std::uint64_t edge_key(unsigned a, unsigned b) {
+    return (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+}
 
 // Directed boundary edges (a -> b in triangle order): their reverse belongs to no triangle.
+// Undirected edges are counted by sorting their keys (a mesh's edges, most of them shared).
 std::map<unsigned, std::vector<unsigned>> boundary_edges(const SurfaceMesh& m) {
-    std::map<Edge, int> count;
+    std::vector<std::uint64_t> keys;
+    keys.reserve(m.tri.size() * 3);
     for (const glm::uvec3& t : m.tri)
-        for (int k = 0; k < 3; ++k) ++count[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}];
+        for (int k = 0; k < 3; ++k) keys.push_back(edge_key(t[k], t[(k + 1) % 3]));
+    std::sort(keys.begin(), keys.end());
+    const auto once = [&](std::uint64_t key) {
+        const auto range = std::equal_range(keys.begin(), keys.end(), key);
+        return range.second - range.first == 1;
+    };
     std::map<unsigned, std::vector<unsigned>> next;
     for (const glm::uvec3& t : m.tri)
         for (int k = 0; k < 3; ++k) {
             const unsigned a = t[k], b = t[(k + 1) % 3];
-            if (count[{std::min(a, b), std::max(a, b)}] == 1) next[a].push_back(b);
+            if (once(edge_key(a, b))) next[a].push_back(b);
         }
     return next;
 }
