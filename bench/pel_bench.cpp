@@ -10,7 +10,7 @@
 #include <benchmark/benchmark.h>
 
 #include "lines/photic_extremum_lines.hpp"
-#include "support/spheres.hpp"
+#include "support/test_meshes.hpp"
 #include "surface/mesh_normals.hpp"
 
 namespace penink {

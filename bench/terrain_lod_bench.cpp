@@ -12,29 +12,13 @@
 
 #include "core/camera.hpp"
 #include "surface/terrain_lod.hpp"
+#include "support/synthetic_terrain.hpp"
 
 using namespace penink;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
-double hills(double x, double y) {
-    struct Hill {
-        double x, y, h, s;
-    };
-    static const Hill hs[] = {{-900, -700, 420, 520}, {800, 600, 360, 380}, {300, -1100, 250, 260},
-                              {-1200, 900, 300, 700}, {1300, -900, 180, 160}, {0, 200, 120, 90}};
-    double z = 50.0;
-    for (const Hill& h : hs) z += h.h * std::exp(-((x - h.x) * (x - h.x) + (y - h.y) * (y - h.y)) / (2 * h.s * h.s));
-    double lambda = 1024.0;
-    for (int k = 0; k < 9; ++k, lambda *= 0.5) {
-        const double a = 0.7 + 2.1 * k, w = 2.0 * kPi / lambda;
-        const double u = x * std::cos(a) + y * std::sin(a), v = -x * std::sin(a) + y * std::cos(a);
-        z += 0.015 * lambda * std::sin(w * u + 1.3 * k) * std::cos(w * 0.8 * v + 0.4 * k);
-    }
-    return z;
-}
 
 double noise(int c, int r) {  // in [-0.5, 0.5)
     std::uint32_t h = std::uint32_t(c) * 2654435761u ^ std::uint32_t(r) * 2246822519u;
@@ -56,7 +40,7 @@ const Terrain& terrain(int side, bool rough) {
         for (int r = 0; r < side; ++r)
             for (int c = 0; c < side; ++c) {
                 const double x = (c - (side - 1) * 0.5) * s, y = ((side - 1) * 0.5 - r) * s;
-                t.pos[t.index(c, r)] = glm::vec3(float(x), float(y), float(hills(x, y) + (rough ? 20.0 * noise(c, r) : 0.0)));
+                t.pos[t.index(c, r)] = glm::vec3(float(x), float(y), float(rough_hills(x, y) + (rough ? 20.0 * noise(c, r) : 0.0)));
             }
     }
     return *slot;

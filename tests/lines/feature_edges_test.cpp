@@ -8,26 +8,11 @@
 #include <glm/geometric.hpp>
 
 #include "lines/feature_edges.hpp"
-#include "support/spheres.hpp"
+#include "support/test_meshes.hpp"
 
 using namespace penink;
 
 namespace {
-
-// Unit cube [0,1]^3, 8 shared vertices, each face split along a diagonal, outward CCW.
-TriangleMesh cube() {
-    TriangleMesh m;
-    for (int i = 0; i < 8; ++i) m.positions.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-    const unsigned quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                                  {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-    for (auto& q : quads) {
-        m.triangles.emplace_back(q[0], q[1], q[2]);
-        m.triangles.emplace_back(q[0], q[2], q[3]);
-    }
-    m.material.assign(12, 0);
-    m.material_names = {"default"};
-    return m;
-}
 
 std::map<EdgeKind, int> count_kinds(const std::vector<MeshEdge>& edges) {
     std::map<EdgeKind, int> c;
@@ -38,7 +23,7 @@ std::map<EdgeKind, int> count_kinds(const std::vector<MeshEdge>& edges) {
 }  // namespace
 
 TEST(FeatureEdges, CubeHasExactlyItsTwelveEdges) {
-    TriangleMesh m = cube();
+    TriangleMesh m = test::unit_cube();
     auto all = classify_edges(m, {});
     EXPECT_EQ(all.size(), 18u);  // 12 cube edges + 6 face diagonals
     auto f = feature_edges(m, {});
@@ -63,7 +48,7 @@ TEST(FeatureEdges, CubeHasExactlyItsTwelveEdges) {
 }
 
 TEST(FeatureEdges, MaterialBoundariesAndPlanarGroups) {
-    TriangleMesh m = cube();
+    TriangleMesh m = test::unit_cube();
     m.material_names = {"walls", "roof"};
     m.material[2] = m.material[3] = 1;  // the z = 1 face
     FeatureOptions o;

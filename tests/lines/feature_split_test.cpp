@@ -12,26 +12,11 @@
 #include <utility>
 
 #include "lines/feature_edges.hpp"
+#include "support/test_meshes.hpp"
 
 using namespace penink;
 
 namespace {
-
-// Unit cube [0,1]^3: vertex i at (i & 1, (i >> 1) & 1, (i >> 2) & 1), each face two CCW triangles
-// (outward). Faces in order -z, +z, -y, +y, -x, +x: triangles 2f and 2f + 1 are face f.
-TriangleMesh cube() {
-    TriangleMesh m;
-    for (int i = 0; i < 8; ++i) m.positions.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-    const unsigned quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                                  {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-    for (auto& q : quads) {
-        m.triangles.emplace_back(q[0], q[1], q[2]);
-        m.triangles.emplace_back(q[0], q[2], q[3]);
-    }
-    m.material.assign(12, 0);
-    m.material_names = {"default"};
-    return m;
-}
 
 // A sheet bent 90 degrees along the edge 1-2 (x = 1, z = 0):
 //   floor (normal +z): 0 (0,0,0), 1 (1,0,0), 2 (1,1,0), 3 (0,1,0): triangles (0,1,2), (0,2,3)
@@ -90,7 +75,7 @@ void expect_corners_preserved(const TriangleMesh& in, const TriangleMesh& out) {
 
 TEST(FeatureSplit, CubeFromACornerEyeSplitsContoursFeaturesAndDropsHiddenEdges) {
     // Eye (3, 2, 1.5): x > 1, y > 1, z > 1, so +x, +y, +z face it and -x, -y, -z face away.
-    const TriangleMesh m = cube();
+    const TriangleMesh m = test::unit_cube();
     const FeatureSplit s = split_feature_edges(m, classify_edges(m, {}), {3.0f, 2.0f, 1.5f});
     // Between two front faces (all at vertex 7 = (1,1,1)): +x/+y, +x/+z, +y/+z.
     EXPECT_EQ(edge_set(s.features), (std::set<std::pair<unsigned, unsigned>>{{3, 7}, {5, 7}, {6, 7}}));
@@ -108,7 +93,7 @@ TEST(FeatureSplit, CubeFromACornerEyeSplitsContoursFeaturesAndDropsHiddenEdges) 
 TEST(FeatureSplit, EyeOnTheOtherSideMirrorsTheSplit) {
     // Eye (-2, -1, -0.5): -x, -y, -z face it; now vertex 0's edges are features and vertex 7's
     // are dropped; the outline hexagon is the same.
-    const TriangleMesh m = cube();
+    const TriangleMesh m = test::unit_cube();
     const FeatureSplit s = split_feature_edges(m, classify_edges(m, {}), {-2.0f, -1.0f, -0.5f});
     EXPECT_EQ(edge_set(s.features), (std::set<std::pair<unsigned, unsigned>>{{0, 1}, {0, 2}, {0, 4}}));
     EXPECT_EQ(edge_set(s.contours),
@@ -120,7 +105,7 @@ TEST(FeatureSplit, MaterialEdgesAreNeverContoursAndNotSharp) {
     // edges are material edges. With the eye of the first test +z faces it: (5,7), (6,7) join it to
     // front faces, (4,5), (4,6) to back faces; a material edge is no silhouette, so all four are
     // features, and no vertex is sharp.
-    TriangleMesh m = cube();
+    TriangleMesh m = test::unit_cube();
     m.material_names = {"walls", "roof"};
     m.material[2] = m.material[3] = 1;
     const FeatureSplit s = split_feature_edges(m, classify_edges(m, crease_at(100.0f)), {3.0f, 2.0f, 1.5f});
@@ -153,7 +138,7 @@ TEST(FeatureSplit, BentSheetFoldIsFeatureOrContourByEye) {
 
 TEST(FeatureSplit, CubeSplitsEachCornerIntoThreeFans) {
     // crease_angle 40: the 12 cube edges (90 degrees) are creases, the 6 diagonals (0) are not.
-    const TriangleMesh m = cube();
+    const TriangleMesh m = test::unit_cube();
     const TriangleMesh out = split_at_creases(m, classify_edges(m, crease_at(40.0f)));
     ASSERT_EQ(out.positions.size(), 24u);  // 8 corners x 3 faces meeting there
     expect_corners_preserved(m, out);
@@ -180,7 +165,7 @@ TEST(FeatureSplit, CubeSplitsEachCornerIntoThreeFans) {
 
 TEST(FeatureSplit, CubeWithoutCreasesKeepsItsVertices) {
     // crease_angle 100: no edge is sharp, every corner fan closes around its vertex.
-    const TriangleMesh m = cube();
+    const TriangleMesh m = test::unit_cube();
     const TriangleMesh out = split_at_creases(m, classify_edges(m, crease_at(100.0f)));
     EXPECT_EQ(out.positions.size(), 8u);
     expect_corners_preserved(m, out);

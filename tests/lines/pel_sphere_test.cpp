@@ -20,7 +20,7 @@
 #include <glm/geometric.hpp>
 
 #include "lines/photic_extremum_lines.hpp"
-#include "support/spheres.hpp"
+#include "support/test_meshes.hpp"
 
 using namespace penink;
 

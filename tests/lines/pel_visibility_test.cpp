@@ -6,7 +6,7 @@
 #include <glm/geometric.hpp>
 
 #include "lines/mesh_visibility.hpp"
-#include "support/spheres.hpp"
+#include "support/test_meshes.hpp"
 
 using namespace penink;
 

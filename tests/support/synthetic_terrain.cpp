@@ -54,4 +54,21 @@ void cut_hole(Terrain& t, double cx, double cy, double radius) {
         if (glm::length(glm::dvec2(t.pos[i].x - cx, t.pos[i].y - cy)) <= radius) t.valid[i] = 0;
 }
 
+double rough_hills(double x, double y) {
+    struct Hill {
+        double x, y, h, s;
+    };
+    static const Hill hs[] = {{-900, -700, 420, 520}, {800, 600, 360, 380}, {300, -1100, 250, 260},
+                              {-1200, 900, 300, 700}, {1300, -900, 180, 160}, {0, 200, 120, 90}};
+    double z = 50.0;
+    for (const Hill& h : hs) z += h.h * std::exp(-((x - h.x) * (x - h.x) + (y - h.y) * (y - h.y)) / (2 * h.s * h.s));
+    double lambda = 1024.0;
+    for (int k = 0; k < 9; ++k, lambda *= 0.5) {
+        const double a = 0.7 + 2.1 * k, w = 2.0 * M_PI / lambda;
+        const double u = x * std::cos(a) + y * std::sin(a), v = -x * std::sin(a) + y * std::cos(a);
+        z += 0.015 * lambda * std::sin(w * u + 1.3 * k) * std::cos(w * 0.8 * v + 0.4 * k);
+    }
+    return z;
+}
+
 }  // namespace penink

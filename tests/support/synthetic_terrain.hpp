@@ -38,6 +38,11 @@ HeightFunction analytic_height(const AnalyticTerrain& shape);
 // so the cliff's top edge y = 0 is a grid row).
 Terrain analytic_grid(const AnalyticTerrain& shape, double spacing);
 
+// A sum of Gaussian hills (120-420 m, sigma 90-700 m, centred within 1.3 km of the origin) with
+// fractal roughness: 9 octaves of ripples, wavelength 1024 m down to 4 m, amplitude 1.5 % of the
+// wavelength (15 m to 6 cm), in turning directions: like a real DEM, detail at every scale.
+double rough_hills(double x, double y);
+
 // Marks the nodes within `radius` of (cx, cy) as nodata.
 void cut_hole(Terrain& terrain, double cx, double cy, double radius);
 

@@ -20,6 +20,7 @@
 #include "core/camera.hpp"
 #include "surface/surface_mesh.hpp"
 #include "surface/terrain_lod.hpp"
+#include "support/synthetic_terrain.hpp"
 
 using namespace penink;
 
@@ -48,35 +49,10 @@ Terrain grid_terrain(int cols, int rows, const std::function<double(double, doub
     return t;
 }
 
-// A sum of Gaussian hills (120-420 m, sigma 90-700 m) with fractal roughness: 9 octaves of
-// ripples, wavelength 1024 m down to 4 m, amplitude 1.5 % of the wavelength (15 m to 6 cm), in
-// turning directions: like a real DEM, detail at every scale, so the selection has work to do.
-double hills(double x, double y) {
-    struct Hill {
-        double x, y, h, s;
-    };
-    static const Hill hs[] = {{-900, -700, 420, 520}, {800, 600, 360, 380}, {300, -1100, 250, 260},
-                              {-1200, 900, 300, 700}, {1300, -900, 180, 160}, {0, 200, 120, 90}};
-    double z = 50.0;
-    for (const Hill& h : hs) z += h.h * std::exp(-((x - h.x) * (x - h.x) + (y - h.y) * (y - h.y)) / (2 * h.s * h.s));
-    double lambda = 1024.0;
-    for (int k = 0; k < 9; ++k, lambda *= 0.5) {
-        const double a = 0.7 + 2.1 * k, w = 2.0 * kPi / lambda;
-        const double u = x * std::cos(a) + y * std::sin(a), v = -x * std::sin(a) + y * std::cos(a);
-        z += 0.015 * lambda * std::sin(w * u + 1.3 * k) * std::cos(w * 0.8 * v + 0.4 * k);
-    }
-    return z;
-}
-
 // The 2049 x 2049 test DEM, made once.
 const Terrain& big_hills() {
-    static const Terrain t = grid_terrain(2049, 2049, hills);
+    static const Terrain t = grid_terrain(2049, 2049, rough_hills);
     return t;
-}
-
-void cut_hole(Terrain& t, double cx, double cy, double radius) {
-    for (std::size_t i = 0; i < t.size(); ++i)
-        if (std::hypot(t.pos[i].x - cx, t.pos[i].y - cy) < radius) t.valid[i] = 0;
 }
 
 // The conventions' default view: from the south-west (looking north-east), 30 degrees down,
@@ -267,7 +243,7 @@ TEST(TerrainLod, TriangleBudgetOn2049Grid) {
 }
 
 TEST(TerrainLod, TriangleBudgetOnNonPowerGrid) {
-    const Terrain t = grid_terrain(2000, 2000, hills);
+    const Terrain t = grid_terrain(2000, 2000, rough_hills);
     auto t0 = std::chrono::steady_clock::now();
     const TerrainLod lod = build_terrain_lod(t);
     const double build_ms = ms_since(t0);
@@ -395,7 +371,7 @@ TEST(TerrainLod, FlatTerrainCollapses) {
 // exactly the full-resolution triangles (those of its two whose nodes all hold data), and the
 // mesh covers exactly the full-resolution mesh's area.
 TEST(TerrainLod, NodataHoleKeepsFullResolutionOutline) {
-    Terrain t = grid_terrain(1025, 1025, hills);
+    Terrain t = grid_terrain(1025, 1025, rough_hills);
     cut_hole(t, 150.0, -220.0, 180.0);
     cut_hole(t, -700.0, 500.0, 33.0);
     for (int c = 0; c < t.cols; ++c) t.valid[t.index(c, 700)] = c % 3 != 0;  // scattered nodata along a row
@@ -446,7 +422,7 @@ TEST(TerrainLod, NodataHoleKeepsFullResolutionOutline) {
 // |error_1 - error_3| <= (2 * levels) * 8 * 2^-24 * max|z|; radii use plan positions only:
 // identical. Selections differ (errors are scaled by e at selection).
 TEST(TerrainLod, ErrorsDoNotDependOnExaggeration) {
-    const Terrain t1 = grid_terrain(513, 513, hills, 1.0), t3 = grid_terrain(513, 513, hills, 3.0);
+    const Terrain t1 = grid_terrain(513, 513, rough_hills, 1.0), t3 = grid_terrain(513, 513, rough_hills, 3.0);
     const TerrainLod a = build_terrain_lod(t1), b = build_terrain_lod(t3);
     ASSERT_EQ(a.error.size(), b.error.size());
     const double bound = 2.0 * a.levels * 8.0 * std::ldexp(1.0, -24) * std::max(std::abs(t1.elevation_min), std::abs(t1.elevation_max));
@@ -467,7 +443,7 @@ TEST(TerrainLod, ErrorsDoNotDependOnExaggeration) {
 // Vertex normals are the full-resolution mesh's (compute_normals on mesh_from_terrain), also
 // next to nodata; same float operations in the same order, so 1e-5 is generous.
 TEST(TerrainLod, NormalsAreFullResolutionNormals) {
-    Terrain t = grid_terrain(600, 513, hills);
+    Terrain t = grid_terrain(600, 513, rough_hills);
     cut_hole(t, 100.0, 50.0, 40.0);
     const SurfaceMesh full = mesh_from_terrain(t);
     const TerrainLod lod = build_terrain_lod(t);
@@ -487,7 +463,7 @@ TEST(TerrainLod, NormalsAreFullResolutionNormals) {
 // radius cover its four dependants'; error bounds the split vertex's own offset; +inf exactly
 // on nodes with nodata or padding in their 3x3 neighbourhood or such a dependant.
 TEST(TerrainLod, ErrorsAndRadiiAreNested) {
-    Terrain t = grid_terrain(300, 257, hills);
+    Terrain t = grid_terrain(300, 257, rough_hills);
     cut_hole(t, 60.0, -40.0, 25.0);
     const TerrainLod lod = build_terrain_lod(t);
     EXPECT_EQ(lod.levels, 9);

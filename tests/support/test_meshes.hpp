@@ -1,4 +1,4 @@
-// Sphere meshes for tests and benchmarks, centred on the origin, in the mesh's own units (the
+// Meshes for tests and benchmarks: the unit cube, and spheres centred on the origin, in the mesh's own units (the
 // radius), z-up with counter-clockwise (outward-facing) triangles and every triangle of
 // material 0 "default":
 // - uv_sphere: longitude u = 2 pi j / n (from +x towards +y, j = 0..n) and colatitude
@@ -14,12 +14,16 @@
 //   ratio) subdivided `level` times by edge midpoints (new vertices appended in order of first
 //   use, each triangle split into its 3 corners then the middle one), every vertex then pushed to
 //   the sphere of radius r: 20 * 4^level triangles.
+// - unit_cube: [0,1]^3, vertex i at (i & 1, (i >> 1) & 1, (i >> 2) & 1), faces in order -z, +z, -y,
+//   +y, -x, +x, each two outward counter-clockwise triangles (2f, 2f + 1) split along a diagonal.
 #pragma once
 #include <functional>
 
 #include "core/triangle_mesh.hpp"
 
 namespace penink::test {
+
+TriangleMesh unit_cube();
 
 enum class UvLayout { grid, closed };
 

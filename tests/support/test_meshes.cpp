@@ -1,4 +1,4 @@
-#include "support/spheres.hpp"
+#include "support/test_meshes.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -17,6 +17,20 @@ void one_material(TriangleMesh& m) {
 }
 
 }  // namespace
+
+TriangleMesh unit_cube() {
+    TriangleMesh m;
+    for (int i = 0; i < 8; ++i) m.positions.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+    const unsigned quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                  {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (auto& q : quads) {
+        m.triangles.emplace_back(q[0], q[1], q[2]);
+        m.triangles.emplace_back(q[0], q[2], q[3]);
+    }
+    m.material.assign(12, 0);
+    m.material_names = {"default"};
+    return m;
+}
 
 TriangleMesh uv_sphere(int n, double radius, UvLayout layout, const RadialBump& bump) {
     TriangleMesh m;
