@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
     p.mark("drainage line sets");
     p.last = Clock::now();
     // The frame itself, as TerrainFrames::draw (a second TerrainFrames would redo the set-up).
-    TerrainFrames frames(*context, scene, dem, view, camera.width, camera.height, quiet);
+    TerrainFrames frames(*context, scene_drainage(scene, dem, quiet), view, camera.width, camera.height, quiet);
     p.mark("(TerrainFrames set-up, all of it)");
     SceneDrawing d = frames.draw(camera, scene);
     p.mark("frame: passes + tracing");

@@ -151,7 +151,7 @@ int run_batch(const BatchOptions& o) {
     Scene scene = batch_scene(o);
     const Style style = scene_style(scene);
     apply_object_sketch(scene, style);
-    const Flight f = plan_flight(scene, o.path, o.whole_dem, log);
+    Flight f = plan_flight(scene, o.path, o.whole_dem, log);
     std::error_code ec;
     fs::create_directories(o.out_dir, ec);
     if (!fs::is_directory(o.out_dir)) throw Error("batch", o.out_dir, "cannot create the output directory");
@@ -161,7 +161,8 @@ int run_batch(const BatchOptions& o) {
     summary.width = scene.camera.width, summary.height = scene.camera.height;
     summary.cells = std::size_t(f.model.cols - 1) * (f.model.rows - 1);
     summary.dem_cells = std::size_t(f.dem.cols - 1) * (f.dem.rows - 1);
-    TerrainFrames frames(*context, scene, f.dem, f.model, summary.width, summary.height, log);
+    TerrainFrames frames(*context, scene_drainage(scene, f.dem, log), std::move(f.model), summary.width, summary.height,
+                         log);
     summary.setup_s = ms_since(start) / 1000.0;
     std::vector<FrameTiming> timings;
     ProgressBar bar(std::cerr, stderr_is_terminal(), "batch", int(f.records.size()));

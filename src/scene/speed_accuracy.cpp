@@ -118,7 +118,7 @@ std::unique_ptr<BenchView> make_view(const Scene& scene, const Terrain& dem, GlC
         fit_depth_range(v->camera, lo, hi);
     }
     v->cells = std::size_t(t.cols - 1) * (t.rows - 1);
-    v->frames = std::make_unique<TerrainFrames>(context, sized, dem, std::move(t), w, h, log);
+    v->frames = std::make_unique<TerrainFrames>(context, std::nullopt, std::move(t), w, h, log);
     return v;
 }
 

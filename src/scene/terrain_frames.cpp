@@ -84,20 +84,25 @@ FrameOptions frame_options(const Scene& scene) {
 }
 }  // namespace
 
-TerrainFrames::TerrainFrames(GlContext& context, const Scene& scene, const Terrain& dem, Terrain terrain,
-                             int width, int height, const Log& log)
-    : context_(&context), terrain_(std::move(terrain)), lod_(build_terrain_lod(terrain_)), width_(width),
-      height_(height) {
-    log.info("level-of-detail pyramid: " + std::to_string(lod_.side()) + "^2 nodes (" + std::to_string(terrain_.cols) +
-             "x" + std::to_string(terrain_.rows) + " modelled)");
-    if (!scene.creases.enabled && !scene.ridges.enabled) return;
+std::optional<DrainageDb> scene_drainage(const Scene& scene, const Terrain& dem, const Log& log) {
+    if (!scene.creases.enabled && !scene.ridges.enabled) return std::nullopt;
     StageProgress progress(std::cerr, stderr_is_terminal(), "building drainage database");
     DrainageOptions options;
     options.routing = *drainage_routing_named(scene.drainage_routing);  // validate_scene checked it
-    DrainageDb db = load_or_build_drainage(
+    return load_or_build_drainage(
         scene.dem, dem, options, [&](const std::string& m) { log.info(m); },
         [&progress](const std::string& stage, double fraction) { progress.update(stage, fraction); });
-    pending_lines_ = std::async(std::launch::async, [this, db = std::move(db)] {
+}
+
+TerrainFrames::TerrainFrames(GlContext& context, std::optional<DrainageDb> drainage, Terrain terrain, int width,
+                             int height, const Log& log)
+    : context_(&context), terrain_(std::move(terrain)), width_(width), height_(height) {
+    const auto t0 = Clock::now();
+    lod_ = build_terrain_lod(terrain_);
+    log.info("level-of-detail pyramid: " + std::to_string(lod_.side()) + "^2 nodes (" + std::to_string(terrain_.cols) +
+             "x" + std::to_string(terrain_.rows) + " modelled, " + std::to_string(int(ms_since(t0))) + " ms)");
+    if (!drainage) return;
+    pending_lines_ = std::async(std::launch::async, [this, db = std::move(*drainage)] {
         return prepare_drainage_lines(db, mesh_from_terrain(terrain_));
     });
 }
@@ -148,12 +153,17 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
 }
 
 SceneView open_terrain_view(const Scene& scene, GlContext& context, const Log& log) {
-    const Terrain dem = read_scene_dem(scene);
-    log.info("read " + scene.dem + ": " + std::to_string(dem.cols) + "x" + std::to_string(dem.rows) + " nodes");
+    auto t0 = Clock::now();
+    Terrain dem = read_scene_dem(scene);
+    log.info("read " + scene.dem + ": " + std::to_string(dem.cols) + "x" + std::to_string(dem.rows) + " nodes (" +
+             std::to_string(int(lap_ms(t0))) + " ms)");
     SceneView view;
     view.camera = scene_camera(scene, dem);
-    Terrain model = terrain_for_view(dem, view.camera, scene, log);
-    view.frames = std::make_unique<TerrainFrames>(context, scene, dem, std::move(model), view.camera.width,
+    std::optional<DrainageDb> drainage = scene_drainage(scene, dem, log);
+    t0 = Clock::now();
+    Terrain model = terrain_for_view(std::move(dem), view.camera, scene, log);
+    log.info("view window cropped (" + std::to_string(int(lap_ms(t0))) + " ms)");
+    view.frames = std::make_unique<TerrainFrames>(context, std::move(drainage), std::move(model), view.camera.width,
                                                   view.camera.height, log);
     return view;
 }

@@ -5,6 +5,7 @@
 #pragma once
 #include <future>
 #include <memory>
+#include <optional>
 
 #include "scene/drainage_lines.hpp"
 #include "scene/frame_source.hpp"
@@ -16,15 +17,19 @@ namespace penink {
 // The scene's DEM read, its camera placed, the DEM cropped to that view and set up for frames.
 SceneView open_terrain_view(const Scene& scene, GlContext& context, const Log& log);
 
+// The scene's drainage database (cached beside the DEM: drainage/drainage_build.hpp), read or
+// built with progress on a terminal; none when the scene draws neither creases nor ridges.
+std::optional<DrainageDb> scene_drainage(const Scene& scene, const Terrain& dem, const Log& log);
+
 // A terrain set up once and drawn in many frames (render, batch, bench): its level-of-detail
 // pyramid (surface/terrain_lod.hpp), from which each frame selects the mesh its camera needs
 // ([surface] tolerance_px; 0 = the full-resolution mesh), its GPU copy, and its drainage lines.
 // `terrain` is what gets modelled (cropped to the view for a single frame, the union of the
-// frames' windows for a flight); `dem` is the whole DEM the drainage cache belongs to.
+// frames' windows for a flight); `drainage` is the database of the whole DEM (scene_drainage).
 class TerrainFrames : public FrameSource {
 public:
-    TerrainFrames(GlContext& context, const Scene& scene, const Terrain& dem, Terrain terrain,
-                  int width, int height, const Log& log);
+    TerrainFrames(GlContext& context, std::optional<DrainageDb> drainage, Terrain terrain, int width, int height,
+                  const Log& log);
     TerrainFrames(const TerrainFrames&) = delete;  // the line preparation thread holds &terrain_
     TerrainFrames& operator=(const TerrainFrames&) = delete;
     ~TerrainFrames() override;

@@ -55,7 +55,7 @@ Camera scene_camera(const Scene& scene, const Terrain& terrain) {
     return cam;
 }
 
-Terrain terrain_for_view(const Terrain& terrain, Camera& cam, const Scene& scene, const Log& log) {
+Terrain terrain_for_view(Terrain terrain, Camera& cam, const Scene& scene, const Log& log) {
     double ground = 0.0;
     if (scene.camera.position && grid_ground_height(terrain, cam.eye.x, cam.eye.y, ground) && cam.eye.z <= ground) {
         std::ostringstream msg;
@@ -66,9 +66,10 @@ Terrain terrain_for_view(const Terrain& terrain, Camera& cam, const Scene& scene
     const GridWindow w = visible_window(terrain, view_projection(cam), 1);
     if (w.cols() < 2 || w.rows() < 2)
         throw Error("scene", scene_file(scene), "the camera sees no part of the DEM");
-    Terrain view = crop_terrain(terrain, w);
     const std::size_t cells = std::size_t(w.cols() - 1) * (w.rows() - 1);
     const std::size_t all = std::size_t(terrain.cols - 1) * (terrain.rows - 1);
+    const bool whole = w.c0 == 0 && w.r0 == 0 && w.c1 == terrain.cols && w.r1 == terrain.rows;
+    Terrain view = whole ? std::move(terrain) : crop_terrain(terrain, w);
     log.info("modelled " + std::to_string(cells) + " of " + std::to_string(all) + " DEM cells (window " +
              std::to_string(w.c0) + ".." + std::to_string(w.c1 - 1) + " x " + std::to_string(w.r0) + ".." +
              std::to_string(w.r1 - 1) + ")");

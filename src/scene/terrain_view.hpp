@@ -26,6 +26,7 @@ std::vector<glm::dvec3> frame_samples(const Terrain& terrain);
 
 // The terrain cropped to what the camera sees (logged: cells used of all); throws
 // penink::Error(stage "scene") when the camera is below the ground or sees none of the DEM.
-Terrain terrain_for_view(const Terrain& terrain, Camera& camera, const Scene& scene, const Log& log);
+// The whole terrain is moved, not copied, when the view sees all of it.
+Terrain terrain_for_view(Terrain terrain, Camera& camera, const Scene& scene, const Log& log);
 
 }  // namespace penink

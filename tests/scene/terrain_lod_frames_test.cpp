@@ -44,7 +44,7 @@ Camera grazing_camera() {
 
 SceneDrawing draw(const Terrain& t, const Camera& cam, float tolerance_px) {
     const Scene scene = silhouettes_scene(tolerance_px);
-    TerrainFrames frames(test::test_context(), scene, t, t, cam.width, cam.height, Log{});
+    TerrainFrames frames(test::test_context(), std::nullopt, t, cam.width, cam.height, Log{});
     return frames.draw(cam, scene);
 }
 
