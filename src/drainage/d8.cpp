@@ -1,8 +1,7 @@
 #include "drainage/d8.hpp"
 
+#include "core/parallel_chunks.hpp"
 #include "drainage/d8_steepest.hpp"
-
-#include <thread>
 
 namespace penink {
 
@@ -70,16 +69,14 @@ std::vector<std::uint8_t> d8_directions(const std::vector<float>& z, const GridS
     // rows are independent: the south half on a second thread (same bytes as one pass)
     const int mid = two_threads ? g.rows / 2 : g.rows;
     std::vector<std::uint32_t> south_ties;
-    std::thread south;
+    const auto rows = [&](int r0, int r1, std::vector<std::uint32_t>* out) {
+        std::vector<std::uint8_t> tie;
+        for (int r = r0; r < r1; ++r) directions_row(z.data(), g, st, r, dense, dir.data(), out, tie);
+    };
     if (mid < g.rows)
-        south = std::thread([&] {
-            std::vector<std::uint8_t> tie;
-            for (int r = mid; r < g.rows; ++r)
-                directions_row(z.data(), g, st, r, dense, dir.data(), ties ? &south_ties : nullptr, tie);
-        });
-    std::vector<std::uint8_t> tie;
-    for (int r = 0; r < mid; ++r) directions_row(z.data(), g, st, r, dense, dir.data(), ties, tie);
-    if (south.joinable()) south.join();
+        run_beside([&] { rows(mid, g.rows, ties ? &south_ties : nullptr); }, [&] { rows(0, mid, ties); });
+    else
+        rows(0, g.rows, ties);
     if (ties) ties->insert(ties->end(), south_ties.begin(), south_ties.end());
     return dir;
 }
