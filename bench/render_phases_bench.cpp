@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
     p.mark("renderer (programs)");
     const DrainageDb db = load_or_build_drainage(scene.dem, dem, DrainageOptions{}, [](const std::string&) {});
     p.mark("drainage cache load");
-    DrainageLines lines(context->gl(), db, mesh);
+    DrainageLines lines(context->gl(), db, view);
     p.mark("drainage line sets");
     p.last = Clock::now();
     // The frame itself, as TerrainFrames::draw (a second TerrainFrames would redo the set-up).

@@ -73,7 +73,7 @@ int run(const DrainageCommand& cmd, std::ostream& log) {
     o.routing = cmd.routing;
     if (cmd.resample < 0) throw Error("drainage", cmd.dem, "resample factor must be >= 1 (0 = automatic)");
     DrainageResult res;
-    const std::string out = cmd.output.empty() ? cmd.dem + ".dv" : cmd.output;
+    const std::string out = cmd.output.empty() ? drainage_cache_path(cmd.dem) : cmd.output;  // render's cache
     const DrainageDb db = build_and_write_drainage_db(t, o, drainage_fingerprint(cmd.dem, t, o), out,
                                                       progress_printer(log, cmd.quiet, timer), &res);
     timer.next("writing rasters");

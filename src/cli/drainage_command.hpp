@@ -1,6 +1,9 @@
 // `penink drainage DEM [-o OUT.dv] [--resample F] [--rasters DIR] [--routing R]`: builds the
-// drainage vertex database of a DEM (Mower, "Concurrent Drainage Network Rendering" sec. 3) and writes it (default `<DEM>.dv`, the cache
-// `render` looks for), optionally with GeoTIFF rasters of the drainage grid (drainage_rasters.hpp).
+// drainage vertex database of a DEM (Mower, "Concurrent Drainage Network Rendering" sec. 3) from
+// its unexaggerated heights and writes it (default: the cache `render` reads,
+// drainage_cache_path: `<DEM>.dv` beside a DEM in a writable folder, else in the user's cache
+// folder; with the default options a render at any vertical exaggeration then uses it without
+// rebuilding), optionally with GeoTIFF rasters of the drainage grid (drainage_rasters.hpp).
 // Routing: priority-flood (default) or least-cost (GRASS r.watershed -s; drainage_build.hpp).
 // Resample factor: F > 0 as given (1 = the DEM's own nodes); 0 = automatic: 5 (the paper's 10 m
 // from 50 m) lowered until the drainage grid holds at most 4 M points.
@@ -14,7 +17,7 @@ namespace penink {
 
 struct DrainageCommand {
     std::string dem;          // DEM path (anything read_dem reads)
-    std::string output;       // .dv path; empty = <dem>.dv
+    std::string output;       // .dv path; empty = drainage_cache_path(dem)
     int resample = 0;         // 0 = automatic
     std::string rasters_dir;  // empty = no rasters
     bool quiet = false;       // no progress / summary lines

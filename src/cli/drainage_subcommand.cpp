@@ -14,9 +14,11 @@ Subcommand add_drainage_command(CLI::App& app) {
     auto cmd_options = std::make_shared<DrainageCommand>();
     DrainageCommand& o = *cmd_options;
     CLI::App* cmd = app.add_subcommand(
-        "drainage", "Build the drainage vertex database of a DEM (cached next to it as DEM.dv)");
+        "drainage", "Build the drainage vertex database of a DEM (the cache render reads: DEM.dv)");
     cmd->add_option("dem", o.dem, "DEM (GeoTIFF, ASCII grid, ...)")->required();
-    cmd->add_option("-o,--output", o.output, "Database file (default: DEM.dv, the cache render uses)");
+    cmd->add_option("-o,--output", o.output,
+                    "Database file (default: the cache render reads, DEM.dv beside the DEM, or in the user cache "
+                    "folder when the DEM's folder is read-only)");
     cmd->add_option("--resample", o.resample,
                     "Fine nodes per DEM cell side (1 = the DEM's own nodes; default: 5, lowered to keep <= 4M points)")
         ->check(CLI::NonNegativeNumber);

@@ -7,16 +7,17 @@
 #include <filesystem>
 
 #include <unistd.h>
-#include <bit>
 
 #include "core/error.hpp"
 #include "core/parallel_chunks.hpp"
 #include "drainage/branches.hpp"
 #include "drainage/d8_ties.hpp"
 #include "drainage/depression_drainage.hpp"
+#include "drainage/draped_lines.hpp"
 #include "drainage/fill_directions.hpp"
 #include "drainage/flat_resolution.hpp"
 #include "drainage/least_cost_routing.hpp"
+#include "input/dem_reader.hpp"
 
 namespace penink {
 
@@ -87,6 +88,37 @@ DrainageDb grid_database(const DrainageGrid& g) {
     return db;
 }
 
+// Progress of the stages after the directions (drainage_build.hpp).
+constexpr double tracing_at = 0.7, draping_from = 0.72, writing_at = 0.9;
+
+void drape_lines(const DrainageGrid& g, const DrainageResult& res, DrainageDb& db, const DrainageProgress& progress) {
+    report(progress, "draping creases and ridges", draping_from);
+    build_draped_lines(g, res.dir, res.net, db, [&](double f) {
+        report(progress, "draping creases and ridges", draping_from + (writing_at - draping_from) * f);
+    });
+}
+
+using WriteNetwork = std::function<void(const DrainageDb& meta, const DvBranchSource& branches)>;
+
+// The streamed build from a resampled grid: network, divides and lines into the returned
+// database (no branches or vertices), which `write` gets with the network's branches.
+DrainageDb build_streamed(DrainageGrid& g, const std::string& crs_wkt, const DrainageOptions& options,
+                          const DrainageFingerprint& fp, const WriteNetwork& write, const DrainageProgress& progress,
+                          DrainageResult* keep) {
+    DrainageDb meta = grid_database(g);
+    meta.crs_wkt = crs_wkt, meta.fingerprint = fp;
+    DrainageResult res = compute_drainage(g, progress, options.routing, &meta);
+    report(progress, "tracing branches and divides", tracing_at);
+    const NetworkBranches branches(g, res.dir, res.net);
+    res.stats.branches = branches.branch_count(), res.stats.divides = meta.divides.size();
+    drape_lines(g, res, meta, progress);
+    report(progress, "writing the database", writing_at);
+    write(meta, branches);
+    report(progress, "done", 1.0);
+    if (keep) *keep = std::move(res);
+    return meta;
+}
+
 }  // namespace
 
 DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progress, DrainageRouting routing,
@@ -116,9 +148,10 @@ DrainageDb drainage_db_from_grid(DrainageGrid& g, const DrainageProgress& progre
                                  DrainageResult* keep, DrainageRouting routing) {
     DrainageDb db = grid_database(g);
     DrainageResult res = compute_drainage(g, progress, routing, &db);
-    report(progress, "tracing branches and divides", 0.75);
+    report(progress, "tracing branches and divides", tracing_at);
     build_branches(g, res.dir, res.net, db);
     res.stats.branches = db.branches.size(), res.stats.divides = db.divides.size();
+    drape_lines(g, res, db, progress);
     report(progress, "done", 1.0);
     if (keep) *keep = std::move(res);
     return db;
@@ -128,17 +161,10 @@ DrainageDb build_and_write_drainage_db(Terrain& t, const DrainageOptions& option
                                        const std::string& path, const DrainageProgress& progress, DrainageResult* keep) {
     report(progress, "resampling the PN surface", 0.0);
     DrainageGrid g = resample_pn_releasing(t, drainage_resample_factor(t, options));  // memory back
-    DrainageDb meta = grid_database(g);
-    meta.crs_wkt = t.crs_wkt, meta.fingerprint = fp;
-    DrainageResult res = compute_drainage(g, progress, options.routing, &meta);
-    report(progress, "tracing branches and divides", 0.75);
-    const NetworkBranches branches(g, res.dir, res.net);
-    res.stats.branches = branches.branch_count(), res.stats.divides = meta.divides.size();
-    report(progress, "writing the database", 0.9);
-    write_drainage_db(path, meta, branches);
-    report(progress, "done", 1.0);
-    if (keep) *keep = std::move(res);
-    return meta;
+    return build_streamed(
+        g, t.crs_wkt, options, fp,
+        [&](const DrainageDb& meta, const DvBranchSource& branches) { write_drainage_db(path, meta, branches); },
+        progress, keep);
 }
 
 DrainageDb build_drainage_db(const Terrain& t, const DrainageOptions& options,
@@ -155,7 +181,6 @@ DrainageDb build_drainage_db(const Terrain& t, const DrainageOptions& options,
 DrainageFingerprint drainage_fingerprint(const std::string& dem_path, const Terrain& terrain,
                                          const DrainageOptions& options) {
     DrainageFingerprint fp = dem_fingerprint(dem_path, drainage_resample_factor(terrain, options));
-    fp.options = std::bit_cast<std::uint32_t>(float(terrain.vertical_exaggeration));
     fp.routing = std::uint32_t(options.routing);
     return fp;
 }
@@ -191,21 +216,40 @@ DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& te
     const DrainageFingerprint fp = drainage_fingerprint(dem_path, terrain, options);
     auto say = [&](const std::string& m) { if (log) log(m); };
     try {
-        DrainageDb db = read_drainage_db(cache, &fp);
+        DrainageDb db = read_drainage_db(cache, &fp, DvParts::lines);
         say("drainage: using cached " + cache);
         return db;
     } catch (const Error& e) {
         say(std::string(e.what()) + "; rebuilding");
     }
-    DrainageDb db = build_drainage_db(terrain, options, progress);
-    db.fingerprint = fp;
-    try {
-        write_drainage_db(cache, db);
-        say("drainage: wrote " + cache);
-    } catch (const Error& e) {
-        say(std::string(e.what()) + "; using the drainage database built in memory");
+    const int factor = drainage_resample_factor(terrain, options);
+    report(progress, "resampling the PN surface", 0.0);
+    DrainageGrid g;
+    std::string crs = terrain.crs_wkt;
+    if (terrain.vertical_exaggeration == 1.0) {
+        g = resample_pn(terrain, factor);
+    } else {  // the heights unexaggerated, as `penink drainage` reads them
+        DemOptions read;
+        read.heights_only = factor == 1;
+        read.utm_zone = terrain.source_geographic ? terrain.utm_zone : 0, read.north = terrain.north;
+        Terrain flat = read_dem(dem_path, read);
+        if (flat.cols != terrain.cols || flat.rows != terrain.rows)
+            throw Error("drainage", dem_path, "DEM changed while it was read");
+        crs = flat.crs_wkt;
+        g = resample_pn_releasing(flat, factor);
     }
-    return db;
+    DrainageDb meta = build_streamed(
+        g, crs, options, fp,
+        [&](const DrainageDb& built, const DvBranchSource& branches) {
+            try {
+                write_drainage_db(cache, built, branches);
+                say("drainage: wrote " + cache);
+            } catch (const Error& e) {
+                say(std::string(e.what()) + "; using the drainage database built in memory");
+            }
+        },
+        progress, nullptr);
+    return drainage_lines_only(std::move(meta));
 }
 
 }  // namespace penink

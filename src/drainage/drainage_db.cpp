@@ -1,11 +1,13 @@
-// DV file layout (version 7, all little-endian; compact: what the builder's invariants give is
-// not stored, see layout_ok and derived_ok):
+// DV file layout (version 8, all little-endian; compact: what the builder's invariants give is
+// not stored, see layout_ok and derived_ok). Two parts, each with its checksum: the network
+// (header, branches, divides) and the lines (creases and ridges for drawing, line_set.hpp),
+// which a render reads and checks alone (read_drainage_db, DvParts::lines).
 //   char[8]  magic "PNKDV\0\0\0"
 //   u32      format version
 //   u32      reserved (0)
-//   u64      total file length in bytes (checksum included); written last, after the branches
-//            have been streamed (dv_format.hpp: total_length_at)
-//   fingerprint: u64 DEM size, i64 DEM mtime (ns), u64 DEM hash, u32 resample, u32 options,
+//   u64      total file length in bytes (checksums included); written last
+//   u64      offset of the lines part (a multiple of 8); written last
+//   fingerprint: u64 DEM size, i64 DEM mtime (ns), u64 DEM hash, u32 resample, u32 options (0),
 //            u32 routing
 //   i32 cols, rows, factor; f64 origin easting, northing; u32 n + n bytes of CRS WKT
 //   u8 positions: 0 explicit, 1 grid cells (then f64 gt[6], f64 unit, i32 col0, row0)
@@ -22,10 +24,23 @@
 //             of vertex k is (head_acc + k) / the basin's total, the total being the
 //             accumulation at the last vertex of the basin's outlet branch (head_acc + count - 1)
 //   divides: u32 count (first = running sum); divide vertices: f32 x, y, z (flow 0)
-//   u64      checksum: hash64 (FNV-1a, 64-bit words) of every byte before it with the total
-//            length read as 0, then of the total length (dv_format.hpp: file_hash)
+//   zero bytes up to a multiple of 8
+//   u64      network checksum: hash64 (FNV-1a, 64-bit words) of every byte before it with the two
+//            length fields read as 0, then of the lines part's offset (dv_format.hpp: network_hash)
+// lines part (at its offset):
+//   fingerprint as above, u32 0; i32 cols, rows, factor, u32 0; f64 origin easting, northing
+//   creases, then ridges, each:
+//     u64 lines, u64 vertices
+//     lines: f32 box lo.x, lo.y, hi.x, hi.y, f32 plan length, u32 count, u8 order, 3 zero bytes
+//            (first = running sum of counts)
+//     vertices: f32 x, y, z, nx, ny, nz, flow (28 bytes each: DrapedVertex)
+//     index: f32 origin x, y, f32 level-0 cell side, u32 levels; u32 cols, rows per level; u32
+//            cell starts (cells of all levels + 1); u32 line ids (one per line)
+//   u64      lines checksum: hash64 of the part's bytes before it, then of its offset and of the
+//            total length (dv_format.hpp: lines_hash)
 // Versions 2-4 stored each vertex's flow (16 bytes) and fixed 13-byte branches without head_acc;
-// 4 added the routing; 5 varint records; 6 grid positions; 7 vertices after each record.
+// 4 added the routing; 5 varint records; 6 grid positions; 7 vertices after each record; 8 the
+// lines part and no vertical exaggeration in the fingerprint.
 #include "drainage/drainage_db.hpp"
 
 #include <bit>
@@ -135,7 +150,9 @@ std::uint64_t hash64(const void* data, std::size_t size, std::uint64_t h) {
     return h;
 }
 
-bool drainage_db_canonical(const DrainageDb& db) { return layout_ok(db) && derived_ok(db); }
+bool drainage_db_canonical(const DrainageDb& db) {
+    return layout_ok(db) && derived_ok(db) && line_set_ok(db.creases) && line_set_ok(db.ridges);
+}
 
 DrainageFingerprint dem_fingerprint(const std::string& dem_path, int resample) {
     namespace fs = std::filesystem;

@@ -1,7 +1,9 @@
 // The drainage vertex database (DV file, Mower, "Concurrent Drainage Network Rendering" sec. 3): branches of drainage vertices (local
 // x, y, z in metres of the Terrain's world frame — easting = origin.x + x, northing = origin.y + y
-// in the projected CRS — normalised flow, Strahler order, basin) with downstream/upstream links,
-// plus the divide (ridge) polylines. Binary, little-endian, versioned, checksummed; the layout is
+// in the projected CRS; z unexaggerated — normalised flow, Strahler order, basin) with
+// downstream/upstream links, the divide (ridge) polylines, and the creases and ridges drawn from
+// them, smoothed and draped on the PN surface (line_set.hpp). Binary, little-endian, versioned,
+// in two checksummed parts (the network; the lines, which a render reads alone); the layout is
 // documented in drainage_db.cpp and docs of write_drainage_db.
 #pragma once
 #include <cstdint>
@@ -13,6 +15,7 @@
 #include <glm/vec2.hpp>
 
 #include "core/big_allocator.hpp"
+#include "drainage/line_set.hpp"
 #include "input/terrain.hpp"
 
 namespace penink {
@@ -54,7 +57,7 @@ struct DrainageFingerprint {
     std::int64_t mtime_ns = 0;
     std::uint64_t content_hash = 0;
     std::uint32_t resample = 1;
-    std::uint32_t options = 0;  // float bits of the Terrain's vertical exaggeration
+    std::uint32_t options = 0;  // 0 (reserved: the vertical exaggeration does not change the database)
     std::uint32_t routing = 0;  // flow routing method (DrainageRouting in drainage_build.hpp)
     bool operator==(const DrainageFingerprint&) const = default;
 };
@@ -69,6 +72,9 @@ struct DrainageDb {
     std::vector<std::uint32_t> upstream;  // upstream branch ids, referenced by DvBranch
     DvVertices divide_vertices;
     std::vector<DvPolyline> divides;
+    // What frames draw: the stems (creases) and divides (ridges) smoothed and draped on the PN
+    // surface of the DEM (draped_lines.hpp), unexaggerated.
+    DrapedLineSet creases, ridges;
     bool operator==(const DrainageDb&) const = default;
 };
 
@@ -81,7 +87,10 @@ struct DrainageDb {
 // branch's head cell and a step per vertex (5-byte vertices).
 // 7: each branch's vertices follow its record; the total length is written last into the header
 // and hashed last (so a writer can stream branches it has not counted).
-inline constexpr std::uint32_t drainage_db_version = 7;
+// 8: built from unexaggerated heights (the fingerprint's options are 0, not the vertical
+// exaggeration); a second part, with its own checksum and its offset in the header, holds the
+// creases and ridges smoothed, draped and indexed (line_set.hpp), which a render reads alone.
+inline constexpr std::uint32_t drainage_db_version = 8;
 
 // 64-bit FNV-1a over little-endian 64-bit words (tail bytes one by one).
 std::uint64_t hash64(const void* data, std::size_t size, std::uint64_t seed = 0xcbf29ce484222325ull);
@@ -144,12 +153,20 @@ void write_drainage_db(const std::string& path, const DrainageDb& db);
 // branches and vertices of `branches`, which must have the builder's shape (not checked).
 void write_drainage_db(const std::string& path, const DrainageDb& meta, const DvBranchSource& branches);
 
-// Reads and checks a database: errors penink::Error("drainage", path, what) with what =
-// "cannot open drainage database", "not a drainage database (bad magic)",
+// What a read decodes: the whole database, or only the part a render draws from (fingerprint,
+// cols, rows, factor, origin, creases and ridges; the rest empty), read and checked alone.
+enum class DvParts { all, lines };
+
+// Reads and checks a database (the parts it reads): errors penink::Error("drainage", path, what)
+// with what = "cannot open drainage database", "not a drainage database (bad magic)",
 // "unsupported drainage database version N (expected M)", "truncated drainage database",
 // "drainage database checksum mismatch (file corrupt)",
 // "drainage database is stale (DEM changed)" (only when expected is given).
-DrainageDb read_drainage_db(const std::string& path, const DrainageFingerprint* expected = nullptr);
+DrainageDb read_drainage_db(const std::string& path, const DrainageFingerprint* expected = nullptr,
+                            DvParts parts = DvParts::all);
 DrainageDb decode_drainage_db(const std::vector<std::uint8_t>& bytes, const std::string& path);
+
+// `db` as a lines-only read gives it (DvParts::lines): the network, divides and CRS dropped.
+DrainageDb drainage_lines_only(DrainageDb db);
 
 }  // namespace penink

@@ -209,6 +209,8 @@ DrainageGrid resample_pn(const Terrain& t, int factor) {
         return g;
     }
     g.z.assign(g.size(), 0.0f);
+    g.coarse_z.resize(t.size());
+    for (std::size_t i = 0; i < t.size(); ++i) g.coarse_z[i] = t.pos[i].z;
     const SurfaceMesh mesh = mesh_from_terrain(t);
     for (int R = 0; R + 1 < t.rows; ++R)
         for (int C = 0; C + 1 < t.cols; ++C) resample_cell(t, mesh, C, R, g);

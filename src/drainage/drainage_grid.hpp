@@ -21,9 +21,13 @@ struct DrainageGrid {
     glm::dvec2 origin{0.0};           // projected easting/northing of local (0, 0)
     // Coarse nodes the x, y positions are interpolated from (the Terrain's node x, y and mask);
     // coarse_xy is left empty at factor 1 on an affine grid, where grid_xy computes them.
+    // coarse_z: the Terrain's node elevations at factor > 1 (empty at factor 1, where z is
+    // theirs): with coarse_xy and coarse_valid the full-resolution DEM the creases and ridges are
+    // draped on (dem_surface.hpp).
     int coarse_cols = 0, coarse_rows = 0;
     std::vector<glm::vec2> coarse_xy;
     std::vector<std::uint8_t> coarse_valid;
+    std::vector<float> coarse_z;
     // The coarse nodes lie on an affine grid (Terrain::xy_unit > 0): node (c, r)'s x, y is
     // affine_node_xy(affine, origin, c, r), exactly the Terrain's pos.xy.
     bool has_affine = false;

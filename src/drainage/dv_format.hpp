@@ -10,7 +10,8 @@
 namespace penink::dv {
 
 inline constexpr char magic[8] = {'P', 'N', 'K', 'D', 'V', 0, 0, 0};
-inline constexpr std::size_t prefix_bytes = 8 + 4 + 4 + 8;  // magic, version, reserved, total length
+// magic, version, reserved, total length, offset of the lines part
+inline constexpr std::size_t prefix_bytes = 8 + 4 + 4 + 8 + 8;
 
 // How vertex positions are stored (the byte after the CRS): x, y per vertex, or grid cells on an
 // affine grid (then f64 gt[6], f64 unit, i32 col0, row0 follow).
@@ -63,19 +64,31 @@ void append_branch(DvBytes& out, const DvBranchRecord& r, std::size_t id, bool g
     out.resize(std::size_t(p - out.data()));
 }
 
-// Where the total file length sits: written as 0 while streaming and filled in at the end; the
-// checksum hashes it as 0 in place and then once more as the last word (file_hash).
-inline constexpr std::size_t total_length_at = 16;
+// Where the total file length and the offset of the lines part sit: written as 0 while streaming
+// and filled in at the end; the checksums hash them as 0 in place and then as their last words.
+inline constexpr std::size_t total_length_at = 16, lines_at_at = 24;
 
-// The checksum of file bytes [0, n) (n a multiple of 8 past the header) with the total length
-// field read as 0 and the total hashed last.
-inline std::uint64_t file_hash(const std::uint8_t* b, std::size_t n, std::uint64_t total) {
-    const std::uint64_t zero = 0;
+// The network part's checksum: file bytes [0, lines_at - 8) (lines_at a multiple of 8) with the
+// two length fields read as 0, then lines_at.
+inline std::uint64_t network_hash(const std::uint8_t* b, std::uint64_t lines_at) {
+    const std::uint64_t zero[2] = {0, 0};
     std::uint64_t h = hash64(b, total_length_at);
-    h = hash64(&zero, 8, h);
-    h = hash64(b + total_length_at + 8, n - total_length_at - 8, h);
+    h = hash64(zero, 16, h);
+    h = hash64(b + prefix_bytes, std::size_t(lines_at - 8 - prefix_bytes), h);
+    return hash64(&lines_at, 8, h);
+}
+
+// The lines part's checksum: its bytes `part` (from lines_at to the checksum), then lines_at and
+// the total length.
+inline std::uint64_t lines_hash(const std::uint8_t* part, std::size_t n, std::uint64_t lines_at, std::uint64_t total) {
+    std::uint64_t h = hash64(part, n);
+    h = hash64(&lines_at, 8, h);
     return hash64(&total, 8, h);
 }
+
+// One line as the lines part stores it (28 bytes): f32 lo.x, lo.y, hi.x, hi.y, length; u32
+// count; u8 order; 3 zero bytes.
+inline constexpr std::size_t line_record_bytes = 28;
 
 // Accumulation at the outlet of basin b at total[b - 1], from the basin's outlet branch. False
 // unless every basin id is in 1..outlet branches, each outlet branch has its own and its total

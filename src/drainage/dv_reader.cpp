@@ -16,15 +16,25 @@ namespace {
 
 using namespace dv;
 
+// Bytes [0, size) of a file or of its lines part, read front to back.
+struct Bytes {
+    const std::uint8_t* p;
+    std::size_t n;
+    std::size_t size() const { return n; }
+    const std::uint8_t* data() const { return p; }
+    std::uint8_t operator[](std::size_t i) const { return p[i]; }
+};
+
 struct Reader {
-    const std::vector<std::uint8_t>& buf;
+    Bytes buf;
     std::size_t pos;
     std::string path;
     [[noreturn]] void corrupt() const {
         throw Error("drainage", path, "drainage database checksum mismatch (file corrupt)");
     }
+    std::size_t left() const { return pos > buf.size() ? 0 : buf.size() - pos; }
     void need(std::size_t n) const {
-        if (n > buf.size() - pos) corrupt();
+        if (pos > buf.size() || n > buf.size() - pos) corrupt();
     }
     template <class T> T get() {
         need(sizeof(T));
@@ -43,6 +53,13 @@ struct Reader {
         }
         corrupt();
     }
+    // n elements of T copied out (n checked against the bytes left first).
+    template <class T, class V> void array(V& out, std::uint64_t n) {
+        if (n > (buf.size() - std::min(pos, buf.size())) / sizeof(T)) corrupt();
+        out.resize(std::size_t(n));
+        std::memcpy(out.data(), buf.data() + pos, std::size_t(n) * sizeof(T));
+        pos += std::size_t(n) * sizeof(T);
+    }
 };
 
 // How the file stores vertex positions (dv_format.hpp).
@@ -51,12 +68,17 @@ struct Positions {
     AffineNodes nodes;
 };
 
-void get_header(Reader& r, DrainageDb& db, Positions& pos) {
-    r.pos = prefix_bytes;
-    DrainageFingerprint& f = db.fingerprint;
+DrainageFingerprint get_fingerprint(Reader& r) {
+    DrainageFingerprint f;
     f.file_size = r.get<std::uint64_t>(), f.mtime_ns = r.get<std::int64_t>();
     f.content_hash = r.get<std::uint64_t>(), f.resample = r.get<std::uint32_t>();
     f.options = r.get<std::uint32_t>(), f.routing = r.get<std::uint32_t>();
+    return f;
+}
+
+void get_header(Reader& r, DrainageDb& db, Positions& pos) {
+    r.pos = prefix_bytes;
+    db.fingerprint = get_fingerprint(r);
     db.cols = r.get<std::int32_t>(), db.rows = r.get<std::int32_t>(), db.factor = r.get<std::int32_t>();
     db.origin.x = r.get<double>(), db.origin.y = r.get<double>();
     const std::uint32_t n = r.get<std::uint32_t>();
@@ -172,51 +194,221 @@ void get_body(Reader& r, DrainageDb& db, Positions& pos) {
     get_branches(r, db, counts[2], pos);
     get_divides(r, db);
 }
-std::uint64_t read_u64(const std::vector<std::uint8_t>& b, std::size_t at) {
+std::uint64_t read_u64(const std::uint8_t* b, std::size_t at) {
     std::uint64_t v;
-    std::memcpy(&v, b.data() + at, 8);
+    std::memcpy(&v, b + at, 8);
     return v;
+}
+
+// One line set of the lines part (put_line_set), from a Reader (a whole file in memory) or a
+// StreamReader (the lines part read from the file); every count checked against the bytes left
+// before anything is allocated, the shape by line_set_ok. Line boxes and lengths are taken as
+// stored (checking them would be a pass over every vertex; a wrong one only changes which lines
+// a frame selects).
+template <class R> void get_line_set(R& r, DrapedLineSet& set) {
+    const std::uint64_t nl = r.template get<std::uint64_t>(), nv = r.template get<std::uint64_t>();
+    if (nl > r.left() / (line_record_bytes + 4) || nv > r.left() / sizeof(DrapedVertex) || nl > 0xffffffffu ||
+        nv > 0xffffffffu)
+        r.corrupt();
+    set.lines.resize(std::size_t(nl));
+    std::uint64_t next = 0;
+    std::vector<std::uint8_t> records;
+    constexpr std::size_t per = std::size_t(1) << 16;  // records read at a time
+    for (std::size_t i0 = 0; i0 < set.lines.size(); i0 += per) {
+        const std::size_t n = std::min(per, set.lines.size() - i0);
+        r.template array<std::uint8_t>(records, n * line_record_bytes);
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::uint8_t* p = records.data() + i * line_record_bytes;
+            DrapedLine& l = set.lines[i0 + i];
+            float box[5];
+            std::memcpy(box, p, 20);
+            l.lo = {box[0], box[1]}, l.hi = {box[2], box[3]}, l.length = box[4];
+            std::memcpy(&l.count, p + 20, 4);
+            l.order = p[24];
+            l.first = std::uint32_t(next), next += l.count;
+        }
+    }
+    if (next != nv) r.corrupt();
+    r.template array<DrapedVertex>(set.vertices, nv);
+    LineIndex& x = set.index;
+    x.origin.x = r.template get<float>(), x.origin.y = r.template get<float>(), x.cell = r.template get<float>();
+    const std::uint32_t levels = r.template get<std::uint32_t>();
+    if (levels > 64) r.corrupt();
+    std::uint64_t cells = 0;
+    x.level_cols.resize(levels), x.level_rows.resize(levels);
+    for (std::uint32_t k = 0; k < levels; ++k) {
+        x.level_cols[k] = r.template get<std::uint32_t>(), x.level_rows[k] = r.template get<std::uint32_t>();
+        const std::uint64_t n = std::uint64_t(x.level_cols[k]) * x.level_rows[k];  // < 2^64
+        if (n > r.left() / 4 || cells + n > r.left() / 4) r.corrupt();           // 4 B a cell start
+        cells += n;
+    }
+    r.template array<std::uint32_t>(x.start, cells + 1);
+    r.template array<std::uint32_t>(x.ids, nl);
+    if (!line_set_ok(set)) r.corrupt();
+}
+
+// The lines part from the reader's position on: the fingerprint, grid and origin, which must
+// agree with `db`'s when `header` is set (a whole file), then both line sets.
+template <class R> void get_lines(R& r, DrainageDb& db, bool header) {
+    DrainageFingerprint f;
+    f.file_size = r.template get<std::uint64_t>(), f.mtime_ns = r.template get<std::int64_t>();
+    f.content_hash = r.template get<std::uint64_t>(), f.resample = r.template get<std::uint32_t>();
+    f.options = r.template get<std::uint32_t>(), f.routing = r.template get<std::uint32_t>();
+    r.template get<std::uint32_t>();
+    const std::int32_t cols = r.template get<std::int32_t>(), rows = r.template get<std::int32_t>();
+    const std::int32_t factor = r.template get<std::int32_t>();
+    r.template get<std::uint32_t>();
+    const double ox = r.template get<double>(), oy = r.template get<double>();
+    if (header && !(f == db.fingerprint && cols == db.cols && rows == db.rows && factor == db.factor &&
+                    ox == db.origin.x && oy == db.origin.y))
+        r.corrupt();
+    db.fingerprint = f, db.cols = cols, db.rows = rows, db.factor = factor, db.origin = {ox, oy};
+    get_line_set(r, db.creases);
+    get_line_set(r, db.ridges);
+}
+
+// The lines part read straight from the file into the arrays it fills, hashed as it is read
+// (hash64 over the concatenation: whole 8-byte words, the last bytes one by one).
+struct StreamReader {
+    std::FILE* in;
+    std::uint64_t remaining;  // bytes of the part not yet read (its checksum excluded)
+    std::string path;
+    std::uint64_t h = hash64(nullptr, 0);
+    std::uint8_t tail[8] = {};
+    std::size_t tail_n = 0;
+
+    [[noreturn]] void corrupt() const {
+        throw Error("drainage", path, "drainage database checksum mismatch (file corrupt)");
+    }
+    std::uint64_t left() const { return remaining; }
+    void feed(const std::uint8_t* p, std::size_t n) {
+        if (tail_n) {
+            const std::size_t k = std::min(n, 8 - tail_n);
+            std::memcpy(tail + tail_n, p, k);
+            tail_n += k, p += k, n -= k;
+            if (tail_n < 8) return;
+            h = hash64(tail, 8, h), tail_n = 0;
+        }
+        const std::size_t whole = n & ~std::size_t(7);
+        h = hash64(p, whole, h);
+        std::memcpy(tail, p + whole, n - whole), tail_n = n - whole;
+    }
+    void read(void* dst, std::size_t n) {
+        if (n > remaining) corrupt();
+        if (std::fread(dst, 1, n, in) != n) throw Error("drainage", path, "truncated drainage database");
+        feed(static_cast<const std::uint8_t*>(dst), n);
+        remaining -= n;
+    }
+    template <class T> T get() {
+        T v;
+        read(&v, sizeof(T));
+        return v;
+    }
+    template <class T, class V> void array(V& out, std::uint64_t n) {
+        if (n > remaining / sizeof(T)) corrupt();
+        out.resize(std::size_t(n));
+        read(out.data(), std::size_t(n) * sizeof(T));
+    }
+    std::uint64_t digest() const { return hash64(tail, tail_n, h); }
+};
+
+[[noreturn]] void truncated(const std::string& path) { throw Error("drainage", path, "truncated drainage database"); }
+
+// The prefix: magic and version checked; the total length and the lines part's offset, which
+// must fit a file of `size` bytes.
+void check_prefix(const std::uint8_t* b, std::size_t size, const std::string& path, std::uint64_t& total,
+                  std::uint64_t& lines_at) {
+    if (size < 8 || std::memcmp(b, magic, 8) != 0) throw Error("drainage", path, "not a drainage database (bad magic)");
+    if (size < prefix_bytes) truncated(path);
+    std::uint32_t version;
+    std::memcpy(&version, b + 8, 4);
+    if (version != drainage_db_version)
+        throw Error("drainage", path,
+                    "unsupported drainage database version " + std::to_string(version) + " (expected " +
+                        std::to_string(drainage_db_version) + ")");
+    total = read_u64(b, total_length_at), lines_at = read_u64(b, lines_at_at);
+    if (total < prefix_bytes + 16) truncated(path);
+    if (lines_at % 8 != 0 || lines_at < prefix_bytes + 8 || lines_at > total - 8)
+        throw Error("drainage", path, "drainage database checksum mismatch (file corrupt)");
 }
 
 }  // namespace
 
 DrainageDb decode_drainage_db(const std::vector<std::uint8_t>& b, const std::string& path) {
-    if (b.size() < 8 || std::memcmp(b.data(), magic, 8) != 0)
-        throw Error("drainage", path, "not a drainage database (bad magic)");
-    if (b.size() < prefix_bytes) throw Error("drainage", path, "truncated drainage database");
-    std::uint32_t version;
-    std::memcpy(&version, b.data() + 8, 4);
-    if (version != drainage_db_version)
-        throw Error("drainage", path,
-                    "unsupported drainage database version " + std::to_string(version) +
-                        " (expected " + std::to_string(drainage_db_version) + ")");
-    const std::uint64_t total = read_u64(b, total_length_at);
-    if (b.size() < total || total < prefix_bytes + 8)
-        throw Error("drainage", path, "truncated drainage database");
-    if (b.size() != total || file_hash(b.data(), b.size() - 8, total) != read_u64(b, b.size() - 8))
+    std::uint64_t total, lines_at;
+    check_prefix(b.data(), b.size(), path, total, lines_at);
+    if (b.size() < total) truncated(path);
+    const std::size_t n = std::size_t(total);
+    if (b.size() != total || network_hash(b.data(), lines_at) != read_u64(b.data(), std::size_t(lines_at) - 8) ||
+        lines_hash(b.data() + lines_at, n - 8 - std::size_t(lines_at), lines_at, total) != read_u64(b.data(), n - 8))
         throw Error("drainage", path, "drainage database checksum mismatch (file corrupt)");
     DrainageDb db;
-    Reader r{b, 0, path};
+    Reader r{Bytes{b.data(), std::size_t(lines_at) - 8}, 0, path};
     Positions pos;
     get_header(r, db, pos);
     get_body(r, db, pos);
-    if (r.pos + 8 != b.size())
-        throw Error("drainage", path, "drainage database checksum mismatch (file corrupt)");
+    if (r.pos + 8 <= r.buf.size()) r.corrupt();  // only the padding to 8 bytes may follow
+    Reader l{Bytes{b.data() + lines_at, n - 8 - std::size_t(lines_at)}, 0, path};
+    get_lines(l, db, true);
+    if (l.pos != l.buf.size()) l.corrupt();
     return db;
 }
 
-DrainageDb read_drainage_db(const std::string& path, const DrainageFingerprint* expected) {
+namespace {
+
+// The lines part alone: the prefix, then the part read from its offset into the database's
+// arrays and hashed on the way, then its checksum compared.
+DrainageDb read_lines_part(std::FILE* in, std::uint64_t size, const std::string& path) {
+    std::uint8_t prefix[prefix_bytes];
+    const std::size_t got = std::fread(prefix, 1, std::size_t(std::min<std::uint64_t>(size, prefix_bytes)), in);
+    std::uint64_t total, lines_at;
+    check_prefix(prefix, got, path, total, lines_at);
+    if (size < total) truncated(path);
+    if (size != total) throw Error("drainage", path, "drainage database checksum mismatch (file corrupt)");
+    if (std::fseek(in, long(lines_at), SEEK_SET) != 0) truncated(path);
+    StreamReader r{in, total - 8 - lines_at, path};
+    DrainageDb db;
+    get_lines(r, db, false);
+    if (r.left() != 0) r.corrupt();
+    std::uint64_t stored;
+    if (std::fread(&stored, 8, 1, in) != 1) truncated(path);
+    std::uint64_t h = hash64(&lines_at, 8, r.digest());
+    if (hash64(&total, 8, h) != stored) r.corrupt();
+    return db;
+}
+
+}  // namespace
+
+DrainageDb read_drainage_db(const std::string& path, const DrainageFingerprint* expected, DvParts parts) {
     std::error_code ec;
     std::FILE* in = std::filesystem::is_regular_file(path, ec) ? std::fopen(path.c_str(), "rb") : nullptr;
     if (!in) throw Error("drainage", path, "cannot open drainage database");
-    std::vector<std::uint8_t> bytes(std::size_t(std::filesystem::file_size(path, ec)));
-    const std::size_t got = ec ? 0 : std::fread(bytes.data(), 1, bytes.size(), in);
+    const std::uint64_t size = std::filesystem::file_size(path, ec);
+    DrainageDb db;
+    try {
+        if (parts == DvParts::lines) {
+            db = read_lines_part(in, ec ? 0 : size, path);
+        } else {
+            std::vector<std::uint8_t> bytes(ec ? 0 : std::size_t(size));
+            bytes.resize(std::fread(bytes.data(), 1, bytes.size(), in));
+            db = decode_drainage_db(bytes, path);
+        }
+    } catch (...) {
+        std::fclose(in);
+        throw;
+    }
     std::fclose(in);
-    bytes.resize(got);
-    DrainageDb db = decode_drainage_db(bytes, path);
     if (expected && !(db.fingerprint == *expected))
         throw Error("drainage", path, "drainage database is stale (DEM changed)");
     return db;
+}
+
+DrainageDb drainage_lines_only(DrainageDb db) {
+    DrainageDb out;
+    out.fingerprint = db.fingerprint;
+    out.cols = db.cols, out.rows = db.rows, out.factor = db.factor, out.origin = db.origin;
+    out.creases = std::move(db.creases), out.ridges = std::move(db.ridges);
+    return out;
 }
 
 }  // namespace penink

@@ -1,5 +1,6 @@
 // Writing DV files (layout in drainage_db.cpp): the bytes streamed through 4 MiB buffers that a
-// second thread hashes and hands on, from a DrainageDb or any DvBranchSource.
+// second thread hashes and hands on, from a DrainageDb or any DvBranchSource; the network part,
+// then the lines part, each with its checksum.
 #include "drainage/drainage_db.hpp"
 
 #include <algorithm>
@@ -64,9 +65,26 @@ struct Sink {
     }
     template <class T> void put(T v) { bytes(&v, sizeof(T)); }
     std::uint64_t total = 0;  // bytes handed over so far
-    // The checksum (file_hash: total length hashed last) appended and everything handed over;
-    // returns the file's length, which the caller writes at total_length_at.
-    std::uint64_t finish() {
+    // Ends the network part: zeros up to a multiple of 8 bytes, its checksum (network_hash:
+    // the offset of the lines part hashed last), everything handed over and the hash started
+    // afresh for the lines part. Returns that offset, which the caller writes at lines_at_at.
+    std::uint64_t end_network() {
+        room(16);
+        while ((total + n) % 8) buf[n++] = 0;
+        land();
+        const std::uint64_t lines_at = total + n + 8;
+        hash = hash64(buf.data(), n, hash);
+        hash = hash64(&lines_at, 8, hash);
+        std::memcpy(buf.data() + n, &hash, 8);
+        n += 8;
+        out(buf.data(), n);
+        total += n, n = 0;
+        hash = hash64(nullptr, 0);
+        return lines_at;
+    }
+    // The lines part's checksum (lines_hash) appended and everything handed over; returns the
+    // file's length, which the caller writes at total_length_at.
+    std::uint64_t finish(std::uint64_t lines_at) {
         land();
         if (n + 16 > buf.size()) {  // no room for the hash: the full words first
             drain();
@@ -74,12 +92,18 @@ struct Sink {
         }
         const std::uint64_t length = total + n + 8;
         hash = hash64(buf.data(), n, hash);
+        hash = hash64(&lines_at, 8, hash);
         hash = hash64(&length, 8, hash);
         std::memcpy(buf.data() + n, &hash, 8);
         out(buf.data(), n + 8);
         n = 0;
         return length;
     }
+};
+
+// Where a file's two lengths go once it is written.
+struct Lengths {
+    std::uint64_t total = 0, lines_at = 0;
 };
 
 // The branches of a DrainageDb in the builder's shape.
@@ -108,11 +132,15 @@ private:
 // Branches per part of the body (made on any core, written in order).
 constexpr std::size_t branches_per_part = std::size_t(1) << 15;
 
+void put_fingerprint(Sink& w, const DrainageFingerprint& f) {
+    w.put(f.file_size), w.put(f.mtime_ns), w.put(f.content_hash), w.put(f.resample), w.put(f.options), w.put(f.routing);
+}
+
 void put_header(Sink& w, const DrainageDb& db, const AffineNodes* grid) {
     w.bytes(magic, 8);
-    w.put(drainage_db_version), w.put(std::uint32_t(0)), w.put(std::uint64_t(0));  // length: at the end
-    const DrainageFingerprint& f = db.fingerprint;
-    w.put(f.file_size), w.put(f.mtime_ns), w.put(f.content_hash), w.put(f.resample), w.put(f.options), w.put(f.routing);
+    w.put(drainage_db_version), w.put(std::uint32_t(0));
+    w.put(std::uint64_t(0)), w.put(std::uint64_t(0));  // total length, lines part offset: at the end
+    put_fingerprint(w, db.fingerprint);
     w.put(db.cols), w.put(db.rows), w.put(db.factor), w.put(db.origin.x), w.put(db.origin.y);
     w.put(std::uint32_t(db.crs_wkt.size()));
     w.bytes(db.crs_wkt.data(), db.crs_wkt.size());
@@ -141,23 +169,57 @@ void put_body(Sink& w, const DrainageDb& meta, const DvBranchSource& src) {
     }
 }
 
-// `w` may have handed out bytes when it throws. Returns the file's length (to be written at
-// total_length_at).
-std::uint64_t encode(const DrainageDb& meta, const DvBranchSource& src, Sink& w) {
-    put_header(w, meta, src.grid_nodes());
-    put_body(w, meta, src);
-    return w.finish();
+// One line set: counts, line records, vertices (as they are in memory), index.
+void put_line_set(Sink& w, const DrapedLineSet& set) {
+    w.put(std::uint64_t(set.lines.size())), w.put(std::uint64_t(set.vertices.size()));
+    for (const DrapedLine& l : set.lines) {
+        const float box[5] = {l.lo.x, l.lo.y, l.hi.x, l.hi.y, l.length};
+        w.bytes(box, 20);
+        w.put(l.count), w.put(l.order), w.put(std::uint8_t(0)), w.put(std::uint16_t(0));
+    }
+    constexpr std::size_t per = std::size_t(1) << 16;  // vertices a piece, so the buffer stays 4 MiB
+    for (std::size_t i = 0; i < set.vertices.size(); i += per)
+        w.bytes(set.vertices.data() + i, std::min(per, set.vertices.size() - i) * sizeof(DrapedVertex));
+    const LineIndex& x = set.index;
+    w.put(x.origin.x), w.put(x.origin.y), w.put(x.cell), w.put(std::uint32_t(x.level_cols.size()));
+    for (std::size_t k = 0; k < x.level_cols.size(); ++k) w.put(x.level_cols[k]), w.put(x.level_rows[k]);
+    for (std::size_t i = 0; i < x.start.size(); i += per)
+        w.bytes(x.start.data() + i, std::min(per, x.start.size() - i) * 4);
+    for (std::size_t i = 0; i < x.ids.size(); i += per) w.bytes(x.ids.data() + i, std::min(per, x.ids.size() - i) * 4);
 }
 
-std::uint64_t encode(const DrainageDb& db, Sink& w) {
+// The lines part: fingerprint (again, so it is checked alone), grid, origin, creases, ridges.
+void put_lines(Sink& w, const DrainageDb& db) {
+    put_fingerprint(w, db.fingerprint);
+    w.put(std::uint32_t(0));
+    w.put(db.cols), w.put(db.rows), w.put(db.factor), w.put(std::uint32_t(0));
+    w.put(db.origin.x), w.put(db.origin.y);
+    put_line_set(w, db.creases);
+    put_line_set(w, db.ridges);
+}
+
+// `w` may have handed out bytes when it throws.
+Lengths encode(const DrainageDb& meta, const DvBranchSource& src, Sink& w) {
+    if (!line_set_ok(meta.creases) || !line_set_ok(meta.ridges))
+        throw Error("drainage", "", "drainage lines are not in the shape the builder gives them", ExitCode::internal);
+    Lengths l;
+    put_header(w, meta, src.grid_nodes());
+    put_body(w, meta, src);
+    l.lines_at = w.end_network();
+    put_lines(w, meta);
+    l.total = w.finish(l.lines_at);
+    return l;
+}
+
+Lengths encode(const DrainageDb& db, Sink& w) {
     if (!layout_ok(db))
         throw Error("drainage", "", "drainage database is not in the shape the builder gives it", ExitCode::internal);
     return encode(db, DbBranches(db), w);
 }
 
-// Streams encode_into(sink) (which returns the file's length) to a temp file in the same
-// directory, writes the length into the header, then renames the file.
-void write_encoded(const std::string& path, const std::function<std::uint64_t(Sink&)>& encode_into) {
+// Streams encode_into(sink) (which returns the file's lengths) to a temp file in the same
+// directory, writes the lengths into the header, then renames the file.
+void write_encoded(const std::string& path, const std::function<Lengths(Sink&)>& encode_into) {
     const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
     auto fail = [&](std::FILE* f) {
         if (f) std::fclose(f);
@@ -172,8 +234,9 @@ void write_encoded(const std::string& path, const std::function<std::uint64_t(Si
         Sink w;
         w.out = [&](const std::uint8_t* p, std::size_t n) { ok = ok && std::fwrite(p, 1, n, out) == n; };
         try {
-            const std::uint64_t length = encode_into(w);
-            ok = ok && std::fseek(out, long(total_length_at), SEEK_SET) == 0 && std::fwrite(&length, 8, 1, out) == 1;
+            const Lengths length = encode_into(w);
+            const std::uint64_t fields[2] = {length.total, length.lines_at};
+            ok = ok && std::fseek(out, long(total_length_at), SEEK_SET) == 0 && std::fwrite(fields, 8, 2, out) == 2;
         } catch (...) {
             w.wait();  // the buffer in flight, before the file goes
             std::fclose(out);
@@ -198,8 +261,9 @@ std::vector<std::uint8_t> encode_drainage_db(const DrainageDb& db) {
     std::vector<std::uint8_t> bytes;
     Sink w;
     w.out = [&](const std::uint8_t* p, std::size_t n) { bytes.insert(bytes.end(), p, p + n); };
-    const std::uint64_t length = encode(db, w);
-    std::memcpy(bytes.data() + total_length_at, &length, 8);
+    const Lengths length = encode(db, w);
+    std::memcpy(bytes.data() + total_length_at, &length.total, 8);
+    std::memcpy(bytes.data() + lines_at_at, &length.lines_at, 8);
     return bytes;
 }
 

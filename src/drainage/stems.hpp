@@ -20,7 +20,8 @@ std::vector<std::vector<std::uint32_t>> divide_polylines(const DrainageDb& db);
 
 // The pieces of each line (index lists into `vertices`) inside the plan box [lo, hi], local
 // metres, with one vertex beyond the box at each cut so lines run to its edge: a view cropped to
-// part of a large DEM scores only what it models.
+// part of a large DEM scores only what it models (prepare_drainage_lines cuts the stored,
+// draped lines this way).
 std::vector<std::vector<std::uint32_t>> lines_in_box(const std::vector<std::vector<std::uint32_t>>& lines,
                                                      const DvVertices& vertices, glm::vec2 lo, glm::vec2 hi);
 

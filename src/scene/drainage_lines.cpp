@@ -4,57 +4,65 @@
 #include <cmath>
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
 #include "core/parallel_chunks.hpp"
-#include "drainage/stems.hpp"
 #include "lines/finish_drawing.hpp"
-#include "lines/polyline_smoothing.hpp"
 #include "lines/spacing_thinning.hpp"
-#include "surface/terrain_locator.hpp"
 
 namespace penink {
 
 namespace {
 
-// Drapes a smoothed vertex back on the PN surface and gives it the surface normal. Vertices off
-// the rendered surface are outside the view: a zero normal keeps them hidden in the DM pass.
-void drape_vertex(const TerrainLocator& locator, float flow, glm::vec3& p, DmVertex& out) {
-    SurfaceHit hit;
-    out.flow = flow;
-    out.normal = glm::vec3(0.0f);
-    if (locator.locate(p.x, p.y, hit)) {
-        glm::vec3 on_surface;
-        locator.pn_position_normal_at(hit, on_surface, out.normal);
-        p.z = on_surface.z;
-    }
-    out.position = p;
-}
-
-// Lays the polylines (vertex index lists) out contiguously, smooths them (line ends that meet
-// another line's interior follow it) and drapes them on the PN surface, ready for a DM pass.
-ScoredLineSet make_line_set(const DvVertices& vertices,
-                            const std::vector<std::vector<std::uint32_t>>& lines,
-                            const TerrainLocator& locator, int smoothing) {
-    ScoredLineSet set;
-    std::vector<float> flow;
-    for (const auto& line : lines) {
-        set.runs.push_back({std::uint32_t(set.positions.size()), std::uint32_t(line.size())});
-        for (std::uint32_t i : line) {
-            set.positions.push_back({vertices[i].x, vertices[i].y, vertices[i].z});
-            flow.push_back(vertices[i].flow);
+// The pieces of the set's lines meeting [lo, hi], laid out for a DM pass (see
+// prepare_drainage_lines): the pieces found line by line, then their vertices written on all
+// cores.
+ScoredLineSet select_lines(const DrapedLineSet& set, glm::vec2 lo, glm::vec2 hi, double e, float min_length) {
+    struct Piece {
+        std::uint32_t from, to;      // stored vertices [from, to) of the piece
+        std::uint32_t in0, in1;      // those inside the box: [in0, in1)
+    };
+    const auto inside = [&](const DrapedVertex& v) { return v.x >= lo.x && v.x <= hi.x && v.y >= lo.y && v.y <= hi.y; };
+    std::vector<Piece> pieces;
+    ScoredLineSet out;
+    std::uint32_t total = 0;
+    for (const std::uint32_t id : lines_meeting_box(set, lo, hi)) {
+        const DrapedLine& l = set.lines[id];
+        if (l.length < min_length) continue;
+        const DrapedVertex* v = set.vertices.data() + l.first;
+        for (std::uint32_t k = 0; k < l.count;) {  // lines_in_box's cut
+            while (k < l.count && !inside(v[k])) ++k;
+            if (k == l.count) break;
+            std::uint32_t end = k;
+            while (end < l.count && inside(v[end])) ++end;
+            const std::uint32_t a = k > 0 ? k - 1 : k, b = std::min(end + 1, l.count);
+            out.runs.push_back({total, b - a});
+            pieces.push_back({l.first + a, l.first + b, l.first + k, l.first + end});
+            total += b - a;
+            k = end;
         }
     }
-    const std::vector<glm::vec3> before = set.positions;
-    smooth_runs_xy(set.positions, set.runs, smoothing);
-    rejoin_line_ends(before, set.runs, set.positions);
-    std::vector<DmVertex> dm(set.positions.size());
-    parallel_chunks(dm.size(), 10000, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin; i < end; ++i) drape_vertex(locator, flow[i], set.positions[i], dm[i]);
+    out.positions.resize(total), out.normals.resize(total), out.upload.resize(total);
+    parallel_chunks(pieces.size(), 2048, [&](std::size_t p0, std::size_t p1) {
+        for (std::size_t p = p0; p < p1; ++p) {
+            const Piece& piece = pieces[p];
+            std::uint32_t at = out.runs[p].first;
+            for (std::uint32_t i = piece.from; i < piece.to; ++i, ++at) {
+                const DrapedVertex& v = set.vertices[i];
+                glm::vec3 n(0.0f);  // beyond the box: off the modelled surface
+                if (i >= piece.in0 && i < piece.in1) {
+                    if (e == 1.0) n = {v.nx, v.ny, v.nz};
+                    else if (v.nx != 0.0f || v.ny != 0.0f || v.nz != 0.0f)
+                        n = glm::normalize(glm::vec3(float(e * v.nx), float(e * v.ny), v.nz));
+                }
+                const glm::vec3 pos(v.x, v.y, e == 1.0 ? v.z : float(e * double(v.z)));
+                out.positions[at] = pos, out.normals[at] = n;
+                DmVertex& dm = out.upload[at];
+                dm.position = pos, dm.flow = v.flow, dm.normal = n, dm.unused = 0.0f;
+            }
+        }
     });
-    set.normals.resize(dm.size());
-    for (std::size_t i = 0; i < dm.size(); ++i) set.normals[i] = dm[i].normal;
-    set.upload = std::move(dm);
-    return set;
+    return out;
 }
 
 // Visible, scored runs of a line set as image strokes; with sketchiness, each run is perturbed
@@ -88,15 +96,13 @@ float max_visible_distance(const DepthImage& toward) {
     return d;
 }
 
-DrainageLineData prepare_drainage_lines(const DrainageDb& db, const SurfaceMesh& mesh) {
-    const TerrainLocator locator(mesh);
-    glm::vec2 lo(1e30f), hi(-1e30f);  // plan extent of the rendered surface
-    for (const glm::uvec3& t : mesh.tri)
-        for (int k = 0; k < 3; ++k) lo = glm::min(lo, glm::vec2(mesh.pos[t[k]])), hi = glm::max(hi, glm::vec2(mesh.pos[t[k]]));
+DrainageLineData prepare_drainage_lines(const DrainageDb& db, const Terrain& model, float min_length) {
     DrainageLineData data;
-    data.creases = make_line_set(db.vertices, lines_in_box(drainage_stems(db), db.vertices, lo, hi), locator, 3);
-    data.ridges = make_line_set(db.divide_vertices, lines_in_box(divide_polylines(db), db.divide_vertices, lo, hi),
-                                locator, 3);
+    glm::dvec3 lo, hi;
+    if (!terrain_bounds(model, lo, hi)) return data;
+    const glm::vec2 l(lo), h(hi);
+    data.creases = select_lines(db.creases, l, h, model.vertical_exaggeration, min_length);
+    data.ridges = select_lines(db.ridges, l, h, model.vertical_exaggeration, min_length);
     return data;
 }
 
@@ -108,8 +114,8 @@ DrainageLines::DrainageLines(const GlApi& gl, DrainageLineData data)
     }
 }
 
-DrainageLines::DrainageLines(const GlApi& gl, const DrainageDb& db, const SurfaceMesh& mesh)
-    : DrainageLines(gl, prepare_drainage_lines(db, mesh)) {}
+DrainageLines::DrainageLines(const GlApi& gl, const DrainageDb& db, const Terrain& model)
+    : DrainageLines(gl, prepare_drainage_lines(db, model)) {}
 
 void DrainageLines::draw(const Camera& camera, const Scene& scene, GLuint toward_texture,
                          float max_distance, Drawing& drawing, PassTimings& times) {

@@ -1,6 +1,8 @@
-// Creases and ridges of a terrain frame (Mower, "Concurrent Drainage Network Rendering"): the drainage database's branch and divide
-// vertices, with PN-surface normals looked up under them, uploaded once to DM passes; per frame
-// each is scored and visibility-tested on the GPU and clipped into object-space strokes for the
+// Creases and ridges of a terrain frame (Mower, "Concurrent Drainage Network Rendering"): the
+// drainage database's stems and divides, smoothed and draped on the PN surface once when the
+// database was built (drainage/line_set.hpp), picked per frame by the modelled box through the
+// database's line index, exaggerated, and uploaded once to DM passes; per frame each vertex is
+// scored and visibility-tested on the GPU and the runs clipped into object-space strokes for the
 // `creases` and `ridges` layers.
 #pragma once
 #include <memory>
@@ -11,7 +13,7 @@
 #include "lines/scored_polylines.hpp"
 #include "render/dm.hpp"
 #include "render/terrain_renderer.hpp"
-#include "surface/surface_mesh.hpp"
+#include "input/terrain.hpp"
 
 namespace penink {
 
@@ -23,17 +25,25 @@ struct ScoredLineSet {
     std::unique_ptr<DmPass> pass;
 };
 
-// The CPU half of DrainageLines (stems, cropping to the surface, smoothing, draping, normals):
-// needs no GL context, so it can run on another thread while the frame renders.
+// The CPU half of DrainageLines: needs no GL context, so it can run on another thread while the
+// frame renders.
 struct DrainageLineData {
     ScoredLineSet creases, ridges;
 };
-DrainageLineData prepare_drainage_lines(const DrainageDb& db, const SurfaceMesh& mesh);
+
+// The stored creases and ridges of `db` whose plan box meets the plan box of `model` (the terrain
+// the frame models: terrain_bounds; only that and its vertical exaggeration are used), cut to the
+// box as lines_in_box cuts lines (stems.hpp: the runs inside, with one vertex beyond the box at
+// each cut; vertices outside the box are off the modelled surface and get a zero normal, so they
+// are never drawn), exaggerated by e = model.vertical_exaggeration: z' = e z, normal' =
+// normalize(e nx, e ny, nz) (as stored at e = 1). Lines shorter than `min_length` metres (plan)
+// are left out. Work in proportion to the lines selected: no pass over the database's vertices.
+DrainageLineData prepare_drainage_lines(const DrainageDb& db, const Terrain& model, float min_length = 0.0f);
 
 class DrainageLines {
 public:
-    // `mesh` is the rendered (cropped) surface: vertices outside it are never visible.
-    DrainageLines(const GlApi& gl, const DrainageDb& db, const SurfaceMesh& mesh);
+    // prepare_drainage_lines(db, model), uploaded.
+    DrainageLines(const GlApi& gl, const DrainageDb& db, const Terrain& model);
     // Uploads prepared data (the GL half).
     DrainageLines(const GlApi& gl, DrainageLineData data);
     // Adds the creases and ridges of one frame; DM and RIDGES GPU times go into `times`.

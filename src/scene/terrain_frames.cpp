@@ -103,7 +103,7 @@ TerrainFrames::TerrainFrames(GlContext& context, std::optional<DrainageDb> drain
              "x" + std::to_string(terrain_.rows) + " modelled, " + std::to_string(int(ms_since(t0))) + " ms)");
     if (!drainage) return;
     pending_lines_ = std::async(std::launch::async, [this, db = std::move(*drainage)] {
-        return prepare_drainage_lines(db, mesh_from_terrain(terrain_));
+        return prepare_drainage_lines(db, terrain_);
     });
 }
 

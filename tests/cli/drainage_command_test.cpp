@@ -1,9 +1,12 @@
 // `penink drainage` on volcano.asc at the DEM's own resolution: the .dv file and the four
-// GeoTIFFs, georeferenced like the DEM, with consistent contents; the routing reaches the file.
+// GeoTIFFs, georeferenced like the DEM, with consistent contents; the routing reaches the file;
+// with the default options the file is the cache the render path reads (same file, not
+// rewritten) at any vertical exaggeration.
 #include <filesystem>
 #include <set>
 #include <sstream>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <gdal_priv.h>
@@ -84,6 +87,39 @@ TEST(DrainageCommand, VolcanoRastersAndDatabase) {
     std::size_t ends = 0;
     for (const DvBranch& b : db.branches) ends += b.downstream >= 0;
     EXPECT_EQ(db.vertices.size(), 61u * 87u + ends);
+    fs::remove_all(d);
+}
+
+TEST(DrainageCommand, WritesTheCacheTheRenderPathReads) {
+    const fs::path d = fs::temp_directory_path() / ("penink_dcache_" + std::to_string(::getpid()));
+    fs::remove_all(d);
+    fs::create_directories(d);
+    fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.asc", d / "volcano.asc");
+    fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.prj", d / "volcano.prj");
+    DrainageCommand cmd;
+    cmd.dem = (d / "volcano.asc").string();  // default options, as render uses
+    cmd.quiet = true;
+    std::ostringstream out;
+    ASSERT_EQ(run_drainage_command(cmd, out), 0) << out.str();
+    const std::string cache = drainage_cache_path(cmd.dem);
+    ASSERT_EQ(cache, cmd.dem + ".dv");
+    struct stat before{};
+    ASSERT_EQ(::stat(cache.c_str(), &before), 0);
+    for (double e : {1.0, 2.5}) {
+        DemOptions o;
+        o.vertical_exaggeration = e;
+        std::vector<std::string> log;
+        const DrainageDb db = load_or_build_drainage(cmd.dem, read_dem(cmd.dem, o), DrainageOptions{},
+                                                     [&](const std::string& m) { log.push_back(m); });
+        ASSERT_EQ(log.size(), 1u) << e;
+        EXPECT_EQ(log[0], "drainage: using cached " + cache) << e;
+        EXPECT_GT(db.creases.vertices.size(), 100000u);
+        struct stat after{};
+        ASSERT_EQ(::stat(cache.c_str(), &after), 0);
+        EXPECT_EQ(after.st_ino, before.st_ino) << e;  // not rewritten
+        EXPECT_EQ(after.st_mtim.tv_sec, before.st_mtim.tv_sec) << e;
+        EXPECT_EQ(after.st_mtim.tv_nsec, before.st_mtim.tv_nsec) << e;
+    }
     fs::remove_all(d);
 }
 

@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "drainage/branches.hpp"
 #include "drainage/drainage_build.hpp"
+#include "drainage/dv_format.hpp"
 #include "input/dem_reader.hpp"
 
 namespace penink {
@@ -156,18 +157,34 @@ TEST(DvFile, GridPositionsOnAnAffineDemReadBackExactly) {
     EXPECT_TRUE(t.pos.empty());  // released once resampled
     EXPECT_TRUE(read_drainage_db((d / "grid.dv").string()) == built);
     EXPECT_TRUE(read_drainage_db((d / "explicit.dv").string()) == built);
-    const double ratio = double(fs::file_size(d / "grid.dv")) / double(fs::file_size(d / "explicit.dv"));
-    EXPECT_LT(ratio, 0.75) << fs::file_size(d / "grid.dv") << " vs " << fs::file_size(d / "explicit.dv");
+    // the network parts (the lines parts are alike)
+    auto network_bytes = [&](const fs::path& p) {
+        const std::vector<char> b = slurp(p);
+        std::uint64_t lines_at = 0;
+        std::memcpy(&lines_at, b.data() + 24, 8);
+        return double(lines_at);
+    };
+    const double ratio = network_bytes(d / "grid.dv") / network_bytes(d / "explicit.dv");
+    EXPECT_LT(ratio, 0.75) << network_bytes(d / "grid.dv") << " vs " << network_bytes(d / "explicit.dv");
     // an unknown positions mode is refused even with a matching checksum
     std::vector<char> b = slurp(d / "grid.dv");
-    const std::size_t mode_at = 92 + built.crs_wkt.size();
+    const std::size_t mode_at = 100 + built.crs_wkt.size();
     ASSERT_EQ(b[mode_at], 1);
     b[mode_at] = 2;
-    const std::uint64_t h = hash64(b.data(), b.size() - 8);
-    std::memcpy(b.data() + b.size() - 8, &h, 8);
+    std::uint64_t lines_at;
+    std::memcpy(&lines_at, b.data() + 24, 8);
+    const std::uint64_t h = dv::network_hash(reinterpret_cast<const std::uint8_t*>(b.data()), lines_at);
+    std::memcpy(b.data() + lines_at - 8, &h, 8);
     spit(d / "bad.dv", b);
     EXPECT_EQ(read_error(d / "bad.dv"),
               "penink: drainage: " + (d / "bad.dv").string() + ": drainage database checksum mismatch (file corrupt)");
+}
+
+// Bytes of a line set in the lines part: counts 16, 28 a line and a vertex, index origin, side
+// and level count 16, 8 a level, 4 a cell start (+ 1) and a line id.
+std::size_t line_set_bytes(const DrapedLineSet& s) {
+    return 16 + 28 * s.lines.size() + 28 * s.vertices.size() + 16 + 8 * s.index.level_cols.size() +
+           4 * s.index.start.size() + 4 * s.index.ids.size();
 }
 
 TEST(DvFile, CompactLayoutSizeAndShapeCheck) {
@@ -175,12 +192,16 @@ TEST(DvFile, CompactLayoutSizeAndShapeCheck) {
     std::size_t junction_ends = 0;
     for (const DvBranch& b : db.branches) junction_ends += b.downstream >= 0;
     ASSERT_GT(junction_ends, 0u);
-    // header 92 + WKT + positions byte, counts 40, branches 5 B (count, link, order, basin,
-    // head_acc: one byte each here), stored vertices 12 B, divides 4 + 12 B, hash 8
-    const std::size_t expect = 92 + db.crs_wkt.size() + 1 + 40 + 5 * db.branches.size() +
-                               12 * (db.vertices.size() - junction_ends) + 4 * db.divides.size() +
-                               12 * db.divide_vertices.size() + 8;
+    // header 100 + WKT + positions byte, counts 40, branches 5 B (count, link, order, basin,
+    // head_acc: one byte each here), stored vertices 12 B, divides 4 + 12 B, zeros to a multiple
+    // of 8, network hash 8; lines part: header 72, the two sets, hash 8
+    const std::size_t network = 100 + db.crs_wkt.size() + 1 + 40 + 5 * db.branches.size() +
+                                12 * (db.vertices.size() - junction_ends) + 4 * db.divides.size() +
+                                12 * db.divide_vertices.size();
+    const std::size_t expect = (network + 7) / 8 * 8 + 8 + 72 + line_set_bytes(db.creases) + line_set_bytes(db.ridges) + 8;
     EXPECT_EQ(encode_drainage_db(db).size(), expect);
+    EXPECT_EQ(db.creases.index.level_cols.size(), db.creases.index.level_rows.size());
+    EXPECT_GE(db.creases.index.level_cols.size(), 1u);
     DrainageDb odd = db;  // a junction vertex that is not the downstream branch's head
     const DvBranch& b = *std::find_if(odd.branches.begin(), odd.branches.end(),
                                       [](const DvBranch& x) { return x.downstream >= 0; });
@@ -217,9 +238,9 @@ TEST(DvFile, CorruptionsAreDetected) {
     EXPECT_EQ(read_error(p), pre + "truncated drainage database");
 
     b = good;
-    b[8] = 6;
+    b[8] = 7;  // a file of the layout before the lines part
     spit(p, b);
-    EXPECT_EQ(read_error(p), pre + "unsupported drainage database version 6 (expected 7)");
+    EXPECT_EQ(read_error(p), pre + "unsupported drainage database version 7 (expected 8)");
 
     b = good;
     b[0] = 'X';
@@ -237,6 +258,77 @@ TEST(DvFile, CorruptionsAreDetected) {
     other.routing = 0;  // built with another routing method
     EXPECT_EQ(read_error(p, &other), pre + "drainage database is stale (DEM changed)");
     EXPECT_EQ(read_error(p, &db.fingerprint), "no error");
+}
+
+// The lines part read alone (what a render reads): the creases and ridges and the header a
+// whole read gives, checked by its own checksum; a flipped bit in the network part is seen only
+// by a whole read, one in the lines part by both; absurd counts with a matching checksum are
+// refused before anything is allocated.
+TEST(DvFile, LinesPartReadAloneAndChecked) {
+    const fs::path d = temp_dir("lines");
+    const DrainageDb db = rough_db();
+    const fs::path p = d / "x.dv";
+    write_drainage_db(p.string(), db);
+    EXPECT_GT(db.creases.lines.size(), 1000u);
+    EXPECT_GT(db.ridges.lines.size(), 5u);
+    const DrainageDb lines = read_drainage_db(p.string(), &db.fingerprint, DvParts::lines);
+    EXPECT_TRUE(lines == drainage_lines_only(db));
+    EXPECT_TRUE(lines.vertices.empty() && lines.branches.empty() && lines.divides.empty());
+    EXPECT_EQ(lines.cols, db.cols);
+    EXPECT_EQ(lines.origin, db.origin);
+
+    const std::vector<char> good = slurp(p);
+    std::uint64_t lines_at = 0;
+    std::memcpy(&lines_at, good.data() + 24, 8);
+    ASSERT_GT(lines_at, 200u);
+    ASSERT_LT(lines_at, good.size() - 200);
+    const std::string pre = "penink: drainage: " + p.string() + ": ";
+    auto lines_error = [&] {
+        try {
+            read_drainage_db(p.string(), nullptr, DvParts::lines);
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    std::vector<char> b = good;
+    b[lines_at / 2] ^= 0x04;  // in the network part
+    spit(p, b);
+    EXPECT_EQ(lines_error(), "no error");
+    EXPECT_EQ(read_error(p), pre + "drainage database checksum mismatch (file corrupt)");
+    b = good;
+    b[lines_at + (good.size() - lines_at) / 2] ^= 0x04;  // in the lines part
+    spit(p, b);
+    EXPECT_EQ(lines_error(), pre + "drainage database checksum mismatch (file corrupt)");
+    EXPECT_EQ(read_error(p), pre + "drainage database checksum mismatch (file corrupt)");
+    b = good;
+    b.resize(good.size() - 1);
+    spit(p, b);
+    EXPECT_EQ(lines_error(), pre + "truncated drainage database");
+    // the creases' line and vertex counts made huge, the lines checksum made to match
+    for (const std::size_t at : {std::size_t(lines_at + 72), std::size_t(lines_at + 80)}) {
+        b = good;
+        const std::uint64_t huge = std::uint64_t(1) << 40;
+        std::memcpy(b.data() + at, &huge, 8);
+        const std::uint64_t total = good.size();
+        const std::uint64_t h = dv::lines_hash(reinterpret_cast<const std::uint8_t*>(b.data()) + lines_at,
+                                               std::size_t(total - 8 - lines_at), lines_at, total);
+        std::memcpy(b.data() + total - 8, &h, 8);
+        spit(p, b);
+        EXPECT_EQ(lines_error(), pre + "drainage database checksum mismatch (file corrupt)") << at;
+        EXPECT_EQ(read_error(p), pre + "drainage database checksum mismatch (file corrupt)") << at;
+    }
+    // a stale file is stale to both reads
+    spit(p, good);
+    DrainageFingerprint other = db.fingerprint;
+    other.content_hash ^= 1;
+    try {
+        read_drainage_db(p.string(), &other, DvParts::lines);
+        ADD_FAILURE() << "stale file read";
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()), pre + "drainage database is stale (DEM changed)");
+    }
+    fs::remove_all(d);
 }
 
 Terrain small_terrain() {

@@ -2,6 +2,7 @@
 // `ridges` layers of object-space paths, raising [creases] min_score removes lines, enabled =
 // false empties the layer; the drainage cache `<DEM>.dv` is written next to the DEM, reused, and
 // rebuilt when corrupt or stale; `penink drainage --rasters` writes the four GeoTIFFs.
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -19,7 +20,9 @@
 #include "core/log.hpp"
 #include "scene/terrain_view.hpp"
 #include "../cli/cli_support.hpp"
+#include "drainage/dem_surface.hpp"
 #include "drainage/drainage_build.hpp"
+#include "drainage/draped_lines.hpp"
 #include "drainage/stems.hpp"
 #include "input/dem_reader.hpp"
 #include "support/synthetic_terrain.hpp"
@@ -148,7 +151,7 @@ namespace {
 
 struct Frame {  // volcano at 300x225 from the default viewpoint, drainage built in memory
     Scene scene;
-    Terrain dem;
+    Terrain dem, view;
     Camera camera;
     SurfaceMesh mesh;
     DrainageDb db;
@@ -157,7 +160,8 @@ struct Frame {  // volcano at 300x225 from the default viewpoint, drainage built
         scene.camera.width = 300, scene.camera.height = 225;
         dem = read_dem(scene.dem);
         camera = scene_camera(scene, dem);
-        mesh = mesh_from_terrain(terrain_for_view(dem, camera, scene, Log{}));
+        view = terrain_for_view(dem, camera, scene, Log{});
+        mesh = mesh_from_terrain(view);
         db = build_drainage_db(dem, DrainageOptions{});
     }
 };
@@ -167,7 +171,7 @@ struct Frame {  // volcano at 300x225 from the default viewpoint, drainage built
 struct RenderedFrame : Frame {
     TerrainRenderer renderer{test_context().gl(), mesh, camera.width, camera.height};
     FrameImages img = renderer.render(camera, {});
-    DrainageLines lines{test_context().gl(), db, mesh};
+    DrainageLines lines{test_context().gl(), db, view};
     float D = max_visible_distance(img.toward);
 
     Drawing draw(const Scene& s) {
@@ -291,7 +295,10 @@ TEST(CreasesRender, TributaryStaysJoinedToSmoothedMainStem) {
     db.upstream = {0, 1};
     db.branches[2].up_first = 0, db.branches[2].up_count = 2;
     db.branches[0].up_first = db.branches[1].up_first = 0;
-    const SurfaceMesh mesh = mesh_from_terrain(terrain_from_function(21, 21, 10.0, [](double, double) { return 0.0; }));
+    const Terrain ground = terrain_from_function(21, 21, 10.0, [](double, double) { return 0.0; });
+    const SurfaceMesh mesh = mesh_from_terrain(ground);
+    db.creases = listed_lines(db.vertices, drainage_stems(db));  // as the build makes them
+    smooth_and_drape(db.creases, DemSurface(ground));
     Camera cam;  // 200 m above the origin, straight down, 1 px per metre: (x, y) -> (200 + x, 200 - y)
     cam.eye = {0.0, 0.0, 200.0};
     cam.azimuth = 0.0, cam.altitude = -90.0, cam.fov = 90.0, cam.width = 400, cam.height = 400;
@@ -299,7 +306,7 @@ TEST(CreasesRender, TributaryStaysJoinedToSmoothedMainStem) {
     GlContext& ctx = test_context();
     TerrainRenderer renderer(ctx.gl(), mesh, cam.width, cam.height);
     const FrameImages img = renderer.render(cam, {});
-    DrainageLines lines(ctx.gl(), db, mesh);
+    DrainageLines lines(ctx.gl(), db, ground);
     Scene s;
     s.creases.min_score = -10.0, s.creases.distance_attenuation = 0.0, s.creases.spacing_px = 0.0;
     s.ridges.enabled = false;
@@ -356,7 +363,10 @@ TEST(CreasesRender, CorruptCacheIsRebuilt) {
     const Cleanup cleanup{dir};
     std::string good;
     const RunResult r = render_with_damaged_cache(dir, good, [](std::string b) {
-        b[b.size() / 2] = char(b[b.size() / 2] ^ 0x40);  // one bit in the middle of the data
+        std::uint64_t lines_at = 0;  // the part a render reads: the creases and ridges
+        std::memcpy(&lines_at, b.data() + 24, 8);
+        const std::size_t at = std::size_t(lines_at) + (b.size() - std::size_t(lines_at)) / 2;
+        b[at] = char(b[at] ^ 0x40);  // one bit in the middle of it
         return b;
     });
     ASSERT_EQ(r.code, 0) << r.output;
@@ -422,4 +432,138 @@ TEST(CreasesRender, DrainageSubcommandWritesRasters) {
     EXPECT_EQ(q.code, 0);
     EXPECT_EQ(q.output, "");
     EXPECT_EQ(read_text(dir / "quiet.dv"), read_text(dir / "volcano.asc.dv"));
+}
+
+namespace {
+
+// The render path's cache calls on `dem` read at exaggeration `e`: the database and the log.
+DrainageDb render_cache(const fs::path& dem, double e, std::vector<std::string>& log) {
+    DemOptions o;
+    o.vertical_exaggeration = e;
+    return load_or_build_drainage(dem.string(), read_dem(dem.string(), o), DrainageOptions{},
+                                  [&](const std::string& m) { log.push_back(m); });
+}
+
+}  // namespace
+
+// The cache holds unexaggerated lines: built at 1, it serves 3 and 1 again without being
+// rebuilt or rewritten, and the lines a frame gets at 3 are those at 1 with z times 3 and
+// normals normalize(3 nx, 3 ny, nz); a build started at 3 writes the same file.
+TEST(CreasesRender, CacheSurvivesAnExaggerationChange) {
+    const fs::path dir = volcano_dir("exaggeration");
+    const Cleanup cleanup{dir};
+    const fs::path dem = dir / "volcano.asc", cache = dir / "volcano.asc.dv";
+    std::vector<std::string> log;
+    const DrainageDb at1 = render_cache(dem, 1.0, log);
+    ASSERT_EQ(log.back(), "drainage: wrote " + cache.string());
+    const auto mtime = fs::last_write_time(cache);
+    const std::string bytes = read_text(cache);
+    const DrainageDb at3 = render_cache(dem, 3.0, log);
+    EXPECT_EQ(log.back(), "drainage: using cached " + cache.string());
+    const DrainageDb again = render_cache(dem, 1.0, log);
+    EXPECT_EQ(log.back(), "drainage: using cached " + cache.string());
+    EXPECT_EQ(log.size(), 4u);  // missing + wrote, then two reads
+    EXPECT_EQ(fs::last_write_time(cache), mtime);
+    EXPECT_TRUE(at3 == at1);
+    EXPECT_TRUE(again == at1);
+
+    DemOptions three;
+    three.vertical_exaggeration = 3.0;
+    const DrainageLineData l1 = prepare_drainage_lines(at1, read_dem(dem.string()));
+    const DrainageLineData l3 = prepare_drainage_lines(at3, read_dem(dem.string(), three));
+    for (const auto& [a, b] : {std::pair(&l1.creases, &l3.creases), std::pair(&l1.ridges, &l3.ridges)}) {
+        ASSERT_EQ(a->positions.size(), b->positions.size());
+        ASSERT_GT(a->positions.size(), 1000u);
+        EXPECT_EQ(a->runs.size(), b->runs.size());
+        std::size_t drawn = 0;
+        for (std::size_t i = 0; i < a->positions.size(); ++i) {
+            EXPECT_EQ(b->positions[i].x, a->positions[i].x);
+            EXPECT_EQ(b->positions[i].y, a->positions[i].y);
+            EXPECT_EQ(b->positions[i].z, float(3.0 * double(a->positions[i].z)));
+            const glm::vec3 n = a->normals[i];
+            if (n == glm::vec3(0.0f)) {
+                EXPECT_EQ(b->normals[i], glm::vec3(0.0f));
+                continue;
+            }
+            ++drawn;
+            const glm::vec3 want = glm::normalize(glm::vec3(3.0f * n.x, 3.0f * n.y, n.z));
+            EXPECT_LT(glm::length(b->normals[i] - want), 1e-6f) << i;
+            EXPECT_EQ(b->upload[i].position, b->positions[i]);
+            EXPECT_EQ(b->upload[i].normal, b->normals[i]);
+            EXPECT_EQ(b->upload[i].flow, a->upload[i].flow);
+        }
+        EXPECT_GT(drawn, a->positions.size() / 2);
+    }
+
+    // a cache first built at exaggeration 3 (the DEM read again unexaggerated) is the same file
+    const fs::path other = volcano_dir("exaggeration3");
+    const Cleanup cleanup_other{other};
+    fs::last_write_time(other / "volcano.asc", fs::last_write_time(dem));
+    std::vector<std::string> log3;
+    render_cache(other / "volcano.asc", 3.0, log3);
+    ASSERT_EQ(log3.back(), "drainage: wrote " + (other / "volcano.asc.dv").string());
+    EXPECT_TRUE(read_text(other / "volcano.asc.dv") == bytes);
+}
+
+// `penink drainage DEM` writes the very cache a render then reads: neither the render path's
+// call nor the binary at another exaggeration rebuilds or rewrites it.
+TEST(CreasesRender, DrainageCommandWritesTheRendersCache) {
+    const fs::path dir = volcano_dir("command_cache");
+    const Cleanup cleanup{dir};
+    ASSERT_EQ(run_penink("drainage volcano.asc -q", dir).code, 0);
+    const fs::path cache = dir / "volcano.asc.dv";
+    ASSERT_TRUE(fs::exists(cache));
+    const auto mtime = fs::last_write_time(cache);
+    std::vector<std::string> log;
+    render_cache(dir / "volcano.asc", 1.0, log);
+    ASSERT_EQ(log.size(), 1u);
+    EXPECT_EQ(log[0], "drainage: using cached " + cache.string());
+    const RunResult r = run_penink("render volcano.asc --width 300 --height 225 -o x.svg --verbose "
+                                   "--vertical-exaggeration 2", dir);
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("drainage: using cached volcano.asc.dv"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("rebuilding"), std::string::npos) << r.output;
+    EXPECT_EQ(fs::last_write_time(cache), mtime);
+    EXPECT_GT(path_stats(layer_text(read_text(dir / "x.svg"), "creases"), "crease", 300, 225).count, 0u);
+}
+
+// A frame modelling part of the DEM gets exactly the stored lines whose box meets its box, cut
+// as lines_in_box cuts them: the runs inside with one vertex beyond at each cut, those beyond
+// never drawn (zero normal).
+TEST(CreasesRender, CroppedModelGetsTheLinesMeetingItsBox) {
+    const Terrain dem = read_dem(PENINK_SOURCE_DIR "/examples/volcano.asc");
+    const DrainageDb db = build_drainage_db(dem, DrainageOptions{});
+    const Terrain model = crop_terrain(dem, GridWindow{10, 20, 45, 60});
+    glm::dvec3 lo, hi;
+    ASSERT_TRUE(terrain_bounds(model, lo, hi));
+    const DrainageLineData data = prepare_drainage_lines(db, model);
+    for (const auto& [set, got] : {std::pair(&db.creases, &data.creases), std::pair(&db.ridges, &data.ridges)}) {
+        // every stored line cut to the box, in line order: what the frame must hold
+        DvVertices flat;
+        std::vector<std::vector<std::uint32_t>> lines;
+        for (const DrapedVertex& v : set->vertices) flat.push_back({v.x, v.y, v.z, v.flow});
+        for (const DrapedLine& l : set->lines) {
+            lines.emplace_back();
+            for (std::uint32_t k = 0; k < l.count; ++k) lines.back().push_back(l.first + k);
+        }
+        const auto pieces = lines_in_box(lines, flat, glm::vec2(lo), glm::vec2(hi));
+        ASSERT_EQ(got->runs.size(), pieces.size());
+        EXPECT_GT(pieces.size(), 10u);
+        std::size_t i = 0, beyond = 0;
+        for (std::size_t p = 0; p < pieces.size(); ++p) {
+            EXPECT_EQ(got->runs[p].first, i);
+            ASSERT_EQ(got->runs[p].count, pieces[p].size());
+            for (std::uint32_t k : pieces[p]) {
+                const DrapedVertex& v = set->vertices[k];
+                EXPECT_EQ(got->positions[i], glm::vec3(v.x, v.y, v.z));
+                const bool inside = v.x >= float(lo.x) && v.x <= float(hi.x) && v.y >= float(lo.y) && v.y <= float(hi.y);
+                EXPECT_EQ(got->normals[i], inside ? glm::vec3(v.nx, v.ny, v.nz) : glm::vec3(0.0f));
+                beyond += !inside;
+                ++i;
+            }
+        }
+        EXPECT_EQ(i, got->positions.size());
+        EXPECT_GT(beyond, 0u);
+        EXPECT_LT(got->positions.size(), set->vertices.size() / 2);
+    }
 }

@@ -1,0 +1,220 @@
+#include "drainage/dem_surface.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "core/error.hpp"
+#include "core/parallel_chunks.hpp"
+#include "surface/pn_triangle.hpp"
+
+namespace penink {
+
+DemSurface::DemSurface(const DrainageGrid& g) {
+    if (g.factor == 1) {
+        cols_ = g.cols, rows_ = g.rows, valid_ = g.valid.data(), z_ = g.z.data();
+        if (!g.has_affine && g.coarse_xy.size() != g.size())
+            throw Error("drainage", "", "drainage grid without node positions", ExitCode::internal);
+        if (!g.has_affine) xy_ = g.coarse_xy.data();
+    } else {
+        cols_ = g.coarse_cols, rows_ = g.coarse_rows, valid_ = g.coarse_valid.data(), z_ = g.coarse_z.data();
+        const std::size_t n = std::size_t(cols_) * std::size_t(rows_);
+        if (g.coarse_xy.size() != n || g.coarse_z.size() != n || g.coarse_valid.size() != n)
+            throw Error("drainage", "", "drainage grid without its DEM nodes", ExitCode::internal);
+        xy_ = g.coarse_xy.data();
+    }
+    if (std::size_t(cols_) * std::size_t(rows_) >= 0xffffffffu)
+        throw Error("drainage", "", "DEM too large to drape lines on (4 G nodes or more)", ExitCode::internal);
+    if (g.has_affine) affine_ = true, nodes_ = g.affine;
+    origin_ = g.origin;
+    if (affine_) {
+        const double a = nodes_.gt[1], b = nodes_.gt[2], c = nodes_.gt[4], d = nodes_.gt[5], det = a * d - b * c;
+        if (det != 0.0 && std::isfinite(det)) inv_[0] = d / det, inv_[1] = -b / det, inv_[2] = -c / det, inv_[3] = a / det;
+        if (!xy_ && nodes_.gt[2] == 0.0 && nodes_.gt[4] == 0.0) {  // x by column, y by row: the same floats
+            col_x_.resize(std::size_t(cols_)), row_y_.resize(std::size_t(rows_));
+            for (int k = 0; k < cols_; ++k) col_x_[std::size_t(k)] = affine_node_xy(nodes_, origin_, k, 0).x;
+            for (int k = 0; k < rows_; ++k) row_y_[std::size_t(k)] = affine_node_xy(nodes_, origin_, 0, k).y;
+        }
+    }
+    make_normals();
+}
+
+DemSurface::DemSurface(const Terrain& t) {
+    if (t.pos.size() != t.size() || t.valid.size() != t.size())
+        throw Error("drainage", t.source, "DEM read without positions", ExitCode::internal);
+    if (t.size() >= 0xffffffffu)
+        throw Error("drainage", t.source, "DEM too large to drape lines on (4 G nodes or more)", ExitCode::internal);
+    cols_ = t.cols, rows_ = t.rows, valid_ = t.valid.data(), pos_ = t.pos.data(), origin_ = t.origin;
+    if (terrain_affine(t, nodes_)) {
+        affine_ = true;
+        const double a = nodes_.gt[1], b = nodes_.gt[2], c = nodes_.gt[4], d = nodes_.gt[5], det = a * d - b * c;
+        if (det != 0.0 && std::isfinite(det)) inv_[0] = d / det, inv_[1] = -b / det, inv_[2] = -c / det, inv_[3] = a / det;
+    }
+    make_normals();
+}
+
+namespace {
+
+// The unit normals of the two triangles of each cell of a row (compute_normals' face normals),
+// and whether each triangle is part of the surface.
+struct FaceRow {
+    std::vector<glm::vec3> n;  // 2 per cell
+    std::vector<std::uint8_t> present;
+};
+
+void face_row(const DemSurface& s, int r, FaceRow& out) {
+    const std::size_t cells = std::size_t(s.cols() - 1);
+    out.n.resize(2 * cells), out.present.assign(2 * cells, 0);
+    if (r < 0 || r > s.rows() - 2) return;
+    for (int c = 0; c + 1 < s.cols(); ++c)
+        for (int which = 0; which < 2; ++which) {
+            if (!s.triangle_valid(c, r, which)) continue;
+            const glm::vec3 a = s.node(c, r), d = s.node(c + 1, r + 1);
+            const glm::vec3 p1 = which == 0 ? s.node(c, r + 1) : d, p2 = which == 0 ? d : s.node(c + 1, r);
+            const glm::vec3 n = glm::cross(p1 - a, p2 - a);
+            const float len = glm::length(n);
+            out.n[2 * std::size_t(c) + which] = len > 0.0f ? n / len : glm::vec3(0, 0, 1);
+            out.present[2 * std::size_t(c) + which] = 1;
+        }
+}
+
+}  // namespace
+
+// compute_normals: each node sums the unit normals of its incident triangles in mesh order
+// (cells row-major, (NW, SW, SE) before (NW, SE, NE)): it is SE of cell (c-1, r-1) (both
+// triangles), SW of (c, r-1) (the first), NE of (c-1, r) (the second), NW of (c, r) (both).
+// Rows of nodes in parallel chunks, each with the face normals of the cell rows above and below.
+void DemSurface::make_normals() {
+    normals_.resize(std::size_t(cols_) * std::size_t(rows_));
+    parallel_chunks(std::size_t(rows_), 64, [&](std::size_t r0, std::size_t r1) {
+        FaceRow above, below;
+        face_row(*this, int(r0) - 1, above);
+        for (std::size_t r = r0; r < r1; ++r) {
+            face_row(*this, int(r), below);
+            for (int c = 0; c < cols_; ++c) {
+                glm::vec3 sum(0.0f);
+                auto add = [&](const FaceRow& f, int cell, int which) {
+                    if (cell < 0 || cell > cols_ - 2) return;
+                    const std::size_t k = 2 * std::size_t(cell) + std::size_t(which);
+                    if (f.present[k]) sum += f.n[k];
+                };
+                add(above, c - 1, 0), add(above, c - 1, 1), add(above, c, 0);
+                add(below, c - 1, 1), add(below, c, 0), add(below, c, 1);
+                const float len = glm::length(sum);
+                normals_[index(c, int(r))] = len > 1e-12f ? sum / len : glm::vec3(0, 0, 1);
+            }
+            std::swap(above, below);
+        }
+    });
+}
+
+// The cell the inverse of the affine node formula puts (x, y) in (clamped to the grid); false
+// when the formula cannot be inverted or the point lies more than a cell off the grid.
+bool DemSurface::affine_guess(double x, double y, int& c, int& r) const {
+    if (!affine_ || (inv_[0] == 0.0 && inv_[1] == 0.0)) return false;
+    const double wx = (x + origin_.x) / nodes_.unit - nodes_.gt[0], wy = (y + origin_.y) / nodes_.unit - nodes_.gt[3];
+    const double fc = inv_[0] * wx + inv_[1] * wy - 0.5 - nodes_.col0;
+    const double fr = inv_[2] * wx + inv_[3] * wy - 0.5 - nodes_.row0;
+    if (!(fc > -2.0 && fr > -2.0 && fc < cols_ + 1.0 && fr < rows_ + 1.0)) return false;
+    c = std::clamp(int(std::floor(fc)), 0, cols_ - 2);
+    r = std::clamp(int(std::floor(fr)), 0, rows_ - 2);
+    return true;
+}
+
+// Steps from cell (c, r) across the edge (x, y) lies farthest beyond until a cell's quadrilateral
+// holds it (within a millionth of the edge's length): at most cols + rows steps.
+bool DemSurface::walk(double x, double y, int& c, int& r) const {
+    const glm::dvec2 p(x, y);
+    for (int step = 0; step <= cols_ + rows_; ++step) {
+        // corners counter-clockwise seen from above: SW, SE, NE, NW; crossing edge k (corner k to
+        // k + 1) leads to the cell moved by (dc[k], dr[k])
+        const glm::dvec2 q[4] = {glm::dvec2(node_xy(c, r + 1)), glm::dvec2(node_xy(c + 1, r + 1)),
+                                 glm::dvec2(node_xy(c + 1, r)), glm::dvec2(node_xy(c, r))};
+        constexpr int dc[4] = {0, 1, 0, -1}, dr[4] = {1, 0, -1, 0};
+        int out = -1;
+        double worst = 0.0;
+        for (int k = 0; k < 4; ++k) {
+            const glm::dvec2 e = q[(k + 1) % 4] - q[k], d = p - q[k];
+            const double cross = e.x * d.y - e.y * d.x, len2 = e.x * e.x + e.y * e.y;  // cross > 0 inside
+            if (!(cross < -1e-6 * len2)) continue;
+            const double side = cross / std::sqrt(len2);  // the distance beyond the edge
+            if (side < worst) worst = side, out = k;
+        }
+        if (out < 0) return true;
+        const int nc = c + dc[out], nr = r + dr[out];
+        if (nc < 0 || nr < 0 || nc > cols_ - 2 || nr > rows_ - 2) return false;
+        c = nc, r = nr;
+    }
+    return false;
+}
+
+bool DemSurface::find_cell(double x, double y, int& c, int& r) const {
+    if (cols_ < 2 || rows_ < 2 || !std::isfinite(x) || !std::isfinite(y)) return false;
+    if (affine_) {
+        if (!affine_guess(x, y, c, r)) return false;
+        if (!pos_ && !xy_) return true;  // the nodes are the formula's: its cell
+        return walk(x, y, c, r);         // stored nodes: the formula's cell starts the walk
+    }
+    if (c < 0 || r < 0 || c > cols_ - 2 || r > rows_ - 2) {
+        // the cell the grid's outline predicts (bilinear frame of its corner nodes)
+        const glm::dvec2 o(node_xy(0, 0)), ec = glm::dvec2(node_xy(cols_ - 1, 0)) - o,
+            er = glm::dvec2(node_xy(0, rows_ - 1)) - o;
+        const double det = ec.x * er.y - ec.y * er.x;
+        c = r = 0;
+        if (std::abs(det) > 1e-300) {
+            const glm::dvec2 d = glm::dvec2(x, y) - o;
+            const double u = (d.x * er.y - d.y * er.x) / det, v = (ec.x * d.y - ec.y * d.x) / det;
+            if (!std::isfinite(u) || !std::isfinite(v)) return false;
+            c = int(std::clamp(std::floor(u * (cols_ - 1)), 0.0, double(cols_ - 2)));
+            r = int(std::clamp(std::floor(v * (rows_ - 1)), 0.0, double(rows_ - 2)));
+        }
+    }
+    return walk(x, y, c, r);
+}
+
+// Triangle `which` of cell (c, r) tested as TerrainLocator::locate tests it: true when (x, y)
+// lies in it within the tolerance `eps` of each barycentric coordinate (the hit filled in).
+bool DemDraper::triangle_hit(double x, double y, int c, int r, int which, double eps, DemHit& hit) const {
+    if (!s_->triangle_valid(c, r, which)) return false;
+    const int nc[3] = {c, which == 0 ? c : c + 1, c + 1};
+    const int nr[3] = {r, r + 1, which == 0 ? r + 1 : r};
+    const glm::dvec2 p0(s_->node_xy(nc[0], nr[0])), p1(s_->node_xy(nc[1], nr[1])), p2(s_->node_xy(nc[2], nr[2]));
+    const double det = (p1.x - p0.x) * (p2.y - p0.y) - (p2.x - p0.x) * (p1.y - p0.y);
+    if (std::abs(det) < 1e-12) return false;
+    const double u = ((x - p0.x) * (p2.y - p0.y) - (p2.x - p0.x) * (y - p0.y)) / det;
+    const double w = ((p1.x - p0.x) * (y - p0.y) - (x - p0.x) * (p1.y - p0.y)) / det;
+    if (u < -eps || w < -eps || u + w > 1.0 + eps) return false;
+    for (int k = 0; k < 3; ++k) hit.node[k] = std::uint32_t(s_->index(nc[k], nr[k]));
+    hit.bary = glm::vec3(float(1.0 - u - w), float(u), float(w));
+    hit.cell = std::uint32_t(r) * std::uint32_t(s_->cols() - 1) + std::uint32_t(c);
+    return true;
+}
+
+bool DemDraper::locate(double x, double y, int& c, int& r, DemHit& hit) const {
+    if (!s_->find_cell(x, y, c, r)) return false;
+    // Well inside one of the cell's triangles (1e-5 of its size from every edge), no other
+    // triangle comes within TerrainLocator's tolerance of the point: that one.
+    for (int which = 0; which < 2; ++which)
+        if (triangle_hit(x, y, c, r, which, -1e-5, hit)) return triangle_hit(x, y, c, r, which, 1e-7, hit);
+    // Else TerrainLocator::locate's rule: the first triangle in mesh order whose barycentric
+    // coordinates are all >= -1e-7; any such triangle touches the cell's 3 x 3 neighbourhood.
+    for (int rr = r - 1; rr <= r + 1; ++rr)
+        for (int cc = c - 1; cc <= c + 1; ++cc)
+            for (int which = 0; which < 2; ++which)
+                if (triangle_hit(x, y, cc, rr, which, 1e-7, hit)) return true;
+    return false;
+}
+
+void DemDraper::position_normal(const DemHit& hit, glm::vec3& position, glm::vec3& normal) const {
+    glm::vec3 p[3], n[3];
+    for (int k = 0; k < 3; ++k) {
+        const int c = int(hit.node[k] % std::uint32_t(s_->cols())), r = int(hit.node[k] / std::uint32_t(s_->cols()));
+        p[k] = s_->node(c, r), n[k] = s_->normal(c, r);
+    }
+    const PnPatch patch = pn_patch(p[0], p[1], p[2], n[0], n[1], n[2]);
+    position = pn_position(patch, hit.bary);
+    normal = pn_normal(patch, hit.bary);
+}
+
+}  // namespace penink

@@ -1,0 +1,112 @@
+// The PN-triangle surface (Vlachos et al., "Curved PN Triangles") of a full-resolution DEM grid,
+// evaluated under plan points without a mesh of the DEM: the surface of mesh_from_terrain
+// (surface_mesh.hpp: each cell split along its NW-SE diagonal into (NW, SW, SE) and (NW, SE, NE),
+// a triangle present when its three nodes hold data; vertex normal = normalised sum of the unit
+// normals of the incident triangles) and of TerrainLocator's lookup (terrain_locator.hpp), bit
+// for bit: the cell under a point is found from the grid (the inverse of the affine node formula,
+// input/terrain.hpp, or a walk over a curvilinear grid), the containing triangle is the first in
+// mesh order (row-major cells, (NW, SW, SE) first) within the locator's tolerance, and the normals
+// of its three nodes are summed from their incident triangles in mesh order. Used to drape the
+// creases and ridges once when the drainage database is built (draped_lines.hpp).
+// Frame: the Terrain's local metres (x east, y north, z elevation as the grid holds it: the drainage
+// build uses unexaggerated heights).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "core/big_allocator.hpp"
+#include "drainage/drainage_grid.hpp"
+#include "input/terrain.hpp"
+
+namespace penink {
+
+// A view of a DEM grid's nodes (row 0 north): elevations and validity, and x, y either from the
+// affine node formula (affine_node_xy, exactly what the DEM reader stores) or per node, plus the
+// vertex normal of every node (12 B a node, made on all cores). Holds pointers into the grid or
+// Terrain it was made from, which must outlive it.
+class DemSurface {
+public:
+    // The full-resolution DEM of a drainage grid: at factor 1 the grid itself (g.z, g.valid, x, y
+    // as grid_xy gives them), at factor > 1 its coarse nodes (coarse_z, coarse_valid, coarse_xy).
+    explicit DemSurface(const DrainageGrid& g);
+    // A Terrain with positions (Terrain::pos; z as stored there).
+    explicit DemSurface(const Terrain& t);
+
+    int cols() const { return cols_; }
+    int rows() const { return rows_; }
+    bool valid(std::size_t i) const { return valid_[i] != 0; }
+    glm::vec3 node(int c, int r) const {
+        const std::size_t i = index(c, r);
+        if (pos_) return pos_[i];
+        const glm::vec2 p = node_xy(c, r);
+        return {p.x, p.y, z_[i]};
+    }
+    glm::vec2 node_xy(int c, int r) const {
+        const std::size_t i = index(c, r);
+        if (pos_) return glm::vec2(pos_[i]);
+        if (xy_) return xy_[i];
+        if (!col_x_.empty()) return {col_x_[std::size_t(c)], row_y_[std::size_t(r)]};
+        return affine_node_xy(nodes_, origin_, c, r);
+    }
+    std::size_t index(int c, int r) const { return std::size_t(r) * std::size_t(cols_) + std::size_t(c); }
+    // The unit vertex normal of node (c, r) as compute_normals gives it ((0, 0, 1) in no triangle).
+    glm::vec3 normal(int c, int r) const { return normals_[index(c, r)]; }
+    // Triangle `which` of cell (c, r) (0: NW, SW, SE; 1: NW, SE, NE) is part of the surface: the
+    // cell lies on the grid and the triangle's three nodes hold data.
+    bool triangle_valid(int c, int r, int which) const {
+        if (c < 0 || r < 0 || c > cols_ - 2 || r > rows_ - 2) return false;
+        const std::size_t a = index(c, r), d = index(c + 1, r + 1);
+        return valid_[a] && valid_[d] && valid_[which == 0 ? a + std::size_t(cols_) : a + 1];
+    }
+
+    // A cell (c, r) whose quadrilateral holds (x, y) within a tolerance, searched from (c, r) as
+    // given (a hint: -1 for none); false when the point lies off the grid.
+    bool find_cell(double x, double y, int& c, int& r) const;
+
+private:
+    int cols_ = 0, rows_ = 0;
+    const std::uint8_t* valid_ = nullptr;
+    const float* z_ = nullptr;           // with x, y from xy_ or the affine formula
+    const glm::vec3* pos_ = nullptr;     // or x, y, z per node
+    const glm::vec2* xy_ = nullptr;
+    bool affine_ = false;
+    AffineNodes nodes_;
+    glm::dvec2 origin_{0.0};
+    std::vector<float> col_x_, row_y_;  // affine without rotation terms: x by column, y by row
+    double inv_[4] = {0, 0, 0, 0};     // inverse of the affine grid's 2x2 part (source units)
+    std::vector<glm::vec3, UninitAllocator<glm::vec3>> normals_;
+
+    void make_normals();
+
+    bool affine_guess(double x, double y, int& c, int& r) const;
+    bool walk(double x, double y, int& c, int& r) const;
+};
+
+// Where a plan point lies on the DEM's PN surface: its triangle (node indices in mesh order) and
+// barycentric weights, as TerrainLocator::locate gives them.
+struct DemHit {
+    std::uint32_t node[3] = {0, 0, 0};
+    glm::vec3 bary{0.0f};
+    std::uint32_t cell = 0;  // the triangle's cell (c + r * (cols - 1))
+};
+
+// Evaluates the PN surface of a DemSurface (from any number of threads).
+class DemDraper {
+public:
+    explicit DemDraper(const DemSurface& s) : s_(&s) {}
+    // The triangle holding (x, y) (the first in mesh order within TerrainLocator's tolerance);
+    // `c`, `r`: a cell near the point when known (-1 otherwise), set to the cell found. False off
+    // the surface (outside the grid or where no triangle holds data).
+    bool locate(double x, double y, int& c, int& r, DemHit& hit) const;
+    // PN position and unit normal at a hit (TerrainLocator::pn_position_normal_at).
+    void position_normal(const DemHit& hit, glm::vec3& position, glm::vec3& normal) const;
+
+private:
+    const DemSurface* s_;
+    bool triangle_hit(double x, double y, int c, int r, int which, double eps, DemHit& hit) const;
+};
+
+}  // namespace penink

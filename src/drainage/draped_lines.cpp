@@ -1,0 +1,338 @@
+#include "drainage/draped_lines.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+
+#include "core/error.hpp"
+#include "core/parallel_chunks.hpp"
+#include "drainage/d8.hpp"
+#include "drainage/stems.hpp"
+#include "lines/polyline_smoothing.hpp"
+
+namespace penink {
+
+namespace {
+
+// The drainage stems walked on the network's cells (drainage_stems on the branches the network
+// gives, build_branches): a stem starts at each source (a valid cell nothing drains into; cell
+// order = branch order), runs down its branch and on through every junction whose main upstream
+// branch it arrives by, and ends at an outlet or with the junction where it joins another stem.
+struct StemWalk {
+    const DrainageGrid& g;
+    const std::vector<std::uint8_t>& dir;
+    const FlowNetwork& net;
+    GridShape shape{g.cols, g.rows, g.valid.data()};
+    std::vector<std::uint8_t> own_indeg;
+    const std::vector<std::uint8_t>& indeg;
+    std::vector<double> total;  // accumulation at each basin's outlet
+
+    StemWalk(const DrainageGrid& grid, const std::vector<std::uint8_t>& d, const FlowNetwork& n)
+        : g(grid), dir(d), net(n),
+          own_indeg(n.indeg.size() == grid.size() ? std::vector<std::uint8_t>() : inflow_counts(d, shape)),
+          indeg(own_indeg.empty() ? n.indeg : own_indeg) {
+        total.resize(net.outlet.size());
+        for (std::size_t b = 0; b < total.size(); ++b) total[b] = net.acc[net.outlet[b]];
+    }
+    StemWalk(const StemWalk&) = delete;
+
+    // The drainage vertex of cell i (build_branches' point_vertex).
+    DvVertex vertex(std::size_t i) const {
+        const glm::dvec2 p = grid_xy(g, int(i % std::size_t(g.cols)), int(i / std::size_t(g.cols)));
+        return {float(p.x), float(p.y), g.z[i], float(double(net.acc[i]) / total[net.basin[i] - 1])};
+    }
+
+    // Calls f(m) for each valid cell draining into cell d.
+    template <class F> void each_upstream(std::size_t d, F&& f) const {
+        const int c = int(d % std::size_t(g.cols)), r = int(d / std::size_t(g.cols));
+        for (int k = 0; k < 8; ++k) {
+            const int mc = c - d8_dc[k], mr = r - d8_dr[k];
+            if (mc < 0 || mr < 0 || mc >= g.cols || mr >= g.rows) continue;
+            const std::size_t m = g.index(mc, mr);
+            if (g.valid[m] && dir[m] == std::uint8_t(1u << k)) f(m);
+        }
+    }
+
+    // Head of the branch holding cell m (= its branch id's rank): up through single-inflow cells.
+    std::size_t head(std::size_t m) const {
+        for (std::size_t steps = 0; indeg[m] == 1; ++steps) {
+            if (steps > g.size()) cycle();
+            std::size_t up = m;
+            each_upstream(m, [&](std::size_t u) { up = u; });
+            m = up;
+        }
+        return m;
+    }
+
+    // Whether the branch arriving at junction d through cell n is d's main upstream branch
+    // (stems.cpp main_upstream: highest order, then larger flow just above the junction, then
+    // the lower branch id).
+    bool main_into(std::size_t n, std::size_t d) const {
+        struct Candidate {
+            std::size_t cell;
+            std::uint8_t order;
+            float flow;
+        };
+        Candidate c[8];
+        int k = 0, best = -1;
+        each_upstream(d, [&](std::size_t m) {
+            c[k] = {m, net.order[m], vertex_flow(m)};
+            if (best < 0 || c[k].order > c[best].order || (c[k].order == c[best].order && c[k].flow > c[best].flow))
+                best = k;
+            ++k;
+        });
+        bool tied_with_n = false;
+        int others = 0;
+        for (int i = 0; i < k; ++i) {
+            const bool tied = c[i].order == c[best].order && c[i].flow == c[best].flow;
+            if (!tied) continue;
+            if (c[i].cell == n) tied_with_n = true;
+            else ++others;
+        }
+        if (!tied_with_n) return false;
+        if (others == 0) return true;
+        const std::size_t own = head(n);
+        for (int i = 0; i < k; ++i)
+            if (c[i].cell != n && c[i].order == c[best].order && c[i].flow == c[best].flow && head(c[i].cell) < own)
+                return false;
+        return true;
+    }
+
+    float vertex_flow(std::size_t i) const { return float(double(net.acc[i]) / total[net.basin[i] - 1]); }
+
+    [[noreturn]] static void cycle() {
+        throw Error("drainage", "", "flow directions contain a cycle (stem without an end)", ExitCode::internal);
+    }
+
+    // Emits the cells of the stem starting at `source`, dropping a vertex at the x, y of the one
+    // before it (drainage_stems' shared junction rule); returns the stem's order.
+    template <class Emit> std::uint8_t walk(std::size_t source, Emit&& emit) const {
+        std::uint8_t order = 0;
+        DvVertex last{};
+        bool any = false;
+        auto put = [&](std::size_t c) {
+            const DvVertex v = vertex(c);
+            if (any && last.x == v.x && last.y == v.y) return;
+            emit(v), last = v, any = true;
+        };
+        std::size_t c = source;
+        for (std::size_t steps = 0; steps <= g.size(); ++steps) {
+            put(c);
+            order = std::max(order, net.order[c]);
+            if (!dir[c]) return order;
+            const std::size_t d = d8_target(shape, c, dir[c]);
+            if (indeg[d] != 1 && !main_into(c, d)) {
+                put(d);
+                return order;
+            }
+            c = d;
+        }
+        cycle();
+    }
+};
+
+DrapedVertex draped(const DvVertex& v) { return {v.x, v.y, v.z, 0.0f, 0.0f, 0.0f, v.flow}; }
+
+std::uint64_t xy_key(const DrapedVertex& v) {
+    return (std::uint64_t(std::bit_cast<std::uint32_t>(v.x)) << 32) | std::bit_cast<std::uint32_t>(v.y);
+}
+
+// The x, y keys of the lines' ends (open addressing, 12 bytes a slot, 1.5 slots an end), each
+// with the first interior vertex (in line order) at the same x, y: rejoin_line_ends' matches,
+// found before smoothing.
+class EndMatches {
+public:
+    explicit EndMatches(const DrapedLineSet& set) {
+        std::size_t ends = 0;
+        for (const DrapedLine& l : set.lines) ends += l.count >= 2 ? 2 : 0;
+        key_.assign(std::max<std::size_t>(16, ends + ends / 2), empty);
+        first_.assign(key_.size(), none);
+        for (const DrapedLine& l : set.lines)
+            if (l.count >= 2)
+                for (std::uint32_t e : {l.first, l.first + l.count - 1}) insert(xy_key(set.vertices[e]));
+        // interior vertices (lines of 3 or more), on all cores; the least index wins
+        parallel_chunks(set.lines.size(), 4096, [&](std::size_t l0, std::size_t l1) {
+            for (std::size_t i = l0; i < l1; ++i) {
+                const DrapedLine& l = set.lines[i];
+                for (std::uint32_t k = 1; k + 1 < l.count; ++k) {
+                    const std::size_t s = find(xy_key(set.vertices[l.first + k]));
+                    if (s == npos) continue;
+                    std::atomic_ref<std::uint32_t> best(first_[s]);
+                    std::uint32_t seen = best.load(std::memory_order_relaxed);
+                    while (l.first + k < seen && !best.compare_exchange_weak(seen, l.first + k)) {
+                    }
+                }
+            }
+        });
+    }
+    // The interior vertex an end at x, y follows, or `none`.
+    std::uint32_t target(const DrapedVertex& v) const {
+        const std::size_t s = find(xy_key(v));
+        return s == npos ? none : first_[s];
+    }
+    static constexpr std::uint32_t none = 0xffffffffu;
+
+private:
+    static constexpr std::size_t npos = std::size_t(-1);
+    static constexpr std::uint64_t empty = ~std::uint64_t(0);  // NaN, NaN: no vertex's x, y
+    std::vector<std::uint64_t, UninitAllocator<std::uint64_t>> key_;
+    std::vector<std::uint32_t, UninitAllocator<std::uint32_t>> first_;
+
+    std::size_t slot(std::uint64_t k) const {
+        k ^= k >> 31, k *= 0x7fb5d329728ea185ull, k ^= k >> 27, k *= 0x81dadef4bc2dd44dull, k ^= k >> 33;
+        return std::size_t((unsigned __int128)k * key_.size() >> 64);
+    }
+    void insert(std::uint64_t k) {
+        if (k == empty) return;
+        std::size_t s = slot(k);
+        while (key_[s] != empty && key_[s] != k) s = s + 1 == key_.size() ? 0 : s + 1;
+        key_[s] = k;
+    }
+    std::size_t find(std::uint64_t k) const {
+        if (k == empty) return npos;
+        for (std::size_t s = slot(k);; s = s + 1 == key_.size() ? 0 : s + 1) {
+            if (key_[s] == empty) return npos;
+            if (key_[s] == k) return s;
+        }
+    }
+};
+
+// smooth_runs_xy(3) line by line (each run is smoothed on its own, so the same floats as one call
+// over all of them), on all cores.
+void smooth_each_line(DrapedLineSet& set) {
+    parallel_chunks(set.lines.size(), 4096, [&](std::size_t l0, std::size_t l1) {
+        std::vector<glm::vec3> p;
+        for (std::size_t i = l0; i < l1; ++i) {
+            const DrapedLine& l = set.lines[i];
+            if (l.count < 3) continue;
+            DrapedVertex* v = set.vertices.data() + l.first;
+            p.resize(l.count);
+            for (std::uint32_t k = 0; k < l.count; ++k) p[k] = {v[k].x, v[k].y, v[k].z};
+            smooth_runs_xy(p, {VertexRun{0, l.count}}, 3);
+            for (std::uint32_t k = 0; k < l.count; ++k) v[k].x = p[k].x, v[k].y = p[k].y;
+        }
+    });
+}
+
+}  // namespace
+
+DrapedLineSet network_stems(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net) {
+    const StemWalk walk(g, dir, net);
+    std::vector<std::uint32_t> sources;
+    for (std::size_t i = 0; i < g.size(); ++i)
+        if (g.valid[i] && walk.indeg[i] == 0) sources.push_back(std::uint32_t(i));
+    DrapedLineSet set;
+    set.lines.resize(sources.size());
+    parallel_chunks(sources.size(), 1024, [&](std::size_t s0, std::size_t s1) {  // sizes and orders first
+        for (std::size_t s = s0; s < s1; ++s) {
+            std::uint32_t n = 0;
+            set.lines[s].order = walk.walk(sources[s], [&](const DvVertex&) { ++n; });
+            set.lines[s].count = n;
+        }
+    });
+    std::uint64_t next = 0;
+    for (DrapedLine& l : set.lines) {
+        if (next > 0xffffffffull - l.count)
+            throw Error("drainage", "", "too many stem vertices for the database (4 G or more)", ExitCode::internal);
+        l.first = std::uint32_t(next), next += l.count;
+    }
+    set.vertices.resize(next);
+    parallel_chunks(sources.size(), 1024, [&](std::size_t s0, std::size_t s1) {
+        for (std::size_t s = s0; s < s1; ++s) {
+            DrapedVertex* out = set.vertices.data() + set.lines[s].first;
+            walk.walk(sources[s], [&](const DvVertex& v) { *out++ = draped(v); });
+        }
+    });
+    return set;
+}
+
+DrapedLineSet listed_lines(const DvVertices& vertices, const std::vector<std::vector<std::uint32_t>>& lines) {
+    DrapedLineSet set;
+    std::size_t n = 0;
+    for (const auto& line : lines) n += line.size();
+    set.vertices.resize(n);
+    std::size_t at = 0;
+    for (const auto& line : lines) {
+        DrapedLine l;
+        l.first = std::uint32_t(at), l.count = std::uint32_t(line.size());
+        for (std::uint32_t i : line) set.vertices[at++] = draped(vertices[i]);
+        if (l.count) set.lines.push_back(l);
+    }
+    return set;
+}
+
+void smooth_lines(DrapedLineSet& set) {
+    std::vector<std::uint32_t> follow;  // rejoin_line_ends: (end, interior vertex) pairs
+    {
+        const EndMatches matches(set);
+        for (const DrapedLine& l : set.lines)
+            if (l.count >= 2)
+                for (std::uint32_t e : {l.first, l.first + l.count - 1})
+                    if (const std::uint32_t t = matches.target(set.vertices[e]); t != EndMatches::none)
+                        follow.push_back(e), follow.push_back(t);
+    }
+    smooth_each_line(set);
+    for (std::size_t k = 0; k < follow.size(); k += 2) {
+        set.vertices[follow[k]].x = set.vertices[follow[k + 1]].x;
+        set.vertices[follow[k]].y = set.vertices[follow[k + 1]].y;
+    }
+}
+
+void drape_lines(DrapedLineSet& set, const DemSurface& surface, const LineProgress& progress) {
+    // In batches of lines so the progress moves; each thread walks its lines with the cell of the
+    // vertex before as the next one's start.
+    constexpr std::size_t batches = 16;
+    const std::size_t nl = set.lines.size(), per = (nl + batches - 1) / batches;
+    for (std::size_t b = 0; b < batches && b * per < nl; ++b) {
+        const std::size_t end = std::min(nl, (b + 1) * per);
+        parallel_chunks(end - b * per, 256, [&](std::size_t l0, std::size_t l1) {
+            const DemDraper draper(surface);
+            for (std::size_t i = b * per + l0; i < b * per + l1; ++i) {
+                const DrapedLine& l = set.lines[i];
+                int c = -1, r = -1;
+                for (std::uint32_t k = 0; k < l.count; ++k) {
+                    DrapedVertex& v = set.vertices[l.first + k];
+                    DemHit hit;
+                    if (!draper.locate(v.x, v.y, c, r, hit)) {
+                        v.nx = v.ny = v.nz = 0.0f;
+                        continue;
+                    }
+                    glm::vec3 p, n;
+                    draper.position_normal(hit, p, n);
+                    v.z = p.z, v.nx = n.x, v.ny = n.y, v.nz = n.z;
+                }
+            }
+        });
+        if (progress) progress(double(end) / double(nl));
+    }
+    index_lines(set);
+    if (progress) progress(1.0);
+}
+
+void smooth_and_drape(DrapedLineSet& set, const DemSurface& surface, const LineProgress& progress) {
+    smooth_lines(set);
+    drape_lines(set, surface, progress);
+}
+
+void build_draped_lines(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
+                        DrainageDb& db, const LineProgress& progress) {
+    auto report = [&](double f) {
+        if (progress) progress(f);
+    };
+    // smoothing (its table of line ends) before the surface's normals: never both in memory
+    db.creases = network_stems(g, dir, net);
+    report(0.05);
+    smooth_lines(db.creases);
+    report(0.1);
+    db.ridges = listed_lines(db.divide_vertices, divide_polylines(db));
+    smooth_lines(db.ridges);
+    report(0.15);
+    const DemSurface surface(g);
+    report(0.2);
+    const double nc = double(db.creases.vertices.size()), nr = double(db.divide_vertices.size());
+    const double share = nc + nr > 0.0 ? nc / (nc + nr) : 1.0;
+    drape_lines(db.creases, surface, [&](double f) { report(0.2 + 0.8 * share * f); });
+    drape_lines(db.ridges, surface, [&](double f) { report(0.2 + 0.8 * (share + (1.0 - share) * f)); });
+}
+
+}  // namespace penink

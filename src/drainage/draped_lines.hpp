@@ -1,0 +1,53 @@
+// Building the creases and ridges the drainage database stores for drawing (line_set.hpp; Mower,
+// "Concurrent Drainage Network Rendering": drainage vertices draped on the PN surface):
+// 1. lines: the drainage stems (stems.hpp: drainage_stems, walked here on the network's cells,
+//    the same vertices) and the basin divides (divide_polylines), vertices as the DrainageDb
+//    holds them (x, y, z of the drainage point, normalised flow);
+// 2. smoothing: smooth_runs_xy with 3 iterations, then rejoin_line_ends (lines/polyline_smoothing.hpp),
+//    over all the lines of a set at once;
+// 3. draping: each vertex's z and unit normal from the PN surface of the full-resolution DEM
+//    (dem_surface.hpp, no mesh of it; TerrainLocator's lookup on mesh_from_terrain bit for bit);
+//    a vertex off the surface keeps its z and gets a zero normal;
+// 4. each line's plan box and length, and the set's spatial index (index_lines).
+// Memory beyond the result (28 B a vertex, 28 B a line): while smoothing, the ends of the lines in
+// a hash table (18 B an end); while draping, the DEM's node normals (12 B a node, dem_surface.hpp);
+// never both at once.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "drainage/dem_surface.hpp"
+#include "drainage/drainage_db.hpp"
+#include "drainage/drainage_grid.hpp"
+#include "drainage/flow_network.hpp"
+
+namespace penink {
+
+// Called with the fraction of a set's smoothing and draping done, in [0, 1] (from the calling
+// thread).
+using LineProgress = std::function<void(double fraction)>;
+
+// Step 1 for the stems of a network: its drainage_stems, each vertex as build_branches would store
+// it (x, y from grid_xy, z from g.z, normalised flow); each line's order is the Strahler order at
+// its end (that of the branch the stem last runs through). Normals, boxes and index unset.
+DrapedLineSet network_stems(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net);
+
+// Step 1 for lines given as index lists into `vertices` (drainage_stems(db) and db.vertices,
+// divide_polylines(db) and db.divide_vertices); orders 0.
+DrapedLineSet listed_lines(const DvVertices& vertices, const std::vector<std::vector<std::uint32_t>>& lines);
+
+// Step 2 on a set made by step 1.
+void smooth_lines(DrapedLineSet& set);
+// Steps 3 and 4 on a smoothed set.
+void drape_lines(DrapedLineSet& set, const DemSurface& surface, const LineProgress& progress = {});
+// Steps 2-4 on a set made by step 1.
+void smooth_and_drape(DrapedLineSet& set, const DemSurface& surface, const LineProgress& progress = {});
+
+// Both sets of a built network into db.creases and db.ridges (the divides from db.divides and
+// db.divide_vertices), on the DEM of `g` (DemSurface(g): g.z must hold the original elevations).
+// `progress` gets the fraction of the two sets done.
+void build_draped_lines(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
+                        DrainageDb& db, const LineProgress& progress = {});
+
+}  // namespace penink

@@ -1,0 +1,328 @@
+// Creases and ridges draped at build time (draped_lines.hpp, dem_surface.hpp, line_set.hpp):
+// the stems walked on the network are drainage_stems' vertices exactly; smoothing and draping on
+// the DEM grid without a mesh give what smoothing (smooth_runs_xy 3, rejoin_line_ends) and
+// draping with TerrainLocator on mesh_from_terrain of the whole DEM give (volcano at factors 5
+// and 1, geographic jacksboro on its curvilinear UTM grid, a rotated affine grid, a grid with
+// nodata); the line index returns exactly the lines whose box meets a query box; the build's
+// progress rises monotonically through the draping stage; the network bytes of volcano do not
+// depend on the lines part.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "drainage/dem_surface.hpp"
+#include "drainage/draped_lines.hpp"
+#include "drainage/drainage_build.hpp"
+#include "drainage/stems.hpp"
+#include "input/dem_reader.hpp"
+#include "lines/polyline_smoothing.hpp"
+#include "support/synthetic_terrain.hpp"
+#include "surface/surface_mesh.hpp"
+#include "surface/terrain_locator.hpp"
+
+namespace penink {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The lines as a per-frame preparation drew them from the whole DEM: the index lists laid out,
+// smoothed (smooth_runs_xy 3, rejoin_line_ends), each vertex draped with TerrainLocator on the
+// mesh (z and PN normal; off the mesh its own z and a zero normal).
+struct LocatorLines {
+    std::vector<glm::vec3> positions, normals;
+    std::vector<float> flow;
+    std::vector<VertexRun> runs;
+};
+
+LocatorLines locator_lines(const DvVertices& v, const std::vector<std::vector<std::uint32_t>>& lines,
+                           const SurfaceMesh& mesh) {
+    LocatorLines out;
+    for (const auto& line : lines) {
+        out.runs.push_back({std::uint32_t(out.positions.size()), std::uint32_t(line.size())});
+        for (std::uint32_t i : line) out.positions.push_back({v[i].x, v[i].y, v[i].z}), out.flow.push_back(v[i].flow);
+    }
+    const std::vector<glm::vec3> before = out.positions;
+    smooth_runs_xy(out.positions, out.runs, 3);
+    rejoin_line_ends(before, out.runs, out.positions);
+    const TerrainLocator locator(mesh);
+    out.normals.assign(out.positions.size(), glm::vec3(0.0f));
+    for (std::size_t i = 0; i < out.positions.size(); ++i) {
+        SurfaceHit hit;
+        if (!locator.locate(out.positions[i].x, out.positions[i].y, hit)) continue;
+        glm::vec3 p;
+        locator.pn_position_normal_at(hit, p, out.normals[i]);
+        out.positions[i].z = p.z;
+    }
+    return out;
+}
+
+struct Agreement {
+    std::size_t vertices = 0, exact = 0, off_surface = 0, beyond_tolerance = 0;
+};
+
+// The stored set against the locator's lines: the same runs, x, y and flow exactly; z and the
+// normal within 1e-4 relative (counted); off the surface on both sides together.
+Agreement compare(const DrapedLineSet& set, const LocatorLines& ref) {
+    Agreement a;
+    EXPECT_EQ(set.lines.size(), ref.runs.size());
+    EXPECT_EQ(set.vertices.size(), ref.positions.size());
+    if (set.vertices.size() != ref.positions.size() || set.lines.size() != ref.runs.size()) return a;
+    for (std::size_t l = 0; l < set.lines.size(); ++l) {
+        EXPECT_EQ(set.lines[l].first, ref.runs[l].first);
+        EXPECT_EQ(set.lines[l].count, ref.runs[l].count);
+    }
+    for (std::size_t i = 0; i < set.vertices.size(); ++i) {
+        const DrapedVertex& v = set.vertices[i];
+        const glm::vec3 n(v.nx, v.ny, v.nz), p = ref.positions[i], m = ref.normals[i];
+        ++a.vertices;
+        EXPECT_EQ(v.x, p.x) << i;
+        EXPECT_EQ(v.y, p.y) << i;
+        EXPECT_EQ(v.flow, ref.flow[i]) << i;
+        EXPECT_EQ(n == glm::vec3(0.0f), m == glm::vec3(0.0f)) << i;
+        a.off_surface += n == glm::vec3(0.0f);
+        if (v.z == p.z && n == m) ++a.exact;
+        if (std::abs(v.z - p.z) > 1e-4f * std::max(1.0f, std::abs(p.z)) || glm::length(n - m) > 1e-4f)
+            ++a.beyond_tolerance;
+    }
+    return a;
+}
+
+// A database built from `t` (in memory) against the locator's drape on mesh_from_terrain(t).
+void expect_locator_drape(const Terrain& t, int factor, const std::string& what) {
+    DrainageOptions o;
+    o.resample = factor;
+    const DrainageDb db = build_drainage_db(t, o);
+    const SurfaceMesh mesh = mesh_from_terrain(t);
+    const Agreement creases = compare(db.creases, locator_lines(db.vertices, drainage_stems(db), mesh));
+    const Agreement ridges = compare(db.ridges, locator_lines(db.divide_vertices, divide_polylines(db), mesh));
+    EXPECT_GT(creases.vertices, std::size_t(db.cols) * std::size_t(db.rows) / 2) << what;
+    EXPECT_GT(ridges.vertices, 0u) << what;
+    EXPECT_EQ(creases.beyond_tolerance, 0u) << what;
+    EXPECT_EQ(ridges.beyond_tolerance, 0u) << what;
+    // the same floats: the mesh's normals, triangles and barycentric weights, found on the grid
+    EXPECT_EQ(creases.exact, creases.vertices) << what;
+    EXPECT_EQ(ridges.exact, ridges.vertices) << what;
+    ::testing::Test::RecordProperty(what + "_crease_vertices", int(creases.vertices));
+    ::testing::Test::RecordProperty(what + "_off_surface", int(creases.off_surface + ridges.off_surface));
+}
+
+TEST(DrapedLines, VolcanoDrapeEqualsTheLocatorOnTheWholeMesh) {
+    const Terrain dem = read_dem(PENINK_SOURCE_DIR "/examples/volcano.asc");
+    expect_locator_drape(dem, 0, "volcano_factor5");
+    expect_locator_drape(dem, 1, "volcano_factor1");
+}
+
+TEST(DrapedLines, GeographicDemDrapeEqualsTheLocator) {  // curvilinear UTM grid: found by walking
+    const Terrain dem = read_dem(PENINK_SHARED_DIR "/data/jacksboro.tif");
+    ASSERT_TRUE(dem.source_geographic);
+    expect_locator_drape(dem, 1, "jacksboro_factor1");
+}
+
+TEST(DrapedLines, NodataAndNonAffineGridDrapeEqualsTheLocator) {
+    Terrain t = terrain_from_function(70, 55, 10.0, [](double x, double y) { return rough_hills(4 * x, 4 * y) * 0.2; });
+    cut_hole(t, 60.0, -40.0, 55.0);
+    cut_hole(t, -200.0, 150.0, 80.0);  // on the north-west edge
+    expect_locator_drape(t, 1, "holes_factor1");
+    expect_locator_drape(t, 3, "holes_factor3");
+}
+
+// A DEM on a rotated affine grid (a geotransform with rotation terms): the cell under a point
+// from the inverse of the node formula, on the drainage grid (nodes by the formula) and on the
+// Terrain (stored nodes), against the locator at points all over and around it.
+TEST(DrapedLines, RotatedAffineGridLocatesAsTheMesh) {
+    Terrain t;
+    t.cols = 40, t.rows = 30, t.xy_unit = 1.0;
+    const double s = 25.0, a = 0.4;
+    t.geotransform = {500000.0, s * std::cos(a), s * std::sin(a), 4200000.0, s * std::sin(a), -s * std::cos(a)};
+    t.origin = {500300.0, 4199700.0};
+    AffineNodes nodes;
+    ASSERT_TRUE(terrain_affine(t, nodes));
+    for (int r = 0; r < t.rows; ++r)
+        for (int c = 0; c < t.cols; ++c) {
+            const glm::vec2 xy = affine_node_xy(nodes, t.origin, c, r);
+            t.pos.push_back({xy.x, xy.y, float(30.0 * std::sin(0.3 * c) * std::cos(0.2 * r) + 0.5 * c)});
+            t.valid.push_back(!(c > 20 && c < 24 && r > 10 && r < 15));
+        }
+    const SurfaceMesh mesh = mesh_from_terrain(t);
+    const TerrainLocator locator(mesh);
+    const DrainageGrid g = resample_pn(t, 1);
+    ASSERT_TRUE(g.has_affine);
+    const DemSurface on_grid(g), on_terrain(t);
+    glm::dvec3 lo, hi;
+    terrain_bounds(t, lo, hi);
+    std::uint32_t h = 7;
+    int hits = 0;
+    for (int k = 0; k < 20000; ++k) {
+        h = h * 1664525u + 1013904223u;
+        const float x = float(lo.x - 30.0 + (hi.x - lo.x + 60.0) * (h >> 8) / 16777216.0);
+        h = h * 1664525u + 1013904223u;
+        const float y = float(lo.y - 30.0 + (hi.y - lo.y + 60.0) * (h >> 8) / 16777216.0);
+        SurfaceHit want;
+        const bool on = locator.locate(x, y, want);
+        glm::vec3 wp, wn;
+        if (on) locator.pn_position_normal_at(want, wp, wn);
+        for (const DemSurface* surface : {&on_grid, &on_terrain}) {
+            const DemDraper draper(*surface);
+            int c = -1, r = -1;
+            DemHit got;
+            ASSERT_EQ(draper.locate(x, y, c, r, got), on) << x << " " << y;
+            if (!on) continue;
+            const glm::uvec3 v = mesh.tri[want.triangle];
+            EXPECT_EQ(glm::uvec3(got.node[0], got.node[1], got.node[2]), v);
+            EXPECT_EQ(got.bary, want.bary);
+            glm::vec3 p, n;
+            draper.position_normal(got, p, n);
+            EXPECT_EQ(p, wp);
+            EXPECT_EQ(n, wn);
+        }
+        hits += on;
+    }
+    EXPECT_GT(hits, 10000);
+}
+
+TEST(DrapedLines, StemsFromTheNetworkAreDrainageStems) {
+    Terrain t = terrain_from_function(90, 70, 10.0,
+                                      [](double x, double y) { return std::round(rough_hills(3 * x, 3 * y) * 0.1); });
+    cut_hole(t, 100.0, 50.0, 60.0);
+    for (int factor : {1, 2}) {
+        DrainageGrid g = resample_pn(t, factor);
+        DrainageResult res;
+        const DrainageDb db = drainage_db_from_grid(g, {}, &res);
+        const DrapedLineSet walked = network_stems(g, res.dir, res.net);
+        const DrapedLineSet listed = listed_lines(db.vertices, drainage_stems(db));
+        ASSERT_EQ(walked.lines.size(), listed.lines.size());
+        EXPECT_GT(walked.lines.size(), 500u);
+        EXPECT_TRUE(walked.vertices == listed.vertices);
+        for (std::size_t l = 0; l < walked.lines.size(); ++l) {
+            EXPECT_EQ(walked.lines[l].first, listed.lines[l].first);
+            EXPECT_EQ(walked.lines[l].count, listed.lines[l].count);
+        }
+        // each stem's order: that of the branch it ends in (its own at a junction it joins)
+        std::uint8_t top = 0;
+        for (const DrapedLine& l : walked.lines) {
+            top = std::max(top, l.order);
+            EXPECT_GE(l.order, 1);
+        }
+        EXPECT_GE(top, 3);
+    }
+}
+
+TEST(DrapedLines, LinesMeetingABoxAreExactlyThoseWhoseBoxMeetsIt) {
+    const DrainageDb db = build_drainage_db(read_dem(PENINK_SOURCE_DIR "/examples/volcano.asc"), DrainageOptions{});
+    for (const DrapedLineSet* set : {&db.creases, &db.ridges}) {
+        ASSERT_TRUE(line_set_ok(*set));
+        glm::vec2 all_lo(1e30f), all_hi(-1e30f);
+        for (const DrapedLine& l : set->lines) {  // boxes and lengths as the vertices give them
+            glm::vec2 lo(1e30f), hi(-1e30f);
+            double length = 0.0;
+            for (std::uint32_t k = 0; k < l.count; ++k) {
+                const DrapedVertex& v = set->vertices[l.first + k];
+                lo = glm::min(lo, glm::vec2(v.x, v.y)), hi = glm::max(hi, glm::vec2(v.x, v.y));
+                if (k) length += std::hypot(double(v.x) - set->vertices[l.first + k - 1].x,
+                                            double(v.y) - set->vertices[l.first + k - 1].y);
+            }
+            EXPECT_EQ(l.lo, lo);
+            EXPECT_EQ(l.hi, hi);
+            EXPECT_EQ(l.length, float(length));
+            all_lo = glm::min(all_lo, lo), all_hi = glm::max(all_hi, hi);
+        }
+        std::uint32_t h = 3;
+        auto next = [&] {
+            h = h * 1664525u + 1013904223u;
+            return float(h >> 8) / 16777216.0f;
+        };
+        const glm::vec2 span = all_hi - all_lo;
+        for (int k = 0; k < 300; ++k) {
+            glm::vec2 lo = all_lo - 0.1f * span + 1.2f * span * glm::vec2(next(), next());
+            glm::vec2 size = span * glm::vec2(next(), next()) * (k % 3 == 0 ? 0.05f : 0.6f);
+            if (k % 7 == 0) size = glm::vec2(0.0f);  // a point
+            if (k == 0) lo = all_lo, size = span;     // everything
+            const glm::vec2 hi = lo + size;
+            std::vector<std::uint32_t> want;
+            for (std::uint32_t i = 0; i < set->lines.size(); ++i) {
+                const DrapedLine& l = set->lines[i];
+                if (l.lo.x <= hi.x && l.hi.x >= lo.x && l.lo.y <= hi.y && l.hi.y >= lo.y) want.push_back(i);
+            }
+            EXPECT_EQ(lines_meeting_box(*set, lo, hi), want) << k;
+            if (k == 0) {
+                EXPECT_EQ(want.size(), set->lines.size());
+            }
+        }
+        EXPECT_TRUE(lines_meeting_box(*set, all_hi + 1.0f, all_hi + 2.0f).empty());
+        EXPECT_TRUE(lines_meeting_box(*set, all_hi, all_lo).empty());  // an empty box
+    }
+}
+
+struct ProgressLog {
+    std::vector<std::pair<std::string, double>> steps;
+    DrainageProgress callback() {
+        return [this](const std::string& stage, double f) { steps.emplace_back(stage, f); };
+    }
+    void expect_monotone(const std::string& what) const {
+        ASSERT_FALSE(steps.empty()) << what;
+        EXPECT_EQ(steps.front().second, 0.0) << what;
+        EXPECT_EQ(steps.back(), std::make_pair(std::string("done"), 1.0)) << what;
+        bool draped = false;
+        for (std::size_t i = 1; i < steps.size(); ++i) {
+            EXPECT_GE(steps[i].second, steps[i - 1].second) << what << ": " << steps[i].first;
+            EXPECT_LE(steps[i].second, 1.0) << what;
+            draped = draped || steps[i].first == "draping creases and ridges";
+        }
+        EXPECT_TRUE(draped) << what;
+        std::size_t draping = 0;
+        for (const auto& s : steps) draping += s.first == "draping creases and ridges";
+        EXPECT_GE(draping, 10u) << what;  // the longest stage moves on its own
+        std::size_t done = 0;
+        for (const auto& s : steps) done += s.second == 1.0;
+        EXPECT_EQ(done, 1u) << what;
+    }
+};
+
+TEST(DrapedLines, BuildProgressRisesMonotonicallyThroughDraping) {
+    const fs::path d = fs::temp_directory_path() / ("penink_drape_progress_" + std::to_string(::getpid()));
+    fs::remove_all(d);
+    fs::create_directories(d);
+    fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.asc", d / "volcano.asc");
+    Terrain dem = read_dem((d / "volcano.asc").string());
+    ProgressLog in_memory, streamed, cache;
+    build_drainage_db(dem, DrainageOptions{}, in_memory.callback());
+    in_memory.expect_monotone("build_drainage_db");
+    load_or_build_drainage((d / "volcano.asc").string(), dem, DrainageOptions{}, {}, cache.callback());
+    cache.expect_monotone("load_or_build_drainage");
+    Terrain copy = dem;
+    build_and_write_drainage_db(copy, DrainageOptions{}, DrainageFingerprint{}, (d / "x.dv").string(),
+                                streamed.callback());
+    streamed.expect_monotone("build_and_write_drainage_db");
+    fs::remove_all(d);
+}
+
+// The network part of volcano's database at the automatic factor: the bytes after the
+// fingerprint, up to the network checksum, pinned by their hash (the lines part and the vertical
+// exaggeration leave them alone).
+TEST(DrapedLines, VolcanoNetworkBytesArePinned) {
+    const fs::path d = fs::temp_directory_path() / ("penink_drape_pin_" + std::to_string(::getpid()));
+    fs::remove_all(d);
+    fs::create_directories(d);
+    Terrain dem = read_dem(PENINK_SOURCE_DIR "/examples/volcano.asc");
+    build_and_write_drainage_db(dem, DrainageOptions{}, DrainageFingerprint{}, (d / "v.dv").string());
+    std::ifstream in(d / "v.dv", std::ios::binary);
+    const std::vector<char> b{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    std::uint64_t lines_at = 0;
+    std::memcpy(&lines_at, b.data() + 24, 8);
+    constexpr std::size_t after_fingerprint = 32 + 36;
+    ASSERT_GT(lines_at, after_fingerprint + 8);
+    EXPECT_EQ(lines_at - 8 - after_fingerprint, 1838508u);
+    EXPECT_EQ(hash64(b.data() + after_fingerprint, std::size_t(lines_at - 8 - after_fingerprint)),
+              0x2f2275f3fcb0b3baull);
+    fs::remove_all(d);
+}
+
+}  // namespace
+}  // namespace penink
