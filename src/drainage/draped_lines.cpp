@@ -8,7 +8,7 @@
 #include "core/parallel_chunks.hpp"
 #include "drainage/d8.hpp"
 #include "drainage/stems.hpp"
-#include "lines/polyline_smoothing.hpp"
+#include "drainage/polyline_smoothing.hpp"
 
 namespace penink {
 

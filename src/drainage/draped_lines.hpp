@@ -3,7 +3,7 @@
 // 1. lines: the drainage stems (stems.hpp: drainage_stems, walked here on the network's cells,
 //    the same vertices) and the basin divides (divide_polylines), vertices as the DrainageDb
 //    holds them (x, y, z of the drainage point, normalised flow);
-// 2. smoothing: smooth_runs_xy with 3 iterations, then rejoin_line_ends (lines/polyline_smoothing.hpp),
+// 2. smoothing: smooth_runs_xy with 3 iterations, then rejoin_line_ends (drainage/polyline_smoothing.hpp),
 //    over all the lines of a set at once;
 // 3. draping: each vertex's z and unit normal from the PN surface of the full-resolution DEM
 //    (dem_surface.hpp, no mesh of it; TerrainLocator's lookup on mesh_from_terrain bit for bit);

@@ -11,12 +11,9 @@
 
 #include "core/camera.hpp"
 #include "core/drawing.hpp"
+#include "core/vertex_run.hpp"
 
 namespace penink {
-
-struct VertexRun {
-    std::uint32_t first = 0, count = 0;  // vertices [first, first + count)
-};
 
 // The maximal sub-runs of >= 2 vertices with score >= 0 that lie in front of the camera.
 std::vector<VertexRun> drawn_runs(const std::vector<glm::vec3>& positions, const std::vector<float>& scores,

@@ -22,7 +22,7 @@
 #include "drainage/drainage_build.hpp"
 #include "drainage/stems.hpp"
 #include "input/dem_reader.hpp"
-#include "lines/polyline_smoothing.hpp"
+#include "drainage/polyline_smoothing.hpp"
 #include "support/synthetic_terrain.hpp"
 #include "surface/surface_mesh.hpp"
 #include "surface/terrain_locator.hpp"

@@ -7,7 +7,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "lines/scored_polylines.hpp"
+#include "core/vertex_run.hpp"
 
 namespace penink {
 

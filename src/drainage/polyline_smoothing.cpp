@@ -1,4 +1,4 @@
-#include "lines/polyline_smoothing.hpp"
+#include "drainage/polyline_smoothing.hpp"
 
 #include <bit>
 #include <cstdint>

@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "lines/polyline_smoothing.hpp"
+#include "drainage/polyline_smoothing.hpp"
 
 using namespace penink;
 

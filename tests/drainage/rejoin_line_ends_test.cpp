@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "lines/polyline_smoothing.hpp"
+#include "drainage/polyline_smoothing.hpp"
 
 using namespace penink;
 
