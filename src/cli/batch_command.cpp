@@ -162,7 +162,7 @@ int run_batch(const BatchOptions& o) {
     summary.cells = std::size_t(f.model.cols - 1) * (f.model.rows - 1);
     summary.dem_cells = std::size_t(f.dem.cols - 1) * (f.dem.rows - 1);
     TerrainFrames frames(*context, scene_drainage(scene, f.dem, log), std::move(f.model), summary.width, summary.height,
-                         log);
+                         log, LineCulling{f.cameras, line_culling_px(scene)});
     summary.setup_s = ms_since(start) / 1000.0;
     std::vector<FrameTiming> timings;
     ProgressBar bar(std::cerr, stderr_is_terminal(), "batch", int(f.records.size()));

@@ -9,6 +9,7 @@
 #include "core/parallel_chunks.hpp"
 #include "lines/finish_drawing.hpp"
 #include "lines/spacing_thinning.hpp"
+#include "surface/terrain_lod.hpp"
 
 namespace penink {
 
@@ -17,7 +18,7 @@ namespace {
 // The pieces of the set's lines meeting [lo, hi], laid out for a DM pass (see
 // prepare_drainage_lines): the pieces found line by line, then their vertices written on all
 // cores.
-ScoredLineSet select_lines(const DrapedLineSet& set, glm::vec2 lo, glm::vec2 hi, double e, float min_length) {
+ScoredLineSet select_lines(const DrapedLineSet& set, glm::vec2 lo, glm::vec2 hi, double e, const LineCulling& culling) {
     struct Piece {
         std::uint32_t from, to;      // stored vertices [from, to) of the piece
         std::uint32_t in0, in1;      // those inside the box: [in0, in1)
@@ -25,10 +26,26 @@ ScoredLineSet select_lines(const DrapedLineSet& set, glm::vec2 lo, glm::vec2 hi,
     const auto inside = [&](const DrapedVertex& v) { return v.x >= lo.x && v.x <= hi.x && v.y >= lo.y && v.y <= hi.y; };
     std::vector<Piece> pieces;
     ScoredLineSet out;
+    std::vector<double> scale;  // pixels per metre at unit distance, per camera
+    for (const Camera& c : culling.cameras) scale.push_back(lod_pixel_scale(c));
+    // Whether some camera can show vertices [a, b) of v min_px long.
+    const auto big_enough = [&](const DrapedVertex* v, std::uint32_t a, std::uint32_t b) {
+        if (culling.cameras.empty()) return true;
+        double length = 0.0;
+        std::vector<double> nearest(culling.cameras.size(), 1e300);
+        for (std::uint32_t i = a; i < b; ++i) {
+            const glm::dvec3 p(v[i].x, v[i].y, e * double(v[i].z));
+            if (i > a) length += glm::length(p - glm::dvec3(v[i - 1].x, v[i - 1].y, e * double(v[i - 1].z)));
+            for (std::size_t c = 0; c < nearest.size(); ++c)
+                nearest[c] = std::min(nearest[c], glm::length(p - culling.cameras[c].eye));
+        }
+        for (std::size_t c = 0; c < nearest.size(); ++c)
+            if (length * scale[c] >= double(culling.min_px) * nearest[c]) return true;
+        return false;
+    };
     std::uint32_t total = 0;
     for (const std::uint32_t id : lines_meeting_box(set, lo, hi)) {
         const DrapedLine& l = set.lines[id];
-        if (l.length < min_length) continue;
         const DrapedVertex* v = set.vertices.data() + l.first;
         for (std::uint32_t k = 0; k < l.count;) {  // lines_in_box's cut
             while (k < l.count && !inside(v[k])) ++k;
@@ -36,6 +53,10 @@ ScoredLineSet select_lines(const DrapedLineSet& set, glm::vec2 lo, glm::vec2 hi,
             std::uint32_t end = k;
             while (end < l.count && inside(v[end])) ++end;
             const std::uint32_t a = k > 0 ? k - 1 : k, b = std::min(end + 1, l.count);
+            if (!big_enough(v, k, end)) {  // the drawable part: the vertices inside the box
+                k = end;
+                continue;
+            }
             out.runs.push_back({total, b - a});
             pieces.push_back({l.first + a, l.first + b, l.first + k, l.first + end});
             total += b - a;
@@ -96,14 +117,20 @@ float max_visible_distance(const DepthImage& toward) {
     return d;
 }
 
-DrainageLineData prepare_drainage_lines(const DrainageDb& db, const Terrain& model, float min_length) {
+DrainageLineData prepare_drainage_lines(const DrainageDb& db, const Terrain& model, const LineCulling& culling) {
     DrainageLineData data;
     glm::dvec3 lo, hi;
     if (!terrain_bounds(model, lo, hi)) return data;
     const glm::vec2 l(lo), h(hi);
-    data.creases = select_lines(db.creases, l, h, model.vertical_exaggeration, min_length);
-    data.ridges = select_lines(db.ridges, l, h, model.vertical_exaggeration, min_length);
+    data.creases = select_lines(db.creases, l, h, model.vertical_exaggeration, culling);
+    data.ridges = select_lines(db.ridges, l, h, model.vertical_exaggeration, culling);
     return data;
+}
+
+float line_culling_px(const Scene& scene) {
+    const double spacing = std::min(scene.creases.spacing_px, scene.ridges.spacing_px);
+    const double sketch = std::max(scene.crease_sketch_px, scene.ridge_sketch_px);
+    return float(std::max(0.0, 0.5 * (3.0 * spacing - 2.0 * sketch - 1.0)));
 }
 
 DrainageLines::DrainageLines(const GlApi& gl, DrainageLineData data)

@@ -36,13 +36,28 @@ struct DrainageLineData {
 // box as lines_in_box cuts lines (stems.hpp: the runs inside, with one vertex beyond the box at
 // each cut; vertices outside the box are off the modelled surface and get a zero normal, so they
 // are never drawn), exaggerated by e = model.vertical_exaggeration: z' = e z, normal' =
-// normalize(e nx, e ny, nz) (as stored at e = 1). Lines shorter than `min_length` metres (plan)
-// are left out. Work in proportion to the lines selected: no pass over the database's vertices.
-DrainageLineData prepare_drainage_lines(const DrainageDb& db, const Terrain& model, float min_length = 0.0f);
+// normalize(e nx, e ny, nz) (as stored at e = 1). Work in proportion to the lines selected: no
+// pass over the database's vertices.
+// Screen-size culling (the creases at the level of detail of the image): a piece is left out when
+// no camera of `culling` can show it min_px pixels long (its exaggerated length times
+// lod_pixel_scale over its nearest vertex's eye distance: an upper bound on its image length
+// inside the frame). DrainageLines::draw's spacing thinning drops every stroke shorter than three
+// spacings, so with min_px = line_culling_px(scene) the drawing is the same as without culling.
+struct LineCulling {
+    std::vector<Camera> cameras;  // none: no culling
+    float min_px = 0.0f;
+};
+DrainageLineData prepare_drainage_lines(const DrainageDb& db, const Terrain& model, const LineCulling& culling = {});
+
+// Half of: three spacings (the thinning's shortest stroke) of the closer-spaced layer, less what
+// object-space sketchiness adds to a stroke's ends (twice the sketch amount) and a pixel of
+// rounding. The half is a margin: the sketch offsets are sized at a line's mean depth, so its
+// nearest points may move further on screen. 0 (no culling) when either layer is not thinned.
+float line_culling_px(const Scene& scene);
 
 class DrainageLines {
 public:
-    // prepare_drainage_lines(db, model), uploaded.
+    // prepare_drainage_lines(db, model) without culling, uploaded.
     DrainageLines(const GlApi& gl, const DrainageDb& db, const Terrain& model);
     // Uploads prepared data (the GL half).
     DrainageLines(const GlApi& gl, DrainageLineData data);

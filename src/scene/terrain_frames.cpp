@@ -95,15 +95,15 @@ std::optional<DrainageDb> scene_drainage(const Scene& scene, const Terrain& dem,
 }
 
 TerrainFrames::TerrainFrames(GlContext& context, std::optional<DrainageDb> drainage, Terrain terrain, int width,
-                             int height, const Log& log)
+                             int height, const Log& log, LineCulling culling)
     : context_(&context), terrain_(std::move(terrain)), width_(width), height_(height) {
     const auto t0 = Clock::now();
     lod_ = build_terrain_lod(terrain_);
     log.info("level-of-detail pyramid: " + std::to_string(lod_.side()) + "^2 nodes (" + std::to_string(terrain_.cols) +
              "x" + std::to_string(terrain_.rows) + " modelled, " + std::to_string(int(ms_since(t0))) + " ms)");
     if (!drainage) return;
-    pending_lines_ = std::async(std::launch::async, [this, db = std::move(*drainage)] {
-        return prepare_drainage_lines(db, terrain_);
+    pending_lines_ = std::async(std::launch::async, [this, db = std::move(*drainage), culling = std::move(culling)] {
+        return prepare_drainage_lines(db, terrain_, culling);
     });
 }
 
@@ -164,7 +164,8 @@ SceneView open_terrain_view(const Scene& scene, GlContext& context, const Log& l
     Terrain model = terrain_for_view(std::move(dem), view.camera, scene, log);
     log.info("view window cropped (" + std::to_string(int(lap_ms(t0))) + " ms)");
     view.frames = std::make_unique<TerrainFrames>(context, std::move(drainage), std::move(model), view.camera.width,
-                                                  view.camera.height, log);
+                                                  view.camera.height, log,
+                                                  LineCulling{{view.camera}, line_culling_px(scene)});
     return view;
 }
 

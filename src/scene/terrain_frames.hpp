@@ -28,8 +28,10 @@ std::optional<DrainageDb> scene_drainage(const Scene& scene, const Terrain& dem,
 // frames' windows for a flight); `drainage` is the database of the whole DEM (scene_drainage).
 class TerrainFrames : public FrameSource {
 public:
+    // `culling`: the cameras the frames will use and the screen size below which a crease or
+    // ridge cannot be drawn (prepare_drainage_lines); default: every line of the modelled box.
     TerrainFrames(GlContext& context, std::optional<DrainageDb> drainage, Terrain terrain, int width, int height,
-                  const Log& log);
+                  const Log& log, LineCulling culling = {});
     TerrainFrames(const TerrainFrames&) = delete;  // the line preparation thread holds &terrain_
     TerrainFrames& operator=(const TerrainFrames&) = delete;
     ~TerrainFrames() override;
