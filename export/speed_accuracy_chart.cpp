@@ -40,7 +40,9 @@ std::string tick_label(double ms) {  // 0.5, 1, 2, 50, 1000
 
 Frame plot_frame(const std::vector<ChartSeries>& series, const ChartText& text) {
     Frame f;
-    f.right = text.width - 230.0, f.bottom = text.height - 70.0;
+    std::size_t longest = 0;  // the legend's room: its longest name at ~7 px a character (12 px sans)
+    for (const ChartSeries& c : series) longest = std::max(longest, c.name.size());
+    f.right = text.width - std::max(230.0, 60.0 + 7.0 * double(longest)), f.bottom = text.height - 70.0;
     double lo = 1e300, hi = -1e300;
     for (const ChartSeries& s : series)
         for (const ChartPoint& p : s.points)
