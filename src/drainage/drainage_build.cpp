@@ -211,12 +211,13 @@ std::string drainage_cache_path(const std::string& dem_path) {
 
 DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& terrain,
                                   const DrainageOptions& options, const DrainageLog& log,
-                                  const DrainageProgress& progress) {
+                                  const DrainageProgress& progress, DvLineVertices* in_file) {
     const std::string cache = drainage_cache_path(dem_path);
     const DrainageFingerprint fp = drainage_fingerprint(dem_path, terrain, options);
     auto say = [&](const std::string& m) { if (log) log(m); };
     try {
-        DrainageDb db = read_drainage_db(cache, &fp, DvParts::lines);
+        DrainageDb db = in_file ? read_drainage_line_index(cache, &fp, *in_file)
+                                : read_drainage_db(cache, &fp, DvParts::lines);
         say("drainage: using cached " + cache);
         return db;
     } catch (const Error& e) {

@@ -119,8 +119,11 @@ std::string drainage_cache_path(const std::string& dem_path, bool folder_writabl
 // Returns what a lines-only read gives (drainage_lines_only) either way. `terrain` is the DEM
 // read with any vertical exaggeration: when it is not 1 the build reads the DEM again at 1
 // (heights only at factor 1). Every decision is reported through `log`.
+// With `in_file`, a valid cache is read without its lines' vertices (read_drainage_line_index:
+// every byte still hashed and checked first, the same errors and rebuild) and *in_file says
+// where they are; after a build in_file->file stays empty and the database holds them.
 DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& terrain,
                                   const DrainageOptions& options, const DrainageLog& log = {},
-                                  const DrainageProgress& progress = {});
+                                  const DrainageProgress& progress = {}, DvLineVertices* in_file = nullptr);
 
 }  // namespace penink

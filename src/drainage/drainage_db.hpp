@@ -7,6 +7,7 @@
 // documented in drainage_db.cpp and docs of write_drainage_db.
 #pragma once
 #include <cstdint>
+#include <cstdio>
 #include <memory>
 #include <utility>
 #include <string>
@@ -165,6 +166,27 @@ enum class DvParts { all, lines };
 DrainageDb read_drainage_db(const std::string& path, const DrainageFingerprint* expected = nullptr,
                             DvParts parts = DvParts::all);
 DrainageDb decode_drainage_db(const std::vector<std::uint8_t>& bytes, const std::string& path);
+
+// Where the vertices of the lines part stay when a render reads only its line records and index
+// (read_drainage_line_index): the open file (a cache replaced by a rename later leaves it as it
+// was) and the offsets of the creases' (set 0) and ridges' (set 1) vertex arrays, whose bytes the
+// read has hashed and checked.
+struct DvLineVertices {
+    std::shared_ptr<std::FILE> file;
+    std::string path;
+    std::uint64_t at[2] = {0, 0};     // file offsets of the vertex arrays
+    std::uint64_t count[2] = {0, 0};  // vertices in each
+    // Vertices [first, first + n) of set 0 or 1 into out (pread: any thread). Throws
+    // penink::Error "truncated drainage database" when the file has shrunk since.
+    void read(int set, std::uint64_t first, std::uint64_t n, DrapedVertex* out) const;
+};
+
+// The lines part read as DvParts::lines reads it (every byte hashed and the checksum compared,
+// the same errors), but its vertex arrays streamed through a 4 MiB buffer and not kept: the
+// creases and ridges hold their lines and index, no vertices (line_set_ok holds for the stored
+// counts); `vertices` says where they are. Memory in proportion to the lines, not the vertices.
+DrainageDb read_drainage_line_index(const std::string& path, const DrainageFingerprint* expected,
+                                    DvLineVertices& vertices);
 
 // `db` as a lines-only read gives it (DvParts::lines): the network, divides and CRS dropped.
 DrainageDb drainage_lines_only(DrainageDb db);

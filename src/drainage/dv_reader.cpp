@@ -2,9 +2,12 @@
 // before it is used, the checksum before anything is decoded.
 #include "drainage/drainage_db.hpp"
 
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+
+#include <unistd.h>
 
 #include "core/error.hpp"
 #include "drainage/d8.hpp"
@@ -205,7 +208,9 @@ std::uint64_t read_u64(const std::uint8_t* b, std::size_t at) {
 // before anything is allocated, the shape by line_set_ok. Line boxes and lengths are taken as
 // stored (checking them would be a pass over every vertex; a wrong one only changes which lines
 // a frame selects).
-template <class R> void get_line_set(R& r, DrapedLineSet& set) {
+// With `vertices_at` (a StreamReader only), the vertex array is hashed but not kept: its file
+// offset goes to *vertices_at and set.vertices stays empty (line_set_ok checked on the count).
+template <class R> void get_line_set(R& r, DrapedLineSet& set, std::uint64_t* vertices_at = nullptr) {
     const std::uint64_t nl = r.template get<std::uint64_t>(), nv = r.template get<std::uint64_t>();
     if (nl > r.left() / (line_record_bytes + 4) || nv > r.left() / sizeof(DrapedVertex) || nl > 0xffffffffu ||
         nv > 0xffffffffu)
@@ -229,7 +234,16 @@ template <class R> void get_line_set(R& r, DrapedLineSet& set) {
         }
     }
     if (next != nv) r.corrupt();
-    r.template array<DrapedVertex>(set.vertices, nv);
+    if constexpr (requires { r.skip(0); }) {
+        if (vertices_at) {
+            *vertices_at = r.offset();
+            r.skip(nv * sizeof(DrapedVertex));
+        } else {
+            r.template array<DrapedVertex>(set.vertices, nv);
+        }
+    } else {
+        r.template array<DrapedVertex>(set.vertices, nv);
+    }
     LineIndex& x = set.index;
     x.origin.x = r.template get<float>(), x.origin.y = r.template get<float>(), x.cell = r.template get<float>();
     const std::uint32_t levels = r.template get<std::uint32_t>();
@@ -244,12 +258,12 @@ template <class R> void get_line_set(R& r, DrapedLineSet& set) {
     }
     r.template array<std::uint32_t>(x.start, cells + 1);
     r.template array<std::uint32_t>(x.ids, nl);
-    if (!line_set_ok(set)) r.corrupt();
+    if (!line_set_ok(set, vertices_at ? std::size_t(nv) : set.vertices.size())) r.corrupt();
 }
 
 // The lines part from the reader's position on: the fingerprint, grid and origin, which must
 // agree with `db`'s when `header` is set (a whole file), then both line sets.
-template <class R> void get_lines(R& r, DrainageDb& db, bool header) {
+template <class R> void get_lines(R& r, DrainageDb& db, bool header, std::uint64_t* vertices_at = nullptr) {
     DrainageFingerprint f;
     f.file_size = r.template get<std::uint64_t>(), f.mtime_ns = r.template get<std::int64_t>();
     f.content_hash = r.template get<std::uint64_t>(), f.resample = r.template get<std::uint32_t>();
@@ -263,8 +277,8 @@ template <class R> void get_lines(R& r, DrainageDb& db, bool header) {
                     ox == db.origin.x && oy == db.origin.y))
         r.corrupt();
     db.fingerprint = f, db.cols = cols, db.rows = rows, db.factor = factor, db.origin = {ox, oy};
-    get_line_set(r, db.creases);
-    get_line_set(r, db.ridges);
+    get_line_set(r, db.creases, vertices_at);
+    get_line_set(r, db.ridges, vertices_at ? vertices_at + 1 : nullptr);
 }
 
 // The lines part read straight from the file into the arrays it fills, hashed as it is read
@@ -272,6 +286,7 @@ template <class R> void get_lines(R& r, DrainageDb& db, bool header) {
 struct StreamReader {
     std::FILE* in;
     std::uint64_t remaining;  // bytes of the part not yet read (its checksum excluded)
+    std::uint64_t at;         // file offset of the next byte
     std::string path;
     std::uint64_t h = hash64(nullptr, 0);
     std::uint8_t tail[8] = {};
@@ -297,7 +312,19 @@ struct StreamReader {
         if (n > remaining) corrupt();
         if (std::fread(dst, 1, n, in) != n) throw Error("drainage", path, "truncated drainage database");
         feed(static_cast<const std::uint8_t*>(dst), n);
-        remaining -= n;
+        remaining -= n, at += n;
+    }
+    std::uint64_t offset() const { return at; }
+    // n bytes read and hashed in 4 MiB chunks through one buffer, not kept.
+    void skip(std::uint64_t n) {
+        if (n > remaining) corrupt();
+        constexpr std::size_t chunk = std::size_t(4) << 20;
+        std::vector<std::uint8_t> buf(std::size_t(std::min<std::uint64_t>(n, chunk)));
+        while (n > 0) {
+            const std::size_t k = std::size_t(std::min<std::uint64_t>(n, chunk));
+            read(buf.data(), k);
+            n -= k;
+        }
     }
     template <class T> T get() {
         T v;
@@ -358,7 +385,8 @@ namespace {
 
 // The lines part alone: the prefix, then the part read from its offset into the database's
 // arrays and hashed on the way, then its checksum compared.
-DrainageDb read_lines_part(std::FILE* in, std::uint64_t size, const std::string& path) {
+DrainageDb read_lines_part(std::FILE* in, std::uint64_t size, const std::string& path,
+                           std::uint64_t* vertices_at = nullptr) {
     std::uint8_t prefix[prefix_bytes];
     const std::size_t got = std::fread(prefix, 1, std::size_t(std::min<std::uint64_t>(size, prefix_bytes)), in);
     std::uint64_t total, lines_at;
@@ -366,9 +394,9 @@ DrainageDb read_lines_part(std::FILE* in, std::uint64_t size, const std::string&
     if (size < total) truncated(path);
     if (size != total) throw Error("drainage", path, "drainage database checksum mismatch (file corrupt)");
     if (std::fseek(in, long(lines_at), SEEK_SET) != 0) truncated(path);
-    StreamReader r{in, total - 8 - lines_at, path};
+    StreamReader r{in, total - 8 - lines_at, lines_at, path};
     DrainageDb db;
-    get_lines(r, db, false);
+    get_lines(r, db, false, vertices_at);
     if (r.left() != 0) r.corrupt();
     std::uint64_t stored;
     if (std::fread(&stored, 8, 1, in) != 1) truncated(path);
@@ -379,17 +407,29 @@ DrainageDb read_lines_part(std::FILE* in, std::uint64_t size, const std::string&
 
 }  // namespace
 
-DrainageDb read_drainage_db(const std::string& path, const DrainageFingerprint* expected, DvParts parts) {
+namespace {
+
+// Opens a DV file for reading: the handle and its size (0 when unknown).
+std::FILE* open_dv(const std::string& path, std::uint64_t& size) {
     std::error_code ec;
     std::FILE* in = std::filesystem::is_regular_file(path, ec) ? std::fopen(path.c_str(), "rb") : nullptr;
     if (!in) throw Error("drainage", path, "cannot open drainage database");
-    const std::uint64_t size = std::filesystem::file_size(path, ec);
+    size = std::filesystem::file_size(path, ec);
+    if (ec) size = 0;
+    return in;
+}
+
+}  // namespace
+
+DrainageDb read_drainage_db(const std::string& path, const DrainageFingerprint* expected, DvParts parts) {
+    std::uint64_t size = 0;
+    std::FILE* in = open_dv(path, size);
     DrainageDb db;
     try {
         if (parts == DvParts::lines) {
-            db = read_lines_part(in, ec ? 0 : size, path);
+            db = read_lines_part(in, size, path);
         } else {
-            std::vector<std::uint8_t> bytes(ec ? 0 : std::size_t(size));
+            std::vector<std::uint8_t> bytes(std::size_t(size), 0);
             bytes.resize(std::fread(bytes.data(), 1, bytes.size(), in));
             db = decode_drainage_db(bytes, path);
         }
@@ -401,6 +441,36 @@ DrainageDb read_drainage_db(const std::string& path, const DrainageFingerprint* 
     if (expected && !(db.fingerprint == *expected))
         throw Error("drainage", path, "drainage database is stale (DEM changed)");
     return db;
+}
+
+DrainageDb read_drainage_line_index(const std::string& path, const DrainageFingerprint* expected,
+                                    DvLineVertices& vertices) {
+    std::uint64_t size = 0;
+    std::FILE* in = open_dv(path, size);
+    std::shared_ptr<std::FILE> file(in, [](std::FILE* f) { std::fclose(f); });
+    std::uint64_t at[2] = {0, 0};
+    DrainageDb db = read_lines_part(in, size, path, at);
+    if (expected && !(db.fingerprint == *expected))
+        throw Error("drainage", path, "drainage database is stale (DEM changed)");
+    vertices.file = std::move(file), vertices.path = path;
+    vertices.at[0] = at[0], vertices.at[1] = at[1];
+    vertices.count[0] = db.creases.lines.empty() ? 0 : db.creases.lines.back().first + db.creases.lines.back().count;
+    vertices.count[1] = db.ridges.lines.empty() ? 0 : db.ridges.lines.back().first + db.ridges.lines.back().count;
+    return db;
+}
+
+void DvLineVertices::read(int set, std::uint64_t first, std::uint64_t n, DrapedVertex* out) const {
+    if (!file || set < 0 || set > 1 || first > count[set] || n > count[set] - first)
+        throw Error("drainage", path, "drainage line vertices out of range", ExitCode::internal);
+    auto* dst = reinterpret_cast<char*>(out);
+    std::uint64_t bytes = n * sizeof(DrapedVertex), from = at[set] + first * sizeof(DrapedVertex);
+    while (bytes > 0) {
+        const ssize_t got = ::pread(::fileno(file.get()), dst, std::size_t(std::min<std::uint64_t>(bytes, 1u << 30)),
+                                    off_t(from));
+        if (got < 0 && errno == EINTR) continue;
+        if (got <= 0) throw Error("drainage", path, "truncated drainage database");
+        dst += got, from += std::uint64_t(got), bytes -= std::uint64_t(got);
+    }
 }
 
 DrainageDb drainage_lines_only(DrainageDb db) {

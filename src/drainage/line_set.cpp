@@ -110,13 +110,15 @@ std::vector<std::uint32_t> lines_meeting_box(const DrapedLineSet& set, glm::vec2
     return out;
 }
 
-bool line_set_ok(const DrapedLineSet& set) {
+bool line_set_ok(const DrapedLineSet& set) { return line_set_ok(set, set.vertices.size()); }
+
+bool line_set_ok(const DrapedLineSet& set, std::size_t vertex_count) {
     std::size_t next = 0;
     for (const DrapedLine& l : set.lines) {
-        if (l.first != next || l.count < 1 || l.count > set.vertices.size() - next) return false;
+        if (l.first != next || l.count < 1 || l.count > vertex_count - next) return false;
         next += l.count;
     }
-    if (next != set.vertices.size()) return false;
+    if (next != vertex_count) return false;
     const LineIndex& x = set.index;
     if (x.level_cols.size() != x.level_rows.size() || x.level_cols.size() > max_levels) return false;
     if (!(x.cell > 0.0f) || !std::isfinite(x.cell)) return false;

@@ -65,5 +65,7 @@ std::vector<std::uint32_t> lines_meeting_box(const DrapedLineSet& set, glm::vec2
 // What every reader relies on: lines' vertex ranges consecutive and covering the vertices, each
 // with at least one vertex; the index's levels, offsets and ids in range, every line in it once.
 bool line_set_ok(const DrapedLineSet& set);
+// The same for a set whose `vertex_count` vertices are kept elsewhere (set.vertices unused).
+bool line_set_ok(const DrapedLineSet& set, std::size_t vertex_count);
 
 }  // namespace penink

@@ -15,16 +15,63 @@ namespace penink {
 
 namespace {
 
-// The pieces of the set's lines meeting [lo, hi], laid out for a DM pass (see
-// prepare_drainage_lines): the pieces found line by line, then their vertices written on all
-// cores.
-ScoredLineSet select_lines(const DrapedLineSet& set, glm::vec2 lo, glm::vec2 hi, double e, const LineCulling& culling) {
+// Vertices of the lines a selection looks at, in batches: fetch(list, from) makes those of lines
+// ids[list[i]] available for i in [from, end) and returns end (from < end <= list.size());
+// vertices(i) then points at those of line ids[list[i]].
+// In memory: one batch of everything.
+struct MemoryBatches {
+    const DrapedLineSet& set;
+    const std::vector<std::uint32_t>& ids;
+    const std::vector<std::uint32_t>* list = nullptr;
+    std::size_t fetch(const std::vector<std::uint32_t>& l, std::size_t) { return list = &l, l.size(); }
+    const DrapedVertex* vertices(std::size_t i) const { return set.vertices.data() + set.lines[ids[(*list)[i]]].first; }
+};
+
+// From the file (DvLineVertices): batches of about batch_vertices (or one longer line) read into one
+// buffer, one read for each run of consecutive line ids.
+struct FileBatches {
+    const DrapedLineSet& set;
+    const std::vector<std::uint32_t>& ids;
+    const DvLineVertices& file;
+    int which;
+    std::size_t batch_vertices;
+    DrapedVertices buffer;
+    std::vector<std::size_t> at;  // where line ids[list[from + k]] starts in `buffer`
+    std::size_t from = 0;
+    std::size_t fetch(const std::vector<std::uint32_t>& list, std::size_t f) {
+        from = f;
+        at.assign(1, 0);
+        std::size_t end = f;
+        const auto count = [&](std::size_t i) { return set.lines[ids[list[i]]].count; };
+        while (end < list.size() && (end == f || at.back() + count(end) <= batch_vertices))
+            at.push_back(at.back() + count(end++));
+        if (buffer.size() < at.back()) buffer.resize(at.back());
+        for (std::size_t i = f; i < end;) {
+            std::size_t k = i + 1;
+            while (k < end && ids[list[k]] == ids[list[k - 1]] + 1) ++k;
+            file.read(which, set.lines[ids[list[i]]].first, at[k - f] - at[i - f], buffer.data() + at[i - f]);
+            i = k;
+        }
+        return end;
+    }
+    const DrapedVertex* vertices(std::size_t i) const { return buffer.data() + at[i - from]; }
+};
+
+// The pieces of lines `ids` (ascending ids of lines meeting [lo, hi]) laid out for a DM pass (see
+// prepare_drainage_lines): the pieces found line by line, batch by batch; then the output sized
+// once and the vertices of the pieces written on all cores, batch by batch over the lines that
+// have pieces.
+template <class Batches>
+ScoredLineSet select_lines(const std::vector<DrapedLine>& lines, const std::vector<std::uint32_t>& ids,
+                           Batches& batches, glm::vec2 lo, glm::vec2 hi, double e, const LineCulling& culling) {
     struct Piece {
-        std::uint32_t from, to;      // stored vertices [from, to) of the piece
+        std::uint32_t line;          // index into `kept` (the lines with pieces)
+        std::uint32_t from, to;      // the line's vertices [from, to) of the piece
         std::uint32_t in0, in1;      // those inside the box: [in0, in1)
     };
     const auto inside = [&](const DrapedVertex& v) { return v.x >= lo.x && v.x <= hi.x && v.y >= lo.y && v.y <= hi.y; };
     std::vector<Piece> pieces;
+    std::vector<std::uint32_t> kept;  // j of the lines with pieces (ids[j]), ascending
     ScoredLineSet out;
     std::vector<double> scale;  // pixels per metre at unit distance, per camera
     for (const Camera& c : culling.cameras) scale.push_back(lod_pixel_scale(c));
@@ -43,46 +90,62 @@ ScoredLineSet select_lines(const DrapedLineSet& set, glm::vec2 lo, glm::vec2 hi,
             if (length * scale[c] >= double(culling.min_px) * nearest[c]) return true;
         return false;
     };
+    std::vector<std::uint32_t> all(ids.size());
+    for (std::size_t j = 0; j < all.size(); ++j) all[j] = std::uint32_t(j);
     std::uint32_t total = 0;
-    for (const std::uint32_t id : lines_meeting_box(set, lo, hi)) {
-        const DrapedLine& l = set.lines[id];
-        const DrapedVertex* v = set.vertices.data() + l.first;
-        for (std::uint32_t k = 0; k < l.count;) {  // lines_in_box's cut
-            while (k < l.count && !inside(v[k])) ++k;
-            if (k == l.count) break;
-            std::uint32_t end = k;
-            while (end < l.count && inside(v[end])) ++end;
-            const std::uint32_t a = k > 0 ? k - 1 : k, b = std::min(end + 1, l.count);
-            if (!big_enough(v, k, end)) {  // the drawable part: the vertices inside the box
-                k = end;
-                continue;
-            }
-            out.runs.push_back({total, b - a});
-            pieces.push_back({l.first + a, l.first + b, l.first + k, l.first + end});
-            total += b - a;
-            k = end;
-        }
-    }
-    out.positions.resize(total), out.normals.resize(total), out.upload.resize(total);
-    parallel_chunks(pieces.size(), 2048, [&](std::size_t p0, std::size_t p1) {
-        for (std::size_t p = p0; p < p1; ++p) {
-            const Piece& piece = pieces[p];
-            std::uint32_t at = out.runs[p].first;
-            for (std::uint32_t i = piece.from; i < piece.to; ++i, ++at) {
-                const DrapedVertex& v = set.vertices[i];
-                glm::vec3 n(0.0f);  // beyond the box: off the modelled surface
-                if (i >= piece.in0 && i < piece.in1) {
-                    if (e == 1.0) n = {v.nx, v.ny, v.nz};
-                    else if (v.nx != 0.0f || v.ny != 0.0f || v.nz != 0.0f)
-                        n = glm::normalize(glm::vec3(float(e * v.nx), float(e * v.ny), v.nz));
+    for (std::size_t i0 = 0; i0 < all.size();) {
+        const std::size_t i1 = batches.fetch(all, i0);
+        for (std::size_t j = i0; j < i1; ++j) {
+            const DrapedLine& l = lines[ids[j]];
+            const DrapedVertex* v = batches.vertices(j);
+            for (std::uint32_t k = 0; k < l.count;) {  // lines_in_box's cut
+                while (k < l.count && !inside(v[k])) ++k;
+                if (k == l.count) break;
+                std::uint32_t end = k;
+                while (end < l.count && inside(v[end])) ++end;
+                const std::uint32_t a = k > 0 ? k - 1 : k, b = std::min(end + 1, l.count);
+                if (!big_enough(v, k, end)) {  // the drawable part: the vertices inside the box
+                    k = end;
+                    continue;
                 }
-                const glm::vec3 pos(v.x, v.y, e == 1.0 ? v.z : float(e * double(v.z)));
-                out.positions[at] = pos, out.normals[at] = n;
-                DmVertex& dm = out.upload[at];
-                dm.position = pos, dm.flow = v.flow, dm.normal = n, dm.unused = 0.0f;
+                if (kept.empty() || kept.back() != j) kept.push_back(std::uint32_t(j));
+                out.runs.push_back({total, b - a});
+                pieces.push_back({std::uint32_t(kept.size() - 1), a, b, k, end});
+                total += b - a;
+                k = end;
             }
         }
-    });
+        i0 = i1;
+    }
+    all = {};
+    out.positions.resize(total), out.normals.resize(total), out.upload.resize(total);
+    std::size_t p_begin = 0;
+    for (std::size_t i0 = 0; i0 < kept.size();) {
+        const std::size_t i1 = batches.fetch(kept, i0);
+        std::size_t p_end = p_begin;
+        while (p_end < pieces.size() && pieces[p_end].line < i1) ++p_end;
+        parallel_chunks(p_end - p_begin, 2048, [&](std::size_t q0, std::size_t q1) {
+            for (std::size_t p = p_begin + q0; p < p_begin + q1; ++p) {
+                const Piece& piece = pieces[p];
+                const DrapedVertex* line = batches.vertices(piece.line);
+                std::uint32_t at = out.runs[p].first;
+                for (std::uint32_t i = piece.from; i < piece.to; ++i, ++at) {
+                    const DrapedVertex& v = line[i];
+                    glm::vec3 n(0.0f);  // beyond the box: off the modelled surface
+                    if (i >= piece.in0 && i < piece.in1) {
+                        if (e == 1.0) n = {v.nx, v.ny, v.nz};
+                        else if (v.nx != 0.0f || v.ny != 0.0f || v.nz != 0.0f)
+                            n = glm::normalize(glm::vec3(float(e * v.nx), float(e * v.ny), v.nz));
+                    }
+                    const glm::vec3 pos(v.x, v.y, e == 1.0 ? v.z : float(e * double(v.z)));
+                    out.positions[at] = pos, out.normals[at] = n;
+                    DmVertex& dm = out.upload[at];
+                    dm.position = pos, dm.flow = v.flow, dm.normal = n, dm.unused = 0.0f;
+                }
+            }
+        });
+        p_begin = p_end, i0 = i1;
+    }
     return out;
 }
 
@@ -122,8 +185,32 @@ DrainageLineData prepare_drainage_lines(const DrainageDb& db, const Terrain& mod
     glm::dvec3 lo, hi;
     if (!terrain_bounds(model, lo, hi)) return data;
     const glm::vec2 l(lo), h(hi);
-    data.creases = select_lines(db.creases, l, h, model.vertical_exaggeration, culling);
-    data.ridges = select_lines(db.ridges, l, h, model.vertical_exaggeration, culling);
+    for (const auto& [set, out] : {std::pair(&db.creases, &data.creases), std::pair(&db.ridges, &data.ridges)}) {
+        const std::vector<std::uint32_t> ids = lines_meeting_box(*set, l, h);
+        MemoryBatches batches{*set, ids};
+        *out = select_lines(set->lines, ids, batches, l, h, model.vertical_exaggeration, culling);
+    }
+    return data;
+}
+
+DrainageLineData prepare_drainage_lines(const DrainageLineSource& source, const Terrain& model,
+                                        const LineCulling& culling) {
+    if (!source.vertices.file) return prepare_drainage_lines(source.db, model, culling);
+    DrainageLineData data;
+    glm::dvec3 lo, hi;
+    if (!terrain_bounds(model, lo, hi)) return data;
+    const glm::vec2 l(lo), h(hi);
+    int which = 0;
+    for (const auto& [set, out] :
+         {std::pair(&source.db.creases, &data.creases), std::pair(&source.db.ridges, &data.ridges)}) {
+        const std::vector<std::uint32_t> ids = lines_meeting_box(*set, l, h);
+        // the vertices a batch at a time (batch_bytes, or one longer line): the memory held
+        // follows the lines drawn, not those meeting the box
+        FileBatches batches{*set, ids, source.vertices, which,
+                            std::max<std::size_t>(source.batch_bytes / sizeof(DrapedVertex), 1), {}, {}};
+        *out = select_lines(set->lines, ids, batches, l, h, model.vertical_exaggeration, culling);
+        ++which;
+    }
     return data;
 }
 

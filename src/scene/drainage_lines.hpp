@@ -49,6 +49,20 @@ struct LineCulling {
 };
 DrainageLineData prepare_drainage_lines(const DrainageDb& db, const Terrain& model, const LineCulling& culling = {});
 
+// What a render selects its lines from (scene_drainage): a database whose lines carry their
+// vertices (a build, or a whole lines-part read), or the cache's line records and index with the
+// vertices left in the file (load_or_build_drainage's `in_file`, read_drainage_line_index).
+struct DrainageLineSource {
+    DrainageDb db;
+    DvLineVertices vertices;  // file set: db's creases and ridges hold no vertices; they are here
+    std::size_t batch_bytes = std::size_t(4) << 20;  // vertices read from the file at a time (at least one line)
+};
+// The same lines as prepare_drainage_lines(db) gives for the database whose lines `source` holds
+// (same pieces, order and floats); from a file, only the vertices of the lines meeting the box
+// are read (memory and time follow the selection).
+DrainageLineData prepare_drainage_lines(const DrainageLineSource& source, const Terrain& model,
+                                        const LineCulling& culling = {});
+
 // Half of: three spacings (the thinning's shortest stroke) of the closer-spaced layer, less what
 // object-space sketchiness adds to a stroke's ends (twice the sketch amount) and a pixel of
 // rounding. The half is a margin: the sketch offsets are sized at a line's mean depth, so its

@@ -84,17 +84,20 @@ FrameOptions frame_options(const Scene& scene) {
 }
 }  // namespace
 
-std::optional<DrainageDb> scene_drainage(const Scene& scene, const Terrain& dem, const Log& log) {
+std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terrain& dem, const Log& log) {
     if (!scene.creases.enabled && !scene.ridges.enabled) return std::nullopt;
     StageProgress progress(std::cerr, stderr_is_terminal(), "building drainage database");
     DrainageOptions options;
     options.routing = *drainage_routing_named(scene.drainage_routing);  // validate_scene checked it
-    return load_or_build_drainage(
+    DrainageLineSource source;
+    source.db = load_or_build_drainage(
         scene.dem, dem, options, [&](const std::string& m) { log.info(m); },
-        [&progress](const std::string& stage, double fraction) { progress.update(stage, fraction); });
+        [&progress](const std::string& stage, double fraction) { progress.update(stage, fraction); },
+        &source.vertices);
+    return source;
 }
 
-TerrainFrames::TerrainFrames(GlContext& context, std::optional<DrainageDb> drainage, Terrain terrain, int width,
+TerrainFrames::TerrainFrames(GlContext& context, std::optional<DrainageLineSource> drainage, Terrain terrain, int width,
                              int height, const Log& log, LineCulling culling)
     : context_(&context), terrain_(std::move(terrain)), width_(width), height_(height) {
     const auto t0 = Clock::now();
@@ -159,7 +162,7 @@ SceneView open_terrain_view(const Scene& scene, GlContext& context, const Log& l
              std::to_string(int(lap_ms(t0))) + " ms)");
     SceneView view;
     view.camera = scene_camera(scene, dem);
-    std::optional<DrainageDb> drainage = scene_drainage(scene, dem, log);
+    std::optional<DrainageLineSource> drainage = scene_drainage(scene, dem, log);
     t0 = Clock::now();
     Terrain model = terrain_for_view(std::move(dem), view.camera, scene, log);
     log.info("view window cropped (" + std::to_string(int(lap_ms(t0))) + " ms)");

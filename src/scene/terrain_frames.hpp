@@ -17,20 +17,22 @@ namespace penink {
 // The scene's DEM read, its camera placed, the DEM cropped to that view and set up for frames.
 SceneView open_terrain_view(const Scene& scene, GlContext& context, const Log& log);
 
-// The scene's drainage database (cached beside the DEM: drainage/drainage_build.hpp), read or
-// built with progress on a terminal; none when the scene draws neither creases nor ridges.
-std::optional<DrainageDb> scene_drainage(const Scene& scene, const Terrain& dem, const Log& log);
+// The scene's drainage lines (cached beside the DEM: drainage/drainage_build.hpp), read or built
+// with progress on a terminal; none when the scene draws neither creases nor ridges. A valid
+// cache is checked whole but only its line records and index are held: the frames read the
+// vertices of the lines they select from the file (DrainageLineSource).
+std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terrain& dem, const Log& log);
 
 // A terrain set up once and drawn in many frames (render, batch, bench): its level-of-detail
 // pyramid (surface/terrain_lod.hpp), from which each frame selects the mesh its camera needs
 // ([surface] tolerance_px; 0 = the full-resolution mesh), its GPU copy, and its drainage lines.
 // `terrain` is what gets modelled (cropped to the view for a single frame, the union of the
-// frames' windows for a flight); `drainage` is the database of the whole DEM (scene_drainage).
+// frames' windows for a flight); `drainage` holds the lines of the whole DEM (scene_drainage).
 class TerrainFrames : public FrameSource {
 public:
     // `culling`: the cameras the frames will use and the screen size below which a crease or
     // ridge cannot be drawn (prepare_drainage_lines); default: every line of the modelled box.
-    TerrainFrames(GlContext& context, std::optional<DrainageDb> drainage, Terrain terrain, int width, int height,
+    TerrainFrames(GlContext& context, std::optional<DrainageLineSource> drainage, Terrain terrain, int width, int height,
                   const Log& log, LineCulling culling = {});
     TerrainFrames(const TerrainFrames&) = delete;  // the line preparation thread holds &terrain_
     TerrainFrames& operator=(const TerrainFrames&) = delete;

@@ -331,6 +331,80 @@ TEST(DvFile, LinesPartReadAloneAndChecked) {
     fs::remove_all(d);
 }
 
+// The render path's read of the lines part (read_drainage_line_index): the line records and
+// index as the whole read gives them, no vertices held (they are read back from the file), every
+// byte of the part hashed: a bit flipped in the vertex arrays, a truncation, hostile counts and a
+// stale fingerprint are found as by the whole read.
+TEST(DvFile, LineIndexReadLeavesVerticesInTheFileAndChecksEveryByte) {
+    const fs::path d = temp_dir("line_index");
+    const DrainageDb db = rough_db();
+    const fs::path p = d / "x.dv";
+    write_drainage_db(p.string(), db);
+    DvLineVertices where;
+    const DrainageDb got = read_drainage_line_index(p.string(), &db.fingerprint, where);
+    ASSERT_TRUE(where.file);
+    DrainageDb want = drainage_lines_only(db);
+    EXPECT_EQ(where.count[0], want.creases.vertices.size());
+    EXPECT_EQ(where.count[1], want.ridges.vertices.size());
+    DrapedVertices back(want.creases.vertices.size());
+    where.read(0, 0, back.size(), back.data());
+    EXPECT_TRUE(back == want.creases.vertices);
+    back.resize(7);
+    where.read(1, 3, 7, back.data());
+    EXPECT_TRUE(std::equal(back.begin(), back.end(), want.ridges.vertices.begin() + 3));
+    EXPECT_THROW(where.read(1, want.ridges.vertices.size() - 2, 3, back.data()), Error);
+    want.creases.vertices.clear(), want.ridges.vertices.clear();
+    EXPECT_TRUE(got == want);
+
+    const std::vector<char> good = slurp(p);
+    std::uint64_t lines_at = 0;
+    std::memcpy(&lines_at, good.data() + 24, 8);
+    const std::string pre = "penink: drainage: " + p.string() + ": ";
+    auto index_error = [&](const DrainageFingerprint* fp = nullptr) {
+        try {
+            DvLineVertices v;
+            read_drainage_line_index(p.string(), fp, v);
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    const std::size_t vertices[2] = {std::size_t(where.at[0]), std::size_t(where.at[1])};
+    ASSERT_GT(vertices[0], lines_at);
+    for (const std::size_t at : {vertices[0], vertices[0] + where.count[0] * 28 / 2 + 3, vertices[1] + 27,
+                                 std::size_t(lines_at + 5), good.size() - 9}) {
+        std::vector<char> b = good;
+        b[at] ^= 0x20;
+        spit(p, b);
+        EXPECT_EQ(index_error(), pre + "drainage database checksum mismatch (file corrupt)") << at;
+    }
+    std::vector<char> b = good;
+    b[lines_at / 2] ^= 0x04;  // the network part is not the render's
+    spit(p, b);
+    EXPECT_EQ(index_error(), "no error");
+    b = good;
+    b.resize(good.size() - 1);
+    spit(p, b);
+    EXPECT_EQ(index_error(), pre + "truncated drainage database");
+    for (const std::size_t at : {std::size_t(lines_at + 72), std::size_t(lines_at + 80)}) {
+        b = good;
+        const std::uint64_t huge = std::uint64_t(1) << 40;
+        std::memcpy(b.data() + at, &huge, 8);
+        const std::uint64_t total = good.size();
+        const std::uint64_t h = dv::lines_hash(reinterpret_cast<const std::uint8_t*>(b.data()) + lines_at,
+                                               std::size_t(total - 8 - lines_at), lines_at, total);
+        std::memcpy(b.data() + total - 8, &h, 8);
+        spit(p, b);
+        EXPECT_EQ(index_error(), pre + "drainage database checksum mismatch (file corrupt)") << at;
+    }
+    spit(p, good);
+    EXPECT_EQ(index_error(&db.fingerprint), "no error");
+    DrainageFingerprint other = db.fingerprint;
+    other.content_hash ^= 1;
+    EXPECT_EQ(index_error(&other), pre + "drainage database is stale (DEM changed)");
+    fs::remove_all(d);
+}
+
 Terrain small_terrain() {
     Terrain t;
     t.cols = 6, t.rows = 5, t.origin = {500000.0, 4000000.0};

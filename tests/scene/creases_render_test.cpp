@@ -567,3 +567,105 @@ TEST(CreasesRender, CroppedModelGetsTheLinesMeetingItsBox) {
         EXPECT_LT(got->positions.size(), set->vertices.size() / 2);
     }
 }
+
+namespace {
+
+void expect_same_lines(const ScoredLineSet& a, const ScoredLineSet& b, const std::string& what) {
+    ASSERT_EQ(a.positions.size(), b.positions.size()) << what;
+    ASSERT_EQ(a.runs.size(), b.runs.size()) << what;
+    for (std::size_t i = 0; i < a.runs.size(); ++i) {
+        EXPECT_EQ(a.runs[i].first, b.runs[i].first) << what;
+        EXPECT_EQ(a.runs[i].count, b.runs[i].count) << what;
+    }
+    EXPECT_TRUE(a.positions == b.positions) << what;
+    EXPECT_TRUE(a.normals == b.normals) << what;
+    ASSERT_EQ(a.upload.size(), b.upload.size()) << what;
+    EXPECT_EQ(std::memcmp(a.upload.data(), b.upload.data(), a.upload.size() * sizeof(DmVertex)), 0) << what;
+}
+
+}  // namespace
+
+// The render path's selection from the cache file (line records and index read and checked, the
+// selected lines' vertices read from the file a batch at a time) gives exactly what the
+// selection from the whole lines part in memory gives: same pieces, order and floats, for whole
+// and cropped models, with and without screen-size culling, at exaggeration 1 and 2.
+TEST(CreasesRender, StreamedSelectionEqualsTheInMemoryOne) {
+    const fs::path dir = fs::temp_directory_path() / "penink_streamed_selection";
+    fs::create_directories(dir);
+    const Cleanup cleanup{dir};
+    for (const std::string name : {"volcano", "jacksboro"}) {
+        const std::string dem_path = std::string(PENINK_SHARED_DIR "/data/") + name + ".tif";
+        const Terrain dem = read_dem(dem_path);
+        const DrainageDb full = build_drainage_db(dem, DrainageOptions{});
+        const std::string cache = (dir / (name + ".dv")).string();
+        write_drainage_db(cache, full);
+        const DrainageDb db = drainage_lines_only(full);
+        DrainageLineSource source;
+        source.db = read_drainage_line_index(cache, &db.fingerprint, source.vertices);
+        ASSERT_TRUE(source.vertices.file);
+        EXPECT_TRUE(source.db.creases.vertices.empty() && source.db.ridges.vertices.empty());
+        EXPECT_TRUE(source.db.creases.lines == db.creases.lines && source.db.creases.index == db.creases.index);
+        EXPECT_TRUE(source.db.ridges.lines == db.ridges.lines && source.db.ridges.index == db.ridges.index);
+        for (const double e : {1.0, 2.0}) {
+            DemOptions o;
+            o.vertical_exaggeration = e;
+            const Terrain at_e = read_dem(dem_path, o);
+            Scene scene;
+            scene.camera.width = 400, scene.camera.height = 300;
+            const Camera cam = scene_camera(scene, at_e);
+            const int c = at_e.cols, r = at_e.rows;
+            const std::vector<Terrain> models = {at_e, crop_terrain(at_e, GridWindow{c / 4, r / 5, c / 2 + 3, r * 3 / 4}),
+                                                 crop_terrain(at_e, GridWindow{0, r / 2, c / 3, r})};
+            EXPECT_LT(prepare_drainage_lines(db, at_e, LineCulling{{cam}, 20.0f}).creases.positions.size(),
+                      prepare_drainage_lines(db, at_e).creases.positions.size());
+            for (std::size_t m = 0; m < models.size(); ++m)
+                for (const LineCulling& culling : {LineCulling{}, LineCulling{{cam}, 2.0f}, LineCulling{{cam}, 20.0f}}) {
+                    const DrainageLineData want = prepare_drainage_lines(db, models[m], culling);
+                    const std::string what = name + " e " + std::to_string(e) + " model " + std::to_string(m) +
+                                             " min_px " + std::to_string(culling.min_px);
+                    if (culling.cameras.empty()) EXPECT_GT(want.creases.positions.size(), 100u) << what;
+                    // the default batches, or many small ones (a read for each few lines)
+                    source.batch_bytes = m == 1 ? std::size_t(64) << 10 : std::size_t(4) << 20;
+                    const DrainageLineData got = prepare_drainage_lines(source, models[m], culling);
+                    expect_same_lines(want.creases, got.creases, what + " creases");
+                    expect_same_lines(want.ridges, got.ridges, what + " ridges");
+                }
+        }
+    }
+}
+
+// The render path's cache read (load_or_build_drainage with `in_file`) checks every byte of the
+// lines part: one bit flipped in the creases' vertices is found and the cache rebuilt, after
+// which the file is used with its vertices left in it.
+TEST(CreasesRender, StreamedCacheReadRebuildsACorruptVertex) {
+    const fs::path dir = volcano_dir("streamed_corrupt");
+    const Cleanup cleanup{dir};
+    ASSERT_EQ(run_penink("drainage volcano.asc -q", dir).code, 0);
+    const fs::path dem = dir / "volcano.asc", cache = dir / "volcano.asc.dv";
+    const std::string good = read_text(cache);
+    DvLineVertices where;
+    read_drainage_line_index(cache.string(), nullptr, where);
+    ASSERT_GT(where.count[0], 100u);
+    std::string bad = good;
+    const std::size_t at = std::size_t(where.at[0] + where.count[0] / 2 * sizeof(DrapedVertex) + 5);
+    bad[at] = char(bad[at] ^ 0x10);
+    std::ofstream(cache, std::ios::binary) << bad;
+    std::vector<std::string> log;
+    DvLineVertices in_file;
+    const DrainageDb built = load_or_build_drainage(dem.string(), read_dem(dem.string()), DrainageOptions{},
+                                                    [&](const std::string& m) { log.push_back(m); }, {}, &in_file);
+    ASSERT_EQ(log.size(), 2u);
+    EXPECT_EQ(log[0], "penink: drainage: " + cache.string() + ": drainage database checksum mismatch (file corrupt); rebuilding");
+    EXPECT_FALSE(in_file.file);  // a build hands its lines directly
+    EXPECT_FALSE(built.creases.vertices.empty());
+    EXPECT_EQ(read_text(cache), good);
+    const DrainageDb cached = load_or_build_drainage(dem.string(), read_dem(dem.string()), DrainageOptions{},
+                                                     [&](const std::string& m) { log.push_back(m); }, {}, &in_file);
+    EXPECT_EQ(log.back(), "drainage: using cached " + cache.string());
+    ASSERT_TRUE(in_file.file);
+    EXPECT_TRUE(cached.creases.vertices.empty());
+    EXPECT_TRUE(cached.creases.lines == built.creases.lines && cached.ridges.index == built.ridges.index);
+    DrapedVertices v(built.creases.vertices.size());
+    in_file.read(0, 0, v.size(), v.data());
+    EXPECT_TRUE(v == built.creases.vertices);
+}
