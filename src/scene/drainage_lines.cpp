@@ -68,9 +68,11 @@ ScoredLineSet select_lines(const std::vector<DrapedLine>& lines, const std::vect
         std::uint32_t line;          // index into `kept` (the lines with pieces)
         std::uint32_t from, to;      // the line's vertices [from, to) of the piece
         std::uint32_t in0, in1;      // those inside the box: [in0, in1)
+        std::size_t keep;            // keep[piece.keep + (i - from)]: vertex i is written
     };
     const auto inside = [&](const DrapedVertex& v) { return v.x >= lo.x && v.x <= hi.x && v.y >= lo.y && v.y <= hi.y; };
     std::vector<Piece> pieces;
+    std::vector<std::uint8_t> keep;   // per candidate vertex of the pieces, in piece order
     std::vector<std::uint32_t> kept;  // j of the lines with pieces (ids[j]), ascending
     ScoredLineSet out;
     std::vector<double> scale;  // pixels per metre at unit distance, per camera
@@ -89,6 +91,27 @@ ScoredLineSet select_lines(const std::vector<DrapedLine>& lines, const std::vect
         for (std::size_t c = 0; c < nearest.size(); ++c)
             if (length * scale[c] >= double(culling.min_px) * nearest[c]) return true;
         return false;
+    };
+    // Marks the vertices [a, b) of v to write: the piece's ends, the ends of its drawable part
+    // [k, end) and, between them, a vertex only once it lies decimate_px pixels (as big_enough
+    // measures) from the last one kept; returns how many.
+    const auto mark = [&](const DrapedVertex* v, std::uint32_t a, std::uint32_t b, std::uint32_t k,
+                          std::uint32_t end) {
+        std::uint32_t n = 0;
+        glm::dvec3 last(0.0);
+        for (std::uint32_t i = a; i < b; ++i) {
+            const glm::dvec3 p(v[i].x, v[i].y, e * double(v[i].z));
+            bool write = culling.cameras.empty() || culling.decimate_px <= 0.0f || i <= k || i + 1 >= end;
+            if (!write) {
+                double step = 1e300;  // metres that project to decimate_px for the finest camera
+                for (std::size_t c = 0; c < scale.size(); ++c)
+                    step = std::min(step, double(culling.decimate_px) * glm::length(p - culling.cameras[c].eye) / scale[c]);
+                write = glm::length(p - last) >= step;
+            }
+            keep.push_back(write);
+            if (write) last = p, ++n;
+        }
+        return n;
     };
     std::vector<std::uint32_t> all(ids.size());
     for (std::size_t j = 0; j < all.size(); ++j) all[j] = std::uint32_t(j);
@@ -109,9 +132,11 @@ ScoredLineSet select_lines(const std::vector<DrapedLine>& lines, const std::vect
                     continue;
                 }
                 if (kept.empty() || kept.back() != j) kept.push_back(std::uint32_t(j));
-                out.runs.push_back({total, b - a});
-                pieces.push_back({std::uint32_t(kept.size() - 1), a, b, k, end});
-                total += b - a;
+                const std::size_t at = keep.size();
+                const std::uint32_t n = mark(v, a, b, k, end);
+                out.runs.push_back({total, n});
+                pieces.push_back({std::uint32_t(kept.size() - 1), a, b, k, end, at});
+                total += n;
                 k = end;
             }
         }
@@ -129,7 +154,8 @@ ScoredLineSet select_lines(const std::vector<DrapedLine>& lines, const std::vect
                 const Piece& piece = pieces[p];
                 const DrapedVertex* line = batches.vertices(piece.line);
                 std::uint32_t at = out.runs[p].first;
-                for (std::uint32_t i = piece.from; i < piece.to; ++i, ++at) {
+                for (std::uint32_t i = piece.from; i < piece.to; ++i) {
+                    if (!keep[piece.keep + (i - piece.from)]) continue;
                     const DrapedVertex& v = line[i];
                     glm::vec3 n(0.0f);  // beyond the box: off the modelled surface
                     if (i >= piece.in0 && i < piece.in1) {
@@ -141,6 +167,7 @@ ScoredLineSet select_lines(const std::vector<DrapedLine>& lines, const std::vect
                     out.positions[at] = pos, out.normals[at] = n;
                     DmVertex& dm = out.upload[at];
                     dm.position = pos, dm.flow = v.flow, dm.normal = n, dm.unused = 0.0f;
+                    ++at;
                 }
             }
         });

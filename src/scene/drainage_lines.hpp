@@ -43,9 +43,12 @@ struct DrainageLineData {
 // lod_pixel_scale over its nearest vertex's eye distance: an upper bound on its image length
 // inside the frame). DrainageLines::draw's spacing thinning drops every stroke shorter than three
 // spacings, so with min_px = line_culling_px(scene) the drawing is the same as without culling.
+// Vertex decimation: inside a piece's drawable part, a vertex closer than decimate_px pixels (same
+// bound) to the last one kept is not written; the part's two ends always are.
 struct LineCulling {
-    std::vector<Camera> cameras;  // none: no culling
+    std::vector<Camera> cameras;  // none: no culling, no decimation
     float min_px = 0.0f;
+    float decimate_px = 0.5f;
 };
 DrainageLineData prepare_drainage_lines(const DrainageDb& db, const Terrain& model, const LineCulling& culling = {});
 

@@ -27,6 +27,7 @@
 #include "input/dem_reader.hpp"
 #include "support/synthetic_terrain.hpp"
 #include "surface/surface_mesh.hpp"
+#include "surface/terrain_lod.hpp"
 
 using namespace penink;
 using namespace penink::test;
@@ -632,6 +633,35 @@ TEST(CreasesRender, StreamedSelectionEqualsTheInMemoryOne) {
                 }
         }
     }
+}
+
+// Vertex decimation: with a camera, inside each written run's drawable part consecutive vertices
+// lie at least decimate_px pixels apart on screen (measured with the same bound as the culling:
+// distance times lod_pixel_scale over the eye distance), except next to the part's ends; without
+// decimation every vertex of the same lines is written.
+TEST(CreasesRender, DecimationKeepsVerticesHalfAPixelApart) {
+    const std::string dem_path = PENINK_SHARED_DIR "/data/jacksboro.tif";
+    const Terrain dem = read_dem(dem_path);
+    const DrainageDb db = build_drainage_db(dem, DrainageOptions{});
+    Scene scene;
+    scene.camera.width = 400, scene.camera.height = 300;
+    const Camera cam = scene_camera(scene, dem);
+    const DrainageLineData all = prepare_drainage_lines(db, dem, LineCulling{{cam}, 0.0f, 0.0f});
+    const DrainageLineData few = prepare_drainage_lines(db, dem, LineCulling{{cam}, 0.0f, 0.5f});
+    ASSERT_EQ(all.creases.runs.size(), few.creases.runs.size());  // same pieces, fewer vertices
+    EXPECT_LT(few.creases.positions.size() * 2, all.creases.positions.size());
+    const double scale = lod_pixel_scale(cam);
+    std::size_t checked = 0;
+    for (const VertexRun& run : few.creases.runs) {
+        ASSERT_GE(run.count, 2u);
+        // run.first + 1 .. run.first + count - 3: neither next to a cut vertex nor an end
+        for (std::uint32_t i = run.first + 2; i + 2 < run.first + run.count; ++i) {
+            const glm::dvec3 p(few.creases.positions[i]), q(few.creases.positions[i - 1]);
+            EXPECT_GE(glm::length(p - q) * scale / glm::length(p - cam.eye), 0.5 - 1e-6) << i;
+            ++checked;
+        }
+    }
+    EXPECT_GT(checked, 1000u);
 }
 
 // The render path's cache read (load_or_build_drainage with `in_file`) checks every byte of the
