@@ -90,10 +90,12 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terra
     DrainageOptions options;
     options.routing = *drainage_routing_named(scene.drainage_routing);  // validate_scene checked it
     DrainageLineSource source;
+    const auto t0 = Clock::now();
     source.db = load_or_build_drainage(
         scene.dem, dem, options, [&](const std::string& m) { log.info(m); },
         [&progress](const std::string& stage, double fraction) { progress.update(stage, fraction); },
         &source.vertices);
+    log.info("drainage database ready (" + std::to_string(int(ms_since(t0))) + " ms)");
     return source;
 }
 
