@@ -264,6 +264,19 @@ TEST(DvFile, CorruptionsAreDetected) {
 // whole read gives, checked by its own checksum; a flipped bit in the network part is seen only
 // by a whole read, one in the lines part by both; absurd counts with a matching checksum are
 // refused before anything is allocated.
+// `good` with the u64 count at byte `at` of its lines part made 2^40 and the lines checksum made
+// to match, so that only the count checks can refuse it.
+std::vector<char> with_huge_count(const std::vector<char>& good, std::uint64_t lines_at, std::size_t at) {
+    std::vector<char> b = good;
+    const std::uint64_t huge = std::uint64_t(1) << 40;
+    std::memcpy(b.data() + at, &huge, 8);
+    const std::uint64_t total = good.size();
+    const std::uint64_t h = dv::lines_hash(reinterpret_cast<const std::uint8_t*>(b.data()) + lines_at,
+                                           std::size_t(total - 8 - lines_at), lines_at, total);
+    std::memcpy(b.data() + total - 8, &h, 8);
+    return b;
+}
+
 TEST(DvFile, LinesPartReadAloneAndChecked) {
     const fs::path d = temp_dir("lines");
     const DrainageDb db = rough_db();
@@ -307,14 +320,7 @@ TEST(DvFile, LinesPartReadAloneAndChecked) {
     EXPECT_EQ(lines_error(), pre + "truncated drainage database");
     // the creases' line and vertex counts made huge, the lines checksum made to match
     for (const std::size_t at : {std::size_t(lines_at + 72), std::size_t(lines_at + 80)}) {
-        b = good;
-        const std::uint64_t huge = std::uint64_t(1) << 40;
-        std::memcpy(b.data() + at, &huge, 8);
-        const std::uint64_t total = good.size();
-        const std::uint64_t h = dv::lines_hash(reinterpret_cast<const std::uint8_t*>(b.data()) + lines_at,
-                                               std::size_t(total - 8 - lines_at), lines_at, total);
-        std::memcpy(b.data() + total - 8, &h, 8);
-        spit(p, b);
+        spit(p, with_huge_count(good, lines_at, at));
         EXPECT_EQ(lines_error(), pre + "drainage database checksum mismatch (file corrupt)") << at;
         EXPECT_EQ(read_error(p), pre + "drainage database checksum mismatch (file corrupt)") << at;
     }
@@ -387,14 +393,7 @@ TEST(DvFile, LineIndexReadLeavesVerticesInTheFileAndChecksEveryByte) {
     spit(p, b);
     EXPECT_EQ(index_error(), pre + "truncated drainage database");
     for (const std::size_t at : {std::size_t(lines_at + 72), std::size_t(lines_at + 80)}) {
-        b = good;
-        const std::uint64_t huge = std::uint64_t(1) << 40;
-        std::memcpy(b.data() + at, &huge, 8);
-        const std::uint64_t total = good.size();
-        const std::uint64_t h = dv::lines_hash(reinterpret_cast<const std::uint8_t*>(b.data()) + lines_at,
-                                               std::size_t(total - 8 - lines_at), lines_at, total);
-        std::memcpy(b.data() + total - 8, &h, 8);
-        spit(p, b);
+        spit(p, with_huge_count(good, lines_at, at));
         EXPECT_EQ(index_error(), pre + "drainage database checksum mismatch (file corrupt)") << at;
     }
     spit(p, good);
