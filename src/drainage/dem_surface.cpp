@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "core/parallel_chunks.hpp"
+#include "surface/grid_cell.hpp"
 #include "surface/pn_triangle.hpp"
 
 namespace penink {
@@ -122,55 +123,18 @@ bool DemSurface::affine_guess(double x, double y, int& c, int& r) const {
     return true;
 }
 
-// Steps from cell (c, r) across the edge (x, y) lies farthest beyond until a cell's quadrilateral
-// holds it (within a millionth of the edge's length): at most cols + rows steps.
-bool DemSurface::walk(double x, double y, int& c, int& r) const {
-    const glm::dvec2 p(x, y);
-    for (int step = 0; step <= cols_ + rows_; ++step) {
-        // corners counter-clockwise seen from above: SW, SE, NE, NW; crossing edge k (corner k to
-        // k + 1) leads to the cell moved by (dc[k], dr[k])
-        const glm::dvec2 q[4] = {glm::dvec2(node_xy(c, r + 1)), glm::dvec2(node_xy(c + 1, r + 1)),
-                                 glm::dvec2(node_xy(c + 1, r)), glm::dvec2(node_xy(c, r))};
-        constexpr int dc[4] = {0, 1, 0, -1}, dr[4] = {1, 0, -1, 0};
-        int out = -1;
-        double worst = 0.0;
-        for (int k = 0; k < 4; ++k) {
-            const glm::dvec2 e = q[(k + 1) % 4] - q[k], d = p - q[k];
-            const double cross = e.x * d.y - e.y * d.x, len2 = e.x * e.x + e.y * e.y;  // cross > 0 inside
-            if (!(cross < -1e-6 * len2)) continue;
-            const double side = cross / std::sqrt(len2);  // the distance beyond the edge
-            if (side < worst) worst = side, out = k;
-        }
-        if (out < 0) return true;
-        const int nc = c + dc[out], nr = r + dr[out];
-        if (nc < 0 || nr < 0 || nc > cols_ - 2 || nr > rows_ - 2) return false;
-        c = nc, r = nr;
-    }
-    return false;
-}
 
 bool DemSurface::find_cell(double x, double y, int& c, int& r) const {
+    const auto xy = [this](int nc, int nr) { return node_xy(nc, nr); };  // the walk's node positions
     if (cols_ < 2 || rows_ < 2 || !std::isfinite(x) || !std::isfinite(y)) return false;
     if (affine_) {
         if (!affine_guess(x, y, c, r)) return false;
         if (!pos_ && !xy_) return true;  // the nodes are the formula's: its cell
-        return walk(x, y, c, r);         // stored nodes: the formula's cell starts the walk
+        return walk_to_cell(xy, cols_, rows_, x, y, c, r);  // stored nodes: the formula's cell starts the walk
     }
-    if (c < 0 || r < 0 || c > cols_ - 2 || r > rows_ - 2) {
-        // the cell the grid's outline predicts (bilinear frame of its corner nodes)
-        const glm::dvec2 o(node_xy(0, 0)), ec = glm::dvec2(node_xy(cols_ - 1, 0)) - o,
-            er = glm::dvec2(node_xy(0, rows_ - 1)) - o;
-        const double det = ec.x * er.y - ec.y * er.x;
-        c = r = 0;
-        if (std::abs(det) > 1e-300) {
-            const glm::dvec2 d = glm::dvec2(x, y) - o;
-            const double u = (d.x * er.y - d.y * er.x) / det, v = (ec.x * d.y - ec.y * d.x) / det;
-            if (!std::isfinite(u) || !std::isfinite(v)) return false;
-            c = int(std::clamp(std::floor(u * (cols_ - 1)), 0.0, double(cols_ - 2)));
-            r = int(std::clamp(std::floor(v * (rows_ - 1)), 0.0, double(rows_ - 2)));
-        }
-    }
-    return walk(x, y, c, r);
+    if ((c < 0 || r < 0 || c > cols_ - 2 || r > rows_ - 2) && !outline_cell(xy, cols_, rows_, x, y, c, r))
+        return false;
+    return walk_to_cell(xy, cols_, rows_, x, y, c, r);
 }
 
 // Triangle `which` of cell (c, r) tested as TerrainLocator::locate tests it: true when (x, y)

@@ -82,7 +82,6 @@ private:
     void make_normals();
 
     bool affine_guess(double x, double y, int& c, int& r) const;
-    bool walk(double x, double y, int& c, int& r) const;
 };
 
 // Where a plan point lies on the DEM's PN surface: its triangle (node indices in mesh order) and

@@ -4,7 +4,7 @@
 // under (x, y) is found by walking from the cell the grid's corner nodes predict (exact in one
 // step on an affine grid; a few steps on the curvilinear grid of a projected geographic DEM),
 // at most cols + rows steps. Frames: the Terrain's local metres (x east, y north), z as stored
-// in Terrain::pos (exaggerated).
+// in Terrain::pos (exaggerated). The cell is found as grid_cell.hpp finds it.
 #pragma once
 #include "input/terrain.hpp"
 
