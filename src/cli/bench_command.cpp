@@ -29,56 +29,65 @@ std::vector<std::string> split(const std::string& text) {
     return out;
 }
 
-}  // namespace
-
-std::vector<int> parse_int_list(const std::string& text, const std::string& option) {
-    std::vector<int> out;
+// Each comma-separated field of `text` read by parse(field, value) (false: not valid); one line
+// naming the option and what a field must be otherwise, or for an empty list.
+template <class T, class Parse>
+std::vector<T> parse_list(const std::string& text, const std::string& option, const std::string& must_be, Parse parse) {
+    std::vector<T> out;
     for (const std::string& f : split(text)) {
-        std::size_t used = 0;
-        int v = 0;
-        try {
-            v = std::stoi(f, &used);
-        } catch (const std::exception&) {
-            used = 0;
-        }
-        if (used != f.size() || f.empty() || v < 1 || v > 64)
-            throw Error("cli", "", option + ": \"" + f + "\" is not a level between 1 and 64");
+        T v{};
+        if (f.empty() || !parse(f, v)) throw Error("cli", "", option + ": \"" + f + "\" is not " + must_be);
         out.push_back(v);
     }
     if (out.empty()) throw Error("cli", "", option + ": empty list");
     return out;
 }
 
-std::vector<float> parse_tolerances(const std::string& text) {
-    std::vector<float> out;
-    for (const std::string& f : split(text)) {
-        std::size_t used = 0;
-        double v = -1.0;
-        try {
-            v = std::stod(f, &used);
-        } catch (const std::exception&) {
-            used = 0;
-        }
-        if (used != f.size() || f.empty() || !(v >= 0.0 && v <= 1000.0))
-            throw Error("cli", "", "--tolerances: \"" + f + "\" is not a number of pixels between 0 and 1000");
-        out.push_back(float(v));
+// The whole field as a number through std::stoi / std::stod.
+template <class N, class Convert>
+bool whole_number(const std::string& f, N& v, Convert convert) {
+    std::size_t used = 0;
+    try {
+        v = N(convert(f, &used));
+    } catch (const std::exception&) {
+        return false;
     }
-    if (out.empty()) throw Error("cli", "", "--tolerances: empty list");
-    return out;
+    return used == f.size();
+}
+
+}  // namespace
+
+std::vector<int> parse_int_list(const std::string& text, const std::string& option) {
+    return parse_list<int>(text, option, "a level between 1 and 64", [](const std::string& f, int& v) {
+        return whole_number(f, v, [](const std::string& t, std::size_t* used) { return std::stoi(t, used); }) &&
+               v >= 1 && v <= 64;
+    });
+}
+
+std::vector<float> parse_tolerances(const std::string& text) {
+    return parse_list<float>(text, "--tolerances", "a number of pixels between 0 and 1000",
+                             [](const std::string& f, float& v) {
+                                 double d = -1.0;
+                                 const bool ok = whole_number(f, d, [](const std::string& t, std::size_t* used) {
+                                     return std::stod(t, used);
+                                 }) && d >= 0.0 && d <= 1000.0;
+                                 v = float(d);
+                                 return ok;
+                             });
 }
 
 std::vector<std::pair<int, int>> parse_sizes(const std::string& text) {
-    std::vector<std::pair<int, int>> out;
-    for (const std::string& f : split(text)) {
-        int w = 0, h = 0;
-        char x = 0, extra = 0;
-        std::istringstream s(f);
-        if (!(s >> w >> x >> h) || x != 'x' || (s >> extra) || w < 8 || h < 8 || w > 8192 || h > 8192)
-            throw Error("cli", "", "--sizes: \"" + f + "\" is not WIDTHxHEIGHT (8..8192 pixels)");
-        out.emplace_back(w, h);
-    }
-    if (out.empty()) throw Error("cli", "", "--sizes: empty list");
-    return out;
+    return parse_list<std::pair<int, int>>(text, "--sizes", "WIDTHxHEIGHT (8..8192 pixels)",
+                                           [](const std::string& f, std::pair<int, int>& v) {
+                                               int w = 0, h = 0;
+                                               char x = 0, extra = 0;
+                                               std::istringstream s(f);
+                                               if (!(s >> w >> x >> h) || x != 'x' || (s >> extra) || w < 8 || h < 8 ||
+                                                   w > 8192 || h > 8192)
+                                                   return false;
+                                               v = {w, h};
+                                               return true;
+                                           });
 }
 
 namespace {
