@@ -129,11 +129,15 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
     out.camera = camera;
     out.cells = std::size_t(terrain_.cols - 1) * (terrain_.rows - 1);
     const auto t_select = Clock::now();
-    mesh_ = frame_mesh(camera, frame);
+    const bool full = frame.surface_tolerance_px <= 0.0f;
+    if (!(full && mesh_is_full_)) {  // the full-resolution mesh, once made and uploaded, serves every frame
+        mesh_ = frame_mesh(camera, frame);
+        mesh_is_full_ = full;
+        if (renderer_) renderer_->set_surface(mesh_);
+        else renderer_ = std::make_unique<TerrainRenderer>(context_->gl(), mesh_, width_, height_);
+    }
     out.times.select = ms_since(t_select);
     out.triangles = mesh_.tri.size();
-    if (renderer_) renderer_->set_surface(mesh_);
-    else renderer_ = std::make_unique<TerrainRenderer>(context_->gl(), mesh_, width_, height_);
     const FrameOptions options = frame_options(frame);
     FrameImages images = renderer_->render(camera, options);
     images.times.select = out.times.select;

@@ -53,6 +53,7 @@ private:
     Terrain terrain_;
     TerrainLod lod_;
     SurfaceMesh mesh_;
+    bool mesh_is_full_ = false;  // mesh_ is (and the renderer holds) the full-resolution mesh
     int width_, height_;
     std::unique_ptr<TerrainRenderer> renderer_;  // made with the first frame's mesh
     std::unique_ptr<DrainageLines> lines_;
