@@ -137,19 +137,6 @@ void link_upstream(DvBranches& branches, std::vector<std::uint32_t>& upstream) {
         if (branches[b].downstream >= 0) upstream[count[std::size_t(branches[b].downstream)]++] = std::uint32_t(b);
 }
 
-std::uint64_t hash64(const void* data, std::size_t size, std::uint64_t h) {
-    constexpr std::uint64_t prime = 0x100000001b3ull;
-    const auto* p = static_cast<const std::uint8_t*>(data);
-    std::size_t i = 0;
-    for (; i + 8 <= size; i += 8) {
-        std::uint64_t w;
-        std::memcpy(&w, p + i, 8);
-        h = (h ^ w) * prime;
-    }
-    for (; i < size; ++i) h = (h ^ p[i]) * prime;
-    return h;
-}
-
 bool drainage_db_canonical(const DrainageDb& db) {
     return layout_ok(db) && derived_ok(db) && line_set_ok(db.creases) && line_set_ok(db.ridges);
 }

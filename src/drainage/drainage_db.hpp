@@ -16,6 +16,7 @@
 #include <glm/vec2.hpp>
 
 #include "core/big_allocator.hpp"
+#include "core/hash64.hpp"
 #include "drainage/line_set.hpp"
 #include "input/terrain.hpp"
 
@@ -92,9 +93,6 @@ struct DrainageDb {
 // exaggeration); a second part, with its own checksum and its offset in the header, holds the
 // creases and ridges smoothed, draped and indexed (line_set.hpp), which a render reads alone.
 inline constexpr std::uint32_t drainage_db_version = 8;
-
-// 64-bit FNV-1a over little-endian 64-bit words (tail bytes one by one).
-std::uint64_t hash64(const void* data, std::size_t size, std::uint64_t seed = 0xcbf29ce484222325ull);
 
 // Fingerprint of the DEM file at `dem_path` with the given resample factor. Throws
 // penink::Error("drainage", dem_path, "cannot read DEM file") when it cannot be read.

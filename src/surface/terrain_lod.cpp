@@ -1,6 +1,7 @@
 #include "surface/terrain_lod.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <initializer_list>
 #include <limits>
@@ -28,6 +29,11 @@ int padded_levels(int cols, int rows) {
 void check_terrain(const Terrain& t) {
     if (t.cols < 0 || t.rows < 0 || t.pos.size() != t.size() || t.valid.size() != t.size())
         throw std::invalid_argument("terrain lod: terrain positions/valid flags do not match its grid");
+}
+
+void check_nodes(const GridNodes& t) {
+    if (t.cols < 0 || t.rows < 0 || (t.size() > 0 && (!t.pos || !t.valid)))
+        throw std::invalid_argument("terrain lod: terrain positions/valid flags do not match its grid");
     if (std::max(t.cols, t.rows) > (1 << 30))
         throw std::invalid_argument("terrain lod: grid too large");
 }
@@ -46,7 +52,7 @@ template <class F> void each_row(int first, int last, int step, std::size_t work
 // positions' piecewise-linear map from grid units (column, row) to metres: for a triangle's
 // Jacobian [u v], sigma^2 = the largest eigenvalue of [[u.u, u.v], [u.v, v.v]] <=
 // max(u.u, v.v) + |u.v| (Gershgorin; equal on a grid with perpendicular axes).
-double plan_lipschitz(const Terrain& t) {
+double plan_lipschitz(const GridNodes& t) {
     auto bound2 = [](float ux, float uy, float vx, float vy) {
         return std::max(ux * ux + uy * uy, vx * vx + vy * vy) + std::abs(ux * vx + uy * vy);
     };
@@ -56,8 +62,8 @@ double plan_lipschitz(const Terrain& t) {
     parallel_chunks(rows, 64, [&](std::size_t b, std::size_t e) {
         float best = 0.0f;
         for (std::size_t r = b; r < e; ++r) {
-            const glm::vec3* p = &t.pos[t.index(0, int(r))];
-            const glm::vec3* q = &t.pos[t.index(0, int(r) + 1)];
+            const glm::vec3* p = t.pos + t.index(0, int(r));
+            const glm::vec3* q = t.pos + t.index(0, int(r) + 1);
             for (int c = 0; c + 1 < t.cols; ++c) {
                 // Triangles {a, s, d}: columns d - s, rows s - a; {a, d, b}: columns b - a, rows d - b.
                 const glm::vec3 a = p[c], b = p[c + 1], sw = q[c], d = q[c + 1];
@@ -70,19 +76,64 @@ double plan_lipschitz(const Terrain& t) {
     return std::sqrt(double(*std::max_element(part.begin(), part.end())));
 }
 
+// Nested plan radii by level. A node's radius is L times a grid-unit radius nested exactly over
+// its children's distances: R(edge, 2) = 1 (the finest diamonds' corners), R(centre, s) =
+// R(edge, s) + s/2, R(edge, 2s) = R(centre, s) + s/sqrt(2), for the squares of side s = 2^(k+1);
+// padding nodes take the same values (positions clamped to the DEM are L-Lipschitz too).
+struct LevelRadii {
+    float edge[32] = {}, centre[32] = {};  // by k = log2(s / 2)
+};
+
+LevelRadii level_radii(float lip, int levels) {
+    const double grow = 1.0 + 1e-5;  // rounding of L, of the products and of the sums below
+    LevelRadii out;
+    double r_centre = 0.0;  // R of the centre nodes of the previous level
+    for (int k = 0; k < levels && k < 32; ++k) {
+        const int s = 2 << k, half = s / 2;
+        const double r_edge = s == 2 ? 1.0 : r_centre + (s / 4) * std::sqrt(2.0);
+        r_centre = r_edge + half;
+        out.edge[k] = float(lip * r_edge * grow), out.centre[k] = float(lip * r_centre * grow);
+    }
+    return out;
+}
+
+// The level of node (c, r) (its squares' side is 2^(k+1)) and whether it is a square's centre;
+// false at the padded square's corners.
+bool node_level(int c, int r, int levels, int& k, bool& centre) {
+    const unsigned u = unsigned(c) | unsigned(r);
+    if (u == 0) return false;
+    k = std::countr_zero(u);
+    if (k >= levels) return false;
+    centre = std::countr_zero(unsigned(c)) == k && std::countr_zero(unsigned(r)) == k;
+    return true;
+}
+
 }  // namespace
+
+float TerrainLod::radius(int c, int r) const {
+    int k = 0;
+    bool centre = false;
+    if (!node_level(c, r, levels, k, centre)) return 0.0f;
+    const LevelRadii radii = level_radii(lipschitz, levels);
+    return centre ? radii.centre[k] : radii.edge[k];
+}
 
 TerrainLod build_terrain_lod(const Terrain& t) {
     check_terrain(t);
-    const double ex = t.vertical_exaggeration;
+    return build_terrain_lod(grid_nodes(t), t.vertical_exaggeration);
+}
+
+TerrainLod build_terrain_lod(const GridNodes& t, double ex) {
+    check_nodes(t);
     if (!(ex > 0.0) || !std::isfinite(ex)) throw std::invalid_argument("terrain lod: vertical exaggeration must be > 0");
     TerrainLod lod;
     lod.cols = t.cols, lod.rows = t.rows;
     lod.levels = padded_levels(t.cols, t.rows);
     const int n = 1 << lod.levels, side = n + 1;
     const std::size_t N = std::size_t(side) * side;
-    lod.error.assign(N, 0.0f);
-    lod.radius.assign(N, 0.0f);
+    auto error = std::make_shared<std::vector<float>>(N, 0.0f);
+    lod.error = *error;
+    lod.storage = error;
     if (t.cols < 2 || t.rows < 2) return lod;
 
     // Unexaggerated heights (0 where invalid: such nodes only ever feed forced, +inf, nodes) and
@@ -94,7 +145,7 @@ TerrainLod build_terrain_lod(const Terrain& t) {
         for (int c = 0; c < t.cols; ++c) {
             const std::size_t i = t.index(c, r), p = std::size_t(r) * side + c;
             if (!t.valid[i]) continue;
-            const float z = float(double(t.pos[i].z) / ex);
+            const float z = float(double(t.at(i).z) / ex);
             h[p] = z, bad[p] = 0;
             zmin = std::min(zmin, z), zmax = std::max(zmax, z);
         }
@@ -116,9 +167,10 @@ TerrainLod build_terrain_lod(const Terrain& t) {
     }
     wide = {};
 
-    // Signed deviation bounds, bottom-up: up in lod.error, lo in lod.radius for now.
-    float* up = lod.error.data();
-    float* lo = lod.radius.data();
+    // Signed deviation bounds, bottom-up: up in the error array, lo beside it.
+    float* up = error->data();
+    std::vector<float> lower(N, 0.0f);
+    float* lo = lower.data();
     auto at = [side](int c, int r) { return std::size_t(r) * side + c; };
     // Node m split of hypotenuse a-b, children k[0..cnt).
     auto settle = [&](std::size_t m, std::size_t a, std::size_t b, const std::size_t* k, int cnt) {
@@ -162,31 +214,14 @@ TerrainLod build_terrain_lod(const Terrain& t) {
     h = {};
     forced = {};
     parallel_chunks(N, 1 << 18, [&](std::size_t b, std::size_t e) {
-        for (std::size_t i = b; i < e; ++i) up[i] = std::max(up[i], -lo[i]), lo[i] = 0.0f;
+        for (std::size_t i = b; i < e; ++i) up[i] = std::max(up[i], -lo[i]);
     });
 
-    // Nested plan radii. L: a Lipschitz constant of the nodes' plan positions over the grid
-    // (plan_lipschitz: |xy(p) - xy(q)| <= L |p - q|, grid units, for any nodes p, q; the cell
-    // side on a square grid). A node's radius is L times a grid-unit radius nested exactly over
-    // its children's distances: R(edge, 2) = 1 (the finest diamonds' corners), R(centre, s) =
-    // R(edge, s) + s/2, R(edge, 2s) = R(centre, s) + s/sqrt(2). Padding nodes take the same
-    // values (positions clamped to the DEM are L-Lipschitz too).
-    const float lip = float(plan_lipschitz(t));
-    const double grow = 1.0 + 1e-5;  // rounding of L, of the products and of the sums below
-    float* rad = lod.radius.data();
-    double r_centre = 0.0;  // R of the centre nodes of the previous level
-    for (int s = 2; s <= n; s *= 2) {
-        const int half = s / 2;
-        const double r_edge = s == 2 ? 1.0 : r_centre + (s / 4) * std::sqrt(2.0);
-        r_centre = r_edge + half;
-        const float re = float(lip * r_edge * grow), rc = float(lip * r_centre * grow);
-        each_row(0, n, half, std::size_t(n / s) + 1, [&](int r) {
-            for (int c = (r % s == 0) ? half : 0; c <= n; c += s) rad[at(c, r)] = re;
-        });
-        each_row(half, n - half, s, std::size_t(n / s), [&](int r) {
-            for (int c = half; c < n; c += s) rad[at(c, r)] = rc;
-        });
-    }
+    lower = {};
+    // L: a Lipschitz constant of the nodes' plan positions over the grid (plan_lipschitz:
+    // |xy(p) - xy(q)| <= L |p - q|, grid units, for any nodes p, q; the cell side on a square
+    // grid); the radii follow from it and the level (level_radii).
+    lod.lipschitz = float(plan_lipschitz(t));
     return lod;
 }
 
@@ -248,9 +283,10 @@ struct Item {
 
 class Selector {
 public:
-    Selector(const TerrainLod& lod, const Terrain& t, const Camera& cam, const LodOptions& o, std::vector<std::uint32_t>* nodes)
-        : lod_(lod), t_(t), side_(lod.side()), cols_(t.cols), rows_(t.rows), nodes_(nodes) {
-        const double ex = t.vertical_exaggeration;
+    Selector(const TerrainLod& lod, const GridNodes& t, double ex, const Camera& cam, const LodOptions& o,
+             std::vector<std::uint32_t>* nodes)
+        : lod_(lod), t_(t), side_(lod.side()), cols_(t.cols), rows_(t.rows), nodes_(nodes),
+          radii_(level_radii(lod.lipschitz, lod.levels)) {
         ex_ = ex;
         scale_ = ex * lod_pixel_scale(cam);
         tol_ = std::max(0.0, double(o.tolerance_px));
@@ -305,9 +341,10 @@ public:
 
 private:
     const TerrainLod& lod_;
-    const Terrain& t_;
+    const GridNodes& t_;
     int side_, cols_, rows_;
     std::vector<std::uint32_t>* nodes_;
+    LevelRadii radii_;
     double ex_ = 1.0, scale_ = 1.0, tol_ = 1.0, min_radius_ = 0.0, near_ = 1.0, zlo_ = 0.0, zhi_ = 0.0, vz2_ = 0.0;
     glm::dvec3 eye_{0.0};
     Frustum frustum_;
@@ -325,9 +362,12 @@ private:
         if (!(err < kInf)) return true;  // forced (or NaN)
         if (!(err > 0.0f)) return false;
         if (!in_dem(c, r)) return true;  // cannot happen: padding nodes are forced
-        const glm::vec3& p = t_.pos[t_.index(c, r)];
+        const glm::vec3& p = t_.pos[t_.index(c, r)];  // plan position: z unused
         const double dx = double(p.x) - eye_.x, dy = double(p.y) - eye_.y;
-        const double rad = double(lod_.radius[k]), plan = std::sqrt(dx * dx + dy * dy) - rad;
+        int level = 0;
+        bool centre = false;
+        if (!node_level(c, r, lod_.levels, level, centre)) return true;  // cannot happen: corners are never split
+        const double rad = double(centre ? radii_.centre[level] : radii_.edge[level]), plan = std::sqrt(dx * dx + dy * dy) - rad;
         const double d = std::max(std::sqrt((plan > 0.0 ? plan * plan : 0.0) + vz2_), near_);
         return double(err) * scale_ > tol_ * d && (min_radius_ <= 0.0 || rad > min_radius_ * d);
     }
@@ -353,7 +393,7 @@ private:
         touch(id);
         const std::uint32_t v = std::uint32_t(out_.pos.size());
         e |= v + 1;
-        out_.pos.push_back(t_.pos[id]);
+        out_.pos.push_back(t_.at(id));
         out_.normal.push_back(full_res_normal(c, r));
         if (nodes_) nodes_->push_back(std::uint32_t(id));
         return v;
@@ -368,11 +408,10 @@ private:
     // compute_normals(mesh_from_terrain(t)) at node (c, r): its up-to-6 full-resolution triangles
     // in the order that mesh lists them (cells row by row; {NW, SW, SE} before {NW, SE, NE}).
     glm::vec3 full_res_normal(int c, int r) const {
-        const std::vector<glm::vec3>& p = t_.pos;
-        const std::vector<std::uint8_t>& v = t_.valid;
+        const std::uint8_t* v = t_.valid;
         glm::vec3 sum(0.0f);
         auto tri = [&](std::size_t a, std::size_t b, std::size_t d) {
-            if (v[a] && v[b] && v[d]) sum += face_normal(p[a], p[b], p[d]);
+            if (v[a] && v[b] && v[d]) sum += face_normal(t_.at(a), t_.at(b), t_.at(d));
         };
         auto id = [&](int cc, int rr) { return t_.index(cc, rr); };
         if (c > 0 && r > 0) {  // node is the SE corner of cell (c-1, r-1)
@@ -401,8 +440,7 @@ private:
         if (err < kInf && ok(it.ac, it.ar) && ok(it.bc, it.br) && ok(it.cc, it.cr)) {
             // Every node inside lies within err (times e) of the triangle's plane, and (on an
             // affine grid) inside the plan triangle of its corners.
-            const glm::dvec3 a(t_.pos[t_.index(it.ac, it.ar)]), b(t_.pos[t_.index(it.bc, it.br)]),
-                c(t_.pos[t_.index(it.cc, it.cr)]);
+            const glm::dvec3 a(t_.at(it.ac, it.ar)), b(t_.at(it.bc, it.br)), c(t_.at(it.cc, it.cr));
             lo = glm::min(glm::min(a, b), c), hi = glm::max(glm::max(a, b), c);
             const double dz = double(err) * ex_;
             lo.z -= dz, hi.z += dz;
@@ -414,7 +452,7 @@ private:
             lo = glm::dvec3(1e300), hi = glm::dvec3(-1e300);
             for (const int c : {c0, c1})
                 for (const int r : {r0, r1}) {
-                    const glm::dvec3 p(t_.pos[t_.index(c, r)]);
+                    const glm::dvec3 p(t_.at(c, r));
                     lo = glm::min(lo, p), hi = glm::max(hi, p);
                 }
             lo.z = zlo_, hi.z = zhi_;
@@ -429,7 +467,7 @@ private:
     bool visible(std::initializer_list<std::size_t> ids) const {
         glm::dvec3 lo(1e300), hi(-1e300);
         for (const std::size_t i : ids) {
-            const glm::dvec3 p(t_.pos[i]);
+            const glm::dvec3 p(t_.at(i));
             lo = glm::min(lo, p), hi = glm::max(hi, p);
         }
         const glm::dvec3 m(1e-3);
@@ -467,7 +505,7 @@ private:
         glm::dvec3 lo(1e300), hi(-1e300);
         auto add = [&](bool v, int cc, int rr) {
             if (!v) return;
-            const glm::dvec3 p(t_.pos[t_.index(cc, rr)]);
+            const glm::dvec3 p(t_.at(cc, rr));
             lo = glm::min(lo, p), hi = glm::max(hi, p);
         };
         add(vnw, c, r), add(vne, c + 1, r), add(vsw, c, r + 1), add(vse, c + 1, r + 1);
@@ -478,19 +516,24 @@ private:
 
 }  // namespace
 
-SurfaceMesh select_lod_mesh(const TerrainLod& lod, const Terrain& t, const Camera& camera, const LodOptions& options,
-                            LodSelection* stats, std::vector<std::uint32_t>* vertex_nodes) {
-    check_terrain(t);
-    if (lod.cols != t.cols || lod.rows != t.rows || lod.error.size() != std::size_t(lod.side()) * lod.side() ||
-        lod.radius.size() != lod.error.size())
+SurfaceMesh select_lod_mesh(const TerrainLod& lod, const GridNodes& t, double exaggeration, const Camera& camera,
+                            const LodOptions& options, LodSelection* stats, std::vector<std::uint32_t>* vertex_nodes) {
+    check_nodes(t);
+    if (lod.cols != t.cols || lod.rows != t.rows || lod.error.size() != std::size_t(lod.side()) * lod.side())
         throw std::invalid_argument("terrain lod: the lod was built for another grid");
     if (vertex_nodes) vertex_nodes->clear();
     if (t.cols < 2 || t.rows < 2) {
         if (stats) *stats = {};
         return {};
     }
-    Selector s(lod, t, camera, options, vertex_nodes);
+    Selector s(lod, t, exaggeration, camera, options, vertex_nodes);
     return s.run(stats);
+}
+
+SurfaceMesh select_lod_mesh(const TerrainLod& lod, const Terrain& t, const Camera& camera, const LodOptions& options,
+                            LodSelection* stats, std::vector<std::uint32_t>* vertex_nodes) {
+    check_terrain(t);
+    return select_lod_mesh(lod, grid_nodes(t), t.vertical_exaggeration, camera, options, stats, vertex_nodes);
 }
 
 SurfaceMesh select_lod_mesh(const TerrainLod& lod, const Terrain& t, const Camera& camera, float tolerance_px,

@@ -17,7 +17,8 @@
 //    padding node in its 3x3 neighbourhood, and (by nesting) all its ancestors. Between nodes
 //    the full-resolution surface and the coarse plane are both linear on small pieces; the
 //    bound is stated (and tested) at the nodes, as in Lindstrom & Pascucci.
-//  - radius: a plan (x, y) bounding-circle radius in metres, centred on the node, nested
+//  - radius (radius(c, r), a function of the node's level and one constant, not stored): a plan
+//    (x, y) bounding-circle radius in metres, centred on the node, nested
 //    (radius(m) >= radius(child) + |m - child|), covering the node's diamond and every
 //    descendant: L times the grid-unit radius of the node's level (1 at the finest split nodes,
 //    then + the distance to the children at each level), L the plan positions' Lipschitz
@@ -49,14 +50,18 @@
 // cells the full-resolution mesh covers (a DEM of 2^k + 1 nodes a side needs no padding).
 //
 // Frames and units: grid node (c, r) is Terrain node (c, r) (row 0 north); positions are the
-// Terrain's local metres, z exaggerated as in Terrain::pos; error unexaggerated metres; radius
-// plan metres. Memory: 8 bytes per padded node (error + radius).
+// Terrain's local metres, z exaggerated as in Terrain::pos (or as GridNodes::at draws them);
+// error unexaggerated metres; radius plan metres. Memory: 4 bytes per padded node (error), held
+// in memory or mapped from the terrain cache (terrain_cache.hpp).
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <span>
 #include <vector>
 
 #include "core/camera.hpp"
+#include "input/grid_nodes.hpp"
 #include "input/terrain.hpp"
 #include "surface/surface_mesh.hpp"
 
@@ -66,17 +71,25 @@ namespace penink {
 struct TerrainLod {
     int cols = 0, rows = 0;      // the DEM grid
     int levels = 0;              // padded side = 2^levels + 1
-    std::vector<float> error;    // per padded node (index(c, r)), metres of elevation, unexaggerated; +inf: must split
-    std::vector<float> radius;   // per padded node, nested plan bounding-circle radius, metres
+    // Per padded node (index(c, r)), metres of elevation, unexaggerated; +inf: must split. Points
+    // into `storage` (an array in memory, or a mapped cache file).
+    std::span<const float> error;
+    std::shared_ptr<const void> storage;
+    float lipschitz = 0.0f;      // L: the plan positions' Lipschitz constant over the grid, metres per grid unit
     float z_min = 0.0f, z_max = 0.0f;  // range of the valid elevations, metres, unexaggerated
 
     int side() const { return (1 << levels) + 1; }
     std::size_t index(int c, int r) const { return std::size_t(r) * std::size_t(side()) + std::size_t(c); }
+    // The nested plan radius of node (c, r), metres: L times the grid-unit radius of its level;
+    // 0 at the padded square's corners (never split).
+    float radius(int c, int r) const;
 };
 
 // From a Terrain whose pos.z is elevation * t.vertical_exaggeration (divided out: errors are
 // unexaggerated). O(N); throws std::invalid_argument on an inconsistent Terrain.
 TerrainLod build_terrain_lod(const Terrain& t);
+// The same from nodes drawn at `exaggeration` (GridNodes::at).
+TerrainLod build_terrain_lod(const GridNodes& nodes, double exaggeration);
 
 struct LodSelection {
     std::size_t triangles = 0, vertices = 0;
@@ -114,5 +127,9 @@ struct LodOptions {
 // The same with options.
 SurfaceMesh select_lod_mesh(const TerrainLod& lod, const Terrain& t, const Camera& camera, const LodOptions& options,
                             LodSelection* stats = nullptr, std::vector<std::uint32_t>* vertex_nodes = nullptr);
+// The same on nodes drawn as GridNodes::at draws them, at `exaggeration` (which scales the errors).
+SurfaceMesh select_lod_mesh(const TerrainLod& lod, const GridNodes& nodes, double exaggeration, const Camera& camera,
+                            const LodOptions& options, LodSelection* stats = nullptr,
+                            std::vector<std::uint32_t>* vertex_nodes = nullptr);
 
 }  // namespace penink

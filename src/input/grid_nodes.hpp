@@ -1,0 +1,41 @@
+// A read-only view of a DEM grid's nodes, wherever they are stored: a Terrain's own arrays, or a
+// terrain cache file mapped into memory (surface/terrain_cache.hpp), so that a frame touches only
+// the nodes it uses. cols x rows nodes, row-major, row 0 north, in the Terrain's local frame
+// (metres, x east, y north, conventions.md). The drawn (exaggerated) height of a node is its
+// stored z times z_scale: 1 for a Terrain read at the drawing's exaggeration, the exaggeration
+// for heights stored unexaggerated, computed as the DEM reader computes it (in double, rounded
+// once to float).
+#pragma once
+#include <cstddef>
+#include <cstdint>
+
+#include <glm/vec3.hpp>
+
+#include "input/terrain.hpp"
+
+namespace penink {
+
+struct GridNodes {
+    int cols = 0, rows = 0;
+    const glm::vec3* pos = nullptr;        // cols * rows
+    const std::uint8_t* valid = nullptr;   // cols * rows, 1 where the node has data
+    double z_scale = 1.0;
+
+    std::size_t index(int c, int r) const { return std::size_t(r) * std::size_t(cols) + std::size_t(c); }
+    std::size_t size() const { return std::size_t(cols) * std::size_t(rows); }
+    // Position of node i as drawn.
+    glm::vec3 at(std::size_t i) const {
+        glm::vec3 p = pos[i];
+        if (z_scale != 1.0) p.z = float(double(p.z) * z_scale);
+        return p;
+    }
+    glm::vec3 at(int c, int r) const { return at(index(c, r)); }
+};
+
+// The nodes of a Terrain as it holds them (z_scale 1). Empty when its arrays do not match its grid.
+inline GridNodes grid_nodes(const Terrain& t) {
+    if (t.pos.size() != t.size() || t.valid.size() != t.size()) return {};
+    return {t.cols, t.rows, t.pos.data(), t.valid.data(), 1.0};
+}
+
+}  // namespace penink

@@ -1,0 +1,252 @@
+#include "surface/terrain_cache.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+#include <vector>
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "core/error.hpp"
+#include "core/hash64.hpp"
+
+namespace penink {
+
+static_assert(std::endian::native == std::endian::little, "terrain caches are written little-endian");
+
+namespace {
+
+constexpr char magic[8] = {'P', 'E', 'N', 'I', 'N', 'K', 'T', 'C'};
+constexpr std::uint64_t page = 4096;
+constexpr std::uint64_t max_crs_bytes = 1 << 20;
+
+std::uint64_t align_up(std::uint64_t n, std::uint64_t a) { return (n + a - 1) / a * a; }
+
+int padded_levels(int cols, int rows) {
+    int k = 0;
+    while ((1 << k) + 1 < std::max(cols, rows)) ++k;
+    return k;
+}
+
+struct Writer {
+    std::vector<std::uint8_t> b;
+    template <class T> void put(T v) {
+        const auto* p = reinterpret_cast<const std::uint8_t*>(&v);
+        b.insert(b.end(), p, p + sizeof v);
+    }
+    void bytes(const void* p, std::size_t n) {
+        const auto* q = static_cast<const std::uint8_t*>(p);
+        b.insert(b.end(), q, q + n);
+    }
+};
+
+struct Reader {
+    const std::uint8_t* b;
+    std::size_t n, at = 0;
+    bool ok = true;
+    template <class T> T get() {
+        T v{};
+        if (at + sizeof v > n) {
+            ok = false;
+            return v;
+        }
+        std::memcpy(&v, b + at, sizeof v);
+        at += sizeof v;
+        return v;
+    }
+};
+
+// Array sizes of a grid, in bytes.
+struct Sizes {
+    std::uint64_t pos, valid, error;
+};
+Sizes array_sizes(int cols, int rows, int levels) {
+    const std::uint64_t nodes = std::uint64_t(cols) * std::uint64_t(rows);
+    const std::uint64_t side = (std::uint64_t(1) << levels) + 1;
+    return {nodes * sizeof(glm::vec3), nodes, side * side * sizeof(float)};
+}
+
+// The header and the array offsets of `t` (offsets relative to the file's start).
+std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCacheKey& key, std::uint64_t at[3],
+                                        std::uint64_t& total) {
+    const Terrain& m = t.meta;
+    Writer w;
+    w.bytes(magic, 8);
+    w.put(terrain_cache_version);
+    w.put(std::uint32_t(0));  // header length, set below
+    w.put(key.file_size), w.put(key.mtime_ns), w.put(key.content_hash), w.put(key.utm_zone);
+    w.put(std::uint32_t(key.north));
+    w.put(std::int32_t(m.cols)), w.put(std::int32_t(m.rows)), w.put(std::int32_t(t.lod.levels));
+    w.put(std::uint32_t(m.source_geographic));
+    w.put(m.origin.x), w.put(m.origin.y);
+    for (double g : m.geotransform) w.put(g);
+    w.put(m.xy_unit), w.put(m.elevation_min), w.put(m.elevation_max);
+    w.put(std::int32_t(m.utm_zone)), w.put(std::uint32_t(m.north));
+    w.put(t.lod.lipschitz), w.put(t.lod.z_min), w.put(t.lod.z_max), w.put(0.0f);
+    w.put(t.plan_lo.x), w.put(t.plan_lo.y), w.put(t.plan_hi.x), w.put(t.plan_hi.y);
+    const std::size_t offsets = w.b.size();
+    for (int i = 0; i < 4; ++i) w.put(std::uint64_t(0));
+    w.put(std::uint64_t(m.crs_wkt.size()));
+    w.bytes(m.crs_wkt.data(), m.crs_wkt.size());
+    while (w.b.size() % 8) w.b.push_back(0);
+    const std::uint32_t length = std::uint32_t(w.b.size() + 8);
+    std::memcpy(w.b.data() + 12, &length, 4);
+    const Sizes s = array_sizes(m.cols, m.rows, t.lod.levels);
+    at[0] = align_up(length, page);
+    at[1] = align_up(at[0] + s.pos, page);
+    at[2] = align_up(at[1] + s.valid, page);
+    total = at[2] + s.error;
+    std::memcpy(w.b.data() + offsets, at, 24);
+    std::memcpy(w.b.data() + offsets + 24, &total, 8);
+    w.put(hash64(w.b.data(), w.b.size()));
+    return w.b;
+}
+
+[[noreturn]] void write_failed(const std::string& path, int err) {
+    throw Error("surface", path, std::string("cannot write terrain cache: ") + std::strerror(err));
+}
+
+// A read-only mapping of a whole file, unmapped when the last StoredTerrain using it goes.
+struct Mapping {
+    void* data = MAP_FAILED;
+    std::size_t size = 0;
+    ~Mapping() {
+        if (data != MAP_FAILED) ::munmap(data, size);
+    }
+};
+
+std::optional<StoredTerrain> fail(std::string* why, const std::string& reason) {
+    if (why) *why = reason;
+    return std::nullopt;
+}
+
+}  // namespace
+
+StoredTerrain store_terrain(Terrain flat) {
+    if (flat.vertical_exaggeration != 1.0)
+        throw std::invalid_argument("terrain cache: the terrain must be read unexaggerated");
+    if (flat.pos.size() != flat.size() || flat.valid.size() != flat.size())
+        throw std::invalid_argument("terrain cache: terrain positions/valid flags do not match its grid");
+    auto owned = std::make_shared<Terrain>(std::move(flat));
+    StoredTerrain t;
+    t.nodes = grid_nodes(*owned);
+    t.lod = build_terrain_lod(t.nodes, 1.0);
+    glm::dvec3 lo, hi;
+    if (terrain_bounds(*owned, lo, hi)) t.plan_lo = glm::dvec2(lo), t.plan_hi = glm::dvec2(hi);
+    {  // the metadata alone: the arrays set aside while it is copied
+        std::vector<glm::vec3> pos = std::move(owned->pos);
+        std::vector<std::uint8_t> valid = std::move(owned->valid);
+        std::vector<float> z = std::move(owned->z);
+        std::vector<glm::vec2> xy = std::move(owned->xy);
+        t.meta = *owned;
+        owned->pos = std::move(pos), owned->valid = std::move(valid), owned->z = std::move(z), owned->xy = std::move(xy);
+    }
+    t.in_memory = owned.get();
+    t.storage = std::move(owned);
+    return t;
+}
+
+void write_terrain_cache(const std::string& path, const StoredTerrain& t, const TerrainCacheKey& key) {
+    std::uint64_t at[3], total = 0;
+    const std::vector<std::uint8_t> header = encode_header(t, key, at, total);
+    const Sizes s = array_sizes(t.meta.cols, t.meta.rows, t.lod.levels);
+    if (t.lod.error.size() * sizeof(float) != s.error || t.nodes.size() != t.meta.size())
+        throw std::invalid_argument("terrain cache: pyramid and nodes do not match the grid");
+    const std::string tmp = path + ".tmp" + std::to_string(::getpid());
+    std::FILE* out = std::fopen(tmp.c_str(), "wb");
+    if (!out) write_failed(path, errno);
+    std::uint64_t written = 0;
+    bool ok = true;
+    auto put = [&](const void* p, std::uint64_t n) {
+        if (ok && n > 0 && std::fwrite(p, 1, std::size_t(n), out) != n) ok = false;
+        written += n;
+    };
+    const std::vector<std::uint8_t> zeros(page, 0);
+    auto pad_to = [&](std::uint64_t offset) { put(zeros.data(), offset - written); };
+    put(header.data(), header.size());
+    pad_to(at[0]);
+    put(t.nodes.pos, s.pos);
+    pad_to(at[1]);
+    put(t.nodes.valid, s.valid);
+    pad_to(at[2]);
+    put(t.lod.error.data(), s.error);
+    int err = ok ? 0 : errno;
+    if (std::fclose(out) != 0 && ok) ok = false, err = errno;
+    std::error_code ec;
+    if (ok) std::filesystem::rename(tmp, path, ec);
+    if (!ok || ec) {
+        std::filesystem::remove(tmp, ec);
+        write_failed(path, ok ? ec.value() : (err ? err : EIO));
+    }
+}
+
+std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const TerrainCacheKey& key, std::string* why) {
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return fail(why, "no terrain cache");
+    struct stat st {};
+    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        ::close(fd);
+        return fail(why, "terrain cache is not a regular file");
+    }
+    auto map = std::make_shared<Mapping>();
+    map->size = std::size_t(st.st_size);
+    if (map->size >= 32) map->data = ::mmap(nullptr, map->size, PROT_READ, MAP_SHARED, fd, 0);
+    ::close(fd);
+    if (map->data == MAP_FAILED) return fail(why, "truncated terrain cache");
+    const auto* b = static_cast<const std::uint8_t*>(map->data);
+    if (std::memcmp(b, magic, 8) != 0) return fail(why, "not a terrain cache (bad magic)");
+    Reader r{b, map->size, 8};
+    const std::uint32_t version = r.get<std::uint32_t>(), length = r.get<std::uint32_t>();
+    if (version != terrain_cache_version) return fail(why, "terrain cache of another version");
+    if (length < 16 || length % 8 || length > map->size || length > page + max_crs_bytes)
+        return fail(why, "damaged terrain cache (header length)");
+    std::uint64_t stored = 0;
+    std::memcpy(&stored, b + length - 8, 8);
+    if (hash64(b, length - 8) != stored) return fail(why, "damaged terrain cache (header checksum)");
+    r.n = length - 8;
+    TerrainCacheKey k;
+    k.file_size = r.get<std::uint64_t>(), k.mtime_ns = r.get<std::int64_t>(), k.content_hash = r.get<std::uint64_t>();
+    k.utm_zone = r.get<std::int32_t>(), k.north = r.get<std::uint32_t>() != 0;
+    if (!(k == key)) return fail(why, "terrain cache is stale (DEM changed)");
+    StoredTerrain t;
+    Terrain& m = t.meta;
+    m.cols = r.get<std::int32_t>(), m.rows = r.get<std::int32_t>();
+    const int levels = r.get<std::int32_t>();
+    m.source_geographic = r.get<std::uint32_t>() != 0;
+    m.origin.x = r.get<double>(), m.origin.y = r.get<double>();
+    for (double& g : m.geotransform) g = r.get<double>();
+    m.xy_unit = r.get<double>(), m.elevation_min = r.get<double>(), m.elevation_max = r.get<double>();
+    m.utm_zone = r.get<std::int32_t>(), m.north = r.get<std::uint32_t>() != 0;
+    t.lod.lipschitz = r.get<float>(), t.lod.z_min = r.get<float>(), t.lod.z_max = r.get<float>();
+    r.get<float>();
+    t.plan_lo.x = r.get<double>(), t.plan_lo.y = r.get<double>(), t.plan_hi.x = r.get<double>(), t.plan_hi.y = r.get<double>();
+    std::uint64_t at[3];
+    for (std::uint64_t& a : at) a = r.get<std::uint64_t>();
+    const std::uint64_t total = r.get<std::uint64_t>(), crs = r.get<std::uint64_t>();
+    if (!r.ok || crs > r.n - r.at) return fail(why, "damaged terrain cache (header)");
+    m.crs_wkt.assign(reinterpret_cast<const char*>(b + r.at), std::size_t(crs));
+    if (m.cols < 2 || m.rows < 2 || std::max(m.cols, m.rows) > (1 << 30) || levels != padded_levels(m.cols, m.rows))
+        return fail(why, "damaged terrain cache (grid)");
+    const Sizes s = array_sizes(m.cols, m.rows, levels);
+    if (total != map->size || at[0] < length || at[1] < at[0] + s.pos || at[2] < at[1] + s.valid ||
+        at[2] + s.error != total || at[0] % page || at[1] % page || at[2] % page)
+        return fail(why, "damaged terrain cache (lengths)");
+    t.nodes.cols = m.cols, t.nodes.rows = m.rows;
+    t.nodes.pos = reinterpret_cast<const glm::vec3*>(b + at[0]);
+    t.nodes.valid = b + at[1];
+    t.lod.cols = m.cols, t.lod.rows = m.rows, t.lod.levels = levels;
+    t.lod.error = std::span<const float>(reinterpret_cast<const float*>(b + at[2]), std::size_t(s.error / sizeof(float)));
+    t.lod.storage = map;
+    t.storage = std::move(map);
+    return t;
+}
+
+}  // namespace penink

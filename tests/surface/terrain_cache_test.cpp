@@ -1,0 +1,183 @@
+// The terrain cache: what is written is what is mapped back (nodes, pyramid, georeference), a
+// frame selected from the mapping is the frame selected in memory, at any exaggeration; a stale,
+// damaged, truncated or missing file is refused with its reason; an unwritable place is an Error.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/camera.hpp"
+#include "core/error.hpp"
+#include "surface/terrain_cache.hpp"
+#include "support/synthetic_terrain.hpp"
+#include "support/temp_dir.hpp"
+
+using namespace penink;
+
+namespace {
+
+// 300 x 257 nodes, 5 m, with a nodata hole, georeferenced like a UTM DEM.
+Terrain hills() {
+    Terrain t = terrain_from_function(300, 257, 5.0, rough_hills);
+    for (int r = 100; r < 120; ++r)
+        for (int c = 40; c < 70; ++c) t.valid[t.index(c, r)] = 0;
+    t.origin = {512345.0, 4012345.0};
+    t.crs_wkt = "PROJCS[\"WGS 84 / UTM zone 16N\"]";
+    t.utm_zone = 16;
+    t.geotransform = {512000.0, 5.0, 0.0, 4013000.0, 0.0, -5.0};
+    t.xy_unit = 1.0;
+    t.source = "hills.tif";
+    return t;
+}
+
+TerrainCacheKey key() { return {123456, 789, 0xabcdef, 0, true}; }
+
+Camera oblique(const StoredTerrain& t, double e) {
+    return frame_box(glm::dvec3(t.plan_lo, t.lod.z_min * e), glm::dvec3(t.plan_hi, t.lod.z_max * e), 30.0, -20.0, 40.0,
+                     800, 600);
+}
+
+void expect_same_mesh(const SurfaceMesh& a, const SurfaceMesh& b) {
+    ASSERT_EQ(a.tri.size(), b.tri.size());
+    ASSERT_EQ(a.pos.size(), b.pos.size());
+    for (std::size_t i = 0; i < a.tri.size(); ++i) ASSERT_EQ(a.tri[i], b.tri[i]);
+    for (std::size_t i = 0; i < a.pos.size(); ++i) {
+        ASSERT_EQ(a.pos[i], b.pos[i]);
+        ASSERT_EQ(a.normal[i], b.normal[i]);
+    }
+}
+
+}  // namespace
+
+TEST(TerrainCache, RoundTripMapsWhatWasWritten) {
+    test::TempDir dir;
+    const Terrain flat = hills();
+    const StoredTerrain mem = store_terrain(flat);
+    ASSERT_NE(mem.in_memory, nullptr);
+    const std::string path = dir.file("hills.lod");
+    write_terrain_cache(path, mem, key());
+    std::string why;
+    const std::optional<StoredTerrain> map = read_terrain_cache(path, key(), &why);
+    ASSERT_TRUE(map) << why;
+    EXPECT_EQ(map->in_memory, nullptr);
+    EXPECT_EQ(map->meta.cols, 300);
+    EXPECT_EQ(map->meta.rows, 257);
+    EXPECT_EQ(map->meta.origin, flat.origin);
+    EXPECT_EQ(map->meta.crs_wkt, flat.crs_wkt);
+    EXPECT_EQ(map->meta.utm_zone, 16);
+    EXPECT_EQ(map->meta.geotransform, flat.geotransform);
+    EXPECT_EQ(map->meta.xy_unit, 1.0);
+    EXPECT_EQ(map->meta.elevation_min, flat.elevation_min);
+    EXPECT_EQ(map->meta.elevation_max, flat.elevation_max);
+    EXPECT_TRUE(map->meta.pos.empty());
+    EXPECT_EQ(map->plan_lo, mem.plan_lo);
+    EXPECT_EQ(map->plan_hi, mem.plan_hi);
+    EXPECT_DOUBLE_EQ(map->plan_lo.x, -747.5);  // 300 nodes 5 m apart, centred
+    ASSERT_EQ(map->nodes.size(), flat.size());
+    for (std::size_t i = 0; i < flat.size(); ++i) {
+        ASSERT_EQ(map->nodes.pos[i], flat.pos[i]);
+        ASSERT_EQ(map->nodes.valid[i], flat.valid[i]);
+    }
+    EXPECT_EQ(map->lod.levels, mem.lod.levels);
+    EXPECT_EQ(map->lod.lipschitz, mem.lod.lipschitz);
+    EXPECT_EQ(map->lod.z_min, mem.lod.z_min);
+    EXPECT_EQ(map->lod.z_max, mem.lod.z_max);
+    ASSERT_EQ(map->lod.error.size(), mem.lod.error.size());
+    EXPECT_TRUE(std::equal(map->lod.error.begin(), map->lod.error.end(), mem.lod.error.begin(),
+                           [](float a, float b) { return a == b || (std::isinf(a) && std::isinf(b)); }));
+}
+
+// The cache is independent of the exaggeration: one file draws every one, as memory does.
+TEST(TerrainCache, MappedFramesEqualFramesInMemoryAtAnyExaggeration) {
+    test::TempDir dir;
+    const StoredTerrain mem = store_terrain(hills());
+    write_terrain_cache(dir.file("h.lod"), mem, key());
+    const std::optional<StoredTerrain> map = read_terrain_cache(dir.file("h.lod"), key());
+    ASSERT_TRUE(map);
+    for (const double e : {1.0, 3.0}) {
+        const Camera cam = oblique(mem, e);
+        LodOptions o;
+        LodSelection a, b;
+        const SurfaceMesh from_mem = select_lod_mesh(mem.lod, mem.drawn(e), e, cam, o, &a);
+        const SurfaceMesh from_map = select_lod_mesh(map->lod, map->drawn(e), e, cam, o, &b);
+        EXPECT_GT(a.triangles, 1000u);
+        expect_same_mesh(from_mem, from_map);
+        // drawn at e: z = float(double(z) * e), as the DEM reader computes exaggerated heights
+        const std::size_t i = mem.nodes.index(150, 128);
+        EXPECT_EQ(map->drawn(e).at(i).z, float(double(mem.in_memory->pos[i].z) * e));
+    }
+}
+
+TEST(TerrainCache, RefusesStaleDamagedTruncatedAndMissingFiles) {
+    test::TempDir dir;
+    const StoredTerrain mem = store_terrain(hills());
+    const std::string path = dir.file("h.lod");
+    write_terrain_cache(path, mem, key());
+    std::string why;
+    TerrainCacheKey other = key();
+    other.mtime_ns += 1;
+    EXPECT_FALSE(read_terrain_cache(path, other, &why));
+    EXPECT_EQ(why, "terrain cache is stale (DEM changed)");
+    other = key(), other.utm_zone = 17;
+    EXPECT_FALSE(read_terrain_cache(path, other, &why));
+    EXPECT_EQ(why, "terrain cache is stale (DEM changed)");
+
+    std::vector<char> bytes;
+    {
+        std::ifstream in(path, std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    auto write = [&](const std::vector<char>& b) {
+        std::ofstream out(path, std::ios::binary | std::ios::trunc);
+        out.write(b.data(), std::streamsize(b.size()));
+    };
+    std::vector<char> damaged = bytes;
+    damaged[60] ^= 1;  // a grid field
+    write(damaged);
+    EXPECT_FALSE(read_terrain_cache(path, key(), &why));
+    EXPECT_EQ(why, "damaged terrain cache (header checksum)");
+    write(std::vector<char>(bytes.begin(), bytes.end() - 4));
+    EXPECT_FALSE(read_terrain_cache(path, key(), &why));
+    EXPECT_EQ(why, "damaged terrain cache (lengths)");
+    write(std::vector<char>(bytes.begin(), bytes.begin() + 20));
+    EXPECT_FALSE(read_terrain_cache(path, key(), &why));
+    EXPECT_EQ(why, "truncated terrain cache");
+    write(std::vector<char>(bytes.begin(), bytes.begin() + 100));
+    EXPECT_FALSE(read_terrain_cache(path, key(), &why));
+    EXPECT_EQ(why, "damaged terrain cache (header length)");
+    damaged = bytes;
+    damaged[8] = 9;  // version
+    write(damaged);
+    EXPECT_FALSE(read_terrain_cache(path, key(), &why));
+    EXPECT_EQ(why, "terrain cache of another version");
+    damaged = bytes;
+    damaged[0] = 'X';
+    write(damaged);
+    EXPECT_FALSE(read_terrain_cache(path, key(), &why));
+    EXPECT_EQ(why, "not a terrain cache (bad magic)");
+    EXPECT_FALSE(read_terrain_cache(dir.file("none.lod"), key(), &why));
+    EXPECT_EQ(why, "no terrain cache");
+    write(bytes);
+    EXPECT_TRUE(read_terrain_cache(path, key(), &why));
+}
+
+TEST(TerrainCache, UnwritablePlaceIsAnErrorAndLeavesNothing) {
+    test::TempDir dir;
+    const StoredTerrain mem = store_terrain(hills());
+    const std::string path = dir.file("missing/h.lod");
+    try {
+        write_terrain_cache(path, mem, key());
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()), "penink: surface: " + path + ": cannot write terrain cache: No such file or directory");
+    }
+    EXPECT_TRUE(std::filesystem::is_empty(dir.path));
+}
+
+TEST(TerrainCache, StoreTerrainNeedsUnexaggeratedHeights) {
+    Terrain t = hills();
+    t.vertical_exaggeration = 2.0;
+    EXPECT_THROW(store_terrain(t), std::invalid_argument);
+}
