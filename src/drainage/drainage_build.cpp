@@ -227,9 +227,10 @@ DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& te
     report(progress, "resampling the PN surface", 0.0);
     DrainageGrid g;
     std::string crs = terrain.crs_wkt;
-    if (terrain.vertical_exaggeration == 1.0) {
+    if (terrain.vertical_exaggeration == 1.0 && terrain.pos.size() == terrain.size() &&
+        terrain.valid.size() == terrain.size()) {
         g = resample_pn(terrain, factor);
-    } else {  // the heights unexaggerated, as `penink drainage` reads them
+    } else {  // the heights unexaggerated, as `penink drainage` reads them (or only the grid's size was given)
         DemOptions read;
         read.heights_only = factor == 1;
         read.utm_zone = terrain.source_geographic ? terrain.utm_zone : 0, read.north = terrain.north;

@@ -117,8 +117,9 @@ std::string drainage_cache_path(const std::string& dem_path, bool folder_writabl
 // fingerprint matches the DEM and options, else rebuilt as `penink drainage` builds it (the same
 // bytes) and written atomically; when it cannot be written the database built in memory is used.
 // Returns what a lines-only read gives (drainage_lines_only) either way. `terrain` is the DEM
-// read with any vertical exaggeration: when it is not 1 the build reads the DEM again at 1
-// (heights only at factor 1). Every decision is reported through `log`.
+// read with any vertical exaggeration, or only its grid and georeference (no node arrays, as the
+// terrain cache gives them): unless it holds the heights unexaggerated, a build reads the DEM
+// again at 1 (heights only at factor 1). Every decision is reported through `log`.
 // With `in_file`, a valid cache is read without its lines' vertices (read_drainage_line_index:
 // every byte still hashed and checked first, the same errors and rebuild) and *in_file says
 // where they are; after a build in_file->file stays empty and the database holds them.
