@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/option_checks.hpp"
 #include "core/error.hpp"
 #include "core/progress_bar.hpp"
 #include "core/stopwatch.hpp"
@@ -125,7 +126,7 @@ Subcommand add_batch_command(CLI::App& app) {
     cmd->add_option("--out", o.out_dir, "Output directory (created when missing)")->required();
     cmd->add_option("--formats", o.formats, "Comma-separated frame formats: png, svg, ps, eps, pdf (default png,svg)");
     cmd->add_option("--warmup", o.warmup, "First N frames timed apart (shader JIT, caches); default 1")
-        ->check(CLI::NonNegativeNumber);
+        ->check(number_between(0, 1000000));
     cmd->add_flag("--whole-dem", o.whole_dem, "Model the whole DEM (default: the union of the frames' visible windows)");
     add_scene_override_options(cmd, o);
     cmd->add_flag("-v,--verbose", o.verbose, "Print the modelled cells and set-up steps");

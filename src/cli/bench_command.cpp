@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/option_checks.hpp"
 #include "core/error.hpp"
 #include "export/atomic_file.hpp"
 #include "scene/frame_source.hpp"
@@ -126,10 +127,10 @@ Subcommand add_bench_command(CLI::App& app) {
                     "Level-of-detail tolerances, pixels (0 = full resolution; default: the scene's [surface] tolerance_px)");
     cmd->add_option("--methods", o.methods, "Silhouette methods (default " + joined(c.methods, method) + ")");
     cmd->add_option("--frames", c.frames, "Frames timed per configuration, median reported")
-        ->check(CLI::PositiveNumber)->capture_default_str();
-    cmd->add_option("--warmup", c.warmup, "Untimed frames first")->check(CLI::NonNegativeNumber)->capture_default_str();
+        ->check(number_between(1, 10000))->capture_default_str();
+    cmd->add_option("--warmup", c.warmup, "Untimed frames first")->check(number_between(0, 10000))->capture_default_str();
     cmd->add_option("--ref-edge-px", c.ref_edge_px, "Reference tessellation: edges this long on screen at the largest size")
-        ->check(CLI::PositiveNumber)->capture_default_str();
+        ->check(positive_at_most(1000))->capture_default_str();
     cmd->add_flag("!--no-needs", c.needs, "Leave out the culling / cropping / adaptive tessellation rows");
     cmd->add_option("--needs-size", o.needs_size, "Image size WxH of those rows (default: the scene's)");
     cmd->add_option("--gl", o.gl, "OpenGL backend: osmesa (software, default) or egl (GPU)")

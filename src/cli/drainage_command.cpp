@@ -7,6 +7,8 @@
 #include <ostream>
 
 #include "core/error.hpp"
+#include "core/memory_budget.hpp"
+#include "drainage/drainage_memory.hpp"
 #include "drainage/drainage_rasters.hpp"
 #include "input/dem_reader.hpp"
 
@@ -64,14 +66,19 @@ void print_summary(std::ostream& log, const DrainageStats& s, const DrainageDb& 
 int run(const DrainageCommand& cmd, std::ostream& log) {
     const auto t0 = Clock::now();
     StageTimer timer{log};
+    if (cmd.resample < 0) throw Error("drainage", cmd.dem, "resample factor must be >= 1 (0 = automatic)");
+    const std::uint64_t budget = memory_budget(cmd.max_memory);
+    const DemSize size = read_dem_size(cmd.dem);  // the header alone: the build's memory before the read
+    check_drainage_memory("drainage", cmd.dem, size.cols, size.rows,
+                          drainage_factor_for(size.cols, size.rows, cmd.resample), budget);
     DemOptions read;
     read.heights_only = cmd.resample == 1;  // factor 1 needs no positions on an affine grid
+    read.max_memory = budget;
     Terrain t = read_dem(cmd.dem, read);  // its positions (or heights) are released once resampled
     if (const std::string w = missing_crs_warning(t); !w.empty()) log << w << "\n";
     DrainageOptions o;
     o.resample = cmd.resample;
     o.routing = cmd.routing;
-    if (cmd.resample < 0) throw Error("drainage", cmd.dem, "resample factor must be >= 1 (0 = automatic)");
     DrainageResult res;
     const std::string out = cmd.output.empty() ? drainage_cache_path(cmd.dem) : cmd.output;  // render's cache
     const DrainageDb db = build_and_write_drainage_db(t, o, drainage_fingerprint(cmd.dem, t, o), out,

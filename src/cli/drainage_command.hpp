@@ -22,6 +22,7 @@ struct DrainageCommand {
     std::string rasters_dir;  // empty = no rasters
     bool quiet = false;       // no progress / summary lines
     DrainageRouting routing = DrainageRouting::priority_flood;
+    std::uint64_t max_memory = 0;  // --max-memory; 0 = the memory available
 };
 
 // Runs the command, printing progress and a summary (points, basins, branches, divides, time,

@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/drainage_command.hpp"
+#include "cli/option_checks.hpp"
 
 namespace penink {
 
@@ -20,8 +21,9 @@ Subcommand add_drainage_command(CLI::App& app) {
                     "Database file (default: the cache render reads, DEM.dv beside the DEM, or in the user cache "
                     "folder when the DEM's folder is read-only)");
     cmd->add_option("--resample", o.resample,
-                    "Fine nodes per DEM cell side (1 = the DEM's own nodes; default: 5, lowered to keep <= 4M points)")
-        ->check(CLI::NonNegativeNumber);
+                    "Fine nodes per DEM cell side, 1..1000, within --max-memory (1 = the DEM's own nodes; default: 5, lowered to keep <= 4M points)")
+        ->check(number_between(0, 1000));
+    add_max_memory_option(cmd, o.max_memory);
     cmd->add_option("--rasters", o.rasters_dir,
                     "Also write GeoTIFFs (flow_direction ESRI D8, accumulation, basin, stream_order) to DIR");
     auto routing = std::make_shared<std::string>("priority-flood");

@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/option_checks.hpp"
 #include "scene/scene_style.hpp"
 #include "scene/frame_source.hpp"
 #include "core/error.hpp"
@@ -64,9 +65,9 @@ Subcommand add_render_command(CLI::App& app) {
         ->required();
     cmd->add_option("--page", o.page, "Physical page size: A4, A3, letter, WxHmm (default: image size at --dpi)");
     cmd->add_option("--dpi", o.dpi, "Image pixels per inch; also the PNG resolution (default 96)")
-        ->check(CLI::PositiveNumber);
+        ->check(positive_at_most(10000));
     cmd->add_option("--margin", o.margin_mm, "Blank border on each side of the page, mm (default 0)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(number_between(0, 1000));
     cmd->add_option("--layers", o.layers, "Layer split: kind, or kind+distance (near/middle/far sublayers)")
         ->check(CLI::IsMember({"kind", "kind+distance"}));
     add_scene_override_options(cmd, o);

@@ -2,16 +2,24 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/option_checks.hpp"
+#include "scene/scene_memory.hpp"
+
 namespace penink {
 
 void add_scene_override_options(CLI::App* cmd, SceneOverrides& o) {
     cmd->add_option("--style", o.style, "Style name (technical, field-sketch) or a style .toml file");
-    cmd->add_option("--width", o.width, "Image width in pixels (overrides the scene)");
-    cmd->add_option("--height", o.height, "Image height in pixels (overrides the scene)");
-    cmd->add_option("--seed", o.seed, "Seed of the sketchy perturbation (same seed, same output)");
-    cmd->add_option("--vertical-exaggeration", o.vertical_exaggeration, "Scale elevations by this factor");
+    cmd->add_option("--width", o.width, "Image width in pixels, 1..16384 (overrides the scene)")
+        ->check(number_between(1, max_image_side));
+    cmd->add_option("--height", o.height, "Image height in pixels, 1..16384 (overrides the scene)")
+        ->check(number_between(1, max_image_side));
+    cmd->add_option("--seed", o.seed, "Seed of the sketchy perturbation (same seed, same output)")
+        ->check(number_between(0, 9007199254740992.0));
+    cmd->add_option("--vertical-exaggeration", o.vertical_exaggeration, "Scale elevations by this factor, (0, 1000]")
+        ->check(positive_at_most(max_vertical_exaggeration));
     cmd->add_option("--gl", o.gl, "OpenGL backend: osmesa (software, default) or egl (GPU)")
         ->check(CLI::IsMember({"osmesa", "egl"}));
+    add_max_memory_option(cmd, o.max_memory);
 }
 
 Scene load_scene_with_overrides(const SceneOverrides& o) {
@@ -22,6 +30,7 @@ Scene load_scene_with_overrides(const SceneOverrides& o) {
     if (o.vertical_exaggeration != 0.0) scene.vertical_exaggeration = o.vertical_exaggeration;
     if (!o.style.empty()) scene.style = o.style;
     validate_scene(scene);
+    check_scene_memory(scene, o.max_memory);
     return scene;
 }
 

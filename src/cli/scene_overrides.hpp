@@ -2,6 +2,7 @@
 // OpenGL back-end, image size, seed and vertical exaggeration, their CLI11 options, and the scene
 // loaded with them applied and validated.
 #pragma once
+#include <cstdint>
 #include <string>
 
 #include "scene/scene.hpp"
@@ -20,12 +21,14 @@ struct SceneOverrides {
     int width = unset, height = unset;
     long long seed = -1;                       // < 0: the scene's
     double vertical_exaggeration = 0.0;        // 0: the scene's
+    std::uint64_t max_memory = 0;              // --max-memory; 0: the memory available
 };
 
-// --width --height --style --seed --vertical-exaggeration --gl
+// --width --height --style --seed --vertical-exaggeration --gl --max-memory
 void add_scene_override_options(CLI::App* cmd, SceneOverrides& o);
 
-// load_scene(o.input) with the overrides applied, then validate_scene.
+// load_scene(o.input) with the overrides applied, then validate_scene, then (a terrain) the
+// memory its DEM would need checked against --max-memory (check_scene_memory).
 Scene load_scene_with_overrides(const SceneOverrides& o);
 
 }  // namespace penink

@@ -122,7 +122,19 @@ GDALDatasetUniquePtr open_raster(const std::string& path) {
     if (!ds) GDALAllRegister(), ds = open_with(path, nullptr);
     if (!ds || ds->GetRasterCount() < 1 || ds->GetRasterXSize() < 1 || ds->GetRasterYSize() < 1)
         fail(path, "not a DEM raster (GDAL cannot read it)");
+    check_text_grid_size(*ds, path, std::uint64_t(st.st_size));
     return ds;
+}
+
+void check_text_grid_size(GDALDataset& ds, const std::string& path, std::uint64_t file_bytes) {
+    const std::string driver = ds.GetDriver() ? ds.GetDriver()->GetDescription() : "";
+    if (driver != "AAIGrid" && driver != "GRASSASCIIGrid") return;
+    const double values = double(ds.GetRasterXSize()) * double(ds.GetRasterYSize());
+    const double most = std::floor((double(file_bytes) + 1.0) / 2.0);  // a digit and a separator each
+    if (values > most)
+        fail(path, "ASCII grid declares " + std::to_string(ds.GetRasterXSize()) + "x" +
+                       std::to_string(ds.GetRasterYSize()) + " values but its " + std::to_string(file_bytes) +
+                       " bytes hold at most " + std::to_string(std::uint64_t(most)));
 }
 
 double vertical_unit(GDALRasterBand& band) {

@@ -59,6 +59,11 @@ struct QuietGdal {
 // DEM raster (GDAL cannot read it)".
 GDALDatasetUniquePtr open_raster(const std::string& path);
 
+// A text grid (ESRI or GRASS ASCII) whose header declares more values than a file of
+// `file_bytes` can hold (each value takes a digit and a separator): fails "ASCII grid declares
+// WxH values but its N bytes hold at most M", before any value is read or allocated.
+void check_text_grid_size(GDALDataset& ds, const std::string& path, std::uint64_t file_bytes);
+
 // Size and geotransform (oriented: row 0 north, column 0 west) of the raster; no values yet.
 Raster raster_header(GDALDataset& ds);
 

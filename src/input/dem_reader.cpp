@@ -17,6 +17,7 @@
 #include <ogr_spatialref.h>
 
 #include "core/error.hpp"
+#include "core/memory_budget.hpp"
 #include "core/parallel_chunks.hpp"
 #include "input/crs_util.hpp"
 #include "input/dem_raster.hpp"
@@ -169,6 +170,8 @@ Terrain read_dem(const std::string& path, const DemOptions& options) {
         fail(path, "UTM zone must be 1..60 (0 = standard zone), got " + std::to_string(options.utm_zone));
     GDALDatasetUniquePtr ds = open_raster(path);
     Raster r = raster_header(*ds);
+    check_memory("input", path, "reading the DEM's " + std::to_string(r.w) + "x" + std::to_string(r.h) + " nodes",
+                 double(r.w) * double(r.h) * dem_read_bytes_per_node, memory_budget(options.max_memory));
     Terrain t;
     t.cols = r.w, t.rows = r.h;
     t.vertical_exaggeration = ve;
@@ -209,6 +212,12 @@ Terrain read_dem(const std::string& path, const DemOptions& options) {
     else if (r.unit != 1.0) fill_heights(r, r.unit, r.emin, ve, t.z);  // not metres after all
     t.valid = std::move(r.valid);
     return t;
+}
+
+DemSize read_dem_size(const std::string& path) {
+    const QuietGdal quiet;
+    GDALDatasetUniquePtr ds = open_raster(path);
+    return {ds->GetRasterXSize(), ds->GetRasterYSize()};
 }
 
 std::string missing_crs_warning(const Terrain& t) {

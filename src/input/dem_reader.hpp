@@ -9,6 +9,7 @@
 // valid elevation times the exaggeration. Band scale/offset and a "ft"/"US survey foot" unit
 // are applied to elevations; otherwise they are taken as metres.
 #pragma once
+#include <cstdint>
 #include <string>
 
 #include "input/terrain.hpp"
@@ -23,12 +24,30 @@ struct DemOptions {
     // x, y apart (Terrain::xy): for the drainage build at factor 1, which needs no positions on
     // an affine grid and takes x, y over as they are on a UTM one.
     bool heights_only = false;
+    // Bytes the read may take (memory_budget: 0 = the memory the system has available): a DEM
+    // whose nodes need more (dem_read_bytes_per_node each) fails before its values are read.
+    std::uint64_t max_memory = 0;
 };
+
+// Bytes a read holds per node at its peak: the value as read (up to 8), the valid flag (1) and
+// the position (12).
+constexpr double dem_read_bytes_per_node = 21.0;
+
+// A DEM's size from its header alone (no value read): the nodes' columns and rows.
+struct DemSize {
+    int cols = 0, rows = 0;
+    double nodes() const { return double(cols) * double(rows); }
+};
+
+// Opens `path` and reads its size; the errors of read_dem's opening ("no such file", "not a DEM
+// raster (GDAL cannot read it)", an ASCII grid declaring more values than its file holds).
+DemSize read_dem_size(const std::string& path);
 
 // Throws penink::Error (stage "input", file = path, ExitCode::bad_input) with one line:
 // "no such file", "not a DEM raster (GDAL cannot read it)", "DEM has no valid elevation (all
 // nodata)", "DEM is too small (WxH nodes; at least 2x2 needed)", "vertical exaggeration must be
-// > 0", "UTM zone must be 1..60 (0 = standard zone), got N", or "DEM cannot be projected to UTM
+// > 0", "ASCII grid declares WxH values but its N bytes hold at most M", "reading the DEM's
+// WxH nodes would need about X of memory, Y available (--max-memory)", "UTM zone must be 1..60 (0 = standard zone), got N", or "DEM cannot be projected to UTM
 // zone ZH: <GeographicLib's reason>" (a geographic DEM too far from the zone). GDAL stays silent.
 Terrain read_dem(const std::string& path, const DemOptions& options = {});
 

@@ -171,8 +171,8 @@ void validate_scene(const Scene& s) {
     if (s.camera.width <= 0 || s.camera.height <= 0)
         throw Error("scene", f, "image size must be positive (got " + std::to_string(s.camera.width) +
                                     "x" + std::to_string(s.camera.height) + ")");
-    if (s.camera.width > 16384 || s.camera.height > 16384)
-        throw Error("scene", f, "image size is too large (at most 16384 pixels a side)");
+    if (s.camera.width > max_image_side || s.camera.height > max_image_side)
+        throw Error("scene", f, "image size is too large (at most " + std::to_string(max_image_side) + " pixels a side)");
     if (!(s.camera.fov > 0.0 && s.camera.fov < 179.0))
         throw Error("scene", f, "camera fov must be between 0 and 179 degrees");
     if (!(s.vertical_exaggeration > 0.0))

@@ -18,6 +18,10 @@
 
 namespace penink {
 
+// Limits validate_scene holds every scene to (and the command line's options).
+constexpr int max_image_side = 16384;               // pixels
+constexpr double max_vertical_exaggeration = 1000.0;
+
 struct SceneCamera {
     std::optional<std::string> position;  // UTM "E N 18N", "lon,lat" or "x y"; none = auto-frame
     std::optional<double> elevation;      // metres above the DEM's datum (scaled with exaggeration)

@@ -55,9 +55,11 @@ TEST(RenderErrors, OneByOne) {
 TEST(RenderErrors, ZeroAndNegativeSizes) {
     const auto dir = fresh_dir("sizes");
     expect_error(dir, "render " + volcano + " -o out.svg --width 0",
-                 "penink: scene: " + volcano + ": image size must be positive (got 0x750)", 0);
+                 "penink: cli: --width: must be between 1 and 16384 (got \"0\")", 0);
     expect_error(dir, "render " + volcano + " -o out.svg --height -5",
-                 "penink: scene: " + volcano + ": image size must be positive (got 1000x-5)", 0);
+                 "penink: cli: --height: must be between 1 and 16384 (got \"-5\")", 0);
+    write_text(dir / "zero.toml", "[terrain]\ndem = \"" + volcano + "\"\n[camera]\nwidth = 0\n");
+    expect_error(dir, "render zero.toml -o out.svg", "penink: scene: zero.toml: image size must be positive (got 0x750)", 1);
 }
 
 TEST(RenderErrors, CameraInsideTerrain) {

@@ -396,3 +396,37 @@ TEST(DemReader, DegreesWithoutACrsAreWarnedAbout) {
 
 }  // namespace
 }  // namespace penink
+
+namespace penink {
+namespace {
+
+TEST(DemReader, TextGridDeclaringMoreValuesThanItsFileHoldsFailsBeforeReading) {
+    TempDir dir;
+    const std::string huge = test::write_text(dir.file("huge.asc"),
+                                              "ncols 50000\nnrows 50000\nxllcorner 0\nyllcorner 0\ncellsize 10\n"
+                                              "1 2 3 4 5 6 7 8\n");
+    const auto t0 = std::chrono::steady_clock::now();
+    EXPECT_EQ(error_of(huge),
+              "penink: input: " + huge + ": ASCII grid declares 50000x50000 values but its 76 bytes hold at most 38");
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 1.0);
+    try {
+        read_dem_size(huge);
+        ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("declares 50000x50000 values"), std::string::npos);
+    }
+    const DemSize v = read_dem_size(PENINK_SOURCE_DIR "/examples/volcano.asc");
+    EXPECT_EQ(v.cols, 61);
+    EXPECT_EQ(v.rows, 87);
+}
+
+TEST(DemReader, ReadBeyondTheMemoryBudgetFailsNamingWhatItNeeds) {
+    const std::string p = PENINK_SOURCE_DIR "/examples/volcano.asc";  // 61 x 87 nodes, 21 B each
+    EXPECT_EQ(error_of(p, {.max_memory = 100000}),
+              "penink: input: " + p + ": reading the DEM's 61x87 nodes would need about 109 KiB of memory, "
+              "98 KiB available (--max-memory)");
+    EXPECT_NO_THROW(read_dem(p, {.max_memory = 200000}));
+}
+
+}  // namespace
+}  // namespace penink

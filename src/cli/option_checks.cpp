@@ -1,0 +1,72 @@
+#include "cli/option_checks.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+
+#include "core/memory_budget.hpp"
+
+namespace penink {
+
+namespace {
+
+std::string short_number(double v) {
+    char s[32];
+    std::snprintf(s, sizeof s, "%g", v);
+    return s;
+}
+
+// The value as a finite double; false for text that is not one.
+bool finite_number(const std::string& text, double& v) {
+    const char* b = text.data();
+    const char* e = b + text.size();
+    const auto [p, ec] = std::from_chars(b, e, v);
+    return ec == std::errc() && p == e && std::isfinite(v);
+}
+
+// Quoted and cut short: the value as a message may show it.
+std::string shown(const std::string& text) {
+    std::string s;
+    for (char c : text.substr(0, 40)) s += (c >= 0x20 && c < 0x7f) ? c : '?';
+    return "\"" + s + (text.size() > 40 ? "...\"" : "\"");
+}
+
+}  // namespace
+
+CLI::Validator number_between(double lo, double hi) {
+    const std::string range = "between " + short_number(lo) + " and " + short_number(hi);
+    return CLI::Validator(
+        [lo, hi, range](std::string& text) -> std::string {
+            double v = 0.0;
+            if (!finite_number(text, v) || v < lo || v > hi) return "must be " + range + " (got " + shown(text) + ")";
+            return {};
+        },
+        "[" + short_number(lo) + ", " + short_number(hi) + "]");
+}
+
+CLI::Validator positive_at_most(double hi) {
+    const std::string range = "> 0 and at most " + short_number(hi);
+    return CLI::Validator(
+        [hi, range](std::string& text) -> std::string {
+            double v = 0.0;
+            if (!finite_number(text, v) || !(v > 0.0) || v > hi) return "must be " + range + " (got " + shown(text) + ")";
+            return {};
+        },
+        "(0, " + short_number(hi) + "]");
+}
+
+void add_max_memory_option(CLI::App* cmd, std::uint64_t& max_memory) {
+    cmd->add_option_function<std::string>(
+           "--max-memory",
+           [&max_memory](const std::string& text) { max_memory = *parse_byte_size(text); },
+           "Memory the command may use, e.g. 2G or 512M (default: what the system has available); an input "
+           "that would need more is refused before it is read")
+        ->type_name("SIZE")
+        ->check(CLI::Validator(
+            [](std::string& text) -> std::string {
+                return parse_byte_size(text) ? std::string() : "expected a size such as 2G or 512M (got " + shown(text) + ")";
+            },
+            "SIZE"));
+}
+
+}  // namespace penink

@@ -1,0 +1,21 @@
+// Checks of command-line values with short, readable messages (CLI11's own ranges print
+// std::to_string of their bounds: "not in range 0.000000 to 1797...", a 309-digit number): a
+// number within [lo, hi] or (0, hi], and the --max-memory option (a byte size such as 2G or
+// 512M, core/memory_budget.hpp) of the commands that read DEMs.
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace penink {
+
+// "must be between LO and HI (got X)": finite, lo <= x <= hi.
+CLI::Validator number_between(double lo, double hi);
+// "must be > 0 and at most HI (got X)": finite, 0 < x <= hi.
+CLI::Validator positive_at_most(double hi);
+
+// --max-memory SIZE into `max_memory` (bytes; left 0 when not given = the memory available).
+void add_max_memory_option(CLI::App* cmd, std::uint64_t& max_memory);
+
+}  // namespace penink

@@ -1,0 +1,33 @@
+#include "drainage/drainage_memory.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "core/memory_budget.hpp"
+#include "drainage/drainage_build.hpp"
+#include "input/terrain.hpp"
+
+namespace penink {
+
+double drainage_points(int cols, int rows, int factor) {
+    const double f = factor;
+    return (std::max(cols - 1, 0) * f + 1.0) * (std::max(rows - 1, 0) * f + 1.0);
+}
+
+int drainage_factor_for(int cols, int rows, int resample) {
+    if (resample > 0) return resample;
+    Terrain size_only;  // drainage_resample_factor reads the size alone
+    size_only.cols = cols, size_only.rows = rows;
+    return drainage_resample_factor(size_only, DrainageOptions{});
+}
+
+void check_drainage_memory(const std::string& stage, const std::string& file, int cols, int rows, int factor,
+                           std::uint64_t budget) {
+    const double f = factor;
+    char grid[96];
+    std::snprintf(grid, sizeof grid, "%.0fx%.0f", std::max(cols - 1, 0) * f + 1.0, std::max(rows - 1, 0) * f + 1.0);
+    check_memory(stage, file, "the drainage grid at factor " + std::to_string(factor) + " (" + grid + " points)",
+                 drainage_points(cols, rows, factor) * drainage_bytes_per_point, budget);
+}
+
+}  // namespace penink

@@ -1,0 +1,26 @@
+// Memory of a drainage build, estimated before anything is allocated: the points of a DEM
+// resampled by a factor and the bytes each takes at the build's peak (the grid, the working
+// arrays, the creases and ridges: measured about 60 B a point on jacksboro at factor 5), checked
+// against a budget (core/memory_budget.hpp).
+#pragma once
+#include <cstdint>
+#include <string>
+
+namespace penink {
+
+constexpr double drainage_bytes_per_point = 64.0;
+
+// Points of a cols x rows node grid resampled `factor` times finer: ((cols-1)f+1)((rows-1)f+1),
+// as a double (no wrap for any factor).
+double drainage_points(int cols, int rows, int factor);
+
+// The factor a build of a cols x rows DEM uses: `resample` when > 0, else the automatic one
+// (drainage_resample_factor with the default point budget).
+int drainage_factor_for(int cols, int rows, int resample);
+
+// Throws Error(stage, file, "the drainage grid at factor F (CxR points) would need about N of
+// memory, B available (--max-memory)") when the build would not fit `budget` (0: no limit).
+void check_drainage_memory(const std::string& stage, const std::string& file, int cols, int rows, int factor,
+                           std::uint64_t budget);
+
+}  // namespace penink

@@ -1,0 +1,21 @@
+#include "scene/scene_memory.hpp"
+
+#include "core/memory_budget.hpp"
+#include "drainage/drainage_memory.hpp"
+#include "input/dem_reader.hpp"
+#include "scene/frame_source.hpp"
+
+namespace penink {
+
+void check_scene_memory(const Scene& scene, std::uint64_t max_memory) {
+    if (is_mesh_scene(scene) || scene.dem.empty()) return;
+    const std::uint64_t budget = memory_budget(max_memory);
+    const DemSize size = read_dem_size(scene.dem);
+    const double drainage = drainage_points(size.cols, size.rows, drainage_factor_for(size.cols, size.rows, 0)) *
+                            drainage_bytes_per_point;
+    check_memory("input", scene.dem,
+                 "drawing the DEM's " + std::to_string(size.cols) + "x" + std::to_string(size.rows) + " nodes",
+                 size.nodes() * render_bytes_per_node + drainage, budget);
+}
+
+}  // namespace penink

@@ -1,0 +1,19 @@
+// Memory a terrain drawing needs, estimated from the DEM's header before anything is read: its
+// nodes at render_bytes_per_node (DEM read, level-of-detail mesh, GPU upload; about 80 B a cell
+// measured on 14 M cells, warm) plus the drainage build a render makes when it has no cache
+// (drainage/drainage_memory.hpp, at the automatic factor), against a budget.
+#pragma once
+#include <cstdint>
+
+#include "scene/scene.hpp"
+
+namespace penink {
+
+constexpr double render_bytes_per_node = 64.0;
+
+// Throws Error("input", DEM, "drawing the DEM's WxH nodes would need about N of memory, B
+// available (--max-memory)") when a terrain scene would not fit memory_budget(max_memory); also
+// the DEM reader's opening errors (read_dem_size). A mesh scene is not checked.
+void check_scene_memory(const Scene& scene, std::uint64_t max_memory);
+
+}  // namespace penink

@@ -1,0 +1,108 @@
+// Hostile inputs: each ends quickly with exit code 2, one line naming the real problem and the
+// file or key, and no output file (nor temp file) left behind.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+
+#include "cli_support.hpp"
+
+using namespace penink::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string volcano = PENINK_SOURCE_DIR "/examples/volcano.asc";
+
+// Every file under dir, recursively (an output left in a subfolder counts too).
+std::size_t files_under(const fs::path& dir) {
+    std::size_t n = 0;
+    for (auto& e : fs::recursive_directory_iterator(dir)) n += e.is_regular_file();
+    return n;
+}
+
+// Runs `args` in `dir`: exit code 2, the output exactly `line`, as many files as before, in under
+// `seconds`.
+void expect_refused(const fs::path& dir, const std::string& args, const std::string& line, double seconds = 5.0) {
+    const std::size_t before = files_under(dir);
+    const auto t0 = std::chrono::steady_clock::now();
+    const RunResult r = run_penink(args, dir);
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), seconds) << args;
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.output;
+    EXPECT_EQ(r.output, line + "\n") << args;
+    EXPECT_EQ(files_under(dir), before) << args << ": an output or temp file was left behind";
+}
+
+// As expect_refused, for a line whose middle depends on the machine: it starts with `head` and
+// ends with `tail`.
+void expect_refused_like(const fs::path& dir, const std::string& args, const std::string& head,
+                         const std::string& tail) {
+    const std::size_t before = files_under(dir);
+    const RunResult r = run_penink(args, dir);
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.output;
+    EXPECT_EQ(r.output.rfind(head, 0), 0u) << r.output;
+    ASSERT_GE(r.output.size(), tail.size() + 1);
+    EXPECT_EQ(r.output.substr(r.output.size() - tail.size() - 1), tail + "\n") << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_EQ(files_under(dir), before) << args << ": an output or temp file was left behind";
+}
+
+std::string grid(int cols, int rows, const std::string& values, double cellsize = 10) {
+    return "ncols " + std::to_string(cols) + "\nnrows " + std::to_string(rows) +
+           "\nxllcorner 0\nyllcorner 0\ncellsize " + std::to_string(cellsize) + "\nNODATA_value -9999\n" + values;
+}
+
+}  // namespace
+
+TEST(HostileInputs, GridDeclaringHugeSizeWithFewValues) {
+    const auto dir = fresh_dir("hostile_huge");
+    write_text(dir / "huge.asc", grid(50000, 50000, "1 2 3 4 5 6 7 8\n"));
+    const std::string line = "penink: input: huge.asc: ASCII grid declares 50000x50000 values but its 102 bytes hold at most 51";
+    expect_refused(dir, "render huge.asc -o out.svg -o out.png", line, 1.0);
+    expect_refused(dir, "drainage huge.asc", line, 1.0);
+    write_text(dir / "huge.toml", "[terrain]\ndem = \"huge.asc\"\n");
+    expect_refused(dir, "batch huge.toml --path " PENINK_SOURCE_DIR "/examples/volcano_flight.csv --out frames", line, 1.0);
+    EXPECT_FALSE(fs::exists(dir / "frames"));
+}
+
+TEST(HostileInputs, DemBeyondMaxMemory) {
+    const auto dir = fresh_dir("hostile_budget");
+    expect_refused(dir, "render " + volcano + " -o out.svg --max-memory 1M",
+                   "penink: input: " + volcano + ": drawing the DEM's 61x87 nodes would need about 8 MiB of memory, "
+                   "1 MiB available (--max-memory)");
+    expect_refused(dir, "render " + volcano + " -o out.svg --max-memory lots",
+                   "penink: cli: --max-memory: expected a size such as 2G or 512M (got \"lots\")");
+}
+
+TEST(HostileInputs, DrainageResampleBoundedByTheBudget) {
+    const auto dir = fresh_dir("hostile_resample");
+    fs::copy_file(volcano, dir / "volcano.asc");
+    expect_refused_like(dir, "drainage volcano.asc --resample 1000",
+                        "penink: drainage: volcano.asc: the drainage grid at factor 1000 (60001x86001 points) would "
+                        "need about 307.6 GiB of memory, ",
+                        " available (--max-memory)");
+    expect_refused(dir, "drainage volcano.asc --resample 20 --max-memory 100M",
+                   "penink: drainage: volcano.asc: the drainage grid at factor 20 (1201x1721 points) would need about "
+                   "126 MiB of memory, 100 MiB available (--max-memory)");
+    expect_refused(dir, "drainage volcano.asc --resample 1001",
+                   "penink: cli: --resample: must be between 0 and 1000 (got \"1001\")");
+}
+
+TEST(HostileInputs, DashesFinerThanATenthOfAPixel) {
+    const auto dir = fresh_dir("hostile_dash");
+    write_text(dir / "tiny.toml", "[all]\ndash = [1e-30, 1e-30]\n");
+    expect_refused(dir, "render " + volcano + " --style tiny.toml -o out.svg -o out.png",
+                   "penink: style: tiny.toml: dash lengths must be 0 or at least 0.1 px (got 1e-30) (in [all])", 2.0);
+}
+
+TEST(HostileInputs, MeshCoordinatesBeyondRange) {
+    const auto dir = fresh_dir("hostile_mesh");
+    write_text(dir / "far.obj", "v 0 0 0\nv 1e308 0 0\nv 0 1 0\nf 1 2 3\n");
+    expect_refused(dir, "render far.obj -o out.svg",
+                   "penink: input: far.obj: vertex 2 has coordinate 1e+308, out of range (mesh coordinates must be "
+                   "finite and within +-1e9)", 2.0);
+    write_text(dir / "far.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1e38 0\n3 0 1 2\n");
+    expect_refused(dir, "render far.off -o out.svg -o out.png",
+                   "penink: input: far.off: vertex 3 has coordinate 1e+38, out of range (mesh coordinates must be "
+                   "finite and within +-1e9)", 2.0);
+}

@@ -1,0 +1,36 @@
+#include "drainage/drainage_memory.hpp"
+
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+
+namespace penink {
+namespace {
+
+TEST(DrainageMemory, PointsOfAResampledGridDoNotWrap) {
+    EXPECT_EQ(drainage_points(61, 87, 1), 61.0 * 87.0);
+    EXPECT_EQ(drainage_points(61, 87, 5), 301.0 * 431.0);
+    EXPECT_EQ(drainage_points(61, 87, 1000), 60001.0 * 86001.0);
+    EXPECT_GT(drainage_points(2000000000, 2000000000, 1000), 1e24);
+}
+
+TEST(DrainageMemory, FactorIsTheGivenOneElseTheAutomaticOne) {
+    EXPECT_EQ(drainage_factor_for(61, 87, 7), 7);
+    EXPECT_EQ(drainage_factor_for(61, 87, 0), 5);
+    EXPECT_EQ(drainage_factor_for(4001, 4001, 0), 1);  // 16 M points at factor 1: never below it
+}
+
+TEST(DrainageMemory, ResampleFactorBeyondTheBudgetIsRefused) {
+    EXPECT_NO_THROW(check_drainage_memory("drainage", "v.asc", 61, 87, 5, std::uint64_t(1) << 30));
+    try {
+        check_drainage_memory("drainage", "v.asc", 61, 87, 1000, std::uint64_t(16) << 30);
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "penink: drainage: v.asc: the drainage grid at factor 1000 (60001x86001 points) would need about "
+                  "307.6 GiB of memory, 16.0 GiB available (--max-memory)");
+    }
+}
+
+}  // namespace
+}  // namespace penink
