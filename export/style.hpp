@@ -4,6 +4,7 @@
 // near/far are fractions of the drawing's largest eye distance (see styles/README.md).
 #pragma once
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -26,6 +27,12 @@ std::string rgb_hex(Rgb c);
 
 // How one layer's strokes are drawn. Values at the near distance; *_far at the far distance,
 // linearly interpolated in between (clamped outside).
+// Dash patterns: each length 0 or at least min_dash_px, the pattern at least min_dash_pattern_px
+// long in all, at most max_dash_entries numbers (a finer pattern costs time and memory in every
+// writer and says nothing on paper).
+constexpr double min_dash_px = 0.1, min_dash_pattern_px = 1.0;
+constexpr std::size_t max_dash_entries = 16;
+
 struct LayerStyle {
     Rgb color{0, 0, 0};
     double width = 1.0, width_far = 1.0;      // stroke width, image pixels

@@ -2,6 +2,7 @@
 // (or "all", applied first). Unknown keys and out-of-range values are errors (styles/README.md).
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <stdexcept>
 
@@ -16,6 +17,12 @@ namespace {
 struct StyleProblem : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
+
+std::string short_number(double v) {
+    char s[32];
+    std::snprintf(s, sizeof s, "%g", v);
+    return s;
+}
 
 std::string where(const std::string& table) { return table.empty() ? "" : " (in [" + table + "])"; }
 
@@ -51,13 +58,20 @@ Rgb colour(const toml::value& v, const std::string& key, const std::string& tabl
 
 std::vector<double> dash_array(const toml::value& v, const std::string& table) {
     if (!v.is_array()) throw StyleProblem("dash must be an array of numbers" + where(table));
+    if (v.as_array().size() > max_dash_entries)
+        throw StyleProblem("dash must have at most " + std::to_string(max_dash_entries) + " numbers" + where(table));
     std::vector<double> dash;
     double sum = 0.0;
     for (const toml::value& x : v.as_array()) {
         dash.push_back(number_at_least(x, "dash", table, 0.0));
+        if (dash.back() > 0.0 && dash.back() < min_dash_px)
+            throw StyleProblem("dash lengths must be 0 or at least 0.1 px (got " + short_number(dash.back()) + ")" +
+                               where(table));
         sum += dash.back();
     }
     if (!dash.empty() && sum <= 0.0) throw StyleProblem("dash must not be all zeros" + where(table));
+    if (!dash.empty() && sum < min_dash_pattern_px)
+        throw StyleProblem("dash pattern must add up to at least 1 px (got " + short_number(sum) + ")" + where(table));
     return dash;
 }
 

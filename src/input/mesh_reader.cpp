@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -60,6 +62,20 @@ TriangleMesh build_mesh(const std::vector<Point3>& pts, const std::vector<Polygo
     }
     if (m.material_names.empty()) m.material_names.push_back("default");
     return m;
+}
+
+// Every coordinate finite and within max_mesh_coordinate, else Error("input", path, ...) naming
+// the first vertex (from 1, in file order) that is not.
+void check_coordinates(const std::vector<Point3>& pts, const std::string& path) {
+    for (std::size_t i = 0; i < pts.size(); ++i)
+        for (int k = 0; k < 3; ++k) {
+            const double c = pts[i][k];
+            if (std::isfinite(c) && std::abs(c) <= max_mesh_coordinate) continue;
+            char text[48];
+            std::snprintf(text, sizeof text, "%g", c);
+            throw Error("input", path, "vertex " + std::to_string(i + 1) + " has coordinate " + text +
+                                           ", out of range (mesh coordinates must be finite and within +-1e9)");
+        }
 }
 
 }  // namespace
@@ -123,6 +139,7 @@ TriangleMesh read_mesh(const std::string& path, bool weld) {
     }
     // CGAL reports a file with vertices but no faces as a failure: that is a mesh without triangles.
     if (!ok && (pts.empty() || !polys.empty())) throw Error("input", path, "not a mesh (cannot read OBJ/PLY/OFF)");
+    check_coordinates(pts, path);
     std::vector<std::string> mats;
     if (ext == ".obj") mats = scan_obj_face_materials(read_text(path));
     TriangleMesh m = build_mesh(pts, polys, mats);

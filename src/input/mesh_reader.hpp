@@ -10,8 +10,13 @@
 
 namespace penink {
 
+// Largest magnitude of a mesh coordinate (the file's units): beyond it, squared distances and
+// the camera's fit overflow floats.
+constexpr double max_mesh_coordinate = 1e9;
+
 // Reads path (.obj, .ply, .off; extension case-insensitive). Throws penink::Error("input", path,
-// ...) with "no such file", "not a mesh (cannot read OBJ/PLY/OFF)", "mesh has no triangles" or
+// ...) with "no such file", "not a mesh (cannot read OBJ/PLY/OFF)", "mesh has no triangles",
+// "vertex N has coordinate X, out of range (mesh coordinates must be finite and within +-1e9)" or
 // "unsupported mesh format \".xyz\" (use .obj, .ply or .off)".
 // weld: merge vertices with bit-identical positions (files that split vertices along seams)
 // and drop triangles that become degenerate, so edges are shared between faces.

@@ -95,6 +95,13 @@ TEST(Style, BadFilesErrorExactly) {
     EXPECT_EQ(style_error("near = 0.8\nfar = 0.5\n", dir), prefix + "near must be less than far");
     EXPECT_EQ(style_error("bands = 0\n", dir), prefix + "bands must be an integer in [1, 16]");
     EXPECT_EQ(style_error("[pels]\ndash = [0, 0]\n", dir), prefix + "dash must not be all zeros (in [pels])");
+    EXPECT_EQ(style_error("[all]\ndash = [1e-30, 1e-30]\n", dir),
+              prefix + "dash lengths must be 0 or at least 0.1 px (got 1e-30) (in [all])");
+    EXPECT_EQ(style_error("[all]\ndash = [0.2, 0.3]\n", dir),
+              prefix + "dash pattern must add up to at least 1 px (got 0.5) (in [all])");
+    EXPECT_EQ(style_error("[all]\ndash = [1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1]\n", dir),
+              prefix + "dash must have at most 16 numbers (in [all])");
+    EXPECT_EQ(style_error("[all]\ndash = [0, 0.1, 0.9]\n", dir), "no error");
     EXPECT_EQ(style_error("[pels]\nrepeat = 0\n", dir), prefix + "repeat must be an integer in [1, 16] (in [pels])");
     EXPECT_EQ(style_error("[silhouettes]\nmin_length = -2\n", dir),
               prefix + "min_length must be >= 0 (in [silhouettes])");

@@ -96,3 +96,17 @@ TEST(MeshReader, ErrorsAreExact) {
     std::string empty = temp_file("points.obj", "v 0 0 0\nv 1 0 0\n");
     EXPECT_EQ(error_of(empty), "penink: input: " + empty + ": mesh has no triangles");
 }
+
+TEST(MeshReader, CoordinatesBeyondRangeOrNotFiniteAreRefused) {
+    const std::string tri = "f 1 2 3\n";
+    std::string huge = temp_file("huge.obj", "v 0 0 0\nv 1e308 0 0\nv 0 1 0\n" + tri);
+    EXPECT_EQ(error_of(huge), "penink: input: " + huge +
+                                  ": vertex 2 has coordinate 1e+308, out of range (mesh coordinates must be finite and within +-1e9)");
+    std::string f38 = temp_file("f38.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1e38 0\n3 0 1 2\n");
+    EXPECT_EQ(error_of(f38), "penink: input: " + f38 +
+                                 ": vertex 3 has coordinate 1e+38, out of range (mesh coordinates must be finite and within +-1e9)");
+    std::string inf = temp_file("inf.obj", "v 0 0 0\nv 1 0 0\nv 0 1 inf\n" + tri);
+    EXPECT_EQ(error_of(inf).rfind("penink: input: " + inf + ": ", 0), 0u);  // CGAL stops at "inf": some refusal
+    std::string ok = temp_file("ok.obj", "v 0 0 0\nv 1e9 0 0\nv 0 -1e9 0\n" + tri);
+    EXPECT_EQ(error_of(ok), "no error");
+}
