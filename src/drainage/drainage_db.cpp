@@ -31,7 +31,7 @@
 //   fingerprint as above, u32 0; i32 cols, rows, factor, u32 0; f64 origin easting, northing
 //   creases, then ridges, each:
 //     u64 lines, u64 vertices
-//     lines: f32 box lo.x, lo.y, hi.x, hi.y, f32 plan length, u32 count, u8 order, 3 zero bytes
+//     lines: f32 box lo.x, lo.y, hi.x, hi.y, f32 3-D length (unexaggerated), u32 count, u8 order, 3 zero bytes
 //            (first = running sum of counts)
 //     vertices: f32 x, y, z, nx, ny, nz, flow (28 bytes each: DrapedVertex)
 //     index: f32 origin x, y, f32 level-0 cell side, u32 levels; u32 cols, rows per level; u32
@@ -40,7 +40,7 @@
 //            total length (dv_format.hpp: lines_hash)
 // Versions 2-4 stored each vertex's flow (16 bytes) and fixed 13-byte branches without head_acc;
 // 4 added the routing; 5 varint records; 6 grid positions; 7 vertices after each record; 8 the
-// lines part and no vertical exaggeration in the fingerprint.
+// lines part and no vertical exaggeration in the fingerprint; 9 3-D line lengths.
 #include "drainage/drainage_db.hpp"
 
 #include <bit>

@@ -92,7 +92,9 @@ struct DrainageDb {
 // 8: built from unexaggerated heights (the fingerprint's options are 0, not the vertical
 // exaggeration); a second part, with its own checksum and its offset in the header, holds the
 // creases and ridges smoothed, draped and indexed (line_set.hpp), which a render reads alone.
-inline constexpr std::uint32_t drainage_db_version = 8;
+// 9: a line's length is its 3-D length (unexaggerated), which bounds its drawn length at any
+// exaggeration, so a frame culls lines by their records alone.
+inline constexpr std::uint32_t drainage_db_version = 9;
 
 // Fingerprint of the DEM file at `dem_path` with the given resample factor. Throws
 // penink::Error("drainage", dem_path, "cannot read DEM file") when it cannot be read.

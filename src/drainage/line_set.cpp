@@ -32,7 +32,8 @@ void index_lines(DrapedLineSet& set) {
         double length = 0.0;
         for (std::uint32_t k = 1; k < l.count; ++k) {
             l.lo = glm::min(l.lo, glm::vec2(v[k].x, v[k].y)), l.hi = glm::max(l.hi, glm::vec2(v[k].x, v[k].y));
-            length += std::hypot(double(v[k].x) - v[k - 1].x, double(v[k].y) - v[k - 1].y);
+            const double dx = double(v[k].x) - v[k - 1].x, dy = double(v[k].y) - v[k - 1].y, dz = double(v[k].z) - v[k - 1].z;
+            length += std::sqrt(dx * dx + dy * dy + dz * dz);
         }
         l.length = float(length);
         lo = i ? glm::min(lo, l.lo) : l.lo, hi = i ? glm::max(hi, l.hi) : l.hi;

@@ -2,7 +2,7 @@
 // drawing (Mower, "Concurrent Drainage Network Rendering": the drainage vertices draped on the PN
 // surface): smoothed and draped once when the database is built (draped_lines.hpp), each vertex
 // with its unexaggerated z and the unit PN normal there, each line with its plan bounding box,
-// plan length and Strahler order, and a spatial index so that a frame picks the lines meeting its
+// 3-D length and Strahler order, and a spatial index so that a frame picks the lines meeting its
 // modelled box without a pass over every vertex.
 // Frame: the Terrain's local metres (x east, y north, z elevation, unexaggerated). Exaggerating
 // by e: z' = e z, normal' = normalize(e nx, e ny, nz) (exact for a height field's normal).
@@ -34,7 +34,7 @@ using DrapedVertices = std::vector<DrapedVertex, UninitAllocator<DrapedVertex>>;
 
 struct DrapedLine {
     glm::vec2 lo{0.0f}, hi{0.0f};    // plan bounding box of its vertices, local metres
-    float length = 0.0f;             // plan length, metres
+    float length = 0.0f;             // 3-D length, metres, unexaggerated (at e at most max(1, e) times this)
     std::uint32_t first = 0, count = 0;  // vertices [first, first + count)
     std::uint8_t order = 0;          // Strahler order of a stem (at its end); 0 for a divide
     bool operator==(const DrapedLine&) const = default;

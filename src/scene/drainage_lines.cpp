@@ -113,13 +113,30 @@ ScoredLineSet select_lines(const std::vector<DrapedLine>& lines, const std::vect
         }
         return n;
     };
-    std::vector<std::uint32_t> all(ids.size());
-    for (std::size_t j = 0; j < all.size(); ++j) all[j] = std::uint32_t(j);
+    // Lines no camera can show min_px long, by their records alone (their vertices never read): a
+    // line's length at exaggeration e is at most max(1, e) times its stored (unexaggerated) 3-D
+    // length, and every vertex is at least its plan box's plan distance from the eye, so a piece
+    // of it that big_enough would keep passes this test too.
+    const double stretch = std::max(1.0, e) * (1.0 + 1e-5);
+    const auto may_show = [&](const DrapedLine& l) {
+        if (culling.cameras.empty()) return true;
+        for (std::size_t c = 0; c < scale.size(); ++c) {
+            const glm::dvec3& eye = culling.cameras[c].eye;
+            const double dx = std::max({double(l.lo.x) - eye.x, eye.x - double(l.hi.x), 0.0});
+            const double dy = std::max({double(l.lo.y) - eye.y, eye.y - double(l.hi.y), 0.0});
+            if (stretch * double(l.length) * scale[c] >= double(culling.min_px) * std::sqrt(dx * dx + dy * dy)) return true;
+        }
+        return false;
+    };
+    std::vector<std::uint32_t> all;
+    for (std::size_t j = 0; j < ids.size(); ++j)
+        if (may_show(lines[ids[j]])) all.push_back(std::uint32_t(j));
     std::uint32_t total = 0;
     for (std::size_t i0 = 0; i0 < all.size();) {
         const std::size_t i1 = batches.fetch(all, i0);
         for (std::size_t j = i0; j < i1; ++j) {
-            const DrapedLine& l = lines[ids[j]];
+            const std::uint32_t id = all[j];  // lines[ids[id]]
+            const DrapedLine& l = lines[ids[id]];
             const DrapedVertex* v = batches.vertices(j);
             for (std::uint32_t k = 0; k < l.count;) {  // lines_in_box's cut
                 while (k < l.count && !inside(v[k])) ++k;
@@ -131,7 +148,7 @@ ScoredLineSet select_lines(const std::vector<DrapedLine>& lines, const std::vect
                     k = end;
                     continue;
                 }
-                if (kept.empty() || kept.back() != j) kept.push_back(std::uint32_t(j));
+                if (kept.empty() || kept.back() != id) kept.push_back(id);
                 const std::size_t at = keep.size();
                 const std::uint32_t n = mark(v, a, b, k, end);
                 out.runs.push_back({total, n});
@@ -207,38 +224,51 @@ float max_visible_distance(const DepthImage& toward) {
     return d;
 }
 
-DrainageLineData prepare_drainage_lines(const DrainageDb& db, const Terrain& model, const LineCulling& culling) {
-    DrainageLineData data;
+LineBox line_box(const Terrain& model) {
+    LineBox box;
+    box.exaggeration = model.vertical_exaggeration;
     glm::dvec3 lo, hi;
-    if (!terrain_bounds(model, lo, hi)) return data;
-    const glm::vec2 l(lo), h(hi);
+    if (terrain_bounds(model, lo, hi)) box.lo = glm::vec2(lo), box.hi = glm::vec2(hi);
+    return box;
+}
+
+DrainageLineData prepare_drainage_lines(const DrainageDb& db, const LineBox& box, const LineCulling& culling) {
+    DrainageLineData data;
+    if (!(box.lo.x <= box.hi.x && box.lo.y <= box.hi.y)) return data;
     for (const auto& [set, out] : {std::pair(&db.creases, &data.creases), std::pair(&db.ridges, &data.ridges)}) {
-        const std::vector<std::uint32_t> ids = lines_meeting_box(*set, l, h);
+        const std::vector<std::uint32_t> ids = lines_meeting_box(*set, box.lo, box.hi);
         MemoryBatches batches{*set, ids};
-        *out = select_lines(set->lines, ids, batches, l, h, model.vertical_exaggeration, culling);
+        *out = select_lines(set->lines, ids, batches, box.lo, box.hi, box.exaggeration, culling);
+    }
+    return data;
+}
+
+DrainageLineData prepare_drainage_lines(const DrainageDb& db, const Terrain& model, const LineCulling& culling) {
+    return prepare_drainage_lines(db, line_box(model), culling);
+}
+
+DrainageLineData prepare_drainage_lines(const DrainageLineSource& source, const LineBox& box,
+                                        const LineCulling& culling) {
+    if (!source.vertices.file) return prepare_drainage_lines(source.db, box, culling);
+    DrainageLineData data;
+    if (!(box.lo.x <= box.hi.x && box.lo.y <= box.hi.y)) return data;
+    int which = 0;
+    for (const auto& [set, out] :
+         {std::pair(&source.db.creases, &data.creases), std::pair(&source.db.ridges, &data.ridges)}) {
+        const std::vector<std::uint32_t> ids = lines_meeting_box(*set, box.lo, box.hi);
+        // the vertices a batch at a time (batch_bytes, or one longer line): the memory held
+        // follows the lines drawn, not those meeting the box
+        FileBatches batches{*set, ids, source.vertices, which,
+                            std::max<std::size_t>(source.batch_bytes / sizeof(DrapedVertex), 1), {}, {}};
+        *out = select_lines(set->lines, ids, batches, box.lo, box.hi, box.exaggeration, culling);
+        ++which;
     }
     return data;
 }
 
 DrainageLineData prepare_drainage_lines(const DrainageLineSource& source, const Terrain& model,
                                         const LineCulling& culling) {
-    if (!source.vertices.file) return prepare_drainage_lines(source.db, model, culling);
-    DrainageLineData data;
-    glm::dvec3 lo, hi;
-    if (!terrain_bounds(model, lo, hi)) return data;
-    const glm::vec2 l(lo), h(hi);
-    int which = 0;
-    for (const auto& [set, out] :
-         {std::pair(&source.db.creases, &data.creases), std::pair(&source.db.ridges, &data.ridges)}) {
-        const std::vector<std::uint32_t> ids = lines_meeting_box(*set, l, h);
-        // the vertices a batch at a time (batch_bytes, or one longer line): the memory held
-        // follows the lines drawn, not those meeting the box
-        FileBatches batches{*set, ids, source.vertices, which,
-                            std::max<std::size_t>(source.batch_bytes / sizeof(DrapedVertex), 1), {}, {}};
-        *out = select_lines(set->lines, ids, batches, l, h, model.vertical_exaggeration, culling);
-        ++which;
-    }
-    return data;
+    return prepare_drainage_lines(source, line_box(model), culling);
 }
 
 float line_culling_px(const Scene& scene) {

@@ -50,6 +50,15 @@ struct LineCulling {
     float min_px = 0.0f;
     float decimate_px = 0.5f;
 };
+// The modelled box: plan bounds (local metres) of what the frames model, and the exaggeration
+// the lines are drawn at.
+struct LineBox {
+    glm::vec2 lo{0.0f}, hi{-1.0f};  // empty when hi < lo
+    double exaggeration = 1.0;
+};
+// The box of a modelled terrain's valid nodes (empty when it has none).
+LineBox line_box(const Terrain& model);
+DrainageLineData prepare_drainage_lines(const DrainageDb& db, const LineBox& box, const LineCulling& culling = {});
 DrainageLineData prepare_drainage_lines(const DrainageDb& db, const Terrain& model, const LineCulling& culling = {});
 
 // What a render selects its lines from (scene_drainage): a database whose lines carry their
@@ -63,6 +72,8 @@ struct DrainageLineSource {
 // The same lines as prepare_drainage_lines(db) gives for the database whose lines `source` holds
 // (same pieces, order and floats); from a file, only the vertices of the lines meeting the box
 // are read (memory and time follow the selection).
+DrainageLineData prepare_drainage_lines(const DrainageLineSource& source, const LineBox& box,
+                                        const LineCulling& culling = {});
 DrainageLineData prepare_drainage_lines(const DrainageLineSource& source, const Terrain& model,
                                         const LineCulling& culling = {});
 

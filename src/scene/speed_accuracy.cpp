@@ -142,7 +142,7 @@ struct ReferenceCache {
     void compute(const BenchView& v) {
         const auto t0 = Clock::now();
         const glm::vec2 viewport(float(v.camera.width), float(v.camera.height));
-        const PnTessellation t = tessellate_pn_surface(mesh_from_terrain(v.frames->terrain()), view_projection(v.camera), viewport, float(edge_px), 16);
+        const PnTessellation t = tessellate_pn_surface(mesh_from_terrain(window_terrain(v.frames->terrain())), view_projection(v.camera), viewport, float(edge_px), 16);
         entries.push_back({v.camera, silhouette_polylines(object_space_silhouettes(t.pos, t.tri, v.camera), false), 0});
         entries.back().ms = ms_since(t0);
     }

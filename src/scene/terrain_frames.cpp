@@ -20,7 +20,7 @@ namespace penink {
 
 namespace {
 
-std::string format_camera(const Camera& c, const Terrain& t) {
+std::string format_camera(const Camera& c, const Terrain& t) {  // t: georeference only
     std::ostringstream s;
     s.precision(10);
     s << "eye " << c.eye.x + t.origin.x << " " << c.eye.y + t.origin.y << " " << c.eye.z
@@ -99,35 +99,54 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terra
     return source;
 }
 
-TerrainFrames::TerrainFrames(GlContext& context, std::optional<DrainageLineSource> drainage, Terrain terrain, int width,
-                             int height, const Log& log, LineCulling culling)
+std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const SceneTerrain& dem, const Log& log) {
+    if (dem.stored.in_memory) return scene_drainage(scene, *dem.stored.in_memory, log);
+    return scene_drainage(scene, dem.stored.meta, log);
+}
+
+TerrainFrames::TerrainFrames(GlContext& context, std::optional<DrainageLineSource> drainage, FrameTerrain terrain,
+                             int width, int height, const Log&, LineCulling culling)
     : context_(&context), terrain_(std::move(terrain)), width_(width), height_(height) {
-    const auto t0 = Clock::now();
-    lod_ = build_terrain_lod(terrain_);
-    log.info("level-of-detail pyramid: " + std::to_string(lod_.side()) + "^2 nodes (" + std::to_string(terrain_.cols) +
-             "x" + std::to_string(terrain_.rows) + " modelled, " + std::to_string(int(ms_since(t0))) + " ms)");
     if (!drainage) return;
-    pending_lines_ = std::async(std::launch::async, [this, db = std::move(*drainage), culling = std::move(culling)] {
-        return prepare_drainage_lines(db, terrain_, culling);
+    LineBox box;
+    box.lo = glm::vec2(terrain_.lo), box.hi = glm::vec2(terrain_.hi), box.exaggeration = terrain_.meta.vertical_exaggeration;
+    pending_lines_ = std::async(std::launch::async, [db = std::move(*drainage), box, culling = std::move(culling)] {
+        return prepare_drainage_lines(db, box, culling);
     });
 }
+
+namespace {
+FrameTerrain logged_frame_terrain(Terrain terrain, const Log& log) {
+    const auto t0 = Clock::now();
+    const int cols = terrain.cols, rows = terrain.rows;
+    FrameTerrain f = frame_terrain(std::move(terrain));
+    log.info("level-of-detail pyramid: " + std::to_string(f.lod.side()) + "^2 nodes (" + std::to_string(cols) + "x" +
+             std::to_string(rows) + " modelled, " + std::to_string(int(ms_since(t0))) + " ms)");
+    return f;
+}
+}  // namespace
+
+TerrainFrames::TerrainFrames(GlContext& context, std::optional<DrainageLineSource> drainage, Terrain terrain, int width,
+                             int height, const Log& log, LineCulling culling)
+    : TerrainFrames(context, std::move(drainage), logged_frame_terrain(std::move(terrain), log), width, height, log,
+                    std::move(culling)) {}
 
 TerrainFrames::~TerrainFrames() {
     if (pending_lines_.valid()) pending_lines_.wait();
 }
 
 SurfaceMesh TerrainFrames::frame_mesh(const Camera& camera, const Scene& frame) const {
-    if (frame.surface_tolerance_px <= 0.0f) return mesh_from_terrain(terrain_);
+    if (frame.surface_tolerance_px <= 0.0f) return mesh_from_terrain(window_terrain(terrain_));
     LodOptions lod;
     lod.tolerance_px = frame.surface_tolerance_px;
     lod.min_radius_px = frame.surface_min_radius_px;
-    return select_lod_mesh(lod_, terrain_, camera, lod);
+    return select_lod_mesh(terrain_.lod, terrain_.nodes, terrain_.meta.vertical_exaggeration, camera, lod);
 }
 
 SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
     SceneDrawing out;
     out.camera = camera;
-    out.cells = std::size_t(terrain_.cols - 1) * (terrain_.rows - 1);
+    out.cells = terrain_.cells();
     const auto t_select = Clock::now();
     const bool full = frame.surface_tolerance_px <= 0.0f;
     if (!(full && mesh_is_full_)) {  // the full-resolution mesh, once made and uploaded, serves every frame
@@ -157,21 +176,18 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
     add_frame_lines(images, mesh_, camera, out.drawing);
     out.trace_ms = ms_since(t0);
     out.silhouette_mask = std::move(images.silhouettes);
-    fill_metadata(frame, camera, terrain_, out.drawing);
+    fill_metadata(frame, camera, terrain_.meta, out.drawing);
     return out;
 }
 
 SceneView open_terrain_view(const Scene& scene, GlContext& context, const Log& log) {
-    auto t0 = Clock::now();
-    Terrain dem = read_scene_dem(scene);
-    log.info("read " + scene.dem + ": " + std::to_string(dem.cols) + "x" + std::to_string(dem.rows) + " nodes (" +
-             std::to_string(int(lap_ms(t0))) + " ms)");
+    const SceneTerrain dem = open_scene_terrain(scene, log);
     SceneView view;
     view.camera = scene_camera(scene, dem);
     std::optional<DrainageLineSource> drainage = scene_drainage(scene, dem, log);
-    t0 = Clock::now();
-    Terrain model = terrain_for_view(std::move(dem), view.camera, scene, log);
-    log.info("view window cropped (" + std::to_string(int(lap_ms(t0))) + " ms)");
+    const auto t0 = Clock::now();
+    FrameTerrain model = terrain_for_view(dem, view.camera, scene, log);
+    log.info("view window found (" + std::to_string(int(ms_since(t0))) + " ms)");
     view.frames = std::make_unique<TerrainFrames>(context, std::move(drainage), std::move(model), view.camera.width,
                                                   view.camera.height, log,
                                                   LineCulling{{view.camera}, line_culling_px(scene)});

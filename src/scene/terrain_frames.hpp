@@ -9,6 +9,7 @@
 
 #include "scene/drainage_lines.hpp"
 #include "scene/frame_source.hpp"
+#include "scene/terrain_view.hpp"
 #include "surface/surface_mesh.hpp"
 #include "surface/terrain_lod.hpp"
 
@@ -21,17 +22,24 @@ SceneView open_terrain_view(const Scene& scene, GlContext& context, const Log& l
 // with progress on a terminal; none when the scene draws neither creases nor ridges. A valid
 // cache is checked whole but only its line records and index are held: the frames read the
 // vertices of the lines they select from the file (DrainageLineSource).
+// `dem`: the DEM's grid (its node arrays, when held unexaggerated, spare a build reading it again).
 std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terrain& dem, const Log& log);
+std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const SceneTerrain& dem, const Log& log);
 
 // A terrain set up once and drawn in many frames (render, batch, bench): its level-of-detail
 // pyramid (surface/terrain_lod.hpp), from which each frame selects the mesh its camera needs
 // ([surface] tolerance_px; 0 = the full-resolution mesh), its GPU copy, and its drainage lines.
-// `terrain` is what gets modelled (cropped to the view for a single frame, the union of the
-// frames' windows for a flight); `drainage` holds the lines of the whole DEM (scene_drainage).
+// `terrain` is what gets modelled: the nodes (in memory or mapped from the terrain cache) and the
+// window of them the frames may see (the view's for a single frame, the union of the frames'
+// windows for a flight), which bounds the drainage lines read; `drainage` holds the lines of the
+// whole DEM (scene_drainage).
 class TerrainFrames : public FrameSource {
 public:
     // `culling`: the cameras the frames will use and the screen size below which a crease or
     // ridge cannot be drawn (prepare_drainage_lines); default: every line of the modelled box.
+    TerrainFrames(GlContext& context, std::optional<DrainageLineSource> drainage, FrameTerrain terrain, int width,
+                  int height, const Log& log, LineCulling culling = {});
+    // A Terrain in memory, all of it modelled (frame_terrain).
     TerrainFrames(GlContext& context, std::optional<DrainageLineSource> drainage, Terrain terrain, int width, int height,
                   const Log& log, LineCulling culling = {});
     TerrainFrames(const TerrainFrames&) = delete;  // the line preparation thread holds &terrain_
@@ -41,7 +49,7 @@ public:
     // silhouette method).
     SceneDrawing draw(const Camera& camera, const Scene& frame) override;
     // The modelled terrain (local metres, exaggerated z).
-    const Terrain& terrain() const { return terrain_; }
+    const FrameTerrain& terrain() const { return terrain_; }
     // The surface mesh of the last frame drawn (empty before the first).
     const SurfaceMesh& mesh() const { return mesh_; }
 
@@ -50,8 +58,7 @@ private:
     SurfaceMesh frame_mesh(const Camera& camera, const Scene& frame) const;
 
     GlContext* context_;
-    Terrain terrain_;
-    TerrainLod lod_;
+    FrameTerrain terrain_;
     SurfaceMesh mesh_;
     bool mesh_is_full_ = false;  // mesh_ is (and the renderer holds) the full-resolution mesh
     int width_, height_;

@@ -6,6 +6,8 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/stopwatch.hpp"
+#include "drainage/drainage_build.hpp"
 #include "input/dem_reader.hpp"
 #include "input/scene_position.hpp"
 #include "input/terrain_window.hpp"
@@ -14,22 +16,76 @@
 namespace penink {
 
 namespace {
+
 const std::string& scene_file(const Scene& s) { return s.file.empty() ? s.dem : s.file; }
+
+// The camera of a scene over a DEM's nodes (drawn) with bounds lo, hi.
+Camera place_camera(const Scene& scene, const Terrain& meta, const GridNodes& nodes, const glm::dvec3& lo,
+                    const glm::dvec3& hi) {
+    const SceneCamera& sc = scene.camera;
+    const double az = sc.azimuth.value_or(default_view_azimuth);
+    const double alt = sc.altitude.value_or(default_view_altitude);
+    if (!sc.position) return frame_points(frame_samples(nodes), az, alt, sc.fov, sc.width, sc.height, 0.9);
+    Camera cam;
+    const glm::dvec2 xy = parse_scene_position(*sc.position, meta, scene_file(scene));
+    cam.eye = {xy.x, xy.y, *sc.elevation * scene.vertical_exaggeration};
+    cam.azimuth = az, cam.altitude = alt, cam.fov = sc.fov;
+    cam.width = sc.width, cam.height = sc.height;
+    fit_depth_range(cam, lo, hi);
+    return cam;
 }
 
-std::vector<glm::dvec3> frame_samples(const Terrain& t) {
+// Throws when a placed camera is at or below the ground under it.
+void check_above_ground(const Scene& scene, const GridNodes& nodes, const Camera& cam) {
+    double ground = 0.0;
+    if (scene.camera.position && grid_ground_height(nodes, cam.eye.x, cam.eye.y, ground) && cam.eye.z <= ground) {
+        std::ostringstream msg;
+        msg << "camera is inside the terrain (elevation " << cam.eye.z / scene.vertical_exaggeration
+            << " m, ground " << ground / scene.vertical_exaggeration << " m)";
+        throw Error("scene", scene_file(scene), msg.str());
+    }
+}
+
+void log_window(const Log& log, const GridWindow& w, int cols, int rows) {
+    const std::size_t cells = std::size_t(w.cols() - 1) * (w.rows() - 1);
+    const std::size_t all = std::size_t(cols - 1) * (rows - 1);
+    log.info("modelled " + std::to_string(cells) + " of " + std::to_string(all) + " DEM cells (window " +
+             std::to_string(w.c0) + ".." + std::to_string(w.c1 - 1) + " x " + std::to_string(w.r0) + ".." +
+             std::to_string(w.r1 - 1) + ")");
+}
+
+// Bounds of the whole stored terrain, drawn at e: exactly the drawn nodes' (the largest and
+// smallest stored heights scale to the largest and smallest drawn ones).
+void stored_bounds(const StoredTerrain& t, double e, glm::dvec3& lo, glm::dvec3& hi) {
+    lo = glm::dvec3(t.plan_lo, double(float(double(t.lod.z_min) * e)));
+    hi = glm::dvec3(t.plan_hi, double(float(double(t.lod.z_max) * e)));
+}
+
+}  // namespace
+
+std::vector<glm::dvec3> frame_samples(const GridNodes& t) {
     std::vector<glm::dvec3> pts;
-    const std::size_t step = std::max<std::size_t>(1, t.size() / 20000);  // enough to frame by
-    for (std::size_t i = 0; i < t.size(); i += step)
-        if (t.valid[i]) pts.emplace_back(t.pos[i]);
+    constexpr std::size_t enough = 20000;  // enough to frame by
+    if (t.size() <= enough) {
+        for (std::size_t i = 0; i < t.size(); ++i)
+            if (t.valid[i]) pts.emplace_back(t.at(i));
+    } else {
+        // every k-th node of every k-th row: a frame touches 1/k of the rows, not every page
+        const int k = int(std::ceil(std::sqrt(double(t.size()) / double(enough))));
+        for (int r = 0; r < t.rows; r += k)
+            for (int c = 0; c < t.cols; c += k)
+                if (t.valid[t.index(c, r)]) pts.emplace_back(t.at(c, r));
+    }
     for (int c = 0; c < t.cols; ++c)  // the edges decide the frame: keep all of them
         for (int r : {0, t.rows - 1})
-            if (t.valid[t.index(c, r)]) pts.emplace_back(t.pos[t.index(c, r)]);
+            if (t.valid[t.index(c, r)]) pts.emplace_back(t.at(c, r));
     for (int r = 0; r < t.rows; ++r)
         for (int c : {0, t.cols - 1})
-            if (t.valid[t.index(c, r)]) pts.emplace_back(t.pos[t.index(c, r)]);
+            if (t.valid[t.index(c, r)]) pts.emplace_back(t.at(c, r));
     return pts;
 }
+
+std::vector<glm::dvec3> frame_samples(const Terrain& t) { return frame_samples(grid_nodes(t)); }
 
 Terrain read_scene_dem(const Scene& scene) {
     DemOptions options;
@@ -39,40 +95,135 @@ Terrain read_scene_dem(const Scene& scene) {
     return dem;
 }
 
+std::string terrain_cache_path(const std::string& dem_path) {
+    std::string path = drainage_cache_path(dem_path);
+    if (path.size() >= 3 && path.compare(path.size() - 3, 3, ".dv") == 0) path.resize(path.size() - 3);
+    return path + ".lod";
+}
+
+TerrainCacheKey terrain_cache_key(const std::string& dem_path) {
+    const DrainageFingerprint f = dem_fingerprint(dem_path, 1);
+    return {f.file_size, f.mtime_ns, f.content_hash, 0, true};
+}
+
+StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log) {
+    auto t0 = Clock::now();
+    const std::string path = terrain_cache_path(dem_path);
+    TerrainCacheKey key;
+    try {
+        key = terrain_cache_key(dem_path);
+    } catch (const Error&) {  // the reader names what is wrong with the file
+        read_dem(dem_path);
+        throw;
+    }
+    std::string why;
+    if (std::optional<StoredTerrain> cached = read_terrain_cache(path, key, &why)) {
+        cached->meta.source = dem_path;
+        log.info("terrain: using cached " + path + " (" + std::to_string(cached->meta.cols) + "x" +
+                 std::to_string(cached->meta.rows) + " nodes, " + std::to_string(int(ms_since(t0))) + " ms)");
+        return std::move(*cached);
+    }
+    log.info("terrain: " + path + ": " + why + "; building");
+    Terrain flat = read_dem(dem_path);
+    log.info("read " + dem_path + ": " + std::to_string(flat.cols) + "x" + std::to_string(flat.rows) + " nodes (" +
+             std::to_string(int(lap_ms(t0))) + " ms)");
+    StoredTerrain stored = store_terrain(std::move(flat));
+    log.info("level-of-detail pyramid: " + std::to_string(stored.lod.side()) + "^2 nodes (" +
+             std::to_string(int(lap_ms(t0))) + " ms)");
+    try {
+        write_terrain_cache(path, stored, key);
+        log.info("terrain: wrote " + path + " (" + std::to_string(int(lap_ms(t0))) + " ms)");
+    } catch (const Error& e) {
+        log.info(std::string(e.what()) + "; using the terrain built in memory");
+    }
+    return stored;
+}
+
+SceneTerrain open_scene_terrain(const Scene& scene, const Log& log) {
+    const double e = scene.vertical_exaggeration;
+    if (!std::isfinite(e) || e <= 0.0) throw Error("scene", scene_file(scene), "vertical exaggeration must be > 0");
+    SceneTerrain t{open_stored_terrain(scene.dem, log), e, scene_file(scene)};
+    if (const std::string w = missing_crs_warning(t.stored.meta); !w.empty()) std::cerr << w << "\n";
+    return t;
+}
+
+Camera scene_camera(const Scene& scene, const SceneTerrain& terrain) {
+    glm::dvec3 lo, hi;
+    stored_bounds(terrain.stored, terrain.exaggeration, lo, hi);
+    return place_camera(scene, terrain.stored.meta, terrain.nodes(), lo, hi);
+}
+
 Camera scene_camera(const Scene& scene, const Terrain& terrain) {
-    const SceneCamera& sc = scene.camera;
-    const double az = sc.azimuth.value_or(default_view_azimuth);
-    const double alt = sc.altitude.value_or(default_view_altitude);
-    if (!sc.position) return frame_points(frame_samples(terrain), az, alt, sc.fov, sc.width, sc.height, 0.9);
     glm::dvec3 lo, hi;
     terrain_bounds(terrain, lo, hi);
-    Camera cam;
-    const glm::dvec2 xy = parse_scene_position(*sc.position, terrain, scene_file(scene));
-    cam.eye = {xy.x, xy.y, *sc.elevation * scene.vertical_exaggeration};
-    cam.azimuth = az, cam.altitude = alt, cam.fov = sc.fov;
-    cam.width = sc.width, cam.height = sc.height;
-    fit_depth_range(cam, lo, hi);
-    return cam;
+    return place_camera(scene, terrain, grid_nodes(terrain), lo, hi);
+}
+
+FrameTerrain frame_terrain(Terrain terrain) {
+    auto owned = std::make_shared<Terrain>(std::move(terrain));
+    FrameTerrain f;
+    f.nodes = grid_nodes(*owned);
+    f.lod = build_terrain_lod(*owned);
+    f.window = {0, 0, owned->cols, owned->rows};
+    terrain_bounds(*owned, f.lo, f.hi);
+    std::vector<glm::vec3> pos = std::move(owned->pos);
+    std::vector<std::uint8_t> valid = std::move(owned->valid);
+    f.meta = *owned;
+    owned->pos = std::move(pos), owned->valid = std::move(valid);
+    f.meta.z = {}, f.meta.xy = {};
+    f.storage = std::move(owned);
+    return f;
+}
+
+Terrain window_terrain(const FrameTerrain& f) {
+    const GridWindow& w = f.window;
+    Terrain out = f.meta;
+    out.cols = w.cols(), out.rows = w.rows();
+    out.source_col0 = f.meta.source_col0 + w.c0, out.source_row0 = f.meta.source_row0 + w.r0;
+    out.pos.resize(out.size()), out.valid.resize(out.size());
+    for (int r = 0; r < out.rows; ++r)
+        for (int c = 0; c < out.cols; ++c) {
+            const std::size_t i = f.nodes.index(w.c0 + c, w.r0 + r), o = out.index(c, r);
+            out.pos[o] = f.nodes.at(i), out.valid[o] = f.nodes.valid[i];
+        }
+    return out;
+}
+
+FrameTerrain terrain_for_view(const SceneTerrain& terrain, Camera& cam, const Scene& scene, const Log& log) {
+    const StoredTerrain& s = terrain.stored;
+    FrameTerrain f;
+    f.meta = terrain.meta();
+    f.nodes = terrain.nodes();
+    f.lod = s.lod;
+    f.storage = s.storage;
+    check_above_ground(scene, f.nodes, cam);
+    const LodView v = lod_visible_window(s.lod, f.nodes, terrain.exaggeration, cam);
+    GridWindow w = v.window;
+    w.c0 = std::max(w.c0 - 1, 0), w.r0 = std::max(w.r0 - 1, 0);  // a node of margin
+    w.c1 = std::min(w.c1 + 1, s.meta.cols), w.r1 = std::min(w.r1 + 1, s.meta.rows);
+    if (v.window.cols() < 2 || v.window.rows() < 2)
+        throw Error("scene", scene_file(scene), "the camera sees no part of the DEM");
+    f.window = w;
+    if (w.c0 == 0 && w.r0 == 0 && w.c1 == s.meta.cols && w.r1 == s.meta.rows) {
+        stored_bounds(s, terrain.exaggeration, f.lo, f.hi);
+    } else {  // the pyramid's bounds of what is in view, within the stored terrain's
+        glm::dvec3 lo, hi;
+        stored_bounds(s, terrain.exaggeration, lo, hi);
+        f.lo = glm::max(v.lo, lo), f.hi = glm::min(v.hi, hi);
+    }
+    log_window(log, w, s.meta.cols, s.meta.rows);
+    fit_depth_range(cam, f.lo, f.hi);
+    return f;
 }
 
 Terrain terrain_for_view(Terrain terrain, Camera& cam, const Scene& scene, const Log& log) {
-    double ground = 0.0;
-    if (scene.camera.position && grid_ground_height(terrain, cam.eye.x, cam.eye.y, ground) && cam.eye.z <= ground) {
-        std::ostringstream msg;
-        msg << "camera is inside the terrain (elevation " << cam.eye.z / scene.vertical_exaggeration
-            << " m, ground " << ground / scene.vertical_exaggeration << " m)";
-        throw Error("scene", scene_file(scene), msg.str());
-    }
+    check_above_ground(scene, grid_nodes(terrain), cam);
     const GridWindow w = visible_window(terrain, view_projection(cam), 1);
     if (w.cols() < 2 || w.rows() < 2)
         throw Error("scene", scene_file(scene), "the camera sees no part of the DEM");
-    const std::size_t cells = std::size_t(w.cols() - 1) * (w.rows() - 1);
-    const std::size_t all = std::size_t(terrain.cols - 1) * (terrain.rows - 1);
     const bool whole = w.c0 == 0 && w.r0 == 0 && w.c1 == terrain.cols && w.r1 == terrain.rows;
+    log_window(log, w, terrain.cols, terrain.rows);
     Terrain view = whole ? std::move(terrain) : crop_terrain(terrain, w);
-    log.info("modelled " + std::to_string(cells) + " of " + std::to_string(all) + " DEM cells (window " +
-             std::to_string(w.c0) + ".." + std::to_string(w.c1 - 1) + " x " + std::to_string(w.r0) + ".." +
-             std::to_string(w.r1 - 1) + ")");
     glm::dvec3 lo, hi;
     terrain_bounds(view, lo, hi);
     fit_depth_range(cam, lo, hi);

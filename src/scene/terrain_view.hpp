@@ -1,14 +1,25 @@
-// Places the camera of a scene over a DEM: the scene's UTM / lon,lat / x y position and
-// elevation (metres above datum, scaled with the vertical exaggeration) or, with none, the whole
-// DEM framed from the south-west, looking down at 30 degrees (conventions.md). Then crops the
-// DEM to the nodes the view needs and fits near/far planes to what is left.
+// A scene's DEM as frames draw it, and the camera placed over it: the scene's UTM / lon,lat /
+// x y position and elevation (metres above datum, scaled with the vertical exaggeration) or, with
+// none, the whole DEM framed from the south-west, looking down at 30 degrees (conventions.md).
+// Then the part of the DEM the view needs, with near/far planes fitted to it.
+//
+// The nodes and level-of-detail pyramid come from the terrain cache (surface/terrain_cache.hpp)
+// beside the drainage database (`<dem>.lod` where the drainage cache is `<dem>.dv`), mapped
+// into memory; a missing or stale cache is built from the DEM, read unexaggerated, and written.
+// One cache serves every vertical exaggeration, view, light and style. Frames: the Terrain's
+// local metres, z exaggerated as drawn (GridNodes::at).
 #pragma once
+#include <memory>
+#include <string>
 #include <vector>
 
-#include "core/log.hpp"
-#include "scene/scene.hpp"
 #include "core/camera.hpp"
+#include "core/log.hpp"
+#include "input/grid_nodes.hpp"
 #include "input/terrain.hpp"
+#include "scene/scene.hpp"
+#include "surface/terrain_cache.hpp"
+#include "surface/terrain_lod.hpp"
 
 namespace penink {
 
@@ -19,14 +30,67 @@ inline constexpr double default_view_altitude = -30.0;  // looking down
 // (missing_crs_warning, dem_reader.hpp) goes to stderr.
 Terrain read_scene_dem(const Scene& scene);
 
+// The terrain cache of a DEM: the drainage cache's path (drainage_cache_path) with .lod for .dv.
+std::string terrain_cache_path(const std::string& dem_path);
+// What a DEM's terrain cache is keyed by: the DEM file (as the drainage database's fingerprint)
+// and the UTM zone forced on a geographic DEM (none: 0).
+TerrainCacheKey terrain_cache_key(const std::string& dem_path);
+
+// The scene's DEM: nodes and pyramid, stored (mapped from the cache, or read and cached), drawn
+// at the scene's vertical exaggeration.
+struct SceneTerrain {
+    StoredTerrain stored;
+    double exaggeration = 1.0;
+    std::string file;  // the scene or DEM file named in messages
+
+    GridNodes nodes() const { return stored.drawn(exaggeration); }
+    // Grid and georeference at the exaggeration (no node arrays).
+    Terrain meta() const {
+        Terrain t = stored.meta;
+        t.vertical_exaggeration = exaggeration;
+        return t;
+    }
+};
+
+// The DEM's stored terrain (terrain_cache_path): mapped when the cache is valid, else the DEM
+// read unexaggerated, its pyramid built and the cache written (a cache that cannot be written is
+// logged and the terrain kept in memory). Throws penink::Error (stage "input") for a DEM that
+// cannot be read and (stage "scene") for a vertical exaggeration that is not a finite number > 0.
+StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log);
+SceneTerrain open_scene_terrain(const Scene& scene, const Log& log);
+
+Camera scene_camera(const Scene& scene, const SceneTerrain& terrain);
 Camera scene_camera(const Scene& scene, const Terrain& terrain);
 
-// Points the automatic camera frames: every edge node and a subsample of the rest.
+// Points the automatic camera frames: every edge node and a subsample of the rest (all nodes up
+// to 20000; beyond, every k-th node of every k-th row, about 20000 of them).
+std::vector<glm::dvec3> frame_samples(const GridNodes& nodes);
 std::vector<glm::dvec3> frame_samples(const Terrain& terrain);
 
-// The terrain cropped to what the camera sees (logged: cells used of all); throws
+// What a TerrainFrames draws: nodes and pyramid at the drawing's exaggeration (in memory or
+// mapped) and the part of them the frames may see.
+struct FrameTerrain {
+    Terrain meta;                          // grid and georeference, vertical_exaggeration; no node arrays
+    GridNodes nodes;                       // as drawn
+    TerrainLod lod;
+    std::shared_ptr<const void> storage;   // owns what `nodes` points to
+    GridWindow window;                     // the nodes the frames may see
+    glm::dvec3 lo{0.0}, hi{0.0};           // bounds of those nodes, drawn metres
+    std::size_t cells() const { return std::size_t(std::max(window.cols() - 1, 0)) * std::max(window.rows() - 1, 0); }
+};
+
+// A Terrain held in memory at its exaggeration, all of it in view (its pyramid built here).
+FrameTerrain frame_terrain(Terrain terrain);
+// The window of a FrameTerrain as a Terrain of its own (the nodes copied as drawn).
+Terrain window_terrain(const FrameTerrain& terrain);
+
+// What the camera sees of the scene's DEM (logged: cells used of all), found on the pyramid
+// (lod_visible_window) with a node of margin, near/far planes fitted to its bounds; throws
 // penink::Error(stage "scene") when the camera is below the ground or sees none of the DEM.
-// The whole terrain is moved, not copied, when the view sees all of it.
+FrameTerrain terrain_for_view(const SceneTerrain& terrain, Camera& camera, const Scene& scene, const Log& log);
+
+// The terrain cropped to what the camera sees (visible_window, every node visited); the same
+// errors. The whole terrain is moved, not copied, when the view sees all of it.
 Terrain terrain_for_view(Terrain terrain, Camera& camera, const Scene& scene, const Log& log);
 
 }  // namespace penink

@@ -21,12 +21,17 @@ bool barycentric(glm::dvec2 p, glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, double 
     return true;
 }
 
-glm::dvec2 plan(const Terrain& t, int c, int r) { return glm::dvec2(t.pos[t.index(c, r)]); }
+glm::dvec2 plan(const GridNodes& t, int c, int r) { return glm::dvec2(t.pos[t.index(c, r)]); }
 
 }  // namespace
 
 bool grid_ground_height(const Terrain& t, double x, double y, double& z) {
-    if (t.cols < 2 || t.rows < 2 || t.pos.size() != t.size() || !std::isfinite(x) || !std::isfinite(y)) return false;
+    if (t.pos.size() != t.size() || t.valid.size() != t.size()) return false;
+    return grid_ground_height(grid_nodes(t), x, y, z);
+}
+
+bool grid_ground_height(const GridNodes& t, double x, double y, double& z) {
+    if (t.cols < 2 || t.rows < 2 || !t.pos || !std::isfinite(x) || !std::isfinite(y)) return false;
     const auto xy = [&](int c, int r) { return plan(t, c, r); };
     int c = 0, r = 0;
     if (!outline_cell(xy, t.cols, t.rows, x, y, c, r) || !walk_to_cell(xy, t.cols, t.rows, x, y, c, r)) return false;
@@ -49,7 +54,7 @@ bool grid_ground_height(const Terrain& t, double x, double y, double& z) {
     for (int j = 0; j < 3; ++j) {
         const std::size_t n = t.index(ic[best_k][j], ir[best_k][j]);
         if (!t.valid[n]) return false;
-        z += best_w[j] * double(t.pos[n].z);
+        z += best_w[j] * double(t.at(n).z);
     }
     return true;
 }

@@ -6,11 +6,14 @@
 // at most cols + rows steps. Frames: the Terrain's local metres (x east, y north), z as stored
 // in Terrain::pos (exaggerated). The cell is found as grid_cell.hpp finds it.
 #pragma once
+#include "input/grid_nodes.hpp"
 #include "input/terrain.hpp"
 
 namespace penink {
 
 // False when (x, y) lies outside the grid or in a triangle without data.
 bool grid_ground_height(const Terrain& terrain, double x, double y, double& z);
+// The same on nodes wherever they are stored (z as GridNodes::at draws it).
+bool grid_ground_height(const GridNodes& nodes, double x, double y, double& z);
 
 }  // namespace penink

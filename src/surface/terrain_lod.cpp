@@ -339,6 +339,40 @@ public:
         return std::move(out_);
     }
 
+    // The grid box and bounds of the triangles that meet the frustum, descending only into those
+    // that cross its boundary, down to triangles of min_side grid units.
+    LodView window(int min_side) const {
+        LodView v;
+        v.lo = glm::dvec3(1e300), v.hi = glm::dvec3(-1e300);
+        int c_lo = cols_, r_lo = rows_, c_hi = -1, r_hi = -1;
+        const int n = side_ - 1;
+        std::vector<Item> stack{{0, 0, n, n, n, 0, false}, {n, n, 0, 0, 0, n, false}};
+        while (!stack.empty()) {
+            const Item it = stack.back();
+            stack.pop_back();
+            const int c0 = std::min({it.ac, it.bc, it.cc}), r0 = std::min({it.ar, it.br, it.cr});
+            if (c0 >= cols_ - 1 || r0 >= rows_ - 1) continue;  // only padding cells
+            const int mc = (it.ac + it.bc) / 2, mr = (it.ar + it.br) / 2;
+            const float err = lod_.error[lod_.index(mc, mr)];
+            glm::dvec3 lo, hi;
+            const int cls = classify_triangle(it, err, lo, hi);
+            if (cls == 0) continue;
+            const int extent = std::max(std::abs(it.ac - it.bc), std::abs(it.ar - it.br));
+            if (cls == 1 && extent > std::max(min_side, 1)) {
+                stack.push_back({it.bc, it.br, it.cc, it.cr, mc, mr, false});
+                stack.push_back({it.cc, it.cr, it.ac, it.ar, mc, mr, false});
+                continue;
+            }
+            c_lo = std::min(c_lo, c0), r_lo = std::min(r_lo, r0);
+            c_hi = std::max(c_hi, std::min(std::max({it.ac, it.bc, it.cc}), cols_ - 1));
+            r_hi = std::max(r_hi, std::min(std::max({it.ar, it.br, it.cr}), rows_ - 1));
+            v.lo = glm::min(v.lo, lo), v.hi = glm::max(v.hi, hi);
+        }
+        if (c_hi < 0) return {};
+        v.window = {c_lo, r_lo, c_hi + 1, r_hi + 1};
+        return v;
+    }
+
 private:
     const TerrainLod& lod_;
     const GridNodes& t_;
@@ -437,6 +471,10 @@ private:
     // Box of the DEM nodes of a triangle, culled against the frustum.
     int classify_triangle(const Item& it, float err) const {
         glm::dvec3 lo, hi;
+        return classify_triangle(it, err, lo, hi);
+    }
+    // The same, with the box (lo, hi) that was classified.
+    int classify_triangle(const Item& it, float err, glm::dvec3& lo, glm::dvec3& hi) const {
         if (err < kInf && ok(it.ac, it.ar) && ok(it.bc, it.br) && ok(it.cc, it.cr)) {
             // Every node inside lies within err (times e) of the triangle's plane, and (on an
             // affine grid) inside the plan triangle of its corners.
@@ -528,6 +566,15 @@ SurfaceMesh select_lod_mesh(const TerrainLod& lod, const GridNodes& t, double ex
     }
     Selector s(lod, t, exaggeration, camera, options, vertex_nodes);
     return s.run(stats);
+}
+
+LodView lod_visible_window(const TerrainLod& lod, const GridNodes& t, double exaggeration, const Camera& camera,
+                           int min_side) {
+    check_nodes(t);
+    if (lod.cols != t.cols || lod.rows != t.rows || lod.error.size() != std::size_t(lod.side()) * lod.side())
+        throw std::invalid_argument("terrain lod: the lod was built for another grid");
+    if (t.cols < 2 || t.rows < 2) return {};
+    return Selector(lod, t, exaggeration, camera, LodOptions{}, nullptr).window(min_side);
 }
 
 SurfaceMesh select_lod_mesh(const TerrainLod& lod, const Terrain& t, const Camera& camera, const LodOptions& options,

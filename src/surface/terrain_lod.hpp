@@ -132,4 +132,18 @@ SurfaceMesh select_lod_mesh(const TerrainLod& lod, const GridNodes& nodes, doubl
                             const LodOptions& options, LodSelection* stats = nullptr,
                             std::vector<std::uint32_t>* vertex_nodes = nullptr);
 
+// The part of the DEM a camera may see, found on the pyramid without visiting every node: the
+// grid window (nodes [c0, c1) x [r0, r1)) of the bintree triangles whose boxes (as
+// select_lod_mesh culls them: plan box of the corners, z widened by the error bound) meet the
+// frustum, splitting only those that cross its boundary, down to triangles min_side grid units
+// across; lo, hi bound those boxes (drawn metres). A superset of the visible nodes (by up to
+// min_side nodes and the error bounds); an empty window (cols() == 0) when nothing is in view.
+// Time and memory follow the frustum's outline, not the DEM.
+struct LodView {
+    GridWindow window;
+    glm::dvec3 lo{0.0}, hi{0.0};
+};
+LodView lod_visible_window(const TerrainLod& lod, const GridNodes& nodes, double exaggeration, const Camera& camera,
+                           int min_side = 16);
+
 }  // namespace penink

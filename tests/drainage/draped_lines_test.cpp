@@ -219,14 +219,17 @@ TEST(DrapedLines, LinesMeetingABoxAreExactlyThoseWhoseBoxMeetsIt) {
     for (const DrapedLineSet* set : {&db.creases, &db.ridges}) {
         ASSERT_TRUE(line_set_ok(*set));
         glm::vec2 all_lo(1e30f), all_hi(-1e30f);
-        for (const DrapedLine& l : set->lines) {  // boxes and lengths as the vertices give them
+        for (const DrapedLine& l : set->lines) {  // boxes and 3-D lengths as the vertices give them
             glm::vec2 lo(1e30f), hi(-1e30f);
             double length = 0.0;
             for (std::uint32_t k = 0; k < l.count; ++k) {
                 const DrapedVertex& v = set->vertices[l.first + k];
                 lo = glm::min(lo, glm::vec2(v.x, v.y)), hi = glm::max(hi, glm::vec2(v.x, v.y));
-                if (k) length += std::hypot(double(v.x) - set->vertices[l.first + k - 1].x,
-                                            double(v.y) - set->vertices[l.first + k - 1].y);
+                if (k) {
+                    const DrapedVertex& u = set->vertices[l.first + k - 1];
+                    const double dx = double(v.x) - u.x, dy = double(v.y) - u.y, dz = double(v.z) - u.z;
+                    length += std::sqrt(dx * dx + dy * dy + dz * dz);
+                }
             }
             EXPECT_EQ(l.lo, lo);
             EXPECT_EQ(l.hi, hi);

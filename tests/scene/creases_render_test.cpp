@@ -98,7 +98,10 @@ TEST(CreasesRender, DefaultRenderDrawsCreasesAndRidgesAndCachesDrainage) {
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("rebuilding"), std::string::npos) << r.output;  // no cache yet
     EXPECT_NE(r.output.find("drainage: wrote volcano.asc.dv"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("terrain: volcano.asc.lod: no terrain cache; building"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("terrain: wrote volcano.asc.lod"), std::string::npos) << r.output;
     ASSERT_TRUE(fs::exists(dir / "volcano.asc.dv"));
+    ASSERT_TRUE(fs::exists(dir / "volcano.asc.lod"));
     const std::string svg = read_text(dir / "x.svg");
     const PathStats creases = path_stats(layer_text(svg, "creases"), "crease", 300, 225);
     const PathStats ridges = path_stats(layer_text(svg, "ridges"), "ridge", 300, 225);
@@ -126,9 +129,32 @@ TEST(CreasesRender, DefaultRenderDrawsCreasesAndRidgesAndCachesDrainage) {
     const RunResult again = run_penink("render volcano.asc --width 300 --height 225 -o y.svg --verbose", dir);
     ASSERT_EQ(again.code, 0) << again.output;
     EXPECT_NE(again.output.find("drainage: using cached volcano.asc.dv"), std::string::npos) << again.output;
+    EXPECT_NE(again.output.find("terrain: using cached volcano.asc.lod"), std::string::npos) << again.output;
     EXPECT_EQ(again.output.find("rebuilding"), std::string::npos) << again.output;
+    EXPECT_EQ(again.output.find("building"), std::string::npos) << again.output;
     EXPECT_EQ(fs::last_write_time(dir / "volcano.asc.dv"), mtime);
-    EXPECT_EQ(read_text(dir / "y.svg"), svg);
+    EXPECT_EQ(read_text(dir / "y.svg"), svg);  // the mapped terrain draws what the one read did
+}
+
+// Both caches are keyed by the DEM alone: exaggeration 1, then 3, then 1 again read them and
+// never rewrite them, and the two drawings at 1 are byte-identical.
+TEST(CreasesRender, CachesSurviveAnExaggerationChange) {
+    const fs::path dir = volcano_dir("exaggeration");
+    const Cleanup cleanup{dir};
+    const std::string cmd = "render volcano.asc --width 300 --height 225 --verbose";
+    ASSERT_EQ(run_penink(cmd + " -o a.svg", dir).code, 0);
+    const auto dv = fs::last_write_time(dir / "volcano.asc.dv"), lod = fs::last_write_time(dir / "volcano.asc.lod");
+    for (const std::string& run : {cmd + " --vertical-exaggeration 3 -o b.svg", cmd + " -o c.svg"}) {
+        const RunResult r = run_penink(run, dir);
+        ASSERT_EQ(r.code, 0) << r.output;
+        EXPECT_NE(r.output.find("drainage: using cached volcano.asc.dv"), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("terrain: using cached volcano.asc.lod"), std::string::npos) << r.output;
+        EXPECT_EQ(r.output.find("building"), std::string::npos) << r.output;
+    }
+    EXPECT_EQ(fs::last_write_time(dir / "volcano.asc.dv"), dv);
+    EXPECT_EQ(fs::last_write_time(dir / "volcano.asc.lod"), lod);
+    EXPECT_EQ(read_text(dir / "c.svg"), read_text(dir / "a.svg"));
+    EXPECT_NE(read_text(dir / "b.svg"), read_text(dir / "a.svg"));
 }
 
 TEST(CreasesRender, HighMinScoreRemovesAllCreases) {
