@@ -1,5 +1,6 @@
 #include "cli/drainage_command.hpp"
 
+#include <filesystem>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -7,6 +8,7 @@
 #include <ostream>
 
 #include "core/error.hpp"
+#include "scene/terrain_view.hpp"
 #include "core/memory_budget.hpp"
 #include "drainage/drainage_memory.hpp"
 #include "drainage/drainage_rasters.hpp"
@@ -91,9 +93,17 @@ int run(const DrainageCommand& cmd, std::ostream& log) {
         write_drainage_rasters(cmd.rasters_dir, drainage_georef(cmd.dem, t, db.factor), db.cols,
                                db.rows, valid, res);
     }
+    std::string terrain_cache;
+    if (cmd.output.empty()) {  // render's caches: the terrain cache beside the drainage database too
+        timer.next("terrain cache");
+        terrain_cache = terrain_cache_path(cmd.dem);
+        open_stored_terrain(cmd.dem, Log{});  // kept when valid, else built and written
+    }
     timer.next("");
     const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
     if (!cmd.quiet) print_summary(log, res.stats, db, secs), log << "drainage: wrote " << out << "\n";
+    if (!cmd.quiet && !terrain_cache.empty() && std::filesystem::exists(terrain_cache))
+        log << "drainage: terrain cache " << terrain_cache << "\n";
     return 0;
 }
 

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "cli/drainage_command.hpp"
+#include "scene/terrain_view.hpp"
 #include "drainage/drainage_build.hpp"
 #include "input/dem_reader.hpp"
 #include "drainage/drainage_db.hpp"
@@ -103,6 +104,10 @@ TEST(DrainageCommand, WritesTheCacheTheRenderPathReads) {
     ASSERT_EQ(run_drainage_command(cmd, out), 0) << out.str();
     const std::string cache = drainage_cache_path(cmd.dem);
     ASSERT_EQ(cache, cmd.dem + ".dv");
+    // and the terrain cache render maps (scene/terrain_view.hpp), valid for this DEM
+    ASSERT_EQ(terrain_cache_path(cmd.dem), cmd.dem + ".lod");
+    std::string why;
+    EXPECT_TRUE(read_terrain_cache(cmd.dem + ".lod", terrain_cache_key(cmd.dem), &why)) << why;
     struct stat before{};
     ASSERT_EQ(::stat(cache.c_str(), &before), 0);
     for (double e : {1.0, 2.5}) {
