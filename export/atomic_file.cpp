@@ -64,6 +64,34 @@ void write_file_atomically(const std::string& path, std::string_view bytes) {
     commit(temp, path);
 }
 
+void write_files_together(const std::vector<std::string>& paths,
+                          const std::function<std::string(std::size_t)>& bytes_of) {
+    std::vector<std::string> temps;
+    auto remove_temps = [&temps] {
+        for (const std::string& t : temps) ::unlink(t.c_str());
+    };
+    try {
+        for (std::size_t i = 0; i < paths.size(); ++i) {
+            const std::string bytes = bytes_of(i);
+            int fd = -1;
+            temps.push_back(make_temp(paths[i], fd));
+            const bool ok = write_all(fd, bytes);
+            const int err = ok ? 0 : (errno ? errno : EIO);
+            if (::close(fd) != 0 || !ok) fail(paths[i], ok ? errno : err);
+        }
+    } catch (...) {
+        remove_temps();
+        throw;
+    }
+    for (std::size_t i = 0; i < paths.size(); ++i)
+        if (::rename(temps[i].c_str(), paths[i].c_str()) != 0) {
+            const int err = errno;
+            temps.erase(temps.begin(), temps.begin() + std::ptrdiff_t(i));
+            remove_temps();
+            fail(paths[i], err);
+        }
+}
+
 void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write) {
     int fd = -1;
     const std::string temp = make_temp(path, fd);

@@ -1,11 +1,17 @@
 // Format dispatch and plot statistics (export_drawing.hpp).
 #include "export/export_drawing.hpp"
 
+#include <unistd.h>
+
 #include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 
 #include <glm/geometric.hpp>
 
 #include "core/error.hpp"
+#include "export/atomic_file.hpp"
 #include "export/pdf_writer.hpp"
 #include "export/png_writer.hpp"
 #include "export/ps_writer.hpp"
@@ -33,12 +39,37 @@ void check_output_format(const std::string& path) {
 }
 
 void export_drawing(const StyledDrawing& drawing, const PageOptions& page, const std::string& path) {
+    export_drawings(drawing, page, {path});
+}
+
+std::string export_document(const StyledDrawing& drawing, const PageOptions& page, const std::string& path) {
     check_output_format(path);
     const std::string ext = extension(path);
-    if (ext == ".svg") return write_svg(drawing, page, path);
-    if (ext == ".ps" || ext == ".eps") return write_ps(drawing, page, path);
-    if (ext == ".pdf") return write_pdf(drawing, page, path);
-    return write_png(drawing, page, path);
+    if (ext == ".svg") return svg_document(drawing, page, path);
+    if (ext == ".ps" || ext == ".eps") return ps_document(drawing, page, ext == ".eps", path);
+    if (ext == ".pdf") return pdf_document(drawing, page, path);
+    return png_document(drawing, page, path);
+}
+
+void export_drawings(const StyledDrawing& drawing, const PageOptions& page, const std::vector<std::string>& paths) {
+    for (const std::string& p : paths) check_output_format(p);
+    write_files_together(paths, [&](std::size_t i) { return export_document(drawing, page, paths[i]); });
+}
+
+void check_output_targets(const std::vector<std::string>& paths, const PageOptions& page, int width, int height) {
+    namespace fs = std::filesystem;
+    for (const std::string& p : paths) {
+        check_output_format(p);
+        const fs::path dir = fs::path(p).parent_path();
+        const std::string folder = dir.empty() ? "." : dir.string();
+        std::error_code ec;
+        if (!fs::is_directory(folder, ec)) throw Error("export", p, "cannot write file (no such directory)");
+        if (fs::is_directory(p, ec)) throw Error("export", p, "cannot write file (is a directory)");
+        if (::access(folder.c_str(), W_OK | X_OK) != 0)
+            throw Error("export", p, std::string("cannot write file (") + std::strerror(errno) + ")");
+        page_layout(width, height, page, p);
+        if (extension(p) == ".png") png_transform(width, height, page, p);
+    }
 }
 
 PlotStats plot_stats(const StyledDrawing& drawing) {

@@ -4,6 +4,7 @@
 #pragma once
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "export/page.hpp"
 #include "export/styled_drawing.hpp"
@@ -17,6 +18,20 @@ namespace penink {
 void check_output_format(const std::string& path);
 
 void export_drawing(const StyledDrawing& drawing, const PageOptions& page, const std::string& path);
+
+// The bytes of `drawing` in the format named by path's extension (check_output_format's error).
+std::string export_document(const StyledDrawing& drawing, const PageOptions& page, const std::string& path);
+
+// Writes `drawing` to every path together (write_files_together): all of them or, on any
+// error, none (no path touched, no temp file left).
+void export_drawings(const StyledDrawing& drawing, const PageOptions& page, const std::vector<std::string>& paths);
+
+// What can be known about the outputs before anything is drawn, for a drawing of width x height
+// image pixels: each path's format (check_output_format), its folder exists and may be written
+// ("cannot write file (no such directory)", "cannot write file (<the system's reason>)"), the
+// path is not a folder ("cannot write file (is a directory)"), the page and margin fit
+// (page_layout), and a PNG's size is within max_png_pixels. Throws Error("export", path, ...).
+void check_output_targets(const std::vector<std::string>& paths, const PageOptions& page, int width, int height);
 
 struct PlotStats {
     std::size_t paths = 0;

@@ -46,6 +46,8 @@ void page_size_mm(const std::string& page, double& w_mm, double& h_mm) {
     if (!parse_custom(p, w_mm, h_mm))
         throw std::invalid_argument("unknown page size \"" + page +
                                     "\" (use A0-A6, B4, B5, letter, legal, tabloid or WxHmm)");
+    if (w_mm > max_page_mm || h_mm > max_page_mm)
+        throw std::invalid_argument("page \"" + page + "\" is too large (at most 5000 mm a side)");
 }
 
 PageLayout page_layout(int width, int height, const PageOptions& o, const std::string& path) {

@@ -22,7 +22,11 @@ struct PageLayout {
     double offset_x_mm = 0.0, offset_y_mm = 0.0;  // where image pixel (0, 0) lands, from top-left
 };
 
-// Parses a page name to (width, height) mm, portrait; throws std::invalid_argument.
+// Largest page side, mm (PDF's own limit is 200 inches).
+constexpr double max_page_mm = 5000.0;
+
+// Parses a page name to (width, height) mm, portrait; throws std::invalid_argument (also for a
+// side over max_page_mm).
 // Names: A0-A6, B4, B5, letter, legal, tabloid (case-insensitive), or "WxHmm" e.g. "300x200mm".
 void page_size_mm(const std::string& page, double& w_mm, double& h_mm);
 

@@ -2,6 +2,7 @@
 #include "export/png_writer.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "core/error.hpp"
@@ -11,22 +12,28 @@
 namespace penink {
 
 RasterTransform png_transform(const StyledDrawing& d, const PageOptions& page, const std::string& path) {
-    const PageLayout L = page_layout(d.width, d.height, page, path);
+    return png_transform(d.width, d.height, page, path);
+}
+
+RasterTransform png_transform(int width, int height, const PageOptions& page, const std::string& path) {
+    const PageLayout L = page_layout(width, height, page, path);
     RasterTransform t;
     // Output pixels per millimetre: the page at dpi, or 96 dpi image pixels scaled by dpi/96.
     const double px_per_mm = page.page.empty() ? (page.dpi / 96.0) / L.scale_mm : page.dpi / 25.4;
-    t.width = std::max(1, int(std::lround(L.page_w_mm * px_per_mm)));
-    t.height = std::max(1, int(std::lround(L.page_h_mm * px_per_mm)));
+    const double w = std::max(1.0, std::round(L.page_w_mm * px_per_mm)), h = std::max(1.0, std::round(L.page_h_mm * px_per_mm));
+    if (!(w * h <= max_png_pixels)) {
+        char size[64];
+        std::snprintf(size, sizeof size, "%.0fx%.0f", w, h);
+        throw Error("export", path, std::string("PNG of ") + size + " pixels is too large (lower --dpi)");
+    }
+    t.width = int(w), t.height = int(h);
     t.scale = L.scale_mm * px_per_mm;
     t.offset_x = L.offset_x_mm * px_per_mm;
     t.offset_y = L.offset_y_mm * px_per_mm;
-    if (double(t.width) * t.height > 1.0e9)
-        throw Error("export", path, "PNG of " + std::to_string(t.width) + "x" + std::to_string(t.height) +
-                                        " pixels is too large (lower --dpi)");
     return t;
 }
 
-void write_png(const StyledDrawing& d, const PageOptions& page, const std::string& path) {
+std::string png_document(const StyledDrawing& d, const PageOptions& page, const std::string& path) {
     const RasterTransform t = png_transform(d, page, path);
     const RgbImage img = rasterise(d, t);
     std::string description;
@@ -39,7 +46,11 @@ void write_png(const StyledDrawing& d, const PageOptions& page, const std::strin
     } catch (const std::runtime_error& e) {
         throw Error("export", path, std::string("cannot write file (") + e.what() + ")");
     }
-    write_file_atomically(path, bytes);
+    return bytes;
+}
+
+void write_png(const StyledDrawing& d, const PageOptions& page, const std::string& path) {
+    write_file_atomically(path, png_document(d, page, path));
 }
 
 }  // namespace penink

@@ -10,9 +10,18 @@
 
 namespace penink {
 
-// The output size and image->PNG transform for these page options.
+// Most pixels a PNG may have (3 bytes each while it is drawn).
+constexpr double max_png_pixels = 1.0e9;
+
+// The output size and image->PNG transform for these page options, for a drawing of width x
+// height image pixels. Throws Error("export", path, "PNG of WxH pixels is too large (lower
+// --dpi)") beyond max_png_pixels, and page_layout's errors.
+RasterTransform png_transform(int width, int height, const PageOptions& page, const std::string& path = "");
 RasterTransform png_transform(const StyledDrawing& drawing, const PageOptions& page,
                               const std::string& path = "");
+
+// The PNG file's bytes.
+std::string png_document(const StyledDrawing& drawing, const PageOptions& page, const std::string& path);
 
 // Rasterises and writes atomically; errors Error("export", path, "cannot write file (...)").
 void write_png(const StyledDrawing& drawing, const PageOptions& page, const std::string& path);

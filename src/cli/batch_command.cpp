@@ -51,7 +51,7 @@ double export_frame(Drawing& drawing, const Style& style, std::uint64_t seed, co
     const auto t0 = Clock::now();
     finish_drawing(drawing, finish_options(style, seed, true));
     const StyledDrawing styled = style_drawing(drawing, style, LayerSplit::kind);
-    for (const std::string& p : paths) export_drawing(styled, PageOptions{}, p);
+    export_drawings(styled, PageOptions{}, paths);  // the frame's files together or none
     return ms_since(t0);
 }
 
@@ -156,6 +156,7 @@ int run_batch(const BatchOptions& o) {
     std::error_code ec;
     fs::create_directories(o.out_dir, ec);
     if (!fs::is_directory(o.out_dir)) throw Error("batch", o.out_dir, "cannot create the output directory");
+    check_output_targets(frame_paths(o.out_dir, 1, formats), PageOptions{}, scene.camera.width, scene.camera.height);
     const auto context = make_gl_context(parse_gl_backend(o.gl));
     BatchSummary summary;
     summary.machine = context->description(), summary.scene = o.input;

@@ -1,7 +1,6 @@
 #include "cli/render_command.hpp"
 
 #include <chrono>
-#include <filesystem>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
@@ -18,16 +17,18 @@ namespace penink {
 
 namespace {
 
-namespace fs = std::filesystem;
 
-void check_outputs(const std::vector<std::string>& outputs) {
-    if (outputs.empty()) throw Error("cli", "", "no output file given (use -o out.svg)");
-    for (const std::string& o : outputs) {
-        check_output_format(o);
-        const fs::path dir = fs::path(o).parent_path();
-        if (!dir.empty() && !fs::is_directory(dir))
-            throw Error("export", o, "cannot write file (no such directory)");
-    }
+PageOptions page_options(const RenderOptions& o) {
+    PageOptions page;
+    page.page = o.page, page.dpi = o.dpi, page.margin_mm = o.margin_mm;
+    return page;
+}
+
+// Every output checked before anything is read or drawn (check_output_targets: formats, folders,
+// page, PNG size at the scene's image size, checked again once the scene is loaded).
+void check_outputs(const RenderOptions& o, int width, int height) {
+    if (o.outputs.empty()) throw Error("cli", "", "no output file given (use -o out.svg)");
+    check_output_targets(o.outputs, page_options(o), width, height);
 }
 
 
@@ -78,8 +79,9 @@ Subcommand add_render_command(CLI::App& app) {
 int run_render(const RenderOptions& o) {
     const auto start = std::chrono::steady_clock::now();
     const Log log{o.verbose};
-    check_outputs(o.outputs);
+    check_outputs(o, o.width > 0 ? o.width : 1, o.height > 0 ? o.height : 1);
     Scene scene = load_scene_with_overrides(o);
+    check_outputs(o, scene.camera.width, scene.camera.height);
     const Style style = scene_style(scene);
     const bool terrain = !is_mesh_scene(scene);
     if (terrain) apply_object_sketch(scene, style);
@@ -90,9 +92,7 @@ int run_render(const RenderOptions& o) {
     log_finish(finish_drawing(result.drawing, finish_options(style, scene.seed, terrain)), log);
     const StyledDrawing styled = style_drawing(result.drawing, style,
                                                o.layers == "kind" ? LayerSplit::kind : LayerSplit::kind_distance);
-    PageOptions page;
-    page.page = o.page, page.dpi = o.dpi, page.margin_mm = o.margin_mm;
-    for (const std::string& out : o.outputs) export_drawing(styled, page, out);
+    export_drawings(styled, page_options(o), o.outputs);  // all of them or none
     const PlotStats stats = plot_stats(styled);
     std::ostringstream s;
     s << stats.paths << " paths, " << stats.length_px << " px drawn, " << stats.travel_px << " px pen-up; "

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <string>
 #include <sys/wait.h>
+#include <unistd.h>
 
 namespace penink::test {
 
@@ -14,8 +15,10 @@ struct RunResult {
     std::string output;  // stdout + stderr
 };
 
-inline RunResult run_penink(const std::string& args, const std::filesystem::path& cwd) {
-    const std::string cmd = "cd '" + cwd.string() + "' && '" PENINK_BINARY_PATH "' " + args + " 2>&1";
+// `command` replaces the binary and its arguments when given (a wrapper around them).
+inline RunResult run_penink(const std::string& args, const std::filesystem::path& cwd, const std::string& command = "") {
+    const std::string cmd = "cd '" + cwd.string() + "' && " +
+                            (command.empty() ? "'" PENINK_BINARY_PATH "' " + args : command) + " 2>&1";
     RunResult r;
     FILE* p = popen(cmd.c_str(), "r");
     std::array<char, 4096> buf{};
@@ -24,6 +27,13 @@ inline RunResult run_penink(const std::string& args, const std::filesystem::path
     const int status = pclose(p);
     r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return r;
+}
+
+// run_penink, but as user nobody when the tests run as root (who may write any folder): for
+// the cases of a folder that cannot be written. HOME is `cwd` (a user cache folder of its own).
+inline RunResult run_penink_unprivileged(const std::string& args, const std::filesystem::path& cwd) {
+    if (::geteuid() != 0) return run_penink(args, cwd);
+    return run_penink("", cwd, "HOME='" + cwd.string() + "' setpriv --reuid=65534 --regid=65534 --clear-groups '" PENINK_BINARY_PATH "' " + args);
 }
 
 inline std::filesystem::path fresh_dir(const std::string& name) {

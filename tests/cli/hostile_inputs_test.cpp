@@ -106,3 +106,33 @@ TEST(HostileInputs, MeshCoordinatesBeyondRange) {
                    "penink: input: far.off: vertex 3 has coordinate 1e+38, out of range (mesh coordinates must be "
                    "finite and within +-1e9)", 2.0);
 }
+
+TEST(HostileInputs, OutputsWrittenTogetherOrNotAtAll) {
+    const auto dir = fresh_dir("hostile_outputs");
+    fs::create_directory(dir / "x.png");
+    expect_refused(dir, "render " + volcano + " -o first.svg -o x.png",
+                   "penink: export: x.png: cannot write file (is a directory)", 2.0);
+    expect_refused(dir, "render " + volcano + " -o first.svg -o b.png --dpi 5000",
+                   "penink: export: b.png: PNG of 52083x39063 pixels is too large (lower --dpi)", 2.0);
+    expect_refused(dir, "render " + volcano + " -o first.svg -o b.png --dpi 100000",
+                   "penink: cli: --dpi: must be > 0 and at most 10000 (got \"100000\")", 2.0);
+    expect_refused(dir, "render " + volcano + " -o first.svg -o b.pdf --page 100000x100000mm",
+                   "penink: export: first.svg: page \"100000x100000mm\" is too large (at most 5000 mm a side)", 2.0);
+    expect_refused(dir, "render " + volcano + " -o first.svg -o nodir/b.pdf",
+                   "penink: export: nodir/b.pdf: cannot write file (no such directory)", 2.0);
+    EXPECT_FALSE(fs::exists(dir / "first.svg"));
+}
+
+TEST(HostileInputs, ReadOnlySecondTargetLeavesNoFirst) {
+    const auto dir = fresh_dir("hostile_readonly_out");
+    fs::create_directory(dir / "ro");
+    fs::permissions(dir, fs::perms::all);                     // anyone may write the test's folder
+    fs::permissions(dir / "ro", fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
+                                    fs::perms::group_exec | fs::perms::others_read | fs::perms::others_exec);
+    const std::string args = "render " + volcano + " -o first.svg -o ro/b.svg";
+    const std::size_t before = files_under(dir);
+    const RunResult r = run_penink_unprivileged(args, dir);  // root writes anywhere
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_EQ(r.output, "penink: export: ro/b.svg: cannot write file (Permission denied)\n");
+    EXPECT_EQ(files_under(dir), before);
+}

@@ -87,3 +87,49 @@ TEST(ExportDrawing, PageErrors) {
     page_size_mm("420x297.5mm", w, h);
     EXPECT_DOUBLE_EQ(h, 297.5);
 }
+
+TEST(AtomicFile, FilesWrittenTogetherOrNotAtAll) {
+    TempDir dir("together");
+    const std::vector<std::string> paths = {dir.file("a.svg"), dir.file("b.png"), dir.file("c.pdf")};
+    write_file_atomically(paths[0], "old");
+    EXPECT_THROW(write_files_together(paths, [](std::size_t i) -> std::string {
+        if (i == 2) throw Error("export", "c.pdf", "writer failed");
+        return "new " + std::to_string(i);
+    }), Error);
+    EXPECT_EQ(files_in(dir), std::vector<std::string>{"a.svg"});  // no temp file, b.png not made
+    EXPECT_EQ(read_text(paths[0]), "old");
+    write_files_together(paths, [](std::size_t i) { return "new " + std::to_string(i); });
+    EXPECT_EQ(files_in(dir), (std::vector<std::string>{"a.svg", "b.png", "c.pdf"}));
+    EXPECT_EQ(read_text(paths[0]), "new 0");
+    EXPECT_EQ(read_text(paths[2]), "new 2");
+}
+
+TEST(ExportDrawing, OneFailingOutputLeavesNoneOfThem) {
+    TempDir dir("all_or_none");
+    const std::vector<std::string> paths = {dir.file("a.svg"), dir.file("b.png")};
+    PageOptions huge;
+    huge.dpi = 2e6;  // 200x160 image pixels: the PNG would be 4166667x3333333 pixels
+    EXPECT_EQ(error_of([&] { export_drawings(drawing(), huge, paths); }),
+              "penink: export: " + paths[1] + ": PNG of 4166667x3333333 pixels is too large (lower --dpi)");
+    EXPECT_TRUE(files_in(dir).empty());
+}
+
+TEST(ExportDrawing, TargetsCheckedBeforeDrawing) {
+    TempDir dir("targets");
+    std::filesystem::create_directory(dir.file("folder.png"));
+    const PageOptions page;
+    EXPECT_EQ(error_of([&] { check_output_targets({dir.file("a.svg"), dir.file("folder.png")}, page, 100, 100); }),
+              "penink: export: " + dir.file("folder.png") + ": cannot write file (is a directory)");
+    EXPECT_EQ(error_of([&] { check_output_targets({dir.file("no/a.svg")}, page, 100, 100); }),
+              "penink: export: " + dir.file("no/a.svg") + ": cannot write file (no such directory)");
+    PageOptions dpi;
+    dpi.dpi = 100000;
+    EXPECT_EQ(error_of([&] { check_output_targets({dir.file("a.svg"), dir.file("b.png")}, dpi, 1000, 750); }),
+              "penink: export: " + dir.file("b.png") + ": PNG of 1041667x781250 pixels is too large (lower --dpi)");
+    PageOptions page_big;
+    page_big.page = "100000x100000mm";
+    EXPECT_EQ(error_of([&] { check_output_targets({dir.file("a.svg")}, page_big, 1000, 750); }),
+              "penink: export: " + dir.file("a.svg") + ": page \"100000x100000mm\" is too large (at most 5000 mm a side)");
+    EXPECT_EQ(error_of([&] { check_output_targets({dir.file("a.svg"), dir.file("b.png")}, page, 1000, 750); }), "no error");
+    EXPECT_EQ(files_in(dir), std::vector<std::string>{"folder.png"});
+}
