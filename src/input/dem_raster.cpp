@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <mutex>
 
 #include <cpl_vsi.h>
@@ -123,7 +124,25 @@ GDALDatasetUniquePtr open_raster(const std::string& path) {
     if (!ds || ds->GetRasterCount() < 1 || ds->GetRasterXSize() < 1 || ds->GetRasterYSize() < 1)
         fail(path, "not a DEM raster (GDAL cannot read it)");
     check_text_grid_size(*ds, path, std::uint64_t(st.st_size));
+    check_cell_size(*ds, path);
     return ds;
+}
+
+void check_cell_size(GDALDataset& ds, const std::string& path) {
+    std::array<double, 6> gt{};
+    if (ds.GetGeoTransform(gt.data()) != CE_None) return;  // none: pixel units
+    const std::string driver = ds.GetDriver() ? ds.GetDriver()->GetDescription() : "";
+    char text[64];
+    if (driver == "AAIGrid" || driver == "GRASSASCIIGrid") {  // cellsize (or dx, dy) as written: > 0
+        const double size = !(gt[1] > 0.0) ? gt[1] : -gt[5];
+        std::snprintf(text, sizeof text, "%g", size);
+        if (!(gt[1] > 0.0 && -gt[5] > 0.0) || !std::isfinite(gt[1]) || !std::isfinite(gt[5]))
+            fail(path, std::string("cell size must be > 0 (got ") + text + ")");
+    }
+    const double area = gt[1] * gt[5] - gt[2] * gt[4];
+    bool finite = std::isfinite(area);
+    for (double g : gt) finite = finite && std::isfinite(g);
+    if (!finite || area == 0.0) fail(path, "geotransform gives cells of no area (zero or non-finite cell size)");
 }
 
 void check_text_grid_size(GDALDataset& ds, const std::string& path, std::uint64_t file_bytes) {

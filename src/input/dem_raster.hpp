@@ -64,6 +64,11 @@ GDALDatasetUniquePtr open_raster(const std::string& path);
 // WxH values but its N bytes hold at most M", before any value is read or allocated.
 void check_text_grid_size(GDALDataset& ds, const std::string& path, std::uint64_t file_bytes);
 
+// A cell size of zero, below zero in a text grid (ESRI or GRASS ASCII: cellsize, dx, dy) or not
+// finite, or a geotransform whose cells have no area: fails "cell size must be > 0 (got S)" or
+// "geotransform gives cells of no area (zero or non-finite cell size)".
+void check_cell_size(GDALDataset& ds, const std::string& path);
+
 // Size and geotransform (oriented: row 0 north, column 0 west) of the raster; no values yet.
 Raster raster_header(GDALDataset& ds);
 

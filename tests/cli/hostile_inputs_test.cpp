@@ -136,3 +136,14 @@ TEST(HostileInputs, ReadOnlySecondTargetLeavesNoFirst) {
     EXPECT_EQ(r.output, "penink: export: ro/b.svg: cannot write file (Permission denied)\n");
     EXPECT_EQ(files_under(dir), before);
 }
+
+TEST(HostileInputs, ZeroOrNegativeCellSize) {
+    const auto dir = fresh_dir("hostile_cellsize");
+    const std::string values = "1 2 3\n4 5 6\n7 8 9\n";
+    write_text(dir / "zero.asc", grid(3, 3, values, 0));
+    expect_refused(dir, "render zero.asc -o out.svg", "penink: input: zero.asc: cell size must be > 0 (got 0)");
+    write_text(dir / "negative.asc", grid(3, 3, values, -10));
+    expect_refused(dir, "render negative.asc -o out.svg -o out.png",
+                   "penink: input: negative.asc: cell size must be > 0 (got -10)");
+    expect_refused(dir, "drainage negative.asc", "penink: input: negative.asc: cell size must be > 0 (got -10)");
+}

@@ -420,6 +420,18 @@ TEST(DemReader, TextGridDeclaringMoreValuesThanItsFileHoldsFailsBeforeReading) {
     EXPECT_EQ(v.rows, 87);
 }
 
+TEST(DemReader, CellSizeMustBePositive) {
+    TempDir dir;
+    for (const char* size : {"0", "-10", "nan"}) {
+        const std::string p = test::write_text(dir.file("c.asc"), std::string("ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\n"
+                                                                              "cellsize ") + size + "\n1 2\n3 4\n");
+        EXPECT_EQ(error_of(p), "penink: input: " + p + ": cell size must be > 0 (got " + size + ")");
+    }
+    const std::string dy = test::write_text(dir.file("dy.asc"), "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\n"
+                                                                "dx 10\ndy -5\n1 2\n3 4\n");
+    EXPECT_EQ(error_of(dy), "penink: input: " + dy + ": cell size must be > 0 (got -5)");
+}
+
 TEST(DemReader, ReadBeyondTheMemoryBudgetFailsNamingWhatItNeeds) {
     const std::string p = PENINK_SOURCE_DIR "/examples/volcano.asc";  // 61 x 87 nodes, 21 B each
     EXPECT_EQ(error_of(p, {.max_memory = 100000}),
