@@ -161,8 +161,8 @@ int run_batch(const BatchOptions& o) {
     BatchSummary summary;
     summary.machine = context->description(), summary.scene = o.input;
     summary.width = scene.camera.width, summary.height = scene.camera.height;
-    summary.cells = std::size_t(f.model.cols - 1) * (f.model.rows - 1);
-    summary.dem_cells = std::size_t(f.dem.cols - 1) * (f.dem.rows - 1);
+    summary.cells = f.model.cells();
+    summary.dem_cells = std::size_t(f.dem.stored.meta.cols - 1) * (f.dem.stored.meta.rows - 1);
     TerrainFrames frames(*context, scene_drainage(scene, f.dem, log), std::move(f.model), summary.width, summary.height,
                          log, LineCulling{f.cameras, line_culling_px(scene)});
     summary.setup_s = ms_since(start) / 1000.0;

@@ -18,18 +18,16 @@ namespace penink {
 
 // The camera of one record over `dem`; errors name the CSV and line: "line N: cannot parse
 // position ...", "line N: camera is inside the terrain (...)".
-Camera flight_camera(const Scene& scene, const Terrain& dem, const FlightRecord& record, const std::string& csv);
+Camera flight_camera(const Scene& scene, const SceneTerrain& dem, const FlightRecord& record, const std::string& csv);
 
 // The scene with one record's per-frame values (light; min_score sets the creases' threshold).
 Scene frame_scene(const Scene& scene, const FlightRecord& record);
 
-// The smallest window holding every camera's visible window (margin 1 node); empty when none.
-GridWindow union_window(const Terrain& dem, const std::vector<Camera>& cameras);
-
 struct Flight {
     std::vector<FlightRecord> records;
     std::vector<Camera> cameras;  // one per record
-    Terrain dem, model;           // the whole DEM, and what the frames model
+    SceneTerrain dem;             // the whole DEM (terrain cache)
+    FrameTerrain model;           // what the frames model
 };
 
 // Reads the flight path `csv` over the scene's DEM and checks every camera ("line N: the camera

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/progress_bar.hpp"
 #include "core/stopwatch.hpp"
 #include "drainage/drainage_build.hpp"
 #include "input/dem_reader.hpp"
@@ -124,18 +125,23 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log) {
         return std::move(*cached);
     }
     log.info("terrain: " + path + ": " + why + "; building");
+    StageProgress progress(std::cerr, stderr_is_terminal(), "building terrain cache");
+    progress.update("reading the DEM", 0.0);
     Terrain flat = read_dem(dem_path);
     log.info("read " + dem_path + ": " + std::to_string(flat.cols) + "x" + std::to_string(flat.rows) + " nodes (" +
              std::to_string(int(lap_ms(t0))) + " ms)");
+    progress.update("level-of-detail pyramid", 0.4);
     StoredTerrain stored = store_terrain(std::move(flat));
     log.info("level-of-detail pyramid: " + std::to_string(stored.lod.side()) + "^2 nodes (" +
              std::to_string(int(lap_ms(t0))) + " ms)");
+    progress.update("writing", 0.8);
     try {
         write_terrain_cache(path, stored, key);
         log.info("terrain: wrote " + path + " (" + std::to_string(int(lap_ms(t0))) + " ms)");
     } catch (const Error& e) {
         log.info(std::string(e.what()) + "; using the terrain built in memory");
     }
+    progress.update("done", 1.0);
     return stored;
 }
 
@@ -189,31 +195,62 @@ Terrain window_terrain(const FrameTerrain& f) {
     return out;
 }
 
-FrameTerrain terrain_for_view(const SceneTerrain& terrain, Camera& cam, const Scene& scene, const Log& log) {
+LodView scene_view_window(const SceneTerrain& terrain, const Camera& cam) {
     const StoredTerrain& s = terrain.stored;
+    LodView v = lod_visible_window(s.lod, terrain.nodes(), terrain.exaggeration, cam);
+    if (v.window.cols() < 2 || v.window.rows() < 2) return {};
+    GridWindow& w = v.window;
+    w.c0 = std::max(w.c0 - 1, 0), w.r0 = std::max(w.r0 - 1, 0);  // a node of margin
+    w.c1 = std::min(w.c1 + 1, s.meta.cols), w.r1 = std::min(w.r1 + 1, s.meta.rows);
+    glm::dvec3 lo, hi;
+    stored_bounds(s, terrain.exaggeration, lo, hi);
+    if (w.c0 == 0 && w.r0 == 0 && w.c1 == s.meta.cols && w.r1 == s.meta.rows) v.lo = lo, v.hi = hi;
+    else v.lo = glm::max(v.lo, lo), v.hi = glm::min(v.hi, hi);
+    return v;
+}
+
+LodView view_union(const SceneTerrain& terrain, const std::vector<LodView>& views, bool whole) {
+    const StoredTerrain& s = terrain.stored;
+    LodView u;
+    if (whole) {
+        u.window = {0, 0, s.meta.cols, s.meta.rows};
+        stored_bounds(s, terrain.exaggeration, u.lo, u.hi);
+        return u;
+    }
+    bool any = false;
+    for (const LodView& v : views) {
+        if (v.window.cols() < 2 || v.window.rows() < 2) continue;
+        if (!any) {
+            u = v, any = true;
+            continue;
+        }
+        GridWindow& w = u.window;
+        w.c0 = std::min(w.c0, v.window.c0), w.r0 = std::min(w.r0, v.window.r0);
+        w.c1 = std::max(w.c1, v.window.c1), w.r1 = std::max(w.r1, v.window.r1);
+        u.lo = glm::min(u.lo, v.lo), u.hi = glm::max(u.hi, v.hi);
+    }
+    return u;
+}
+
+FrameTerrain frame_terrain(const SceneTerrain& terrain, const LodView& view) {
     FrameTerrain f;
     f.meta = terrain.meta();
     f.nodes = terrain.nodes();
-    f.lod = s.lod;
-    f.storage = s.storage;
-    check_above_ground(scene, f.nodes, cam);
-    const LodView v = lod_visible_window(s.lod, f.nodes, terrain.exaggeration, cam);
-    GridWindow w = v.window;
-    w.c0 = std::max(w.c0 - 1, 0), w.r0 = std::max(w.r0 - 1, 0);  // a node of margin
-    w.c1 = std::min(w.c1 + 1, s.meta.cols), w.r1 = std::min(w.r1 + 1, s.meta.rows);
+    f.lod = terrain.stored.lod;
+    f.storage = terrain.stored.storage;
+    f.window = view.window;
+    f.lo = view.lo, f.hi = view.hi;
+    return f;
+}
+
+FrameTerrain terrain_for_view(const SceneTerrain& terrain, Camera& cam, const Scene& scene, const Log& log) {
+    check_above_ground(scene, terrain.nodes(), cam);
+    const LodView v = scene_view_window(terrain, cam);
     if (v.window.cols() < 2 || v.window.rows() < 2)
         throw Error("scene", scene_file(scene), "the camera sees no part of the DEM");
-    f.window = w;
-    if (w.c0 == 0 && w.r0 == 0 && w.c1 == s.meta.cols && w.r1 == s.meta.rows) {
-        stored_bounds(s, terrain.exaggeration, f.lo, f.hi);
-    } else {  // the pyramid's bounds of what is in view, within the stored terrain's
-        glm::dvec3 lo, hi;
-        stored_bounds(s, terrain.exaggeration, lo, hi);
-        f.lo = glm::max(v.lo, lo), f.hi = glm::min(v.hi, hi);
-    }
-    log_window(log, w, s.meta.cols, s.meta.rows);
-    fit_depth_range(cam, f.lo, f.hi);
-    return f;
+    log_window(log, v.window, terrain.stored.meta.cols, terrain.stored.meta.rows);
+    fit_depth_range(cam, v.lo, v.hi);
+    return frame_terrain(terrain, v);
 }
 
 Terrain terrain_for_view(Terrain terrain, Camera& cam, const Scene& scene, const Log& log) {

@@ -84,6 +84,15 @@ FrameTerrain frame_terrain(Terrain terrain);
 // The window of a FrameTerrain as a Terrain of its own (the nodes copied as drawn).
 Terrain window_terrain(const FrameTerrain& terrain);
 
+// The part of the scene's DEM a camera may see: lod_visible_window with a node of margin, its
+// bounds within the stored terrain's (exact when the window is the whole DEM); an empty window
+// when it sees none.
+LodView scene_view_window(const SceneTerrain& terrain, const Camera& camera);
+// The union of views (empty windows skipped); the whole DEM with its bounds when `whole`.
+LodView view_union(const SceneTerrain& terrain, const std::vector<LodView>& views, bool whole = false);
+// The scene's DEM modelled over a view's window.
+FrameTerrain frame_terrain(const SceneTerrain& terrain, const LodView& view);
+
 // What the camera sees of the scene's DEM (logged: cells used of all), found on the pyramid
 // (lod_visible_window) with a node of margin, near/far planes fitted to its bounds; throws
 // penink::Error(stage "scene") when the camera is below the ground or sees none of the DEM.
