@@ -234,20 +234,46 @@ double lod_pixel_scale(const Camera& cam) {
 
 namespace {
 
-// Map from DEM node to (output vertex + 1) in the low 30 bits, plus two flags; kept per thread
-// between selections and reset entry by entry.
+// Map from DEM node to (output vertex + 1) in the low 30 bits, plus two flags: open addressing
+// with linear probing over the nodes a selection visits, so that its memory follows the
+// selection, not the DEM.
 constexpr std::uint32_t kIndexMask = (1u << 30) - 1, kActiveFlag = 1u << 31, kCellFlag = 1u << 30;
 
-struct Scratch {
-    std::vector<std::uint32_t> map;
-    std::vector<std::uint32_t> touched;
-};
-thread_local Scratch scratch;
+class NodeMap {
+public:
+    NodeMap() { resize(std::size_t(1) << 12); }
+    // The entry of node `id` (0 when new).
+    std::uint32_t& operator[](std::size_t id) {
+        const std::uint64_t key = std::uint64_t(id) + 1;
+        std::size_t i = slot(key);
+        while (keys_[i] != 0 && keys_[i] != key) i = (i + 1) & mask_;
+        if (keys_[i] == key) return values_[i];
+        if (2 * (count_ + 1) > keys_.size()) {  // at most half full
+            resize(keys_.size() * 2);
+            return (*this)[id];
+        }
+        ++count_;
+        keys_[i] = key;
+        return values_[i];
+    }
 
-struct ScratchReset {
-    ~ScratchReset() {
-        for (const std::uint32_t i : scratch.touched) scratch.map[i] = 0;
-        scratch.touched.clear();
+private:
+    std::vector<std::uint64_t> keys_;  // node + 1; 0 empty
+    std::vector<std::uint32_t> values_;
+    std::size_t mask_ = 0, count_ = 0;
+
+    std::size_t slot(std::uint64_t key) const { return std::size_t((key * 0x9E3779B97F4A7C15ull) >> 20) & mask_; }
+    void resize(std::size_t n) {
+        std::vector<std::uint64_t> keys(n, 0);
+        std::vector<std::uint32_t> values(n, 0);
+        mask_ = n - 1;
+        for (std::size_t j = 0; j < keys_.size(); ++j) {
+            if (keys_[j] == 0) continue;
+            std::size_t i = slot(keys_[j]);
+            while (keys[i] != 0) i = (i + 1) & mask_;
+            keys[i] = keys_[j], values[i] = values_[j];
+        }
+        keys_ = std::move(keys), values_ = std::move(values);
     }
 };
 
@@ -302,8 +328,6 @@ public:
     }
 
     SurfaceMesh run(LodSelection* stats) {
-        if (scratch.map.size() < t_.size()) scratch.map.assign(t_.size(), 0);
-        ScratchReset reset;
         const int n = side_ - 1;
         std::vector<Item> stack;
         stack.reserve(256);
@@ -383,6 +407,7 @@ private:
     glm::dvec3 eye_{0.0};
     Frustum frustum_;
     SurfaceMesh out_;
+    NodeMap map_;
     std::size_t active_count_ = 0;
 
     bool in_dem(int c, int r) const { return c < cols_ && r < rows_; }
@@ -406,25 +431,20 @@ private:
         return double(err) * scale_ > tol_ * d && (min_radius_ <= 0.0 || rad > min_radius_ * d);
     }
 
-    void touch(std::size_t id) {
-        if (scratch.map[id] == 0) scratch.touched.push_back(std::uint32_t(id));
-    }
-
     void count_active(int c, int r) {
         if (!in_dem(c, r)) return;
         const std::size_t id = t_.index(c, r);
-        if (scratch.map[id] & kActiveFlag) return;
-        touch(id);
-        scratch.map[id] |= kActiveFlag;
+        std::uint32_t& e = map_[id];
+        if (e & kActiveFlag) return;
+        e |= kActiveFlag;
         ++active_count_;
     }
 
     std::uint32_t vertex(int c, int r) {
         const std::size_t id = t_.index(c, r);
-        std::uint32_t& e = scratch.map[id];
+        std::uint32_t& e = map_[id];
         if (e & kIndexMask) return (e & kIndexMask) - 1;
         if (out_.pos.size() >= kIndexMask) throw std::length_error("terrain lod: too many vertices");
-        touch(id);
         const std::uint32_t v = std::uint32_t(out_.pos.size());
         e |= v + 1;
         out_.pos.push_back(t_.at(id));
@@ -527,9 +547,9 @@ private:
         }
         const int c = std::min(it.ac, it.bc), r = std::min(it.ar, it.br);  // NW corner, inside the DEM
         const std::size_t nw = t_.index(c, r);
-        if (scratch.map[nw] & kCellFlag) return;
-        touch(nw);
-        scratch.map[nw] |= kCellFlag;
+        std::uint32_t& e = map_[nw];
+        if (e & kCellFlag) return;
+        e |= kCellFlag;
         const bool vnw = ok(c, r), vne = ok(c + 1, r), vsw = ok(c, r + 1), vse = ok(c + 1, r + 1);
         const bool first = vnw && vsw && vse, second = vnw && vse && vne;
         if (!first && !second) return;

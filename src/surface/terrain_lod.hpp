@@ -107,9 +107,8 @@ double lod_pixel_scale(const Camera& camera);
 // camera frustum are left out, and so are triangles with a nodata node. Errors are multiplied by
 // t.vertical_exaggeration. tolerance_px: largest projected vertical error, pixels.
 // vertex_nodes (optional): the DEM node index t.index(c, r) of each output vertex.
-// Time and memory follow the selected triangles (a top-down traversal with an explicit stack);
-// a per-thread scratch of 4 bytes per DEM node (vertex numbering) is allocated by a thread's
-// first call, kept, and reset entry by entry.
+// Time and memory follow the selected triangles (a top-down traversal with an explicit stack;
+// the vertex numbering in a hash table of the nodes visited, none per DEM node).
 SurfaceMesh select_lod_mesh(const TerrainLod& lod, const Terrain& t, const Camera& camera, float tolerance_px = 1.0f,
                             LodSelection* stats = nullptr, std::vector<std::uint32_t>* vertex_nodes = nullptr);
 
