@@ -6,6 +6,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "core/closest_name.hpp"
 #include "core/error.hpp"
 #include "export/style.hpp"
 
@@ -75,6 +76,18 @@ std::vector<double> dash_array(const toml::value& v, const std::string& table) {
     return dash;
 }
 
+// The keys a layer table, the root and the layer tables take (for suggestions).
+std::vector<std::string> layer_keys() {
+    return {"color", "colour", "width", "width_far", "opacity", "opacity_far", "keep_far",
+            "dash", "sketch", "overshoot", "min_length", "repeat", "visible"};
+}
+std::vector<std::string> root_keys() { return {"name", "fill", "background", "near", "far", "bands"}; }
+std::vector<std::string> layer_names() {
+    std::vector<std::string> names = {"all"};
+    for (LayerKind k : all_layers) names.emplace_back(layer_name(k));
+    return names;
+}
+
 std::vector<std::string> sorted_keys(const toml::value& t) {
     std::vector<std::string> keys;
     for (const auto& [k, v] : t.as_table()) keys.push_back(k);
@@ -102,7 +115,7 @@ void apply_layer_key(LayerStyle& l, const std::string& key, const toml::value& v
         if (!v.is_boolean()) throw StyleProblem("visible must be true or false" + where(table));
         l.visible = v.as_boolean();
     } else {
-        throw StyleProblem("unknown key \"" + key + "\"" + where(table));
+        throw StyleProblem("unknown key \"" + key + "\"" + where(table) + did_you_mean(key, layer_keys()));
     }
 }
 
@@ -136,7 +149,7 @@ void apply_root_key(Style& s, const std::string& key, const toml::value& v) {
         if (!v.is_integer() || v.as_integer() < 1 || v.as_integer() > 16)
             throw StyleProblem("bands must be an integer in [1, 16]");
         s.bands = static_cast<int>(v.as_integer());
-    } else throw StyleProblem("unknown key \"" + key + "\"");
+    } else throw StyleProblem("unknown key \"" + key + "\"" + did_you_mean(key, root_keys()));
 }
 
 void apply_table(Style& s, const toml::value& table) {
@@ -152,7 +165,7 @@ void apply_table(Style& s, const toml::value& table) {
         const toml::value& v = table.as_table().at(k);
         LayerKind kind;
         if (!v.is_table() || k == "all") continue;
-        if (!find_layer(k, kind)) throw StyleProblem("unknown layer \"" + k + "\"");
+        if (!find_layer(k, kind)) throw StyleProblem("unknown layer \"" + k + "\"" + did_you_mean(k, layer_names()));
         apply_layer_table(s.layer(kind), v, k);
     }
     if (!(s.near < s.far)) throw StyleProblem("near must be less than far");

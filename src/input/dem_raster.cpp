@@ -78,17 +78,24 @@ void classify_values(Raster& r, const Raw& raw) {
     std::mutex merge;
     parallel_chunks(std::size_t(r.h), rows_per_chunk(r), [&](std::size_t r0, std::size_t r1) {
         double lo = std::numeric_limits<double>::max(), hi = -lo;
+        std::size_t bad = Raster::npos;
+        double bad_value = 0.0;
         for (std::size_t row = r0; row < r1; ++row)
             for (int c = 0; c < r.w; ++c) {
                 const std::size_t src = r.source(row, c);
                 const double v = double(raw[src]), e = v * r.scale + r.offset;
-                const bool ok = !is_nodata(v, r.has_nodata, r.nodata, r.type) && (r.mask.empty() || r.mask[src]) &&
-                                std::isfinite(e);
+                bool ok = !is_nodata(v, r.has_nodata, r.nodata, r.type) && (r.mask.empty() || r.mask[src]) &&
+                          !std::isnan(e);
+                if (ok && !(std::abs(e) <= max_elevation)) {
+                    if (src < bad) bad = src, bad_value = e;
+                    ok = false;
+                }
                 r.valid[row * r.w + c] = ok;
                 if (ok) lo = std::min(lo, e), hi = std::max(hi, e);
             }
         const std::lock_guard<std::mutex> lock(merge);  // min / max: the same in any order
         r.emin = std::min(r.emin, lo), r.emax = std::max(r.emax, hi);
+        if (bad < r.out_of_range) r.out_of_range = bad, r.out_of_range_value = bad_value;
     });
 }
 

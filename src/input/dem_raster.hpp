@@ -36,12 +36,21 @@ struct Raster {
     double emin = std::numeric_limits<double>::max(), emax = -std::numeric_limits<double>::max();
     std::array<double, 6> gt{0, 1, 0, 0, 0, -1};
     std::unique_ptr<OGRSpatialReference> srs;  // null when the dataset has none
+    // The first value in source order (a value that is not nodata) beyond max_elevation, inf
+    // included: its source index (npos: none) and value.
+    std::size_t out_of_range = npos;
+    double out_of_range_value = 0.0;
+    static constexpr std::size_t npos = std::size_t(-1);
 
     std::size_t source(std::size_t row, int c) const {
         return (flip_r ? std::size_t(h) - 1 - row : row) * std::size_t(w) + std::size_t(flip_c ? w - 1 - c : c);
     }
     double value(std::size_t src) const { return raw_f.empty() ? raw_d[src] : double(raw_f[src]); }
 };
+
+// Largest magnitude of a valid elevation (scaled value, the DEM's vertical unit): a value beyond
+// (1e30, inf: a nodata marker the file does not declare) is an error, not a height. NaN is nodata.
+constexpr double max_elevation = 1e6;
 
 // Throws penink::Error (stage "input", file = path, ExitCode::bad_input).
 [[noreturn]] void fail(const std::string& path, const std::string& what);

@@ -115,12 +115,35 @@ WorldXY world_coordinates(const Raster& r, const DemOptions& options, Terrain& t
     return w;
 }
 
+// Some cell has valid nodes at its four corners (usually the first few rows show one).
+bool has_valid_cell(const Raster& r) {
+    const std::size_t w = std::size_t(r.w);
+    for (std::size_t row = 0; row + 1 < std::size_t(r.h); ++row) {
+        const std::uint8_t* a = &r.valid[row * w];
+        const std::uint8_t* b = a + w;
+        for (std::size_t c = 0; c + 1 < w; ++c)
+            if (a[c] && a[c + 1] && b[c] && b[c + 1]) return true;
+    }
+    return false;
+}
+
 void check_grid(const Raster& r, const std::string& path) {
     if (r.w < 2 || r.h < 2)
         fail(path, "DEM is too small (" + std::to_string(r.w) + "x" + std::to_string(r.h) +
                        " nodes; at least 2x2 needed)");
+    if (r.out_of_range != Raster::npos) {
+        char text[160];
+        std::snprintf(text, sizeof text,
+                      "row %zu, column %zu holds %g: elevations must lie within +-1e6 (mark missing cells with "
+                      "the nodata value)",
+                      r.out_of_range / std::size_t(r.w) + 1, r.out_of_range % std::size_t(r.w) + 1,
+                      r.out_of_range_value);
+        fail(path, text);
+    }
     if (r.emin > r.emax)  // the band pass widened the range at every valid node: none was
         fail(path, "DEM has no valid elevation (all nodata)");
+    if (!has_valid_cell(r))
+        fail(path, "DEM has fewer than 2x2 valid nodes (no cell with data at its four corners)");
 }
 
 // f(node index, row, c, x, y) for every node, x, y its world coordinates relative to the bounds'

@@ -6,7 +6,8 @@
 // geotransforms are applied in full. Projected CRSs keep their CRS with coordinates scaled to
 // metres (a CRS in feet gives metre positions); no CRS = metres in an unknown frame (crs_wkt "").
 // Invalid nodes (nodata value, NaN, mask/alpha band 0) keep their x, y and get z = the lowest
-// valid elevation times the exaggeration. Band scale/offset and a "ft"/"US survey foot" unit
+// valid elevation times the exaggeration. Any other value beyond +-1e6 (1e30, inf: a nodata
+// marker the file does not declare) is an error naming its row and column in the file. Band scale/offset and a "ft"/"US survey foot" unit
 // are applied to elevations; otherwise they are taken as metres.
 #pragma once
 #include <cstdint>
@@ -45,7 +46,10 @@ DemSize read_dem_size(const std::string& path);
 
 // Throws penink::Error (stage "input", file = path, ExitCode::bad_input) with one line:
 // "no such file", "not a DEM raster (GDAL cannot read it)", "DEM has no valid elevation (all
-// nodata)", "DEM is too small (WxH nodes; at least 2x2 needed)", "vertical exaggeration must be
+// nodata)", "DEM is too small (WxH nodes; at least 2x2 needed)", "DEM has fewer than 2x2 valid
+// nodes (no cell with data at its four corners)", "row R, column C holds V: elevations must lie
+// within +-1e6 (mark missing cells with the nodata value)", "cell size must be > 0 (got S)",
+// "vertical exaggeration must be
 // > 0", "ASCII grid declares WxH values but its N bytes hold at most M", "reading the DEM's
 // WxH nodes would need about X of memory, Y available (--max-memory)", "UTM zone must be 1..60 (0 = standard zone), got N", or "DEM cannot be projected to UTM
 // zone ZH: <GeographicLib's reason>" (a geographic DEM too far from the zone). GDAL stays silent.

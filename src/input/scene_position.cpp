@@ -11,6 +11,7 @@
 #include <ogr_spatialref.h>
 
 #include "core/error.hpp"
+#include "core/printable_text.hpp"
 #include "input/crs_util.hpp"
 #include "input/utm_projection.hpp"
 
@@ -99,12 +100,12 @@ glm::dvec2 parse_scene_position(const std::string& text, const Terrain& terrain,
     const std::optional<ParsedPosition> p = parse_text(text);
     if (!p)
         throw Error("scene", scene_file,
-                    "cannot parse position \"" + text +
+                    "cannot parse position \"" + printable_text(text) +
                         "\" (expected \"EASTING NORTHING ZONE[N|S]\", \"LON,LAT\" or \"X Y\")");
     const std::optional<glm::dvec2> world = to_world(*p, terrain);
     if (!world)
         throw Error("scene", scene_file,
-                    "cannot transform position \"" + text + "\" into the DEM's coordinate system");
+                    "cannot transform position \"" + printable_text(text) + "\" into the DEM's coordinate system");
     return *world - terrain.origin;
 }
 

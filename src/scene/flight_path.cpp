@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/printable_text.hpp"
 
 namespace penink {
 
@@ -37,7 +38,7 @@ double parse_number(const std::string& text, const std::string& column, const st
     const char* end = text.data() + text.size();
     const auto [p, ec] = std::from_chars(text.data(), end, v);
     if (text.empty() || ec != std::errc() || p != end || !std::isfinite(v))
-        fail(file, line, column + ": not a number (\"" + text + "\")");
+        fail(file, line, column + ": not a number (\"" + printable_text(text) + "\")");
     return v;
 }
 
@@ -49,9 +50,9 @@ std::array<int, column_names.size()> header_columns(const std::vector<std::strin
     for (std::size_t i = 0; i < header.size(); ++i) {
         const std::string name = lower(trim(header[i]));
         const auto it = std::find(column_names.begin(), column_names.end(), name);
-        if (it == column_names.end()) fail(file, line, "unknown column \"" + trim(header[i]) + "\"");
+        if (it == column_names.end()) fail(file, line, "unknown column \"" + printable_text(trim(header[i])) + "\"");
         const std::size_t k = std::size_t(it - column_names.begin());
-        if (at[k] >= 0) fail(file, line, "column \"" + name + "\" given twice");
+        if (at[k] >= 0) fail(file, line, "column \"" + printable_text(name) + "\" given twice");
         at[k] = int(i);
     }
     for (int k = 0; k < required_columns; ++k)
@@ -75,7 +76,7 @@ FlightRecord parse_record(const std::vector<std::string>& f, const std::array<in
     if (r.altitude < -90.0 || r.altitude > 90.0) fail(file, line, "altitude: must be between -90 and 90 degrees");
     r.light_azimuth = optional(4), r.light_altitude = optional(5), r.min_score = optional(6);
     if (r.light_altitude && (*r.light_altitude < -90.0 || *r.light_altitude > 90.0))
-        fail(file, line, "light_altitude: must be between -90 and 90 degrees");
+        fail(file, line, "light_altitude: must be between 0 and 90 degrees (a sun above the horizon)");
     return r;
 }
 

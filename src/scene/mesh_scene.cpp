@@ -31,8 +31,8 @@ bool has(const toml::value* t, const char* key) { return t && t->is_table() && t
 
 double number(const Scene& s, const toml::value& v, const std::string& sec, const std::string& key) {
     if (v.is_integer()) return double(v.as_integer());
-    if (v.is_floating()) return v.as_floating();
-    bad(s, sec, key, "expected a number");
+    if (v.is_floating() && std::isfinite(v.as_floating())) return v.as_floating();
+    bad(s, sec, key, v.is_floating() ? "expected a finite number" : "expected a number");
 }
 
 void read_float(const Scene& s, const char* sec, const char* key, float& out) {

@@ -1,8 +1,14 @@
 #include "scene/scene.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <limits>
+#include <vector>
 #include <fstream>
 
+#include "core/closest_name.hpp"
 #include "core/error.hpp"
 #include "drainage/drainage_build.hpp"
 
@@ -13,6 +19,64 @@ namespace {
 namespace fs = std::filesystem;
 
 bool has_key(const toml::value& t, const char* key) { return t.is_table() && t.contains(key); }
+
+// The keys each table of a scene file takes (terrain and mesh scenes alike: scene/mesh_scene.hpp
+// reads the mesh ones); [style] is the style parser's to check, [textures] material a table of
+// free material names.
+struct KnownTable {
+    const char* name;
+    std::vector<std::string> keys;
+};
+
+const std::vector<KnownTable>& known_tables() {
+    static const std::vector<std::string> crease = {"slope_weight", "illumination_weight", "flow_weight", "min_score",
+                                                    "distance_attenuation", "spacing_px", "enabled"};
+    static const std::vector<KnownTable> tables = {
+        {"terrain", {"dem", "vertical_exaggeration"}},
+        {"camera", {"position", "elevation", "azimuth", "altitude", "fov", "width", "height", "eye", "target", "up"}},
+        {"light", {"azimuth", "altitude", "direction"}},
+        {"tessellation", {"target_edge_px", "max_level", "cull"}},
+        {"surface", {"tolerance_px", "min_radius_px"}},
+        {"silhouettes", {"min_gap", "separate_passes", "method"}},
+        {"creases", crease},
+        {"ridges", crease},
+        {"drainage", {"routing"}},
+        {"style", {}},
+        {"mesh", {"file", "up", "subdivide"}},
+        {"pels", {"enabled", "threshold", "smoothing"}},
+        {"features", {"enabled", "crease_angle"}},
+        {"textures", {"enabled", "threshold", "confidence", "scale", "library", "material"}},
+    };
+    return tables;
+}
+
+// Every key and table of the file is one the scene reads, else "unknown key K in [T]; did you
+// mean N?" / "unknown table [T]; did you mean [N]?" (keys in file order).
+void check_known_keys(const toml::value& root, const std::string& file) {
+    std::vector<std::string> table_names, root_keys = {"seed"};
+    for (const KnownTable& t : known_tables()) table_names.emplace_back(t.name);
+    for (const auto& [key, value] : root.as_table()) {
+        const auto t = std::find_if(known_tables().begin(), known_tables().end(),
+                                    [&](const KnownTable& k) { return key == k.name; });
+        if (t == known_tables().end()) {
+            if (value.is_table()) {
+                const std::string near = closest_name(key, table_names);
+                throw Error("scene", file, "unknown table [" + key + "]" + (near.empty() ? "" : "; did you mean [" + near + "]?"));
+            }
+            if (key != "seed") {
+                std::vector<std::string> all = root_keys;
+                all.insert(all.end(), table_names.begin(), table_names.end());
+                throw Error("scene", file, "unknown key " + key + did_you_mean(key, all));
+            }
+            continue;
+        }
+        if (!value.is_table()) throw Error("scene", file, "[" + key + "] must be a table");
+        if (t->keys.empty()) continue;  // [style]: the style parser's
+        for (const auto& [k, v] : value.as_table())
+            if (std::find(t->keys.begin(), t->keys.end(), k) == t->keys.end())
+                throw Error("scene", file, "unknown key " + k + " in [" + key + "]" + did_you_mean(k, t->keys));
+    }
+}
 
 template <typename T>
 void read_key(const toml::value& table, const char* key, T& out, const std::string& file,
@@ -32,6 +96,21 @@ void read_number(const toml::value& table, const char* key, double& out, const s
     if (v.is_integer()) out = double(v.as_integer());
     else if (v.is_floating()) out = v.as_floating();
     else throw Error("scene", file, "[" + section + "] " + key + ": expected a number");
+    if (!std::isfinite(out)) throw Error("scene", file, "[" + section + "] " + key + ": expected a finite number");
+}
+
+// An integer key within [lo, hi] (read as 64 bits: no wrap), else "[S] K: must be an integer
+// between LO and HI (got V)".
+void read_int(const toml::value& table, const char* key, int& out, const std::string& file, const std::string& section,
+              int lo, int hi) {
+    if (!has_key(table, key)) return;
+    const toml::value& v = table.at(key);
+    const std::string range = "must be an integer between " + std::to_string(lo) + " and " + std::to_string(hi);
+    if (!v.is_integer()) throw Error("scene", file, "[" + section + "] " + key + ": " + range);
+    const std::int64_t x = v.as_integer();
+    if (x < lo || x > hi)
+        throw Error("scene", file, "[" + section + "] " + key + ": " + range + " (got " + std::to_string(x) + ")");
+    out = int(x);
 }
 
 void read_optional(const toml::value& table, const char* key, std::optional<double>& out,
@@ -66,8 +145,9 @@ void read_camera(const toml::value& root, SceneCamera& cam, const std::string& f
     read_optional(t, "azimuth", cam.azimuth, file, "camera");
     read_optional(t, "altitude", cam.altitude, file, "camera");
     read_number(t, "fov", cam.fov, file, "camera");
-    read_key(t, "width", cam.width, file, "camera");
-    read_key(t, "height", cam.height, file, "camera");
+    // 0 and below pass here: validate_scene says "image size must be positive" for any source
+    read_int(t, "width", cam.width, file, "camera", std::numeric_limits<int>::min() + 1, max_image_side);
+    read_int(t, "height", cam.height, file, "camera", std::numeric_limits<int>::min() + 1, max_image_side);
 }
 
 Scene parse_scene_file(const std::string& path) {
@@ -82,6 +162,7 @@ Scene parse_scene_file(const std::string& path) {
         throw Error("scene", path, "not a valid TOML scene (" + what.substr(0, nl) + ")");
     }
     s.table = root;
+    check_known_keys(root, path);
     if (has_key(root, "mesh")) {
         if (!has_key(root.at("mesh"), "file")) throw Error("scene", path, "missing [mesh] file");
         read_key(root.at("mesh"), "file", s.mesh, path, "mesh");
@@ -103,7 +184,7 @@ Scene parse_scene_file(const std::string& path) {
         double target = s.tess_target_edge_px;
         read_number(root.at("tessellation"), "target_edge_px", target, path, "tessellation");
         s.tess_target_edge_px = float(target);
-        read_key(root.at("tessellation"), "max_level", s.tess_max_level, path, "tessellation");
+        read_int(root.at("tessellation"), "max_level", s.tess_max_level, path, "tessellation", 1, 64);
         read_key(root.at("tessellation"), "cull", s.cull_patches, path, "tessellation");
     }
     if (has_key(root, "surface")) {
@@ -133,11 +214,30 @@ Scene parse_scene_file(const std::string& path) {
         read_key(root.at("style"), "name", s.style, path, "style");
     }
     if (has_key(root, "seed")) {
-        std::int64_t seed = 0;
-        read_key(root, "seed", seed, path, "seed");
-        s.seed = std::uint64_t(seed);
+        if (!root.at("seed").is_integer() || root.at("seed").as_integer() < 0)
+            throw Error("scene", path, "seed: must be an integer >= 0");
+        s.seed = std::uint64_t(root.at("seed").as_integer());
     }
     return s;
+}
+
+std::string short_number(double v) {
+    char s[32];
+    std::snprintf(s, sizeof s, "%g", v);
+    return s;
+}
+
+// "NAME must be between LO and HI UNIT (got V)" unless lo <= v <= hi.
+void check_range(const std::string& file, const std::string& name, double v, double lo, double hi,
+                 const std::string& unit = "") {
+    if (v >= lo && v <= hi) return;
+    throw Error("scene", file, name + " must be between " + short_number(lo) + " and " + short_number(hi) + unit +
+                                   " (got " + short_number(v) + ")");
+}
+
+void check_range(const std::string& file, const std::string& name, const std::optional<double>& v, double lo,
+                 double hi, const std::string& unit) {
+    if (v) check_range(file, name, *v, lo, hi, unit);
 }
 
 }  // namespace
@@ -175,16 +275,32 @@ void validate_scene(const Scene& s) {
         throw Error("scene", f, "image size is too large (at most " + std::to_string(max_image_side) + " pixels a side)");
     if (!(s.camera.fov > 0.0 && s.camera.fov < 179.0))
         throw Error("scene", f, "camera fov must be between 0 and 179 degrees");
-    if (!(s.vertical_exaggeration > 0.0))
-        throw Error("scene", f, "vertical exaggeration must be > 0");
+    if (!(s.vertical_exaggeration > 0.0 && s.vertical_exaggeration <= max_vertical_exaggeration))
+        throw Error("scene", f, "vertical exaggeration must be > 0 and at most 1000 (got " +
+                                    short_number(s.vertical_exaggeration) + ")");
+    check_range(f, "[camera] altitude", s.camera.altitude, -90.0, 90.0, " degrees");
+    check_range(f, "[camera] azimuth", s.camera.azimuth, -360.0, 360.0, " degrees");
+    check_range(f, "[camera] elevation", s.camera.elevation, -1e7, 1e7, " metres");
+    check_range(f, "[light] altitude", s.light.altitude, 0.0, 90.0, " degrees");  // a sun: above the horizon
+    check_range(f, "[light] azimuth", s.light.azimuth, -360.0, 360.0, " degrees");
+    for (const auto& [name, p] : {std::pair<const char*, const CreaseParams*>{"creases", &s.creases}, {"ridges", &s.ridges}}) {
+        const std::string t = std::string("[") + name + "] ";
+        check_range(f, t + "slope_weight", p->slope_weight, 0.0, 1000.0);
+        check_range(f, t + "illumination_weight", p->illumination_weight, 0.0, 1000.0);
+        check_range(f, t + "flow_weight", p->flow_weight, 0.0, 1000.0);
+        check_range(f, t + "min_score", p->min_score, -1000.0, 1000.0);
+        check_range(f, t + "distance_attenuation", p->distance_attenuation, 0.0, 1000.0);
+        check_range(f, t + "spacing_px", p->spacing_px, 0.0, 1000.0);
+    }
+    check_range(f, "[silhouettes] min_gap", double(s.silhouette_min_gap), 0.0, 1000.0);
     if (s.tess_max_level < 1 || s.tess_max_level > 64)
         throw Error("scene", f, "tessellation max_level must be between 1 and 64");
     if (!(s.surface_tolerance_px >= 0.0f && s.surface_tolerance_px <= 1000.0f))
         throw Error("scene", f, "[surface] tolerance_px must be between 0 and 1000");
     if (!(s.surface_min_radius_px >= 0.0f && s.surface_min_radius_px <= 1000.0f))
         throw Error("scene", f, "[surface] min_radius_px must be between 0 and 1000");
-    if (!(s.tess_target_edge_px > 0.0f))
-        throw Error("scene", f, "tessellation target_edge_px must be > 0");
+    if (!(s.tess_target_edge_px > 0.0f && s.tess_target_edge_px <= 1000.0f))
+        throw Error("scene", f, "tessellation target_edge_px must be > 0 and at most 1000");
     if (!drainage_routing_named(s.drainage_routing))
         throw Error("scene", f, "[drainage] routing must be \"priority-flood\" or \"least-cost\" (got \"" +
                                     s.drainage_routing + "\")");

@@ -5,7 +5,8 @@
 // target_edge_px, max_level, cull; [creases] and [ridges]
 // slope_weight, illumination_weight, flow_weight, min_score, distance_attenuation; [style] name
 // plus per-layer overrides; seed. Angles in degrees, distances in metres (conventions.md).
-// A scene with [mesh] file draws a mesh instead (its keys: scene/mesh_scene.hpp).
+// A scene with [mesh] file draws a mesh instead (its keys: scene/mesh_scene.hpp). Any other key or
+// table is an error naming the nearest known one; validate_scene holds the values to their ranges.
 #pragma once
 #include <cstdint>
 #include <optional>

@@ -147,3 +147,74 @@ TEST(HostileInputs, ZeroOrNegativeCellSize) {
                    "penink: input: negative.asc: cell size must be > 0 (got -10)");
     expect_refused(dir, "drainage negative.asc", "penink: input: negative.asc: cell size must be > 0 (got -10)");
 }
+
+TEST(HostileInputs, MessagesNameTheRealProblem) {
+    const auto dir = fresh_dir("hostile_messages");
+    write_text(dir / "big.asc", grid(3, 3, "1 2 3\n4 1e30 6\n7 8 9\n"));
+    expect_refused(dir, "render big.asc -o out.svg",
+                   "penink: input: big.asc: row 2, column 2 holds 1e+30: elevations must lie within +-1e6 (mark "
+                   "missing cells with the nodata value)");
+    write_text(dir / "inf.asc", grid(3, 3, "1.5 2 3\n4 inf 6\n7 8 9\n"));  // GDAL reads a float grid's inf as FLT_MAX
+    expect_refused(dir, "render inf.asc -o out.svg",
+                   "penink: input: inf.asc: row 2, column 2 holds 3.40282e+38: elevations must lie within +-1e6 "
+                   "(mark missing cells with the nodata value)");
+    write_text(dir / "one.asc", grid(3, 3, "-9999 -9999 -9999\n-9999 5 -9999\n-9999 -9999 -9999\n"));
+    expect_refused(dir, "render one.asc -o out.svg",
+                   "penink: input: one.asc: DEM has fewer than 2x2 valid nodes (no cell with data at its four corners)");
+    const std::string dem = "[terrain]\ndem = \"" + volcano + "\"\n";
+    write_text(dir / "ve.toml", dem + "vertical_exaggeration = 1e30\n");
+    expect_refused(dir, "render ve.toml -o out.svg",
+                   "penink: scene: ve.toml: vertical exaggeration must be > 0 and at most 1000 (got 1e+30)");
+    write_text(dir / "veinf.toml", dem + "vertical_exaggeration = inf\n");
+    expect_refused(dir, "render veinf.toml -o out.svg",
+                   "penink: scene: veinf.toml: [terrain] vertical_exaggeration: expected a finite number");
+    expect_refused(dir, "render " + volcano + " -o out.svg --vertical-exaggeration inf",
+                   "penink: cli: --vertical-exaggeration: must be > 0 and at most 1000 (got \"inf\")");
+    write_text(dir / "light.toml", dem + "[light]\naltitude = -200\n");
+    expect_refused(dir, "render light.toml -o out.svg",
+                   "penink: scene: light.toml: [light] altitude must be between 0 and 90 degrees (got -200)");
+    write_text(dir / "camera.toml", dem + "[camera]\naltitude = -200\n");
+    expect_refused(dir, "render camera.toml -o out.svg",
+                   "penink: scene: camera.toml: [camera] altitude must be between -90 and 90 degrees (got -200)");
+    write_text(dir / "wide.toml", dem + "[camera]\nwidth = 2147483648\n");
+    expect_refused(dir, "render wide.toml -o out.svg",
+                   "penink: scene: wide.toml: [camera] width: must be an integer between -2147483647 and 16384 (got "
+                   "2147483648)");
+    expect_refused(dir, "render " + volcano + " -o out.svg --width 2147483648",
+                   "penink: cli: --width: must be between 1 and 16384 (got \"2147483648\")");
+    expect_refused(dir, "render " + volcano + " -o out.svg --dpi 0",
+                   "penink: cli: --dpi: must be > 0 and at most 10000 (got \"0\")");
+}
+
+TEST(HostileInputs, FlightPathBytesThatAreNotUtf8AreEscaped) {
+    const auto dir = fresh_dir("hostile_csv");
+    write_text(dir / "path.csv", "position,elevation,azimuth,altitude\n\"1757270 5917440\",400,30,\xff\xfe\x01x\n");
+    expect_refused(dir, "batch " + volcano + " --path path.csv --out frames",
+                   "penink: batch: path.csv: line 2: altitude: not a number (\"\\xff\\xfe\\x01x\")");
+    EXPECT_FALSE(fs::exists(dir / "frames"));
+}
+
+TEST(HostileInputs, SceneKeysMustBeKnown) {
+    const auto dir = fresh_dir("hostile_keys");
+    const std::string dem = "[terrain]\ndem = \"" + volcano + "\"\n";
+    write_text(dir / "fvo.toml", dem + "[camera]\nfvo = 40\n");
+    expect_refused(dir, "render fvo.toml -o out.svg",
+                   "penink: scene: fvo.toml: unknown key fvo in [camera]; did you mean fov?");
+    write_text(dir / "cameras.toml", dem + "[cameras]\nfov = 40\n");
+    expect_refused(dir, "render cameras.toml -o out.svg",
+                   "penink: scene: cameras.toml: unknown table [cameras]; did you mean [camera]?");
+    write_text(dir / "scroe.toml", dem + "[creases]\nmin_scroe = 0.2\n");
+    expect_refused(dir, "render scroe.toml -o out.svg",
+                   "penink: scene: scroe.toml: unknown key min_scroe in [creases]; did you mean min_score?");
+    write_text(dir / "zoom.toml", "zoom = 3\n" + dem);
+    expect_refused(dir, "render zoom.toml -o out.svg", "penink: scene: zoom.toml: unknown key zoom");
+    write_text(dir / "spacing.toml", dem + "[creases]\nspacing_px = -4\n");
+    expect_refused(dir, "render spacing.toml -o out.svg",
+                   "penink: scene: spacing.toml: [creases] spacing_px must be between 0 and 1000 (got -4)");
+    write_text(dir / "light.toml", dem + "[light]\naltitude = 1000\n");
+    expect_refused(dir, "render light.toml -o out.svg",
+                   "penink: scene: light.toml: [light] altitude must be between 0 and 90 degrees (got 1000)");
+    write_text(dir / "style.toml", dem + "[style]\n[style.ridges]\nwidht = 2\n");
+    expect_refused(dir, "render style.toml -o out.svg",
+                   "penink: style: style.toml: unknown key \"widht\" (in [ridges]); did you mean width?");
+}

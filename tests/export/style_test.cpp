@@ -89,7 +89,9 @@ TEST(Style, BadFilesErrorExactly) {
     EXPECT_EQ(style_error("[foo]\nwidth = 1\n", dir), prefix + "unknown layer \"foo\"");
     EXPECT_EQ(style_error("[ridges]\nwidth = -1\n", dir), prefix + "width must be >= 0 (in [ridges])");
     EXPECT_EQ(style_error("[all]\nopacity = 1.5\n", dir), prefix + "opacity must be in [0, 1] (in [all])");
-    EXPECT_EQ(style_error("[ridges]\nwidht = 1\n", dir), prefix + "unknown key \"widht\" (in [ridges])");
+    EXPECT_EQ(style_error("[ridges]\nwidht = 1\n", dir), prefix + "unknown key \"widht\" (in [ridges]); did you mean width?");
+    EXPECT_EQ(style_error("[creses]\nwidth = 1\n", dir), prefix + "unknown layer \"creses\"; did you mean creases?");
+    EXPECT_EQ(style_error("backgruond = \"#ffffff\"\n", dir), prefix + "unknown key \"backgruond\"; did you mean background?");
     EXPECT_EQ(style_error("[silhouettes]\ncolor = \"red\"\n", dir),
               prefix + "color must be \"#rrggbb\" (got \"red\") (in [silhouettes])");
     EXPECT_EQ(style_error("near = 0.8\nfar = 0.5\n", dir), prefix + "near must be less than far");

@@ -52,12 +52,13 @@ TEST(DemReader, AsciiValuesAndOrientation) {
 
 TEST(DemReader, NodataNodesAreInvalid) {
     TempDir dir;
-    const std::string p = test::write_asc(dir.file("g.asc"), 3, {{-9999, 2, 3}, {4, 5, -9999}}, 0, 0, 1,
+    // the last row gives the grid a cell with data at its four corners (read_dem wants one)
+    const std::string p = test::write_asc(dir.file("g.asc"), 3, {{-9999, 2, 3}, {4, 5, -9999}, {1, 1, 1}}, 0, 0, 1,
                                           "NODATA_value -9999\n");
     const Terrain t = read_dem(p);
-    const std::vector<std::uint8_t> want{0, 1, 1, 1, 1, 0};
+    const std::vector<std::uint8_t> want{0, 1, 1, 1, 1, 0, 1, 1, 1};
     EXPECT_EQ(t.valid, want);
-    EXPECT_EQ(t.elevation_min, 2.0);
+    EXPECT_EQ(t.elevation_min, 1.0);
     EXPECT_EQ(t.elevation_max, 5.0);
     EXPECT_EQ(t.pos[t.index(1, 0)].z, 2.0f);
 }
@@ -66,12 +67,13 @@ TEST(DemReader, NanAndNodataInGeoTiffAreInvalid) {
     TempDir dir;
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const double nodata = -3.4028234663852886e+38;
-    const std::string p = test::write_tif(dir.file("g.tif"), 2, 2, {nan, 7, float(nodata), 9},
+    // the last column gives the grid a cell with data at its four corners (read_dem wants one)
+    const std::string p = test::write_tif(dir.file("g.tif"), 3, 2, {nan, 7, 8, float(nodata), 9, 10},
                                           {0, 1, 0, 2, 0, -1}, 0, &nodata);
     const Terrain t = read_dem(p);
-    const std::vector<std::uint8_t> want{0, 1, 0, 1};
+    const std::vector<std::uint8_t> want{0, 1, 1, 0, 1, 1};
     EXPECT_EQ(t.valid, want);
-    EXPECT_EQ(t.pos[3].z, 9.0f);
+    EXPECT_EQ(t.pos[4].z, 9.0f);
 }
 
 TEST(DemReader, SouthUpGridIsFlippedSoRowZeroIsNorth) {
@@ -418,6 +420,36 @@ TEST(DemReader, TextGridDeclaringMoreValuesThanItsFileHoldsFailsBeforeReading) {
     const DemSize v = read_dem_size(PENINK_SOURCE_DIR "/examples/volcano.asc");
     EXPECT_EQ(v.cols, 61);
     EXPECT_EQ(v.rows, 87);
+}
+
+TEST(DemReader, ValuesBeyondAMillionAreErrorsNamingTheirCell) {
+    TempDir dir;
+    for (const char* v : {"1e30", "-2e6"}) {
+        const std::string p = test::write_text(dir.file("g.asc"), std::string("ncols 3\nnrows 2\nxllcorner 0\n"
+                                                                              "yllcorner 0\ncellsize 1\n1 2 3\n4 ") + v + " 6\n");
+        char value[32];
+        std::snprintf(value, sizeof value, "%g", std::strtod(v, nullptr));
+        EXPECT_EQ(error_of(p), "penink: input: " + p + ": row 2, column 2 holds " + value +
+                                   ": elevations must lie within +-1e6 (mark missing cells with the nodata value)");
+    }
+    const float inf = std::numeric_limits<float>::infinity();  // (GDAL's ASCII grid reads "inf" as 0 or FLT_MAX)
+    const std::string tif = test::write_tif(dir.file("g.tif"), 3, 2, {1, 2, 3, 4, 5, -inf}, {0, 1, 0, 2, 0, -1});
+    EXPECT_EQ(error_of(tif), "penink: input: " + tif +
+                                 ": row 2, column 3 holds -inf: elevations must lie within +-1e6 (mark missing cells "
+                                 "with the nodata value)");
+    const std::string ok = test::write_text(dir.file("ok.asc"), "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\n"
+                                                                "cellsize 1\n1e6 -1e6\n0 0\n");
+    EXPECT_EQ(error_of(ok), "no error");
+}
+
+TEST(DemReader, NeedsACellWithDataAtItsFourCorners) {
+    TempDir dir;
+    const std::string one = test::write_asc(dir.file("one.asc"), 3, {{-1, -1, -1}, {-1, 5, -1}, {-1, -1, -1}}, 0, 0, 1,
+                                            "NODATA_value -1\n");
+    EXPECT_EQ(error_of(one), "penink: input: " + one +
+                                 ": DEM has fewer than 2x2 valid nodes (no cell with data at its four corners)");
+    const std::string diagonal = test::write_asc(dir.file("diag.asc"), 2, {{1, -1}, {-1, 1}}, 0, 0, 1, "NODATA_value -1\n");
+    EXPECT_NE(error_of(diagonal).find("fewer than 2x2 valid nodes"), std::string::npos);
 }
 
 TEST(DemReader, CellSizeMustBePositive) {

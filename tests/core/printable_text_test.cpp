@@ -1,0 +1,22 @@
+#include "core/printable_text.hpp"
+
+#include <gtest/gtest.h>
+
+namespace penink {
+namespace {
+
+TEST(PrintableText, EscapesWhatIsNotUtf8OrPrintable) {
+    EXPECT_EQ(printable_text("abc 1.5"), "abc 1.5");
+    EXPECT_EQ(printable_text("\xff\xfe\x01x"), "\\xff\\xfe\\x01x");
+    EXPECT_EQ(printable_text("tab\there\n"), "tab\\x09here\\x0a");
+    EXPECT_EQ(printable_text("a\\b"), "a\\\\b");
+    EXPECT_EQ(printable_text("Mt Eden \xc3\xa9t\xc3\xa9 \xe2\x82\xac"), "Mt Eden \xc3\xa9t\xc3\xa9 \xe2\x82\xac");  // UTF-8 kept
+    EXPECT_EQ(printable_text("\xc3"), "\\xc3");          // cut sequence
+    EXPECT_EQ(printable_text("\xc0\xaf"), "\\xc0\\xaf");  // overlong '/'
+    EXPECT_EQ(printable_text("\xed\xa0\x80"), "\\xed\\xa0\\x80");  // surrogate
+    EXPECT_EQ(printable_text("abcdef", 3), "abc...");
+    EXPECT_EQ(printable_text("abc", 3), "abc");
+}
+
+}  // namespace
+}  // namespace penink
