@@ -1,5 +1,7 @@
 #include "scene/scene_memory.hpp"
 
+#include <filesystem>
+
 #include "core/memory_budget.hpp"
 #include "drainage/drainage_memory.hpp"
 #include "input/dem_reader.hpp"
@@ -9,6 +11,9 @@ namespace penink {
 
 void check_scene_memory(const Scene& scene, std::uint64_t max_memory) {
     if (is_mesh_scene(scene) || scene.dem.empty()) return;
+    std::error_code ec;
+    const std::uintmax_t bytes = std::filesystem::file_size(scene.dem, ec);
+    if (max_memory == 0 && (ec || bytes < check_memory_from_bytes)) return;
     const std::uint64_t budget = memory_budget(max_memory);
     const DemSize size = read_dem_size(scene.dem);
     const double drainage = drainage_points(size.cols, size.rows, drainage_factor_for(size.cols, size.rows, 0)) *
