@@ -1,7 +1,12 @@
 #include "cli/drainage_command.hpp"
 
-#include <filesystem>
+#include <sys/statvfs.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <chrono>
+#include <cstring>
+#include <filesystem>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -65,14 +70,39 @@ void print_summary(std::ostream& log, const DrainageStats& s, const DrainageDb& 
     log << line;
 }
 
+// The database's folder exists and may be written, `out` is not a folder, and the file system
+// has room for about `bytes`; else Error("drainage", out, "cannot write drainage database
+// (REASON)"), REASON the system's.
+void check_database_target(const std::string& out, double bytes) {
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::path(out).parent_path();
+    const std::string folder = dir.empty() ? "." : dir.string();
+    auto fail = [&out](const std::string& why) {
+        throw Error("drainage", out, "cannot write drainage database (" + why + ")");
+    };
+    std::error_code ec;
+    if (!fs::is_directory(folder, ec)) fail("no such directory");
+    if (fs::is_directory(out, ec)) fail(std::strerror(EISDIR));
+    if (::access(folder.c_str(), W_OK | X_OK) != 0) fail(std::strerror(errno));
+    struct statvfs vfs {};
+    if (::statvfs(folder.c_str(), &vfs) != 0) return;
+    const double room = double(vfs.f_bavail) * double(vfs.f_frsize);
+    if (room < bytes)
+        fail(std::string(std::strerror(ENOSPC)) + ": about " + format_bytes(bytes) + " needed, " + format_bytes(room) +
+             " free");
+}
+
 int run(const DrainageCommand& cmd, std::ostream& log) {
     const auto t0 = Clock::now();
     StageTimer timer{log};
     if (cmd.resample < 0) throw Error("drainage", cmd.dem, "resample factor must be >= 1 (0 = automatic)");
     const std::uint64_t budget = memory_budget(cmd.max_memory);
     const DemSize size = read_dem_size(cmd.dem);  // the header alone: the build's memory before the read
-    check_drainage_memory("drainage", cmd.dem, size.cols, size.rows,
-                          drainage_factor_for(size.cols, size.rows, cmd.resample), budget);
+    const int factor = drainage_factor_for(size.cols, size.rows, cmd.resample);
+    check_drainage_memory("drainage", cmd.dem, size.cols, size.rows, factor, budget);
+    const std::string out = cmd.output.empty() ? drainage_cache_path(cmd.dem) : cmd.output;  // render's cache
+    const double file_bytes = drainage_points(size.cols, size.rows, factor) * dv_file_bytes_per_point;
+    check_database_target(out, file_bytes);  // before the build: a read-only folder or a full disk
     DemOptions read;
     read.heights_only = cmd.resample == 1;  // factor 1 needs no positions on an affine grid
     read.max_memory = budget;
@@ -82,9 +112,16 @@ int run(const DrainageCommand& cmd, std::ostream& log) {
     o.resample = cmd.resample;
     o.routing = cmd.routing;
     DrainageResult res;
-    const std::string out = cmd.output.empty() ? drainage_cache_path(cmd.dem) : cmd.output;  // render's cache
-    const DrainageDb db = build_and_write_drainage_db(t, o, drainage_fingerprint(cmd.dem, t, o), out,
-                                                      progress_printer(log, cmd.quiet, timer), &res);
+    DrainageDb db;
+    try {
+        db = build_and_write_drainage_db(t, o, drainage_fingerprint(cmd.dem, t, o), out,
+                                         progress_printer(log, cmd.quiet, timer), &res);
+    } catch (const Error& e) {
+        // The writer names no reason: the folder or the disk may tell it now (the disk filled
+        // during the build), else its error stands.
+        if (e.file() == out) check_database_target(out, file_bytes);
+        throw;
+    }
     timer.next("writing rasters");
     if (!cmd.rasters_dir.empty()) {
         // the grid's valid mask: exactly the points with a basin label

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
+#include <iostream>
 
 #include <unistd.h>
 
@@ -215,6 +216,16 @@ DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& te
     const std::string cache = drainage_cache_path(dem_path);
     const DrainageFingerprint fp = drainage_fingerprint(dem_path, terrain, options);
     auto say = [&](const std::string& m) { if (log) log(m); };
+    if (const std::string beside = dem_path + ".dv"; cache != beside && std::filesystem::exists(beside)) {
+        try {  // a read-only folder's cache: read when valid (a stale one is rebuilt in the user's cache)
+            DrainageDb db = in_file ? read_drainage_line_index(beside, &fp, *in_file)
+                                    : read_drainage_db(beside, &fp, DvParts::lines);
+            say("drainage: using cached " + beside);
+            return db;
+        } catch (const Error& e) {
+            say(std::string(e.what()) + "; trying " + cache);
+        }
+    }
     try {
         DrainageDb db = in_file ? read_drainage_line_index(cache, &fp, *in_file)
                                 : read_drainage_db(cache, &fp, DvParts::lines);
@@ -246,7 +257,9 @@ DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& te
             try {
                 write_drainage_db(cache, built, branches);
                 say("drainage: wrote " + cache);
-            } catch (const Error& e) {
+            } catch (const Error& e) {  // said once a run, verbose or not: every run builds it again
+                std::cerr << "penink: warning: drainage: " << cache << ": cannot write the drainage cache; using the "
+                          << "database built in memory (built again on every run)\n";
                 say(std::string(e.what()) + "; using the drainage database built in memory");
             }
         },

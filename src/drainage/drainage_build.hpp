@@ -115,7 +115,9 @@ std::string drainage_cache_path(const std::string& dem_path, bool folder_writabl
 
 // The cache of a render (drainage_cache_path): its lines part read (DvParts::lines) when its
 // fingerprint matches the DEM and options, else rebuilt as `penink drainage` builds it (the same
-// bytes) and written atomically; when it cannot be written the database built in memory is used.
+// bytes) and written atomically; when it cannot be written the database built in memory is used
+// and a warning line goes to stderr. A valid `<dem>.dv` beside a DEM whose folder cannot be
+// written is read first (the cache path is then the user's cache folder).
 // Returns what a lines-only read gives (drainage_lines_only) either way. `terrain` is the DEM
 // read with any vertical exaggeration, or only its grid and georeference (no node arrays, as the
 // terrain cache gives them): unless it holds the heights unexaggerated, a build reads the DEM

@@ -1,4 +1,4 @@
-// Memory of a drainage build, estimated before anything is allocated: the points of a DEM
+// Memory (and disk) of a drainage build, estimated before anything is allocated: the points of a DEM
 // resampled by a factor and the bytes each takes at the build's peak (the grid, the working
 // arrays, the creases and ridges: measured about 60 B a point on jacksboro at factor 5), checked
 // against a budget (core/memory_budget.hpp).
@@ -9,6 +9,10 @@
 namespace penink {
 
 constexpr double drainage_bytes_per_point = 64.0;
+
+// Bytes a drainage database file takes a point at least (measured 49-67 B on volcano and
+// jacksboro): the room checked for before a build.
+constexpr double dv_file_bytes_per_point = 40.0;
 
 // Points of a cols x rows node grid resampled `factor` times finer: ((cols-1)f+1)((rows-1)f+1),
 // as a double (no wrap for any factor).

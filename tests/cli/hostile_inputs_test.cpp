@@ -218,3 +218,90 @@ TEST(HostileInputs, SceneKeysMustBeKnown) {
     expect_refused(dir, "render style.toml -o out.svg",
                    "penink: style: style.toml: unknown key \"widht\" (in [ridges]); did you mean width?");
 }
+
+namespace {
+
+// dir/ro: a copy of the volcano and its drainage cache, then made read-only (the test folder
+// itself stays writable by anyone: run_penink_unprivileged's user writes there).
+fs::path read_only_data(const fs::path& dir) {
+    fs::create_directories(dir / "ro");
+    fs::create_directories(dir / "home");
+    fs::copy_file(volcano, dir / "ro" / "volcano.asc");
+    const RunResult built = run_penink("drainage ro/volcano.asc -q -o ro/volcano.asc.dv", dir);
+    EXPECT_EQ(built.code, 0) << built.output;
+    for (const fs::path& p : {dir, dir / "home"}) fs::permissions(p, fs::perms::all);
+    fs::permissions(dir / "ro", fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
+                                    fs::perms::group_exec | fs::perms::others_read | fs::perms::others_exec);
+    return dir / "ro";
+}
+
+std::size_t dv_files_under(const fs::path& dir) {
+    std::size_t n = 0;
+    for (auto& e : fs::recursive_directory_iterator(dir)) n += e.path().extension() == ".dv";
+    return n;
+}
+
+}  // namespace
+
+TEST(HostileInputs, DrainageIntoAReadOnlyFolderSaysWhy) {
+    const auto dir = fresh_dir("hostile_drainage_ro");
+    read_only_data(dir);
+    const std::size_t before = files_under(dir);
+    const RunResult r = run_penink_unprivileged("drainage ro/volcano.asc -q -o ro/other.dv", dir);
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_EQ(r.output, "penink: drainage: ro/other.dv: cannot write drainage database (Permission denied)\n");
+    EXPECT_EQ(files_under(dir), before);
+    const RunResult nodir = run_penink("drainage ro/volcano.asc -q -o nodir/x.dv", dir);
+    EXPECT_EQ(nodir.code, 2);
+    EXPECT_EQ(nodir.output, "penink: drainage: nodir/x.dv: cannot write drainage database (no such directory)\n");
+}
+
+TEST(HostileInputs, DrainageOnAFullDiskSaysWhy) {
+    const auto dir = fresh_dir("hostile_drainage_full");
+    fs::create_directories(dir / "full");
+    // a 64 KiB file system of its own (a private mount namespace: gone with the command)
+    const std::string full = (dir / "full").string();
+    const RunResult r = run_penink(
+        "", dir,
+        "unshare -m sh -c \"mount -t tmpfs -o size=64k tmpfs '" + full + "' && cp '" + volcano + "' '" + full +
+            "/' && cd '" + full + "' && '" PENINK_BINARY_PATH "' drainage volcano.asc -q; echo rc=\\$?; ls\"");
+    if (r.output.find("rc=") == std::string::npos) GTEST_SKIP() << "no private tmpfs here: " << r.output;
+    EXPECT_EQ(r.output.substr(0, r.output.find("about")),
+              "penink: drainage: volcano.asc.dv: cannot write drainage database (No space left on device: ");
+    EXPECT_NE(r.output.find("needed, "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(" free)\nrc=2\nvolcano.asc\n"), std::string::npos) << r.output;  // nothing else left
+}
+
+TEST(HostileInputs, CacheInAReadOnlyFolderIsReadNotRebuilt) {
+    const auto dir = fresh_dir("hostile_cache_ro");
+    read_only_data(dir);
+    const RunResult r = run_penink_unprivileged("render ro/volcano.asc -o out.svg --width 200 --height 150 -v", dir);
+    EXPECT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("penink: drainage: using cached ro/volcano.asc.dv\n"), std::string::npos) << r.output;
+    EXPECT_EQ(dv_files_under(dir / "home"), 0u) << "rebuilt into the user's cache";
+    EXPECT_TRUE(fs::exists(dir / "out.svg"));
+}
+
+TEST(HostileInputs, StaleCacheThatCannotBeRewrittenIsBuiltInMemoryWithOneWarning) {
+    const auto dir = fresh_dir("hostile_cache_stale");
+    const fs::path ro = read_only_data(dir);
+    fs::permissions(ro, fs::perms::owner_write, fs::perm_options::add);
+    std::string text = read_text(ro / "volcano.asc");
+    text.replace(text.find("cellsize"), 8, "cellsize 10.5\n#");  // the DEM changes: its cache is stale
+    write_text(ro / "volcano.asc", text);
+    fs::permissions(ro, fs::perms::owner_write, fs::perm_options::remove);
+    const RunResult r = run_penink("", dir,
+                                   ::geteuid() == 0
+                                       ? "HOME=/nonexistent setpriv --reuid=65534 --regid=65534 --clear-groups '" PENINK_BINARY_PATH
+                                         "' render ro/volcano.asc -o out.svg --width 200 --height 150"
+                                       : "HOME=/nonexistent '" PENINK_BINARY_PATH "' render ro/volcano.asc -o out.svg --width 200 --height 150");
+    EXPECT_EQ(r.code, 0) << r.output;
+    const std::string warning = "penink: warning: drainage: /nonexistent/.cache/penink/volcano.asc-";
+    ASSERT_NE(r.output.find(warning), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find(warning, r.output.find(warning) + 1), std::string::npos) << "warned more than once";
+    EXPECT_NE(r.output.find(".dv: cannot write the drainage cache; using the database built in memory (built again on "
+                            "every run)\n"),
+              std::string::npos)
+        << r.output;
+    EXPECT_TRUE(fs::exists(dir / "out.svg"));
+}
