@@ -36,11 +36,14 @@
 //     vertices: f32 x, y, z, nx, ny, nz, flow (28 bytes each: DrapedVertex)
 //     index: f32 origin x, y, f32 level-0 cell side, u32 levels; u32 cols, rows per level; u32
 //            cell starts (cells of all levels + 1); u32 line ids (one per line)
+//   u64      index checksum: hash64 of the part's bytes before it but the two vertex arrays, as
+//            one array (what a render reads: it leaves the vertices in the file, read_lines_part)
 //   u64      lines checksum: hash64 of the part's bytes before it, then of its offset and of the
 //            total length (dv_format.hpp: lines_hash)
 // Versions 2-4 stored each vertex's flow (16 bytes) and fixed 13-byte branches without head_acc;
 // 4 added the routing; 5 varint records; 6 grid positions; 7 vertices after each record; 8 the
-// lines part and no vertical exaggeration in the fingerprint; 9 3-D line lengths.
+// lines part and no vertical exaggeration in the fingerprint; 9 3-D line lengths and the index
+// checksum.
 #include "drainage/drainage_db.hpp"
 
 #include <bit>

@@ -93,7 +93,8 @@ struct DrainageDb {
 // exaggeration); a second part, with its own checksum and its offset in the header, holds the
 // creases and ridges smoothed, draped and indexed (line_set.hpp), which a render reads alone.
 // 9: a line's length is its 3-D length (unexaggerated), which bounds its drawn length at any
-// exaggeration, so a frame culls lines by their records alone.
+// exaggeration, so a frame culls lines by their records alone; the lines part ends with a
+// checksum of everything in it but the vertex arrays, which a render checks without reading them.
 inline constexpr std::uint32_t drainage_db_version = 9;
 
 // Fingerprint of the DEM file at `dem_path` with the given resample factor. Throws
@@ -181,10 +182,12 @@ struct DvLineVertices {
     void read(int set, std::uint64_t first, std::uint64_t n, DrapedVertex* out) const;
 };
 
-// The lines part read as DvParts::lines reads it (every byte hashed and the checksum compared,
-// the same errors), but its vertex arrays streamed through a 4 MiB buffer and not kept: the
-// creases and ridges hold their lines and index, no vertices (line_set_ok holds for the stored
-// counts); `vertices` says where they are. Memory in proportion to the lines, not the vertices.
+// The lines part's line records and index, as DvParts::lines reads them (the same errors), its
+// vertex arrays neither read nor kept: the creases and ridges hold their lines and index, no
+// vertices (line_set_ok holds for the stored counts); `vertices` says where they are. What is
+// read is checked by the index checksum; the vertices are not read to check them (a render reads
+// only those it draws; every count and offset is checked, so a damaged vertex can change a line's
+// shape, never what is read). Time and memory in proportion to the lines, not the vertices.
 DrainageDb read_drainage_line_index(const std::string& path, const DrainageFingerprint* expected,
                                     DvLineVertices& vertices);
 

@@ -86,6 +86,28 @@ inline std::uint64_t lines_hash(const std::uint8_t* part, std::size_t n, std::ui
     return hash64(&total, 8, h);
 }
 
+// hash64 of a concatenation of byte runs fed one after another (whole 8-byte words, the last
+// bytes one by one), as if they were one array.
+struct ConcatHash {
+    std::uint64_t h = hash64(nullptr, 0);
+    std::uint8_t tail[8] = {};
+    std::size_t tail_n = 0;
+    void feed(const std::uint8_t* p, std::size_t n) {
+        if (tail_n) {
+            const std::size_t k = n < 8 - tail_n ? n : 8 - tail_n;
+            for (std::size_t i = 0; i < k; ++i) tail[tail_n + i] = p[i];
+            tail_n += k, p += k, n -= k;
+            if (tail_n < 8) return;
+            h = hash64(tail, 8, h), tail_n = 0;
+        }
+        const std::size_t whole = n & ~std::size_t(7);
+        h = hash64(p, whole, h);
+        for (std::size_t i = whole; i < n; ++i) tail[i - whole] = p[i];
+        tail_n = n - whole;
+    }
+    std::uint64_t digest() const { return hash64(tail, tail_n, h); }
+};
+
 // One line as the lines part stores it (28 bytes): f32 lo.x, lo.y, hi.x, hi.y, length; u32
 // count; u8 order; 3 zero bytes.
 inline constexpr std::size_t line_record_bytes = 28;

@@ -11,6 +11,7 @@
 #include <functional>
 #include <future>
 #include <thread>
+#include <utility>
 
 #include <unistd.h>
 
@@ -62,7 +63,9 @@ struct Sink {
         room(k);
         std::memcpy(buf.data() + n, p, k);
         n += k;
+        if (index) index->feed(static_cast<const std::uint8_t*>(p), k);
     }
+    ConcatHash* index = nullptr;  // also fed every byte while set (the lines part's index checksum)
     template <class T> void put(T v) { bytes(&v, sizeof(T)); }
     std::uint64_t total = 0;  // bytes handed over so far
     // Ends the network part: zeros up to a multiple of 8 bytes, its checksum (network_hash:
@@ -178,8 +181,10 @@ void put_line_set(Sink& w, const DrapedLineSet& set) {
         w.put(l.count), w.put(l.order), w.put(std::uint8_t(0)), w.put(std::uint16_t(0));
     }
     constexpr std::size_t per = std::size_t(1) << 16;  // vertices a piece, so the buffer stays 4 MiB
+    ConcatHash* index = std::exchange(w.index, nullptr);  // the vertices are not in the index checksum
     for (std::size_t i = 0; i < set.vertices.size(); i += per)
         w.bytes(set.vertices.data() + i, std::min(per, set.vertices.size() - i) * sizeof(DrapedVertex));
+    w.index = index;
     const LineIndex& x = set.index;
     w.put(x.origin.x), w.put(x.origin.y), w.put(x.cell), w.put(std::uint32_t(x.level_cols.size()));
     for (std::size_t k = 0; k < x.level_cols.size(); ++k) w.put(x.level_cols[k]), w.put(x.level_rows[k]);
@@ -190,12 +195,16 @@ void put_line_set(Sink& w, const DrapedLineSet& set) {
 
 // The lines part: fingerprint (again, so it is checked alone), grid, origin, creases, ridges.
 void put_lines(Sink& w, const DrainageDb& db) {
+    ConcatHash index;
+    w.index = &index;
     put_fingerprint(w, db.fingerprint);
     w.put(std::uint32_t(0));
     w.put(db.cols), w.put(db.rows), w.put(db.factor), w.put(std::uint32_t(0));
     w.put(db.origin.x), w.put(db.origin.y);
     put_line_set(w, db.creases);
     put_line_set(w, db.ridges);
+    w.index = nullptr;
+    w.put(index.digest());
 }
 
 // `w` may have handed out bytes when it throws.

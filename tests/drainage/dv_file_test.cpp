@@ -194,11 +194,12 @@ TEST(DvFile, CompactLayoutSizeAndShapeCheck) {
     ASSERT_GT(junction_ends, 0u);
     // header 100 + WKT + positions byte, counts 40, branches 5 B (count, link, order, basin,
     // head_acc: one byte each here), stored vertices 12 B, divides 4 + 12 B, zeros to a multiple
-    // of 8, network hash 8; lines part: header 72, the two sets, hash 8
+    // of 8, network hash 8; lines part: header 72, the two sets, index hash 8, hash 8
     const std::size_t network = 100 + db.crs_wkt.size() + 1 + 40 + 5 * db.branches.size() +
                                 12 * (db.vertices.size() - junction_ends) + 4 * db.divides.size() +
                                 12 * db.divide_vertices.size();
-    const std::size_t expect = (network + 7) / 8 * 8 + 8 + 72 + line_set_bytes(db.creases) + line_set_bytes(db.ridges) + 8;
+    const std::size_t expect =
+        (network + 7) / 8 * 8 + 8 + 72 + line_set_bytes(db.creases) + line_set_bytes(db.ridges) + 8 + 8;
     EXPECT_EQ(encode_drainage_db(db).size(), expect);
     EXPECT_EQ(db.creases.index.level_cols.size(), db.creases.index.level_rows.size());
     EXPECT_GE(db.creases.index.level_cols.size(), 1u);
@@ -338,10 +339,12 @@ TEST(DvFile, LinesPartReadAloneAndChecked) {
 }
 
 // The render path's read of the lines part (read_drainage_line_index): the line records and
-// index as the whole read gives them, no vertices held (they are read back from the file), every
-// byte of the part hashed: a bit flipped in the vertex arrays, a truncation, hostile counts and a
-// stale fingerprint are found as by the whole read.
-TEST(DvFile, LineIndexReadLeavesVerticesInTheFileAndChecksEveryByte) {
+// index as the whole read gives them, no vertices read or held (they are read back from the file
+// as frames need them), what it reads checked by the index checksum: a bit flipped in the
+// fingerprint, a line record, the index or the checksum, a truncation, hostile counts and a stale
+// fingerprint are found as by the whole read; a bit flipped in the vertex arrays is found by the
+// whole read (penink drainage, DvParts) only.
+TEST(DvFile, LineIndexReadLeavesVerticesInTheFileAndChecksTheRest) {
     const fs::path d = temp_dir("line_index");
     const DrainageDb db = rough_db();
     const fs::path p = d / "x.dv";
@@ -377,12 +380,21 @@ TEST(DvFile, LineIndexReadLeavesVerticesInTheFileAndChecksEveryByte) {
     };
     const std::size_t vertices[2] = {std::size_t(where.at[0]), std::size_t(where.at[1])};
     ASSERT_GT(vertices[0], lines_at);
-    for (const std::size_t at : {vertices[0], vertices[0] + where.count[0] * 28 / 2 + 3, vertices[1] + 27,
-                                 std::size_t(lines_at + 5), good.size() - 9}) {
+    // the fingerprint, a crease record, the ridges' index (its last byte), the index checksum
+    for (const std::size_t at : {std::size_t(lines_at + 5), std::size_t(lines_at + 88 + 28 * 3 + 2), good.size() - 17,
+                                 good.size() - 9}) {
         std::vector<char> b = good;
         b[at] ^= 0x20;
         spit(p, b);
         EXPECT_EQ(index_error(), pre + "drainage database checksum mismatch (file corrupt)") << at;
+        EXPECT_EQ(read_error(p), pre + "drainage database checksum mismatch (file corrupt)") << at;
+    }
+    for (const std::size_t at : {vertices[0], vertices[0] + where.count[0] * 28 / 2 + 3, vertices[1] + 27}) {
+        std::vector<char> b = good;
+        b[at] ^= 0x20;
+        spit(p, b);
+        EXPECT_EQ(index_error(), "no error") << at;
+        EXPECT_EQ(read_error(p), pre + "drainage database checksum mismatch (file corrupt)") << at;
     }
     std::vector<char> b = good;
     b[lines_at / 2] ^= 0x04;  // the network part is not the render's
