@@ -390,10 +390,10 @@ TEST(CreasesRender, CorruptCacheIsRebuilt) {
     const Cleanup cleanup{dir};
     std::string good;
     const RunResult r = render_with_damaged_cache(dir, good, [](std::string b) {
-        std::uint64_t lines_at = 0;  // the part a render reads: the creases and ridges
+        std::uint64_t lines_at = 0;  // the part a render reads: the creases' and ridges' records and index
         std::memcpy(&lines_at, b.data() + 24, 8);
-        const std::size_t at = std::size_t(lines_at) + (b.size() - std::size_t(lines_at)) / 2;
-        b[at] = char(b[at] ^ 0x40);  // one bit in the middle of it
+        const std::size_t at = std::size_t(lines_at) + 88 + 28 * 5 + 1;  // one bit of the sixth crease's record
+        b[at] = char(b[at] ^ 0x40);
         return b;
     });
     ASSERT_EQ(r.code, 0) << r.output;
@@ -690,10 +690,10 @@ TEST(CreasesRender, DecimationKeepsVerticesHalfAPixelApart) {
     EXPECT_GT(checked, 1000u);
 }
 
-// The render path's cache read (load_or_build_drainage with `in_file`) checks every byte of the
-// lines part: one bit flipped in the creases' vertices is found and the cache rebuilt, after
-// which the file is used with its vertices left in it.
-TEST(CreasesRender, StreamedCacheReadRebuildsACorruptVertex) {
+// The render path's cache read (load_or_build_drainage with `in_file`) checks what it reads, the
+// line records and index: one bit flipped in a crease's record is found and the cache rebuilt,
+// after which the file is used with its vertices left in it.
+TEST(CreasesRender, StreamedCacheReadRebuildsACorruptRecord) {
     const fs::path dir = volcano_dir("streamed_corrupt");
     const Cleanup cleanup{dir};
     ASSERT_EQ(run_penink("drainage volcano.asc -q", dir).code, 0);
@@ -703,7 +703,9 @@ TEST(CreasesRender, StreamedCacheReadRebuildsACorruptVertex) {
     read_drainage_line_index(cache.string(), nullptr, where);
     ASSERT_GT(where.count[0], 100u);
     std::string bad = good;
-    const std::size_t at = std::size_t(where.at[0] + where.count[0] / 2 * sizeof(DrapedVertex) + 5);
+    std::uint64_t lines_at = 0;
+    std::memcpy(&lines_at, good.data() + 24, 8);
+    const std::size_t at = std::size_t(lines_at) + 88 + 28 * 7 + 5;  // the eighth crease's record
     bad[at] = char(bad[at] ^ 0x10);
     std::ofstream(cache, std::ios::binary) << bad;
     std::vector<std::string> log;
