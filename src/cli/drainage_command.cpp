@@ -131,7 +131,7 @@ int run(const DrainageCommand& cmd, std::ostream& log) {
                                db.rows, valid, res);
     }
     std::string terrain_cache;
-    if (cmd.output.empty()) {  // render's caches: the terrain cache beside the drainage database too
+    if (out == drainage_cache_path(cmd.dem)) {  // render's caches: the terrain cache beside the drainage database too
         timer.next("terrain cache");
         terrain_cache = terrain_cache_path(cmd.dem);
         open_stored_terrain(cmd.dem, Log{});  // kept when valid, else built and written

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 
@@ -118,11 +119,17 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log) {
         throw;
     }
     std::string why;
-    if (std::optional<StoredTerrain> cached = read_terrain_cache(path, key, &why)) {
-        cached->meta.source = dem_path;
-        log.info("terrain: using cached " + path + " (" + std::to_string(cached->meta.cols) + "x" +
-                 std::to_string(cached->meta.rows) + " nodes, " + std::to_string(int(ms_since(t0))) + " ms)");
-        return std::move(*cached);
+    // Beside the DEM first (where `penink drainage` left it, in a folder render may not write),
+    // then where render keeps it.
+    for (const std::string& p : {dem_path + ".lod", path}) {
+        if (p != path && !std::filesystem::exists(p)) continue;
+        if (std::optional<StoredTerrain> cached = read_terrain_cache(p, key, &why)) {
+            cached->meta.source = dem_path;
+            log.info("terrain: using cached " + p + " (" + std::to_string(cached->meta.cols) + "x" +
+                     std::to_string(cached->meta.rows) + " nodes, " + std::to_string(int(ms_since(t0))) + " ms)");
+            return std::move(*cached);
+        }
+        if (p == path) break;
     }
     log.info("terrain: " + path + ": " + why + "; building");
     StageProgress progress(std::cerr, stderr_is_terminal(), "building terrain cache");

@@ -52,7 +52,8 @@ struct SceneTerrain {
     }
 };
 
-// The DEM's stored terrain (terrain_cache_path): mapped when the cache is valid, else the DEM
+// The DEM's stored terrain: mapped when a valid cache lies beside the DEM (`<dem>.lod`, even in a
+// folder render cannot write) or at terrain_cache_path, else the DEM
 // read unexaggerated, its pyramid built and the cache written (a cache that cannot be written is
 // logged and the terrain kept in memory). Throws penink::Error (stage "input") for a DEM that
 // cannot be read and (stage "scene") for a vertical exaggeration that is not a finite number > 0.
