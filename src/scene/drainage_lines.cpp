@@ -274,7 +274,8 @@ DrainageLineData prepare_drainage_lines(const DrainageLineSource& source, const 
 float line_culling_px(const Scene& scene) {
     const double spacing = std::min(scene.creases.spacing_px, scene.ridges.spacing_px);
     const double sketch = std::max(scene.crease_sketch_px, scene.ridge_sketch_px);
-    return float(std::max(0.0, 0.5 * (3.0 * spacing - 2.0 * sketch - 1.0)));
+    const double margin = sketch > 0.0 ? 0.5 : 1.0;  // sketch offsets are sized at a line's mean depth
+    return float(std::max(0.0, margin * (3.0 * spacing - 2.0 * sketch - 1.0)));
 }
 
 DrainageLines::DrainageLines(const GlApi& gl, DrainageLineData data)
