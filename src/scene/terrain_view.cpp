@@ -147,8 +147,16 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log) {
         log.info("terrain: wrote " + path + " (" + std::to_string(int(lap_ms(t0))) + " ms)");
     } catch (const Error& e) {
         log.info(std::string(e.what()) + "; using the terrain built in memory");
+        progress.update("done", 1.0);
+        return stored;
     }
     progress.update("done", 1.0);
+    // Drawn from the file as a warm render would (the same values), so the memory held is what
+    // frames touch, not the DEM, while a drainage build that follows holds its own copy.
+    if (std::optional<StoredTerrain> mapped = read_terrain_cache(path, key)) {
+        mapped->meta.source = dem_path;
+        return std::move(*mapped);
+    }
     return stored;
 }
 
