@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Scale: time and peak memory of one `penink render DEM --width 1000 --height 750 -o x.svg`
-# (silhouettes, creases, ridges; auto-framed camera) against the DEM's size, cold (no drainage
-# cache: the database is built and written) and warm (cache present), next to the bundled
+# (silhouettes, creases, ridges; auto-framed camera) against the DEM's size, cold (no caches:
+# the terrain cache and the drainage database are built and written) and warm (both present), next to the bundled
 # volcano measured in the same run, alternately, so that a slow spell of the machine moves
 # both. DEMs: examples/volcano.asc (5 k cells), ../shared/data/jacksboro.tif (139 k, a geographic
 # DEM projected to UTM) and jacksboro refined with GDAL's cubic resampling (`gdal_translate -r
@@ -51,7 +51,7 @@ echo "|---|---|---|---|---|---|---|"
 for dem in volcano.asc jacksboro.tif jacksboro_200.tif jacksboro_500.tif jacksboro_1000.tif; do
   path="$TMP/$dem"
   cells=$(gdalinfo "$path" 2>/dev/null | awk '/^Size is/ {gsub(",", ""); print ($3 - 1) * ($4 - 1)}')
-  rm -f "$path.dv"
+  rm -f "$path.dv" "$path.lod"
   read -r cs cm < <(run "$path")
   read -r ws wm vs < <(warm "$path")
   echo "| $dem | $cells | $cs | $cm | $ws | $wm | $(awk -v a="$ws" -v b="$vs" 'BEGIN {printf "%.2f", a / b}') |"
