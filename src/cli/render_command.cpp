@@ -41,7 +41,9 @@ void log_finish(const FinishStats& stats, const Log& log) {
         s.precision(0);
         s << layer_name(k) << ": " << l.strokes_in << " strokes -> " << l.joined << " joined -> "
           << l.strokes << " lines, " << l.length << " px drawn, pen-up " << l.travel_before
-          << " px -> " << l.travel_after << " px ordered";
+          << " px -> " << l.travel_after << " px ordered; " << l.small_loops << " loops under 25 px, ";
+        s.precision(1);
+        s << 100.0 * l.doubled_share << " % doubled (within 1.5 px for 4 px or more)";
         log.info(s.str());
     }
 }

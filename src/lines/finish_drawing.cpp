@@ -7,6 +7,7 @@
 
 #include "lines/chain_segments.hpp"
 #include "lines/distance_thinning.hpp"
+#include "lines/line_metrics.hpp"
 #include "lines/plotter_order.hpp"
 #include "lines/random_bits.hpp"
 #include "lines/simplify.hpp"
@@ -15,15 +16,6 @@
 namespace penink {
 
 namespace {
-
-double stroke_length(const Stroke& s) {
-    double l = 0.0;
-    for (std::size_t i = 1; i < s.points.size(); ++i) {
-        const glm::vec2 d = s.points[i] - s.points[i - 1];
-        l += std::sqrt(double(d.x) * d.x + double(d.y) * d.y);
-    }
-    return l;
-}
 
 float mean_depth(const Stroke& s) {
     if (s.depth.empty()) return 0.0f;
@@ -74,6 +66,8 @@ std::vector<Stroke> finish_strokes(std::vector<Stroke> strokes, const FinishOpti
     strokes = join_and_clean(std::move(strokes), options, layer);
     stats.joined = strokes.size();
     thin_by_distance(strokes, options, layer, max_depth);
+    const LineMetrics m = line_metrics(strokes);
+    stats.small_loops = m.small_loops, stats.doubled_share = m.doubled_share();
     strokes = sketch_all(strokes, options, layer);
     const PlotterStats ps = order_for_plotter(strokes, options.home);
     stats.strokes = strokes.size();
