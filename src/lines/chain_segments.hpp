@@ -27,6 +27,14 @@ struct ChainParams {
     float max_turn_deg = 180.0f;  // chains also end at a node turning more than this
     StrengthRule strength = StrengthRule::mean;
     std::string kind = "feature-edge";  // Stroke::kind of chain_segments' output
+    // Occlusion-aware joins, for contours whose depth is the occluding surface's (silhouettes):
+    // at a node of three or more ends, the two ends whose strokes are nearest there (the median
+    // depth of their first five points, within 10 % of each other; the straighter pair among
+    // equally near ones) continue through it and the others end there, as an illustrator draws a
+    // T-junction: the occluding contour goes on, the occluded one stops on it. A node of two ends
+    // that lies on a third stroke (within `tolerance`) is such a T too and is not joined through,
+    // so a sliver of far terrain between two junctions stays an open upper edge, never a loop.
+    bool occlusion = false;
 };
 
 // Polylines from segments. Joint points are the mean of the merged end points (position and

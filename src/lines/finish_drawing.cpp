@@ -7,6 +7,7 @@
 
 #include "lines/chain_segments.hpp"
 #include "lines/distance_thinning.hpp"
+#include "lines/doubled_lines.hpp"
 #include "lines/line_metrics.hpp"
 #include "lines/plotter_order.hpp"
 #include "lines/random_bits.hpp"
@@ -28,11 +29,12 @@ float mean_depth(const Stroke& s) {
 std::vector<Stroke> join_and_clean(std::vector<Stroke> strokes, const FinishOptions& o, const LayerFinish& l) {
     for (Stroke& s : strokes)
         if (s.depth.size() != s.points.size()) s.depth.resize(s.points.size(), 0.0f);
-    strokes = simplify_strokes(join_strokes(std::move(strokes), o.join_tolerance), o.simplify_tolerance);
+    ChainParams join;
+    join.tolerance = o.join_tolerance, join.occlusion = l.occlusion_joins;
+    strokes = simplify_strokes(join_strokes(std::move(strokes), join), o.simplify_tolerance);
     const std::size_t before = strokes.size();
     std::erase_if(strokes, [&](const Stroke& s) { return s.points.empty() || stroke_length(s) < l.min_length; });
-    if (strokes.size() != before)
-        strokes = simplify_strokes(join_strokes(std::move(strokes), o.join_tolerance), o.simplify_tolerance);
+    if (strokes.size() != before) strokes = simplify_strokes(join_strokes(std::move(strokes), join), o.simplify_tolerance);
     return strokes;
 }
 
@@ -60,11 +62,25 @@ std::vector<Stroke> sketch_all(const std::vector<Stroke>& strokes, const FinishO
 
 }  // namespace
 
-std::vector<Stroke> finish_strokes(std::vector<Stroke> strokes, const FinishOptions& options,
-                                   const LayerFinish& layer, double max_depth, LayerFinishStats& stats) {
+namespace {
+
+// Joined, cleaned and merged (yielding to `above`).
+std::vector<Stroke> clean_layer(std::vector<Stroke> strokes, const FinishOptions& options, const LayerFinish& layer,
+                                const std::vector<Stroke>& above, LayerFinishStats& stats) {
     stats.strokes_in = strokes.size();
     strokes = join_and_clean(std::move(strokes), options, layer);
+    if (layer.merge_px > 0.0f) {
+        strokes = merge_doubled(std::move(strokes), layer.merge_px, layer.merge_run_px, above);
+        std::erase_if(strokes, [&](const Stroke& s) { return s.points.size() < 2 || stroke_length(s) < layer.min_length; });
+    }
+    std::erase_if(strokes, [&](const Stroke& s) { return is_closed(s) && stroke_extent(s) < 4.0f * layer.min_length; });
     stats.joined = strokes.size();
+    return strokes;
+}
+
+// Distance thinning, metrics, sketch and plotter order of cleaned strokes.
+std::vector<Stroke> finish_cleaned(std::vector<Stroke> strokes, const FinishOptions& options, const LayerFinish& layer,
+                                   double max_depth, LayerFinishStats& stats) {
     thin_by_distance(strokes, options, layer, max_depth);
     const LineMetrics m = line_metrics(strokes);
     stats.small_loops = m.small_loops, stats.doubled_share = m.doubled_share();
@@ -77,6 +93,13 @@ std::vector<Stroke> finish_strokes(std::vector<Stroke> strokes, const FinishOpti
     return strokes;
 }
 
+}  // namespace
+
+std::vector<Stroke> finish_strokes(std::vector<Stroke> strokes, const FinishOptions& options,
+                                   const LayerFinish& layer, double max_depth, LayerFinishStats& stats) {
+    return finish_cleaned(clean_layer(std::move(strokes), options, layer, {}, stats), options, layer, max_depth, stats);
+}
+
 FinishStats finish_drawing(Drawing& drawing, const FinishOptions& options) {
     double max_depth = 0.0;
     for (const Layer& l : drawing.layers)
@@ -84,9 +107,19 @@ FinishStats finish_drawing(Drawing& drawing, const FinishOptions& options) {
             for (float d : s.depth)
                 if (std::isfinite(d)) max_depth = std::max(max_depth, double(d));
     FinishStats stats;
+    const std::size_t sil = static_cast<std::size_t>(LayerKind::silhouettes);
+    std::vector<std::size_t> order{sil};  // the silhouettes first: creases and ridges yield to them
+    for (std::size_t i = 0; i < drawing.layers.size(); ++i)
+        if (i != sil) order.push_back(i);
+    for (const std::size_t i : order) {
+        const bool yields = i == static_cast<std::size_t>(LayerKind::creases) || i == static_cast<std::size_t>(LayerKind::ridges);
+        static const std::vector<Stroke> none;
+        drawing.layers[i].strokes = clean_layer(std::move(drawing.layers[i].strokes), options, options.layers[i],
+                                                yields ? drawing.layers[sil].strokes : none, stats.layers[i]);
+    }
     for (std::size_t i = 0; i < drawing.layers.size(); ++i) {
         Layer& l = drawing.layers[i];
-        l.strokes = finish_strokes(std::move(l.strokes), options, options.layers[i], max_depth, stats.layers[i]);
+        l.strokes = finish_cleaned(std::move(l.strokes), options, options.layers[i], max_depth, stats.layers[i]);
     }
     return stats;
 }

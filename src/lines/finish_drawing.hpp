@@ -36,8 +36,17 @@ struct LayerFinish {
     float overshoot = 0.0f;  // extension of both ends of open strokes, px
     int repeat = 1;          // times each stroke is drawn (>= 1), each perturbed on its own
     float keep_far = 1.0f;   // share of strokes kept at the far distance (1 = no thinning)
-    float min_length = 2.0f; // px: shorter strokes (pen-down length) are dropped
+    float min_length = 2.0f; // px: shorter strokes (pen-down length) are dropped, and closed ones
+                             // less than 4 min_length across (specks, slivers); 0 keeps both
     SketchSpace space = SketchSpace::image;
+    // Joins that know occlusion (ChainParams::occlusion): contours whose depth is the occluding
+    // surface's; finish_options sets it for the silhouettes.
+    bool occlusion_joins = false;
+    // Doubled lines (merge_doubled): a stretch running within merge_px of a stronger stroke for
+    // merge_run_px or more is cut out; in finish_drawing creases and ridges also yield to the
+    // silhouettes. 0: no merging (finish_options sets 1.5 px).
+    float merge_px = 0.0f;
+    float merge_run_px = 4.0f;
 };
 
 struct FinishOptions {
@@ -72,9 +81,11 @@ struct FinishStats {
 };
 
 // Finishes every layer's strokes in place (surface fill rings are left alone). Steps per layer:
-// join (same kind, junctions of >= 3 ends kept) -> simplify -> drop strokes shorter than the
-// layer's min_length -> join again (drops can leave 2-end nodes) -> distance thinning -> sketch /
-// overshoot / repeat (image-space layers) -> plotter order from `home`.
+// join (same kind, junctions of >= 3 ends kept, or with occlusion_joins the nearer contour
+// continued through them) -> simplify -> drop strokes shorter than the layer's min_length -> join
+// again (drops can leave 2-end nodes) -> merge doubled lines (the silhouettes first; creases and
+// ridges yield to them) -> drop short strokes again -> distance thinning -> sketch / overshoot /
+// repeat (image-space layers) -> plotter order from `home`.
 FinishStats finish_drawing(Drawing& drawing, const FinishOptions& options);
 
 // Strokes of one layer through the same steps; `max_depth` is the drawing's largest depth.

@@ -1,8 +1,38 @@
 #include "lines/scored_polylines.hpp"
 
+#include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
 
 namespace penink {
+
+void whole_or_nothing_by_distance(std::vector<float>& scores, const std::vector<glm::vec3>& positions,
+                                  const std::vector<VertexRun>& runs, const glm::dvec3& eye,
+                                  double attenuation_per_metre) {
+    if (!(attenuation_per_metre > 0.0)) return;
+    const auto hidden = [&](std::uint32_t i) { return scores[i] < -1e29f; };
+    const auto without = [&](std::uint32_t i) {  // the score with the attenuation added back
+        return double(scores[i]) + attenuation_per_metre * glm::length(glm::dvec3(positions[i]) - eye);
+    };
+    for (const VertexRun& run : runs) {
+        const std::uint32_t end = run.first + run.count;
+        bool cut = false;
+        for (std::uint32_t i = run.first; i < end && !cut; ++i) cut = !hidden(i) && scores[i] < 0.0f && without(i) >= 0.0;
+        if (!cut) continue;
+        double with_len = 0.0, without_len = 0.0;
+        for (std::uint32_t i = run.first + 1; i < end; ++i) {
+            if (hidden(i) || hidden(i - 1)) continue;
+            const double len = glm::length(glm::dvec3(positions[i]) - glm::dvec3(positions[i - 1]));
+            if (without(i) >= 0.0 && without(i - 1) >= 0.0) without_len += len;
+            if (scores[i] >= 0.0f && scores[i - 1] >= 0.0f) with_len += len;
+        }
+        const bool whole = with_len >= 0.5 * without_len;
+        for (std::uint32_t i = run.first; i < end; ++i) {
+            if (hidden(i) || without(i) < 0.0) continue;
+            if (whole && scores[i] < 0.0f) scores[i] = 0.0f;
+            if (!whole) scores[i] = -1.0f;
+        }
+    }
+}
 
 std::vector<VertexRun> drawn_runs(const std::vector<glm::vec3>& positions, const std::vector<float>& scores,
                                   const std::vector<VertexRun>& runs, const Camera& camera) {

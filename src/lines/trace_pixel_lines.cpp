@@ -157,13 +157,20 @@ std::vector<PixelChain> chain_skeleton(const PixelMask& skeleton, int min_pixels
 namespace {
 
 // Depths of a chain; unknown values filled from the nearest known point along the chain.
-std::vector<float> chain_depth(const PixelChain& c, const DepthImage& d) {
+std::vector<float> chain_depth(const PixelChain& c, const DepthImage& d, int radius) {
     std::size_t n = c.points.size();
     std::vector<float> z(n, 0.0f);
     if (is_empty(d)) return z;
     std::vector<int> known;
     for (std::size_t i = 0; i < n; ++i) {
         z[i] = sample_depth(d, c.pixel[i].x, c.pixel[i].y);
+        for (int dy = -radius; dy <= radius; ++dy)
+            for (int dx = -radius; dx <= radius; ++dx) {
+                const int x = c.pixel[i].x + dx, y = c.pixel[i].y + dy;
+                if (x < 0 || y < 0 || x >= d.width || y >= d.height) continue;
+                const float v = d.depth[std::size_t(y) * std::size_t(d.width) + std::size_t(x)];
+                if (std::isfinite(v) && !(v >= z[i])) z[i] = v;
+            }
         if (std::isfinite(z[i])) known.push_back(static_cast<int>(i));
     }
     if (known.empty()) return std::vector<float>(n, 0.0f);
@@ -197,7 +204,7 @@ std::vector<Stroke> trace_pixel_lines(const PixelMask& mask, const DepthImage& d
     std::vector<Stroke> out;
     for (PixelChain& c : chain_skeleton(skel, params.min_pixels)) {
         Stroke s;
-        s.depth = chain_depth(c, depth);
+        s.depth = chain_depth(c, depth, std::max(params.depth_radius, 0));
         s.points = std::move(c.points);
         s.strength = params.strength;
         s.kind = params.kind;

@@ -19,6 +19,10 @@ struct TraceParams {
     bool thin = true;            // false: the mask already is a one-pixel 8-connected skeleton
     std::string kind = "silhouette";  // Stroke::kind of the result
     float strength = 1.0f;       // Stroke::strength of the result
+    // > 0: a point's depth is the nearest valid depth within this many pixels (the occluding
+    // surface's, for contours: the skeleton may run on either side of a depth step); 0: its own
+    // pixel's (sample_depth).
+    int depth_radius = 0;
 };
 
 // One traced chain before depth sampling: points in image pixels; pixel[i] is the skeleton
@@ -37,7 +41,7 @@ struct PixelChain {
 std::vector<PixelChain> chain_skeleton(const PixelMask& skeleton, int min_pixels);
 
 // Full pipeline: thin (unless params.thin is false), prune spurs, chain, sample depth.
-// Depth: sample_depth at each point's pixel; points with no valid depth within 3x3 take the
+// Depth: sample_depth at each point's pixel (or the nearest within params.depth_radius); points with no valid depth within 3x3 take the
 // depth of the nearest point along the chain that has one; chains with none at all (or an
 // empty DepthImage) get depth 0 ("unknown"). Throws penink::Error when the depth image is
 // non-empty and its size differs from the mask's.

@@ -297,14 +297,19 @@ void DrainageLines::draw(const Camera& camera, const Scene& scene, GLuint toward
     frame.max_distance = max_distance;
     frame.toward_texture = toward_texture;
     std::vector<float> scores;
+    const auto attenuation = [&](const CreaseParams& p) {  // per metre of eye distance
+        return max_distance > 0.0f ? p.distance_attenuation / double(max_distance) : 0.0;
+    };
     if (scene.creases.enabled) {
         times.dm = creases_.pass->run(frame, scene.creases, scores);
+        whole_or_nothing_by_distance(scores, creases_.positions, creases_.runs, camera.eye, attenuation(scene.creases));
         drawing.layer(LayerKind::creases).strokes = thin_by_spacing(
             line_strokes(creases_, scores, camera, "crease", scene.crease_sketch_px, scene.crease_repeat, scene.seed),
             float(scene.creases.spacing_px));
     }
     if (scene.ridges.enabled) {
         times.ridges = ridges_.pass->run(frame, scene.ridges, scores);
+        whole_or_nothing_by_distance(scores, ridges_.positions, ridges_.runs, camera.eye, attenuation(scene.ridges));
         drawing.layer(LayerKind::ridges).strokes = thin_by_spacing(
             line_strokes(ridges_, scores, camera, "ridge", scene.ridge_sketch_px, scene.ridge_repeat, scene.seed),
             float(scene.ridges.spacing_px));

@@ -25,6 +25,8 @@ FinishOptions finish_options(const Style& style, std::uint64_t seed, bool object
         lf.repeat = ls.repeat, lf.keep_far = float(ls.keep_far), lf.min_length = float(ls.min_length);
         if (object_space_terrain_lines && (k == LayerKind::creases || k == LayerKind::ridges))
             lf.space = SketchSpace::object;
+        lf.occlusion_joins = k == LayerKind::silhouettes;
+        lf.merge_px = 1.5f;
     }
     return f;
 }

@@ -58,6 +58,7 @@ void add_frame_lines(const FrameImages& images, const SurfaceMesh& mesh, const C
                      Drawing& drawing) {
     TraceParams sil;
     sil.min_pixels = 3, sil.max_spur = 2, sil.kind = "silhouette";
+    sil.depth_radius = 1;  // the occluding surface's depth (occlusion-aware joins)
     std::vector<Stroke> strokes = simplify_strokes(trace_pixel_lines(images.silhouettes, images.toward, sil), 0.5f);
     const PixelMask cover = coverage_mask(images);
     Layer& surface = drawing.layer(LayerKind::surface);

@@ -89,3 +89,38 @@ TEST(ScoredPolylines, VerticesBehindTheEyeSplitTheRun) {
     EXPECT_EQ(strokes[1].points.size(), 3u);
     EXPECT_NEAR(strokes[1].points[0].x, 100.0 + p[3].x, 1e-3);
 }
+
+// Far creases whole or not at all: a run along x away from the eye whose score, less the
+// attenuation, hovers about 0 (dashes) is drawn whole when most of it passes, dropped when most
+// of it fails; a run the attenuation does not cut and hidden vertices are left alone.
+TEST(ScoredPolylines, DistanceAttenuationDrawsRunsWholeOrNotAtAll) {
+    std::vector<glm::vec3> pos;
+    for (int i = 0; i < 20; ++i) pos.push_back({float(1000 + 10 * i), 0.0f, 0.0f});
+    const glm::dvec3 eye(0.0);
+    const double per_metre = 1e-4;  // 0.1 at 1000 m
+    const std::vector<VertexRun> runs{{0, 20}};
+    auto scores_with = [&](auto base) {  // score = base(i) - attenuation
+        std::vector<float> s;
+        for (int i = 0; i < 20; ++i) s.push_back(float(base(i) - per_metre * pos[std::size_t(i)].x));
+        return s;
+    };
+    // every 4th vertex falls under the threshold only through the attenuation: drawn whole
+    std::vector<float> s = scores_with([](int i) { return i % 4 == 0 ? 0.05 : 0.5; });
+    whole_or_nothing_by_distance(s, pos, runs, eye, per_metre);
+    for (float v : s) EXPECT_GE(v, 0.0f);
+    // only every 4th vertex passes with the attenuation: none of it
+    s = scores_with([](int i) { return i % 4 == 0 ? 0.5 : 0.05; });
+    whole_or_nothing_by_distance(s, pos, runs, eye, per_metre);
+    for (float v : s) EXPECT_LT(v, 0.0f);
+    // not cut by the attenuation (what fails, fails without it too): as it was
+    s = scores_with([](int i) { return i < 10 ? 0.5 : -0.01; });
+    const std::vector<float> before = s;
+    whole_or_nothing_by_distance(s, pos, runs, eye, per_metre);
+    EXPECT_EQ(s, before);
+    // hidden vertices stay hidden
+    s = scores_with([](int i) { return i % 4 == 0 ? 0.05 : 0.5; });
+    s[5] = -1.0e30f;
+    whole_or_nothing_by_distance(s, pos, runs, eye, per_metre);
+    EXPECT_EQ(s[5], -1.0e30f);
+    EXPECT_GE(s[4], 0.0f);
+}
