@@ -4,10 +4,13 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 #include <stdexcept>
 
 #include "core/closest_name.hpp"
 #include "core/error.hpp"
+#include "core/printable_text.hpp"
 #include "export/style.hpp"
 
 namespace penink {
@@ -192,9 +195,14 @@ void apply_style_overrides(Style& style, const toml::value& table, const std::st
 Style load_style(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error("style", path, "cannot open style file");
+    const std::string text{std::istreambuf_iterator<char>(in), {}};
+    // TOML is UTF-8; toml11 3.7 reads past its buffer reporting some sequences that are not
+    if (const std::size_t bad = invalid_utf8_at(text); bad != npos_utf8)
+        throw Error("style", path, "invalid TOML: not UTF-8 text (byte " + std::to_string(bad + 1) + ")");
     toml::value root;
     try {
-        root = toml::parse(in, path);
+        std::istringstream s(text);
+        root = toml::parse(s, path);
     } catch (const std::exception& e) {
         throw Error("style", path, "invalid TOML: " + first_line(e.what()));
     }

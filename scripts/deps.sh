@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages penink builds, runs and tests with (idempotent: skips apt
-# when every package is already installed). Used by scripts/demo.sh and scripts/test.sh.
+# when every package is already installed). Used by scripts/demo.sh and scripts/test.sh;
+# `deps.sh fuzz` (scripts/fuzz.sh) adds clang, which the fuzz targets alone need.
 set -euo pipefail
 pkgs=(
   cmake g++ make pkg-config            # build
@@ -15,6 +16,9 @@ pkgs=(
   libgtest-dev libbenchmark-dev        # tests, benchmarks
   librsvg2-bin ghostscript poppler-utils         # output checks in tests
 )
+if [ "${1:-}" = fuzz ]; then
+  pkgs+=(clang)                        # libFuzzer and the sanitizers' runtimes (scripts/fuzz.sh)
+fi
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

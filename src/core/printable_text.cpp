@@ -25,6 +25,19 @@ std::size_t utf8_length(const std::string& s, std::size_t i) {
 
 }  // namespace
 
+std::size_t invalid_utf8_at(const std::string& text) {
+    for (std::size_t i = 0; i < text.size();) {
+        if (static_cast<unsigned char>(text[i]) < 0x80) {
+            ++i;
+            continue;
+        }
+        const std::size_t n = utf8_length(text, i);
+        if (n == 0) return i;
+        i += n;
+    }
+    return npos_utf8;
+}
+
 std::string printable_text(const std::string& text, std::size_t max_chars) {
     std::string out;
     std::size_t chars = 0;

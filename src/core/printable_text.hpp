@@ -9,4 +9,9 @@ namespace penink {
 
 std::string printable_text(const std::string& text, std::size_t max_chars = 60);
 
+// Offset of the first byte of `text` that does not start a well-formed UTF-8 sequence (ASCII
+// included), npos when there is none.
+std::size_t invalid_utf8_at(const std::string& text);
+inline constexpr std::size_t npos_utf8 = std::size_t(-1);
+
 }  // namespace penink

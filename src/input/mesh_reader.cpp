@@ -14,6 +14,7 @@
 #include <CGAL/Simple_cartesian.h>
 
 #include "core/error.hpp"
+#include "core/printable_text.hpp"
 
 namespace penink {
 namespace {
@@ -78,6 +79,116 @@ void check_coordinates(const std::vector<Point3>& pts, const std::string& path) 
         }
 }
 
+// The text of an ASCII OFF file read into a polygon soup (CGAL's OFF reader reads past its arrays
+// on a colour line shorter than the header promises, found by fuzzing): an optional header
+// keyword ([ST][C][N]OFF; 4OFF, nOFF and binary OFF are refused), the counts nv nf [ne], nv
+// vertex lines (x y z first, anything after ignored: normals, colours, texture coordinates), nf
+// face lines (k, then k indices; a colour after them ignored). # starts a comment. Fails
+// "not a mesh (OFF: WHAT)".
+void read_off(const std::string& path, std::vector<Point3>& pts, std::vector<Polygon>& polys) {
+    std::ifstream in(path, std::ios::binary);
+    auto bad = [&path](const std::string& what) { throw Error("input", path, "not a mesh (OFF: " + what + ")"); };
+    std::string line;
+    int n = 0;
+    // The next line with something on it, comments cut; false at the end.
+    auto next = [&](std::istringstream& words) {
+        while (std::getline(in, line)) {
+            ++n;
+            if (const std::size_t hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+            if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+            words.clear(), words.str(line);
+            return true;
+        }
+        return false;
+    };
+    std::istringstream words;
+    if (!next(words)) bad("empty file");
+    std::string first;
+    words >> first;
+    if (first.size() >= 3 && first.substr(first.size() - 3) == "OFF") {
+        const std::string prefix = first.substr(0, first.size() - 3);
+        if (prefix.find_first_not_of("STCN") != std::string::npos) bad("\"" + printable_text(first, 20) + "\" files are not read");
+        std::string more;
+        if (words >> more) {
+            if (more == "BINARY") bad("binary files are not read");
+            words.clear(), words.str(line.substr(line.find(first) + first.size()));  // counts on the keyword's line
+        } else if (!next(words)) {
+            bad("no counts");
+        }
+    } else {
+        words.clear(), words.str(line);
+    }
+    std::uint64_t nv = 0, nf = 0;
+    if (!(words >> nv >> nf)) bad("line " + std::to_string(n) + ": expected the vertex and face counts");
+    std::error_code ec;
+    const std::uintmax_t size = std::filesystem::file_size(path, ec);
+    if (!ec && nv + nf > size / 2)  // a line of a digit and a newline at least each
+        bad("declares " + std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces, more than its " +
+            std::to_string(size) + " bytes hold");
+    pts.reserve(std::size_t(nv));
+    for (std::uint64_t i = 0; i < nv; ++i) {
+        double x = 0, y = 0, z = 0;
+        if (!next(words) || !(words >> x >> y >> z)) bad("line " + std::to_string(n) + ": expected vertex x y z");
+        pts.emplace_back(x, y, z);
+    }
+    polys.reserve(std::size_t(nf));
+    for (std::uint64_t i = 0; i < nf; ++i) {
+        std::uint64_t k = 0;
+        if (!next(words) || !(words >> k) || k > nv + 2) bad("line " + std::to_string(n) + ": expected a face");
+        Polygon p(static_cast<std::size_t>(k));
+        for (std::size_t& v : p)
+            if (!(words >> v)) bad("line " + std::to_string(n) + ": expected " + std::to_string(k) + " vertex indices");
+        polys.push_back(std::move(p));
+    }
+}
+
+// CGAL's PLY reader writes through the last element of an empty list on a `property` line before
+// any `element` line (a crash), and reserves what the header declares: the header is checked
+// first. Lines up to end_header: "ply", then format, comment, obj_info, element NAME COUNT and
+// property lines, a property only after an element; the elements declared no more than the bytes
+// after the header (each takes one at least). Fails "not a mesh (PLY header: WHAT)".
+void check_ply_header(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    auto bad = [&path](const std::string& what) { throw Error("input", path, "not a mesh (PLY header: " + what + ")"); };
+    std::string line;
+    std::uint64_t header_bytes = 0, elements = 0;
+    bool element = false, ended = false, xyz_ok = true;
+    std::string element_name;
+    for (int n = 1; !ended && n <= 10000 && std::getline(in, line); ++n) {
+        header_bytes += line.size() + 1;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        std::istringstream words(line);
+        std::string key;
+        words >> key;
+        if (n == 1) {
+            if (key != "ply") bad("no \"ply\" line");
+        } else if (key == "element") {
+            std::uint64_t count = 0;
+            if (!(words >> element_name >> count)) bad("line " + std::to_string(n) + ": element without a name and count");
+            elements += count;
+            element = true;
+        } else if (key == "property") {
+            if (!element) bad("line " + std::to_string(n) + ": property before any element");
+            std::string type, name;
+            words >> type >> name;
+            // CGAL reads a vertex's x, y, z as float or double whatever their type (a crash)
+            if (element_name == "vertex" && (name == "x" || name == "y" || name == "z"))
+                xyz_ok = xyz_ok && (type == "float" || type == "float32" || type == "double" || type == "float64");
+        } else if (key == "end_header") {
+            ended = true;
+        } else if (key != "format" && key != "comment" && key != "obj_info") {
+            bad("line " + std::to_string(n) + ": unknown keyword \"" + printable_text(key, 20) + "\"");
+        }
+    }
+    if (!ended) bad("no end_header");
+    if (!xyz_ok) bad("vertex x, y and z must be float or double numbers (CGAL reads no other)");
+    std::error_code ec;
+    const std::uintmax_t size = std::filesystem::file_size(path, ec);
+    if (!ec && elements > size - std::min<std::uintmax_t>(size, header_bytes))
+        bad("declares " + std::to_string(elements) + " elements, more than the " +
+            std::to_string(size - std::min<std::uintmax_t>(size, header_bytes)) + " bytes after it hold");
+}
+
 }  // namespace
 
 std::vector<std::string> scan_obj_face_materials(const std::string& obj_text) {
@@ -129,13 +240,19 @@ TriangleMesh read_mesh(const std::string& path, bool weld) {
     if (ext != ".obj" && ext != ".ply" && ext != ".off")
         throw Error("input", path, "unsupported mesh format \"" + ext + "\" (use .obj, .ply or .off)");
     if (!std::filesystem::is_regular_file(path)) throw Error("input", path, "no such file");
+    if (ext == ".ply") check_ply_header(path);
     std::vector<Point3> pts;
     std::vector<Polygon> polys;
     bool ok = false;
-    try {
-        ok = CGAL::IO::read_polygon_soup(path, pts, polys, CGAL::parameters::verbose(false));
-    } catch (const std::exception&) {
-        ok = false;
+    if (ext == ".off") {
+        read_off(path, pts, polys);
+        ok = !polys.empty();
+    } else {
+        try {
+            ok = CGAL::IO::read_polygon_soup(path, pts, polys, CGAL::parameters::verbose(false));
+        } catch (const std::exception&) {
+            ok = false;
+        }
     }
     // CGAL reports a file with vertices but no faces as a failure: that is a mesh without triangles.
     if (!ok && (pts.empty() || !polys.empty())) throw Error("input", path, "not a mesh (cannot read OBJ/PLY/OFF)");

@@ -1,5 +1,6 @@
-// Triangle meshes read from OBJ, PLY or OFF files (CGAL polygon-soup readers; polygons are
-// triangulated as fans from their first vertex) in the file's own units and frame, plus the
+// Triangle meshes read from OBJ, PLY or OFF files (OBJ and PLY through CGAL's polygon-soup
+// readers, the PLY header checked first; ASCII OFF read here; polygons are triangulated as fans
+// from their first vertex) in the file's own units and frame, plus the
 // per-face material of OBJ `usemtl` groups (scanned here, CGAL drops them).
 // Faces of files without materials all get material 0 named "default".
 #pragma once

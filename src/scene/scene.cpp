@@ -4,12 +4,15 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <limits>
-#include <vector>
 #include <fstream>
+#include <iterator>
+#include <limits>
+#include <sstream>
+#include <vector>
 
 #include "core/closest_name.hpp"
 #include "core/error.hpp"
+#include "core/printable_text.hpp"
 #include "drainage/drainage_build.hpp"
 
 namespace penink {
@@ -55,9 +58,11 @@ const std::vector<KnownTable>& known_tables() {
 void check_known_keys(const toml::value& root, const std::string& file) {
     std::vector<std::string> table_names, root_keys = {"seed"};
     for (const KnownTable& t : known_tables()) table_names.emplace_back(t.name);
-    for (const auto& [key, value] : root.as_table()) {
+    for (const auto& entry : root.as_table()) {
+        const std::string& key = entry.first;
+        const toml::value& value = entry.second;
         const auto t = std::find_if(known_tables().begin(), known_tables().end(),
-                                    [&](const KnownTable& k) { return key == k.name; });
+                                    [&key](const KnownTable& k) { return key == k.name; });
         if (t == known_tables().end()) {
             if (value.is_table()) {
                 const std::string near = closest_name(key, table_names);
@@ -153,9 +158,15 @@ void read_camera(const toml::value& root, SceneCamera& cam, const std::string& f
 Scene parse_scene_file(const std::string& path) {
     Scene s;
     s.file = path;
+    std::ifstream in(path, std::ios::binary);
+    const std::string text{std::istreambuf_iterator<char>(in), {}};
+    // TOML is UTF-8; toml11 3.7 reads past its buffer reporting some sequences that are not
+    if (const std::size_t bad = invalid_utf8_at(text); bad != npos_utf8)
+        throw Error("scene", path, "not a valid TOML scene (not UTF-8 text: byte " + std::to_string(bad + 1) + ")");
     toml::value root;
     try {
-        root = toml::parse(path);
+        std::istringstream s(text);
+        root = toml::parse(s, path);
     } catch (const std::exception& e) {
         std::string what = e.what();
         const auto nl = what.find('\n');

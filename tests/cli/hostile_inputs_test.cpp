@@ -305,3 +305,13 @@ TEST(HostileInputs, StaleCacheThatCannotBeRewrittenIsBuiltInMemoryWithOneWarning
         << r.output;
     EXPECT_TRUE(fs::exists(dir / "out.svg"));
 }
+
+TEST(HostileInputs, FuzzFindingsEndAsErrors) {
+    const auto dir = fresh_dir("hostile_fuzz");
+    write_text(dir / "early.ply", "ply\nformat ascii 1.0\nproperty float z\nelement vertex 1\nend_header\n0\n");
+    expect_refused(dir, "render early.ply -o out.svg",
+                   "penink: input: early.ply: not a mesh (PLY header: line 3: property before any element)");
+    write_text(dir / "bad.toml", "[terrain]\ndem = 'v\x8b.asc'\n");
+    expect_refused(dir, "render bad.toml -o out.svg",
+                   "penink: scene: bad.toml: not a valid TOML scene (not UTF-8 text: byte 19)");
+}

@@ -18,5 +18,12 @@ TEST(PrintableText, EscapesWhatIsNotUtf8OrPrintable) {
     EXPECT_EQ(printable_text("abc", 3), "abc");
 }
 
+TEST(PrintableText, FindsTheFirstByteThatIsNotUtf8) {
+    EXPECT_EQ(invalid_utf8_at("plain = 1\n"), npos_utf8);
+    EXPECT_EQ(invalid_utf8_at("name = \"\xc3\xa9\xe2\x82\xac\"\n"), npos_utf8);
+    EXPECT_EQ(invalid_utf8_at("ab\x8b"), 2u);
+    EXPECT_EQ(invalid_utf8_at("a\xe2\x82"), 1u);  // cut short at the end
+}
+
 }  // namespace
 }  // namespace penink

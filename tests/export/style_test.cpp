@@ -109,6 +109,8 @@ TEST(Style, BadFilesErrorExactly) {
               prefix + "min_length must be >= 0 (in [silhouettes])");
     EXPECT_EQ(style_error("speed = 3\n", dir), prefix + "unknown key \"speed\"");
     EXPECT_EQ(style_error("width = [\n", dir).rfind(prefix + "invalid TOML: ", 0), 0u);
+    // toml11 3.7 read past its buffer reporting this one (found by fuzzing)
+    EXPECT_EQ(style_error("a = 1\n'\x8b\x8b' = 2\n", dir), prefix + "invalid TOML: not UTF-8 text (byte 8)");
 }
 
 TEST(Style, MissingFileAndUnknownBuiltin) {

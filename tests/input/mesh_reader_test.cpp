@@ -92,7 +92,7 @@ TEST(MeshReader, ErrorsAreExact) {
     EXPECT_EQ(error_of(xyz), "penink: input: " + xyz +
                                  ": unsupported mesh format \".xyz\" (use .obj, .ply or .off)");
     std::string bad = temp_file("bad.off", "this is not an OFF file\n");
-    EXPECT_EQ(error_of(bad), "penink: input: " + bad + ": not a mesh (cannot read OBJ/PLY/OFF)");
+    EXPECT_EQ(error_of(bad), "penink: input: " + bad + ": not a mesh (OFF: line 1: expected the vertex and face counts)");
     std::string empty = temp_file("points.obj", "v 0 0 0\nv 1 0 0\n");
     EXPECT_EQ(error_of(empty), "penink: input: " + empty + ": mesh has no triangles");
 }
@@ -109,4 +109,41 @@ TEST(MeshReader, CoordinatesBeyondRangeOrNotFiniteAreRefused) {
     EXPECT_EQ(error_of(inf).rfind("penink: input: " + inf + ": ", 0), 0u);  // CGAL stops at "inf": some refusal
     std::string ok = temp_file("ok.obj", "v 0 0 0\nv 1e9 0 0\nv 0 -1e9 0\n" + tri);
     EXPECT_EQ(error_of(ok), "no error");
+}
+
+TEST(MeshReader, PlyHeadersCheckedBeforeCgalReadsThem) {
+    // a property before any element crashed CGAL's reader (found by fuzzing)
+    std::string early = temp_file("early.ply", "ply\nformat ascii 1.0\nproperty float z\nelement vertex 1\nend_header\n0\n");
+    EXPECT_EQ(error_of(early), "penink: input: " + early + ": not a mesh (PLY header: line 3: property before any element)");
+    std::string many = temp_file("many.ply", "ply\nformat ascii 1.0\nelement vertex 1000000000\nproperty float x\n"
+                                             "end_header\n0\n");
+    EXPECT_EQ(error_of(many), "penink: input: " + many +
+                                  ": not a mesh (PLY header: declares 1000000000 elements, more than the 2 bytes after it hold)");
+    std::string open = temp_file("open.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n");
+    EXPECT_EQ(error_of(open), "penink: input: " + open + ": not a mesh (PLY header: no end_header)");
+    std::string word = temp_file("word.ply", "ply\nformat ascii 1.0\nvertices 3\nend_header\n");
+    EXPECT_EQ(error_of(word), "penink: input: " + word + ": not a mesh (PLY header: line 3: unknown keyword \"vertices\")");
+}
+
+TEST(MeshReader, OffReadHereWhateverFollowsTheCoordinates) {
+    // CGAL's reader read past its arrays on a colour line shorter than COFF promises (fuzzing)
+    std::string colours = temp_file("c.off", "COFF\n3 1 0\n0 0 0 255\n1 0 0 0 255 0 255\n0 1 0\n3 0 1 2 7 7 7\n");
+    EXPECT_EQ(error_of(colours), "no error");
+    std::string same_line = temp_file("s.off", "OFF 3 1 0 # counts here\n0 0 0\n1 0 0\n0 1 0\n\n3 0 1 2\n");
+    EXPECT_EQ(read_mesh(same_line).triangles.size(), 1u);
+    std::string bare = temp_file("b.off", "4 1\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
+    EXPECT_EQ(read_mesh(bare).triangles.size(), 2u);
+    std::string short_vertex = temp_file("v.off", "OFF\n3 1 0\n0 0 0\n1 0\n0 1 0\n3 0 1 2\n");
+    EXPECT_EQ(error_of(short_vertex), "penink: input: " + short_vertex + ": not a mesh (OFF: line 4: expected vertex x y z)");
+    std::string binary = temp_file("bin.off", "OFF BINARY\n");
+    EXPECT_EQ(error_of(binary), "penink: input: " + binary + ": not a mesh (OFF: binary files are not read)");
+    std::string four = temp_file("4.off", "4OFF\n1 0 0\n0 0 0 0\n");
+    EXPECT_EQ(error_of(four), "penink: input: " + four + ": not a mesh (OFF: \"4OFF\" files are not read)");
+    std::string huge = temp_file("h.off", "OFF\n1000000000 1 0\n0 0 0\n");
+    EXPECT_EQ(error_of(huge), "penink: input: " + huge +
+                                  ": not a mesh (OFF: declares 1000000000 vertices and 1 faces, more than its 25 bytes hold)");
+    std::string mixed = temp_file("m.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+                                           "property int z\nend_header\n0 0 0\n");
+    EXPECT_EQ(error_of(mixed), "penink: input: " + mixed +
+                                   ": not a mesh (PLY header: vertex x, y and z must be float or double numbers (CGAL reads no other))");
 }
