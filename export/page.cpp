@@ -105,4 +105,15 @@ std::map<std::string, std::string> merged_metadata(const std::map<std::string, s
     return m;
 }
 
+std::string drawing_title(const std::map<std::string, std::string>& metadata, const std::string& path) {
+    const auto it = metadata.find("title");
+    if (it != metadata.end() && !it->second.empty()) return it->second;
+    return path.substr(path.find_last_of('/') + 1);
+}
+
+std::string drawing_description(const std::map<std::string, std::string>& metadata) {
+    const auto it = metadata.find("description");
+    return it == metadata.end() ? std::string() : it->second;
+}
+
 }  // namespace penink

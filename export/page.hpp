@@ -43,6 +43,12 @@ std::string format_number(double value, int decimals = 2);
 std::map<std::string, std::string> merged_metadata(const std::map<std::string, std::string>& a,
                                                    const std::map<std::string, std::string>& b);
 
+// The title every format carries (SVG <title>, PDF /Title, PS %%Title): the metadata's "title"
+// (the scene layer's: the scene or DEM and the view), else the output file's name.
+std::string drawing_title(const std::map<std::string, std::string>& metadata, const std::string& path);
+// The description (SVG <desc>, PDF /Subject): the metadata's "description", else "".
+std::string drawing_description(const std::map<std::string, std::string>& metadata);
+
 constexpr double mm_per_inch = 25.4;
 constexpr double points_per_mm = 72.0 / 25.4;
 

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <map>
 
+#include "core/version.hpp"
 #include "export/atomic_file.hpp"
 #include "export/pen_ops.hpp"
 
@@ -95,8 +96,11 @@ std::string oc_properties(const std::vector<Ocg>& ocgs) {
 }
 
 std::string info_dict(const StyledDrawing& d, const PageOptions& page, const std::string& path) {
-    std::string o = "<< /Producer (penink) /Creator (penink) /Title " +
-                    pdf_string(path.substr(path.find_last_of('/') + 1));
+    const std::string creator = std::string("penink ") + penink_version;
+    std::string o = "<< /Producer " + pdf_string(creator) + " /Creator " + pdf_string(creator) + " /Title " +
+                    pdf_string(drawing_title(d.metadata, path));
+    if (const std::string subject = drawing_description(d.metadata); !subject.empty())
+        o += " /Subject " + pdf_string(subject);
     for (const auto& [k, v] : merged_metadata(d.metadata, page.metadata)) {
         std::string name = "/penink_";
         for (char c : k) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';

@@ -1,11 +1,13 @@
 // PostScript / EPS writer (ps_writer.hpp).
 #include "export/ps_writer.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 
 #include "export/atomic_file.hpp"
 #include "export/pen_ops.hpp"
+#include "core/version.hpp"
 
 namespace penink {
 
@@ -44,14 +46,43 @@ std::string comment_text(const std::string& s) {
     return o;
 }
 
+// The ink's box on the page, points from the bottom-left: every fill ring and stroke (grown by
+// half its width), then the page margin all round, within the page; the whole page when there is
+// no ink.
+void ink_box_pt(const StyledDrawing& d, const PageLayout& L, double margin_mm, double box[4]) {
+    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;  // mm from the top-left
+    auto add = [&](glm::vec2 p, double half_px) {
+        const double x = L.offset_x_mm + double(p.x) * L.scale_mm, y = L.offset_y_mm + double(p.y) * L.scale_mm;
+        const double r = half_px * L.scale_mm;
+        x0 = std::min(x0, x - r), y0 = std::min(y0, y - r), x1 = std::max(x1, x + r), y1 = std::max(y1, y + r);
+    };
+    for (const StyledLayer& l : d.layers) {
+        for (const Ring& r : l.fill)
+            for (const glm::vec2& p : r) add(p, 0.0);
+        for (const StyledGroup& g : l.groups)
+            for (const StyledPath& path : g.paths)
+                for (const glm::vec2& p : path.points) add(p, 0.5 * path.width);
+    }
+    if (x0 > x1) x0 = 0.0, y0 = 0.0, x1 = L.page_w_mm, y1 = L.page_h_mm;
+    x0 = std::max(0.0, x0 - margin_mm), y0 = std::max(0.0, y0 - margin_mm);
+    x1 = std::min(L.page_w_mm, x1 + margin_mm), y1 = std::min(L.page_h_mm, y1 + margin_mm);
+    box[0] = x0 * points_per_mm, box[1] = (L.page_h_mm - y1) * points_per_mm;
+    box[2] = x1 * points_per_mm, box[3] = (L.page_h_mm - y0) * points_per_mm;
+}
+
 void header(std::string& o, const StyledDrawing& d, const PageLayout& L, bool eps,
             const PageOptions& page, const std::string& path) {
     const double w = L.page_w_mm * points_per_mm, h = L.page_h_mm * points_per_mm;
     o += eps ? "%!PS-Adobe-3.0 EPSF-3.0\n" : "%!PS-Adobe-3.0\n";
-    o += "%%Creator: penink\n%%Title: " + comment_text(path.substr(path.find_last_of('/') + 1)) + "\n";
-    o += "%%BoundingBox: 0 0 " + std::to_string(int(std::ceil(w - 1e-6))) + " " +
-         std::to_string(int(std::ceil(h - 1e-6))) + "\n";
-    o += "%%HiResBoundingBox: 0 0 " + format_number(w, 3) + " " + format_number(h, 3) + "\n";
+    o += "%%Creator: penink " + std::string(penink_version) + "\n%%Title: " + comment_text(drawing_title(d.metadata, path)) + "\n";
+    // A placed EPS brings the ink (and the margin) only; a PostScript page is the page.
+    double box[4] = {0.0, 0.0, w, h};
+    if (eps) ink_box_pt(d, L, page.margin_mm, box);
+    o += "%%BoundingBox: " + std::to_string(int(std::floor(box[0] + 1e-6))) + " " +
+         std::to_string(int(std::floor(box[1] + 1e-6))) + " " + std::to_string(int(std::ceil(box[2] - 1e-6))) + " " +
+         std::to_string(int(std::ceil(box[3] - 1e-6))) + "\n";
+    o += "%%HiResBoundingBox: " + format_number(box[0], 3) + " " + format_number(box[1], 3) + " " +
+         format_number(box[2], 3) + " " + format_number(box[3], 3) + "\n";
     o += "%%LanguageLevel: 2\n%%DocumentData: Clean7Bit\n%%Pages: 1\n";
     if (!eps) o += "%%DocumentMedia: penink " + format_number(w, 3) + " " + format_number(h, 3) + " 0 () ()\n";
     o += "%%EndComments\n";

@@ -44,6 +44,9 @@ void header(std::string& o, const StyledDrawing& d, const PageLayout& L, const P
     attr(o, "xmlns", "http://www.w3.org/2000/svg");
     attr(o, "xmlns:inkscape", "http://www.inkscape.org/namespaces/inkscape");
     attr(o, "xmlns:sodipodi", "http://sodipodi.sourceforge.net/DTD/sodipodi-0.dtd");
+    attr(o, "xmlns:rdf", "http://www.w3.org/1999/02/22-rdf-syntax-ns#");
+    attr(o, "xmlns:cc", "http://creativecommons.org/ns#");
+    attr(o, "xmlns:dc", "http://purl.org/dc/elements/1.1/");
     attr(o, "xmlns:penink", "urn:penink");
     attr(o, "version", "1.1");
     attr(o, "width", format_number(L.page_w_mm, 4) + "mm");
@@ -55,8 +58,23 @@ void header(std::string& o, const StyledDrawing& d, const PageLayout& L, const P
     o += ">\n";
     o += "<sodipodi:namedview id=\"namedview\" pagecolor=\"" + rgb_hex(d.background) +
          "\" inkscape:document-units=\"mm\"/>\n";
-    o += "<metadata id=\"metadata\">\n";
-    for (const auto& [k, v] : merged_metadata(d.metadata, page.metadata))
+    const std::map<std::string, std::string> meta = merged_metadata(d.metadata, page.metadata);
+    const std::string title = drawing_title(meta, "");  // none without the scene's
+    if (!title.empty()) o += "<title id=\"title\">" + xml_escape(title) + "</title>\n";
+    if (const std::string desc = drawing_description(meta); !desc.empty())
+        o += "<desc id=\"desc\">" + xml_escape(desc) + "</desc>\n";
+    // Dublin Core in RDF, as Inkscape's Document Properties read and write it, then penink's own
+    // parameters (its namespace declared on the root).
+    o += "<metadata id=\"metadata\">\n<rdf:RDF>\n<cc:Work rdf:about=\"\">\n<dc:format>image/svg+xml</dc:format>\n";
+    o += "<dc:type rdf:resource=\"http://purl.org/dc/dcmitype/StillImage\"/>\n";
+    if (!title.empty()) o += "<dc:title>" + xml_escape(title) + "</dc:title>\n";
+    if (const std::string desc = drawing_description(meta); !desc.empty())
+        o += "<dc:description>" + xml_escape(desc) + "</dc:description>\n";
+    if (const auto it = meta.find("source"); it != meta.end()) o += "<dc:source>" + xml_escape(it->second) + "</dc:source>\n";
+    if (const auto it = meta.find("generator"); it != meta.end())
+        o += "<dc:creator><cc:Agent><dc:title>" + xml_escape(it->second) + "</dc:title></cc:Agent></dc:creator>\n";
+    o += "</cc:Work>\n</rdf:RDF>\n";
+    for (const auto& [k, v] : meta)
         o += "<penink:param name=\"" + xml_escape(k) + "\">" + xml_escape(v) + "</penink:param>\n";
     o += "</metadata>\n";
     if (!(d.background == Rgb{255, 255, 255})) {

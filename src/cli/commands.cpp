@@ -10,6 +10,7 @@
 #include "cli/drainage_subcommand.hpp"
 #include "cli/render_command.hpp"
 #include "core/error.hpp"
+#include "core/version.hpp"
 
 namespace penink {
 
@@ -29,6 +30,7 @@ std::vector<Subcommand> register_subcommands(CLI::App& app) {
 
 int run_cli(int argc, char** argv) {
     CLI::App app{"penink: pen-and-ink drawings of landscapes and models as layered vector files"};
+    app.set_version_flag("--version", std::string("penink ") + penink_version, "Print the version and exit");
     app.require_subcommand(1);
     const std::vector<Subcommand> subs = register_subcommands(app);
     try {

@@ -1,5 +1,6 @@
 #include "scene/mesh_frames.hpp"
 
+#include "core/version.hpp"
 #include "core/stopwatch.hpp"
 
 #include "input/mesh_subdivision.hpp"
@@ -7,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 
@@ -145,7 +147,11 @@ void fill_metadata(const Scene& scene, const MeshScene& ms, const Camera& c, Dra
     d.metadata["camera"] = cam.str();
     d.metadata["light"] = ms.light ? "direction " + format_vec(*ms.light) + " (mesh frame)" : "at the camera";
     d.metadata["parameters"] = params.str();
-    d.metadata["generator"] = "penink";
+    d.metadata["generator"] = std::string("penink ") + penink_version;
+    const std::string name = std::filesystem::path(ms.path).filename().string();
+    d.metadata["title"] = name + ": pen-and-ink drawing";
+    d.metadata["description"] = "Pen-and-ink drawing of the mesh " + name + " by penink " + penink_version +
+                                "; camera " + d.metadata["camera"] + "; light " + d.metadata["light"];
 }
 
 void log_mesh_timings(const MeshLines& l, std::size_t triangles, const Log& log) {

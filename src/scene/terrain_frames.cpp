@@ -1,8 +1,10 @@
 #include "scene/terrain_frames.hpp"
 
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 
+#include "core/version.hpp"
 #include "core/progress_bar.hpp"
 #include "core/stopwatch.hpp"
 #include "drainage/drainage_build.hpp"
@@ -41,7 +43,14 @@ void fill_metadata(const Scene& scene, const Camera& cam, const Terrain& t, Draw
     d.metadata["camera"] = format_camera(cam, t);
     d.metadata["light"] = light.str();
     d.metadata["parameters"] = params.str();
-    d.metadata["generator"] = "penink";
+    d.metadata["generator"] = std::string("penink ") + penink_version;
+    const std::string name = std::filesystem::path(scene.file.empty() ? scene.dem : scene.file).filename().string();
+    d.metadata["title"] = name + ": pen-and-ink drawing";
+    std::ostringstream desc;
+    desc << "Pen-and-ink drawing of the DEM " << std::filesystem::path(scene.dem).filename().string() << " by penink "
+         << penink_version << ", vertical exaggeration " << scene.vertical_exaggeration << "; camera "
+         << d.metadata["camera"] << "; light " << d.metadata["light"];
+    d.metadata["description"] = desc.str();
 }
 
 }  // namespace

@@ -86,8 +86,9 @@ TEST_F(Formats, PsByGhostscript) {
 
 TEST_F(Formats, EpsByGhostscript) {
     if (!have_tool("gs")) GTEST_SKIP() << "ghostscript not installed";
-    expect_match("eps", "gs -q -dSAFER -dBATCH -dNOPAUSE -dEPSCrop -sDEVICE=png16m -r96 -dGraphicsAlphaBits=4 "
-                        "-sOutputFile=out.png v.eps");
+    // the EPS's box is its ink: drawn on the image's page (200 x 150 px at 96 dpi = 150 x 112.5 pt)
+    expect_match("eps", "gs -q -dSAFER -dBATCH -dNOPAUSE -dDEVICEWIDTHPOINTS=150 -dDEVICEHEIGHTPOINTS=112.5 "
+                        "-dFIXEDMEDIA -sDEVICE=png16m -r96 -dGraphicsAlphaBits=4 -sOutputFile=out.png v.eps");
 }
 
 TEST_F(Formats, PdfByPdftoppm) {

@@ -3,6 +3,7 @@
 
 #include <regex>
 
+#include "core/version.hpp"
 #include "export/pdf_writer.hpp"
 #include "export/ps_writer.hpp"
 #include "fixture.hpp"
@@ -31,8 +32,10 @@ std::vector<std::string> matches(const std::string& text, const std::string& pat
 
 TEST(PsWriter, DscHeaderAndLayers) {
     const std::string ps = ps_document(drawing(), PageOptions{}, false, "x.ps");
-    EXPECT_EQ(ps.rfind("%!PS-Adobe-3.0\n%%Creator: penink\n%%Title: x.ps\n%%BoundingBox: 0 0 150 120\n"
-                       "%%HiResBoundingBox: 0 0 150 120\n", 0), 0u);
+    EXPECT_EQ(ps.rfind(std::string("%!PS-Adobe-3.0\n%%Creator: penink ") + penink_version +
+                           "\n%%Title: x.ps\n%%BoundingBox: 0 0 150 120\n%%HiResBoundingBox: 0 0 150 120\n",
+                       0),
+              0u);
     EXPECT_NE(ps.find("%%Pages: 1\n"), std::string::npos);
     EXPECT_NE(ps.find("<< /PageSize [150 120] >> setpagedevice"), std::string::npos);
     EXPECT_EQ(matches(ps, "%%BeginLayer: ([^\n]+)\n"), kLayers);

@@ -10,7 +10,7 @@
 #include <cstdlib>
 
 #include "export/export_drawing.hpp"
-#include "export/png_writer.hpp"
+#include "export/raster_writer.hpp"
 #include "support/raster_image.hpp"
 #include "fixture.hpp"
 
@@ -75,7 +75,10 @@ TEST_F(RasterCompare, PsByGhostscript) {
 
 TEST_F(RasterCompare, EpsByGhostscript) {
     if (!have_tool("gs")) GTEST_SKIP() << "ghostscript not installed";
-    expect_close(ours, render(".eps", "gs -q -dSAFER -dBATCH -dNOPAUSE -dEPSCrop -sDEVICE=png16m -r96 "
+    // The EPS's bounding box is its ink (plus the margin): rendered on the drawing's whole page
+    // (200 x 160 px at 96 dpi = 150 x 120 pt), where its coordinates place it.
+    expect_close(ours, render(".eps", "gs -q -dSAFER -dBATCH -dNOPAUSE -dDEVICEWIDTHPOINTS=150 "
+                                      "-dDEVICEHEIGHTPOINTS=120 -dFIXEDMEDIA -sDEVICE=png16m -r96 "
                                       "-dGraphicsAlphaBits=4 -sOutputFile=out.png in.eps"), "eps");
 }
 
@@ -112,7 +115,7 @@ TEST(PngWriter, CapsuleAndFillCoverage) {
 TEST(PngWriter, DpiScalesTheImage) {
     PageOptions o;
     o.dpi = 192;
-    const RasterTransform t = png_transform(style_drawing(small_drawing(), default_style()), o);
+    const RasterTransform t = raster_transform(style_drawing(small_drawing(), default_style()), o);
     EXPECT_EQ(t.width, 400);
     EXPECT_EQ(t.height, 320);
     EXPECT_DOUBLE_EQ(t.scale, 2.0);
