@@ -1,5 +1,6 @@
 #include "cli/batch_command.hpp"
 
+#include <cstdlib>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -128,6 +129,9 @@ Subcommand add_batch_command(CLI::App& app) {
     cmd->add_option("--warmup", o.warmup, "First N frames timed apart (shader JIT, caches); default 1")
         ->check(number_between(0, 1000000));
     cmd->add_flag("--whole-dem", o.whole_dem, "Model the whole DEM (default: the union of the frames' visible windows)");
+    cmd->add_option("--shard", o.shard,
+                    "K/N: draw only frames K, K+N, K+2N, ... (one of N machines or jobs); the frames are the same "
+                    "bytes as an unsharded run's; timings go to timings_K-of-N.csv/.md");
     add_scene_override_options(cmd, o);
     cmd->add_flag("-v,--verbose", o.verbose, "Print the modelled cells and set-up steps");
     return {cmd, [options] { return run_batch(*options); }};
@@ -145,9 +149,24 @@ std::vector<std::string> frame_paths(const fs::path& dir, int frame, const std::
 
 }  // namespace
 
+void parse_shard(const std::string& text, int& k, int& n) {
+    k = 1, n = 1;
+    if (text.empty()) return;
+    const std::size_t slash = text.find('/');
+    char* end = nullptr;
+    const long kk = slash == std::string::npos ? 0 : std::strtol(text.c_str(), &end, 10);
+    const bool k_ok = slash != std::string::npos && end == text.c_str() + slash && slash > 0;
+    const long nn = k_ok ? std::strtol(text.c_str() + slash + 1, &end, 10) : 0;
+    if (!k_ok || *end != '\0' || slash + 1 == text.size() || nn < 1 || nn > 1000000 || kk < 1 || kk > nn)
+        throw Error("cli", "", "--shard must be K/N with 1 <= K <= N <= 1000000, got \"" + text + "\"");
+    k = int(kk), n = int(nn);
+}
+
 int run_batch(const BatchOptions& o) {
     const auto start = Clock::now();
     const Log log{o.verbose};
+    int shard = 1, shards = 1;
+    parse_shard(o.shard, shard, shards);
     const std::vector<std::string> formats = parse_formats(o.formats);
     Scene scene = batch_scene(o);
     const Style style = scene_style(scene);
@@ -167,8 +186,11 @@ int run_batch(const BatchOptions& o) {
                          log, LineCulling{f.cameras, line_culling_px(scene)});
     summary.setup_s = ms_since(start) / 1000.0;
     std::vector<FrameTiming> timings;
-    ProgressBar bar(std::cerr, stderr_is_terminal(), "batch", int(f.records.size()));
-    for (std::size_t i = 0; i < f.records.size(); ++i) {
+    // A shard draws its frames from the whole flight's set-up (window, depth range, line culling
+    // for every camera), so each frame is what an unsharded run draws.
+    const int drawn = (int(f.records.size()) - shard) / shards + 1;
+    ProgressBar bar(std::cerr, stderr_is_terminal(), "batch", std::max(drawn, 0));
+    for (std::size_t i = std::size_t(shard - 1); i < f.records.size(); i += std::size_t(shards)) {
         const auto t0 = Clock::now();
         FrameTiming t;
         t.frame = int(i) + 1, t.warmup = int(i) < o.warmup;
@@ -181,9 +203,10 @@ int run_batch(const BatchOptions& o) {
         bar.step(fs::path(frame_paths(o.out_dir, t.frame, formats)[0]).stem().string(), t.total);
     }
     bar.finish();
-    write_text(fs::path(o.out_dir) / "timings.csv", timings_csv(timings));
+    const std::string stem = shards > 1 ? "timings_" + std::to_string(shard) + "-of-" + std::to_string(shards) : "timings";
+    write_text(fs::path(o.out_dir) / (stem + ".csv"), timings_csv(timings));
     const std::string md = timings_markdown(timings, summary);
-    write_text(fs::path(o.out_dir) / "timings.md", md);
+    write_text(fs::path(o.out_dir) / (stem + ".md"), md);
     std::cout << md;
     return 0;
 }

@@ -21,7 +21,11 @@ struct BatchOptions : SceneOverrides {
     int warmup = 1;
     bool whole_dem = false;  // model the whole DEM instead of the union of the frames' windows
     bool verbose = false;
+    std::string shard;       // "K/N": draw frames K, K+N, K+2N, ... (1-based) of the flight only
 };
+
+// Shard K of N from "K/N" (1 <= K <= N); throws penink::Error (stage "cli") otherwise.
+void parse_shard(const std::string& text, int& k, int& n);
 
 struct FrameTiming {
     int frame = 0;         // 1-based

@@ -69,3 +69,40 @@ TEST(BatchCommand, BadCsvWritesNothing) {
     EXPECT_EQ(r.code, 2);
     EXPECT_EQ(r.output, "penink: batch: low.csv: line 2: camera is inside the terrain (elevation 120 m, ground 159.5 m)\n");
 }
+
+// Sharded runs (one per machine or job) draw frames K, K+N, ... of the flight, each the same
+// bytes as the unsharded run's; their timings do not overwrite each other's; a bad K/N is refused
+// before anything is drawn.
+TEST(BatchCommand, ShardsDrawTheUnshardedFramesBytes) {
+    const auto dir = fresh_dir("batch_shard");
+    std::string csv = head;
+    for (int i = 0; i < 5; ++i)
+        csv += "\"" + std::to_string(1756568 - 40 * i) + " " + std::to_string(5916728 + 60 * i) + "\",400," +
+               std::to_string(45 + 8 * i) + ",-20,,,\n";
+    write_text(dir / "path.csv", csv);
+    const std::string run = "batch " + volcano + " --path path.csv --width 160 --height 120 --formats svg --out ";
+    ASSERT_EQ(run_penink(run + "all", dir).code, 0);
+    for (const char* shard : {"1/2", "2/2"}) {
+        const RunResult r = run_penink(run + "sharded --shard " + shard, dir);
+        ASSERT_EQ(r.code, 0) << r.output;
+    }
+    for (int frame = 1; frame <= 5; ++frame) {
+        const std::string name = "frame_000" + std::to_string(frame) + ".svg";
+        EXPECT_EQ(read_text(dir / "sharded" / name), read_text(dir / "all" / name)) << name;
+    }
+    EXPECT_EQ(file_count(dir / "sharded"), 5u + 4u);  // 5 frames, two timings pairs
+    EXPECT_EQ(lines_of(read_text(dir / "sharded" / "timings_1-of-2.csv")).size(), 4u);  // frames 1, 3, 5
+    EXPECT_EQ(lines_of(read_text(dir / "sharded" / "timings_2-of-2.csv")).size(), 3u);  // frames 2, 4
+    const RunResult third = run_penink(run + "third --shard 3/3", dir);
+    ASSERT_EQ(third.code, 0) << third.output;
+    EXPECT_TRUE(std::filesystem::exists(dir / "third" / "frame_0003.svg"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "third" / "frame_0001.svg"));
+    for (const char* bad : {"0/3", "4/3", "3", "a/b", "2/", "/2"}) {
+        const RunResult r = run_penink(run + "bad --shard " + bad, dir);
+        EXPECT_EQ(r.code, 2) << bad;
+        EXPECT_EQ(r.output, std::string("penink: cli: --shard must be K/N with 1 <= K <= N <= 1000000, got \"") + bad +
+                                "\"\n")
+            << bad;
+        EXPECT_FALSE(std::filesystem::exists(dir / "bad")) << bad;
+    }
+}
