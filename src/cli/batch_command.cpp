@@ -134,6 +134,8 @@ Subcommand add_batch_command(CLI::App& app) {
                     "bytes as an unsharded run's; timings go to timings_K-of-N.csv/.md");
     add_scene_override_options(cmd, o);
     cmd->add_flag("-v,--verbose", o.verbose, "Print the modelled cells and set-up steps");
+    cmd->add_flag("-q,--quiet", o.quiet, "No progress");
+    cmd->add_flag("--progress", o.progress, "Progress lines on stderr also when it is not a terminal");
     return {cmd, [options] { return run_batch(*options); }};
 }
 
@@ -164,7 +166,7 @@ void parse_shard(const std::string& text, int& k, int& n) {
 
 int run_batch(const BatchOptions& o) {
     const auto start = Clock::now();
-    const Log log{o.verbose};
+    const Log log{o.verbose, progress_mode(o.quiet, o.progress)};
     int shard = 1, shards = 1;
     parse_shard(o.shard, shard, shards);
     const std::vector<std::string> formats = parse_formats(o.formats);
@@ -189,7 +191,7 @@ int run_batch(const BatchOptions& o) {
     // A shard draws its frames from the whole flight's set-up (window, depth range, line culling
     // for every camera), so each frame is what an unsharded run draws.
     const int drawn = (int(f.records.size()) - shard) / shards + 1;
-    ProgressBar bar(std::cerr, stderr_is_terminal(), "batch", std::max(drawn, 0));
+    ProgressBar bar(std::cerr, log.progress, "batch", std::max(drawn, 0));
     for (std::size_t i = std::size_t(shard - 1); i < f.records.size(); i += std::size_t(shards)) {
         const auto t0 = Clock::now();
         FrameTiming t;

@@ -21,6 +21,8 @@ struct BatchOptions : SceneOverrides {
     int warmup = 1;
     bool whole_dem = false;  // model the whole DEM instead of the union of the frames' windows
     bool verbose = false;
+    bool quiet = false;      // no progress
+    bool progress = false;   // progress lines also when stderr is not a terminal
     std::string shard;       // "K/N": draw frames K, K+N, K+2N, ... (1-based) of the flight only
 };
 

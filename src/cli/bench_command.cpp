@@ -136,11 +136,13 @@ Subcommand add_bench_command(CLI::App& app) {
     cmd->add_option("--gl", o.gl, "OpenGL backend: osmesa (software, default) or egl (GPU)")
         ->check(CLI::IsMember({"osmesa", "egl"}));
     cmd->add_flag("-v,--verbose", o.verbose, "Print modelled cells per view");
+    cmd->add_flag("-q,--quiet", o.quiet, "No progress");
+    cmd->add_flag("--progress", o.progress, "Progress lines on stderr also when it is not a terminal");
     return {cmd, [options] { return run_bench(*options); }};
 }
 
 int run_bench(const BenchOptions& o) {
-    const Log log{o.verbose};
+    const Log log{o.verbose, progress_mode(o.quiet, o.progress)};
     SpeedAccuracyConfig config = o.config;
     if (!o.levels.empty()) config.levels = parse_int_list(o.levels, "--levels");
     if (!o.sizes.empty()) config.sizes = parse_sizes(o.sizes);

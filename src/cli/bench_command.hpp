@@ -17,6 +17,8 @@ struct BenchOptions {
     SpeedAccuracyConfig config;  // frames, warmup, ref_edge_px, needs
     std::string gl = "osmesa";
     bool verbose = false;
+    bool quiet = false;     // no progress
+    bool progress = false;  // progress lines also when stderr is not a terminal
 };
 
 // "1,2,4" -> {1,2,4}; "500x375,..." -> sizes. Errors: Error("cli", "", "--levels: ...").

@@ -3,10 +3,13 @@
 #include <iostream>
 #include <string>
 
+#include "core/progress_bar.hpp"
+
 namespace penink {
 
 struct Log {
     bool verbose = false;
+    ProgressMode progress = ProgressMode::off;  // how long steps show their progress (progress_mode)
     void info(const std::string& msg) const {
         if (!verbose) return;
         // Messages that quote an error already carry the prefix.

@@ -196,7 +196,7 @@ void sweep(BenchRun& run) {
     const SpeedAccuracyConfig& c = run.config;
     const std::vector<float> tolerances = c.tolerances.empty() ? std::vector<float>{run.scene.surface_tolerance_px}
                                                                : c.tolerances;
-    ProgressBar bar(std::cerr, stderr_is_terminal(), "bench",
+    ProgressBar bar(std::cerr, run.log.progress, "bench",
                     int(tolerances.size() * c.sizes.size() * c.methods.size() * c.levels.size()));
     const auto largest = *std::max_element(c.sizes.begin(), c.sizes.end());
     run.references.compute(*make_view(run.scene, run.dem, run.context, largest.first, largest.second, false, true, run.log));

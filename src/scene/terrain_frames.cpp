@@ -96,7 +96,7 @@ FrameOptions frame_options(const Scene& scene) {
 
 std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terrain& dem, const Log& log) {
     if (!scene.creases.enabled && !scene.ridges.enabled) return std::nullopt;
-    StageProgress progress(std::cerr, stderr_is_terminal(), "building drainage database");
+    StageProgress progress(std::cerr, log.progress, "building drainage database");
     DrainageOptions options;
     options.routing = *drainage_routing_named(scene.drainage_routing);  // validate_scene checked it
     DrainageLineSource source;

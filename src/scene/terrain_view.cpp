@@ -132,7 +132,7 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log) {
         if (p == path) break;
     }
     log.info("terrain: " + path + ": " + why + "; building");
-    StageProgress progress(std::cerr, stderr_is_terminal(), "building terrain cache");
+    StageProgress progress(std::cerr, log.progress, "building terrain cache");
     progress.update("reading the DEM", 0.0);
     Terrain flat = read_dem(dem_path);
     log.info("read " + dem_path + ": " + std::to_string(flat.cols) + "x" + std::to_string(flat.rows) + " nodes (" +

@@ -1,6 +1,7 @@
 // `penink batch` end to end on volcano at a tiny size: one frame file per record and format,
 // timings.csv with the named columns and one row per frame (warm-up flagged), timings.md in the
-// table form, plain progress lines when stderr is not a terminal, and exact CSV / camera errors
+// table form, plain progress lines with --progress when stderr is not a terminal (none without),
+// and exact CSV / camera errors
 // that leave no output directory behind.
 #include <gtest/gtest.h>
 
@@ -30,7 +31,8 @@ TEST(BatchCommand, ThreeFramesAndTimings) {
     write_text(dir / "path.csv", head + "\"1756568 5916728\",400,45,-20,300,40,\n"
                                         "\"1756409 5916935\",400,60,-20,,,0.3\n"
                                         "\"1756309 5917176\",400,75,-20,320,30,\n");
-    const RunResult r = run_penink("batch " + volcano + " --path path.csv --out frames --width 160 --height 120", dir);
+    const RunResult r =
+        run_penink("batch " + volcano + " --path path.csv --out frames --width 160 --height 120 --progress", dir);
     ASSERT_EQ(r.code, 0) << r.output;
     for (const char* f : {"frame_0001.png", "frame_0001.svg", "frame_0002.png", "frame_0002.svg", "frame_0003.png",
                           "frame_0003.svg"})
@@ -46,10 +48,17 @@ TEST(BatchCommand, ThreeFramesAndTimings) {
     EXPECT_NE(md.find("| warm-up | 1 |"), std::string::npos) << md;
     EXPECT_NE(md.find("| after warm-up | 2 |"), std::string::npos) << md;
     EXPECT_NE(md.find("CREASEfps | SILHfps | TOTALfps |"), std::string::npos);
-    // Not a terminal: one plain progress line per frame, no carriage returns.
+    // --progress, not a terminal: one plain progress line per frame, no carriage returns.
     EXPECT_NE(r.output.find("penink: batch: 1/3 frame_0001 "), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("penink: batch: 3/3 frame_0003 "), std::string::npos);
     EXPECT_EQ(r.output.find('\r'), std::string::npos);
+    // Without --progress (stderr not a terminal), or with -q: no progress at all.
+    for (const char* flags : {"", " -q", " -q --progress"}) {
+        const RunResult quiet = run_penink(
+            "batch " + volcano + " --path path.csv --out again --width 160 --height 120" + std::string(flags), dir);
+        ASSERT_EQ(quiet.code, 0) << quiet.output;
+        EXPECT_EQ(quiet.output.find("penink: batch: "), std::string::npos) << flags << quiet.output;
+    }
 }
 
 TEST(BatchCommand, BadCsvWritesNothing) {
