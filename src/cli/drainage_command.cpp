@@ -15,6 +15,7 @@
 #include "core/error.hpp"
 #include "scene/terrain_view.hpp"
 #include "core/memory_budget.hpp"
+#include "core/progress_bar.hpp"
 #include "drainage/drainage_memory.hpp"
 #include "drainage/drainage_rasters.hpp"
 #include "input/dem_reader.hpp"
@@ -25,8 +26,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Per-stage wall times, printed when the environment variable PENINK_DRAINAGE_TIMES is set (for
-// profiling: bench/compare_grass.sh shows them).
+// Per-stage wall times, printed with -v or when the environment variable PENINK_DRAINAGE_TIMES is
+// set (for profiling: bench/compare_grass.sh shows them).
 struct StageTimer {
     std::ostream& log;
     bool on = std::getenv("PENINK_DRAINAGE_TIMES") != nullptr;
@@ -48,13 +49,10 @@ struct StageTimer {
     }
 };
 
-DrainageProgress progress_printer(std::ostream& log, bool quiet, StageTimer& timer) {
-    return [&log, &timer, quiet, last = -1](const std::string& stage, double fraction) mutable {
-        timer.next(stage);
-        const int pct = int(fraction * 100.0 + 0.5);
-        if (quiet || pct == last) return;
-        last = pct;
-        log << "drainage: " << pct << "% " << stage << "\n" << std::flush;
+DrainageProgress progress_printer(StageProgress& progress, StageTimer& timer) {
+    return [&progress, &timer](const std::string& stage, double fraction) {
+        if (stage != timer.stage) timer.next(stage);  // a stage's time once, when the next begins
+        progress.update(stage, fraction);
     };
 }
 
@@ -95,6 +93,8 @@ void check_database_target(const std::string& out, double bytes) {
 int run(const DrainageCommand& cmd, std::ostream& log) {
     const auto t0 = Clock::now();
     StageTimer timer{log};
+    timer.on = timer.on || cmd.verbose;
+    StageProgress progress(log, progress_mode(cmd.quiet, cmd.progress), "drainage");
     if (cmd.resample < 0) throw Error("drainage", cmd.dem, "resample factor must be >= 1 (0 = automatic)");
     const std::uint64_t budget = memory_budget(cmd.max_memory);
     const DemSize size = read_dem_size(cmd.dem);  // the header alone: the build's memory before the read
@@ -115,7 +115,7 @@ int run(const DrainageCommand& cmd, std::ostream& log) {
     DrainageDb db;
     try {
         db = build_and_write_drainage_db(t, o, drainage_fingerprint(cmd.dem, t, o), out,
-                                         progress_printer(log, cmd.quiet, timer), &res);
+                                         progress_printer(progress, timer), &res);
     } catch (const Error& e) {
         // The writer names no reason: the folder or the disk may tell it now (the disk filled
         // during the build), else its error stands.

@@ -21,12 +21,15 @@ struct DrainageCommand {
     int resample = 0;         // 0 = automatic
     std::string rasters_dir;  // empty = no rasters
     bool quiet = false;       // no progress / summary lines
+    bool verbose = false;     // also each stage's wall and CPU seconds
+    bool progress = false;    // progress lines also when stderr is not a terminal
     DrainageRouting routing = DrainageRouting::priority_flood;
     std::uint64_t max_memory = 0;  // --max-memory; 0 = the memory available
 };
 
-// Runs the command, printing progress and a summary (points, basins, branches, divides, time,
-// points/s, working bytes/point) to `log`, and errors as one line `penink: ...`. Returns the exit
+// Runs the command, printing progress (progress_mode: in place on a terminal, as lines with
+// `progress`, none with `quiet`) and a summary (points, basins, branches, divides, time,
+// points/s, working bytes/point; not with `quiet`) to `log`, and errors as one line `penink: ...`. Returns the exit
 // code: 0 ok, 2 bad input, 1 internal failure.
 int run_drainage_command(const DrainageCommand& cmd, std::ostream& log);
 

@@ -32,6 +32,8 @@ Subcommand add_drainage_command(CLI::App& app) {
                     "(the least-cost search of GRASS r.watershed -s)")
         ->check(CLI::IsMember({"priority-flood", "least-cost"}));
     cmd->add_flag("-q,--quiet", o.quiet, "No progress or summary lines");
+    cmd->add_flag("-v,--verbose", o.verbose, "Also each stage's wall and CPU seconds");
+    cmd->add_flag("--progress", o.progress, "Progress lines on stderr also when it is not a terminal");
     return {cmd, [cmd_options, routing] {
                 cmd_options->routing = *drainage_routing_named(*routing);  // checked by IsMember
                 return run_drainage_command(*cmd_options, std::cerr);
