@@ -10,7 +10,7 @@
 
 #include "export/export_drawing.hpp"
 #include "export/pdf_writer.hpp"
-#include "export/png_writer.hpp"
+#include "export/raster_writer.hpp"
 #include "export/ps_writer.hpp"
 #include "export/svg_writer.hpp"
 
@@ -85,7 +85,7 @@ void BM_ExportFile(benchmark::State& state, const char* ext) {
 void BM_RasterisePng(benchmark::State& state) {
     const StyledDrawing d = style_drawing(synthetic(200, 101, 1000), builtin_style("technical"));
     for (auto _ : state) {
-        RgbImage img = rasterise(d, png_transform(d, PageOptions{}));
+        RgbImage img = rasterise(d, raster_transform(d, PageOptions{}));
         benchmark::DoNotOptimize(img.rgb.data());
     }
     state.counters["segments"] = 20000;

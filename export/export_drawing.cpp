@@ -13,8 +13,8 @@
 #include "core/error.hpp"
 #include "export/atomic_file.hpp"
 #include "export/pdf_writer.hpp"
-#include "export/png_writer.hpp"
 #include "export/ps_writer.hpp"
+#include "export/raster_writer.hpp"
 #include "export/svg_writer.hpp"
 
 namespace penink {
@@ -34,8 +34,10 @@ std::string extension(const std::string& path) {
 
 void check_output_format(const std::string& path) {
     const std::string ext = extension(path);
-    if (ext != ".svg" && ext != ".ps" && ext != ".eps" && ext != ".pdf" && ext != ".png")
-        throw Error("export", path, "unknown output format \"" + ext + "\" (use .svg, .ps, .eps, .pdf or .png)");
+    if (ext == ".svg" || ext == ".ps" || ext == ".eps" || ext == ".pdf" || is_raster_extension(ext)) return;
+    std::string raster;
+    for (const std::string& e : raster_extensions()) raster += (raster.empty() ? "" : " ") + e;
+    throw Error("export", path, "unknown output format \"" + ext + "\" (use .svg .ps .eps .pdf, or a raster: " + raster + ")");
 }
 
 void export_drawing(const StyledDrawing& drawing, const PageOptions& page, const std::string& path) {
@@ -48,7 +50,7 @@ std::string export_document(const StyledDrawing& drawing, const PageOptions& pag
     if (ext == ".svg") return svg_document(drawing, page, path);
     if (ext == ".ps" || ext == ".eps") return ps_document(drawing, page, ext == ".eps", path);
     if (ext == ".pdf") return pdf_document(drawing, page, path);
-    return png_document(drawing, page, path);
+    return raster_document(drawing, page, path);
 }
 
 void export_drawings(const StyledDrawing& drawing, const PageOptions& page, const std::vector<std::string>& paths) {
@@ -68,7 +70,10 @@ void check_output_targets(const std::vector<std::string>& paths, const PageOptio
         if (::access(folder.c_str(), W_OK | X_OK) != 0)
             throw Error("export", p, std::string("cannot write file (") + std::strerror(errno) + ")");
         page_layout(width, height, page, p);
-        if (extension(p) == ".png") png_transform(width, height, page, p);
+        if (is_raster_extension(extension(p))) {
+            raster_transform(width, height, page, p);
+            check_raster_writer(p);
+        }
     }
 }
 

@@ -1,6 +1,7 @@
-// Export entry points: choose the writer by the output file's extension (.svg .ps .eps .pdf
-// .png), and plotting statistics of a StyledDrawing (path count, inked length and pen-up
-// travel in drawing order, image pixels) for --verbose.
+// Export entry points: choose the writer by the output file's extension (.svg .ps .eps .pdf, and
+// the rasters of raster_writer.hpp: .png .tif .tiff .jpg .jpeg .webp .exr), and plotting
+// statistics of a StyledDrawing (path count, inked length and pen-up travel in drawing order,
+// image pixels) for --verbose.
 #pragma once
 #include <cstddef>
 #include <string>
@@ -12,9 +13,8 @@
 namespace penink {
 
 // Writes `drawing` to `path` in the format named by its extension (case-insensitive).
-// Unknown: Error("export", path, "unknown output format \".xyz\" (use .svg, .ps, .eps, .pdf or .png)").
-// Throws penink::Error("export", path, "unknown output format ...") unless the extension
-// (case-insensitive) is one export_drawing writes: .svg .ps .eps .pdf .png.
+// Throws penink::Error("export", path, "unknown output format \".xyz\" (use .svg .ps .eps .pdf, or
+// a raster: .png .tif ...)") unless the extension (case-insensitive) is one export_drawing writes.
 void check_output_format(const std::string& path);
 
 void export_drawing(const StyledDrawing& drawing, const PageOptions& page, const std::string& path);
@@ -30,7 +30,9 @@ void export_drawings(const StyledDrawing& drawing, const PageOptions& page, cons
 // image pixels: each path's format (check_output_format), its folder exists and may be written
 // ("cannot write file (no such directory)", "cannot write file (<the system's reason>)"), the
 // path is not a folder ("cannot write file (is a directory)"), the page and margin fit
-// (page_layout), and a PNG's size is within max_png_pixels. Throws Error("export", path, ...).
+// (page_layout), a raster's size is within max_raster_pixels, and the raster writer module is
+// found when a raster is asked for (check_raster_writer; it is loaded only to write). Throws
+// Error("export", path, ...).
 void check_output_targets(const std::vector<std::string>& paths, const PageOptions& page, int width, int height);
 
 struct PlotStats {

@@ -11,7 +11,7 @@ pkgs=(
   libgdal-dev                          # DEM input (GeoTIFF, ASCII grid, ...)
   libgeographiclib-dev                 # geographic -> UTM
   libcgal-dev                          # mesh I/O
-  libopenimageio-dev                   # PNG output
+  libopenimageio-dev                   # raster output (PNG, TIFF, JPEG, WebP, EXR): the penink_oiio module
   libcli11-dev libtoml11-dev nlohmann-json3-dev  # CLI, scene/style files
   libgtest-dev libbenchmark-dev        # tests, benchmarks
   librsvg2-bin ghostscript poppler-utils         # output checks in tests

@@ -64,10 +64,10 @@ Subcommand add_render_command(CLI::App& app) {
     RenderOptions& o = *options;
     CLI::App* cmd = app.add_subcommand("render", "Draw a DEM, a mesh (OBJ/PLY/OFF) or a TOML scene as layered vector files");
     cmd->add_option("input", o.input, "DEM (GeoTIFF, ASCII grid, ...), mesh (.obj .ply .off) or scene file (.toml)")->required();
-    cmd->add_option("-o,--output", o.outputs, "Output file, format from the extension: .svg .ps .eps .pdf .png (repeatable)")
+    cmd->add_option("-o,--output", o.outputs, "Output file, format from the extension: .svg .ps .eps .pdf, or a raster .png .tif .jpg .webp .exr (repeatable)")
         ->required();
     cmd->add_option("--page", o.page, "Physical page size: A4, A3, letter, WxHmm (default: image size at --dpi)");
-    cmd->add_option("--dpi", o.dpi, "Image pixels per inch; also the PNG resolution (default 96)")
+    cmd->add_option("--dpi", o.dpi, "Image pixels per inch; also the resolution of raster outputs (default 96)")
         ->check(positive_at_most(10000));
     cmd->add_option("--margin", o.margin_mm, "Blank border on each side of the page, mm (default 0)")
         ->check(number_between(0, 1000));

@@ -73,8 +73,8 @@ TEST(RenderErrors, CameraInsideTerrain) {
 
 TEST(RenderErrors, UnknownOutputFormat) {
     const auto dir = fresh_dir("format");
-    expect_error(dir, "render " + volcano + " -o out.jpg",
-                 "penink: export: out.jpg: unknown output format \".jpg\" (use .svg, .ps, .eps, .pdf or .png)", 0);
+    expect_error(dir, "render " + volcano + " -o out.gif",
+                 "penink: export: out.gif: unknown output format \".gif\" (use .svg .ps .eps .pdf, or a raster: .png .tif .tiff .jpg .jpeg .webp .exr)", 0);
 }
 
 TEST(RenderErrors, MissingOutputDirectory) {

@@ -46,7 +46,7 @@ TEST(ExportDrawing, EveryFormatWritesOnlyItsFile) {
 
 TEST(ExportDrawing, UnknownFormat) {
     EXPECT_EQ(error_of([] { export_drawing(drawing(), PageOptions{}, "/tmp/x.xyz"); }),
-              "penink: export: /tmp/x.xyz: unknown output format \".xyz\" (use .svg, .ps, .eps, .pdf or .png)");
+              "penink: export: /tmp/x.xyz: unknown output format \".xyz\" (use .svg .ps .eps .pdf, or a raster: .png .tif .tiff .jpg .jpeg .webp .exr)");
 }
 
 TEST(ExportDrawing, MissingDirectoryErrorsForEveryFormat) {
