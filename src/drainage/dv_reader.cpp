@@ -60,7 +60,7 @@ struct Reader {
     template <class T, class V> void array(V& out, std::uint64_t n) {
         if (n > (buf.size() - std::min(pos, buf.size())) / sizeof(T)) corrupt();
         out.resize(std::size_t(n));
-        std::memcpy(out.data(), buf.data() + pos, std::size_t(n) * sizeof(T));
+        if (n) std::memcpy(out.data(), buf.data() + pos, std::size_t(n) * sizeof(T));  // no null pointers
         pos += std::size_t(n) * sizeof(T);
     }
 };
@@ -340,7 +340,7 @@ struct StreamReader {
     template <class T, class V> void array(V& out, std::uint64_t n) {
         if (n > remaining / sizeof(T)) corrupt();
         out.resize(std::size_t(n));
-        read(out.data(), std::size_t(n) * sizeof(T));
+        if (n) read(out.data(), std::size_t(n) * sizeof(T));
     }
     std::uint64_t digest() const { return part.digest(); }
 };

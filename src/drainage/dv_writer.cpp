@@ -4,6 +4,7 @@
 #include "drainage/drainage_db.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -230,22 +231,29 @@ Lengths encode(const DrainageDb& db, Sink& w) {
 // directory, writes the lengths into the header, then renames the file.
 void write_encoded(const std::string& path, const std::function<Lengths(Sink&)>& encode_into) {
     const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
-    auto fail = [&](std::FILE* f) {
+    // With the system's reason (a full disk, a read-only folder: exit 2, the user can act on it).
+    auto fail = [&](std::FILE* f, int err) {
         if (f) std::fclose(f);
         std::error_code ec;
         std::filesystem::remove(tmp, ec);
-        throw Error("drainage", path, "cannot write drainage database", ExitCode::internal);
+        throw Error("drainage", path,
+                    "cannot write drainage database" + (err ? " (" + std::string(std::strerror(err)) + ")" : std::string()),
+                    err ? ExitCode::bad_input : ExitCode::internal);
     };
     std::FILE* out = std::fopen(tmp.c_str(), "wb");
-    if (!out) fail(nullptr);
+    if (!out) fail(nullptr, errno);
     bool ok = true;
+    int err = 0;  // errno of the first failed call (set on the writing thread, read after it)
     {
         Sink w;
-        w.out = [&](const std::uint8_t* p, std::size_t n) { ok = ok && std::fwrite(p, 1, n, out) == n; };
+        w.out = [&](const std::uint8_t* p, std::size_t n) {
+            if (ok && std::fwrite(p, 1, n, out) != n) ok = false, err = errno;
+        };
         try {
             const Lengths length = encode_into(w);
             const std::uint64_t fields[2] = {length.total, length.lines_at};
-            ok = ok && std::fseek(out, long(total_length_at), SEEK_SET) == 0 && std::fwrite(fields, 8, 2, out) == 2;
+            if (ok && (std::fseek(out, long(total_length_at), SEEK_SET) != 0 || std::fwrite(fields, 8, 2, out) != 2))
+                ok = false, err = errno;
         } catch (...) {
             w.wait();  // the buffer in flight, before the file goes
             std::fclose(out);
@@ -254,14 +262,15 @@ void write_encoded(const std::string& path, const std::function<Lengths(Sink&)>&
             throw;
         }
     }
-    if (!ok || std::fclose(out) != 0) fail(nullptr);
+    if (!ok) fail(out, err);
+    if (std::fclose(out) != 0) fail(nullptr, errno);
     // The old file is removed first: renaming over an existing file makes ext4 (auto_da_alloc)
     // write the new one out at once, as long again as the whole build's writing. The file is
     // self-checking (length, checksum), so a crash leaving it short only costs a rebuild.
     std::error_code ec;
     std::filesystem::remove(path, ec);
     std::filesystem::rename(tmp, path, ec);
-    if (ec) fail(nullptr);
+    if (ec) fail(nullptr, ec.value());
 }
 
 }  // namespace

@@ -462,7 +462,7 @@ TEST(DvFile, UnwritableCacheBuildsInMemory) {
                                                  [&](const std::string& m) { log.push_back(m); });
     EXPECT_EQ(db.cols, 6);
     EXPECT_EQ(log.back(), "penink: drainage: " + (d / "dem.asc.dv").string() +
-                              ": cannot write drainage database; using the drainage database "
+                              ": cannot write drainage database (Is a directory); using the drainage database "
                               "built in memory");
 }
 
