@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs, builds and runs the whole test suite (ctest).
+# Installs, builds everything (the program, the tests, the benchmarks, the manual page) and
+# runs the whole test suite (ctest).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/deps.sh
