@@ -15,6 +15,7 @@ pkgs=(
   libcli11-dev libtoml11-dev nlohmann-json3-dev  # CLI, scene/style files
   libgtest-dev libbenchmark-dev        # tests, benchmarks
   librsvg2-bin ghostscript poppler-utils         # output checks in tests
+  dpkg-dev groff-base                  # package test: cpack -G DEB runs dpkg-shlibdeps; groff checks the man page
 )
 if [ "${1:-}" = fuzz ]; then
   pkgs+=(clang)                        # libFuzzer and the sanitizers' runtimes (scripts/fuzz.sh)
