@@ -1,6 +1,7 @@
 #include "cli/render_command.hpp"
 
 #include <chrono>
+#include <iostream>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
@@ -26,9 +27,26 @@ PageOptions page_options(const RenderOptions& o) {
 
 // Every output checked before anything is read or drawn (check_output_targets: formats, folders,
 // page, PNG size at the scene's image size, checked again once the scene is loaded).
+bool is_stdout(const std::string& path) { return path == "-" || path == "/dev/stdout"; }
+
+// The output files, without the standard output.
+std::vector<std::string> output_files(const RenderOptions& o) {
+    std::vector<std::string> files;
+    for (const std::string& p : o.outputs)
+        if (!is_stdout(p)) files.push_back(p);
+    return files;
+}
+
 void check_outputs(const RenderOptions& o, int width, int height) {
     if (o.outputs.empty()) throw Error("cli", "", "no output file given (use -o out.svg)");
-    check_output_targets(o.outputs, page_options(o), width, height);
+    const std::vector<std::string> files = output_files(o);
+    const std::size_t to_stdout = o.outputs.size() - files.size();
+    if (to_stdout > 1) throw Error("cli", "", "standard output given more than once (-o -)");
+    if (to_stdout == 1 && o.format.empty())
+        throw Error("cli", "", "-o - writes to standard output: say its format with --format svg|ps|eps|pdf");
+    if (to_stdout == 0 && !o.format.empty())
+        throw Error("cli", "", "--format names the format of -o - (standard output), which is not among the outputs");
+    if (!files.empty()) check_output_targets(files, page_options(o), width, height);
 }
 
 
@@ -74,13 +92,17 @@ Subcommand add_render_command(CLI::App& app) {
     cmd->add_option("--layers", o.layers, "Layer split: kind, or kind+distance (near/middle/far sublayers)")
         ->check(CLI::IsMember({"kind", "kind+distance"}));
     add_scene_override_options(cmd, o);
+    cmd->add_option("--format", o.format, "Format of -o - (standard output, for a pipe): svg, ps, eps or pdf")
+        ->check(CLI::IsMember({"svg", "ps", "eps", "pdf"}));
     cmd->add_flag("-v,--verbose", o.verbose, "Print cells used, per-pass times and line statistics");
+    cmd->add_flag("-q,--quiet", o.quiet, "No progress");
+    cmd->add_flag("--progress", o.progress, "Progress lines on stderr also when it is not a terminal");
     return {cmd, [options] { return run_render(*options); }};
 }
 
 int run_render(const RenderOptions& o) {
     const auto start = std::chrono::steady_clock::now();
-    const Log log{o.verbose};
+    const Log log{o.verbose, progress_mode(o.quiet, o.progress)};
     check_outputs(o, o.width > 0 ? o.width : 1, o.height > 0 ? o.height : 1);
     Scene scene = load_scene_with_overrides(o);
     check_outputs(o, scene.camera.width, scene.camera.height);
@@ -94,7 +116,16 @@ int run_render(const RenderOptions& o) {
     log_finish(finish_drawing(result.drawing, finish_options(style, scene.seed, terrain)), log);
     const StyledDrawing styled = style_drawing(result.drawing, style,
                                                o.layers == "kind" ? LayerSplit::kind : LayerSplit::kind_distance);
-    export_drawings(styled, page_options(o), o.outputs);  // all of them or none
+    // The standard output's document made first (its page errors come before any file is
+    // written), then the files, all of them or none, then the document written out.
+    const std::vector<std::string> files = output_files(o);
+    const std::string piped = o.format.empty() ? std::string() : export_document(styled, page_options(o), "stdout." + o.format);
+    if (!files.empty()) export_drawings(styled, page_options(o), files);
+    if (!o.format.empty()) {
+        std::cout.write(piped.data(), std::streamsize(piped.size()));
+        std::cout.flush();
+        if (!std::cout) throw Error("export", "-", "cannot write to standard output");
+    }
     const PlotStats stats = plot_stats(styled);
     std::ostringstream s;
     s << stats.paths << " paths, " << stats.length_px << " px drawn, " << stats.travel_px << " px pen-up; "

@@ -15,7 +15,10 @@ struct RenderOptions : SceneOverrides {
     double dpi = 96.0;
     double margin_mm = 0.0;      // --margin: blank border on each side, mm
     std::string layers = "kind";  // "kind" or "kind+distance"
+    std::string format;          // of the output "-" (standard output): svg, ps, eps or pdf
     bool verbose = false;
+    bool quiet = false;          // no progress
+    bool progress = false;       // progress lines also when stderr is not a terminal
 };
 
 Subcommand add_render_command(CLI::App& app);
