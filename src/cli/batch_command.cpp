@@ -14,6 +14,7 @@
 #include "core/stopwatch.hpp"
 #include "export/atomic_file.hpp"
 #include "export/export_drawing.hpp"
+#include "export/raster_writer.hpp"
 #include "export/styled_drawing.hpp"
 #include "lines/finish_drawing.hpp"
 #include "scene/flight_frames.hpp"
@@ -30,8 +31,11 @@ std::vector<std::string> parse_formats(const std::string& text) {
     std::vector<std::string> out;
     std::stringstream s(text);
     for (std::string f; std::getline(s, f, ',');) {
-        if (f != "png" && f != "svg" && f != "ps" && f != "eps" && f != "pdf")
-            throw Error("cli", "", "--formats: unknown format \"" + f + "\" (use png, svg, ps, eps, pdf)");
+        if (f != "svg" && f != "ps" && f != "eps" && f != "pdf" && !is_raster_extension("." + f)) {
+            std::string known = "svg, ps, eps, pdf";
+            for (const std::string& e : raster_extensions()) known += ", " + e.substr(1);
+            throw Error("cli", "", "--formats: unknown format \"" + f + "\" (use " + known + ")");
+        }
         out.push_back(f);
     }
     if (out.empty()) throw Error("cli", "", "--formats: no format given");
@@ -125,7 +129,7 @@ Subcommand add_batch_command(CLI::App& app) {
                     "(crease threshold); an empty optional cell keeps the scene's value")
         ->required();
     cmd->add_option("--out", o.out_dir, "Output directory (created when missing)")->required();
-    cmd->add_option("--formats", o.formats, "Comma-separated frame formats: png, svg, ps, eps, pdf (default png,svg)");
+    cmd->add_option("--formats", o.formats, "Comma-separated frame formats: svg, ps, eps, pdf, or a raster png, tif, jpg, webp, exr (default png,svg)");
     cmd->add_option("--warmup", o.warmup, "First N frames timed apart (shader JIT, caches); default 1")
         ->check(number_between(0, 1000000));
     cmd->add_flag("--whole-dem", o.whole_dem, "Model the whole DEM (default: the union of the frames' visible windows)");
