@@ -46,6 +46,21 @@ void export_drawing(const StyledDrawing& drawing, const PageOptions& page, const
 
 std::string export_document(const StyledDrawing& drawing, const PageOptions& page, const std::string& path) {
     check_output_format(path);
+    if (drawing.widths_mm) {  // millimetres on this page, as image pixels at its scale
+        const PageLayout layout = page_layout(drawing.width, drawing.height, page, path);
+        StyledDrawing px = drawing;
+        px.widths_mm = false;
+        for (StyledLayer& l : px.layers) {
+            l.style.width /= layout.scale_mm, l.style.width_far /= layout.scale_mm;
+            for (double& d : l.style.dash) d /= layout.scale_mm;
+            for (StyledGroup& g : l.groups)
+                for (StyledPath& p : g.paths) {
+                    p.width /= layout.scale_mm;
+                    for (double& d : p.dash) d /= layout.scale_mm;
+                }
+        }
+        return export_document(px, page, path);
+    }
     const std::string ext = extension(path);
     if (ext == ".svg") return svg_document(drawing, page, path);
     if (ext == ".ps" || ext == ".eps") return ps_document(drawing, page, ext == ".eps", path);

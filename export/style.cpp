@@ -93,14 +93,36 @@ Style field_sketch_style() {
     return s;
 }
 
+// For pen plotters (styles/plotter.toml): one pen colour per layer, pen widths in millimetres
+// whatever the page, no surface mask, no sketch or width bands.
+Style plotter_style() {
+    Style s = default_style();
+    s.name = "plotter";
+    s.no_fill = true;
+    s.widths_mm = true;
+    s.bands = 1;
+    const struct { LayerKind k; Rgb c; double w; } table[] = {
+        {LayerKind::surface, {0x80, 0x80, 0x80}, 0.3},      {LayerKind::ridges, {0xb0, 0x30, 0x20}, 0.3},
+        {LayerKind::creases, {0x20, 0x50, 0xb0}, 0.3},      {LayerKind::pels, {0x20, 0x80, 0x40}, 0.3},
+        {LayerKind::textures, {0x90, 0x60, 0x20}, 0.25},    {LayerKind::feature_edges, {0x60, 0x20, 0x80}, 0.5},
+        {LayerKind::silhouettes, {0x00, 0x00, 0x00}, 0.5}};
+    for (const auto& row : table) {
+        LayerStyle& l = s.layer(row.k);
+        l.color = row.c;
+        set_width(l, row.w, row.w);
+    }
+    return s;
+}
+
 }  // namespace
 
-std::vector<std::string> builtin_style_names() { return {"technical", "field-sketch"}; }
+std::vector<std::string> builtin_style_names() { return {"technical", "field-sketch", "plotter"}; }
 
 Style builtin_style(const std::string& name) {
     if (name == "technical") return default_style();
     if (name == "field-sketch") return field_sketch_style();
-    throw Error("style", name, "unknown style \"" + name + "\" (use technical or field-sketch)");
+    if (name == "plotter") return plotter_style();
+    throw Error("style", name, "unknown style \"" + name + "\" (use technical, field-sketch or plotter)");
 }
 
 Style resolve_style(const std::string& name_or_path) {

@@ -50,6 +50,8 @@ struct LayerStyle {
 struct Style {
     std::string name = "technical";
     Rgb fill{255, 255, 255};        // surface mask fill
+    bool no_fill = false;           // fill = "none": no surface mask (pen plotters draw fills as outlines)
+    bool widths_mm = false;         // width_unit = "mm": widths in millimetres on the page, whatever its size
     Rgb background{255, 255, 255};  // page / image background
     double near = 0.0, far = 1.0;   // fractions of the drawing's largest depth
     int bands = 4;                  // width bands (quantisation levels) per layer
@@ -61,8 +63,8 @@ struct Style {
 
 // The default style: equal to styles/technical.toml.
 Style default_style();
-// Shipped styles by name ("technical", "field-sketch"); throws Error("style", name,
-// "unknown style \"NAME\" (use technical or field-sketch)").
+// Shipped styles by name ("technical", "field-sketch", "plotter"); throws Error("style", name,
+// "unknown style \"NAME\" (use technical, field-sketch or plotter)").
 Style builtin_style(const std::string& name);
 std::vector<std::string> builtin_style_names();
 

@@ -84,7 +84,7 @@ std::vector<std::string> layer_keys() {
     return {"color", "colour", "width", "width_far", "opacity", "opacity_far", "keep_far",
             "dash", "sketch", "overshoot", "min_length", "repeat", "visible"};
 }
-std::vector<std::string> root_keys() { return {"name", "fill", "background", "near", "far", "bands"}; }
+std::vector<std::string> root_keys() { return {"name", "fill", "background", "near", "far", "bands", "width_unit"}; }
 std::vector<std::string> layer_names() {
     std::vector<std::string> names = {"all"};
     for (LayerKind k : all_layers) names.emplace_back(layer_name(k));
@@ -144,8 +144,14 @@ void apply_root_key(Style& s, const std::string& key, const toml::value& v) {
     if (key == "name") {
         if (!v.is_string()) throw StyleProblem("name must be a string");
         s.name = v.as_string().str;
-    } else if (key == "fill") s.fill = colour(v, key, "");
-    else if (key == "background") s.background = colour(v, key, "");
+    } else if (key == "fill") {
+        s.no_fill = v.is_string() && v.as_string().str == "none";
+        if (!s.no_fill) s.fill = colour(v, key, "");
+    } else if (key == "width_unit") {
+        if (!v.is_string() || (v.as_string().str != "px" && v.as_string().str != "mm"))
+            throw StyleProblem("width_unit must be \"px\" (image pixels) or \"mm\" (on the page)");
+        s.widths_mm = v.as_string().str == "mm";
+    } else if (key == "background") s.background = colour(v, key, "");
     else if (key == "near") s.near = unit_number(v, key, "");
     else if (key == "far") s.far = unit_number(v, key, "");
     else if (key == "bands") {

@@ -86,7 +86,7 @@ StyledLayer style_layer(const Layer& layer, const Style& style, const DistanceMa
     StyledLayer out;
     out.kind = layer.kind;
     out.name = std::string(layer_name(layer.kind));
-    out.fill = layer.fill;
+    if (!style.no_fill) out.fill = layer.fill;
     out.fill_color = style.fill;
     out.style = style.layer(layer.kind);
     const LayerStyle& ls = out.style;
@@ -126,6 +126,7 @@ StyledDrawing style_drawing(const Drawing& drawing, const Style& style, LayerSpl
     out.background = style.background;
     out.split = split;
     out.metadata = drawing.metadata;
+    out.widths_mm = style.widths_mm;
     const DistanceMap dm{max_depth(drawing), style.near, style.far};
     for (size_t i = 0; i < drawing.layers.size(); ++i)
         out.layers[i] = style_layer(drawing.layers[i], style, dm, split);

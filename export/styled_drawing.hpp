@@ -55,6 +55,9 @@ struct StyledDrawing {
     LayerSplit split = LayerSplit::kind;
     std::array<StyledLayer, 7> layers;  // bottom to top, conventions.md order
     std::map<std::string, std::string> metadata;
+    // Path widths (and dashes) in millimetres on the page instead of image pixels (Style::widths_mm):
+    // export_document turns them into pixels at the page's scale.
+    bool widths_mm = false;
 };
 
 // Applies `style`'s colours, widths (by distance, in bands), opacity and dashes to `drawing`.

@@ -8,7 +8,7 @@
 namespace penink {
 
 void add_scene_override_options(CLI::App* cmd, SceneOverrides& o) {
-    cmd->add_option("--style", o.style, "Style name (technical, field-sketch) or a style .toml file");
+    cmd->add_option("--style", o.style, "Style name (technical, field-sketch, plotter) or a style .toml file");
     cmd->add_option("--width", o.width, "Image width in pixels, 1..16384 (overrides the scene)")
         ->check(number_between(1, max_image_side));
     cmd->add_option("--height", o.height, "Image height in pixels, 1..16384 (overrides the scene)")

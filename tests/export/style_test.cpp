@@ -124,7 +124,7 @@ TEST(Style, MissingFileAndUnknownBuiltin) {
         builtin_style("ornate");
         FAIL();
     } catch (const Error& e) {
-        EXPECT_STREQ(e.what(), "penink: style: ornate: unknown style \"ornate\" (use technical or field-sketch)");
+        EXPECT_STREQ(e.what(), "penink: style: ornate: unknown style \"ornate\" (use technical, field-sketch or plotter)");
     }
     EXPECT_EQ(resolve_style("field-sketch").name, "field-sketch");
 }
