@@ -19,21 +19,8 @@
 
 namespace penink {
 
-namespace {
-
-std::string extension(const std::string& path) {
-    const size_t slash = path.find_last_of('/');
-    const size_t dot = path.find_last_of('.');
-    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-    std::string ext = path.substr(dot);
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
-
-}  // namespace
-
 void check_output_format(const std::string& path) {
-    const std::string ext = extension(path);
+    const std::string ext = lower_extension(path);
     if (ext == ".svg" || ext == ".ps" || ext == ".eps" || ext == ".pdf" || is_raster_extension(ext)) return;
     std::string raster;
     for (const std::string& e : raster_extensions()) raster += (raster.empty() ? "" : " ") + e;
@@ -61,7 +48,7 @@ std::string export_document(const StyledDrawing& drawing, const PageOptions& pag
         }
         return export_document(px, page, path);
     }
-    const std::string ext = extension(path);
+    const std::string ext = lower_extension(path);
     if (ext == ".svg") return svg_document(drawing, page, path);
     if (ext == ".ps" || ext == ".eps") return ps_document(drawing, page, ext == ".eps", path);
     if (ext == ".pdf") return pdf_document(drawing, page, path);
@@ -85,7 +72,7 @@ void check_output_targets(const std::vector<std::string>& paths, const PageOptio
         if (::access(folder.c_str(), W_OK | X_OK) != 0)
             throw Error("export", p, std::string("cannot write file (") + std::strerror(errno) + ")");
         page_layout(width, height, page, p);
-        if (is_raster_extension(extension(p))) {
+        if (is_raster_extension(lower_extension(p))) {
             raster_transform(width, height, page, p);
             check_raster_writer(p);
         }

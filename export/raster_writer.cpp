@@ -22,14 +22,6 @@ namespace {
 
 constexpr const char* module_name = "penink_oiio.so";
 
-std::string lower_extension(const std::string& path) {
-    const size_t slash = path.find_last_of('/');
-    const size_t dot = path.find_last_of('.');
-    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-    std::string ext = path.substr(dot);
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
 
 // The format's name in messages: the extension in capitals ("PNG", "TIFF", "JPG").
 std::string format_label(const std::string& path) {
@@ -94,6 +86,15 @@ const Module& raster_module() {
 const std::vector<std::string>& raster_extensions() {
     static const std::vector<std::string> exts = {".png", ".tif", ".tiff", ".jpg", ".jpeg", ".webp", ".exr"};
     return exts;
+}
+
+std::string lower_extension(const std::string& path) {
+    const size_t slash = path.find_last_of('/');
+    const size_t dot = path.find_last_of('.');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+    std::string ext = path.substr(dot);
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
 }
 
 bool is_raster_extension(const std::string& ext) {

@@ -23,6 +23,9 @@ const std::vector<std::string>& raster_extensions();
 // Whether `ext` (lower case, with the dot) is one of them.
 bool is_raster_extension(const std::string& ext);
 
+// A path's extension, lower case, with its dot (".png"); "" when it has none.
+std::string lower_extension(const std::string& path);
+
 // The output size and image->raster transform for these page options, for a drawing of width x
 // height image pixels. Throws Error("export", path, "PNG of WxH pixels is too large (lower
 // --dpi)") (the format named by path's extension) beyond max_raster_pixels, and page_layout's

@@ -123,7 +123,7 @@ std::string drainage_cache_path(const std::string& dem_path, bool folder_writabl
 // terrain cache gives them): unless it holds the heights unexaggerated, a build reads the DEM
 // again at 1 (heights only at factor 1). Every decision is reported through `log`.
 // With `in_file`, a valid cache is read without its lines' vertices (read_drainage_line_index:
-// every byte still hashed and checked first, the same errors and rebuild) and *in_file says
+// its records and index checked, the same errors and rebuild) and *in_file says
 // where they are; after a build in_file->file stays empty and the database holds them.
 DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& terrain,
                                   const DrainageOptions& options, const DrainageLog& log = {},
