@@ -63,7 +63,7 @@ void header(std::string& o, const StyledDrawing& d, const PageLayout& L, const P
     if (!title.empty()) o += "<title id=\"title\">" + xml_escape(title) + "</title>\n";
     if (const std::string desc = drawing_description(meta); !desc.empty())
         o += "<desc id=\"desc\">" + xml_escape(desc) + "</desc>\n";
-    // Dublin Core in RDF, as Inkscape's Document Properties read and write it, then penink's own
+    // Dublin Core in RDF, as Inkscape's Document Properties read and write it, and penink's own
     // parameters (its namespace declared on the root).
     o += "<metadata id=\"metadata\">\n<rdf:RDF>\n<cc:Work rdf:about=\"\">\n<dc:format>image/svg+xml</dc:format>\n";
     o += "<dc:type rdf:resource=\"http://purl.org/dc/dcmitype/StillImage\"/>\n";
@@ -73,10 +73,10 @@ void header(std::string& o, const StyledDrawing& d, const PageLayout& L, const P
     if (const auto it = meta.find("source"); it != meta.end()) o += "<dc:source>" + xml_escape(it->second) + "</dc:source>\n";
     if (const auto it = meta.find("generator"); it != meta.end())
         o += "<dc:creator><cc:Agent><dc:title>" + xml_escape(it->second) + "</dc:title></cc:Agent></dc:creator>\n";
-    o += "</cc:Work>\n</rdf:RDF>\n";
+    // inside the RDF, which Inkscape keeps as it is (elsewhere it warns "unknown type" for each)
     for (const auto& [k, v] : meta)
         o += "<penink:param name=\"" + xml_escape(k) + "\">" + xml_escape(v) + "</penink:param>\n";
-    o += "</metadata>\n";
+    o += "</cc:Work>\n</rdf:RDF>\n</metadata>\n";
     if (!(d.background == Rgb{255, 255, 255})) {
         o += "<rect id=\"background\"";
         attr_num(o, "x", -L.offset_x_mm / L.scale_mm, 4);

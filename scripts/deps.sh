@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages penink builds, runs and tests with (idempotent: skips apt
 # when every package is already installed). Used by scripts/demo.sh and scripts/test.sh;
-# `deps.sh fuzz` (scripts/fuzz.sh) adds clang, which the fuzz targets alone need.
+# `deps.sh fuzz` (scripts/fuzz.sh) adds clang, which the fuzz targets alone need; `deps.sh test`
+# (scripts/test.sh) adds Inkscape, which only a test needs (that Inkscape opens penink's SVG
+# without warnings and keeps its metadata).
 set -euo pipefail
 pkgs=(
   cmake g++ make pkg-config            # build
@@ -19,6 +21,9 @@ pkgs=(
 )
 if [ "${1:-}" = fuzz ]; then
   pkgs+=(clang)                        # libFuzzer and the sanitizers' runtimes (scripts/fuzz.sh)
+fi
+if [ "${1:-}" = test ]; then
+  pkgs+=(inkscape)                     # the SVG checked in the editor it is made for
 fi
 missing=()
 for p in "${pkgs[@]}"; do

@@ -3,6 +3,6 @@
 # runs the whole test suite (ctest).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/deps.sh
+bash scripts/deps.sh test
 bash scripts/build.sh
 cd build && ctest --output-on-failure -j"$(nproc)"

@@ -79,3 +79,23 @@ TEST(MetadataCli, EpsBoundingBoxIsTheInkPlusTheMargin) {
     EXPECT_LT(box[2] - box[0], page[2] - 100.0);  // much less than the page: the drawing is smaller
     fs::remove_all(dir);
 }
+
+// Inkscape (the editor the layered SVG is for) opens it without a warning and keeps penink's
+// metadata and layers when it saves it again. Skipped where Inkscape is not installed (scripts/
+// test.sh installs it).
+TEST(MetadataCli, InkscapeOpensTheSvgWithoutWarnings) {
+    if (std::system("command -v inkscape > /dev/null 2>&1") != 0) GTEST_SKIP() << "inkscape not installed";
+    const auto dir = fresh_dir("inkscape");
+    fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.asc", dir / "volcano.asc");
+    fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.prj", dir / "volcano.prj");
+    ASSERT_EQ(run_penink("render volcano.asc --width 300 --height 225 -o a.svg", dir).code, 0);
+    const RunResult r = run_penink("", dir, "HOME='" + dir.string() + "' inkscape a.svg --export-type=svg --export-filename=b.svg");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(r.output.find("WARNING: unknown type"), std::string::npos) << r.output;
+    const std::string saved = read_text(dir / "b.svg");
+    EXPECT_NE(saved.find("name=\"generator\">penink "), std::string::npos);
+    EXPECT_NE(saved.find("<dc:title>volcano.asc: pen-and-ink drawing</dc:title>"), std::string::npos);
+    for (const char* layer : {"surface", "ridges", "creases", "silhouettes"})
+        EXPECT_NE(saved.find(std::string("inkscape:label=\"") + layer + "\""), std::string::npos) << layer;
+    fs::remove_all(dir);
+}
