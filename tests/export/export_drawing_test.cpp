@@ -20,15 +20,6 @@ std::vector<std::string> files_in(const TempDir& dir) {
     return names;
 }
 
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "no error";
-}
-
 StyledDrawing drawing() { return style_drawing(small_drawing(), default_style()); }
 
 }  // namespace

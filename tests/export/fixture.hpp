@@ -3,10 +3,12 @@
 // (support/temp_dir.hpp).
 #pragma once
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 
 #include "core/drawing.hpp"
+#include "core/error.hpp"
 #include "export/style.hpp"
 #include "support/temp_dir.hpp"
 
@@ -77,6 +79,16 @@ inline std::string read_text(const std::string& path) {
 
 inline void write_text(const std::string& path, const std::string& text) {
     std::ofstream(path, std::ios::binary) << text;
+}
+
+// The message of the penink::Error `f` throws, or "no error".
+inline std::string error_of(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "no error";
 }
 
 }  // namespace penink::test

@@ -52,15 +52,6 @@ double mean_diff(const ReadBack& a, const ReadBack& b) {
     return 255.0 * sum / double(a.pixels.size());
 }
 
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "no error";
-}
-
 }  // namespace
 
 TEST(RasterFormats, EachExtensionWritesItsFormatWithSizeAndDpi) {
