@@ -38,4 +38,8 @@ inline GridNodes grid_nodes(const Terrain& t) {
     return {t.cols, t.rows, t.pos.data(), t.valid.data(), 1.0};
 }
 
+// A Terrain of the nodes inside `w` (clamped to the grid) as `nodes` draws them, with `grid`'s
+// georeference and exaggeration (its own node arrays are not kept); the source offsets moved to w.
+Terrain crop_nodes(const Terrain& grid, const GridNodes& nodes, GridWindow w);
+
 }  // namespace penink

@@ -5,22 +5,36 @@
 
 #include <glm/common.hpp>
 
+#include "input/grid_nodes.hpp"
+
 namespace penink {
 
-Terrain crop_terrain(const Terrain& t, GridWindow w) {
-    w.c0 = std::clamp(w.c0, 0, t.cols), w.c1 = std::clamp(w.c1, w.c0, t.cols);
-    w.r0 = std::clamp(w.r0, 0, t.rows), w.r1 = std::clamp(w.r1, w.r0, t.rows);
-    Terrain out = t;
+Terrain crop_terrain(const Terrain& t, GridWindow w) { return crop_nodes(t, grid_nodes(t), w); }
+
+Terrain crop_nodes(const Terrain& grid, const GridNodes& nodes, GridWindow w) {
+    w.c0 = std::clamp(w.c0, 0, nodes.cols), w.c1 = std::clamp(w.c1, w.c0, nodes.cols);
+    w.r0 = std::clamp(w.r0, 0, nodes.rows), w.r1 = std::clamp(w.r1, w.r0, nodes.rows);
+    Terrain out = grid;
     out.cols = w.cols(), out.rows = w.rows();
-    out.source_col0 = t.source_col0 + w.c0, out.source_row0 = t.source_row0 + w.r0;
-    out.pos.clear(), out.valid.clear();
-    out.pos.reserve(out.size()), out.valid.reserve(out.size());
-    for (int r = w.r0; r < w.r1; ++r) {
-        const std::size_t i0 = t.index(w.c0, r);
-        out.pos.insert(out.pos.end(), t.pos.begin() + i0, t.pos.begin() + (i0 + w.cols()));
-        out.valid.insert(out.valid.end(), t.valid.begin() + i0, t.valid.begin() + (i0 + w.cols()));
-    }
+    out.source_col0 = grid.source_col0 + w.c0, out.source_row0 = grid.source_row0 + w.r0;
+    out.z = {}, out.xy = {};
+    out.pos.resize(out.size()), out.valid.resize(out.size());
+    for (int r = 0; r < out.rows; ++r)
+        for (int c = 0; c < out.cols; ++c) {
+            const std::size_t i = nodes.index(w.c0 + c, w.r0 + r), o = out.index(c, r);
+            out.pos[o] = nodes.at(i), out.valid[o] = nodes.valid[i];
+        }
     return out;
+}
+
+Terrain terrain_metadata(Terrain& t) {
+    std::vector<glm::vec3> pos = std::move(t.pos);
+    std::vector<std::uint8_t> valid = std::move(t.valid);
+    std::vector<float> z = std::move(t.z);
+    std::vector<glm::vec2> xy = std::move(t.xy);
+    Terrain meta = t;
+    t.pos = std::move(pos), t.valid = std::move(valid), t.z = std::move(z), t.xy = std::move(xy);
+    return meta;
 }
 
 glm::dvec2 affine_node_world(const std::array<double, 6>& gt, double unit, int c, int r) {

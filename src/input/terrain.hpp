@@ -67,8 +67,12 @@ struct GridWindow {
     int rows() const { return r1 - r0; }
 };
 
-// Copy of the nodes inside `w` (clamped to the grid); keeps origin and CRS.
+// Copy of the nodes inside `w` (clamped to the grid); keeps origin and CRS (crop_nodes).
 Terrain crop_terrain(const Terrain& t, GridWindow w);
+
+// t's grid and georeference without its node arrays (pos, valid, z, xy): they are set aside, not
+// copied, while the rest is, and t is as it was on return.
+Terrain terrain_metadata(Terrain& t);
 
 // Axis-aligned bounds of the valid nodes (local metres); false when none is valid.
 bool terrain_bounds(const Terrain& t, glm::dvec3& lo, glm::dvec3& hi);

@@ -187,28 +187,12 @@ FrameTerrain frame_terrain(Terrain terrain) {
     f.lod = build_terrain_lod(*owned);
     f.window = {0, 0, owned->cols, owned->rows};
     terrain_bounds(*owned, f.lo, f.hi);
-    std::vector<glm::vec3> pos = std::move(owned->pos);
-    std::vector<std::uint8_t> valid = std::move(owned->valid);
-    f.meta = *owned;
-    owned->pos = std::move(pos), owned->valid = std::move(valid);
-    f.meta.z = {}, f.meta.xy = {};
+    f.meta = terrain_metadata(*owned);
     f.storage = std::move(owned);
     return f;
 }
 
-Terrain window_terrain(const FrameTerrain& f) {
-    const GridWindow& w = f.window;
-    Terrain out = f.meta;
-    out.cols = w.cols(), out.rows = w.rows();
-    out.source_col0 = f.meta.source_col0 + w.c0, out.source_row0 = f.meta.source_row0 + w.r0;
-    out.pos.resize(out.size()), out.valid.resize(out.size());
-    for (int r = 0; r < out.rows; ++r)
-        for (int c = 0; c < out.cols; ++c) {
-            const std::size_t i = f.nodes.index(w.c0 + c, w.r0 + r), o = out.index(c, r);
-            out.pos[o] = f.nodes.at(i), out.valid[o] = f.nodes.valid[i];
-        }
-    return out;
-}
+Terrain window_terrain(const FrameTerrain& f) { return crop_nodes(f.meta, f.nodes, f.window); }
 
 LodView scene_view_window(const SceneTerrain& terrain, const Camera& cam) {
     const StoredTerrain& s = terrain.stored;

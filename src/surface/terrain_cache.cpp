@@ -141,14 +141,7 @@ StoredTerrain store_terrain(Terrain flat) {
     t.lod = build_terrain_lod(t.nodes, 1.0);
     glm::dvec3 lo, hi;
     if (terrain_bounds(*owned, lo, hi)) t.plan_lo = glm::dvec2(lo), t.plan_hi = glm::dvec2(hi);
-    {  // the metadata alone: the arrays set aside while it is copied
-        std::vector<glm::vec3> pos = std::move(owned->pos);
-        std::vector<std::uint8_t> valid = std::move(owned->valid);
-        std::vector<float> z = std::move(owned->z);
-        std::vector<glm::vec2> xy = std::move(owned->xy);
-        t.meta = *owned;
-        owned->pos = std::move(pos), owned->valid = std::move(valid), owned->z = std::move(z), owned->xy = std::move(xy);
-    }
+    t.meta = terrain_metadata(*owned);
     t.in_memory = owned.get();
     t.storage = std::move(owned);
     return t;
