@@ -2,39 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <numeric>
-#include <unordered_map>
 
 #include <glm/geometric.hpp>
 
 #include "lines/line_metrics.hpp"
+#include "lines/stroke_point_grid.hpp"
 
 namespace penink {
 
 namespace {
 
 constexpr float kStep = 0.5f;  // px between samples
-
-struct Grid {
-    float cell;
-    std::unordered_map<std::uint64_t, std::vector<std::pair<glm::vec2, int>>> cells;
-    static std::uint64_t key(int x, int y) { return (std::uint64_t(std::uint32_t(x)) << 32) | std::uint32_t(y); }
-    void add(glm::vec2 p, int id) {
-        cells[key(int(std::floor(p.x / cell)), int(std::floor(p.y / cell)))].push_back({p, id});
-    }
-    bool near(glm::vec2 p, int id, float r) const {
-        const int cx = int(std::floor(p.x / cell)), cy = int(std::floor(p.y / cell));
-        for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-                const auto it = cells.find(key(cx + dx, cy + dy));
-                if (it == cells.end()) continue;
-                for (const auto& [q, other] : it->second)
-                    if (other != id && glm::length(q - p) <= r) return true;
-            }
-        return false;
-    }
-};
 
 // Arc length at each point of a stroke.
 std::vector<double> arc_lengths(const Stroke& s) {
@@ -90,7 +69,7 @@ std::vector<Stroke> merge_doubled(std::vector<Stroke> strokes, float width, floa
     if (!(width > 0.0f)) return strokes;
     for (Stroke& s : strokes)
         if (s.depth.size() != s.points.size()) s.depth.resize(s.points.size(), 0.0f);
-    Grid grid{std::max(width, 1e-3f), {}};
+    StrokePointGrid grid(std::max(width, 1e-3f));
     std::vector<glm::vec2> p;
     std::vector<double> u;
     for (const Stroke& s : above) {
@@ -117,12 +96,12 @@ std::vector<Stroke> merge_doubled(std::vector<Stroke> strokes, float width, floa
         samples_of(s, t, p, u);
         std::vector<char> cut(p.size(), 0);
         for (std::size_t k = 0; k < p.size();) {  // runs of samples near an accepted stroke
-            if (!grid.near(p[k], int(i), width)) {
+            if (!grid.near_other(p[k], int(i), width)) {
                 ++k;
                 continue;
             }
             std::size_t j = k;
-            while (j + 1 < p.size() && grid.near(p[j + 1], int(i), width)) ++j;
+            while (j + 1 < p.size() && grid.near_other(p[j + 1], int(i), width)) ++j;
             if (u[j] - u[k] >= double(min_run)) std::fill(cut.begin() + std::ptrdiff_t(k), cut.begin() + std::ptrdiff_t(j) + 1, 1);
             k = j + 1;
         }

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
 
 #include <glm/geometric.hpp>
 
 #include "lines/simplify.hpp"
+#include "lines/stroke_point_grid.hpp"
 
 namespace penink {
 
@@ -50,28 +50,10 @@ LineMetrics line_metrics(const std::vector<Stroke>& strokes, float loop_px, floa
             m.length += len;
         }
     }
-    const float cell = std::max(near_px, 1e-3f);
-    auto key = [](int x, int y) { return (std::uint64_t(std::uint32_t(x)) << 32) | std::uint32_t(y); };
-    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid;
-    for (std::uint32_t i = 0; i < samples.size(); ++i)
-        grid[key(int(std::floor(samples[i].p.x / cell)), int(std::floor(samples[i].p.y / cell)))].push_back(i);
+    StrokePointGrid grid(std::max(near_px, 1e-3f));
+    for (const Sample& s : samples) grid.add(s.p, int(s.stroke));
     std::vector<char> near(samples.size(), 0);
-    for (std::size_t i = 0; i < samples.size(); ++i) {
-        const Sample& s = samples[i];
-        const int cx = int(std::floor(s.p.x / cell)), cy = int(std::floor(s.p.y / cell));
-        bool doubled = false;
-        for (int dy = -1; dy <= 1 && !doubled; ++dy)
-            for (int dx = -1; dx <= 1 && !doubled; ++dx) {
-                const auto it = grid.find(key(cx + dx, cy + dy));
-                if (it == grid.end()) continue;
-                for (const std::uint32_t j : it->second)
-                    if (samples[j].stroke != s.stroke && glm::length(samples[j].p - s.p) <= near_px) {
-                        doubled = true;
-                        break;
-                    }
-            }
-        near[i] = doubled;
-    }
+    for (std::size_t i = 0; i < samples.size(); ++i) near[i] = grid.near_other(samples[i].p, int(samples[i].stroke), near_px);
     // Runs of near samples along one stroke at least min_run_px long: a crossing or a junction
     // touches another stroke over a pixel or two, a doubled line runs beside it.
     for (std::size_t i = 0; i < samples.size();) {
