@@ -30,6 +30,10 @@ glm::dmat4 view_matrix(const Camera& cam) {
 
 glm::dmat4 projection_matrix(const Camera& cam) {
     const double aspect = double(cam.width) / double(cam.height);
+    if (is_orthographic(cam)) {
+        const double hw = cam.view_width * 0.5, hh = hw / aspect;
+        return glm::ortho(-hw, hw, -hh, hh, cam.near_plane, cam.far_plane);
+    }
     const double fovy = 2.0 * std::atan(std::tan(cam.fov * deg / 2.0) / aspect);
     return glm::perspective(fovy, aspect, cam.near_plane, cam.far_plane);
 }
@@ -41,8 +45,27 @@ bool project_to_pixel(const Camera& cam, const glm::dvec3& world, glm::dvec2& pi
     if (e.z >= 0.0) return false;
     const glm::dvec4 c = projection_matrix(cam) * e;
     pixel = {(c.x / c.w * 0.5 + 0.5) * cam.width, (0.5 - c.y / c.w * 0.5) * cam.height};
-    depth = glm::length(glm::dvec3(e));
+    depth = is_orthographic(cam) ? -e.z : glm::length(glm::dvec3(e));
     return true;
+}
+
+bool is_orthographic(const Camera& cam) { return cam.projection == Projection::orthographic; }
+
+double eye_depth(const Camera& cam, const glm::dvec3& world) {
+    if (is_orthographic(cam)) return glm::dot(world - cam.eye, direction_from_angles(cam.azimuth, cam.altitude));
+    return glm::length(world - cam.eye);
+}
+
+glm::dvec3 toward_viewer(const Camera& cam, const glm::dvec3& world) {
+    if (is_orthographic(cam)) return -direction_from_angles(cam.azimuth, cam.altitude);
+    const glm::dvec3 v = cam.eye - world;
+    const double l = glm::length(v);
+    return l > 0.0 ? v / l : glm::dvec3(0.0);
+}
+
+double world_per_pixel(const Camera& cam, double depth) {
+    if (is_orthographic(cam)) return cam.view_width / double(cam.width);
+    return depth * 2.0 * std::tan(cam.fov * deg / 2.0) / double(cam.width);
 }
 
 Camera frame_box(const glm::dvec3& lo, const glm::dvec3& hi, double azimuth, double altitude,
@@ -87,6 +110,40 @@ Camera frame_points(const std::vector<glm::dvec3>& points, double azimuth, doubl
     return cam;
 }
 
+Camera frame_points_orthographic(const std::vector<glm::dvec3>& points, double azimuth, double altitude,
+                                 int width, int height, double view_width, double fill) {
+    Camera cam;
+    cam.projection = Projection::orthographic;
+    cam.azimuth = azimuth, cam.altitude = altitude;
+    cam.width = width, cam.height = height;
+    glm::dvec3 lo(1e300), hi(-1e300);
+    for (const glm::dvec3& p : points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    if (points.empty()) lo = hi = glm::dvec3(0.0);
+    const glm::dvec3 centre = (lo + hi) * 0.5, d = direction_from_angles(azimuth, altitude);
+    cam.eye = centre;
+    const glm::dmat4 v = view_matrix(cam);  // rotation about the centre: x right, y up, -z forward
+    double xl = 1e300, xr = -1e300, yl = 1e300, yr = -1e300;
+    for (const glm::dvec3& p : points) {
+        const glm::dvec4 e = v * glm::dvec4(p, 1.0);
+        xl = std::min(xl, e.x), xr = std::max(xr, e.x), yl = std::min(yl, e.y), yr = std::max(yr, e.y);
+    }
+    if (points.empty()) xl = xr = yl = yr = 0.0;
+    const double aspect = double(width) / double(height);
+    cam.view_width = view_width > 0.0 ? view_width : std::max({xr - xl, (yr - yl) * aspect, 1e-9}) / fill;
+    const glm::dmat4 inv = glm::inverse(v);
+    const glm::dvec3 shift = (glm::dvec3(inv[0]) * (xl + xr) + glm::dvec3(inv[1]) * (yl + yr)) * 0.5;
+    // Eye plane in front of the whole box: every depth along d is positive.
+    double smin = 1e300, smax = -1e300;
+    for (int i = 0; i < 8; ++i) {
+        const glm::dvec3 p(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
+        smin = std::min(smin, glm::dot(p - centre, d)), smax = std::max(smax, glm::dot(p - centre, d));
+    }
+    const double margin = 0.05 * (smax - smin) + 1e-3 * std::max(cam.view_width, 1.0);
+    cam.eye = centre + shift + d * (smin - margin);
+    fit_depth_range(cam, lo, hi);
+    return cam;
+}
+
 void fit_depth_range(Camera& cam, const glm::dvec3& lo, const glm::dvec3& hi) {
     const glm::dmat4 v = view_matrix(cam);
     double zmin = 1e300, zmax = 0.0;
@@ -94,6 +151,12 @@ void fit_depth_range(Camera& cam, const glm::dvec3& lo, const glm::dvec3& hi) {
         const glm::dvec3 p(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
         const double z = -(v * glm::dvec4(p, 1.0)).z;
         zmin = std::min(zmin, z), zmax = std::max(zmax, z);
+    }
+    if (is_orthographic(cam)) {  // depth is linear: a thin slab around the box
+        const double pad = 0.01 * (zmax - zmin) + 1e-3;
+        cam.near_plane = std::max(zmin - pad, 1e-6);
+        cam.far_plane = std::max(zmax + pad, cam.near_plane + 1e-3);
+        return;
     }
     cam.far_plane = std::max(zmax * 1.01, 1.0);
     cam.near_plane = std::max({zmin * 0.5, cam.far_plane * 1e-4, 1e-3});

@@ -1,6 +1,9 @@
-// Pinhole camera and sun in the world frame of conventions.md (x east, y north, z up; for a
-// terrain the local frame is metres relative to Terrain::origin). Angles in degrees: azimuth
-// clockwise from grid north, altitude above the horizontal; fov is the horizontal field of view.
+// Camera (pinhole or orthographic) and sun in the world frame of conventions.md (x east, y north,
+// z up; for a terrain the local frame is metres relative to Terrain::origin). Angles in degrees:
+// azimuth clockwise from grid north, altitude above the horizontal; fov is the horizontal field of
+// view of a perspective camera, view_width the ground width (metres) an orthographic image spans.
+// Depth is the eye distance for a perspective camera and the distance along the view direction
+// for an orthographic one (eye_depth): every pass that compares or attenuates by depth uses it.
 #pragma once
 #include <vector>
 
@@ -10,11 +13,15 @@
 
 namespace penink {
 
+enum class Projection { perspective, orthographic };
+
 struct Camera {
-    glm::dvec3 eye{0.0};          // world position
+    Projection projection = Projection::perspective;
+    glm::dvec3 eye{0.0};          // world position (orthographic: centre of the view plane)
     double azimuth = 0.0;         // view direction, degrees clockwise from north
     double altitude = -30.0;      // degrees above horizontal, negative looks down
-    double fov = 40.0;            // horizontal field of view, degrees
+    double fov = 40.0;            // horizontal field of view, degrees (perspective)
+    double view_width = 1.0;      // world units across the image width (orthographic)
     int width = 1000, height = 750;  // image, pixels
     double near_plane = 1.0, far_plane = 1e5;  // eye distances bounding the scene
 };
@@ -33,11 +40,23 @@ glm::dmat4 view_matrix(const Camera& cam);        // world -> eye (right-handed,
 glm::dmat4 projection_matrix(const Camera& cam);  // eye -> clip (OpenGL, depth -1..1)
 glm::dmat4 view_projection(const Camera& cam);
 
-// World point -> image pixel (origin top-left, y down) and eye distance; false when behind.
+// World point -> image pixel (origin top-left, y down) and depth (eye_depth); false when behind.
 bool project_to_pixel(const Camera& cam, const glm::dvec3& world, glm::dvec2& pixel, double& depth);
 
-// Camera looking at the box [lo, hi] from azimuth/altitude, placed so the box is centred and
-// spans `fill` of the image width, or of its height when that is the tighter fit
+bool is_orthographic(const Camera& cam);
+// Depth of a world point: eye distance (perspective) or distance along the view direction
+// (orthographic), world units.
+double eye_depth(const Camera& cam, const glm::dvec3& world);
+// Unit vector from a world point towards the viewer: towards the eye (perspective) or against
+// the view direction (orthographic). A surface faces the viewer where its normal has a positive
+// dot product with it.
+glm::dvec3 toward_viewer(const Camera& cam, const glm::dvec3& world);
+// World units per image pixel at depth d: d * 2 tan(fov/2) / width (perspective), view_width /
+// width at any depth (orthographic).
+double world_per_pixel(const Camera& cam, double depth);
+
+// Perspective camera looking at the box [lo, hi] from azimuth/altitude, placed so the box is
+// centred and spans `fill` of the image width, or of its height when that is the tighter fit
 // (conventions.md default: from the south-west, looking down).
 Camera frame_box(const glm::dvec3& lo, const glm::dvec3& hi, double azimuth, double altitude,
                  double fov, int width, int height, double fill = 0.9);
@@ -47,7 +66,15 @@ Camera frame_box(const glm::dvec3& lo, const glm::dvec3& hi, double azimuth, dou
 Camera frame_points(const std::vector<glm::dvec3>& points, double azimuth, double altitude, double fov,
                     int width, int height, double fill = 0.9);
 
-// Sets near/far from the box so everything in it lies inside the depth range.
+// Orthographic camera looking along azimuth/altitude with the points centred in the image; the
+// image spans `view_width` world units across when it is > 0 (a map scale fixes it), else the
+// points span `fill` of the width or height. The eye lies on the plane just in front of every
+// point, so all depths are positive.
+Camera frame_points_orthographic(const std::vector<glm::dvec3>& points, double azimuth, double altitude,
+                                 int width, int height, double view_width = 0.0, double fill = 0.9);
+
+// Sets near/far from the box so everything in it lies inside the depth range (orthographic: the
+// near plane may be as close as the eye plane).
 void fit_depth_range(Camera& cam, const glm::dvec3& lo, const glm::dvec3& hi);
 
 }  // namespace penink

@@ -4,11 +4,14 @@
 #pragma once
 #include <array>
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include <glm/vec2.hpp>
+
+#include "core/georeference.hpp"
 
 namespace penink {
 
@@ -42,6 +45,7 @@ struct Drawing {
     int width = 0, height = 0;  // image size in pixels
     std::array<Layer, 7> layers;  // indexed by LayerKind, bottom to top
     std::map<std::string, std::string> metadata;  // source, camera, light, parameters
+    std::optional<Georeference> georeference;     // plan views only: pixel -> map transform
 
     Drawing();
     Layer& layer(LayerKind k) { return layers[static_cast<size_t>(k)]; }

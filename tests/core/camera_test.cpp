@@ -64,3 +64,49 @@ TEST(Camera, FrameBoxFitsTheHeightOfATallBox) {
     EXPECT_NEAR((mx.y - mn.y) / 750.0, 0.9, 0.02);
     EXPECT_LT(mx.x - mn.x, 900.0);
 }
+
+// Orthographic: the image spans view_width world units at any depth, depth is the distance along
+// the view direction, and framing puts every point in front of the eye plane and inside the image.
+TEST(Camera, OrthographicProjectsByViewWidthAndDepthAlongTheViewDirection) {
+    const std::vector<glm::dvec3> pts = {{0, 0, 0}, {1000, 0, 50}, {0, 500, 120}, {1000, 500, 10}};
+    const Camera c = frame_points_orthographic(pts, 0.0, -90.0, 800, 400, 1250.0);
+    ASSERT_TRUE(is_orthographic(c));
+    EXPECT_DOUBLE_EQ(c.view_width, 1250.0);
+    EXPECT_DOUBLE_EQ(world_per_pixel(c, 1.0), 1250.0 / 800.0);
+    EXPECT_DOUBLE_EQ(world_per_pixel(c, 1e6), 1250.0 / 800.0);
+    glm::dvec2 a, b;
+    double da = 0, db = 0;
+    ASSERT_TRUE(project_to_pixel(c, {0, 0, 0}, a, da));
+    ASSERT_TRUE(project_to_pixel(c, {1000, 500, 120}, b, db));
+    // Plan view, north up: x east goes right, y north goes up; 1000 m = 640 px, 500 m = 320 px.
+    EXPECT_NEAR(b.x - a.x, 640.0, 1e-6);
+    EXPECT_NEAR(a.y - b.y, 320.0, 1e-6);
+    EXPECT_NEAR((a.x + b.x) * 0.5, 400.0, 1e-6);  // centred
+    EXPECT_NEAR((a.y + b.y) * 0.5, 200.0, 1e-6);
+    EXPECT_NEAR(da - db, 120.0, 1e-6);  // looking down: the higher point is 120 m nearer
+    EXPECT_NEAR(eye_depth(c, {0, 0, 0}), da, 1e-6);
+    EXPECT_GT(db, 0.0);
+    EXPECT_GT(db, c.near_plane);
+    EXPECT_LT(da, c.far_plane);
+    const glm::dvec3 t = toward_viewer(c, {7, 8, 9});
+    EXPECT_NEAR(t.z, 1.0, 1e-12);
+}
+
+TEST(Camera, OrthographicFramingFitsTheTighterSide) {
+    // An oblique orthographic view: the points span fill of the width or height, whichever binds.
+    std::vector<glm::dvec3> pts;
+    for (int i = 0; i < 8; ++i) pts.emplace_back(i & 1 ? 300.0 : 0.0, i & 2 ? 2000.0 : 0.0, i & 4 ? 100.0 : 0.0);
+    const Camera c = frame_points_orthographic(pts, 30.0, -35.0, 600, 600, 0.0, 0.8);
+    double xl = 1e9, xr = -1e9, yl = 1e9, yr = -1e9;
+    for (const glm::dvec3& p : pts) {
+        glm::dvec2 px;
+        double d = 0;
+        ASSERT_TRUE(project_to_pixel(c, p, px, d));
+        EXPECT_GT(d, c.near_plane);
+        EXPECT_LT(d, c.far_plane);
+        xl = std::min(xl, px.x), xr = std::max(xr, px.x), yl = std::min(yl, px.y), yr = std::max(yr, px.y);
+    }
+    EXPECT_NEAR(std::max(xr - xl, yr - yl), 480.0, 1e-6);
+    EXPECT_NEAR((xl + xr) * 0.5, 300.0, 1e-6);
+    EXPECT_NEAR((yl + yr) * 0.5, 300.0, 1e-6);
+}
