@@ -5,6 +5,20 @@
 
 const float PENINK_FAR = 1.0e30;  // "no surface" in eye-distance images
 
+// The frame's camera (src/render/gl_objects.hpp, set_camera_uniforms): u_view.xyz is the unit
+// view direction, u_view.w 1 for an orthographic camera, 0 for a perspective one. Depth is the
+// eye distance (perspective) or the distance along the view direction (orthographic), as
+// eye_depth in src/core/camera.hpp; a pixel's world size at depth d is u_footprint.x * d +
+// u_footprint.y.
+float view_depth(vec3 p, vec3 eye, vec4 view) {
+    return view.w > 0.5 ? dot(p - eye, view.xyz) : distance(p, eye);
+}
+
+// Unit vector from p towards the viewer.
+vec3 toward_viewer(vec3 p, vec3 eye, vec4 view) {
+    return view.w > 0.5 ? -view.xyz : normalize(eye - p);
+}
+
 vec3 pn_edge_point(vec3 pi, vec3 pj, vec3 ni) {
     return (2.0 * pi + pj - dot(pj - pi, ni) * ni) / 3.0;
 }

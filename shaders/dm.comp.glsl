@@ -21,13 +21,14 @@ layout(binding = 0) uniform sampler2D u_toward;
 
 uniform mat4 u_view_proj;
 uniform vec3 u_eye;
+uniform vec4 u_view;
+uniform vec2 u_footprint;      // a pixel's world size at depth d: x d + y
 uniform vec3 u_light;          // unit vector towards the light
 uniform vec3 u_weights;        // slope, illumination, flow weights
 uniform float u_min_score;
 uniform float u_attenuation;
-uniform float u_max_distance;  // D: largest eye distance of visible terrain in the frame
+uniform float u_max_distance;  // D: largest depth of visible terrain in the frame
 uniform vec2 u_viewport;
-uniform float u_pixel_angle;   // world size of one pixel at unit distance
 uniform float u_lift_px;
 uniform float u_tolerance_px;
 uniform uint u_count;
@@ -40,13 +41,13 @@ void main() {
     vec3 p = vertices[i].position_flow.xyz;
     float flow = vertices[i].position_flow.w;
     vec3 n = vertices[i].normal.xyz;
-    float d = distance(p, u_eye);
+    float d = view_depth(p, u_eye, u_view);
     float sc = 1.0 - clamp(n.z, 0.0, 1.0);
     float ic = 1.0 - clamp(dot(n, u_light), 0.0, 1.0);
     float rs_min = u_min_score + u_attenuation * d / u_max_distance;
     float rs = dot(u_weights, vec3(sc, ic, flow)) / 3.0 - rs_min;
 
-    float footprint = d * u_pixel_angle;
+    float footprint = u_footprint.x * d + u_footprint.y;
     vec3 lifted = p + n * (u_lift_px * footprint);
     vec4 c = u_view_proj * vec4(lifted, 1.0);
     float result = PENINK_HIDDEN;
@@ -55,11 +56,11 @@ void main() {
     if (on_surface && c.w > 0.0 && all(lessThanEqual(abs(c.xyz), vec3(c.w)))) {
         ivec2 q = clamp(ivec2(clip_to_pixels(c, u_viewport)), ivec2(0), ivec2(u_viewport) - 1);
         float t = texelFetch(u_toward, q, 0).r;
-        float facing = abs(dot(n, normalize(u_eye - p)));
+        float facing = abs(dot(n, toward_viewer(p, u_eye, u_view)));
         float tolerance = u_tolerance_px * footprint / max(facing, 0.1);
         // No surface at the pixel: the vertex sits on a silhouette (a crest against the sky, the
         // DEM's edge) and the lift took it past the outline; nothing lies in front of it.
-        if (t >= PENINK_FAR || distance(lifted, u_eye) <= t + tolerance) result = rs;
+        if (t >= PENINK_FAR || view_depth(lifted, u_eye, u_view) <= t + tolerance) result = rs;
     }
     scores[i] = result;
 }

@@ -152,8 +152,8 @@ int run_bench(const BenchOptions& o) {
     }
     if (!o.tolerances.empty()) config.tolerances = parse_tolerances(o.tolerances);
     if (!o.needs_size.empty()) config.needs_size = parse_sizes(o.needs_size).front();
-    const Scene scene = bench_scene(o.input);
-    const Terrain dem = read_scene_dem(scene);
+    Scene scene = bench_scene(o.input);
+    const Terrain dem = read_scene_dem(scene, log);
     std::error_code ec;
     fs::create_directories(o.out_dir, ec);
     if (!fs::is_directory(o.out_dir)) throw Error("bench", o.out_dir, "cannot create the output directory");

@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 #include "core/memory_budget.hpp"
 
@@ -53,6 +54,39 @@ CLI::Validator positive_at_most(double hi) {
             return {};
         },
         "(0, " + short_number(hi) + "]");
+}
+
+double parse_map_scale(const std::string& text) {
+    std::string n = text;
+    if (n.size() > 2 && n.compare(0, 2, "1:") == 0) n = n.substr(2);
+    double v = 0.0;
+    if (!finite_number(n, v) || v < 1.0 || v > 1e9) throw std::invalid_argument("not a map scale");
+    return v;
+}
+
+CLI::Validator map_scale_check() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            try {
+                parse_map_scale(text);
+            } catch (const std::invalid_argument&) {
+                return "must be a map scale 1:N with N between 1 and 1e9, such as 1:25000 (got " + shown(text) + ")";
+            }
+            return {};
+        },
+        "1:N");
+}
+
+CLI::Validator positive_at_most_or_auto(double hi) {
+    const CLI::Validator number = positive_at_most(hi);
+    return CLI::Validator(
+        [number](std::string& text) -> std::string {
+            if (text == "auto") return {};
+            std::string t = text;
+            const std::string why = number(t);
+            return why.empty() ? why : why + " or auto";
+        },
+        "(0, " + short_number(hi) + "] or auto");
 }
 
 void add_max_memory_option(CLI::App* cmd, std::uint64_t& max_memory) {

@@ -15,6 +15,14 @@ CLI::Validator number_between(double lo, double hi);
 // "must be > 0 and at most HI (got X)": finite, 0 < x <= hi.
 CLI::Validator positive_at_most(double hi);
 
+// positive_at_most, or the word "auto".
+CLI::Validator positive_at_most_or_auto(double hi);
+
+// A map scale "1:N" (or "N"), N >= 1: the N; throws std::invalid_argument otherwise.
+double parse_map_scale(const std::string& text);
+// "must be a map scale such as 1:25000": parse_map_scale accepts it.
+CLI::Validator map_scale_check();
+
 // --max-memory SIZE into `max_memory` (bytes; left 0 when not given = the memory available).
 void add_max_memory_option(CLI::App* cmd, std::uint64_t& max_memory);
 

@@ -9,6 +9,7 @@
 #include "cli/option_checks.hpp"
 #include "scene/scene_style.hpp"
 #include "scene/frame_source.hpp"
+#include "scene/map_scale.hpp"
 #include "core/error.hpp"
 #include "export/export_drawing.hpp"
 #include "export/styled_drawing.hpp"
@@ -105,6 +106,7 @@ int run_render(const RenderOptions& o) {
     const Log log{o.verbose, progress_mode(o.quiet, o.progress)};
     check_outputs(o, o.width > 0 ? o.width : 1, o.height > 0 ? o.height : 1);
     Scene scene = load_scene_with_overrides(o);
+    apply_map_scale(scene, page_options(o));
     check_outputs(o, scene.camera.width, scene.camera.height);
     const Style style = scene_style(scene);
     const bool terrain = !is_mesh_scene(scene);

@@ -15,8 +15,12 @@ void add_scene_override_options(CLI::App* cmd, SceneOverrides& o) {
         ->check(number_between(1, max_image_side));
     cmd->add_option("--seed", o.seed, "Seed of the sketchy perturbation (same seed, same output)")
         ->check(number_between(0, 9007199254740992.0));
-    cmd->add_option("--vertical-exaggeration", o.vertical_exaggeration, "Scale elevations by this factor, (0, 1000]")
-        ->check(positive_at_most(max_vertical_exaggeration));
+    cmd->add_option("--vertical-exaggeration", o.vertical_exaggeration,
+                    "Scale elevations by this factor, (0, 1000], or auto (from the relief and extent; the default for DEMs)")
+        ->check(positive_at_most_or_auto(max_vertical_exaggeration));
+    cmd->add_flag("--map", o.map, "Orthographic plan view of the whole DEM, north up");
+    cmd->add_option("--scale", o.scale, "Map scale 1:N on the page set by --page/--dpi/--margin (orthographic views)")
+        ->check(map_scale_check());
     cmd->add_option("--gl", o.gl, "OpenGL backend: osmesa (software, default) or egl (GPU)")
         ->check(CLI::IsMember({"osmesa", "egl"}));
     add_max_memory_option(cmd, o.max_memory);
@@ -27,7 +31,15 @@ Scene load_scene_with_overrides(const SceneOverrides& o) {
     if (o.width != SceneOverrides::unset) scene.camera.width = o.width;
     if (o.height != SceneOverrides::unset) scene.camera.height = o.height;
     if (o.seed >= 0) scene.seed = std::uint64_t(o.seed);
-    if (o.vertical_exaggeration != 0.0) scene.vertical_exaggeration = o.vertical_exaggeration;
+    if (o.vertical_exaggeration == "auto") scene.exaggeration_auto = true;
+    else if (!o.vertical_exaggeration.empty())
+        scene.vertical_exaggeration = std::stod(o.vertical_exaggeration), scene.exaggeration_auto = false;
+    if (o.map) {
+        scene.camera.projection = Projection::orthographic;
+        scene.camera.azimuth = 0.0, scene.camera.altitude = -90.0;
+        scene.camera.position.reset(), scene.camera.elevation.reset();
+    }
+    if (!o.scale.empty()) scene.map_scale = parse_map_scale(o.scale);
     if (!o.style.empty()) scene.style = o.style;
     validate_scene(scene);
     check_scene_memory(scene, o.max_memory);

@@ -1,6 +1,6 @@
 // Command-line values that override a scene's (shared by render and batch): the input, style,
-// OpenGL back-end, image size, seed and vertical exaggeration, their CLI11 options, and the scene
-// loaded with them applied and validated.
+// OpenGL back-end, image size, seed, vertical exaggeration, map view and scale, their CLI11
+// options, and the scene loaded with them applied and validated.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -20,11 +20,13 @@ struct SceneOverrides {
     static constexpr int unset = -2147483647;  // (any int is a value the check must see)
     int width = unset, height = unset;
     long long seed = -1;                       // < 0: the scene's
-    double vertical_exaggeration = 0.0;        // 0: the scene's
+    std::string vertical_exaggeration;         // a number or "auto"; "": the scene's
+    bool map = false;                          // --map: orthographic plan view of the whole DEM
+    std::string scale;                         // --scale 1:N; "": the scene's
     std::uint64_t max_memory = 0;              // --max-memory; 0: the memory available
 };
 
-// --width --height --style --seed --vertical-exaggeration --gl --max-memory
+// --width --height --style --seed --vertical-exaggeration --map --scale --gl --max-memory
 void add_scene_override_options(CLI::App* cmd, SceneOverrides& o);
 
 // load_scene(o.input) with the overrides applied, then validate_scene, then (a terrain) the

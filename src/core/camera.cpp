@@ -138,7 +138,7 @@ Camera frame_points_orthographic(const std::vector<glm::dvec3>& points, double a
         const glm::dvec3 p(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
         smin = std::min(smin, glm::dot(p - centre, d)), smax = std::max(smax, glm::dot(p - centre, d));
     }
-    const double margin = 0.05 * (smax - smin) + 1e-3 * std::max(cam.view_width, 1.0);
+    const double margin = 1e-3 * (smax - smin + cam.view_width) + 1e-3;  // the eye plane touches the box's front
     cam.eye = centre + shift + d * (smin - margin);
     fit_depth_range(cam, lo, hi);
     return cam;

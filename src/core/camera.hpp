@@ -68,8 +68,8 @@ Camera frame_points(const std::vector<glm::dvec3>& points, double azimuth, doubl
 
 // Orthographic camera looking along azimuth/altitude with the points centred in the image; the
 // image spans `view_width` world units across when it is > 0 (a map scale fixes it), else the
-// points span `fill` of the width or height. The eye lies on the plane just in front of every
-// point, so all depths are positive.
+// points span `fill` of the width or height. The eye lies on the plane touching the front of the
+// points' box (a thousandth of its depth in front), so depths count from there and are positive.
 Camera frame_points_orthographic(const std::vector<glm::dvec3>& points, double azimuth, double altitude,
                                  int width, int height, double view_width = 0.0, double fill = 0.9);
 

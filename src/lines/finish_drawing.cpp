@@ -124,12 +124,6 @@ FinishStats finish_drawing(Drawing& drawing, const FinishOptions& options) {
     return stats;
 }
 
-float world_per_pixel(float depth, float fov_deg, int width_px) {
-    if (width_px <= 0) return 0.0f;
-    const double half = 0.5 * double(fov_deg) * 3.14159265358979323846 / 180.0;
-    return float(double(depth) * 2.0 * std::tan(half) / double(width_px));
-}
-
 std::uint64_t object_line_id(const ObjectLine& line) {
     auto bits = [](float f) {
         std::uint32_t u;
@@ -144,13 +138,13 @@ std::uint64_t object_line_id(const ObjectLine& line) {
 }
 
 std::vector<ObjectLine> sketch_object_copies(const ObjectLine& line, float amount_px, int repeat,
-                                             float fov_deg, int width_px, std::uint64_t seed) {
+                                             const Camera& camera, std::uint64_t seed) {
     std::vector<ObjectLine> out;
     const int n = std::max(repeat, 1);
     double sum = 0.0;
     for (float d : line.depth) sum += d;
     const float depth = line.depth.empty() ? 0.0f : float(sum / double(line.depth.size()));
-    const float amount = amount_px > 0.0f ? amount_px * world_per_pixel(depth, fov_deg, width_px) : 0.0f;
+    const float amount = amount_px > 0.0f ? amount_px * float(world_per_pixel(camera, depth)) : 0.0f;
     const std::uint64_t id = line.points.empty() ? 0 : object_line_id(line);
     for (int pass = 0; pass < n; ++pass) {
         ObjectLine c = line;

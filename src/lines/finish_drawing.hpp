@@ -25,6 +25,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "core/camera.hpp"
 #include "core/drawing.hpp"
 
 namespace penink {
@@ -96,21 +97,17 @@ std::vector<Stroke> finish_strokes(std::vector<Stroke> strokes, const FinishOpti
 // with one surface normal per point and its eye distance per point.
 struct ObjectLine {
     std::vector<glm::vec3> points, normals;
-    std::vector<float> depth;  // eye distance per point (world units)
+    std::vector<float> depth;  // depth per point (eye_depth, world units)
 };
-
-// World size of one image pixel at eye distance `depth` for a perspective camera with
-// horizontal field of view fov_deg and an image `width_px` wide: depth * 2 tan(fov/2) / width.
-float world_per_pixel(float depth, float fov_deg, int width_px);
 
 // Order-independent id of a 3D polyline (point count and end points' bits).
 std::uint64_t object_line_id(const ObjectLine& line);
 
 // The line and repeat-1 extra copies, each perturbed within the local tangent planes
 // (sketch_polyline_3d) by up to amount_px image pixels converted to world units at the line's
-// mean depth. amount_px <= 0 gives `repeat` unperturbed copies. Throws penink::Error (from
+// mean depth with the camera (world_per_pixel). amount_px <= 0 gives `repeat` unperturbed copies. Throws penink::Error (from
 // sketch_polyline_3d) when normals are not one per point.
 std::vector<ObjectLine> sketch_object_copies(const ObjectLine& line, float amount_px, int repeat,
-                                             float fov_deg, int width_px, std::uint64_t seed);
+                                             const Camera& camera, std::uint64_t seed);
 
 }  // namespace penink

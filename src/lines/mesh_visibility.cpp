@@ -12,17 +12,19 @@ namespace {
 struct ProjVertex {
     glm::dvec2 px;   // pixel
     glm::dvec3 eye;  // eye-space position
-    double inv_z;    // 1 / view depth
+    double inv_z;    // 1 / view depth (perspective-correct weights); 1 for an orthographic camera
+    bool ortho;
     bool ok;
 };
 
 ProjVertex project_vertex(const glm::dmat4& view, const glm::dmat4& proj, const Camera& cam,
                           const glm::vec3& p) {
     glm::dvec4 e = view * glm::dvec4(glm::dvec3(p), 1.0);
-    if (-e.z <= cam.near_plane) return {{}, {}, 0.0, false};
+    const bool ortho = is_orthographic(cam);
+    if (-e.z <= cam.near_plane) return {{}, {}, 0.0, ortho, false};
     glm::dvec4 c = proj * e;
     glm::dvec2 px{(c.x / c.w * 0.5 + 0.5) * cam.width, (0.5 - c.y / c.w * 0.5) * cam.height};
-    return {px, glm::dvec3(e), 1.0 / -e.z, true};
+    return {px, glm::dvec3(e), ortho ? 1.0 : 1.0 / -e.z, ortho, true};
 }
 
 double edge_fn(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& p) {
@@ -43,7 +45,8 @@ void raster_triangle(const ProjVertex v[3], DepthImage& img) {
             double b2 = 1.0 - b0 - b1;
             if (b0 < 0.0 || b1 < 0.0 || b2 < 0.0) continue;
             double w0 = b0 * v[0].inv_z, w1 = b1 * v[1].inv_z, w2 = b2 * v[2].inv_z, s = w0 + w1 + w2;
-            float d = float(glm::length((w0 * v[0].eye + w1 * v[1].eye + w2 * v[2].eye) / s));
+            const glm::dvec3 e = (w0 * v[0].eye + w1 * v[1].eye + w2 * v[2].eye) / s;
+            const float d = float(v[0].ortho ? -e.z : glm::length(e));  // eye_depth
             float& cell = img.depth[std::size_t(y) * img.width + x];
             cell = std::min(cell, d);
         }

@@ -107,7 +107,7 @@ ObjectSilhouettes object_space_silhouettes(const std::vector<glm::vec3>& pos,
     std::vector<std::uint8_t> toward(tri.size());
     for (std::size_t t = 0; t < tri.size(); ++t) {
         const glm::dvec3 a(pos[tri[t].x]), b(pos[tri[t].y]), c(pos[tri[t].z]);
-        toward[t] = glm::dot(glm::cross(b - a, c - a), eye - a) > 0.0;
+        toward[t] = glm::dot(glm::cross(b - a, c - a), toward_viewer(cam, a)) > 0.0;
     }
     const TriangleTiles tiles(pos, tri, cam);
     const auto classify = [&](const glm::dvec3& p, const EdgeFaces& ef, Sample& s) {
@@ -117,10 +117,12 @@ ObjectSilhouettes object_space_silhouettes(const std::vector<glm::vec3>& pos,
             s.px.y > cam.height) return;
         s.depth = float(depth);
         s.visible = true;
-        const glm::dvec3 d = p - eye;
+        // The ray from the viewer to p (orthographic: from the eye plane along the view direction).
+        const glm::dvec3 d = is_orthographic(cam) ? direction_from_angles(cam.azimuth, cam.altitude) * depth : p - eye;
+        const glm::dvec3 o = p - d;
         tiles.for_each(s.px, [&](std::uint32_t t) {
             if (t == ef.f0 || t == ef.f1 || !s.visible) return;
-            const double h = ray_triangle(eye, d, glm::dvec3(pos[tri[t].x]), glm::dvec3(pos[tri[t].y]), glm::dvec3(pos[tri[t].z]));
+            const double h = ray_triangle(o, d, glm::dvec3(pos[tri[t].x]), glm::dvec3(pos[tri[t].y]), glm::dvec3(pos[tri[t].z]));
             if (h > 1e-9 && h < 1.0 - 1e-7) s.visible = false;
             else if (h > 1.0 + 1e-7) s.behind = true;
         });

@@ -6,12 +6,12 @@
 namespace penink {
 
 void whole_or_nothing_by_distance(std::vector<float>& scores, const std::vector<glm::vec3>& positions,
-                                  const std::vector<VertexRun>& runs, const glm::dvec3& eye,
+                                  const std::vector<VertexRun>& runs, const Camera& camera,
                                   double attenuation_per_metre) {
     if (!(attenuation_per_metre > 0.0)) return;
     const auto hidden = [&](std::uint32_t i) { return scores[i] < -1e29f; };
     const auto without = [&](std::uint32_t i) {  // the score with the attenuation added back
-        return double(scores[i]) + attenuation_per_metre * glm::length(glm::dvec3(positions[i]) - eye);
+        return double(scores[i]) + attenuation_per_metre * eye_depth(camera, glm::dvec3(positions[i]));
     };
     for (const VertexRun& run : runs) {
         const std::uint32_t end = run.first + run.count;

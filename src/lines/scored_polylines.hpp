@@ -20,14 +20,14 @@ std::vector<VertexRun> drawn_runs(const std::vector<glm::vec3>& positions, const
                                   const std::vector<VertexRun>& runs, const Camera& camera);
 
 // Far creases drawn whole or not at all: the distance attenuation (scores fall by
-// `attenuation_per_metre` times the eye distance) breaks a far stem into dashes where its score
+// `attenuation_per_metre` times the depth, eye_depth) breaks a far stem into dashes where its score
 // hovers about the threshold. Per run, of the length that would be drawn without the attenuation
 // (segments whose two vertices score >= 0 with it added back), when at least half is drawn with
 // it the run is drawn as without it (the vertices it alone dropped get score 0), else none of it
 // is (those vertices get -1). Hidden vertices (score below -1e29) stay hidden. Runs the
 // attenuation does not cut are left as they are.
 void whole_or_nothing_by_distance(std::vector<float>& scores, const std::vector<glm::vec3>& positions,
-                                  const std::vector<VertexRun>& runs, const glm::dvec3& eye,
+                                  const std::vector<VertexRun>& runs, const Camera& camera,
                                   double attenuation_per_metre);
 
 // Mean score of a run's vertices.

@@ -22,15 +22,13 @@ double DmPass::run(const DmFrame& f, const CreaseParams& s, std::vector<float>& 
     gl_->UseProgram(p);
     const glm::mat4 vp(view_projection(cam));
     gl_->UniformMatrix4fv(loc("u_view_proj"), 1, GL_FALSE, glm::value_ptr(vp));
-    gl_->Uniform3f(loc("u_eye"), float(cam.eye.x), float(cam.eye.y), float(cam.eye.z));
+    set_camera_uniforms(*gl_, p, cam);
     gl_->Uniform3f(loc("u_light"), f.light.x, f.light.y, f.light.z);
     gl_->Uniform3f(loc("u_weights"), float(s.slope_weight), float(s.illumination_weight), float(s.flow_weight));
     gl_->Uniform1f(loc("u_min_score"), float(s.min_score));
     gl_->Uniform1f(loc("u_attenuation"), float(s.distance_attenuation));
     gl_->Uniform1f(loc("u_max_distance"), std::max(f.max_distance, 1e-6f));
     gl_->Uniform2f(loc("u_viewport"), float(cam.width), float(cam.height));
-    const double pixel_angle = 2.0 * std::tan(cam.fov * M_PI / 360.0) / cam.width;
-    gl_->Uniform1f(loc("u_pixel_angle"), float(pixel_angle));
     gl_->Uniform1f(loc("u_lift_px"), f.lift_px);
     gl_->Uniform1f(loc("u_tolerance_px"), f.tolerance_px);
     gl_->Uniform1ui(loc("u_count"), GLuint(count_));

@@ -163,4 +163,13 @@ GLint uniform_location(const GlApi& gl, GLuint program, const char* name) {
     return gl.GetUniformLocation(program, name);
 }
 
+void set_camera_uniforms(const GlApi& gl, GLuint program, const Camera& camera) {
+    const glm::dvec3 d = direction_from_angles(camera.azimuth, camera.altitude);
+    const bool ortho = is_orthographic(camera);
+    gl.Uniform3f(gl.GetUniformLocation(program, "u_eye"), float(camera.eye.x), float(camera.eye.y), float(camera.eye.z));
+    gl.Uniform4f(gl.GetUniformLocation(program, "u_view"), float(d.x), float(d.y), float(d.z), ortho ? 1.0f : 0.0f);
+    gl.Uniform2f(gl.GetUniformLocation(program, "u_footprint"), ortho ? 0.0f : float(world_per_pixel(camera, 1.0)),
+                 ortho ? float(world_per_pixel(camera, 1.0)) : 0.0f);
+}
+
 }  // namespace penink

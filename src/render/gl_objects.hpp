@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/camera.hpp"
 #include "render/gl_api.hpp"
 #include "render/shader_source.hpp"
 
@@ -66,5 +67,9 @@ private:
 
 // Uniform setters by name (location looked up each call; passes set a handful per frame).
 GLint uniform_location(const GlApi& gl, GLuint program, const char* name);
+
+// Sets the camera uniforms of shaders/common.glsl that `program` declares (u_eye, u_view,
+// u_footprint); the program must be in use.
+void set_camera_uniforms(const GlApi& gl, GLuint program, const Camera& camera);
 
 }  // namespace penink

@@ -31,8 +31,7 @@ void TftAftPass::set_uniforms(const Camera& camera, const TessellationOptions& t
     gl_->Uniform1f(uniform_location(*gl_, p, "u_target_px"), tess.target_edge_px);
     gl_->Uniform1f(uniform_location(*gl_, p, "u_max_level"), float(std::max(1, tess.max_level)));
     gl_->Uniform1i(uniform_location(*gl_, p, "u_no_cull"), tess.cull_patches ? 0 : 1);
-    const glm::vec3 eye(camera.eye);
-    gl_->Uniform3f(uniform_location(*gl_, p, "u_eye"), eye.x, eye.y, eye.z);
+    set_camera_uniforms(*gl_, p, camera);
     gl_->Uniform1i(uniform_location(*gl_, p, "u_mode"), mode);
 }
 

@@ -75,8 +75,13 @@ ScoredLineSet select_lines(const std::vector<DrapedLine>& lines, const std::vect
     std::vector<std::uint8_t> keep;   // per candidate vertex of the pieces, in piece order
     std::vector<std::uint32_t> kept;  // j of the lines with pieces (ids[j]), ascending
     ScoredLineSet out;
-    std::vector<double> scale;  // pixels per metre at unit distance, per camera
-    for (const Camera& c : culling.cameras) scale.push_back(lod_pixel_scale(c));
+    // Pixels per metre at unit distance, per camera; an orthographic camera's are the same at
+    // every depth, so its distances count as 1 (distance_to).
+    std::vector<double> scale;
+    for (const Camera& c : culling.cameras) scale.push_back(is_orthographic(c) ? 1.0 / world_per_pixel(c, 1.0) : lod_pixel_scale(c));
+    const auto distance_to = [&](std::size_t c, const glm::dvec3& p) {
+        return is_orthographic(culling.cameras[c]) ? 1.0 : glm::length(p - culling.cameras[c].eye);
+    };
     // Whether some camera can show vertices [a, b) of v min_px long.
     const auto big_enough = [&](const DrapedVertex* v, std::uint32_t a, std::uint32_t b) {
         if (culling.cameras.empty()) return true;
@@ -86,7 +91,7 @@ ScoredLineSet select_lines(const std::vector<DrapedLine>& lines, const std::vect
             const glm::dvec3 p(v[i].x, v[i].y, e * double(v[i].z));
             if (i > a) length += glm::length(p - glm::dvec3(v[i - 1].x, v[i - 1].y, e * double(v[i - 1].z)));
             for (std::size_t c = 0; c < nearest.size(); ++c)
-                nearest[c] = std::min(nearest[c], glm::length(p - culling.cameras[c].eye));
+                nearest[c] = std::min(nearest[c], distance_to(c, p));
         }
         for (std::size_t c = 0; c < nearest.size(); ++c)
             if (length * scale[c] >= double(culling.min_px) * nearest[c]) return true;
@@ -105,7 +110,7 @@ ScoredLineSet select_lines(const std::vector<DrapedLine>& lines, const std::vect
             if (!write) {
                 double step = 1e300;  // metres that project to decimate_px for the finest camera
                 for (std::size_t c = 0; c < scale.size(); ++c)
-                    step = std::min(step, double(culling.decimate_px) * glm::length(p - culling.cameras[c].eye) / scale[c]);
+                    step = std::min(step, double(culling.decimate_px) * distance_to(c, p) / scale[c]);
                 write = glm::length(p - last) >= step;
             }
             keep.push_back(write);
@@ -124,7 +129,8 @@ ScoredLineSet select_lines(const std::vector<DrapedLine>& lines, const std::vect
             const glm::dvec3& eye = culling.cameras[c].eye;
             const double dx = std::max({double(l.lo.x) - eye.x, eye.x - double(l.hi.x), 0.0});
             const double dy = std::max({double(l.lo.y) - eye.y, eye.y - double(l.hi.y), 0.0});
-            if (stretch * double(l.length) * scale[c] >= double(culling.min_px) * std::sqrt(dx * dx + dy * dy)) return true;
+            const double plan = is_orthographic(culling.cameras[c]) ? 1.0 : std::sqrt(dx * dx + dy * dy);
+            if (stretch * double(l.length) * scale[c] >= double(culling.min_px) * plan) return true;
         }
         return false;
     };
@@ -205,11 +211,10 @@ std::vector<Stroke> line_strokes(const ScoredLineSet& set, const std::vector<flo
         for (std::uint32_t i = run.first; i < run.first + run.count; ++i) {
             line.points.push_back(set.positions[i]);
             line.normals.push_back(set.normals[i]);
-            line.depth.push_back(float(glm::length(glm::dvec3(set.positions[i]) - camera.eye)));
+            line.depth.push_back(float(eye_depth(camera, glm::dvec3(set.positions[i]))));
         }
         const float strength = mean_score(scores, run);
-        for (const ObjectLine& copy : sketch_object_copies(line, sketch_px, std::max(repeat, 1), float(camera.fov),
-                                                           camera.width, seed))
+        for (const ObjectLine& copy : sketch_object_copies(line, sketch_px, std::max(repeat, 1), camera, seed))
             out.push_back(project_stroke(copy.points, camera, strength, kind));
     }
     return out;
@@ -297,19 +302,19 @@ void DrainageLines::draw(const Camera& camera, const Scene& scene, GLuint toward
     frame.max_distance = max_distance;
     frame.toward_texture = toward_texture;
     std::vector<float> scores;
-    const auto attenuation = [&](const CreaseParams& p) {  // per metre of eye distance
+    const auto attenuation = [&](const CreaseParams& p) {  // per metre of depth
         return max_distance > 0.0f ? p.distance_attenuation / double(max_distance) : 0.0;
     };
     if (scene.creases.enabled) {
         times.dm = creases_.pass->run(frame, scene.creases, scores);
-        whole_or_nothing_by_distance(scores, creases_.positions, creases_.runs, camera.eye, attenuation(scene.creases));
+        whole_or_nothing_by_distance(scores, creases_.positions, creases_.runs, camera, attenuation(scene.creases));
         drawing.layer(LayerKind::creases).strokes = thin_by_spacing(
             line_strokes(creases_, scores, camera, "crease", scene.crease_sketch_px, scene.crease_repeat, scene.seed),
             float(scene.creases.spacing_px));
     }
     if (scene.ridges.enabled) {
         times.ridges = ridges_.pass->run(frame, scene.ridges, scores);
-        whole_or_nothing_by_distance(scores, ridges_.positions, ridges_.runs, camera.eye, attenuation(scene.ridges));
+        whole_or_nothing_by_distance(scores, ridges_.positions, ridges_.runs, camera, attenuation(scene.ridges));
         drawing.layer(LayerKind::ridges).strokes = thin_by_spacing(
             line_strokes(ridges_, scores, camera, "ridge", scene.ridge_sketch_px, scene.ridge_repeat, scene.seed),
             float(scene.ridges.spacing_px));

@@ -49,8 +49,11 @@ Scene frame_scene(const Scene& scene, const FlightRecord& r) {
     return s;
 }
 
-Flight plan_flight(const Scene& scene, const std::string& csv, bool whole_dem, const Log& log) {
+Flight plan_flight(Scene& scene, const std::string& csv, bool whole_dem, const Log& log) {
     Flight f;
+    if (scene.camera.projection == Projection::orthographic)
+        throw Error("batch", scene.file.empty() ? scene.dem : scene.file,
+                    "a flight's cameras are perspective: [camera] projection = \"orthographic\" (or --map) is for one view");
     f.records = read_flight_path(csv);
     f.dem = open_scene_terrain(scene, log);
     std::vector<LodView> views;

@@ -32,6 +32,6 @@ struct Flight {
 
 // Reads the flight path `csv` over the scene's DEM and checks every camera ("line N: the camera
 // sees no part of the DEM"); models the union of their windows, or the whole DEM.
-Flight plan_flight(const Scene& scene, const std::string& csv, bool whole_dem, const Log& log);
+Flight plan_flight(Scene& scene, const std::string& csv, bool whole_dem, const Log& log);
 
 }  // namespace penink

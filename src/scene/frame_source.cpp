@@ -14,11 +14,11 @@ bool is_mesh_scene(const Scene& scene) {
     return ext == ".obj" || ext == ".ply" || ext == ".off";
 }
 
-SceneView open_scene_view(const Scene& scene, GlContext& context, const Log& log) {
+SceneView open_scene_view(Scene& scene, GlContext& context, const Log& log) {
     return is_mesh_scene(scene) ? open_mesh_view(scene, context, log) : open_terrain_view(scene, context, log);
 }
 
-SceneDrawing draw_scene(const Scene& scene, GlContext& context, const Log& log) {
+SceneDrawing draw_scene(Scene& scene, GlContext& context, const Log& log) {
     SceneView view = open_scene_view(scene, context, log);
     return view.frames->draw(view.camera, scene);
 }

@@ -41,9 +41,10 @@ struct SceneView {
 // True when the scene's input is a mesh (.obj .ply .off, or a scene with [mesh]).
 bool is_mesh_scene(const Scene& scene);
 
-SceneView open_scene_view(const Scene& scene, GlContext& context, const Log& log);
+// The scene's view; a terrain scene's "auto" vertical exaggeration is resolved into `scene`.
+SceneView open_scene_view(Scene& scene, GlContext& context, const Log& log);
 
 // One frame of the scene's own view.
-SceneDrawing draw_scene(const Scene& scene, GlContext& context, const Log& log);
+SceneDrawing draw_scene(Scene& scene, GlContext& context, const Log& log);
 
 }  // namespace penink

@@ -136,6 +136,8 @@ glm::dvec3 mesh_to_world(const MeshScene& ms, const glm::dvec3& v) {
 Camera mesh_camera(const Scene& s, const MeshScene& ms, const std::vector<glm::vec3>& points,
                    const glm::dvec3& lo, const glm::dvec3& hi) {
     const SceneCamera& sc = s.camera;
+    if (sc.projection == Projection::orthographic)
+        throw Error("scene", scene_name(s), "orthographic views are for DEMs: a mesh is drawn in perspective");
     if (ms.eye.has_value() != ms.target.has_value())
         throw Error("scene", scene_name(s), "camera eye and target go together (give both or neither)");
     if (!ms.eye) {

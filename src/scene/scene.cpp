@@ -36,7 +36,8 @@ const std::vector<KnownTable>& known_tables() {
                                                     "distance_attenuation", "spacing_px", "enabled"};
     static const std::vector<KnownTable> tables = {
         {"terrain", {"dem", "vertical_exaggeration"}},
-        {"camera", {"position", "elevation", "azimuth", "altitude", "fov", "width", "height", "eye", "target", "up"}},
+        {"camera", {"projection", "position", "elevation", "azimuth", "altitude", "fov", "width", "height", "eye", "target", "up"}},
+        {"map", {"scale"}},
         {"light", {"azimuth", "altitude", "direction"}},
         {"tessellation", {"target_edge_px", "max_level", "cull"}},
         {"surface", {"tolerance_px", "min_radius_px"}},
@@ -146,6 +147,14 @@ void read_camera(const toml::value& root, SceneCamera& cam, const std::string& f
         read_key(t, "position", pos, file, "camera");
         cam.position = pos;
     }
+    if (has_key(t, "projection")) {
+        std::string name;
+        read_key(t, "projection", name, file, "camera");
+        const auto named = projection_named(name);
+        if (!named)
+            throw Error("scene", file, "[camera] projection must be \"perspective\" or \"orthographic\" (got \"" + name + "\")");
+        cam.projection = *named;
+    }
     read_optional(t, "elevation", cam.elevation, file, "camera");
     read_optional(t, "azimuth", cam.azimuth, file, "camera");
     read_optional(t, "altitude", cam.altitude, file, "camera");
@@ -185,8 +194,19 @@ Scene parse_scene_file(const std::string& path) {
     read_key(terrain, "dem", s.dem, path, "terrain");
     if (!s.dem.empty() && fs::path(s.dem).is_relative())
         s.dem = (fs::path(path).parent_path() / s.dem).lexically_normal().string();
-    read_number(terrain, "vertical_exaggeration", s.vertical_exaggeration, path, "terrain");
+    if (has_key(terrain, "vertical_exaggeration")) {
+        const toml::value& v = terrain.at("vertical_exaggeration");
+        if (v.is_string() && v.as_string().str == "auto") {
+            s.exaggeration_auto = true;
+        } else if (v.is_string()) {
+            throw Error("scene", path, "[terrain] vertical_exaggeration: expected a number or \"auto\"");
+        } else {
+            read_number(terrain, "vertical_exaggeration", s.vertical_exaggeration, path, "terrain");
+            s.exaggeration_auto = false;
+        }
+    }
     read_camera(root, s.camera, path);
+    if (has_key(root, "map")) read_number(root.at("map"), "scale", s.map_scale, path, "map");
     if (has_key(root, "light")) {
         read_number(root.at("light"), "azimuth", s.light.azimuth, path, "light");
         read_number(root.at("light"), "altitude", s.light.altitude, path, "light");
@@ -315,8 +335,24 @@ void validate_scene(const Scene& s) {
     if (!drainage_routing_named(s.drainage_routing))
         throw Error("scene", f, "[drainage] routing must be \"priority-flood\" or \"least-cost\" (got \"" +
                                     s.drainage_routing + "\")");
-    if (s.camera.position.has_value() != s.camera.elevation.has_value())
+    const bool ortho = s.camera.projection == Projection::orthographic;
+    if (!ortho && s.camera.position.has_value() != s.camera.elevation.has_value())
         throw Error("scene", f, "camera position and elevation go together (give both or neither)");
+    if (s.map_scale != 0.0) {
+        check_range(f, "[map] scale", s.map_scale, 1.0, 1e9);
+        if (!ortho)
+            throw Error("scene", f, "a map scale needs an orthographic view ([camera] projection = \"orthographic\", or --map)");
+    }
+}
+
+std::optional<Projection> projection_named(const std::string& name) {
+    for (Projection p : {Projection::perspective, Projection::orthographic})
+        if (name == projection_name(p)) return p;
+    return std::nullopt;
+}
+
+const char* projection_name(Projection projection) {
+    return projection == Projection::orthographic ? "orthographic" : "perspective";
 }
 
 }  // namespace penink

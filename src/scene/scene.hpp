@@ -1,6 +1,7 @@
 // A scene: what to draw and how, from a TOML scene file or a bare DEM path plus CLI options.
-// Keys (all optional but the input): [terrain] dem, vertical_exaggeration; [camera] position,
-// elevation, azimuth, altitude, fov, width, height; [light] azimuth, altitude; [silhouettes]
+// Keys (all optional but the input): [terrain] dem, vertical_exaggeration (a number or "auto");
+// [camera] projection, position, elevation, azimuth, altitude, fov, width, height; [map] scale;
+// [light] azimuth, altitude; [silhouettes]
 // min_gap, separate_passes, method; [surface] tolerance_px, min_radius_px; [tessellation]
 // target_edge_px, max_level, cull; [creases] and [ridges]
 // slope_weight, illumination_weight, flow_weight, min_score, distance_attenuation; [style] name
@@ -14,6 +15,7 @@
 
 #include <toml.hpp>
 
+#include "core/camera.hpp"
 #include "core/crease_params.hpp"
 #include "render/terrain_renderer.hpp"
 
@@ -24,11 +26,18 @@ constexpr int max_image_side = 16384;               // pixels
 constexpr double max_vertical_exaggeration = 1000.0;
 
 struct SceneCamera {
+    // "perspective" (default) or "orthographic"; an orthographic view looks along azimuth and
+    // altitude (altitude -90: a plan view, north up) at the DEM, or at `position` (its plan
+    // point: the view's centre; elevation is not used).
+    Projection projection = Projection::perspective;
     std::optional<std::string> position;  // UTM "E N 18N", "lon,lat" or "x y"; none = auto-frame
     std::optional<double> elevation;      // metres above the DEM's datum (scaled with exaggeration)
     std::optional<double> azimuth, altitude;  // none = conventions default (from the south-west)
     double fov = 40.0;
     int width = 1000, height = 750;
+    // Orthographic: ground metres across the image (0: the DEM fills the image); set from
+    // [map] scale and the page (scene/map_scale.hpp), not read from the scene file.
+    double view_width = 0.0;
 };
 
 struct SceneLight {
@@ -40,7 +49,13 @@ struct Scene {
     std::string dem;           // DEM path (resolved relative to the scene file)
     std::string mesh;          // [mesh] file (resolved); mesh keys: scene/mesh_scene.hpp
     toml::value table;         // the whole scene file (mesh keys are read from it)
+    // [terrain] vertical_exaggeration: a number, or "auto" (the default for DEMs; resolved by
+    // open_scene_terrain with auto_vertical_exaggeration, scene/auto_exaggeration.hpp).
     double vertical_exaggeration = 1.0;
+    bool exaggeration_auto = true;
+    bool exaggeration_was_auto = false;  // vertical_exaggeration was chosen automatically (metadata)
+    // [map] scale: 25000 means 1:25 000 on the physical page (0: no scale); orthographic only.
+    double map_scale = 0.0;
     SceneCamera camera;
     SceneLight light;
     // [surface] level of detail (surface/terrain_lod.hpp): largest projected vertical error of the
@@ -70,6 +85,10 @@ struct Scene {
 // "object-space"; nullopt for any other name.
 std::optional<SilhouetteMethod> silhouette_method_named(const std::string& name);
 const char* silhouette_method_name(SilhouetteMethod method);
+
+// Projections by their scene and command-line names: "perspective", "orthographic".
+std::optional<Projection> projection_named(const std::string& name);
+const char* projection_name(Projection projection);
 
 // A path ending in .toml is a scene file; anything else is taken as a DEM.
 // Throws penink::Error(stage "scene", file) with one line on a bad key or value.

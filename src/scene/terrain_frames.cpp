@@ -14,6 +14,7 @@
 #include "lines/frustum_clip.hpp"
 #include "lines/mesh_visibility.hpp"
 #include "lines/trace_pixel_lines.hpp"
+#include "scene/map_scale.hpp"
 #include "scene/terrain_view.hpp"
 #include "surface/boundary_curves.hpp"
 #include "surface/pn_tessellation.hpp"
@@ -27,15 +28,19 @@ std::string format_camera(const Camera& c, const Terrain& t) {  // t: georeferen
     s.precision(10);
     s << "eye " << c.eye.x + t.origin.x << " " << c.eye.y + t.origin.y << " " << c.eye.z
       << (t.utm_zone ? " (UTM " + std::to_string(t.utm_zone) + (t.north ? "N" : "S") + ")" : "")
-      << ", azimuth " << c.azimuth << ", altitude " << c.altitude << ", fov " << c.fov << ", "
-      << c.width << "x" << c.height;
+      << ", azimuth " << c.azimuth << ", altitude " << c.altitude;
+    if (is_orthographic(c)) s << ", orthographic, " << c.view_width << " m across";
+    else s << ", fov " << c.fov;
+    s << ", " << c.width << "x" << c.height;
     return s.str();
 }
 
 void fill_metadata(const Scene& scene, const Camera& cam, const Terrain& t, Drawing& d) {
     std::ostringstream light, params;
     light << "azimuth " << scene.light.azimuth << ", altitude " << scene.light.altitude;
-    params << "vertical_exaggeration " << scene.vertical_exaggeration << ", tessellation max_level "
+    params << "vertical_exaggeration " << scene.vertical_exaggeration << (scene.exaggeration_was_auto ? " (auto)" : "");
+    if (scene.map_scale > 0.0) params << ", map scale 1:" << map_scale_text(scene.map_scale);
+    params << ", tessellation max_level "
            << scene.tess_max_level << " target_edge_px " << scene.tess_target_edge_px << ", surface tolerance_px "
            << scene.surface_tolerance_px << " min_radius_px " << scene.surface_min_radius_px << ", seed "
            << scene.seed << ", style " << scene.style;
@@ -190,7 +195,7 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
     return out;
 }
 
-SceneView open_terrain_view(const Scene& scene, GlContext& context, const Log& log) {
+SceneView open_terrain_view(Scene& scene, GlContext& context, const Log& log) {
     const SceneTerrain dem = open_scene_terrain(scene, log);
     SceneView view;
     view.camera = scene_camera(scene, dem);

@@ -16,7 +16,7 @@
 namespace penink {
 
 // The scene's DEM read, its camera placed, the DEM cropped to that view and set up for frames.
-SceneView open_terrain_view(const Scene& scene, GlContext& context, const Log& log);
+SceneView open_terrain_view(Scene& scene, GlContext& context, const Log& log);
 
 // The scene's drainage lines (cached beside the DEM: drainage/drainage_build.hpp), read or built
 // with progress on a terminal; none when the scene draws neither creases nor ridges. A valid

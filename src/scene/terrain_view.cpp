@@ -13,6 +13,7 @@
 #include "input/dem_reader.hpp"
 #include "input/scene_position.hpp"
 #include "input/terrain_window.hpp"
+#include "scene/auto_exaggeration.hpp"
 #include "surface/grid_ground.hpp"
 
 namespace penink {
@@ -27,6 +28,28 @@ Camera place_camera(const Scene& scene, const Terrain& meta, const GridNodes& no
     const SceneCamera& sc = scene.camera;
     const double az = sc.azimuth.value_or(default_view_azimuth);
     const double alt = sc.altitude.value_or(default_view_altitude);
+    if (sc.projection == Projection::orthographic) {
+        Camera cam = frame_points_orthographic(frame_samples(nodes), az, alt, sc.width, sc.height, sc.view_width, 0.95);
+        if (sc.position) {  // centre the view on the position's plan point (depths unchanged)
+            const glm::dvec2 xy = parse_scene_position(*sc.position, meta, scene_file(scene));
+            const glm::dvec3 d = direction_from_angles(az, alt);
+            double ground = 0.5 * (lo.z + hi.z);
+            grid_ground_height(nodes, xy.x, xy.y, ground);
+            const glm::dvec3 centre = cam.eye + d * glm::dot(glm::dvec3(xy, ground) - cam.eye, d);
+            glm::dvec3 shift = glm::dvec3(xy, ground) - centre;
+            shift -= d * glm::dot(shift, d);
+            cam.eye += shift;
+            // the eye plane stays in front of the whole DEM box
+            double front = 0.0;
+            for (int i = 0; i < 8; ++i) {
+                const glm::dvec3 p(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
+                front = std::min(front, glm::dot(p - cam.eye, d));
+            }
+            cam.eye += d * (front - 1e-3 * (glm::length(hi - lo) + 1.0));
+            fit_depth_range(cam, lo, hi);
+        }
+        return cam;
+    }
     if (!sc.position) return frame_points(frame_samples(nodes), az, alt, sc.fov, sc.width, sc.height, 0.9);
     Camera cam;
     const glm::dvec2 xy = parse_scene_position(*sc.position, meta, scene_file(scene));
@@ -40,7 +63,7 @@ Camera place_camera(const Scene& scene, const Terrain& meta, const GridNodes& no
 // Throws when a placed camera is at or below the ground under it.
 void check_above_ground(const Scene& scene, const GridNodes& nodes, const Camera& cam) {
     double ground = 0.0;
-    if (scene.camera.position && grid_ground_height(nodes, cam.eye.x, cam.eye.y, ground) && cam.eye.z <= ground) {
+    if (scene.camera.position && !is_orthographic(cam) && grid_ground_height(nodes, cam.eye.x, cam.eye.y, ground) && cam.eye.z <= ground) {
         std::ostringstream msg;
         msg << "camera is inside the terrain (elevation " << cam.eye.z / scene.vertical_exaggeration
             << " m, ground " << ground / scene.vertical_exaggeration << " m)";
@@ -89,7 +112,27 @@ std::vector<glm::dvec3> frame_samples(const GridNodes& t) {
 
 std::vector<glm::dvec3> frame_samples(const Terrain& t) { return frame_samples(grid_nodes(t)); }
 
-Terrain read_scene_dem(const Scene& scene) {
+void resolve_vertical_exaggeration(Scene& scene, double z_min, double z_max, const glm::dvec2& plan_lo,
+                                   const glm::dvec2& plan_hi, const Log& log) {
+    if (!scene.exaggeration_auto) return;
+    const double relief = z_max - z_min, extent = std::max(plan_hi.x - plan_lo.x, plan_hi.y - plan_lo.y);
+    scene.vertical_exaggeration = auto_vertical_exaggeration(relief, extent);
+    scene.exaggeration_auto = false;
+    scene.exaggeration_was_auto = true;
+    log.info(describe_auto_exaggeration(relief, extent, scene.vertical_exaggeration));
+}
+
+Terrain read_scene_dem(Scene& scene, const Log& log) {
+    if (scene.exaggeration_auto) {  // read at 1 to find the relief; read again only when it is not 1
+        Terrain flat = read_dem(scene.dem);
+        glm::dvec3 lo, hi;
+        if (!terrain_bounds(flat, lo, hi)) lo = hi = glm::dvec3(0.0);
+        resolve_vertical_exaggeration(scene, flat.elevation_min, flat.elevation_max, glm::dvec2(lo), glm::dvec2(hi), log);
+        if (scene.vertical_exaggeration == 1.0) {
+            if (const std::string w = missing_crs_warning(flat); !w.empty()) std::cerr << w << "\n";
+            return flat;
+        }
+    }
     DemOptions options;
     options.vertical_exaggeration = scene.vertical_exaggeration;
     Terrain dem = read_dem(scene.dem, options);
@@ -160,10 +203,12 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log) {
     return stored;
 }
 
-SceneTerrain open_scene_terrain(const Scene& scene, const Log& log) {
+SceneTerrain open_scene_terrain(Scene& scene, const Log& log) {
+    StoredTerrain stored = open_stored_terrain(scene.dem, log);
+    resolve_vertical_exaggeration(scene, stored.lod.z_min, stored.lod.z_max, stored.plan_lo, stored.plan_hi, log);
     const double e = scene.vertical_exaggeration;
     if (!std::isfinite(e) || e <= 0.0) throw Error("scene", scene_file(scene), "vertical exaggeration must be > 0");
-    SceneTerrain t{open_stored_terrain(scene.dem, log), e, scene_file(scene)};
+    SceneTerrain t{std::move(stored), e, scene_file(scene)};
     if (const std::string w = missing_crs_warning(t.stored.meta); !w.empty()) std::cerr << w << "\n";
     return t;
 }

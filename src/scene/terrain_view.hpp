@@ -1,6 +1,9 @@
 // A scene's DEM as frames draw it, and the camera placed over it: the scene's UTM / lon,lat /
 // x y position and elevation (metres above datum, scaled with the vertical exaggeration) or, with
 // none, the whole DEM framed from the south-west, looking down at 30 degrees (conventions.md).
+// An orthographic camera looks along the scene's azimuth and altitude at the whole DEM, or at
+// the position's plan point; its image spans the scene's view_width (a map scale) or, with none,
+// the DEM fills 0.95 of it.
 // Then the part of the DEM the view needs, with near/far planes fitted to it.
 //
 // The nodes and level-of-detail pyramid come from the terrain cache (surface/terrain_cache.hpp)
@@ -26,9 +29,14 @@ namespace penink {
 inline constexpr double default_view_azimuth = 45.0;    // looking north-east: from the south-west
 inline constexpr double default_view_altitude = -30.0;  // looking down
 
-// The scene's DEM, read with its vertical exaggeration; a missing-CRS warning
-// (missing_crs_warning, dem_reader.hpp) goes to stderr.
-Terrain read_scene_dem(const Scene& scene);
+// The scene's DEM, read with its vertical exaggeration (resolved first when it is "auto"); a
+// missing-CRS warning (missing_crs_warning, dem_reader.hpp) goes to stderr.
+Terrain read_scene_dem(Scene& scene, const Log& log);
+
+// Resolves an "auto" vertical exaggeration (scene.exaggeration_auto; auto_vertical_exaggeration)
+// from the DEM's valid elevation range and plan box (local metres), logged; a number is kept.
+void resolve_vertical_exaggeration(Scene& scene, double z_min, double z_max, const glm::dvec2& plan_lo,
+                                   const glm::dvec2& plan_hi, const Log& log);
 
 // The terrain cache of a DEM: the drainage cache's path (drainage_cache_path) with .lod for .dv.
 std::string terrain_cache_path(const std::string& dem_path);
@@ -57,8 +65,9 @@ struct SceneTerrain {
 // read unexaggerated, its pyramid built and the cache written (a cache that cannot be written is
 // logged and the terrain kept in memory). Throws penink::Error (stage "input") for a DEM that
 // cannot be read and (stage "scene") for a vertical exaggeration that is not a finite number > 0.
+// open_scene_terrain resolves the scene's "auto" vertical exaggeration first.
 StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log);
-SceneTerrain open_scene_terrain(const Scene& scene, const Log& log);
+SceneTerrain open_scene_terrain(Scene& scene, const Log& log);
 
 Camera scene_camera(const Scene& scene, const SceneTerrain& terrain);
 Camera scene_camera(const Scene& scene, const Terrain& terrain);

@@ -314,9 +314,14 @@ public:
         : lod_(lod), t_(t), side_(lod.side()), cols_(t.cols), rows_(t.rows), nodes_(nodes),
           radii_(level_radii(lod.lipschitz, lod.levels)) {
         ex_ = ex;
-        scale_ = ex * lod_pixel_scale(cam);
+        // Orthographic: a metre is the same number of pixels at any depth, so the test's distance
+        // is 1 and the scale is pixels per metre (monotone all the same: error and radius grow
+        // from a node to its parents).
+        ortho_ = is_orthographic(cam);
+        const double px_scale = ortho_ ? 1.0 / world_per_pixel(cam, 1.0) : lod_pixel_scale(cam);
+        scale_ = ex * px_scale;
         tol_ = std::max(0.0, double(o.tolerance_px));
-        min_radius_ = std::max(0.0, double(o.min_radius_px)) / lod_pixel_scale(cam);  // metres at unit distance
+        min_radius_ = std::max(0.0, double(o.min_radius_px)) / px_scale;  // metres at unit distance
         near_ = std::max(cam.near_plane, 1e-6);
         eye_ = cam.eye;
         zlo_ = double(lod.z_min) * ex, zhi_ = double(lod.z_max) * ex;
@@ -404,6 +409,7 @@ private:
     std::vector<std::uint32_t>* nodes_;
     LevelRadii radii_;
     double ex_ = 1.0, scale_ = 1.0, tol_ = 1.0, min_radius_ = 0.0, near_ = 1.0, zlo_ = 0.0, zhi_ = 0.0, vz2_ = 0.0;
+    bool ortho_ = false;
     glm::dvec3 eye_{0.0};
     Frustum frustum_;
     SurfaceMesh out_;
@@ -427,7 +433,7 @@ private:
         bool centre = false;
         if (!node_level(c, r, lod_.levels, level, centre)) return true;  // cannot happen: corners are never split
         const double rad = double(centre ? radii_.centre[level] : radii_.edge[level]), plan = std::sqrt(dx * dx + dy * dy) - rad;
-        const double d = std::max(std::sqrt((plan > 0.0 ? plan * plan : 0.0) + vz2_), near_);
+        const double d = ortho_ ? 1.0 : std::max(std::sqrt((plan > 0.0 ? plan * plan : 0.0) + vz2_), near_);
         return double(err) * scale_ > tol_ * d && (min_radius_ <= 0.0 || rad > min_radius_ * d);
     }
 

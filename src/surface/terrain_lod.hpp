@@ -29,7 +29,8 @@
 //    vertical exaggeration e, with z_min, z_max the DEM's valid elevation range (stored
 //    unexaggerated), and this lower bound keeps the nesting (so activation stays monotone).
 // A node is active (its triangles split) when
-//     error * e * scale / max(D, near_plane) > tolerance_px   (nearer points are clipped anyway),
+//     error * e * scale / max(D, near_plane) > tolerance_px   (nearer points are clipped anyway;
+//     an orthographic camera: D = 1 and scale = pixels per metre, the same at every depth),
 // D the lower bound above, scale = lod_pixel_scale(camera): the focal length in pixels,
 // height / (2 tan(vfov / 2)), times 1 + tan^2(hfov/2) + tan^2(vfov/2), the largest magnification
 // of a displacement perpendicular to the view ray anywhere in the frame (1 on the axis). No

@@ -187,14 +187,16 @@ TEST(FinishDrawing, MinimumLengthIsPerLayer) {
 }
 
 TEST(FinishDrawing, ObjectCopiesStayInTheTangentPlane) {
-    EXPECT_NEAR(world_per_pixel(100.0f, 90.0f, 200), 1.0f, 1e-5f);
+    Camera cam;
+    cam.fov = 90.0, cam.width = 200;
+    EXPECT_NEAR(world_per_pixel(cam, 100.0), 1.0, 1e-9);
     ObjectLine line;
     for (int i = 0; i < 5; ++i) {
         line.points.push_back({float(i) * 10, 0, float(i)});
         line.normals.push_back(glm::normalize(glm::vec3(-0.1f, 0, 1)));
         line.depth.push_back(100.0f);
     }
-    const auto copies = sketch_object_copies(line, 2.0f, 3, 90.0f, 200, 5);  // 2 px = 2 world units
+    const auto copies = sketch_object_copies(line, 2.0f, 3, cam, 5);  // 2 px = 2 world units
     ASSERT_EQ(copies.size(), 3u);
     for (const ObjectLine& c : copies)
         for (size_t i = 0; i < c.points.size(); ++i) {
@@ -203,6 +205,6 @@ TEST(FinishDrawing, ObjectCopiesStayInTheTangentPlane) {
             EXPECT_LE(glm::length(off), 2.0f + 1e-4f);
         }
     EXPECT_NE(copies[0].points, copies[1].points);
-    EXPECT_EQ(sketch_object_copies(line, 2.0f, 3, 90.0f, 200, 5)[2].points, copies[2].points);
-    EXPECT_EQ(sketch_object_copies(line, 0.0f, 2, 90.0f, 200, 5)[1].points, line.points);
+    EXPECT_EQ(sketch_object_copies(line, 2.0f, 3, cam, 5)[2].points, copies[2].points);
+    EXPECT_EQ(sketch_object_copies(line, 0.0f, 2, cam, 5)[1].points, line.points);
 }

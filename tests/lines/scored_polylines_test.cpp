@@ -96,7 +96,7 @@ TEST(ScoredPolylines, VerticesBehindTheEyeSplitTheRun) {
 TEST(ScoredPolylines, DistanceAttenuationDrawsRunsWholeOrNotAtAll) {
     std::vector<glm::vec3> pos;
     for (int i = 0; i < 20; ++i) pos.push_back({float(1000 + 10 * i), 0.0f, 0.0f});
-    const glm::dvec3 eye(0.0);
+    Camera eye;  // at the origin: depth = x
     const double per_metre = 1e-4;  // 0.1 at 1000 m
     const std::vector<VertexRun> runs{{0, 20}};
     auto scores_with = [&](auto base) {  // score = base(i) - attenuation

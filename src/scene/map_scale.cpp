@@ -1,0 +1,41 @@
+#include "scene/map_scale.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace penink {
+
+void apply_map_scale(Scene& scene, const PageOptions& page) {
+    if (!(scene.map_scale > 0.0)) return;
+    const std::string& file = scene.file.empty() ? scene.dem : scene.file;
+    SceneCamera& cam = scene.camera;
+    if (!page.page.empty()) {
+        double w_mm = 0.0, h_mm = 0.0;
+        try {
+            page_size_mm(page.page, w_mm, h_mm);
+        } catch (const std::invalid_argument& e) {
+            throw Error("export", file, e.what());
+        }
+        // page_layout's orientation: a named page turns landscape for a wide image, "WxHmm" is as given
+        const bool custom = page.page.find_first_of("xX") != std::string::npos;
+        if (!custom && (cam.width > cam.height) != (w_mm > h_mm)) std::swap(w_mm, h_mm);
+        const double pw = w_mm - 2.0 * page.margin_mm, ph = h_mm - 2.0 * page.margin_mm;
+        if (!(pw > 0.0 && ph > 0.0)) throw Error("export", file, "margin leaves no room on the page");
+        const double w = std::round(pw / 25.4 * page.dpi), h = std::round(ph / 25.4 * page.dpi);
+        if (w < 1.0 || h < 1.0 || w > max_image_side || h > max_image_side)
+            throw Error("scene", file, "the map's page at " + format_number(page.dpi, 1) + " dpi is " + format_number(w, 0) + "x" +
+                                           format_number(h, 0) + " pixels (1 to " + std::to_string(max_image_side) +
+                                           " a side): lower --dpi");
+        cam.width = int(w), cam.height = int(h);
+    }
+    const PageLayout layout = page_layout(cam.width, cam.height, page, file);
+    cam.view_width = double(cam.width) * layout.scale_mm / 1000.0 * scene.map_scale;
+}
+
+std::string map_scale_text(double scale) {
+    return format_number(scale, 3);
+}
+
+}  // namespace penink
