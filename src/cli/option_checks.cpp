@@ -83,8 +83,8 @@ CLI::Validator positive_at_most_or_auto(double hi) {
         [number](std::string& text) -> std::string {
             if (text == "auto") return {};
             std::string t = text;
-            const std::string why = number(t);
-            return why.empty() ? why : why + " or auto";
+            const std::string why = number(t);  // "must be > 0 and ..."
+            return why.empty() ? why : "must be auto or " + why.substr(8);
         },
         "(0, " + short_number(hi) + "] or auto");
 }

@@ -169,7 +169,7 @@ TEST(HostileInputs, MessagesNameTheRealProblem) {
     expect_refused(dir, "render veinf.toml -o out.svg",
                    "penink: scene: veinf.toml: [terrain] vertical_exaggeration: expected a finite number");
     expect_refused(dir, "render " + volcano + " -o out.svg --vertical-exaggeration inf",
-                   "penink: cli: --vertical-exaggeration: must be > 0 and at most 1000 (got \"inf\")");
+                   "penink: cli: --vertical-exaggeration: must be auto or > 0 and at most 1000 (got \"inf\")");
     write_text(dir / "light.toml", dem + "[light]\naltitude = -200\n");
     expect_refused(dir, "render light.toml -o out.svg",
                    "penink: scene: light.toml: [light] altitude must be between 0 and 90 degrees (got -200)");
