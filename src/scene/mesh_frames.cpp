@@ -18,6 +18,7 @@
 #include "lines/indication_textures.hpp"
 #include "lines/mesh_visibility.hpp"
 #include "lines/trace_mask_outline.hpp"
+#include "scene/orbit.hpp"
 #include "surface/mesh_normals.hpp"
 
 namespace penink {
@@ -184,6 +185,12 @@ Camera MeshFrames::scene_camera(const Scene& scene) const {
     return mesh_camera(scene, ms_, mesh_.positions, lo, hi);
 }
 
+std::vector<Camera> MeshFrames::orbit(const Scene& scene, int frames) const {
+    glm::vec3 lo, hi;
+    mesh_bounds(mesh_, lo, hi);
+    return orbit_cameras(scene_camera(scene), lo, hi, frames);
+}
+
 SceneDrawing MeshFrames::draw(const Camera& camera, const Scene& frame) {
     SceneDrawing out;
     out.triangles = mesh_.triangles.size();
@@ -205,6 +212,7 @@ SceneDrawing MeshFrames::draw(const Camera& camera, const Scene& frame) {
     add_visible(lines.textures, depth, out.camera, d.layer(LayerKind::textures));
     lines.times.visibility = lap_ms(t1);
     out.times.pel = lines.times.pel;
+    out.lines = lines.times;
     out.trace_ms = ms_since(t0);
     log_mesh_timings(lines, mesh_.triangles.size(), *log_);
     fill_metadata(frame, ms_, out.camera, d);
