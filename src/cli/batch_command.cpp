@@ -47,10 +47,11 @@ void write_text(const fs::path& p, const std::string& text) { write_file_atomica
 
 }  // namespace
 
-ExportTimes export_frame(Drawing& drawing, const Style& style, std::uint64_t seed, const std::vector<std::string>& paths) {
+ExportTimes export_frame(Drawing& drawing, const Style& style, std::uint64_t seed, bool terrain,
+                         const std::vector<std::string>& paths) {
     ExportTimes out;
     auto t0 = Clock::now();
-    finish_drawing(drawing, finish_options(style, seed, true));
+    finish_drawing(drawing, finish_options(style, seed, terrain));
     out.finish = lap_ms(t0);
     const StyledDrawing styled = style_drawing(drawing, style, LayerSplit::kind);
     export_drawings(styled, PageOptions{}, paths);  // the frame's files together or none
@@ -157,7 +158,7 @@ int run_batch(const BatchOptions& o) {
     summary.mesh = is_mesh_scene(scene);
     check_flight_options(o, summary.mesh);
     const Style style = scene_style(scene);
-    apply_object_sketch(scene, style);
+    if (!summary.mesh) apply_object_sketch(scene, style);  // as `penink render`
     summary.scene = o.input, summary.warmup = o.warmup;
     summary.width = scene.camera.width, summary.height = scene.camera.height;
     std::unique_ptr<GlContext> context;  // outlives the frames' GL objects
@@ -196,7 +197,8 @@ int run_batch(const BatchOptions& o) {
         SceneDrawing d = flight.frames->draw(flight.cameras[i],
                                              flight.records.empty() ? scene : frame_scene(scene, flight.records[i]));
         t.times = d.times, t.lines = d.lines, t.trace = d.trace_ms;
-        const ExportTimes e = export_frame(d.drawing, style, scene.seed, frame_paths(o.out_dir, t.frame, formats));
+        const ExportTimes e = export_frame(d.drawing, style, scene.seed, !summary.mesh,
+                                              frame_paths(o.out_dir, t.frame, formats));
         t.finish = e.finish, t.write = e.write;
         t.total = ms_since(t0);
         timings.push_back(t);

@@ -38,8 +38,10 @@ struct ExportTimes {
 };
 
 // Finishes (sketch, thinning, plotter order), styles and writes one drawing to every path, as
-// `penink render` does; returns the wall times.
-ExportTimes export_frame(Drawing& drawing, const Style& style, std::uint64_t seed, const std::vector<std::string>& paths);
+// `penink render` does (`terrain`: creases and ridges sketched in object space); returns the
+// wall times.
+ExportTimes export_frame(Drawing& drawing, const Style& style, std::uint64_t seed, bool terrain,
+                         const std::vector<std::string>& paths);
 
 Subcommand add_batch_command(CLI::App& app);
 int run_batch(const BatchOptions& options);

@@ -151,6 +151,9 @@ TEST(BatchCommand, MeshOrbitFramesAndTable) {
         const std::string svg = read_text(dir / "all" / ("frame_000" + std::to_string(frame) + ".svg"));
         EXPECT_NE(svg.find("inkscape:label=\"silhouettes\""), std::string::npos) << frame;
     }
+    // The orbit starts at the scene's camera: frame 1 is what `penink render` draws.
+    ASSERT_EQ(run_penink("render " + wuson + " --width 160 --height 120 -o one.svg", dir).code, 0);
+    EXPECT_EQ(read_text(dir / "one.svg"), read_text(dir / "all" / "frame_0001.svg"));
     // The orbit turns: the frames differ.
     EXPECT_NE(read_text(dir / "all" / "frame_0001.svg"), read_text(dir / "all" / "frame_0002.svg"));
     const auto csv = lines_of(read_text(dir / "all" / "timings.csv"));
