@@ -197,6 +197,9 @@ SceneDrawing MeshFrames::draw(const Camera& camera, const Scene& frame) {
     out.camera = camera;
     FrameOptions options;
     options.tessellation.max_level = 1;  // the lines lie on the flat triangles
+    // The silhouettes are object-space lines (mesh_lines): the frame needs the depth images only,
+    // not the image-space SIL pass.
+    options.silhouette_method = SilhouetteMethod::object_space;
     const FrameImages images = renderer_->render(out.camera, options);
     out.times = images.times;
     const auto t0 = Clock::now();
