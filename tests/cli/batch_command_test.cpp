@@ -25,6 +25,19 @@ std::vector<std::string> lines_of(const std::string& text) {
     return out;
 }
 
+// Runs `run` + "sharded --shard 1/2" and "2/2" in `dir` and expects frames 1..n the same bytes as
+// the whole run's in dir/all.
+void expect_shards_draw_the_whole_runs_bytes(const std::string& run, const std::filesystem::path& dir, int n) {
+    for (const char* shard : {"1/2", "2/2"}) {
+        const RunResult r = run_penink(run + "sharded --shard " + shard, dir);
+        ASSERT_EQ(r.code, 0) << r.output;
+    }
+    for (int frame = 1; frame <= n; ++frame) {
+        const std::string name = "frame_000" + std::to_string(frame) + ".svg";
+        EXPECT_EQ(read_text(dir / "sharded" / name), read_text(dir / "all" / name)) << name;
+    }
+}
+
 }  // namespace
 
 TEST(BatchCommand, ThreeFramesAndTimings) {
@@ -101,14 +114,7 @@ TEST(BatchCommand, ShardsDrawTheUnshardedFramesBytes) {
     write_text(dir / "path.csv", csv);
     const std::string run = "batch " + volcano + " --path path.csv --width 160 --height 120 --formats svg --out ";
     ASSERT_EQ(run_penink(run + "all", dir).code, 0);
-    for (const char* shard : {"1/2", "2/2"}) {
-        const RunResult r = run_penink(run + "sharded --shard " + shard, dir);
-        ASSERT_EQ(r.code, 0) << r.output;
-    }
-    for (int frame = 1; frame <= 5; ++frame) {
-        const std::string name = "frame_000" + std::to_string(frame) + ".svg";
-        EXPECT_EQ(read_text(dir / "sharded" / name), read_text(dir / "all" / name)) << name;
-    }
+    expect_shards_draw_the_whole_runs_bytes(run, dir, 5);
     EXPECT_EQ(file_count(dir / "sharded"), 5u + 4u);  // 5 frames, two timings pairs
     EXPECT_EQ(lines_of(read_text(dir / "sharded" / "timings_1-of-2.csv")).size(), 4u);  // frames 1, 3, 5
     EXPECT_EQ(lines_of(read_text(dir / "sharded" / "timings_2-of-2.csv")).size(), 3u);  // frames 2, 4
@@ -170,14 +176,7 @@ TEST(BatchCommand, MeshOrbitFramesAndTable) {
     EXPECT_NE(md.find("| wuson | 3732 | warm-up | 3 |"), std::string::npos) << md;
     EXPECT_NE(md.find("| wuson | 3732 | after warm-up | 2 |"), std::string::npos) << md;
     EXPECT_NE(r.output.find(md), std::string::npos);
-    for (const char* shard : {"1/2", "2/2"}) {
-        const RunResult s = run_penink(run + "sharded --shard " + shard, dir);
-        ASSERT_EQ(s.code, 0) << s.output;
-    }
-    for (int frame = 1; frame <= 5; ++frame) {
-        const std::string name = "frame_000" + std::to_string(frame) + ".svg";
-        EXPECT_EQ(read_text(dir / "sharded" / name), read_text(dir / "all" / name)) << name;
-    }
+    expect_shards_draw_the_whole_runs_bytes(run, dir, 5);
     EXPECT_EQ(lines_of(read_text(dir / "sharded" / "timings_2-of-2.csv")).size(), 3u);  // frames 2, 4
 }
 
