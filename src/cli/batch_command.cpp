@@ -18,6 +18,7 @@
 #include "export/styled_drawing.hpp"
 #include "lines/finish_drawing.hpp"
 #include "scene/flight_frames.hpp"
+#include "scene/mesh_frames.hpp"
 #include "scene/scene_style.hpp"
 #include "scene/terrain_frames.hpp"
 
@@ -42,76 +43,20 @@ std::vector<std::string> parse_formats(const std::string& text) {
     return out;
 }
 
-Scene batch_scene(const BatchOptions& o) {
-    Scene scene = load_scene_with_overrides(o);
-    if (is_mesh_scene(scene)) throw Error("batch", o.input, "batch draws terrains (a DEM or a scene with [terrain])");
-    return scene;
-}
-
 void write_text(const fs::path& p, const std::string& text) { write_file_atomically(p.string(), text); }
 
 }  // namespace
 
-double export_frame(Drawing& drawing, const Style& style, std::uint64_t seed, const std::vector<std::string>& paths) {
-    const auto t0 = Clock::now();
-    finish_drawing(drawing, finish_options(style, seed, true));
+ExportTimes export_frame(Drawing& drawing, const Style& style, std::uint64_t seed, bool terrain,
+                         const std::vector<std::string>& paths) {
+    ExportTimes out;
+    auto t0 = Clock::now();
+    finish_drawing(drawing, finish_options(style, seed, terrain));
+    out.finish = lap_ms(t0);
     const StyledDrawing styled = style_drawing(drawing, style, LayerSplit::kind);
     export_drawings(styled, PageOptions{}, paths);  // the frame's files together or none
-    return ms_since(t0);
-}
-
-std::string timings_csv(const std::vector<FrameTiming>& frames) {
-    std::ostringstream s;
-    s << std::fixed << std::setprecision(3);
-    s << "frame,warmup,tft,aft,dm,sil,ridges,lay,readback,trace,total\n";
-    for (const FrameTiming& f : frames) {
-        const PassTimings& t = f.times;
-        s << f.frame << "," << (f.warmup ? 1 : 0) << "," << t.tft << "," << t.aft << "," << t.dm << "," << t.sil
-          << "," << t.ridges << "," << f.lay << "," << t.readback << "," << f.trace << "," << f.total << "\n";
-    }
-    return s.str();
-}
-
-namespace {
-
-void table_row(std::ostream& s, const std::string& name, const std::vector<FrameTiming>& frames, bool warmup,
-               double wall_s) {
-    FrameTiming m;
-    int n = 0;
-    for (const FrameTiming& f : frames) {
-        if (f.warmup != warmup) continue;
-        ++n;
-        m.times.tft += f.times.tft, m.times.aft += f.times.aft, m.times.dm += f.times.dm;
-        m.times.sil += f.times.sil, m.times.ridges += f.times.ridges, m.times.readback += f.times.readback;
-        m.lay += f.lay, m.trace += f.trace, m.total += f.total;
-    }
-    if (n == 0) return;
-    const PassTimings& t = m.times;
-    const double k = 1.0 / n;
-    s << "| " << name << " | " << n << " | " << t.tft * k << " | " << t.aft * k << " | " << t.dm * k << " | "
-      << t.sil * k << " | " << t.ridges * k << " | " << m.lay * k << " | " << t.readback * k << " | " << m.trace * k
-      << " | " << m.total * k << " | " << 1000.0 / ((t.tft + t.dm) * k) << " | "
-      << 1000.0 / ((t.tft + t.aft + t.sil) * k) << " | " << (wall_s > 0 ? n / wall_s : 0.0) << " |\n";
-}
-
-}  // namespace
-
-std::string timings_markdown(const std::vector<FrameTiming>& frames, const BatchSummary& b) {
-    std::ostringstream s;
-    s << std::fixed << std::setprecision(1);
-    s << "# penink batch timings\n\n"
-      << "- scene: " << b.scene << ", " << b.width << "x" << b.height << " pixels\n"
-      << "- machine: " << b.machine << "\n"
-      << "- modelled: " << b.cells << " of " << b.dem_cells << " DEM cells; set-up " << std::setprecision(3)
-      << b.setup_s << " s (DEM, mesh, GPU upload, drainage)\n" << std::setprecision(1)
-      << "- mean ms per frame and pass; TFT holds the whole TFT+AFT pass when they run combined (AFT 0);"
-         " LAY = finish, style and export of the frame's files; trace = images to polylines (CPU)\n"
-      << "- CREASEfps = 1000/(TFT+DM), SILHfps = 1000/(TFT+AFT+SIL), TOTALfps = frames / wall seconds\n\n"
-      << "| frames | n | TFT | AFT | DM | SIL | RIDGES | LAY | read-back | trace | total | CREASEfps | SILHfps | TOTALfps |\n"
-      << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-    table_row(s, "warm-up", frames, true, b.warmup_wall_s);
-    table_row(s, "after warm-up", frames, false, b.frames_wall_s);
-    return s.str();
+    out.write = lap_ms(t0);
+    return out;
 }
 
 Subcommand add_batch_command(CLI::App& app) {
@@ -119,18 +64,22 @@ Subcommand add_batch_command(CLI::App& app) {
     BatchOptions& o = *options;
     CLI::App* cmd = app.add_subcommand(
         "batch",
-        "Draw one frame per record of a flight path (animation); frames DIR/frame_0001.png/.svg and timings.\n"
+        "Draw one frame per record of a flight path over a terrain, or per step of an orbit around a mesh\n"
+        "(animation); frames DIR/frame_0001.png/.svg and the timing tables (DIR/timings.csv, .md).\n"
         "The CSV and every camera are checked before the first frame is drawn: a bad path writes nothing.\n"
         "Frames are written whole (atomically); a run stopped part way leaves frame_0001..k complete.");
-    cmd->add_option("input", o.input, "DEM or terrain scene file (.toml)")->required();
+    cmd->add_option("input", o.input, "DEM, mesh (.obj .ply .off) or scene file (.toml)")->required();
     cmd->add_option("--path", o.path,
-                    "Flight path CSV with a header row. Columns: position (\"E N 18N\", \"lon,lat\" quoted, or \"x y\"), "
+                    "A terrain's flight path CSV with a header row. Columns: position (\"E N 18N\", \"lon,lat\" quoted, or \"x y\"), "
                     "elevation (m), azimuth, altitude (deg); optional light_azimuth, light_altitude (deg), min_score "
-                    "(crease threshold); an empty optional cell keeps the scene's value")
-        ->required();
+                    "(crease threshold); an empty optional cell keeps the scene's value");
+    cmd->add_option("--orbit", o.orbit,
+                    "A mesh's walk-through: N frames orbiting the model from the scene's camera, 360/N degrees apart "
+                    "about the vertical through the point it looks at")
+        ->check(number_between(1, 1000000));
     cmd->add_option("--out", o.out_dir, "Output directory (created when missing)")->required();
     cmd->add_option("--formats", o.formats, "Comma-separated frame formats: svg, ps, eps, pdf, or a raster png, tif, jpg, webp, exr (default png,svg)");
-    cmd->add_option("--warmup", o.warmup, "First N frames timed apart (shader JIT, caches); default 1")
+    cmd->add_option("--warmup", o.warmup, "First N frames this run draws timed apart (shader JIT, caches); default 3")
         ->check(number_between(0, 1000000));
     cmd->add_flag("--whole-dem", o.whole_dem, "Model the whole DEM (default: the union of the frames' visible windows)");
     cmd->add_option("--shard", o.shard,
@@ -168,49 +117,96 @@ void parse_shard(const std::string& text, int& k, int& n) {
     k = int(kk), n = int(nn);
 }
 
+namespace {
+
+// What a run flies: one camera per frame, the frames' source, and (a terrain) the flight records
+// with their per-frame scene values.
+struct BatchFlight {
+    std::vector<Camera> cameras;
+    std::vector<FlightRecord> records;  // empty for an orbit
+    std::unique_ptr<FrameSource> frames;
+};
+
+// Checks that --path / --orbit / --whole-dem fit the scene's input.
+void check_flight_options(const BatchOptions& o, bool mesh) {
+    if (mesh && !o.path.empty())
+        throw Error("batch", o.path, "a flight path flies over a terrain; a mesh scene takes --orbit N");
+    if (mesh && o.orbit == 0) throw Error("batch", o.input, "a mesh scene needs --orbit N (frames around the model)");
+    if (mesh && o.whole_dem) throw Error("batch", o.input, "--whole-dem: a mesh scene has no DEM");
+    if (!mesh && o.orbit > 0) throw Error("batch", o.input, "--orbit flies around a mesh; a terrain takes --path CSV");
+    if (!mesh && o.path.empty()) throw Error("batch", o.input, "a terrain needs --path CSV (the flight path)");
+}
+
+// The output folder, made and checked before anything is drawn.
+void prepare_out_dir(const BatchOptions& o, const std::vector<std::string>& formats, const Scene& scene) {
+    std::error_code ec;
+    fs::create_directories(o.out_dir, ec);
+    if (!fs::is_directory(o.out_dir)) throw Error("batch", o.out_dir, "cannot create the output directory");
+    check_output_targets(frame_paths(o.out_dir, 1, formats), PageOptions{}, scene.camera.width, scene.camera.height);
+}
+
+}  // namespace
+
 int run_batch(const BatchOptions& o) {
     const auto start = Clock::now();
     const Log log{o.verbose, progress_mode(o.quiet, o.progress)};
     int shard = 1, shards = 1;
     parse_shard(o.shard, shard, shards);
     const std::vector<std::string> formats = parse_formats(o.formats);
-    Scene scene = batch_scene(o);
-    const Style style = scene_style(scene);
-    apply_object_sketch(scene, style);
-    Flight f = plan_flight(scene, o.path, o.whole_dem, log);
-    std::error_code ec;
-    fs::create_directories(o.out_dir, ec);
-    if (!fs::is_directory(o.out_dir)) throw Error("batch", o.out_dir, "cannot create the output directory");
-    check_output_targets(frame_paths(o.out_dir, 1, formats), PageOptions{}, scene.camera.width, scene.camera.height);
-    const auto context = make_gl_context(parse_gl_backend(o.gl));
+    Scene scene = load_scene_with_overrides(o);
     BatchSummary summary;
-    summary.machine = context->description(), summary.scene = o.input;
+    summary.mesh = is_mesh_scene(scene);
+    check_flight_options(o, summary.mesh);
+    const Style style = scene_style(scene);
+    if (!summary.mesh) apply_object_sketch(scene, style);  // as `penink render`
+    summary.scene = o.input, summary.warmup = o.warmup;
     summary.width = scene.camera.width, summary.height = scene.camera.height;
-    summary.cells = f.model.cells();
-    summary.dem_cells = std::size_t(f.dem.stored.meta.cols - 1) * (f.dem.stored.meta.rows - 1);
-    TerrainFrames frames(*context, scene_drainage(scene, f.dem, log), std::move(f.model), summary.width, summary.height,
-                         log, LineCulling{f.cameras, line_culling_px(scene)});
+    std::unique_ptr<GlContext> context;  // outlives the frames' GL objects
+    BatchFlight flight;
+    if (summary.mesh) {
+        context = make_gl_context(parse_gl_backend(o.gl));
+        auto mesh = std::make_unique<MeshFrames>(scene, *context, log);
+        flight.cameras = mesh->orbit(scene, o.orbit);
+        summary.triangles = mesh->triangles();
+        flight.frames = std::move(mesh);
+        prepare_out_dir(o, formats, scene);
+    } else {
+        Flight f = plan_flight(scene, o.path, o.whole_dem, log);
+        prepare_out_dir(o, formats, scene);
+        context = make_gl_context(parse_gl_backend(o.gl));
+        summary.cells = f.model.cells();
+        summary.dem_cells = std::size_t(f.dem.stored.meta.cols - 1) * (f.dem.stored.meta.rows - 1);
+        flight.frames = std::make_unique<TerrainFrames>(*context, scene_drainage(scene, f.dem, log), std::move(f.model),
+                                                        summary.width, summary.height, log,
+                                                        LineCulling{f.cameras, line_culling_px(scene)});
+        flight.cameras = std::move(f.cameras), flight.records = std::move(f.records);
+    }
+    summary.machine = context->description();
     summary.setup_s = ms_since(start) / 1000.0;
     std::vector<FrameTiming> timings;
     // A shard draws its frames from the whole flight's set-up (window, depth range, line culling
-    // for every camera), so each frame is what an unsharded run draws.
-    const int drawn = (int(f.records.size()) - shard) / shards + 1;
+    // for every camera), so each frame is what an unsharded run draws. Warm-up: the first frames
+    // this run draws (its shader JIT and caches).
+    const std::size_t count = flight.cameras.size();
+    const int drawn = (int(count) - shard) / shards + 1;
     ProgressBar bar(std::cerr, log.progress, "batch", std::max(drawn, 0));
-    for (std::size_t i = std::size_t(shard - 1); i < f.records.size(); i += std::size_t(shards)) {
+    for (std::size_t i = std::size_t(shard - 1); i < count; i += std::size_t(shards)) {
         const auto t0 = Clock::now();
         FrameTiming t;
-        t.frame = int(i) + 1, t.warmup = int(i) < o.warmup;
-        SceneDrawing d = frames.draw(f.cameras[i], frame_scene(scene, f.records[i]));
-        t.times = d.times, t.trace = d.trace_ms;
-        t.lay = export_frame(d.drawing, style, scene.seed, frame_paths(o.out_dir, t.frame, formats));
+        t.frame = int(i) + 1, t.warmup = int(timings.size()) < o.warmup;
+        SceneDrawing d = flight.frames->draw(flight.cameras[i],
+                                             flight.records.empty() ? scene : frame_scene(scene, flight.records[i]));
+        t.times = d.times, t.lines = d.lines, t.trace = d.trace_ms;
+        const ExportTimes e = export_frame(d.drawing, style, scene.seed, !summary.mesh,
+                                              frame_paths(o.out_dir, t.frame, formats));
+        t.finish = e.finish, t.write = e.write;
         t.total = ms_since(t0);
-        (t.warmup ? summary.warmup_wall_s : summary.frames_wall_s) += t.total / 1000.0;
         timings.push_back(t);
         bar.step(fs::path(frame_paths(o.out_dir, t.frame, formats)[0]).stem().string(), t.total);
     }
     bar.finish();
     const std::string stem = shards > 1 ? "timings_" + std::to_string(shard) + "-of-" + std::to_string(shards) : "timings";
-    write_text(fs::path(o.out_dir) / (stem + ".csv"), timings_csv(timings));
+    write_text(fs::path(o.out_dir) / (stem + ".csv"), timings_csv(timings, summary.mesh));
     const std::string md = timings_markdown(timings, summary);
     write_text(fs::path(o.out_dir) / (stem + ".md"), md);
     std::cout << md;

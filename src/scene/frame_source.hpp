@@ -17,11 +17,18 @@
 
 namespace penink {
 
+// CPU time of the object-space steps of one mesh frame, milliseconds (scene/mesh_frames.hpp).
+struct MeshLineTimings {
+    double normals = 0, pel_geometry = 0, pel = 0, silhouettes = 0, features = 0, textures = 0,
+           visibility = 0;
+};
+
 struct SceneDrawing {
     Drawing drawing;
     Camera camera;
     PassTimings times;     // GPU ms per pass
-    double trace_ms = 0;   // CPU: read-back images -> polylines
+    double trace_ms = 0;   // CPU: read-back images -> polylines (a mesh: all its object-space lines)
+    MeshLineTimings lines; // a mesh frame's object-space steps (parts of trace_ms)
     std::size_t cells = 0, triangles = 0;
     PixelMask silhouette_mask;  // the frame's silhouette pixels before tracing (terrains)
 };

@@ -18,6 +18,7 @@
 #include "lines/indication_textures.hpp"
 #include "lines/mesh_visibility.hpp"
 #include "lines/trace_mask_outline.hpp"
+#include "scene/orbit.hpp"
 #include "surface/mesh_normals.hpp"
 
 namespace penink {
@@ -184,12 +185,21 @@ Camera MeshFrames::scene_camera(const Scene& scene) const {
     return mesh_camera(scene, ms_, mesh_.positions, lo, hi);
 }
 
+std::vector<Camera> MeshFrames::orbit(const Scene& scene, int frames) const {
+    glm::vec3 lo, hi;
+    mesh_bounds(mesh_, lo, hi);
+    return orbit_cameras(scene_camera(scene), lo, hi, frames);
+}
+
 SceneDrawing MeshFrames::draw(const Camera& camera, const Scene& frame) {
     SceneDrawing out;
     out.triangles = mesh_.triangles.size();
     out.camera = camera;
     FrameOptions options;
     options.tessellation.max_level = 1;  // the lines lie on the flat triangles
+    // The silhouettes are object-space lines (mesh_lines): the frame needs the depth images only,
+    // not the image-space SIL pass.
+    options.silhouette_method = SilhouetteMethod::object_space;
     const FrameImages images = renderer_->render(out.camera, options);
     out.times = images.times;
     const auto t0 = Clock::now();
@@ -205,6 +215,7 @@ SceneDrawing MeshFrames::draw(const Camera& camera, const Scene& frame) {
     add_visible(lines.textures, depth, out.camera, d.layer(LayerKind::textures));
     lines.times.visibility = lap_ms(t1);
     out.times.pel = lines.times.pel;
+    out.lines = lines.times;
     out.trace_ms = ms_since(t0);
     log_mesh_timings(lines, mesh_.triangles.size(), *log_);
     fill_metadata(frame, ms_, out.camera, d);

@@ -17,12 +17,6 @@
 
 namespace penink {
 
-// CPU time of the object-space steps of one frame, milliseconds.
-struct MeshLineTimings {
-    double normals = 0, pel_geometry = 0, pel = 0, silhouettes = 0, features = 0, textures = 0,
-           visibility = 0;
-};
-
 // The object-space lines of one frame, world frame (before hidden-line removal).
 struct MeshLines {
     std::vector<ObjectPolyline> pels, silhouettes, feature_edges, textures;
@@ -44,6 +38,9 @@ public:
     SceneDrawing draw(const Camera& camera, const Scene& frame) override;
     // The scene's camera: its eye/target, or the mesh framed from [camera] azimuth/altitude.
     Camera scene_camera(const Scene& scene) const;
+    // `frames` cameras orbiting the mesh from the scene's camera (scene/orbit.hpp).
+    std::vector<Camera> orbit(const Scene& scene, int frames) const;
+    std::size_t triangles() const { return mesh_.triangles.size(); }
 
 private:
     const Log* log_;
