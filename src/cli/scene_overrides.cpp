@@ -17,6 +17,9 @@ void add_scene_override_options(CLI::App* cmd, SceneOverrides& o) {
         ->check(number_between(0, 9007199254740992.0));
     cmd->add_option("--vertical-exaggeration", o.vertical_exaggeration, "Scale elevations by this factor, (0, 1000]")
         ->check(positive_at_most(max_vertical_exaggeration));
+    cmd->add_option("--sea-level", o.sea_level,
+                    "Draw the DEM below this elevation (its units, unexaggerated) as water, with a coastline")
+        ->check(number_between(-1e7, 1e7));
     cmd->add_option("--gl", o.gl, "OpenGL backend: osmesa (software, default) or egl (GPU)")
         ->check(CLI::IsMember({"osmesa", "egl"}));
     add_max_memory_option(cmd, o.max_memory);
@@ -28,6 +31,7 @@ Scene load_scene_with_overrides(const SceneOverrides& o) {
     if (o.height != SceneOverrides::unset) scene.camera.height = o.height;
     if (o.seed >= 0) scene.seed = std::uint64_t(o.seed);
     if (o.vertical_exaggeration != 0.0) scene.vertical_exaggeration = o.vertical_exaggeration;
+    if (o.sea_level) scene.sea_level = o.sea_level;
     if (!o.style.empty()) scene.style = o.style;
     validate_scene(scene);
     check_scene_memory(scene, o.max_memory);

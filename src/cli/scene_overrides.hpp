@@ -1,8 +1,9 @@
 // Command-line values that override a scene's (shared by render and batch): the input, style,
-// OpenGL back-end, image size, seed and vertical exaggeration, their CLI11 options, and the scene
+// OpenGL back-end, image size, seed, vertical exaggeration and sea level, their CLI11 options, and the scene
 // loaded with them applied and validated.
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "scene/scene.hpp"
@@ -21,10 +22,11 @@ struct SceneOverrides {
     int width = unset, height = unset;
     long long seed = -1;                       // < 0: the scene's
     double vertical_exaggeration = 0.0;        // 0: the scene's
+    std::optional<double> sea_level;           // --sea-level; none: the scene's
     std::uint64_t max_memory = 0;              // --max-memory; 0: the memory available
 };
 
-// --width --height --style --seed --vertical-exaggeration --gl --max-memory
+// --width --height --style --seed --vertical-exaggeration --sea-level --gl --max-memory
 void add_scene_override_options(CLI::App* cmd, SceneOverrides& o);
 
 // load_scene(o.input) with the overrides applied, then validate_scene, then (a terrain) the

@@ -1,5 +1,5 @@
 // A scene: what to draw and how, from a TOML scene file or a bare DEM path plus CLI options.
-// Keys (all optional but the input): [terrain] dem, vertical_exaggeration; [camera] position,
+// Keys (all optional but the input): [terrain] dem, vertical_exaggeration, sea_level; [camera] position,
 // elevation, azimuth, altitude, fov, width, height; [light] azimuth, altitude; [silhouettes]
 // min_gap, separate_passes, method; [surface] tolerance_px, min_radius_px; [tessellation]
 // target_edge_px, max_level, cull; [creases] and [ridges]
@@ -41,6 +41,9 @@ struct Scene {
     std::string mesh;          // [mesh] file (resolved); mesh keys: scene/mesh_scene.hpp
     toml::value table;         // the whole scene file (mesh keys are read from it)
     double vertical_exaggeration = 1.0;
+    // [terrain] sea_level: DEM elevation units, unexaggerated; nodes below it are drawn as a flat
+    // water surface at it (GridNodes::sea_level) and its contour is the coastline layer. None: off.
+    std::optional<double> sea_level;
     SceneCamera camera;
     SceneLight light;
     // [surface] level of detail (surface/terrain_lod.hpp): largest projected vertical error of the

@@ -120,6 +120,7 @@ TerrainFrames::TerrainFrames(GlContext& context, std::optional<DrainageLineSourc
     if (!drainage) return;
     LineBox box;
     box.lo = glm::vec2(terrain_.lo), box.hi = glm::vec2(terrain_.hi), box.exaggeration = terrain_.meta.vertical_exaggeration;
+    box.sea_level = terrain_.nodes.sea_level;
     pending_lines_ = std::async(std::launch::async, [db = std::move(*drainage), box, culling = std::move(culling)] {
         return prepare_drainage_lines(db, box, culling);
     });
@@ -182,6 +183,10 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
     if (lines_)
         lines_->draw(camera, frame, renderer_->surface_pass().toward_texture(),
                      max_visible_distance(images.toward), out.drawing, out.times);
+    if (terrain_.nodes.has_sea()) {  // the shore of the modelled window, found with the first frame
+        if (!coast_) coast_ = std::make_unique<CoastlineLines>(context_->gl(), terrain_.nodes, terrain_.window);
+        coast_->draw(camera, renderer_->surface_pass().toward_texture(), out.drawing);
+    }
     const auto t0 = Clock::now();
     add_frame_lines(images, mesh_, camera, out.drawing);
     out.trace_ms = ms_since(t0);
