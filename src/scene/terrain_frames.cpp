@@ -39,6 +39,7 @@ void fill_metadata(const Scene& scene, const Camera& cam, const Terrain& t, Draw
            << scene.tess_max_level << " target_edge_px " << scene.tess_target_edge_px << ", surface tolerance_px "
            << scene.surface_tolerance_px << " min_radius_px " << scene.surface_min_radius_px << ", seed "
            << scene.seed << ", style " << scene.style;
+    if (scene.sea_level) params << ", sea_level " << *scene.sea_level;
     d.metadata["source"] = scene.dem;
     d.metadata["camera"] = format_camera(cam, t);
     d.metadata["light"] = light.str();

@@ -31,7 +31,7 @@ public:
 
     std::vector<ShoreLine> chain() const {
         std::vector<ShoreLine> out;
-        std::vector<std::uint8_t> seen(lines_.size(), 0);
+        std::vector<std::uint8_t> seen(points_.size(), 0);
         const auto walk = [&](int start) {
             ShoreLine line;
             int prev = -1, at = start;
@@ -48,9 +48,9 @@ public:
             }
             if (line.points.size() >= 2) out.push_back(std::move(line));
         };
-        for (std::size_t i = 0; i < lines_.size(); ++i)  // open lines from their ends
+        for (std::size_t i = 0; i < points_.size(); ++i)  // open lines from their ends
             if (!seen[i] && (next_[i][0] < 0 || next_[i][1] < 0)) walk(int(i));
-        for (std::size_t i = 0; i < lines_.size(); ++i)  // then the loops
+        for (std::size_t i = 0; i < points_.size(); ++i)  // then the loops
             if (!seen[i]) walk(int(i));
         return out;
     }
@@ -59,7 +59,7 @@ private:
     const GridNodes& n_;
     double sea_;
     std::unordered_map<std::uint64_t, int> ids_;  // edge key -> point
-    std::vector<std::pair<glm::vec3, float>> lines_;  // point, ground
+    std::vector<std::pair<glm::vec3, float>> points_;  // point, ground
     std::vector<std::array<int, 2>> next_;
 
     // Drawn height before the water clamp, as GridNodes::at computes it.
@@ -73,14 +73,14 @@ private:
         // edges of the NW-SE split join a node to its east, south or south-east neighbour
         const std::uint64_t dir = hi == lo + 1 ? 0 : hi == lo + std::size_t(n_.cols) ? 1 : 2;
         const std::uint64_t key = std::uint64_t(lo) * 3 + dir;
-        const auto [it, added] = ids_.try_emplace(key, int(lines_.size()));
+        const auto [it, added] = ids_.try_emplace(key, int(points_.size()));
         if (!added) return it->second;
         const std::size_t w = land(p) ? q : p, l = land(p) ? p : q;  // water node, land node
         const double zw = drawn(w), zl = drawn(l);
         const double t = std::clamp((sea_ - zw) / (zl - zw), 0.0, 1.0);
         const glm::dvec3 a(n_.pos[w]), b(n_.pos[l]);
         const glm::vec3 at(float(a.x + t * (b.x - a.x)), float(a.y + t * (b.y - a.y)), float(sea_));
-        lines_.push_back({at, float(sea_ + t * (zl - sea_))});
+        points_.push_back({at, float(sea_ + t * (zl - sea_))});
         next_.push_back({-1, -1});
         return it->second;
     }
@@ -94,9 +94,9 @@ private:
     // Appends point i; a shore through a node at the sea level crosses several of its edges at the
     // node itself: the repeats are left out.
     void add(ShoreLine& line, int i) const {
-        if (!line.points.empty() && line.points.back() == lines_[std::size_t(i)].first) return;
-        line.points.push_back(lines_[std::size_t(i)].first);
-        line.ground.push_back(lines_[std::size_t(i)].second);
+        if (!line.points.empty() && line.points.back() == points_[std::size_t(i)].first) return;
+        line.points.push_back(points_[std::size_t(i)].first);
+        line.ground.push_back(points_[std::size_t(i)].second);
     }
 };
 
