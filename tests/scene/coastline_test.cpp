@@ -5,6 +5,7 @@
 // sea_level is read (a number; strict keys) and validated.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <limits>
 
@@ -99,6 +100,7 @@ TEST(Coastline, ConeIslandShoreOnTheProjectedCircle) {
     const double nearest = glm::length(glm::dvec3(0.0, -100.0, 0.0) - cam.eye);
     const double tol_px = 50.0 / (8.0 * 100.0) * focal / nearest + 1e-3;
     std::size_t points = 0;
+    double worst = 0.0;
     for (const Stroke& s : coast) {
         EXPECT_EQ(s.kind, "coastline");
         for (const glm::vec2& p : s.points) {
@@ -106,9 +108,12 @@ TEST(Coastline, ConeIslandShoreOnTheProjectedCircle) {
             for (std::size_t i = 0; i + 1 < circle.size(); ++i)
                 best = std::min(best, distance_to_segment(glm::dvec2(p), circle[i], circle[i + 1]));
             EXPECT_LE(best, tol_px) << p.x << " " << p.y;
+            worst = std::max(worst, best);
             ++points;
         }
     }
+    std::printf("%zu coastline points in %zu strokes, farthest %.4f px from the circle (tolerance %.4f px)\n", points,
+                coast.size(), worst, tol_px);
     EXPECT_GT(points, 50u);
     EXPECT_LT(distance_to_strokes(pixel_of(cam, {0.0, -100.0, 0.0}), coast), 0.5);  // the near shore
     EXPECT_LT(distance_to_strokes(pixel_of(cam, {-100.0, 0.0, 0.0}), coast), 0.5);  // its sides
