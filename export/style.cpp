@@ -55,6 +55,8 @@ Style default_style() {
     s.name = "technical";
     for (LayerStyle& l : s.layers) l = LayerStyle{};
     set_width(s.layer(LayerKind::surface), 0.5, 0.5);
+    set_width(s.layer(LayerKind::coastline), 0.8, 0.8);  // the shore: a heavier blue-black line
+    s.layer(LayerKind::coastline).color = Rgb{0x10, 0x20, 0x40};
     set_width(s.layer(LayerKind::ridges), 0.6, 0.6);
     set_width(s.layer(LayerKind::creases), 0.6, 0.6);
     set_width(s.layer(LayerKind::pels), 0.5, 0.5);
@@ -74,7 +76,8 @@ Style field_sketch_style() {
     s.background = Rgb{0xfb, 0xf8, 0xf0};
     s.fill = s.background;
     const struct { LayerKind k; double w, wf, keep; } table[] = {
-        {LayerKind::surface, 0.8, 0.4, 1.0},        {LayerKind::ridges, 1.1, 0.4, 0.5},
+        {LayerKind::surface, 0.8, 0.4, 1.0},        {LayerKind::coastline, 1.2, 0.5, 1.0},
+        {LayerKind::ridges, 1.1, 0.4, 0.5},
         {LayerKind::creases, 1.0, 0.35, 0.5},       {LayerKind::pels, 0.8, 0.3, 0.4},
         {LayerKind::textures, 0.6, 0.25, 0.3},      {LayerKind::feature_edges, 1.4, 0.6, 0.8},
         {LayerKind::silhouettes, 1.8, 0.7, 1.0}};
@@ -88,6 +91,7 @@ Style field_sketch_style() {
         l.sketch = 1.5;
         l.overshoot = 2.0;
     }
+    s.layer(LayerKind::coastline).color = Rgb{0x1e, 0x2a, 0x3a};  // blue-black ink
     s.layer(LayerKind::silhouettes).repeat = 2;
     s.layer(LayerKind::textures).dash = {6.0, 3.0};
     return s;
@@ -102,7 +106,8 @@ Style plotter_style() {
     s.widths_mm = true;
     s.bands = 1;
     const struct { LayerKind k; Rgb c; double w; } table[] = {
-        {LayerKind::surface, {0x80, 0x80, 0x80}, 0.3},      {LayerKind::ridges, {0xb0, 0x30, 0x20}, 0.3},
+        {LayerKind::surface, {0x80, 0x80, 0x80}, 0.3},      {LayerKind::coastline, {0x00, 0x30, 0x60}, 0.4},
+        {LayerKind::ridges, {0xb0, 0x30, 0x20}, 0.3},
         {LayerKind::creases, {0x20, 0x50, 0xb0}, 0.3},      {LayerKind::pels, {0x20, 0x80, 0x40}, 0.3},
         {LayerKind::textures, {0x90, 0x60, 0x20}, 0.25},    {LayerKind::feature_edges, {0x60, 0x20, 0x80}, 0.5},
         {LayerKind::silhouettes, {0x00, 0x00, 0x00}, 0.5}};

@@ -55,7 +55,7 @@ struct Style {
     Rgb background{255, 255, 255};  // page / image background
     double near = 0.0, far = 1.0;   // fractions of the drawing's largest depth
     int bands = 4;                  // width bands (quantisation levels) per layer
-    std::array<LayerStyle, 7> layers;  // indexed by LayerKind
+    std::array<LayerStyle, layer_count> layers;  // indexed by LayerKind
     LayerStyle& layer(LayerKind k) { return layers[static_cast<size_t>(k)]; }
     const LayerStyle& layer(LayerKind k) const { return layers[static_cast<size_t>(k)]; }
     bool operator==(const Style&) const = default;

@@ -53,7 +53,7 @@ struct StyledDrawing {
     int width = 0, height = 0;  // image pixels
     Rgb background{255, 255, 255};
     LayerSplit split = LayerSplit::kind;
-    std::array<StyledLayer, 7> layers;  // bottom to top, conventions.md order
+    std::array<StyledLayer, layer_count> layers;  // bottom to top, conventions.md order
     std::map<std::string, std::string> metadata;
     // Path widths (and dashes) in millimetres on the page instead of image pixels (Style::widths_mm):
     // export_document turns them into pixels at the page's scale.

@@ -36,7 +36,7 @@ _penink() {
             COMPREPLY=($(compgen -d -- "$cur"))
             compopt -o filenames 2>/dev/null
             return ;;
-        --width | --height | --dpi | --margin | --seed | --vertical-exaggeration | --resample | --warmup | --orbit | \
+        --width | --height | --dpi | --margin | --seed | --vertical-exaggeration | --sea-level | --scale | --resample | --warmup | --orbit | \
         --max-memory | --frames | --levels | --sizes | --tolerances | --methods | --formats | --needs-size | --ref-edge-px)
             return ;;  # a number or a list: nothing to offer
     esac

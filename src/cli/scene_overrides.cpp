@@ -21,6 +21,9 @@ void add_scene_override_options(CLI::App* cmd, SceneOverrides& o) {
     cmd->add_flag("--map", o.map, "Orthographic plan view of the whole DEM, north up");
     cmd->add_option("--scale", o.scale, "Map scale 1:N on the page set by --page/--dpi/--margin (orthographic views)")
         ->check(map_scale_check());
+    cmd->add_option("--sea-level", o.sea_level,
+                    "Draw the DEM below this elevation (its units, unexaggerated) as water, with a coastline")
+        ->check(number_between(-1e7, 1e7));
     cmd->add_option("--gl", o.gl, "OpenGL backend: osmesa (software, default) or egl (GPU)")
         ->check(CLI::IsMember({"osmesa", "egl"}));
     add_max_memory_option(cmd, o.max_memory);
@@ -40,6 +43,7 @@ Scene load_scene_with_overrides(const SceneOverrides& o) {
         scene.camera.position.reset(), scene.camera.elevation.reset();
     }
     if (!o.scale.empty()) scene.map_scale = parse_map_scale(o.scale);
+    if (o.sea_level) scene.sea_level = o.sea_level;
     if (!o.style.empty()) scene.style = o.style;
     validate_scene(scene);
     check_scene_memory(scene, o.max_memory);

@@ -1,8 +1,9 @@
 // Command-line values that override a scene's (shared by render and batch): the input, style,
-// OpenGL back-end, image size, seed, vertical exaggeration, map view and scale, their CLI11
-// options, and the scene loaded with them applied and validated.
+// OpenGL back-end, image size, seed, vertical exaggeration, sea level, map view and scale, their
+// CLI11 options, and the scene loaded with them applied and validated.
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "scene/scene.hpp"
@@ -21,12 +22,13 @@ struct SceneOverrides {
     int width = unset, height = unset;
     long long seed = -1;                       // < 0: the scene's
     std::string vertical_exaggeration;         // a number or "auto"; "": the scene's
+    std::optional<double> sea_level;           // --sea-level; none: the scene's
     bool map = false;                          // --map: orthographic plan view of the whole DEM
     std::string scale;                         // --scale 1:N; "": the scene's
     std::uint64_t max_memory = 0;              // --max-memory; 0: the memory available
 };
 
-// --width --height --style --seed --vertical-exaggeration --map --scale --gl --max-memory
+// --width --height --style --seed --vertical-exaggeration --sea-level --map --scale --gl --max-memory
 void add_scene_override_options(CLI::App* cmd, SceneOverrides& o);
 
 // load_scene(o.input) with the overrides applied, then validate_scene, then (a terrain) the

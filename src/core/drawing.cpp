@@ -5,6 +5,7 @@ namespace penink {
 std::string_view layer_name(LayerKind kind) {
     switch (kind) {
         case LayerKind::surface: return "surface";
+        case LayerKind::coastline: return "coastline";
         case LayerKind::ridges: return "ridges";
         case LayerKind::creases: return "creases";
         case LayerKind::pels: return "pels";

@@ -1,6 +1,6 @@
 // The drawing handed from the lines stage to export: strokes (polylines in image pixels,
 // origin top-left, y down, with per-point eye distance in metres / world units) grouped in
-// the seven named layers of conventions.md, bottom to top, plus the surface mask polygons.
+// the eight named layers of conventions.md, bottom to top, plus the surface mask polygons.
 #pragma once
 #include <array>
 #include <map>
@@ -15,10 +15,11 @@
 
 namespace penink {
 
-enum class LayerKind { surface, ridges, creases, pels, textures, feature_edges, silhouettes };
+enum class LayerKind { surface, coastline, ridges, creases, pels, textures, feature_edges, silhouettes };
 
-inline constexpr std::array<LayerKind, 7> all_layers = {
-    LayerKind::surface, LayerKind::ridges, LayerKind::creases, LayerKind::pels,
+inline constexpr std::size_t layer_count = 8;
+inline constexpr std::array<LayerKind, layer_count> all_layers = {
+    LayerKind::surface, LayerKind::coastline, LayerKind::ridges, LayerKind::creases, LayerKind::pels,
     LayerKind::textures, LayerKind::feature_edges, LayerKind::silhouettes};
 
 // Exact layer name used in SVG ids/labels, PS/EPS comments and PDF OCG names.
@@ -43,7 +44,7 @@ struct Layer {
 
 struct Drawing {
     int width = 0, height = 0;  // image size in pixels
-    std::array<Layer, 7> layers;  // indexed by LayerKind, bottom to top
+    std::array<Layer, layer_count> layers;  // indexed by LayerKind, bottom to top
     std::map<std::string, std::string> metadata;  // source, camera, light, parameters
     std::optional<Georeference> georeference;     // plan views only: pixel -> map transform
 

@@ -4,10 +4,14 @@
 // (metres, x east, y north, conventions.md). The drawn (exaggerated) height of a node is its
 // stored z times z_scale: 1 for a Terrain read at the drawing's exaggeration, the exaggeration
 // for heights stored unexaggerated, computed as the DEM reader computes it (in double, rounded
-// once to float).
+// once to float). With a sea level (unexaggerated, in the stored z's units) a node below it is
+// drawn at it: z = max(z * z_scale, sea_level * z_scale), each rounded once to float, so the water
+// is one flat surface hiding the sea floor; the stored z (pos) is unchanged, valid flags too
+// (nodata stays nodata). The level-of-detail bound for clamped nodes: terrain_lod.hpp.
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 
 #include <glm/vec3.hpp>
 
@@ -20,13 +24,18 @@ struct GridNodes {
     const glm::vec3* pos = nullptr;        // cols * rows
     const std::uint8_t* valid = nullptr;   // cols * rows, 1 where the node has data
     double z_scale = 1.0;
+    double sea_level = -std::numeric_limits<double>::infinity();  // unexaggerated; -inf: no water
 
+    bool has_sea() const { return sea_level > -std::numeric_limits<double>::infinity(); }
+    // The drawn height of the water surface (sea_level * z_scale, rounded once to float).
+    float sea_z() const { return float(sea_level * z_scale); }
     std::size_t index(int c, int r) const { return std::size_t(r) * std::size_t(cols) + std::size_t(c); }
     std::size_t size() const { return std::size_t(cols) * std::size_t(rows); }
     // Position of node i as drawn.
     glm::vec3 at(std::size_t i) const {
         glm::vec3 p = pos[i];
         if (z_scale != 1.0) p.z = float(double(p.z) * z_scale);
+        if (has_sea() && p.z < sea_z()) p.z = sea_z();
         return p;
     }
     glm::vec3 at(int c, int r) const { return at(index(c, r)); }
@@ -35,7 +44,7 @@ struct GridNodes {
 // The nodes of a Terrain as it holds them (z_scale 1). Empty when its arrays do not match its grid.
 inline GridNodes grid_nodes(const Terrain& t) {
     if (t.pos.size() != t.size() || t.valid.size() != t.size()) return {};
-    return {t.cols, t.rows, t.pos.data(), t.valid.data(), 1.0};
+    return {t.cols, t.rows, t.pos.data(), t.valid.data(), 1.0, -std::numeric_limits<double>::infinity()};
 }
 
 // A Terrain of the nodes inside `w` (clamped to the grid) as `nodes` draws them, with `grid`'s

@@ -58,7 +58,7 @@ struct FinishOptions {
     // near/far); keep probability falls linearly from 1 at near to keep_far at far.
     float near = 0.0f, far = 1.0f;
     glm::vec2 home{0.0f, 0.0f};       // plotter pen start (image pixels)
-    std::array<LayerFinish, 7> layers;  // indexed by LayerKind
+    std::array<LayerFinish, layer_count> layers;  // indexed by LayerKind
     LayerFinish& layer(LayerKind k) { return layers[static_cast<std::size_t>(k)]; }
     const LayerFinish& layer(LayerKind k) const { return layers[static_cast<std::size_t>(k)]; }
 };
@@ -78,7 +78,7 @@ struct LayerFinishStats {
 };
 
 struct FinishStats {
-    std::array<LayerFinishStats, 7> layers;  // indexed by LayerKind
+    std::array<LayerFinishStats, layer_count> layers;  // indexed by LayerKind
 };
 
 // Finishes every layer's strokes in place (surface fill rings are left alone). Steps per layer:

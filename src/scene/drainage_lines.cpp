@@ -63,14 +63,18 @@ struct FileBatches {
 // have pieces.
 template <class Batches>
 ScoredLineSet select_lines(const std::vector<DrapedLine>& lines, const std::vector<std::uint32_t>& ids,
-                           Batches& batches, glm::vec2 lo, glm::vec2 hi, double e, const LineCulling& culling) {
+                           Batches& batches, const LineBox& box, const LineCulling& culling) {
+    const glm::vec2 lo = box.lo, hi = box.hi;
+    const double e = box.exaggeration, sea = box.sea_level;
     struct Piece {
         std::uint32_t line;          // index into `kept` (the lines with pieces)
         std::uint32_t from, to;      // the line's vertices [from, to) of the piece
         std::uint32_t in0, in1;      // those inside the box: [in0, in1)
         std::size_t keep;            // keep[piece.keep + (i - from)]: vertex i is written
     };
-    const auto inside = [&](const DrapedVertex& v) { return v.x >= lo.x && v.x <= hi.x && v.y >= lo.y && v.y <= hi.y; };
+    const auto inside = [&](const DrapedVertex& v) {
+        return v.x >= lo.x && v.x <= hi.x && v.y >= lo.y && v.y <= hi.y && double(v.z) > sea;
+    };
     std::vector<Piece> pieces;
     std::vector<std::uint8_t> keep;   // per candidate vertex of the pieces, in piece order
     std::vector<std::uint32_t> kept;  // j of the lines with pieces (ids[j]), ascending
@@ -243,7 +247,7 @@ DrainageLineData prepare_drainage_lines(const DrainageDb& db, const LineBox& box
     for (const auto& [set, out] : {std::pair(&db.creases, &data.creases), std::pair(&db.ridges, &data.ridges)}) {
         const std::vector<std::uint32_t> ids = lines_meeting_box(*set, box.lo, box.hi);
         MemoryBatches batches{*set, ids};
-        *out = select_lines(set->lines, ids, batches, box.lo, box.hi, box.exaggeration, culling);
+        *out = select_lines(set->lines, ids, batches, box, culling);
     }
     return data;
 }
@@ -265,7 +269,7 @@ DrainageLineData prepare_drainage_lines(const DrainageLineSource& source, const 
         // follows the lines drawn, not those meeting the box
         FileBatches batches{*set, ids, source.vertices, which,
                             std::max<std::size_t>(source.batch_bytes / sizeof(DrapedVertex), 1), {}, {}};
-        *out = select_lines(set->lines, ids, batches, box.lo, box.hi, box.exaggeration, culling);
+        *out = select_lines(set->lines, ids, batches, box, culling);
         ++which;
     }
     return data;

@@ -5,6 +5,7 @@
 // scored and visibility-tested on the GPU and the runs clipped into object-space strokes for the
 // `creases` and `ridges` layers.
 #pragma once
+#include <limits>
 #include <memory>
 
 #include "scene/scene.hpp"
@@ -52,9 +53,12 @@ struct LineCulling {
 };
 // The modelled box: plan bounds (local metres) of what the frames model, and the exaggeration
 // the lines are drawn at.
+// Water: a vertex at or below the sea level (unexaggerated, GridNodes::sea_level) counts as
+// outside the box, so the lines are cut where they reach the sea and nothing is drawn on water.
 struct LineBox {
     glm::vec2 lo{0.0f}, hi{-1.0f};  // empty when hi < lo
     double exaggeration = 1.0;
+    double sea_level = -std::numeric_limits<double>::infinity();  // -inf: no water
 };
 // The box of a modelled terrain's valid nodes (empty when it has none).
 LineBox line_box(const Terrain& model);

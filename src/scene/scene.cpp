@@ -35,7 +35,7 @@ const std::vector<KnownTable>& known_tables() {
     static const std::vector<std::string> crease = {"slope_weight", "illumination_weight", "flow_weight", "min_score",
                                                     "distance_attenuation", "spacing_px", "enabled"};
     static const std::vector<KnownTable> tables = {
-        {"terrain", {"dem", "vertical_exaggeration"}},
+        {"terrain", {"dem", "vertical_exaggeration", "sea_level"}},
         {"camera", {"projection", "position", "elevation", "azimuth", "altitude", "fov", "width", "height", "eye", "target", "up"}},
         {"map", {"scale"}},
         {"light", {"azimuth", "altitude", "direction"}},
@@ -205,6 +205,11 @@ Scene parse_scene_file(const std::string& path) {
             s.exaggeration_auto = false;
         }
     }
+    if (has_key(terrain, "sea_level")) {
+        double sea = 0.0;
+        read_number(terrain, "sea_level", sea, path, "terrain");
+        s.sea_level = sea;
+    }
     read_camera(root, s.camera, path);
     if (has_key(root, "map")) read_number(root.at("map"), "scale", s.map_scale, path, "map");
     if (has_key(root, "light")) {
@@ -312,6 +317,7 @@ void validate_scene(const Scene& s) {
     check_range(f, "[camera] altitude", s.camera.altitude, -90.0, 90.0, " degrees");
     check_range(f, "[camera] azimuth", s.camera.azimuth, -360.0, 360.0, " degrees");
     check_range(f, "[camera] elevation", s.camera.elevation, -1e7, 1e7, " metres");
+    check_range(f, "[terrain] sea_level", s.sea_level, -1e7, 1e7, " metres");
     check_range(f, "[light] altitude", s.light.altitude, 0.0, 90.0, " degrees");  // a sun: above the horizon
     check_range(f, "[light] azimuth", s.light.azimuth, -360.0, 360.0, " degrees");
     for (const auto& [name, p] : {std::pair<const char*, const CreaseParams*>{"creases", &s.creases}, {"ridges", &s.ridges}}) {

@@ -1,7 +1,7 @@
 // A scene: what to draw and how, from a TOML scene file or a bare DEM path plus CLI options.
-// Keys (all optional but the input): [terrain] dem, vertical_exaggeration (a number or "auto");
-// [camera] projection, position, elevation, azimuth, altitude, fov, width, height; [map] scale;
-// [light] azimuth, altitude; [silhouettes]
+// Keys (all optional but the input): [terrain] dem, vertical_exaggeration (a number or "auto"),
+// sea_level; [camera] projection, position, elevation, azimuth, altitude, fov, width, height;
+// [map] scale; [light] azimuth, altitude; [silhouettes]
 // min_gap, separate_passes, method; [surface] tolerance_px, min_radius_px; [tessellation]
 // target_edge_px, max_level, cull; [creases] and [ridges]
 // slope_weight, illumination_weight, flow_weight, min_score, distance_attenuation; [style] name
@@ -56,6 +56,9 @@ struct Scene {
     bool exaggeration_was_auto = false;  // vertical_exaggeration was chosen automatically (metadata)
     // [map] scale: 25000 means 1:25 000 on the physical page (0: no scale); orthographic only.
     double map_scale = 0.0;
+    // [terrain] sea_level: DEM elevation units, unexaggerated; nodes below it are drawn as a flat
+    // water surface at it (GridNodes::sea_level) and its contour is the coastline layer. None: off.
+    std::optional<double> sea_level;
     SceneCamera camera;
     SceneLight light;
     // [surface] level of detail (surface/terrain_lod.hpp): largest projected vertical error of the

@@ -44,6 +44,7 @@ void fill_metadata(const Scene& scene, const Camera& cam, const Terrain& t, Draw
            << scene.tess_max_level << " target_edge_px " << scene.tess_target_edge_px << ", surface tolerance_px "
            << scene.surface_tolerance_px << " min_radius_px " << scene.surface_min_radius_px << ", seed "
            << scene.seed << ", style " << scene.style;
+    if (scene.sea_level) params << ", sea_level " << *scene.sea_level;
     d.metadata["source"] = scene.dem;
     d.metadata["camera"] = format_camera(cam, t);
     d.metadata["light"] = light.str();
@@ -125,6 +126,7 @@ TerrainFrames::TerrainFrames(GlContext& context, std::optional<DrainageLineSourc
     if (!drainage) return;
     LineBox box;
     box.lo = glm::vec2(terrain_.lo), box.hi = glm::vec2(terrain_.hi), box.exaggeration = terrain_.meta.vertical_exaggeration;
+    box.sea_level = terrain_.nodes.sea_level;
     pending_lines_ = std::async(std::launch::async, [db = std::move(*drainage), box, culling = std::move(culling)] {
         return prepare_drainage_lines(db, box, culling);
     });
@@ -187,6 +189,10 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
     if (lines_)
         lines_->draw(camera, frame, renderer_->surface_pass().toward_texture(),
                      max_visible_distance(images.toward), out.drawing, out.times);
+    if (terrain_.nodes.has_sea()) {  // the shore of the modelled window, found with the first frame
+        if (!coast_) coast_ = std::make_unique<CoastlineLines>(context_->gl(), terrain_.nodes, terrain_.window);
+        coast_->draw(camera, renderer_->surface_pass().toward_texture(), out.drawing);
+    }
     const auto t0 = Clock::now();
     add_frame_lines(images, mesh_, camera, out.drawing);
     out.trace_ms = ms_since(t0);

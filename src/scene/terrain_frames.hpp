@@ -1,5 +1,5 @@
 // The terrain frames of the scene layer: DEM -> terrain cropped to the view -> PN surface
-// -> GPU passes (TFT/AFT, SIL; DM for creases and ridges) or the CPU object-space silhouettes
+// -> GPU passes (TFT/AFT, SIL; DM for creases, ridges and the coastline) or the CPU object-space silhouettes
 // -> traced, simplified polylines in the named layers of a Drawing (image pixels, eye
 // distances in metres), with per-pass timings.
 #pragma once
@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 
+#include "scene/coastline_lines.hpp"
 #include "scene/drainage_lines.hpp"
 #include "scene/frame_source.hpp"
 #include "scene/terrain_view.hpp"
@@ -64,6 +65,7 @@ private:
     int width_, height_;
     std::unique_ptr<TerrainRenderer> renderer_;  // made with the first frame's mesh
     std::unique_ptr<DrainageLines> lines_;
+    std::unique_ptr<CoastlineLines> coast_;  // with water: the shore, made with the first frame
     std::future<DrainageLineData> pending_lines_;  // prepared on another core during the first frame
 };
 

@@ -79,11 +79,19 @@ void log_window(const Log& log, const GridWindow& w, int cols, int rows) {
              std::to_string(w.r1 - 1) + ")");
 }
 
-// Bounds of the whole stored terrain, drawn at e: exactly the drawn nodes' (the largest and
-// smallest stored heights scale to the largest and smallest drawn ones).
-void stored_bounds(const StoredTerrain& t, double e, glm::dvec3& lo, glm::dvec3& hi) {
-    lo = glm::dvec3(t.plan_lo, double(float(double(t.lod.z_min) * e)));
-    hi = glm::dvec3(t.plan_hi, double(float(double(t.lod.z_max) * e)));
+// Bounds of the whole stored terrain as drawn: exactly the drawn nodes' (the largest and
+// smallest stored heights scale to the largest and smallest drawn ones; water raises both to
+// the sea's height at most).
+void stored_bounds(const SceneTerrain& terrain, glm::dvec3& lo, glm::dvec3& hi) {
+    const StoredTerrain& t = terrain.stored;
+    const double e = terrain.exaggeration;
+    const GridNodes nodes = terrain.nodes();
+    const auto drawn = [&](float z) {
+        const float d = float(double(z) * e);
+        return double(nodes.has_sea() ? std::max(d, nodes.sea_z()) : d);
+    };
+    lo = glm::dvec3(t.plan_lo, drawn(t.lod.z_min));
+    hi = glm::dvec3(t.plan_hi, drawn(t.lod.z_max));
 }
 
 }  // namespace
@@ -115,7 +123,8 @@ std::vector<glm::dvec3> frame_samples(const Terrain& t) { return frame_samples(g
 void resolve_vertical_exaggeration(Scene& scene, double z_min, double z_max, const glm::dvec2& plan_lo,
                                    const glm::dvec2& plan_hi, const Log& log) {
     if (!scene.exaggeration_auto) return;
-    const double relief = z_max - z_min, extent = std::max(plan_hi.x - plan_lo.x, plan_hi.y - plan_lo.y);
+    if (scene.sea_level) z_min = std::max(z_min, *scene.sea_level);  // the sea floor is not drawn
+    const double relief = std::max(z_max - z_min, 0.0), extent = std::max(plan_hi.x - plan_lo.x, plan_hi.y - plan_lo.y);
     scene.vertical_exaggeration = auto_vertical_exaggeration(relief, extent);
     scene.exaggeration_auto = false;
     scene.exaggeration_was_auto = true;
@@ -209,13 +218,14 @@ SceneTerrain open_scene_terrain(Scene& scene, const Log& log) {
     const double e = scene.vertical_exaggeration;
     if (!std::isfinite(e) || e <= 0.0) throw Error("scene", scene_file(scene), "vertical exaggeration must be > 0");
     SceneTerrain t{std::move(stored), e, scene_file(scene)};
+    if (scene.sea_level) t.sea_level = *scene.sea_level;
     if (const std::string w = missing_crs_warning(t.stored.meta); !w.empty()) std::cerr << w << "\n";
     return t;
 }
 
 Camera scene_camera(const Scene& scene, const SceneTerrain& terrain) {
     glm::dvec3 lo, hi;
-    stored_bounds(terrain.stored, terrain.exaggeration, lo, hi);
+    stored_bounds(terrain, lo, hi);
     return place_camera(scene, terrain.stored.meta, terrain.nodes(), lo, hi);
 }
 
@@ -247,7 +257,7 @@ LodView scene_view_window(const SceneTerrain& terrain, const Camera& cam) {
     w.c0 = std::max(w.c0 - 1, 0), w.r0 = std::max(w.r0 - 1, 0);  // a node of margin
     w.c1 = std::min(w.c1 + 1, s.meta.cols), w.r1 = std::min(w.r1 + 1, s.meta.rows);
     glm::dvec3 lo, hi;
-    stored_bounds(s, terrain.exaggeration, lo, hi);
+    stored_bounds(terrain, lo, hi);
     if (w.c0 == 0 && w.r0 == 0 && w.c1 == s.meta.cols && w.r1 == s.meta.rows) v.lo = lo, v.hi = hi;
     else v.lo = glm::max(v.lo, lo), v.hi = glm::min(v.hi, hi);
     return v;
@@ -258,7 +268,7 @@ LodView view_union(const SceneTerrain& terrain, const std::vector<LodView>& view
     LodView u;
     if (whole) {
         u.window = {0, 0, s.meta.cols, s.meta.rows};
-        stored_bounds(s, terrain.exaggeration, u.lo, u.hi);
+        stored_bounds(terrain, u.lo, u.hi);
         return u;
     }
     bool any = false;

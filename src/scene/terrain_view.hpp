@@ -12,6 +12,7 @@
 // One cache serves every vertical exaggeration, view, light and style. Frames: the Terrain's
 // local metres, z exaggerated as drawn (GridNodes::at).
 #pragma once
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -45,13 +46,14 @@ std::string terrain_cache_path(const std::string& dem_path);
 TerrainCacheKey terrain_cache_key(const std::string& dem_path);
 
 // The scene's DEM: nodes and pyramid, stored (mapped from the cache, or read and cached), drawn
-// at the scene's vertical exaggeration.
+// at the scene's vertical exaggeration, with water below its sea level (GridNodes::sea_level).
 struct SceneTerrain {
     StoredTerrain stored;
     double exaggeration = 1.0;
     std::string file;  // the scene or DEM file named in messages
+    double sea_level = -std::numeric_limits<double>::infinity();  // [terrain] sea_level; -inf: none
 
-    GridNodes nodes() const { return stored.drawn(exaggeration); }
+    GridNodes nodes() const { return stored.drawn(exaggeration, sea_level); }
     // Grid and georeference at the exaggeration (no node arrays).
     Terrain meta() const {
         Terrain t = stored.meta;

@@ -25,6 +25,7 @@
 // renamed into place, so a crash leaves no partial cache.
 #pragma once
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -58,10 +59,12 @@ struct StoredTerrain {
     // The whole Terrain when it was read in this process (nodes point into it); null when mapped.
     const Terrain* in_memory = nullptr;
 
-    // The nodes as drawn at a vertical exaggeration.
-    GridNodes drawn(double exaggeration) const {
+    // The nodes as drawn at a vertical exaggeration, with water at a sea level (unexaggerated;
+    // -inf: none, GridNodes::sea_level).
+    GridNodes drawn(double exaggeration, double sea_level = -std::numeric_limits<double>::infinity()) const {
         GridNodes n = nodes;
         n.z_scale = exaggeration;
+        n.sea_level = sea_level;
         return n;
     }
 };

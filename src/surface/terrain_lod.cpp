@@ -302,6 +302,27 @@ Frustum frustum_of(const Camera& cam) {
     return f;
 }
 
+// What water adds to every error bound (terrain_lod.hpp): nodes drawn at max(z, s) (GridNodes::
+// sea_level, unexaggerated s). The clamp can raise a coarse triangle's error: corners -100 and
+// 100 over a linear slope (error 0) at s = 0 give the coarse plane 50 where the clamped DEM is 0
+// at the middle. Bound, for a triangle with corner heights z_i, barycentric weights w_i at a node
+// of height z_p, L(z) = sum w_i z_i, |L(z) - z_p| <= err: with cl(z) = max(z, s),
+//  below: L(cl z) >= max(L(z), s) (convexity) and max(., s) is 1-Lipschitz, so
+//         L(cl z) - cl(z_p) >= -err;
+//  above: L(cl z) - cl(z_p) <= L(z) - z_p + sum w_i (s - z_i)+ <= err + (s - z_min)+ (cl(z_p) >= z_p),
+//         and, when some corner is above s, L(cl z) <= z_max and cl(z_p) >= s give <= z_max - s;
+//         when none is, L(cl z) = s <= cl(z_p).
+// So err + min((s - z_min)+, (z_max - s)+), z_min and z_max the DEM's range: 0 for a DEM wholly
+// above or below the sea (the selection is then unchanged), and a constant, so the bounds stay
+// nested and the mesh crack-free.
+// Unexaggerated metres: the water's drawn height over the exaggeration the errors are drawn at.
+float water_error(const TerrainLod& lod, const GridNodes& t, double exaggeration) {
+    if (!t.has_sea()) return 0.0f;
+    const double s = double(t.sea_z()) / exaggeration;
+    const double extra = std::min(std::max(0.0, s - double(lod.z_min)), std::max(0.0, double(lod.z_max) - s));
+    return extra > 0.0 ? float(extra * (1.0 + 1e-5)) : 0.0f;  // rounded up
+}
+
 struct Item {
     int ac, ar, bc, br, cc, cr;  // hypotenuse a-b, right angle at c; grid (column, row)
     bool inside;                 // an ancestor's box lies inside the frustum
@@ -320,6 +341,7 @@ public:
         ortho_ = is_orthographic(cam);
         const double px_scale = ortho_ ? 1.0 / world_per_pixel(cam, 1.0) : lod_pixel_scale(cam);
         scale_ = ex * px_scale;
+        water_ = water_error(lod, t, ex);
         tol_ = std::max(0.0, double(o.tolerance_px));
         min_radius_ = std::max(0.0, double(o.min_radius_px)) / px_scale;  // metres at unit distance
         near_ = std::max(cam.near_plane, 1e-6);
@@ -349,7 +371,7 @@ public:
                 continue;
             }
             const int mc = (it.ac + it.bc) / 2, mr = (it.ar + it.br) / 2;
-            const float err = lod_.error[lod_.index(mc, mr)];
+            const float err = error(lod_.index(mc, mr));
             if (!it.inside) {
                 const int cls = classify_triangle(it, err);
                 if (cls == 0) continue;
@@ -382,7 +404,7 @@ public:
             const int c0 = std::min({it.ac, it.bc, it.cc}), r0 = std::min({it.ar, it.br, it.cr});
             if (c0 >= cols_ - 1 || r0 >= rows_ - 1) continue;  // only padding cells
             const int mc = (it.ac + it.bc) / 2, mr = (it.ar + it.br) / 2;
-            const float err = lod_.error[lod_.index(mc, mr)];
+            const float err = error(lod_.index(mc, mr));
             glm::dvec3 lo, hi;
             const int cls = classify_triangle(it, err, lo, hi);
             if (cls == 0) continue;
@@ -408,6 +430,7 @@ private:
     int side_, cols_, rows_;
     std::vector<std::uint32_t>* nodes_;
     LevelRadii radii_;
+    float water_ = 0.0f;  // water_error: what the sea level adds to every bound
     double ex_ = 1.0, scale_ = 1.0, tol_ = 1.0, min_radius_ = 0.0, near_ = 1.0, zlo_ = 0.0, zhi_ = 0.0, vz2_ = 0.0;
     bool ortho_ = false;
     glm::dvec3 eye_{0.0};
@@ -416,14 +439,15 @@ private:
     NodeMap map_;
     std::size_t active_count_ = 0;
 
+    // The error bound of padded node k for the nodes as drawn (water included).
+    float error(std::size_t k) const { return water_ > 0.0f ? lod_.error[k] + water_ : lod_.error[k]; }
     bool in_dem(int c, int r) const { return c < cols_ && r < rows_; }
     bool ok(int c, int r) const { return in_dem(c, r) && t_.valid[t_.index(c, r)]; }
 
     // Lindstrom & Pascucci's test: error projected at the distance from the eye to the node's
     // bounding region exceeds the tolerance. Monotone from a node to its parents.
     bool active(int c, int r) const {
-        const std::size_t k = lod_.index(c, r);
-        const float err = lod_.error[k];
+        const float err = error(lod_.index(c, r));
         if (!(err < kInf)) return true;  // forced (or NaN)
         if (!(err > 0.0f)) return false;
         if (!in_dem(c, r)) return true;  // cannot happen: padding nodes are forced

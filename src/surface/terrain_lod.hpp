@@ -28,6 +28,10 @@
 //    max(0, |eye.xy - m.xy| - radius)^2 + max(0, eye.z - z_max*e, z_min*e - eye.z)^2 for any
 //    vertical exaggeration e, with z_min, z_max the DEM's valid elevation range (stored
 //    unexaggerated), and this lower bound keeps the nesting (so activation stays monotone).
+// Water (GridNodes::sea_level: nodes drawn at max(z, s)): the clamp can raise a coarse triangle's
+// distance to the clamped DEM, by at most min((s - z_min)+, (z_max - s)+) (proof at water_error in
+// terrain_lod.cpp); the selection adds that constant to every error, so the bounds stay valid and
+// nested; 0 for a DEM wholly above (or below) the sea. Test: TerrainLod.WaterKeepsTheErrorBound.
 // A node is active (its triangles split) when
 //     error * e * scale / max(D, near_plane) > tolerance_px   (nearer points are clipped anyway;
 //     an orthographic camera: D = 1 and scale = pixels per metre, the same at every depth),

@@ -548,3 +548,41 @@ TEST(TerrainLod, SmallGrids) {
         EXPECT_EQ(s.stats.triangles, std::size_t(2) * (cols - 1) * (rows - 1)) << cols << "x" << rows;
     }
 }
+
+// Water (GridNodes::sea_level): a plane tilted through the sea level simplifies to two triangles
+// when dry, whose clamped corners (one under water raised to it) put the coarse plane half the
+// range above the clamped DEM in the middle; with the water's bound the selection refines until
+// the projected error against the clamped DEM is within the tolerance again, as on rough hills
+// half drowned. The tolerance as in ProjectedErrorWithinTolerance (float rounding, 1e-4 px).
+TEST(TerrainLod, WaterKeepsTheErrorBound) {
+    const auto clamped = [](Terrain t, double sea) {
+        for (glm::vec3& p : t.pos) p.z = std::max(p.z, float(sea));
+        return t;
+    };
+    struct Case {
+        const char* name;
+        Terrain t;
+        double sea;
+    };
+    for (const Case& k : {Case{"tilted plane", grid_terrain(513, 513, [](double x, double) { return 0.1 * x; }), 0.0},
+                    Case{"rough hills", grid_terrain(513, 513, rough_hills), 200.0}}) {
+        const TerrainLod lod = build_terrain_lod(k.t);
+        const Camera cam = framing_camera(k.t);
+        GridNodes wet = grid_nodes(k.t);
+        wet.sea_level = k.sea;
+        Selected s;
+        s.mesh = select_lod_mesh(lod, wet, 1.0, cam, LodOptions{1.0f, 0.0f}, &s.stats, &s.nodes);
+        const Terrain water = clamped(k.t, k.sea);
+        const ErrorReport rep = error_report(water, s, cam);
+        std::printf("%s with water: %zu triangles, max error %.3f px\n", k.name, s.stats.triangles, rep.max_px);
+        EXPECT_EQ(rep.uncovered, 0u) << k.name;
+        EXPECT_LE(rep.max_px, 1.0 + 1e-4) << k.name;
+        // dry, the same view: the plane collapses, and its error against the clamped DEM is large
+        Selected dry;
+        dry.mesh = select_lod_mesh(lod, grid_nodes(k.t), 1.0, cam, LodOptions{1.0f, 0.0f}, &dry.stats, &dry.nodes);
+        for (glm::vec3& p : dry.mesh.pos) p.z = std::max(p.z, float(k.sea));
+        if (k.sea == 0.0) {
+            EXPECT_GT(error_report(water, dry, cam).max_px, 10.0);
+        }
+    }
+}
