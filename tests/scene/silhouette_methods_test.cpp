@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "support/gl_test_context.hpp"
-#include "support/synthetic_silhouettes.hpp"
+#include "input/analytic_terrain.hpp"
 #include "lines/line_accuracy.hpp"
 #include "lines/object_silhouettes.hpp"
 #include "core/stopwatch.hpp"
