@@ -4,33 +4,17 @@
 #include <cmath>
 #include <limits>
 #include <cstdint>
-#include <unordered_map>
 
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
 
 #include "core/parallel_chunks.hpp"
-#include "surface/pn_tessellation.hpp"
 
 namespace penink {
 
 namespace {
 
 constexpr float none = std::numeric_limits<float>::infinity();
-
-// Patches with an edge used by one triangle only (the mesh's boundary).
-std::vector<std::uint8_t> boundary_patches(const SurfaceMesh& mesh) {
-    const auto key = [](unsigned a, unsigned b) { return std::uint64_t(std::min(a, b)) << 32 | std::max(a, b); };
-    std::unordered_map<std::uint64_t, int> uses;
-    uses.reserve(mesh.tri.size() * 2);
-    for (const glm::uvec3& t : mesh.tri)
-        for (int k = 0; k < 3; ++k) ++uses[key(t[k], t[(k + 1) % 3])];
-    std::vector<std::uint8_t> out(mesh.tri.size(), 0);
-    for (std::size_t i = 0; i < mesh.tri.size(); ++i)
-        for (int k = 0; k < 3; ++k)
-            if (uses[key(mesh.tri[i][k], mesh.tri[i][(k + 1) % 3])] == 1) out[i] = 1;
-    return out;
-}
 
 struct Hits {
     int w = 0, h = 0;
@@ -40,14 +24,14 @@ struct Hits {
 
 }  // namespace
 
-std::vector<std::vector<glm::vec2>> raycast_silhouettes(const SurfaceMesh& mesh, const Camera& camera,
+std::vector<std::vector<glm::vec2>> raycast_silhouettes(const std::vector<glm::vec3>& pos,
+                                                        const std::vector<glm::uvec3>& tris,
+                                                        const std::vector<std::uint8_t>& cut, const Camera& camera,
                                                         const RaycastOptions& options) {
     const int s = std::max(1, options.supersample);
     Hits hits;
     hits.w = camera.width * s, hits.h = camera.height * s;
     const glm::dmat4 vp = view_projection(camera);
-    const PnTessellation tess = tessellate_pn_surface(mesh, vp, glm::vec2(hits.w, hits.h), options.edge_px * float(s),
-                                                      std::clamp(options.max_level, 1, 64));
     hits.dist.assign(std::size_t(hits.w) * hits.h, none);
     hits.tri.assign(hits.dist.size(), 0);
 
@@ -62,12 +46,12 @@ std::vector<std::vector<glm::vec2>> raycast_silhouettes(const SurfaceMesh& mesh,
     struct Box {
         float x0, y0, x1, y1;
     };
-    std::vector<Box> box(tess.tri.size());
-    for (std::size_t t = 0; t < tess.tri.size(); ++t) {
+    std::vector<Box> box(tris.size());
+    for (std::size_t t = 0; t < tris.size(); ++t) {
         Box b{1e30f, 1e30f, -1e30f, -1e30f};
         bool behind = false;
         for (int k = 0; k < 3; ++k) {
-            const glm::dvec4 c = vp * glm::dvec4(glm::dvec3(tess.pos[tess.tri[t][k]]), 1.0);
+            const glm::dvec4 c = vp * glm::dvec4(glm::dvec3(pos[tris[t][k]]), 1.0);
             if (c.w <= 1e-9) behind = true;
             const double x = (c.x / c.w * 0.5 + 0.5) * hits.w, y = (0.5 - c.y / c.w * 0.5) * hits.h;
             b = {std::min(b.x0, float(x)), std::min(b.y0, float(y)), std::max(b.x1, float(x)), std::max(b.y1, float(y))};
@@ -75,14 +59,14 @@ std::vector<std::vector<glm::vec2>> raycast_silhouettes(const SurfaceMesh& mesh,
         box[t] = behind ? Box{0.0f, 0.0f, float(hits.w), float(hits.h)} : b;
     }
     parallel_chunks(std::size_t(hits.h), 16, [&](std::size_t r0, std::size_t r1) {
-        for (std::size_t t = 0; t < tess.tri.size(); ++t) {
+        for (std::size_t t = 0; t < tris.size(); ++t) {
             const Box& b = box[t];
             const int j0 = std::max<int>(int(r0), int(std::ceil(b.y0 - 0.5f)));
             const int j1 = std::min<int>(int(r1) - 1, int(std::floor(b.y1 - 0.5f)));
             const int i0 = std::max(0, int(std::ceil(b.x0 - 0.5f))), i1 = std::min(hits.w - 1, int(std::floor(b.x1 - 0.5f)));
             if (j0 > j1 || i0 > i1) continue;
-            const glm::dvec3 p0(tess.pos[tess.tri[t][0]]), e1 = glm::dvec3(tess.pos[tess.tri[t][1]]) - p0,
-                e2 = glm::dvec3(tess.pos[tess.tri[t][2]]) - p0, o = eye - p0;
+            const glm::dvec3 p0(pos[tris[t][0]]), e1 = glm::dvec3(pos[tris[t][1]]) - p0,
+                e2 = glm::dvec3(pos[tris[t][2]]) - p0, o = eye - p0;
             for (int j = j0; j <= j1; ++j)
                 for (int i = i0; i <= i1; ++i) {
                     const glm::dvec3 d = ray(i + 0.5, j + 0.5);
@@ -102,17 +86,16 @@ std::vector<std::vector<glm::vec2>> raycast_silhouettes(const SurfaceMesh& mesh,
     });
 
     // Splits between neighbouring samples.
-    const std::vector<std::uint8_t> edge_patch = boundary_patches(mesh);
     const double dalpha = 2.0 * std::tan(camera.fov * 0.5 * 3.14159265358979323846 / 180.0) / hits.w;
     const double max_tan = std::tan(89.0 * 3.14159265358979323846 / 180.0);
     const auto split = [&](std::size_t a, std::size_t b) {
         if (hits.dist[a] > hits.dist[b]) std::swap(a, b);
         const float da = hits.dist[a], db = hits.dist[b];
-        if (da == none || edge_patch[tess.patch[hits.tri[a]]]) return false;
+        if (da == none || (!cut.empty() && cut[hits.tri[a]])) return false;
         if (db == none) return true;
-        const glm::uvec3 t = tess.tri[hits.tri[b]];
-        const glm::dvec3 n = glm::normalize(glm::cross(glm::dvec3(tess.pos[t[1]] - tess.pos[t[0]]),
-                                                       glm::dvec3(tess.pos[t[2]] - tess.pos[t[0]])));
+        const glm::uvec3 t = tris[hits.tri[b]];
+        const glm::dvec3 n = glm::normalize(glm::cross(glm::dvec3(pos[t[1]] - pos[t[0]]),
+                                                       glm::dvec3(pos[t[2]] - pos[t[0]])));
         const double c = std::abs(glm::dot(n, ray((b % hits.w) + 0.5, (b / hits.w) + 0.5)));
         const double tan_psi = std::min(max_tan, std::sqrt(std::max(0.0, 1.0 - c * c)) / std::max(c, 1e-12));
         return db - da > std::max(4.0 * db * dalpha * tan_psi, options.min_gap * db);
