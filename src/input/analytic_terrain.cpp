@@ -346,4 +346,34 @@ std::vector<std::vector<glm::vec2>> analytic_silhouettes(const AnalyticTerrain& 
     return out;
 }
 
+std::optional<AnalyticCase> analytic_case(const std::string& name, int width, int height) {
+    AnalyticCase c;
+    c.name = name;
+    AnalyticTerrain& s = c.shape;
+    glm::dvec3 eye(0.0);
+    double azimuth = 0.0, altitude = 0.0, top = 0.0;
+    if (name == "hill") {
+        eye = {0.0, -1300.0, 450.0}, altitude = -10.0, top = s.height;
+    } else if (name == "two-hills") {
+        s.shape = AnalyticShape::two_hills, s.half_extent = 3000.0;
+        eye = {0.0, -1300.0, 700.0}, altitude = -14.0, top = 1.6 * s.height;
+    } else if (name == "smooth-cliff") {
+        s.shape = AnalyticShape::smooth_cliff, s.height = 100.0, s.width = 15.0, s.half_extent = 1000.0;
+        c.spacing = 5.0;
+        eye = {-150.0, -600.0, 260.0}, azimuth = 15.0, altitude = -15.0, top = s.height;
+    } else if (name == "saddle") {
+        s.shape = AnalyticShape::saddle, s.half_extent = 3000.0;
+        eye = {0.0, -1300.0, 520.0}, altitude = -12.0, top = s.height;
+    } else {
+        return std::nullopt;
+    }
+    Camera& cam = c.camera;
+    cam.eye = eye, cam.azimuth = azimuth, cam.altitude = altitude, cam.fov = 40.0;
+    cam.width = width, cam.height = height;
+    fit_depth_range(cam, {-s.half_extent, -s.half_extent, 0.0}, {s.half_extent, s.half_extent, top});
+    return c;
+}
+
+std::string analytic_case_names() { return "hill, two-hills, smooth-cliff, saddle"; }
+
 }  // namespace penink

@@ -18,6 +18,8 @@
 // pixels (origin top-left, y down), the frame of lines/line_accuracy.hpp's ImagePolyline.
 #pragma once
 #include <functional>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -70,5 +72,25 @@ std::vector<std::vector<glm::dvec3>> analytic_contour_generator(const AnalyticTe
 // behind them. Points farther than 5 px apart on screen start a new polyline.
 std::vector<std::vector<glm::vec2>> analytic_silhouettes(const AnalyticTerrain& shape, const Camera& cam,
                                                          bool only_surface_behind = true);
+
+// The named test and benchmark terrains, each with its grid spacing and a grazing view from the
+// south (horizontal fov 40 deg, depth range fitted to the extent):
+//   "hill":         Gaussian hill 250 m, sigma 150 m, 4 km square, 25 m grid, eye (0, -1300, 450) m
+//                   looking 10 deg down;
+//   "two-hills":    two_hills 250 m, sigma 150 m, 6 km square, 25 m grid, eye (0, -1300, 700) m,
+//                   14 deg down: the near hill hides the far one's foot;
+//   "smooth-cliff": smooth_cliff 100 m, width 15 m, 2 km square, 5 m grid, eye (-150, -600, 260) m,
+//                   azimuth 15 deg, 15 deg down: the cliff's brink across the image;
+//   "saddle":       saddle 250 m, sigma 150 m, 6 km square, 25 m grid, eye (0, -1300, 520) m,
+//                   12 deg down.
+struct AnalyticCase {
+    std::string name;
+    AnalyticTerrain shape;
+    double spacing = 25.0;  // grid, metres
+    Camera camera;
+};
+std::optional<AnalyticCase> analytic_case(const std::string& name, int width, int height);
+// The names analytic_case knows, comma-separated.
+std::string analytic_case_names();
 
 }  // namespace penink

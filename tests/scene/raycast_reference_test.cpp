@@ -17,35 +17,22 @@ using namespace penink;
 
 namespace {
 
-void expect_matches_closed_form(const AnalyticTerrain& s, const Camera& cam, double min_length) {
-    const SurfaceMesh mesh = mesh_from_terrain(analytic_grid(s, 25.0));
-    const auto rays = raycast_reference(mesh, cam);
-    const auto exact = analytic_silhouettes(s, cam, false);
-    const LineAccuracy a = line_accuracy(rasterize_polylines(rays, cam.width, cam.height), exact, {1.0});
-    std::printf("ray-cast vs closed form: P1 %.3f R1 %.3f  d->r %.2f r->d %.2f px  ref %.0f px\n", a.at(1.0).precision,
-                a.at(1.0).recall, a.mean_drawn_to_reference, a.mean_reference_to_drawn, a.reference_length);
+void expect_matches_closed_form(const char* name, double min_length) {
+    const AnalyticCase c = *analytic_case(name, 400, 300);
+    const SurfaceMesh mesh = mesh_from_terrain(analytic_grid(c.shape, c.spacing));
+    const auto rays = raycast_reference(mesh, c.camera);
+    const auto exact = analytic_silhouettes(c.shape, c.camera, false);
+    const LineAccuracy a = line_accuracy(rasterize_polylines(rays, c.camera.width, c.camera.height), exact, {1.0});
+    std::printf("%s: ray-cast vs closed form: P1 %.3f R1 %.3f  d->r %.2f r->d %.2f px  ref %.0f px\n", name,
+                a.at(1.0).precision, a.at(1.0).recall, a.mean_drawn_to_reference, a.mean_reference_to_drawn,
+                a.reference_length);
     EXPECT_GT(a.reference_length, min_length);
     EXPECT_GE(a.at(1.0).precision, 0.95);
     EXPECT_GE(a.at(1.0).recall, 0.95);
 }
 
-Camera camera(glm::dvec3 eye, double altitude, double top, const AnalyticTerrain& s) {
-    Camera c;
-    c.eye = eye, c.azimuth = 0.0, c.altitude = altitude, c.fov = 40.0;
-    c.width = 400, c.height = 300;
-    fit_depth_range(c, {-s.half_extent, -s.half_extent, 0.0}, {s.half_extent, s.half_extent, top});
-    return c;
-}
-
 }  // namespace
 
-TEST(RaycastReference, MatchesTheClosedFormOnAGaussianHill) {
-    AnalyticTerrain s;  // 250 m high, sigma 150 m
-    expect_matches_closed_form(s, camera({0.0, -1300.0, 450.0}, -10.0, 250.0, s), 200.0);
-}
+TEST(RaycastReference, MatchesTheClosedFormOnAGaussianHill) { expect_matches_closed_form("hill", 200.0); }
 
-TEST(RaycastReference, MatchesTheClosedFormOnTwoHills) {
-    AnalyticTerrain s;
-    s.shape = AnalyticShape::two_hills, s.half_extent = 3000.0;
-    expect_matches_closed_form(s, camera({0.0, -1300.0, 700.0}, -14.0, 400.0, s), 300.0);
-}
+TEST(RaycastReference, MatchesTheClosedFormOnTwoHills) { expect_matches_closed_form("two-hills", 300.0); }
