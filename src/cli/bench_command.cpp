@@ -10,6 +10,7 @@
 #include "cli/option_checks.hpp"
 #include "core/error.hpp"
 #include "export/atomic_file.hpp"
+#include "scene/flight_coherence.hpp"
 #include "scene/frame_source.hpp"
 #include "scene/terrain_view.hpp"
 
@@ -120,6 +121,8 @@ Subcommand add_bench_command(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "bench", "Speed against accuracy of the silhouette methods: DIR/bench.csv, DIR/speed_accuracy.svg");
     cmd->add_option("input", o.input, "DEM or terrain scene file (.toml)");
+    cmd->add_option("--flight", o.flight, "Flight path CSV: measure the frame-to-frame coherence of silhouettes and "
+                                          "creases (share of drawn length persisting within 2 px) instead");
     cmd->add_option("--analytic", o.analytic, "Instead of input: an analytic terrain (" + analytic_case_names() + ")");
     cmd->add_option("--out", o.out_dir, "Output directory (created when missing)")->required();
     cmd->add_option("--levels", o.levels, "Tessellation max_level values (default " + joined(c.levels, number) + ")");
@@ -172,6 +175,13 @@ int run_bench(const BenchOptions& o) {
     fs::create_directories(o.out_dir, ec);
     if (!fs::is_directory(o.out_dir)) throw Error("bench", o.out_dir, "cannot create the output directory");
     const auto context = make_gl_context(parse_gl_backend(o.gl));
+    if (!o.flight.empty()) {
+        if (config.analytic) throw Error("cli", "", "--flight needs a DEM or scene file, not --analytic");
+        const std::string csv = coherence_csv(flight_coherence(scene, o.flight, *context, 2.0, log));
+        write_file_atomically((fs::path(o.out_dir) / "coherence.csv").string(), csv);
+        std::cout << csv;
+        return 0;
+    }
     const std::vector<BenchRow> rows = speed_accuracy_rows(scene, dem, *context, config, log);
     write_file_atomically((fs::path(o.out_dir) / "bench.csv").string(), bench_csv(rows));
     ChartText text;
