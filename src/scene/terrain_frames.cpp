@@ -10,6 +10,7 @@
 #include "drainage/drainage_build.hpp"
 #include "lines/object_silhouettes.hpp"
 #include "lines/simplify.hpp"
+#include "lines/depth_edge_placement.hpp"
 #include "lines/trace_mask_outline.hpp"
 #include "lines/frustum_clip.hpp"
 #include "lines/mesh_visibility.hpp"
@@ -67,7 +68,9 @@ std::vector<Stroke> traced_silhouettes(const FrameImages& images) {
     TraceParams sil;
     sil.min_pixels = 3, sil.max_spur = 2, sil.kind = "silhouette";
     sil.depth_radius = 1;  // the occluding surface's depth (occlusion-aware joins)
-    return simplify_strokes(trace_pixel_lines(images.silhouettes, images.toward, sil), 0.5f);
+    std::vector<Stroke> strokes = trace_pixel_lines(images.silhouettes, images.toward, sil);
+    place_on_depth_edges(strokes, images.toward, images.away);
+    return simplify_strokes(std::move(strokes), 0.5f);
 }
 
 void add_frame_lines(const FrameImages& images, const SurfaceMesh& mesh, const Camera& camera,

@@ -73,7 +73,9 @@ PixelMask object_space_silhouette_mask(const SurfaceMesh& mesh, const Camera& ca
                                        const TessellationOptions& tessellation);
 
 // One frame's silhouette mask traced into simplified strokes (image pixels, the occluding
-// surface's eye distance): the drawn Toward/Away or Adjacency silhouettes, before the outline.
+// surface's eye distance), each point moved from its pixel's centre onto the depth edge it
+// borders (lines/depth_edge_placement.hpp): the drawn Toward/Away or Adjacency silhouettes,
+// before the outline.
 std::vector<Stroke> traced_silhouettes(const FrameImages& images);
 
 // Surface mask rings and silhouette strokes from one frame's images (lines stage), and the

@@ -5,6 +5,8 @@
 // within 1/8 px of the PN surface's silhouette, which lies within ~0.2 px of the analytic one on a
 // 25 m grid at these distances, and a 1-px raster adds up to 0.71 px.
 #include <cstdio>
+#include <cstdlib>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -22,7 +24,15 @@ void expect_matches_closed_form(const char* name, double min_length) {
     const SurfaceMesh mesh = mesh_from_terrain(analytic_grid(c.shape, c.spacing));
     const auto rays = raycast_reference(mesh, c.camera);
     const auto exact = analytic_silhouettes(c.shape, c.camera, false);
-    const LineAccuracy a = line_accuracy(rasterize_polylines(rays, c.camera.width, c.camera.height), exact, {1.0});
+    const PixelMask drawn = rasterize_polylines(rays, c.camera.width, c.camera.height);
+    const LineAccuracy a = line_accuracy(drawn, exact, {1.0});
+    if (const char* dir = std::getenv("PENINK_DEBUG_PGM")) {  // ray-cast black, closed form white
+        const PixelMask r = rasterize_polylines(exact, c.camera.width, c.camera.height);
+        FILE* f = std::fopen((std::string(dir) + "/rays-" + name + ".pgm").c_str(), "wb");
+        std::fprintf(f, "P5 %d %d 255\n", c.camera.width, c.camera.height);
+        for (std::size_t i = 0; i < drawn.on.size(); ++i) std::fputc(r.on[i] ? 255 : drawn.on[i] ? 0 : 180, f);
+        std::fclose(f);
+    }
     std::printf("%s: ray-cast vs closed form: P1 %.3f R1 %.3f  d->r %.2f r->d %.2f px  ref %.0f px\n", name,
                 a.at(1.0).precision, a.at(1.0).recall, a.mean_drawn_to_reference, a.mean_reference_to_drawn,
                 a.reference_length);
