@@ -10,17 +10,20 @@ namespace penink {
 
 namespace {
 
-// 1 for each triangle with an edge no other triangle shares (the mesh's boundary).
+// 1 for each triangle with a vertex on the mesh's boundary (an end of an edge no other triangle
+// shares): both triangles of a cut-edge cell.
 std::vector<std::uint8_t> boundary_triangles(const SurfaceMesh& mesh) {
     const auto key = [](unsigned a, unsigned b) { return std::uint64_t(std::min(a, b)) << 32 | std::max(a, b); };
     std::unordered_map<std::uint64_t, int> uses;
     uses.reserve(mesh.tri.size() * 2);
     for (const glm::uvec3& t : mesh.tri)
         for (int k = 0; k < 3; ++k) ++uses[key(t[k], t[(k + 1) % 3])];
+    std::vector<std::uint8_t> on_boundary(mesh.pos.size(), 0);
+    for (const auto& [k, n] : uses)
+        if (n == 1) on_boundary[k >> 32] = on_boundary[k & 0xffffffffu] = 1;
     std::vector<std::uint8_t> out(mesh.tri.size(), 0);
     for (std::size_t i = 0; i < mesh.tri.size(); ++i)
-        for (int k = 0; k < 3; ++k)
-            if (uses[key(mesh.tri[i][k], mesh.tri[i][(k + 1) % 3])] == 1) out[i] = 1;
+        out[i] = on_boundary[mesh.tri[i][0]] | on_boundary[mesh.tri[i][1]] | on_boundary[mesh.tri[i][2]];
     return out;
 }
 

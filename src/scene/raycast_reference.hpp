@@ -1,8 +1,8 @@
 // The speed/accuracy chart's reference for a real DEM: the PN-triangle surface (Vlachos et al.
 // 2001) tessellated on the CPU to edges of about `edge_px` image pixels (surface/pn_tessellation.hpp,
 // level cap 64), then ray cast at `supersample` x the image resolution with silhouettes where the
-// first hit jumps (lines/raycast_silhouettes.hpp). Tessellated triangles of patches with a mesh
-// boundary edge are flagged as cut edges. Image polylines in pixels (origin top-left, y down).
+// first hit jumps (lines/raycast_silhouettes.hpp). Tessellated triangles of patches with a vertex on
+// the mesh boundary are flagged as cut edges. Image polylines in pixels (origin top-left, y down).
 #pragma once
 #include <vector>
 
