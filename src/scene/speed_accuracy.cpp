@@ -222,9 +222,8 @@ void sweep(BenchRun& run) {
                     BenchRow row;
                     row.group = "sweep", row.method = silhouette_method_name(m), row.level = level;
                     row.tolerance_px = tolerance;
-                    const bool cpu = m == SilhouetteMethod::object_space;
-                    // One frame for the CPU method (no JIT); programs warm up once per view and method.
-                    measure(*view, frame, cpu ? 1 : c.frames, cpu || li > 0 ? 0 : c.warmup, view->reference, run.references.kind(), row);
+                    // Every method timed on c.frames frames; programs warm up once per view and method.
+                    measure(*view, frame, c.frames, li > 0 ? 0 : c.warmup, view->reference, run.references.kind(), row);
                     run.rows.push_back(row);
                     bar.step(row.method + " " + std::to_string(w) + "x" + std::to_string(h) + " L" +
                                  std::to_string(level), row.ms);
