@@ -16,8 +16,7 @@ cd "$(dirname "$0")/.."
 BIN=$(realpath "${1:-build/penink}")
 OUT=$(realpath -m "${2:-bench-out}")
 FRAMES=${FRAMES:-5}
-SIZES=${SIZES:-500x375,1000x750}
-LEVELS=${LEVELS:-1,2,4,8}
+LEVELS=${LEVELS:-1,4}
 SHARED=$(realpath ../shared/data)
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
@@ -26,14 +25,15 @@ mkdir -p "$OUT"
 common=(--frames "$FRAMES" --warmup 1 --levels "$LEVELS" -q)
 
 for name in two-hills smooth-cliff saddle; do
-  "$BIN" bench --analytic "$name" --out "$OUT/$name" --sizes "$SIZES" --no-needs "${common[@]}" >"$OUT/$name.txt"
+  "$BIN" bench --analytic "$name" --out "$OUT/$name" --sizes 500x375 --no-needs "${common[@]}" >"$OUT/$name.txt"
 done
-"$BIN" bench examples/volcano.toml --out "$OUT/volcano" --sizes "$SIZES" "${common[@]}" >"$OUT/volcano.txt"
+"$BIN" bench examples/volcano.toml --out "$OUT/volcano" --sizes 500x375,1000x750 --needs-size 500x375 "${common[@]}" \
+  >"$OUT/volcano.txt"
 
 gdal_translate -q -r cubic -outsize 500% 500% -ot Float32 "$SHARED/jacksboro.tif" "$TMP/jacksboro5.tif"
 printf '[terrain]\ndem = "%s"\nvertical_exaggeration = 3\n' "$TMP/jacksboro5.tif" >"$TMP/j5.toml"
 "$BIN" bench "$TMP/j5.toml" --out "$OUT/jacksboro5-tolerance" --sizes 1000x750 --levels 1,4 \
-  --tolerances "${TOLERANCES:-0.5,1,2,4}" --methods toward-away --no-needs --frames "$FRAMES" --warmup 1 -q \
+  --tolerances 0.5,1,2,4 --methods toward-away --no-needs --frames "$FRAMES" --warmup 1 -q \
   >"$OUT/jacksboro5-tolerance.txt"
 
 "$BIN" bench examples/volcano.toml --flight examples/volcano_flight.csv --out "$OUT/flight" -q >"$OUT/flight.txt"
