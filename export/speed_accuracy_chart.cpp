@@ -46,7 +46,8 @@ Frame plot_frame(const std::vector<ChartSeries>& series, const ChartText& text) 
     double lo = 1e300, hi = -1e300;
     for (const ChartSeries& s : series)
         for (const ChartPoint& p : s.points)
-            if (p.ms > 0) lo = std::min(lo, p.ms), hi = std::max(hi, p.ms);
+            for (double ms : {p.ms, p.ms_min, p.ms_max})
+                if (ms > 0) lo = std::min(lo, ms), hi = std::max(hi, ms);
     if (lo > hi) lo = 1, hi = 1000;
     f.lo = std::floor(std::log10(lo)), f.hi = std::ceil(std::log10(hi));
     if (f.hi <= f.lo) f.hi = f.lo + 1;
@@ -90,6 +91,10 @@ void curve(std::ostream& s, const Frame& f, const ChartSeries& c) {
     for (const ChartPoint& p : c.points) {
         if (p.ms <= 0) continue;
         const glm::dvec2 at(f.x(p.ms), f.y(p.accuracy));
+        if (p.ms_min > 0 && p.ms_max > p.ms_min)
+            s << "<path d=\"M" << f.x(p.ms_min) << "," << at.y - 3 << "v6M" << f.x(p.ms_min) << "," << at.y << "H"
+              << f.x(p.ms_max) << "M" << f.x(p.ms_max) << "," << at.y - 3 << "v6\" stroke=\"" << c.colour
+              << "\" stroke-width=\"1\" fill=\"none\"/>\n";
         s << "<circle cx=\"" << at.x << "\" cy=\"" << at.y << "\" r=\"3.5\" fill=\"" << c.colour << "\"/>\n";
         if (p.label.empty()) continue;
         if (!labels.empty() && std::abs(labels.back().first.x - at.x) < 20.0 && std::abs(labels.back().first.y - at.y) < 10.0)

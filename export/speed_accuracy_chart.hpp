@@ -1,6 +1,7 @@
 // The speed / accuracy chart of `penink bench`: an SVG line chart, time per frame (ms, log
 // axis, decades labelled 1-2-5) against accuracy (0..1), one polyline per series with point
-// markers, axis titles and a legend. Deterministic text (fixed precision) for tests and diffs.
+// markers, a horizontal bar from the fastest to the slowest run behind each marker where given,
+// axis titles and a legend. Deterministic text (fixed precision) for tests and diffs.
 #pragma once
 #include <string>
 #include <vector>
@@ -9,6 +10,7 @@ namespace penink {
 
 struct ChartPoint {
     double ms = 0, accuracy = 0;
+    double ms_min = 0, ms_max = 0;  // spread of the runs (min-max bar); 0 = no bar
     std::string label;  // drawn beside the marker (e.g. "L4"); "" = none
 };
 

@@ -10,6 +10,7 @@
 #include "cli/option_checks.hpp"
 #include "core/error.hpp"
 #include "export/atomic_file.hpp"
+#include "scene/flight_coherence.hpp"
 #include "scene/frame_source.hpp"
 #include "scene/terrain_view.hpp"
 
@@ -119,7 +120,10 @@ Subcommand add_bench_command(CLI::App& app) {
     const auto method = [](SilhouetteMethod m) { return std::string(silhouette_method_name(m)); };
     CLI::App* cmd = app.add_subcommand(
         "bench", "Speed against accuracy of the silhouette methods: DIR/bench.csv, DIR/speed_accuracy.svg");
-    cmd->add_option("input", o.input, "DEM or terrain scene file (.toml)")->required();
+    cmd->add_option("input", o.input, "DEM or terrain scene file (.toml)");
+    cmd->add_option("--flight", o.flight, "Flight path CSV: measure the frame-to-frame coherence of silhouettes and "
+                                          "creases (share of drawn length persisting within 2 px) instead");
+    cmd->add_option("--analytic", o.analytic, "Instead of input: an analytic terrain (" + analytic_case_names() + ")");
     cmd->add_option("--out", o.out_dir, "Output directory (created when missing)")->required();
     cmd->add_option("--levels", o.levels, "Tessellation max_level values (default " + joined(c.levels, number) + ")");
     cmd->add_option("--sizes", o.sizes, "Image sizes WxH (default " + joined(c.sizes, size_text) + ")");
@@ -129,8 +133,10 @@ Subcommand add_bench_command(CLI::App& app) {
     cmd->add_option("--frames", c.frames, "Frames timed per configuration, median reported")
         ->check(number_between(1, 10000))->capture_default_str();
     cmd->add_option("--warmup", c.warmup, "Untimed frames first")->check(number_between(0, 10000))->capture_default_str();
-    cmd->add_option("--ref-edge-px", c.ref_edge_px, "Reference tessellation: edges this long on screen at the largest size")
+    cmd->add_option("--ref-edge-px", c.ref_edge_px, "Ray-cast reference: tessellated edges this long on screen at the largest size")
         ->check(positive_at_most(1000))->capture_default_str();
+    cmd->add_option("--ref-supersample", c.ref_supersample, "Ray-cast reference: rays per pixel along x and y")
+        ->check(number_between(1, 16))->capture_default_str();
     cmd->add_flag("!--no-needs", c.needs, "Leave out the culling / cropping / adaptive tessellation rows");
     cmd->add_option("--needs-size", o.needs_size, "Image size WxH of those rows (default: the scene's)");
     cmd->add_option("--gl", o.gl, "OpenGL backend: osmesa (software, default) or egl (GPU)")
@@ -152,16 +158,37 @@ int run_bench(const BenchOptions& o) {
     }
     if (!o.tolerances.empty()) config.tolerances = parse_tolerances(o.tolerances);
     if (!o.needs_size.empty()) config.needs_size = parse_sizes(o.needs_size).front();
-    Scene scene = bench_scene(o.input);
-    const Terrain dem = read_scene_dem(scene, log);
+    if (o.input.empty() == o.analytic.empty()) throw Error("cli", "", "bench: give a DEM or scene file, or --analytic NAME");
+    Scene scene;
+    scene.exaggeration_auto = false;  // an analytic terrain is drawn as its closed form says
+    Terrain dem;
+    if (!o.analytic.empty()) {
+        config.analytic = analytic_case(o.analytic, scene.camera.width, scene.camera.height);
+        if (!config.analytic)
+            throw Error("cli", "", "--analytic: unknown terrain \"" + o.analytic + "\" (use " + analytic_case_names() + ")");
+        dem = analytic_grid(config.analytic->shape, config.analytic->spacing);
+    } else {
+        scene = bench_scene(o.input);
+        dem = read_scene_dem(scene, log);
+    }
+    const std::string name = o.analytic.empty() ? fs::path(o.input).filename().string() : "analytic " + o.analytic;
     std::error_code ec;
     fs::create_directories(o.out_dir, ec);
     if (!fs::is_directory(o.out_dir)) throw Error("bench", o.out_dir, "cannot create the output directory");
     const auto context = make_gl_context(parse_gl_backend(o.gl));
+    if (!o.flight.empty()) {
+        if (config.analytic) throw Error("cli", "", "--flight needs a DEM or scene file, not --analytic");
+        const std::string csv = coherence_csv(flight_coherence(scene, o.flight, *context, 2.0, log));
+        write_file_atomically((fs::path(o.out_dir) / "coherence.csv").string(), csv);
+        std::cout << csv;
+        return 0;
+    }
     const std::vector<BenchRow> rows = speed_accuracy_rows(scene, dem, *context, config, log);
     write_file_atomically((fs::path(o.out_dir) / "bench.csv").string(), bench_csv(rows));
     ChartText text;
-    text.title = "penink bench: " + fs::path(o.input).filename().string() + ", silhouettes against the exact reference";
+    text.title = "penink bench: " + name + ", silhouettes against the " +
+                 (config.analytic ? "closed-form" : "ray-cast (" + std::to_string(config.ref_supersample) + "x)") +
+                 " reference";
     text.subtitle = context->description();
     text.y_label = "silhouette accuracy: F1 of precision and recall at 1 px";
     write_speed_accuracy_chart((fs::path(o.out_dir) / "speed_accuracy.svg").string(), bench_chart_series(rows), text);

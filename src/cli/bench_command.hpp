@@ -1,5 +1,8 @@
-// `penink bench SCENE_OR_DEM --out DIR`: speed against accuracy of the silhouette path
-// (scene/speed_accuracy.hpp). Writes DIR/bench.csv, DIR/speed_accuracy.svg; prints a table.
+// `penink bench SCENE_OR_DEM --out DIR` or `penink bench --analytic NAME --out DIR` (a named
+// analytic terrain of input/analytic_terrain.hpp with its grazing view and closed-form reference):
+// speed against accuracy of the silhouette path (scene/speed_accuracy.hpp). With --flight CSV:
+// instead, frame-to-frame coherence of silhouettes and creases along that flight
+// (scene/flight_coherence.hpp), written to DIR/coherence.csv. Writes DIR/bench.csv, DIR/speed_accuracy.svg; prints a table.
 #pragma once
 #include <string>
 #include <utility>
@@ -12,9 +15,11 @@ namespace penink {
 
 struct BenchOptions {
     std::string input, out_dir;
+    std::string analytic;  // analytic_case name instead of input
+    std::string flight;    // flight path CSV: coherence instead of the sweep
     // Lists as given on the command line; "" = the sweep's defaults (SpeedAccuracyConfig).
     std::string levels, sizes, methods, tolerances, needs_size;
-    SpeedAccuracyConfig config;  // frames, warmup, ref_edge_px, needs
+    SpeedAccuracyConfig config;  // frames, warmup, ref_edge_px, ref_supersample, needs
     std::string gl = "osmesa";
     bool verbose = false;
     bool quiet = false;     // no progress

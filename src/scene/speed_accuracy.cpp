@@ -10,10 +10,9 @@
 #include "core/progress_bar.hpp"
 #include "core/stopwatch.hpp"
 #include "lines/line_accuracy.hpp"
-#include "lines/object_silhouettes.hpp"
+#include "scene/raycast_reference.hpp"
 #include "scene/terrain_frames.hpp"
 #include "scene/terrain_view.hpp"
-#include "surface/pn_tessellation.hpp"
 
 namespace penink {
 
@@ -27,12 +26,14 @@ std::string bench_csv(const std::vector<BenchRow>& rows) {
     std::ostringstream s;
     s << std::fixed << std::setprecision(3);
     s << "group,view,width,height,method,max_level,tolerance_px,adaptive,culling,cropping,cells,ms_per_frame,tft_ms,aft_ms,sil_ms,"
-         "precision_1px,recall_1px,precision_2px,recall_2px,mean_drawn_to_ref_px,mean_ref_to_drawn_px,reference_ms\n";
+         "precision_1px,recall_1px,precision_2px,recall_2px,mean_drawn_to_ref_px,mean_ref_to_drawn_px,reference_ms,"
+         "ms_min,ms_max,reference\n";
     for (const BenchRow& r : rows)
         s << r.group << "," << r.view << "," << r.width << "," << r.height << "," << r.method << "," << r.level << ","
           << r.tolerance_px << "," << r.adaptive << "," << r.culling << "," << r.cropping << "," << r.cells << "," << r.ms << "," << r.tft
           << "," << r.aft << "," << r.sil << "," << r.p1 << "," << r.r1 << "," << r.p2 << "," << r.r2 << ","
-          << r.drawn_to_ref << "," << r.ref_to_drawn << "," << r.ref_ms << "\n";
+          << r.drawn_to_ref << "," << r.ref_to_drawn << "," << r.ref_ms << "," << r.ms_min << "," << r.ms_max << ","
+          << r.reference << "\n";
     return s.str();
 }
 
@@ -57,8 +58,8 @@ std::string bench_table(const std::vector<BenchRow>& rows) {
 }
 
 std::vector<ChartSeries> bench_chart_series(const std::vector<BenchRow>& rows) {
-    const std::map<std::string, std::string> colours = {
-        {"toward-away", "#1f77b4"}, {"adjacency", "#d62728"}, {"object-space", "#2ca02c"}};
+    const std::vector<std::string> palette = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#17becf"};
+    std::vector<std::string> methods;  // one colour each, in order of appearance
     const std::vector<std::string> dashes = {"", "8,4", "2,3", "12,3,3,3", "6,2,1,2", "1,1"};
     std::vector<ChartSeries> series;
     std::vector<std::string> sizes;  // one dash per image size and tolerance
@@ -72,12 +73,13 @@ std::vector<ChartSeries> bench_chart_series(const std::vector<BenchRow>& rows) {
         const std::string name = r.method + " " + size;
         auto it = std::find_if(series.begin(), series.end(), [&](const ChartSeries& c) { return c.name == name; });
         if (it == series.end()) {
-            const auto c = colours.find(r.method);
-            series.push_back({name, c == colours.end() ? "#000000" : c->second,
+            auto mi = std::find(methods.begin(), methods.end(), r.method);
+            if (mi == methods.end()) methods.push_back(r.method), mi = methods.end() - 1;
+            series.push_back({name, palette[std::size_t(mi - methods.begin()) % palette.size()],
                               dashes[std::size_t(si - sizes.begin()) % dashes.size()], {}});
             it = series.end() - 1;
         }
-        it->points.push_back({r.ms, f1(r.p1, r.r1), "L" + std::to_string(r.level)});
+        it->points.push_back({r.ms, f1(r.p1, r.r1), r.ms_min, r.ms_max, "L" + std::to_string(r.level)});
     }
     return series;
 }
@@ -101,13 +103,14 @@ Scene silhouettes_only(const Scene& scene) {
     return s;
 }
 
-std::unique_ptr<BenchView> make_view(const Scene& scene, const Terrain& dem, GlContext& context, int w, int h,
-                                     bool zoom, bool crop, const Log& log) {
+std::unique_ptr<BenchView> make_view(const Scene& scene, const Terrain& dem, const std::optional<AnalyticCase>& analytic,
+                                     GlContext& context, int w, int h, bool zoom, bool crop, const Log& log) {
     auto v = std::make_unique<BenchView>();
     Scene sized = silhouettes_only(scene);
     sized.camera.width = w, sized.camera.height = h;
     v->name = zoom ? "zoom4" : "scene";
-    v->camera = scene_camera(sized, dem);
+    v->camera = analytic ? analytic->camera : scene_camera(sized, dem);
+    v->camera.width = w, v->camera.height = h;
     if (zoom) v->camera.fov /= 4.0;
     Terrain t = dem;
     if (crop) {
@@ -122,28 +125,31 @@ std::unique_ptr<BenchView> make_view(const Scene& scene, const Terrain& dem, GlC
     return v;
 }
 
-// Exact references: object-space silhouettes of the PN surface finely tessellated on the CPU
-// (edges ref_edge_px long on screen, max level 16), all visible runs. Computed once per camera
-// pose at the largest image size asked for; a smaller image of the same pose and aspect gets the
-// same lines scaled (pixel coordinates scale with the image; the visibility does not change).
+// References: the closed form on an analytic terrain, else the ray-cast silhouettes of the
+// full-resolution PN surface of the view's terrain window. Computed once per camera pose at the
+// largest image size asked for; a smaller image of the same pose and aspect gets the same lines
+// scaled (pixel coordinates scale with the image; the visibility does not change).
 struct ReferenceCache {
     struct Entry {
         Camera camera;
         std::vector<ImagePolyline> lines;
         double ms = 0;
     };
-    double edge_px = 2.0;
+    RaycastReferenceOptions rays;
+    std::optional<AnalyticCase> analytic;
     std::vector<Entry> entries;
 
     static bool same_pose(const Camera& a, const Camera& b) {
         return a.eye == b.eye && a.azimuth == b.azimuth && a.altitude == b.altitude && a.fov == b.fov &&
                double(a.width) * b.height == double(a.height) * b.width;
     }
+    const char* kind() const { return analytic ? "closed-form" : "ray-cast"; }
     void compute(const BenchView& v) {
         const auto t0 = Clock::now();
-        const glm::vec2 viewport(float(v.camera.width), float(v.camera.height));
-        const PnTessellation t = tessellate_pn_surface(mesh_from_terrain(window_terrain(v.frames->terrain())), view_projection(v.camera), viewport, float(edge_px), 16);
-        entries.push_back({v.camera, silhouette_polylines(object_space_silhouettes(t.pos, t.tri, v.camera), false), 0});
+        entries.push_back({v.camera,
+                           analytic ? analytic_silhouettes(analytic->shape, v.camera, false)
+                                    : raycast_reference(mesh_from_terrain(window_terrain(v.frames->terrain())), v.camera, rays),
+                           0});
         entries.back().ms = ms_since(t0);
     }
     // Fills v.reference (and v.ref_ms) from a cached pose, computing it when new.
@@ -161,7 +167,7 @@ struct ReferenceCache {
 // Median wall ms of k frames after warm-up (GPU pass times of that frame) and the accuracy of
 // the last frame's silhouette mask against the view's reference.
 void measure(BenchView& v, const Scene& frame, int frames, int warmup, const std::vector<ImagePolyline>& reference,
-             BenchRow& row) {
+             const char* reference_kind, BenchRow& row) {
     for (int i = 0; i < warmup; ++i) v.frames->draw(v.camera, frame);
     std::vector<std::pair<double, PassTimings>> times;
     PixelMask last;
@@ -174,11 +180,13 @@ void measure(BenchView& v, const Scene& frame, int frames, int warmup, const std
     std::sort(times.begin(), times.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     const auto& med = times[times.size() / 2];
     row.ms = med.first, row.tft = med.second.tft, row.aft = med.second.aft, row.sil = med.second.sil;
+    row.ms_min = times.front().first, row.ms_max = times.back().first;
     const LineAccuracy a = line_accuracy(last, reference, {1.0, 2.0});
     row.p1 = a.at(1.0).precision, row.r1 = a.at(1.0).recall;
     row.p2 = a.at(2.0).precision, row.r2 = a.at(2.0).recall;
     row.drawn_to_ref = a.mean_drawn_to_reference, row.ref_to_drawn = a.mean_reference_to_drawn;
     row.view = v.name, row.cells = v.cells, row.ref_ms = v.ref_ms;
+    row.reference = reference_kind;
     row.width = v.camera.width, row.height = v.camera.height;
 }
 
@@ -199,9 +207,9 @@ void sweep(BenchRun& run) {
     ProgressBar bar(std::cerr, run.log.progress, "bench",
                     int(tolerances.size() * c.sizes.size() * c.methods.size() * c.levels.size()));
     const auto largest = *std::max_element(c.sizes.begin(), c.sizes.end());
-    run.references.compute(*make_view(run.scene, run.dem, run.context, largest.first, largest.second, false, true, run.log));
+    run.references.compute(*make_view(run.scene, run.dem, run.config.analytic, run.context, largest.first, largest.second, false, true, run.log));
     for (const auto& [w, h] : c.sizes) {
-        auto view = make_view(run.scene, run.dem, run.context, w, h, false, true, run.log);
+        auto view = make_view(run.scene, run.dem, run.config.analytic, run.context, w, h, false, true, run.log);
         run.references.fill(*view);
         for (const float tolerance : tolerances) {
             for (const SilhouetteMethod m : c.methods) {
@@ -214,9 +222,8 @@ void sweep(BenchRun& run) {
                     BenchRow row;
                     row.group = "sweep", row.method = silhouette_method_name(m), row.level = level;
                     row.tolerance_px = tolerance;
-                    const bool cpu = m == SilhouetteMethod::object_space;
-                    // One frame for the CPU method (no JIT); programs warm up once per view and method.
-                    measure(*view, frame, cpu ? 1 : c.frames, cpu || li > 0 ? 0 : c.warmup, view->reference, row);
+                    // Every method timed on c.frames frames; programs warm up once per view and method.
+                    measure(*view, frame, c.frames, li > 0 ? 0 : c.warmup, view->reference, run.references.kind(), row);
                     run.rows.push_back(row);
                     bar.step(row.method + " " + std::to_string(w) + "x" + std::to_string(h) + " L" +
                                  std::to_string(level), row.ms);
@@ -233,8 +240,8 @@ void needs_rows(BenchRun& run, int level, int w, int h) {
     const Config configs[] = {{true, true, true}, {false, true, true}, {true, false, true}, {true, true, false},
                               {false, false, false}};
     for (bool zoom : {false, true}) {
-        auto cropped = make_view(run.scene, run.dem, run.context, w, h, zoom, true, run.log);
-        auto whole = make_view(run.scene, run.dem, run.context, w, h, zoom, false, run.log);
+        auto cropped = make_view(run.scene, run.dem, run.config.analytic, run.context, w, h, zoom, true, run.log);
+        auto whole = make_view(run.scene, run.dem, run.config.analytic, run.context, w, h, zoom, false, run.log);
         run.references.fill(*cropped);
         bool warm_c = false, warm_w = false;  // warm up each view once
         for (const Config& c : configs) {
@@ -250,7 +257,7 @@ void needs_rows(BenchRun& run, int level, int w, int h) {
             row.group = "needs", row.method = silhouette_method_name(frame.silhouette_method), row.level = level;
             row.tolerance_px = frame.surface_tolerance_px;
             row.adaptive = c.adaptive, row.culling = c.culling, row.cropping = c.cropping;
-            measure(c.cropping ? *cropped : *whole, frame, run.config.frames, warmup, cropped->reference, row);
+            measure(c.cropping ? *cropped : *whole, frame, run.config.frames, warmup, cropped->reference, run.references.kind(), row);
             row.ref_ms = cropped->ref_ms;
             run.rows.push_back(row);
         }
@@ -261,7 +268,9 @@ void needs_rows(BenchRun& run, int level, int w, int h) {
 
 std::vector<BenchRow> speed_accuracy_rows(const Scene& scene, const Terrain& dem, GlContext& context,
                                           const SpeedAccuracyConfig& config, const Log& log) {
-    BenchRun run{config, scene, dem, context, log, {config.ref_edge_px, {}}, {}};
+    RaycastReferenceOptions rays;
+    rays.edge_px = float(config.ref_edge_px), rays.rays.supersample = config.ref_supersample;
+    BenchRun run{config, scene, dem, context, log, {rays, config.analytic, {}}, {}};
     sweep(run);
     if (config.needs) {
         const auto size = config.needs_size.first > 0 ? config.needs_size

@@ -10,6 +10,7 @@
 #include "drainage/drainage_build.hpp"
 #include "lines/object_silhouettes.hpp"
 #include "lines/simplify.hpp"
+#include "lines/depth_edge_placement.hpp"
 #include "lines/trace_mask_outline.hpp"
 #include "lines/frustum_clip.hpp"
 #include "lines/mesh_visibility.hpp"
@@ -69,12 +70,18 @@ PixelMask object_space_silhouette_mask(const SurfaceMesh& mesh, const Camera& ca
     return rasterize_polylines(silhouette_polylines(sil, true), camera.width, camera.height);
 }
 
-void add_frame_lines(const FrameImages& images, const SurfaceMesh& mesh, const Camera& camera,
-                     Drawing& drawing) {
+std::vector<Stroke> traced_silhouettes(const FrameImages& images) {
     TraceParams sil;
     sil.min_pixels = 3, sil.max_spur = 2, sil.kind = "silhouette";
     sil.depth_radius = 1;  // the occluding surface's depth (occlusion-aware joins)
-    std::vector<Stroke> strokes = simplify_strokes(trace_pixel_lines(images.silhouettes, images.toward, sil), 0.5f);
+    std::vector<Stroke> strokes = trace_pixel_lines(images.silhouettes, images.toward, sil);
+    place_on_depth_edges(strokes, images.toward, images.away);
+    return simplify_strokes(std::move(strokes), 0.5f);
+}
+
+void add_frame_lines(const FrameImages& images, const SurfaceMesh& mesh, const Camera& camera,
+                     Drawing& drawing) {
+    std::vector<Stroke> strokes = traced_silhouettes(images);
     const PixelMask cover = coverage_mask(images);
     Layer& surface = drawing.layer(LayerKind::surface);
     surface.fill = trace_mask_outline(cover, 0.5f);

@@ -74,6 +74,12 @@ private:
 PixelMask object_space_silhouette_mask(const SurfaceMesh& mesh, const Camera& camera,
                                        const TessellationOptions& tessellation);
 
+// One frame's silhouette mask traced into simplified strokes (image pixels, the occluding
+// surface's eye distance), each point moved from its pixel's centre onto the depth edge it
+// borders (lines/depth_edge_placement.hpp): the drawn Toward/Away or Adjacency silhouettes,
+// before the outline.
+std::vector<Stroke> traced_silhouettes(const FrameImages& images);
+
 // Surface mask rings and silhouette strokes from one frame's images (lines stage), and the
 // visible parts of the surface's boundary (the DEM's cut edges) as object-space outline strokes.
 void add_frame_lines(const FrameImages& images, const SurfaceMesh& mesh, const Camera& camera,

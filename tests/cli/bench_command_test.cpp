@@ -1,6 +1,7 @@
 // `penink bench` with a tiny sweep on volcano: bench.csv has one row per (method, level) plus
 // the ten "model no more than a scene needs" rows, accuracy values in [0, 1], and the chart is an
-// SVG that rsvg-convert renders. Plus the chart writer's series from rows (unit).
+// SVG that rsvg-convert renders; on an analytic terrain against its closed form, with the spread
+// of five timed frames. Plus the chart writer's series from rows (unit).
 #include <gtest/gtest.h>
 
 #include <sstream>
@@ -36,7 +37,8 @@ TEST(BenchCommand, TinySweepWritesCsvAndChart) {
     // Sweep: tolerance 0 (full resolution) then 1 px, each toward-away L1, L2, adjacency L1, L2.
     ASSERT_EQ(rows.size(), 1u + 8u + 10u);
     EXPECT_EQ(rows[0][0], "group");
-    EXPECT_EQ(rows[0].size(), 22u);
+    EXPECT_EQ(rows[0].size(), 25u);
+    EXPECT_EQ(rows[0][24], "reference");
     EXPECT_EQ(rows[0][6], "tolerance_px");
     EXPECT_EQ(rows[1][4], "toward-away");
     EXPECT_EQ(rows[1][5], "1");
@@ -45,7 +47,8 @@ TEST(BenchCommand, TinySweepWritesCsvAndChart) {
     EXPECT_EQ(rows[4][4], "adjacency");
     EXPECT_EQ(rows[4][5], "2");
     for (std::size_t i = 1; i < rows.size(); ++i) {
-        ASSERT_EQ(rows[i].size(), 22u);
+        ASSERT_EQ(rows[i].size(), 25u);
+        EXPECT_EQ(rows[i][24], "ray-cast");
         EXPECT_EQ(rows[i][0], i <= 8 ? "sweep" : "needs");
         EXPECT_GT(std::stod(rows[i][11]), 0.0);  // ms per frame
         for (int c = 15; c <= 18; ++c) {
@@ -73,6 +76,38 @@ TEST(BenchCommand, TinySweepWritesCsvAndChart) {
                            (dir / "out" / "speed_accuracy.svg").string() + "'").c_str()),
               0);
     EXPECT_GT(std::filesystem::file_size(dir / "chart.png"), 1000u);
+}
+
+TEST(BenchCommand, AnalyticTerrainAgainstItsClosedForm) {
+    const auto dir = fresh_dir("bench_analytic");
+    const RunResult r = run_penink("bench --analytic saddle --out out --levels 8 --sizes 200x150 --methods toward-away "
+                                   "--frames 5 --warmup 1 --no-needs",
+                                   dir);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto rows = csv_rows(read_text(dir / "out" / "bench.csv"));
+    ASSERT_EQ(rows.size(), 2u);
+    EXPECT_EQ(rows[1][24], "closed-form");
+    const double ms = std::stod(rows[1][11]), lo = std::stod(rows[1][22]), hi = std::stod(rows[1][23]);
+    EXPECT_GT(lo, 0.0);
+    EXPECT_LE(lo, ms);
+    EXPECT_LE(ms, hi);
+    // Toward/Away at 2 px on the saddle's grazing view (>= 0.95 at 1.5 px at 400x300:
+    // tests/scene/toward_away_accuracy_test.cpp).
+    EXPECT_GE(std::stod(rows[1][17]), 0.9);
+    EXPECT_GE(std::stod(rows[1][18]), 0.9);
+    const std::string svg = read_text(dir / "out" / "speed_accuracy.svg");
+    EXPECT_NE(svg.find("closed-form"), std::string::npos);
+    EXPECT_NE(svg.find("<path d=\"M"), std::string::npos);  // the min-max bar
+}
+
+TEST(BenchCommand, NeedsADemOrAnAnalyticTerrain) {
+    const auto dir = fresh_dir("bench_none");
+    const RunResult r = run_penink("bench --out out", dir);
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.output.find("penink: cli: bench: give a DEM or scene file, or --analytic NAME"), std::string::npos) << r.output;
+    const RunResult u = run_penink("bench --analytic mesa --out out", dir);
+    EXPECT_EQ(u.code, 2);
+    EXPECT_NE(u.output.find("--analytic: unknown terrain \"mesa\""), std::string::npos) << u.output;
 }
 
 TEST(BenchChart, SeriesPerMethodAndSize) {

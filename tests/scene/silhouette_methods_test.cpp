@@ -1,5 +1,5 @@
 // Accuracy of the three silhouette methods (Toward/Away, Adjacency, object-space) on analytic
-// terrains with closed-form silhouettes (tests/support/synthetic_silhouettes.hpp), scored with
+// terrains with closed-form silhouettes (input/analytic_terrain.hpp), scored with
 // lines/line_accuracy.hpp against the visible silhouette with terrain behind it (the part a
 // depth-image method can see; the outline against the sky is traced from the surface mask).
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "support/gl_test_context.hpp"
-#include "support/synthetic_silhouettes.hpp"
+#include "input/analytic_terrain.hpp"
 #include "lines/line_accuracy.hpp"
 #include "lines/object_silhouettes.hpp"
 #include "core/stopwatch.hpp"

@@ -7,7 +7,8 @@
 #include <gtest/gtest.h>
 
 #include "support/gl_test_context.hpp"
-#include "support/synthetic_silhouettes.hpp"
+#include "input/analytic_terrain.hpp"
+#include "support/synthetic_terrain.hpp"
 #include "input/terrain_window.hpp"
 #include "lines/line_accuracy.hpp"
 #include "render/terrain_renderer.hpp"

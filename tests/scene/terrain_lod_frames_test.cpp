@@ -11,7 +11,7 @@
 #include "scene/terrain_frames.hpp"
 #include "scene/terrain_view.hpp"
 #include "support/gl_test_context.hpp"
-#include "support/synthetic_silhouettes.hpp"
+#include "input/analytic_terrain.hpp"
 
 namespace penink {
 namespace {
