@@ -110,7 +110,7 @@ std::string info_dict(const StyledDrawing& d, const PageOptions& page, const std
 }
 
 // The page's /VP entry: one viewport over the drawn image (BBox in points, y up) whose
-// geospatial measure (ISO 32000-2, 12.10; Adobe's geospatial extension) ties the BBox corners
+// geospatial measure (Adobe, "Supplement to ISO 32000", ExtensionLevel 3, sec. 8.8.1) ties the BBox corners
 // (LPTS, unit square, y up) to their latitude/longitude (GPTS) in the CRS (GCS); "" when the
 // drawing has no CRS or no geographic corners.
 std::string viewport_entry(const StyledDrawing& d, const PageLayout& L) {

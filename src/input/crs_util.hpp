@@ -26,7 +26,8 @@ double linear_unit_of(const std::string& wkt);
 // Completes a plan view's Georeference for writers without GDAL: the CRS's EPSG code (when its
 // WKT names one or OSR identifies it), whether it is geographic, and the (lat, lon) of the
 // corners of a width x height drawing in the CRS's own geographic CRS (OGRCoordinateTransformation
-// from the map CRS to its CloneGeogCS, as the PDF geospatial measure asks: ISO 32000-2, 12.10).
+// from the map CRS to its CloneGeogCS, as the PDF geospatial measure asks:
+// Adobe, "Supplement to ISO 32000", ExtensionLevel 3, sec. 8.8.1, GPTS).
 // Leaves g as it is when it has no CRS or the CRS cannot be parsed or transformed.
 void add_geographic_corners(Georeference& g, int width, int height);
 
