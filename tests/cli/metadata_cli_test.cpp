@@ -1,7 +1,8 @@
 // What every output says about itself: `penink --version`; the version in the metadata; a title
 // and description from the scene (SVG <title>/<desc> and Dublin Core, PDF /Title and /Subject, PS
 // %%Title); an EPS whose bounding box is the ink plus the margin (checked against Ghostscript's
-// bbox device, which measures the ink).
+// bbox device, which measures the ink); a perspective view saying, in every format, that it is not
+// georeferenced.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -97,5 +98,21 @@ TEST(MetadataCli, InkscapeOpensTheSvgWithoutWarnings) {
     EXPECT_NE(saved.find("<dc:title>volcano.asc: pen-and-ink drawing</dc:title>"), std::string::npos);
     for (const char* layer : {"surface", "ridges", "creases", "silhouettes"})
         EXPECT_NE(saved.find(std::string("inkscape:label=\"") + layer + "\""), std::string::npos) << layer;
+    fs::remove_all(dir);
+}
+
+TEST(MetadataCli, PerspectiveViewSaysItIsNotGeoreferencedAndWritesNoSideFiles) {
+    const auto dir = fresh_dir("not_georeferenced");
+    fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.asc", dir / "volcano.asc");
+    fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.prj", dir / "volcano.prj");
+    const RunResult r = run_penink("render volcano.asc --width 200 --height 150 -o a.svg -o a.pdf -o a.eps -o a.png", dir);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const std::string no = "no (perspective view)";
+    EXPECT_NE(read_text(dir / "a.svg").find("<penink:param name=\"georeferenced\">" + no + "</penink:param>"), std::string::npos);
+    const std::string pdf = read_text(dir / "a.pdf");
+    EXPECT_NE(pdf.find("/penink_georeferenced (" + std::string("no \\(perspective view\\)") + ")"), std::string::npos);
+    EXPECT_EQ(pdf.find("/VP"), std::string::npos);
+    EXPECT_NE(read_text(dir / "a.eps").find("\n% penink georeferenced: " + no + "\n"), std::string::npos);
+    for (const char* side : {"a.pgw", "a.wld", "a.png.aux.xml"}) EXPECT_FALSE(fs::exists(dir / side)) << side;
     fs::remove_all(dir);
 }
