@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cstring>
@@ -16,6 +17,7 @@
 #include "export/ps_writer.hpp"
 #include "export/raster_writer.hpp"
 #include "export/svg_writer.hpp"
+#include "export/world_file.hpp"
 
 namespace penink {
 
@@ -57,7 +59,19 @@ std::string export_document(const StyledDrawing& drawing, const PageOptions& pag
 
 void export_drawings(const StyledDrawing& drawing, const PageOptions& page, const std::vector<std::string>& paths) {
     for (const std::string& p : paths) check_output_format(p);
-    write_files_together(paths, [&](std::size_t i) { return export_document(drawing, page, paths[i]); });
+    // A georeferenced raster's world file and .aux.xml go in the same set as the outputs; rasters
+    // that share a world file (m.tif and m.tiff: the same pixels) write it once.
+    std::vector<std::string> all = paths;
+    std::vector<std::string> side_bytes;
+    for (const std::string& p : paths)
+        for (SideFile& f : raster_side_files(drawing, page, p)) {
+            if (std::find(all.begin(), all.end(), f.path) != all.end()) continue;
+            all.push_back(std::move(f.path));
+            side_bytes.push_back(std::move(f.bytes));
+        }
+    write_files_together(all, [&](std::size_t i) {
+        return i < paths.size() ? export_document(drawing, page, paths[i]) : side_bytes[i - paths.size()];
+    });
 }
 
 void check_output_targets(const std::vector<std::string>& paths, const PageOptions& page, int width, int height) {

@@ -23,7 +23,8 @@ void export_drawing(const StyledDrawing& drawing, const PageOptions& page, const
 std::string export_document(const StyledDrawing& drawing, const PageOptions& page, const std::string& path);
 
 // Writes `drawing` to every path together (write_files_together): all of them or, on any
-// error, none (no path touched, no temp file left).
+// error, none (no path touched, no temp file left). A georeferenced raster brings its side files
+// (world_file.hpp: world file, .aux.xml) into the same set.
 void export_drawings(const StyledDrawing& drawing, const PageOptions& page, const std::vector<std::string>& paths);
 
 // What can be known about the outputs before anything is drawn, for a drawing of width x height

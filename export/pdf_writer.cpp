@@ -109,6 +109,27 @@ std::string info_dict(const StyledDrawing& d, const PageOptions& page, const std
     return o + " >>";
 }
 
+// The page's /VP entry: one viewport over the drawn image (BBox in points, y up) whose
+// geospatial measure (Adobe, "Supplement to ISO 32000", ExtensionLevel 3, sec. 8.8.1) ties the BBox corners
+// (LPTS, unit square, y up) to their latitude/longitude (GPTS) in the CRS (GCS); "" when the
+// drawing has no CRS or no geographic corners.
+std::string viewport_entry(const StyledDrawing& d, const PageLayout& L) {
+    if (!d.georeference || d.georeference->crs_wkt.empty() || d.georeference->corner_lat_lon.size() != 4) return "";
+    const Georeference& g = *d.georeference;
+    const double x0 = L.offset_x_mm * points_per_mm, x1 = (L.offset_x_mm + d.width * L.scale_mm) * points_per_mm;
+    const double y1 = (L.page_h_mm - L.offset_y_mm) * points_per_mm, y0 = y1 - d.height * L.scale_mm * points_per_mm;
+    std::string gpts;
+    for (const glm::dvec2& p : g.corner_lat_lon)  // top-left, bottom-left, bottom-right, top-right
+        gpts += (gpts.empty() ? "" : " ") + exact_decimal(p.x) + " " + exact_decimal(p.y);
+    std::string gcs = std::string("<< /Type ") + (g.geographic ? "/GEOGCS" : "/PROJCS");
+    if (g.epsg > 0) gcs += " /EPSG " + std::to_string(g.epsg);
+    gcs += " /WKT " + pdf_string(g.crs_wkt) + " >>";
+    return " /VP [<< /Type /Viewport /Name (penink map) /BBox [" + format_number(x0, 4) + " " + format_number(y0, 4) +
+           " " + format_number(x1, 4) + " " + format_number(y1, 4) +
+           "] /Measure << /Type /Measure /Subtype /GEO /Bounds [0 0 0 1 1 1 1 0] /GPTS [" + gpts +
+           "] /LPTS [0 1 0 0 1 0 1 1] /GCS " + gcs + " >> >>]";
+}
+
 struct PdfBuilder {
     std::string out = "%PDF-1.5\n%\xe2\xe3\xcf\xd3\n";
     std::vector<size_t> offsets;  // by object number - 1
@@ -161,7 +182,7 @@ std::string pdf_document(const StyledDrawing& d, const PageOptions& page, const 
     PdfBuilder b;
     b.object("<< /Type /Catalog /Pages 2 0 R " + oc_properties(ocgs) + " >>");
     b.object("<< /Type /Pages /Kids [3 0 R] /Count 1 >>");
-    b.object("<< /Type /Page /Parent 2 0 R /MediaBox " + box + " /Resources << /ExtGState <<" + gs +
+    b.object("<< /Type /Page /Parent 2 0 R /MediaBox " + box + viewport_entry(d, L) + " /Resources << /ExtGState <<" + gs +
              " >> /Properties <<" + props + " >> >> /Contents 4 0 R >>");
     b.object("<< /Length " + std::to_string(stream.size()) + " >>\nstream\n" + stream + "endstream");
     b.object(info_dict(d, page, path));

@@ -1,7 +1,10 @@
 // Hand-written PDF 1.5 writer: one page (MediaBox in points from the page layout), the body in
 // image pixels under one flipping `cm`, every layer (and near/middle/far sublayer) an Optional
 // Content Group named exactly like the layer, listed in /OCProperties /D /Order bottom to top;
-// opacity via ExtGState /CA. Uncompressed, no CreationDate: byte-deterministic.
+// opacity via ExtGState /CA. A georeferenced plan view's page (one with a CRS) carries a
+// geospatial viewport: /VP, a /GEO measure over the drawn image (Adobe, "Supplement to ISO
+// 32000", ExtensionLevel 3, sec. 8.8.1; part of PDF 2.0), which GDAL and GIS tools read.
+// Uncompressed, no CreationDate: byte-deterministic.
 #pragma once
 #include <string>
 

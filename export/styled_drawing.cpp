@@ -126,6 +126,7 @@ StyledDrawing style_drawing(const Drawing& drawing, const Style& style, LayerSpl
     out.background = style.background;
     out.split = split;
     out.metadata = drawing.metadata;
+    out.georeference = drawing.georeference;
     out.widths_mm = style.widths_mm;
     const DistanceMap dm{max_depth(drawing), style.near, style.far};
     for (size_t i = 0; i < drawing.layers.size(); ++i)

@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,7 @@ struct StyledDrawing {
     LayerSplit split = LayerSplit::kind;
     std::array<StyledLayer, layer_count> layers;  // bottom to top, conventions.md order
     std::map<std::string, std::string> metadata;
+    std::optional<Georeference> georeference;  // plan views: image pixel -> map (Drawing's)
     // Path widths (and dashes) in millimetres on the page instead of image pixels (Style::widths_mm):
     // export_document turns them into pixels at the page's scale.
     bool widths_mm = false;

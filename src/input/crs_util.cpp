@@ -1,6 +1,9 @@
 #include "input/crs_util.hpp"
 
 #include <cpl_conv.h>
+#include <ogr_spatialref.h>
+
+#include <cstdlib>
 
 namespace penink {
 
@@ -44,6 +47,40 @@ double linear_unit_of(const std::string& wkt) {
     if (!srs || !srs->IsProjected()) return 1.0;
     const double u = srs->GetLinearUnits(nullptr);
     return u > 0.0 ? u : 1.0;
+}
+
+namespace {
+
+// The EPSG code the WKT names at its root, else the one OSR identifies; 0 when none.
+int epsg_code(const OGRSpatialReference& srs) {
+    OGRSpatialReference s(srs);
+    if (!s.GetAuthorityCode(nullptr)) s.AutoIdentifyEPSG();
+    const char* name = s.GetAuthorityName(nullptr);
+    const char* code = s.GetAuthorityCode(nullptr);
+    return name && code && EQUAL(name, "EPSG") ? std::atoi(code) : 0;
+}
+
+}  // namespace
+
+void add_geographic_corners(Georeference& g, int width, int height) {
+    const auto srs = srs_from_wkt(g.crs_wkt);
+    if (!srs) return;
+    g.geographic = srs->IsGeographic();
+    g.epsg = epsg_code(*srs);
+    std::unique_ptr<OGRSpatialReference> geog(srs->CloneGeogCS());
+    if (!geog) return;
+    geog->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);  // x = lon, y = lat
+    std::unique_ptr<OGRCoordinateTransformation> ct(OGRCreateCoordinateTransformation(srs.get(), geog.get()));
+    if (!ct) return;
+    const double cols[4] = {0.0, 0.0, double(width), double(width)}, rows[4] = {0.0, double(height), double(height), 0.0};
+    std::vector<glm::dvec2> corners;
+    for (int i = 0; i < 4; ++i) {
+        const glm::dvec2 p = map_point(g, cols[i], rows[i]);
+        double x = p.x, y = p.y;
+        if (!ct->Transform(1, &x, &y)) return;
+        corners.push_back({y, x});
+    }
+    g.corner_lat_lon = std::move(corners);
 }
 
 }  // namespace penink

@@ -7,6 +7,8 @@
 
 #include <ogr_spatialref.h>
 
+#include "core/georeference.hpp"
+
 namespace penink {
 
 // WKT of WGS 84 / UTM zone `zone` (1..60) in hemisphere `north`; zone 0 = UPS (EPSG 32661/32761).
@@ -20,5 +22,13 @@ std::unique_ptr<OGRSpatialReference> srs_from_wkt(const std::string& wkt);
 
 // Metres per horizontal unit of the CRS in `wkt` (1 when empty, not projected or unparsable).
 double linear_unit_of(const std::string& wkt);
+
+// Completes a plan view's Georeference for writers without GDAL: the CRS's EPSG code (when its
+// WKT names one or OSR identifies it), whether it is geographic, and the (lat, lon) of the
+// corners of a width x height drawing in the CRS's own geographic CRS (OGRCoordinateTransformation
+// from the map CRS to its CloneGeogCS, as the PDF geospatial measure asks:
+// Adobe, "Supplement to ISO 32000", ExtensionLevel 3, sec. 8.8.1, GPTS).
+// Leaves g as it is when it has no CRS or the CRS cannot be parsed or transformed.
+void add_geographic_corners(Georeference& g, int width, int height);
 
 }  // namespace penink

@@ -219,6 +219,8 @@ SceneDrawing MeshFrames::draw(const Camera& camera, const Scene& frame) {
     out.trace_ms = ms_since(t0);
     log_mesh_timings(lines, mesh_.triangles.size(), *log_);
     fill_metadata(frame, ms_, out.camera, d);
+    d.georeference = plan_view_georeference(out.camera, {0.0, 0.0}, "");  // mesh coordinates, no CRS
+    d.metadata.merge(georeference_metadata(out.camera, d.georeference));
     return out;
 }
 

@@ -8,6 +8,7 @@
 #include "core/progress_bar.hpp"
 #include "core/stopwatch.hpp"
 #include "drainage/drainage_build.hpp"
+#include "input/crs_util.hpp"
 #include "lines/object_silhouettes.hpp"
 #include "lines/simplify.hpp"
 #include "lines/depth_edge_placement.hpp"
@@ -205,6 +206,9 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
     out.trace_ms = ms_since(t0);
     out.silhouette_mask = std::move(images.silhouettes);
     fill_metadata(frame, camera, terrain_.meta, out.drawing);
+    out.drawing.georeference = plan_view_georeference(camera, terrain_.meta.origin, terrain_.meta.crs_wkt);
+    if (out.drawing.georeference) add_geographic_corners(*out.drawing.georeference, camera.width, camera.height);
+    out.drawing.metadata.merge(georeference_metadata(camera, out.drawing.georeference));
     return out;
 }
 

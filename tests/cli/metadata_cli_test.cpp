@@ -1,7 +1,8 @@
 // What every output says about itself: `penink --version`; the version in the metadata; a title
 // and description from the scene (SVG <title>/<desc> and Dublin Core, PDF /Title and /Subject, PS
 // %%Title); an EPS whose bounding box is the ink plus the margin (checked against Ghostscript's
-// bbox device, which measures the ink).
+// bbox device, which measures the ink); a perspective view saying, in every format, that it is not
+// georeferenced.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,6 +24,14 @@ bool hires_box(const std::string& text, double box[4]) {
            std::sscanf(text.c_str() + at, "%%%%HiResBoundingBox: %lf %lf %lf %lf", &box[0], &box[1], &box[2], &box[3]) == 4;
 }
 
+// A fresh folder holding the volcano DEM and its .prj.
+fs::path volcano_dir(const std::string& name) {
+    const auto dir = fresh_dir(name);
+    fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.asc", dir / "volcano.asc");
+    fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.prj", dir / "volcano.prj");
+    return dir;
+}
+
 }  // namespace
 
 TEST(MetadataCli, VersionFlag) {
@@ -33,9 +42,7 @@ TEST(MetadataCli, VersionFlag) {
 }
 
 TEST(MetadataCli, TitleDescriptionAndVersionInEveryFormat) {
-    const auto dir = fresh_dir("metadata");
-    fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.asc", dir / "volcano.asc");
-    fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.prj", dir / "volcano.prj");
+    const auto dir = volcano_dir("metadata");
     const std::string version = run_penink("--version", dir).output.substr(0, run_penink("--version", dir).output.size() - 1);
     const RunResult r = run_penink("render volcano.asc --width 300 --height 225 -o a.svg -o a.pdf -o a.ps", dir);
     ASSERT_EQ(r.code, 0) << r.output;
@@ -57,9 +64,7 @@ TEST(MetadataCli, TitleDescriptionAndVersionInEveryFormat) {
 }
 
 TEST(MetadataCli, EpsBoundingBoxIsTheInkPlusTheMargin) {
-    const auto dir = fresh_dir("eps_bbox");
-    fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.asc", dir / "volcano.asc");
-    fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.prj", dir / "volcano.prj");
+    const auto dir = volcano_dir("eps_bbox");
     const RunResult r = run_penink("render volcano.asc -o a.eps -o a.ps --page A4 --margin 5", dir);
     ASSERT_EQ(r.code, 0) << r.output;
     double box[4], page[4], ink[4];
@@ -85,9 +90,7 @@ TEST(MetadataCli, EpsBoundingBoxIsTheInkPlusTheMargin) {
 // test.sh installs it).
 TEST(MetadataCli, InkscapeOpensTheSvgWithoutWarnings) {
     if (std::system("command -v inkscape > /dev/null 2>&1") != 0) GTEST_SKIP() << "inkscape not installed";
-    const auto dir = fresh_dir("inkscape");
-    fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.asc", dir / "volcano.asc");
-    fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.prj", dir / "volcano.prj");
+    const auto dir = volcano_dir("inkscape");
     ASSERT_EQ(run_penink("render volcano.asc --width 300 --height 225 -o a.svg", dir).code, 0);
     const RunResult r = run_penink("", dir, "HOME='" + dir.string() + "' inkscape a.svg --export-type=svg --export-filename=b.svg");
     ASSERT_EQ(r.code, 0) << r.output;
@@ -97,5 +100,19 @@ TEST(MetadataCli, InkscapeOpensTheSvgWithoutWarnings) {
     EXPECT_NE(saved.find("<dc:title>volcano.asc: pen-and-ink drawing</dc:title>"), std::string::npos);
     for (const char* layer : {"surface", "ridges", "creases", "silhouettes"})
         EXPECT_NE(saved.find(std::string("inkscape:label=\"") + layer + "\""), std::string::npos) << layer;
+    fs::remove_all(dir);
+}
+
+TEST(MetadataCli, PerspectiveViewSaysItIsNotGeoreferencedAndWritesNoSideFiles) {
+    const auto dir = volcano_dir("not_georeferenced");
+    const RunResult r = run_penink("render volcano.asc --width 200 --height 150 -o a.svg -o a.pdf -o a.eps -o a.png", dir);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const std::string no = "no (perspective view)";
+    EXPECT_NE(read_text(dir / "a.svg").find("<penink:param name=\"georeferenced\">" + no + "</penink:param>"), std::string::npos);
+    const std::string pdf = read_text(dir / "a.pdf");
+    EXPECT_NE(pdf.find("/penink_georeferenced (" + std::string("no \\(perspective view\\)") + ")"), std::string::npos);
+    EXPECT_EQ(pdf.find("/VP"), std::string::npos);
+    EXPECT_NE(read_text(dir / "a.eps").find("\n% penink georeferenced: " + no + "\n"), std::string::npos);
+    for (const char* side : {"a.pgw", "a.wld", "a.png.aux.xml"}) EXPECT_FALSE(fs::exists(dir / side)) << side;
     fs::remove_all(dir);
 }
