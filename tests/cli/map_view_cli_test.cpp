@@ -1,6 +1,11 @@
 // `penink render --map`, `--scale 1:N` and `--vertical-exaggeration auto` from the command line:
-// a plan view at a scale on a page writes its files and records the view; what cannot be a map
-// is one error line, exit 2, no output.
+// a plan view at a scale on a page writes its files and records the view (the Jacksboro DEM at
+// 1:100 000 on A4, read back by GDAL); what cannot be a map is one error line, exit 2, no output.
+#include <cmath>
+#include <memory>
+
+#include <gdal_priv.h>
+#include <ogr_spatialref.h>
 #include <gtest/gtest.h>
 
 #include "cli_support.hpp"
@@ -62,4 +67,62 @@ TEST(MapViewCli, WhatCannotBeAMapIsAnError) {
     EXPECT_EQ(r.code, 2);
     EXPECT_NE(r.output.find("orthographic views are for DEMs"), std::string::npos) << r.output;
     EXPECT_EQ(file_count(dir), 2u);  // the two scene files: no output left
+}
+
+// The README's map: Jacksboro (geographic, drawn in UTM 16N) at 1:100 000 on A4 as a PDF and a
+// PNG. GDAL reads both back: the CRS is UTM 16N, a GDAL pixel of the PDF (150 dpi) is
+// 100 000 x 25.4 / 150 mm = 16.93 m, the PNG's pixel (150 dpi) the same, and the page's centre
+// is the centre of the DEM's projected plan box (the plan view frames it), computed here from the
+// DEM's edge node centres with OGR, not with penink's projection.
+TEST(MapViewCli, JacksboroAtOneToOneHundredThousandOnA4IsWhereGdalSaysItIs) {
+    const auto dir = fresh_dir("map_jacksboro");
+    const std::string dem = PENINK_SHARED_DIR "/data/jacksboro.tif";
+    const RunResult r = run_penink("render '" + dem + "' --map --scale 1:100000 --page A4 --dpi 150 -o map.pdf -o map.png -q", dir);
+    ASSERT_EQ(r.code, 0) << r.output;
+    GDALAllRegister();
+    OGRSpatialReference utm;
+    utm.importFromEPSG(32616);
+    utm.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    // The DEM's plan box in UTM 16N from its edge node centres.
+    double lo_x = 1e300, lo_y = 1e300, hi_x = -1e300, hi_y = -1e300;
+    {
+        std::unique_ptr<GDALDataset> src(GDALDataset::Open(dem.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+        ASSERT_TRUE(src);
+        double gt[6];
+        ASSERT_EQ(src->GetGeoTransform(gt), CE_None);
+        OGRSpatialReference wgs;
+        wgs.importFromEPSG(4326);
+        wgs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+        std::unique_ptr<OGRCoordinateTransformation> ct(OGRCreateCoordinateTransformation(&wgs, &utm));
+        ASSERT_TRUE(ct);
+        const int w = src->GetRasterXSize(), h = src->GetRasterYSize();
+        for (int i = 0; i < 2 * (w + h); ++i) {
+            const int c = i < 2 * w ? i % w : (i - 2 * w < h ? 0 : w - 1);
+            const int row = i < 2 * w ? (i < w ? 0 : h - 1) : (i - 2 * w) % h;
+            double x = gt[0] + (c + 0.5) * gt[1], y = gt[3] + (row + 0.5) * gt[5];
+            ASSERT_TRUE(ct->Transform(1, &x, &y));
+            lo_x = std::min(lo_x, x), hi_x = std::max(hi_x, x), lo_y = std::min(lo_y, y), hi_y = std::max(hi_y, y);
+        }
+    }
+    for (const char* name : {"map.pdf", "map.png"}) {
+        SCOPED_TRACE(name);
+        std::unique_ptr<GDALDataset> ds(GDALDataset::Open((dir / name).c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+        ASSERT_TRUE(ds);
+        const OGRSpatialReference* srs = ds->GetSpatialRef();
+        ASSERT_NE(srs, nullptr);
+        EXPECT_TRUE(srs->IsSame(&utm));
+        double gt[6];
+        ASSERT_EQ(ds->GetGeoTransform(gt), CE_None);
+        const double pixel = 100000.0 * 25.4 / 150.0 / 1000.0;
+        EXPECT_NEAR(gt[1], pixel, pixel * 0.005);  // the page rounds to whole drawing pixels
+        EXPECT_NEAR(gt[5], -pixel, pixel * 0.005);
+        EXPECT_NEAR(gt[2], 0.0, 1e-6);
+        EXPECT_NEAR(gt[4], 0.0, 1e-6);
+        // A4 landscape (297 x 210 mm) at 150 dpi: 1754 x 1240 pixels, the page's centre the DEM's.
+        EXPECT_NEAR(ds->GetRasterXSize(), 1754, 1);
+        EXPECT_NEAR(ds->GetRasterYSize(), 1240, 1);
+        const double cx = gt[0] + 0.5 * ds->GetRasterXSize() * gt[1], cy = gt[3] + 0.5 * ds->GetRasterYSize() * gt[5];
+        EXPECT_NEAR(cx, 0.5 * (lo_x + hi_x), pixel);
+        EXPECT_NEAR(cy, 0.5 * (lo_y + hi_y), pixel);
+    }
 }
