@@ -58,7 +58,8 @@ std::string bench_table(const std::vector<BenchRow>& rows) {
 
 std::vector<ChartSeries> bench_chart_series(const std::vector<BenchRow>& rows) {
     const std::map<std::string, std::string> colours = {
-        {"toward-away", "#1f77b4"}, {"adjacency", "#d62728"}, {"object-space", "#2ca02c"}};
+        {"toward-away", "#1f77b4"}, {"adjacency", "#d62728"}, {"edge-walk", "#ff7f0e"},
+        {"object-space", "#2ca02c"}};
     const std::vector<std::string> dashes = {"", "8,4", "2,3", "12,3,3,3", "6,2,1,2", "1,1"};
     std::vector<ChartSeries> series;
     std::vector<std::string> sizes;  // one dash per image size and tolerance
