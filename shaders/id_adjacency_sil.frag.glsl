@@ -1,8 +1,8 @@
 // Adjacency SIL (Mower, "Fast Image-Space Silhouette Extraction", 3.1), pixel pass over the
 // triangle-ID raster (render/id_adjacency_sil.hpp): pixel p with triangle a is a silhouette pixel
 // when a 4-neighbour q holds a triangle b != a farther from the eye that is not adjacent to a in
-// 3-space (no common pair of world vertices; with u_crack_tolerance > 0, no T-junction edge
-// either) or holds no surface at all (sky). Unless u_mesh_borders is 1, p must also be where the
+// 3-space (no common pair of world vertices, nor one with u_vertex_adjacency; with
+// u_crack_tolerance > 0, no T-junction either) or holds no surface at all (sky). Unless u_mesh_borders is 1, p must also be where the
 // surface turns away (an away fragment behind p's at p or an 8-neighbour): DEM cut edges and hole
 // rims, where the triangles beyond are not adjacent either, are then left to the outline.
 #include "common.glsl"
@@ -14,6 +14,7 @@ layout(std430, binding = 1) readonly buffer Triangles { vec4 tri_corners[]; };
 uniform float u_crack_tolerance;  // relative to the longer edge; 0 = off
 uniform uint u_triangles;         // IDs above this are not in the list
 uniform int u_mesh_borders;       // 1: the ID test alone (borders are silhouettes too)
+uniform int u_vertex_adjacency;   // 1: one common vertex is adjacency too (0: the paper's edge test)
 
 layout(location = 0) out float o_silhouette;
 
@@ -27,31 +28,31 @@ float point_segment(vec3 p, vec3 a, vec3 b) {
     return distance(p, a + d * t);
 }
 
-// True when the shorter of edges (a0,a1), (b0,b1) lies along the longer: both its end points
-// within u_crack_tolerance x the longer's length of the longer segment (a T-junction).
-bool along(vec3 a0, vec3 a1, vec3 b0, vec3 b1) {
-    float la = distance(a0, a1), lb = distance(b0, b1);
-    if (la < lb) return point_segment(a0, b0, b1) <= u_crack_tolerance * lb && point_segment(a1, b0, b1) <= u_crack_tolerance * lb;
-    return point_segment(b0, a0, a1) <= u_crack_tolerance * la && point_segment(b1, a0, a1) <= u_crack_tolerance * la;
+// True when a vertex of X lies on an edge of Y (within u_crack_tolerance x that edge's length):
+// a T-junction, where a finer patch's edge vertex sits on a coarser patch's edge.
+bool touches(vec3 X[3], vec3 Y[3]) {
+    for (int j = 0; j < 3; ++j) {
+        float tol = u_crack_tolerance * distance(Y[j], Y[(j + 1) % 3]);
+        for (int i = 0; i < 3; ++i)
+            if (point_segment(X[i], Y[j], Y[(j + 1) % 3]) <= tol) return true;
+    }
+    return false;
 }
 
 // Triangles a and b share an edge in 3-space (two common vertices, equal within float rounding
-// of world coordinates: 1e-5 of the eye distance t or of the coordinates' size) or, with crack
-// handling, a T-junction edge.
+// of world coordinates: 1e-5 of the eye distance t or of the coordinates' size), a vertex (with
+// u_vertex_adjacency) or, with crack handling, a T-junction (a vertex of one on an edge of the other).
 bool adjacent(uint a, uint b, float t) {
     if (a > u_triangles || b > u_triangles) return true;  // not in the list: no evidence of a silhouette
     vec3 A[3], B[3];
-    load(a, A), load(b, B);
+    load(a, A);
+    load(b, B);
     float vertex_eps = 1.0e-5 * max(min(t, 1.0e7), length(A[0]));
     int common_vertices = 0;
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) common_vertices += distance(A[i], B[j]) <= vertex_eps ? 1 : 0;
-    if (common_vertices >= 2) return true;
-    if (u_crack_tolerance <= 0.0) return false;
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            if (along(A[i], A[(i + 1) % 3], B[j], B[(j + 1) % 3])) return true;
-    return false;
+    if (common_vertices >= 2 - u_vertex_adjacency) return true;
+    return u_crack_tolerance > 0.0 && (touches(A, B) || touches(B, A));
 }
 
 // The surface turns away at p: an away fragment behind the toward one at p or an 8-neighbour.

@@ -63,6 +63,7 @@ double IdAdjacencySilPass::mark_pixels(GLuint toward_texture, GLuint away_textur
     gl_->UseProgram(p);
     gl_->Uniform1f(uniform_location(*gl_, p, "u_crack_tolerance"), std::max(0.0f, options.crack_tolerance));
     gl_->Uniform1i(uniform_location(*gl_, p, "u_mesh_borders"), options.mesh_borders ? 1 : 0);
+    gl_->Uniform1i(uniform_location(*gl_, p, "u_vertex_adjacency"), options.vertex_adjacency ? 1 : 0);
     gl_->Uniform1ui(uniform_location(*gl_, p, "u_triangles"), std::uint32_t(std::min(triangles_, capacity_)));
     gl_->BindTextureUnit(0, toward_texture);
     gl_->BindTextureUnit(1, away_texture);

@@ -39,6 +39,11 @@ struct IdAdjacencyOptions {
     float crack_tolerance = 0.1f;
     // true: the paper's ID test alone, mesh borders (cut edges, hole rims) are silhouettes too.
     bool mesh_borders = false;
+    // true: triangles with one common vertex are adjacent too. A one-pixel step near a vertex
+    // often crosses between two triangles of its fan that share only that vertex: with the
+    // paper's edge test alone (false) about a third of all triangle boundaries inside a smooth
+    // surface tessellated to 4 px were marked (tests/render/id_adjacency_sil_test.cpp).
+    bool vertex_adjacency = true;
 };
 
 struct IdAdjacencyTimes {

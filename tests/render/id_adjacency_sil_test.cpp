@@ -79,28 +79,34 @@ TEST(IdAdjacencySil, IdRasterMatchesTriangleList) {
 }
 
 // Per-patch levels (TessellationOptions::per_patch_level) make neighbouring patches split their
-// shared edge differently. Measured (llvmpipe, 240x180, target 4 px, max level 8): without crack
-// handling several hundred false pixels; with it, none or a handful; per-edge levels (no
-// T-junctions) give none either way, so the shared-vertex test itself holds up across patches
-// whose copies of an edge vertex differ in float rounding.
+// shared edge differently: a finer patch's edge vertices sit on a coarser patch's edge
+// (T-junctions), and the triangles on either side share no vertex. Measured (llvmpipe, 240x180,
+// target 4 px, max level 8, the ID test alone): 737 false pixels without crack handling, 429
+// with it (tolerance 0.1; 454 at 0.03: most T-junction vertices lie close to the edge); what
+// remains are pairs with no contact at all (a triangle thinner than a pixel between them), which
+// per-edge levels show too (277; more with per-patch levels, whose triangles are smaller). With
+// the paper's edge test alone (no vertex adjacency, no crack handling) 20789 of 43200 pixels.
 TEST(IdAdjacencySil, CracksBetweenPatchLevels) {
     const LowHill s;
     TerrainRenderer renderer(test::test_context().gl(), s.mesh, s.cam.width, s.cam.height);
-    auto false_pixels = [&](bool per_patch, float crack_tolerance) {
+    auto false_pixels = [&](bool per_patch, float crack_tolerance, bool vertex_adjacency = true) {
         FrameOptions o;
         o.silhouette_method = SilhouetteMethod::adjacency;
         o.tessellation.target_edge_px = 4.0f, o.tessellation.max_level = 8;
         o.tessellation.per_patch_level = per_patch;
         o.adjacency.crack_tolerance = crack_tolerance;
-        o.adjacency.mesh_borders = true;  // the paper's ID test alone
+        o.adjacency.mesh_borders = true;  // the ID test alone
+        o.adjacency.vertex_adjacency = vertex_adjacency;
         return count(renderer.render(s.cam, o).silhouettes);
     };
     const std::size_t cracks_unhandled = false_pixels(true, 0.0f), cracks_handled = false_pixels(true, 0.1f);
     const std::size_t no_cracks_unhandled = false_pixels(false, 0.0f), no_cracks = false_pixels(false, 0.1f);
-    std::printf("false silhouette pixels: per-patch levels %zu without crack handling, %zu with; per-edge %zu / %zu\n",
-                cracks_unhandled, cracks_handled, no_cracks_unhandled, no_cracks);
-    EXPECT_GT(cracks_unhandled, 200u);
-    EXPECT_LT(cracks_handled * 20, cracks_unhandled);  // at least 95 % of them gone
-    EXPECT_LT(no_cracks_unhandled, 10u);
-    EXPECT_LT(no_cracks, 10u);
+    const std::size_t edge_test_only = false_pixels(false, 0.0f, false);  // the paper's test as written
+    std::printf("false silhouette pixels: per-patch levels %zu without crack handling, %zu with; per-edge %zu / %zu; "
+                "edge test only %zu\n", cracks_unhandled, cracks_handled, no_cracks_unhandled, no_cracks, edge_test_only);
+    EXPECT_GT(cracks_unhandled, cracks_handled + 200);   // the T-junction pairs: 308 measured
+    EXPECT_LT(cracks_handled * 10, cracks_unhandled * 7);  // at least 30 % of all false pixels gone
+    EXPECT_GT(cracks_handled, no_cracks);                  // the no-contact pairs remain
+    EXPECT_EQ(no_cracks_unhandled, no_cracks);             // no T-junctions: nothing for it to do
+    EXPECT_GT(edge_test_only, 20 * no_cracks);             // one-vertex pairs dominate the edge test
 }
