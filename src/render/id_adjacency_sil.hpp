@@ -5,16 +5,17 @@
 //    three world vertices (local metres) to a triangle list in an SSBO (index = ID - 1; the
 //    geometry stage stands in for the paper's transform feedback).
 // 2. Pixel pass: pixel p (triangle a) is a silhouette pixel when one of its 4 neighbours q holds
-//    a different triangle b that lies farther from the eye (p is on the occluding side) and a and
-//    b are not adjacent in 3-space, i.e. share no pair of world vertices (equal within float
-//    rounding, 1e-5 of the eye distance) and, with crack handling on, are not T-junction
-//    neighbours either: an edge of one lies along an edge of the other (both end points of the
-//    shorter within `crack_tolerance` x the longer's length of the longer; patches of different
-//    tessellation levels meet that way), or when q holds no surface (sky). penink adds one
-//    condition unless `mesh_borders`: the surface turns away at p (an away fragment behind p's at
-//    p or an 8-neighbour, as Toward/Away), so the DEM's cut edges and hole rims, whose triangles
-//    are not adjacent to what lies beyond them either, are left to the outline as for the other
-//    methods, while skylines and contours (a back-facing fold behind the front sheet) stay.
+//    no surface (sky), or a triangle b != a that lies farther from the eye (p is on the occluding
+//    side) and is not adjacent to a in 3-space: a and b share no pair of world vertices (the
+//    paper's shared edge; equal within float rounding, 1e-5 of the eye distance), nor, with
+//    `vertex_adjacency`, one vertex, nor, with crack handling, touch in a T-junction (a vertex of
+//    one within `crack_tolerance` x an edge's length of that edge of the other; patches of
+//    different tessellation levels meet that way). The T-junction test is our reading of the
+//    paper's crack case; its text was not at hand. penink adds one condition unless
+//    `mesh_borders`: the surface turns away at p (an away fragment behind p's at p or an
+//    8-neighbour, as Toward/Away), so the DEM's cut edges and hole rims, whose triangles are not
+//    adjacent to what lies beyond them either, are left to the outline as for the other methods,
+//    while skylines and contours (a back-facing fold behind the front sheet) stay.
 // Output: an R8 mask, width x height, 1 = silhouette (like SilPass), traced by src/lines.
 // 4 neighbours, not 8: every boundary between two triangles' pixel regions has a 4-neighbour
 // pair across it, so 4 find every boundary with half the triangle-pair tests, and marking the
@@ -33,9 +34,9 @@
 namespace penink {
 
 struct IdAdjacencyOptions {
-    // Relative to the longer of two edges: an edge of one triangle whose end points lie this close
-    // to an edge of another makes them T-junction neighbours (0: no crack handling, only shared
-    // vertex pairs). Covers the chord-to-cubic offset of a PN edge split at different levels.
+    // Relative to an edge's length: a vertex of one triangle this close to an edge of another
+    // makes them T-junction neighbours (0: no crack handling). Covers the chord-to-cubic offset of
+    // a PN edge split at different levels (0.03 already removes most, tests/render).
     float crack_tolerance = 0.1f;
     // true: the paper's ID test alone, mesh borders (cut edges, hole rims) are silhouettes too.
     bool mesh_borders = false;
