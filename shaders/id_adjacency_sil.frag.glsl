@@ -2,16 +2,17 @@
 // triangle-ID raster (render/id_adjacency_sil.hpp): pixel p with triangle a is a silhouette pixel
 // when a 4-neighbour q holds a triangle b != a farther from the eye that is not adjacent to a in
 // 3-space (no common pair of world vertices, nor one with u_vertex_adjacency; with
-// u_crack_tolerance > 0, no T-junction either) or holds no surface at all (sky). Unless u_mesh_borders is 1, p must also be where the
-// surface turns away (an away fragment behind p's at p or an 8-neighbour): DEM cut edges and hole
-// rims, where the triangles beyond are not adjacent either, are then left to the outline.
+// u_crack_tolerance > 0, no T-junction either) or holds no surface at all (sky). Unless
+// u_mesh_borders is 1, p must also be where the surface turns away (an away fragment behind p's
+// at p or an 8-neighbour): DEM cut edges and hole rims, where the triangles beyond are not
+// adjacent either, are then left to the outline.
 #include "common.glsl"
 
 layout(binding = 0) uniform sampler2D u_toward;  // eye distance, PENINK_FAR where none
 layout(binding = 1) uniform sampler2D u_away;
 layout(binding = 2) uniform usampler2D u_ids;    // 0 = no surface
 layout(std430, binding = 1) readonly buffer Triangles { vec4 tri_corners[]; };
-uniform float u_crack_tolerance;  // relative to the longer edge; 0 = off
+uniform float u_crack_tolerance;  // relative to an edge's length; 0 = off
 uniform uint u_triangles;         // IDs above this are not in the list
 uniform int u_mesh_borders;       // 1: the ID test alone (borders are silhouettes too)
 uniform int u_vertex_adjacency;   // 1: one common vertex is adjacency too (0: the paper's edge test)
