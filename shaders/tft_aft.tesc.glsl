@@ -1,7 +1,9 @@
 // TFT/AFT pass, tessellation control: builds the PN control points once per patch, culls
 // patches whose control hull is outside the frustum, and sets each edge's level from its
 // projected length (pixels / u_target_px, clamped to [1, u_max_level]; an edge's level depends
-// on its two end points only, so neighbouring patches agree and no cracks open).
+// on its two end points only, so neighbouring patches agree and no cracks open). u_patch_level 1:
+// every edge takes the patch's largest level (one level per patch: neighbours disagree and
+// T-junction cracks open; kept to reproduce that case).
 #include "common.glsl"
 
 layout(vertices = 3) out;
@@ -16,6 +18,7 @@ uniform vec2 u_viewport;     // pixels
 uniform float u_target_px;   // wanted tessellated edge length, pixels
 uniform float u_max_level;
 uniform int u_no_cull;       // 1: keep every patch (bench: culling off); unset = 0 = cull
+uniform int u_patch_level;   // 1: one level per patch; unset = 0 = per edge
 
 float edge_level(vec4 a, vec4 b) {
     if (a.w <= 0.0 || b.w <= 0.0) return u_max_level;
@@ -42,4 +45,6 @@ void main() {
     gl_TessLevelOuter[1] = edge_level(c[2], c[0]);
     gl_TessLevelOuter[2] = edge_level(c[0], c[1]);
     gl_TessLevelInner[0] = max(gl_TessLevelOuter[0], max(gl_TessLevelOuter[1], gl_TessLevelOuter[2]));
+    if (u_patch_level == 1)
+        gl_TessLevelOuter[0] = gl_TessLevelOuter[1] = gl_TessLevelOuter[2] = gl_TessLevelInner[0];
 }

@@ -21,7 +21,7 @@ namespace {
 namespace fs = std::filesystem;
 SilhouetteMethod parse_method(const std::string& m) {
     if (const auto method = silhouette_method_named(m)) return *method;
-    throw Error("cli", "", "--methods: unknown method \"" + m + "\" (use toward-away, adjacency, object-space)");
+    throw Error("cli", "", "--methods: unknown method \"" + m + "\" (use toward-away, adjacency, edge-walk, object-space)");
 }
 
 std::vector<std::string> split(const std::string& text) {

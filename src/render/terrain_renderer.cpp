@@ -23,9 +23,16 @@ double TerrainRenderer::silhouettes(const Camera& camera, const FrameOptions& op
         case SilhouetteMethod::toward_away:
             return sil_.draw(tft_aft_.toward_texture(), tft_aft_.away_texture(), options.silhouette_min_gap);
         case SilhouetteMethod::adjacency: {
-            if (!adjacency_) adjacency_ = std::make_unique<AdjacencySilPass>(*gl_, w, h);
-            const AdjacencyTimes t = adjacency_->draw(geometry_, camera, options.tessellation, tft_aft_.toward_texture(),
-                                                      tft_aft_.away_texture(), options.adjacency);
+            if (!adjacency_) adjacency_ = std::make_unique<IdAdjacencySilPass>(*gl_, w, h);
+            const IdAdjacencyTimes t = adjacency_->draw(geometry_, camera, options.tessellation, tft_aft_.toward_texture(),
+                                                        tft_aft_.away_texture(), options.adjacency);
+            out.times.sil_ids = t.ids_ms;
+            return t.ids_ms + t.pixels_ms;
+        }
+        case SilhouetteMethod::edge_walk: {
+            if (!edge_walk_) edge_walk_ = std::make_unique<EdgeWalkSilPass>(*gl_, w, h);
+            const EdgeWalkTimes t = edge_walk_->draw(geometry_, camera, options.tessellation, tft_aft_.toward_texture(),
+                                                      tft_aft_.away_texture(), options.edge_walk);
             out.times.sil_ids = t.ids_ms;
             return t.ids_ms + t.detect_ms + t.walk_ms + t.lines_ms;
         }
@@ -51,6 +58,8 @@ FrameImages TerrainRenderer::render(const Camera& camera, const FrameOptions& op
         out.silhouettes = read_pixel_mask(*gl_, sil_.silhouette_texture(), w, h);
     else if (options.silhouette_method == SilhouetteMethod::adjacency)
         out.silhouettes = read_pixel_mask(*gl_, adjacency_->silhouette_texture(), w, h);
+    else if (options.silhouette_method == SilhouetteMethod::edge_walk)
+        out.silhouettes = read_pixel_mask(*gl_, edge_walk_->silhouette_texture(), w, h);
     check_gl_error(*gl_, "read-back");
     out.times.readback = ms_since(t0);
     return out;

@@ -22,17 +22,22 @@ TftAftPass::TftAftPass(const GlApi& gl, int width, int height)
       away_fb_(make_framebuffer(gl, {away_.id()}, depth_.id(), "aft")),
       tft_timer_(gl), aft_timer_(gl) {}
 
-void TftAftPass::set_uniforms(const Camera& camera, const TessellationOptions& tess, int mode) const {
-    const GLuint p = program_.id();
+void set_tessellation_uniforms(const GlApi& gl, GLuint p, const Camera& camera, const TessellationOptions& tess,
+                               int width, int height) {
     const glm::mat4 vp(view_projection(camera));
-    gl_->UseProgram(p);
-    gl_->UniformMatrix4fv(uniform_location(*gl_, p, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(vp));
-    gl_->Uniform2f(uniform_location(*gl_, p, "u_viewport"), float(width_), float(height_));
-    gl_->Uniform1f(uniform_location(*gl_, p, "u_target_px"), tess.target_edge_px);
-    gl_->Uniform1f(uniform_location(*gl_, p, "u_max_level"), float(std::max(1, tess.max_level)));
-    gl_->Uniform1i(uniform_location(*gl_, p, "u_no_cull"), tess.cull_patches ? 0 : 1);
-    set_camera_uniforms(*gl_, p, camera);
-    gl_->Uniform1i(uniform_location(*gl_, p, "u_mode"), mode);
+    gl.UseProgram(p);
+    gl.UniformMatrix4fv(uniform_location(gl, p, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(vp));
+    gl.Uniform2f(uniform_location(gl, p, "u_viewport"), float(width), float(height));
+    gl.Uniform1f(uniform_location(gl, p, "u_target_px"), tess.target_edge_px);
+    gl.Uniform1f(uniform_location(gl, p, "u_max_level"), float(std::max(1, tess.max_level)));
+    gl.Uniform1i(uniform_location(gl, p, "u_no_cull"), tess.cull_patches ? 0 : 1);
+    gl.Uniform1i(uniform_location(gl, p, "u_patch_level"), tess.per_patch_level ? 1 : 0);
+    set_camera_uniforms(gl, p, camera);
+}
+
+void TftAftPass::set_uniforms(const Camera& camera, const TessellationOptions& tess, int mode) const {
+    set_tessellation_uniforms(*gl_, program_.id(), camera, tess, width_, height_);
+    gl_->Uniform1i(uniform_location(*gl_, program_.id(), "u_mode"), mode);
 }
 
 TftAftTimes TftAftPass::draw(const SurfaceGeometry& surface, const Camera& camera,

@@ -14,7 +14,17 @@ struct TessellationOptions {
     float target_edge_px = 8.0f;  // tessellate until edges are about this long on screen
     int max_level = 16;           // 1 = flat triangles (no refinement)
     bool cull_patches = true;     // skip patches whose control hull is outside the frustum
+    // One level per patch (its longest edge's) on all three edges, as a per-patch adaptive
+    // tessellation does: neighbouring patches then disagree on a shared edge, which opens
+    // T-junction cracks (the case Mower's Adjacency algorithm must handle). Off: each edge's level
+    // depends on its end points only and neighbours agree.
+    bool per_patch_level = false;
 };
+
+// Sets the PN tessellation uniforms of `program` (tft_aft.tesc/.tese: view-projection, viewport,
+// levels, culling, eye) for a width x height target; the program is made current.
+void set_tessellation_uniforms(const GlApi& gl, GLuint program, const Camera& camera, const TessellationOptions& tess,
+                               int width, int height);
 
 struct TftAftTimes {
     double tft_ms = 0.0, aft_ms = 0.0;  // combined mode puts the whole pass in tft_ms

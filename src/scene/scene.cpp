@@ -238,7 +238,7 @@ Scene parse_scene_file(const std::string& path) {
         read_key(root.at("silhouettes"), "method", method, path, "silhouettes");
         const auto named = silhouette_method_named(method);
         if (!named)
-            throw Error("scene", path, "[silhouettes] method must be \"toward-away\", \"adjacency\" or \"object-space\" (got \"" +
+            throw Error("scene", path, "[silhouettes] method must be \"toward-away\", \"adjacency\", \"edge-walk\" or \"object-space\" (got \"" +
                                            method + "\")");
         s.silhouette_method = *named;
     }
@@ -279,7 +279,8 @@ void check_range(const std::string& file, const std::string& name, const std::op
 }  // namespace
 
 std::optional<SilhouetteMethod> silhouette_method_named(const std::string& name) {
-    for (SilhouetteMethod m : {SilhouetteMethod::toward_away, SilhouetteMethod::adjacency, SilhouetteMethod::object_space})
+    for (SilhouetteMethod m : {SilhouetteMethod::toward_away, SilhouetteMethod::adjacency, SilhouetteMethod::edge_walk,
+                               SilhouetteMethod::object_space})
         if (name == silhouette_method_name(m)) return m;
     return std::nullopt;
 }
@@ -287,6 +288,7 @@ std::optional<SilhouetteMethod> silhouette_method_named(const std::string& name)
 const char* silhouette_method_name(SilhouetteMethod method) {
     switch (method) {
         case SilhouetteMethod::adjacency: return "adjacency";
+        case SilhouetteMethod::edge_walk: return "edge-walk";
         case SilhouetteMethod::object_space: return "object-space";
         case SilhouetteMethod::toward_away: break;
     }

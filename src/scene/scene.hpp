@@ -84,7 +84,7 @@ struct Scene {
     toml::value style_overrides;  // the [style] table, applied over the named style
 };
 
-// Silhouette methods by their scene and command-line names: "toward-away", "adjacency",
+// Silhouette methods by their scene and command-line names: "toward-away", "adjacency", "edge-walk",
 // "object-space"; nullopt for any other name.
 std::optional<SilhouetteMethod> silhouette_method_named(const std::string& name);
 const char* silhouette_method_name(SilhouetteMethod method);

@@ -1,6 +1,6 @@
 // The speed/accuracy sweep of `penink bench` (Mower, "Fast Image-Space Silhouette Extraction",
 // Tables 1-4 in spirit): level-of-detail tolerance x image size x silhouette method (each of
-// `methods`) x tessellation max_level; for each, time per frame =
+// `methods`: Toward/Away, Adjacency, edge walk, object-space) x tessellation max_level; for each, time per frame =
 // median wall ms of k frames after warm-up, with the fastest and slowest (TFT/AFT + SIL +
 // read-back + tracing; creases cost the same in every row, so they are off) and accuracy of the
 // SIL mask against a reference none of the methods computes: on an analytic terrain
@@ -31,7 +31,7 @@ struct SpeedAccuracyConfig {
     std::vector<int> levels{1, 2, 4, 8};
     std::vector<std::pair<int, int>> sizes{{500, 375}, {1000, 750}, {2000, 1500}};
     std::vector<SilhouetteMethod> methods{SilhouetteMethod::toward_away, SilhouetteMethod::adjacency,
-                                          SilhouetteMethod::object_space};
+                                          SilhouetteMethod::edge_walk, SilhouetteMethod::object_space};
     // [surface] tolerance_px values swept (level of detail; 0 = full resolution); empty = the scene's.
     std::vector<float> tolerances;
     int frames = 5, warmup = 1;
@@ -48,7 +48,7 @@ struct BenchRow {
     std::string group;     // "sweep" or "needs"
     std::string view;      // "scene" or "zoom4"
     int width = 0, height = 0;
-    std::string method;    // toward-away | adjacency | object-space
+    std::string method;    // toward-away | adjacency | edge-walk | object-space
     int level = 0;         // tessellation max_level
     double tolerance_px = 0;  // [surface] tolerance_px of the frame's level-of-detail mesh (0: full resolution)
     bool adaptive = true, culling = true, cropping = true;

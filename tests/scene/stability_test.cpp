@@ -19,7 +19,7 @@ using namespace penink;
 namespace {
 
 constexpr SilhouetteMethod all_methods[] = {SilhouetteMethod::toward_away, SilhouetteMethod::adjacency,
-                                            SilhouetteMethod::object_space};
+                                            SilhouetteMethod::edge_walk, SilhouetteMethod::object_space};
 
 Camera camera(glm::dvec3 eye, double azimuth, double altitude, int w = 200, int h = 150) {
     Camera c;

@@ -1,15 +1,15 @@
-// Adjacency SIL, edge detection (Mower, "Fast Image-Space Silhouette Extraction", 3.1): a full-screen pass over the triangle-ID raster.
+// Edge-walk SIL, edge detection (Mower, "Fast Image-Space Silhouette Extraction", 3.1): a full-screen pass over the triangle-ID raster.
 // Pixel p whose nearest surface is toward-facing (triangle T, visible at p) tests T against every
 // distinct away-facing triangle A whose ID lies in the (2 u_radius + 1)^2 neighbourhood of p;
 // when they share an edge in 3-space, the edge lies on the contour and is appended to the edge
 // list. Contour triangles are often thinner than a pixel and sampled on one side only, so each
 // sampled triangle (toward at p, or away at p) also looks up its opposite-facing neighbours
 // across its three edges in the edge hash table (once per triangle). The walk pass
-// (adjacency_sil.walk.comp.glsl) continues along the contour from the found edges and the line
-// pass (adjacency_sil.lines.*) draws them. Pairs that do not touch (occluders, farther terrain,
+// (edge_walk_sil.walk.comp.glsl) continues along the contour from the found edges and the line
+// pass (edge_walk_sil.lines.*) draws them. Pairs that do not touch (occluders, farther terrain,
 // mesh borders, hole rims) never match. Writes 0 to the mask (clearing it for the line pass).
 #include "common.glsl"
-#include "adjacency_sil.common.glsl"
+#include "edge_walk_sil.common.glsl"
 
 layout(binding = 0) uniform sampler2D u_toward;
 layout(binding = 1) uniform sampler2D u_away;

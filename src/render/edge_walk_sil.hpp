@@ -1,4 +1,5 @@
-// Adjacency SIL pass (Mower, "Fast Image-Space Silhouette Extraction", 3.1), beside Toward/Away: after the TFT/AFT pass has written the
+// Edge-walk SIL pass (`[silhouettes] method = "edge-walk"`): penink's contour-edge method built on the facet adjacencies
+// of Mower, "Fast Image-Space Silhouette Extraction", 3.1 (the paper's own pixel test is render/id_adjacency_sil.hpp), beside Toward/Away: after the TFT/AFT pass has written the
 // nearest toward/away eye distances, a second geometry pass (same PN tessellation program plus a
 // geometry stage) stores every tessellated triangle (eye-relative corners, metres, and its facing)
 // in an SSBO and the ID of the nearest toward- and away-facing triangle of each pixel in a
@@ -20,22 +21,22 @@
 
 namespace penink {
 
-struct AdjacencyOptions {
+struct EdgeWalkOptions {
     float tolerance = 1.0e-3f;        // relative to the longest triangle edge: edges this close are shared
     int radius = 2;                   // pixels: away IDs searched in a (2 radius + 1)^2 window
     int walk_rounds = 32;             // contour walk rounds (0 = only the edges found on the raster)
     float depth_tolerance = 1.0e-4f;  // relative: an edge fragment this far behind the TFT is visible
 };
 
-struct AdjacencyTimes {
+struct EdgeWalkTimes {
     double ids_ms = 0, detect_ms = 0, walk_ms = 0, lines_ms = 0;  // GPU ms of the passes (walk: all rounds)
 };
 
-class AdjacencySilPass {
+class EdgeWalkSilPass {
 public:
-    AdjacencySilPass(const GlApi& gl, int width, int height);
-    AdjacencyTimes draw(const SurfaceGeometry& surface, const Camera& camera, const TessellationOptions& tess,
-                        GLuint toward_texture, GLuint away_texture, const AdjacencyOptions& options = {});
+    EdgeWalkSilPass(const GlApi& gl, int width, int height);
+    EdgeWalkTimes draw(const SurfaceGeometry& surface, const Camera& camera, const TessellationOptions& tess,
+                        GLuint toward_texture, GLuint away_texture, const EdgeWalkOptions& options = {});
     GLuint silhouette_texture() const { return mask_.id(); }
     std::size_t triangle_count() const { return triangles_; }  // tessellated triangles last frame
     std::size_t edge_count() const { return edges_; }          // silhouette edges found last frame
@@ -51,9 +52,9 @@ public:
 private:
     double draw_ids(const SurfaceGeometry& surface, const Camera& camera, const TessellationOptions& tess,
                     GLuint toward_texture, GLuint away_texture);
-    double detect(GLuint toward_texture, GLuint away_texture, const AdjacencyOptions& options);
-    double walk(const AdjacencyOptions& options);
-    double draw_lines(const Camera& camera, GLuint toward_texture, const AdjacencyOptions& options);
+    double detect(GLuint toward_texture, GLuint away_texture, const EdgeWalkOptions& options);
+    double walk(const EdgeWalkOptions& options);
+    double draw_lines(const Camera& camera, GLuint toward_texture, const EdgeWalkOptions& options);
     void reset_buffers();
     void set_hash_uniforms(GLuint program) const;
     // Hash uniforms, the TFT/AFT textures and the counter/triangle/ID/flag buffers of a frame.

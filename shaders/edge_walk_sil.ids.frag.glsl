@@ -1,4 +1,4 @@
-// Adjacency SIL, triangle-ID pass, fragment stage: a fragment whose eye distance equals (within
+// Edge-walk SIL, triangle-ID pass, fragment stage: a fragment whose eye distance equals (within
 // a relative 1e-5) the nearest toward- or away-facing distance the TFT/AFT pass found at its
 // pixel writes its triangle ID to that pixel's toward or away slot of the ID buffer (two uints
 // per pixel, row 0 = bottom as in GL). No colour output.

@@ -1,8 +1,8 @@
-// Adjacency SIL, shared by the detection and walk passes (Mower, "Fast Image-Space Silhouette Extraction", 3.1): the triangle list
+// Edge-walk SIL, shared by the detection and walk passes (Mower, "Fast Image-Space Silhouette Extraction", 3.1): the triangle list
 // (3 eye-relative corners per ID, metres; w of corner 0 = 1 for toward-facing), per-triangle
 // flags (bits 0-2: T's edge i appended, 3-5: A's edge j appended, 6/7: hash neighbours looked up
 // as toward/away), the silhouette edge list (2 points per edge; w holds the toward and away IDs
-// as float bits) with its atomic counter, and the edge hash table of adjacency_sil.geom.glsl.
+// as float bits) with its atomic counter, and the edge hash table of edge_walk_sil.geom.glsl.
 // Edges "share" when they lie on each other within a tolerance: u_tolerance times the longer
 // triangle edge plus 1e-6 of the eye distance, which also matches crack fragments (two patches'
 // slightly different floats of one edge, T-junctions: the overlapping part is used).

@@ -1,4 +1,4 @@
-#include "render/adjacency_sil.hpp"
+#include "render/edge_walk_sil.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -18,15 +18,15 @@ glm::mat4 relative_view_projection(const Camera& camera) {  // eye-relative worl
 }
 }  // namespace
 
-AdjacencySilPass::AdjacencySilPass(const GlApi& gl, int width, int height)
+EdgeWalkSilPass::EdgeWalkSilPass(const GlApi& gl, int width, int height)
     : gl_(&gl), width_(width), height_(height),
       id_program_(build_program(gl, {"tft_aft.vert.glsl", "tft_aft.tesc.glsl", "tft_aft.tese.glsl",
-                                     "adjacency_sil.geom.glsl", "adjacency_sil.ids.frag.glsl"})),
-      detect_program_(build_program(gl, {"sil.vert.glsl", "adjacency_sil.detect.frag.glsl"})),
-      walk_program_(build_program(gl, {"adjacency_sil.walk.comp.glsl"})),
-      line_program_(build_program(gl, {"adjacency_sil.lines.vert.glsl", "adjacency_sil.lines.frag.glsl"})),
+                                     "edge_walk_sil.geom.glsl", "edge_walk_sil.ids.frag.glsl"})),
+      detect_program_(build_program(gl, {"sil.vert.glsl", "edge_walk_sil.detect.frag.glsl"})),
+      walk_program_(build_program(gl, {"edge_walk_sil.walk.comp.glsl"})),
+      line_program_(build_program(gl, {"edge_walk_sil.lines.vert.glsl", "edge_walk_sil.lines.frag.glsl"})),
       mask_(make_texture(gl, GL_R8, width, height)),
-      fb_(make_framebuffer(gl, {mask_.id()}, 0, "adjacency_sil")),
+      fb_(make_framebuffer(gl, {mask_.id()}, 0, "edge_walk_sil")),
       empty_vao_(make_vertex_array(gl)),
       counter_(make_buffer(gl, nullptr, 4 * sizeof(std::uint32_t), GL_DYNAMIC_DRAW)),
       triangles_buf_(make_buffer(gl, nullptr, triangle_bytes, GL_DYNAMIC_DRAW)),
@@ -36,7 +36,7 @@ AdjacencySilPass::AdjacencySilPass(const GlApi& gl, int width, int height)
       pixel_ids_(make_buffer(gl, nullptr, std::size_t(width) * height * 2 * sizeof(std::uint32_t), GL_DYNAMIC_DRAW)),
       capacity_(1), edge_capacity_(initial_edges), table_size_(1), ids_timer_(gl), detect_timer_(gl), walk_timer_(gl), lines_timer_(gl) {}
 
-void AdjacencySilPass::reset_buffers() {
+void EdgeWalkSilPass::reset_buffers() {
     const std::uint32_t counter[4] = {0, clamp_u32(capacity_), 0, clamp_u32(edge_capacity_)};
     gl_->NamedBufferData(counter_.id(), sizeof(counter), counter, GL_DYNAMIC_DRAW);
     const std::vector<std::uint32_t> zeros(std::size_t(width_) * height_ * 2, 0u);
@@ -45,13 +45,13 @@ void AdjacencySilPass::reset_buffers() {
     gl_->NamedBufferData(table_buf_.id(), GLsizeiptr(table_size_ * sizeof(std::uint32_t)), empty_table.data(), GL_DYNAMIC_DRAW);
 }
 
-void AdjacencySilPass::set_hash_uniforms(GLuint program) const {
+void EdgeWalkSilPass::set_hash_uniforms(GLuint program) const {
     gl_->Uniform1f(uniform_location(*gl_, program, "u_cell"), cell_);
     gl_->Uniform1ui(uniform_location(*gl_, program, "u_table_mask"), std::uint32_t(table_size_ - 1));
     gl_->BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, table_buf_.id());
 }
 
-void AdjacencySilPass::bind_frame_inputs(GLuint program, GLuint toward_texture, GLuint away_texture) const {
+void EdgeWalkSilPass::bind_frame_inputs(GLuint program, GLuint toward_texture, GLuint away_texture) const {
     set_hash_uniforms(program);
     gl_->BindTextureUnit(0, toward_texture);
     gl_->BindTextureUnit(1, away_texture);
@@ -61,17 +61,10 @@ void AdjacencySilPass::bind_frame_inputs(GLuint program, GLuint toward_texture, 
     gl_->BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, flags_buf_.id());
 }
 
-double AdjacencySilPass::draw_ids(const SurfaceGeometry& surface, const Camera& camera, const TessellationOptions& tess,
+double EdgeWalkSilPass::draw_ids(const SurfaceGeometry& surface, const Camera& camera, const TessellationOptions& tess,
                                   GLuint toward_texture, GLuint away_texture) {
     const GLuint p = id_program_.id();
-    const glm::mat4 vp(view_projection(camera));
-    const glm::vec3 eye(camera.eye);
-    gl_->UseProgram(p);
-    gl_->UniformMatrix4fv(uniform_location(*gl_, p, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(vp));
-    gl_->Uniform2f(uniform_location(*gl_, p, "u_viewport"), float(width_), float(height_));
-    gl_->Uniform1f(uniform_location(*gl_, p, "u_target_px"), tess.target_edge_px);
-    gl_->Uniform1f(uniform_location(*gl_, p, "u_max_level"), float(std::max(1, tess.max_level)));
-    gl_->Uniform3f(uniform_location(*gl_, p, "u_eye"), eye.x, eye.y, eye.z);
+    set_tessellation_uniforms(*gl_, p, camera, tess, width_, height_);
     gl_->Uniform1i(uniform_location(*gl_, p, "u_width"), width_);
     bind_frame_inputs(p, toward_texture, away_texture);
     gl_->BindFramebuffer(GL_FRAMEBUFFER, fb_.id());  // scratch target; the detection rewrites it
@@ -83,7 +76,7 @@ double AdjacencySilPass::draw_ids(const SurfaceGeometry& surface, const Camera& 
     return ids_timer_.milliseconds();
 }
 
-double AdjacencySilPass::detect(GLuint toward_texture, GLuint away_texture, const AdjacencyOptions& options) {
+double EdgeWalkSilPass::detect(GLuint toward_texture, GLuint away_texture, const EdgeWalkOptions& options) {
     const GLuint p = detect_program_.id();
     gl_->UseProgram(p);
     gl_->Uniform1f(uniform_location(*gl_, p, "u_tolerance"), options.tolerance);
@@ -100,7 +93,7 @@ double AdjacencySilPass::detect(GLuint toward_texture, GLuint away_texture, cons
 }
 
 // Rounds of the contour walk, each over the edges the previous one appended.
-double AdjacencySilPass::walk(const AdjacencyOptions& options) {
+double EdgeWalkSilPass::walk(const EdgeWalkOptions& options) {
     const GLuint p = walk_program_.id();
     gl_->UseProgram(p);
     gl_->Uniform1f(uniform_location(*gl_, p, "u_tolerance"), options.tolerance);
@@ -122,7 +115,7 @@ double AdjacencySilPass::walk(const AdjacencyOptions& options) {
     return ms;
 }
 
-double AdjacencySilPass::draw_lines(const Camera& camera, GLuint toward_texture, const AdjacencyOptions& options) {
+double EdgeWalkSilPass::draw_lines(const Camera& camera, GLuint toward_texture, const EdgeWalkOptions& options) {
     const GLuint p = line_program_.id();
     const glm::mat4 vp_rel = relative_view_projection(camera);
     gl_->UseProgram(p);
@@ -143,7 +136,7 @@ double AdjacencySilPass::draw_lines(const Camera& camera, GLuint toward_texture,
 
 // Reads the triangle and edge counts; grows a buffer that overflowed and returns true (the frame
 // must be redrawn: the edge flags live in the triangle pass).
-bool AdjacencySilPass::grow_on_overflow() {
+bool EdgeWalkSilPass::grow_on_overflow() {
     std::uint32_t counter[4] = {};
     gl_->GetNamedBufferSubData(counter_.id(), 0, sizeof(counter), counter);
     triangles_ = counter[0], edges_ = counter[2];
@@ -163,13 +156,13 @@ bool AdjacencySilPass::grow_on_overflow() {
     return grown;
 }
 
-AdjacencyTimes AdjacencySilPass::draw(const SurfaceGeometry& surface, const Camera& camera,
+EdgeWalkTimes EdgeWalkSilPass::draw(const SurfaceGeometry& surface, const Camera& camera,
                                       const TessellationOptions& tess, GLuint toward_texture,
-                                      GLuint away_texture, const AdjacencyOptions& options) {
+                                      GLuint away_texture, const EdgeWalkOptions& options) {
     gl_->Viewport(0, 0, width_, height_);
     // Float differences between two patches' copies of an edge are ~1e-7 of the eye distance.
     cell_ = float(std::max(1.0e-3, 2.0e-5 * camera.far_plane));
-    AdjacencyTimes times;
+    EdgeWalkTimes times;
     for (int attempt = 0; attempt < 3; ++attempt) {  // at most one growth of each buffer
         reset_buffers();
         times.ids_ms += draw_ids(surface, camera, tess, toward_texture, away_texture);
@@ -181,7 +174,7 @@ AdjacencyTimes AdjacencySilPass::draw(const SurfaceGeometry& surface, const Came
     return times;
 }
 
-void AdjacencySilPass::read_ids(std::vector<std::uint32_t>& toward, std::vector<std::uint32_t>& away) const {
+void EdgeWalkSilPass::read_ids(std::vector<std::uint32_t>& toward, std::vector<std::uint32_t>& away) const {
     const std::size_t n = std::size_t(width_) * height_;
     std::vector<std::uint32_t> both(2 * n);
     gl_->GetNamedBufferSubData(pixel_ids_.id(), 0, GLsizeiptr(both.size() * sizeof(std::uint32_t)), both.data());
@@ -193,13 +186,13 @@ void AdjacencySilPass::read_ids(std::vector<std::uint32_t>& toward, std::vector<
         }
 }
 
-std::vector<glm::vec4> AdjacencySilPass::read_triangles() const {
+std::vector<glm::vec4> EdgeWalkSilPass::read_triangles() const {
     std::vector<glm::vec4> out(std::min(triangles_, capacity_) * 3);
     gl_->GetNamedBufferSubData(triangles_buf_.id(), 0, GLsizeiptr(out.size() * sizeof(glm::vec4)), out.data());
     return out;
 }
 
-std::vector<glm::vec4> AdjacencySilPass::read_edges() const {
+std::vector<glm::vec4> EdgeWalkSilPass::read_edges() const {
     std::vector<glm::vec4> out(std::min(edges_, edge_capacity_) * 2);
     gl_->GetNamedBufferSubData(edges_buf_.id(), 0, GLsizeiptr(out.size() * sizeof(glm::vec4)), out.data());
     return out;

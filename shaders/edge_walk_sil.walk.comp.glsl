@@ -1,11 +1,11 @@
-// Adjacency SIL, contour walk (Mower, "Fast Image-Space Silhouette Extraction", 3.1): for each silhouette edge e = (v, w) appended in
+// Edge-walk SIL, contour walk (Mower, "Fast Image-Space Silhouette Extraction", 3.1): for each silhouette edge e = (v, w) appended in
 // the previous round (IDs u_first .. u_end - 1 of the edge list), walk the fan of triangles
 // around each end point starting at e's toward triangle, away from e, across shared edges found
 // in the edge hash table, until the facing flips: that edge is the contour's next edge at the end
 // point and is appended (once), and the walk goes on from its other end point. Rounds repeat until no new edge appears, so the whole contour
 // chain is found from the few edges whose thin triangles the ID raster sampled; the walk stops
 // at mesh borders and at cracks no hash lookup bridges (other sampled edges restart it).
-#include "adjacency_sil.common.glsl"
+#include "edge_walk_sil.common.glsl"
 
 layout(local_size_x = 64) in;
 uniform uint u_first, u_end;

@@ -1,4 +1,4 @@
-// Adjacency SIL, line pass, fragment stage: a fragment of a silhouette edge is visible, and marks
+// Edge-walk SIL, line pass, fragment stage: a fragment of a silhouette edge is visible, and marks
 // its pixel, when its eye distance is at most (1 + u_depth_tolerance) times the nearest toward
 // distance at its pixel or one of the 8 neighbours (the contour lies on the front sheet's edge,
 // so the pixel centre may see the front sheet slightly nearer; one neighbour beyond the contour

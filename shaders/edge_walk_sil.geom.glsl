@@ -1,4 +1,4 @@
-// Adjacency SIL, triangle-ID pass, geometry stage (Mower, "Fast Image-Space Silhouette Extraction", 3.1): every tessellated triangle
+// Edge-walk SIL, triangle-ID pass, geometry stage (Mower, "Fast Image-Space Silhouette Extraction", 3.1): every tessellated triangle
 // gets an ID (1-based, in emission order) and is written to the triangle SSBO as three
 // eye-relative corner positions (metres); w of the first corner is its facing, 1 when
 // n . (eye - p) > 0 (toward), 0 otherwise. Its "edge already drawn" flags (used by the detection
