@@ -79,6 +79,17 @@ PelResult photic_extremum_lines(const TriangleMesh& mesh, const PelGeometry& geo
                                 const std::vector<glm::vec3>& normals, const glm::vec3& eye,
                                 const PelOptions& options = {});
 
+// Line strength (Xie et al., "Photic Extremum Lines": a PEL is kept by its strength along the
+// line, not point by point, as ridge-valley lines are by the integral of curvature): for each
+// segment, the integral of g (the normalised |grad phi|) along the connected line it belongs to,
+// sum of strength x length over the segments joined end to end (end points on the same mesh edge,
+// as chain_segments joins them); mesh units of length.
+std::vector<float> pel_line_strengths(const std::vector<ObjectSegment>& segments);
+
+// The segments whose line's strength (pel_line_strengths) is at least `min_strength` (mesh
+// units); min_strength <= 0 keeps every segment. Short noisy loops go, long lines stay whole.
+std::vector<ObjectSegment> strong_pel_lines(const std::vector<ObjectSegment>& segments, float min_strength);
+
 // Object-space silhouettes: per triangle, the segment where the interpolated n . (eye - p)
 // crosses zero (front and back facing regions meet).
 std::vector<ObjectSegment> mesh_silhouettes(const TriangleMesh& mesh,

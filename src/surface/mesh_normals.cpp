@@ -20,6 +20,21 @@ float corner_angle(const glm::vec3& at, const glm::vec3& a, const glm::vec3& b) 
     return std::acos(std::clamp(glm::dot(u, v) / (lu * lv), -1.0f, 1.0f));
 }
 
+// The edge neighbours of each vertex, sorted, without repeats.
+std::vector<std::vector<unsigned>> vertex_neighbours(const TriangleMesh& mesh) {
+    std::vector<std::vector<unsigned>> nb(mesh.positions.size());
+    for (const glm::uvec3& t : mesh.triangles)
+        for (int k = 0; k < 3; ++k) {
+            nb[t[k]].push_back(t[(k + 1) % 3]);
+            nb[t[k]].push_back(t[(k + 2) % 3]);
+        }
+    for (auto& list : nb) {
+        std::sort(list.begin(), list.end());
+        list.erase(std::unique(list.begin(), list.end()), list.end());
+    }
+    return nb;
+}
+
 }  // namespace
 
 std::vector<glm::vec3> mesh_face_normals(const TriangleMesh& mesh) {
@@ -51,16 +66,7 @@ std::vector<glm::vec3> mesh_vertex_normals(const TriangleMesh& mesh, NormalWeigh
 std::vector<glm::vec3> smooth_vertex_normals(const TriangleMesh& mesh, std::vector<glm::vec3> normals,
                                              int iterations, float lambda) {
     if (iterations <= 0) return normals;
-    std::vector<std::vector<unsigned>> nb(mesh.positions.size());
-    for (const glm::uvec3& t : mesh.triangles)
-        for (int k = 0; k < 3; ++k) {
-            nb[t[k]].push_back(t[(k + 1) % 3]);
-            nb[t[k]].push_back(t[(k + 2) % 3]);
-        }
-    for (auto& list : nb) {
-        std::sort(list.begin(), list.end());
-        list.erase(std::unique(list.begin(), list.end()), list.end());
-    }
+    const std::vector<std::vector<unsigned>> nb = vertex_neighbours(mesh);
     std::vector<glm::vec3> next(normals.size());
     for (int it = 0; it < iterations; ++it) {
         for (std::size_t i = 0; i < normals.size(); ++i) {
@@ -73,6 +79,54 @@ std::vector<glm::vec3> smooth_vertex_normals(const TriangleMesh& mesh, std::vect
         normals.swap(next);
     }
     return normals;
+}
+
+float mean_edge_length(const TriangleMesh& mesh) {
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (const glm::uvec3& t : mesh.triangles)
+        for (int k = 0; k < 3; ++k) {
+            sum += glm::length(mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]]);
+            ++n;
+        }
+    return n ? float(sum / double(n)) : 0.0f;
+}
+
+std::vector<glm::vec3> gaussian_filter_normals(const TriangleMesh& mesh, const std::vector<glm::vec3>& normals,
+                                               float sigma) {
+    if (!(sigma > 0.0f)) return normals;
+    const std::vector<std::vector<unsigned>> nb = vertex_neighbours(mesh);
+    std::vector<float> area(mesh.positions.size(), 0.0f);  // a third of each incident triangle
+    for (const glm::uvec3& t : mesh.triangles) {
+        const float a = glm::length(glm::cross(mesh.positions[t.y] - mesh.positions[t.x],
+                                               mesh.positions[t.z] - mesh.positions[t.x])) / 6.0f;
+        for (int k = 0; k < 3; ++k) area[t[k]] += a;
+    }
+    const float reach2 = 4.0f * sigma * sigma, inv = 1.0f / (2.0f * sigma * sigma);
+    std::vector<glm::vec3> out(normals.size());
+    std::vector<unsigned> seen(normals.size(), ~0u), stack;
+    for (unsigned i = 0; i < normals.size(); ++i) {
+        // The vertices within 2 sigma of p_i reached through edges that stay within 2 sigma.
+        const glm::vec3 pi = mesh.positions[i];
+        glm::vec3 sum(0.0f);
+        stack.assign(1, i);
+        seen[i] = i;
+        while (!stack.empty()) {
+            const unsigned j = stack.back();
+            stack.pop_back();
+            const glm::vec3 d = mesh.positions[j] - pi;
+            sum += std::max(area[j], 1e-30f) * std::exp(-glm::dot(d, d) * inv) * normals[j];
+            for (unsigned k : nb[j]) {
+                if (seen[k] == i) continue;
+                const glm::vec3 e = mesh.positions[k] - pi;
+                if (glm::dot(e, e) > reach2) continue;
+                seen[k] = i;
+                stack.push_back(k);
+            }
+        }
+        out[i] = glm::length(sum) > 0.0f ? glm::normalize(sum) : normals[i];
+    }
+    return out;
 }
 
 SurfaceMesh surface_mesh_from(const TriangleMesh& mesh, const std::vector<glm::vec3>& normals) {
