@@ -42,8 +42,8 @@ TEST(CreaseScore, Table5CanOnlyDrawUnderPaper) {
     const CreaseParams thirds = weights(0.1, 0.3, 0.6, ScoreNormalisation::thirds);
     const CreaseParams paper = weights(0.1, 0.3, 0.6, ScoreNormalisation::paper);
     EXPECT_LT(crease_score(thirds, 1, 1, 1, 0.8), 0.0);   // 1/3 - 0.8
-    // Figure 15's .25 under "thirds" asks for a weighted sum of .75: full flow and ic >= .5 at least.
-    EXPECT_LT(crease_score(thirds, 1, 0.49, 1, 0.25), 0.0);
+    // Figure 15's .25 under "thirds" asks for a weighted sum of .75: on flat ground, full flow and ic >= .5.
+    EXPECT_LT(crease_score(thirds, 0, 0.49, 1, 0.25), 0.0);
     EXPECT_GT(crease_score(paper, 1, 1, 1, 0.8), 0.0);
     // Under "paper" .8 asks for strong flow: with no flow the best is .1 + .3 = .4.
     EXPECT_LT(crease_score(paper, 1, 1, 0, 0.8), 0.0);
