@@ -6,6 +6,14 @@
 // w = grad phi / |grad phi|, D_w g and D_w^2 g; PELs are the zero crossings of D_w g on edges
 // where D_w^2 g < 0 and g >= tau, at most one segment per triangle. Also object-space mesh
 // silhouettes: the zero set of n . (eye - p) interpolated inside each triangle.
+// Post-processing as the paper does it (docs/reproduction.md, "PELs"): PELs take third derivatives
+// of the surface (phi is first order in the normal, D_w g and D_w^2 g two more), so noise in the
+// normal field is amplified and the paper smooths the normals before the illumination is
+// differentiated; penink's filter is gaussian_filter_normals (surface/mesh_normals.hpp), sigma in
+// mean edge lengths ([pels] normal_filter). Two quantities are thresholded: per point g >= tau
+// (PelOptions::threshold, [pels] threshold), and per line its strength, the integral of g along
+// it (pel_line_strengths / strong_pel_lines, [pels] line_strength in mean edge lengths), which
+// drops the short loops noise leaves while long weak-ish lines stay whole.
 // All positions are in the mesh's world frame and units; timings in milliseconds.
 #pragma once
 #include <cstdint>
