@@ -5,9 +5,10 @@
 //   thirds (default): rs = (sw sc + iw ic + fw fc) / 3              - rs_min(d)
 //   paper:            rs = (sw sc + iw ic + fw fc) / (sw + iw + fw) - rs_min(d)
 // with rs_min(d) = min_score + distance_attenuation d / D; drawn where rs >= 0. "paper" is the
-// weighted mean, in [0, 1] for any weights, the reading under which the paper's Table 5 (weights
-// .1/.3/.6, min score .8) and Figure 15 (min scores .10/.19/.25) draw (docs/reproduction.md):
-// with /3 those weights score at most 1/3, below every such min score but .10.
+// weighted mean, in [0, 1] for any weights, and equal to /3 when every weight is 1 (eq. 6's /3 is
+// the mean of three terms; Table 5's weights .1/.3/.6 already sum to 1). Under it the paper's
+// Table 5 weights with Figure 15's min scores .10/.19/.25 draw less at each step; with /3 those
+// weights score at most 1/3 and draw next to nothing from .19 on (docs/reproduction.md, measured).
 // One type for both layers; the scene ([creases], [ridges]), the DM pass and docs/conventions.md
 // use these defaults.
 #pragma once
