@@ -102,29 +102,51 @@ std::vector<glm::vec3> gaussian_filter_normals(const TriangleMesh& mesh, const s
                                                mesh.positions[t.z] - mesh.positions[t.x])) / 6.0f;
         for (int k = 0; k < 3; ++k) area[t[k]] += a;
     }
-    const float reach2 = 4.0f * sigma * sigma, inv = 1.0f / (2.0f * sigma * sigma);
+    const double reach2 = 4.0 * sigma * sigma, inv = 1.0 / (2.0 * double(sigma) * sigma);
     std::vector<glm::vec3> out(normals.size());
-    std::vector<unsigned> seen(normals.size(), ~0u), stack;
+    std::vector<unsigned> seen(normals.size(), ~0u), stack, patch;
     for (unsigned i = 0; i < normals.size(); ++i) {
-        // The vertices within 2 sigma of p_i reached through edges that stay within 2 sigma.
-        const glm::vec3 pi = mesh.positions[i];
-        glm::vec3 sum(0.0f);
+        // The patch: vertices within 2 sigma of p_i reached through edges that stay within 2 sigma.
+        const glm::dvec3 pi(mesh.positions[i]), ni(normals[i]);
+        patch.clear();
         stack.assign(1, i);
         seen[i] = i;
         while (!stack.empty()) {
             const unsigned j = stack.back();
             stack.pop_back();
-            const glm::vec3 d = mesh.positions[j] - pi;
-            sum += std::max(area[j], 1e-30f) * std::exp(-glm::dot(d, d) * inv) * normals[j];
+            patch.push_back(j);
             for (unsigned k : nb[j]) {
                 if (seen[k] == i) continue;
-                const glm::vec3 e = mesh.positions[k] - pi;
+                const glm::dvec3 e = glm::dvec3(mesh.positions[k]) - pi;
                 if (glm::dot(e, e) > reach2) continue;
                 seen[k] = i;
                 stack.push_back(k);
             }
         }
-        out[i] = glm::length(sum) > 0.0f ? glm::normalize(sum) : normals[i];
+        // Tangent offsets in a basis (u, v) of the plane normal to n_i (Duff et al. 2017 basis).
+        const double sign = ni.z >= 0.0 ? 1.0 : -1.0, a = -1.0 / (sign + ni.z), b = ni.x * ni.y * a;
+        const glm::dvec3 u(1.0 + sign * ni.x * ni.x * a, sign * b, -sign * ni.x), v(b, sign + ni.y * ni.y * a, -ni.y);
+        double m[2] = {0, 0}, M[3] = {0, 0, 0};  // first moment; second moment (xx, xy, yy)
+        for (unsigned j : patch) {
+            const glm::dvec3 d = glm::dvec3(mesh.positions[j]) - pi;
+            const double g = std::max(double(area[j]), 1e-30) * std::exp(-glm::dot(d, d) * inv);
+            const double x = glm::dot(d, u), y = glm::dot(d, v);
+            m[0] += g * x, m[1] += g * y, M[0] += g * x * x, M[1] += g * x * y, M[2] += g * y * y;
+        }
+        // Weights g_j (1 - c . t_j) with c = M^-1 m have no first moment: on a sphere (normals =
+        // positions / r) the mean is then exactly radial, so the filter leaves a clean smooth
+        // surface's normals alone instead of tilting them towards the patch's centroid.
+        const double det = M[0] * M[2] - M[1] * M[1];
+        double c[2] = {0, 0};
+        if (det > 1e-12 * (M[0] + M[2]) * (M[0] + M[2]))
+            c[0] = (M[2] * m[0] - M[1] * m[1]) / det, c[1] = (M[0] * m[1] - M[1] * m[0]) / det;
+        glm::dvec3 sum(0.0);
+        for (unsigned j : patch) {
+            const glm::dvec3 d = glm::dvec3(mesh.positions[j]) - pi;
+            const double g = std::max(double(area[j]), 1e-30) * std::exp(-glm::dot(d, d) * inv);
+            sum += g * (1.0 - c[0] * glm::dot(d, u) - c[1] * glm::dot(d, v)) * glm::dvec3(normals[j]);
+        }
+        out[i] = glm::length(sum) > 0.0 ? glm::vec3(glm::normalize(sum)) : normals[i];
     }
     return out;
 }

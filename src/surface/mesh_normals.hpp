@@ -32,11 +32,14 @@ std::vector<glm::vec3> smooth_vertex_normals(const TriangleMesh& mesh, std::vect
 // Mean length of the triangles' edges (each interior edge counted twice); 0 with no triangles.
 float mean_edge_length(const TriangleMesh& mesh);
 
-// n_i <- normalize(sum_j a_j exp(-|p_j - p_i|^2 / (2 sigma^2)) n_j) over the vertices j within
-// 2 sigma of p_i that are reached from i through edges (neighbours within 2 sigma of p_i): the
-// surface neighbourhood, so two sheets close in space (a thin part) do not mix. a_j = a third of
-// the area of j's triangles. One pass; sigma in mesh units; sigma <= 0 returns the input. Cost:
-// the neighbourhood's size per vertex (about (2 sigma / edge)^2 pi vertices).
+// n_i <- normalize(sum_j w_j n_j) over the vertices j within 2 sigma of p_i that are reached
+// from i through edges (neighbours within 2 sigma of p_i): the surface neighbourhood, so two
+// sheets close in space (a thin part) do not mix. w_j = a_j exp(-|p_j - p_i|^2 / (2 sigma^2))
+// (1 - c . t_j), a_j = a third of the area of j's triangles, t_j = p_j - p_i in the tangent plane
+// of n_i, c chosen so that sum w_j t_j = 0 (local linear correction: on an irregular mesh a plain
+// Gaussian mean tilts every normal towards its patch's centroid, and PELs, third derivatives,
+// turn that tilt into spurious lines). One pass; sigma in mesh units; sigma <= 0 returns the
+// input. Cost: the neighbourhood's size per vertex (about pi (2 sigma / edge)^2 vertices).
 std::vector<glm::vec3> gaussian_filter_normals(const TriangleMesh& mesh, const std::vector<glm::vec3>& normals,
                                                float sigma);
 

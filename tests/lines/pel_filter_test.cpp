@@ -8,7 +8,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 
 #include <glm/geometric.hpp>
 
@@ -75,6 +74,10 @@ TEST(PelFilter, MeanEdgeLengthOfTheIcosphere) {
     EXPECT_LT(s.edge, 1.25f / 32.0f);
 }
 
+// Measured (noise 0.002; error rad, length): clean 0.0005, 6.28; noisy 0.225, 41.6; filtered with
+// sigma = 0.75, 1, 1.5, 2.5 edges: 0.136, 22.4; 0.090, 13.6; 0.041, 8.0; 0.011, 6.35, the clean
+// sphere unchanged by each. A plain Gaussian mean (no first-moment correction) gave the clean sphere
+// itself 0.16-0.20, 15-25, and Laplacian smoothing (1-10 passes) 0.06-0.20: both tilt normals.
 TEST(PelFilter, GaussianNormalFilterBringsNoisyPelsBackToTheTerminator) {
     const Sphere s;
     const auto clean_n = radial_normals(s.mesh), noisy_n = noisy(clean_n, 0.002f, 42);
@@ -85,9 +88,6 @@ TEST(PelFilter, GaussianNormalFilterBringsNoisyPelsBackToTheTerminator) {
     // a symmetric patch is radial.
     const PelMeasure clean_filtered =
         measure(s.pels(gaussian_filter_normals(s.mesh, clean_n, 1.5f * s.edge)), s.light);
-    std::printf("clean %.4f %.2f, noisy %.4f %.2f, filtered %.4f %.2f, clean filtered %.4f %.2f\n", clean.error,
-                clean.length, raw.error, raw.length, filtered.error, filtered.length, clean_filtered.error,
-                clean_filtered.length);
     RecordProperty("noisy_error_length", std::to_string(raw.error) + " " + std::to_string(raw.length));
     RecordProperty("filtered_error_length", std::to_string(filtered.error) + " " + std::to_string(filtered.length));
     EXPECT_LT(clean.error, 0.002);
@@ -116,12 +116,13 @@ TEST(PelFilter, LineStrengthDropsShortNoisyLinesAndKeepsTheGreatCircle) {
     EXPECT_TRUE(strong_pel_lines(clean, 7.0f).empty());  // above the circle's strength
 
     const auto raw = s.pels(noisy(clean_n, 0.001f, 42));
+    // Measured: error 0.134 -> 0.038, length 25.4 -> 3.2 (1551 -> 184 segments): the noise's loops
+    // go, and with them the pieces the noise broke off the terminator.
     const auto kept = strong_pel_lines(raw, 20.0f * s.edge);
     const PelMeasure before = measure(raw, s.light), after = measure(kept, s.light);
-    std::printf("line strength: before %.4f %.2f (%zu), after %.4f %.2f (%zu)\n", before.error, before.length,
-                raw.size(), after.error, after.length, kept.size());
     RecordProperty("before_error_length", std::to_string(before.error) + " " + std::to_string(before.length));
     RecordProperty("after_error_length", std::to_string(after.error) + " " + std::to_string(after.length));
     EXPECT_LT(after.error, 0.5 * before.error);
     EXPECT_LT(std::abs(after.length - 2.0 * M_PI), 0.5 * std::abs(before.length - 2.0 * M_PI));
 }
+
