@@ -1,7 +1,8 @@
 // DM pass (Mower, "Concurrent Drainage Network Rendering", eq. 1-6; conventions.md): scores
 // every drainage (or divide) vertex and tests it against the TFT eye-distance texture.
 //   sc = 1 - cos(slope) = 1 - n.z, ic = 1 - clamp(n . l, 0, 1), fc = flow normalised per basin,
-//   rs = (sw sc + iw ic + fw fc) / 3 - rs_min(d),  rs_min(d) = min_score + attenuation * d / D.
+//   rs = (sw sc + iw ic + fw fc) / u_divisor - rs_min(d),  rs_min(d) = min_score + attenuation * d / D,
+//   u_divisor = 3 ("thirds") or sw + iw + fw ("paper"): crease_score_divisor, core/crease_params.hpp.
 // The vertex is lifted off the surface along its normal by u_lift_px pixel footprints (no depth
 // fighting) and is visible when its eye distance is within a grazing-aware tolerance of the
 // nearest toward-facing surface at its pixel, or when that pixel holds no surface (a silhouette
@@ -25,6 +26,7 @@ uniform vec4 u_view;
 uniform vec2 u_footprint;      // a pixel's world size at depth d: x d + y
 uniform vec3 u_light;          // unit vector towards the light
 uniform vec3 u_weights;        // slope, illumination, flow weights
+uniform float u_divisor;      // 3, or the sum of the weights
 uniform float u_min_score;
 uniform float u_attenuation;
 uniform float u_max_distance;  // D: largest depth of visible terrain in the frame
@@ -45,7 +47,7 @@ void main() {
     float sc = 1.0 - clamp(n.z, 0.0, 1.0);
     float ic = 1.0 - clamp(dot(n, u_light), 0.0, 1.0);
     float rs_min = u_min_score + u_attenuation * d / u_max_distance;
-    float rs = dot(u_weights, vec3(sc, ic, flow)) / 3.0 - rs_min;
+    float rs = dot(u_weights, vec3(sc, ic, flow)) / u_divisor - rs_min;
 
     float footprint = u_footprint.x * d + u_footprint.y;
     vec3 lifted = p + n * (u_lift_px * footprint);

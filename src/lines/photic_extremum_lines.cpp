@@ -266,4 +266,35 @@ std::vector<ObjectSegment> curved_only(std::vector<ObjectSegment> segs, const st
     return segs;
 }
 
+std::vector<float> pel_line_strengths(const std::vector<ObjectSegment>& segments) {
+    // Union-find over segments sharing an end (end_key, as chain_segments joins them).
+    std::vector<std::size_t> parent(segments.size());
+    for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = i;
+    const auto root = [&](std::size_t i) {
+        while (parent[i] != i) i = parent[i] = parent[parent[i]];
+        return i;
+    };
+    std::map<EndKey, std::size_t> first;
+    for (std::size_t i = 0; i < segments.size(); ++i)
+        for (int e = 0; e < 2; ++e) {
+            const auto [it, fresh] = first.emplace(end_key(segments[i], e), i);
+            if (!fresh) parent[root(i)] = root(it->second);
+        }
+    std::vector<double> sum(segments.size(), 0.0);
+    for (std::size_t i = 0; i < segments.size(); ++i)
+        sum[root(i)] += double(segments[i].strength) * glm::length(segments[i].b - segments[i].a);
+    std::vector<float> out(segments.size());
+    for (std::size_t i = 0; i < segments.size(); ++i) out[i] = float(sum[root(i)]);
+    return out;
+}
+
+std::vector<ObjectSegment> strong_pel_lines(const std::vector<ObjectSegment>& segments, float min_strength) {
+    if (!(min_strength > 0.0f)) return segments;
+    const std::vector<float> strength = pel_line_strengths(segments);
+    std::vector<ObjectSegment> out;
+    for (std::size_t i = 0; i < segments.size(); ++i)
+        if (strength[i] >= min_strength) out.push_back(segments[i]);
+    return out;
+}
+
 }  // namespace penink

@@ -6,6 +6,14 @@
 // w = grad phi / |grad phi|, D_w g and D_w^2 g; PELs are the zero crossings of D_w g on edges
 // where D_w^2 g < 0 and g >= tau, at most one segment per triangle. Also object-space mesh
 // silhouettes: the zero set of n . (eye - p) interpolated inside each triangle.
+// Post-processing as the paper does it (docs/reproduction.md, "PELs"): PELs take third derivatives
+// of the surface (phi is first order in the normal, D_w g and D_w^2 g two more), so noise in the
+// normal field is amplified and the paper smooths the normals before the illumination is
+// differentiated; penink's filter is gaussian_filter_normals (surface/mesh_normals.hpp), sigma in
+// mean edge lengths ([pels] normal_filter). Two quantities are thresholded: per point g >= tau
+// (PelOptions::threshold, [pels] threshold), and per line its strength, the integral of g along
+// it (pel_line_strengths / strong_pel_lines, [pels] line_strength in mean edge lengths), which
+// drops the short loops noise leaves while long weak-ish lines stay whole.
 // All positions are in the mesh's world frame and units; timings in milliseconds.
 #pragma once
 #include <cstdint>
@@ -78,6 +86,17 @@ std::vector<glm::vec3> vertex_gradient(const TriangleMesh& mesh, const PelGeomet
 PelResult photic_extremum_lines(const TriangleMesh& mesh, const PelGeometry& geom,
                                 const std::vector<glm::vec3>& normals, const glm::vec3& eye,
                                 const PelOptions& options = {});
+
+// Line strength (Xie et al., "Photic Extremum Lines": a PEL is kept by its strength along the
+// line, not point by point, as ridge-valley lines are by the integral of curvature): for each
+// segment, the integral of g (the normalised |grad phi|) along the connected line it belongs to,
+// sum of strength x length over the segments joined end to end (end points on the same mesh edge,
+// as chain_segments joins them); mesh units of length.
+std::vector<float> pel_line_strengths(const std::vector<ObjectSegment>& segments);
+
+// The segments whose line's strength (pel_line_strengths) is at least `min_strength` (mesh
+// units); min_strength <= 0 keeps every segment. Short noisy loops go, long lines stay whole.
+std::vector<ObjectSegment> strong_pel_lines(const std::vector<ObjectSegment>& segments, float min_strength);
 
 // Object-space silhouettes: per triangle, the segment where the interpolated n . (eye - p)
 // crosses zero (front and back facing regions meet).

@@ -25,6 +25,7 @@ double DmPass::run(const DmFrame& f, const CreaseParams& s, std::vector<float>& 
     set_camera_uniforms(*gl_, p, cam);
     gl_->Uniform3f(loc("u_light"), f.light.x, f.light.y, f.light.z);
     gl_->Uniform3f(loc("u_weights"), float(s.slope_weight), float(s.illumination_weight), float(s.flow_weight));
+    gl_->Uniform1f(loc("u_divisor"), float(crease_score_divisor(s)));
     gl_->Uniform1f(loc("u_min_score"), float(s.min_score));
     gl_->Uniform1f(loc("u_attenuation"), float(s.distance_attenuation));
     gl_->Uniform1f(loc("u_max_distance"), std::max(f.max_distance, 1e-6f));

@@ -93,12 +93,15 @@ MeshLines mesh_lines(const TriangleMesh& mesh, const MeshScene& ms, const Scene&
     out.times.features = lap_ms(t0);
     const TriangleMesh smooth = split_at_creases(mesh, edges);
     const auto normals = smooth_vertex_normals(smooth, mesh_vertex_normals(smooth, NormalWeighting::angle), ms.smoothing);
+    const float edge = mean_edge_length(smooth);
     out.times.normals = lap_ms(t0);
     if (ms.pels) {
         const PelGeometry geom = pel_geometry(smooth);
         out.times.pel_geometry = lap_ms(t0);
-        const PelResult pel = photic_extremum_lines(smooth, geom, normals, eye, pel_options(ms));
-        out.pels = chain_segments(curved_only(pel.segments, normals), "pel");
+        // Xie et al., "Photic Extremum Lines": PELs of the filtered normal field, kept by line strength.
+        const auto filtered = gaussian_filter_normals(smooth, normals, ms.normal_filter * edge);
+        const PelResult pel = photic_extremum_lines(smooth, geom, filtered, eye, pel_options(ms));
+        out.pels = chain_segments(strong_pel_lines(curved_only(pel.segments, filtered), ms.line_strength * edge), "pel");
         out.times.pel = lap_ms(t0);
     }
     out.silhouettes = chain_segments(mesh_silhouettes(smooth, normals, eye), "silhouette");
@@ -141,7 +144,8 @@ void fill_metadata(const Scene& scene, const MeshScene& ms, const Camera& c, Dra
     cam << "eye " << format_vec(c.eye) << " (z-up world), azimuth " << c.azimuth << ", altitude " << c.altitude
         << ", fov " << c.fov << ", " << c.width << "x" << c.height;
     params << "up " << (ms.y_up ? "y" : "z") << ", pels " << (ms.pels ? "on" : "off") << " threshold "
-           << ms.pel_threshold << " smoothing " << ms.smoothing << ", crease_angle " << ms.crease_angle
+           << ms.pel_threshold << " smoothing " << ms.smoothing << " normal_filter " << ms.normal_filter
+           << " line_strength " << ms.line_strength << ", crease_angle " << ms.crease_angle
            << ", textures " << (ms.textures ? "on" : "off") << " threshold " << ms.texture_threshold
            << ", seed " << scene.seed << ", style " << scene.style;
     d.metadata["source"] = ms.path;

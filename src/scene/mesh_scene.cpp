@@ -82,6 +82,9 @@ void read_materials(const Scene& s, MeshScene& ms) {
 void check_ranges(const Scene& s, const MeshScene& ms) {
     if (!(ms.pel_threshold >= 0.0f)) bad(s, "pels", "threshold", "must be >= 0");
     if (ms.smoothing < 0 || ms.smoothing > 1000) bad(s, "pels", "smoothing", "must be between 0 and 1000");
+    if (!(ms.normal_filter >= 0.0f && ms.normal_filter <= 20.0f))
+        bad(s, "pels", "normal_filter", "must be between 0 and 20 (mean edge lengths)");
+    if (!(ms.line_strength >= 0.0f && ms.line_strength <= 1e6f)) bad(s, "pels", "line_strength", "must be >= 0");
     if (!(ms.crease_angle >= 0.0f && ms.crease_angle <= 180.0f))
         bad(s, "features", "crease_angle", "must be between 0 and 180 degrees");
     if (!(ms.texture_confidence >= 0.0f && ms.texture_confidence <= 1.0f))
@@ -113,6 +116,8 @@ MeshScene load_mesh_scene(const Scene& s) {
     float smoothing = float(ms.smoothing);
     read_float(s, "pels", "smoothing", smoothing);
     ms.smoothing = int(smoothing);
+    read_float(s, "pels", "normal_filter", ms.normal_filter);
+    read_float(s, "pels", "line_strength", ms.line_strength);
     read_bool(s, "features", "enabled", ms.features);
     read_float(s, "features", "crease_angle", ms.crease_angle);
     read_bool(s, "textures", "enabled", ms.textures);

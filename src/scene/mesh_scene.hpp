@@ -3,7 +3,7 @@
 // before the y-up -> z-up conversion; roll is not supported: `up` must be roughly the mesh's up
 // axis), fov, width, height, azimuth/altitude for the auto-framed view; [light] direction
 // (towards the light, mesh frame; default: light at the camera); [pels] enabled, threshold,
-// smoothing; [features] enabled, crease_angle (degrees); [textures] enabled, threshold, library,
+// smoothing, normal_filter, line_strength; [features] enabled, crease_angle (degrees); [textures] enabled, threshold, library,
 // scale, confidence, material.NAME = "bricks". Also the Camera and light of the z-up world.
 #pragma once
 #include <map>
@@ -26,7 +26,11 @@ struct MeshScene {
     std::optional<glm::dvec3> light;        // [light] direction, mesh frame, towards the light
     bool pels = true;
     float pel_threshold = 0.1f;   // tau on the normalised |grad phi| (0..1)
-    int smoothing = 0;            // normal smoothing iterations
+    int smoothing = 0;            // Laplacian normal smoothing iterations
+    // Xie et al., "Photic Extremum Lines" post-processing (docs/reproduction.md, PELs), both in
+    // mean edge lengths of the mesh drawn (after subdivision), so they follow its resolution:
+    float normal_filter = 0.0f;   // sigma of the Gaussian normal filter; 0 = none
+    float line_strength = 0.0f;   // least integral of g along a PEL line; 0 = keep every line
     bool features = true;
     float crease_angle = 40.0f;   // degrees
     bool textures = true;

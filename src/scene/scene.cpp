@@ -33,7 +33,7 @@ struct KnownTable {
 
 const std::vector<KnownTable>& known_tables() {
     static const std::vector<std::string> crease = {"slope_weight", "illumination_weight", "flow_weight", "min_score",
-                                                    "distance_attenuation", "spacing_px", "enabled"};
+                                                    "distance_attenuation", "spacing_px", "normalisation", "enabled"};
     static const std::vector<KnownTable> tables = {
         {"terrain", {"dem", "vertical_exaggeration", "sea_level"}},
         {"camera", {"projection", "position", "elevation", "azimuth", "altitude", "fov", "width", "height", "eye", "target", "up"}},
@@ -47,7 +47,7 @@ const std::vector<KnownTable>& known_tables() {
         {"drainage", {"routing"}},
         {"style", {}},
         {"mesh", {"file", "up", "subdivide"}},
-        {"pels", {"enabled", "threshold", "smoothing"}},
+        {"pels", {"enabled", "threshold", "smoothing", "normal_filter", "line_strength"}},
         {"features", {"enabled", "crease_angle"}},
         {"textures", {"enabled", "threshold", "confidence", "scale", "library", "material"}},
     };
@@ -136,6 +136,15 @@ void read_crease(const toml::value& root, const char* section, CreaseParams& p, 
     read_number(t, "min_score", p.min_score, file, section);
     read_number(t, "distance_attenuation", p.distance_attenuation, file, section);
     read_number(t, "spacing_px", p.spacing_px, file, section);
+    if (has_key(t, "normalisation")) {
+        std::string name;
+        read_key(t, "normalisation", name, file, section);
+        const auto n = score_normalisation_named(name);
+        if (!n)
+            throw Error("scene", file, "[" + std::string(section) + "] normalisation must be \"thirds\" or \"paper\" (got \"" +
+                                           name + "\")");
+        p.normalisation = *n;
+    }
     read_key(t, "enabled", p.enabled, file, section);
 }
 

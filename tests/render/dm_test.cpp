@@ -1,5 +1,6 @@
 // DM pass: crease scores of vertices on a tilted plane equal the closed form of conventions.md
-// (rs = (sw sc + iw ic + fw fc)/3 - min_score - attenuation d / D) computed on the CPU; vertices
+// (rs = (sw sc + iw ic + fw fc)/3 - min_score - attenuation d / D, or divided by sw + iw + fw with
+// normalisation "paper") computed on the CPU; vertices
 // behind a ridge (occlusion found by marching the eye ray against the analytic height) come back
 // dm_hidden, those in front visible; vertices outside the frustum hidden; min_score and
 // distance_attenuation act as the formula says.
@@ -55,11 +56,16 @@ bool inside_by(const Camera& cam, const glm::vec3& p, double margin) {
     return px.x >= margin && px.y >= margin && px.x <= cam.width - margin && px.y <= cam.height - margin;
 }
 
+// The closed form, written out here (not crease_score) so the test checks the shader against the
+// formula itself: the weighted sum over 3 ("thirds") or over the sum of the weights ("paper").
 double expected_score(const DmVertex& v, const Camera& cam, glm::dvec3 light, const CreaseParams& s, double D) {
     const glm::dvec3 n(v.normal);
     const double sc = 1.0 - n.z, ic = 1.0 - std::clamp(glm::dot(n, light), 0.0, 1.0);
     const double d = glm::length(glm::dvec3(v.position) - cam.eye);
-    return (s.slope_weight * sc + s.illumination_weight * ic + s.flow_weight * v.flow) / 3.0 -
+    const double divisor = s.normalisation == ScoreNormalisation::paper
+                               ? s.slope_weight + s.illumination_weight + s.flow_weight
+                               : 3.0;
+    return (s.slope_weight * sc + s.illumination_weight * ic + s.flow_weight * v.flow) / divisor -
            (s.min_score + s.distance_attenuation * d / D);
 }
 
@@ -111,13 +117,14 @@ std::vector<float> run_dm(const PlaneScene& s, TerrainRenderer& r, float D, cons
 
 }  // namespace
 
-TEST(DmPass, TiltedPlaneScoresMatchClosedForm) {
+namespace {
+
+void expect_closed_form(const CreaseParams& score) {
     const PlaneScene s;
     TerrainRenderer renderer(test::test_context().gl(), s.mesh, s.cam.width, s.cam.height);
     const FrameImages img = renderer.render(s.cam, {});
     const float D = max_distance(img.toward);
     ASSERT_GT(D, 1000.0f);
-    const CreaseParams score{2.0f, 0.5f, 4.0f, 0.12f, 0.3f};
     const std::vector<float> scores = run_dm(s, renderer, D, score);
     std::size_t checked = 0, outside = 0;
     for (std::size_t i = 0; i < s.vertices.size(); ++i) {
@@ -130,10 +137,23 @@ TEST(DmPass, TiltedPlaneScoresMatchClosedForm) {
             ++outside;
         }
     }
-    RecordProperty("visible_checked", int(checked));
-    RecordProperty("outside_hidden", int(outside));
     EXPECT_GT(checked, 300u);
     EXPECT_GT(outside, 20u);
+}
+
+}  // namespace
+
+TEST(DmPass, TiltedPlaneScoresMatchClosedForm) { expect_closed_form(CreaseParams{2.0f, 0.5f, 4.0f, 0.12f, 0.3f}); }
+
+// The paper's Table 5 weights (.1, .3, .6) under "paper": the weighted mean, here divided by 1;
+// and weights summing to 6.5 (the defaults) divided by 6.5, not 3.
+TEST(DmPass, PaperNormalisationDividesByTheSumOfTheWeights) {
+    CreaseParams table5{0.1, 0.3, 0.6, 0.5, 0.3};
+    table5.normalisation = ScoreNormalisation::paper;
+    expect_closed_form(table5);
+    CreaseParams defaults{2.0, 0.5, 4.0, 0.12, 0.3};
+    defaults.normalisation = ScoreNormalisation::paper;
+    expect_closed_form(defaults);
 }
 
 TEST(DmPass, MinScoreAndAttenuationActAsTheFormulaSays) {

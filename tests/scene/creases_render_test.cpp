@@ -730,3 +730,34 @@ TEST(CreasesRender, StreamedCacheReadRebuildsACorruptRecord) {
     in_file.read(0, 0, v.size(), v.data());
     EXPECT_TRUE(v == built.creases.vertices);
 }
+
+// The creases paper's Table 5 weights (slope .1, illumination .3, flow .6) with Figure 15's min
+// scores .10, .19, .25: under "paper" (the weighted mean) each step draws less and .25 still draws;
+// under "thirds" every score is at most (.1 + .3 + .6) / 3 = 1/3 and from .19 on a vertex needs a
+// weighted sum of .57 (strong flow and deep shade), which volcano does not have: nothing is drawn.
+// Table 5's own .8 asks a weighted mean of .8 + attenuation, out of reach on volcano under both
+// (measured with examples/volcano_table5.toml: docs/reproduction.md).
+TEST(CreasesRender, Table5WeightsDrawUnderPaperNormalisationOnly) {
+    RenderedFrame f;
+    const auto strokes = [&](ScoreNormalisation n, double min_score) {
+        Scene s = f.scene;
+        s.creases.slope_weight = 0.1, s.creases.illumination_weight = 0.3, s.creases.flow_weight = 0.6;
+        s.creases.min_score = min_score, s.creases.normalisation = n;
+        const LayerStats st = layer_stats(f.draw(s).layer(LayerKind::creases), "crease", f.camera);
+        RecordProperty(std::string(score_normalisation_name(n)) + "_min" + std::to_string(int(std::lround(min_score * 100))),
+                       std::to_string(st.strokes) + " " + std::to_string(int(st.length)));
+        return st;
+    };
+    const LayerStats p10 = strokes(ScoreNormalisation::paper, 0.10), p19 = strokes(ScoreNormalisation::paper, 0.19),
+                     p25 = strokes(ScoreNormalisation::paper, 0.25), p80 = strokes(ScoreNormalisation::paper, 0.8);
+    const LayerStats t10 = strokes(ScoreNormalisation::thirds, 0.10), t19 = strokes(ScoreNormalisation::thirds, 0.19),
+                     t25 = strokes(ScoreNormalisation::thirds, 0.25), t80 = strokes(ScoreNormalisation::thirds, 0.8);
+    EXPECT_GT(p10.length, p19.length);
+    EXPECT_GE(p19.length, p25.length);
+    EXPECT_GT(p25.strokes, 0u);
+    EXPECT_GT(p10.length, t10.length);  // the same weights score 3x higher under "paper"
+    EXPECT_EQ(t19.strokes, 0u);
+    EXPECT_EQ(t25.strokes, 0u);
+    EXPECT_EQ(t80.strokes, 0u);
+    EXPECT_EQ(p80.strokes, 0u);
+}

@@ -2,7 +2,9 @@
 // columns in any order, quoting, optional columns, and the exact one-line errors.
 #include <gtest/gtest.h>
 
+#include "scene/flight_frames.hpp"
 #include "scene/flight_path.hpp"
+#include "scene/scene.hpp"
 #include "core/progress_bar.hpp"
 #include "core/error.hpp"
 
@@ -39,6 +41,31 @@ TEST(FlightPath, NamedColumnsQuotingAndOptionalValues) {
     EXPECT_EQ(r[1].position, "1757000 5917000");
     EXPECT_DOUBLE_EQ(r[1].elevation, 350.5);
     EXPECT_FALSE(r[1].min_score.has_value());  // empty cell: the scene's value
+}
+
+// The per-frame columns of examples/volcano_min_score.csv and volcano_light.csv (the creases
+// paper's Figures 15 and 16) reach the frame's scene; an empty cell keeps the scene's value, and
+// what no column names (the weights, the normalisation, ridges) stays as the scene has it.
+TEST(FlightPath, RecordValuesReachTheFrameScene) {
+    const std::string text =
+        "position,elevation,azimuth,altitude,light_azimuth,light_altitude,min_score\n"
+        "\"1 2\",400,45,-20,,,0.19\n\"1 2\",400,45,-20,120,25,\n";
+    const auto r = parse_flight_path(text, "path.csv");
+    ASSERT_EQ(r.size(), 2u);
+    Scene scene;
+    scene.light.azimuth = 315, scene.light.altitude = 40;
+    scene.creases.min_score = 0.8, scene.creases.normalisation = ScoreNormalisation::paper;
+    const Scene a = frame_scene(scene, r[0]), b = frame_scene(scene, r[1]);
+    EXPECT_DOUBLE_EQ(a.creases.min_score, 0.19);
+    EXPECT_DOUBLE_EQ(a.light.azimuth, 315.0);
+    EXPECT_DOUBLE_EQ(a.light.altitude, 40.0);
+    EXPECT_DOUBLE_EQ(b.creases.min_score, 0.8);
+    EXPECT_DOUBLE_EQ(b.light.azimuth, 120.0);
+    EXPECT_DOUBLE_EQ(b.light.altitude, 25.0);
+    for (const Scene* s : {&a, &b}) {
+        EXPECT_EQ(s->creases.normalisation, ScoreNormalisation::paper);
+        EXPECT_DOUBLE_EQ(s->ridges.min_score, scene.ridges.min_score);
+    }
 }
 
 TEST(FlightPath, SplitsQuotedFields) {
