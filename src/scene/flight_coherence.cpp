@@ -41,8 +41,9 @@ std::vector<std::vector<glm::vec2>> carry_strokes(const std::vector<Stroke>& str
     return out;
 }
 
-std::vector<CoherenceRow> flight_coherence(const Scene& scene, const std::string& flight_csv, GlContext& context,
+std::vector<CoherenceRow> flight_coherence(const Scene& flight_scene, const std::string& flight_csv, GlContext& context,
                                            double tolerance_px, const Log& log) {
+    Scene scene = flight_scene;  // its vertical exaggeration resolved by plan_flight
     Flight f = plan_flight(scene, flight_csv, false, log);
     const int w = scene.camera.width, h = scene.camera.height;
     TerrainFrames frames(context, scene_drainage(scene, f.dem, log), std::move(f.model), w, h, log,
