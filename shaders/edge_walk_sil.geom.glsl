@@ -1,16 +1,21 @@
 // Edge-walk SIL, triangle-ID pass, geometry stage (Mower, "Fast Image-Space Silhouette Extraction", 3.1): every tessellated triangle
 // gets an ID (1-based, in emission order) and is written to the triangle SSBO as three
 // eye-relative corner positions (metres); w of the first corner is its facing, 1 when
-// n . (eye - p) > 0 (toward), 0 otherwise. Its "edge already drawn" flags (used by the detection
+// n . (towards the viewer) > 0 (toward), 0 otherwise (common.glsl's camera: an orthographic
+// view's viewer direction is the view direction reversed). Its "edge already drawn" flags (used by the detection
 // pass to append each silhouette edge once) are cleared here, and its three edges are inserted
 // into the edge hash table (open addressing, key = the cell of the edge's mid-point, value =
 // ID * 4 + edge index), through which the detection pass finds a triangle's 3-space neighbours. Triangles past the buffer's capacity
 // are still counted (the host grows the buffer and redraws) and get ID 0 (none).
+#include "common.glsl"
+
 layout(triangles) in;
 layout(triangle_strip, max_vertices = 3) out;
 
-in vec3 t_from_eye[];
+in vec3 t_world[];
 out vec3 g_from_eye;
+uniform vec3 u_eye;
+uniform vec4 u_view;
 flat out uint g_id;
 
 layout(std430, binding = 0) buffer Counter { uint tri_count; uint tri_capacity; uint edge_count; uint edge_capacity; };
@@ -31,8 +36,8 @@ void main() {
     uint index = atomicAdd(tri_count, 1u);
     uint id = 0u;
     if (index < tri_capacity) {
-        vec3 a = t_from_eye[0], b = t_from_eye[1], c = t_from_eye[2];
-        float toward = dot(cross(b - a, c - a), -a) > 0.0 ? 1.0 : 0.0;
+        vec3 a = t_world[0] - u_eye, b = t_world[1] - u_eye, c = t_world[2] - u_eye;
+        float toward = dot(cross(b - a, c - a), toward_viewer(a, vec3(0.0), u_view)) > 0.0 ? 1.0 : 0.0;
         tri_corners[3u * index] = vec4(a, toward);
         tri_corners[3u * index + 1u] = vec4(b, 0.0);
         tri_corners[3u * index + 2u] = vec4(c, 0.0);
@@ -43,7 +48,7 @@ void main() {
         id = index + 1u;
     }
     for (int i = 0; i < 3; ++i) {
-        g_from_eye = t_from_eye[i];
+        g_from_eye = t_world[i] - u_eye;
         g_id = id;
         gl_Position = gl_in[i].gl_Position;
         EmitVertex();

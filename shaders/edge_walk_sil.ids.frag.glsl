@@ -5,6 +5,7 @@
 #include "common.glsl"
 
 in vec3 g_from_eye;
+uniform vec4 u_view;  // common.glsl's camera: depth along the view direction when orthographic
 flat in uint g_id;
 
 layout(binding = 0) uniform sampler2D u_toward;
@@ -14,7 +15,7 @@ uniform int u_width;
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
-    float d = length(g_from_eye);
+    float d = view_depth(g_from_eye, vec3(0.0), u_view);
     bool toward = gl_FrontFacing;
     float nearest = toward ? texelFetch(u_toward, p, 0).r : texelFetch(u_away, p, 0).r;
     if (g_id != 0u && d <= nearest * (1.0 + 1.0e-5))

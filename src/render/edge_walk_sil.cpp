@@ -120,6 +120,7 @@ double EdgeWalkSilPass::draw_lines(const Camera& camera, GLuint toward_texture, 
     const glm::mat4 vp_rel = relative_view_projection(camera);
     gl_->UseProgram(p);
     gl_->UniformMatrix4fv(uniform_location(*gl_, p, "u_view_proj_rel"), 1, GL_FALSE, glm::value_ptr(vp_rel));
+    set_camera_uniforms(*gl_, p, camera);
     gl_->Uniform1f(uniform_location(*gl_, p, "u_depth_tolerance"), options.depth_tolerance);
     gl_->BindTextureUnit(0, toward_texture);
     gl_->BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, edges_buf_.id());
