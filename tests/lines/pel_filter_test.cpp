@@ -19,24 +19,6 @@ using namespace penink;
 
 namespace {
 
-std::vector<glm::vec3> radial_normals(const TriangleMesh& m) {
-    std::vector<glm::vec3> n;
-    for (const auto& p : m.positions) n.push_back(glm::normalize(p));
-    return n;
-}
-
-// Deterministic normal noise: each normal moved by up to `amp` per coordinate (splitmix64).
-std::vector<glm::vec3> noisy(std::vector<glm::vec3> n, float amp, std::uint64_t seed) {
-    auto next = [&seed]() {
-        std::uint64_t z = (seed += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        return float((z ^ (z >> 31)) >> 11) / float(1ull << 53) * 2.0f - 1.0f;
-    };
-    for (auto& v : n) v = glm::normalize(v + amp * glm::vec3(next(), next(), next()));
-    return n;
-}
-
 struct PelMeasure {
     double error = 0.0, length = 0.0;  // radians off the terminator; mesh units
 };
@@ -80,7 +62,7 @@ TEST(PelFilter, MeanEdgeLengthOfTheIcosphere) {
 // itself 0.16-0.20, 15-25, and Laplacian smoothing (1-10 passes) 0.06-0.20: both tilt normals.
 TEST(PelFilter, GaussianNormalFilterBringsNoisyPelsBackToTheTerminator) {
     const Sphere s;
-    const auto clean_n = radial_normals(s.mesh), noisy_n = noisy(clean_n, 0.002f, 42);
+    const auto clean_n = test::radial_normals(s.mesh), noisy_n = test::noisy_normals(clean_n, 0.002f, 42);
     const PelMeasure clean = measure(s.pels(clean_n), s.light);
     const PelMeasure raw = measure(s.pels(noisy_n), s.light);
     const PelMeasure filtered = measure(s.pels(gaussian_filter_normals(s.mesh, noisy_n, 1.5f * s.edge)), s.light);
@@ -100,13 +82,13 @@ TEST(PelFilter, GaussianNormalFilterBringsNoisyPelsBackToTheTerminator) {
 
 TEST(PelFilter, FilterWidthZeroReturnsTheNormals) {
     const Sphere s;
-    const auto n = noisy(radial_normals(s.mesh), 0.002f, 7);
+    const auto n = test::noisy_normals(test::radial_normals(s.mesh), 0.002f, 7);
     EXPECT_EQ(gaussian_filter_normals(s.mesh, n, 0.0f), n);
 }
 
 TEST(PelFilter, LineStrengthDropsShortNoisyLinesAndKeepsTheGreatCircle) {
     const Sphere s;
-    const auto clean_n = radial_normals(s.mesh);
+    const auto clean_n = test::radial_normals(s.mesh);
     const auto clean = s.pels(clean_n);
     // The clean terminator is one line of strength ~ 2 pi (g ~ 1 along a circle of length 2 pi):
     const std::vector<float> st = pel_line_strengths(clean);
@@ -115,7 +97,7 @@ TEST(PelFilter, LineStrengthDropsShortNoisyLinesAndKeepsTheGreatCircle) {
     EXPECT_EQ(strong_pel_lines(clean, 20.0f * s.edge).size(), clean.size());
     EXPECT_TRUE(strong_pel_lines(clean, 7.0f).empty());  // above the circle's strength
 
-    const auto raw = s.pels(noisy(clean_n, 0.001f, 42));
+    const auto raw = s.pels(test::noisy_normals(clean_n, 0.001f, 42));
     // Measured: error 0.134 -> 0.038, length 25.4 -> 3.2 (1551 -> 184 segments): the noise's loops
     // go, and with them the pieces the noise broke off the terminator.
     const auto kept = strong_pel_lines(raw, 20.0f * s.edge);

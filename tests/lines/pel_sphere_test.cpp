@@ -26,24 +26,6 @@ using namespace penink;
 
 namespace {
 
-std::vector<glm::vec3> radial_normals(const TriangleMesh& m) {
-    std::vector<glm::vec3> n;
-    for (const auto& p : m.positions) n.push_back(glm::normalize(p));
-    return n;
-}
-
-// Deterministic normal noise: each normal moved by up to `amp` per coordinate, renormalised.
-std::vector<glm::vec3> noisy(std::vector<glm::vec3> n, float amp, std::uint64_t seed) {
-    auto next = [&seed]() {
-        std::uint64_t z = (seed += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        return float((z ^ (z >> 31)) >> 11) / float(1ull << 53) * 2.0f - 1.0f;
-    };
-    for (auto& v : n) v = glm::normalize(v + amp * glm::vec3(next(), next(), next()));
-    return n;
-}
-
 // Mean |p . l| / r over all PEL endpoints: angular distance (radians, small) from the terminator.
 double mean_terminator_error(const PelResult& r, glm::vec3 l, float radius) {
     double sum = 0;
@@ -86,7 +68,7 @@ TEST(PelSphere, DirectionalLightGivesTheTerminatorGreatCircle) {
     const float r = 2.0f;
     TriangleMesh m = test::icosphere(5, r);  // 20480 triangles
     glm::vec3 l = glm::normalize(glm::vec3(1.0f, 0.5f, 2.0f));
-    PelResult res = photic_extremum_lines(m, pel_geometry(m), radial_normals(m), glm::vec3(0, 0, 10),
+    PelResult res = photic_extremum_lines(m, pel_geometry(m), test::radial_normals(m), glm::vec3(0, 0, 10),
                                           directional(l, 0.5f));
     ASSERT_GT(res.segments.size(), 100u);
     for (const auto& s : res.segments) {
@@ -109,7 +91,7 @@ TEST(PelSphere, LightAtTheEyeGivesTheClosedFormCircle) {
     EXPECT_NEAR(c_star, 0.38, 0.02);  // the closed form itself (not the rim at 0.2)
     PelOptions o;  // defaults: light at the eye, clamped diffuse
     o.threshold = 0.5f;
-    PelResult res = photic_extremum_lines(m, pel_geometry(m), radial_normals(m), eye, o);
+    PelResult res = photic_extremum_lines(m, pel_geometry(m), test::radial_normals(m), eye, o);
     ASSERT_GT(res.segments.size(), 100u);
     double err = 0, worst = 0;
     for (const auto& s : res.segments) {
@@ -122,7 +104,7 @@ TEST(PelSphere, LightAtTheEyeGivesTheClosedFormCircle) {
     double circle = 2.0 * M_PI * r * std::sqrt(1.0 - c_star * c_star);
     EXPECT_NEAR(total_length(res.segments), circle, 0.05 * circle);
     // Silhouettes from the same eye: the circle n . (e - p) = 0, i.e. p . e = r^2.
-    auto sil = mesh_silhouettes(m, radial_normals(m), eye);
+    auto sil = mesh_silhouettes(m, test::radial_normals(m), eye);
     ASSERT_GT(sil.size(), 100u);
     for (const auto& s : sil) EXPECT_NEAR(glm::dot(s.a, eye), r * r, 0.01);
 }
@@ -131,7 +113,7 @@ TEST(PelSphere, ThresholdAboveTheMaximumLeavesNothing) {
     TriangleMesh m = test::icosphere(4, 1.0f);
     glm::vec3 l = glm::normalize(glm::vec3(0.3f, -1.0f, 0.5f));
     auto geom = pel_geometry(m);
-    auto n = radial_normals(m);
+    auto n = test::radial_normals(m);
     PelResult all = photic_extremum_lines(m, geom, n, {}, directional(l, 0.0f));
     PelResult none = photic_extremum_lines(m, geom, n, {}, directional(l, 1.01f));
     EXPECT_GT(all.segments.size(), 50u);
@@ -154,7 +136,7 @@ TEST(PelSphere, NormalNoiseDegradesMonotonically) {
     const float amps[] = {0.0f, 0.0005f, 0.001f, 0.002f, 0.005f};
     std::vector<double> err, len;
     for (float amp : amps) {
-        auto res = photic_extremum_lines(m, geom, noisy(radial_normals(m), amp, 42), {},
+        auto res = photic_extremum_lines(m, geom, test::noisy_normals(test::radial_normals(m), amp, 42), {},
                                          directional(l, 0.3f));
         err.push_back(mean_terminator_error(res, l, r));
         len.push_back(total_length(res.segments));

@@ -98,4 +98,21 @@ TriangleMesh icosphere(int level, float r) {
     return m;
 }
 
+std::vector<glm::vec3> radial_normals(const TriangleMesh& m) {
+    std::vector<glm::vec3> n;
+    for (const auto& p : m.positions) n.push_back(glm::normalize(p));
+    return n;
+}
+
+std::vector<glm::vec3> noisy_normals(std::vector<glm::vec3> n, float amp, std::uint64_t seed) {
+    auto next = [&seed]() {
+        std::uint64_t z = (seed += 0x9E3779B97F4A7C15ull);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        return float((z ^ (z >> 31)) >> 11) / float(1ull << 53) * 2.0f - 1.0f;
+    };
+    for (auto& v : n) v = glm::normalize(v + amp * glm::vec3(next(), next(), next()));
+    return n;
+}
+
 }  // namespace penink::test

@@ -17,6 +17,7 @@
 // - unit_cube: [0,1]^3, vertex i at (i & 1, (i >> 1) & 1, (i >> 2) & 1), faces in order -z, +z, -y,
 //   +y, -x, +x, each two outward counter-clockwise triangles (2f, 2f + 1) split along a diagonal.
 #pragma once
+#include <cstdint>
 #include <functional>
 
 #include "core/triangle_mesh.hpp"
@@ -34,5 +35,12 @@ using RadialBump = std::function<double(double u, double v)>;
 TriangleMesh uv_sphere(int n, double radius = 1.0, UvLayout layout = UvLayout::grid, const RadialBump& bump = {});
 
 TriangleMesh icosphere(int level, float r);
+
+// Unit normals of a mesh centred on the origin pointing away from it (a sphere's exact normals).
+std::vector<glm::vec3> radial_normals(const TriangleMesh& m);
+
+// Deterministic normal noise: each normal moved by up to `amp` per coordinate (splitmix64 of
+// `seed`), renormalised.
+std::vector<glm::vec3> noisy_normals(std::vector<glm::vec3> n, float amp, std::uint64_t seed);
 
 }  // namespace penink::test
