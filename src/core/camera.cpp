@@ -132,16 +132,21 @@ Camera frame_points_orthographic(const std::vector<glm::dvec3>& points, double a
     cam.view_width = view_width > 0.0 ? view_width : std::max({xr - xl, (yr - yl) * aspect, 1e-9}) / fill;
     const glm::dmat4 inv = glm::inverse(v);
     const glm::dvec3 shift = (glm::dvec3(inv[0]) * (xl + xr) + glm::dvec3(inv[1]) * (yl + yr)) * 0.5;
-    // Eye plane in front of the whole box: every depth along d is positive.
-    double smin = 1e300, smax = -1e300;
+    cam.eye = centre + shift;
+    place_orthographic_eye(cam, lo, hi);
+    return cam;
+}
+
+void place_orthographic_eye(Camera& cam, const glm::dvec3& lo, const glm::dvec3& hi) {
+    const glm::dvec3 d = direction_from_angles(cam.azimuth, cam.altitude);
+    double smin = 1e300, smax = -1e300;  // the box's corners along d, from the eye
     for (int i = 0; i < 8; ++i) {
         const glm::dvec3 p(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
-        smin = std::min(smin, glm::dot(p - centre, d)), smax = std::max(smax, glm::dot(p - centre, d));
+        smin = std::min(smin, glm::dot(p - cam.eye, d)), smax = std::max(smax, glm::dot(p - cam.eye, d));
     }
     const double margin = 1e-3 * (smax - smin + cam.view_width) + 1e-3;  // the eye plane touches the box's front
-    cam.eye = centre + shift + d * (smin - margin);
+    cam.eye += d * (smin - margin);
     fit_depth_range(cam, lo, hi);
-    return cam;
 }
 
 void fit_depth_range(Camera& cam, const glm::dvec3& lo, const glm::dvec3& hi) {

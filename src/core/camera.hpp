@@ -73,6 +73,11 @@ Camera frame_points(const std::vector<glm::dvec3>& points, double azimuth, doubl
 Camera frame_points_orthographic(const std::vector<glm::dvec3>& points, double azimuth, double altitude,
                                  int width, int height, double view_width = 0.0, double fill = 0.9);
 
+// Moves an orthographic camera's eye along its view direction (the image unchanged) so its plane
+// touches the front of the box [lo, hi], a thousandth of the box's depth in front, and fits the
+// depth range to the box.
+void place_orthographic_eye(Camera& cam, const glm::dvec3& lo, const glm::dvec3& hi);
+
 // Sets near/far from the box so everything in it lies inside the depth range (orthographic: the
 // near plane may be as close as the eye plane).
 void fit_depth_range(Camera& cam, const glm::dvec3& lo, const glm::dvec3& hi);

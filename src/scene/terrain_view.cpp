@@ -30,23 +30,14 @@ Camera place_camera(const Scene& scene, const Terrain& meta, const GridNodes& no
     const double alt = sc.altitude.value_or(default_view_altitude);
     if (sc.projection == Projection::orthographic) {
         Camera cam = frame_points_orthographic(frame_samples(nodes), az, alt, sc.width, sc.height, sc.view_width, 0.95);
-        if (sc.position) {  // centre the view on the position's plan point (depths unchanged)
+        if (sc.position) {  // centre the view on the position's plan point (on the ground)
             const glm::dvec2 xy = parse_scene_position(*sc.position, meta, scene_file(scene));
             const glm::dvec3 d = direction_from_angles(az, alt);
             double ground = 0.5 * (lo.z + hi.z);
             grid_ground_height(nodes, xy.x, xy.y, ground);
-            const glm::dvec3 centre = cam.eye + d * glm::dot(glm::dvec3(xy, ground) - cam.eye, d);
-            glm::dvec3 shift = glm::dvec3(xy, ground) - centre;
-            shift -= d * glm::dot(shift, d);
-            cam.eye += shift;
-            // the eye plane stays in front of the whole DEM box
-            double front = 0.0;
-            for (int i = 0; i < 8; ++i) {
-                const glm::dvec3 p(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
-                front = std::min(front, glm::dot(p - cam.eye, d));
-            }
-            cam.eye += d * (front - 1e-3 * (glm::length(hi - lo) + 1.0));
-            fit_depth_range(cam, lo, hi);
+            const glm::dvec3 to_target = glm::dvec3(xy, ground) - cam.eye;
+            cam.eye += to_target - d * glm::dot(to_target, d);  // sideways only: the image moves
+            place_orthographic_eye(cam, lo, hi);
         }
         return cam;
     }
