@@ -4,8 +4,8 @@
 #    reference): --analytic NAME;
 #  - examples/volcano.toml (61 x 87 nodes) and jacksboro refined to 3.5 M cells with GDAL's cubic
 #    resampling (`gdal_translate -r cubic -outsize 500% 500%`, 2015 x 1720 nodes; never committed),
-#    both against the ray-cast reference (4 x 4 rays a pixel); jacksboro with the level-of-detail
-#    tolerance as an axis (--tolerances);
+#    both against the ray-cast reference (4 x 4 rays a pixel); jacksboro with the four methods at
+#    the default tolerance, and with the level-of-detail tolerance as an axis (--tolerances);
 #  - frame-to-frame coherence along examples/volcano_flight.csv (--flight).
 # Every time is the median of FRAMES (>= 5) timed frames with their min-max bar.
 # Writes OUT/<name>/{bench.csv,speed_accuracy.svg}, OUT/flight/coherence.csv and copies the charts
@@ -36,10 +36,13 @@ printf '[terrain]\ndem = "%s"\nvertical_exaggeration = 3\n' "$TMP/jacksboro5.tif
   --tolerances 0.5,1,2,4 --methods toward-away --no-needs --frames "$FRAMES" --warmup 1 -q \
   >"$OUT/jacksboro5-tolerance.txt"
 
+"$BIN" bench "$TMP/j5.toml" --out "$OUT/jacksboro5" --sizes 1000x750 --levels 4 --no-needs \
+  --methods toward-away,adjacency,edge-walk,object-space --frames "$FRAMES" --warmup 1 -q >"$OUT/jacksboro5.txt"
+
 "$BIN" bench examples/volcano.toml --flight examples/volcano_flight.csv --out "$OUT/flight" -q >"$OUT/flight.txt"
 
 if [ "${COPY:-0}" = 1 ]; then
-  for name in two-hills smooth-cliff saddle volcano jacksboro5-tolerance; do
+  for name in two-hills smooth-cliff saddle volcano jacksboro5 jacksboro5-tolerance; do
     cp "$OUT/$name/speed_accuracy.svg" "docs/images/$name-speed-accuracy.svg"
   done
 fi

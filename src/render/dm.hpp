@@ -1,7 +1,8 @@
 // DM pass: drainage-vertex rendering ("DM" as the timing tables of Mower, "Concurrent Drainage
 // Network Rendering", name the pass; penink batch's timings.md keeps the name): scores drainage vertices on the GPU with the crease score of
 // conventions.md (rs = (sw sc + iw ic + fw fc)/3 - rs_min(d), or divided by sw + iw + fw with
-// normalisation "paper": core/crease_params.hpp) and tests their visibility against
+// normalisation "paper": core/crease_params.hpp; "rank" takes the terms from one run per term,
+// scene/drainage_lines.cpp) and tests their visibility against
 // the TFT eye-distance texture, in a compute shader (shaders/dm.comp.glsl). The same pass scores
 // basin-divide vertices for the ridges layer. Input: world positions (local metres), unit PN
 // normals (zero for a vertex off the rendered surface: always hidden), normalised flow; output:

@@ -1,6 +1,7 @@
 #include "scene/drainage_lines.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <glm/common.hpp>
@@ -8,6 +9,7 @@
 
 #include "core/parallel_chunks.hpp"
 #include "lines/finish_drawing.hpp"
+#include "lines/rank_scores.hpp"
 #include "lines/spacing_thinning.hpp"
 #include "surface/terrain_lod.hpp"
 
@@ -298,6 +300,32 @@ DrainageLines::DrainageLines(const GlApi& gl, DrainageLineData data)
 DrainageLines::DrainageLines(const GlApi& gl, const DrainageDb& db, const Terrain& model)
     : DrainageLines(gl, prepare_drainage_lines(db, model)) {}
 
+namespace {
+
+// The DM pass's scores under `p`; for "rank" the pass gives each term alone (its weight 1, the
+// others 0, no threshold) and -rs_min(d) (every weight 0), ranked on the CPU (lines/rank_scores.hpp).
+double score_vertices(DmPass& pass, const DmFrame& frame, const CreaseParams& p, std::vector<float>& scores) {
+    if (p.normalisation != ScoreNormalisation::rank) return pass.run(frame, p, scores);
+    CreaseParams single = p;
+    single.normalisation = ScoreNormalisation::paper;
+    single.min_score = 0.0, single.distance_attenuation = 0.0;
+    std::array<std::vector<float>, 3> terms;
+    double ms = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        single.slope_weight = k == 0, single.illumination_weight = k == 1, single.flow_weight = k == 2;
+        ms += pass.run(frame, single, terms[k]);
+    }
+    CreaseParams threshold = p;
+    threshold.normalisation = ScoreNormalisation::paper;
+    threshold.slope_weight = threshold.illumination_weight = threshold.flow_weight = 0.0;
+    std::vector<float> minus_rs_min;
+    ms += pass.run(frame, threshold, minus_rs_min);
+    scores = rank_scores(terms, minus_rs_min, {p.slope_weight, p.illumination_weight, p.flow_weight}, dm_hidden);
+    return ms;
+}
+
+}  // namespace
+
 void DrainageLines::draw(const Camera& camera, const Scene& scene, GLuint toward_texture,
                          float max_distance, Drawing& drawing, PassTimings& times) {
     DmFrame frame;
@@ -310,14 +338,14 @@ void DrainageLines::draw(const Camera& camera, const Scene& scene, GLuint toward
         return max_distance > 0.0f ? p.distance_attenuation / double(max_distance) : 0.0;
     };
     if (scene.creases.enabled) {
-        times.dm = creases_.pass->run(frame, scene.creases, scores);
+        times.dm = score_vertices(*creases_.pass, frame, scene.creases, scores);
         whole_or_nothing_by_distance(scores, creases_.positions, creases_.runs, camera, attenuation(scene.creases));
         drawing.layer(LayerKind::creases).strokes = thin_by_spacing(
             line_strokes(creases_, scores, camera, "crease", scene.crease_sketch_px, scene.crease_repeat, scene.seed),
             float(scene.creases.spacing_px));
     }
     if (scene.ridges.enabled) {
-        times.ridges = ridges_.pass->run(frame, scene.ridges, scores);
+        times.ridges = score_vertices(*ridges_.pass, frame, scene.ridges, scores);
         whole_or_nothing_by_distance(scores, ridges_.positions, ridges_.runs, camera, attenuation(scene.ridges));
         drawing.layer(LayerKind::ridges).strokes = thin_by_spacing(
             line_strokes(ridges_, scores, camera, "ridge", scene.ridge_sketch_px, scene.ridge_repeat, scene.seed),

@@ -141,7 +141,7 @@ void read_crease(const toml::value& root, const char* section, CreaseParams& p, 
         read_key(t, "normalisation", name, file, section);
         const auto n = score_normalisation_named(name);
         if (!n)
-            throw Error("scene", file, "[" + std::string(section) + "] normalisation must be \"thirds\" or \"paper\" (got \"" +
+            throw Error("scene", file, "[" + std::string(section) + "] normalisation must be \"thirds\", \"paper\" or \"rank\" (got \"" +
                                            name + "\")");
         p.normalisation = *n;
     }

@@ -5,7 +5,7 @@
 // min_gap, separate_passes, method; [surface] tolerance_px, min_radius_px; [tessellation]
 // target_edge_px, max_level, cull; [creases] and [ridges]
 // slope_weight, illumination_weight, flow_weight, min_score, distance_attenuation, spacing_px,
-// normalisation ("thirds" or "paper": core/crease_params.hpp), enabled; [style] name
+// normalisation ("thirds", "paper" or "rank": core/crease_params.hpp), enabled; [style] name
 // plus per-layer overrides; seed. Angles in degrees, distances in metres (conventions.md).
 // A scene with [mesh] file draws a mesh instead (its keys: scene/mesh_scene.hpp). Any other key or
 // table is an error naming the nearest known one; validate_scene holds the values to their ranges.

@@ -40,7 +40,7 @@ std::string bench_csv(const std::vector<BenchRow>& rows) {
 std::string bench_table(const std::vector<BenchRow>& rows) {
     std::ostringstream s;
     s << std::fixed;
-    s << "group  view   size       method        L   tol  adapt cull crop  cells    ms/frame    TFT     SIL    P@1   R@1   "
+    s << "group  view   size       method        L   tol  adapt cull crop     cells    ms/frame    TFT     SIL    P@1   R@1   "
          "P@2   R@2   d->r  r->d\n";
     for (const BenchRow& r : rows) {
         std::ostringstream size;
@@ -49,7 +49,7 @@ std::string bench_table(const std::vector<BenchRow>& rows) {
           << std::setw(14) << r.method << std::right << std::setw(2) << r.level << std::setprecision(1) << std::setw(6)
           << r.tolerance_px << std::setw(5)
           << (r.adaptive ? "on" : "off") << std::setw(5) << (r.culling ? "on" : "off") << std::setw(5)
-          << (r.cropping ? "on" : "off") << std::setw(7) << r.cells << std::setprecision(1) << std::setw(12) << r.ms
+          << (r.cropping ? "on" : "off") << std::setw(10) << r.cells << std::setprecision(1) << std::setw(12) << r.ms
           << std::setw(8) << r.tft << std::setw(8) << r.sil << std::setprecision(3) << std::setw(7) << r.p1
           << std::setw(6) << r.r1 << std::setw(6) << r.p2 << std::setw(6) << r.r2 << std::setprecision(2)
           << std::setw(6) << r.drawn_to_ref << std::setw(6) << r.ref_to_drawn << "\n";

@@ -41,7 +41,7 @@ TEST(CreaseNormalisationScene, UnknownNameIsAnError) {
     } catch (const Error& e) {
         message = e.what();
     }
-    EXPECT_NE(message.find("[creases] normalisation must be \"thirds\" or \"paper\" (got \"mean\")"), std::string::npos)
+    EXPECT_NE(message.find("[creases] normalisation must be \"thirds\", \"paper\" or \"rank\" (got \"mean\")"), std::string::npos)
         << message;
     fs::remove_all(dir);
 }
