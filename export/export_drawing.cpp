@@ -69,9 +69,17 @@ void export_drawings(const StyledDrawing& drawing, const PageOptions& page, cons
             all.push_back(std::move(f.path));
             side_bytes.push_back(std::move(f.bytes));
         }
+    std::vector<std::string> stale;  // side files of an earlier raster that this one does not replace
+    for (const std::string& p : paths)
+        for (std::string& f : raster_side_file_names(p))
+            if (std::find(all.begin(), all.end(), f) == all.end() && std::find(stale.begin(), stale.end(), f) == stale.end())
+                stale.push_back(std::move(f));
     write_files_together(all, [&](std::size_t i) {
         return i < paths.size() ? export_document(drawing, page, paths[i]) : side_bytes[i - paths.size()];
     });
+    for (const std::string& f : stale)
+        if (::unlink(f.c_str()) != 0 && errno != ENOENT)
+            throw Error("export", f, std::string("cannot remove the earlier raster's side file (") + std::strerror(errno) + ")");
 }
 
 void check_output_targets(const std::vector<std::string>& paths, const PageOptions& page, int width, int height) {

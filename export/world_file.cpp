@@ -33,6 +33,11 @@ std::string aux_xml_text(const std::string& crs_wkt) {
     return "<PAMDataset>\n  <SRS>" + xml_escape(crs_wkt) + "</SRS>\n</PAMDataset>\n";
 }
 
+std::vector<std::string> raster_side_file_names(const std::string& path) {
+    if (!is_raster_extension(lower_extension(path))) return {};
+    return {world_file_path(path), path + ".aux.xml"};
+}
+
 std::vector<SideFile> raster_side_files(const StyledDrawing& d, const PageOptions& page, const std::string& path) {
     if (!d.georeference || !is_raster_extension(lower_extension(path))) return {};
     const RasterTransform t = raster_transform(d, page, path);

@@ -34,6 +34,11 @@ struct SideFile {
     std::string bytes;
 };
 
+// The names of the side files a raster output `path` can have (world file, .aux.xml); none for a
+// vector output. Those that a render does not write are stale (they describe an earlier raster)
+// and export_drawings removes them once its outputs are in place.
+std::vector<std::string> raster_side_file_names(const std::string& path);
+
 // The side files of raster output `path`: the world file, and the .aux.xml when there is a CRS;
 // none when the drawing is not georeferenced or `path` is not a raster. Throws raster_transform's
 // errors.

@@ -220,7 +220,7 @@ TEST(GeoreferencedRaster, WorldFileBesideEachRasterFormat) {
     const std::string world = read_text(dir.file("m.pgw"));
     const std::array<double, 6> gt = raster_geotransform(d.georeference->geotransform, raster_transform(d, page));
     EXPECT_EQ(world, world_file_text(gt));
-    for (const std::string& w : {"m.tfw", "m.jgw", "m.wld"}) EXPECT_EQ(read_text(dir.file(w)), world) << w;
+    for (const char* w : {"m.tfw", "m.jgw", "m.wld"}) EXPECT_EQ(read_text(dir.file(w)), world) << w;
     for (const std::string& p : paths) EXPECT_EQ(read_text(p + ".aux.xml"), aux_xml_text(d.georeference->crs_wkt)) << p;
     // .tif/.tiff, .jpg/.jpeg and .webp/.exr share a world file (the same raster pixels: one file).
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path), {}), 7 + 4 + 7);
@@ -250,6 +250,36 @@ TEST(GeoreferencedRaster, WorldFileIsThePixelCentreTransform) {
     EXPECT_EQ(world_file_path("b.tif"), "b.tfw");
     EXPECT_EQ(world_file_path("b.jpeg"), "b.jgw");
     EXPECT_EQ(world_file_path("b.webp"), "b.wld");
+}
+
+// A raster re-rendered over an earlier georeferenced one takes its side files with it: an oblique
+// view (no georeference) removes the world file and .aux.xml, which would otherwise place the new
+// pixels on the old map; a georeference without a CRS removes the .aux.xml. A failing render
+// touches none of them.
+TEST(GeoreferencedRaster, ARerenderRemovesTheEarlierRastersSideFiles) {
+    TempDir dir;
+    const StyledDrawing map = plan_drawing(0.0, epsg_wkt(2193));
+    const std::string png = dir.file("view.png"), world = dir.file("view.pgw"), aux = png + ".aux.xml";
+    export_drawings(map, PageOptions{}, {png});
+    ASSERT_TRUE(std::filesystem::exists(world) && std::filesystem::exists(aux));
+    StyledDrawing oblique = map;
+    oblique.georeference.reset();
+    EXPECT_THROW(export_drawings(oblique, PageOptions{}, {png, dir.file("missing/view.svg")}), Error);
+    EXPECT_TRUE(std::filesystem::exists(world) && std::filesystem::exists(aux));
+    export_drawings(oblique, PageOptions{}, {png, dir.file("view.svg")});
+    EXPECT_TRUE(std::filesystem::exists(png));
+    EXPECT_FALSE(std::filesystem::exists(world));
+    EXPECT_FALSE(std::filesystem::exists(aux));
+    export_drawings(map, PageOptions{}, {png});
+    StyledDrawing no_crs = map;
+    no_crs.georeference->crs_wkt.clear();
+    export_drawings(no_crs, PageOptions{}, {png});
+    EXPECT_TRUE(std::filesystem::exists(world));
+    EXPECT_FALSE(std::filesystem::exists(aux));
+    // a vector output has no side files: an unrelated view.svg.aux.xml stays
+    write_text(dir.file("view.svg.aux.xml"), "x");
+    export_drawings(oblique, PageOptions{}, {dir.file("view.svg")});
+    EXPECT_TRUE(std::filesystem::exists(dir.file("view.svg.aux.xml")));
 }
 
 TEST(GeoreferencedRaster, SideFilesAreWrittenWithTheOutputsOrNotAtAll) {
