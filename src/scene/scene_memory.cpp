@@ -1,5 +1,6 @@
 #include "scene/scene_memory.hpp"
 
+#include <algorithm>
 #include <filesystem>
 
 #include "core/memory_budget.hpp"
@@ -18,9 +19,15 @@ void check_scene_memory(const Scene& scene, std::uint64_t max_memory) {
     const DemSize size = read_dem_size(scene.dem);
     const double drainage = drainage_points(size.cols, size.rows, drainage_factor_for(size.cols, size.rows, 0)) *
                             drainage_bytes_per_point;
+    double water = 0.0;  // the pyramid rebuilt for a sea level, over the padded square
+    if (scene.sea_level) {
+        double side = 2.0;
+        while (side < double(std::max(size.cols, size.rows) - 1)) side *= 2.0;
+        water = (side + 1.0) * (side + 1.0) * water_lod_bytes_per_padded_node;
+    }
     check_memory("input", scene.dem,
                  "drawing the DEM's " + std::to_string(size.cols) + "x" + std::to_string(size.rows) + " nodes",
-                 size.nodes() * render_bytes_per_node + drainage, budget);
+                 size.nodes() * render_bytes_per_node + drainage + water, budget);
 }
 
 }  // namespace penink

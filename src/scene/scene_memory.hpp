@@ -1,7 +1,8 @@
 // Memory a terrain drawing needs, estimated from the DEM's header before anything is read: its
 // nodes at render_bytes_per_node (DEM read, level-of-detail mesh, GPU upload; about 80 B a cell
 // measured on 14 M cells, warm) plus the drainage build a render makes when it has no cache
-// (drainage/drainage_memory.hpp, at the automatic factor), against a budget.
+// (drainage/drainage_memory.hpp, at the automatic factor) and, with a sea level, the pyramid
+// rebuilt for it, against a budget.
 #pragma once
 #include <cstdint>
 
@@ -10,6 +11,9 @@
 namespace penink {
 
 constexpr double render_bytes_per_node = 64.0;
+// A scene with a sea level rebuilds the pyramid for it (terrain_view.hpp): heights, flags and
+// errors over the padded square while it builds.
+constexpr double water_lod_bytes_per_padded_node = 10.0;
 
 // Throws Error("input", DEM, "drawing the DEM's WxH nodes would need about N of memory, B
 // available (--max-memory)") when a terrain scene would not fit memory_budget(max_memory); also

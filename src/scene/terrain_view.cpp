@@ -209,7 +209,20 @@ SceneTerrain open_scene_terrain(Scene& scene, const Log& log) {
     const double e = scene.vertical_exaggeration;
     if (!std::isfinite(e) || e <= 0.0) throw Error("scene", scene_file(scene), "vertical exaggeration must be > 0");
     SceneTerrain t{std::move(stored), e, scene_file(scene)};
-    if (scene.sea_level) t.sea_level = *scene.sea_level;
+    if (scene.sea_level) {
+        t.sea_level = *scene.sea_level;
+        // Water over part of the DEM: the pyramid of the clamped nodes (terrain_lod.hpp), so the
+        // flat sea takes no triangles; O(nodes) once per command, held in memory.
+        const TerrainLod& dry = t.stored.lod;
+        if (t.sea_level > double(dry.z_min) && t.sea_level < double(dry.z_max)) {
+            const Clock::time_point t0 = Clock::now();
+            t.stored.lod = build_terrain_lod(t.stored.drawn(1.0, t.sea_level), 1.0);
+            std::ostringstream msg;
+            msg << "level of detail: pyramid rebuilt for the sea level " << t.sea_level << " m (" << int(ms_since(t0))
+                << " ms)";
+            log.info(msg.str());
+        }
+    }
     if (const std::string w = missing_crs_warning(t.stored.meta); !w.empty()) std::cerr << w << "\n";
     return t;
 }

@@ -47,6 +47,8 @@ TerrainCacheKey terrain_cache_key(const std::string& dem_path);
 
 // The scene's DEM: nodes and pyramid, stored (mapped from the cache, or read and cached), drawn
 // at the scene's vertical exaggeration, with water below its sea level (GridNodes::sea_level).
+// When the sea level lies inside the DEM's range, open_scene_terrain replaces the cached pyramid
+// by one built (in memory) on the clamped nodes, so the water costs no triangles.
 struct SceneTerrain {
     StoredTerrain stored;
     double exaggeration = 1.0;

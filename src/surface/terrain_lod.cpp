@@ -151,6 +151,7 @@ TerrainLod build_terrain_lod(const GridNodes& t, double ex) {
         }
     }
     lod.z_min = zmin <= zmax ? zmin : 0.0f, lod.z_max = zmin <= zmax ? zmax : 0.0f;
+    lod.sea_level = t.sea_level;  // at() drew the nodes clamped to it
     // forced = bad dilated by the 3x3 square (rows, then columns).
     for (int r = 0; r < side; ++r) {
         const std::uint8_t* b = &bad[std::size_t(r) * side];
@@ -317,7 +318,12 @@ Frustum frustum_of(const Camera& cam) {
 // nested and the mesh crack-free.
 // Unexaggerated metres: the water's drawn height over the exaggeration the errors are drawn at.
 float water_error(const TerrainLod& lod, const GridNodes& t, double exaggeration) {
-    if (!t.has_sea()) return 0.0f;
+    if (lod.sea_level != t.sea_level) {
+        if (lod.sea_level > -std::numeric_limits<double>::infinity())
+            throw std::invalid_argument("terrain lod: the pyramid was built for another sea level");
+    } else {
+        return 0.0f;  // the errors are those of the clamped nodes (or there is no water)
+    }
     const double s = double(t.sea_z()) / exaggeration;
     const double extra = std::min(std::max(0.0, s - double(lod.z_min)), std::max(0.0, double(lod.z_max) - s));
     return extra > 0.0 ? float(extra * (1.0 + 1e-5)) : 0.0f;  // rounded up

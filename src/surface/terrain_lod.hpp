@@ -28,10 +28,14 @@
 //    max(0, |eye.xy - m.xy| - radius)^2 + max(0, eye.z - z_max*e, z_min*e - eye.z)^2 for any
 //    vertical exaggeration e, with z_min, z_max the DEM's valid elevation range (stored
 //    unexaggerated), and this lower bound keeps the nesting (so activation stays monotone).
-// Water (GridNodes::sea_level: nodes drawn at max(z, s)): the clamp can raise a coarse triangle's
-// distance to the clamped DEM, by at most min((s - z_min)+, (z_max - s)+) (proof at water_error in
-// terrain_lod.cpp); the selection adds that constant to every error, so the bounds stay valid and
-// nested; 0 for a DEM wholly above (or below) the sea. Test: TerrainLod.WaterKeepsTheErrorBound.
+// Water (GridNodes::sea_level: nodes drawn at max(z, s)): a pyramid built from nodes with a sea
+// level (TerrainLod::sea_level) bounds the clamped DEM itself: flat water needs no triangles, the
+// shore and the land as many as they would dry. A pyramid built without one can still draw water:
+// the clamp can raise a coarse triangle's distance to the clamped DEM by at most
+// min((s - z_min)+, (z_max - s)+) (proof at water_error in terrain_lod.cpp), and the selection adds
+// that constant to every error, so the bounds stay valid and nested (0 for a DEM wholly above or
+// below the sea), at the cost of refining everything near a deep sea floor's depth.
+// Tests: TerrainLod.WaterKeepsTheErrorBound, TerrainLod.PyramidBuiltWithTheSeaLevelSkipsTheSeaFloor.
 // A node is active (its triangles split) when
 //     error * e * scale / max(D, near_plane) > tolerance_px   (nearer points are clipped anyway;
 //     an orthographic camera: D = 1 and scale = pixels per metre, the same at every depth),
@@ -61,6 +65,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <span>
 #include <vector>
@@ -82,6 +87,9 @@ struct TerrainLod {
     std::shared_ptr<const void> storage;
     float lipschitz = 0.0f;      // L: the plan positions' Lipschitz constant over the grid, metres per grid unit
     float z_min = 0.0f, z_max = 0.0f;  // range of the valid elevations, metres, unexaggerated
+    // The sea level (unexaggerated) whose clamp the errors and range include; -inf: none. Selecting
+    // on nodes with another sea level throws std::invalid_argument.
+    double sea_level = -std::numeric_limits<double>::infinity();
 
     int side() const { return (1 << levels) + 1; }
     std::size_t index(int c, int r) const { return std::size_t(r) * std::size_t(side()) + std::size_t(c); }
@@ -93,7 +101,7 @@ struct TerrainLod {
 // From a Terrain whose pos.z is elevation * t.vertical_exaggeration (divided out: errors are
 // unexaggerated). O(N); throws std::invalid_argument on an inconsistent Terrain.
 TerrainLod build_terrain_lod(const Terrain& t);
-// The same from nodes drawn at `exaggeration` (GridNodes::at).
+// The same from nodes drawn at `exaggeration` (GridNodes::at), with their sea level, if any.
 TerrainLod build_terrain_lod(const GridNodes& nodes, double exaggeration);
 
 struct LodSelection {

@@ -586,3 +586,39 @@ TEST(TerrainLod, WaterKeepsTheErrorBound) {
         }
     }
 }
+
+// A pyramid built on the clamped nodes (TerrainLod::sea_level) bounds the water as what it is, a
+// flat plane: on an island rising 150 m out of a sea floor 600 m deep (bumps of 40 m everywhere)
+// the DEM-wide water bound adds 150 m to every error and refines everything (measured 524 288
+// triangles, full resolution); the clamped pyramid selects 2 204, within the same 1 px of the
+// clamped DEM. A pyramid built for one sea level refuses nodes with another.
+TEST(TerrainLod, PyramidBuiltWithTheSeaLevelSkipsTheSeaFloor) {
+    const auto island = [](double x, double y) {
+        const double r = std::hypot(x, y);  // metres from the grid's centre (1024 m across)
+        return 750.0 * std::exp(-r * r / (2.0 * 120.0 * 120.0)) - 600.0 + 40.0 * std::sin(x / 23.0) * std::cos(y / 31.0);
+    };
+    Terrain t = grid_terrain(513, 513, island);
+    const double sea = 0.0;
+    GridNodes wet = grid_nodes(t);
+    wet.sea_level = sea;
+    const Camera cam = framing_camera(t);
+    const TerrainLod dry_lod = build_terrain_lod(t);
+    const TerrainLod wet_lod = build_terrain_lod(wet, 1.0);
+    EXPECT_EQ(wet_lod.sea_level, sea);
+    EXPECT_FLOAT_EQ(wet_lod.z_min, float(sea));
+    Selected constant, built;
+    constant.mesh = select_lod_mesh(dry_lod, wet, 1.0, cam, LodOptions{1.0f, 0.0f}, &constant.stats, &constant.nodes);
+    built.mesh = select_lod_mesh(wet_lod, wet, 1.0, cam, LodOptions{1.0f, 0.0f}, &built.stats, &built.nodes);
+    Terrain water = t;
+    for (glm::vec3& p : water.pos) p.z = std::max(p.z, float(sea));
+    const ErrorReport rep = error_report(water, built, cam);
+    std::printf("island: %zu triangles with the DEM-wide water bound, %zu with the pyramid of the clamped nodes, "
+                "max error %.3f px\n", constant.stats.triangles, built.stats.triangles, rep.max_px);
+    EXPECT_EQ(rep.uncovered, 0u);
+    EXPECT_LE(rep.max_px, 1.0 + 1e-4);
+    EXPECT_LT(built.stats.triangles * 20, constant.stats.triangles);
+    GridNodes other = wet;
+    other.sea_level = 10.0;
+    EXPECT_THROW(select_lod_mesh(wet_lod, other, 1.0, cam, LodOptions{}), std::invalid_argument);
+    EXPECT_THROW(select_lod_mesh(wet_lod, grid_nodes(t), 1.0, cam, LodOptions{}), std::invalid_argument);
+}
