@@ -1,5 +1,7 @@
 #include "lines/scored_polylines.hpp"
 
+#include <algorithm>
+
 #include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
 
@@ -34,23 +36,77 @@ void whole_or_nothing_by_distance(std::vector<float>& scores, const std::vector<
     }
 }
 
-std::vector<VertexRun> drawn_runs(const std::vector<glm::vec3>& positions, const std::vector<float>& scores,
-                                  const std::vector<VertexRun>& runs, const Camera& camera) {
-    const glm::dmat4 view = view_matrix(camera);
-    std::vector<VertexRun> out;
+namespace {
+
+// The six frustum planes' signed functions at clip point c (>= 0 inside).
+void plane_values(const glm::dvec4& c, double f[6]) {
+    f[0] = c.w + c.x, f[1] = c.w - c.x, f[2] = c.w + c.y, f[3] = c.w - c.y, f[4] = c.w + c.z, f[5] = c.w - c.z;
+}
+
+bool in_frustum(const glm::dvec4& c) {
+    double f[6];
+    plane_values(c, f);
+    for (double v : f)
+        if (v < 0.0) return false;
+    return true;
+}
+
+}  // namespace
+
+glm::vec3 frustum_exit(const glm::vec3& inside, const glm::vec3& outside, const glm::dmat4& vp) {
+    const glm::dvec4 a = vp * glm::dvec4(glm::dvec3(inside), 1.0), b = vp * glm::dvec4(glm::dvec3(outside), 1.0);
+    double fa[6], fb[6];
+    plane_values(a, fa);
+    plane_values(b, fb);
+    double t = 1.0;
+    for (int k = 0; k < 6; ++k) {
+        if (fa[k] < 0.0) return inside;
+        if (fb[k] < 0.0) t = std::min(t, fa[k] / (fa[k] - fb[k]));
+    }
+    return glm::vec3(glm::dvec3(inside) + t * (glm::dvec3(outside) - glm::dvec3(inside)));
+}
+
+std::vector<glm::vec3> drawn_points(const DrawnRun& r, const std::vector<glm::vec3>& positions) {
+    std::vector<glm::vec3> points;
+    points.reserve(r.run.count + 2);
+    if (r.has_head) points.push_back(r.head);
+    points.insert(points.end(), positions.begin() + r.run.first, positions.begin() + r.run.first + r.run.count);
+    if (r.has_tail) points.push_back(r.tail);
+    return points;
+}
+
+std::vector<DrawnRun> drawn_runs(const std::vector<glm::vec3>& positions, const std::vector<float>& scores,
+                                 const std::vector<VertexRun>& runs, const Camera& camera) {
+    const glm::dmat4 view = view_matrix(camera), vp = view_projection(camera);
+    const auto outside_view = [&](std::uint32_t i) {
+        return scores[i] < -1e29f && !in_frustum(vp * glm::dvec4(glm::dvec3(positions[i]), 1.0));
+    };
+    std::vector<DrawnRun> out;
     for (const VertexRun& run : runs) {
+        const std::uint32_t end = run.first + run.count;
+        const auto close = [&](VertexRun cur) {
+            if (cur.count < 2) return;
+            DrawnRun d;
+            d.run = cur;
+            const std::uint32_t last = cur.first + cur.count - 1;
+            if (cur.first > run.first && outside_view(cur.first - 1))
+                d.has_head = true, d.head = frustum_exit(positions[cur.first], positions[cur.first - 1], vp);
+            if (last + 1 < end && outside_view(last + 1))
+                d.has_tail = true, d.tail = frustum_exit(positions[last], positions[last + 1], vp);
+            out.push_back(d);
+        };
         VertexRun cur{run.first, 0};
-        for (std::uint32_t i = run.first; i < run.first + run.count; ++i) {
+        for (std::uint32_t i = run.first; i < end; ++i) {
             const bool in_front = (view * glm::dvec4(glm::dvec3(positions[i]), 1.0)).z < 0.0;
             if (scores[i] >= 0.0f && in_front) {
                 if (cur.count == 0) cur.first = i;
                 ++cur.count;
                 continue;
             }
-            if (cur.count >= 2) out.push_back(cur);
+            close(cur);
             cur.count = 0;
         }
-        if (cur.count >= 2) out.push_back(cur);
+        close(cur);
     }
     return out;
 }
@@ -80,10 +136,8 @@ std::vector<Stroke> scored_runs_to_strokes(const std::vector<glm::vec3>& positio
                                            const std::vector<VertexRun>& runs, const Camera& camera,
                                            const std::string& kind) {
     std::vector<Stroke> out;
-    for (const VertexRun& run : drawn_runs(positions, scores, runs, camera)) {
-        const std::vector<glm::vec3> points(positions.begin() + run.first, positions.begin() + run.first + run.count);
-        out.push_back(project_stroke(points, camera, mean_score(scores, run), kind));
-    }
+    for (const DrawnRun& run : drawn_runs(positions, scores, runs, camera))
+        out.push_back(project_stroke(drawn_points(run, positions), camera, mean_score(scores, run.run), kind));
     return out;
 }
 

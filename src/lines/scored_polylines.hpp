@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
 #include "core/camera.hpp"
@@ -15,9 +16,27 @@
 
 namespace penink {
 
-// The maximal sub-runs of >= 2 vertices with score >= 0 that lie in front of the camera.
-std::vector<VertexRun> drawn_runs(const std::vector<glm::vec3>& positions, const std::vector<float>& scores,
-                                  const std::vector<VertexRun>& runs, const Camera& camera);
+// A drawn piece of a line: its vertices and, where the line leaves the view next to them, the
+// point where the segment to the next vertex outside crosses the view frustum's side (the image
+// border, or the near or far plane), so a line drawn to the edge of the frame reaches it.
+struct DrawnRun {
+    VertexRun run;
+    bool has_head = false, has_tail = false;
+    glm::vec3 head{0.0f}, tail{0.0f};  // before the first vertex, after the last (world, local metres)
+};
+
+// The maximal sub-runs of >= 2 vertices with score >= 0 that lie in front of the camera; a run
+// whose neighbouring vertex in its line is hidden (score below -1e29, the DM pass's dm_hidden) and
+// lies outside the frustum gets the frustum crossing of the segment to it as head or tail.
+std::vector<DrawnRun> drawn_runs(const std::vector<glm::vec3>& positions, const std::vector<float>& scores,
+                                 const std::vector<VertexRun>& runs, const Camera& camera);
+
+// The run's points, head and tail included.
+std::vector<glm::vec3> drawn_points(const DrawnRun& run, const std::vector<glm::vec3>& positions);
+
+// The point where segment inside -> outside leaves the view frustum of `view_projection` (clip
+// coordinates: |x|, |y|, |z| <= w); `inside` itself when it is not inside, `outside` when it is.
+glm::vec3 frustum_exit(const glm::vec3& inside, const glm::vec3& outside, const glm::dmat4& view_projection);
 
 // Far creases drawn whole or not at all: the distance attenuation (scores fall by
 // `attenuation_per_metre` times the depth, eye_depth) breaks a far stem into dashes where its score

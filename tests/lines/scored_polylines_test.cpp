@@ -124,3 +124,42 @@ TEST(ScoredPolylines, DistanceAttenuationDrawsRunsWholeOrNotAtAll) {
     EXPECT_EQ(s[5], -1.0e30f);
     EXPECT_GE(s[4], 0.0f);
 }
+
+// A line that leaves the view is drawn to the frame: where the next vertex is hidden and outside
+// the frustum, the stroke ends where the segment to it crosses the image border (the down camera
+// sees x in [-100, 100] m at the ground: pixel 0 and 200). A hidden neighbour inside the frame
+// (occluded) and a low score outside it end the stroke at the last drawn vertex.
+TEST(ScoredPolylines, StrokesReachTheFrameWhereTheLineLeavesTheView) {
+    std::vector<glm::vec3> p;
+    for (int i = 0; i < 11; ++i) p.emplace_back(float(-150 + 30 * i), 10.0f, 0.0f);  // x = -150 ... 150
+    std::vector<float> scores(p.size(), 0.5f);
+    for (std::size_t i = 0; i < p.size(); ++i)
+        if (std::abs(p[i].x) > 100.0f) scores[i] = hidden;  // the DM pass hides what is outside the frustum
+    auto strokes = scored_runs_to_strokes(p, scores, {{0, 11}}, down_camera(), "crease");
+    ASSERT_EQ(strokes.size(), 1u);
+    ASSERT_EQ(strokes[0].points.size(), 7u + 2u);  // x = -90 ... 90, and the two border points
+    EXPECT_NEAR(strokes[0].points.front().x, 0.0, 1e-3);
+    EXPECT_NEAR(strokes[0].points.back().x, 200.0, 1e-3);
+    EXPECT_NEAR(strokes[0].points.back().y, 90.0, 1e-3);
+    EXPECT_NEAR(strokes[0].depth.back(), std::sqrt(100.0 * 100.0 + 10.0 * 10.0 + 1e4), 1e-2);
+    // the vertex after x = 90 hidden inside the frame instead (x = 95: occluded), the one before
+    // x = -90 only scoring low: no border points
+    p[9].x = 95.0f;
+    scores[1] = -0.2f, scores[2] = 0.5f;
+    p[2].x = -95.0f;
+    strokes = scored_runs_to_strokes(p, scores, {{0, 11}}, down_camera(), "crease");
+    ASSERT_EQ(strokes.size(), 1u);
+    EXPECT_NEAR(strokes[0].points.front().x, 100.0 + p[2].x, 1e-3);
+    EXPECT_NEAR(strokes[0].points.back().x, 100.0 + p[8].x, 1e-3);
+}
+
+TEST(ScoredPolylines, FrustumExitOfASegment) {
+    const Camera cam = down_camera();
+    const glm::dmat4 vp = view_projection(cam);
+    const glm::vec3 e = frustum_exit({0.0f, 0.0f, 0.0f}, {0.0f, 300.0f, 0.0f}, vp);  // north, out at y = 100
+    EXPECT_NEAR(e.y, 100.0f, 1e-3);
+    const glm::vec3 up = frustum_exit({0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 200.0f}, vp);  // up past the eye: near plane
+    EXPECT_NEAR(up.z, 99.0f, 1e-3);
+    const glm::vec3 same = frustum_exit({0.0f, 0.0f, 0.0f}, {10.0f, 0.0f, 0.0f}, vp);  // both inside
+    EXPECT_NEAR(same.x, 10.0f, 1e-6);
+}
