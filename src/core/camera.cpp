@@ -119,7 +119,7 @@ Camera frame_points_orthographic(const std::vector<glm::dvec3>& points, double a
     glm::dvec3 lo(1e300), hi(-1e300);
     for (const glm::dvec3& p : points) lo = glm::min(lo, p), hi = glm::max(hi, p);
     if (points.empty()) lo = hi = glm::dvec3(0.0);
-    const glm::dvec3 centre = (lo + hi) * 0.5, d = direction_from_angles(azimuth, altitude);
+    const glm::dvec3 centre = (lo + hi) * 0.5;
     cam.eye = centre;
     const glm::dmat4 v = view_matrix(cam);  // rotation about the centre: x right, y up, -z forward
     double xl = 1e300, xr = -1e300, yl = 1e300, yr = -1e300;

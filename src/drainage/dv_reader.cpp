@@ -400,7 +400,7 @@ DrainageDb read_lines_part(std::FILE* in, std::uint64_t size, const std::string&
     if (size < total) truncated(path);
     if (size != total) throw Error("drainage", path, "drainage database checksum mismatch (file corrupt)");
     if (std::fseek(in, long(lines_at), SEEK_SET) != 0) truncated(path);
-    StreamReader r{in, total - 8 - lines_at, lines_at, path};
+    StreamReader r{in, total - 8 - lines_at, lines_at, path, false, {}, {}, false};
     r.seek_vertices = vertices_at != nullptr;
     DrainageDb db;
     get_lines(r, db, false, vertices_at);

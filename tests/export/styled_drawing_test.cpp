@@ -25,8 +25,6 @@ Drawing strokes_at(float depth, int n) {
     return d;
 }
 
-size_t pels(const StyledDrawing& s) { return s.layers[size_t(LayerKind::pels)].groups[0].paths.size(); }
-
 }  // namespace
 
 TEST(StyledDrawing, TechnicalKeepsEveryStrokeAsOnePath) {
