@@ -125,11 +125,7 @@ FinishStats finish_drawing(Drawing& drawing, const FinishOptions& options) {
 }
 
 std::uint64_t object_line_id(const ObjectLine& line) {
-    auto bits = [](float f) {
-        std::uint32_t u;
-        std::memcpy(&u, &f, sizeof u);
-        return std::uint64_t(u);
-    };
+    const auto bits = float_bits;
     std::uint64_t h = splitmix64(line.points.size() ^ 0x6f626a6563740000ull);  // "object"
     if (line.points.empty()) return h;
     for (const glm::vec3& p : {line.points.front(), line.points.back()})

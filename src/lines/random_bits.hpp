@@ -3,6 +3,7 @@
 // order of processing nor on the standard library; unit values are in [0, 1).
 #pragma once
 #include <cstdint>
+#include <cstring>
 
 namespace penink {
 
@@ -25,6 +26,13 @@ inline double unit_double(std::uint64_t bits) {
 
 inline double random_unit(std::uint64_t seed, std::uint64_t id, std::uint64_t k) {
     return unit_double(random_bits(seed, id, k));
+}
+
+// A float's bit pattern, for hashing geometry into ids.
+inline std::uint64_t float_bits(float f) {
+    std::uint32_t u;
+    std::memcpy(&u, &f, sizeof u);
+    return std::uint64_t(u);
 }
 
 }  // namespace penink

@@ -91,11 +91,7 @@ std::vector<Stroke> sketch_copies(const Stroke& s, const SketchParams& p, std::u
 }
 
 std::uint64_t stroke_geometry_id(const Stroke& s) {
-    auto bits = [](float f) {
-        std::uint32_t u;
-        std::memcpy(&u, &f, sizeof u);
-        return std::uint64_t(u);
-    };
+    const auto bits = float_bits;
     std::uint64_t h = splitmix64(s.points.size());
     if (!s.points.empty()) {
         h = splitmix64(h ^ (bits(s.points.front().x) << 32 | bits(s.points.front().y)));

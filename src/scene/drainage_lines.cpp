@@ -334,23 +334,26 @@ void DrainageLines::draw(const Camera& camera, const Scene& scene, GLuint toward
     frame.light = glm::vec3(light_vector(Light{scene.light.azimuth, scene.light.altitude}));
     frame.max_distance = max_distance;
     frame.toward_texture = toward_texture;
-    std::vector<float> scores;
-    const auto attenuation = [&](const CreaseParams& p) {  // per metre of depth
-        return max_distance > 0.0f ? p.distance_attenuation / double(max_distance) : 0.0;
+    struct LayerLines {
+        const ScoredLineSet& set;
+        const CreaseParams& params;
+        LayerKind layer;
+        const char* kind;
+        float sketch_px;
+        int repeat;
+        double& ms;
     };
-    if (scene.creases.enabled) {
-        times.dm = score_vertices(*creases_.pass, frame, scene.creases, scores);
-        whole_or_nothing_by_distance(scores, creases_.positions, creases_.runs, camera, attenuation(scene.creases));
-        drawing.layer(LayerKind::creases).strokes = thin_by_spacing(
-            line_strokes(creases_, scores, camera, "crease", scene.crease_sketch_px, scene.crease_repeat, scene.seed),
-            float(scene.creases.spacing_px));
-    }
-    if (scene.ridges.enabled) {
-        times.ridges = score_vertices(*ridges_.pass, frame, scene.ridges, scores);
-        whole_or_nothing_by_distance(scores, ridges_.positions, ridges_.runs, camera, attenuation(scene.ridges));
-        drawing.layer(LayerKind::ridges).strokes = thin_by_spacing(
-            line_strokes(ridges_, scores, camera, "ridge", scene.ridge_sketch_px, scene.ridge_repeat, scene.seed),
-            float(scene.ridges.spacing_px));
+    for (const LayerLines& l : {LayerLines{creases_, scene.creases, LayerKind::creases, "crease", scene.crease_sketch_px,
+                                           scene.crease_repeat, times.dm},
+                                LayerLines{ridges_, scene.ridges, LayerKind::ridges, "ridge", scene.ridge_sketch_px,
+                                           scene.ridge_repeat, times.ridges}}) {
+        if (!l.params.enabled) continue;
+        std::vector<float> scores;
+        l.ms = score_vertices(*l.set.pass, frame, l.params, scores);
+        const double per_metre = max_distance > 0.0f ? l.params.distance_attenuation / double(max_distance) : 0.0;
+        whole_or_nothing_by_distance(scores, l.set.positions, l.set.runs, camera, per_metre);
+        drawing.layer(l.layer).strokes = thin_by_spacing(
+            line_strokes(l.set, scores, camera, l.kind, l.sketch_px, l.repeat, scene.seed), float(l.params.spacing_px));
     }
 }
 
