@@ -1,6 +1,7 @@
 // Sea level in terrain frames: the coastline layer on a cone island lies on the closed-form shore
 // circle projected with the camera and is hidden where the island occludes it; the water hides
-// a seamount (no silhouette over it) and draws no coastline when all of it is under water;
+// a seamount (no silhouette over it) and draws no coastline when all of it is under water; on a
+// map whose frame cuts the shore the coastline runs to the frame;
 // creases and ridges are cut at the sea (no drawable vertex at or below it); and [terrain]
 // sea_level is read (a number; strict keys) and validated.
 #include <algorithm>
@@ -119,6 +120,42 @@ TEST(Coastline, ConeIslandShoreOnTheProjectedCircle) {
     EXPECT_LT(distance_to_strokes(pixel_of(cam, {-100.0, 0.0, 0.0}), coast), 0.5);  // its sides
     EXPECT_LT(distance_to_strokes(pixel_of(cam, {100.0, 0.0, 0.0}), coast), 0.5);
     EXPECT_GT(distance_to_strokes(pixel_of(cam, {0.0, 100.0, 0.0}), coast), 20.0);  // behind the cone
+}
+
+// A map whose frame cuts the shore: the cone island in plan view (orthographic, north up) 236 m
+// across, 177 m high, centred on the cone (its sides between rows of nodes). The shore circle
+// r = 100 leaves the frame through its top and bottom sides at x = +-sqrt(100^2 - 88.5^2) =
+// +-46.6 m, y = +-88.5 m; each coastline stroke ends on the image border there, not one mesh edge
+// short: along the border within the chord error (0.0625 m off the circle, as above) over the sine
+// of the angle at which the circle crosses the border (x / 100), at 800 / 236 pixels a metre.
+TEST(Coastline, ShoreRunsToTheFrameOfAMap) {
+    const Terrain t = terrain_from_function(161, 161, 5.0, [](double x, double y) { return 100.0 - std::hypot(x, y); });
+    Camera cam;
+    cam.projection = Projection::orthographic;
+    cam.azimuth = 0.0, cam.altitude = -90.0;
+    cam.width = 800, cam.height = 600;
+    cam.view_width = 236.0;
+    glm::dvec3 lo, hi;
+    terrain_bounds(t, lo, hi);
+    cam.eye = {0.0, 0.0, 0.0};
+    place_orthographic_eye(cam, lo, hi);
+    fit_depth_range(cam, lo, hi);
+    TerrainFrames frames(test::test_context(), std::nullopt, with_sea(t, 0.0), cam.width, cam.height, Log{});
+    const SceneDrawing d = frames.draw(cam, no_drainage());
+    const std::vector<Stroke>& coast = d.drawing.layer(LayerKind::coastline).strokes;
+    ASSERT_EQ(coast.size(), 2u);  // the west and the east arcs
+    const double y = 88.5, x = std::sqrt(100.0 * 100.0 - y * y);
+    const double tol_px = 50.0 / (8.0 * 100.0) / (x / 100.0) * 800.0 / 236.0;
+    std::vector<glm::dvec2> exits;
+    for (double sx : {-x, x})
+        for (double sy : {-y, y}) exits.push_back(pixel_of(cam, {sx, sy, 0.0}));
+    for (const Stroke& s : coast)
+        for (const glm::vec2& end : {s.points.front(), s.points.back()}) {
+            EXPECT_TRUE(std::abs(end.y) < 1e-3 || std::abs(end.y - 600.0f) < 1e-3) << end.x << " " << end.y;
+            double best = 1e300;
+            for (const glm::dvec2& e : exits) best = std::min(best, glm::length(glm::dvec2(end) - e));
+            EXPECT_LT(best, tol_px) << end.x << " " << end.y;
+        }
 }
 
 // A seamount under the sea: z = -60 + 50 exp(-r^2 / (2 30^2)) (top 10 m under water, sides up to
