@@ -26,8 +26,9 @@ std::vector<float> visible_percentiles(const std::vector<float>& values, float h
 
 std::vector<float> rank_scores(const std::array<std::vector<float>, 3>& terms, const std::vector<float>& minus_rs_min,
                                const std::array<double, 3>& weights, float hidden) {
-    for (const auto& t : terms)
-        if (t.size() != minus_rs_min.size()) throw std::invalid_argument("rank_scores: term arrays differ in length");
+    for (int k = 0; k < 3; ++k)
+        if (weights[k] != 0.0 && terms[k].size() != minus_rs_min.size())
+            throw std::invalid_argument("rank_scores: term arrays differ in length");
     const double sum = std::accumulate(weights.begin(), weights.end(), 0.0);
     const double divisor = sum > 0.0 ? sum : 1.0;
     std::vector<float> out(minus_rs_min.size(), hidden);

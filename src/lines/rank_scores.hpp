@@ -19,8 +19,8 @@ namespace penink {
 // Percentile of each visible value among the visible values (hidden: `hidden`, left as is).
 std::vector<float> visible_percentiles(const std::vector<float>& values, float hidden);
 
-// rs under the rank normalisation; weights {slope, illumination, flow}; all weights 0 gives
-// -rs_min (the weighted mean is then 0).
+// rs under the rank normalisation; weights {slope, illumination, flow}; a term whose weight is 0
+// is not read (it may be empty); all weights 0 gives -rs_min (the weighted mean is then 0).
 std::vector<float> rank_scores(const std::array<std::vector<float>, 3>& terms, const std::vector<float>& minus_rs_min,
                                const std::array<double, 3>& weights, float hidden);
 

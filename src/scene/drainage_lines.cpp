@@ -303,16 +303,18 @@ DrainageLines::DrainageLines(const GlApi& gl, const DrainageDb& db, const Terrai
 
 namespace {
 
-// The DM pass's scores under `p`; for "rank" the pass gives each term alone (its weight 1, the
-// others 0, no threshold) and -rs_min(d) (every weight 0), ranked on the CPU (lines/rank_scores.hpp).
+// The DM pass's scores under `p`; for "rank" the pass gives each weighted term alone (its weight 1,
+// the others 0, no threshold) and -rs_min(d) (every weight 0), ranked on the CPU (lines/rank_scores.hpp).
 double score_vertices(DmPass& pass, const DmFrame& frame, const CreaseParams& p, std::vector<float>& scores) {
     if (p.normalisation != ScoreNormalisation::rank) return pass.run(frame, p, scores);
     CreaseParams single = p;
     single.normalisation = ScoreNormalisation::paper;
     single.min_score = 0.0, single.distance_attenuation = 0.0;
-    std::array<std::vector<float>, 3> terms;
+    const std::array<double, 3> weights{p.slope_weight, p.illumination_weight, p.flow_weight};
+    std::array<std::vector<float>, 3> terms;  // empty where the weight is 0 (not ranked)
     double ms = 0.0;
     for (int k = 0; k < 3; ++k) {
+        if (weights[k] == 0.0) continue;
         single.slope_weight = k == 0, single.illumination_weight = k == 1, single.flow_weight = k == 2;
         ms += pass.run(frame, single, terms[k]);
     }
@@ -321,7 +323,7 @@ double score_vertices(DmPass& pass, const DmFrame& frame, const CreaseParams& p,
     threshold.slope_weight = threshold.illumination_weight = threshold.flow_weight = 0.0;
     std::vector<float> minus_rs_min;
     ms += pass.run(frame, threshold, minus_rs_min);
-    scores = rank_scores(terms, minus_rs_min, {p.slope_weight, p.illumination_weight, p.flow_weight}, dm_hidden);
+    scores = rank_scores(terms, minus_rs_min, weights, dm_hidden);
     return ms;
 }
 

@@ -1,12 +1,13 @@
 #include "scene/scene_memory.hpp"
 
-#include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "core/memory_budget.hpp"
 #include "drainage/drainage_memory.hpp"
 #include "input/dem_reader.hpp"
 #include "scene/frame_source.hpp"
+#include "surface/terrain_lod.hpp"
 
 namespace penink {
 
@@ -21,9 +22,8 @@ void check_scene_memory(const Scene& scene, std::uint64_t max_memory) {
                             drainage_bytes_per_point;
     double water = 0.0;  // the pyramid rebuilt for a sea level, over the padded square
     if (scene.sea_level) {
-        double side = 2.0;
-        while (side < double(std::max(size.cols, size.rows) - 1)) side *= 2.0;
-        water = (side + 1.0) * (side + 1.0) * water_lod_bytes_per_padded_node;
+        const double side = std::ldexp(1.0, lod_padded_levels(size.cols, size.rows)) + 1.0;
+        water = side * side * water_lod_bytes_per_padded_node;
     }
     check_memory("input", scene.dem,
                  "drawing the DEM's " + std::to_string(size.cols) + "x" + std::to_string(size.rows) + " nodes",

@@ -30,12 +30,6 @@ constexpr std::uint64_t max_crs_bytes = 1 << 20;
 
 std::uint64_t align_up(std::uint64_t n, std::uint64_t a) { return (n + a - 1) / a * a; }
 
-int padded_levels(int cols, int rows) {
-    int k = 0;
-    while ((1 << k) + 1 < std::max(cols, rows)) ++k;
-    return k;
-}
-
 struct Writer {
     std::vector<std::uint8_t> b;
     template <class T> void put(T v) {
@@ -226,7 +220,7 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     const std::uint64_t total = r.get<std::uint64_t>(), crs = r.get<std::uint64_t>();
     if (!r.ok || crs > r.n - r.at) return fail(why, "damaged terrain cache (header)");
     m.crs_wkt.assign(reinterpret_cast<const char*>(b + r.at), std::size_t(crs));
-    if (m.cols < 2 || m.rows < 2 || std::max(m.cols, m.rows) > (1 << 30) || levels != padded_levels(m.cols, m.rows))
+    if (m.cols < 2 || m.rows < 2 || std::max(m.cols, m.rows) > (1 << 30) || levels != lod_padded_levels(m.cols, m.rows))
         return fail(why, "damaged terrain cache (grid)");
     const Sizes s = array_sizes(m.cols, m.rows, levels);
     if (total != map->size || at[0] < length || at[1] < at[0] + s.pos || at[2] < at[1] + s.valid ||

@@ -20,12 +20,6 @@ namespace {
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
-int padded_levels(int cols, int rows) {
-    int k = 0;
-    while ((1 << k) + 1 < std::max(cols, rows)) ++k;
-    return k;
-}
-
 void check_terrain(const Terrain& t) {
     if (t.cols < 0 || t.rows < 0 || t.pos.size() != t.size() || t.valid.size() != t.size())
         throw std::invalid_argument("terrain lod: terrain positions/valid flags do not match its grid");
@@ -123,12 +117,18 @@ TerrainLod build_terrain_lod(const Terrain& t) {
     return build_terrain_lod(grid_nodes(t), t.vertical_exaggeration);
 }
 
+int lod_padded_levels(int cols, int rows) {
+    int k = 0;
+    while ((1 << k) + 1 < std::max(cols, rows)) ++k;
+    return k;
+}
+
 TerrainLod build_terrain_lod(const GridNodes& t, double ex) {
     check_nodes(t);
     if (!(ex > 0.0) || !std::isfinite(ex)) throw std::invalid_argument("terrain lod: vertical exaggeration must be > 0");
     TerrainLod lod;
     lod.cols = t.cols, lod.rows = t.rows;
-    lod.levels = padded_levels(t.cols, t.rows);
+    lod.levels = lod_padded_levels(t.cols, t.rows);
     const int n = 1 << lod.levels, side = n + 1;
     const std::size_t N = std::size_t(side) * side;
     auto error = std::make_shared<std::vector<float>>(N, 0.0f);
@@ -318,12 +318,9 @@ Frustum frustum_of(const Camera& cam) {
 // nested and the mesh crack-free.
 // Unexaggerated metres: the water's drawn height over the exaggeration the errors are drawn at.
 float water_error(const TerrainLod& lod, const GridNodes& t, double exaggeration) {
-    if (lod.sea_level != t.sea_level) {
-        if (lod.sea_level > -std::numeric_limits<double>::infinity())
-            throw std::invalid_argument("terrain lod: the pyramid was built for another sea level");
-    } else {
-        return 0.0f;  // the errors are those of the clamped nodes (or there is no water)
-    }
+    if (lod.sea_level == t.sea_level) return 0.0f;  // the errors are the clamped nodes' (or no water)
+    if (lod.sea_level > -std::numeric_limits<double>::infinity())
+        throw std::invalid_argument("terrain lod: the pyramid was built for another sea level");
     const double s = double(t.sea_z()) / exaggeration;
     const double extra = std::min(std::max(0.0, s - double(lod.z_min)), std::max(0.0, double(lod.z_max) - s));
     return extra > 0.0 ? float(extra * (1.0 + 1e-5)) : 0.0f;  // rounded up

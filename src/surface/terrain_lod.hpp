@@ -98,6 +98,9 @@ struct TerrainLod {
     float radius(int c, int r) const;
 };
 
+// The levels of the padded square of a cols x rows grid: the least k with 2^k + 1 >= max(cols, rows).
+int lod_padded_levels(int cols, int rows);
+
 // From a Terrain whose pos.z is elevation * t.vertical_exaggeration (divided out: errors are
 // unexaggerated). O(N); throws std::invalid_argument on an inconsistent Terrain.
 TerrainLod build_terrain_lod(const Terrain& t);

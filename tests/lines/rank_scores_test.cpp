@@ -68,3 +68,20 @@ TEST(RankScores, ThresholdKeepsAShareIndependentOfTheTermsDistributions) {
     for (float s : rs) passing += s >= 0.0f;
     EXPECT_NEAR(double(passing) / n, 7.0 / 108.0, 0.005);
 }
+
+// A term with weight 0 is neither ranked nor read: it may be left empty (the scene runs no DM pass
+// for it), and the scores equal those with it present.
+TEST(RankScores, UnweightedTermsAreNotRead) {
+    const float h = dm_hidden;
+    const std::array<std::vector<float>, 3> full{std::vector<float>{0.1f, 0.2f, 0.3f, h},
+                                                 std::vector<float>{0.9f, 0.5f, 0.2f, h},
+                                                 std::vector<float>{0.3f, 0.1f, 0.2f, h}};
+    const std::array<std::vector<float>, 3> no_flow{full[0], full[1], std::vector<float>{}};
+    const std::vector<float> minus_rs_min{-0.1f, -0.2f, -0.3f, h};
+    const std::vector<float> a = rank_scores(full, minus_rs_min, {1.0, 2.0, 0.0}, h);
+    const std::vector<float> b = rank_scores(no_flow, minus_rs_min, {1.0, 2.0, 0.0}, h);
+    ASSERT_EQ(a.size(), 4u);
+    for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i], b[i]) << i;
+    EXPECT_NEAR(a[0], (1.0 / 6 + 2.0 * 5.0 / 6) / 3.0 - 0.1, 1e-6);
+    EXPECT_THROW(rank_scores(no_flow, minus_rs_min, {1.0, 2.0, 1.0}, h), std::invalid_argument);
+}
