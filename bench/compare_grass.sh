@@ -10,7 +10,7 @@
 #                                                     (r.resamp.interp) to cells of RES (CRS units,
 #                                                     or d:m:s for degrees), e.g. a real landscape
 #                                                     of millions of cells: --refined 0:00:00.6
-#                                                     ../shared/data/jacksboro.tif 4326
+#                                                     examples/jacksboro.tif 4326
 # env: PENINK=path/to/penink (default build/penink), REPEAT=5 (best of REPEAT runs is reported; the
 # runs of r.watershed and of penink's two routings alternate), SEED=1 (--synthetic: the fractal's
 # random seed, GRASS_RANDOM_SEED, so a run can be repeated on the same surface).

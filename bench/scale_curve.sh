@@ -3,7 +3,7 @@
 # (silhouettes, creases, ridges; auto-framed camera) against the DEM's size, cold (no caches:
 # the terrain cache and the drainage database are built and written) and warm (both present), next to the bundled
 # volcano measured in the same run, alternately, so that a slow spell of the machine moves
-# both. DEMs: examples/volcano.asc (5 k cells), ../shared/data/jacksboro.tif (139 k, a geographic
+# both. DEMs: examples/volcano.asc (5 k cells), examples/jacksboro.tif (139 k, a geographic
 # DEM projected to UTM) and jacksboro refined with GDAL's cubic resampling (`gdal_translate -r
 # cubic -outsize F% F% -ot Float32`) at 200 %, 500 % and 1000 % (0.55 M, 3.5 M, 13.9 M cells).
 # Prints a Markdown table: wall seconds (best of N warm runs, one cold run) and peak resident
@@ -13,15 +13,15 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=$(realpath "${1:-build/penink}")
 N=${N:-3}
-SHARED=$(realpath ../shared/data)
+DATA=$(realpath examples)
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
 command -v gdal_translate >/dev/null || { echo "scale_curve.sh: needs gdal_translate (apt-get install gdal-bin)" >&2; exit 2; }
 
 cp examples/volcano.asc examples/volcano.prj "$TMP/"
-cp "$SHARED/jacksboro.tif" "$TMP/jacksboro.tif"
+cp "$DATA/jacksboro.tif" "$TMP/jacksboro.tif"
 for f in 200 500 1000; do
-  gdal_translate -q -r cubic -outsize "$f%" "$f%" -ot Float32 "$SHARED/jacksboro.tif" "$TMP/jacksboro_$f.tif"
+  gdal_translate -q -r cubic -outsize "$f%" "$f%" -ot Float32 "$DATA/jacksboro.tif" "$TMP/jacksboro_$f.tif"
 done
 
 # "seconds max_rss_MB" of one run

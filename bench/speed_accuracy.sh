@@ -17,7 +17,7 @@ BIN=$(realpath "${1:-build/penink}")
 OUT=$(realpath -m "${2:-bench-out}")
 FRAMES=${FRAMES:-5}
 LEVELS=${LEVELS:-1,4}
-SHARED=$(realpath ../shared/data)
+DATA=$(realpath examples)
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
 command -v gdal_translate >/dev/null || { echo "speed_accuracy.sh: needs gdal_translate (apt-get install gdal-bin)" >&2; exit 2; }
@@ -30,7 +30,7 @@ done
 "$BIN" bench examples/volcano.toml --out "$OUT/volcano" --sizes 500x375,1000x750 --needs-size 500x375 "${common[@]}" \
   >"$OUT/volcano.txt"
 
-gdal_translate -q -r cubic -outsize 500% 500% -ot Float32 "$SHARED/jacksboro.tif" "$TMP/jacksboro5.tif"
+gdal_translate -q -r cubic -outsize 500% 500% -ot Float32 "$DATA/jacksboro.tif" "$TMP/jacksboro5.tif"
 printf '[terrain]\ndem = "%s"\nvertical_exaggeration = 3\n' "$TMP/jacksboro5.tif" >"$TMP/j5.toml"
 "$BIN" bench "$TMP/j5.toml" --out "$OUT/jacksboro5-tolerance" --sizes 1000x750 --levels 1,4 \
   --tolerances 0.5,1,2,4 --methods toward-away --no-needs --frames "$FRAMES" --warmup 1 -q \

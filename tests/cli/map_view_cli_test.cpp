@@ -76,7 +76,7 @@ TEST(MapViewCli, WhatCannotBeAMapIsAnError) {
 // DEM's edge node centres with OGR, not with penink's projection.
 TEST(MapViewCli, JacksboroAtOneToOneHundredThousandOnA4IsWhereGdalSaysItIs) {
     const auto dir = fresh_dir("map_jacksboro");
-    const std::string dem = PENINK_SHARED_DIR "/data/jacksboro.tif";
+    const std::string dem = PENINK_SOURCE_DIR "/examples/jacksboro.tif";
     const RunResult r = run_penink("render '" + dem + "' --map --scale 1:100000 --page A4 --dpi 150 -o map.pdf -o map.png -q", dir);
     ASSERT_EQ(r.code, 0) << r.output;
     GDALAllRegister();

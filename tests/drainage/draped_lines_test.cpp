@@ -120,7 +120,7 @@ TEST(DrapedLines, VolcanoDrapeEqualsTheLocatorOnTheWholeMesh) {
 }
 
 TEST(DrapedLines, GeographicDemDrapeEqualsTheLocator) {  // curvilinear UTM grid: found by walking
-    const Terrain dem = read_dem(PENINK_SHARED_DIR "/data/jacksboro.tif");
+    const Terrain dem = read_dem(PENINK_SOURCE_DIR "/examples/jacksboro.tif");
     ASSERT_TRUE(dem.source_geographic);
     expect_locator_drape(dem, 1, "jacksboro_factor1");
 }

@@ -147,7 +147,7 @@ TEST(DvFile, StreamedNetworkWritesTheDatabasesBytes) {
 // 5 instead of 12 bytes) and reads back to the database built in memory, x and y included.
 TEST(DvFile, GridPositionsOnAnAffineDemReadBackExactly) {
     const fs::path d = temp_dir("grid");
-    Terrain t = read_dem(PENINK_SHARED_DIR "/data/volcano.asc");
+    Terrain t = read_dem(PENINK_SOURCE_DIR "/examples/volcano.asc");
     DrainageOptions o;
     o.resample = 1;
     DrainageDb built = build_drainage_db(t, o);

@@ -86,7 +86,7 @@ TEST(PnResample, HeightsOnlyTerrainGivesTheSameGridAtFactorOne) {
     heights.heights_only = true;
     // volcano and the rotated grid are affine; jacksboro is geographic (its UTM x, y come in h.xy)
     for (const std::string& p : {std::string(PENINK_SOURCE_DIR "/examples/volcano.asc"), rotated,
-                                 std::string(PENINK_SHARED_DIR "/data/jacksboro.tif")}) {
+                                 std::string(PENINK_SOURCE_DIR "/examples/jacksboro.tif")}) {
         const DrainageGrid full = resample_pn(read_dem(p), 1);
         Terrain h = read_dem(p, heights);
         EXPECT_THROW(resample_pn(h, 2), Error);  // positions needed between the nodes

@@ -152,7 +152,7 @@ TEST(DemReader, GdalStaysSilent) {
 }
 
 TEST(DemReader, ForcedZoneErrors) {
-    const std::string p = PENINK_SHARED_DIR "/data/jacksboro.tif";
+    const std::string p = PENINK_SOURCE_DIR "/examples/jacksboro.tif";
     EXPECT_EQ(error_of(p, {.utm_zone = 61}),
               "penink: input: " + p + ": UTM zone must be 1..60 (0 = standard zone), got 61");
     const std::string far = error_of(p, {.utm_zone = 40});
@@ -179,8 +179,8 @@ TEST(DemReader, VolcanoGridShapeRangeAndSpacing) {
 }
 
 TEST(DemReader, VolcanoTifMatchesAsc) {
-    const Terrain a = read_dem(PENINK_SHARED_DIR "/data/volcano.asc");
-    const Terrain b = read_dem(PENINK_SHARED_DIR "/data/volcano.tif");
+    const Terrain a = read_dem(PENINK_SOURCE_DIR "/examples/volcano.asc");
+    const Terrain b = read_dem(PENINK_SOURCE_DIR "/tests/data/volcano.tif");
     ASSERT_EQ(a.size(), b.size());
     EXPECT_EQ(a.origin, b.origin);
     for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a.pos[i], b.pos[i]) << i;
@@ -233,7 +233,7 @@ glm::dvec2 utm_of_node(const std::string& path, int c, int r, int zone, bool& no
 }
 
 TEST(DemReader, JacksboroIsProjectedToUtm16North) {
-    const std::string p = PENINK_SHARED_DIR "/data/jacksboro.tif";
+    const std::string p = PENINK_SOURCE_DIR "/examples/jacksboro.tif";
     const Terrain t = read_dem(p);
     EXPECT_EQ(t.cols, 403);
     EXPECT_EQ(t.rows, 344);
@@ -254,14 +254,14 @@ TEST(DemReader, JacksboroIsProjectedToUtm16North) {
 }
 
 TEST(DemReader, JacksboroForcedZoneAndAscii) {
-    const std::string p = PENINK_SHARED_DIR "/data/jacksboro.tif";
+    const std::string p = PENINK_SOURCE_DIR "/examples/jacksboro.tif";
     const Terrain t = read_dem(p, {.utm_zone = 17});
     EXPECT_EQ(t.utm_zone, 17);
     bool north = false;
     const glm::dvec2 ne = utm_of_node(p, 402, 0, 17, north);
     EXPECT_NEAR(t.origin.x + t.pos[402].x, ne.x, 1.0);
     EXPECT_NEAR(t.origin.y + t.pos[402].y, ne.y, 1.0);
-    const Terrain a = read_dem(PENINK_SHARED_DIR "/data/jacksboro.asc");
+    const Terrain a = read_dem(PENINK_SOURCE_DIR "/tests/data/jacksboro.asc");
     const Terrain b = read_dem(p);
     ASSERT_EQ(a.size(), b.size());
     EXPECT_EQ(a.origin, b.origin);
@@ -299,7 +299,7 @@ TEST(DemReader, GeographicOriginIsTheCentreOfAllNodes) {
 // (the drainage database stores cells instead of x, y on it), also in a cropped window; a
 // geographic DEM has none.
 TEST(DemReader, ProjectedNodesFollowTheirAffineGridExactly) {
-    const Terrain full = read_dem(PENINK_SHARED_DIR "/data/volcano.asc");
+    const Terrain full = read_dem(PENINK_SOURCE_DIR "/examples/volcano.asc");
     const Terrain window = crop_terrain(full, {7, 11, 50, 80});
     for (const Terrain* t : {&full, &window}) {
         AffineNodes a;
@@ -311,7 +311,7 @@ TEST(DemReader, ProjectedNodesFollowTheirAffineGridExactly) {
             }
     }
     AffineNodes none;
-    EXPECT_FALSE(terrain_affine(read_dem(PENINK_SHARED_DIR "/data/jacksboro.tif"), none));
+    EXPECT_FALSE(terrain_affine(read_dem(PENINK_SOURCE_DIR "/examples/jacksboro.tif"), none));
 }
 
 // The same options with positions read.
@@ -344,8 +344,8 @@ TEST(DemReader, HeightsOnlyReadKeepsTheElevationsAndLeavesPositionsOut) {
     }
     EXPECT_TRUE(read_dem(rotated, heights).xy.empty());  // x, y from the affine grid
     // a geographic DEM has no affine grid in metres: its nodes' UTM x, y come apart, in xy
-    const Terrain full = read_dem(PENINK_SHARED_DIR "/data/jacksboro.tif", heights_full(heights));
-    const Terrain geo = read_dem(PENINK_SHARED_DIR "/data/jacksboro.tif", heights);
+    const Terrain full = read_dem(PENINK_SOURCE_DIR "/examples/jacksboro.tif", heights_full(heights));
+    const Terrain geo = read_dem(PENINK_SOURCE_DIR "/examples/jacksboro.tif", heights);
     EXPECT_TRUE(geo.pos.empty());
     ASSERT_EQ(geo.z.size(), full.pos.size());
     ASSERT_EQ(geo.xy.size(), full.pos.size());

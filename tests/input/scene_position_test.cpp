@@ -11,7 +11,7 @@ namespace penink {
 namespace {
 
 const Terrain& jacksboro() {
-    static const Terrain t = read_dem(PENINK_SHARED_DIR "/data/jacksboro.tif");
+    static const Terrain t = read_dem(PENINK_SOURCE_DIR "/examples/jacksboro.tif");
     return t;
 }
 

@@ -624,7 +624,8 @@ TEST(CreasesRender, StreamedSelectionEqualsTheInMemoryOne) {
     fs::create_directories(dir);
     const Cleanup cleanup{dir};
     for (const std::string name : {"volcano", "jacksboro"}) {
-        const std::string dem_path = std::string(PENINK_SHARED_DIR "/data/") + name + ".tif";
+        const std::string dem_path =
+            std::string(PENINK_SOURCE_DIR) + (name == "volcano" ? "/tests/data/" : "/examples/") + name + ".tif";
         const Terrain dem = read_dem(dem_path);
         const DrainageDb full = build_drainage_db(dem, DrainageOptions{});
         const std::string cache = (dir / (name + ".dv")).string();
@@ -671,7 +672,7 @@ TEST(CreasesRender, StreamedSelectionEqualsTheInMemoryOne) {
 // distance times lod_pixel_scale over the eye distance), except next to the part's ends; without
 // decimation every vertex of the same lines is written.
 TEST(CreasesRender, DecimationKeepsVerticesHalfAPixelApart) {
-    const std::string dem_path = PENINK_SHARED_DIR "/data/jacksboro.tif";
+    const std::string dem_path = PENINK_SOURCE_DIR "/examples/jacksboro.tif";
     const Terrain dem = read_dem(dem_path);
     const DrainageDb db = build_drainage_db(dem, DrainageOptions{});
     Scene scene;

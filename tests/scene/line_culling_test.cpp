@@ -28,7 +28,7 @@ void expect_same_strokes(const std::vector<Stroke>& a, const std::vector<Stroke>
 }  // namespace
 
 TEST(LineCulling, DrawingIsTheSameWithAndWithoutIt) {
-    const std::string path = PENINK_SHARED_DIR "/data/jacksboro.tif";
+    const std::string path = PENINK_SOURCE_DIR "/examples/jacksboro.tif";
     const DrainageDb db = drainage_lines_only(build_drainage_db(read_dem(path), DrainageOptions{}));
     DemOptions o;
     o.vertical_exaggeration = 2.0;

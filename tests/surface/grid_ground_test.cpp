@@ -54,7 +54,7 @@ TEST(GridGround, AffineGridMatchesTheMesh) {
 }
 
 TEST(GridGround, CurvilinearGridMatchesTheMesh) {
-    compare(read_dem(PENINK_SHARED_DIR "/data/jacksboro.tif"), 5000);
+    compare(read_dem(PENINK_SOURCE_DIR "/examples/jacksboro.tif"), 5000);
 }
 
 TEST(GridGround, NodesGiveTheirOwnHeight) {
