@@ -3,7 +3,7 @@
 # runs the whole test suite (ctest).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/check_standalone.sh   # nothing may read ../shared: a user's clone has none
+bash scripts/check_standalone.sh   # the project carries every file it reads
 bash scripts/deps.sh test
 bash scripts/build.sh
 cd build && ctest --output-on-failure -j"$(nproc)"
