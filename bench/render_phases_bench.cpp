@@ -1,5 +1,5 @@
 // Where the time of one `penink render` of a terrain scene goes, phase by phase (wall ms, one
-// process, same steps as cli/render_command + cli/terrain_drawing): scene, GL context, DEM read,
+// process, same steps as cli/render_command): scene, GL context, DEM read,
 // camera + view window, surface mesh, renderer (shader programs), drainage cache load, drainage
 // line sets (GPU upload), the frame (passes + tracing), finishing, styling, SVG export; then the
 // same frame again (warm). Usage: render_phases_bench SCENE [WIDTH HEIGHT]. Process start-up

@@ -202,7 +202,8 @@ Style load_style(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error("style", path, "cannot open style file");
     const std::string text{std::istreambuf_iterator<char>(in), {}};
-    // TOML is UTF-8; toml11 3.7 reads past its buffer reporting some sequences that are not
+    // TOML is UTF-8; toml11 3.7 reads past its buffer reporting some sequences that are not UTF-8,
+    // so the text is checked before it is parsed.
     if (const std::size_t bad = invalid_utf8_at(text); bad != npos_utf8)
         throw Error("style", path, "invalid TOML: not UTF-8 text (byte " + std::to_string(bad + 1) + ")");
     toml::value root;

@@ -25,7 +25,7 @@ _penink() {
     fi
     case $prev in
         --style)
-            COMPREPLY=($(compgen -W "technical field-sketch" -- "$cur") $(compgen -f -X '!*.toml' -- "$cur") $(compgen -d -- "$cur"))
+            COMPREPLY=($(compgen -W "technical field-sketch plotter" -- "$cur") $(compgen -f -X '!*.toml' -- "$cur") $(compgen -d -- "$cur"))
             compopt -o filenames 2>/dev/null
             return ;;
         --gl) COMPREPLY=($(compgen -W "osmesa egl" -- "$cur")); return ;;

@@ -176,7 +176,7 @@ std::string find_texture_library(const Scene& s, const MeshScene& ms) {
     const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
     if (!ec) {
         candidates.push_back(exe.parent_path() / ".." / "examples" / "textures");
-        candidates.push_back(exe.parent_path() / ".." / "share" / "penink" / "textures");
+        candidates.push_back(exe.parent_path() / ".." / "share" / "penink" / "examples" / "textures");  // installed
     }
     for (const fs::path& c : candidates)
         if (fs::is_directory(c, ec)) return c.lexically_normal().string();

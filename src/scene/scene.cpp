@@ -178,7 +178,8 @@ Scene parse_scene_file(const std::string& path) {
     s.file = path;
     std::ifstream in(path, std::ios::binary);
     const std::string text{std::istreambuf_iterator<char>(in), {}};
-    // TOML is UTF-8; toml11 3.7 reads past its buffer reporting some sequences that are not
+    // TOML is UTF-8; toml11 3.7 reads past its buffer reporting some sequences that are not UTF-8,
+    // so the text is checked before it is parsed.
     if (const std::size_t bad = invalid_utf8_at(text); bad != npos_utf8)
         throw Error("scene", path, "not a valid TOML scene (not UTF-8 text: byte " + std::to_string(bad + 1) + ")");
     toml::value root;

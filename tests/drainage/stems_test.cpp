@@ -22,7 +22,7 @@ struct BranchSpec {
     std::int32_t downstream;
 };
 
-// Builds vertices, branches and upstream lists (upstream ids in branch order, like link_branches).
+// Builds vertices, branches and upstream lists (upstream ids in branch order, as build_branches fills them).
 DrainageDb make_db(const std::vector<BranchSpec>& spec) {
     DrainageDb db;
     for (const BranchSpec& s : spec) {

@@ -71,4 +71,12 @@ complete_words() {  # complete_words WORD... : the completions of the last word
 [[ $(complete_words penink drainage --rou) == "--routing " ]] || fail "drainage --rou: $(complete_words penink drainage --rou)"
 [[ $(complete_words penink render x.toml --gl '') == "egl osmesa " ]] || fail "--gl: $(complete_words penink render x.toml --gl '')"
 [[ $(complete_words penink render v.s) == "v.svg " ]] || fail "file names: $(complete_words penink render v.s)"
+# Every shipped style is offered by --style and named in the manual's FILES section.
+styles_completed=" $(complete_words penink render x.toml --style '') "
+manual=$(zcat "$root/usr/share/man/man1/penink.1.gz" | sed 's/\\-/-/g')
+for f in "$root"/usr/share/penink/styles/*.toml; do
+    name=$(basename "$f" .toml)
+    [[ $styles_completed == *" $name "* ]] || fail "--style completion lacks $name: $styles_completed"
+    grep -q -- "$name" <<<"$(awk '/^\.SH FILES/,/^\.SH [^F]/' <<<"$manual")" || fail "manual FILES lacks style $name"
+done
 echo "package test: $(basename "$deb"), $(wc -l <"$tmp/files") entries, installed binary renders SVG and PNG"
