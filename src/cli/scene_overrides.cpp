@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/option_checks.hpp"
+#include "core/error.hpp"
 #include "scene/scene_memory.hpp"
 
 namespace penink {
@@ -27,7 +28,46 @@ void add_scene_override_options(CLI::App* cmd, SceneOverrides& o) {
     cmd->add_option("--gl", o.gl, "OpenGL backend: osmesa (software, default) or egl (GPU)")
         ->check(CLI::IsMember({"osmesa", "egl"}));
     add_max_memory_option(cmd, o.max_memory);
+    const char* place = "(\"LON,LAT\", \"EASTING NORTHING ZONE\" such as \"588497 4589846 18N\", or \"X Y\" in the DEM's CRS)";
+    cmd->add_option("--position", o.position, std::string("Camera position ") + place + "; goes with --elevation");
+    cmd->add_option("--elevation", o.elevation, "Camera elevation, metres above the DEM's datum (unexaggerated)")
+        ->check(number_between(-1e7, 1e7));
+    cmd->add_option("--azimuth", o.azimuth, "View direction, degrees clockwise from grid north")
+        ->check(number_between(-360, 360));
+    cmd->add_option("--altitude", o.altitude, "View direction above the horizontal, degrees (negative looks down)")
+        ->check(number_between(-90, 90));
+    cmd->add_option("--fov", o.fov, "Horizontal field of view, degrees")->check(number_between(0.001, 178.999));
+    cmd->add_option("--target", o.target,
+                    std::string("A place to look at ") + place +
+                        ": aimed at from --position, or seen from --distance along --azimuth/--altitude");
+    cmd->add_option("--distance", o.distance, "Metres from the camera to --target (default: half the DEM's extent)")
+        ->check(number_between(1e-3, 1e8));
 }
+
+namespace {
+// The camera options over the scene's camera (after --map's plan view).
+void apply_camera_overrides(const SceneOverrides& o, Scene& scene) {
+    SceneCamera& c = scene.camera;
+    if (!scene.mesh.empty()) {
+        const std::pair<const char*, bool> terrain_only[] = {{"--position", o.position.has_value()},
+                                                             {"--elevation", o.elevation.has_value()},
+                                                             {"--target", o.target.has_value()},
+                                                             {"--distance", o.distance.has_value()}};
+        for (const auto& [name, given] : terrain_only)
+            if (given)
+                throw Error("cli", o.input, std::string(name) +
+                                                " applies to terrain scenes only (a mesh's camera is set by [camera] eye, "
+                                                "target and up)");
+    }
+    if (o.position) c.position = o.position;
+    if (o.elevation) c.elevation = o.elevation;
+    if (o.azimuth) c.azimuth = o.azimuth;
+    if (o.altitude) c.altitude = o.altitude;
+    if (o.fov) c.fov = *o.fov;
+    if (o.target) c.target = o.target;
+    if (o.distance) c.distance = o.distance;
+}
+}  // namespace
 
 Scene load_scene_with_overrides(const SceneOverrides& o) {
     Scene scene = load_scene(o.input);
@@ -41,7 +81,9 @@ Scene load_scene_with_overrides(const SceneOverrides& o) {
         scene.camera.projection = Projection::orthographic;
         scene.camera.azimuth = 0.0, scene.camera.altitude = -90.0;
         scene.camera.position.reset(), scene.camera.elevation.reset();
+        scene.camera.target.reset(), scene.camera.distance.reset();
     }
+    apply_camera_overrides(o, scene);
     if (!o.scale.empty()) scene.map_scale = parse_map_scale(o.scale);
     if (o.sea_level) scene.sea_level = o.sea_level;
     if (!o.style.empty()) scene.style = o.style;
