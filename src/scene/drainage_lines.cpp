@@ -9,7 +9,7 @@
 
 #include "core/parallel_chunks.hpp"
 #include "lines/finish_drawing.hpp"
-#include "lines/rank_scores.hpp"
+#include "lines/crease_scores.hpp"
 #include "lines/spacing_thinning.hpp"
 #include "surface/terrain_lod.hpp"
 
@@ -301,40 +301,11 @@ DrainageLines::DrainageLines(const GlApi& gl, DrainageLineData data)
 DrainageLines::DrainageLines(const GlApi& gl, const DrainageDb& db, const Terrain& model)
     : DrainageLines(gl, prepare_drainage_lines(db, model)) {}
 
-namespace {
-
-// The DM pass's scores under `p`; for "rank" the pass gives each weighted term alone (its weight 1,
-// the others 0, no threshold) and -rs_min(d) (every weight 0), ranked on the CPU (lines/rank_scores.hpp).
-double score_vertices(DmPass& pass, const DmFrame& frame, const CreaseParams& p, std::vector<float>& scores) {
-    if (p.normalisation != ScoreNormalisation::rank) return pass.run(frame, p, scores);
-    CreaseParams single = p;
-    single.normalisation = ScoreNormalisation::paper;
-    single.min_score = 0.0, single.distance_attenuation = 0.0;
-    const std::array<double, 3> weights{p.slope_weight, p.illumination_weight, p.flow_weight};
-    std::array<std::vector<float>, 3> terms;  // empty where the weight is 0 (not ranked)
-    double ms = 0.0;
-    for (int k = 0; k < 3; ++k) {
-        if (weights[k] == 0.0) continue;
-        single.slope_weight = k == 0, single.illumination_weight = k == 1, single.flow_weight = k == 2;
-        ms += pass.run(frame, single, terms[k]);
-    }
-    CreaseParams threshold = p;
-    threshold.normalisation = ScoreNormalisation::paper;
-    threshold.slope_weight = threshold.illumination_weight = threshold.flow_weight = 0.0;
-    std::vector<float> minus_rs_min;
-    ms += pass.run(frame, threshold, minus_rs_min);
-    scores = rank_scores(terms, minus_rs_min, weights, dm_hidden);
-    return ms;
-}
-
-}  // namespace
-
 void DrainageLines::draw(const Camera& camera, const Scene& scene, GLuint toward_texture,
                          float max_distance, Drawing& drawing, PassTimings& times) {
     DmFrame frame;
     frame.camera = &camera;
     frame.light = glm::vec3(light_vector(Light{scene.light.azimuth, scene.light.altitude}));
-    frame.max_distance = max_distance;
     frame.toward_texture = toward_texture;
     struct LayerLines {
         const ScoredLineSet& set;
@@ -350,8 +321,9 @@ void DrainageLines::draw(const Camera& camera, const Scene& scene, GLuint toward
                                 LayerLines{ridges_, scene.ridges, LayerKind::ridges, "ridge", scene.ridge_sketch_px,
                                            scene.ridge_repeat, times.ridges}}) {
         if (!l.params.enabled) continue;
-        std::vector<float> scores;
-        l.ms = score_vertices(*l.set.pass, frame, l.params, scores);
+        std::vector<CreaseTerms> terms;
+        l.ms = l.set.pass->run(frame, terms);
+        std::vector<float> scores = crease_scores(terms, l.params, max_distance);
         const double per_metre = max_distance > 0.0f ? l.params.distance_attenuation / double(max_distance) : 0.0;
         whole_or_nothing_by_distance(scores, l.set.positions, l.set.runs, camera, per_metre);
         drawing.layer(l.layer).strokes = thin_by_spacing(
