@@ -2,8 +2,16 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 namespace penink {
+
+float max_visible_distance(const DepthImage& toward) {
+    float d = 0.0f;
+    for (float t : toward.depth)
+        if (std::isfinite(t)) d = std::max(d, t);
+    return d;
+}
 
 std::vector<float> visible_percentiles(const std::vector<float>& values, float hidden) {
     std::vector<std::size_t> order;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/crease_params.hpp"
+#include "core/pixel_mask.hpp"
 
 namespace penink {
 
@@ -22,6 +23,9 @@ namespace penink {
 // "thirds" and "paper" are computed in float in the order written above; a term whose weight is 0
 // is not ranked.
 std::vector<float> crease_scores(const std::vector<CreaseTerms>& terms, const CreaseParams& p, float max_distance);
+
+// D: the largest finite eye distance of the frame's toward-facing surface, metres (0 when none).
+float max_visible_distance(const DepthImage& toward);
 
 // Percentile P of each visible value among the visible values (hidden: `hidden`, left as is).
 std::vector<float> visible_percentiles(const std::vector<float>& values, float hidden);

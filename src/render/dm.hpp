@@ -15,17 +15,10 @@
 
 #include "core/camera.hpp"
 #include "core/crease_params.hpp"
+#include "core/vertex_run.hpp"
 #include "render/gl_objects.hpp"
 
 namespace penink {
-
-struct DmVertex {
-    glm::vec3 position;
-    float flow = 0.0f;
-    glm::vec3 normal{0.0f, 0.0f, 1.0f};
-    float unused = 0.0f;
-};
-
 
 struct DmFrame {
     const Camera* camera = nullptr;

@@ -24,10 +24,10 @@ ScoredLineSet coastline_vertices(const std::vector<ShoreLine>& lines) {
 }
 
 CoastlineLines::CoastlineLines(const GlApi& gl, const GridNodes& nodes, GridWindow window)
-    : set_(coastline_vertices(sea_level_contour(nodes, window))) {
-    if (set_.upload.empty()) return;
-    set_.pass = std::make_unique<DmPass>(gl, set_.upload);
-    set_.upload = {};
+    : set_{coastline_vertices(sea_level_contour(nodes, window)), nullptr} {
+    if (set_.lines.upload.empty()) return;
+    set_.pass = std::make_unique<DmPass>(gl, set_.lines.upload);
+    set_.lines.upload = {};
 }
 
 void CoastlineLines::draw(const Camera& camera, GLuint toward_texture, Drawing& drawing) {
@@ -44,7 +44,7 @@ void CoastlineLines::draw(const Camera& camera, GLuint toward_texture, Drawing& 
     set_.pass->run(frame, terms);
     const std::vector<float> scores = crease_scores(terms, visible, 1.0f);
     drawing.layer(LayerKind::coastline).strokes =
-        scored_runs_to_strokes(set_.positions, scores, set_.runs, camera, "coastline");
+        scored_runs_to_strokes(set_.lines.positions, scores, set_.lines.runs, camera, "coastline");
 }
 
 }  // namespace penink

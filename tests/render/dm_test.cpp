@@ -41,13 +41,6 @@ Camera north_camera(double eye_z, double altitude) {
     return cam;
 }
 
-float max_distance(const DepthImage& toward) {
-    float d = 0.0f;
-    for (float t : toward.depth)
-        if (std::isfinite(t)) d = std::max(d, t);
-    return d;
-}
-
 // Pixel of `p` at least `margin` pixels inside the image (and in front of the eye).
 bool inside_by(const Camera& cam, const glm::vec3& p, double margin) {
     glm::dvec2 px;
@@ -139,7 +132,7 @@ TEST(DmPass, MinScoreAndAttenuationActAsTheFormulaSays) {
     const PlaneScene s;
     TerrainRenderer renderer(test::test_context().gl(), s.mesh, s.cam.width, s.cam.height);
     const FrameImages img = renderer.render(s.cam, {});
-    const float D = max_distance(img.toward);
+    const float D = max_visible_distance(img.toward);
     CreaseParams score{2.0f, 0.5f, 4.0f, 0.0f, 0.0f};
     const std::vector<float> base = run_dm(s, renderer, D, score);
     std::size_t previous = s.vertices.size() + 1;
@@ -241,7 +234,7 @@ TEST(DmPass, ZeroNormalMeansOffSurfaceAndHidden) {
     const FrameImages img = renderer.render(s.cam, {});
     PlaneScene off = s;
     for (std::size_t i = 0; i < off.vertices.size(); i += 2) off.vertices[i].normal = glm::vec3(0.0f);
-    const std::vector<float> scores = run_dm(off, renderer, max_distance(img.toward), CreaseParams{});
+    const std::vector<float> scores = run_dm(off, renderer, max_visible_distance(img.toward), CreaseParams{});
     std::size_t drawn = 0;
     for (std::size_t i = 0; i < scores.size(); ++i) {
         if (i % 2 == 0) {
