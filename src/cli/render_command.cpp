@@ -84,6 +84,7 @@ int run_render(const RenderOptions& o) {
     const bool terrain = !is_mesh_scene(scene);
     if (terrain) apply_object_sketch(scene, style);
     const auto context = make_gl_context(parse_gl_backend(o.gl));
+    context->set_timed(o.verbose);  // the pass times are only logged
     log.info(context->description());
     SceneDrawing result = draw_scene(scene, *context, log);
     log_frame_timings(result, log);
