@@ -55,132 +55,160 @@ struct FileBatches {
     const DrapedVertex* vertices(std::size_t i) const { return buffer.data() + at[i - from]; }
 };
 
-// The pieces of lines `ids` (ascending ids of lines meeting [lo, hi]) laid out for a DM pass (see
-// prepare_drainage_lines): the pieces found line by line, batch by batch; then the output sized
-// once and the vertices of the pieces written on all cores, batch by batch over the lines that
-// have pieces.
-template <class Batches>
-ScoredLineSet select_lines(const std::vector<DrapedLine>& lines, const std::vector<std::uint32_t>& ids,
-                           Batches& batches, const LineBox& box, const LineCulling& culling) {
-    const glm::vec2 lo = box.lo, hi = box.hi;
-    const double e = box.exaggeration, sea = box.sea_level;
-    struct Piece {
-        std::uint32_t line;          // index into `kept` (the lines with pieces)
-        std::uint32_t from, to;      // the line's vertices [from, to) of the piece
-        std::uint32_t in0, in1;      // those inside the box: [in0, in1)
-        std::size_t keep;            // keep[piece.keep + (i - from)]: vertex i is written
-    };
-    const auto inside = [&](const DrapedVertex& v) {
-        return v.x >= lo.x && v.x <= hi.x && v.y >= lo.y && v.y <= hi.y && double(v.z) > sea;
-    };
-    std::vector<Piece> pieces;
-    std::vector<std::uint8_t> keep;   // per candidate vertex of the pieces, in piece order
-    std::vector<std::uint32_t> kept;  // j of the lines with pieces (ids[j]), ascending
-    ScoredLineSet out;
-    // Pixels per metre at unit distance, per camera; an orthographic camera's are the same at
-    // every depth, so its distances count as 1 (distance_to).
-    std::vector<double> scale;
-    for (const Camera& c : culling.cameras) scale.push_back(is_orthographic(c) ? 1.0 / world_per_pixel(c, 1.0) : lod_pixel_scale(c));
-    const auto distance_to = [&](std::size_t c, const glm::dvec3& p) {
-        return is_orthographic(culling.cameras[c]) ? 1.0 : glm::length(p - culling.cameras[c].eye);
-    };
+// Screen-size bounds of the culling cameras (LineCulling): pixels per metre at unit distance per
+// camera; an orthographic camera's are the same at every depth, so its distances count as 1.
+class ScreenSize {
+public:
+    ScreenSize(const LineCulling& culling, double e) : culling_(culling), e_(e) {
+        for (const Camera& c : culling.cameras)
+            scale_.push_back(is_orthographic(c) ? 1.0 / world_per_pixel(c, 1.0) : lod_pixel_scale(c));
+    }
+    bool culls() const { return !culling_.cameras.empty(); }
+    glm::dvec3 point(const DrapedVertex& v) const { return {v.x, v.y, e_ * double(v.z)}; }
+
     // Whether some camera can show vertices [a, b) of v min_px long.
-    const auto big_enough = [&](const DrapedVertex* v, std::uint32_t a, std::uint32_t b) {
-        if (culling.cameras.empty()) return true;
+    bool big_enough(const DrapedVertex* v, std::uint32_t a, std::uint32_t b) const {
+        if (!culls()) return true;
         double length = 0.0;
-        std::vector<double> nearest(culling.cameras.size(), 1e300);
+        std::vector<double> nearest(culling_.cameras.size(), 1e300);
         for (std::uint32_t i = a; i < b; ++i) {
-            const glm::dvec3 p(v[i].x, v[i].y, e * double(v[i].z));
-            if (i > a) length += glm::length(p - glm::dvec3(v[i - 1].x, v[i - 1].y, e * double(v[i - 1].z)));
-            for (std::size_t c = 0; c < nearest.size(); ++c)
-                nearest[c] = std::min(nearest[c], distance_to(c, p));
+            const glm::dvec3 p = point(v[i]);
+            if (i > a) length += glm::length(p - point(v[i - 1]));
+            for (std::size_t c = 0; c < nearest.size(); ++c) nearest[c] = std::min(nearest[c], distance_to(c, p));
         }
         for (std::size_t c = 0; c < nearest.size(); ++c)
-            if (length * scale[c] >= double(culling.min_px) * nearest[c]) return true;
+            if (length * scale_[c] >= double(culling_.min_px) * nearest[c]) return true;
         return false;
-    };
-    // Marks the vertices [a, b) of v to write: the piece's ends, the ends of its drawable part
-    // [k, end) and, between them, a vertex only once it lies decimate_px pixels (as big_enough
-    // measures) from the last one kept; returns how many.
-    const auto mark = [&](const DrapedVertex* v, std::uint32_t a, std::uint32_t b, std::uint32_t k,
-                          std::uint32_t end) {
-        std::uint32_t n = 0;
-        glm::dvec3 last(0.0);
-        for (std::uint32_t i = a; i < b; ++i) {
-            const glm::dvec3 p(v[i].x, v[i].y, e * double(v[i].z));
-            bool write = culling.cameras.empty() || culling.decimate_px <= 0.0f || i <= k || i + 1 >= end;
-            if (!write) {
-                double step = 1e300;  // metres that project to decimate_px for the finest camera
-                for (std::size_t c = 0; c < scale.size(); ++c)
-                    step = std::min(step, double(culling.decimate_px) * distance_to(c, p) / scale[c]);
-                write = glm::length(p - last) >= step;
-            }
-            keep.push_back(write);
-            if (write) last = p, ++n;
-        }
-        return n;
-    };
+    }
+
     // Lines no camera can show min_px long, by their records alone (their vertices never read): a
     // line's length at exaggeration e is at most max(1, e) times its stored (unexaggerated) 3-D
     // length, and every vertex is at least its plan box's plan distance from the eye, so a piece
     // of it that big_enough would keep passes this test too.
-    const double stretch = std::max(1.0, e) * (1.0 + 1e-5);
-    const auto may_show = [&](const DrapedLine& l) {
-        if (culling.cameras.empty()) return true;
-        for (std::size_t c = 0; c < scale.size(); ++c) {
-            const glm::dvec3& eye = culling.cameras[c].eye;
+    bool may_show(const DrapedLine& l) const {
+        if (!culls()) return true;
+        const double stretch = std::max(1.0, e_) * (1.0 + 1e-5);
+        for (std::size_t c = 0; c < scale_.size(); ++c) {
+            const glm::dvec3& eye = culling_.cameras[c].eye;
             const double dx = std::max({double(l.lo.x) - eye.x, eye.x - double(l.hi.x), 0.0});
             const double dy = std::max({double(l.lo.y) - eye.y, eye.y - double(l.hi.y), 0.0});
-            const double plan = is_orthographic(culling.cameras[c]) ? 1.0 : std::sqrt(dx * dx + dy * dy);
-            if (stretch * double(l.length) * scale[c] >= double(culling.min_px) * plan) return true;
+            const double plan = is_orthographic(culling_.cameras[c]) ? 1.0 : std::sqrt(dx * dx + dy * dy);
+            if (stretch * double(l.length) * scale_[c] >= double(culling_.min_px) * plan) return true;
         }
         return false;
+    }
+
+    // Whether vertex p (i of a piece whose drawable part is [k, end)) is written after `last`:
+    // always without decimation and at the drawable part's ends, else once it lies decimate_px
+    // pixels from the last one kept for the finest camera.
+    bool keeps(const glm::dvec3& p, const glm::dvec3& last, bool at_end) const {
+        if (!culls() || culling_.decimate_px <= 0.0f || at_end) return true;
+        double step = 1e300;  // metres that project to decimate_px for the finest camera
+        for (std::size_t c = 0; c < scale_.size(); ++c)
+            step = std::min(step, double(culling_.decimate_px) * distance_to(c, p) / scale_[c]);
+        return glm::length(p - last) >= step;
+    }
+
+private:
+    double distance_to(std::size_t c, const glm::dvec3& p) const {
+        return is_orthographic(culling_.cameras[c]) ? 1.0 : glm::length(p - culling_.cameras[c].eye);
+    }
+    const LineCulling& culling_;
+    double e_;
+    std::vector<double> scale_;
+};
+
+// Where the pieces are: found line by line before any vertex is written.
+struct PieceLayout {
+    struct Piece {
+        std::uint32_t line;      // index into `kept` (the lines with pieces)
+        std::uint32_t from, to;  // the line's vertices [from, to) of the piece
+        std::uint32_t in0, in1;  // those inside the box: [in0, in1)
+        std::size_t keep;        // keep[piece.keep + (i - from)]: vertex i is written
     };
+    std::vector<Piece> pieces;
+    std::vector<std::uint8_t> keep;   // per candidate vertex of the pieces, in piece order
+    std::vector<std::uint32_t> kept;  // j of the lines with pieces (ids[j]), ascending
+    std::vector<VertexRun> runs;      // per piece, where its written vertices go
+    std::uint32_t total = 0;          // vertices written
+};
+
+// Marks the vertices [a, b) of v to write: the piece's ends, the ends of its drawable part
+// [k, end) and, between them, those the screen size keeps; returns how many.
+std::uint32_t mark_vertices(const DrapedVertex* v, std::uint32_t a, std::uint32_t b, std::uint32_t k, std::uint32_t end,
+                            const ScreenSize& size, std::vector<std::uint8_t>& keep) {
+    std::uint32_t n = 0;
+    glm::dvec3 last(0.0);
+    for (std::uint32_t i = a; i < b; ++i) {
+        const glm::dvec3 p = size.point(v[i]);
+        const bool write = size.keeps(p, last, i <= k || i + 1 >= end);
+        keep.push_back(write);
+        if (write) last = p, ++n;
+    }
+    return n;
+}
+
+// The pieces of lines ids[j] (lines_in_box's cut: the runs inside the box, with one vertex beyond
+// it at each cut) that the screen size keeps, batch by batch.
+template <class Batches>
+PieceLayout find_pieces(const std::vector<DrapedLine>& lines, const std::vector<std::uint32_t>& ids, Batches& batches,
+                        const LineBox& box, const ScreenSize& size) {
+    const glm::vec2 lo = box.lo, hi = box.hi;
+    const double sea = box.sea_level;
+    const auto inside = [&](const DrapedVertex& v) {
+        return v.x >= lo.x && v.x <= hi.x && v.y >= lo.y && v.y <= hi.y && double(v.z) > sea;
+    };
+    PieceLayout out;
     std::vector<std::uint32_t> all;
     for (std::size_t j = 0; j < ids.size(); ++j)
-        if (may_show(lines[ids[j]])) all.push_back(std::uint32_t(j));
-    std::uint32_t total = 0;
+        if (size.may_show(lines[ids[j]])) all.push_back(std::uint32_t(j));
     for (std::size_t i0 = 0; i0 < all.size();) {
         const std::size_t i1 = batches.fetch(all, i0);
         for (std::size_t j = i0; j < i1; ++j) {
             const std::uint32_t id = all[j];  // lines[ids[id]]
             const DrapedLine& l = lines[ids[id]];
             const DrapedVertex* v = batches.vertices(j);
-            for (std::uint32_t k = 0; k < l.count;) {  // lines_in_box's cut
+            for (std::uint32_t k = 0; k < l.count;) {
                 while (k < l.count && !inside(v[k])) ++k;
                 if (k == l.count) break;
                 std::uint32_t end = k;
                 while (end < l.count && inside(v[end])) ++end;
                 const std::uint32_t a = k > 0 ? k - 1 : k, b = std::min(end + 1, l.count);
-                if (!big_enough(v, k, end)) {  // the drawable part: the vertices inside the box
+                if (!size.big_enough(v, k, end)) {  // the drawable part: the vertices inside the box
                     k = end;
                     continue;
                 }
-                if (kept.empty() || kept.back() != id) kept.push_back(id);
-                const std::size_t at = keep.size();
-                const std::uint32_t n = mark(v, a, b, k, end);
-                out.runs.push_back({total, n});
-                pieces.push_back({std::uint32_t(kept.size() - 1), a, b, k, end, at});
-                total += n;
+                if (out.kept.empty() || out.kept.back() != id) out.kept.push_back(id);
+                const std::size_t at = out.keep.size();
+                const std::uint32_t n = mark_vertices(v, a, b, k, end, size, out.keep);
+                out.runs.push_back({out.total, n});
+                out.pieces.push_back({std::uint32_t(out.kept.size() - 1), a, b, k, end, at});
+                out.total += n;
                 k = end;
             }
         }
         i0 = i1;
     }
-    all = {};
-    out.positions.resize(total), out.normals.resize(total), out.upload.resize(total);
+    return out;
+}
+
+// The marked vertices of the pieces, exaggerated by e, written on all cores batch by batch over
+// the lines that have pieces (normal' = normalize(e nx, e ny, nz); zero beyond the box).
+template <class Batches>
+void write_pieces(const PieceLayout& layout, Batches& batches, double e, ScoredLineSet& out) {
+    out.positions.resize(layout.total), out.normals.resize(layout.total), out.upload.resize(layout.total);
     std::size_t p_begin = 0;
-    for (std::size_t i0 = 0; i0 < kept.size();) {
-        const std::size_t i1 = batches.fetch(kept, i0);
+    for (std::size_t i0 = 0; i0 < layout.kept.size();) {
+        const std::size_t i1 = batches.fetch(layout.kept, i0);
         std::size_t p_end = p_begin;
-        while (p_end < pieces.size() && pieces[p_end].line < i1) ++p_end;
+        while (p_end < layout.pieces.size() && layout.pieces[p_end].line < i1) ++p_end;
         parallel_chunks(p_end - p_begin, 2048, [&](std::size_t q0, std::size_t q1) {
             for (std::size_t p = p_begin + q0; p < p_begin + q1; ++p) {
-                const Piece& piece = pieces[p];
+                const PieceLayout::Piece& piece = layout.pieces[p];
                 const DrapedVertex* line = batches.vertices(piece.line);
-                std::uint32_t at = out.runs[p].first;
+                std::uint32_t at = layout.runs[p].first;
                 for (std::uint32_t i = piece.from; i < piece.to; ++i) {
-                    if (!keep[piece.keep + (i - piece.from)]) continue;
+                    if (!layout.keep[piece.keep + (i - piece.from)]) continue;
                     const DrapedVertex& v = line[i];
                     glm::vec3 n(0.0f);  // beyond the box: off the modelled surface
                     if (i >= piece.in0 && i < piece.in1) {
@@ -198,6 +226,18 @@ ScoredLineSet select_lines(const std::vector<DrapedLine>& lines, const std::vect
         });
         p_begin = p_end, i0 = i1;
     }
+}
+
+// The pieces of lines `ids` (ascending ids of lines meeting the box) laid out for a DM pass (see
+// prepare_drainage_lines).
+template <class Batches>
+ScoredLineSet select_lines(const std::vector<DrapedLine>& lines, const std::vector<std::uint32_t>& ids,
+                           Batches& batches, const LineBox& box, const LineCulling& culling) {
+    const ScreenSize size(culling, box.exaggeration);
+    PieceLayout layout = find_pieces(lines, ids, batches, box, size);
+    ScoredLineSet out;
+    write_pieces(layout, batches, box.exaggeration, out);
+    out.runs = std::move(layout.runs);
     return out;
 }
 
