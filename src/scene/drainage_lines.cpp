@@ -17,7 +17,7 @@ float line_culling_px(const Scene& scene) {
 }
 
 DrainageLines::DrainageLines(const GlApi& gl, DrainageLineData data)
-    : creases_(std::move(data.creases)), ridges_(std::move(data.ridges)) {
+    : creases_{std::move(data.creases), nullptr}, ridges_{std::move(data.ridges), nullptr} {
     for (UploadedLines* set : {&creases_, &ridges_}) {
         set->pass = std::make_unique<DmPass>(gl, set->lines.upload);
         set->lines.upload = {};
