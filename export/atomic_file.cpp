@@ -92,17 +92,4 @@ void write_files_together(const std::vector<std::string>& paths,
         }
 }
 
-void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write) {
-    int fd = -1;
-    const std::string temp = make_temp(path, fd);
-    ::close(fd);
-    try {
-        write(temp);
-    } catch (...) {
-        ::unlink(temp.c_str());
-        throw;
-    }
-    commit(temp, path);
-}
-
 }  // namespace penink

@@ -19,9 +19,4 @@ void write_file_atomically(const std::string& path, std::string_view bytes);
 void write_files_together(const std::vector<std::string>& paths,
                           const std::function<std::string(std::size_t)>& bytes_of);
 
-// Creates the temp file, calls write(temp_path) (which may reopen and overwrite it, e.g. an
-// image library), then renames it onto `path`. Exceptions from `write` remove the temp file
-// and propagate unchanged.
-void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write);
-
 }  // namespace penink

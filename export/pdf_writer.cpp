@@ -6,7 +6,6 @@
 #include <map>
 
 #include "core/version.hpp"
-#include "export/atomic_file.hpp"
 #include "export/pen_ops.hpp"
 
 namespace penink {
@@ -188,10 +187,6 @@ std::string pdf_document(const StyledDrawing& d, const PageOptions& page, const 
     b.object(info_dict(d, page, path));
     for (const Ocg& g : ocgs) b.object("<< /Type /OCG /Name " + pdf_string(g.name) + " >>");
     return b.finish(1, 5);
-}
-
-void write_pdf(const StyledDrawing& drawing, const PageOptions& page, const std::string& path) {
-    write_file_atomically(path, pdf_document(drawing, page, path));
 }
 
 }  // namespace penink

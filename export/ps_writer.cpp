@@ -5,7 +5,6 @@
 #include <cctype>
 #include <cmath>
 
-#include "export/atomic_file.hpp"
 #include "export/pen_ops.hpp"
 #include "core/version.hpp"
 
@@ -144,10 +143,6 @@ std::string ps_document(const StyledDrawing& d, const PageOptions& page, bool ep
     for (const StyledLayer& l : d.layers) layer(o, l, d.split == LayerSplit::kind_distance, d.background);
     o += "Q\nshowpage\n%%PageTrailer\n%%Trailer\nend\n%%EOF\n";
     return o;
-}
-
-void write_ps(const StyledDrawing& drawing, const PageOptions& page, const std::string& path) {
-    write_file_atomically(path, ps_document(drawing, page, ends_with_eps(path), path));
 }
 
 }  // namespace penink

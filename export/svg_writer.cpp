@@ -1,7 +1,6 @@
 // SVG writer (svg_writer.hpp).
 #include "export/svg_writer.hpp"
 
-#include "export/atomic_file.hpp"
 
 namespace penink {
 
@@ -176,10 +175,6 @@ std::string svg_document(const StyledDrawing& d, const PageOptions& page, const 
     for (const StyledLayer& l : d.layers) layer(o, l, d.split == LayerSplit::kind_distance);
     o += "</svg>\n";
     return o;
-}
-
-void write_svg(const StyledDrawing& drawing, const PageOptions& page, const std::string& path) {
-    write_file_atomically(path, svg_document(drawing, page, path));
 }
 
 }  // namespace penink

@@ -14,8 +14,6 @@ namespace penink {
 std::string svg_document(const StyledDrawing& drawing, const PageOptions& page,
                          const std::string& path = "");
 
-// Writes svg_document() atomically to `path`.
-void write_svg(const StyledDrawing& drawing, const PageOptions& page, const std::string& path);
 
 // XML text escaping (& < > " ').
 std::string xml_escape(const std::string& text);
