@@ -38,7 +38,9 @@ double weighted_quantile(std::vector<std::pair<double, double>>& v, double q) {
 
 }  // namespace
 
-FallLineField::FallLineField(const Terrain& t) : surface_(t), grad_(t.size(), glm::vec2(0.0f)) {
+FallLineField::FallLineField(Terrain terrain)
+    : terrain_(std::move(terrain)), surface_(terrain_), grad_(terrain_.size(), glm::vec2(0.0f)) {
+    const Terrain& t = terrain_;
     const int nc = t.cols, nr = t.rows;
     auto ok = [&](int c, int r) { return c >= 0 && r >= 0 && c < nc && r < nr && t.valid[t.index(c, r)]; };
     parallel_chunks(std::size_t(nr), 64, [&](std::size_t r0, std::size_t r1) {
@@ -64,9 +66,8 @@ FallLineField::FallLineField(const Terrain& t) : surface_(t), grad_(t.size(), gl
     });
 }
 
-bool FallLineField::sample(double x, double y, Sample& s) const {
+bool FallLineField::sample(double x, double y, Sample& s, int& c, int& r) const {
     const DemDraper draper(surface_);
-    int c = -1, r = -1;
     DemHit hit;
     if (!draper.locate(x, y, c, r, hit)) return false;
     s.gradient = glm::dvec2(0.0);
@@ -84,7 +85,8 @@ StrokeDirections stroke_directions(const std::vector<std::vector<glm::dvec2>>& l
     StrokeDirections out;
     const double min_grad = std::tan(min_slope_deg / deg);
     std::vector<std::pair<double, double>> angles;  // (angle to the fall line, length)
-    for (const auto& line : lines)
+    for (const auto& line : lines) {
+        int c = -1, r = -1;
         for (std::size_t k = 1; k < line.size(); ++k) {
             const glm::dvec2 d = line[k] - line[k - 1];
             const double len = std::hypot(d.x, d.y);
@@ -92,8 +94,9 @@ StrokeDirections stroke_directions(const std::vector<std::vector<glm::dvec2>>& l
             out.length += len;
             const glm::dvec2 m = 0.5 * (line[k] + line[k - 1]);
             FallLineField::Sample s;
-            if (!field.sample(m.x, m.y, s)) {
+            if (!field.sample(m.x, m.y, s, c, r)) {
                 if (off_grid_deg(d.x, d.y) <= grid_tolerance_deg) out.grid_length += len;
+                c = r = -1;
                 continue;
             }
             const glm::dvec2 u = d / len;
@@ -105,6 +108,7 @@ StrokeDirections stroke_directions(const std::vector<std::vector<glm::dvec2>>& l
             angles.emplace_back(axis_angle_deg(u, s.gradient / gl), len);
             ++out.sloped_segments, out.sloped_length += len;
         }
+    }
     out.fall_median_deg = weighted_quantile(angles, 0.5);
     out.fall_p90_deg = weighted_quantile(angles, 0.9);
     return out;

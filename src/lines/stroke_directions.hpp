@@ -23,18 +23,21 @@
 namespace penink {
 
 // The gradient dz/dx, dz/dy of a Terrain (positions as stored, z unexaggerated or not: the slope
-// is measured on what is stored) at plan points.
+// is measured on what is stored) at plan points. Keeps its own copy of the Terrain.
 class FallLineField {
 public:
-    explicit FallLineField(const Terrain& t);
+    explicit FallLineField(Terrain t);
     struct Sample {
         glm::dvec2 gradient{0.0};  // dz/dx, dz/dy
         glm::dvec2 axes[4];        // unit plan directions of the cell's edges and diagonals
     };
-    // False off the DEM's surface.
-    bool sample(double x, double y, Sample& s) const;
+    // False off the DEM's surface. `c`, `r`: a DEM cell near the point (the previous point's along
+    // a line: on a grid without an affine formula the cell is found by walking from it), -1 when
+    // none is known; set to the point's cell.
+    bool sample(double x, double y, Sample& s, int& c, int& r) const;
 
 private:
+    Terrain terrain_;
     DemSurface surface_;
     std::vector<glm::vec2> grad_;  // per node
 };
