@@ -10,6 +10,7 @@
 #include "scene/scene_style.hpp"
 #include "scene/frame_source.hpp"
 #include "scene/map_scale.hpp"
+#include "scene/plan_directions.hpp"
 #include "core/error.hpp"
 #include "export/export_drawing.hpp"
 #include "export/styled_drawing.hpp"
@@ -67,6 +68,21 @@ void log_finish(const FinishStats& stats, const Log& log) {
     }
 }
 
+// For a plan view of a terrain: each crease and ridge layer's grid-direction share and angle to
+// the fall line (scene/plan_directions.hpp).
+void log_directions(const Drawing& drawing, const std::string& dem_path, const Log& log) {
+    for (const LayerDirections& l : plan_view_directions(drawing, dem_path)) {
+        std::ostringstream s;
+        s << std::fixed;
+        s.precision(3);
+        s << layer_name(l.kind) << ": " << l.directions.grid_share() << " of the length within 1 deg of a grid direction; ";
+        s.precision(1);
+        s << "to the fall line (slopes > 5 deg) median " << l.directions.fall_median_deg << " deg, p90 "
+          << l.directions.fall_p90_deg << " deg";
+        log.info(s.str());
+    }
+}
+
 void log_timings(const SceneDrawing& r, const Log& log) {
     std::ostringstream s;
     s.precision(3);
@@ -116,6 +132,7 @@ int run_render(const RenderOptions& o) {
     SceneDrawing result = draw_scene(scene, *context, log);
     log_timings(result, log);
     log_finish(finish_drawing(result.drawing, finish_options(style, scene.seed, terrain)), log);
+    if (o.verbose && terrain && !scene.dem.empty()) log_directions(result.drawing, scene.dem, log);
     const StyledDrawing styled = style_drawing(result.drawing, style,
                                                o.layers == "kind" ? LayerSplit::kind : LayerSplit::kind_distance);
     // The standard output's document made first (its page errors come before any file is

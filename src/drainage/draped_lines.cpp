@@ -4,6 +4,9 @@
 #include <atomic>
 #include <bit>
 #include <cmath>
+#include <limits>
+
+#include <glm/common.hpp>
 
 #include "core/error.hpp"
 #include "core/parallel_chunks.hpp"
@@ -215,6 +218,20 @@ void smooth_each_line(DrapedLineSet& set, double sigma) {
     });
 }
 
+// The plan box of a set's vertices.
+void vertex_box(const DrapedLineSet& set, glm::vec2& lo, glm::vec2& hi) {
+    lo = glm::vec2(std::numeric_limits<float>::infinity()), hi = -lo;
+    for (const DrapedVertex& v : set.vertices)
+        lo = glm::min(lo, glm::vec2(v.x, v.y)), hi = glm::max(hi, glm::vec2(v.x, v.y));
+}
+
+// Every vertex's x, y clamped to [lo, hi]: smoothed lines stay inside the box the network's own
+// vertices span (inside the DEM's, which a frame cuts lines to).
+void clamp_to_box(DrapedLineSet& set, glm::vec2 lo, glm::vec2 hi) {
+    if (!(lo.x <= hi.x && lo.y <= hi.y)) return;
+    for (DrapedVertex& v : set.vertices) v.x = std::clamp(v.x, lo.x, hi.x), v.y = std::clamp(v.y, lo.y, hi.y);
+}
+
 // The line holding each vertex.
 std::vector<std::uint32_t> line_ids(const DrapedLineSet& set) {
     std::vector<std::uint32_t> out(set.vertices.size());
@@ -347,15 +364,21 @@ DrapedLineSet listed_lines(const DvVertices& vertices, const std::vector<std::ve
 
 void smooth_lines(DrapedLineSet& set, double sigma) {
     const std::vector<std::uint32_t> follow = end_matches(set);
+    glm::vec2 lo, hi;
+    vertex_box(set, lo, hi);
     smooth_each_line(set, sigma);
     join_ends(set, follow, int(std::ceil(3.0 * sigma)), 0, {});
+    clamp_to_box(set, lo, hi);
 }
 
 void smooth_stems(DrapedLineSet& set, const std::vector<std::uint32_t>& cells, const DrainageGrid& g,
                   const FallLineOptions& options) {
     const std::vector<std::uint32_t> follow = end_matches(set);
+    glm::vec2 lo, hi;
+    vertex_box(set, lo, hi);
     trace_fall_lines(set, cells, g, options);
     join_ends(set, follow, int(std::ceil(3.0 * options.sigma)), int(std::ceil(2.0 * options.corridor)), line_ids(set));
+    clamp_to_box(set, lo, hi);
 }
 
 void drape_lines(DrapedLineSet& set, const DemSurface& surface, const LineProgress& progress) {

@@ -7,7 +7,8 @@
 //    (fall_line_stems.hpp), the divides smoothed by a Gaussian along each line
 //    (polyline_smoothing.hpp: gaussian_smooth) of three DEM cells; then each line end that sat on
 //    another line's interior vertex (a tributary's junction) is brought back to that vertex over
-//    the vertices next to it (rejoin_line_ends' matches), over all the lines of a set at once;
+//    the vertices next to it (rejoin_line_ends' matches), over all the lines of a set at once,
+//    and every vertex clamped to the plan box the set's vertices spanned before (the DEM's);
 // 3. draping: each vertex's z and unit normal from the PN surface of the full-resolution DEM
 //    (dem_surface.hpp, no mesh of it; TerrainLocator's lookup on mesh_from_terrain bit for bit);
 //    a vertex off the surface keeps its z and gets a zero normal;
