@@ -262,6 +262,8 @@ std::vector<std::uint32_t> end_matches(const DrapedLineSet& set) {
 // degrees of their length (at least `ramp`; weights (1 + cos(pi j / m)) / 2 over m vertices,
 // j = 0 at the end: the line bends smoothly to its junction; all gaps of a round measured before
 // any is closed, so the result does not depend on the order), then the end set to it exactly.
+inline double plan_length(double x, double y) { return std::sqrt(x * x + y * y); }
+
 // `line_of`: the line of each vertex (with window > 0).
 void join_ends(DrapedLineSet& set, std::vector<std::uint32_t> follow, int ramp, int window,
                const std::vector<std::uint32_t>& line_of) {
@@ -276,7 +278,7 @@ void join_ends(DrapedLineSet& set, std::vector<std::uint32_t> follow, int ramp, 
         const std::uint32_t hi = std::min<std::int64_t>(std::int64_t(into.first) + into.count - 2, std::int64_t(t) + window);
         double best = 1e300;
         for (std::uint32_t j = lo; j <= hi; ++j) {
-            const double d = std::hypot(double(set.vertices[j].x) - e.x, double(set.vertices[j].y) - e.y);
+            const double d = plan_length(double(set.vertices[j].x) - e.x, double(set.vertices[j].y) - e.y);
             if (d < best) best = d, follow[3 * k + 2] = j;
         }
     }
@@ -292,10 +294,10 @@ void join_ends(DrapedLineSet& set, std::vector<std::uint32_t> follow, int ramp, 
                 return set.vertices[first ? l.first + j : l.first + l.count - 1 - j];
             };
             // vertices whose length is gap / tan 8 degrees
-            const double want = std::hypot(double(gap[k].x), double(gap[k].y)) / tan_bend;
+            const double want = plan_length(double(gap[k].x), double(gap[k].y)) / tan_bend;
             std::uint32_t m = 1;
             for (double len = 0.0; m < l.count - 1 && (m < std::uint32_t(ramp) || len < want); ++m)
-                len += std::hypot(double(at(m).x) - at(m - 1).x, double(at(m).y) - at(m - 1).y);
+                len += plan_length(double(at(m).x) - at(m - 1).x, double(at(m).y) - at(m - 1).y);
             for (std::uint32_t j = 0; j < m; ++j) {
                 const float w = 0.5f * (1.0f + std::cos(3.14159265358979f * float(j) / float(m)));
                 DrapedVertex& v = at(j);

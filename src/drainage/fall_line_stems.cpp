@@ -87,6 +87,9 @@ private:
     }
 };
 
+// Length of (x, y) (std::hypot's care for overflow is not needed for grid offsets and is slow).
+inline double norm(double x, double y) { return std::sqrt(x * x + y * y); }
+
 // Index-space direction of steepest descent for index-space gradient gr on frame f: -(JᵀJ)⁻¹ gr.
 bool descent(const Frame& f, glm::dvec2 gr, glm::dvec2& d) {
     const double a = glm::dot(f.u, f.u), b = glm::dot(f.u, f.v), c = glm::dot(f.v, f.v);
@@ -107,18 +110,18 @@ void trace_stem(DrapedVertex* v, const std::uint32_t* cells, std::uint32_t n, co
     const Frame f = field.frame(p);
     for (std::uint32_t k = 0; k + 1 < n; ++k) {
         const glm::dvec2 step = s[k + 1] - s[k];
-        const double ds = std::hypot(step.x, step.y);
+        const double ds = norm(step.x, step.y);
         glm::dvec2 next = s[k + 1] + 0.8 * (p - s[k]);  // no usable fall line: along S, back towards it
         glm::dvec2 gr, d;
         if (ds > 0.0 && field.gradient(p, gr)) {
             if (descent(f, gr, d)) {
                 const glm::dvec2 pt = step.x * f.u + step.y * f.v, pd = d.x * f.u + d.y * f.v;
-                const double cosine = glm::dot(pt, pd) / (std::hypot(pt.x, pt.y) * std::hypot(pd.x, pd.y));
-                if (cosine > min_cos) next = p + ds * d / std::hypot(d.x, d.y);
+                const double cosine = glm::dot(pt, pd) / (norm(pt.x, pt.y) * norm(pd.x, pd.y));
+                if (cosine > min_cos) next = p + ds * d / norm(d.x, d.y);
             }
         }
         const glm::dvec2 e = next - s[k + 1];
-        const double el = std::hypot(e.x, e.y);
+        const double el = norm(e.x, e.y);
         p = el > corridor ? s[k + 1] + e * (corridor / el) : next;
         if (k + 2 < n) {
             const glm::dvec2 xy = field.xy(p);
