@@ -91,6 +91,7 @@ int run_render(const RenderOptions& o) {
     FrameOutput output{output_files(o), page_options(o), parse_layer_split(o.layers), o.format};
     const FrameOutputResult written = write_frame(result.drawing, style, scene.seed, terrain, output);
     log_finish(written.finish, log);
+    if (o.verbose && terrain && !scene.dem.empty()) log_directions(result.drawing, scene.dem, log);
     if (!o.format.empty()) {
         std::cout.write(written.document.data(), std::streamsize(written.document.size()));
         std::cout.flush();

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "core/stopwatch.hpp"
+#include "scene/plan_directions.hpp"
 #include "scene/scene_style.hpp"
 
 namespace penink {
@@ -34,6 +35,19 @@ void log_finish(const FinishStats& stats, const Log& log) {
           << " px -> " << l.travel_after << " px ordered; " << l.small_loops << " loops under 25 px, ";
         s.precision(1);
         s << 100.0 * l.doubled_share << " % doubled (within 1.5 px for 4 px or more)";
+        log.info(s.str());
+    }
+}
+
+void log_directions(const Drawing& drawing, const std::string& dem_path, const Log& log) {
+    for (const LayerDirections& l : plan_view_directions(drawing, dem_path)) {
+        std::ostringstream s;
+        s << std::fixed;
+        s.precision(3);
+        s << layer_name(l.kind) << ": " << l.directions.grid_share() << " of the length within 1 deg of a grid direction; ";
+        s.precision(1);
+        s << "to the fall line (slopes > 5 deg) median " << l.directions.fall_median_deg << " deg, p90 "
+          << l.directions.fall_p90_deg << " deg";
         log.info(s.str());
     }
 }

@@ -43,5 +43,8 @@ FrameOutputResult write_frame(Drawing& drawing, const Style& style, std::uint64_
 // tracing time and triangles.
 void log_finish(const FinishStats& stats, const Log& log);
 void log_frame_timings(const SceneDrawing& drawing, const Log& log);
+// For a plan view of a terrain: each crease and ridge layer's grid-direction share and angle to
+// the fall line (scene/plan_directions.hpp); nothing for other views.
+void log_directions(const Drawing& drawing, const std::string& dem_path, const Log& log);
 
 }  // namespace penink
