@@ -22,29 +22,36 @@ std::vector<double> arc_lengths(const Stroke& s) {
     return t;
 }
 
-// Point (and depth) at arc length u of a stroke with arc lengths t.
-void point_at(const Stroke& s, const std::vector<double>& t, double u, glm::vec2& p, float& d) {
+// Point (and depth, and weight) at arc length u of a stroke with arc lengths t.
+void point_at(const Stroke& s, const std::vector<double>& t, double u, glm::vec2& p, float& d, float& w) {
     const std::size_t i = std::size_t(std::upper_bound(t.begin(), t.end(), u) - t.begin());
-    if (i == 0) return void((p = s.points.front(), d = s.depth.front()));
-    if (i >= t.size()) return void((p = s.points.back(), d = s.depth.back()));
+    if (i == 0) return void((p = s.points.front(), d = s.depth.front(), w = weight_at(s, 0)));
+    if (i >= t.size()) return void((p = s.points.back(), d = s.depth.back(), w = weight_at(s, t.size() - 1)));
     const double span = t[i] - t[i - 1];
     const float f = span > 0.0 ? float((u - t[i - 1]) / span) : 0.0f;
     p = s.points[i - 1] + (s.points[i] - s.points[i - 1]) * f;
     d = s.depth[i - 1] + (s.depth[i] - s.depth[i - 1]) * f;
+    w = weight_at(s, i - 1) + (weight_at(s, i) - weight_at(s, i - 1)) * f;
 }
 
 // The part of a stroke between arc lengths a < b.
 Stroke sub_stroke(const Stroke& s, const std::vector<double>& t, double a, double b) {
     Stroke out;
     out.strength = s.strength, out.kind = s.kind;
+    const bool weighted = !s.weight.empty();
     glm::vec2 p;
-    float d;
-    point_at(s, t, a, p, d);
+    float d, w;
+    point_at(s, t, a, p, d, w);
     out.points.push_back(p), out.depth.push_back(d);
+    if (weighted) out.weight.push_back(w);
     for (std::size_t i = 0; i < t.size(); ++i)
-        if (t[i] > a && t[i] < b) out.points.push_back(s.points[i]), out.depth.push_back(s.depth[i]);
-    point_at(s, t, b, p, d);
+        if (t[i] > a && t[i] < b) {
+            out.points.push_back(s.points[i]), out.depth.push_back(s.depth[i]);
+            if (weighted) out.weight.push_back(weight_at(s, i));
+        }
+    point_at(s, t, b, p, d, w);
     out.points.push_back(p), out.depth.push_back(d);
+    if (weighted) out.weight.push_back(w);
     return out;
 }
 
@@ -56,8 +63,8 @@ void samples_of(const Stroke& s, const std::vector<double>& t, std::vector<glm::
     for (int k = 0; k <= n; ++k) {
         const double a = length * double(k) / double(n);
         glm::vec2 q;
-        float d;
-        point_at(s, t, a, q, d);
+        float d, w;
+        point_at(s, t, a, q, d, w);
         p.push_back(q), u.push_back(a);
     }
 }

@@ -11,6 +11,7 @@
 #include "lines/finish_drawing.hpp"
 #include "lines/rank_scores.hpp"
 #include "lines/spacing_thinning.hpp"
+#include "lines/stroke_weight.hpp"
 #include "surface/terrain_lod.hpp"
 
 namespace penink {
@@ -172,7 +173,7 @@ ScoredLineSet select_lines(const std::vector<DrapedLine>& lines, const std::vect
         i0 = i1;
     }
     all = {};
-    out.positions.resize(total), out.normals.resize(total), out.upload.resize(total);
+    out.positions.resize(total), out.normals.resize(total), out.upload.resize(total), out.flow.resize(total);
     std::size_t p_begin = 0;
     for (std::size_t i0 = 0; i0 < kept.size();) {
         const std::size_t i1 = batches.fetch(kept, i0);
@@ -196,6 +197,7 @@ ScoredLineSet select_lines(const std::vector<DrapedLine>& lines, const std::vect
                     out.positions[at] = pos, out.normals[at] = n;
                     DmVertex& dm = out.upload[at];
                     dm.position = pos, dm.flow = v.flow, dm.normal = n, dm.unused = 0.0f;
+                    out.flow[at] = v.flow;
                     ++at;
                 }
             }
@@ -209,8 +211,9 @@ ScoredLineSet select_lines(const std::vector<DrapedLine>& lines, const std::vect
 // within the surface's tangent planes (and repeated) before it is projected.
 std::vector<Stroke> line_strokes(const ScoredLineSet& set, const std::vector<float>& scores,
                                  const Camera& camera, const std::string& kind, float sketch_px,
-                                 int repeat, std::uint64_t seed) {
-    if (sketch_px <= 0.0f && repeat <= 1) return scored_runs_to_strokes(set.positions, scores, set.runs, camera, kind);
+                                 int repeat, std::uint64_t seed, const std::vector<float>& weight) {
+    if (sketch_px <= 0.0f && repeat <= 1)
+        return scored_runs_to_strokes(set.positions, scores, set.runs, camera, kind, weight);
     std::vector<Stroke> out;
     for (const DrawnRun& run : drawn_runs(set.positions, scores, set.runs, camera)) {
         ObjectLine line;
@@ -222,7 +225,7 @@ std::vector<Stroke> line_strokes(const ScoredLineSet& set, const std::vector<flo
         for (const glm::vec3& p : line.points) line.depth.push_back(float(eye_depth(camera, glm::dvec3(p))));
         const float strength = mean_score(scores, run.run);
         for (const ObjectLine& copy : sketch_object_copies(line, sketch_px, std::max(repeat, 1), camera, seed))
-            out.push_back(project_stroke(copy.points, camera, strength, kind));
+            out.push_back(project_stroke(copy.points, camera, strength, kind, drawn_values(run, weight)));
     }
     return out;
 }
@@ -354,8 +357,12 @@ void DrainageLines::draw(const Camera& camera, const Scene& scene, GLuint toward
         l.ms = score_vertices(*l.set.pass, frame, l.params, scores);
         const double per_metre = max_distance > 0.0f ? l.params.distance_attenuation / double(max_distance) : 0.0;
         whole_or_nothing_by_distance(scores, l.set.positions, l.set.runs, camera, per_metre);
+        std::vector<float> weight;  // creases by flow (lines/stroke_weight.hpp)
+        if (l.layer == LayerKind::creases)
+            for (float f : l.set.flow) weight.push_back(flow_weight(f));
         drawing.layer(l.layer).strokes = thin_by_spacing(
-            line_strokes(l.set, scores, camera, l.kind, l.sketch_px, l.repeat, scene.seed), float(l.params.spacing_px));
+            line_strokes(l.set, scores, camera, l.kind, l.sketch_px, l.repeat, scene.seed, weight),
+            float(l.params.spacing_px));
     }
 }
 

@@ -23,6 +23,7 @@ struct ScoredLineSet {
     std::vector<glm::vec3> positions, normals;
     std::vector<VertexRun> runs;
     std::vector<DmVertex> upload;  // prepared vertices, moved to the GPU by DrainageLines
+    std::vector<float> flow;       // normalised flow per vertex (the creases' weight by flow)
     std::unique_ptr<DmPass> pass;
 };
 
