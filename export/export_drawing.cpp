@@ -158,7 +158,7 @@ std::vector<std::string> width_report(const StyledDrawing& drawing) {
         const WidthStats s = width_stats(l);
         if (s.paths == 0) continue;
         lines.push_back(l.name + ": " + std::to_string(s.paths) + " paths, widths " + fixed(s.mean_width, 2) +
-                        " px mean, CV " + fixed(s.cv, 2) + ", " + fixed(100.0 * s.tapered_share, 0) +
+                        (drawing.widths_mm ? " mm" : " px") + " mean, CV " + fixed(s.cv, 2) + ", " + fixed(100.0 * s.tapered_share, 0) +
                         " % tapered at both ends");
     }
     const WidthStats sil = width_stats(drawing.layers[static_cast<std::size_t>(LayerKind::silhouettes)]);

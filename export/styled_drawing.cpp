@@ -121,9 +121,7 @@ StyledPath variable_path(const Stroke& s, const LayerStyle& ls, const DistanceMa
     p.color = ls.color;
     p.kind = s.kind;
     p.strength = s.strength;
-    double depth_sum = 0.0;
-    for (double x : d.depth) depth_sum += x;
-    p.depth = depth_sum / double(d.depth.size());
+    p.depth = mean_depth(s, 0, s.points.size() - 1);  // of the stroke's own points, as a band's
     p.opacity = lerp(ls.opacity, ls.opacity_far, level_t(level_of(dm.t(p.depth), bands), bands));
     const double total = d.arc.back();
     p.widths.resize(d.points.size());

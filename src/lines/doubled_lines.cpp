@@ -13,7 +13,10 @@ namespace penink {
 
 namespace {
 
-constexpr float kStep = 0.5f;  // px between samples
+// px between samples: as fine as line_metrics' (0.25 px), so a stretch the measure counts as
+// doubled is cut here (at 0.5 px a sample's distance to a line sampled beside it overstates the
+// line's distance, and runs just over min_run px stayed)
+constexpr float kStep = 0.25f;
 
 // Arc length at each point of a stroke.
 std::vector<double> arc_lengths(const Stroke& s) {
@@ -109,7 +112,8 @@ std::vector<Stroke> merge_doubled(std::vector<Stroke> strokes, float width, floa
             }
             std::size_t j = k;
             while (j + 1 < p.size() && grid.near_other(p[j + 1], int(i), width)) ++j;
-            if (u[j] - u[k] >= double(min_run)) std::fill(cut.begin() + std::ptrdiff_t(k), cut.begin() + std::ptrdiff_t(j) + 1, 1);
+            // each sample stands for kStep of the stroke, as line_metrics counts a run
+            if (u[j] - u[k] + double(kStep) >= double(min_run)) std::fill(cut.begin() + std::ptrdiff_t(k), cut.begin() + std::ptrdiff_t(j) + 1, 1);
             k = j + 1;
         }
         if (std::find(cut.begin(), cut.end(), 1) == cut.end()) {
