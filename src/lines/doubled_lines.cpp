@@ -104,14 +104,29 @@ std::vector<Stroke> merge_doubled(std::vector<Stroke> strokes, float width, floa
         }
         const std::vector<double> t = arc_lengths(s);
         samples_of(s, t, p, u);
-        std::vector<char> cut(p.size(), 0);
-        for (std::size_t k = 0; k < p.size();) {  // runs of samples near an accepted stroke
-            if (!grid.near_other(p[k], int(i), width)) {
+        std::vector<char> near(p.size(), 0), cut(p.size(), 0);
+        for (std::size_t k = 0; k < p.size(); ++k) near[k] = grid.near_other(p[k], int(i), width);
+        // A stroke zigzagging about an accepted one leaves its band for a pixel or so at a time:
+        // gaps under 2 widths between near stretches count as near (else each stretch is short,
+        // none is cut, and the accepted stroke runs beside the zigzag's pieces for their length).
+        for (std::size_t k = 0; k < p.size();) {
+            if (near[k]) {
                 ++k;
                 continue;
             }
             std::size_t j = k;
-            while (j + 1 < p.size() && grid.near_other(p[j + 1], int(i), width)) ++j;
+            while (j + 1 < p.size() && !near[j + 1]) ++j;
+            if (k > 0 && j + 1 < p.size() && u[j + 1] - u[k - 1] < 2.0 * double(width))
+                std::fill(near.begin() + std::ptrdiff_t(k), near.begin() + std::ptrdiff_t(j) + 1, 1);
+            k = j + 1;
+        }
+        for (std::size_t k = 0; k < p.size();) {  // runs of samples near an accepted stroke
+            if (!near[k]) {
+                ++k;
+                continue;
+            }
+            std::size_t j = k;
+            while (j + 1 < p.size() && near[j + 1]) ++j;
             // each sample stands for kStep of the stroke, as line_metrics counts a run
             if (u[j] - u[k] + double(kStep) >= double(min_run)) std::fill(cut.begin() + std::ptrdiff_t(k), cut.begin() + std::ptrdiff_t(j) + 1, 1);
             k = j + 1;
