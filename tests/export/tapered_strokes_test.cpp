@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "export/export_drawing.hpp"
+#include "export/rasterise.hpp"
 #include "export/stroke_outline.hpp"
 #include "export/styled_drawing.hpp"
 #include "fixture.hpp"
@@ -161,4 +162,21 @@ TEST(TaperedStrokes, UntaperedPlotterOutputUnchangedByWeights) {
     }
     const std::string svg = export_document(style_drawing(one_crease(), plotter), PageOptions{}, "x.svg");
     EXPECT_NE(svg.find("<path d=\"M10 50 L60 50 110 50\" data-kind=\"crease\""), std::string::npos);
+}
+
+TEST(TaperedStrokes, RasterFollowsTheOutline) {
+    // Ink summed down a column of the rasterised stroke is its width there (box-filtered
+    // coverage): 4 px in the middle, the eased taper near the ends (0.75 of it 5 px in).
+    const RgbImage img = rasterise(style_drawing(one_crease(), tapered_style()), RasterTransform{120, 100, 1.0, 0.0, 0.0});
+    const auto ink = [&](int x) {
+        double sum = 0.0;
+        for (int y = 40; y < 60; ++y) sum += 1.0 - img.rgb[3 * std::size_t(y * 120 + x)] / 255.0;
+        return sum;
+    };
+    EXPECT_NEAR(ink(60), 4.0, 0.02);          // 8-bit rounding over 4-5 pixels
+    // pixel 15 spans 5-6 px in: the mean of 1 - (1 - u)^2 over u in [0.5, 0.6] is 0.797 (3.19 px);
+    // the widths run linearly between points 1.5 px apart: within 0.1 px
+    EXPECT_NEAR(ink(15), 4.0 * 0.797, 0.1);
+    EXPECT_LT(ink(10), 0.3);                  // the end: width 0 at x = 10
+    EXPECT_NEAR(ink(15), ink(104), 0.02);     // symmetric ends
 }
