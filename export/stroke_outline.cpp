@@ -17,14 +17,18 @@ glm::vec2 rotated(glm::vec2 v, double a) {
     return {float(v.x * c - v.y * s), float(v.x * s + v.y * c)};
 }
 
+constexpr double tolerance_px = 0.05;  // the polygon's largest distance from the true round outline
+
 // Points of the arc of radius r about c from direction `from` through `sweep` radians, the
-// first point left out, the last included.
+// first point left out, the last included; chords within tolerance_px of the arc (at most 90
+// degrees each).
 void arc(std::vector<glm::vec2>& out, glm::vec2 c, double r, glm::vec2 from, double sweep) {
     if (r <= 1e-4) {
         out.push_back(c);
         return;
     }
-    const int n = std::max(1, int(std::ceil(std::abs(sweep) / (M_PI / 6.0))));
+    const double step = r > tolerance_px ? std::min(M_PI / 2.0, 2.0 * std::acos(1.0 - tolerance_px / r)) : M_PI / 2.0;
+    const int n = std::max(1, int(std::ceil(std::abs(sweep) / step)));
     for (int k = 1; k <= n; ++k) out.push_back(c + rotated(from, sweep * k / n) * float(r));
 }
 
@@ -35,7 +39,10 @@ void side_join(std::vector<glm::vec2>& out, glm::vec2 p, double r, glm::vec2 d0,
     const float cross = d0.x * d1.y - d0.y * d1.x, dot = glm::dot(d0, d1);
     glm::vec2 m = n0 + n1;
     const float ml = glm::length(m);
-    if (dot > 0.985f && ml > 1e-6f) {  // under 10 degrees: a mitre
+    // a mitre where it stays within tolerance_px of the round join: r (1 / cos(a / 2) - 1), a the
+    // turn (cos(a / 2) = |m| / 2), and always under 10 degrees
+    const double half_cos = 0.5 * double(ml);
+    if (ml > 1e-6f && (dot > 0.985f || (half_cos > 0.7 && r * (1.0 / half_cos - 1.0) <= tolerance_px))) {
         m /= ml;
         out.push_back(p + m * float(r / std::max(double(glm::dot(m, n0)), 0.5)));
         return;
