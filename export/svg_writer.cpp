@@ -121,13 +121,14 @@ void append_points_d(std::string& o, const std::vector<glm::vec2>& pts) {
 }
 
 // Inkscape's power-stroke offset points ("t,half-width | ..."; t the centre line's segment time):
-// the ends, where the widths stop changing fast, and at most 16 points between.
+// the ends, every (n - 1) / 8-th point between and where the widths kink (their second difference
+// over a fifth of the widest).
 std::string offset_points(const StyledPath& p) {
     const size_t n = p.points.size();
     std::vector<size_t> knots{0};
-    const size_t stride = std::max<size_t>(1, (n - 1) / 16);
+    const size_t stride = std::max<size_t>(1, (n - 1) / 8);
     for (size_t i = 1; i + 1 < n; ++i) {
-        const bool bend = std::abs(p.widths[i + 1] - p.widths[i] - (p.widths[i] - p.widths[i - 1])) > 0.05 * p.width;
+        const bool bend = std::abs(p.widths[i + 1] - p.widths[i] - (p.widths[i] - p.widths[i - 1])) > 0.2 * p.width;
         if (bend || i % stride == 0) knots.push_back(i);
     }
     knots.push_back(n - 1);
