@@ -102,6 +102,7 @@ int run_render(const RenderOptions& o) {
     s << stats.paths << " paths, " << stats.length_px << " px drawn, " << stats.travel_px << " px pen-up; "
       << "total " << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s";
     log.info(s.str());
+    for (const std::string& line : width_report(styled)) log.info(line);
     return 0;
 }
 

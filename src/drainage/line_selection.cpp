@@ -197,6 +197,7 @@ PieceLayout find_pieces(const std::vector<DrapedLine>& lines, const std::vector<
 template <class Batches>
 void write_pieces(const PieceLayout& layout, Batches& batches, double e, ScoredLineSet& out) {
     out.positions.resize(layout.total), out.normals.resize(layout.total), out.upload.resize(layout.total);
+    out.flow.resize(layout.total);
     std::size_t p_begin = 0;
     for (std::size_t i0 = 0; i0 < layout.kept.size();) {
         const std::size_t i1 = batches.fetch(layout.kept, i0);
@@ -220,6 +221,7 @@ void write_pieces(const PieceLayout& layout, Batches& batches, double e, ScoredL
                     out.positions[at] = pos, out.normals[at] = n;
                     DmVertex& dm = out.upload[at];
                     dm.position = pos, dm.flow = v.flow, dm.normal = n, dm.unused = 0.0f;
+                    out.flow[at] = v.flow;
                     ++at;
                 }
             }

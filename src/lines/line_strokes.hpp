@@ -24,7 +24,9 @@ struct ObjectSketch {
 
 // Visible, scored runs of `set` (scores: one per vertex, as scored_runs_to_strokes reads them)
 // as image strokes of kind `kind`; with no sketch and one copy, scored_runs_to_strokes itself.
+// `weight`: one per vertex of `set` (each stroke's Stroke::weight from its vertices'), or empty.
 std::vector<Stroke> line_strokes(const VertexLines& set, const std::vector<float>& scores, const Camera& camera,
-                                 const std::string& kind, const ObjectSketch& sketch);
+                                 const std::string& kind, const ObjectSketch& sketch,
+                                 const std::vector<float>& weight = {});
 
 }  // namespace penink

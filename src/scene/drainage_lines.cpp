@@ -6,6 +6,7 @@
 #include "lines/line_strokes.hpp"
 #include "lines/scored_polylines.hpp"
 #include "lines/spacing_thinning.hpp"
+#include "lines/stroke_weight.hpp"
 
 namespace penink {
 
@@ -53,8 +54,11 @@ void DrainageLines::draw(const Camera& camera, const Scene& scene, GLuint toward
         std::vector<float> scores = crease_scores(terms, l.params, max_distance);
         const double per_metre = max_distance > 0.0f ? l.params.distance_attenuation / double(max_distance) : 0.0;
         whole_or_nothing_by_distance(scores, lines.positions, lines.runs, camera, per_metre);
+        std::vector<float> weight;  // creases by flow (lines/stroke_weight.hpp)
+        if (l.layer == LayerKind::creases)
+            for (float f : lines.flow) weight.push_back(flow_weight(f));
         drawing.layer(l.layer).strokes = thin_by_spacing(
-            line_strokes(lines, scores, camera, l.kind, ObjectSketch{l.sketch_px, l.repeat, scene.seed}),
+            line_strokes(lines, scores, camera, l.kind, ObjectSketch{l.sketch_px, l.repeat, scene.seed}, weight),
             float(l.params.spacing_px));
     }
 }
