@@ -211,6 +211,10 @@ public:
         width_ = frame.width_px > 0.0 ? frame.width_px : default_hachure_width_px;
         perspective_ = !is_orthographic(cam_);
         visibility_.rel_tolerance = 0.002f;  // as the outline: the lines lie on the rendered surface
+        near_ = frame.max_distance;  // the nearest visible eye distance: where the aerial fade starts
+        if (frame.toward)
+            for (float d : frame.toward->depth)
+                if (std::isfinite(d)) near_ = std::min(near_, double(d));
     }
 
     void add_obstacles() {
@@ -239,15 +243,17 @@ public:
         s.px = glm::vec2(px);
         double t = hachure_tone(p_.tone, p_.blend, n, frame_.light);
         t = std::pow(std::clamp(0.5 + p_.contrast * (t - 0.5), 0.0, 1.0), p_.gamma);
-        if (perspective_ && frame_.max_distance > 0.0)
-            t *= 1.0 - p_.aerial * std::clamp(s.depth / frame_.max_distance, 0.0, 1.0);
+        if (perspective_ && frame_.max_distance > near_)
+            t *= 1.0 - p_.aerial * std::clamp((s.depth - near_) / (frame_.max_distance - near_), 0.0, 1.0);
         s.tone = t;
         const double sep = kFill * width_ / t;
         if (!(t > 0.0) || sep > p_.spacing_max_px) return false;
         s.sep = std::max(sep, p_.spacing_min_px);
         if (frame_.toward && !is_empty(*frame_.toward)) {
             VisibilityOptions v = visibility_;
-            v.abs_tolerance = float(3.0 * world_per_pixel(cam_, s.depth));  // the level of detail's 1 px
+            // the level of detail's 1 px, and a cell: the rendered PN surface and this bilinear one
+            // differ by up to a fraction of a cell's relief, which a grazing ray stretches in depth
+            v.abs_tolerance = float(3.0 * world_per_pixel(cam_, s.depth) + cell_m_);
             if (!point_visible(*frame_.toward, cam_, glm::vec3(s.f.p), v)) return false;
         }
         return true;
@@ -293,8 +299,7 @@ public:
                 const double turn = std::acos(std::clamp(double(glm::dot(dir, prev_dir)), -1.0, 1.0));
                 if (turn > max_turn * std::max(1.0, double(len))) return;
             }
-            if (occ_.blocked(next.px, id, float(p_.d_test * next.sep),
-                             float(std::max(p_.d_test * next.sep, p_.yield_px))))
+            if (occ_.blocked(next.px, id, float(p_.d_test * next.sep), float(p_.yield_px)))
                 return;
             prev_dir = dir;
             out.push_back(next);
@@ -321,8 +326,7 @@ public:
     }
 
     bool seed_free(const Sample& s) const {
-        return !occ_.blocked(s.px, Occupancy::obstacle - 1, float(0.95 * s.sep),
-                             float(std::max(p_.d_test * s.sep, p_.yield_px) + 1.0));
+        return !occ_.blocked(s.px, Occupancy::obstacle - 1, float(0.95 * s.sep), float(p_.yield_px + 1.0));
     }
 
     // Jobard & Lefer: seeds beside each new line until none is left.
@@ -349,9 +353,9 @@ public:
     }
 
     // The stencil: about 1.5 px of ground, from the median image size of a cell over a lattice
-    // of 16 x 16 nodes that project into the image.
-    int stencil(const HachureGrid& grid) const {
-        std::vector<double> px_per_cell;
+    // of 16 x 16 nodes that project into the image (and the median cell size, metres).
+    int stencil(const HachureGrid& grid) {
+        std::vector<double> px_per_cell, cell_m;
         for (int i = 0; i < 16; ++i)
             for (int j = 0; j < 16; ++j) {
                 const int c = grid.c0 + (grid.c1 - grid.c0 - 2) * i / 15, r = grid.r0 + (grid.r1 - grid.r0 - 2) * j / 15;
@@ -363,7 +367,12 @@ public:
                     continue;
                 if (a.x < 0 || a.y < 0 || a.x >= cam_.width || a.y >= cam_.height) continue;
                 px_per_cell.push_back(std::max(glm::length(b - a), glm::length(e - a)));
+                cell_m.push_back(glm::length(glm::dvec2(field_.node_position(c + 1, r) - field_.node_position(c, r))));
             }
+        if (!cell_m.empty()) {
+            std::nth_element(cell_m.begin(), cell_m.begin() + cell_m.size() / 2, cell_m.end());
+            cell_m_ = cell_m[cell_m.size() / 2];
+        }
         if (px_per_cell.empty()) return 1;
         std::nth_element(px_per_cell.begin(), px_per_cell.begin() + px_per_cell.size() / 2, px_per_cell.end());
         const double m = px_per_cell[px_per_cell.size() / 2];
@@ -409,6 +418,8 @@ private:
     Occupancy occ_;
     VisibilityOptions visibility_;
     double min_grad_ = 0.0, width_ = 1.0;
+    double cell_m_ = 0.0;  // median node spacing, metres
+    double near_ = 0.0;    // nearest visible eye distance
     bool perspective_ = true;
     std::vector<std::vector<Sample>> lines_;
     std::deque<std::uint32_t> queue_;
