@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <OpenImageIO/imageio.h>
+#include <glm/geometric.hpp>
 
 #include "export/rasterise.hpp"
 #include "export/styled_drawing.hpp"
@@ -99,6 +100,12 @@ int main(int argc, char** argv) {
         const double frame_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         d = frames->draw(view.camera, scene);  // warm: the second frame's time is the steady one
         const double warm_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() - frame_ms;
+        for (LayerKind k : all_layers) {  // what the frame drew, per layer (before finishing)
+            double len = 0.0;
+            for (const Stroke& st : d.drawing.layer(k).strokes)
+                for (std::size_t i = 1; i < st.points.size(); ++i) len += glm::length(st.points[i] - st.points[i - 1]);
+            if (len > 0) std::printf("  %s: %zu strokes, %.0f px\n", std::string(layer_name(k)).c_str(), d.drawing.layer(k).strokes.size(), len);
+        }
         finish_drawing(d.drawing, finish_options(style, scene.seed, true));
         const StyledDrawing styled = style_drawing(d.drawing, style);
         RasterTransform tr;

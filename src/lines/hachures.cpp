@@ -220,12 +220,21 @@ public:
     void add_obstacles() {
         for (const std::vector<Stroke>* strokes : frame_.obstacles)
             for (const Stroke& s : *strokes)
-                for (std::size_t i = 0; i < s.points.size(); ++i) {
-                    occ_.add(s.points[i], Occupancy::obstacle);
-                    if (i + 1 == s.points.size()) break;
-                    const glm::vec2 a = s.points[i], b = s.points[i + 1];
-                    const int n = int(std::ceil(glm::length(b - a)));
-                    for (int k = 1; k < n; ++k) occ_.add(a + (b - a) * (float(k) / n), Occupancy::obstacle);
+                for (std::size_t i = 0; i + 1 < s.points.size(); ++i) {
+                    // the segment's part inside the image (Liang-Barsky), sampled every pixel
+                    const glm::vec2 a = s.points[i], d = s.points[i + 1] - a;
+                    float t0 = 0.0f, t1 = 1.0f;
+                    const float p[4] = {-d.x, d.x, -d.y, d.y};
+                    const float q[4] = {a.x + 2.0f, cam_.width + 2.0f - a.x, a.y + 2.0f, cam_.height + 2.0f - a.y};
+                    bool inside = true;
+                    for (int e = 0; e < 4 && inside; ++e) {
+                        if (p[e] == 0.0f) inside = q[e] >= 0.0f;
+                        else if (p[e] < 0.0f) t0 = std::max(t0, q[e] / p[e]);
+                        else t1 = std::min(t1, q[e] / p[e]);
+                    }
+                    if (!inside || t0 > t1) continue;
+                    const int n = std::max(1, int(std::ceil(glm::length(d) * (t1 - t0))));
+                    for (int k = 0; k <= n; ++k) occ_.add(a + d * (t0 + (t1 - t0) * float(k) / n), Occupancy::obstacle);
                 }
     }
 
