@@ -396,8 +396,21 @@ public:
         const int stride = std::max(1, int(std::sqrt(cells / std::max(target, 1.0))));
         for (int r = grid.r0; r + 1 < grid.r1; r += stride)
             for (int c = grid.c0; c + 1 < grid.c1; c += stride) {
-                Sample s;
-                if (sample(glm::dvec2(c + 0.5, r + 0.5), s) && seed_free(s) && line_from(s)) drain_queue();
+                // a block of cells larger than 6 px on the image (the near ground of a perspective
+                // view) gets a sub-lattice, so every region between creases has seeds of its own
+                const int c2 = std::min(c + stride, grid.c1 - 1), r2 = std::min(r + stride, grid.r1 - 1);
+                glm::dvec2 a, b;
+                double da, db;
+                int m = 1;
+                if (project_to_pixel(cam_, field_.node_position(c, r), a, da) &&
+                    project_to_pixel(cam_, field_.node_position(c2, r2), b, db))
+                    m = std::clamp(int(std::ceil(glm::length(b - a) / 6.0)), 1, 8);
+                for (int j = 0; j < m; ++j)
+                    for (int i = 0; i < m; ++i) {
+                        Sample s;
+                        const glm::dvec2 uv(c + (c2 - c) * (i + 0.5) / m, r + (r2 - r) * (j + 0.5) / m);
+                        if (sample(uv, s) && seed_free(s) && line_from(s)) drain_queue();
+                    }
             }
     }
 

@@ -29,11 +29,12 @@
 // facing the viewer (a silhouette ends it), dark enough, turning less than max_turn_deg per pixel
 // (where fall lines converge or diverge: valleys and ridges), and no point of another hachure lies
 // within d_test * s (s the local separation), nor a point of an obstacle (creases, ridges,
-// silhouettes drawn before) within max(d_test * s, yield_px). Lines shorter than min_length_px are
+// silhouettes drawn before) within yield_px. Lines shorter than min_length_px are
 // dropped. Seeds are tried beside each accepted line, at s to either side along the contour
 // direction, every s / 2 along it (a seed needs its whole separation free: 0.95 s), then on a
 // lattice of the grid's cells (north to south, west to east) about one per (2 spacing_min_px)^2 of
-// image. No random numbers and no hash or thread order: the same input gives the same strokes.
+// image, a block wider than 6 px on the image split into up to 8 x 8 seeds. Node gradients use
+// differences over +-k nodes, k about 1.5 px of ground at the median cell size. No random numbers and no hash or thread order: the same input gives the same strokes.
 // Cost: O(drawn length + lattice seeds).
 #pragma once
 #include <cstdint>
