@@ -62,6 +62,7 @@ Style default_style() {
     set_width(s.layer(LayerKind::surface), 0.5, 0.5);
     set_width(s.layer(LayerKind::coastline), 0.8, 0.8);  // the shore: a heavier blue-black line
     s.layer(LayerKind::coastline).color = Rgb{0x10, 0x20, 0x40};
+    set_width(s.layer(LayerKind::hachures), 1.0, 1.0);  // tone: spacing follows it (lines/hachures.hpp)
     set_width(s.layer(LayerKind::ridges), 0.6, 0.6);
     set_width(s.layer(LayerKind::creases), 0.6, 0.6);
     set_width(s.layer(LayerKind::pels), 0.5, 0.5);
@@ -72,6 +73,7 @@ Style default_style() {
     s.layer(LayerKind::silhouettes).min_length = 8.0;
     // the hierarchy of weight: tapered creases and ridges, trunks heavier than twigs, profile
     // lines heavier than folds (styles/README.md)
+    set_taper(s.layer(LayerKind::hachures), 5.0, 0.2, 1.0, 1.0);  // the pen's lift; tone by spacing
     set_taper(s.layer(LayerKind::ridges), 6.0, 0.15, 1.0, 1.0);
     set_taper(s.layer(LayerKind::creases), 6.0, 0.15, 0.5, 1.75);
     set_taper(s.layer(LayerKind::silhouettes), 8.0, 0.3, 0.5, 1.25);
@@ -87,7 +89,7 @@ Style field_sketch_style() {
     s.fill = s.background;
     const struct { LayerKind k; double w, wf, keep; } table[] = {
         {LayerKind::surface, 0.8, 0.4, 1.0},        {LayerKind::coastline, 1.2, 0.5, 1.0},
-        {LayerKind::ridges, 1.1, 0.4, 0.5},
+        {LayerKind::hachures, 1.0, 1.0, 1.0},       {LayerKind::ridges, 1.1, 0.4, 0.5},
         {LayerKind::creases, 1.0, 0.35, 0.5},       {LayerKind::pels, 0.8, 0.3, 0.4},
         {LayerKind::textures, 0.6, 0.25, 0.3},      {LayerKind::feature_edges, 1.4, 0.6, 0.8},
         {LayerKind::silhouettes, 1.8, 0.7, 1.0}};
@@ -104,9 +106,14 @@ Style field_sketch_style() {
     s.layer(LayerKind::coastline).color = Rgb{0x1e, 0x2a, 0x3a};  // blue-black ink
     s.layer(LayerKind::silhouettes).repeat = 2;
     s.layer(LayerKind::textures).dash = {6.0, 3.0};
+    set_taper(s.layer(LayerKind::hachures), 6.0, 0.15, 1.0, 1.0);
     set_taper(s.layer(LayerKind::ridges), 8.0, 0.1, 1.0, 1.0);
     set_taper(s.layer(LayerKind::creases), 8.0, 0.1, 0.5, 1.6);
     set_taper(s.layer(LayerKind::silhouettes), 10.0, 0.25, 0.45, 1.3);
+    // tone by spacing: one width at every depth (the hachures' own spacing and contrast fall
+    // with distance), a light wobble and no overshoot into the creases they yield to
+    s.layer(LayerKind::hachures).sketch = 0.5;
+    s.layer(LayerKind::hachures).overshoot = 0.0;
     return s;
 }
 
@@ -120,7 +127,7 @@ Style plotter_style() {
     s.bands = 1;
     const struct { LayerKind k; Rgb c; double w; } table[] = {
         {LayerKind::surface, {0x80, 0x80, 0x80}, 0.3},      {LayerKind::coastline, {0x00, 0x30, 0x60}, 0.4},
-        {LayerKind::ridges, {0xb0, 0x30, 0x20}, 0.3},
+        {LayerKind::hachures, {0x40, 0x40, 0x40}, 0.3},    {LayerKind::ridges, {0xb0, 0x30, 0x20}, 0.3},
         {LayerKind::creases, {0x20, 0x50, 0xb0}, 0.3},      {LayerKind::pels, {0x20, 0x80, 0x40}, 0.3},
         {LayerKind::textures, {0x90, 0x60, 0x20}, 0.25},    {LayerKind::feature_edges, {0x60, 0x20, 0x80}, 0.5},
         {LayerKind::silhouettes, {0x00, 0x00, 0x00}, 0.5}};

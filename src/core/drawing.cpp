@@ -6,6 +6,7 @@ std::string_view layer_name(LayerKind kind) {
     switch (kind) {
         case LayerKind::surface: return "surface";
         case LayerKind::coastline: return "coastline";
+        case LayerKind::hachures: return "hachures";
         case LayerKind::ridges: return "ridges";
         case LayerKind::creases: return "creases";
         case LayerKind::pels: return "pels";

@@ -1,6 +1,6 @@
 // The drawing handed from the lines stage to export: strokes (polylines in image pixels,
 // origin top-left, y down, with per-point eye distance in metres / world units) grouped in
-// the eight named layers of conventions.md, bottom to top, plus the surface mask polygons.
+// the nine named layers of conventions.md, bottom to top, plus the surface mask polygons.
 #pragma once
 #include <array>
 #include <map>
@@ -15,11 +15,11 @@
 
 namespace penink {
 
-enum class LayerKind { surface, coastline, ridges, creases, pels, textures, feature_edges, silhouettes };
+enum class LayerKind { surface, coastline, hachures, ridges, creases, pels, textures, feature_edges, silhouettes };
 
-inline constexpr std::size_t layer_count = 8;
+inline constexpr std::size_t layer_count = 9;
 inline constexpr std::array<LayerKind, layer_count> all_layers = {
-    LayerKind::surface, LayerKind::coastline, LayerKind::ridges, LayerKind::creases, LayerKind::pels,
+    LayerKind::surface, LayerKind::coastline, LayerKind::hachures, LayerKind::ridges, LayerKind::creases, LayerKind::pels,
     LayerKind::textures, LayerKind::feature_edges, LayerKind::silhouettes};
 
 // Exact layer name used in SVG ids/labels, PS/EPS comments and PDF OCG names.

@@ -28,9 +28,11 @@ struct SceneDrawing {
     Camera camera;
     PassTimings times;     // GPU ms per pass
     double trace_ms = 0;   // CPU: read-back images -> polylines (a mesh: all its object-space lines)
+    double hachure_ms = 0; // CPU: the hachures (terrains)
     MeshLineTimings lines; // a mesh frame's object-space steps (parts of trace_ms)
     std::size_t cells = 0, triangles = 0;
     PixelMask silhouette_mask;  // the frame's silhouette pixels before tracing (terrains)
+    DepthImage toward;          // the frame's nearest-surface eye distances (terrains; tone measure)
 };
 
 class FrameSource {

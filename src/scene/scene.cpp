@@ -14,6 +14,7 @@
 #include "core/error.hpp"
 #include "core/printable_text.hpp"
 #include "drainage/drainage_build.hpp"
+#include "scene/hachure_lines.hpp"
 
 namespace penink {
 
@@ -45,6 +46,7 @@ const std::vector<KnownTable>& known_tables() {
         {"silhouettes", {"min_gap", "separate_passes", "method"}},
         {"creases", crease},
         {"ridges", crease},
+        {"hachures", hachure_keys()},
         {"drainage", {"routing"}},
         {"style", {}},
         {"mesh", {"file", "up", "subdivide"}},
@@ -278,6 +280,7 @@ Scene parse_scene_file(const std::string& path) {
     }
     read_crease(root, "creases", s.creases, path);
     read_crease(root, "ridges", s.ridges, path);
+    read_hachures(root, s.hachures, path);
     if (has_key(root, "drainage")) read_key(root.at("drainage"), "routing", s.drainage_routing, path, "drainage");
     if (has_key(root, "style")) {
         s.style_overrides = root.at("style");
@@ -365,6 +368,7 @@ void validate_scene(const Scene& s) {
         check_range(f, t + "distance_attenuation", p->distance_attenuation, 0.0, 1000.0);
         check_range(f, t + "spacing_px", p->spacing_px, 0.0, 1000.0);
     }
+    validate_hachures(s.hachures, f);
     check_range(f, "[silhouettes] min_gap", double(s.silhouette_min_gap), 0.0, 1000.0);
     if (s.tess_max_level < 1 || s.tess_max_level > 64)
         throw Error("scene", f, "tessellation max_level must be between 1 and 64");

@@ -6,7 +6,8 @@
 // min_gap, separate_passes, method; [surface] tolerance_px, min_radius_px; [tessellation]
 // target_edge_px, max_level, cull; [creases] and [ridges]
 // slope_weight, illumination_weight, flow_weight, min_score, distance_attenuation, spacing_px,
-// normalisation ("thirds", "paper" or "rank": core/crease_params.hpp), enabled; [style] name
+// normalisation ("thirds", "paper" or "rank": core/crease_params.hpp), enabled; [hachures]
+// (scene/hachure_lines.hpp); [style] name
 // plus per-layer overrides; seed. Angles in degrees, distances in metres (conventions.md).
 // A scene with [mesh] file draws a mesh instead (its keys: scene/mesh_scene.hpp). Any other key or
 // table is an error naming the nearest known one; validate_scene holds the values to their ranges.
@@ -19,6 +20,7 @@
 
 #include "core/camera.hpp"
 #include "core/crease_params.hpp"
+#include "lines/hachure_params.hpp"
 #include "render/terrain_renderer.hpp"
 
 namespace penink {
@@ -82,6 +84,9 @@ struct Scene {
     bool separate_passes = false;
     CreaseParams creases = crease_defaults();
     CreaseParams ridges = ridge_defaults();
+    // [hachures] (lines/hachures.hpp, scene/hachure_lines.hpp): slope lines spaced by tone; on for
+    // DEMs. width_px 0 takes the style's hachures width (apply_object_sketch).
+    HachureParams hachures = hachure_defaults();
     std::string drainage_routing = "priority-flood";  // [drainage] routing (drainage_build.hpp)
     std::string style = "technical";
     // Object-space sketchiness of creases and ridges (Potter et al., "NPR-Style 3D Line Textures", 4.3: end points moved within the

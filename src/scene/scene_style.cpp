@@ -12,6 +12,9 @@ void apply_object_sketch(Scene& scene, const Style& style) {
     const LayerStyle &creases = style.layer(LayerKind::creases), &ridges = style.layer(LayerKind::ridges);
     scene.crease_sketch_px = float(creases.sketch), scene.crease_repeat = creases.repeat;
     scene.ridge_sketch_px = float(ridges.sketch), scene.ridge_repeat = ridges.repeat;
+    // the hachures' spacing is computed for the pen that draws them (millimetres at 96 dpi)
+    if (scene.hachures.width_px <= 0.0)
+        scene.hachures.width_px = style.layer(LayerKind::hachures).width * (style.widths_mm ? 96.0 / 25.4 : 1.0);
 }
 
 FinishOptions finish_options(const Style& style, std::uint64_t seed, bool object_space_terrain_lines) {

@@ -13,7 +13,8 @@ namespace penink {
 
 Style scene_style(const Scene& scene);
 
-// Copies the style's crease/ridge sketch amount and repeats into the scene (terrain path).
+// Copies the style's crease/ridge sketch amount and repeats into the scene (terrain path), and the
+// hachures' pen width when the scene gives none.
 void apply_object_sketch(Scene& scene, const Style& style);
 
 // Finishing options from the style; with object_space_terrain_lines, creases and ridges are

@@ -17,6 +17,7 @@
 #include "lines/frustum_clip.hpp"
 #include "lines/mesh_visibility.hpp"
 #include "lines/trace_pixel_lines.hpp"
+#include "scene/hachure_lines.hpp"
 #include "scene/map_scale.hpp"
 #include "scene/terrain_view.hpp"
 #include "surface/boundary_curves.hpp"
@@ -206,7 +207,12 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
     const auto t0 = Clock::now();
     add_frame_lines(images, mesh_, camera, out.drawing);
     out.trace_ms = ms_since(t0);
+    const auto t_hachures = Clock::now();  // after the lines they yield to
+    add_hachures(terrain_, camera, images.toward, light_vector(Light{frame.light.azimuth, frame.light.altitude}),
+                 frame.hachures, out.drawing);
+    out.hachure_ms = ms_since(t_hachures);
     out.silhouette_mask = std::move(images.silhouettes);
+    out.toward = std::move(images.toward);
     fill_metadata(frame, camera, terrain_.meta, out.drawing);
     out.drawing.georeference = plan_view_georeference(camera, terrain_.meta.origin, terrain_.meta.crs_wkt);
     if (out.drawing.georeference) add_geographic_corners(*out.drawing.georeference, camera.width, camera.height);

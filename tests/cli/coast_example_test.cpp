@@ -1,5 +1,5 @@
 // The coastal example (examples/coast.toml: a window of the Jacksboro DEM with the sea at 350 m)
-// rendered by the command: the coastline layer sits between surface and ridges and holds the
+// rendered by the command: the coastline layer sits between surface and hachures and holds the
 // shore; --sea-level sets (or overrides) the sea of a bare DEM, and without one the layer is
 // written empty.
 #include <gtest/gtest.h>
@@ -46,7 +46,7 @@ TEST(CoastExample, RendersItsCoastlineLayer) {
     const RunResult r = run_penink("render coast.toml -o coast.svg --width 500 --height 375", dir);
     ASSERT_EQ(r.code, 0) << r.output;
     const std::string svg = read_text(dir / "coast.svg");
-    EXPECT_EQ(layer_ids(svg), (std::vector<std::string>{"surface", "coastline", "ridges", "creases", "pels",
+    EXPECT_EQ(layer_ids(svg), (std::vector<std::string>{"surface", "coastline", "hachures", "ridges", "creases", "pels",
                                                         "textures", "feature-edges", "silhouettes"}));
     EXPECT_GE(paths_in_layer(svg, "coastline"), 3u);
     EXPECT_NE(svg.find("data-kind=\"coastline\""), std::string::npos);

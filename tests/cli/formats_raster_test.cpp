@@ -105,5 +105,5 @@ TEST_F(Formats, PdfLayersListedByGhostscript) {
                             "> ocgs.txt 2>err.txt";
     ASSERT_EQ(std::system(cmd.c_str()), 0) << read_text(dir / "err.txt");
     EXPECT_EQ(read_text(dir / "ocgs.txt"),
-              "surface\ncoastline\nridges\ncreases\npels\ntextures\nfeature-edges\nsilhouettes\n");
+              "surface\ncoastline\nhachures\nridges\ncreases\npels\ntextures\nfeature-edges\nsilhouettes\n");
 }

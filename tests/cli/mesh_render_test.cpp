@@ -106,7 +106,7 @@ TEST(MeshRender, CubeEdgesOnProjectedCorners) {
     const RunResult r = run_penink("render cube.toml -o cube.svg", dir);
     ASSERT_EQ(r.code, 0) << r.output;
     const std::string svg = read_text(dir / "cube.svg");
-    for (const char* layer : {"surface", "coastline", "ridges", "creases", "pels", "textures", "feature-edges", "silhouettes"})
+    for (const char* layer : {"surface", "coastline", "hachures", "ridges", "creases", "pels", "textures", "feature-edges", "silhouettes"})
         EXPECT_NE(svg.find("id=\"" + std::string(layer) + "\""), std::string::npos) << layer;
     const penink::Camera cam = cube_camera();
     // Eye in the +x, -y, +z octant: corner 1 = (1,0,1) -> index 5 is nearest; its three edges

@@ -17,7 +17,7 @@ TEST(PlotterStyleCli, StrokesOnlyOnePenPerLayerWidthsInMillimetres) {
     const auto dir = fresh_dir("plotter");
     fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.asc", dir / "volcano.asc");
     fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.prj", dir / "volcano.prj");
-    const std::map<std::string, double> pen_mm = {{"surface", 0.3}, {"coastline", 0.4}, {"ridges", 0.3}, {"creases", 0.3}, {"silhouettes", 0.5}};
+    const std::map<std::string, double> pen_mm = {{"surface", 0.3}, {"coastline", 0.4}, {"hachures", 0.3}, {"ridges", 0.3}, {"creases", 0.3}, {"silhouettes", 0.5}};
     for (const std::string page : {"A4", "A3"}) {
         const RunResult r = run_penink("render volcano.asc --style plotter -o p.svg --page " + page, dir);
         ASSERT_EQ(r.code, 0) << r.output;
@@ -37,8 +37,8 @@ TEST(PlotterStyleCli, StrokesOnlyOnePenPerLayerWidthsInMillimetres) {
             if (pen != pen_mm.end())
                 EXPECT_NEAR(std::stod((*it)[3]) * mm_per_unit, pen->second, 0.001) << page << " " << (*it)[1];
         }
-        EXPECT_EQ(layers, 8u) << page;
-        EXPECT_EQ(colours.size(), 8u) << page << ": one pen colour per layer";
+        EXPECT_EQ(layers, 9u) << page;
+        EXPECT_EQ(colours.size(), 9u) << page << ": one pen colour per layer";
         EXPECT_FALSE(std::regex_search(svg, std::regex("<path [^>]*stroke=\""))) << page << ": a path with its own pen";
         EXPECT_FALSE(std::regex_search(svg, std::regex("<path [^>]*stroke-width="))) << page << ": a path with its own width";
     }

@@ -13,7 +13,7 @@ using namespace penink::test;
 
 namespace {
 
-const std::vector<std::string> kLayers = {"surface", "coastline", "ridges", "creases", "pels",
+const std::vector<std::string> kLayers = {"surface", "coastline", "hachures", "ridges", "creases", "pels",
                                           "textures", "feature-edges", "silhouettes"};
 
 StyledDrawing drawing(LayerSplit split = LayerSplit::kind) {
@@ -40,7 +40,7 @@ TEST(PsWriter, DscHeaderAndLayers) {
     EXPECT_NE(ps.find("<< /PageSize [150 120] >> setpagedevice"), std::string::npos);
     EXPECT_EQ(matches(ps, "%%BeginLayer: ([^\n]+)\n"), kLayers);
     EXPECT_EQ(matches(ps, "\\(([^)]+)\\) Ln\n"), kLayers);
-    EXPECT_EQ(matches(ps, "(%%EndLayer)\n").size(), 8u);
+    EXPECT_EQ(matches(ps, "(%%EndLayer)\n").size(), 9u);
     EXPECT_EQ(ps.substr(ps.size() - 6), "%%EOF\n");
     // y flipped once: image pixel (0, 0) is the page's top-left corner (120 pt up).
     EXPECT_NE(ps.find("0.75 0 0 -0.75 0 120 cm\n1 J 1 j\n"), std::string::npos);
@@ -54,20 +54,20 @@ TEST(PsWriter, EpsHeaderAndSublayers) {
     EXPECT_EQ(eps.rfind("%!PS-Adobe-3.0 EPSF-3.0\n", 0), 0u);
     EXPECT_EQ(eps.find("setpagedevice"), std::string::npos);
     const auto names = matches(eps, "%%BeginLayer: ([^\n]+)\n");
-    ASSERT_EQ(names.size(), 32u);
-    EXPECT_EQ(names[28], "silhouettes");
-    EXPECT_EQ(names[31], "silhouettes-far");
+    ASSERT_EQ(names.size(), 36u);
+    EXPECT_EQ(names[32], "silhouettes");
+    EXPECT_EQ(names[35], "silhouettes-far");
 }
 
 TEST(PdfWriter, OptionalContentGroups) {
     const std::string pdf = pdf_document(drawing(), PageOptions{}, "x.pdf");
     EXPECT_EQ(pdf.rfind("%PDF-1.5\n", 0), 0u);
     EXPECT_EQ(matches(pdf, "<< /Type /OCG /Name \\(([^)]+)\\) >>"), kLayers);
-    EXPECT_NE(pdf.find("/OCProperties << /OCGs [6 0 R 7 0 R 8 0 R 9 0 R 10 0 R 11 0 R 12 0 R 13 0 R] /D << "
-                       "/Name (penink layers) /Order [6 0 R 7 0 R 8 0 R 9 0 R 10 0 R 11 0 R 12 0 R 13 0 R] "
-                       "/ON [6 0 R 7 0 R 8 0 R 9 0 R 10 0 R 11 0 R 12 0 R 13 0 R] /OFF [] >> >>"),
+    EXPECT_NE(pdf.find("/OCProperties << /OCGs [6 0 R 7 0 R 8 0 R 9 0 R 10 0 R 11 0 R 12 0 R 13 0 R 14 0 R] /D << "
+                       "/Name (penink layers) /Order [6 0 R 7 0 R 8 0 R 9 0 R 10 0 R 11 0 R 12 0 R 13 0 R 14 0 R] "
+                       "/ON [6 0 R 7 0 R 8 0 R 9 0 R 10 0 R 11 0 R 12 0 R 13 0 R 14 0 R] /OFF [] >> >>"),
               std::string::npos);
-    EXPECT_EQ(matches(pdf, "/OC (/oc[0-9]+) BDC").size(), 8u);
+    EXPECT_EQ(matches(pdf, "/OC (/oc[0-9]+) BDC").size(), 9u);
     EXPECT_NE(pdf.find("/Properties << /oc0 6 0 R"), std::string::npos);
     EXPECT_NE(pdf.find("/GS0 << /Type /ExtGState /CA 0.5 >>"), std::string::npos);
     EXPECT_EQ(pdf.find("CreationDate"), std::string::npos);
@@ -80,7 +80,7 @@ TEST(PdfWriter, XrefOffsetsPointAtObjects) {
     const size_t xref = std::stoul(pdf.substr(sx + 10));
     ASSERT_EQ(pdf.compare(xref, 5, "xref\n"), 0);
     const auto offsets = matches(pdf.substr(xref), "([0-9]{10}) 00000 n \n");
-    ASSERT_EQ(offsets.size(), 5u + 32u);
+    ASSERT_EQ(offsets.size(), 5u + 36u);
     for (size_t i = 0; i < offsets.size(); ++i)
         EXPECT_EQ(pdf.compare(std::stoul(offsets[i]), std::to_string(i + 1).size() + 6,
                               std::to_string(i + 1) + " 0 obj"), 0) << i;

@@ -49,19 +49,20 @@ TEST(SvgWriter, ByteDeterministic) {
 
 TEST(SvgWriter, LayersInConventionOrder) {
     const std::string svg = svg_document(golden_drawing(), PageOptions{});
-    EXPECT_EQ(svg_layers(svg), (std::vector<std::string>{"surface", "coastline", "ridges", "creases", "pels",
+    EXPECT_EQ(svg_layers(svg), (std::vector<std::string>{"surface", "coastline", "hachures", "ridges", "creases", "pels",
                                                          "textures", "feature-edges", "silhouettes"}));
     EXPECT_NE(svg.find("<g inkscape:groupmode=\"layer\" inkscape:label=\"pels\" id=\"pels\" fill=\"none\" "
                        "stroke=\"#000000\" stroke-width=\"3\" stroke-linecap=\"round\" "
                        "stroke-linejoin=\"round\">\n</g>"),
               std::string::npos);  // empty layers are still written
     const std::vector<std::string> split = svg_layers(svg_document(golden_drawing(LayerSplit::kind_distance), {}));
-    ASSERT_EQ(split.size(), 32u);
+    ASSERT_EQ(split.size(), 36u);
     EXPECT_EQ(split[4], "coastline");
-    EXPECT_EQ(split[8], "ridges");
-    EXPECT_EQ(split[9], "ridges-near");
-    EXPECT_EQ(split[10], "ridges-middle");
-    EXPECT_EQ(split[11], "ridges-far");
+    EXPECT_EQ(split[8], "hachures");
+    EXPECT_EQ(split[12], "ridges");
+    EXPECT_EQ(split[13], "ridges-near");
+    EXPECT_EQ(split[14], "ridges-middle");
+    EXPECT_EQ(split[15], "ridges-far");
 }
 
 TEST(SvgWriter, HeaderPageAndMetadata) {

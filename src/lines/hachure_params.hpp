@@ -1,0 +1,36 @@
+// The parameters of the hachures layer (lines/hachures.hpp), apart so that the scene can hold
+// them without the tracing's interface.
+#pragma once
+#include <string>
+
+namespace penink {
+
+enum class HachureTone { light, slope, blend };
+
+// "light", "slope", "blend"; false for another name.
+bool hachure_tone_named(const std::string& name, HachureTone& out);
+const char* hachure_tone_name(HachureTone tone);
+
+// The [hachures] table of a scene (conventions.md, styles/README.md); the defaults are
+// hachure_defaults()'s.
+struct HachureParams {
+    bool enabled = true;
+    HachureTone tone = HachureTone::light;
+    double blend = 0.0;            // weight of the slope tone in "blend", [0, 1]
+    double contrast = 0.0;         // gain on the tone about 0.5, [0.01, 10]
+    double gamma = 0.0;            // exponent on the tone after the gain, [0.1, 10]
+    double min_slope_deg = 0.0;    // flatter ground (drawn exaggeration) gets no line
+    double spacing_min_px = 0.0;   // closest separation, image pixels (darkest tone)
+    double spacing_max_px = 0.0;   // widest separation; lighter tones get no line
+    double width_px = 0.0;         // pen width the spacing is computed for; 0: the style's hachures width
+    double d_test = 0.0;           // a line stops nearer than d_test x separation to another
+    double yield_px = 0.0;         // and nearer than this to a crease, ridge or silhouette
+    double max_turn_deg = 0.0;     // largest turn of the image direction per pixel
+    double aerial = 0.0;           // perspective: tone falls to (1 - aerial) at the farthest depth
+    double min_length_px = 0.0;    // shorter lines are dropped
+};
+
+// The defaults (lines/hachures.cpp), the one set of them.
+HachureParams hachure_defaults();
+
+}  // namespace penink

@@ -1,0 +1,460 @@
+// Hachures traced along the fall line and spaced by tone (hachures.hpp).
+#include "lines/hachures.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+#include <glm/vec2.hpp>
+
+#include "lines/mesh_visibility.hpp"
+#include "lines/simplify.hpp"
+
+namespace penink {
+
+bool hachure_tone_named(const std::string& name, HachureTone& out) {
+    for (HachureTone t : {HachureTone::light, HachureTone::slope, HachureTone::blend})
+        if (name == hachure_tone_name(t)) {
+            out = t;
+            return true;
+        }
+    return false;
+}
+
+const char* hachure_tone_name(HachureTone tone) {
+    switch (tone) {
+        case HachureTone::slope: return "slope";
+        case HachureTone::blend: return "blend";
+        case HachureTone::light: break;
+    }
+    return "light";
+}
+
+HachureParams hachure_defaults() {
+    HachureParams p;
+    p.enabled = true;
+    p.tone = HachureTone::light;
+    p.blend = 0.5;
+    p.contrast = 1.0;
+    p.gamma = 1.0;
+    p.min_slope_deg = 1.0;
+    p.spacing_min_px = 1.6;
+    p.spacing_max_px = 16.0;
+    p.width_px = 0.0;
+    p.d_test = 0.6;
+    p.yield_px = 2.0;
+    p.max_turn_deg = 25.0;
+    p.aerial = 0.5;
+    p.min_length_px = 4.0;
+    return p;
+}
+
+double hachure_tone(HachureTone tone, double blend, const glm::dvec3& normal, const glm::dvec3& light) {
+    const double lit = 1.0 - std::max(0.0, glm::dot(normal, light));
+    const double slope_deg = glm::degrees(std::acos(std::clamp(normal.z, -1.0, 1.0)));
+    const double steep = std::min(1.0, slope_deg / 45.0);
+    switch (tone) {
+        case HachureTone::slope: return steep;
+        case HachureTone::blend: return (1.0 - blend) * lit + blend * steep;
+        case HachureTone::light: break;
+    }
+    return lit;
+}
+
+namespace {
+
+// Parallel streamlines lie d_sep apart (seeded at d_sep beside each other), so d_sep = w / t;
+// where they converge and end at d_test x d_sep the mean spacing is wider (the measure reports it).
+constexpr double kFill = 1.0;
+
+// The grid as a continuous surface: bilinear positions, bilinearly interpolated node gradients.
+class SlopeField {
+public:
+    explicit SlopeField(const HachureGrid& g) : g_(g) {}
+    // Node gradients from differences over +-k nodes (the slope at the scale of the drawing).
+    void set_stencil(int k) { k_ = std::max(1, k), cell_c_ = -1, cell_r_ = -1; }
+    glm::dvec3 node_position(int c, int r) const { return node(c, r); }
+
+    struct Point {
+        glm::dvec3 p{0.0};    // world
+        glm::dvec2 grad{0.0}; // dz/dx, dz/dy (world)
+        glm::dvec2 du{0.0}, dv{0.0};  // d(x, y)/dc, d(x, y)/dr
+    };
+
+    // False outside [c0, c1 - 1) x [r0, r1 - 1) or on a cell with an invalid node.
+    bool eval(glm::dvec2 uv, Point& out) {
+        const double fc = std::floor(uv.x), fr = std::floor(uv.y);
+        if (!(fc >= g_.c0 && fc + 1 < g_.c1 && fr >= g_.r0 && fr + 1 < g_.r1)) return false;
+        const int c = int(fc), r = int(fr);
+        if (c != cell_c_ || r != cell_r_) {
+            cell_ok_ = load_cell(c, r);
+            cell_c_ = c, cell_r_ = r;
+        }
+        if (!cell_ok_) return false;
+        const double a = uv.x - fc, b = uv.y - fr;
+        const double w00 = (1 - a) * (1 - b), w10 = a * (1 - b), w01 = (1 - a) * b, w11 = a * b;
+        out.p = w00 * n_[0] + w10 * n_[1] + w01 * n_[2] + w11 * n_[3];
+        out.grad = w00 * gr_[0] + w10 * gr_[1] + w01 * gr_[2] + w11 * gr_[3];
+        const glm::dvec3 du = (1 - b) * (n_[1] - n_[0]) + b * (n_[3] - n_[2]);
+        const glm::dvec3 dv = (1 - a) * (n_[2] - n_[0]) + a * (n_[3] - n_[1]);
+        out.du = glm::dvec2(du), out.dv = glm::dvec2(dv);
+        return true;
+    }
+
+private:
+    bool valid(int c, int r) const {
+        return c >= g_.c0 && c < g_.c1 && r >= g_.r0 && r < g_.r1 && g_.valid[std::size_t(r) * g_.cols + c];
+    }
+    glm::dvec3 node(int c, int r) const {
+        glm::dvec3 p(g_.pos[std::size_t(r) * g_.cols + c]);
+        p.z = std::max(double(float(p.z * g_.z_scale)), double(g_.floor_z));
+        return p;
+    }
+    // Central differences (one-sided beside the edge or nodata) solved for the world gradient.
+    glm::dvec2 node_gradient(int c, int r) const {
+        int cm = c, cp = c, rm = r, rp = r;
+        for (int k = k_; k >= 1 && cm == c; --k) cm = valid(c - k, r) ? c - k : c;
+        for (int k = k_; k >= 1 && cp == c; --k) cp = valid(c + k, r) ? c + k : c;
+        for (int k = k_; k >= 1 && rm == r; --k) rm = valid(c, r - k) ? r - k : r;
+        for (int k = k_; k >= 1 && rp == r; --k) rp = valid(c, r + k) ? r + k : r;
+        if (cm == cp || rm == rp) return glm::dvec2(0.0);
+        const glm::dvec3 pc = (node(cp, r) - node(cm, r)) / double(cp - cm);
+        const glm::dvec3 pr = (node(c, rp) - node(c, rm)) / double(rp - rm);
+        // gx pc.x + gy pc.y = pc.z, gx pr.x + gy pr.y = pr.z
+        const double det = pc.x * pr.y - pc.y * pr.x;
+        if (std::abs(det) < 1e-12) return glm::dvec2(0.0);
+        return glm::dvec2((pc.z * pr.y - pc.y * pr.z) / det, (pc.x * pr.z - pc.z * pr.x) / det);
+    }
+    bool load_cell(int c, int r) {
+        const int cs[4] = {c, c + 1, c, c + 1}, rs[4] = {r, r, r + 1, r + 1};
+        for (int k = 0; k < 4; ++k) {
+            if (!valid(cs[k], rs[k])) return false;
+            n_[k] = node(cs[k], rs[k]);
+            gr_[k] = node_gradient(cs[k], rs[k]);
+        }
+        return true;
+    }
+
+    const HachureGrid& g_;
+    int k_ = 1;
+    int cell_c_ = -1, cell_r_ = -1;
+    bool cell_ok_ = false;
+    glm::dvec3 n_[4];
+    glm::dvec2 gr_[4];
+};
+
+// World direction (x, y) -> grid parameter direction: solve [du dv] t = d.
+glm::dvec2 to_param(const SlopeField::Point& f, glm::dvec2 d) {
+    const double det = f.du.x * f.dv.y - f.dv.x * f.du.y;
+    if (std::abs(det) < 1e-12) return glm::dvec2(0.0);
+    return glm::dvec2((d.x * f.dv.y - f.dv.x * d.y) / det, (f.du.x * d.y - d.x * f.du.y) / det);
+}
+
+// Points of all lines on the image, bucketed in square cells (insertion order kept).
+class Occupancy {
+public:
+    static constexpr std::uint32_t obstacle = 0xffffffffu;
+    Occupancy(int width, int height, float cell) : cell_(cell) {
+        cols_ = std::max(1, int(std::ceil(width / cell))) + 2;
+        rows_ = std::max(1, int(std::ceil(height / cell))) + 2;
+        cells_.resize(std::size_t(cols_) * rows_);
+    }
+    void add(glm::vec2 p, std::uint32_t line) {
+        const int cx = cell_of(p.x, cols_), cy = cell_of(p.y, rows_);
+        cells_[std::size_t(cy) * cols_ + cx].push_back({p, line});
+    }
+    // True when a point of another line lies within r_line, or an obstacle within r_obstacle.
+    bool blocked(glm::vec2 p, std::uint32_t self, float r_line, float r_obstacle) const {
+        const float r = std::max(r_line, r_obstacle);
+        const int x0 = cell_of(p.x - r, cols_), x1 = cell_of(p.x + r, cols_);
+        const int y0 = cell_of(p.y - r, rows_), y1 = cell_of(p.y + r, rows_);
+        const float rl2 = r_line * r_line, ro2 = r_obstacle * r_obstacle;
+        for (int y = y0; y <= y1; ++y)
+            for (int x = x0; x <= x1; ++x)
+                for (const Entry& e : cells_[std::size_t(y) * cols_ + x]) {
+                    if (e.line == self) continue;
+                    const glm::vec2 d = e.p - p;
+                    const float d2 = d.x * d.x + d.y * d.y;
+                    if (d2 < (e.line == obstacle ? ro2 : rl2)) return true;
+                }
+        return false;
+    }
+
+private:
+    struct Entry {
+        glm::vec2 p;
+        std::uint32_t line;
+    };
+    int cell_of(float v, int n) const { return std::clamp(int(std::floor(v / cell_)) + 1, 0, n - 1); }
+    float cell_;
+    int cols_ = 0, rows_ = 0;
+    std::vector<std::vector<Entry>> cells_;
+};
+
+struct Sample {
+    glm::dvec2 uv{0.0};
+    SlopeField::Point f;
+    glm::vec2 px{0.0f};
+    double depth = 0.0;
+    double tone = 0.0;  // drawn tone
+    double sep = 0.0;   // separation, pixels
+};
+
+class Tracer {
+public:
+    Tracer(const HachureGrid& grid, const HachureFrame& frame, const HachureParams& params)
+        : field_(grid), frame_(frame), p_(params), cam_(*frame.camera),
+          occ_(cam_.width, cam_.height, 3.0f) {
+        min_grad_ = std::tan(glm::radians(std::clamp(p_.min_slope_deg, 0.0, 89.9)));
+        width_ = frame.width_px > 0.0 ? frame.width_px : default_hachure_width_px;
+        perspective_ = !is_orthographic(cam_);
+        visibility_.rel_tolerance = 0.002f;  // as the outline: the lines lie on the rendered surface
+        near_ = frame.max_distance;  // the nearest visible eye distance: where the aerial fade starts
+        if (frame.toward)
+            for (float d : frame.toward->depth)
+                if (std::isfinite(d)) near_ = std::min(near_, double(d));
+    }
+
+    void add_obstacles() {
+        for (const std::vector<Stroke>* strokes : frame_.obstacles)
+            for (const Stroke& s : *strokes)
+                for (std::size_t i = 0; i + 1 < s.points.size(); ++i) {
+                    // the segment's part inside the image (Liang-Barsky), sampled every pixel
+                    const glm::vec2 a = s.points[i], d = s.points[i + 1] - a;
+                    float t0 = 0.0f, t1 = 1.0f;
+                    const float p[4] = {-d.x, d.x, -d.y, d.y};
+                    const float q[4] = {a.x + 2.0f, cam_.width + 2.0f - a.x, a.y + 2.0f, cam_.height + 2.0f - a.y};
+                    bool inside = true;
+                    for (int e = 0; e < 4 && inside; ++e) {
+                        if (p[e] == 0.0f) inside = q[e] >= 0.0f;
+                        else if (p[e] < 0.0f) t0 = std::max(t0, q[e] / p[e]);
+                        else t1 = std::min(t1, q[e] / p[e]);
+                    }
+                    if (!inside || t0 > t1) continue;
+                    const int n = std::max(1, int(std::ceil(glm::length(d) * (t1 - t0))));
+                    for (int k = 0; k <= n; ++k) occ_.add(a + d * (t0 + (t1 - t0) * float(k) / n), Occupancy::obstacle);
+                }
+    }
+
+    // The surface, image and tone at uv; false where no hachure may be.
+    bool sample(glm::dvec2 uv, Sample& s) {
+        s.uv = uv;
+        if (!field_.eval(uv, s.f)) return false;
+        const double g = glm::length(s.f.grad);
+        if (!(g >= min_grad_) || g <= 0.0) return false;
+        const glm::dvec3 n = glm::normalize(glm::dvec3(-s.f.grad.x, -s.f.grad.y, 1.0));
+        if (glm::dot(n, toward_viewer(cam_, s.f.p)) <= 0.0) return false;  // turned away: silhouette
+        glm::dvec2 px;
+        if (!project_to_pixel(cam_, s.f.p, px, s.depth)) return false;
+        if (!(px.x >= 0.0 && px.y >= 0.0 && px.x < cam_.width && px.y < cam_.height)) return false;
+        s.px = glm::vec2(px);
+        double t = hachure_tone(p_.tone, p_.blend, n, frame_.light);
+        t = std::pow(std::clamp(0.5 + p_.contrast * (t - 0.5), 0.0, 1.0), p_.gamma);
+        if (perspective_ && frame_.max_distance > near_)
+            t *= 1.0 - p_.aerial * std::clamp((s.depth - near_) / (frame_.max_distance - near_), 0.0, 1.0);
+        s.tone = t;
+        const double sep = kFill * width_ / t;
+        if (!(t > 0.0) || sep > p_.spacing_max_px) return false;
+        s.sep = std::max(sep, p_.spacing_min_px);
+        if (frame_.toward && !is_empty(*frame_.toward)) {
+            VisibilityOptions v = visibility_;
+            // the level of detail's 1 px, and a cell: the rendered PN surface and this bilinear one
+            // differ by up to a fraction of a cell's relief, which a grazing ray stretches in depth
+            v.abs_tolerance = float(3.0 * world_per_pixel(cam_, s.depth) + cell_m_);
+            if (!point_visible(*frame_.toward, cam_, glm::vec3(s.f.p), v)) return false;
+        }
+        return true;
+    }
+
+    // Image pixels per unit of grid parameter along param direction t at sample s.
+    double px_per_unit(const Sample& s, glm::dvec2 t) const {
+        const glm::dvec2 w = s.f.du * t.x + s.f.dv * t.y;
+        const double eps = 1e-3;
+        const glm::dvec3 q = s.f.p + eps * glm::dvec3(w, glm::dot(s.f.grad, w));
+        glm::dvec2 px;
+        double d;
+        if (!project_to_pixel(cam_, q, px, d)) return 0.0;
+        return glm::length(px - glm::dvec2(s.px)) / eps;
+    }
+
+    // Fall-line direction in grid parameters (sign +1 downhill, -1 uphill), unit world length.
+    static glm::dvec2 fall(const SlopeField::Point& f, double sign) {
+        const double g = glm::length(f.grad);
+        return to_param(f, -sign * f.grad / g);
+    }
+
+    // Grows one half of a line from s; appends the points after s.
+    void grow(const Sample& start, double sign, std::uint32_t id, std::vector<Sample>& out) {
+        Sample cur = start;
+        glm::vec2 prev_dir(0.0f);
+        const std::size_t max_points = std::size_t(4 * (cam_.width + cam_.height));
+        const double max_turn = glm::radians(p_.max_turn_deg);
+        for (std::size_t k = 0; k < max_points; ++k) {
+            const glm::dvec2 t0 = fall(cur.f, sign);
+            const double ppu = px_per_unit(cur, t0);
+            if (!(ppu > 0.0)) return;
+            const double h = std::min(1.0 / ppu, 4.0 / std::max(glm::length(t0), 1e-12));  // ~1 px, at most ~4 cells
+            SlopeField::Point mid;
+            if (!field_.eval(cur.uv + 0.5 * h * t0, mid) || !(glm::length(mid.grad) > 0.0)) return;
+            Sample next;
+            if (!sample(cur.uv + h * fall(mid, sign), next)) return;
+            const glm::vec2 step = next.px - cur.px;
+            const float len = glm::length(step);
+            if (!(len > 1e-4f)) return;
+            const glm::vec2 dir = step / len;
+            if (k > 0) {
+                const double turn = std::acos(std::clamp(double(glm::dot(dir, prev_dir)), -1.0, 1.0));
+                if (turn > max_turn * std::max(1.0, double(len))) return;
+            }
+            if (occ_.blocked(next.px, id, float(p_.d_test * next.sep), float(p_.yield_px)))
+                return;
+            prev_dir = dir;
+            out.push_back(next);
+            cur = next;
+        }
+    }
+
+    // A line from a seed (accepted and recorded, or nothing); true when accepted.
+    bool line_from(const Sample& seed) {
+        const std::uint32_t id = std::uint32_t(lines_.size());
+        std::vector<Sample> up, down;
+        grow(seed, -1.0, id, up);
+        grow(seed, +1.0, id, down);
+        std::vector<Sample> line(up.rbegin(), up.rend());
+        line.push_back(seed);
+        line.insert(line.end(), down.begin(), down.end());
+        float length = 0.0f;
+        for (std::size_t i = 1; i < line.size(); ++i) length += glm::length(line[i].px - line[i - 1].px);
+        if (line.size() < 2 || length < p_.min_length_px) return false;
+        for (const Sample& s : line) occ_.add(s.px, id);
+        lines_.push_back(std::move(line));
+        queue_.push_back(id);
+        return true;
+    }
+
+    bool seed_free(const Sample& s) const {
+        return !occ_.blocked(s.px, Occupancy::obstacle - 1, float(0.95 * s.sep), float(p_.yield_px + 1.0));
+    }
+
+    // Jobard & Lefer: seeds beside each new line until none is left.
+    void drain_queue() {
+        while (!queue_.empty()) {
+            const std::uint32_t id = queue_.front();
+            queue_.pop_front();
+            double since = 1e30;
+            for (std::size_t i = 0; i < lines_[id].size(); ++i) {
+                const Sample s = lines_[id][i];  // copy: lines_ grows below
+                if (i > 0) since += glm::length(s.px - lines_[id][i - 1].px);
+                if (since < 0.5 * s.sep) continue;
+                since = 0.0;
+                const double g = glm::length(s.f.grad);
+                const glm::dvec2 contour = to_param(s.f, glm::dvec2(-s.f.grad.y, s.f.grad.x) / g);
+                const double ppu = px_per_unit(s, contour);
+                if (!(ppu > 0.0)) continue;
+                for (double side : {-1.0, 1.0}) {
+                    Sample cand;
+                    if (sample(s.uv + side * (s.sep / ppu) * contour, cand) && seed_free(cand)) line_from(cand);
+                }
+            }
+        }
+    }
+
+    // The stencil: about 1.5 px of ground, from the median image size of a cell over a lattice
+    // of 16 x 16 nodes that project into the image (and the median cell size, metres).
+    int stencil(const HachureGrid& grid) {
+        std::vector<double> px_per_cell, cell_m;
+        for (int i = 0; i < 16; ++i)
+            for (int j = 0; j < 16; ++j) {
+                const int c = grid.c0 + (grid.c1 - grid.c0 - 2) * i / 15, r = grid.r0 + (grid.r1 - grid.r0 - 2) * j / 15;
+                glm::dvec2 a, b, e;
+                double da, db, de;
+                if (!project_to_pixel(cam_, field_.node_position(c, r), a, da) ||
+                    !project_to_pixel(cam_, field_.node_position(c + 1, r), b, db) ||
+                    !project_to_pixel(cam_, field_.node_position(c, r + 1), e, de))
+                    continue;
+                if (a.x < 0 || a.y < 0 || a.x >= cam_.width || a.y >= cam_.height) continue;
+                px_per_cell.push_back(std::max(glm::length(b - a), glm::length(e - a)));
+                cell_m.push_back(glm::length(glm::dvec2(field_.node_position(c + 1, r) - field_.node_position(c, r))));
+            }
+        if (!cell_m.empty()) {
+            std::nth_element(cell_m.begin(), cell_m.begin() + cell_m.size() / 2, cell_m.end());
+            cell_m_ = cell_m[cell_m.size() / 2];
+        }
+        if (px_per_cell.empty()) return 1;
+        std::nth_element(px_per_cell.begin(), px_per_cell.begin() + px_per_cell.size() / 2, px_per_cell.end());
+        const double m = px_per_cell[px_per_cell.size() / 2];
+        return m > 0.0 ? std::clamp(int(std::lround(1.5 / m)), 1, 16) : 1;
+    }
+
+    void run(const HachureGrid& grid) {
+        field_.set_stencil(stencil(grid));
+        add_obstacles();
+        const double cells = double(std::max(grid.c1 - grid.c0 - 1, 0)) * std::max(grid.r1 - grid.r0 - 1, 0);
+        const double target = double(cam_.width) * cam_.height / std::pow(2.0 * std::max(p_.spacing_min_px, 0.5), 2.0);
+        const int stride = std::max(1, int(std::sqrt(cells / std::max(target, 1.0))));
+        for (int r = grid.r0; r + 1 < grid.r1; r += stride)
+            for (int c = grid.c0; c + 1 < grid.c1; c += stride) {
+                // a block of cells larger than 6 px on the image (the near ground of a perspective
+                // view) gets a sub-lattice, so every region between creases has seeds of its own
+                const int c2 = std::min(c + stride, grid.c1 - 1), r2 = std::min(r + stride, grid.r1 - 1);
+                glm::dvec2 a, b;
+                double da, db;
+                int m = 1;
+                if (project_to_pixel(cam_, field_.node_position(c, r), a, da) &&
+                    project_to_pixel(cam_, field_.node_position(c2, r2), b, db))
+                    m = std::clamp(int(std::ceil(glm::length(b - a) / 6.0)), 1, 8);
+                for (int j = 0; j < m; ++j)
+                    for (int i = 0; i < m; ++i) {
+                        Sample s;
+                        const glm::dvec2 uv(c + (c2 - c) * (i + 0.5) / m, r + (r2 - r) * (j + 0.5) / m);
+                        if (sample(uv, s) && seed_free(s) && line_from(s)) drain_queue();
+                    }
+            }
+    }
+
+    std::vector<Stroke> strokes() const {
+        std::vector<Stroke> out;
+        out.reserve(lines_.size());
+        for (const std::vector<Sample>& line : lines_) {
+            Stroke s;
+            s.kind = "hachure";
+            double tone = 0.0;
+            for (const Sample& p : line) {
+                s.points.push_back(p.px);
+                s.depth.push_back(float(p.depth));
+                tone += p.tone;
+            }
+            s.strength = float(tone / double(line.size()));
+            out.push_back(simplify_stroke(s, 0.2f));
+        }
+        return out;
+    }
+
+private:
+    SlopeField field_;
+    const HachureFrame& frame_;
+    const HachureParams& p_;
+    const Camera& cam_;
+    Occupancy occ_;
+    VisibilityOptions visibility_;
+    double min_grad_ = 0.0, width_ = 1.0;
+    double cell_m_ = 0.0;  // median node spacing, metres
+    double near_ = 0.0;    // nearest visible eye distance
+    bool perspective_ = true;
+    std::vector<std::vector<Sample>> lines_;
+    std::deque<std::uint32_t> queue_;
+};
+
+}  // namespace
+
+std::vector<Stroke> trace_hachures(const HachureGrid& grid, const HachureFrame& frame, const HachureParams& params) {
+    if (!params.enabled || !frame.camera || !grid.pos || !grid.valid || grid.c1 - grid.c0 < 2 || grid.r1 - grid.r0 < 2)
+        return {};
+    Tracer tracer(grid, frame, params);
+    tracer.run(grid);
+    return tracer.strokes();
+}
+
+}  // namespace penink
