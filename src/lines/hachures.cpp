@@ -44,7 +44,7 @@ HachureParams hachure_defaults() {
     p.spacing_max_px = 16.0;
     p.width_px = 0.0;
     p.d_test = 0.6;
-    p.yield_px = 2.0;
+    p.yield_px = 0.5;  // a hair's clearance: wider clearances lighten the shaded slopes the creases gather on (docs/tone.md)
     p.max_turn_deg = 25.0;
     p.aerial = 0.5;
     p.min_length_px = 4.0;
