@@ -1,4 +1,5 @@
 // penink command line entry point: dispatches to src/cli/commands (render, drainage, ...).
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -23,6 +24,9 @@ int main(int argc, char** argv) {
     // blocks among them), each holding up the other threads' page faults.
     mallopt(M_TOP_PAD, 16 << 20);
 #endif
+    // A file-size limit (ulimit -f) makes a write fail with EFBIG, reported as a write error and
+    // its temporary removed, rather than the process killed with the temporary left.
+    std::signal(SIGXFSZ, SIG_IGN);
     const int code = penink::run_cli(argc, argv);
     std::cout.flush(), std::cerr.flush(), std::clog.flush();
     std::fflush(nullptr);

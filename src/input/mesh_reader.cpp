@@ -14,6 +14,7 @@
 #include <CGAL/Simple_cartesian.h>
 
 #include "core/error.hpp"
+#include "core/input_files.hpp"
 #include "core/printable_text.hpp"
 
 namespace penink {
@@ -239,7 +240,7 @@ TriangleMesh read_mesh(const std::string& path, bool weld) {
     const std::string ext = lower_extension(path);
     if (ext != ".obj" && ext != ".ply" && ext != ".off")
         throw Error("input", path, "unsupported mesh format \"" + ext + "\" (use .obj, .ply or .off)");
-    if (!std::filesystem::is_regular_file(path)) throw Error("input", path, "no such file");
+    check_input_file("input", path);  // local, a regular file (no FIFO, device or folder)
     if (ext == ".ply") check_ply_header(path);
     std::vector<Point3> pts;
     std::vector<Polygon> polys;

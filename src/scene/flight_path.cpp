@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/input_files.hpp"
 #include "core/printable_text.hpp"
 
 namespace penink {
@@ -129,11 +130,7 @@ std::vector<FlightRecord> parse_flight_path(const std::string& text, const std::
 }
 
 std::vector<FlightRecord> read_flight_path(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error("batch", path, "cannot read file");
-    std::ostringstream s;
-    s << in.rdbuf();
-    return parse_flight_path(s.str(), path);
+    return parse_flight_path(read_input_text("batch", path, max_text_input_bytes, "flight path"), path);
 }
 
 }  // namespace penink
