@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 
@@ -138,4 +139,35 @@ TEST(OutputsNeverInputs, TomlNestingIsBounded) {
     write_text(dir / "tables.toml", tables + "1" + std::string(100000, '}') + "\n");
     expect_refused(dir, "render volcano.asc --style tables.toml -o out.svg",
                    "penink: style: tables.toml: TOML nests brackets or braces deeper than 64 levels");
+}
+
+TEST(OutputsNeverInputs, FileNamesThatAreNotTextMakeValidSvg) {
+    if (std::system("xmllint --version >/dev/null 2>&1") != 0) GTEST_SKIP() << "xmllint not installed (apt-get install libxml2-utils)";
+    const auto dir = fresh_dir("never_inputs_xml");
+    const std::string name = "v\xff\xfe\x1bx<&>.asc";
+    fs::copy_file(volcano_asc, dir / name);
+    const RunResult r = run_penink("render '" + name + "' --map -o out.svg -q", dir);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const RunResult lint = run_penink("", dir, "xmllint --noout out.svg");
+    EXPECT_EQ(lint.code, 0) << lint.output;
+    EXPECT_NE(read_text(dir / "out.svg").find("<title id=\"title\">v\xEF\xBF\xBD\xEF\xBF\xBD\xEF\xBF\xBDx&lt;&amp;&gt;.asc"),
+              std::string::npos);
+}
+
+TEST(OutputsNeverInputs, RastersOnAFullDiskLeaveNothing) {
+    const auto dir = fresh_dir("never_inputs_full");
+    fs::copy_file(volcano_asc, dir / "volcano.asc");
+    fs::create_directory(dir / "R");
+    if (std::system(("mount -t tmpfs -o size=8k tmpfs '" + (dir / "R").string() + "' 2>/dev/null").c_str()) != 0)
+        GTEST_SKIP() << "cannot mount a small tmpfs here (needs root or CAP_SYS_ADMIN)";
+    const RunResult r = run_penink("drainage volcano.asc -o v.dv --rasters R -q", dir);
+    std::size_t left = 0;
+    for (auto& e : fs::directory_iterator(dir / "R")) left += 1 + 0 * e.is_regular_file();
+    std::system(("umount '" + (dir / "R").string() + "'").c_str());
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_EQ(r.output.rfind("penink: ", 0), 0u) << r.output;
+    EXPECT_NE(r.output.find("R/"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("No space left on device"), std::string::npos) << r.output;
+    EXPECT_EQ(left, 0u) << "a raster or temporary left on the full disk";
 }
