@@ -2,6 +2,9 @@
 // scale wider than the Earth, a mesh vertex that is not a number.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <cstdlib>
 #include <filesystem>
 
 #include "cli_support.hpp"
@@ -50,4 +53,38 @@ TEST(BoundedInputs, AMeshVertexThatIsNotANumberIsNamed) {
     expect_refused(dir, "render inf.obj -o out.svg",
                    "penink: input: inf.obj: vertex 2 has coordinate -Inf, out of range (mesh coordinates must be finite "
                    "and within +-1e9)");
+}
+
+TEST(BoundedInputs, AFileSizeLimitIsAWriteError) {
+    const auto dir = fresh_dir("bounded_fsize");
+    fs::copy_file(volcano_asc, dir / "volcano.asc");
+    // ulimit -f counts 1024-byte blocks: the 6.6 MB database does not fit 100 KiB
+    RunResult r = run_penink("", dir, "ulimit -f 100; '" PENINK_BINARY_PATH "' drainage volcano.asc -o x.dv -q");
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_EQ(r.output, "penink: drainage: x.dv: cannot write drainage database (File too large)\n");
+    EXPECT_EQ(file_count(dir), 1u) << "a temporary was left";
+    fs::copy_file(volcano_asc, dir / "again.asc");  // no caches to write: only the outputs meet the limit
+    r = run_penink("", dir, "ulimit -f 10; '" PENINK_BINARY_PATH "' render again.asc -o big.svg -o b.png -q 2>&1 | grep -v warning");
+    EXPECT_NE(r.output.find("penink: export: big.svg: cannot write file (File too large)\n"), std::string::npos) << r.output;
+    for (const char* f : {"big.svg", "b.png"}) EXPECT_FALSE(fs::exists(dir / f)) << f;
+    for (auto& e : fs::directory_iterator(dir))
+        EXPECT_EQ(e.path().filename().string().find(".penink-"), std::string::npos) << e.path();
+}
+
+TEST(BoundedInputs, NoThreadToStartIsOneLine) {
+    if (::geteuid() != 0 && std::system("command -v prlimit >/dev/null") != 0) GTEST_SKIP() << "prlimit not installed";
+    const auto dir = fresh_dir("bounded_nproc");
+    fs::permissions(dir, fs::perms::all);
+    fs::copy_file(volcano_asc, dir / "volcano.asc");
+    fs::permissions(dir / "volcano.asc", fs::perms::all);
+    // root is not held to RLIMIT_NPROC: the run is made as nobody where the tests run as root
+    const std::string as = ::geteuid() == 0 ? "setpriv --reuid=65534 --regid=65534 --clear-groups " : "";
+    for (const char* n : {"1", "3"}) {
+        const RunResult r = run_penink("", dir, "HOME='" + dir.string() + "' timeout 60 " + as + "prlimit --nproc=" + n +
+                                                    " '" PENINK_BINARY_PATH "' render volcano.asc -o out.svg");
+        EXPECT_EQ(r.code, 2) << n << ": " << r.output;
+        EXPECT_EQ(r.output, "penink: cli: cannot start a thread (Resource temporarily unavailable): raise the process "
+                            "limit (ulimit -u)\n") << n;
+        EXPECT_FALSE(fs::exists(dir / "out.svg"));
+    }
 }
