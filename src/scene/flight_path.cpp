@@ -114,6 +114,9 @@ std::vector<FlightRecord> parse_flight_path(const std::string& text, const std::
     std::size_t header_size = 0;
     std::vector<FlightRecord> records;
     for (int n = 1; std::getline(in, line); ++n) {
+        if (line.size() > max_flight_line_bytes)  // no record is this long; the parsers below are not for it
+            fail(file, n, std::to_string(line.size()) + " bytes, more than the " + std::to_string(max_flight_line_bytes) +
+                              " a line may have");
         const std::string t = trim(line);
         if (t.empty() || t[0] == '#') continue;
         if (!split_csv_line(line, fields)) fail(file, n, "unterminated or misplaced quote");

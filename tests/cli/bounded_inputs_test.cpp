@@ -88,3 +88,13 @@ TEST(BoundedInputs, NoThreadToStartIsOneLine) {
         EXPECT_FALSE(fs::exists(dir / "out.svg"));
     }
 }
+
+TEST(BoundedInputs, AFlightPathLineIsBounded) {
+    const auto dir = fresh_dir("bounded_csv_line");
+    fs::copy_file(volcano_asc, dir / "volcano.asc");
+    // one 15 MB line (under the 16 MiB file cap): a crash in the field parsers before the bound
+    write_text(dir / "long.csv", "position,elevation,azimuth,altitude\n\"" + std::string(15000000, '1') + "\",100,0,-20\n");
+    expect_refused(dir, "batch volcano.asc --path long.csv --out frames",
+                   "penink: batch: long.csv: line 2: 15000012 bytes, more than the 4096 a line may have");
+    EXPECT_FALSE(fs::exists(dir / "frames"));
+}
