@@ -104,10 +104,13 @@ std::string read_input_text(const std::string& stage, const std::string& path, s
 }
 
 void check_toml_nesting(const std::string& stage, const std::string& path, const std::string& text, int max_depth) {
-    int depth = 0;
+    int depth = 0, dots = 0;  // dots: of the dotted key (or number) since the last = [ ] { } , or newline
     const std::size_t n = text.size();
     for (std::size_t i = 0; i < n; ++i) {
         const char c = text[i];
+        if (c == '=' || c == '[' || c == ']' || c == '{' || c == '}' || c == ',' || c == '\n') dots = 0;
+        if (c == '.' && ++dots >= max_depth)  // parts = dots + 1
+            throw Error(stage, shown_path(path), "TOML key has more than " + std::to_string(max_depth) + " dotted parts");
         if (c == '#') {  // a comment to the end of the line
             while (i < n && text[i] != '\n') ++i;
         } else if (c == '"' || c == '\'') {

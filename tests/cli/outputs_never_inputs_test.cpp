@@ -171,3 +171,12 @@ TEST(OutputsNeverInputs, RastersOnAFullDiskLeaveNothing) {
     EXPECT_NE(r.output.find("No space left on device"), std::string::npos) << r.output;
     EXPECT_EQ(left, 0u) << "a raster or temporary left on the full disk";
 }
+
+TEST(OutputsNeverInputs, DottedKeysAreBounded) {
+    const auto dir = fresh_dir("never_inputs_dotted");
+    fs::copy_file(volcano_asc, dir / "volcano.asc");
+    std::string key = "a";
+    for (int i = 0; i < 100000; ++i) key += ".a";
+    write_text(dir / "dots.toml", "[terrain]\ndem = \"volcano.asc\"\n[" + key + "]\nx = 1\n");
+    expect_refused(dir, "render dots.toml -o out.svg", "penink: scene: dots.toml: TOML key has more than 64 dotted parts");
+}

@@ -65,6 +65,17 @@ TEST(InputFiles, TomlNestingIsBoundedOutsideStringsAndComments) {
     const std::string text = "# " + std::string(100, '[') + "\nb = \"" + std::string(100, '{') + "\\\"[[\"\nc = '" +
                              std::string(100, '[') + "'\nd = \"\"\"\n" + std::string(100, '[') + "\n\"\"\"\n[t]\ne = {x = [1]}\n";
     EXPECT_EQ(error_of([&] { check_toml_nesting("scene", "s.toml", text); }), "");
+    std::string dotted = "[a";  // 65 parts
+    std::string parts64 = "[a";
+    for (int i = 0; i < 63; ++i) parts64 += ".a";
+    EXPECT_EQ(error_of([&] { check_toml_nesting("scene", "s.toml", parts64 + "]\n"); }), "");  // 64 parts: allowed
+    for (int i = 0; i < 64; ++i) dotted += ".a";
+    EXPECT_EQ(error_of([&] { check_toml_nesting("scene", "s.toml", dotted + "]\n"); }),
+              "penink: scene: s.toml: TOML key has more than 64 dotted parts");
+    EXPECT_EQ(error_of([&] { check_toml_nesting("scene", "s.toml", "x = {" + dotted.substr(1) + " = 1}\n"); }),
+              "penink: scene: s.toml: TOML key has more than 64 dotted parts");
+    // numbers and dates after = [ , each start again
+    EXPECT_EQ(error_of([&] { check_toml_nesting("scene", "s.toml", "[a.b.c]\nx = [" + std::string(200, ' ') + "1.5, 2.5]\nd = 1979-05-27T07:32:00.999\n"); }), "");
     const std::string inline_tables = "a = " + std::string(100, '{');
     EXPECT_NE(error_of([&] { check_toml_nesting("scene", "s.toml", inline_tables); }), "");
 }
