@@ -30,11 +30,11 @@ void check_scene_memory(const Scene& scene, std::uint64_t max_memory) {
     const DemSize size = read_dem_size(scene.dem);
     const double drainage = drainage_points(size.cols, size.rows, drainage_factor_for(size.cols, size.rows, 0)) *
                             drainage_bytes_per_point;
-    double water = 0.0;  // the pyramid rebuilt for a sea level, over the padded square
-    if (scene.sea_level) {
-        const double side = std::ldexp(1.0, lod_padded_levels(size.cols, size.rows)) + 1.0;
-        water = side * side * water_lod_bytes_per_padded_node;
-    }
+    // the level-of-detail pyramid's errors over the padded square (a long thin DEM's square is
+    // far larger than its nodes), and the pyramid rebuilt for a sea level
+    const double side = std::ldexp(1.0, lod_padded_levels(size.cols, size.rows)) + 1.0;
+    double water = side * side * lod_bytes_per_padded_node;
+    if (scene.sea_level) water += side * side * water_lod_bytes_per_padded_node;
     const double dem = size.nodes() * render_bytes_per_node + drainage + water;
     check_memory("input", scene.dem,
                  "drawing the DEM's " + std::to_string(size.cols) + "x" + std::to_string(size.rows) + " nodes", dem, budget);

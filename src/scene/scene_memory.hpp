@@ -17,6 +17,8 @@ constexpr double render_bytes_per_pixel = 32.0;
 // A scene with a sea level rebuilds the pyramid for it (terrain_view.hpp): heights, flags and
 // errors over the padded square while it builds.
 constexpr double water_lod_bytes_per_padded_node = 10.0;
+// Every terrain's pyramid holds a float error per padded node ((2^levels + 1)^2, terrain_lod.hpp).
+constexpr double lod_bytes_per_padded_node = 4.0;
 
 // Throws Error("input", DEM, "drawing the DEM's WxH nodes would need about N of memory, B
 // available (--max-memory)") when a terrain scene would not fit memory_budget(max_memory), and

@@ -98,3 +98,15 @@ TEST(BoundedInputs, AFlightPathLineIsBounded) {
                    "penink: batch: long.csv: line 2: 15000012 bytes, more than the 4096 a line may have");
     EXPECT_FALSE(fs::exists(dir / "frames"));
 }
+
+TEST(BoundedInputs, ALongThinDemIsRefusedByItsPyramid) {
+    const auto dir = fresh_dir("bounded_thin");
+    // 2 x 100 000 nodes: few nodes, but the level-of-detail pyramid's padded square is
+    // (2^17 + 1)^2 errors of 4 B = 64 GiB (std::bad_alloc before the estimate counted it)
+    std::string grid = "ncols 2\nnrows 100000\nxllcorner 0\nyllcorner 0\ncellsize 10\nNODATA_value -9999\n";
+    for (int r = 0; r < 100000; ++r) grid += std::to_string(r % 7) + " " + std::to_string(r % 5) + "\n";
+    write_text(dir / "thin.asc", grid);
+    expect_refused(dir, "render thin.asc -o thin.svg --max-memory 1G",
+                   "penink: input: thin.asc: drawing the DEM's 2x100000 nodes would need about 64.2 GiB of memory, 1.0 GiB "
+                   "available (--max-memory)");
+}
