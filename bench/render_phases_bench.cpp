@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <string>
 
-#include "cli/batch_command.hpp"
+#include "scene/frame_output.hpp"
 #include "scene/drainage_lines.hpp"
 #include "scene/terrain_frames.hpp"
 #include "scene/terrain_view.hpp"
@@ -71,8 +71,9 @@ int main(int argc, char** argv) {
     p.mark("(TerrainFrames set-up, all of it)");
     SceneDrawing d = frames.draw(camera, scene);
     p.mark("frame: passes + tracing");
-    const ExportTimes lay_times = export_frame(d.drawing, style, scene.seed, true, {"/tmp/render_phases_bench.svg"});
-    const double lay = lay_times.finish + lay_times.write;
+    const FrameOutputResult lay_times =
+        write_frame(d.drawing, style, scene.seed, true, FrameOutput{{"/tmp/render_phases_bench.svg"}, {}, LayerSplit::kind, ""});
+    const double lay = lay_times.finish_ms + lay_times.write_ms;
     std::printf("%-34s %8.1f ms\n", "finish + style + SVG", lay);
     p.last = Clock::now();
     SceneDrawing again = frames.draw(camera, scene);

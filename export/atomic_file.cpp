@@ -192,10 +192,6 @@ void write_files_together(const std::vector<std::string>& paths,
     place_together(paths, temps);
 }
 
-void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write) {
-    write_atomically_together({path}, [&](std::size_t, const std::string& temp) { write(temp); });
-}
-
 void write_atomically_together(const std::vector<std::string>& paths,
                                const std::function<void(std::size_t, const std::string&)>& write) {
     std::vector<std::string> temps;

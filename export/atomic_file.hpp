@@ -25,13 +25,9 @@ void write_file_atomically(const std::string& path, std::string_view bytes);
 void write_files_together(const std::vector<std::string>& paths,
                           const std::function<std::string(std::size_t)>& bytes_of);
 
-// Creates the temp file, calls write(temp_path) (which may reopen and overwrite it, e.g. an
-// image library), flushes it and renames it onto `path`. Exceptions from `write` remove the temp
-// file and propagate unchanged.
-void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write);
-
-// As write_atomically for several paths written by libraries (GDAL): write(i, temp) writes
-// paths[i]'s content to `temp`; then all are placed together as in write_files_together.
+// For several paths written by libraries (GDAL): write(i, temp) writes paths[i]'s content to
+// `temp` (which it may reopen and overwrite), which is then flushed; then all are placed together
+// as in write_files_together. Exceptions from `write` remove the temporaries and propagate.
 void write_atomically_together(const std::vector<std::string>& paths,
                                const std::function<void(std::size_t, const std::string&)>& write);
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -45,6 +46,7 @@ std::string export_document(const StyledDrawing& drawing, const PageOptions& pag
             for (StyledGroup& g : l.groups)
                 for (StyledPath& p : g.paths) {
                     p.width /= layout.scale_mm;
+                    for (double& w : p.widths) w /= layout.scale_mm;
                     for (double& d : p.dash) d /= layout.scale_mm;
                 }
         }
@@ -126,6 +128,53 @@ PlotStats plot_stats(const StyledDrawing& drawing) {
                 have_pen = true;
             }
     return s;
+}
+
+WidthStats width_stats(const StyledLayer& layer) {
+    WidthStats s;
+    double sum = 0.0, sum2 = 0.0;
+    std::size_t open = 0, tapered = 0;
+    for (const StyledGroup& g : layer.groups)
+        for (const StyledPath& p : g.paths) {
+            ++s.paths;
+            const auto width_at = [&](std::size_t i) { return p.widths.empty() ? p.width : p.widths[i]; };
+            for (std::size_t i = 1; i < p.points.size(); ++i) {
+                const double len = glm::length(p.points[i] - p.points[i - 1]);
+                const double w = 0.5 * (width_at(i - 1) + width_at(i));
+                s.length_px += len, sum += len * w, sum2 += len * w * w;
+            }
+            const std::size_t n = p.points.size();
+            if (n < 2 || (n > 2 && p.points.front() == p.points.back())) continue;
+            ++open;
+            double widest = 0.0;
+            for (std::size_t i = 0; i < n; ++i) widest = std::max(widest, width_at(i));
+            if (width_at(0) < 0.75 * widest && width_at(n - 1) < 0.75 * widest) ++tapered;
+        }
+    if (s.length_px > 0.0) {
+        s.mean_width = sum / s.length_px;
+        const double var = std::max(0.0, sum2 / s.length_px - s.mean_width * s.mean_width);
+        s.cv = s.mean_width > 0.0 ? std::sqrt(var) / s.mean_width : 0.0;
+    }
+    s.tapered_share = open ? double(tapered) / double(open) : 0.0;
+    return s;
+}
+
+std::vector<std::string> width_report(const StyledDrawing& drawing) {
+    std::vector<std::string> lines;
+    const auto fixed = [](double v, int decimals) { return format_number(v, decimals); };
+    for (const StyledLayer& l : drawing.layers) {
+        if (l.kind == LayerKind::surface) continue;
+        const WidthStats s = width_stats(l);
+        if (s.paths == 0) continue;
+        lines.push_back(l.name + ": " + std::to_string(s.paths) + " paths, widths " + fixed(s.mean_width, 2) +
+                        (drawing.widths_mm ? " mm" : " px") + " mean, CV " + fixed(s.cv, 2) + ", " + fixed(100.0 * s.tapered_share, 0) +
+                        " % tapered at both ends");
+    }
+    const WidthStats sil = width_stats(drawing.layers[static_cast<std::size_t>(LayerKind::silhouettes)]);
+    const WidthStats cre = width_stats(drawing.layers[static_cast<std::size_t>(LayerKind::creases)]);
+    if (sil.length_px > 0.0 && cre.mean_width > 0.0)
+        lines.push_back("silhouette / crease width ratio " + fixed(sil.mean_width / cre.mean_width, 2));
+    return lines;
 }
 
 }  // namespace penink

@@ -45,4 +45,19 @@ struct PlotStats {
 // Stats in drawing order (layers bottom to top, groups, paths); surface fill rings excluded.
 PlotStats plot_stats(const StyledDrawing& drawing);
 
+// The weight of a layer's lines (styles/README.md, "Weight"): every segment of every path with
+// the mean width of its ends (a path's width where it has one), weighted by its length.
+struct WidthStats {
+    std::size_t paths = 0;
+    double length_px = 0.0;
+    double mean_width = 0.0;      // length-weighted, px
+    double cv = 0.0;              // length-weighted coefficient of variation of the widths
+    double tapered_share = 0.0;   // share of open paths of >= 2 points thinner at both ends
+                                  // (each end's width under 0.75 of the path's widest)
+};
+WidthStats width_stats(const StyledLayer& layer);
+// One line per layer with lines ("creases: 339 paths, widths 0.52 px mean, CV 0.41, 93 % tapered
+// at both ends"), then the silhouette / crease mean-width ratio when both have lines.
+std::vector<std::string> width_report(const StyledDrawing& drawing);
+
 }  // namespace penink

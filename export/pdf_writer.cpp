@@ -6,7 +6,6 @@
 #include <map>
 
 #include "core/version.hpp"
-#include "export/atomic_file.hpp"
 #include "export/pen_ops.hpp"
 
 namespace penink {
@@ -51,8 +50,27 @@ void set_pen(std::string& o, PenState& pen, const StyledPath& p, AlphaNames& alp
     pen = PenState{true, p.color, width, alpha, p.dash};
 }
 
-void group_body(std::string& o, const StyledGroup& g, PenState& pen, AlphaNames& alphas) {
+// A variable-width path: its outline filled in the pen's colour (the fill's opacity /ca, its own
+// ExtGState, keyed "f" + opacity).
+void fill_outline(std::string& o, PenState& fill, const StyledPath& p, AlphaNames& alphas) {
+    const std::string alpha = format_number(p.opacity, 3);
+    if (!fill.valid || !(fill.color == p.color)) append_rgb_op(o, p.color, "rg");
+    if (fill.valid ? fill.opacity != alpha : alpha != "1") {
+        auto it = alphas.find("f" + alpha);
+        if (it == alphas.end()) it = alphas.emplace("f" + alpha, "GS" + std::to_string(alphas.size())).first;
+        o += "/" + it->second + " gs\n";
+    }
+    fill = PenState{true, p.color, "", alpha, {}};
+    append_outline_ops(o, p);
+    o += "f\n";
+}
+
+void group_body(std::string& o, const StyledGroup& g, PenState& pen, PenState& fill, AlphaNames& alphas) {
     for (const StyledPath& p : g.paths) {
+        if (!p.widths.empty()) {  // fill colour and /ca leave the stroke's RG and /CA as they are
+            fill_outline(o, fill, p, alphas);
+            continue;
+        }
         set_pen(o, pen, p, alphas);
         append_polyline_ops(o, p.points);
         o += "S\n";
@@ -69,11 +87,11 @@ std::string content(const StyledDrawing& d, const PageLayout& L, const std::vect
     for (const StyledLayer& l : d.layers) {
         o += "/OC /oc" + std::to_string(oc++) + " BDC\nq\n";
         append_layer_fill(o, l);
-        PenState pen;
+        PenState pen, fill;
         for (const StyledGroup& g : l.groups) {
             const bool split = d.split == LayerSplit::kind_distance;
             if (split) o += "/OC /oc" + std::to_string(oc++) + " BDC\n";
-            group_body(o, g, pen, alphas);
+            group_body(o, g, pen, fill, alphas);
             if (split) o += "EMC\n";
         }
         o += "Q\nEMC\n";
@@ -175,7 +193,9 @@ std::string pdf_document(const StyledDrawing& d, const PageOptions& page, const 
     AlphaNames alphas;
     const std::string stream = content(d, L, ocgs, alphas);
     std::string gs, props;
-    for (const auto& [alpha, name] : alphas) gs += " /" + name + " << /Type /ExtGState /CA " + alpha + " >>";
+    for (const auto& [key, name] : alphas)
+        gs += " /" + name + (key[0] == 'f' ? " << /Type /ExtGState /ca " + key.substr(1) : " << /Type /ExtGState /CA " + key) +
+              " >>";
     for (size_t i = 0; i < ocgs.size(); ++i) props += " /oc" + std::to_string(i) + " " + ref(ocgs[i].object);
     const std::string box = "[0 0 " + format_number(L.page_w_mm * points_per_mm, 3) + " " +
                             format_number(L.page_h_mm * points_per_mm, 3) + "]";
@@ -188,10 +208,6 @@ std::string pdf_document(const StyledDrawing& d, const PageOptions& page, const 
     b.object(info_dict(d, page, path));
     for (const Ocg& g : ocgs) b.object("<< /Type /OCG /Name " + pdf_string(g.name) + " >>");
     return b.finish(1, 5);
-}
-
-void write_pdf(const StyledDrawing& drawing, const PageOptions& page, const std::string& path) {
-    write_file_atomically(path, pdf_document(drawing, page, path));
 }
 
 }  // namespace penink

@@ -17,8 +17,6 @@ namespace penink {
 std::string pdf_document(const StyledDrawing& drawing, const PageOptions& page,
                          const std::string& path = "");
 
-// Writes pdf_document() atomically to `path`.
-void write_pdf(const StyledDrawing& drawing, const PageOptions& page, const std::string& path);
 
 // A PDF literal string "(...)" with ( ) \ escaped and bytes outside printable ASCII as \ooo.
 std::string pdf_string(const std::string& text);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "export/page.hpp"
+#include "export/stroke_outline.hpp"
 
 namespace penink {
 
@@ -23,6 +24,14 @@ void append_polyline_ops(std::string& o, const std::vector<glm::vec2>& pts) {
     append_xy(o, pts[0], " m\n");
     if (pts.size() == 1) append_xy(o, pts[0], " l\n");
     for (size_t i = 1; i < pts.size(); ++i) append_xy(o, pts[i], " l\n");
+}
+
+void append_outline_ops(std::string& o, const StyledPath& p) {
+    const std::vector<glm::vec2> outline = stroke_outline(p.points, p.widths);
+    if (outline.empty()) return;
+    append_xy(o, outline[0], " m\n");
+    for (size_t i = 1; i < outline.size(); ++i) append_xy(o, outline[i], " l\n");
+    o += "h\n";
 }
 
 void append_ring_ops(std::string& o, const std::vector<Ring>& rings) {

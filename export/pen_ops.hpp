@@ -12,6 +12,8 @@ namespace penink {
 
 // "x y m x y l ... " for a polyline (a single point becomes a zero-length segment = a dot).
 void append_polyline_ops(std::string& out, const std::vector<glm::vec2>& points);
+// A variable-width path's outline (stroke_outline.hpp) as "x y m ... h" (for a nonzero fill, f).
+void append_outline_ops(std::string& out, const StyledPath& path);
 // Closed rings "x y m ... h" for an even-odd fill (rings with < 3 points are skipped).
 void append_ring_ops(std::string& out, const std::vector<Ring>& rings);
 // "r g b OP" with components in [0, 1], 3 decimals.

@@ -5,7 +5,6 @@
 #include <cctype>
 #include <cmath>
 
-#include "export/atomic_file.hpp"
 #include "export/pen_ops.hpp"
 #include "core/version.hpp"
 
@@ -70,6 +69,14 @@ void ink_box_pt(const StyledDrawing& d, const PageLayout& L, double margin_mm, d
     box[2] = x1 * points_per_mm, box[3] = (L.page_h_mm - y0) * points_per_mm;
 }
 
+bool has_outlines(const StyledDrawing& d) {
+    for (const StyledLayer& l : d.layers)
+        for (const StyledGroup& g : l.groups)
+            for (const StyledPath& p : g.paths)
+                if (!p.widths.empty()) return true;
+    return false;
+}
+
 void header(std::string& o, const StyledDrawing& d, const PageLayout& L, bool eps,
             const PageOptions& page, const std::string& path) {
     const double w = L.page_w_mm * points_per_mm, h = L.page_h_mm * points_per_mm;
@@ -90,6 +97,7 @@ void header(std::string& o, const StyledDrawing& d, const PageLayout& L, bool ep
         o += "% penink " + comment_text(k) + ": " + comment_text(v) + "\n";
     o += prolog;
     o += "%%BeginSetup\npenink_dict begin\n";
+    if (has_outlines(d)) o += "/f /fill load def\n";  // variable-width paths: filled outlines
     if (!eps) o += "<< /PageSize [" + format_number(w, 3) + " " + format_number(h, 3) + "] >> setpagedevice\n";
     o += "%%EndSetup\n%%Page: 1 1\n%%BeginPageSetup\nq\n";
     append_page_setup(o, d, L, "rectfill");
@@ -111,6 +119,14 @@ void layer_body(std::string& o, const StyledLayer& l, bool split, Rgb paper) {
     for (const StyledGroup& g : l.groups) {
         if (split) o += "%%BeginLayer: " + g.name + "\n";
         for (const StyledPath& p : g.paths) {
+            if (!p.widths.empty()) {  // the outline filled (nonzero), in the colour the pen would have
+                const Rgb c = blend_toward(p.color, paper, p.opacity);
+                if (!pen.valid || !(pen.color == c)) append_rgb_op(o, c, "rg");
+                if (pen.valid) pen.color = c;  // rg and RG are one setrgbcolor in PostScript
+                append_outline_ops(o, p);
+                o += "f\n";
+                continue;
+            }
             set_pen(o, pen, p, paper);
             append_polyline_ops(o, p.points);
             o += "S\n";
@@ -144,10 +160,6 @@ std::string ps_document(const StyledDrawing& d, const PageOptions& page, bool ep
     for (const StyledLayer& l : d.layers) layer(o, l, d.split == LayerSplit::kind_distance, d.background);
     o += "Q\nshowpage\n%%PageTrailer\n%%Trailer\nend\n%%EOF\n";
     return o;
-}
-
-void write_ps(const StyledDrawing& drawing, const PageOptions& page, const std::string& path) {
-    write_file_atomically(path, ps_document(drawing, page, ends_with_eps(path), path));
 }
 
 }  // namespace penink

@@ -15,7 +15,5 @@ namespace penink {
 std::string ps_document(const StyledDrawing& drawing, const PageOptions& page, bool eps,
                         const std::string& path = "");
 
-// Writes ps_document() atomically; EPS when `path` ends in ".eps" (case-insensitive).
-void write_ps(const StyledDrawing& drawing, const PageOptions& page, const std::string& path);
 
 }  // namespace penink

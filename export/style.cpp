@@ -21,6 +21,11 @@ void set_width(LayerStyle& s, double near, double far) {
     s.width_far = far;
 }
 
+void set_taper(LayerStyle& s, double taper, double taper_min, double weight_min, double weight_max) {
+    s.taper = taper, s.taper_min = taper_min;
+    s.weight_min = weight_min, s.weight_max = weight_max;
+}
+
 }  // namespace
 
 Rgb parse_rgb(const std::string& text) {
@@ -65,6 +70,11 @@ Style default_style() {
     set_width(s.layer(LayerKind::silhouettes), 1.2, 1.2);
     // silhouette fragments of small bumps read as dashes: drawn from 8 px on
     s.layer(LayerKind::silhouettes).min_length = 8.0;
+    // the hierarchy of weight: tapered creases and ridges, trunks heavier than twigs, profile
+    // lines heavier than folds (styles/README.md)
+    set_taper(s.layer(LayerKind::ridges), 6.0, 0.15, 1.0, 1.0);
+    set_taper(s.layer(LayerKind::creases), 6.0, 0.15, 0.5, 1.75);
+    set_taper(s.layer(LayerKind::silhouettes), 8.0, 0.3, 0.5, 1.25);
     return s;
 }
 
@@ -94,6 +104,9 @@ Style field_sketch_style() {
     s.layer(LayerKind::coastline).color = Rgb{0x1e, 0x2a, 0x3a};  // blue-black ink
     s.layer(LayerKind::silhouettes).repeat = 2;
     s.layer(LayerKind::textures).dash = {6.0, 3.0};
+    set_taper(s.layer(LayerKind::ridges), 8.0, 0.1, 1.0, 1.0);
+    set_taper(s.layer(LayerKind::creases), 8.0, 0.1, 0.5, 1.6);
+    set_taper(s.layer(LayerKind::silhouettes), 10.0, 0.25, 0.45, 1.3);
     return s;
 }
 
@@ -115,6 +128,7 @@ Style plotter_style() {
         LayerStyle& l = s.layer(row.k);
         l.color = row.c;
         set_width(l, row.w, row.w);
+        set_taper(l, 0.0, 0.0, 1.0, 1.0);  // single centre-line strokes, one pen width
     }
     return s;
 }

@@ -44,6 +44,14 @@ struct LayerStyle {
     int repeat = 1;                           // times each stroke is drawn (plotter passes)
     double min_length = 2.0;                  // shorter strokes (pen-down length, pixels) are dropped
     bool visible = true;                      // false: the layer is written empty
+    // Tapered ends (the pen's lift): an open stroke thins over its last `taper` px at each end
+    // (half its length when shorter) to taper_min times its width; 0: no taper. Ignored on
+    // dashed layers.
+    double taper = 0.0;
+    double taper_min = 0.0;  // [0, 1]
+    // Width factor at stroke weight 0 and 1 (Stroke::weight: creases by flow, silhouettes by
+    // the depth gap behind them), linear between; strokes without weights take weight_max.
+    double weight_min = 1.0, weight_max = 1.0;
     bool operator==(const LayerStyle&) const = default;
 };
 

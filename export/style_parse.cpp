@@ -83,7 +83,8 @@ std::vector<double> dash_array(const toml::value& v, const std::string& table) {
 // The keys a layer table, the root and the layer tables take (for suggestions).
 std::vector<std::string> layer_keys() {
     return {"color", "colour", "width", "width_far", "opacity", "opacity_far", "keep_far",
-            "dash", "sketch", "overshoot", "min_length", "repeat", "visible"};
+            "dash", "sketch", "overshoot", "min_length", "repeat", "visible", "taper", "taper_min",
+            "weight_min", "weight_max"};
 }
 std::vector<std::string> root_keys() { return {"name", "fill", "background", "near", "far", "bands", "width_unit"}; }
 std::vector<std::string> layer_names() {
@@ -111,6 +112,10 @@ void apply_layer_key(LayerStyle& l, const std::string& key, const toml::value& v
     else if (key == "sketch") l.sketch = number_at_least(v, key, table, 0.0);
     else if (key == "overshoot") l.overshoot = number_at_least(v, key, table, 0.0);
     else if (key == "min_length") l.min_length = number_at_least(v, key, table, 0.0);
+    else if (key == "taper") l.taper = number_at_least(v, key, table, 0.0);
+    else if (key == "taper_min") l.taper_min = unit_number(v, key, table);
+    else if (key == "weight_min") l.weight_min = number_at_least(v, key, table, 0.0);
+    else if (key == "weight_max") l.weight_max = number_at_least(v, key, table, 0.0);
     else if (key == "repeat") {
         if (!v.is_integer() || v.as_integer() < 1 || v.as_integer() > 16)
             throw StyleProblem("repeat must be an integer in [1, 16]" + where(table));

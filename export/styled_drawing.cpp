@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/geometric.hpp>
+
 #include "core/error.hpp"
 
 namespace penink {
@@ -41,7 +43,7 @@ StyledPath band_path(const Stroke& s, size_t from, size_t to, int level, const L
     StyledPath p;
     p.points.assign(s.points.begin() + from, s.points.begin() + to + 1);
     const double t = level_t(level, bands);
-    p.width = lerp(ls.width, ls.width_far, t);
+    p.width = lerp(ls.width, ls.width_far, t) * ls.weight_max;  // weight_min == weight_max here
     p.opacity = lerp(ls.opacity, ls.opacity_far, t);
     p.color = ls.color;
     p.dash = ls.dash;
@@ -76,6 +78,63 @@ std::vector<StyledPath> split_bands(const Stroke& s, const LayerStyle& ls, const
     return out;
 }
 
+// Points of `s` with more inserted where the taper changes the width (no gap over taper / 4 px
+// within `taper` of either end), and their arc lengths; depth and weight interpolated.
+struct DenseStroke {
+    std::vector<glm::vec2> points;
+    std::vector<double> depth, weight, arc;
+};
+
+DenseStroke densified(const Stroke& s, double taper) {
+    DenseStroke d;
+    const size_t n = s.points.size();
+    double total = 0.0;
+    for (size_t i = 1; i < n; ++i) total += glm::length(s.points[i] - s.points[i - 1]);
+    const auto depth_at = [&](size_t i) { return i < s.depth.size() ? double(s.depth[i]) : 0.0; };
+    const auto push = [&](glm::vec2 p, double depth, double weight, double arc) {
+        d.points.push_back(p), d.depth.push_back(depth), d.weight.push_back(weight), d.arc.push_back(arc);
+    };
+    const double zone = std::min(taper, 0.5 * total), step = taper / 4.0;
+    double arc = 0.0;
+    push(s.points[0], depth_at(0), weight_at(s, 0), 0.0);
+    for (size_t i = 1; i < n; ++i) {
+        const double len = glm::length(s.points[i] - s.points[i - 1]);
+        const bool in_zone = arc < zone || arc + len > total - zone;
+        const int k = in_zone && step > 0.0 ? std::max(1, int(std::ceil(len / step))) : 1;
+        for (int j = 1; j < k; ++j) {
+            const double f = double(j) / k;
+            push(s.points[i - 1] + (s.points[i] - s.points[i - 1]) * float(f), depth_at(i - 1) + (depth_at(i) - depth_at(i - 1)) * f,
+                 weight_at(s, i - 1) + (weight_at(s, i) - weight_at(s, i - 1)) * f, arc + len * f);
+        }
+        arc += len;
+        push(s.points[i], depth_at(i), weight_at(s, i), arc);
+    }
+    return d;
+}
+
+// One path per stroke, a width per point: distance (continuous), weight and taper.
+StyledPath variable_path(const Stroke& s, const LayerStyle& ls, const DistanceMap& dm, int bands) {
+    const bool tapered = ls.taper > 0.0 && !is_closed(s);
+    const DenseStroke d = densified(s, tapered ? ls.taper : 0.0);
+    StyledPath p;
+    p.points = d.points;
+    p.color = ls.color;
+    p.kind = s.kind;
+    p.strength = s.strength;
+    p.depth = mean_depth(s, 0, s.points.size() - 1);  // of the stroke's own points, as a band's
+    p.opacity = lerp(ls.opacity, ls.opacity_far, level_t(level_of(dm.t(p.depth), bands), bands));
+    const double total = d.arc.back();
+    p.widths.resize(d.points.size());
+    p.width = 0.0;
+    for (size_t i = 0; i < d.points.size(); ++i) {
+        double w = lerp(ls.width, ls.width_far, dm.t(d.depth[i])) * lerp(ls.weight_min, ls.weight_max, d.weight[i]);
+        if (tapered) w *= taper_factor(d.arc[i], total, ls.taper, ls.taper_min);
+        p.widths[i] = w;
+        p.width = std::max(p.width, w);
+    }
+    return p;
+}
+
 size_t distance_group(double depth, double max_depth) {
     if (max_depth <= 0.0) return 0;
     const double f = depth / max_depth;
@@ -93,8 +152,15 @@ StyledLayer style_layer(const Layer& layer, const Style& style, const DistanceMa
     if (split == LayerSplit::kind) out.groups.push_back({out.name, {}});
     else for (const char* g : {"-near", "-middle", "-far"}) out.groups.push_back({out.name + g, {}});
     if (!ls.visible) return out;
+    const bool variable = variable_width(ls);
     for (const Stroke& s : layer.strokes) {
         if (s.points.empty()) continue;
+        if (variable && s.points.size() >= 2) {
+            StyledPath p = variable_path(s, ls, dm, uniform(ls) ? 1 : style.bands);
+            const size_t g = split == LayerSplit::kind ? 0 : distance_group(p.depth, dm.max_depth);
+            out.groups[g].paths.push_back(std::move(p));
+            continue;
+        }
         for (const StyledPath& p : split_bands(s, ls, dm, style.bands)) {
             const size_t g = split == LayerSplit::kind ? 0 : distance_group(p.depth, dm.max_depth);
             out.groups[g].paths.push_back(p);
@@ -104,6 +170,16 @@ StyledLayer style_layer(const Layer& layer, const Style& style, const DistanceMa
 }
 
 }  // namespace
+
+bool variable_width(const LayerStyle& s) { return s.dash.empty() && (s.taper > 0.0 || s.weight_min != s.weight_max); }
+
+double taper_factor(double at, double length, double taper, double taper_min) {
+    if (!(taper > 0.0)) return 1.0;
+    const double zone = std::min(taper, 0.5 * length);
+    if (!(zone > 0.0)) return taper_min;
+    const double u = std::clamp(std::min(at, length - at) / zone, 0.0, 1.0);
+    return taper_min + (1.0 - taper_min) * (1.0 - (1.0 - u) * (1.0 - u));
+}
 
 LayerSplit parse_layer_split(const std::string& text) {
     if (text == "kind") return LayerSplit::kind;

@@ -33,6 +33,10 @@ struct StyledPath {
     std::string kind;          // data-kind
     double depth = 0.0;        // mean eye distance of the band's points, metres
     double strength = 0.0;     // the stroke's score
+    // Variable width (a tapered or weighted stroke, styles/README.md): one width per point, px;
+    // `width` is then their largest. Empty: one width. Writers draw such a path as its filled
+    // outline (stroke_outline.hpp); the points stay its centre line.
+    std::vector<double> widths;
 };
 
 // A drawable group: the whole layer, or one of its near/middle/far sublayers.
@@ -62,7 +66,15 @@ struct StyledDrawing {
     bool widths_mm = false;
 };
 
-// Applies `style`'s colours, widths (by distance, in bands), opacity and dashes to `drawing`.
+// Whether a layer's strokes get variable widths: taper or weight_min != weight_max, undashed.
+bool variable_width(const LayerStyle& style);
+
+// Width factor of a tapered stroke at arc length `at` of `length` px: taper_min at the ends,
+// 1 from `taper` px in (half the length when shorter), easing in between (1 - (1 - u)^2).
+double taper_factor(double at, double length, double taper, double taper_min);
+
+// Applies `style`'s colours, widths (by distance, in bands; or per point, with taper and weight,
+// on variable_width layers), opacity and dashes to `drawing`.
 StyledDrawing style_drawing(const Drawing& drawing, const Style& style, LayerSplit split = LayerSplit::kind);
 
 // The largest eye distance of any stroke point in the drawing (0 if none).

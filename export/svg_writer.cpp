@@ -1,7 +1,10 @@
 // SVG writer (svg_writer.hpp).
 #include "export/svg_writer.hpp"
 
-#include "export/atomic_file.hpp"
+#include <algorithm>
+#include <cmath>
+
+#include "export/stroke_outline.hpp"
 
 namespace penink {
 
@@ -105,6 +108,70 @@ void surface_fill(std::string& o, const StyledLayer& l) {
     o += "\"/>\n";
 }
 
+void append_points_d(std::string& o, const std::vector<glm::vec2>& pts) {
+    o += 'M';
+    append_point(o, pts[0]);
+    o += " L";
+    if (pts.size() == 1) append_point(o, pts[0]);
+    for (size_t i = 1; i < pts.size(); ++i) {
+        if (i > 1) o += ' ';
+        append_point(o, pts[i]);
+    }
+}
+
+// Inkscape's power-stroke offset points ("t,half-width | ..."; t the centre line's segment time):
+// the ends, every (n - 1) / 8-th point between and where the widths kink (their second difference
+// over a fifth of the widest).
+std::string offset_points(const StyledPath& p) {
+    const size_t n = p.points.size();
+    std::vector<size_t> knots{0};
+    const size_t stride = std::max<size_t>(1, (n - 1) / 8);
+    for (size_t i = 1; i + 1 < n; ++i) {
+        const bool bend = std::abs(p.widths[i + 1] - p.widths[i] - (p.widths[i] - p.widths[i - 1])) > 0.2 * p.width;
+        if (bend || i % stride == 0) knots.push_back(i);
+    }
+    knots.push_back(n - 1);
+    std::string s;
+    for (size_t k : knots) {
+        if (!s.empty()) s += " | ";
+        append_number(s, std::clamp(double(k), 0.01, double(n - 1) - 0.01), 2);
+        s += ',';
+        append_number(s, 0.5 * p.widths[k], 3);
+    }
+    return s;
+}
+
+// A variable-width path: the filled outline (d, what every viewer draws), its centre line
+// (inkscape:original-d) and widths, and Inkscape's power-stroke effect that keeps it a stroke.
+void outline_path(std::string& o, std::string& defs, const StyledPath& p, const std::string& effect_id) {
+    defs += "<inkscape:path-effect effect=\"powerstroke\" id=\"" + effect_id +
+         "\" is_visible=\"true\" lpeversion=\"1\" offset_points=\"" + offset_points(p) +
+         "\" not_jump=\"false\" sort_points=\"true\" interpolator_type=\"CentripetalCatmullRom\" "
+         "interpolator_beta=\"0.2\" scale_width=\"1\" start_linecap_type=\"round\" end_linecap_type=\"round\" "
+         "linejoin_type=\"round\" miter_limit=\"4\"/>\n";
+    o += "<path d=\"";
+    const std::vector<glm::vec2> outline = stroke_outline(p.points, p.widths);
+    append_points_d(o, outline);
+    o += "Z\"";
+    attr(o, "fill", rgb_hex(p.color));
+    attr(o, "stroke", "none");
+    if (p.opacity < 1.0) attr_num(o, "opacity", p.opacity, 3);
+    attr(o, "inkscape:path-effect", "#" + effect_id);
+    o += " inkscape:original-d=\"";
+    append_points_d(o, p.points);
+    o += '"';
+    attr(o, "data-kind", xml_escape(p.kind));
+    attr_num(o, "data-depth", p.depth, 2);
+    attr_num(o, "data-strength", p.strength, 3);
+    std::string widths;
+    for (size_t i = 0; i < p.widths.size(); ++i) {
+        if (i) widths += ' ';
+        append_number(widths, p.widths[i], 3);
+    }
+    attr(o, "data-widths", widths);
+    o += "/>\n";
+}
+
 void stroke_path(std::string& o, const StyledPath& p, const LayerStyle& ls) {
     o += "<path d=\"M";
     append_point(o, p.points[0]);
@@ -129,7 +196,7 @@ void layer_open(std::string& o, const std::string& name) {
     o += "<g inkscape:groupmode=\"layer\" inkscape:label=\"" + name + "\" id=\"" + name + "\"";
 }
 
-void layer(std::string& o, const StyledLayer& l, bool split) {
+void layer(std::string& o, const StyledLayer& l, bool split, std::string& defs, size_t& effects) {
     layer_open(o, l.name);
     attr(o, "fill", "none");
     attr(o, "stroke", rgb_hex(l.style.color));
@@ -144,7 +211,10 @@ void layer(std::string& o, const StyledLayer& l, bool split) {
             layer_open(o, g.name);
             o += ">\n";
         }
-        for (const StyledPath& p : g.paths) stroke_path(o, p, l.style);
+        for (const StyledPath& p : g.paths) {
+            if (p.widths.empty()) stroke_path(o, p, l.style);
+            else outline_path(o, defs, p, "powerstroke-" + std::to_string(effects++));
+        }
         if (split) o += "</g>\n";
     }
     o += "</g>\n";
@@ -202,13 +272,14 @@ std::string svg_document(const StyledDrawing& d, const PageOptions& page, const 
     std::string o;
     o.reserve(4096 + path_count(d) * 64);
     header(o, d, L, page);
-    for (const StyledLayer& l : d.layers) layer(o, l, d.split == LayerSplit::kind_distance);
+    size_t effects = 0;
+    std::string layers, defs;  // the power-stroke effects go in <defs>, before the layers
+    layers.reserve(path_count(d) * 64);
+    for (const StyledLayer& l : d.layers) layer(layers, l, d.split == LayerSplit::kind_distance, defs, effects);
+    if (!defs.empty()) o += "<defs id=\"defs\">\n" + defs + "</defs>\n";
+    o += layers;
     o += "</svg>\n";
     return o;
-}
-
-void write_svg(const StyledDrawing& drawing, const PageOptions& page, const std::string& path) {
-    write_file_atomically(path, svg_document(drawing, page, path));
 }
 
 }  // namespace penink

@@ -14,8 +14,6 @@ namespace penink {
 std::string svg_document(const StyledDrawing& drawing, const PageOptions& page,
                          const std::string& path = "");
 
-// Writes svg_document() atomically to `path`.
-void write_svg(const StyledDrawing& drawing, const PageOptions& page, const std::string& path);
 
 // XML text escaping (& < > " '); bytes that are not UTF-8 and characters XML 1.0 does not allow
 // (control characters but tab, newline and carriage return; surrogates, U+FFFE, U+FFFF) become

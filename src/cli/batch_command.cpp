@@ -13,10 +13,8 @@
 #include "core/progress_bar.hpp"
 #include "core/stopwatch.hpp"
 #include "export/atomic_file.hpp"
-#include "export/export_drawing.hpp"
 #include "export/raster_writer.hpp"
-#include "export/styled_drawing.hpp"
-#include "lines/finish_drawing.hpp"
+#include "scene/frame_output.hpp"
 #include "scene/flight_frames.hpp"
 #include "scene/mesh_frames.hpp"
 #include "scene/scene_inputs.hpp"
@@ -47,18 +45,6 @@ std::vector<std::string> parse_formats(const std::string& text) {
 void write_text(const fs::path& p, const std::string& text) { write_file_atomically(p.string(), text); }
 
 }  // namespace
-
-ExportTimes export_frame(Drawing& drawing, const Style& style, std::uint64_t seed, bool terrain,
-                         const std::vector<std::string>& paths) {
-    ExportTimes out;
-    auto t0 = Clock::now();
-    finish_drawing(drawing, finish_options(style, seed, terrain));
-    out.finish = lap_ms(t0);
-    const StyledDrawing styled = style_drawing(drawing, style, LayerSplit::kind);
-    export_drawings(styled, PageOptions{}, paths);  // the frame's files together or none
-    out.write = lap_ms(t0);
-    return out;
-}
 
 Subcommand add_batch_command(CLI::App& app) {
     auto options = std::make_shared<BatchOptions>();
@@ -208,9 +194,9 @@ int run_batch(const BatchOptions& o) {
         SceneDrawing d = flight.frames->draw(flight.cameras[i],
                                              flight.records.empty() ? scene : frame_scene(scene, flight.records[i]));
         t.times = d.times, t.lines = d.lines, t.trace = d.trace_ms;
-        const ExportTimes e = export_frame(d.drawing, style, scene.seed, !summary.mesh,
-                                              frame_paths(o.out_dir, t.frame, formats));
-        t.finish = e.finish, t.write = e.write;
+        const FrameOutputResult e = write_frame(d.drawing, style, scene.seed, !summary.mesh,
+                                                FrameOutput{frame_paths(o.out_dir, t.frame, formats), {}, LayerSplit::kind, ""});
+        t.finish = e.finish_ms, t.write = e.write_ms;
         t.total = ms_since(t0);
         timings.push_back(t);
         bar.step(fs::path(frame_paths(o.out_dir, t.frame, formats)[0]).stem().string(), t.total);

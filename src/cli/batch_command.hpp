@@ -32,17 +32,6 @@ struct BatchOptions : SceneOverrides {
 // Shard K of N from "K/N" (1 <= K <= N); throws penink::Error (stage "cli") otherwise.
 void parse_shard(const std::string& text, int& k, int& n);
 
-struct ExportTimes {
-    double finish = 0;  // sketch, thinning, plotter order, ms
-    double write = 0;   // style and export of the files, ms
-};
-
-// Finishes (sketch, thinning, plotter order), styles and writes one drawing to every path, as
-// `penink render` does (`terrain`: creases and ridges sketched in object space); returns the
-// wall times.
-ExportTimes export_frame(Drawing& drawing, const Style& style, std::uint64_t seed, bool terrain,
-                         const std::vector<std::string>& paths);
-
 Subcommand add_batch_command(CLI::App& app);
 int run_batch(const BatchOptions& options);
 

@@ -8,6 +8,7 @@
 #include "core/input_files.hpp"
 #include "core/memory_budget.hpp"
 #include "export/world_file.hpp"
+#include "scene/map_scale.hpp"
 
 namespace penink {
 
@@ -56,14 +57,6 @@ CLI::Validator positive_at_most(double hi) {
             return {};
         },
         "(0, " + short_number(hi) + "]");
-}
-
-double parse_map_scale(const std::string& text) {
-    std::string n = text;
-    if (n.size() > 2 && n.compare(0, 2, "1:") == 0) n = n.substr(2);
-    double v = 0.0;
-    if (!finite_number(n, v) || v < 1.0 || v > 1e9) throw std::invalid_argument("not a map scale");
-    return v;
 }
 
 CLI::Validator map_scale_check() {

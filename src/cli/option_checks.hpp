@@ -19,8 +19,6 @@ CLI::Validator positive_at_most(double hi);
 // positive_at_most, or the word "auto".
 CLI::Validator positive_at_most_or_auto(double hi);
 
-// A map scale "1:N" (or "N"), N >= 1: the N; throws std::invalid_argument otherwise.
-double parse_map_scale(const std::string& text);
 // "must be a map scale such as 1:25000": parse_map_scale accepts it.
 CLI::Validator map_scale_check();
 

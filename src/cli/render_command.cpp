@@ -12,14 +12,11 @@
 #include "scene/map_scale.hpp"
 #include "scene/scene_inputs.hpp"
 #include "core/error.hpp"
-#include "export/export_drawing.hpp"
-#include "export/styled_drawing.hpp"
-#include "lines/finish_drawing.hpp"
+#include "scene/frame_output.hpp"
 
 namespace penink {
 
 namespace {
-
 
 PageOptions page_options(const RenderOptions& o) {
     PageOptions page;
@@ -51,31 +48,6 @@ void check_outputs(const RenderOptions& o, int width, int height) {
     if (!files.empty()) check_output_targets(files, page_options(o), width, height);
 }
 
-
-void log_finish(const FinishStats& stats, const Log& log) {
-    for (LayerKind k : all_layers) {
-        const LayerFinishStats& l = stats.layers[static_cast<size_t>(k)];
-        if (l.strokes_in == 0) continue;
-        std::ostringstream s;
-        s << std::fixed;
-        s.precision(0);
-        s << layer_name(k) << ": " << l.strokes_in << " strokes -> " << l.joined << " joined -> "
-          << l.strokes << " lines, " << l.length << " px drawn, pen-up " << l.travel_before
-          << " px -> " << l.travel_after << " px ordered; " << l.small_loops << " loops under 25 px, ";
-        s.precision(1);
-        s << 100.0 * l.doubled_share << " % doubled (within 1.5 px for 4 px or more)";
-        log.info(s.str());
-    }
-}
-
-void log_timings(const SceneDrawing& r, const Log& log) {
-    std::ostringstream s;
-    s.precision(3);
-    s << "GPU ms: TFT " << r.times.tft << ", AFT " << r.times.aft << ", SIL " << r.times.sil << ", DM " << r.times.dm << ", RIDGES " << r.times.ridges
-      << ", read-back " << r.times.readback << "; trace " << r.trace_ms << " ms; "
-      << r.triangles << " triangles";
-    log.info(s.str());
-}
 
 }  // namespace
 
@@ -114,27 +86,25 @@ int run_render(const RenderOptions& o) {
     const bool terrain = !is_mesh_scene(scene);
     if (terrain) apply_object_sketch(scene, style);
     const auto context = make_gl_context(parse_gl_backend(o.gl));
+    context->set_timed(o.verbose);  // the pass times are only logged
     log.info(context->description());
     SceneDrawing result = draw_scene(scene, *context, log);
-    log_timings(result, log);
-    log_finish(finish_drawing(result.drawing, finish_options(style, scene.seed, terrain)), log);
-    const StyledDrawing styled = style_drawing(result.drawing, style,
-                                               o.layers == "kind" ? LayerSplit::kind : LayerSplit::kind_distance);
-    // The standard output's document made first (its page errors come before any file is
-    // written), then the files, all of them or none, then the document written out.
-    const std::vector<std::string> files = output_files(o);
-    const std::string piped = o.format.empty() ? std::string() : export_document(styled, page_options(o), "stdout." + o.format);
-    if (!files.empty()) export_drawings(styled, page_options(o), files);
+    log_frame_timings(result, log);
+    FrameOutput output{output_files(o), page_options(o), parse_layer_split(o.layers), o.format};
+    const FrameOutputResult written = write_frame(result.drawing, style, scene.seed, terrain, output);
+    log_finish(written.finish, log);
+    if (o.verbose && terrain && !scene.dem.empty()) log_directions(result.drawing, scene.dem, log);
     if (!o.format.empty()) {
-        std::cout.write(piped.data(), std::streamsize(piped.size()));
+        std::cout.write(written.document.data(), std::streamsize(written.document.size()));
         std::cout.flush();
         if (!std::cout) throw Error("export", "-", "cannot write to standard output");
     }
-    const PlotStats stats = plot_stats(styled);
+    const PlotStats& stats = written.plot;
     std::ostringstream s;
     s << stats.paths << " paths, " << stats.length_px << " px drawn, " << stats.travel_px << " px pen-up; "
       << "total " << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s";
     log.info(s.str());
+    for (const std::string& line : width_report(styled)) log.info(line);
     return 0;
 }
 

@@ -3,7 +3,6 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/option_checks.hpp"
-#include "scene/scene_memory.hpp"
 
 namespace penink {
 
@@ -27,27 +26,20 @@ void add_scene_override_options(CLI::App* cmd, SceneOverrides& o) {
     cmd->add_option("--gl", o.gl, "OpenGL backend: osmesa (software, default) or egl (GPU)")
         ->check(CLI::IsMember({"osmesa", "egl"}));
     add_max_memory_option(cmd, o.max_memory);
-}
-
-Scene load_scene_with_overrides(const SceneOverrides& o) {
-    Scene scene = load_scene(o.input);
-    if (o.width != SceneOverrides::unset) scene.camera.width = o.width;
-    if (o.height != SceneOverrides::unset) scene.camera.height = o.height;
-    if (o.seed >= 0) scene.seed = std::uint64_t(o.seed);
-    if (o.vertical_exaggeration == "auto") scene.exaggeration_auto = true;
-    else if (!o.vertical_exaggeration.empty())
-        scene.vertical_exaggeration = std::stod(o.vertical_exaggeration), scene.exaggeration_auto = false;
-    if (o.map) {
-        scene.camera.projection = Projection::orthographic;
-        scene.camera.azimuth = 0.0, scene.camera.altitude = -90.0;
-        scene.camera.position.reset(), scene.camera.elevation.reset();
-    }
-    if (!o.scale.empty()) scene.map_scale = parse_map_scale(o.scale);
-    if (o.sea_level) scene.sea_level = o.sea_level;
-    if (!o.style.empty()) scene.style = o.style;
-    validate_scene(scene);
-    check_scene_memory(scene, o.max_memory);
-    return scene;
+    const char* place = "(\"LON,LAT\", \"EASTING NORTHING ZONE\" such as \"588497 4589846 18N\", or \"X Y\" in the DEM's CRS)";
+    cmd->add_option("--position", o.position, std::string("Camera position ") + place + "; goes with --elevation");
+    cmd->add_option("--elevation", o.elevation, "Camera elevation, metres above the DEM's datum (unexaggerated)")
+        ->check(number_between(-1e7, 1e7));
+    cmd->add_option("--azimuth", o.azimuth, "View direction, degrees clockwise from grid north")
+        ->check(number_between(-360, 360));
+    cmd->add_option("--altitude", o.altitude, "View direction above the horizontal, degrees (negative looks down)")
+        ->check(number_between(-90, 90));
+    cmd->add_option("--fov", o.fov, "Horizontal field of view, degrees")->check(number_between(0.001, 178.999));
+    cmd->add_option("--target", o.target,
+                    std::string("A place to look at ") + place +
+                        ": aimed at from --position, or seen from --distance along --azimuth/--altitude");
+    cmd->add_option("--distance", o.distance, "Metres from the camera to --target (default: half the DEM's extent)")
+        ->check(number_between(1e-3, 1e8));
 }
 
 }  // namespace penink

@@ -1,12 +1,7 @@
-// Command-line values that override a scene's (shared by render and batch): the input, style,
-// OpenGL back-end, image size, seed, vertical exaggeration, sea level, map view and scale, their
-// CLI11 options, and the scene loaded with them applied and validated.
+// The command-line options that override a scene's values (shared by render and batch): their
+// CLI11 options, filling a SceneOverrides (scene/scene_overrides.hpp).
 #pragma once
-#include <cstdint>
-#include <optional>
-#include <string>
-
-#include "scene/scene.hpp"
+#include "scene/scene_overrides.hpp"
 
 namespace CLI {
 class App;
@@ -14,25 +9,8 @@ class App;
 
 namespace penink {
 
-struct SceneOverrides {
-    std::string input;           // DEM, mesh or scene file
-    std::string style;           // name or path; "" = the scene's
-    std::string gl = "osmesa";
-    static constexpr int unset = -2147483647;  // (any int is a value the check must see)
-    int width = unset, height = unset;
-    long long seed = -1;                       // < 0: the scene's
-    std::string vertical_exaggeration;         // a number or "auto"; "": the scene's
-    std::optional<double> sea_level;           // --sea-level; none: the scene's
-    bool map = false;                          // --map: orthographic plan view of the whole DEM
-    std::string scale;                         // --scale 1:N; "": the scene's
-    std::uint64_t max_memory = 0;              // --max-memory; 0: the memory available
-};
-
 // --width --height --style --seed --vertical-exaggeration --sea-level --map --scale --gl --max-memory
+// --position --elevation --azimuth --altitude --fov --target --distance
 void add_scene_override_options(CLI::App* cmd, SceneOverrides& o);
-
-// load_scene(o.input) with the overrides applied, then validate_scene, then (a terrain) the
-// memory its DEM would need checked against --max-memory (check_scene_memory).
-Scene load_scene_with_overrides(const SceneOverrides& o);
 
 }  // namespace penink

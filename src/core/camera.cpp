@@ -18,6 +18,12 @@ glm::dvec3 direction_from_angles(double azimuth_deg, double altitude_deg) {
     return {std::sin(a) * std::cos(h), std::cos(a) * std::cos(h), std::sin(h)};
 }
 
+glm::dvec2 angles_from_direction(const glm::dvec3& u) {
+    double az = std::atan2(u.x, u.y) / deg;
+    if (az < 0.0) az += 360.0;
+    return {az, std::asin(std::clamp(u.z, -1.0, 1.0)) / deg};
+}
+
 glm::dvec3 light_vector(const Light& light) { return direction_from_angles(light.azimuth, light.altitude); }
 
 glm::dmat4 view_matrix(const Camera& cam) {

@@ -33,6 +33,8 @@ struct Light {
 
 // Unit view direction for azimuth/altitude (degrees).
 glm::dvec3 direction_from_angles(double azimuth_deg, double altitude_deg);
+// Its inverse: the azimuth in [0, 360) and altitude in [-90, 90] (degrees) of a unit direction.
+glm::dvec2 angles_from_direction(const glm::dvec3& unit);
 // Unit vector from the surface towards the light.
 glm::dvec3 light_vector(const Light& light);
 

@@ -1,11 +1,12 @@
 // Parameters of the crease and ridge scores (Mower, "Concurrent Drainage Network Rendering",
-// eq. 1-6; conventions.md) and the score itself, for the CPU (tests, docs) and the DM pass
-// (render/dm.hpp, shaders/dm.comp.glsl), which both use crease_score_divisor. Terms sc, ic, fc are
-// each in [0, 1]; three readings of eq. 6's normalisation:
+// eq. 1-6; conventions.md) and the per-vertex terms the DM pass (render/dm.hpp,
+// shaders/dm.comp.glsl) writes for them; the score itself is lines/crease_scores.hpp's
+// crease_scores, the one place eq. 6 is written. Terms sc, ic, fc are each in [0, 1]; three
+// readings of eq. 6's normalisation:
 //   thirds (default): rs = (sw sc + iw ic + fw fc) / 3              - rs_min(d)
 //   paper:            rs = (sw sc + iw ic + fw fc) / (sw + iw + fw) - rs_min(d)
 //   rank:             as paper, each term replaced by its percentile among the frame's visible
-//                     vertices (lines/rank_scores.hpp; the DM pass gives the terms)
+//                     vertices (lines/crease_scores.hpp)
 // with rs_min(d) = min_score + distance_attenuation d / D; drawn where rs >= 0. "paper" is the
 // weighted mean, in [0, 1] for any weights, and equal to /3 when every weight is 1 (eq. 6's /3 is
 // the mean of three terms; Table 5's weights .1/.3/.6 already sum to 1). Under it the paper's
@@ -42,18 +43,16 @@ inline CreaseParams ridge_defaults() {
     return p;
 }
 
-// What the weighted sum of the terms is divided by: 3, or the sum of the weights ("paper" and
-// "rank"; 1 when every weight is 0, so the score is then -rs_min rather than undefined).
-inline double crease_score_divisor(const CreaseParams& p) {
-    if (p.normalisation == ScoreNormalisation::thirds) return 3.0;
-    const double sum = p.slope_weight + p.illumination_weight + p.flow_weight;
-    return sum > 0.0 ? sum : 1.0;
-}
+// Score (and terms' distance) of a vertex that is not visible: outside the frustum, behind the
+// surface, or off the modelled surface.
+inline constexpr float dm_hidden = -1.0e30f;
 
-// rs of eq. 6 for terms sc, ic, fc and the threshold rs_min (= min_score + attenuation d / D).
-inline double crease_score(const CreaseParams& p, double sc, double ic, double fc, double rs_min) {
-    return (p.slope_weight * sc + p.illumination_weight * ic + p.flow_weight * fc) / crease_score_divisor(p) - rs_min;
-}
+// One vertex's terms of eq. 6 as the DM pass writes them: sc = 1 - cos(slope), ic = 1 - cos of the
+// light's incidence (clamped to [0, 1]), fc = flow normalised per basin, and d = its eye distance
+// in metres (view depth for an orthographic camera); distance == dm_hidden when not visible.
+struct CreaseTerms {
+    float slope = 0.0f, illumination = 0.0f, flow = 0.0f, distance = dm_hidden;
+};
 
 // The scene's names of the normalisations ("thirds", "paper", "rank"); nullopt for any other.
 inline std::optional<ScoreNormalisation> score_normalisation_named(const std::string& name) {

@@ -31,7 +31,18 @@ struct Stroke {
     std::vector<float> depth;       // eye distance per point (same size as points), metres
     float strength = 1.0f;          // score that selected the line (rs for creases), >= 0
     std::string kind;               // data-kind: "silhouette", "outline", "crease", ...
+    // Weight per point in [0, 1] (same size as points), or empty: none. The stroke's place in its
+    // layer's hierarchy of weight (creases by flow, silhouettes by the depth gap behind them:
+    // lines/stroke_weight.hpp); the style maps it to a width between its weight_min and 1 times
+    // the layer's width (styles/README.md). Any layer's strokes may carry it.
+    std::vector<float> weight;
 };
+
+// True when the stroke has >= 3 points and its first and last points are equal.
+inline bool is_closed(const Stroke& s) { return s.points.size() >= 3 && s.points.front() == s.points.back(); }
+
+// Point i's weight; 1 when the stroke carries none.
+inline float weight_at(const Stroke& s, std::size_t i) { return i < s.weight.size() ? s.weight[i] : 1.0f; }
 
 // A closed ring of the surface mask (even-odd fill), image pixels.
 using Ring = std::vector<glm::vec2>;

@@ -24,9 +24,6 @@ std::string format_bytes(double bytes);
 // unknown, no limit).
 std::uint64_t memory_budget(std::uint64_t max_memory);
 
-// cells * bytes_per_cell as a double (no wrap for any size).
-inline double memory_estimate(double cells, double bytes_per_cell) { return cells * bytes_per_cell; }
-
 // Throws Error(stage, file, "<what> would need about <need> of memory, <budget> available
 // (--max-memory)") when budget > 0 and need > budget; `what` names the input, e.g. "the DEM's
 // 50000x50000 nodes".

@@ -95,7 +95,9 @@ struct DrainageDb {
 // 9: a line's length is its 3-D length (unexaggerated), which bounds its drawn length at any
 // exaggeration, so a frame culls lines by their records alone; the lines part ends with a
 // checksum of everything in it but the vertex arrays, which a render checks without reading them.
-inline constexpr std::uint32_t drainage_db_version = 9;
+// 10: the creases follow the surface's fall line (fall_line_stems.hpp) and the ridges are
+// smoothed by a Gaussian, both joined smoothly at junctions (the lines part's content, not its layout).
+inline constexpr std::uint32_t drainage_db_version = 10;
 
 // Fingerprint of the DEM file at `dem_path` with the given resample factor: its size, mtime and
 // a hash of its whole content (streamed) and of every side file GDAL may read with it (world

@@ -268,4 +268,23 @@ glm::dvec2 grid_xy(const DrainageGrid& g, int c, int r) {
     return p;
 }
 
+glm::dvec2 grid_xy_at(const DrainageGrid& g, double c, double r) {
+    if (g.factor == 1 || g.coarse_cols < 2 || g.coarse_rows < 2) {  // bilinear between the nodes
+        const int c0 = int(std::clamp(std::floor(c), 0.0, double(g.cols - 2)));
+        const int r0 = int(std::clamp(std::floor(r), 0.0, double(g.rows - 2)));
+        const double u = std::clamp(c - c0, 0.0, 1.0), v = std::clamp(r - r0, 0.0, 1.0);
+        return (1 - v) * ((1 - u) * grid_xy(g, c0, r0) + u * grid_xy(g, c0 + 1, r0)) +
+               v * ((1 - u) * grid_xy(g, c0, r0 + 1) + u * grid_xy(g, c0 + 1, r0 + 1));
+    }
+    const double f = g.factor;
+    const int C = int(std::clamp(std::floor(c / f), 0.0, double(g.coarse_cols - 2)));
+    const int R = int(std::clamp(std::floor(r / f), 0.0, double(g.coarse_rows - 2)));
+    const double u = std::clamp(c / f - C, 0.0, 1.0), v = std::clamp(r / f - R, 0.0, 1.0);
+    const CellTriangle tri = cell_triangle(g.coarse_cols, C, R, u, v);
+    const auto n = substitute(tri.node, g.coarse_valid);
+    glm::dvec2 p(0.0);
+    for (int k = 0; k < 3; ++k) p += double(tri.w[k]) * glm::dvec2(g.coarse_xy[n[k]]);
+    return p;
+}
+
 }  // namespace penink

@@ -62,4 +62,9 @@ DrainageGrid make_regular_grid(int cols, int rows, double spacing, std::vector<f
 // node's own: from the affine grid or coarse_xy).
 glm::dvec2 grid_xy(const DrainageGrid& g, int c, int r);
 
+// Local x, y of a point between the fine nodes, (c, r) in fine index units (clamped to the grid):
+// at factor > 1 the resampler's interpolation over the coarse triangle (grid_xy at the nodes), at
+// factor 1 bilinear between the four nodes around.
+glm::dvec2 grid_xy_at(const DrainageGrid& g, double c, double r);
+
 }  // namespace penink

@@ -3,11 +3,16 @@
 #include <algorithm>
 #include <atomic>
 #include <bit>
+#include <cmath>
+#include <limits>
+
+#include <glm/common.hpp>
 
 #include "core/error.hpp"
 #include "core/parallel_chunks.hpp"
 #include "drainage/d8.hpp"
 #include "drainage/stems.hpp"
+#include "drainage/fall_line_stems.hpp"
 #include "drainage/polyline_smoothing.hpp"
 
 namespace penink {
@@ -104,8 +109,8 @@ struct StemWalk {
         throw Error("drainage", "", "flow directions contain a cycle (stem without an end)", ExitCode::internal);
     }
 
-    // Emits the cells of the stem starting at `source`, dropping a vertex at the x, y of the one
-    // before it (drainage_stems' shared junction rule); returns the stem's order.
+    // Emits the cells of the stem starting at `source` (emit(vertex, cell)), dropping a vertex at
+    // the x, y of the one before it (drainage_stems' shared junction rule); returns the stem's order.
     template <class Emit> std::uint8_t walk(std::size_t source, Emit&& emit) const {
         std::uint8_t order = 0;
         DvVertex last{};
@@ -113,7 +118,7 @@ struct StemWalk {
         auto put = [&](std::size_t c) {
             const DvVertex v = vertex(c);
             if (any && last.x == v.x && last.y == v.y) return;
-            emit(v), last = v, any = true;
+            emit(v, c), last = v, any = true;
         };
         std::size_t c = source;
         for (std::size_t steps = 0; steps <= g.size(); ++steps) {
@@ -197,26 +202,119 @@ private:
     }
 };
 
-// smooth_runs_xy(3) line by line (each run is smoothed on its own, so the same floats as one call
-// over all of them), on all cores.
-void smooth_each_line(DrapedLineSet& set) {
+// Gaussian smoothing (gaussian_smooth) of each line's x, y, on all cores.
+void smooth_each_line(DrapedLineSet& set, double sigma) {
     parallel_chunks(set.lines.size(), 4096, [&](std::size_t l0, std::size_t l1) {
-        std::vector<glm::vec3> p;
+        std::vector<glm::dvec2> p, q;
         for (std::size_t i = l0; i < l1; ++i) {
             const DrapedLine& l = set.lines[i];
             if (l.count < 3) continue;
             DrapedVertex* v = set.vertices.data() + l.first;
             p.resize(l.count);
-            for (std::uint32_t k = 0; k < l.count; ++k) p[k] = {v[k].x, v[k].y, v[k].z};
-            smooth_runs_xy(p, {VertexRun{0, l.count}}, 3);
-            for (std::uint32_t k = 0; k < l.count; ++k) v[k].x = p[k].x, v[k].y = p[k].y;
+            for (std::uint32_t k = 0; k < l.count; ++k) p[k] = {v[k].x, v[k].y};
+            gaussian_smooth(p, sigma, q);
+            for (std::uint32_t k = 0; k < l.count; ++k) v[k].x = float(q[k].x), v[k].y = float(q[k].y);
         }
     });
 }
 
+// The plan box of a set's vertices.
+void vertex_box(const DrapedLineSet& set, glm::vec2& lo, glm::vec2& hi) {
+    lo = glm::vec2(std::numeric_limits<float>::infinity()), hi = -lo;
+    for (const DrapedVertex& v : set.vertices)
+        lo = glm::min(lo, glm::vec2(v.x, v.y)), hi = glm::max(hi, glm::vec2(v.x, v.y));
+}
+
+// Every vertex's x, y clamped to [lo, hi]: smoothed lines stay inside the box the network's own
+// vertices span (inside the DEM's, which a frame cuts lines to).
+void clamp_to_box(DrapedLineSet& set, glm::vec2 lo, glm::vec2 hi) {
+    if (!(lo.x <= hi.x && lo.y <= hi.y)) return;
+    for (DrapedVertex& v : set.vertices) v.x = std::clamp(v.x, lo.x, hi.x), v.y = std::clamp(v.y, lo.y, hi.y);
+}
+
+// The line holding each vertex.
+std::vector<std::uint32_t> line_ids(const DrapedLineSet& set) {
+    std::vector<std::uint32_t> out(set.vertices.size());
+    for (std::uint32_t i = 0; i < set.lines.size(); ++i)
+        std::fill_n(out.begin() + set.lines[i].first, set.lines[i].count, i);
+    return out;
+}
+
+// rejoin_line_ends' matches of the set as it is: (line, end vertex, interior vertex) triples.
+std::vector<std::uint32_t> end_matches(const DrapedLineSet& set) {
+    std::vector<std::uint32_t> follow;
+    const EndMatches matches(set);
+    for (std::uint32_t i = 0; i < set.lines.size(); ++i) {
+        const DrapedLine& l = set.lines[i];
+        if (l.count >= 2)
+            for (std::uint32_t e : {l.first, l.first + l.count - 1})
+                if (const std::uint32_t t = matches.target(set.vertices[e]); t != EndMatches::none)
+                    follow.push_back(i), follow.push_back(e), follow.push_back(t);
+    }
+    return follow;
+}
+
+// Each matched end brought to its line's new x, y: first its target slides along the line it
+// joins to that line's vertex nearest the end, within `window` vertices of the matched one and
+// on the same line (the junction keeps its two lines and moves along the one it joins: the
+// tributary meets the main stem where its own trace comes closest); then three rounds in which
+// every end's gap is closed over the vertices next to it, as many as make the gap at most tan 8
+// degrees of their length (at least `ramp`; weights (1 + cos(pi j / m)) / 2 over m vertices,
+// j = 0 at the end: the line bends smoothly to its junction; all gaps of a round measured before
+// any is closed, so the result does not depend on the order), then the end set to it exactly.
+inline double plan_length(double x, double y) { return std::sqrt(x * x + y * y); }
+
+// `line_of`: the line of each vertex (with window > 0).
+void join_ends(DrapedLineSet& set, std::vector<std::uint32_t> follow, int ramp, int window,
+               const std::vector<std::uint32_t>& line_of) {
+    constexpr double tan_bend = 0.14054083470239145;  // tan 8 degrees
+    std::vector<glm::vec2> gap(follow.size() / 3);
+    for (std::size_t k = 0; k < gap.size() && window > 0; ++k) {
+        const DrapedVertex& e = set.vertices[follow[3 * k + 1]];
+        const std::uint32_t t = follow[3 * k + 2];
+        const DrapedLine& into = set.lines[line_of[t]];
+        // interior vertices only (an end's target stays an interior vertex)
+        const std::uint32_t lo = std::max<std::int64_t>(std::int64_t(into.first) + 1, std::int64_t(t) - window);
+        const std::uint32_t hi = std::min<std::int64_t>(std::int64_t(into.first) + into.count - 2, std::int64_t(t) + window);
+        double best = 1e300;
+        for (std::uint32_t j = lo; j <= hi; ++j) {
+            const double d = plan_length(double(set.vertices[j].x) - e.x, double(set.vertices[j].y) - e.y);
+            if (d < best) best = d, follow[3 * k + 2] = j;
+        }
+    }
+    for (int round = 0; round < 3 && ramp > 1; ++round) {
+        for (std::size_t k = 0; k < gap.size(); ++k) {
+            const DrapedVertex &e = set.vertices[follow[3 * k + 1]], &t = set.vertices[follow[3 * k + 2]];
+            gap[k] = {t.x - e.x, t.y - e.y};
+        }
+        for (std::size_t k = 0; k < gap.size(); ++k) {
+            const DrapedLine& l = set.lines[follow[3 * k]];
+            const bool first = follow[3 * k + 1] == l.first;
+            auto at = [&](std::uint32_t j) -> DrapedVertex& {
+                return set.vertices[first ? l.first + j : l.first + l.count - 1 - j];
+            };
+            // vertices whose length is gap / tan 8 degrees
+            const double want = plan_length(double(gap[k].x), double(gap[k].y)) / tan_bend;
+            std::uint32_t m = 1;
+            for (double len = 0.0; m < l.count - 1 && (m < std::uint32_t(ramp) || len < want); ++m)
+                len += plan_length(double(at(m).x) - at(m - 1).x, double(at(m).y) - at(m - 1).y);
+            for (std::uint32_t j = 0; j < m; ++j) {
+                const float w = 0.5f * (1.0f + std::cos(3.14159265358979f * float(j) / float(m)));
+                DrapedVertex& v = at(j);
+                v.x += w * gap[k].x, v.y += w * gap[k].y;
+            }
+        }
+    }
+    for (std::size_t k = 0; k < follow.size(); k += 3) {
+        set.vertices[follow[k + 1]].x = set.vertices[follow[k + 2]].x;
+        set.vertices[follow[k + 1]].y = set.vertices[follow[k + 2]].y;
+    }
+}
+
 }  // namespace
 
-DrapedLineSet network_stems(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net) {
+DrapedLineSet network_stems(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
+                            std::vector<std::uint32_t>* cells) {
     const StemWalk walk(g, dir, net);
     std::vector<std::uint32_t> sources;
     for (std::size_t i = 0; i < g.size(); ++i)
@@ -226,7 +324,7 @@ DrapedLineSet network_stems(const DrainageGrid& g, const std::vector<std::uint8_
     parallel_chunks(sources.size(), 1024, [&](std::size_t s0, std::size_t s1) {  // sizes and orders first
         for (std::size_t s = s0; s < s1; ++s) {
             std::uint32_t n = 0;
-            set.lines[s].order = walk.walk(sources[s], [&](const DvVertex&) { ++n; });
+            set.lines[s].order = walk.walk(sources[s], [&](const DvVertex&, std::size_t) { ++n; });
             set.lines[s].count = n;
         }
     });
@@ -237,10 +335,15 @@ DrapedLineSet network_stems(const DrainageGrid& g, const std::vector<std::uint8_
         l.first = std::uint32_t(next), next += l.count;
     }
     set.vertices.resize(next);
+    if (cells) cells->resize(next);
     parallel_chunks(sources.size(), 1024, [&](std::size_t s0, std::size_t s1) {
         for (std::size_t s = s0; s < s1; ++s) {
             DrapedVertex* out = set.vertices.data() + set.lines[s].first;
-            walk.walk(sources[s], [&](const DvVertex& v) { *out++ = draped(v); });
+            std::uint32_t* cell = cells ? cells->data() + set.lines[s].first : nullptr;
+            walk.walk(sources[s], [&](const DvVertex& v, std::size_t c) {
+                *out++ = draped(v);
+                if (cell) *cell++ = std::uint32_t(c);
+            });
         }
     });
     return set;
@@ -261,21 +364,23 @@ DrapedLineSet listed_lines(const DvVertices& vertices, const std::vector<std::ve
     return set;
 }
 
-void smooth_lines(DrapedLineSet& set) {
-    std::vector<std::uint32_t> follow;  // rejoin_line_ends: (end, interior vertex) pairs
-    {
-        const EndMatches matches(set);
-        for (const DrapedLine& l : set.lines)
-            if (l.count >= 2)
-                for (std::uint32_t e : {l.first, l.first + l.count - 1})
-                    if (const std::uint32_t t = matches.target(set.vertices[e]); t != EndMatches::none)
-                        follow.push_back(e), follow.push_back(t);
-    }
-    smooth_each_line(set);
-    for (std::size_t k = 0; k < follow.size(); k += 2) {
-        set.vertices[follow[k]].x = set.vertices[follow[k + 1]].x;
-        set.vertices[follow[k]].y = set.vertices[follow[k + 1]].y;
-    }
+void smooth_lines(DrapedLineSet& set, double sigma) {
+    const std::vector<std::uint32_t> follow = end_matches(set);
+    glm::vec2 lo, hi;
+    vertex_box(set, lo, hi);
+    smooth_each_line(set, sigma);
+    join_ends(set, follow, int(std::ceil(3.0 * sigma)), 0, {});
+    clamp_to_box(set, lo, hi);
+}
+
+void smooth_stems(DrapedLineSet& set, const std::vector<std::uint32_t>& cells, const DrainageGrid& g,
+                  const FallLineOptions& options) {
+    const std::vector<std::uint32_t> follow = end_matches(set);
+    glm::vec2 lo, hi;
+    vertex_box(set, lo, hi);
+    trace_fall_lines(set, cells, g, options);
+    join_ends(set, follow, int(std::ceil(3.0 * options.sigma)), int(std::ceil(2.0 * options.corridor)), line_ids(set));
+    clamp_to_box(set, lo, hi);
 }
 
 void drape_lines(DrapedLineSet& set, const DemSurface& surface, const LineProgress& progress) {
@@ -320,12 +425,15 @@ void build_draped_lines(const DrainageGrid& g, const std::vector<std::uint8_t>& 
         if (progress) progress(f);
     };
     // smoothing (its table of line ends) before the surface's normals: never both in memory
-    db.creases = network_stems(g, dir, net);
-    report(0.05);
-    smooth_lines(db.creases);
+    {
+        std::vector<std::uint32_t> cells;
+        db.creases = network_stems(g, dir, net, &cells);
+        report(0.05);
+        smooth_stems(db.creases, cells, g, fall_line_options(g));
+    }
     report(0.1);
     db.ridges = listed_lines(db.divide_vertices, divide_polylines(db));
-    smooth_lines(db.ridges);
+    smooth_lines(db.ridges, 3.0 * fall_line_options(g).sigma);
     report(0.15);
     const DemSurface surface(g);
     report(0.2);

@@ -3,14 +3,18 @@
 // 1. lines: the drainage stems (stems.hpp: drainage_stems, walked here on the network's cells,
 //    the same vertices) and the basin divides (divide_polylines), vertices as the DrainageDb
 //    holds them (x, y, z of the drainage point, normalised flow);
-// 2. smoothing: smooth_runs_xy with 3 iterations, then rejoin_line_ends (drainage/polyline_smoothing.hpp),
-//    over all the lines of a set at once;
+// 2. smoothing: the stems traced along the surface's fall line within a corridor of their cells
+//    (fall_line_stems.hpp), the divides smoothed by a Gaussian along each line
+//    (polyline_smoothing.hpp: gaussian_smooth) of three DEM cells; then each line end that sat on
+//    another line's interior vertex (a tributary's junction) is brought back to that vertex over
+//    the vertices next to it (rejoin_line_ends' matches), over all the lines of a set at once,
+//    and every vertex clamped to the plan box the set's vertices spanned before (the DEM's);
 // 3. draping: each vertex's z and unit normal from the PN surface of the full-resolution DEM
 //    (dem_surface.hpp, no mesh of it; TerrainLocator's lookup on mesh_from_terrain bit for bit);
 //    a vertex off the surface keeps its z and gets a zero normal;
 // 4. each line's plan box and length, and the set's spatial index (index_lines).
 // Memory beyond the result (28 B a vertex, 28 B a line): while smoothing, the ends of the lines in
-// a hash table (18 B an end); while draping, the DEM's node normals (12 B a node, dem_surface.hpp);
+// a hash table (18 B an end), and for the stems each vertex's grid cell and line (8 B a vertex); while draping, the DEM's node normals (12 B a node, dem_surface.hpp);
 // never both at once.
 #pragma once
 #include <cstdint>
@@ -20,6 +24,7 @@
 #include "drainage/dem_surface.hpp"
 #include "drainage/drainage_db.hpp"
 #include "drainage/drainage_grid.hpp"
+#include "drainage/fall_line_stems.hpp"
 #include "drainage/flow_network.hpp"
 
 namespace penink {
@@ -31,17 +36,24 @@ using LineProgress = std::function<void(double fraction)>;
 // Step 1 for the stems of a network: its drainage_stems, each vertex as build_branches would store
 // it (x, y from grid_xy, z from g.z, normalised flow); each line's order is the Strahler order at
 // its end (that of the branch the stem last runs through). Normals, boxes and index unset.
-DrapedLineSet network_stems(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net);
+// `cells`, when given, gets each vertex's grid cell (index into g).
+DrapedLineSet network_stems(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
+                            std::vector<std::uint32_t>* cells = nullptr);
 
 // Step 1 for lines given as index lists into `vertices` (drainage_stems(db) and db.vertices,
 // divide_polylines(db) and db.divide_vertices); orders 0.
 DrapedLineSet listed_lines(const DvVertices& vertices, const std::vector<std::vector<std::uint32_t>>& lines);
 
-// Step 2 on a set made by step 1.
-void smooth_lines(DrapedLineSet& set);
+// Step 2 for lines without grid cells (the divides; listed_lines): Gaussian smoothing of `sigma`
+// vertices, then the ends joined.
+void smooth_lines(DrapedLineSet& set, double sigma = 2.0);
+// Step 2 for stems (network_stems with its cells): trace_fall_lines, then the ends joined over
+// at least 3 options.sigma vertices.
+void smooth_stems(DrapedLineSet& set, const std::vector<std::uint32_t>& cells, const DrainageGrid& g,
+                  const FallLineOptions& options);
 // Steps 3 and 4 on a smoothed set.
 void drape_lines(DrapedLineSet& set, const DemSurface& surface, const LineProgress& progress = {});
-// Steps 2-4 on a set made by step 1.
+// smooth_lines, then steps 3 and 4, on a set made by step 1.
 void smooth_and_drape(DrapedLineSet& set, const DemSurface& surface, const LineProgress& progress = {});
 
 // Both sets of a built network into db.creases and db.ridges (the divides from db.divides and

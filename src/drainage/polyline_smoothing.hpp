@@ -5,6 +5,7 @@
 #pragma once
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "core/vertex_run.hpp"
@@ -12,6 +13,11 @@
 namespace penink {
 
 void smooth_runs_xy(std::vector<glm::vec3>& positions, const std::vector<VertexRun>& runs, int iterations);
+
+// Gaussian smoothing of a polyline along its vertex index (standard deviation `sigma` vertices,
+// kernel cut at 3 sigma), ends fixed: beyond each end the polyline continues as its point
+// reflection through that end (so the end keeps its place and its tangent). `out` = `in`'s size.
+void gaussian_smooth(const std::vector<glm::dvec2>& in, double sigma, std::vector<glm::dvec2>& out);
 
 // A line ending where another passes through (a tributary at its junction with the main stem)
 // keeps its end point fixed while smoothing moves the other line's junction vertex: the end

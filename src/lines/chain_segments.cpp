@@ -65,6 +65,7 @@ struct Graph {
     std::vector<Node> nodes;
     std::vector<int> node_of;  // per end id
     std::vector<char> used;    // per piece
+    bool weighted = false;     // some piece carries weights: the chains carry them (1 where none)
 };
 
 glm::vec2 leaving_dir(const Stroke& s, bool from_start) {
@@ -165,6 +166,7 @@ void append_piece(const Graph& g, int e, Stroke& out) {
         std::size_t i = e % 2 == 0 ? k : n - 1 - k;
         out.points.push_back(s.points[i]);
         out.depth.push_back(s.depth[i]);
+        if (g.weighted) out.weight.push_back(weight_at(s, i));
     }
 }
 
@@ -194,6 +196,7 @@ Stroke walk(Graph& g, int node, int e, StrengthRule rule) {
 std::vector<Stroke> chain_group(std::vector<Stroke>& pieces, const ChainParams& p) {
     Graph g;
     g.pieces = &pieces;
+    for (const Stroke& s : pieces) g.weighted |= !s.weight.empty();
     std::vector<glm::vec2> ends;
     for (const Stroke& s : pieces) ends.push_back(s.points.front()), ends.push_back(s.points.back());
     g.node_of = cluster_ends(ends, p.tolerance, g.nodes);
@@ -244,7 +247,7 @@ std::vector<Stroke> chain_segments(const std::vector<ImageSegment>& segments, co
     std::vector<Stroke> pieces;
     pieces.reserve(segments.size());
     for (const ImageSegment& s : segments)
-        pieces.push_back(Stroke{{s.a, s.b}, {s.depth_a, s.depth_b}, s.strength, params.kind});
+        pieces.push_back(Stroke{{s.a, s.b}, {s.depth_a, s.depth_b}, s.strength, params.kind, {}});
     return chain_group(pieces, params);
 }
 

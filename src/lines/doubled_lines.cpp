@@ -13,7 +13,10 @@ namespace penink {
 
 namespace {
 
-constexpr float kStep = 0.5f;  // px between samples
+// px between samples: as fine as line_metrics' (0.25 px), so a stretch the measure counts as
+// doubled is cut here (at 0.5 px a sample's distance to a line sampled beside it overstates the
+// line's distance, and runs just over min_run px stayed)
+constexpr float kStep = 0.25f;
 
 // Arc length at each point of a stroke.
 std::vector<double> arc_lengths(const Stroke& s) {
@@ -22,29 +25,36 @@ std::vector<double> arc_lengths(const Stroke& s) {
     return t;
 }
 
-// Point (and depth) at arc length u of a stroke with arc lengths t.
-void point_at(const Stroke& s, const std::vector<double>& t, double u, glm::vec2& p, float& d) {
+// Point (and depth, and weight) at arc length u of a stroke with arc lengths t.
+void point_at(const Stroke& s, const std::vector<double>& t, double u, glm::vec2& p, float& d, float& w) {
     const std::size_t i = std::size_t(std::upper_bound(t.begin(), t.end(), u) - t.begin());
-    if (i == 0) return void((p = s.points.front(), d = s.depth.front()));
-    if (i >= t.size()) return void((p = s.points.back(), d = s.depth.back()));
+    if (i == 0) return void((p = s.points.front(), d = s.depth.front(), w = weight_at(s, 0)));
+    if (i >= t.size()) return void((p = s.points.back(), d = s.depth.back(), w = weight_at(s, t.size() - 1)));
     const double span = t[i] - t[i - 1];
     const float f = span > 0.0 ? float((u - t[i - 1]) / span) : 0.0f;
     p = s.points[i - 1] + (s.points[i] - s.points[i - 1]) * f;
     d = s.depth[i - 1] + (s.depth[i] - s.depth[i - 1]) * f;
+    w = weight_at(s, i - 1) + (weight_at(s, i) - weight_at(s, i - 1)) * f;
 }
 
 // The part of a stroke between arc lengths a < b.
 Stroke sub_stroke(const Stroke& s, const std::vector<double>& t, double a, double b) {
     Stroke out;
     out.strength = s.strength, out.kind = s.kind;
+    const bool weighted = !s.weight.empty();
     glm::vec2 p;
-    float d;
-    point_at(s, t, a, p, d);
+    float d, w;
+    point_at(s, t, a, p, d, w);
     out.points.push_back(p), out.depth.push_back(d);
+    if (weighted) out.weight.push_back(w);
     for (std::size_t i = 0; i < t.size(); ++i)
-        if (t[i] > a && t[i] < b) out.points.push_back(s.points[i]), out.depth.push_back(s.depth[i]);
-    point_at(s, t, b, p, d);
+        if (t[i] > a && t[i] < b) {
+            out.points.push_back(s.points[i]), out.depth.push_back(s.depth[i]);
+            if (weighted) out.weight.push_back(weight_at(s, i));
+        }
+    point_at(s, t, b, p, d, w);
     out.points.push_back(p), out.depth.push_back(d);
+    if (weighted) out.weight.push_back(w);
     return out;
 }
 
@@ -56,8 +66,8 @@ void samples_of(const Stroke& s, const std::vector<double>& t, std::vector<glm::
     for (int k = 0; k <= n; ++k) {
         const double a = length * double(k) / double(n);
         glm::vec2 q;
-        float d;
-        point_at(s, t, a, q, d);
+        float d, w;
+        point_at(s, t, a, q, d, w);
         p.push_back(q), u.push_back(a);
     }
 }
@@ -94,15 +104,31 @@ std::vector<Stroke> merge_doubled(std::vector<Stroke> strokes, float width, floa
         }
         const std::vector<double> t = arc_lengths(s);
         samples_of(s, t, p, u);
-        std::vector<char> cut(p.size(), 0);
-        for (std::size_t k = 0; k < p.size();) {  // runs of samples near an accepted stroke
-            if (!grid.near_other(p[k], int(i), width)) {
+        std::vector<char> near(p.size(), 0), cut(p.size(), 0);
+        for (std::size_t k = 0; k < p.size(); ++k) near[k] = grid.near_other(p[k], int(i), width);
+        // A stroke zigzagging about an accepted one leaves its band for a pixel or so at a time:
+        // gaps under 2 widths between near stretches count as near (else each stretch is short,
+        // none is cut, and the accepted stroke runs beside the zigzag's pieces for their length).
+        for (std::size_t k = 0; k < p.size();) {
+            if (near[k]) {
                 ++k;
                 continue;
             }
             std::size_t j = k;
-            while (j + 1 < p.size() && grid.near_other(p[j + 1], int(i), width)) ++j;
-            if (u[j] - u[k] >= double(min_run)) std::fill(cut.begin() + std::ptrdiff_t(k), cut.begin() + std::ptrdiff_t(j) + 1, 1);
+            while (j + 1 < p.size() && !near[j + 1]) ++j;
+            if (k > 0 && j + 1 < p.size() && u[j + 1] - u[k - 1] < 2.0 * double(width))
+                std::fill(near.begin() + std::ptrdiff_t(k), near.begin() + std::ptrdiff_t(j) + 1, 1);
+            k = j + 1;
+        }
+        for (std::size_t k = 0; k < p.size();) {  // runs of samples near an accepted stroke
+            if (!near[k]) {
+                ++k;
+                continue;
+            }
+            std::size_t j = k;
+            while (j + 1 < p.size() && near[j + 1]) ++j;
+            // each sample stands for kStep of the stroke, as line_metrics counts a run
+            if (u[j] - u[k] + double(kStep) >= double(min_run)) std::fill(cut.begin() + std::ptrdiff_t(k), cut.begin() + std::ptrdiff_t(j) + 1, 1);
             k = j + 1;
         }
         if (std::find(cut.begin(), cut.end(), 1) == cut.end()) {

@@ -24,19 +24,6 @@ double grad3(int h, double x, double y, double z) {
     return ((h & 1) ? -u : u) + ((h & 2) ? -v : v);
 }
 
-double grad2(int h, double x, double y) {
-    switch (h & 7) {
-        case 0: return x + y;
-        case 1: return -x + y;
-        case 2: return x - y;
-        case 3: return -x - y;
-        case 4: return x;
-        case 5: return -x;
-        case 6: return y;
-        default: return -y;
-    }
-}
-
 }  // namespace
 
 PerlinNoise make_perlin(std::uint64_t seed) {
@@ -46,16 +33,6 @@ PerlinNoise make_perlin(std::uint64_t seed) {
     for (int i = 255; i > 0; --i) std::swap(p[i], p[random_bits(seed, 0x9e71, i) % std::uint64_t(i + 1)]);
     for (int i = 0; i < 512; ++i) n.perm[i] = p[i & 255];
     return n;
-}
-
-double perlin2(const PerlinNoise& n, double x, double y) {
-    const auto& P = n.perm;
-    int X = int(std::floor(x)) & 255, Y = int(std::floor(y)) & 255;
-    x -= std::floor(x), y -= std::floor(y);
-    double u = fade(x), v = fade(y);
-    int a = P[X] + Y, b = P[X + 1] + Y;
-    return lerp(lerp(grad2(P[a], x, y), grad2(P[b], x - 1, y), u),
-                lerp(grad2(P[a + 1], x, y - 1), grad2(P[b + 1], x - 1, y - 1), u), v);
 }
 
 double perlin3(const PerlinNoise& n, double x, double y, double z) {

@@ -28,7 +28,6 @@ struct PerlinNoise {
     std::array<std::uint8_t, 512> perm{};
 };
 PerlinNoise make_perlin(std::uint64_t seed);
-double perlin2(const PerlinNoise& noise, double x, double y);
 double perlin3(const PerlinNoise& noise, double x, double y, double z);
 
 using StrokeCluster = std::vector<std::vector<glm::vec2>>;  // strokes in the unit square

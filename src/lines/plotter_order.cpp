@@ -91,6 +91,7 @@ int nearest_end(EndGrid& g, glm::vec2 p, const std::vector<char>& used) {
 void reverse_stroke(Stroke& s) {
     std::reverse(s.points.begin(), s.points.end());
     std::reverse(s.depth.begin(), s.depth.end());
+    std::reverse(s.weight.begin(), s.weight.end());
 }
 
 }  // namespace

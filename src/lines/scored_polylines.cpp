@@ -118,26 +118,39 @@ float mean_score(const std::vector<float>& scores, VertexRun run) {
 }
 
 Stroke project_stroke(const std::vector<glm::vec3>& points, const Camera& camera, float strength,
-                      const std::string& kind) {
+                      const std::string& kind, const std::vector<float>& weight) {
     Stroke s;
     s.kind = kind, s.strength = strength;
-    for (const glm::vec3& p : points) {
+    const bool weighted = weight.size() == points.size() && !points.empty();
+    for (std::size_t i = 0; i < points.size(); ++i) {
         glm::dvec2 px;
         double depth = 0.0;
-        if (!project_to_pixel(camera, glm::dvec3(p), px, depth)) continue;
+        if (!project_to_pixel(camera, glm::dvec3(points[i]), px, depth)) continue;
         s.points.emplace_back(float(px.x), float(px.y));
         s.depth.push_back(float(depth));
+        if (weighted) s.weight.push_back(weight[i]);
     }
     return s;
+}
+
+std::vector<float> drawn_values(const DrawnRun& r, const std::vector<float>& values) {
+    std::vector<float> out;
+    if (values.empty() || r.run.count == 0) return out;
+    out.reserve(r.run.count + 2);
+    if (r.has_head) out.push_back(values[r.run.first]);
+    out.insert(out.end(), values.begin() + r.run.first, values.begin() + r.run.first + r.run.count);
+    if (r.has_tail) out.push_back(values[r.run.first + r.run.count - 1]);
+    return out;
 }
 
 std::vector<Stroke> scored_runs_to_strokes(const std::vector<glm::vec3>& positions,
                                            const std::vector<float>& scores,
                                            const std::vector<VertexRun>& runs, const Camera& camera,
-                                           const std::string& kind) {
+                                           const std::string& kind, const std::vector<float>& weight) {
     std::vector<Stroke> out;
     for (const DrawnRun& run : drawn_runs(positions, scores, runs, camera))
-        out.push_back(project_stroke(drawn_points(run, positions), camera, mean_score(scores, run.run), kind));
+        out.push_back(project_stroke(drawn_points(run, positions), camera, mean_score(scores, run.run), kind,
+                                     drawn_values(run, weight)));
     return out;
 }
 

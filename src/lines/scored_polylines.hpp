@@ -33,6 +33,9 @@ std::vector<DrawnRun> drawn_runs(const std::vector<glm::vec3>& positions, const 
 
 // The run's points, head and tail included.
 std::vector<glm::vec3> drawn_points(const DrawnRun& run, const std::vector<glm::vec3>& positions);
+// Per-vertex values (one per position, e.g. weights) of the run's points: head and tail take
+// their neighbour's; empty when `values` is.
+std::vector<float> drawn_values(const DrawnRun& run, const std::vector<float>& values);
 
 // The point where segment inside -> outside leaves the view frustum of `view_projection` (clip
 // coordinates: |x|, |y|, |z| <= w); `inside` itself when it is not inside, `outside` when it is.
@@ -53,12 +56,14 @@ void whole_or_nothing_by_distance(std::vector<float>& scores, const std::vector<
 float mean_score(const std::vector<float>& scores, VertexRun run);
 
 // World points -> image stroke (pixels, eye distances); points behind the eye are skipped.
+// `weight`: one per point (Stroke::weight), or empty.
 Stroke project_stroke(const std::vector<glm::vec3>& points, const Camera& camera, float strength,
-                      const std::string& kind);
+                      const std::string& kind, const std::vector<float>& weight = {});
 
+// `weight`: one per position (each stroke's Stroke::weight from its vertices'), or empty.
 std::vector<Stroke> scored_runs_to_strokes(const std::vector<glm::vec3>& positions,
                                            const std::vector<float>& scores,
                                            const std::vector<VertexRun>& runs, const Camera& camera,
-                                           const std::string& kind);
+                                           const std::string& kind, const std::vector<float>& weight = {});
 
 }  // namespace penink

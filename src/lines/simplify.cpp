@@ -16,9 +16,6 @@ float point_segment_distance(glm::vec2 p, glm::vec2 a, glm::vec2 b) {
     return glm::length(p - (a + t * ab));
 }
 
-bool is_closed(const Stroke& s) {
-    return s.points.size() >= 3 && s.points.front() == s.points.back();
-}
 
 namespace {
 
@@ -97,6 +94,7 @@ Stroke without_duplicates(const Stroke& s) {
         if (!out.points.empty() && out.points.back() == s.points[i]) continue;
         out.points.push_back(s.points[i]);
         out.depth.push_back(i < s.depth.size() ? s.depth[i] : 0.0f);
+        if (!s.weight.empty()) out.weight.push_back(weight_at(s, i));
     }
     return out;
 }
@@ -108,10 +106,12 @@ Stroke pick(const Stroke& s, const std::vector<std::size_t>& idx, bool close) {
     for (std::size_t i : idx) {
         out.points.push_back(s.points[i]);
         out.depth.push_back(s.depth[i]);
+        if (!s.weight.empty()) out.weight.push_back(weight_at(s, i));
     }
     if (close && !out.points.empty()) {
         out.points.push_back(out.points.front());
         out.depth.push_back(out.depth.front());
+        if (!out.weight.empty()) out.weight.push_back(out.weight.front());
     }
     return out;
 }

@@ -33,7 +33,6 @@ Ring remove_collinear(const Ring& ring, float eps = 1e-6f);
 // Distance from p to segment [a, b] (pixels).
 float point_segment_distance(glm::vec2 p, glm::vec2 a, glm::vec2 b);
 
-// True when the stroke has >= 3 points and its first and last points are equal.
-bool is_closed(const Stroke& s);
+// is_closed(stroke): core/drawing.hpp.
 
 }  // namespace penink

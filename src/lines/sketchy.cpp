@@ -44,12 +44,6 @@ void extend_end(std::vector<glm::vec2>& pts, bool at_start, float d) {
     }
 }
 
-glm::vec2 normal_at(const std::vector<glm::vec2>& pts, std::size_t i) {
-    glm::vec2 t = pts[std::min(i + 1, pts.size() - 1)] - pts[i == 0 ? 0 : i - 1];
-    float l = glm::length(t);
-    return l > 0.0f ? glm::vec2(-t.y, t.x) / l : glm::vec2(0.0f);
-}
-
 }  // namespace
 
 Stroke sketch_stroke(const Stroke& s, const SketchParams& p, std::uint64_t seed, std::uint64_t stroke_id,
@@ -67,17 +61,10 @@ Stroke sketch_stroke(const Stroke& s, const SketchParams& p, std::uint64_t seed,
     const std::vector<glm::vec2> base = out.points;
     const std::vector<float> arc = arc_lengths(base);
     const float total = arc.back();
-    const double phase = kTwoPi * random_unit(seed, stroke_id, k0 + 4);
     const std::size_t n = base.size();
     for (std::size_t i = 0; i < n; ++i) {
         float t = total > 0.0f ? arc[i] / total : 0.0f;
-        bool end = i == 0 || i == n - 1;
-        glm::vec2 off = end || p.bend_interior ? a + (b - a) * t : glm::vec2(0.0f);
-        if (i == n - 1) off = b;
-        if (!end && p.wobble > 0.0f && total > 0.0f) {
-            double w = std::sin(M_PI * t) * std::sin(kTwoPi * arc[i] / std::max(p.wobble_wavelength, 1e-3f) + phase);
-            off += normal_at(base, i) * float(p.wobble * w);
-        }
+        const glm::vec2 off = i == n - 1 ? b : a + (b - a) * t;
         out.points[i] = base[i] + off;
     }
     return out;

@@ -15,16 +15,14 @@ namespace penink {
 
 struct SketchParams {
     float amount = 1.5f;         // px; each end point moves by at most this (uniform in the disc)
-    bool bend_interior = true;   // interior points take the arc-length blend of the end offsets
-    float wobble = 0.0f;         // px; smooth offset normal to the stroke, zero at both ends
-    float wobble_wavelength = 60.0f;  // px
     float overshoot = 0.0f;      // px; both ends extended along their end tangent (open strokes)
     int repeat = 0;              // extra strokes, each with its own perturbation
 };
 
 // Perturbed copy for pass `pass` (0 = the stroke itself, 1..repeat = the extra strokes); depth,
 // strength and kind kept. Closed strokes stay closed: both ends take the start offset and no
-// overshoot is applied. |offset| <= amount at the ends, <= amount + wobble inside.
+// overshoot is applied. Interior points take the arc-length blend of the end offsets: |offset| <=
+// amount everywhere.
 Stroke sketch_stroke(const Stroke& s, const SketchParams& p, std::uint64_t seed, std::uint64_t stroke_id,
                      int pass = 0);
 

@@ -49,12 +49,13 @@ void accept_runs(const Stroke& s, const PointGrid& grid, float min_length, std::
     run.kind = s.kind, run.strength = s.strength;
     auto flush = [&] {
         if (run.points.size() >= 2 && polyline_length(run.points) >= min_length) out.push_back(run);
-        run.points.clear(), run.depth.clear();
+        run.points.clear(), run.depth.clear(), run.weight.clear();
     };
     for (std::size_t i = 0; i < s.points.size(); ++i) {
         if (grid.near(s.points[i])) { flush(); continue; }
         run.points.push_back(s.points[i]);
         run.depth.push_back(s.depth[i]);
+        if (!s.weight.empty()) run.weight.push_back(weight_at(s, i));
     }
     flush();
 }
@@ -71,10 +72,12 @@ Stroke densify(const Stroke& s, float step) {
                 const float t = float(k) / float(n);
                 d.points.push_back(a + (b - a) * t);
                 d.depth.push_back(s.depth[i - 1] + (s.depth[i] - s.depth[i - 1]) * t);
+                if (!s.weight.empty()) d.weight.push_back(weight_at(s, i - 1) + (weight_at(s, i) - weight_at(s, i - 1)) * t);
             }
         }
         d.points.push_back(s.points[i]);
         d.depth.push_back(s.depth[i]);
+        if (!s.weight.empty()) d.weight.push_back(weight_at(s, i));
     }
     return d;
 }

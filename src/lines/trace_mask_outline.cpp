@@ -90,31 +90,4 @@ std::vector<Ring> trace_mask_outline(const PixelMask& mask, float tolerance) {
     return rings;
 }
 
-double signed_area(const Ring& ring) {
-    double a = 0.0;
-    for (std::size_t i = 0, n = ring.size(); i < n; ++i) {
-        const glm::vec2 p = ring[i], q = ring[(i + 1) % n];
-        a += double(p.x) * q.y - double(q.x) * p.y;
-    }
-    return 0.5 * a;
-}
-
-std::vector<Stroke> outline_strokes(const std::vector<Ring>& rings, const DepthImage& depth,
-                                    bool include_holes, const std::string& kind) {
-    std::vector<Stroke> out;
-    for (const Ring& r : rings) {
-        if (r.size() < 3 || (!include_holes && signed_area(r) <= 0.0)) continue;
-        Stroke s;
-        s.kind = kind;
-        s.points = r;
-        s.points.push_back(r.front());
-        for (glm::vec2 p : s.points) {
-            float z = is_empty(depth) ? 0.0f : sample_depth_at_point(depth, p);
-            s.depth.push_back(std::isfinite(z) ? z : 0.0f);
-        }
-        out.push_back(std::move(s));
-    }
-    return out;
-}
-
 }  // namespace penink

@@ -10,11 +10,12 @@ DmPass::DmPass(const GlApi& gl, const std::vector<DmVertex>& vertices)
     : gl_(&gl), count_(vertices.size()),
       program_(build_program(gl, {"dm.comp.glsl"})),
       vertices_(make_buffer(gl, vertices.data(), std::max<std::size_t>(1, vertices.size()) * sizeof(DmVertex))),
-      scores_(make_buffer(gl, nullptr, std::max<std::size_t>(1, vertices.size()) * sizeof(float), GL_DYNAMIC_READ)),
+      terms_(make_buffer(gl, nullptr, std::max<std::size_t>(1, vertices.size()) * sizeof(CreaseTerms), GL_DYNAMIC_READ)),
       timer_(gl) {}
 
-double DmPass::run(const DmFrame& f, const CreaseParams& s, std::vector<float>& scores) {
-    scores.assign(count_, dm_hidden);
+double DmPass::run(const DmFrame& f, std::vector<CreaseTerms>& terms) {
+    static_assert(sizeof(CreaseTerms) == 4 * sizeof(float), "one vec4 per vertex");
+    terms.assign(count_, CreaseTerms{});
     if (count_ == 0) return 0.0;
     const Camera& cam = *f.camera;
     const GLuint p = program_.id();
@@ -24,25 +25,20 @@ double DmPass::run(const DmFrame& f, const CreaseParams& s, std::vector<float>& 
     gl_->UniformMatrix4fv(loc("u_view_proj"), 1, GL_FALSE, glm::value_ptr(vp));
     set_camera_uniforms(*gl_, p, cam);
     gl_->Uniform3f(loc("u_light"), f.light.x, f.light.y, f.light.z);
-    gl_->Uniform3f(loc("u_weights"), float(s.slope_weight), float(s.illumination_weight), float(s.flow_weight));
-    gl_->Uniform1f(loc("u_divisor"), float(crease_score_divisor(s)));
-    gl_->Uniform1f(loc("u_min_score"), float(s.min_score));
-    gl_->Uniform1f(loc("u_attenuation"), float(s.distance_attenuation));
-    gl_->Uniform1f(loc("u_max_distance"), std::max(f.max_distance, 1e-6f));
     gl_->Uniform2f(loc("u_viewport"), float(cam.width), float(cam.height));
     gl_->Uniform1f(loc("u_lift_px"), f.lift_px);
     gl_->Uniform1f(loc("u_tolerance_px"), f.tolerance_px);
     gl_->Uniform1ui(loc("u_count"), GLuint(count_));
     gl_->BindTextureUnit(0, f.toward_texture);
     gl_->BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, vertices_.id());
-    gl_->BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, scores_.id());
+    gl_->BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, terms_.id());
     timer_.begin();
     // 2D grid of work groups: stays under GL_MAX_COMPUTE_WORK_GROUP_COUNT (65535 a side).
     const std::size_t groups = (count_ + 63) / 64, gx = std::min<std::size_t>(groups, 32768);
     gl_->DispatchCompute(GLuint(gx), GLuint((groups + gx - 1) / gx), 1);
     timer_.end();
     gl_->MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    gl_->GetNamedBufferSubData(scores_.id(), 0, GLsizeiptr(count_ * sizeof(float)), scores.data());
+    gl_->GetNamedBufferSubData(terms_.id(), 0, GLsizeiptr(count_ * sizeof(CreaseTerms)), terms.data());
     check_gl_error(*gl_, "DM pass (" + std::to_string(count_) + " vertices)");
     return timer_.milliseconds();
 }

@@ -5,6 +5,8 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "render/vec4_buffer.hpp"
+
 namespace penink {
 
 namespace {
@@ -188,15 +190,11 @@ void EdgeWalkSilPass::read_ids(std::vector<std::uint32_t>& toward, std::vector<s
 }
 
 std::vector<glm::vec4> EdgeWalkSilPass::read_triangles() const {
-    std::vector<glm::vec4> out(std::min(triangles_, capacity_) * 3);
-    gl_->GetNamedBufferSubData(triangles_buf_.id(), 0, GLsizeiptr(out.size() * sizeof(glm::vec4)), out.data());
-    return out;
+    return read_vec4_buffer(*gl_, triangles_buf_.id(), std::min(triangles_, capacity_) * 3);
 }
 
 std::vector<glm::vec4> EdgeWalkSilPass::read_edges() const {
-    std::vector<glm::vec4> out(std::min(edges_, edge_capacity_) * 2);
-    gl_->GetNamedBufferSubData(edges_buf_.id(), 0, GLsizeiptr(out.size() * sizeof(glm::vec4)), out.data());
-    return out;
+    return read_vec4_buffer(*gl_, edges_buf_.id(), std::min(edges_, edge_capacity_) * 2);
 }
 
 }  // namespace penink

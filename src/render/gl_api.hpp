@@ -91,6 +91,9 @@ struct GlApi {
 #define PENINK_GL_MEMBER(type, name) type name = nullptr;
     PENINK_GL_FUNCTIONS(PENINK_GL_MEMBER)
 #undef PENINK_GL_MEMBER
+    // Whether the passes' GpuTimers measure (gl_objects.hpp: a glFinish on each side of a pass and
+    // a time query); false when no timing is asked for: the timers then cost nothing and read 0.
+    bool timed = true;
 };
 
 using GlProcLoader = std::function<void*(const char* name)>;

@@ -19,6 +19,8 @@ public:
     virtual GlBackend backend() const = 0;
     // Makes this context current on the calling thread again (after another one was).
     virtual void make_current() = 0;
+    // Turns the GPU timers of every pass made on this context on or off (GlApi::timed).
+    void set_timed(bool on) { gl_.timed = on; }
 
 protected:
     GlApi gl_;

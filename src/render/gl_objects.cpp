@@ -143,17 +143,21 @@ GpuTimer::GpuTimer(const GlApi& gl) : gl_(&gl) {
 // still measures GPU time; the finish only serialises passes, as the paper's per-pass table needs.
 // llvmpipe's queries also miss work done inside the draw call (vertex and tessellation stages run
 // there), so the pass time is the larger of the query and the wall time between the finishes.
+// Untimed (GlApi::timed false), none of this runs: no finish, no query, 0 ms.
 void GpuTimer::begin() {
+    if (!gl_->timed) return;
     gl_->Finish();
     gl_->BeginQuery(GL_TIME_ELAPSED, query_.id());
     start_ = std::chrono::steady_clock::now();
 }
 void GpuTimer::end() {
+    if (!gl_->timed) return;
     gl_->Finish();
     wall_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
     gl_->EndQuery(GL_TIME_ELAPSED);
 }
 double GpuTimer::milliseconds() {
+    if (!gl_->timed) return 0.0;
     GLuint64 ns = 0;
     gl_->GetQueryObjectui64v(query_.id(), GL_QUERY_RESULT, &ns);
     return std::max(double(ns) * 1e-6, wall_ms_);

@@ -50,7 +50,7 @@ GlHandle make_framebuffer(const GlApi& gl, const std::vector<GLuint>& colour_tex
                           GLuint depth_texture, const std::string& name);
 
 // Time of one pass between begin() and end() (glFinish on both sides): the larger of the GL
-// timer query and the wall time, in milliseconds (waits for the result).
+// timer query and the wall time, in milliseconds; 0 and no finish when the GlApi is untimed.
 class GpuTimer {
 public:
     explicit GpuTimer(const GlApi& gl);

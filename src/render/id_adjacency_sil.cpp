@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "render/vec4_buffer.hpp"
+
 namespace penink {
 
 namespace {
@@ -101,9 +103,7 @@ std::vector<std::uint32_t> IdAdjacencySilPass::read_ids() const {
 }
 
 std::vector<glm::vec4> IdAdjacencySilPass::read_triangles() const {
-    std::vector<glm::vec4> out(std::min(triangles_, capacity_) * 3);
-    gl_->GetNamedBufferSubData(triangles_buf_.id(), 0, GLsizeiptr(out.size() * sizeof(glm::vec4)), out.data());
-    return out;
+    return read_vec4_buffer(*gl_, triangles_buf_.id(), std::min(triangles_, capacity_) * 3);
 }
 
 }  // namespace penink

@@ -1,6 +1,7 @@
 // The coastline layer (coastline_lines.hpp).
 #include "scene/coastline_lines.hpp"
 
+#include "lines/crease_scores.hpp"
 #include "lines/scored_polylines.hpp"
 
 namespace penink {
@@ -23,10 +24,10 @@ ScoredLineSet coastline_vertices(const std::vector<ShoreLine>& lines) {
 }
 
 CoastlineLines::CoastlineLines(const GlApi& gl, const GridNodes& nodes, GridWindow window)
-    : set_(coastline_vertices(sea_level_contour(nodes, window))) {
-    if (set_.upload.empty()) return;
-    set_.pass = std::make_unique<DmPass>(gl, set_.upload);
-    set_.upload = {};
+    : set_{coastline_vertices(sea_level_contour(nodes, window)), nullptr} {
+    if (set_.lines.upload.empty()) return;
+    set_.pass = std::make_unique<DmPass>(gl, set_.lines.upload);
+    set_.lines.upload = {};
 }
 
 void CoastlineLines::draw(const Camera& camera, GLuint toward_texture, Drawing& drawing) {
@@ -39,10 +40,11 @@ void CoastlineLines::draw(const Camera& camera, GLuint toward_texture, Drawing& 
     CreaseParams visible;
     visible.slope_weight = visible.illumination_weight = visible.flow_weight = 0.0;
     visible.min_score = -1.0, visible.distance_attenuation = 0.0;
-    std::vector<float> scores;
-    set_.pass->run(frame, visible, scores);
+    std::vector<CreaseTerms> terms;
+    set_.pass->run(frame, terms);
+    const std::vector<float> scores = crease_scores(terms, visible, 1.0f);
     drawing.layer(LayerKind::coastline).strokes =
-        scored_runs_to_strokes(set_.positions, scores, set_.runs, camera, "coastline");
+        scored_runs_to_strokes(set_.lines.positions, scores, set_.lines.runs, camera, "coastline");
 }
 
 }  // namespace penink

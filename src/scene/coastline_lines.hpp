@@ -28,10 +28,10 @@ public:
     CoastlineLines(const GlApi& gl, const GridNodes& nodes, GridWindow window);
     // The visible coastline of one frame into drawing's coastline layer.
     void draw(const Camera& camera, GLuint toward_texture, Drawing& drawing);
-    std::size_t vertices() const { return set_.positions.size(); }
+    std::size_t vertices() const { return set_.lines.positions.size(); }
 
 private:
-    ScoredLineSet set_;
+    UploadedLines set_;
 };
 
 }  // namespace penink

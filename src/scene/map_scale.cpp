@@ -1,7 +1,9 @@
 #include "scene/map_scale.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <stdexcept>
 
 #include "core/error.hpp"
 
@@ -41,6 +43,17 @@ void apply_map_scale(Scene& scene, const PageOptions& page) {
                                        format_number(across / 1000.0, 0) + " km across, more than the Earth's " +
                                        "circumference (at most 1:" +
                                        map_scale_text(std::floor(scene.map_scale * earth_circumference_m / across)) + " here)");
+}
+
+double parse_map_scale(const std::string& text) {
+    const std::size_t from = text.size() > 2 && text.compare(0, 2, "1:") == 0 ? 2 : 0;
+    const char* b = text.data() + from;
+    const char* e = text.data() + text.size();
+    double v = 0.0;
+    const auto [p, ec] = std::from_chars(b, e, v);
+    if (ec != std::errc() || p != e || !std::isfinite(v) || v < 1.0 || v > 1e9)
+        throw std::invalid_argument("not a map scale");
+    return v;
 }
 
 std::string map_scale_text(double scale) {

@@ -19,6 +19,9 @@ namespace penink {
 // ask for an image over max_image_side pixels a side, and export's page errors.
 void apply_map_scale(Scene& scene, const PageOptions& page);
 
+// A map scale "1:N" (or "N"), 1 <= N <= 1e9: the N; throws std::invalid_argument otherwise.
+double parse_map_scale(const std::string& text);
+
 // "25000", "12500.5": N of a 1:N scale as the metadata writes it.
 std::string map_scale_text(double scale);
 

@@ -14,7 +14,6 @@ namespace penink {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double deg = 3.14159265358979323846 / 180.0;
 
 std::string scene_name(const Scene& s) { return s.file.empty() ? s.dem : s.file; }
 
@@ -158,9 +157,8 @@ Camera mesh_camera(const Scene& s, const MeshScene& ms, const std::vector<glm::v
                     "camera up must be roughly the mesh's up axis (roll is not supported)");
     Camera cam;
     cam.eye = eye;
-    cam.azimuth = std::atan2(dir.x, dir.y) / deg;
-    if (cam.azimuth < 0.0) cam.azimuth += 360.0;
-    cam.altitude = std::asin(std::clamp(dir.z, -1.0, 1.0)) / deg;
+    const glm::dvec2 angles = angles_from_direction(dir);
+    cam.azimuth = angles.x, cam.altitude = angles.y;
     cam.fov = sc.fov, cam.width = sc.width, cam.height = sc.height;
     fit_depth_range(cam, lo, hi);
     return cam;

@@ -37,7 +37,8 @@ const std::vector<KnownTable>& known_tables() {
                                                     "distance_attenuation", "spacing_px", "normalisation", "enabled"};
     static const std::vector<KnownTable> tables = {
         {"terrain", {"dem", "vertical_exaggeration", "sea_level"}},
-        {"camera", {"projection", "position", "elevation", "azimuth", "altitude", "fov", "width", "height", "eye", "target", "up"}},
+        {"camera", {"projection", "position", "elevation", "azimuth", "altitude", "target", "distance", "fov", "width",
+                    "height", "eye", "up"}},
         {"map", {"scale"}},
         {"light", {"azimuth", "altitude", "direction"}},
         {"tessellation", {"target_edge_px", "max_level", "cull"}},
@@ -149,14 +150,37 @@ void read_crease(const toml::value& root, const char* section, CreaseParams& p, 
     read_key(t, "enabled", p.enabled, file, section);
 }
 
-void read_camera(const toml::value& root, SceneCamera& cam, const std::string& file) {
+// A [camera] key of the other kind of scene is an error naming it: position, elevation, distance
+// and a place as target are a terrain's; eye, up and an [x, y, z] target a mesh's.
+void check_camera_kind(const toml::value& t, bool mesh, const std::string& file) {
+    const bool place_target = has_key(t, "target") && t.at("target").is_string();
+    const std::string terrain_only = " applies to terrain scenes only (a mesh's camera takes eye, target = [x, y, z] and up)";
+    const std::string mesh_only = " applies to mesh scenes only (a terrain's camera takes position, elevation, azimuth, "
+                                  "altitude, target = \"PLACE\" and distance)";
+    for (const char* key : {"position", "elevation", "distance"})
+        if (mesh && has_key(t, key)) throw Error("scene", file, std::string("[camera] ") + key + terrain_only);
+    for (const char* key : {"eye", "up"})
+        if (!mesh && has_key(t, key)) throw Error("scene", file, std::string("[camera] ") + key + mesh_only);
+    if (mesh && place_target) throw Error("scene", file, "[camera] target as a place" + terrain_only);
+    if (!mesh && has_key(t, "target") && !place_target)
+        throw Error("scene", file, "[camera] target: expected a place (\"LON,LAT\", \"EASTING NORTHING ZONE\" or \"X Y\")");
+}
+
+void read_camera(const toml::value& root, SceneCamera& cam, const std::string& file, bool mesh) {
     if (!has_key(root, "camera")) return;
     const toml::value& t = root.at("camera");
+    check_camera_kind(t, mesh, file);
     if (has_key(t, "position")) {
         std::string pos;
         read_key(t, "position", pos, file, "camera");
         cam.position = pos;
     }
+    if (!mesh && has_key(t, "target")) {
+        std::string place;
+        read_key(t, "target", place, file, "camera");
+        cam.target = place;
+    }
+    read_optional(t, "distance", cam.distance, file, "camera");
     if (has_key(t, "projection")) {
         std::string name;
         read_key(t, "projection", name, file, "camera");
@@ -223,7 +247,7 @@ Scene parse_scene_file(const std::string& path) {
         read_number(terrain, "sea_level", sea, path, "terrain");
         s.sea_level = sea;
     }
-    read_camera(root, s.camera, path);
+    read_camera(root, s.camera, path, !s.mesh.empty());
     if (has_key(root, "map")) read_number(root.at("map"), "scale", s.map_scale, path, "map");
     if (has_key(root, "light")) {
         read_number(root.at("light"), "azimuth", s.light.azimuth, path, "light");
@@ -360,6 +384,14 @@ void validate_scene(const Scene& s) {
     const bool ortho = s.camera.projection == Projection::orthographic;
     if (!ortho && s.camera.position.has_value() != s.camera.elevation.has_value())
         throw Error("scene", f, "camera position and elevation go together (give both or neither)");
+    const SceneCamera& c = s.camera;
+    if (c.target && c.position && (c.azimuth || c.altitude))
+        throw Error("scene", f, "camera azimuth and altitude follow from position and target: give one or the other");
+    if (c.target && c.position && ortho)
+        throw Error("scene", f, "an orthographic view is centred on its position or its target, not both");
+    if (c.distance && !c.target) throw Error("scene", f, "camera distance goes with a target (the place looked at)");
+    if (c.distance && c.position) throw Error("scene", f, "camera distance and position both place the camera: give one");
+    check_range(f, "[camera] distance", c.distance, 1e-3, 1e8, " metres");
     if (s.map_scale != 0.0) {
         check_range(f, "[map] scale", s.map_scale, 1.0, 1e9);
         if (!ortho)

@@ -1,6 +1,7 @@
 // A scene: what to draw and how, from a TOML scene file or a bare DEM path plus CLI options.
 // Keys (all optional but the input): [terrain] dem, vertical_exaggeration (a number or "auto"),
-// sea_level; [camera] projection, position, elevation, azimuth, altitude, fov, width, height;
+// sea_level; [camera] projection, position, elevation, azimuth, altitude, target, distance, fov,
+// width, height (a mesh scene's camera takes eye, target and up instead: scene/mesh_scene.hpp);
 // [map] scale; [light] azimuth, altitude; [silhouettes]
 // min_gap, separate_passes, method; [surface] tolerance_px, min_radius_px; [tessellation]
 // target_edge_px, max_level, cull; [creases] and [ridges]
@@ -34,6 +35,12 @@ struct SceneCamera {
     std::optional<std::string> position;  // UTM "E N 18N", "lon,lat" or "x y"; none = auto-frame
     std::optional<double> elevation;      // metres above the DEM's datum (scaled with exaggeration)
     std::optional<double> azimuth, altitude;  // none = conventions default (from the south-west)
+    // A place to look at (same forms as position), on the ground. With a position the camera aims
+    // at it (azimuth and altitude follow from the two); without one it stands `distance` metres
+    // from it (none: half the DEM's plan diagonal) along azimuth and altitude, looking at it; in an
+    // orthographic view it is the view's centre (as position is).
+    std::optional<std::string> target;
+    std::optional<double> distance;
     double fov = 40.0;
     int width = 1000, height = 750;
     // Orthographic: ground metres across the image (0: the DEM fills the image); set from

@@ -11,6 +11,7 @@
 #include "input/crs_util.hpp"
 #include "lines/object_silhouettes.hpp"
 #include "lines/simplify.hpp"
+#include "lines/stroke_weight.hpp"
 #include "lines/depth_edge_placement.hpp"
 #include "lines/trace_mask_outline.hpp"
 #include "lines/frustum_clip.hpp"
@@ -92,6 +93,7 @@ void add_frame_lines(const FrameImages& images, const SurfaceMesh& mesh, const C
     VisibilityOptions visibility;
     visibility.rel_tolerance = 0.002f;  // terrain: the boundary lies on the rendered surface
     for (Stroke& s : visible_strokes(boundary, images.toward, camera, visibility)) strokes.push_back(std::move(s));
+    weigh_by_depth_gap(strokes, images.toward);  // profile lines heaviest (lines/stroke_weight.hpp)
     drawing.layer(LayerKind::silhouettes).strokes = std::move(strokes);
 }
 

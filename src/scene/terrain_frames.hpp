@@ -81,7 +81,8 @@ PixelMask object_space_silhouette_mask(const SurfaceMesh& mesh, const Camera& ca
 std::vector<Stroke> traced_silhouettes(const FrameImages& images);
 
 // Surface mask rings and silhouette strokes from one frame's images (lines stage), and the
-// visible parts of the surface's boundary (the DEM's cut edges) as object-space outline strokes.
+// visible parts of the surface's boundary (the DEM's cut edges) as object-space outline strokes,
+// each weighed by the depth gap behind it (lines/stroke_weight.hpp).
 void add_frame_lines(const FrameImages& images, const SurfaceMesh& mesh, const Camera& camera,
                      Drawing& drawing);
 

@@ -23,28 +23,49 @@ namespace {
 const std::string& scene_file(const Scene& s) { return s.file.empty() ? s.dem : s.file; }
 
 // The camera of a scene over a DEM's nodes (drawn) with bounds lo, hi.
+// A scene place (position or target) on the drawn ground: its plan point and the surface's height
+// there (the middle of the relief off the DEM).
+glm::dvec3 ground_point(const Scene& scene, const std::string& place, const Terrain& meta, const GridNodes& nodes,
+                        const glm::dvec3& lo, const glm::dvec3& hi) {
+    const glm::dvec2 xy = parse_scene_position(place, meta, scene_file(scene));
+    double ground = 0.5 * (lo.z + hi.z);
+    grid_ground_height(nodes, xy.x, xy.y, ground);
+    return {xy, ground};
+}
+
 Camera place_camera(const Scene& scene, const Terrain& meta, const GridNodes& nodes, const glm::dvec3& lo,
                     const glm::dvec3& hi) {
     const SceneCamera& sc = scene.camera;
-    const double az = sc.azimuth.value_or(default_view_azimuth);
-    const double alt = sc.altitude.value_or(default_view_altitude);
+    double az = sc.azimuth.value_or(default_view_azimuth);
+    double alt = sc.altitude.value_or(default_view_altitude);
     if (sc.projection == Projection::orthographic) {
         Camera cam = frame_points_orthographic(frame_samples(nodes), az, alt, sc.width, sc.height, sc.view_width, 0.95);
-        if (sc.position) {  // centre the view on the position's plan point (on the ground)
-            const glm::dvec2 xy = parse_scene_position(*sc.position, meta, scene_file(scene));
+        if (const auto& centre = sc.position ? sc.position : sc.target) {  // the view centred on its plan point
             const glm::dvec3 d = direction_from_angles(az, alt);
-            double ground = 0.5 * (lo.z + hi.z);
-            grid_ground_height(nodes, xy.x, xy.y, ground);
-            const glm::dvec3 to_target = glm::dvec3(xy, ground) - cam.eye;
+            const glm::dvec3 to_target = ground_point(scene, *centre, meta, nodes, lo, hi) - cam.eye;
             cam.eye += to_target - d * glm::dot(to_target, d);  // sideways only: the image moves
             place_orthographic_eye(cam, lo, hi);
         }
         return cam;
     }
-    if (!sc.position) return frame_points(frame_samples(nodes), az, alt, sc.fov, sc.width, sc.height, 0.9);
+    if (!sc.position && !sc.target) return frame_points(frame_samples(nodes), az, alt, sc.fov, sc.width, sc.height, 0.9);
     Camera cam;
-    const glm::dvec2 xy = parse_scene_position(*sc.position, meta, scene_file(scene));
-    cam.eye = {xy.x, xy.y, *sc.elevation * scene.vertical_exaggeration};
+    if (sc.position) {
+        const glm::dvec2 xy = parse_scene_position(*sc.position, meta, scene_file(scene));
+        cam.eye = {xy.x, xy.y, *sc.elevation * scene.vertical_exaggeration};
+    }
+    if (sc.target) {
+        const glm::dvec3 target = ground_point(scene, *sc.target, meta, nodes, lo, hi);
+        if (sc.position) {  // aimed from the position at the target
+            const glm::dvec3 d = target - cam.eye;
+            if (!(glm::length(d) > 0.0)) throw Error("scene", scene_file(scene), "camera position and target coincide");
+            const glm::dvec2 angles = angles_from_direction(glm::normalize(d));
+            az = angles.x, alt = angles.y;
+        } else {  // standing `distance` back from the target along the view direction
+            const double distance = sc.distance.value_or(0.5 * glm::length(glm::dvec2(hi - lo)));
+            cam.eye = target - direction_from_angles(az, alt) * distance;
+        }
+    }
     cam.azimuth = az, cam.altitude = alt, cam.fov = sc.fov;
     cam.width = sc.width, cam.height = sc.height;
     fit_depth_range(cam, lo, hi);
@@ -54,7 +75,7 @@ Camera place_camera(const Scene& scene, const Terrain& meta, const GridNodes& no
 // Throws when a placed camera is at or below the ground under it.
 void check_above_ground(const Scene& scene, const GridNodes& nodes, const Camera& cam) {
     double ground = 0.0;
-    if (scene.camera.position && !is_orthographic(cam) && grid_ground_height(nodes, cam.eye.x, cam.eye.y, ground) && cam.eye.z <= ground) {
+    if ((scene.camera.position || scene.camera.target) && !is_orthographic(cam) && grid_ground_height(nodes, cam.eye.x, cam.eye.y, ground) && cam.eye.z <= ground) {
         std::ostringstream msg;
         msg << "camera is inside the terrain (elevation " << cam.eye.z / scene.vertical_exaggeration
             << " m, ground " << ground / scene.vertical_exaggeration << " m)";

@@ -41,16 +41,19 @@ struct LocatorLines {
     std::vector<VertexRun> runs;
 };
 
+// The lines' runs and flow from the network's lists, their plan x, y those the build smoothed them
+// to (`plan`: the smoothing is tested in fall_line_stems_test.cpp and below), draped by the
+// locator.
 LocatorLines locator_lines(const DvVertices& v, const std::vector<std::vector<std::uint32_t>>& lines,
-                           const SurfaceMesh& mesh) {
+                           const SurfaceMesh& mesh, const DrapedLineSet& plan) {
     LocatorLines out;
     for (const auto& line : lines) {
         out.runs.push_back({std::uint32_t(out.positions.size()), std::uint32_t(line.size())});
         for (std::uint32_t i : line) out.positions.push_back({v[i].x, v[i].y, v[i].z}), out.flow.push_back(v[i].flow);
     }
-    const std::vector<glm::vec3> before = out.positions;
-    smooth_runs_xy(out.positions, out.runs, 3);
-    rejoin_line_ends(before, out.runs, out.positions);
+    EXPECT_EQ(plan.vertices.size(), out.positions.size());
+    for (std::size_t i = 0; i < out.positions.size() && i < plan.vertices.size(); ++i)
+        out.positions[i].x = plan.vertices[i].x, out.positions[i].y = plan.vertices[i].y;
     const TerrainLocator locator(mesh);
     out.normals.assign(out.positions.size(), glm::vec3(0.0f));
     for (std::size_t i = 0; i < out.positions.size(); ++i) {
@@ -100,8 +103,8 @@ void expect_locator_drape(const Terrain& t, int factor, const std::string& what)
     o.resample = factor;
     const DrainageDb db = build_drainage_db(t, o);
     const SurfaceMesh mesh = mesh_from_terrain(t);
-    const Agreement creases = compare(db.creases, locator_lines(db.vertices, drainage_stems(db), mesh));
-    const Agreement ridges = compare(db.ridges, locator_lines(db.divide_vertices, divide_polylines(db), mesh));
+    const Agreement creases = compare(db.creases, locator_lines(db.vertices, drainage_stems(db), mesh, db.creases));
+    const Agreement ridges = compare(db.ridges, locator_lines(db.divide_vertices, divide_polylines(db), mesh, db.ridges));
     EXPECT_GT(creases.vertices, std::size_t(db.cols) * std::size_t(db.rows) / 2) << what;
     EXPECT_GT(ridges.vertices, 0u) << what;
     EXPECT_EQ(creases.beyond_tolerance, 0u) << what;

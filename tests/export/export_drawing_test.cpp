@@ -52,8 +52,7 @@ TEST(AtomicFile, FailureLeavesNothingAndSuccessReplaces) {
     TempDir dir("atomic");
     const std::string target = dir.file("out.svg");
     write_file_atomically(target, "old");
-    EXPECT_THROW(write_atomically(target, [](const std::string& temp) {
-        write_text(temp, "partial");
+    EXPECT_THROW(write_files_together({target}, [](std::size_t) -> std::string {
         throw std::runtime_error("writer failed");
     }), std::runtime_error);
     EXPECT_EQ(files_in(dir), std::vector<std::string>{"out.svg"});

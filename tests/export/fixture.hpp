@@ -56,6 +56,9 @@ inline Style visible_style() {
         [all]
         width = 3.0
         width_far = 1.5
+        taper = 0.0
+        weight_min = 1.0
+        weight_max = 1.0
         [creases]
         color = "#b03020"
         opacity = 0.5

@@ -31,7 +31,13 @@ TEST(StyledDrawing, TechnicalKeepsEveryStrokeAsOnePath) {
     const StyledDrawing s = style_drawing(small_drawing(), default_style());
     EXPECT_EQ(path_count(s), 5u);
     const StyledPath& ridge = s.layers[size_t(LayerKind::ridges)].groups[0].paths[0];
-    EXPECT_EQ(ridge.points.size(), 5u);
+    // tapered over 6 px at each end: points inserted there (at most 1.5 px apart), one width each
+    EXPECT_GT(ridge.points.size(), 5u);
+    ASSERT_EQ(ridge.widths.size(), ridge.points.size());
+    EXPECT_EQ(ridge.points.front(), glm::vec2(20, 70));
+    EXPECT_EQ(ridge.points.back(), glm::vec2(180, 70));
+    EXPECT_NEAR(ridge.widths.front(), 0.6 * 0.15, 1e-12);  // taper_min at the ends
+    EXPECT_NEAR(ridge.widths.back(), 0.6 * 0.15, 1e-12);
     EXPECT_DOUBLE_EQ(ridge.width, 0.6);
     EXPECT_NEAR(ridge.depth, 540.0, 1e-9);  // mean of 100 300 500 800 1000
     EXPECT_EQ(ridge.kind, "ridge");
@@ -89,7 +95,8 @@ TEST(StyledDrawing, PlotStats) {
     d.layer(LayerKind::silhouettes).strokes.push_back(make_stroke({{30, 50}, {30, 60}, {40, 60}}, {1, 1, 1}, 1, "s"));
     const PlotStats st = plot_stats(style_drawing(d, default_style()));
     EXPECT_EQ(st.paths, 2u);
-    EXPECT_DOUBLE_EQ(st.length_px, 50.0 + 10.0 + 10.0);
+    // taper points are inserted along the segments in float: the length within 1e-4 px
+    EXPECT_NEAR(st.length_px, 50.0 + 10.0 + 10.0, 1e-4);
     EXPECT_DOUBLE_EQ(st.travel_px, 10.0);
 }
 

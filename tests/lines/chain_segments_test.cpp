@@ -89,7 +89,7 @@ TEST(JoinStrokes, JoinsEndsWithinToleranceKeepsJunctionsAndKinds) {
         {{{0, 0}, {5, 1}, {10, 0}}, {1, 1, 1}, 1.0f, "crease"},
         {{{20, 0}, {15, 1}, {10.2f, 0}}, {2, 2, 2}, 3.0f, "crease"},
         {{{20, 0}, {25, 0}}, {2, 2}, 1.0f, "ridge"},
-        {{{50, 50}, {60, 50}, {60, 60}, {50, 50}}, {0, 0, 0, 0}, 1.0f, "crease"}};
+        {{{50, 50}, {60, 50}, {60, 60}, {50, 50}}, {0, 0, 0, 0}, 1.0f, "crease", {}}};
     auto out = join_strokes(in, 0.5f);
     ASSERT_EQ(out.size(), 3u);
     EXPECT_EQ(out[0].kind, "crease");

@@ -7,7 +7,7 @@
 namespace penink {
 namespace {
 
-Stroke line(glm::vec2 a, glm::vec2 b) { return {{a, b}, {1.0f, 2.0f}, 1.0f, "x"}; }
+Stroke line(glm::vec2 a, glm::vec2 b) { return {{a, b}, {1.0f, 2.0f}, 1.0f, "x", {}}; }
 
 TEST(PlotterOrder, HandCaseReordersAndReverses) {
     // Input order: far stroke first, then a reversed near one.

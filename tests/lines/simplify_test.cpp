@@ -15,7 +15,7 @@ TEST(Simplify, DouglasPeuckerKnownAnswer) {
 }
 
 TEST(Simplify, StrokeKeepsDepthOfKeptPoints) {
-    Stroke s{{{0, 0}, {1, 0.1f}, {2, 0}, {3, 0}, {3, 0}, {3, 4}}, {10, 11, 12, 13, 14, 15}, 2.0f, "crease"};
+    Stroke s{{{0, 0}, {1, 0.1f}, {2, 0}, {3, 0}, {3, 0}, {3, 4}}, {10, 11, 12, 13, 14, 15}, 2.0f, "crease", {}};
     Stroke r = simplify_stroke(s, 0.5f);
     EXPECT_EQ(r.points, (std::vector<glm::vec2>{{0, 0}, {3, 0}, {3, 4}}));
     EXPECT_EQ(r.depth, (std::vector<float>{10, 13, 15}));

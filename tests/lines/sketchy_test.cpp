@@ -65,7 +65,6 @@ TEST(Sketchy, OvershootExtendsStraightStrokeAndRepeatMakesCopies) {
 TEST(Sketchy, ClosedStrokeStaysClosed) {
     SketchParams p;
     p.amount = 3.0f;
-    p.wobble = 1.0f;
     Stroke s{{{0, 0}, {10, 0}, {10, 10}, {0, 10}, {0, 0}}, {0, 0, 0, 0, 0}, 1.0f, "outline"};
     Stroke o = sketch_stroke(s, p, 5, stroke_geometry_id(s));
     EXPECT_EQ(o.points.front(), o.points.back());

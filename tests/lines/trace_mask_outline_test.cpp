@@ -15,6 +15,18 @@ void fill_rect(PixelMask& m, int x0, int y0, int x1, int y1, std::uint8_t v) {
         for (int x = x0; x < x1; ++x) m.on[std::size_t(y) * m.width + x] = v;
 }
 
+// Signed shoelace area (pixels^2) of a ring: the header's orientation contract says > 0 for outer
+// boundaries, < 0 for holes.
+double signed_area(const Ring& ring) {
+    double a = 0.0;
+    for (std::size_t i = 0, n = ring.size(); i < n; ++i) {
+        const glm::vec2 p = ring[i], q = ring[(i + 1) % n];
+        a += double(p.x) * q.y - double(q.x) * p.y;
+    }
+    return 0.5 * a;
+}
+
+
 TEST(TraceMaskOutline, SinglePixelIsAUnitSquareClockwiseOnScreen) {
     PixelMask m = blank(4, 4);
     fill_rect(m, 1, 2, 2, 3, 1);
@@ -66,23 +78,6 @@ TEST(TraceMaskOutline, DiagonalPixelsAreSeparateRings) {
     ASSERT_EQ(rings.size(), 2u);
     EXPECT_DOUBLE_EQ(signed_area(rings[0]), 1.0);
     EXPECT_DOUBLE_EQ(signed_area(rings[1]), 1.0);
-}
-
-TEST(TraceMaskOutline, OutlineStrokesAreClosedOuterRingsWithDepth) {
-    PixelMask m = blank(20, 20);
-    fill_rect(m, 2, 2, 18, 18, 1);
-    fill_rect(m, 8, 8, 12, 12, 0);
-    DepthImage d{20, 20, std::vector<float>(400, INFINITY)};
-    for (int y = 2; y < 18; ++y)
-        for (int x = 2; x < 18; ++x) d.depth[y * 20 + x] = 5.0f;
-    auto rings = trace_mask_outline(m, 0.5f);
-    auto outer = outline_strokes(rings, d);
-    ASSERT_EQ(outer.size(), 1u);
-    EXPECT_EQ(outer[0].points.size(), 5u);
-    EXPECT_EQ(outer[0].points.front(), outer[0].points.back());
-    EXPECT_EQ(outer[0].kind, "outline");
-    for (float z : outer[0].depth) EXPECT_FLOAT_EQ(z, 5.0f);
-    EXPECT_EQ(outline_strokes(rings, d, true).size(), 2u);
 }
 
 TEST(TraceMaskOutline, MalformedMaskIsAnError) {

@@ -1,9 +1,8 @@
-// DM pass: crease scores of vertices on a tilted plane equal the closed form of conventions.md
-// (rs = (sw sc + iw ic + fw fc)/3 - min_score - attenuation d / D, or divided by sw + iw + fw with
-// normalisation "paper") computed on the CPU; vertices
-// behind a ridge (occlusion found by marching the eye ray against the analytic height) come back
-// dm_hidden, those in front visible; vertices outside the frustum hidden; min_score and
-// distance_attenuation act as the formula says.
+// DM pass: the terms it writes for vertices on a tilted plane (sc = 1 - n.z, ic = 1 - n.l, the
+// vertex's flow, its eye distance d) equal their closed form computed on the CPU; vertices behind
+// a ridge (occlusion found by marching the eye ray against the analytic height) come back hidden,
+// those in front visible; vertices outside the frustum hidden; scored by crease_scores
+// (lines/crease_scores.hpp), min_score and distance_attenuation act as eq. 6 says.
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -13,6 +12,7 @@
 
 #include "support/gl_test_context.hpp"
 #include "support/synthetic_terrain.hpp"
+#include "lines/crease_scores.hpp"
 #include "render/dm.hpp"
 #include "render/terrain_renderer.hpp"
 
@@ -41,32 +41,12 @@ Camera north_camera(double eye_z, double altitude) {
     return cam;
 }
 
-float max_distance(const DepthImage& toward) {
-    float d = 0.0f;
-    for (float t : toward.depth)
-        if (std::isfinite(t)) d = std::max(d, t);
-    return d;
-}
-
 // Pixel of `p` at least `margin` pixels inside the image (and in front of the eye).
 bool inside_by(const Camera& cam, const glm::vec3& p, double margin) {
     glm::dvec2 px;
     double depth;
     if (!project_to_pixel(cam, glm::dvec3(p), px, depth)) return false;
     return px.x >= margin && px.y >= margin && px.x <= cam.width - margin && px.y <= cam.height - margin;
-}
-
-// The closed form, written out here (not crease_score) so the test checks the shader against the
-// formula itself: the weighted sum over 3 ("thirds") or over the sum of the weights ("paper").
-double expected_score(const DmVertex& v, const Camera& cam, glm::dvec3 light, const CreaseParams& s, double D) {
-    const glm::dvec3 n(v.normal);
-    const double sc = 1.0 - n.z, ic = 1.0 - std::clamp(glm::dot(n, light), 0.0, 1.0);
-    const double d = glm::length(glm::dvec3(v.position) - cam.eye);
-    const double divisor = s.normalisation == ScoreNormalisation::paper
-                               ? s.slope_weight + s.illumination_weight + s.flow_weight
-                               : 3.0;
-    return (s.slope_weight * sc + s.illumination_weight * ic + s.flow_weight * v.flow) / divisor -
-           (s.min_score + s.distance_attenuation * d / D);
 }
 
 // Flow in [0, 1) from the vertex index (splitmix64 bits).
@@ -104,36 +84,43 @@ struct PlaneScene {
     }
 };
 
-std::vector<float> run_dm(const PlaneScene& s, TerrainRenderer& r, float D, const CreaseParams& score) {
+std::vector<CreaseTerms> run_terms(const PlaneScene& s, TerrainRenderer& r) {
     DmPass pass(test::test_context().gl(), s.vertices);
     DmFrame f;
-    f.camera = &s.cam, f.light = glm::vec3(s.light), f.max_distance = D;
+    f.camera = &s.cam, f.light = glm::vec3(s.light);
     f.toward_texture = r.surface_pass().toward_texture();
-    std::vector<float> scores;
-    pass.run(f, score, scores);
-    EXPECT_EQ(scores.size(), s.vertices.size());
-    return scores;
+    std::vector<CreaseTerms> terms;
+    pass.run(f, terms);
+    EXPECT_EQ(terms.size(), s.vertices.size());
+    return terms;
+}
+
+std::vector<float> run_dm(const PlaneScene& s, TerrainRenderer& r, float D, const CreaseParams& score) {
+    return crease_scores(run_terms(s, r), score, D);
 }
 
 }  // namespace
 
-namespace {
-
-void expect_closed_form(const CreaseParams& score) {
+// sc, ic and fc are computed in float from float normals: 1e-5 is a few float ulps of a term in
+// [0, 1]. d is ~1-2 km from float positions (ulp ~1e-4 m): 1e-2 m.
+TEST(DmPass, TiltedPlaneTermsMatchClosedForm) {
     const PlaneScene s;
     TerrainRenderer renderer(test::test_context().gl(), s.mesh, s.cam.width, s.cam.height);
-    const FrameImages img = renderer.render(s.cam, {});
-    const float D = max_distance(img.toward);
-    ASSERT_GT(D, 1000.0f);
-    const std::vector<float> scores = run_dm(s, renderer, D, score);
+    renderer.render(s.cam, {});
+    const std::vector<CreaseTerms> terms = run_terms(s, renderer);
     std::size_t checked = 0, outside = 0;
     for (std::size_t i = 0; i < s.vertices.size(); ++i) {
-        if (inside_by(s.cam, s.vertices[i].position, 2.0)) {
-            ASSERT_NE(scores[i], dm_hidden) << "vertex " << i << " on the plane in view is hidden";
-            EXPECT_NEAR(scores[i], expected_score(s.vertices[i], s.cam, s.light, score, D), 1e-4) << i;
+        const DmVertex& v = s.vertices[i];
+        if (inside_by(s.cam, v.position, 2.0)) {
+            ASSERT_NE(terms[i].distance, dm_hidden) << "vertex " << i << " on the plane in view is hidden";
+            const glm::dvec3 n(v.normal);
+            EXPECT_NEAR(terms[i].slope, 1.0 - n.z, 1e-5) << i;
+            EXPECT_NEAR(terms[i].illumination, 1.0 - std::clamp(glm::dot(n, s.light), 0.0, 1.0), 1e-5) << i;
+            EXPECT_EQ(terms[i].flow, v.flow) << i;
+            EXPECT_NEAR(terms[i].distance, glm::length(glm::dvec3(v.position) - s.cam.eye), 1e-2) << i;
             ++checked;
-        } else if (!inside_by(s.cam, s.vertices[i].position, -2.0)) {
-            EXPECT_EQ(scores[i], dm_hidden) << "vertex " << i << " outside the frustum";
+        } else if (!inside_by(s.cam, v.position, -2.0)) {
+            EXPECT_EQ(terms[i].distance, dm_hidden) << "vertex " << i << " outside the frustum";
             ++outside;
         }
     }
@@ -141,26 +128,11 @@ void expect_closed_form(const CreaseParams& score) {
     EXPECT_GT(outside, 20u);
 }
 
-}  // namespace
-
-TEST(DmPass, TiltedPlaneScoresMatchClosedForm) { expect_closed_form(CreaseParams{2.0f, 0.5f, 4.0f, 0.12f, 0.3f}); }
-
-// The paper's Table 5 weights (.1, .3, .6) under "paper": the weighted mean, here divided by 1;
-// and weights summing to 6.5 (the defaults) divided by 6.5, not 3.
-TEST(DmPass, PaperNormalisationDividesByTheSumOfTheWeights) {
-    CreaseParams table5{0.1, 0.3, 0.6, 0.5, 0.3};
-    table5.normalisation = ScoreNormalisation::paper;
-    expect_closed_form(table5);
-    CreaseParams defaults{2.0, 0.5, 4.0, 0.12, 0.3};
-    defaults.normalisation = ScoreNormalisation::paper;
-    expect_closed_form(defaults);
-}
-
 TEST(DmPass, MinScoreAndAttenuationActAsTheFormulaSays) {
     const PlaneScene s;
     TerrainRenderer renderer(test::test_context().gl(), s.mesh, s.cam.width, s.cam.height);
     const FrameImages img = renderer.render(s.cam, {});
-    const float D = max_distance(img.toward);
+    const float D = max_visible_distance(img.toward);
     CreaseParams score{2.0f, 0.5f, 4.0f, 0.0f, 0.0f};
     const std::vector<float> base = run_dm(s, renderer, D, score);
     std::size_t previous = s.vertices.size() + 1;
@@ -203,7 +175,7 @@ TEST(DmPass, VerticesBehindARidgeAreHidden) {
     const SurfaceMesh mesh = mesh_from_terrain(terrain_from_function(161, 161, 10.0, ridge));
     const Camera cam = north_camera(400.0, -12.0);
     TerrainRenderer renderer(ctx.gl(), mesh, cam.width, cam.height);
-    const FrameImages img = renderer.render(cam, {});
+    renderer.render(cam, {});
     std::vector<DmVertex> vertices;
     for (double y = -700.0; y <= 790.0; y += 20.0)
         for (double x = -300.0; x <= 300.0; x += 50.0) {
@@ -214,10 +186,12 @@ TEST(DmPass, VerticesBehindARidgeAreHidden) {
         }
     DmPass pass(ctx.gl(), vertices);
     DmFrame f;
-    f.camera = &cam, f.max_distance = max_distance(img.toward);
+    f.camera = &cam;
     f.toward_texture = renderer.surface_pass().toward_texture();
-    std::vector<float> scores;
-    pass.run(f, CreaseParams{}, scores);
+    std::vector<CreaseTerms> terms;
+    pass.run(f, terms);
+    std::vector<float> scores(terms.size());  // the distances: dm_hidden where hidden
+    for (std::size_t i = 0; i < terms.size(); ++i) scores[i] = terms[i].distance;
     // March the eye ray: hidden when the ridge rises >= 5 m above it at least 80 m before the
     // vertex, visible when the ray stays >= 2 m above the ground until 10 m before it.
     std::size_t hidden = 0, visible = 0;
@@ -260,7 +234,7 @@ TEST(DmPass, ZeroNormalMeansOffSurfaceAndHidden) {
     const FrameImages img = renderer.render(s.cam, {});
     PlaneScene off = s;
     for (std::size_t i = 0; i < off.vertices.size(); i += 2) off.vertices[i].normal = glm::vec3(0.0f);
-    const std::vector<float> scores = run_dm(off, renderer, max_distance(img.toward), CreaseParams{});
+    const std::vector<float> scores = run_dm(off, renderer, max_visible_distance(img.toward), CreaseParams{});
     std::size_t drawn = 0;
     for (std::size_t i = 0; i < scores.size(); ++i) {
         if (i % 2 == 0) {
@@ -277,9 +251,9 @@ TEST(DmPass, EmptyVertexSetReturnsNoScores) {
     renderer.render(s.cam, {});
     DmPass pass(test::test_context().gl(), {});
     DmFrame f;
-    f.camera = &s.cam, f.max_distance = 1000.0f, f.toward_texture = renderer.surface_pass().toward_texture();
-    std::vector<float> scores(5, 1.0f);
-    pass.run(f, CreaseParams{}, scores);
-    EXPECT_TRUE(scores.empty());
+    f.camera = &s.cam, f.toward_texture = renderer.surface_pass().toward_texture();
+    std::vector<CreaseTerms> terms(5);
+    pass.run(f, terms);
+    EXPECT_TRUE(terms.empty());
     EXPECT_EQ(pass.size(), 0u);
 }

@@ -765,7 +765,7 @@ TEST(CreasesRender, Table5WeightsDrawUnderPaperNormalisationOnly) {
     EXPECT_EQ(p80.strokes, 0u);
 }
 
-// The rank reading (each term its percentile among the visible vertices, lines/rank_scores.hpp):
+// The rank reading (each term its percentile among the visible vertices, lines/crease_scores.hpp):
 // Table 5's .8 then keeps the vertices whose weighted mean percentile passes .8 plus the
 // attenuation, the top few per cent (on volcano 3 % of the visible vertices: docs/reproduction.md),
 // so it draws, and less than Figure 15's thresholds, which draw less at each step.

@@ -1,0 +1,42 @@
+// Stroke weights: a per-point weight in [0, 1] (core/drawing.hpp Stroke::weight) that places a
+// line in its layer's hierarchy of weight, which the style turns into width (styles/README.md).
+//  - Creases by flow: trunk streams heavier than twigs. The drainage vertices carry normalised
+//    flow f (accumulation / basin total, in [0, 1]); weight = clamp(1 + log10(f) / 3, 0, 1), so
+//    three decades of flow, 0.001 of the basin to all of it, span the range.
+//  - Silhouettes by the depth gap behind them (Lobeck's profile lines; Winkenbach & Salesin,
+//    "Computer-generated pen-and-ink illustration": outline accents): at each point, within
+//    `radius` px of it in the toward (TFT) eye-distance image, the nearest surface's distance n and
+//    the farthest f (+inf where a pixel has no surface: sky); gap g = (f - n) / n, relative to the
+//    edge's own distance; weight = g / (g + gap_half), 1 against the sky. A ridge against the sky
+//    or a far valley is heavy; a fold against the slope just behind it is light. The weights are
+//    then smoothed along the stroke (a running mean over `smooth_px` of arc length each side).
+#pragma once
+#include <vector>
+
+#include "core/drawing.hpp"
+#include "core/pixel_mask.hpp"
+
+namespace penink {
+
+// Weight of normalised flow f (see above); 0 for f <= 0.001.
+float flow_weight(float flow);
+// Weight of a relative depth gap g >= 0 (+inf: 1).
+float gap_weight(float gap, float gap_half = 0.1f);
+
+struct DepthGapParams {
+    int radius = 2;          // px: window half-size searched for the near and far surfaces
+    float gap_half = 0.1f;   // relative gap that weighs 0.5
+    float smooth_px = 3.0f;  // running-mean half-length along the stroke, px
+};
+
+// The relative depth gap at image point p (pixels, origin top-left, y down); +inf when some pixel
+// of the window has no surface; 0 when none has one.
+float depth_gap_at(const DepthImage& toward, glm::vec2 p, int radius);
+
+// Sets every stroke's weight from the depth gap behind it (see above).
+void weigh_by_depth_gap(std::vector<Stroke>& strokes, const DepthImage& toward, const DepthGapParams& params = {});
+
+// Running mean of per-point values over `half_px` of arc length each side (in place).
+void smooth_along(const std::vector<glm::vec2>& points, std::vector<float>& values, float half_px);
+
+}  // namespace penink

@@ -1,0 +1,182 @@
+// Tapered and weighted strokes (styles/README.md, "Weight"): the written SVG and PDF outlines
+// are thin at the ends and full in the middle, the SVG keeps an editable power stroke, weights
+// scale widths, and untapered styles write today's plain strokes.
+#include <cmath>
+#include <regex>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "export/export_drawing.hpp"
+#include "export/rasterise.hpp"
+#include "export/stroke_outline.hpp"
+#include "export/styled_drawing.hpp"
+#include "fixture.hpp"
+
+using namespace penink;
+using namespace penink::test;
+
+namespace {
+
+// One straight crease from (10, 50) to (110, 50), 100 px long.
+Drawing one_crease(std::vector<float> weight = {}) {
+    Drawing d;
+    d.width = 120, d.height = 100;
+    Stroke s = make_stroke({{10, 50}, {60, 50}, {110, 50}}, {100, 100, 100}, 0.5f, "crease");
+    s.weight = std::move(weight);
+    d.layer(LayerKind::creases).strokes.push_back(s);
+    return d;
+}
+
+Style tapered_style() {
+    Style s = default_style();
+    apply_style_overrides(s, parse_toml(R"(
+        [creases]
+        width = 4.0
+        taper = 10.0
+        taper_min = 0.0
+        weight_min = 1.0
+        weight_max = 1.0
+    )"));
+    return s;
+}
+
+std::vector<glm::vec2> numbers_as_points(const std::string& text) {
+    std::vector<glm::vec2> out;
+    std::istringstream in(text);
+    std::string tok;
+    std::vector<float> v;
+    while (in >> tok) {
+        if (tok == "M" || tok == "L" || tok == "Z" || tok == "m" || tok == "l" || tok == "h") continue;
+        for (char& c : tok)
+            if (c == 'M' || c == 'L' || c == 'Z') c = ' ';
+        std::istringstream t(tok);
+        float x;
+        while (t >> x) v.push_back(x);
+    }
+    for (std::size_t i = 0; i + 1 < v.size(); i += 2) out.emplace_back(v[i], v[i + 1]);
+    return out;
+}
+
+// Half the outline's thickness across x in [x0, x1]: the largest |y - 50| of its points there.
+double half_width_near(const std::vector<glm::vec2>& outline, float x0, float x1) {
+    double h = 0.0;
+    for (const glm::vec2& p : outline)
+        if (p.x >= x0 && p.x <= x1) h = std::max(h, double(std::abs(p.y - 50.0f)));
+    return h;
+}
+
+// The filled outline of a tapered stroke of width 4 over 10 px: at the middle half the width,
+// 2 px; within 1.5 px of an end (the ease 1 - (1 - u)^2 at u = 0.15 gives 0.28 of the width, and
+// the round cap of a zero end adds nothing) under 0.6 px.
+void expect_tapered(const std::vector<glm::vec2>& outline) {
+    ASSERT_GT(outline.size(), 20u);
+    EXPECT_NEAR(half_width_near(outline, 55.0f, 65.0f), 2.0, 0.01);
+    EXPECT_LT(half_width_near(outline, 9.0f, 11.5f), 0.6);
+    EXPECT_LT(half_width_near(outline, 108.5f, 111.0f), 0.6);
+    EXPECT_GT(half_width_near(outline, 14.0f, 16.0f), 1.0);  // 5 px in: 0.75 of the width
+}
+
+}  // namespace
+
+TEST(TaperFactor, EndsThinMiddleFull) {
+    EXPECT_DOUBLE_EQ(taper_factor(0.0, 100.0, 10.0, 0.2), 0.2);
+    EXPECT_DOUBLE_EQ(taper_factor(100.0, 100.0, 10.0, 0.2), 0.2);
+    EXPECT_DOUBLE_EQ(taper_factor(10.0, 100.0, 10.0, 0.2), 1.0);
+    EXPECT_DOUBLE_EQ(taper_factor(50.0, 100.0, 10.0, 0.2), 1.0);
+    EXPECT_DOUBLE_EQ(taper_factor(5.0, 100.0, 10.0, 0.0), 0.75);  // 1 - (1 - 0.5)^2
+    EXPECT_DOUBLE_EQ(taper_factor(4.0, 8.0, 10.0, 0.0), 1.0);     // a short stroke: half its length
+    EXPECT_DOUBLE_EQ(taper_factor(3.0, 100.0, 0.0, 0.0), 1.0);    // no taper
+}
+
+TEST(TaperedStrokes, SvgOutlineThinAtTheEndsWithItsPowerStroke) {
+    TempDir dir;
+    const std::string path = (dir.path / "t.svg").string();
+    export_drawing(style_drawing(one_crease(), tapered_style()), PageOptions{}, path);
+    const std::string svg = read_text(path);
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(svg, m, std::regex("<path d=\"([^\"]+)\" fill=\"#000000\" stroke=\"none\" "
+                                                     "inkscape:path-effect=\"#(powerstroke-0)\" "
+                                                     "inkscape:original-d=\"([^\"]+)\"[^>]*data-kind=\"crease\"[^>]*"
+                                                     "data-widths=\"([^\"]+)\"/>")));
+    expect_tapered(numbers_as_points(m[1].str()));
+    const std::vector<glm::vec2> centre = numbers_as_points(m[3].str());
+    ASSERT_GE(centre.size(), 3u);  // the centre line, densified in the taper zones
+    EXPECT_EQ(centre.front(), glm::vec2(10, 50));
+    EXPECT_EQ(centre.back(), glm::vec2(110, 50));
+    std::istringstream widths(m[4].str());
+    std::vector<double> w;
+    for (double x; widths >> x;) w.push_back(x);
+    EXPECT_EQ(w.size(), centre.size());  // one width per centre-line point
+    EXPECT_DOUBLE_EQ(w.front(), 0.0);
+    EXPECT_DOUBLE_EQ(*std::max_element(w.begin(), w.end()), 4.0);
+    // the effect in <defs>, before the layers
+    const std::size_t defs = svg.find("<defs id=\"defs\">"), effect = svg.find("effect=\"powerstroke\" id=\"powerstroke-0\"");
+    ASSERT_NE(defs, std::string::npos);
+    EXPECT_GT(effect, defs);
+    EXPECT_LT(effect, svg.find("</defs>"));
+    EXPECT_LT(svg.find("</defs>"), svg.find("inkscape:groupmode=\"layer\""));
+}
+
+TEST(TaperedStrokes, PdfAndPsFillTheSameOutline) {
+    TempDir dir;
+    const StyledDrawing styled = style_drawing(one_crease(), tapered_style());
+    const std::string pdf_path = (dir.path / "t.pdf").string(), ps_path = (dir.path / "t.eps").string();
+    export_drawings(styled, PageOptions{}, {pdf_path, ps_path});
+    for (const std::string& path : {pdf_path, ps_path}) {
+        const std::string doc = read_text(path);
+        std::smatch m;  // the crease layer's filled path: "x y m ... h f"
+        ASSERT_TRUE(std::regex_search(doc, m, std::regex("\n([-0-9. ]+ m\n(?:[-0-9. ]+ l\n)+)h\nf\n"))) << path;
+        const std::vector<glm::vec2> outline = numbers_as_points(m[1].str());
+        expect_tapered(outline);
+        const StyledPath& p = styled.layers[3].groups[0].paths.at(0);  // the same polygon as the SVG's
+        EXPECT_EQ(outline.size(), stroke_outline(p.points, p.widths).size()) << path;
+    }
+    EXPECT_NE(read_text(ps_path).find("/f /fill load def"), std::string::npos);
+}
+
+TEST(TaperedStrokes, WeightScalesWidthBetweenItsFactors) {
+    Style s = tapered_style();
+    apply_style_overrides(s, parse_toml("[creases]\ntaper = 0.0\nweight_min = 0.5\nweight_max = 2.0\n"));
+    const StyledDrawing d = style_drawing(one_crease({0.0f, 0.5f, 1.0f}), s);
+    const StyledPath& p = d.layers[3].groups[0].paths.at(0);
+    ASSERT_EQ(p.widths.size(), 3u);
+    EXPECT_DOUBLE_EQ(p.widths[0], 2.0);   // 4 px * 0.5
+    EXPECT_DOUBLE_EQ(p.widths[1], 5.0);   // 4 px * 1.25
+    EXPECT_DOUBLE_EQ(p.widths[2], 8.0);   // 4 px * 2
+    const WidthStats st = width_stats(d.layers[3]);
+    EXPECT_NEAR(st.mean_width, 5.0, 1e-9);  // segments of 3.5 and 6.5 px, 50 px each
+    EXPECT_NEAR(st.cv, 1.5 / 5.0, 1e-9);
+    EXPECT_DOUBLE_EQ(st.tapered_share, 0.0);  // thicker at one end only
+}
+
+TEST(TaperedStrokes, UntaperedPlotterOutputUnchangedByWeights) {
+    // The plotter style keeps single centre-line strokes: weights and the new keys change nothing.
+    const Style plotter = builtin_style("plotter");
+    for (const char* ext : {"x.svg", "x.pdf", "x.ps"}) {
+        const std::string plain = export_document(style_drawing(one_crease(), plotter), PageOptions{}, ext);
+        const std::string weighted = export_document(style_drawing(one_crease({0.0f, 1.0f, 0.2f}), plotter), PageOptions{}, ext);
+        EXPECT_EQ(plain, weighted) << ext;
+        EXPECT_EQ(plain.find("powerstroke"), std::string::npos) << ext;
+        EXPECT_EQ(plain.find("\nf\n"), std::string::npos) << ext;
+    }
+    const std::string svg = export_document(style_drawing(one_crease(), plotter), PageOptions{}, "x.svg");
+    EXPECT_NE(svg.find("<path d=\"M10 50 L60 50 110 50\" data-kind=\"crease\""), std::string::npos);
+}
+
+TEST(TaperedStrokes, RasterFollowsTheOutline) {
+    // Ink summed down a column of the rasterised stroke is its width there (box-filtered
+    // coverage): 4 px in the middle, the eased taper near the ends (0.75 of it 5 px in).
+    const RgbImage img = rasterise(style_drawing(one_crease(), tapered_style()), RasterTransform{120, 100, 1.0, 0.0, 0.0});
+    const auto ink = [&](int x) {
+        double sum = 0.0;
+        for (int y = 40; y < 60; ++y) sum += 1.0 - img.rgb[3 * std::size_t(y * 120 + x)] / 255.0;
+        return sum;
+    };
+    EXPECT_NEAR(ink(60), 4.0, 0.02);          // 8-bit rounding over 4-5 pixels
+    // pixel 15 spans 5-6 px in: the mean of 1 - (1 - u)^2 over u in [0.5, 0.6] is 0.797 (3.19 px);
+    // the widths run linearly between points 1.5 px apart: within 0.1 px
+    EXPECT_NEAR(ink(15), 4.0 * 0.797, 0.1);
+    EXPECT_NEAR(ink(10), 4.0 * 0.097, 0.1);   // the end pixel (u in [0, 0.1]: mean 0.097)
+    EXPECT_NEAR(ink(15), ink(104), 0.02);     // symmetric ends
+}

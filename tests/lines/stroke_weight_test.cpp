@@ -1,0 +1,113 @@
+// Stroke weights (lines/stroke_weight.hpp): creases heavier with flow, silhouettes heavier with
+// the depth gap behind them, and the weights carried through joining, simplifying and merging.
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "lines/chain_segments.hpp"
+#include "lines/doubled_lines.hpp"
+#include "lines/simplify.hpp"
+#include "lines/stroke_weight.hpp"
+
+using namespace penink;
+
+namespace {
+
+constexpr float inf = std::numeric_limits<float>::infinity();
+
+// 20 x 20 px: the near surface (100 m) left of x = 10, `behind` right of it.
+DepthImage step_image(float behind) {
+    DepthImage d{20, 20, std::vector<float>(400, 100.0f)};
+    for (int y = 0; y < 20; ++y)
+        for (int x = 10; x < 20; ++x) d.depth[std::size_t(y) * 20 + x] = behind;
+    return d;
+}
+
+Stroke vertical_stroke() {
+    Stroke s;
+    for (int y = 2; y <= 18; ++y) s.points.emplace_back(10.0f, float(y)), s.depth.push_back(100.0f);
+    return s;
+}
+
+}  // namespace
+
+TEST(FlowWeight, RisesWithFlowOverThreeDecades) {
+    EXPECT_FLOAT_EQ(flow_weight(0.0f), 0.0f);
+    EXPECT_FLOAT_EQ(flow_weight(0.001f), 0.0f);
+    EXPECT_NEAR(flow_weight(0.01f), 1.0f / 3.0f, 1e-6f);  // log10: one decade of three
+    EXPECT_NEAR(flow_weight(0.1f), 2.0f / 3.0f, 1e-6f);
+    EXPECT_FLOAT_EQ(flow_weight(1.0f), 1.0f);
+    float last = -1.0f;
+    for (float f = 0.0011f; f <= 1.0f; f *= 1.5f) {  // strictly rising inside the range
+        EXPECT_GT(flow_weight(f), last) << f;
+        last = flow_weight(f);
+    }
+}
+
+TEST(DepthGapWeight, SkyHeaviestThenFarValleyThenFoldCloseBehind) {
+    const auto weight_of = [](float behind) {
+        std::vector<Stroke> s{vertical_stroke()};
+        weigh_by_depth_gap(s, step_image(behind));
+        double sum = 0.0;
+        for (float w : s[0].weight) sum += w;
+        EXPECT_EQ(s[0].weight.size(), s[0].points.size());
+        return sum / double(s[0].weight.size());
+    };
+    const double sky = weight_of(inf), valley = weight_of(300.0f), fold = weight_of(103.0f);
+    EXPECT_DOUBLE_EQ(sky, 1.0);
+    EXPECT_NEAR(valley, 2.0 / 2.1, 1e-5);  // gap 2: 2 / (2 + 0.1)
+    EXPECT_NEAR(fold, 0.03 / 0.13, 1e-5);  // gap 0.03
+    EXPECT_GT(valley, fold + 0.5);
+}
+
+TEST(DepthGapWeight, BeyondTheFrameIsNotSky) {
+    DepthImage d{10, 10, std::vector<float>(100, 50.0f)};
+    EXPECT_FLOAT_EQ(depth_gap_at(d, {0.5f, 0.5f}, 2), 0.0f);  // only pixels in the frame count
+    d.depth[0] = inf;
+    EXPECT_TRUE(std::isinf(depth_gap_at(d, {1.5f, 1.5f}, 2)));
+}
+
+TEST(SmoothAlong, RunningMeanOverArcLength) {
+    std::vector<glm::vec2> p;
+    for (int i = 0; i < 11; ++i) p.emplace_back(float(i), 0.0f);
+    std::vector<float> v(11, 0.0f);
+    v[5] = 7.0f;
+    smooth_along(p, v, 3.0f);
+    EXPECT_FLOAT_EQ(v[5], 1.0f);         // 7 over the 7 points within 3 px
+    EXPECT_FLOAT_EQ(v[2], 7.0f / 6.0f);  // points 0 .. 5
+    EXPECT_FLOAT_EQ(v[1], 0.0f);         // points 0 .. 4
+    EXPECT_FLOAT_EQ(v[0], 0.0f);
+}
+
+TEST(StrokeWeightCarried, ThroughJoinSimplifyAndMerge) {
+    Stroke a, b;
+    a.points = {{0, 0}, {10, 0}}, a.depth = {1, 1}, a.weight = {0.0f, 0.5f}, a.kind = "crease";
+    b.points = {{10, 0}, {20, 0.01f}, {30, 0}}, b.depth = {1, 1, 1}, b.weight = {0.5f, 0.75f, 1.0f}, b.kind = "crease";
+    std::vector<Stroke> joined = join_strokes({a, b}, 0.5f);
+    ASSERT_EQ(joined.size(), 1u);
+    ASSERT_EQ(joined[0].weight.size(), joined[0].points.size());
+    const float first = joined[0].weight.front(), last = joined[0].weight.back();
+    EXPECT_FLOAT_EQ(std::min(first, last), 0.0f);
+    EXPECT_FLOAT_EQ(std::max(first, last), 1.0f);
+    std::vector<Stroke> simple = simplify_strokes(joined, 0.4f);  // the middle points go
+    ASSERT_EQ(simple[0].weight.size(), simple[0].points.size());
+    EXPECT_EQ(simple[0].points.size(), 2u);
+    // a weaker stroke beside it from x = 12 to 18 is cut; a stroke crossing keeps its weights,
+    // its cut ends interpolated
+    Stroke c;
+    c.points = {{15, -20}, {15, 20}}, c.depth = {1, 1}, c.weight = {0.0f, 1.0f}, c.strength = 0.0f, c.kind = "crease";
+    Stroke along;
+    along.points = {{-20, 1}, {40, 1}}, along.depth = {1, 1}, along.weight = {0.2f, 0.2f}, along.strength = 2.0f;
+    std::vector<Stroke> merged = merge_doubled({c}, 1.5f, 4.0f, {along});
+    ASSERT_EQ(merged.size(), 1u);  // a crossing touches over a pixel or two: left whole
+    EXPECT_EQ(merged[0].weight, c.weight);
+    Stroke beside;
+    beside.points = {{0, 1}, {20, 1}}, beside.depth = {1, 1}, beside.weight = {0.0f, 1.0f};
+    Stroke over;
+    over.points = {{10, 0}, {30, 0}}, over.depth = {1, 1}, over.strength = 5.0f;
+    merged = merge_doubled({beside}, 1.5f, 4.0f, {over});
+    ASSERT_EQ(merged.size(), 1u);  // what is left: x 0 .. ~8.5
+    ASSERT_EQ(merged[0].weight.size(), merged[0].points.size());
+    EXPECT_NEAR(merged[0].weight.back(), merged[0].points.back().x / 20.0f, 1e-4f);
+}
