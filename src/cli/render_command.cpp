@@ -90,7 +90,7 @@ int run_render(const RenderOptions& o) {
     log.info(context->description());
     SceneDrawing result = draw_scene(scene, *context, log);
     log_frame_timings(result, log);
-    FrameOutput output{output_files(o), page_options(o), parse_layer_split(o.layers), o.format};
+    FrameOutput output{output_files(o), page_options(o), parse_layer_split(o.layers), o.format, o.verbose};
     const FrameOutputResult written = write_frame(result.drawing, style, scene.seed, terrain, output);
     log_finish(written.finish, log);
     if (o.verbose && terrain && !scene.dem.empty()) log_directions(result.drawing, scene.dem, log);
@@ -104,7 +104,7 @@ int run_render(const RenderOptions& o) {
     s << stats.paths << " paths, " << stats.length_px << " px drawn, " << stats.travel_px << " px pen-up; "
       << "total " << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s";
     log.info(s.str());
-    for (const std::string& line : width_report(styled)) log.info(line);
+    for (const std::string& line : written.widths) log.info(line);
     return 0;
 }
 

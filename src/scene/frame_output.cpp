@@ -20,6 +20,7 @@ FrameOutputResult write_frame(Drawing& drawing, const Style& style, std::uint64_
     if (!output.files.empty()) export_drawings(styled, output.page, output.files);
     out.write_ms = lap_ms(t0);
     out.plot = plot_stats(styled);
+    if (output.width_report) out.widths = width_report(styled);
     return out;
 }
 

@@ -24,12 +24,14 @@ struct FrameOutput {
     PageOptions page;
     LayerSplit split = LayerSplit::kind;
     std::string document_format;     // "" or svg, ps, eps, pdf: the document returned in memory
+    bool width_report = false;       // the styled layers' width measures (export_drawing.hpp's width_report)
 };
 
 struct FrameOutputResult {
     FinishStats finish;
     PlotStats plot;
     std::string document;  // in document_format; empty when none was asked for
+    std::vector<std::string> widths;  // width_report's lines, when asked for
     double finish_ms = 0;  // finishing, wall ms
     double write_ms = 0;   // styling and export, wall ms
 };
