@@ -61,8 +61,7 @@ std::string export_document(const StyledDrawing& drawing, const PageOptions& pag
 
 void export_drawings(const StyledDrawing& drawing, const PageOptions& page, const std::vector<std::string>& paths) {
     for (const std::string& p : paths) check_output_format(p);
-    // A georeferenced raster's world file and .aux.xml go in the same set as the outputs; rasters
-    // that share a world file (m.tif and m.tiff: the same pixels) write it once.
+    // A georeferenced raster's world file and .aux.xml go in the same set as the outputs.
     std::vector<std::string> all = paths;
     std::vector<std::string> side_bytes;
     for (const std::string& p : paths)
@@ -99,6 +98,16 @@ void check_output_targets(const std::vector<std::string>& paths, const PageOptio
         if (is_raster_extension(lower_extension(p))) {
             raster_transform(width, height, page, p);
             check_raster_writer(p);
+            // GDAL reads m.tfw before m.tiffw: a .tfw beside a .tiff that this command does not
+            // write (another raster's, a DEM's) would georeference it wrongly.
+            const std::string shadow = shadowing_world_file(p);
+            bool written_here = false;
+            for (const std::string& q : paths)
+                written_here = written_here || (is_raster_extension(lower_extension(q)) && world_file_path(q) == shadow);
+            if (!shadow.empty() && !written_here && fs::exists(fs::symlink_status(shadow, ec)))
+                throw Error("export", p, fs::path(shadow).filename().string() + " beside it is another raster's world file, "
+                                         "which GDAL would read as this one's (name the output ." +
+                                         std::string(lower_extension(p) == ".tiff" ? "tif" : "jpg") + " or move that file)");
         }
     }
 }

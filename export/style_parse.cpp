@@ -10,6 +10,7 @@
 
 #include "core/closest_name.hpp"
 #include "core/error.hpp"
+#include "core/input_files.hpp"
 #include "core/printable_text.hpp"
 #include "export/style.hpp"
 
@@ -204,9 +205,8 @@ void apply_style_overrides(Style& style, const toml::value& table, const std::st
 }
 
 Style load_style(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error("style", path, "cannot open style file");
-    const std::string text{std::istreambuf_iterator<char>(in), {}};
+    const std::string text = read_input_text("style", path, max_text_input_bytes, "style file");
+    check_toml_nesting("style", path, text);  // before the parser, whose recursion has no bound
     // TOML is UTF-8; toml11 3.7 reads past its buffer reporting some sequences that are not UTF-8,
     // so the text is checked before it is parsed.
     if (const std::size_t bad = invalid_utf8_at(text); bad != npos_utf8)

@@ -222,18 +222,47 @@ void layer(std::string& o, const StyledLayer& l, bool split, std::string& defs, 
 
 }  // namespace
 
+namespace {
+
+// Length of the well-formed UTF-8 sequence at text[i] that XML 1.0 allows (no surrogates, no
+// U+FFFE/U+FFFF, nothing over U+10FFFF), 0 when there is none.
+std::size_t xml_char_length(const std::string& text, std::size_t i) {
+    const auto b = [&](std::size_t k) { return static_cast<unsigned char>(text[i + k]); };
+    const unsigned char c = b(0);
+    std::size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
+    if (n == 0 || i + n > text.size()) return 0;
+    std::uint32_t cp = n == 1 ? c : n == 2 ? c & 0x1F : n == 3 ? c & 0x0F : c & 0x07;
+    for (std::size_t k = 1; k < n; ++k) {
+        if ((b(k) >> 6) != 0x2) return 0;
+        cp = (cp << 6) | (b(k) & 0x3F);
+    }
+    const std::uint32_t min[] = {0, 0, 0x80, 0x800, 0x10000};
+    if (cp < min[n] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF) || cp == 0xFFFE || cp == 0xFFFF) return 0;
+    if (cp < 0x20 && cp != '\t' && cp != '\n' && cp != '\r') return 0;  // not XML 1.0 characters
+    return n;
+}
+
+}  // namespace
+
 std::string xml_escape(const std::string& text) {
     std::string s;
     s.reserve(text.size());
-    for (char c : text) {
-        switch (c) {
+    for (std::size_t i = 0; i < text.size();) {
+        const std::size_t n = xml_char_length(text, i);
+        if (n == 0) {  // a byte that is not UTF-8, or a control character: U+FFFD
+            s += "\xEF\xBF\xBD";
+            ++i;
+            continue;
+        }
+        switch (text[i]) {
             case '&': s += "&amp;"; break;
             case '<': s += "&lt;"; break;
             case '>': s += "&gt;"; break;
             case '"': s += "&quot;"; break;
             case '\'': s += "&apos;"; break;
-            default: s += c;
+            default: s.append(text, i, n);
         }
+        i += n;
     }
     return s;
 }

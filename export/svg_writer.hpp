@@ -15,7 +15,9 @@ std::string svg_document(const StyledDrawing& drawing, const PageOptions& page,
                          const std::string& path = "");
 
 
-// XML text escaping (& < > " ').
+// XML text escaping (& < > " '); bytes that are not UTF-8 and characters XML 1.0 does not allow
+// (control characters but tab, newline and carriage return; surrogates, U+FFFE, U+FFFF) become
+// U+FFFD, so text from any input (file names, CRS names, titles) makes a well-formed document.
 std::string xml_escape(const std::string& text);
 
 }  // namespace penink

@@ -15,10 +15,15 @@ std::array<double, 6> raster_geotransform(const std::array<double, 6>& g, const 
 std::string world_file_path(const std::string& raster_path) {
     const std::string ext = lower_extension(raster_path);
     const std::string stem = raster_path.substr(0, raster_path.size() - ext.size());
-    if (ext == ".png") return stem + ".pgw";
-    if (ext == ".tif" || ext == ".tiff") return stem + ".tfw";
-    if (ext == ".jpg" || ext == ".jpeg") return stem + ".jgw";
-    return stem + ".wld";
+    if (ext == ".tiff" || ext == ".jpeg") return stem + ext + "w";  // .tfw, .jgw are .tif's, .jpg's
+    if (ext.size() < 3) return stem + ".wld";
+    return stem + "." + ext[1] + ext.back() + "w";  // .pgw .tfw .jgw .wpw .erw
+}
+
+std::string shadowing_world_file(const std::string& raster_path) {
+    const std::string ext = lower_extension(raster_path);
+    if (ext != ".tiff" && ext != ".jpeg") return "";
+    return raster_path.substr(0, raster_path.size() - ext.size()) + "." + ext[1] + ext.back() + "w";
 }
 
 std::string world_file_text(const std::array<double, 6>& corner_gt) {

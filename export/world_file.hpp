@@ -19,9 +19,16 @@ namespace penink {
 // Raster pixel corner coordinates -> map (GDAL order), for drawing pixels placed by `t`.
 std::array<double, 6> raster_geotransform(const std::array<double, 6>& drawing_gt, const RasterTransform& t);
 
-// The world file's name beside a raster: .pgw for .png, .tfw for .tif/.tiff, .jgw for .jpg/.jpeg,
-// .wld otherwise (the raster's extension replaced).
+// The world file's name beside a raster, one per raster (a world file belongs to one raster):
+// the extension's first and last letters and "w" (.pgw for .png, .tfw for .tif, .jgw for .jpg,
+// .wpw for .webp, .erw for .exr; GDAL's first choice), and for .tiff and .jpeg, whose short form
+// is .tif's and .jpg's, the extension and "w" (.tiffw, .jpegw; GDAL's second choice).
 std::string world_file_path(const std::string& raster_path);
+
+// For a .tiff or .jpeg raster, the short-form world file (.tfw, .jgw) that GDAL would read before
+// the raster's own (world_file_path); "" for other rasters. check_output_targets refuses such a
+// raster when that file exists and is not written by the same command.
+std::string shadowing_world_file(const std::string& raster_path);
 
 // The six lines (A, D, B, E, C, F) of a corner-based geotransform `gt`, exact decimals.
 std::string world_file_text(const std::array<double, 6>& gt);

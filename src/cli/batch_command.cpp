@@ -17,6 +17,7 @@
 #include "scene/frame_output.hpp"
 #include "scene/flight_frames.hpp"
 #include "scene/mesh_frames.hpp"
+#include "scene/scene_inputs.hpp"
 #include "scene/scene_style.hpp"
 #include "scene/terrain_frames.hpp"
 
@@ -174,6 +175,16 @@ int run_batch(const BatchOptions& o) {
     // for every camera), so each frame is what an unsharded run draws. Warm-up: the first frames
     // this run draws (its shader JIT and caches).
     const std::size_t count = flight.cameras.size();
+    const std::string stem = shards > 1 ? "timings_" + std::to_string(shard) + "-of-" + std::to_string(shards) : "timings";
+    {  // no frame or table replaces an input (a DEM or flight path kept in the output folder)
+        std::vector<std::string> outs = {(fs::path(o.out_dir) / (stem + ".csv")).string(),
+                                         (fs::path(o.out_dir) / (stem + ".md")).string()};
+        for (std::size_t i = 0; i < count; ++i)
+            for (std::string& p : frame_paths(o.out_dir, int(i) + 1, formats)) outs.push_back(std::move(p));
+        std::vector<NamedInput> inputs = scene_inputs(scene);
+        if (!o.path.empty()) inputs.push_back({o.path, "the flight path"});
+        check_outputs_are_not_inputs(outs, inputs);
+    }
     const int drawn = (int(count) - shard) / shards + 1;
     ProgressBar bar(std::cerr, log.progress, "batch", std::max(drawn, 0));
     for (std::size_t i = std::size_t(shard - 1); i < count; i += std::size_t(shards)) {
@@ -191,7 +202,6 @@ int run_batch(const BatchOptions& o) {
         bar.step(fs::path(frame_paths(o.out_dir, t.frame, formats)[0]).stem().string(), t.total);
     }
     bar.finish();
-    const std::string stem = shards > 1 ? "timings_" + std::to_string(shard) + "-of-" + std::to_string(shards) : "timings";
     write_text(fs::path(o.out_dir) / (stem + ".csv"), timings_csv(timings, summary.mesh));
     const std::string md = timings_markdown(timings, summary);
     write_text(fs::path(o.out_dir) / (stem + ".md"), md);

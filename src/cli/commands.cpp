@@ -1,5 +1,7 @@
 #include "cli/commands.hpp"
 
+#include <system_error>
+
 #include <iostream>
 #include <vector>
 
@@ -46,6 +48,15 @@ int run_cli(int argc, char** argv) {
     } catch (const Error& e) {
         std::cerr << e.what() << "\n";
         return int(e.code());
+    } catch (const std::system_error& e) {
+        // a thread or resource the process limits refuse (ulimit -u): the environment's, not penink's
+        if (e.code() == std::errc::resource_unavailable_try_again) {
+            std::cerr << format_error("cli", "", std::string("cannot start a thread (") + e.what() +
+                                                    "): raise the process limit (ulimit -u)") << "\n";
+            return int(ExitCode::bad_input);
+        }
+        std::cerr << format_error("internal", "", e.what()) << "\n";
+        return int(ExitCode::internal);
     } catch (const std::exception& e) {
         std::cerr << format_error("internal", "", e.what()) << "\n";
         return int(ExitCode::internal);

@@ -13,6 +13,11 @@
 #include <ostream>
 
 #include "core/error.hpp"
+#include "core/input_files.hpp"
+#include "drainage/dv_format.hpp"
+#include "export/atomic_file.hpp"
+#include "scene/scene_inputs.hpp"
+#include <fstream>
 #include "scene/terrain_view.hpp"
 #include "core/memory_budget.hpp"
 #include "core/progress_bar.hpp"
@@ -82,12 +87,26 @@ void check_database_target(const std::string& out, double bytes) {
     if (!fs::is_directory(folder, ec)) fail("no such directory");
     if (fs::is_directory(out, ec)) fail(std::strerror(EISDIR));
     if (::access(folder.c_str(), W_OK | X_OK) != 0) fail(std::strerror(errno));
+    if (fs::exists(fs::symlink_status(out, ec))) {  // penink replaces only its own databases
+        char head[sizeof dv::magic] = {};
+        std::ifstream in(out, std::ios::binary);
+        if (!fs::is_regular_file(out, ec) || !in.read(head, sizeof head) || std::memcmp(head, dv::magic, sizeof head) != 0)
+            throw Error("drainage", out, "exists and is not a drainage database (penink replaces only its own .dv files)");
+    }
     struct statvfs vfs {};
     if (::statvfs(folder.c_str(), &vfs) != 0) return;
     const double room = double(vfs.f_bavail) * double(vfs.f_frsize);
     if (room < bytes)
         fail(std::string(std::strerror(ENOSPC)) + ": about " + format_bytes(bytes) + " needed, " + format_bytes(room) +
              " free");
+}
+
+// The --rasters files in `dir` (none without --rasters).
+std::vector<std::string> raster_paths(const std::string& dir) {
+    std::vector<std::string> paths;
+    if (dir.empty()) return paths;
+    for (const std::string& n : drainage_raster_names()) paths.push_back((std::filesystem::path(dir) / n).string());
+    return paths;
 }
 
 int run(const DrainageCommand& cmd, std::ostream& log) {
@@ -103,6 +122,17 @@ int run(const DrainageCommand& cmd, std::ostream& log) {
     const std::string out = cmd.output.empty() ? drainage_cache_path(cmd.dem) : cmd.output;  // render's cache
     const double file_bytes = drainage_points(size.cols, size.rows, factor) * dv_file_bytes_per_point;
     check_database_target(out, file_bytes);  // before the build: a read-only folder or a full disk
+    const std::vector<std::string> rasters = raster_paths(cmd.rasters_dir);
+    {  // no output replaces the DEM or its side files, nor a raster penink did not write
+        std::vector<std::string> outs = rasters;
+        outs.push_back(out);
+        if (out == drainage_cache_path(cmd.dem)) outs.push_back(terrain_cache_path(cmd.dem));
+        check_outputs_not_inputs("drainage", outs, dem_inputs(cmd.dem));
+        std::error_code ec;
+        for (const std::string& r : rasters)
+            if (std::filesystem::exists(std::filesystem::symlink_status(r, ec)) && !is_drainage_raster(r))
+                throw Error("drainage", r, "exists and was not written by penink drainage (--rasters replaces only its own rasters)");
+    }
     DemOptions read;
     read.heights_only = cmd.resample == 1;  // factor 1 needs no positions on an affine grid
     read.max_memory = budget;
@@ -127,8 +157,15 @@ int run(const DrainageCommand& cmd, std::ostream& log) {
         // the grid's valid mask: exactly the points with a basin label
         std::vector<std::uint8_t> valid(res.net.basin.size());
         for (std::size_t i = 0; i < valid.size(); ++i) valid[i] = res.net.basin[i] != 0;
-        write_drainage_rasters(cmd.rasters_dir, drainage_georef(cmd.dem, t, db.factor), db.cols,
-                               db.rows, valid, res);
+        std::error_code ec;
+        std::filesystem::create_directories(cmd.rasters_dir, ec);
+        if (!std::filesystem::is_directory(cmd.rasters_dir))
+            throw Error("drainage", cmd.rasters_dir, "cannot create raster directory");
+        const DrainageGeoref geo = drainage_georef(cmd.dem, t, db.factor);
+        // all four or none: each to a temporary, flushed, then placed together (atomic_file.hpp)
+        write_atomically_together(rasters, [&](std::size_t i, const std::string& temp) {
+            write_drainage_raster(i, temp, rasters[i], geo, db.cols, db.rows, valid, res);
+        });
     }
     std::string terrain_cache;
     if (out == drainage_cache_path(cmd.dem)) {  // render's caches: the terrain cache beside the drainage database too

@@ -1,4 +1,5 @@
 // penink command line entry point: dispatches to src/cli/commands (render, drainage, ...).
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -7,7 +8,30 @@
 #include <malloc.h>
 #endif
 
+#include <cstring>
+#include <system_error>
+#include <thread>
+
 #include "cli/commands.hpp"
+#include "core/error.hpp"
+
+namespace {
+
+// Whether a thread can start: under a process limit (ulimit -u, RLIMIT_NPROC) that allows none,
+// the GL driver's start would wait for its worker threads for ever; one line instead.
+bool threads_can_start() {
+    try {
+        std::thread([] {}).join();
+        return true;
+    } catch (const std::system_error& e) {
+        std::cerr << penink::format_error("cli", "", std::string("cannot start a thread (") + std::strerror(e.code().value()) +
+                                                         "): raise the process limit (ulimit -u)")
+                  << "\n";
+        return false;
+    }
+}
+
+}  // namespace
 
 // Every file is closed by the time run_cli returns: the process then ends without the libraries'
 // teardown at exit (GDAL's drivers, PROJ's database: a few milliseconds of every command).
@@ -23,7 +47,10 @@ int main(int argc, char** argv) {
     // blocks among them), each holding up the other threads' page faults.
     mallopt(M_TOP_PAD, 16 << 20);
 #endif
-    const int code = penink::run_cli(argc, argv);
+    // A file-size limit (ulimit -f) makes a write fail with EFBIG, reported as a write error and
+    // its temporary removed, rather than the process killed with the temporary left.
+    std::signal(SIGXFSZ, SIG_IGN);
+    const int code = threads_can_start() ? penink::run_cli(argc, argv) : int(penink::ExitCode::bad_input);
     std::cout.flush(), std::cerr.flush(), std::clog.flush();
     std::fflush(nullptr);
     std::_Exit(code);

@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "core/input_files.hpp"
 #include "core/memory_budget.hpp"
+#include "export/world_file.hpp"
 #include "scene/map_scale.hpp"
 
 namespace penink {
@@ -94,6 +96,13 @@ void add_max_memory_option(CLI::App* cmd, std::uint64_t& max_memory) {
                 return parse_byte_size(text) ? std::string() : "expected a size such as 2G or 512M (got " + shown(text) + ")";
             },
             "SIZE"));
+}
+
+void check_outputs_are_not_inputs(const std::vector<std::string>& outputs, const std::vector<NamedInput>& inputs) {
+    std::vector<std::string> all = outputs;
+    for (const std::string& p : outputs)
+        for (std::string& f : raster_side_file_names(p)) all.push_back(std::move(f));
+    check_outputs_not_inputs("export", all, inputs);
 }
 
 }  // namespace penink

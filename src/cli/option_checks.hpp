@@ -5,6 +5,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -23,5 +24,10 @@ CLI::Validator map_scale_check();
 
 // --max-memory SIZE into `max_memory` (bytes; left 0 when not given = the memory available).
 void add_max_memory_option(CLI::App* cmd, std::uint64_t& max_memory);
+
+struct NamedInput;
+// Refuses output files (with their raster side files, world_file.hpp) that are one of `inputs`
+// (check_outputs_not_inputs): Error("export", output, "is the DEM ...").
+void check_outputs_are_not_inputs(const std::vector<std::string>& outputs, const std::vector<NamedInput>& inputs);
 
 }  // namespace penink

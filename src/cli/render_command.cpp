@@ -10,6 +10,7 @@
 #include "scene/scene_style.hpp"
 #include "scene/frame_source.hpp"
 #include "scene/map_scale.hpp"
+#include "scene/scene_inputs.hpp"
 #include "core/error.hpp"
 #include "scene/frame_output.hpp"
 
@@ -80,6 +81,7 @@ int run_render(const RenderOptions& o) {
     Scene scene = load_scene_with_overrides(o);
     apply_map_scale(scene, page_options(o));
     check_outputs(o, scene.camera.width, scene.camera.height);
+    check_outputs_are_not_inputs(output_files(o), scene_inputs(scene));  // before anything is written
     const Style style = scene_style(scene);
     const bool terrain = !is_mesh_scene(scene);
     if (terrain) apply_object_sketch(scene, style);

@@ -53,6 +53,8 @@
 #include <fstream>
 
 #include "core/error.hpp"
+#include "core/input_files.hpp"
+#include "input/dem_side_files.hpp"
 #include "drainage/dv_format.hpp"
 
 namespace penink {
@@ -144,24 +146,39 @@ bool drainage_db_canonical(const DrainageDb& db) {
     return layout_ok(db) && derived_ok(db) && line_set_ok(db.creases) && line_set_ok(db.ridges);
 }
 
+namespace {
+
+// Chains the hash of the whole file at `path` (1 MiB chunks, so each but the last is a multiple
+// of 8 bytes and hash64 chains); false when it cannot be read.
+bool hash_file(const std::string& path, std::uint64_t& h) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return false;
+    std::vector<char> chunk(std::size_t(1) << 20);
+    while (in) {
+        in.read(chunk.data(), std::streamsize(chunk.size()));
+        if (in.gcount() > 0) h = hash64(chunk.data(), std::size_t(in.gcount()), h);
+    }
+    return in.eof();
+}
+
+}  // namespace
+
 DrainageFingerprint dem_fingerprint(const std::string& dem_path, int resample) {
     namespace fs = std::filesystem;
+    check_input_file("input", dem_path);  // no FIFO or device: the hash below reads it whole
     std::error_code ec;
     DrainageFingerprint f;
     f.file_size = fs::file_size(dem_path, ec);
     const auto mtime = fs::last_write_time(dem_path, ec);
-    std::ifstream in(dem_path, std::ios::binary);
-    if (ec || !in) throw Error("drainage", dem_path, "cannot read DEM file");
+    if (ec) throw Error("drainage", dem_path, "cannot read DEM file");
     f.mtime_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(mtime.time_since_epoch()).count();
-    constexpr std::uint64_t mib = 1 << 20;
-    std::vector<char> chunk(std::size_t(std::min(f.file_size, mib)));
-    in.read(chunk.data(), std::streamsize(chunk.size()));
-    f.content_hash = hash64(chunk.data(), std::size_t(in.gcount()));
-    if (f.file_size > mib) {
-        in.clear();
-        in.seekg(std::streamoff(f.file_size - std::min(f.file_size - mib, mib)));
-        in.read(chunk.data(), std::streamsize(std::min(f.file_size - mib, mib)));
-        f.content_hash = hash64(chunk.data(), std::size_t(in.gcount()), f.content_hash);
+    f.content_hash = hash64(nullptr, 0);
+    if (!hash_file(dem_path, f.content_hash)) throw Error("drainage", dem_path, "cannot read DEM file");
+    for (const std::string& side : dem_side_files(dem_path)) {  // the CRS and georeference GDAL reads too
+        if (!fs::is_regular_file(side, ec)) continue;
+        const std::string name = fs::path(side).filename().string();
+        f.content_hash = hash64(name.data(), name.size(), f.content_hash ^ 0x9e3779b97f4a7c15ull);
+        hash_file(side, f.content_hash);
     }
     f.resample = std::uint32_t(resample);
     return f;

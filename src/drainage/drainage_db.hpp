@@ -99,8 +99,12 @@ struct DrainageDb {
 // smoothed by a Gaussian, both joined smoothly at junctions (the lines part's content, not its layout).
 inline constexpr std::uint32_t drainage_db_version = 10;
 
-// Fingerprint of the DEM file at `dem_path` with the given resample factor. Throws
-// penink::Error("drainage", dem_path, "cannot read DEM file") when it cannot be read.
+// Fingerprint of the DEM file at `dem_path` with the given resample factor: its size, mtime and
+// a hash of its whole content (streamed) and of every side file GDAL may read with it (world
+// file, .prj, .aux.xml: input/dem_side_files.hpp), so a DEM changed in place with the same size
+// and mtime, or a replaced .prj, does not match. Throws Error("input", dem_path, ...) for a path
+// that is not a local regular file (core/input_files.hpp) and penink::Error("drainage",
+// dem_path, "cannot read DEM file") when it cannot be read.
 DrainageFingerprint dem_fingerprint(const std::string& dem_path, int resample);
 
 // One branch as the DV file stores it (DvBranch without the derived first / upstream fields).

@@ -22,24 +22,41 @@ void axis_map(bool flipped, int size, int offset, double& start, double& step) {
     step = flipped ? -1.0 : 1.0;
 }
 
+constexpr const char* owner_key = "PENINK_DRAINAGE_RASTER";
+
+// GDAL's errors while a raster is written, kept rather than printed.
+struct QuietErrors {
+    QuietErrors() { CPLPushErrorHandler(CPLQuietErrorHandler), CPLErrorReset(); }
+    ~QuietErrors() { CPLPopErrorHandler(); }
+    bool failed() const { return CPLGetLastErrorType() >= CE_Failure; }
+    std::string what() const {
+        const std::string m = CPLGetLastErrorMsg();
+        return m.empty() ? "GDAL failed" : m.substr(0, m.find('\n'));
+    }
+};
+
 template <class T, class A>
-void write_raster(const std::string& path, const DrainageGeoref& geo, int cols, int rows,
-                  GDALDataType type, const std::vector<T, A>& data, double nodata) {
+void write_raster(const std::string& path, const std::string& shown, const std::string& name, const DrainageGeoref& geo,
+                  int cols, int rows, GDALDataType type, const std::vector<T, A>& data, double nodata) {
+    const QuietErrors errors;
+    auto fail = [&] { throw Error("drainage", shown, "cannot write raster (" + errors.what() + ")"); };
     GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
     char** opts = nullptr;
     opts = CSLSetNameValue(opts, "COMPRESS", "DEFLATE");
     opts = CSLSetNameValue(opts, "TILED", "YES");
     Dataset ds(drv ? drv->Create(path.c_str(), cols, rows, 1, type, opts) : nullptr);
     CSLDestroy(opts);
-    if (!ds) throw Error("drainage", path, "cannot write raster", ExitCode::internal);
+    if (!ds) fail();
     std::array<double, 6> gt = geo.gt;
     ds->SetGeoTransform(gt.data());
     if (!geo.wkt.empty()) ds->SetProjection(geo.wkt.c_str());
+    ds->SetMetadataItem(owner_key, name.c_str());
     GDALRasterBand* band = ds->GetRasterBand(1);
     band->SetNoDataValue(nodata);
-    if (band->RasterIO(GF_Write, 0, 0, cols, rows, const_cast<T*>(data.data()), cols, rows, type, 0,
-                       0) != CE_None)
-        throw Error("drainage", path, "cannot write raster", ExitCode::internal);
+    if (band->RasterIO(GF_Write, 0, 0, cols, rows, const_cast<T*>(data.data()), cols, rows, type, 0, 0) != CE_None)
+        fail();
+    ds.reset();  // the compressed tiles are written here: a full disk shows now
+    if (errors.failed()) fail();
 }
 
 }  // namespace
@@ -69,21 +86,35 @@ DrainageGeoref drainage_georef(const std::string& dem_path, const Terrain& t, in
     return geo;
 }
 
-void write_drainage_rasters(const std::string& dir, const DrainageGeoref& geo, int cols, int rows,
-                            const std::vector<std::uint8_t>& valid, const DrainageResult& res) {
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (!std::filesystem::is_directory(dir))
-        throw Error("drainage", dir, "cannot create raster directory", ExitCode::internal);
+std::vector<std::string> drainage_raster_names() {
+    return {"flow_direction.tif", "accumulation.tif", "basin.tif", "stream_order.tif"};
+}
+
+bool is_drainage_raster(const std::string& path) {
     GDALAllRegister();
-    const std::string d = (std::filesystem::path(dir) / "").string();
-    std::vector<std::uint8_t> codes = res.dir;
-    for (std::size_t i = 0; i < codes.size(); ++i)
-        if (!valid[i]) codes[i] = 255;
-    write_raster(d + "flow_direction.tif", geo, cols, rows, GDT_Byte, codes, 255.0);
-    write_raster(d + "accumulation.tif", geo, cols, rows, GDT_UInt32, res.net.acc, 0.0);
-    write_raster(d + "basin.tif", geo, cols, rows, GDT_UInt32, res.net.basin, 0.0);
-    write_raster(d + "stream_order.tif", geo, cols, rows, GDT_Byte, res.net.order, 0.0);
+    const QuietErrors quiet;
+    const char* const gtiff[] = {"GTiff", nullptr};
+    Dataset ds(GDALDataset::FromHandle(GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, gtiff, nullptr, nullptr)));
+    return ds && ds->GetMetadataItem(owner_key) != nullptr;
+}
+
+void write_drainage_raster(std::size_t which, const std::string& path, const std::string& shown,
+                           const DrainageGeoref& geo, int cols, int rows, const std::vector<std::uint8_t>& valid,
+                           const DrainageResult& res) {
+    GDALAllRegister();
+    const std::string name = drainage_raster_names().at(which);
+    if (which == 0) {
+        std::vector<std::uint8_t> codes = res.dir;
+        for (std::size_t i = 0; i < codes.size(); ++i)
+            if (!valid[i]) codes[i] = 255;
+        write_raster(path, shown, name, geo, cols, rows, GDT_Byte, codes, 255.0);
+    } else if (which == 1) {
+        write_raster(path, shown, name, geo, cols, rows, GDT_UInt32, res.net.acc, 0.0);
+    } else if (which == 2) {
+        write_raster(path, shown, name, geo, cols, rows, GDT_UInt32, res.net.basin, 0.0);
+    } else {
+        write_raster(path, shown, name, geo, cols, rows, GDT_Byte, res.net.order, 0.0);
+    }
 }
 
 }  // namespace penink

@@ -22,9 +22,18 @@ struct DrainageGeoref {
 // north-up / west-left flips. Throws penink::Error("drainage", dem_path, ...) if GDAL cannot open it.
 DrainageGeoref drainage_georef(const std::string& dem_path, const Terrain& t, int factor);
 
-// Writes the four rasters into `dir` (created if missing). Throws
-// penink::Error("drainage", file, "cannot write raster", internal) on failure.
-void write_drainage_rasters(const std::string& dir, const DrainageGeoref& geo, int cols, int rows,
-                            const std::vector<std::uint8_t>& valid, const DrainageResult& res);
+// The four rasters' file names, in the order write_drainage_raster numbers them.
+std::vector<std::string> drainage_raster_names();
+
+// Whether `path` is a raster penink drainage wrote (its GeoTIFF metadata item
+// PENINK_DRAINAGE_RASTER); --rasters replaces no other file.
+bool is_drainage_raster(const std::string& path);
+
+// Writes raster `which` (drainage_raster_names order) as a GeoTIFF at `path` (a temporary the
+// caller places). Throws penink::Error("drainage", shown, "cannot write raster (GDAL's reason)")
+// on any GDAL error, the disk full included.
+void write_drainage_raster(std::size_t which, const std::string& path, const std::string& shown,
+                           const DrainageGeoref& geo, int cols, int rows, const std::vector<std::uint8_t>& valid,
+                           const DrainageResult& res);
 
 }  // namespace penink

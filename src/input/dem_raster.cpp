@@ -9,6 +9,7 @@
 #include <gdal_frmts.h>
 
 #include "core/error.hpp"
+#include "core/input_files.hpp"
 #include "core/parallel_chunks.hpp"
 
 namespace penink::dem {
@@ -121,13 +122,48 @@ void read_values(GDALDataset& ds, Raster& r, const std::string& path) {
 
 }  // namespace
 
+namespace {
+
+// GDAL's drivers less those that read what a file names (other files, URLs, services): VRT,
+// the web services and the catalogues. A DEM is one local file, whatever its content says.
+struct LocalDrivers {
+    std::vector<std::string> names;
+    std::vector<const char*> list;
+    LocalDrivers() {
+        GDALAllRegister();
+        // vsicurl refuses every file when no extension is allowed: no request leaves the machine
+        // even through a driver this list does not know.
+        CPLSetConfigOption("CPL_VSIL_CURL_ALLOWED_EXTENSIONS", ".penink-reads-local-files-only");
+        CPLSetConfigOption("GDAL_HTTP_MAX_RETRY", "0");
+        const char* const refused[] = {"VRT", "WMS", "WMTS", "WCS", "HTTP", "DAAS", "EEDA", "EEDAI", "PLMosaic",
+                                       "OGCAPI", "STACIT", "STACTA", "GTI", "NGW", "DERIVED", "PLScenes",
+                                       "PostGISRaster", "MEM", "GNMFile", "GNMDatabase"};
+        for (int i = 0; i < GDALGetDriverCount(); ++i) {
+            const char* name = GDALGetDescription(GDALGetDriver(i));
+            bool ok = true;
+            for (const char* r : refused) ok = ok && !EQUAL(name, r);
+            if (ok) names.push_back(name);
+        }
+        for (const std::string& n : names) list.push_back(n.c_str());
+        list.push_back(nullptr);
+    }
+};
+
+}  // namespace
+
 GDALDatasetUniquePtr open_raster(const std::string& path) {
+    check_input_file("input", path);  // local, a regular file: no FIFO, device, URL or /vs path
     VSIStatBufL st;
     if (VSIStatExL(path.c_str(), &st, VSI_STAT_EXISTS_FLAG) != 0) fail(path, "no such file");
     GDALRegister_GTiff();
     const char* const gtiff[] = {"GTiff", nullptr};
     GDALDatasetUniquePtr ds = open_with(path, gtiff);
-    if (!ds) GDALAllRegister(), ds = open_with(path, nullptr);
+    if (!ds) {
+        static const LocalDrivers local;
+        ds = open_with(path, local.list.data());
+    }
+    if (GDALDriverH vrt = GDALGetDriverByName("VRT"); !ds && vrt && GDALIdentifyDriver(path.c_str(), nullptr) == vrt)
+        fail(path, "a VRT is refused (it can name other files and network sources; gdal_translate it to a GeoTIFF)");
     if (!ds || ds->GetRasterCount() < 1 || ds->GetRasterXSize() < 1 || ds->GetRasterYSize() < 1)
         fail(path, "not a DEM raster (GDAL cannot read it)");
     check_text_grid_size(*ds, path, std::uint64_t(st.st_size));

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -14,6 +15,7 @@
 #include <CGAL/Simple_cartesian.h>
 
 #include "core/error.hpp"
+#include "core/input_files.hpp"
 #include "core/printable_text.hpp"
 
 namespace penink {
@@ -77,6 +79,33 @@ void check_coordinates(const std::vector<Point3>& pts, const std::string& path) 
             throw Error("input", path, "vertex " + std::to_string(i + 1) + " has coordinate " + text +
                                            ", out of range (mesh coordinates must be finite and within +-1e9)");
         }
+}
+
+// An OBJ's vertex lines ("v x y z") checked before CGAL reads them: its reader stops at a
+// coordinate such as "nan" or "inf" and reports the file as having no faces, so a coordinate that
+// reads as a non-finite number is named here (vertex numbers from 1, in file order).
+void check_obj_vertices(const std::string& text, const std::string& path) {
+    std::size_t vertex = 0;
+    for (std::size_t at = 0; at < text.size();) {
+        const std::size_t end = std::min(text.find('\n', at), text.size());
+        const std::size_t start = text.find_first_not_of(" \t", at);
+        if (start < end && (text.compare(start, 2, "v ") == 0 || text.compare(start, 2, "v\t") == 0)) {
+            ++vertex;
+            std::size_t i = start + 2;
+            for (int k = 0; k < 3; ++k) {
+                i = text.find_first_not_of(" \t", i);
+                if (i >= end) break;
+                const std::size_t stop = std::min(text.find_first_of(" \t\r\n", i), end);
+                const std::string token = text.substr(i, stop - i);
+                const double c = std::strtod(token.c_str(), nullptr);
+                if (!std::isfinite(c))
+                    throw Error("input", path, "vertex " + std::to_string(vertex) + " has coordinate " + printable_text(token, 20) +
+                                                   ", out of range (mesh coordinates must be finite and within +-1e9)");
+                i = stop;
+            }
+        }
+        at = end + 1;
+    }
 }
 
 // The text of an ASCII OFF file read into a polygon soup (CGAL's OFF reader reads past its arrays
@@ -239,8 +268,10 @@ TriangleMesh read_mesh(const std::string& path, bool weld) {
     const std::string ext = lower_extension(path);
     if (ext != ".obj" && ext != ".ply" && ext != ".off")
         throw Error("input", path, "unsupported mesh format \"" + ext + "\" (use .obj, .ply or .off)");
-    if (!std::filesystem::is_regular_file(path)) throw Error("input", path, "no such file");
+    check_input_file("input", path);  // local, a regular file (no FIFO, device or folder)
     if (ext == ".ply") check_ply_header(path);
+    const std::string obj_text = ext == ".obj" ? read_text(path) : std::string();
+    if (ext == ".obj") check_obj_vertices(obj_text, path);
     std::vector<Point3> pts;
     std::vector<Polygon> polys;
     bool ok = false;
@@ -258,7 +289,7 @@ TriangleMesh read_mesh(const std::string& path, bool weld) {
     if (!ok && (pts.empty() || !polys.empty())) throw Error("input", path, "not a mesh (cannot read OBJ/PLY/OFF)");
     check_coordinates(pts, path);
     std::vector<std::string> mats;
-    if (ext == ".obj") mats = scan_obj_face_materials(read_text(path));
+    if (ext == ".obj") mats = scan_obj_face_materials(obj_text);
     TriangleMesh m = build_mesh(pts, polys, mats);
     if (weld) weld_mesh(m);
     if (m.triangles.empty()) throw Error("input", path, "mesh has no triangles");

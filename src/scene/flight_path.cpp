@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/input_files.hpp"
 #include "core/printable_text.hpp"
 
 namespace penink {
@@ -113,6 +114,9 @@ std::vector<FlightRecord> parse_flight_path(const std::string& text, const std::
     std::size_t header_size = 0;
     std::vector<FlightRecord> records;
     for (int n = 1; std::getline(in, line); ++n) {
+        if (line.size() > max_flight_line_bytes)  // no record is this long; the parsers below are not for it
+            fail(file, n, std::to_string(line.size()) + " bytes, more than the " + std::to_string(max_flight_line_bytes) +
+                              " a line may have");
         const std::string t = trim(line);
         if (t.empty() || t[0] == '#') continue;
         if (!split_csv_line(line, fields)) fail(file, n, "unterminated or misplaced quote");
@@ -129,11 +133,7 @@ std::vector<FlightRecord> parse_flight_path(const std::string& text, const std::
 }
 
 std::vector<FlightRecord> read_flight_path(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error("batch", path, "cannot read file");
-    std::ostringstream s;
-    s << in.rdbuf();
-    return parse_flight_path(s.str(), path);
+    return parse_flight_path(read_input_text("batch", path, max_text_input_bytes, "flight path"), path);
 }
 
 }  // namespace penink

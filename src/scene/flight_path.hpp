@@ -25,7 +25,9 @@ bool split_csv_line(const std::string& line, std::vector<std::string>& fields);
 
 // Parses CSV text; `file` names it in errors: penink::Error(stage "batch", file,
 // "line N: WHAT"), e.g. "line 3: azimuth: not a number (\"abc\")", "line 1: missing column
-// \"elevation\"", "line 4: 3 fields, header has 4", "no records".
+// \"elevation\"", "line 4: 3 fields, header has 4", "no records", "line 2: N bytes, more than
+// the 4096 a line may have" (max_flight_line_bytes).
+inline constexpr std::size_t max_flight_line_bytes = 4096;
 std::vector<FlightRecord> parse_flight_path(const std::string& text, const std::string& file);
 
 // Reads and parses a file: "cannot read file" when it cannot be opened.

@@ -34,6 +34,15 @@ void apply_map_scale(Scene& scene, const PageOptions& page) {
     }
     const PageLayout layout = page_layout(cam.width, cam.height, page, file);
     cam.view_width = double(cam.width) * layout.scale_mm / 1000.0 * scene.map_scale;
+    // A map wider than the Earth has no place in any CRS (GDAL's "point outside of projection
+    // domain"): refused here with the scale that fits.
+    constexpr double earth_circumference_m = 40075017.0;
+    const double across = std::max(cam.view_width, cam.view_width * cam.height / std::max(cam.width, 1));
+    if (!(across <= earth_circumference_m))
+        throw Error("scene", file, "--scale 1:" + map_scale_text(scene.map_scale) + " makes the map " +
+                                       format_number(across / 1000.0, 0) + " km across, more than the Earth's " +
+                                       "circumference (at most 1:" +
+                                       map_scale_text(std::floor(scene.map_scale * earth_circumference_m / across)) + " here)");
 }
 
 double parse_map_scale(const std::string& text) {

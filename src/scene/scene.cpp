@@ -12,6 +12,7 @@
 
 #include "core/closest_name.hpp"
 #include "core/error.hpp"
+#include "core/input_files.hpp"
 #include "core/printable_text.hpp"
 #include "drainage/drainage_build.hpp"
 #include "scene/hachure_lines.hpp"
@@ -202,8 +203,8 @@ void read_camera(const toml::value& root, SceneCamera& cam, const std::string& f
 Scene parse_scene_file(const std::string& path) {
     Scene s;
     s.file = path;
-    std::ifstream in(path, std::ios::binary);
-    const std::string text{std::istreambuf_iterator<char>(in), {}};
+    const std::string text = read_input_text("scene", path, max_text_input_bytes, "scene file");
+    check_toml_nesting("scene", path, text);  // before the parser, whose recursion has no bound
     // TOML is UTF-8; toml11 3.7 reads past its buffer reporting some sequences that are not UTF-8,
     // so the text is checked before it is parsed.
     if (const std::size_t bad = invalid_utf8_at(text); bad != npos_utf8)
@@ -222,12 +223,14 @@ Scene parse_scene_file(const std::string& path) {
     if (has_key(root, "mesh")) {
         if (!has_key(root.at("mesh"), "file")) throw Error("scene", path, "missing [mesh] file");
         read_key(root.at("mesh"), "file", s.mesh, path, "mesh");
+        check_local_path("input", s.mesh);  // a NUL byte, a URL or /vs path: before it is resolved
         if (fs::path(s.mesh).is_relative()) s.mesh = (fs::path(path).parent_path() / s.mesh).lexically_normal().string();
     } else if (!has_key(root, "terrain") || !has_key(root.at("terrain"), "dem")) {
         throw Error("scene", path, "missing [terrain] dem (or [mesh] file)");
     }
     const toml::value terrain = has_key(root, "terrain") ? root.at("terrain") : toml::value(toml::table{});
     read_key(terrain, "dem", s.dem, path, "terrain");
+    check_local_path("input", s.dem);  // a NUL byte, a URL or /vs path: before it is resolved
     if (!s.dem.empty() && fs::path(s.dem).is_relative())
         s.dem = (fs::path(path).parent_path() / s.dem).lexically_normal().string();
     if (has_key(terrain, "vertical_exaggeration")) {
@@ -333,6 +336,7 @@ const char* silhouette_method_name(SilhouetteMethod method) {
 }
 
 Scene load_scene(const std::string& input) {
+    check_local_path("input", input);
     const bool is_scene = fs::path(input).extension() == ".toml";
     if (is_scene && !fs::exists(input)) throw Error("scene", input, "no such file");
     if (is_scene) return parse_scene_file(input);

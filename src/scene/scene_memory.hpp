@@ -11,12 +11,19 @@
 namespace penink {
 
 constexpr double render_bytes_per_node = 64.0;
+// The image's buffers (GPU targets, read-back, line masks, raster output): 31.5 B a pixel
+// measured (peak RSS of `render volcano.asc -o m.png` at 1024² and 3072²: 250 MB and 508 MB).
+constexpr double render_bytes_per_pixel = 32.0;
 // A scene with a sea level rebuilds the pyramid for it (terrain_view.hpp): heights, flags and
 // errors over the padded square while it builds.
 constexpr double water_lod_bytes_per_padded_node = 10.0;
+// Every terrain's pyramid holds a float error per padded node ((2^levels + 1)^2, terrain_lod.hpp).
+constexpr double lod_bytes_per_padded_node = 4.0;
 
 // Throws Error("input", DEM, "drawing the DEM's WxH nodes would need about N of memory, B
-// available (--max-memory)") when a terrain scene would not fit memory_budget(max_memory); also
+// available (--max-memory)") when a terrain scene would not fit memory_budget(max_memory), and
+// Error("scene", file, "drawing a WxH image [of the DEM's CxR nodes] would need ...") when the
+// image's buffers (render_bytes_per_pixel) with the DEM's would not (any scene, a mesh's too); also
 // the DEM reader's opening errors (read_dem_size). A mesh scene is not checked, nor, without
 // --max-memory, a DEM file under check_memory_from_bytes: opening it costs 5-20 ms of a 0.2 s
 // render, and the reader itself refuses a DEM whose read alone would not fit the memory available

@@ -3,7 +3,7 @@
 // and mapped into memory by later renders, so that a frame reads only the nodes and pyramid
 // entries its selection visits: render-time memory follows the frame, not the DEM (the page
 // cache holds the rest, shared between runs). Keyed by the DEM file (size, modification time,
-// hash of its first and last MiB, as the drainage database is keyed) and by the UTM zone a
+// hash of its whole content and side files, as the drainage database is keyed: dem_fingerprint) and by the UTM zone a
 // geographic DEM is projected to; never by view, style, light or vertical exaggeration.
 //
 // Frames and units: the Terrain's local metres (x east, y north, z elevation unexaggerated),

@@ -220,10 +220,10 @@ TEST(GeoreferencedRaster, WorldFileBesideEachRasterFormat) {
     const std::string world = read_text(dir.file("m.pgw"));
     const std::array<double, 6> gt = raster_geotransform(d.georeference->geotransform, raster_transform(d, page));
     EXPECT_EQ(world, world_file_text(gt));
-    for (const char* w : {"m.tfw", "m.jgw", "m.wld"}) EXPECT_EQ(read_text(dir.file(w)), world) << w;
+    for (const char* w : {"m.tfw", "m.tiffw", "m.jgw", "m.jpegw", "m.wpw", "m.erw"}) EXPECT_EQ(read_text(dir.file(w)), world) << w;
     for (const std::string& p : paths) EXPECT_EQ(read_text(p + ".aux.xml"), aux_xml_text(d.georeference->crs_wkt)) << p;
-    // .tif/.tiff, .jpg/.jpeg and .webp/.exr share a world file (the same raster pixels: one file).
-    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path), {}), 7 + 4 + 7);
+    // Each raster has its own world file (one world file belongs to one raster).
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path), {}), 7 + 7 + 7);
 }
 
 TEST(GeoreferencedRaster, WorldFileIsThePixelCentreTransform) {
@@ -246,10 +246,14 @@ TEST(GeoreferencedRaster, WorldFileIsThePixelCentreTransform) {
     EXPECT_DOUBLE_EQ(c, r[0] + 0.5 * r[1] + 0.5 * r[2]);
     EXPECT_DOUBLE_EQ(f, r[3] + 0.5 * r[4] + 0.5 * r[5]);
     EXPECT_EQ(world_file_path("a/b.PNG"), "a/b.pgw");
-    EXPECT_EQ(world_file_path("b.tiff"), "b.tfw");
+    EXPECT_EQ(world_file_path("b.tiff"), "b.tiffw");  // b.tfw is b.tif's
     EXPECT_EQ(world_file_path("b.tif"), "b.tfw");
-    EXPECT_EQ(world_file_path("b.jpeg"), "b.jgw");
-    EXPECT_EQ(world_file_path("b.webp"), "b.wld");
+    EXPECT_EQ(world_file_path("b.jpeg"), "b.jpegw");
+    EXPECT_EQ(world_file_path("b.jpg"), "b.jgw");
+    EXPECT_EQ(world_file_path("b.webp"), "b.wpw");
+    EXPECT_EQ(world_file_path("b.exr"), "b.erw");
+    EXPECT_EQ(shadowing_world_file("b.tiff"), "b.tfw");
+    EXPECT_EQ(shadowing_world_file("b.tif"), "");
 }
 
 // A raster re-rendered over an earlier georeferenced one takes its side files with it: an oblique

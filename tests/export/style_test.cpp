@@ -121,7 +121,7 @@ TEST(Style, MissingFileAndUnknownBuiltin) {
         load_style("/nonexistent/x.toml");
         FAIL();
     } catch (const Error& e) {
-        EXPECT_STREQ(e.what(), "penink: style: /nonexistent/x.toml: cannot open style file");
+        EXPECT_STREQ(e.what(), "penink: style: /nonexistent/x.toml: no such file");
     }
     try {
         builtin_style("ornate");

@@ -101,3 +101,14 @@ TEST(SvgWriter, NumberFormat) {
     EXPECT_EQ(format_number(0.1234, 3), "0.123");
     EXPECT_EQ(format_number(1e6), "1000000");
 }
+
+TEST(SvgWriter, XmlEscapeMakesAnyBytesWellFormed) {
+    // markup escaped, UTF-8 kept, invalid bytes and XML-forbidden control characters as U+FFFD
+    EXPECT_EQ(xml_escape("<a href=\"x\">&'</a>"), "&lt;a href=&quot;x&quot;&gt;&amp;&apos;&lt;/a&gt;");
+    EXPECT_EQ(xml_escape("Zürich\tà\n"), "Zürich\tà\n");
+    EXPECT_EQ(xml_escape("a\xff\xfe" "b"), "a\xEF\xBF\xBD\xEF\xBF\xBD" "b");
+    EXPECT_EQ(xml_escape(std::string("x\x01y\x1b", 4)), "x\xEF\xBF\xBDy\xEF\xBF\xBD");
+    EXPECT_EQ(xml_escape("\xed\xa0\x80"), "\xEF\xBF\xBD\xEF\xBF\xBD\xEF\xBF\xBD");  // a surrogate: three bad bytes
+    EXPECT_EQ(xml_escape("\xc3"), "\xEF\xBF\xBD");  // cut sequence
+    EXPECT_EQ(xml_escape("\xf0\x9f\x97\xbb"), "\xf0\x9f\x97\xbb");  // 4-byte character kept
+}

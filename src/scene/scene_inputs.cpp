@@ -1,0 +1,30 @@
+// The input files of a scene (scene_inputs.hpp).
+#include "scene/scene_inputs.hpp"
+
+#include "input/dem_side_files.hpp"
+#include "drainage/drainage_build.hpp"
+#include "scene/terrain_view.hpp"
+
+namespace penink {
+
+std::vector<NamedInput> dem_inputs(const std::string& dem) {
+    std::vector<NamedInput> in;
+    if (dem.empty()) return in;
+    in.push_back({dem, "the DEM"});
+    for (std::string& f : dem_side_files(dem)) in.push_back({std::move(f), "the DEM's side file"});
+    return in;
+}
+
+std::vector<NamedInput> scene_inputs(const Scene& s) {
+    std::vector<NamedInput> in = dem_inputs(s.dem);
+    if (!s.file.empty()) in.push_back({s.file, "the scene"});
+    if (!s.mesh.empty()) in.push_back({s.mesh, "the mesh"});
+    if (!s.style.empty()) in.push_back({s.style, "the style"});
+    if (!s.dem.empty()) {
+        in.push_back({drainage_cache_path(s.dem), "the DEM's drainage cache"});
+        in.push_back({terrain_cache_path(s.dem), "the DEM's terrain cache"});
+    }
+    return in;
+}
+
+}  // namespace penink
