@@ -10,8 +10,7 @@
 
 #include "core/closest_name.hpp"
 #include "core/error.hpp"
-#include "core/input_files.hpp"
-#include "core/printable_text.hpp"
+#include "core/toml_file.hpp"
 #include "export/style.hpp"
 
 namespace penink {
@@ -186,12 +185,6 @@ void apply_table(Style& s, const toml::value& table) {
     if (!(s.near < s.far)) throw StyleProblem("near must be less than far");
 }
 
-std::string first_line(std::string text) {
-    if (text.rfind("[error] ", 0) == 0) text.erase(0, 8);
-    const size_t nl = text.find('\n');
-    return nl == std::string::npos ? text : text.substr(0, nl);
-}
-
 }  // namespace
 
 void apply_style_overrides(Style& style, const toml::value& table, const std::string& source) {
@@ -205,19 +198,7 @@ void apply_style_overrides(Style& style, const toml::value& table, const std::st
 }
 
 Style load_style(const std::string& path) {
-    const std::string text = read_input_text("style", path, max_text_input_bytes, "style file");
-    check_toml_nesting("style", path, text);  // before the parser, whose recursion has no bound
-    // TOML is UTF-8; toml11 3.7 reads past its buffer reporting some sequences that are not UTF-8,
-    // so the text is checked before it is parsed.
-    if (const std::size_t bad = invalid_utf8_at(text); bad != npos_utf8)
-        throw Error("style", path, "invalid TOML: not UTF-8 text (byte " + std::to_string(bad + 1) + ")");
-    toml::value root;
-    try {
-        std::istringstream s(text);
-        root = toml::parse(s, path);
-    } catch (const std::exception& e) {
-        throw Error("style", path, "invalid TOML: " + first_line(e.what()));
-    }
+    const toml::value root = read_toml_file("style", path, "style file");
     Style s = default_style();
     s.name.clear();
     apply_style_overrides(s, root, path);

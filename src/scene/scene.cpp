@@ -13,7 +13,7 @@
 #include "core/closest_name.hpp"
 #include "core/error.hpp"
 #include "core/input_files.hpp"
-#include "core/printable_text.hpp"
+#include "core/toml_file.hpp"
 #include "drainage/drainage_build.hpp"
 #include "scene/hachure_lines.hpp"
 
@@ -203,21 +203,7 @@ void read_camera(const toml::value& root, SceneCamera& cam, const std::string& f
 Scene parse_scene_file(const std::string& path) {
     Scene s;
     s.file = path;
-    const std::string text = read_input_text("scene", path, max_text_input_bytes, "scene file");
-    check_toml_nesting("scene", path, text);  // before the parser, whose recursion has no bound
-    // TOML is UTF-8; toml11 3.7 reads past its buffer reporting some sequences that are not UTF-8,
-    // so the text is checked before it is parsed.
-    if (const std::size_t bad = invalid_utf8_at(text); bad != npos_utf8)
-        throw Error("scene", path, "not a valid TOML scene (not UTF-8 text: byte " + std::to_string(bad + 1) + ")");
-    toml::value root;
-    try {
-        std::istringstream s(text);
-        root = toml::parse(s, path);
-    } catch (const std::exception& e) {
-        std::string what = e.what();
-        const auto nl = what.find('\n');
-        throw Error("scene", path, "not a valid TOML scene (" + what.substr(0, nl) + ")");
-    }
+    const toml::value root = read_toml_file("scene", path, "scene file");
     s.table = root;
     check_known_keys(root, path);
     if (has_key(root, "mesh")) {

@@ -313,5 +313,5 @@ TEST(HostileInputs, FuzzFindingsEndAsErrors) {
                    "penink: input: early.ply: not a mesh (PLY header: line 3: property before any element)");
     write_text(dir / "bad.toml", "[terrain]\ndem = 'v\x8b.asc'\n");
     expect_refused(dir, "render bad.toml -o out.svg",
-                   "penink: scene: bad.toml: not a valid TOML scene (not UTF-8 text: byte 19)");
+                   "penink: scene: bad.toml: invalid TOML: not UTF-8 text (byte 19)");
 }

@@ -129,7 +129,7 @@ TEST(TaperedStrokes, PdfAndPsFillTheSameOutline) {
         ASSERT_TRUE(std::regex_search(doc, m, std::regex("\n([-0-9. ]+ m\n(?:[-0-9. ]+ l\n)+)h\nf\n"))) << path;
         const std::vector<glm::vec2> outline = numbers_as_points(m[1].str());
         expect_tapered(outline);
-        const StyledPath& p = styled.layers[3].groups[0].paths.at(0);  // the same polygon as the SVG's
+        const StyledPath& p = styled.layers[static_cast<std::size_t>(LayerKind::creases)].groups[0].paths.at(0);  // the same polygon as the SVG's
         EXPECT_EQ(outline.size(), stroke_outline(p.points, p.widths).size()) << path;
     }
     EXPECT_NE(read_text(ps_path).find("/f /fill load def"), std::string::npos);
@@ -139,12 +139,12 @@ TEST(TaperedStrokes, WeightScalesWidthBetweenItsFactors) {
     Style s = tapered_style();
     apply_style_overrides(s, parse_toml("[creases]\ntaper = 0.0\nweight_min = 0.5\nweight_max = 2.0\n"));
     const StyledDrawing d = style_drawing(one_crease({0.0f, 0.5f, 1.0f}), s);
-    const StyledPath& p = d.layers[3].groups[0].paths.at(0);
+    const StyledPath& p = d.layers[static_cast<std::size_t>(LayerKind::creases)].groups[0].paths.at(0);
     ASSERT_EQ(p.widths.size(), 3u);
     EXPECT_DOUBLE_EQ(p.widths[0], 2.0);   // 4 px * 0.5
     EXPECT_DOUBLE_EQ(p.widths[1], 5.0);   // 4 px * 1.25
     EXPECT_DOUBLE_EQ(p.widths[2], 8.0);   // 4 px * 2
-    const WidthStats st = width_stats(d.layers[3]);
+    const WidthStats st = width_stats(d.layers[static_cast<std::size_t>(LayerKind::creases)]);
     EXPECT_NEAR(st.mean_width, 5.0, 1e-9);  // segments of 3.5 and 6.5 px, 50 px each
     EXPECT_NEAR(st.cv, 1.5 / 5.0, 1e-9);
     EXPECT_DOUBLE_EQ(st.tapered_share, 0.0);  // thicker at one end only
