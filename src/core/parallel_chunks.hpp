@@ -68,6 +68,7 @@ template <class Beside, class Here> void run_beside(Beside&& beside, Here&& here
 
 // f(begin, end, out) appends to `out`, its chunk's own vector.
 template <class T, class F> std::vector<T> parallel_collect(std::size_t n, std::size_t min_chunk, F&& f) {
+    if (n == 0) return {};  // no chunk, no part to collect into
     const std::size_t per = chunk_length(n, min_chunk);
     std::vector<std::vector<T>> parts((n + per - 1) / per);
     parallel_chunks(n, min_chunk, [&](std::size_t b, std::size_t e) { f(b, e, parts[b / per]); });

@@ -53,9 +53,9 @@ double plan_lipschitz(const GridNodes& t) {
     const std::size_t rows = std::size_t(std::max(t.rows - 1, 0));
     const std::size_t per = chunk_length(rows, 64);
     std::vector<float> part((rows + per - 1) / per + 1, 0.0f);
-    parallel_chunks(rows, 64, [&](std::size_t b, std::size_t e) {
+    parallel_chunks(rows, 64, [&](std::size_t r0, std::size_t r1) {
         float best = 0.0f;
-        for (std::size_t r = b; r < e; ++r) {
+        for (std::size_t r = r0; r < r1; ++r) {
             const glm::vec3* p = t.pos + t.index(0, int(r));
             const glm::vec3* q = t.pos + t.index(0, int(r) + 1);
             for (int c = 0; c + 1 < t.cols; ++c) {
@@ -65,7 +65,7 @@ double plan_lipschitz(const GridNodes& t) {
                 best = std::max(best, bound2(b.x - a.x, b.y - a.y, d.x - b.x, d.y - b.y));
             }
         }
-        part[b / per] = best;
+        part[r0 / per] = best;
     });
     return std::sqrt(double(*std::max_element(part.begin(), part.end())));
 }
