@@ -139,7 +139,8 @@ bool DemSurface::find_cell(double x, double y, int& c, int& r) const {
 
 // Triangle `which` of cell (c, r) tested as TerrainLocator::locate tests it: true when (x, y)
 // lies in it within the tolerance `eps` of each barycentric coordinate (the hit filled in).
-bool DemDraper::triangle_hit(double x, double y, int c, int r, int which, double eps, DemHit& hit) const {
+// `inside` (when given) tells whether it lies in it 1e-5 of its size from every edge.
+bool DemDraper::triangle_hit(double x, double y, int c, int r, int which, double eps, DemHit& hit, bool* inside) const {
     if (!s_->triangle_valid(c, r, which)) return false;
     const int nc[3] = {c, which == 0 ? c : c + 1, c + 1};
     const int nr[3] = {r, r + 1, which == 0 ? r + 1 : r};
@@ -148,6 +149,7 @@ bool DemDraper::triangle_hit(double x, double y, int c, int r, int which, double
     if (std::abs(det) < 1e-12) return false;
     const double u = ((x - p0.x) * (p2.y - p0.y) - (p2.x - p0.x) * (y - p0.y)) / det;
     const double w = ((p1.x - p0.x) * (y - p0.y) - (x - p0.x) * (p1.y - p0.y)) / det;
+    if (inside) *inside = !(u < 1e-5 || w < 1e-5 || u + w > 1.0 - 1e-5);
     if (u < -eps || w < -eps || u + w > 1.0 + eps) return false;
     for (int k = 0; k < 3; ++k) hit.node[k] = std::uint32_t(s_->index(nc[k], nr[k]));
     hit.bary = glm::vec3(float(1.0 - u - w), float(u), float(w));
@@ -159,8 +161,11 @@ bool DemDraper::locate(double x, double y, int& c, int& r, DemHit& hit) const {
     if (!s_->find_cell(x, y, c, r)) return false;
     // Well inside one of the cell's triangles (1e-5 of its size from every edge), no other
     // triangle comes within TerrainLocator's tolerance of the point: that one.
-    for (int which = 0; which < 2; ++which)
-        if (triangle_hit(x, y, c, r, which, -1e-5, hit)) return triangle_hit(x, y, c, r, which, 1e-7, hit);
+    // (a hit 1e-5 inside is one within the tolerance 1e-7: filled in by the same test)
+    for (int which = 0; which < 2; ++which) {
+        bool inside = false;
+        if (triangle_hit(x, y, c, r, which, 1e-7, hit, &inside) && inside) return true;
+    }
     // Else TerrainLocator::locate's rule: the first triangle in mesh order whose barycentric
     // coordinates are all >= -1e-7; any such triangle touches the cell's 3 x 3 neighbourhood.
     for (int rr = r - 1; rr <= r + 1; ++rr)
@@ -179,6 +184,15 @@ void DemDraper::position_normal(const DemHit& hit, glm::vec3& position, glm::vec
     const PnPatch patch = pn_patch(p[0], p[1], p[2], n[0], n[1], n[2]);
     position = pn_position(patch, hit.bary);
     normal = pn_normal(patch, hit.bary);
+}
+
+float DemDraper::height_normal(const DemHit& hit, glm::vec3& normal) const {
+    glm::vec3 p[3], n[3];
+    for (int k = 0; k < 3; ++k) {
+        const int c = int(hit.node[k] % std::uint32_t(s_->cols())), r = int(hit.node[k] / std::uint32_t(s_->cols()));
+        p[k] = s_->node(c, r), n[k] = s_->normal(c, r);
+    }
+    return pn_height_normal(p[0], p[1], p[2], n[0], n[1], n[2], hit.bary, normal);
 }
 
 }  // namespace penink

@@ -102,10 +102,13 @@ public:
     bool locate(double x, double y, int& c, int& r, DemHit& hit) const;
     // PN position and unit normal at a hit (TerrainLocator::pn_position_normal_at).
     void position_normal(const DemHit& hit, glm::vec3& position, glm::vec3& normal) const;
+    // position_normal's z (returned) and normal, the same floats (pn_height_normal).
+    float height_normal(const DemHit& hit, glm::vec3& normal) const;
 
 private:
     const DemSurface* s_;
-    bool triangle_hit(double x, double y, int c, int r, int which, double eps, DemHit& hit) const;
+    bool triangle_hit(double x, double y, int c, int r, int which, double eps, DemHit& hit,
+                      bool* inside = nullptr) const;
 };
 
 }  // namespace penink

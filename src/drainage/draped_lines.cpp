@@ -144,23 +144,42 @@ std::uint64_t xy_key(const DrapedVertex& v) {
 
 // The x, y keys of the lines' ends (open addressing, 12 bytes a slot, 1.5 slots an end), each
 // with the first interior vertex (in line order) at the same x, y: rejoin_line_ends' matches,
-// found before smoothing.
+// found before smoothing. Made on all cores: the ends inserted with compare-and-swap (where a key
+// lands may depend on the threads, what a lookup finds does not), the interior vertices looked
+// up through a bitmap of the ends' hashes (1 bit in 8 set at most; 1 bit an end) that turns most
+// of them away before the table's random reads, and the least matching vertex kept.
 class EndMatches {
 public:
     explicit EndMatches(const DrapedLineSet& set) {
         std::size_t ends = 0;
         for (const DrapedLine& l : set.lines) ends += l.count >= 2 ? 2 : 0;
-        key_.assign(std::max<std::size_t>(16, ends + ends / 2), empty);
-        first_.assign(key_.size(), none);
-        for (const DrapedLine& l : set.lines)
-            if (l.count >= 2)
-                for (std::uint32_t e : {l.first, l.first + l.count - 1}) insert(xy_key(set.vertices[e]));
+        key_.resize(std::max<std::size_t>(16, ends + ends / 2));
+        first_.resize(key_.size());
+        filter_bits_ = 64;
+        while (filter_bits_ < 8 * ends) filter_bits_ *= 2;
+        filter_.resize(filter_bits_ / 64);
+        parallel_chunks(key_.size(), 1 << 16, [&](std::size_t s0, std::size_t s1) {
+            std::fill(key_.begin() + std::ptrdiff_t(s0), key_.begin() + std::ptrdiff_t(s1), empty);
+            std::fill(first_.begin() + std::ptrdiff_t(s0), first_.begin() + std::ptrdiff_t(s1), none);
+        });
+        parallel_chunks(filter_.size(), 1 << 14, [&](std::size_t w0, std::size_t w1) {
+            std::fill(filter_.begin() + std::ptrdiff_t(w0), filter_.begin() + std::ptrdiff_t(w1), std::uint64_t(0));
+        });
+        parallel_chunks(set.lines.size(), 4096, [&](std::size_t l0, std::size_t l1) {
+            for (std::size_t i = l0; i < l1; ++i) {
+                const DrapedLine& l = set.lines[i];
+                if (l.count >= 2)
+                    for (std::uint32_t e : {l.first, l.first + l.count - 1}) insert(xy_key(set.vertices[e]));
+            }
+        });
         // interior vertices (lines of 3 or more), on all cores; the least index wins
         parallel_chunks(set.lines.size(), 4096, [&](std::size_t l0, std::size_t l1) {
             for (std::size_t i = l0; i < l1; ++i) {
                 const DrapedLine& l = set.lines[i];
                 for (std::uint32_t k = 1; k + 1 < l.count; ++k) {
-                    const std::size_t s = find(xy_key(set.vertices[l.first + k]));
+                    const std::uint64_t key = xy_key(set.vertices[l.first + k]);
+                    if (!maybe(key)) continue;
+                    const std::size_t s = find(key);
                     if (s == npos) continue;
                     std::atomic_ref<std::uint32_t> best(first_[s]);
                     std::uint32_t seen = best.load(std::memory_order_relaxed);
@@ -182,16 +201,31 @@ private:
     static constexpr std::uint64_t empty = ~std::uint64_t(0);  // NaN, NaN: no vertex's x, y
     std::vector<std::uint64_t, UninitAllocator<std::uint64_t>> key_;
     std::vector<std::uint32_t, UninitAllocator<std::uint32_t>> first_;
+    std::vector<std::uint64_t, UninitAllocator<std::uint64_t>> filter_;
+    std::size_t filter_bits_ = 64;  // a power of 2
 
-    std::size_t slot(std::uint64_t k) const {
+    static std::uint64_t mix(std::uint64_t k) {
         k ^= k >> 31, k *= 0x7fb5d329728ea185ull, k ^= k >> 27, k *= 0x81dadef4bc2dd44dull, k ^= k >> 33;
-        return std::size_t((unsigned __int128)k * key_.size() >> 64);
+        return k;
+    }
+    std::size_t slot(std::uint64_t k) const { return std::size_t((unsigned __int128)mix(k) * key_.size() >> 64); }
+    std::size_t bit(std::uint64_t k) const { return std::size_t(mix(k)) & (filter_bits_ - 1); }
+    bool maybe(std::uint64_t k) const {
+        const std::size_t b = bit(k);
+        return (filter_[b >> 6] >> (b & 63)) & 1u;
     }
     void insert(std::uint64_t k) {
         if (k == empty) return;
-        std::size_t s = slot(k);
-        while (key_[s] != empty && key_[s] != k) s = s + 1 == key_.size() ? 0 : s + 1;
-        key_[s] = k;
+        const std::size_t b = bit(k);
+        std::atomic_ref<std::uint64_t>(filter_[b >> 6]).fetch_or(std::uint64_t(1) << (b & 63), std::memory_order_relaxed);
+        for (std::size_t s = slot(k);; s = s + 1 == key_.size() ? 0 : s + 1) {
+            std::atomic_ref<std::uint64_t> at(key_[s]);
+            std::uint64_t seen = at.load(std::memory_order_relaxed);
+            if (seen == k) return;
+            if (seen == empty) {
+                if (at.compare_exchange_strong(seen, k, std::memory_order_relaxed) || seen == k) return;
+            }
+        }
     }
     std::size_t find(std::uint64_t k) const {
         if (k == empty) return npos;
@@ -218,40 +252,59 @@ void smooth_each_line(DrapedLineSet& set, double sigma) {
     });
 }
 
-// The plan box of a set's vertices.
+// The plan box of a set's vertices (per chunk on all cores, the chunks' boxes joined in order:
+// glm::min and max keep the first of equal values, as one pass does).
 void vertex_box(const DrapedLineSet& set, glm::vec2& lo, glm::vec2& hi) {
+    struct Box {
+        glm::vec2 lo, hi;
+    };
+    const std::vector<Box> boxes = parallel_collect<Box>(set.vertices.size(), 1 << 16, [&](std::size_t i0, std::size_t i1, std::vector<Box>& out) {
+        Box b{glm::vec2(std::numeric_limits<float>::infinity()), glm::vec2(-std::numeric_limits<float>::infinity())};
+        for (std::size_t i = i0; i < i1; ++i) {
+            const DrapedVertex& v = set.vertices[i];
+            b.lo = glm::min(b.lo, glm::vec2(v.x, v.y)), b.hi = glm::max(b.hi, glm::vec2(v.x, v.y));
+        }
+        out.push_back(b);
+    });
     lo = glm::vec2(std::numeric_limits<float>::infinity()), hi = -lo;
-    for (const DrapedVertex& v : set.vertices)
-        lo = glm::min(lo, glm::vec2(v.x, v.y)), hi = glm::max(hi, glm::vec2(v.x, v.y));
+    for (const Box& b : boxes) lo = glm::min(lo, b.lo), hi = glm::max(hi, b.hi);
 }
 
 // Every vertex's x, y clamped to [lo, hi]: smoothed lines stay inside the box the network's own
 // vertices span (inside the DEM's, which a frame cuts lines to).
 void clamp_to_box(DrapedLineSet& set, glm::vec2 lo, glm::vec2 hi) {
     if (!(lo.x <= hi.x && lo.y <= hi.y)) return;
-    for (DrapedVertex& v : set.vertices) v.x = std::clamp(v.x, lo.x, hi.x), v.y = std::clamp(v.y, lo.y, hi.y);
+    parallel_chunks(set.vertices.size(), 1 << 16, [&](std::size_t i0, std::size_t i1) {
+        for (std::size_t i = i0; i < i1; ++i) {
+            DrapedVertex& v = set.vertices[i];
+            v.x = std::clamp(v.x, lo.x, hi.x), v.y = std::clamp(v.y, lo.y, hi.y);
+        }
+    });
 }
 
 // The line holding each vertex.
-std::vector<std::uint32_t> line_ids(const DrapedLineSet& set) {
-    std::vector<std::uint32_t> out(set.vertices.size());
-    for (std::uint32_t i = 0; i < set.lines.size(); ++i)
-        std::fill_n(out.begin() + set.lines[i].first, set.lines[i].count, i);
+std::vector<std::uint32_t, UninitAllocator<std::uint32_t>> line_ids(const DrapedLineSet& set) {
+    std::vector<std::uint32_t, UninitAllocator<std::uint32_t>> out(set.vertices.size());
+    parallel_chunks(set.lines.size(), 4096, [&](std::size_t l0, std::size_t l1) {
+        for (std::size_t i = l0; i < l1; ++i)
+            std::fill_n(out.begin() + set.lines[i].first, set.lines[i].count, std::uint32_t(i));
+    });
     return out;
 }
 
-// rejoin_line_ends' matches of the set as it is: (line, end vertex, interior vertex) triples.
+// rejoin_line_ends' matches of the set as it is: (line, end vertex, interior vertex) triples, in
+// line order (a line's first end before its last).
 std::vector<std::uint32_t> end_matches(const DrapedLineSet& set) {
-    std::vector<std::uint32_t> follow;
     const EndMatches matches(set);
-    for (std::uint32_t i = 0; i < set.lines.size(); ++i) {
-        const DrapedLine& l = set.lines[i];
-        if (l.count >= 2)
-            for (std::uint32_t e : {l.first, l.first + l.count - 1})
-                if (const std::uint32_t t = matches.target(set.vertices[e]); t != EndMatches::none)
-                    follow.push_back(i), follow.push_back(e), follow.push_back(t);
-    }
-    return follow;
+    return parallel_collect<std::uint32_t>(set.lines.size(), 4096, [&](std::size_t l0, std::size_t l1, std::vector<std::uint32_t>& follow) {
+        for (std::size_t i = l0; i < l1; ++i) {
+            const DrapedLine& l = set.lines[i];
+            if (l.count >= 2)
+                for (std::uint32_t e : {l.first, l.first + l.count - 1})
+                    if (const std::uint32_t t = matches.target(set.vertices[e]); t != EndMatches::none)
+                        follow.push_back(std::uint32_t(i)), follow.push_back(e), follow.push_back(t);
+        }
+    });
 }
 
 // Each matched end brought to its line's new x, y: first its target slides along the line it
@@ -262,53 +315,96 @@ std::vector<std::uint32_t> end_matches(const DrapedLineSet& set) {
 // degrees of their length (at least `ramp`; weights (1 + cos(pi j / m)) / 2 over m vertices,
 // j = 0 at the end: the line bends smoothly to its junction; all gaps of a round measured before
 // any is closed, so the result does not depend on the order), then the end set to it exactly.
+// On all cores: the gaps of a round in any order, the closing by whole lines (the two ends of a
+// line in turn, as their ramps may meet), each moving only its own line's vertices.
 inline double plan_length(double x, double y) { return std::sqrt(x * x + y * y); }
 
+// The ramp's weight of vertex j of m (the formula of join_ends); those of m up to `memo` made
+// once a thread.
+class RampWeights {
+public:
+    float operator()(std::uint32_t j, std::uint32_t m) {
+        if (m > memo) return weight(j, m);
+        if (m >= first_.size()) first_.resize(m + 1, none);
+        if (first_[m] == none) {
+            first_[m] = std::uint32_t(w_.size());
+            for (std::uint32_t k = 0; k < m; ++k) w_.push_back(weight(k, m));
+        }
+        return w_[first_[m] + j];
+    }
+
+private:
+    static constexpr std::uint32_t memo = 256, none = 0xffffffffu;
+    std::vector<std::uint32_t> first_;
+    std::vector<float> w_;
+    static float weight(std::uint32_t j, std::uint32_t m) {
+        return 0.5f * (1.0f + std::cos(3.14159265358979f * float(j) / float(m)));
+    }
+};
+
 // `line_of`: the line of each vertex (with window > 0).
-void join_ends(DrapedLineSet& set, std::vector<std::uint32_t> follow, int ramp, int window,
-               const std::vector<std::uint32_t>& line_of) {
+template <class LineOf>
+void join_ends(DrapedLineSet& set, std::vector<std::uint32_t> follow, int ramp, int window, const LineOf& line_of) {
     constexpr double tan_bend = 0.14054083470239145;  // tan 8 degrees
-    std::vector<glm::vec2> gap(follow.size() / 3);
-    for (std::size_t k = 0; k < gap.size() && window > 0; ++k) {
-        const DrapedVertex& e = set.vertices[follow[3 * k + 1]];
-        const std::uint32_t t = follow[3 * k + 2];
-        const DrapedLine& into = set.lines[line_of[t]];
-        // interior vertices only (an end's target stays an interior vertex)
-        const std::uint32_t lo = std::max<std::int64_t>(std::int64_t(into.first) + 1, std::int64_t(t) - window);
-        const std::uint32_t hi = std::min<std::int64_t>(std::int64_t(into.first) + into.count - 2, std::int64_t(t) + window);
-        double best = 1e300;
-        for (std::uint32_t j = lo; j <= hi; ++j) {
-            const double d = plan_length(double(set.vertices[j].x) - e.x, double(set.vertices[j].y) - e.y);
-            if (d < best) best = d, follow[3 * k + 2] = j;
-        }
-    }
-    for (int round = 0; round < 3 && ramp > 1; ++round) {
-        for (std::size_t k = 0; k < gap.size(); ++k) {
-            const DrapedVertex &e = set.vertices[follow[3 * k + 1]], &t = set.vertices[follow[3 * k + 2]];
-            gap[k] = {t.x - e.x, t.y - e.y};
-        }
-        for (std::size_t k = 0; k < gap.size(); ++k) {
-            const DrapedLine& l = set.lines[follow[3 * k]];
-            const bool first = follow[3 * k + 1] == l.first;
-            auto at = [&](std::uint32_t j) -> DrapedVertex& {
-                return set.vertices[first ? l.first + j : l.first + l.count - 1 - j];
-            };
-            // vertices whose length is gap / tan 8 degrees
-            const double want = plan_length(double(gap[k].x), double(gap[k].y)) / tan_bend;
-            std::uint32_t m = 1;
-            for (double len = 0.0; m < l.count - 1 && (m < std::uint32_t(ramp) || len < want); ++m)
-                len += plan_length(double(at(m).x) - at(m - 1).x, double(at(m).y) - at(m - 1).y);
-            for (std::uint32_t j = 0; j < m; ++j) {
-                const float w = 0.5f * (1.0f + std::cos(3.14159265358979f * float(j) / float(m)));
-                DrapedVertex& v = at(j);
-                v.x += w * gap[k].x, v.y += w * gap[k].y;
+    const std::size_t nf = follow.size() / 3;
+    std::vector<glm::vec2> gap(nf);
+    if (window > 0)
+        parallel_chunks(nf, 4096, [&](std::size_t k0, std::size_t k1) {
+            for (std::size_t k = k0; k < k1; ++k) {
+                const DrapedVertex& e = set.vertices[follow[3 * k + 1]];
+                const std::uint32_t t = follow[3 * k + 2];
+                const DrapedLine& into = set.lines[line_of[t]];
+                // interior vertices only (an end's target stays an interior vertex)
+                const std::uint32_t lo = std::max<std::int64_t>(std::int64_t(into.first) + 1, std::int64_t(t) - window);
+                const std::uint32_t hi =
+                    std::min<std::int64_t>(std::int64_t(into.first) + into.count - 2, std::int64_t(t) + window);
+                double best = 1e300;
+                for (std::uint32_t j = lo; j <= hi; ++j) {
+                    const double d = plan_length(double(set.vertices[j].x) - e.x, double(set.vertices[j].y) - e.y);
+                    if (d < best) best = d, follow[3 * k + 2] = j;
+                }
             }
+        });
+    // the follows of each line together (end_matches gives them in line order): closed by one task
+    std::vector<std::uint32_t> group;
+    for (std::size_t k = 0; k < nf; ++k)
+        if (k == 0 || follow[3 * k] != follow[3 * k - 3]) group.push_back(std::uint32_t(k));
+    group.push_back(std::uint32_t(nf));
+    const std::size_t ng = group.size() - 1;
+    for (int round = 0; round < 3 && ramp > 1; ++round) {
+        parallel_chunks(nf, 4096, [&](std::size_t k0, std::size_t k1) {
+            for (std::size_t k = k0; k < k1; ++k) {
+                const DrapedVertex &e = set.vertices[follow[3 * k + 1]], &t = set.vertices[follow[3 * k + 2]];
+                gap[k] = {t.x - e.x, t.y - e.y};
+            }
+        });
+        parallel_chunks(ng, 1024, [&](std::size_t g0, std::size_t g1) {
+            RampWeights weights;
+            for (std::size_t k = group[g0]; k < group[g1]; ++k) {
+                const DrapedLine& l = set.lines[follow[3 * k]];
+                const bool first = follow[3 * k + 1] == l.first;
+                auto at = [&](std::uint32_t j) -> DrapedVertex& {
+                    return set.vertices[first ? l.first + j : l.first + l.count - 1 - j];
+                };
+                // vertices whose length is gap / tan 8 degrees
+                const double want = plan_length(double(gap[k].x), double(gap[k].y)) / tan_bend;
+                std::uint32_t m = 1;
+                for (double len = 0.0; m < l.count - 1 && (m < std::uint32_t(ramp) || len < want); ++m)
+                    len += plan_length(double(at(m).x) - at(m - 1).x, double(at(m).y) - at(m - 1).y);
+                for (std::uint32_t j = 0; j < m; ++j) {
+                    const float w = weights(j, m);
+                    DrapedVertex& v = at(j);
+                    v.x += w * gap[k].x, v.y += w * gap[k].y;
+                }
+            }
+        });
+    }
+    parallel_chunks(nf, 4096, [&](std::size_t k0, std::size_t k1) {
+        for (std::size_t k = k0; k < k1; ++k) {
+            set.vertices[follow[3 * k + 1]].x = set.vertices[follow[3 * k + 2]].x;
+            set.vertices[follow[3 * k + 1]].y = set.vertices[follow[3 * k + 2]].y;
         }
-    }
-    for (std::size_t k = 0; k < follow.size(); k += 3) {
-        set.vertices[follow[k + 1]].x = set.vertices[follow[k + 2]].x;
-        set.vertices[follow[k + 1]].y = set.vertices[follow[k + 2]].y;
-    }
+    });
 }
 
 }  // namespace
@@ -321,31 +417,51 @@ DrapedLineSet network_stems(const DrainageGrid& g, const std::vector<std::uint8_
         if (g.valid[i] && walk.indeg[i] == 0) sources.push_back(std::uint32_t(i));
     DrapedLineSet set;
     set.lines.resize(sources.size());
-    parallel_chunks(sources.size(), 1024, [&](std::size_t s0, std::size_t s1) {  // sizes and orders first
-        for (std::size_t s = s0; s < s1; ++s) {
-            std::uint32_t n = 0;
-            set.lines[s].order = walk.walk(sources[s], [&](const DvVertex&, std::size_t) { ++n; });
-            set.lines[s].count = n;
-        }
-    });
+    // Every cell is walked by one stem, whose end junction is its last vertex and may be another
+    // stem's cell: at most the cells and one end a stem. One walk a stem, in blocks of sources:
+    // each chunk of a block into its own buffers, then the buffers copied into place.
+    const std::size_t bound = g.size() + sources.size();
+    if (bound > 0xffffffffull)
+        throw Error("drainage", "", "too many stem vertices for the database (4 G or more)", ExitCode::internal);
+    set.vertices.resize(bound);
+    if (cells) cells->resize(bound);
+    constexpr std::size_t block = std::size_t(1) << 16, min_chunk = 1024;
+    struct Buffer {
+        std::vector<DrapedVertex> v;
+        std::vector<std::uint32_t> c;
+        std::size_t at = 0;
+    };
+    std::vector<Buffer> buffer(17);  // parallel_chunks makes at most 16 chunks
     std::uint64_t next = 0;
-    for (DrapedLine& l : set.lines) {
-        if (next > 0xffffffffull - l.count)
-            throw Error("drainage", "", "too many stem vertices for the database (4 G or more)", ExitCode::internal);
-        l.first = std::uint32_t(next), next += l.count;
-    }
-    set.vertices.resize(next);
-    if (cells) cells->resize(next);
-    parallel_chunks(sources.size(), 1024, [&](std::size_t s0, std::size_t s1) {
-        for (std::size_t s = s0; s < s1; ++s) {
-            DrapedVertex* out = set.vertices.data() + set.lines[s].first;
-            std::uint32_t* cell = cells ? cells->data() + set.lines[s].first : nullptr;
-            walk.walk(sources[s], [&](const DvVertex& v, std::size_t c) {
-                *out++ = draped(v);
-                if (cell) *cell++ = std::uint32_t(c);
-            });
+    for (std::size_t b0 = 0; b0 < sources.size(); b0 += block) {
+        const std::size_t n = std::min(block, sources.size() - b0), per = chunk_length(n, min_chunk);
+        parallel_chunks(n, min_chunk, [&](std::size_t s0, std::size_t s1) {
+            Buffer& out = buffer[s0 / per];
+            out.v.clear(), out.c.clear();
+            for (std::size_t s = b0 + s0; s < b0 + s1; ++s) {
+                const std::size_t before = out.v.size();
+                set.lines[s].order = walk.walk(sources[s], [&](const DvVertex& v, std::size_t c) {
+                    out.v.push_back(draped(v));
+                    if (cells) out.c.push_back(std::uint32_t(c));
+                });
+                set.lines[s].count = std::uint32_t(out.v.size() - before);
+            }
+        });
+        for (std::size_t s = b0; s < b0 + n; ++s) {
+            DrapedLine& l = set.lines[s];
+            if ((s - b0) % per == 0) buffer[(s - b0) / per].at = std::size_t(next);
+            if (next > bound - l.count)
+                throw Error("drainage", "", "stems hold more vertices than the grid has cells", ExitCode::internal);
+            l.first = std::uint32_t(next), next += l.count;
         }
-    });
+        parallel_chunks(n, min_chunk, [&](std::size_t s0, std::size_t) {
+            const Buffer& in = buffer[s0 / per];
+            std::copy(in.v.begin(), in.v.end(), set.vertices.begin() + std::ptrdiff_t(in.at));
+            if (cells) std::copy(in.c.begin(), in.c.end(), cells->begin() + std::ptrdiff_t(in.at));
+        });
+    }
+    set.vertices.resize(std::size_t(next));
+    if (cells) cells->resize(std::size_t(next));
     return set;
 }
 
@@ -369,7 +485,7 @@ void smooth_lines(DrapedLineSet& set, double sigma) {
     glm::vec2 lo, hi;
     vertex_box(set, lo, hi);
     smooth_each_line(set, sigma);
-    join_ends(set, follow, int(std::ceil(3.0 * sigma)), 0, {});
+    join_ends(set, follow, int(std::ceil(3.0 * sigma)), 0, std::vector<std::uint32_t>());
     clamp_to_box(set, lo, hi);
 }
 
@@ -402,9 +518,9 @@ void drape_lines(DrapedLineSet& set, const DemSurface& surface, const LineProgre
                         v.nx = v.ny = v.nz = 0.0f;
                         continue;
                     }
-                    glm::vec3 p, n;
-                    draper.position_normal(hit, p, n);
-                    v.z = p.z, v.nx = n.x, v.ny = n.y, v.nz = n.z;
+                    glm::vec3 n;
+                    v.z = draper.height_normal(hit, n);
+                    v.nx = n.x, v.ny = n.y, v.nz = n.z;
                 }
             }
         });

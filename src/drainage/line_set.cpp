@@ -6,6 +6,8 @@
 
 #include <glm/common.hpp>
 
+#include "core/parallel_chunks.hpp"
+
 namespace penink {
 
 namespace {
@@ -25,18 +27,25 @@ std::uint32_t cell_of(double v, double origin, double side, std::uint32_t n) {
 void index_lines(DrapedLineSet& set) {
     LineIndex& x = set.index;
     x = LineIndex{};
+    // each line's box and length on all cores, then the set's box over the lines in order
+    parallel_chunks(set.lines.size(), 4096, [&](std::size_t l0, std::size_t l1) {
+        for (std::size_t i = l0; i < l1; ++i) {
+            DrapedLine& l = set.lines[i];
+            const DrapedVertex* v = set.vertices.data() + l.first;
+            l.lo = l.hi = glm::vec2(v[0].x, v[0].y);
+            double length = 0.0;
+            for (std::uint32_t k = 1; k < l.count; ++k) {
+                l.lo = glm::min(l.lo, glm::vec2(v[k].x, v[k].y)), l.hi = glm::max(l.hi, glm::vec2(v[k].x, v[k].y));
+                const double dx = double(v[k].x) - v[k - 1].x, dy = double(v[k].y) - v[k - 1].y,
+                             dz = double(v[k].z) - v[k - 1].z;
+                length += std::sqrt(dx * dx + dy * dy + dz * dz);
+            }
+            l.length = float(length);
+        }
+    });
     glm::vec2 lo(0.0f), hi(0.0f);
     for (std::size_t i = 0; i < set.lines.size(); ++i) {
-        DrapedLine& l = set.lines[i];
-        const DrapedVertex* v = set.vertices.data() + l.first;
-        l.lo = l.hi = glm::vec2(v[0].x, v[0].y);
-        double length = 0.0;
-        for (std::uint32_t k = 1; k < l.count; ++k) {
-            l.lo = glm::min(l.lo, glm::vec2(v[k].x, v[k].y)), l.hi = glm::max(l.hi, glm::vec2(v[k].x, v[k].y));
-            const double dx = double(v[k].x) - v[k - 1].x, dy = double(v[k].y) - v[k - 1].y, dz = double(v[k].z) - v[k - 1].z;
-            length += std::sqrt(dx * dx + dy * dy + dz * dz);
-        }
-        l.length = float(length);
+        const DrapedLine& l = set.lines[i];
         lo = i ? glm::min(lo, l.lo) : l.lo, hi = i ? glm::max(hi, l.hi) : l.hi;
     }
     x.start.assign(1, 0);

@@ -24,4 +24,10 @@ PnPatch pn_patch(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2,
 glm::vec3 pn_position(const PnPatch& patch, const glm::vec3& bary);
 glm::vec3 pn_normal(const PnPatch& patch, const glm::vec3& bary);  // unit length
 
+// pn_position(patch, bary).z and pn_normal(patch, bary) (into `normal`) of the patch
+// pn_patch(p0, p1, p2, n0, n1, n2), the same floats, without the x and y of the control points
+// (a height field's draping needs only the height: about half the work).
+float pn_height_normal(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& n0,
+                       const glm::vec3& n1, const glm::vec3& n2, const glm::vec3& bary, glm::vec3& normal);
+
 }  // namespace penink

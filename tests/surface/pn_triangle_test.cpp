@@ -1,6 +1,9 @@
 // PN triangles (Vlachos et al. 2001) against hand-computed control points, and the surface mesh's
 // triangles and normals against values worked out by hand.
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <random>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -72,6 +75,40 @@ TEST(PnTriangle, SphereVerticesBulgeTowardTheSphere) {
     EXPECT_LT(flat, 0.71f);
     EXPECT_GT(curved, 0.84f);
     EXPECT_LT(1.0f - curved, 0.6f * (1.0f - flat));
+}
+
+// The height-only evaluation gives pn_position's z and pn_normal of the full patch to the bit
+// (the drainage drape stores them; its golden files are byte for byte): random terrain-like
+// triangles (a grid cell's half, heights and tilted unit normals) at random barycentric weights.
+TEST(PnTriangle, HeightNormalIsThePatchsZAndNormalBitForBit) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> h(-50.0f, 900.0f), tilt(-0.8f, 0.8f), spacing(1.0f, 40.0f), b(0.0f, 1.0f);
+    auto bits = [](float f) {
+        std::uint32_t u;
+        std::memcpy(&u, &f, 4);
+        return u;
+    };
+    int checked = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const float dx = spacing(rng), dy = spacing(rng), x0 = 1000.0f * b(rng), y0 = 1000.0f * b(rng);
+        const glm::vec3 p0(x0, y0, h(rng)), p1(x0, y0 - dy, h(rng)), p2(x0 + dx, y0 - dy, h(rng));
+        const glm::vec3 n0 = glm::normalize(glm::vec3(tilt(rng), tilt(rng), 1.0f));
+        const glm::vec3 n1 = glm::normalize(glm::vec3(tilt(rng), tilt(rng), 1.0f));
+        const glm::vec3 n2 = glm::normalize(glm::vec3(tilt(rng), tilt(rng), 1.0f));
+        float u = b(rng), w = b(rng);
+        if (u + w > 1.0f) u = 1.0f - u, w = 1.0f - w;
+        const glm::vec3 bary(1.0f - u - w, u, w);
+        const PnPatch q = pn_patch(p0, p1, p2, n0, n1, n2);
+        const glm::vec3 want_p = pn_position(q, bary), want_n = pn_normal(q, bary);
+        glm::vec3 n;
+        const float z = pn_height_normal(p0, p1, p2, n0, n1, n2, bary, n);
+        ASSERT_EQ(bits(z), bits(want_p.z)) << i;
+        ASSERT_EQ(bits(n.x), bits(want_n.x)) << i;
+        ASSERT_EQ(bits(n.y), bits(want_n.y)) << i;
+        ASSERT_EQ(bits(n.z), bits(want_n.z)) << i;
+        ++checked;
+    }
+    EXPECT_EQ(checked, 20000);
 }
 
 TEST(SurfaceMesh, TwoCounterClockwiseTrianglesPerCellAndNormals) {
