@@ -14,7 +14,9 @@
 //    a vertex off the surface keeps its z and gets a zero normal;
 // 4. each line's plan box and length, and the set's spatial index (index_lines).
 // Memory beyond the result (28 B a vertex, 28 B a line): while smoothing, the ends of the lines in
-// a hash table (18 B an end), and for the stems each vertex's grid cell and line (8 B a vertex); while draping, the DEM's node normals (12 B a node, dem_surface.hpp);
+// a hash table with a bitmap of their hashes (19 B an end), and for the stems each vertex's grid
+// cell and line (8 B a vertex); while the stems are walked, one block of 65536 stems' vertices
+// in the threads' buffers; while draping, the DEM's node normals (12 B a node, dem_surface.hpp);
 // never both at once.
 #pragma once
 #include <cstdint>
