@@ -182,6 +182,24 @@ public:
         return false;
     }
 
+    // The nearest point of another line (or an obstacle) on each side of p across the unit
+    // tangent t, within a cone of 45 degrees about the normal and a distance r; r where none.
+    void gaps(glm::vec2 p, glm::vec2 t, std::uint32_t self, float r, float& left, float& right) const {
+        left = right = r;
+        const int x0 = cell_of(p.x - r, cols_), x1 = cell_of(p.x + r, cols_);
+        const int y0 = cell_of(p.y - r, rows_), y1 = cell_of(p.y + r, rows_);
+        for (int y = y0; y <= y1; ++y)
+            for (int x = x0; x <= x1; ++x)
+                for (const Entry& e : cells_[std::size_t(y) * cols_ + x]) {
+                    if (e.line == self) continue;
+                    const glm::vec2 d = e.p - p;
+                    const float along = d.x * t.x + d.y * t.y, across = d.y * t.x - d.x * t.y;
+                    if (std::abs(along) > std::abs(across)) continue;
+                    if (across > 0.0f) left = std::min(left, across);
+                    else right = std::min(right, -across);
+                }
+    }
+
 private:
     struct Entry {
         glm::vec2 p;
@@ -414,10 +432,42 @@ public:
             }
     }
 
+    // The pen's weight at each point of line id: the width that makes the ink between its
+    // neighbours the tone, w = t (g_left + g_right) / 2 (g the gaps across the line on the image,
+    // each at most 2 s; a side with no line within 2 s counts s), as a fraction of the style's
+    // range [weight_min, weight_max] x width, smoothed over 5 points.
+    std::vector<float> weights(std::uint32_t id) const {
+        const std::vector<Sample>& line = lines_[id];
+        const double lo = p_.weight_min * width_, hi = p_.weight_max * width_;
+        std::vector<float> u(line.size(), 0.0f);
+        if (!(hi > lo)) return {};
+        for (std::size_t i = 0; i < line.size(); ++i) {
+            const glm::vec2 a = line[i > 0 ? i - 1 : i].px, b = line[i + 1 < line.size() ? i + 1 : i].px;
+            const float len = glm::length(b - a);
+            if (!(len > 0.0f)) continue;
+            const float r = float(2.0 * line[i].sep);
+            float gl = 0.0f, gr = 0.0f;
+            occ_.gaps(line[i].px, (b - a) / len, id, r, gl, gr);
+            if (gl >= r) gl = float(line[i].sep);
+            if (gr >= r) gr = float(line[i].sep);
+            const double w = line[i].tone * 0.5 * (double(gl) + double(gr));
+            u[i] = float(std::clamp((w - lo) / (hi - lo), 0.0, 1.0));
+        }
+        std::vector<float> out(u.size());
+        for (std::size_t i = 0; i < u.size(); ++i) {
+            const std::size_t i0 = i >= 2 ? i - 2 : 0, i1 = std::min(u.size() - 1, i + 2);
+            double sum = 0.0;
+            for (std::size_t k = i0; k <= i1; ++k) sum += u[k];
+            out[i] = float(sum / double(i1 - i0 + 1));
+        }
+        return out;
+    }
+
     std::vector<Stroke> strokes() const {
         std::vector<Stroke> out;
         out.reserve(lines_.size());
-        for (const std::vector<Sample>& line : lines_) {
+        for (std::uint32_t id = 0; id < lines_.size(); ++id) {
+            const std::vector<Sample>& line = lines_[id];
             Stroke s;
             s.kind = "hachure";
             double tone = 0.0;
@@ -426,6 +476,7 @@ public:
                 s.depth.push_back(float(p.depth));
                 tone += p.tone;
             }
+            s.weight = weights(id);
             s.strength = float(tone / double(line.size()));
             out.push_back(simplify_stroke(s, 0.2f));
         }

@@ -23,6 +23,15 @@
 // spacing_min_px; where w / t exceeds spacing_max_px, or the slope is under min_slope_deg, no line
 // is drawn (lit slopes and flats stay white).
 //
+// Width: each point of a line carries a weight u in [0, 1] (Stroke::weight) that the style maps to
+// a width between weight_min and weight_max times w: the width w' = t (g_l + g_r) / 2 that makes
+// the ink between the line and its neighbours the tone, g_l and g_r the gaps across the line to
+// the nearest other hachure or obstacle point on each side (within 45 deg of the normal, at most
+// 2 s; a side with none within 2 s counts s), u = (w' - weight_min w) / ((weight_max - weight_min) w)
+// clamped and averaged over 5 points. So the dark tones that spacing_min_px stops, and the gaps
+// where lines end, are drawn by wider lines, crowded lines by thinner ones. With weight_min ==
+// weight_max (the plotter style) no weights: tone by spacing alone.
+//
 // Placement, all in image pixels on an occupancy grid (a spatial hash of 3 px cells): a line grows
 // from its seed while each new point is on a valid cell, in the image, visible against the frame's
 // depth image (lines/mesh_visibility.hpp point_visible: the depth test of the outline and creases),

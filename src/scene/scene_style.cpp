@@ -15,6 +15,9 @@ void apply_object_sketch(Scene& scene, const Style& style) {
     // the hachures' spacing is computed for the pen that draws them (millimetres at 96 dpi)
     if (scene.hachures.width_px <= 0.0)
         scene.hachures.width_px = style.layer(LayerKind::hachures).width * (style.widths_mm ? 96.0 / 25.4 : 1.0);
+    // and the range its width takes with the tone (the layer's weight factors)
+    scene.hachures.weight_min = style.layer(LayerKind::hachures).weight_min;
+    scene.hachures.weight_max = style.layer(LayerKind::hachures).weight_max;
 }
 
 FinishOptions finish_options(const Style& style, std::uint64_t seed, bool object_space_terrain_lines) {

@@ -53,8 +53,16 @@ TriangleMesh mesh_of(const Terrain& t) {
     return m;
 }
 
+// The defaults with the default style's pen range (as apply_object_sketch sets it).
+HachureParams styled_defaults() {
+    HachureParams p = hachure_defaults();
+    p.weight_min = default_style().layer(LayerKind::hachures).weight_min;
+    p.weight_max = default_style().layer(LayerKind::hachures).weight_max;
+    return p;
+}
+
 std::vector<Stroke> hachures(const Terrain& t, const Camera& cam, const DepthImage& depth,
-                             const HachureParams& p = hachure_defaults(),
+                             const HachureParams& p = styled_defaults(),
                              std::vector<const std::vector<Stroke>*> obstacles = {}) {
     HachureFrame f;
     f.camera = &cam;
@@ -122,6 +130,42 @@ TEST(Hachures, CoverageFollowsTheToneOfPlanes) {
         // the lines' ends at the frame and their 1 px steps move it by a little
         EXPECT_NEAR(coverage, tone, 0.05 * tone) << c.kx << " " << c.ky;
     }
+}
+
+// Width rises with the tone: on a plane in full shade (tone 1) the lines lie spacing_min_px apart
+// and widen to carry the tone; on a plane of tone 0.35 they keep the nominal width. The drawn
+// coverage (length x the style's width at each point's weight, over the area) is the tone.
+TEST(Hachures, WidthRisesInTheDarkTones) {
+    const Style style = default_style();
+    const LayerStyle& pen = style.layer(LayerKind::hachures);
+    ASSERT_LT(pen.weight_min, pen.weight_max);  // the technical style lets the width vary
+    const double k = kLight.x / kLight.z, l = kLight.y / kLight.z;
+    struct Case {
+        double kx, ky;
+    } cases[] = {{0.3, 0.3}, {3.0 * k, 3.0 * l}};  // tone 0.35; a slope turned from the sun: tone 1
+    double mean_weight[2] = {0.0, 0.0};
+    for (int c = 0; c < 2; ++c) {
+        const Terrain t = plane(cases[c].kx, cases[c].ky);
+        const Camera cam = plan_view(t, 400);
+        const glm::dvec3 n = glm::normalize(glm::dvec3(-cases[c].kx, -cases[c].ky, 1.0));
+        const double tone = 1.0 - std::max(0.0, glm::dot(n, kLight));
+        double ink = 0.0, len = 0.0, weight = 0.0;
+        for (const Stroke& s : hachures(t, cam, DepthImage{})) {
+            ASSERT_EQ(s.weight.size(), s.points.size());
+            for (std::size_t i = 1; i < s.points.size(); ++i) {
+                const double seg = glm::length(s.points[i] - s.points[i - 1]);
+                const double u = 0.5 * (s.weight[i] + s.weight[i - 1]);
+                ink += seg * pen.width * (pen.weight_min + (pen.weight_max - pen.weight_min) * u);
+                len += seg, weight += seg * u;
+            }
+        }
+        mean_weight[c] = weight / len;
+        const double coverage = ink / (400.0 * 400.0);
+        std::printf("plane tone %.3f: coverage %.3f, mean weight %.3f\n", tone, coverage, mean_weight[c]);
+        // within 8 %: the lines at the frame's edge and their 1 px steps, as for the planes above
+        EXPECT_NEAR(coverage, tone, 0.08 * tone);
+    }
+    EXPECT_GT(mean_weight[1], mean_weight[0] + 0.3);  // 1.6 px against 1 px: weights 0.83 and 0.33
 }
 
 // A plane facing the sun (its normal is the light vector) and a flat DEM get no hachures.
@@ -215,8 +259,8 @@ TEST(Hachures, ToneMeasureOnAnalyticHills) {
         std::printf("%s: r %.3f SSIM %.3f ink %.3f target %.3f\n", t == &hill ? "hill" : "cone", s.r, s.ssim, s.mean_ink,
                     s.mean_target);
         ASSERT_GT(s.pixels, 50000u);
-        // the targets at sigma 8 px (measured r 0.90-0.91, SSIM 0.88, ink 14 % under the target:
-        // lines end where fall lines converge, so the mean spacing exceeds d_sep there)
+        // the targets at sigma 8 px (measured r 0.92, SSIM 0.85-0.88, ink 18-23 % under the
+        // target: the flat ground around the hills has the target's 0.29 and no line)
         EXPECT_GE(s.r, 0.85);
         EXPECT_GE(s.ssim, 0.5);
         EXPECT_NEAR(s.mean_ink, s.mean_target, 0.25 * s.mean_target);
@@ -237,4 +281,32 @@ TEST(ToneMeasure, TargetOfAPlaneIsItsClosedFormTone) {
             EXPECT_NEAR(v, tone, 1e-5);  // float positions of a 1 km grid
         }
     EXPECT_GT(n, 190u * 190u);
+}
+
+// Rough ground: ridges and valleys a few spacings apart in several directions (sines of 60 to
+// 240 m on a 5 m grid, 1 km seen at 400 px: 24 to 96 px), where fall lines converge and part
+// every few pixels. The lines end often there and leave holes the widths cannot fill: the bound
+// is what the placement reaches today (measured ink 0.60 of the target's, r 0.99), short of the
+// +-25 % it aims at (docs/tone.md).
+TEST(Hachures, MeanInkOnRoughGround) {
+    const Terrain rough = terrain_from_function(201, 201, 5.0, [](double x, double y) {
+        return 10.0 * std::sin(x / 60.0 * 6.283 + 0.3) * std::cos(y / 85.0 * 6.283) +
+               5.0 * std::sin((0.6 * x + 0.8 * y) / 37.0 * 6.283) + 3.0 * std::cos((0.9 * x - 0.4 * y) / 24.0 * 6.283) +
+               25.0 * std::sin(x / 240.0 * 6.283) * std::sin(y / 310.0 * 6.283);
+    });
+    const Camera cam = plan_view(rough, 400);
+    const DepthImage depth = rasterize_depth(mesh_of(rough), cam);
+    Drawing d;
+    d.width = d.height = 400;
+    d.layer(LayerKind::hachures).strokes = hachures(rough, cam, depth);
+    const RgbImage rgb = rasterise(style_drawing(d, default_style()), RasterTransform{400, 400, 1.0, 0.0, 0.0});
+    const ToneImage ink = ink_from_rgb(rgb.width, rgb.height, rgb.rgb);
+    const ToneImage target =
+        target_tone(ToneGrid{rough.cols, rough.rows, rough.pos.data(), rough.valid.data(), 1.0}, cam, depth, kLight);
+    const ToneScore s = tone_score(ink, target, 8.0);
+    std::printf("rough: r %.3f SSIM %.3f ink %.3f target %.3f, %zu strokes, %.0f px\n", s.r, s.ssim, s.mean_ink, s.mean_target,
+                d.layer(LayerKind::hachures).strokes.size(), total_length(d.layer(LayerKind::hachures).strokes));
+    EXPECT_GE(s.mean_ink, 0.55 * s.mean_target);
+    EXPECT_LE(s.mean_ink, 1.25 * s.mean_target);
+    EXPECT_GE(s.r, 0.85);
 }
