@@ -182,13 +182,12 @@ Box ring_box(const Ring& r) {
 void add_grid(Layer& layer, const FurnitureFrame& f, const Layout& L, MapGrid grid, double inset, const std::vector<Box>& taken) {
     const double W = f.width, H = f.height;
     const glm::dvec2 corners[4] = {{inset, inset}, {W - inset, inset}, {W - inset, H - inset}, {inset, H - inset}};
-    const glm::dvec2 image[4] = {{0, 0}, {W, 0}, {W, H}, {0, H}};
     const double tick = L.mm(2.0), ts = f.grid_text_px * L.factor, clear = L.mm(3.0);
     std::array<std::vector<glm::dvec2>, 4> samples;
     double interval[2] = {0.0, 0.0};
     if (grid == MapGrid::map) {
         for (int e = 0; e < 4; ++e) {
-            const glm::dvec2 a = image[e], b = image[(e + 1) % 4];
+            const glm::dvec2 a = corners[e], b = corners[(e + 1) % 4];
             const auto to_map = [&](glm::dvec2 p) {
                 const std::array<double, 6>& g = f.geotransform;
                 return glm::dvec2(g[0] + p.x * g[1] + p.y * g[2], g[3] + p.x * g[4] + p.y * g[5]);
@@ -284,15 +283,18 @@ std::vector<EdgeTick> edge_ticks(glm::dvec2 from, glm::dvec2 to, const std::vect
         const double a = samples[i][axis], b = samples[i + 1][axis];
         if (!std::isfinite(a) || !std::isfinite(b) || a == b) continue;
         const double lo = std::min(a, b), hi = std::max(a, b);
-        // multiples in [lo, hi) of this piece (the last piece also takes hi), at most 1000 of them
+        // multiples in this piece, its end left to the next piece but on the last; at most 1000
         const double k0 = std::ceil(lo / interval), k1 = std::floor(hi / interval);
         for (double k = k0; k <= k1 && k - k0 < 1000.0; ++k) {
             const double v = k * interval;
-            if (v == hi && i + 2 < samples.size()) continue;  // the next piece's start
+            if (v == b && i + 2 < samples.size()) continue;  // the next piece's start
             const double t = (double(i) + (v - a) / (b - a)) / n;
             ticks.push_back({from + (to - from) * t, v});
         }
     }
+    std::stable_sort(ticks.begin(), ticks.end(), [&](const EdgeTick& p, const EdgeTick& q) {  // along the segment
+        return glm::dot(p.at - from, to - from) < glm::dot(q.at - from, to - from);
+    });
     return ticks;
 }
 
