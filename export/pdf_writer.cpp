@@ -23,6 +23,7 @@ std::vector<Ocg> make_ocgs(const StyledDrawing& d, int first_object) {
     std::vector<Ocg> ocgs;
     const bool split = d.split == LayerSplit::kind_distance;
     for (const StyledLayer& l : d.layers) {
+        if (!layer_written(d, l)) continue;
         const int parent = static_cast<int>(ocgs.size());
         ocgs.push_back({first_object + parent, l.name, -1});
         if (split)
@@ -85,6 +86,7 @@ std::string content(const StyledDrawing& d, const PageLayout& L, const std::vect
     append_page_setup(o, d, L, "re f");
     size_t oc = 0;
     for (const StyledLayer& l : d.layers) {
+        if (!layer_written(d, l)) continue;
         o += "/OC /oc" + std::to_string(oc++) + " BDC\nq\n";
         append_layer_fill(o, l);
         PenState pen, fill;
@@ -93,6 +95,12 @@ std::string content(const StyledDrawing& d, const PageLayout& L, const std::vect
             if (split) o += "/OC /oc" + std::to_string(oc++) + " BDC\n";
             group_body(o, g, pen, fill, alphas);
             if (split) o += "EMC\n";
+        }
+        for (const StyledLabel& t : l.labels) {  // Helvetica (/Fh), upright in the y-down pixels
+            o += "q\n";
+            append_rgb_op(o, t.color, "rg");
+            o += "BT /Fh " + format_number(t.size_px, 3) + " Tf 1 0 0 -1 " + format_number(label_start_x(t), 3) + " " +
+                 format_number(t.at.y, 3) + " Tm " + label_string(t) + " Tj ET\nQ\n";
         }
         o += "Q\nEMC\n";
     }
@@ -190,6 +198,9 @@ std::string pdf_string(const std::string& text) {
 std::string pdf_document(const StyledDrawing& d, const PageOptions& page, const std::string& path) {
     const PageLayout L = page_layout(d.width, d.height, page, path);
     const std::vector<Ocg> ocgs = make_ocgs(d, 6);
+    bool labels = false;  // Helvetica's font object (after the OCGs) only when there is text
+    for (const StyledLayer& l : d.layers) labels = labels || (layer_written(d, l) && !l.labels.empty());
+    const int font_object = 6 + int(ocgs.size());
     AlphaNames alphas;
     const std::string stream = content(d, L, ocgs, alphas);
     std::string gs, props;
@@ -203,10 +214,11 @@ std::string pdf_document(const StyledDrawing& d, const PageOptions& page, const 
     b.object("<< /Type /Catalog /Pages 2 0 R " + oc_properties(ocgs) + " >>");
     b.object("<< /Type /Pages /Kids [3 0 R] /Count 1 >>");
     b.object("<< /Type /Page /Parent 2 0 R /MediaBox " + box + viewport_entry(d, L) + " /Resources << /ExtGState <<" + gs +
-             " >> /Properties <<" + props + " >> >> /Contents 4 0 R >>");
+             " >>" + (labels ? " /Font << /Fh " + ref(font_object) + " >>" : std::string()) + " /Properties <<" + props + " >> >> /Contents 4 0 R >>");
     b.object("<< /Length " + std::to_string(stream.size()) + " >>\nstream\n" + stream + "endstream");
     b.object(info_dict(d, page, path));
     for (const Ocg& g : ocgs) b.object("<< /Type /OCG /Name " + pdf_string(g.name) + " >>");
+    if (labels) b.object("<< /Type /Font /Subtype /Type1 /BaseFont /Helvetica /Encoding /WinAnsiEncoding >>");
     return b.finish(1, 5);
 }
 

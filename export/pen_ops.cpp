@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "core/helvetica_metrics.hpp"
 #include "export/page.hpp"
 #include "export/stroke_outline.hpp"
 
@@ -85,6 +86,28 @@ void append_page_setup(std::string& o, const StyledDrawing& d, const PageLayout&
     o += format_number(k, 6) + " 0 0 " + format_number(-k, 6) + " " +
          format_number(L.offset_x_mm * points_per_mm, 4) + " " +
          format_number(h - L.offset_y_mm * points_per_mm, 4) + " cm\n1 J 1 j\n";
+}
+
+double label_start_x(const StyledLabel& label) {
+    const double w = helvetica_advance_em(label.text) * label.size_px;
+    return label.at.x - (label.anchor == TextAnchor::middle ? 0.5 * w : label.anchor == TextAnchor::end ? w : 0.0);
+}
+
+std::string label_string(const StyledLabel& label) {
+    std::string o = "(";
+    for (const char ch : latin1_text(label.text)) {
+        const unsigned char c = static_cast<unsigned char>(ch);
+        if (c == '(' || c == ')' || c == '\\') o += '\\';
+        if (c >= 32 && c < 127) {
+            o += ch;
+        } else {
+            o += '\\';
+            o += char('0' + (c >> 6));
+            o += char('0' + ((c >> 3) & 7));
+            o += char('0' + (c & 7));
+        }
+    }
+    return o + ")";
 }
 
 }  // namespace penink

@@ -29,6 +29,13 @@ void append_page_setup(std::string& out, const StyledDrawing& d, const PageLayou
 // a stroke over the bare page, default white).
 Rgb blend_toward(Rgb c, Rgb paper, double opacity);
 
+// The x where a label's text starts (its anchor moved back by Helvetica's advance of its text:
+// core/helvetica_metrics.hpp), image pixels.
+double label_start_x(const StyledLabel& label);
+// The label's text as a literal string of WinAnsi / ISO Latin-1 bytes, "(...)" with ( ) \ and
+// bytes outside printable ASCII escaped (octal): the same syntax in PDF and PostScript.
+std::string label_string(const StyledLabel& label);
+
 // Pen state of a content stream, to emit only changed operators.
 struct PenState {
     bool valid = false;

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cmath>
 
+#include "core/helvetica_metrics.hpp"
 #include "export/pen_ops.hpp"
 #include "core/version.hpp"
 
@@ -61,6 +62,10 @@ void ink_box_pt(const StyledDrawing& d, const PageLayout& L, double margin_mm, d
         for (const StyledGroup& g : l.groups)
             for (const StyledPath& path : g.paths)
                 for (const glm::vec2& p : path.points) add(p, 0.5 * path.width);
+        for (const StyledLabel& t : l.labels) {  // the text's advance, from its descent to its cap height
+            const float x0 = float(label_start_x(t)), x1 = float(x0 + helvetica_advance_em(t.text) * t.size_px);
+            add({x0, t.at.y - 0.75f * float(t.size_px)}, 0.0), add({x1, t.at.y + 0.25f * float(t.size_px)}, 0.0);
+        }
     }
     if (x0 > x1) x0 = 0.0, y0 = 0.0, x1 = L.page_w_mm, y1 = L.page_h_mm;
     x0 = std::max(0.0, x0 - margin_mm), y0 = std::max(0.0, y0 - margin_mm);
@@ -68,6 +73,20 @@ void ink_box_pt(const StyledDrawing& d, const PageLayout& L, double margin_mm, d
     box[0] = x0 * points_per_mm, box[1] = (L.page_h_mm - y1) * points_per_mm;
     box[2] = x1 * points_per_mm, box[3] = (L.page_h_mm - y0) * points_per_mm;
 }
+
+bool has_labels(const StyledDrawing& d) {
+    for (const StyledLayer& l : d.layers)
+        if (layer_written(d, l) && !l.labels.empty()) return true;
+    return false;
+}
+
+// Helvetica re-encoded as ISO Latin-1 with ASCII's own quote, hyphen and grave (so that its codes
+// mean what PDF's WinAnsiEncoding and latin1_text mean).
+constexpr const char* label_font =
+    "/Helvetica findfont dup length dict begin\n"
+    "{ 1 index /FID ne { def } { pop pop } ifelse } forall\n"
+    "/Encoding ISOLatin1Encoding 256 array copy dup 39 /quotesingle put dup 45 /hyphen put dup 96 /grave put def\n"
+    "currentdict end /PeninkHelvetica exch definefont pop\n";
 
 bool has_outlines(const StyledDrawing& d) {
     for (const StyledLayer& l : d.layers)
@@ -91,6 +110,7 @@ void header(std::string& o, const StyledDrawing& d, const PageLayout& L, bool ep
     o += "%%HiResBoundingBox: " + format_number(box[0], 3) + " " + format_number(box[1], 3) + " " +
          format_number(box[2], 3) + " " + format_number(box[3], 3) + "\n";
     o += "%%LanguageLevel: 2\n%%DocumentData: Clean7Bit\n%%Pages: 1\n";
+    if (has_labels(d)) o += "%%DocumentNeededResources: font Helvetica\n";
     if (!eps) o += "%%DocumentMedia: penink " + format_number(w, 3) + " " + format_number(h, 3) + " 0 () ()\n";
     o += "%%EndComments\n";
     for (const auto& [k, v] : merged_metadata(d.metadata, page.metadata))
@@ -98,6 +118,7 @@ void header(std::string& o, const StyledDrawing& d, const PageLayout& L, bool ep
     o += prolog;
     o += "%%BeginSetup\npenink_dict begin\n";
     if (has_outlines(d)) o += "/f /fill load def\n";  // variable-width paths: filled outlines
+    if (has_labels(d)) o += std::string("%%IncludeResource: font Helvetica\n") + label_font;
     if (!eps) o += "<< /PageSize [" + format_number(w, 3) + " " + format_number(h, 3) + "] >> setpagedevice\n";
     o += "%%EndSetup\n%%Page: 1 1\n%%BeginPageSetup\nq\n";
     append_page_setup(o, d, L, "rectfill");
@@ -133,6 +154,13 @@ void layer_body(std::string& o, const StyledLayer& l, bool split, Rgb paper) {
         }
         if (split) o += "%%EndLayer\n";
     }
+    for (const StyledLabel& t : l.labels) {  // upright text in the page's y-down pixels
+        o += "q\n";
+        append_rgb_op(o, t.color, "rg");
+        o += "/PeninkHelvetica " + format_number(t.size_px, 3) + " selectfont\n";
+        o += format_number(label_start_x(t), 3) + " " + format_number(t.at.y, 3) + " translate 1 -1 scale 0 0 moveto " +
+             label_string(t) + " show\nQ\n";
+    }
 }
 
 void layer(std::string& o, const StyledLayer& l, bool split, Rgb paper) {
@@ -157,7 +185,8 @@ std::string ps_document(const StyledDrawing& d, const PageOptions& page, bool ep
     std::string o;
     o.reserve(8192 + path_count(d) * 64);
     header(o, d, L, eps, page, path);
-    for (const StyledLayer& l : d.layers) layer(o, l, d.split == LayerSplit::kind_distance, d.background);
+    for (const StyledLayer& l : d.layers)
+        if (layer_written(d, l)) layer(o, l, d.split == LayerSplit::kind_distance, d.background);
     o += "Q\nshowpage\n%%PageTrailer\n%%Trailer\nend\n%%EOF\n";
     return o;
 }

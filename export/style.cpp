@@ -79,6 +79,15 @@ Style default_style() {
     set_taper(s.layer(LayerKind::ridges), 6.0, 0.15, 1.0, 1.0);
     set_taper(s.layer(LayerKind::creases), 6.0, 0.15, 0.5, 1.75);
     set_taper(s.layer(LayerKind::silhouettes), 8.0, 0.3, 0.5, 1.25);
+    // map furniture (lines/map_furniture.hpp): a heavy neatline, fine ticks, labels in points
+    const struct { LayerKind k; double w, pt; } furniture[] = {
+        {LayerKind::neatline, 1.5, 0.0}, {LayerKind::grid, 0.5, 6.0}, {LayerKind::scale_bar, 0.8, 7.0},
+        {LayerKind::north_arrow, 0.8, 9.0}, {LayerKind::title, 0.8, 14.0}};
+    for (const auto& row : furniture) {
+        set_width(s.layer(row.k), row.w, row.w);
+        s.layer(row.k).font_size = row.pt;
+        s.layer(row.k).min_length = 0.0;  // a tick is short
+    }
     return s;
 }
 
@@ -116,6 +125,8 @@ Style field_sketch_style() {
     // with distance), a light wobble and no overshoot into the creases they yield to
     s.layer(LayerKind::hachures).sketch = 0.5;
     s.layer(LayerKind::hachures).overshoot = 0.0;
+    for (LayerKind k : all_layers)
+        if (is_furniture(k)) s.layer(k).color = Rgb{0x2b, 0x24, 0x1e};  // the ink, without the sketch
     return s;
 }
 
@@ -139,6 +150,12 @@ Style plotter_style() {
         set_width(l, row.w, row.w);
         set_taper(l, 0.0, 0.0, 1.0, 1.0);  // single centre-line strokes, one pen width
     }
+    // map furniture in black: its lines in millimetres, and no text (a pen does not set type)
+    for (LayerKind k : all_layers)
+        if (is_furniture(k)) {
+            set_width(s.layer(k), k == LayerKind::neatline ? 0.5 : 0.3, k == LayerKind::neatline ? 0.5 : 0.3);
+            s.layer(k).font_size = 0.0;
+        }
     return s;
 }
 

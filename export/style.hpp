@@ -52,6 +52,9 @@ struct LayerStyle {
     // Width factor at stroke weight 0 and 1 (Stroke::weight: creases by flow, silhouettes by
     // the depth gap behind them), linear between; strokes without weights take weight_max.
     double weight_min = 1.0, weight_max = 1.0;
+    // Map furniture layers: the size of their labels, points on the page (0: the layer draws no
+    // text). Drawing layers carry no text.
+    double font_size = 0.0;
     bool operator==(const LayerStyle&) const = default;
 };
 
@@ -83,7 +86,8 @@ Style load_style(const std::string& path);
 Style resolve_style(const std::string& name_or_path);
 
 // Applies a style table (a style file's root or a scene's [style] table: top-level keys and
-// one sub-table per layer name or "all"). Throws Error("style", source, what) on bad input.
+// one sub-table per layer name or "all"; "all" sets the nine drawing layers, never the map
+// furniture's). Throws Error("style", source, what) on bad input.
 void apply_style_overrides(Style& style, const toml::value& table, const std::string& source = "");
 
 }  // namespace penink

@@ -83,7 +83,7 @@ std::vector<double> dash_array(const toml::value& v, const std::string& table) {
 std::vector<std::string> layer_keys() {
     return {"color", "colour", "width", "width_far", "opacity", "opacity_far", "keep_far",
             "dash", "sketch", "overshoot", "min_length", "repeat", "visible", "taper", "taper_min",
-            "weight_min", "weight_max"};
+            "weight_min", "weight_max", "font_size"};
 }
 std::vector<std::string> root_keys() { return {"name", "fill", "background", "near", "far", "bands", "width_unit"}; }
 std::vector<std::string> layer_names() {
@@ -115,6 +115,10 @@ void apply_layer_key(LayerStyle& l, const std::string& key, const toml::value& v
     else if (key == "taper_min") l.taper_min = unit_number(v, key, table);
     else if (key == "weight_min") l.weight_min = number_at_least(v, key, table, 0.0);
     else if (key == "weight_max") l.weight_max = number_at_least(v, key, table, 0.0);
+    else if (key == "font_size") {
+        l.font_size = number_at_least(v, key, table, 0.0);
+        if (l.font_size > 1000.0) throw StyleProblem("font_size must be at most 1000 (points)" + where(table));
+    }
     else if (key == "repeat") {
         if (!v.is_integer() || v.as_integer() < 1 || v.as_integer() > 16)
             throw StyleProblem("repeat must be an integer in [1, 16]" + where(table));
@@ -174,7 +178,8 @@ void apply_table(Style& s, const toml::value& table) {
         if (!v.is_table()) apply_root_key(s, k, v);
     }
     if (table.contains("all") && table.at("all").is_table())
-        for (LayerStyle& l : s.layers) apply_layer_table(l, table.at("all"), "all");
+        for (LayerKind k : all_layers)
+            if (!is_furniture(k)) apply_layer_table(s.layer(k), table.at("all"), "all");
     for (const std::string& k : keys) {
         const toml::value& v = table.as_table().at(k);
         LayerKind kind;

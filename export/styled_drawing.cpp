@@ -166,6 +166,8 @@ StyledLayer style_layer(const Layer& layer, const Style& style, const DistanceMa
             out.groups[g].paths.push_back(p);
         }
     }
+    for (const Label& l : layer.labels)
+        if (!l.text.empty() && l.size_px > 0.0f) out.labels.push_back({l.at, l.text, l.size_px, l.anchor, ls.color, l.kind});
     return out;
 }
 
@@ -204,6 +206,7 @@ StyledDrawing style_drawing(const Drawing& drawing, const Style& style, LayerSpl
     out.metadata = drawing.metadata;
     out.georeference = drawing.georeference;
     out.widths_mm = style.widths_mm;
+    out.furniture = drawing.furniture;
     const DistanceMap dm{max_depth(drawing), style.near, style.far};
     for (size_t i = 0; i < drawing.layers.size(); ++i)
         out.layers[i] = style_layer(drawing.layers[i], style, dm, split);

@@ -39,6 +39,16 @@ struct StyledPath {
     std::vector<double> widths;
 };
 
+// A label in the layer's colour (core/drawing.hpp's Label): Helvetica, size_px the em.
+struct StyledLabel {
+    glm::vec2 at{0.0f, 0.0f};  // baseline point, image pixels
+    std::string text;          // UTF-8
+    double size_px = 10.0;
+    TextAnchor anchor = TextAnchor::start;
+    Rgb color;
+    std::string kind;  // data-kind
+};
+
 // A drawable group: the whole layer, or one of its near/middle/far sublayers.
 struct StyledGroup {
     std::string name;  // "ridges" or "ridges-near", ...
@@ -52,6 +62,7 @@ struct StyledLayer {
     Rgb fill_color{255, 255, 255};
     LayerStyle style;             // the style the paths were made with (common attributes)
     std::vector<StyledGroup> groups;  // 1 (LayerSplit::kind) or 3 (kind_distance)
+    std::vector<StyledLabel> labels;  // furniture layers: text above the paths
 };
 
 struct StyledDrawing {
@@ -64,7 +75,13 @@ struct StyledDrawing {
     // Path widths (and dashes) in millimetres on the page instead of image pixels (Style::widths_mm):
     // export_document turns them into pixels at the page's scale.
     bool widths_mm = false;
+    bool furniture = false;  // Drawing::furniture: the map furniture layers are written
 };
+
+// Whether a writer writes `layer`: the nine drawing layers always, the furniture layers on maps.
+inline bool layer_written(const StyledDrawing& drawing, const StyledLayer& layer) {
+    return drawing.furniture || !is_furniture(layer.kind);
+}
 
 // Whether a layer's strokes get variable widths: taper or weight_min != weight_max, undashed.
 bool variable_width(const LayerStyle& style);

@@ -196,6 +196,20 @@ void layer_open(std::string& o, const std::string& name) {
     o += "<g inkscape:groupmode=\"layer\" inkscape:label=\"" + name + "\" id=\"" + name + "\"";
 }
 
+// A label as SVG text, editable in Inkscape: Helvetica (or the viewer's metric-compatible sans).
+void text_label(std::string& o, const StyledLabel& t) {
+    o += "<text";
+    attr_num(o, "x", t.at.x, 2);
+    attr_num(o, "y", t.at.y, 2);
+    attr_num(o, "font-size", t.size_px, 3);
+    attr(o, "font-family", "Helvetica, Arial, sans-serif");
+    if (t.anchor != TextAnchor::start) attr(o, "text-anchor", t.anchor == TextAnchor::middle ? "middle" : "end");
+    attr(o, "fill", rgb_hex(t.color));
+    attr(o, "stroke", "none");
+    attr(o, "data-kind", xml_escape(t.kind));
+    o += ">" + xml_escape(t.text) + "</text>\n";
+}
+
 void layer(std::string& o, const StyledLayer& l, bool split, std::string& defs, size_t& effects) {
     layer_open(o, l.name);
     attr(o, "fill", "none");
@@ -217,6 +231,7 @@ void layer(std::string& o, const StyledLayer& l, bool split, std::string& defs, 
         }
         if (split) o += "</g>\n";
     }
+    for (const StyledLabel& t : l.labels) text_label(o, t);
     o += "</g>\n";
 }
 
@@ -275,7 +290,8 @@ std::string svg_document(const StyledDrawing& d, const PageOptions& page, const 
     size_t effects = 0;
     std::string layers, defs;  // the power-stroke effects go in <defs>, before the layers
     layers.reserve(path_count(d) * 64);
-    for (const StyledLayer& l : d.layers) layer(layers, l, d.split == LayerSplit::kind_distance, defs, effects);
+    for (const StyledLayer& l : d.layers)
+        if (layer_written(d, l)) layer(layers, l, d.split == LayerSplit::kind_distance, defs, effects);
     if (!defs.empty()) o += "<defs id=\"defs\">\n" + defs + "</defs>\n";
     o += layers;
     o += "</svg>\n";

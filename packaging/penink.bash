@@ -30,6 +30,7 @@ _penink() {
             return ;;
         --gl) COMPREPLY=($(compgen -W "osmesa egl" -- "$cur")); return ;;
         --layers) COMPREPLY=($(compgen -W "kind kind+distance" -- "$cur")); return ;;
+        --grid) COMPREPLY=($(compgen -W "none map graticule" -- "$cur")); return ;;
         --routing) COMPREPLY=($(compgen -W "priority-flood least-cost" -- "$cur")); return ;;
         --analytic) COMPREPLY=($(compgen -W "hill two-hills smooth-cliff saddle" -- "$cur")); return ;;
         --page) COMPREPLY=($(compgen -W "A0 A1 A2 A3 A4 A5 A6 B4 B5 letter legal tabloid" -- "$cur")); return ;;
@@ -37,7 +38,7 @@ _penink() {
             COMPREPLY=($(compgen -d -- "$cur"))
             compopt -o filenames 2>/dev/null
             return ;;
-        --width | --height | --dpi | --margin | --seed | --vertical-exaggeration | --sea-level | --scale | --resample | --warmup | --orbit | \
+        --width | --height | --dpi | --margin | --seed | --vertical-exaggeration | --sea-level | --scale | --title | --resample | --warmup | --orbit | \
         --max-memory | --frames | --levels | --sizes | --tolerances | --methods | --formats | --needs-size | --ref-edge-px | \
         --ref-supersample)
             return ;;  # a number or a list: nothing to offer

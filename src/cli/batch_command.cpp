@@ -194,8 +194,9 @@ int run_batch(const BatchOptions& o) {
         SceneDrawing d = flight.frames->draw(flight.cameras[i],
                                              flight.records.empty() ? scene : frame_scene(scene, flight.records[i]));
         t.times = d.times, t.lines = d.lines, t.trace = d.trace_ms;
-        const FrameOutputResult e = write_frame(d.drawing, style, scene.seed, !summary.mesh,
-                                                FrameOutput{frame_paths(o.out_dir, t.frame, formats), {}, LayerSplit::kind, ""});
+        FrameOutput output{frame_paths(o.out_dir, t.frame, formats), {}, LayerSplit::kind, ""};
+        output.furniture = scene.furniture, output.map_scale = scene.map_scale;
+        const FrameOutputResult e = write_frame(d.drawing, style, scene.seed, !summary.mesh, output);
         t.finish = e.finish_ms, t.write = e.write_ms;
         t.total = ms_since(t0);
         timings.push_back(t);

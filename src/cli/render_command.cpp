@@ -91,6 +91,7 @@ int run_render(const RenderOptions& o) {
     SceneDrawing result = draw_scene(scene, *context, log);
     log_frame_timings(result, log);
     FrameOutput output{output_files(o), page_options(o), parse_layer_split(o.layers), o.format, o.verbose};
+    output.furniture = scene.furniture, output.map_scale = scene.map_scale;
     const FrameOutputResult written = write_frame(result.drawing, style, scene.seed, terrain, output);
     log_finish(written.finish, log);
     if (o.verbose && terrain && !scene.dem.empty()) log_directions(result.drawing, scene.dem, log);

@@ -20,6 +20,10 @@ void add_scene_override_options(CLI::App* cmd, SceneOverrides& o) {
     cmd->add_flag("--map", o.map, "Orthographic plan view of the whole DEM, north up");
     cmd->add_option("--scale", o.scale, "Map scale 1:N on the page set by --page/--dpi/--margin (orthographic views)")
         ->check(map_scale_check());
+    cmd->add_option("--title", o.title, "Map title, drawn in a plan view's title layer ([map] title)");
+    cmd->add_option("--grid", o.grid, "Grid ticks on a plan view's neatline: none, map (map CRS) or graticule (lon/lat)")
+        ->check(CLI::IsMember({"none", "map", "graticule"}));
+    cmd->add_flag("--no-furniture", o.no_furniture, "No neatline, scale bar, north arrow, grid or title on a plan view");
     cmd->add_option("--sea-level", o.sea_level,
                     "Draw the DEM below this elevation (its units, unexaggerated) as water, with a coastline")
         ->check(number_between(-1e7, 1e7));

@@ -9,7 +9,8 @@ class App;
 
 namespace penink {
 
-// --width --height --style --seed --vertical-exaggeration --sea-level --map --scale --gl --max-memory
+// --width --height --style --seed --vertical-exaggeration --sea-level --map --scale --title --grid
+// --no-furniture --gl --max-memory
 // --position --elevation --azimuth --altitude --fov --target --distance
 void add_scene_override_options(CLI::App* cmd, SceneOverrides& o);
 

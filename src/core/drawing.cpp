@@ -13,6 +13,11 @@ std::string_view layer_name(LayerKind kind) {
         case LayerKind::textures: return "textures";
         case LayerKind::feature_edges: return "feature-edges";
         case LayerKind::silhouettes: return "silhouettes";
+        case LayerKind::neatline: return "neatline";
+        case LayerKind::grid: return "grid";
+        case LayerKind::scale_bar: return "scale-bar";
+        case LayerKind::north_arrow: return "north-arrow";
+        case LayerKind::title: return "title";
     }
     return "unknown";
 }

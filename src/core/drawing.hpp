@@ -1,6 +1,9 @@
 // The drawing handed from the lines stage to export: strokes (polylines in image pixels,
 // origin top-left, y down, with per-point eye distance in metres / world units) grouped in
-// the nine named layers of conventions.md, bottom to top, plus the surface mask polygons.
+// the nine named drawing layers of conventions.md, bottom to top, plus the surface mask polygons;
+// above them the five map furniture layers (neatline, grid, scale bar, north arrow, title:
+// lines/map_furniture.hpp), written only for maps (Drawing::furniture), which also hold text
+// labels and white panels (fill rings) under their lines.
 #pragma once
 #include <array>
 #include <map>
@@ -15,12 +18,20 @@
 
 namespace penink {
 
-enum class LayerKind { surface, coastline, hachures, ridges, creases, pels, textures, feature_edges, silhouettes };
+enum class LayerKind {
+    surface, coastline, hachures, ridges, creases, pels, textures, feature_edges, silhouettes,
+    neatline, grid, scale_bar, north_arrow, title  // map furniture
+};
 
-inline constexpr std::size_t layer_count = 9;
+inline constexpr std::size_t layer_count = 14;
+inline constexpr std::size_t drawing_layer_count = 9;  // the layers every drawing writes
 inline constexpr std::array<LayerKind, layer_count> all_layers = {
     LayerKind::surface, LayerKind::coastline, LayerKind::hachures, LayerKind::ridges, LayerKind::creases, LayerKind::pels,
-    LayerKind::textures, LayerKind::feature_edges, LayerKind::silhouettes};
+    LayerKind::textures, LayerKind::feature_edges, LayerKind::silhouettes, LayerKind::neatline, LayerKind::grid,
+    LayerKind::scale_bar, LayerKind::north_arrow, LayerKind::title};
+
+// The map furniture layers: neatline, grid, scale-bar, north-arrow, title.
+inline constexpr bool is_furniture(LayerKind kind) { return static_cast<std::size_t>(kind) >= drawing_layer_count; }
 
 // Exact layer name used in SVG ids/labels, PS/EPS comments and PDF OCG names.
 std::string_view layer_name(LayerKind kind);
@@ -47,10 +58,26 @@ inline float weight_at(const Stroke& s, std::size_t i) { return i < s.weight.siz
 // A closed ring of the surface mask (even-odd fill), image pixels.
 using Ring = std::vector<glm::vec2>;
 
+// Where a label's baseline point lies along its text: its start, middle or end.
+enum class TextAnchor { start, middle, end };
+
+// One line of text (map furniture): Helvetica at size_px (the em, image pixels), its baseline
+// through `at` (image pixels), horizontal; UTF-8 (writers keep what Latin-1 can say).
+struct Label {
+    glm::vec2 at{0.0f, 0.0f};
+    std::string text;
+    float size_px = 10.0f;
+    TextAnchor anchor = TextAnchor::start;
+    std::string kind;  // data-kind: "title", "scale-label", ...
+};
+
 struct Layer {
     LayerKind kind = LayerKind::surface;
     std::vector<Stroke> strokes;
-    std::vector<Ring> fill;  // only the surface layer fills: the white mask hiding what is behind
+    // The surface's white mask hiding what is behind; on a furniture layer, the paper-coloured
+    // panels under its lines and labels.
+    std::vector<Ring> fill;
+    std::vector<Label> labels;  // furniture layers only
 };
 
 struct Drawing {
@@ -58,6 +85,9 @@ struct Drawing {
     std::array<Layer, layer_count> layers;  // indexed by LayerKind, bottom to top
     std::map<std::string, std::string> metadata;  // source, camera, light, parameters
     std::optional<Georeference> georeference;     // plan views only: pixel -> map transform
+    // The furniture layers are written (plan views: empty when the map has no furniture);
+    // otherwise only the nine drawing layers are.
+    bool furniture = false;
 
     Drawing();
     Layer& layer(LayerKind k) { return layers[static_cast<size_t>(k)]; }

@@ -3,6 +3,7 @@
 #include <cpl_conv.h>
 #include <ogr_spatialref.h>
 
+#include <cmath>
 #include <cstdlib>
 
 namespace penink {
@@ -81,6 +82,57 @@ void add_geographic_corners(Georeference& g, int width, int height) {
         corners.push_back({y, x});
     }
     g.corner_lat_lon = std::move(corners);
+}
+
+namespace {
+
+// Transforms between the CRS in `wkt` and its own geographic CRS (x = lon, y = lat).
+struct GeographicTransforms {
+    std::unique_ptr<OGRSpatialReference> srs, geog;
+    std::unique_ptr<OGRCoordinateTransformation> to_geog, from_geog;
+};
+
+std::optional<GeographicTransforms> geographic_transforms(const std::string& wkt) {
+    GeographicTransforms t;
+    t.srs = srs_from_wkt(wkt);
+    if (!t.srs) return std::nullopt;
+    t.geog.reset(t.srs->CloneGeogCS());
+    if (!t.geog) return std::nullopt;
+    t.geog->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    t.to_geog.reset(OGRCreateCoordinateTransformation(t.srs.get(), t.geog.get()));
+    t.from_geog.reset(OGRCreateCoordinateTransformation(t.geog.get(), t.srs.get()));
+    if (!t.to_geog || !t.from_geog) return std::nullopt;
+    return t;
+}
+
+}  // namespace
+
+std::vector<glm::dvec2> map_to_lon_lat(const std::string& wkt, const std::vector<glm::dvec2>& points) {
+    const auto t = geographic_transforms(wkt);
+    if (!t) return {};
+    std::vector<glm::dvec2> out;
+    out.reserve(points.size());
+    for (const glm::dvec2& p : points) {
+        double x = p.x, y = p.y;
+        if (!t->to_geog->Transform(1, &x, &y) || !std::isfinite(x) || !std::isfinite(y)) return {};
+        out.emplace_back(x, y);
+    }
+    return out;
+}
+
+std::optional<double> grid_convergence_deg(const std::string& wkt, glm::dvec2 p) {
+    const auto t = geographic_transforms(wkt);
+    if (!t) return std::nullopt;
+    if (t->srs->IsGeographic()) return 0.0;
+    double lon = p.x, lat = p.y;
+    if (!t->to_geog->Transform(1, &lon, &lat)) return std::nullopt;
+    const double step = lat + 1e-4 <= 90.0 ? 1e-4 : -1e-4;
+    double x = lon, y = lat + step;
+    if (!t->from_geog->Transform(1, &x, &y) || !std::isfinite(x) || !std::isfinite(y)) return std::nullopt;
+    const double dx = (x - p.x) * (step > 0 ? 1.0 : -1.0), dy = (y - p.y) * (step > 0 ? 1.0 : -1.0);
+    if (dx == 0.0 && dy == 0.0) return std::nullopt;
+    // true north lies at bearing atan2(dx, dy) from grid north; grid north at minus that from it
+    return -std::atan2(dx, dy) * 180.0 / 3.14159265358979323846;
 }
 
 }  // namespace penink

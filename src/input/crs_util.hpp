@@ -3,7 +3,11 @@
 // OAMS_TRADITIONAL_GIS_ORDER) parsed back from a Terrain's crs_wkt.
 #pragma once
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
 
 #include <ogr_spatialref.h>
 
@@ -30,5 +34,17 @@ double linear_unit_of(const std::string& wkt);
 // Adobe, "Supplement to ISO 32000", ExtensionLevel 3, sec. 8.8.1, GPTS).
 // Leaves g as it is when it has no CRS or the CRS cannot be parsed or transformed.
 void add_geographic_corners(Georeference& g, int width, int height);
+
+// (longitude, latitude) in degrees, in the CRS's own geographic CRS, of map points (x, y) of the CRS
+// in `wkt`; empty when the CRS cannot be parsed or any point cannot be transformed.
+std::vector<glm::dvec2> map_to_lon_lat(const std::string& wkt, const std::vector<glm::dvec2>& points);
+
+// The meridian convergence of the CRS in `wkt` at map point p: the bearing of grid north (the
+// CRS's +y) clockwise from true north, degrees, as GeographicLib's TransverseMercator gives it
+// (gamma). Found with OSR for any CRS: the direction in map coordinates of a step of 1e-4 degrees
+// of latitude north from p (south, and reversed, within that of a pole); its error is of the
+// order of the step, far under 1e-3 degrees. nullopt when the CRS cannot be parsed or p
+// transformed; 0 for a geographic CRS.
+std::optional<double> grid_convergence_deg(const std::string& wkt, glm::dvec2 p);
 
 }  // namespace penink

@@ -14,6 +14,10 @@ FrameOutputResult write_frame(Drawing& drawing, const Style& style, std::uint64_
     auto t0 = Clock::now();
     out.finish = finish_drawing(drawing, finish_options(style, seed, terrain));
     out.finish_ms = lap_ms(t0);
+    if (terrain) {
+        const std::string page_path = output.files.empty() ? "stdout." + output.document_format : output.files.front();
+        add_scene_furniture(drawing, output.furniture, output.map_scale, style, output.page, page_path);
+    }
     const StyledDrawing styled = style_drawing(drawing, style, output.split);
     if (!output.document_format.empty())
         out.document = export_document(styled, output.page, "stdout." + output.document_format);

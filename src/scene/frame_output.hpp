@@ -16,6 +16,7 @@
 #include "export/styled_drawing.hpp"
 #include "lines/finish_drawing.hpp"
 #include "scene/frame_source.hpp"
+#include "scene/map_furniture.hpp"
 
 namespace penink {
 
@@ -25,6 +26,9 @@ struct FrameOutput {
     LayerSplit split = LayerSplit::kind;
     std::string document_format;     // "" or svg, ps, eps, pdf: the document returned in memory
     bool width_report = false;       // the styled layers' width measures (export_drawing.hpp's width_report)
+    // A terrain's plan view gets its map furniture (scene/map_furniture.hpp), after finishing.
+    MapFurnitureOptions furniture;
+    double map_scale = 0.0;  // the scene's 1:N, 0: none
 };
 
 struct FrameOutputResult {
@@ -36,7 +40,8 @@ struct FrameOutputResult {
     double write_ms = 0;   // styling and export, wall ms
 };
 
-// `terrain`: creases and ridges were sketched in object space by the terrain path.
+// `terrain`: creases and ridges were sketched in object space by the terrain path (and a plan
+// view is a map, with furniture).
 FrameOutputResult write_frame(Drawing& drawing, const Style& style, std::uint64_t seed, bool terrain,
                               const FrameOutput& output);
 

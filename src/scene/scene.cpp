@@ -16,6 +16,7 @@
 #include "core/toml_file.hpp"
 #include "drainage/drainage_build.hpp"
 #include "scene/hachure_lines.hpp"
+#include "scene/map_furniture.hpp"
 
 namespace penink {
 
@@ -33,6 +34,12 @@ struct KnownTable {
     std::vector<std::string> keys;
 };
 
+std::vector<std::string> map_keys() {
+    std::vector<std::string> keys = map_furniture_keys();
+    keys.insert(keys.begin(), "scale");
+    return keys;
+}
+
 const std::vector<KnownTable>& known_tables() {
     static const std::vector<std::string> crease = {"slope_weight", "illumination_weight", "flow_weight", "min_score",
                                                     "distance_attenuation", "spacing_px", "normalisation", "enabled"};
@@ -40,7 +47,7 @@ const std::vector<KnownTable>& known_tables() {
         {"terrain", {"dem", "vertical_exaggeration", "sea_level"}},
         {"camera", {"projection", "position", "elevation", "azimuth", "altitude", "target", "distance", "fov", "width",
                     "height", "eye", "up"}},
-        {"map", {"scale"}},
+        {"map", map_keys()},
         {"light", {"azimuth", "altitude", "direction"}},
         {"tessellation", {"target_edge_px", "max_level", "cull"}},
         {"surface", {"tolerance_px", "min_radius_px"}},
@@ -236,7 +243,10 @@ Scene parse_scene_file(const std::string& path) {
         s.sea_level = sea;
     }
     read_camera(root, s.camera, path, !s.mesh.empty());
-    if (has_key(root, "map")) read_number(root.at("map"), "scale", s.map_scale, path, "map");
+    if (has_key(root, "map")) {
+        read_number(root.at("map"), "scale", s.map_scale, path, "map");
+        s.furniture = read_map_furniture(root.at("map"), path);
+    }
     if (has_key(root, "light")) {
         read_number(root.at("light"), "azimuth", s.light.azimuth, path, "light");
         read_number(root.at("light"), "altitude", s.light.altitude, path, "light");

@@ -2,7 +2,7 @@
 // Keys (all optional but the input): [terrain] dem, vertical_exaggeration (a number or "auto"),
 // sea_level; [camera] projection, position, elevation, azimuth, altitude, target, distance, fov,
 // width, height (a mesh scene's camera takes eye, target and up instead: scene/mesh_scene.hpp);
-// [map] scale; [light] azimuth, altitude; [silhouettes]
+// [map] scale and the furniture keys (scene/map_furniture.hpp); [light] azimuth, altitude; [silhouettes]
 // min_gap, separate_passes, method; [surface] tolerance_px, min_radius_px; [tessellation]
 // target_edge_px, max_level, cull; [creases] and [ridges]
 // slope_weight, illumination_weight, flow_weight, min_score, distance_attenuation, spacing_px,
@@ -21,6 +21,7 @@
 #include "core/camera.hpp"
 #include "core/crease_params.hpp"
 #include "lines/hachure_params.hpp"
+#include "lines/map_furniture.hpp"
 #include "render/terrain_renderer.hpp"
 
 namespace penink {
@@ -66,6 +67,9 @@ struct Scene {
     bool exaggeration_was_auto = false;  // vertical_exaggeration was chosen automatically (metadata)
     // [map] scale: 25000 means 1:25 000 on the physical page (0: no scale); orthographic only.
     double map_scale = 0.0;
+    // [map] furniture of a plan view (scene/map_furniture.hpp): neatline, scale bar, north arrow,
+    // grid, title.
+    MapFurnitureOptions furniture;
     // [terrain] sea_level: DEM elevation units, unexaggerated; nodes below it are drawn as a flat
     // water surface at it (GridNodes::sea_level) and its contour is the coastline layer. None: off.
     std::optional<double> sea_level;

@@ -1,6 +1,7 @@
 #include "scene/scene_overrides.hpp"
 
 #include "core/error.hpp"
+#include "scene/map_furniture.hpp"
 #include "scene/map_scale.hpp"
 #include "scene/scene_memory.hpp"
 
@@ -48,6 +49,10 @@ Scene load_scene_with_overrides(const SceneOverrides& o) {
     apply_camera_overrides(o, scene);
     if (!o.scale.empty()) scene.map_scale = parse_map_scale(o.scale);
     if (o.sea_level) scene.sea_level = o.sea_level;
+    if (o.no_furniture) scene.furniture.neatline = scene.furniture.scale_bar = scene.furniture.north_arrow = false;
+    if (o.no_furniture) scene.furniture.grid = MapGrid::none, scene.furniture.title.clear();
+    if (o.grid) scene.furniture.grid = map_grid_named(*o.grid);  // CLI11 checked the name
+    if (o.title) scene.furniture.title = *o.title;
     if (!o.style.empty()) scene.style = o.style;
     validate_scene(scene);
     check_scene_memory(scene, o.max_memory);

@@ -22,6 +22,9 @@ struct SceneOverrides {
     bool map = false;                          // --map: orthographic plan view of the whole DEM
     std::string scale;                         // --scale 1:N; "": the scene's
     std::uint64_t max_memory = 0;              // --max-memory; 0: the memory available
+    // A plan view's furniture ([map] keys, scene/map_furniture.hpp): --title, --grid, --no-furniture.
+    std::optional<std::string> title, grid;
+    bool no_furniture = false;
     // The camera ([camera] keys of the same names, scene.hpp); none: the scene's.
     std::optional<std::string> position, target;
     std::optional<double> elevation, azimuth, altitude, fov, distance;

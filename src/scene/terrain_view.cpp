@@ -13,7 +13,10 @@
 #include "input/dem_reader.hpp"
 #include "input/scene_position.hpp"
 #include "input/terrain_window.hpp"
+#include "core/georeference.hpp"
+#include "export/page.hpp"
 #include "scene/auto_exaggeration.hpp"
+#include "scene/map_scale.hpp"
 #include "surface/grid_ground.hpp"
 
 namespace penink {
@@ -89,6 +92,25 @@ void log_window(const Log& log, const GridWindow& w, int cols, int rows) {
     log.info("modelled " + std::to_string(cells) + " of " + std::to_string(all) + " DEM cells (window " +
              std::to_string(w.c0) + ".." + std::to_string(w.c1 - 1) + " x " + std::to_string(w.r0) + ".." +
              std::to_string(w.r1 - 1) + ")");
+}
+
+// A map at a scale that leaves part of the DEM off the page says so on stderr, whatever --verbose:
+// the rows and columns drawn (the view's window, grid nodes) and the map coordinates the image
+// spans (its corners through the plan view's geotransform; an oblique view's window alone).
+void warn_map_crop(const Scene& scene, const GridWindow& w, const Terrain& meta, const Camera& cam) {
+    if (!(scene.map_scale > 0.0)) return;
+    if (w.c0 <= 0 && w.r0 <= 0 && w.c1 >= meta.cols && w.r1 >= meta.rows) return;
+    std::ostringstream s;
+    s << "penink: warning: at 1:" << map_scale_text(scene.map_scale) << " the map shows part of the DEM: rows "
+      << std::max(w.r0, 0) << ".." << std::min(w.r1, meta.rows) - 1 << " and columns " << std::max(w.c0, 0) << ".."
+      << std::min(w.c1, meta.cols) - 1 << " of " << meta.rows << " x " << meta.cols;
+    if (const auto g = plan_view_georeference(cam, meta.origin, meta.crs_wkt)) {
+        const glm::dvec2 a = map_point(*g, 0.0, 0.0), b = map_point(*g, cam.width, cam.height);
+        s << " (map x " << format_number(std::min(a.x, b.x), 1) << " to " << format_number(std::max(a.x, b.x), 1) << ", y "
+          << format_number(std::min(a.y, b.y), 1) << " to " << format_number(std::max(a.y, b.y), 1) << ")";
+    }
+    s << "; a smaller scale (--scale) or a larger --page shows more";
+    std::cerr << s.str() << "\n";
 }
 
 // Bounds of the whole stored terrain as drawn: exactly the drawn nodes' (the largest and
@@ -329,6 +351,7 @@ FrameTerrain terrain_for_view(const SceneTerrain& terrain, Camera& cam, const Sc
         throw Error("scene", scene_file(scene), "the camera sees no part of the DEM");
     log_window(log, v.window, terrain.stored.meta.cols, terrain.stored.meta.rows);
     fit_depth_range(cam, v.lo, v.hi);
+    warn_map_crop(scene, v.window, terrain.stored.meta, cam);
     return frame_terrain(terrain, v);
 }
 
@@ -339,6 +362,7 @@ Terrain terrain_for_view(Terrain terrain, Camera& cam, const Scene& scene, const
         throw Error("scene", scene_file(scene), "the camera sees no part of the DEM");
     const bool whole = w.c0 == 0 && w.r0 == 0 && w.c1 == terrain.cols && w.r1 == terrain.rows;
     log_window(log, w, terrain.cols, terrain.rows);
+    warn_map_crop(scene, w, terrain, cam);
     Terrain view = whole ? std::move(terrain) : crop_terrain(terrain, w);
     glm::dvec3 lo, hi;
     terrain_bounds(view, lo, hi);

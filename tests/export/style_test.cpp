@@ -3,6 +3,7 @@
 
 #include "core/error.hpp"
 #include "export/style.hpp"
+#include "export/styled_drawing.hpp"
 #include "fixture.hpp"
 
 using namespace penink;
@@ -35,7 +36,9 @@ TEST(Style, BuiltinsEqualShippedFiles) {
 
 TEST(Style, ShippedStylesHaveTheirCharacter) {
     const Style tech = builtin_style("technical");
-    for (const LayerStyle& l : tech.layers) {
+    for (LayerKind k : all_layers) {
+        const LayerStyle& l = tech.layer(k);
+        if (is_furniture(k)) continue;  // below
         EXPECT_EQ(l.width, l.width_far);
         EXPECT_EQ(l.sketch, 0.0);
         EXPECT_EQ(l.keep_far, 1.0);
@@ -44,6 +47,7 @@ TEST(Style, ShippedStylesHaveTheirCharacter) {
     const Style sketch = builtin_style("field-sketch");
     for (LayerKind k : all_layers) {
         const LayerStyle& l = sketch.layer(k);
+        if (is_furniture(k)) continue;  // below
         // the hachures draw tone by spacing for one pen width at every depth (styles/README.md)
         if (k == LayerKind::hachures) EXPECT_EQ(l.width_far, l.width);
         else EXPECT_LT(l.width_far, l.width) << layer_name(k);
@@ -55,7 +59,24 @@ TEST(Style, ShippedStylesHaveTheirCharacter) {
     // silhouettes drop fragments under 8 px in both styles, other layers only under 2 px
     for (const Style* s : {&tech, &sketch})
         for (LayerKind k : all_layers)
-            EXPECT_EQ(s->layer(k).min_length, k == LayerKind::silhouettes ? 8.0 : 2.0) << layer_name(k);
+            if (!is_furniture(k))
+                EXPECT_EQ(s->layer(k).min_length, k == LayerKind::silhouettes ? 8.0 : 2.0) << layer_name(k);
+    // map furniture: one plain pen (no sketch, no taper), every tick kept, labels in points; the
+    // plotter's lines in millimetres and no text
+    const Style plotter = builtin_style("plotter");
+    for (const Style* s : {&tech, &sketch, &plotter})
+        for (LayerKind k : all_layers) {
+            if (!is_furniture(k)) continue;
+            const LayerStyle& l = s->layer(k);
+            EXPECT_EQ(l.width, l.width_far) << layer_name(k);
+            EXPECT_EQ(l.sketch, 0.0);
+            EXPECT_EQ(l.taper, 0.0);
+            EXPECT_EQ(l.min_length, 0.0);
+            EXPECT_FALSE(variable_width(l));
+            EXPECT_EQ(l.font_size > 0.0, s != &plotter && k != LayerKind::neatline) << layer_name(k);
+        }
+    EXPECT_DOUBLE_EQ(tech.layer(LayerKind::title).font_size, 14.0);
+    EXPECT_DOUBLE_EQ(plotter.layer(LayerKind::neatline).width, 0.5);
 }
 
 TEST(Style, OverridesFromSceneTable) {
