@@ -1,5 +1,7 @@
 #include "input/crs_util.hpp"
 
+#include <cmath>
+
 #include <cpl_conv.h>
 #include <ogr_spatialref.h>
 
@@ -81,6 +83,17 @@ void add_geographic_corners(Georeference& g, int width, int height) {
         corners.push_back({y, x});
     }
     g.corner_lat_lon = std::move(corners);
+}
+
+std::optional<glm::dvec2> lon_lat_of(const std::string& wkt, glm::dvec2 xy) {
+    const auto srs = srs_from_wkt(wkt);
+    if (!srs) return std::nullopt;
+    std::unique_ptr<OGRSpatialReference> geog(srs->CloneGeogCS());
+    if (!geog) return std::nullopt;
+    geog->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);  // x = lon, y = lat
+    std::unique_ptr<OGRCoordinateTransformation> ct(OGRCreateCoordinateTransformation(srs.get(), geog.get()));
+    if (!ct || !ct->Transform(1, &xy.x, &xy.y) || !std::isfinite(xy.x) || !std::isfinite(xy.y)) return std::nullopt;
+    return xy;
 }
 
 }  // namespace penink

@@ -3,6 +3,7 @@
 // OAMS_TRADITIONAL_GIS_ORDER) parsed back from a Terrain's crs_wkt.
 #pragma once
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <ogr_spatialref.h>
@@ -30,5 +31,9 @@ double linear_unit_of(const std::string& wkt);
 // Adobe, "Supplement to ISO 32000", ExtensionLevel 3, sec. 8.8.1, GPTS).
 // Leaves g as it is when it has no CRS or the CRS cannot be parsed or transformed.
 void add_geographic_corners(Georeference& g, int width, int height);
+
+// Longitude and latitude (degrees, in the CRS's own geographic CRS) of the point (x, y) in the CRS
+// of `wkt` (its units); none when the CRS cannot be parsed or the point transformed.
+std::optional<glm::dvec2> lon_lat_of(const std::string& wkt, glm::dvec2 xy);
 
 }  // namespace penink

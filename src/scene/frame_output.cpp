@@ -24,6 +24,17 @@ FrameOutputResult write_frame(Drawing& drawing, const Style& style, std::uint64_
     return out;
 }
 
+RenderedFrame render_scene_frame(Scene& scene, GlContext& context, const FrameOutput& output, const Log& log) {
+    RenderedFrame frame;
+    const Style style = scene_style(scene);
+    frame.terrain = !is_mesh_scene(scene);
+    if (frame.terrain) apply_object_sketch(scene, style);
+    frame.drawn = draw_scene(scene, context, log);
+    log_frame_timings(frame.drawn, log);
+    frame.written = write_frame(frame.drawn.drawing, style, scene.seed, frame.terrain, output);
+    return frame;
+}
+
 void log_finish(const FinishStats& stats, const Log& log) {
     for (LayerKind k : all_layers) {
         const LayerFinishStats& l = stats.layers[static_cast<size_t>(k)];

@@ -43,6 +43,16 @@ FrameOutputResult write_frame(Drawing& drawing, const Style& style, std::uint64_
 // --verbose lines: per layer, what finishing did (strokes in, joined, lines, length, pen-up
 // travel before and after ordering, small loops, doubled share); the frame's GPU pass times,
 // tracing time and triangles.
+// What `penink render` and `penink preview` make of a scene: its style resolved (scene_style:
+// named or file, then the scene's [style] overrides), a terrain's object-space sketch taken from
+// it (apply_object_sketch), the scene's own view drawn (draw_scene) and written (write_frame).
+struct RenderedFrame {
+    SceneDrawing drawn;
+    FrameOutputResult written;
+    bool terrain = false;
+};
+RenderedFrame render_scene_frame(Scene& scene, GlContext& context, const FrameOutput& output, const Log& log);
+
 void log_finish(const FinishStats& stats, const Log& log);
 void log_frame_timings(const SceneDrawing& drawing, const Log& log);
 // For a plan view of a terrain: each crease and ridge layer's grid-direction share and angle to
