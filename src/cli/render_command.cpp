@@ -84,7 +84,7 @@ int run_render(const RenderOptions& o) {
     const auto context = make_gl_context(parse_gl_backend(o.gl));
     context->set_timed(o.verbose);  // the pass times are only logged
     log.info(context->description());
-    FrameOutput output{output_files(o), page_options(o), parse_layer_split(o.layers), o.format, o.verbose};
+    FrameOutput output{output_files(o), page_options(o), parse_layer_split(o.layers), o.format, o.verbose, o.verbose};
     const RenderedFrame frame = render_scene_frame(scene, *context, output, log);
     const FrameOutputResult& written = frame.written;
     log_finish(written.finish, log);

@@ -32,9 +32,10 @@ std::map<std::string, bool> scene_visibility(const Scene& scene) {
     return visible;
 }
 
-FrameOutput svg_in_memory() {
+FrameOutput svg_in_memory(bool measure) {
     FrameOutput out;
     out.document_format = "svg";
+    out.line_measures = measure;  // only -v prints them
     return out;
 }
 
@@ -125,7 +126,7 @@ PreviewFrame PreviewSession::draw(const PreviewView& view, double scale) {
     }
     Scene scene = load_view(v);
     const double load_ms = ms_since(t0);
-    RenderedFrame frame = render_scene_frame(scene, *context_, svg_in_memory(), log_);
+    RenderedFrame frame = render_scene_frame(scene, *context_, svg_in_memory(log_.verbose), log_);
     log_.info("frame " + std::to_string(v.width) + "x" + std::to_string(v.height) + ": scene " +
               std::to_string(int(load_ms)) + " ms, hachures " + std::to_string(int(frame.drawn.hachure_ms)) +
               " ms, finish " + std::to_string(int(frame.written.finish_ms)) + " ms, SVG " +

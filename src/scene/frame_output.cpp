@@ -12,7 +12,9 @@ FrameOutputResult write_frame(Drawing& drawing, const Style& style, std::uint64_
                               const FrameOutput& output) {
     FrameOutputResult out;
     auto t0 = Clock::now();
-    out.finish = finish_drawing(drawing, finish_options(style, seed, terrain));
+    FinishOptions finish = finish_options(style, seed, terrain);
+    finish.measure = output.line_measures;
+    out.finish = finish_drawing(drawing, finish);
     out.finish_ms = lap_ms(t0);
     const StyledDrawing styled = style_drawing(drawing, style, output.split);
     if (!output.document_format.empty())

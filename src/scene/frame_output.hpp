@@ -25,6 +25,7 @@ struct FrameOutput {
     LayerSplit split = LayerSplit::kind;
     std::string document_format;     // "" or svg, ps, eps, pdf: the document returned in memory
     bool width_report = false;       // the styled layers' width measures (export_drawing.hpp's width_report)
+    bool line_measures = true;       // FinishStats' small loops and doubled share (FinishOptions::measure)
 };
 
 struct FrameOutputResult {
