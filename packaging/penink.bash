@@ -11,7 +11,7 @@ _penink() {
     local cmd=${COMP_WORDS[0]} sub="" i
     for ((i = 1; i < COMP_CWORD; i++)); do
         case ${COMP_WORDS[i]} in
-            render | drainage | batch | bench) sub=${COMP_WORDS[i]}; break ;;
+            render | drainage | batch | bench | preview) sub=${COMP_WORDS[i]}; break ;;
         esac
     done
     COMPREPLY=()
@@ -38,7 +38,7 @@ _penink() {
             COMPREPLY=($(compgen -d -- "$cur"))
             compopt -o filenames 2>/dev/null
             return ;;
-        --width | --height | --dpi | --margin | --seed | --vertical-exaggeration | --sea-level | --scale | --title | --resample | --warmup | --orbit | \
+        --width | --height | --dpi | --margin | --seed | --vertical-exaggeration | --sea-level | --scale | --title | --resample | --warmup | --orbit | --port | \
         --max-memory | --frames | --levels | --sizes | --tolerances | --methods | --formats | --needs-size | --ref-edge-px | \
         --ref-supersample)
             return ;;  # a number or a list: nothing to offer

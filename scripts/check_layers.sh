@@ -9,7 +9,7 @@
 #
 # Fails (exit 1, one line per problem) when
 #  1. a .hpp/.cpp in a stage's folder has a project include "<stage>/..." (core input surface
-#     drainage lines render export scene cli) naming a stage that is neither its own nor in its
+#     drainage lines render export scene preview cli) naming a stage that is neither its own nor in its
 #     stage's transitive link closure (the include compiles only by accident of include paths);
 #  2. a stage links a stage directly that none of its files includes (a stale or redundant link);
 #  3. the link graph has a cycle, the CMake file cannot be parsed, or a stage folder is missing.
@@ -101,7 +101,7 @@ done
 # The stage a project include names (into $stage, "" for none): its first path component.
 stage_of_include() {
     case $1 in
-        core | input | surface | drainage | lines | render | export | scene | cli) stage="penink_$1" ;;
+        core | input | surface | drainage | lines | render | export | scene | preview | cli) stage="penink_$1" ;;
         *) stage="" ;;
     esac
 }

@@ -3,7 +3,8 @@
 # when every package is already installed). Used by scripts/demo.sh and scripts/test.sh;
 # `deps.sh fuzz` (scripts/fuzz.sh) adds clang, which the fuzz targets alone need; `deps.sh test`
 # (scripts/test.sh) adds Inkscape, which only a test needs (that Inkscape opens penink's SVG
-# without warnings and keeps its metadata).
+# without warnings and keeps its metadata), and chromium with chromedriver and Selenium, which
+# drive `penink preview`'s page in its test.
 set -euo pipefail
 pkgs=(
   cmake g++ make pkg-config            # build
@@ -15,6 +16,7 @@ pkgs=(
   libcgal-dev                          # mesh I/O
   libopenimageio-dev                   # raster output (PNG, TIFF, JPEG, WebP, EXR): the penink_oiio module
   libcli11-dev libtoml11-dev nlohmann-json3-dev  # CLI, scene/style files
+  libcpp-httplib-dev                   # penink preview: the local web server
   libgtest-dev libbenchmark-dev        # tests, benchmarks
   librsvg2-bin ghostscript poppler-utils         # output checks in tests
   dpkg-dev groff-base                  # package test: cpack -G DEB runs dpkg-shlibdeps; groff checks the man page
@@ -24,6 +26,7 @@ if [ "${1:-}" = fuzz ]; then
 fi
 if [ "${1:-}" = test ]; then
   pkgs+=(inkscape)                     # the SVG checked in the editor it is made for
+  pkgs+=(chromium chromium-driver python3-selenium)  # penink preview driven in a headless browser
 fi
 missing=()
 for p in "${pkgs[@]}"; do

@@ -10,6 +10,7 @@
 #include "cli/batch_command.hpp"
 #include "cli/bench_command.hpp"
 #include "cli/drainage_subcommand.hpp"
+#include "cli/preview_command.hpp"
 #include "cli/render_command.hpp"
 #include "core/error.hpp"
 #include "core/version.hpp"
@@ -24,7 +25,8 @@ std::vector<Subcommand> register_subcommands(CLI::App& app) {
     subs.push_back(add_drainage_command(app));
     subs.push_back(add_bench_command(app));
     subs.push_back(add_batch_command(app));
-    // One line per subcommand (keep this list in this order): render, drainage, bench, batch.
+    subs.push_back(add_preview_command(app));
+    // One line per subcommand (keep this list in this order): render, drainage, bench, batch, preview.
     return subs;
 }
 

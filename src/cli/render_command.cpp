@@ -7,7 +7,6 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/option_checks.hpp"
-#include "scene/scene_style.hpp"
 #include "scene/frame_source.hpp"
 #include "scene/map_scale.hpp"
 #include "scene/scene_inputs.hpp"
@@ -82,19 +81,14 @@ int run_render(const RenderOptions& o) {
     apply_map_scale(scene, page_options(o));
     check_outputs(o, scene.camera.width, scene.camera.height);
     check_outputs_are_not_inputs(output_files(o), scene_inputs(scene));  // before anything is written
-    const Style style = scene_style(scene);
-    const bool terrain = !is_mesh_scene(scene);
-    if (terrain) apply_object_sketch(scene, style);
     const auto context = make_gl_context(parse_gl_backend(o.gl));
     context->set_timed(o.verbose);  // the pass times are only logged
     log.info(context->description());
-    SceneDrawing result = draw_scene(scene, *context, log);
-    log_frame_timings(result, log);
-    FrameOutput output{output_files(o), page_options(o), parse_layer_split(o.layers), o.format, o.verbose};
-    output.furniture = scene.furniture, output.map_scale = scene.map_scale;
-    const FrameOutputResult written = write_frame(result.drawing, style, scene.seed, terrain, output);
+    FrameOutput output{output_files(o), page_options(o), parse_layer_split(o.layers), o.format, o.verbose, o.verbose};
+    const RenderedFrame frame = render_scene_frame(scene, *context, output, log);
+    const FrameOutputResult& written = frame.written;
     log_finish(written.finish, log);
-    if (o.verbose && terrain && !scene.dem.empty()) log_directions(result.drawing, scene.dem, log);
+    if (o.verbose && frame.terrain && !scene.dem.empty()) log_directions(frame.drawn.drawing, scene.dem, log);
     if (!o.format.empty()) {
         std::cout.write(written.document.data(), std::streamsize(written.document.size()));
         std::cout.flush();

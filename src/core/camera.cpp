@@ -47,12 +47,25 @@ glm::dmat4 projection_matrix(const Camera& cam) {
 glm::dmat4 view_projection(const Camera& cam) { return projection_matrix(cam) * view_matrix(cam); }
 
 bool project_to_pixel(const Camera& cam, const glm::dvec3& world, glm::dvec2& pixel, double& depth) {
-    const glm::dvec4 e = view_matrix(cam) * glm::dvec4(world, 1.0);
+    return PixelProjector(cam)(world, pixel, depth);
+}
+
+PixelProjector::PixelProjector(const Camera& cam)
+    : view_(view_matrix(cam)), projection_(projection_matrix(cam)), width_(cam.width), height_(cam.height),
+      view_width_(cam.view_width), tan_half_fov_(std::tan(cam.fov * deg / 2.0)), orthographic_(is_orthographic(cam)) {}
+
+bool PixelProjector::operator()(const glm::dvec3& world, glm::dvec2& pixel, double& depth) const {
+    const glm::dvec4 e = view_ * glm::dvec4(world, 1.0);
     if (e.z >= 0.0) return false;
-    const glm::dvec4 c = projection_matrix(cam) * e;
-    pixel = {(c.x / c.w * 0.5 + 0.5) * cam.width, (0.5 - c.y / c.w * 0.5) * cam.height};
-    depth = is_orthographic(cam) ? -e.z : glm::length(glm::dvec3(e));
+    const glm::dvec4 c = projection_ * e;
+    pixel = {(c.x / c.w * 0.5 + 0.5) * width_, (0.5 - c.y / c.w * 0.5) * height_};
+    depth = orthographic_ ? -e.z : glm::length(glm::dvec3(e));
     return true;
+}
+
+double PixelProjector::world_per_pixel(double depth) const {
+    if (orthographic_) return view_width_ / width_;
+    return depth * 2.0 * tan_half_fov_ / width_;
 }
 
 bool is_orthographic(const Camera& cam) { return cam.projection == Projection::orthographic; }

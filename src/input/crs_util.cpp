@@ -1,5 +1,7 @@
 #include "input/crs_util.hpp"
 
+#include <cmath>
+
 #include <cpl_conv.h>
 #include <ogr_spatialref.h>
 

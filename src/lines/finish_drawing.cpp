@@ -82,8 +82,10 @@ std::vector<Stroke> clean_layer(std::vector<Stroke> strokes, const FinishOptions
 std::vector<Stroke> finish_cleaned(std::vector<Stroke> strokes, const FinishOptions& options, const LayerFinish& layer,
                                    double max_depth, LayerFinishStats& stats) {
     thin_by_distance(strokes, options, layer, max_depth);
-    const LineMetrics m = line_metrics(strokes);
-    stats.small_loops = m.small_loops, stats.doubled_share = m.doubled_share();
+    if (options.measure) {
+        const LineMetrics m = line_metrics(strokes);
+        stats.small_loops = m.small_loops, stats.doubled_share = m.doubled_share();
+    }
     strokes = sketch_all(strokes, options, layer);
     const PlotterStats ps = order_for_plotter(strokes, options.home);
     stats.strokes = strokes.size();

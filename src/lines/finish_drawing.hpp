@@ -58,6 +58,9 @@ struct FinishOptions {
     // near/far); keep probability falls linearly from 1 at near to keep_far at far.
     float near = 0.0f, far = 1.0f;
     glm::vec2 home{0.0f, 0.0f};       // plotter pen start (image pixels)
+    // line_metrics into the stats (small_loops, doubled_share: what -v prints); the strokes are
+    // the same without it, which spares a tenth of an interactive frame's time.
+    bool measure = true;
     std::array<LayerFinish, layer_count> layers;  // indexed by LayerKind
     LayerFinish& layer(LayerKind k) { return layers[static_cast<std::size_t>(k)]; }
     const LayerFinish& layer(LayerKind k) const { return layers[static_cast<std::size_t>(k)]; }

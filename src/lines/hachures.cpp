@@ -223,7 +223,7 @@ struct Sample {
 class Tracer {
 public:
     Tracer(const HachureGrid& grid, const HachureFrame& frame, const HachureParams& params)
-        : field_(grid), frame_(frame), p_(params), cam_(*frame.camera),
+        : field_(grid), frame_(frame), p_(params), cam_(*frame.camera), project_(cam_),
           occ_(cam_.width, cam_.height, 3.0f) {
         min_grad_ = std::tan(glm::radians(std::clamp(p_.min_slope_deg, 0.0, 89.9)));
         width_ = frame.width_px > 0.0 ? frame.width_px : default_hachure_width_px;
@@ -265,7 +265,7 @@ public:
         const glm::dvec3 n = glm::normalize(glm::dvec3(-s.f.grad.x, -s.f.grad.y, 1.0));
         if (glm::dot(n, toward_viewer(cam_, s.f.p)) <= 0.0) return false;  // turned away: silhouette
         glm::dvec2 px;
-        if (!project_to_pixel(cam_, s.f.p, px, s.depth)) return false;
+        if (!project_(s.f.p, px, s.depth)) return false;
         if (!(px.x >= 0.0 && px.y >= 0.0 && px.x < cam_.width && px.y < cam_.height)) return false;
         s.px = glm::vec2(px);
         double t = hachure_tone(p_.tone, p_.blend, n, frame_.light);
@@ -280,8 +280,8 @@ public:
             VisibilityOptions v = visibility_;
             // the level of detail's 1 px, and a cell: the rendered PN surface and this bilinear one
             // differ by up to a fraction of a cell's relief, which a grazing ray stretches in depth
-            v.abs_tolerance = float(3.0 * world_per_pixel(cam_, s.depth) + cell_m_);
-            if (!point_visible(*frame_.toward, cam_, glm::vec3(s.f.p), v)) return false;
+            v.abs_tolerance = float(3.0 * project_.world_per_pixel(s.depth) + cell_m_);
+            if (!point_visible(*frame_.toward, cam_, project_, glm::vec3(s.f.p), v)) return false;
         }
         return true;
     }
@@ -293,7 +293,7 @@ public:
         const glm::dvec3 q = s.f.p + eps * glm::dvec3(w, glm::dot(s.f.grad, w));
         glm::dvec2 px;
         double d;
-        if (!project_to_pixel(cam_, q, px, d)) return 0.0;
+        if (!project_(q, px, d)) return 0.0;
         return glm::length(px - glm::dvec2(s.px)) / eps;
     }
 
@@ -388,9 +388,9 @@ public:
                 const int c = grid.c0 + (grid.c1 - grid.c0 - 2) * i / 15, r = grid.r0 + (grid.r1 - grid.r0 - 2) * j / 15;
                 glm::dvec2 a, b, e;
                 double da, db, de;
-                if (!project_to_pixel(cam_, field_.node_position(c, r), a, da) ||
-                    !project_to_pixel(cam_, field_.node_position(c + 1, r), b, db) ||
-                    !project_to_pixel(cam_, field_.node_position(c, r + 1), e, de))
+                if (!project_(field_.node_position(c, r), a, da) ||
+                    !project_(field_.node_position(c + 1, r), b, db) ||
+                    !project_(field_.node_position(c, r + 1), e, de))
                     continue;
                 if (a.x < 0 || a.y < 0 || a.x >= cam_.width || a.y >= cam_.height) continue;
                 px_per_cell.push_back(std::max(glm::length(b - a), glm::length(e - a)));
@@ -420,8 +420,8 @@ public:
                 glm::dvec2 a, b;
                 double da, db;
                 int m = 1;
-                if (project_to_pixel(cam_, field_.node_position(c, r), a, da) &&
-                    project_to_pixel(cam_, field_.node_position(c2, r2), b, db))
+                if (project_(field_.node_position(c, r), a, da) &&
+                    project_(field_.node_position(c2, r2), b, db))
                     m = std::clamp(int(std::ceil(glm::length(b - a) / 6.0)), 1, 8);
                 for (int j = 0; j < m; ++j)
                     for (int i = 0; i < m; ++i) {
@@ -488,6 +488,7 @@ private:
     const HachureFrame& frame_;
     const HachureParams& p_;
     const Camera& cam_;
+    PixelProjector project_;
     Occupancy occ_;
     VisibilityOptions visibility_;
     double min_grad_ = 0.0, width_ = 1.0;

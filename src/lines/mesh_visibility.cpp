@@ -111,9 +111,14 @@ DepthImage rasterize_depth(const TriangleMesh& mesh, const Camera& cam) {
 
 bool point_visible(const DepthImage& img, const Camera& cam, const glm::vec3& p,
                    const VisibilityOptions& o) {
+    return point_visible(img, cam, PixelProjector(cam), p, o);
+}
+
+bool point_visible(const DepthImage& img, const Camera& cam, const PixelProjector& project, const glm::vec3& p,
+                   const VisibilityOptions& o) {
     glm::dvec2 px;
     double d;
-    if (!project_to_pixel(cam, glm::dvec3(p), px, d)) return false;
+    if (!project(glm::dvec3(p), px, d)) return false;
     int x = int(std::floor(px.x)), y = int(std::floor(px.y));
     if (x < 0 || y < 0 || x >= cam.width || y >= cam.height) return false;
     if (img.width <= 0 || img.height <= 0) return true;  // no depth image: everything visible

@@ -32,6 +32,9 @@ struct VisibilityOptions {
 // True when the world point is in front of the image content near its pixel (max depth of the
 // 3x3 neighbourhood, so lines on a silhouette survive). Outside the camera image: false; an
 // empty DepthImage (0 x 0) means no occlusion test (everything inside the image is visible).
+// (With the camera's PixelProjector made once, for many points.)
+bool point_visible(const DepthImage& img, const Camera& cam, const PixelProjector& project, const glm::vec3& p,
+                   const VisibilityOptions& o);
 bool point_visible(const DepthImage& img, const Camera& cam, const glm::vec3& p,
                    const VisibilityOptions& options = {});
 

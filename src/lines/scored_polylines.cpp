@@ -122,10 +122,11 @@ Stroke project_stroke(const std::vector<glm::vec3>& points, const Camera& camera
     Stroke s;
     s.kind = kind, s.strength = strength;
     const bool weighted = weight.size() == points.size() && !points.empty();
+    const PixelProjector project(camera);
     for (std::size_t i = 0; i < points.size(); ++i) {
         glm::dvec2 px;
         double depth = 0.0;
-        if (!project_to_pixel(camera, glm::dvec3(points[i]), px, depth)) continue;
+        if (!project(glm::dvec3(points[i]), px, depth)) continue;
         s.points.emplace_back(float(px.x), float(px.y));
         s.depth.push_back(float(depth));
         if (weighted) s.weight.push_back(weight[i]);

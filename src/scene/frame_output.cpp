@@ -12,7 +12,9 @@ FrameOutputResult write_frame(Drawing& drawing, const Style& style, std::uint64_
                               const FrameOutput& output) {
     FrameOutputResult out;
     auto t0 = Clock::now();
-    out.finish = finish_drawing(drawing, finish_options(style, seed, terrain));
+    FinishOptions finish = finish_options(style, seed, terrain);
+    finish.measure = output.line_measures;
+    out.finish = finish_drawing(drawing, finish);
     out.finish_ms = lap_ms(t0);
     if (terrain) {
         const std::string page_path = output.files.empty() ? "stdout." + output.document_format : output.files.front();
@@ -26,6 +28,19 @@ FrameOutputResult write_frame(Drawing& drawing, const Style& style, std::uint64_
     out.plot = plot_stats(styled);
     if (output.width_report) out.widths = width_report(styled);
     return out;
+}
+
+RenderedFrame render_scene_frame(Scene& scene, GlContext& context, const FrameOutput& output, const Log& log) {
+    RenderedFrame frame;
+    const Style style = scene_style(scene);
+    frame.terrain = !is_mesh_scene(scene);
+    if (frame.terrain) apply_object_sketch(scene, style);
+    frame.drawn = draw_scene(scene, context, log);
+    log_frame_timings(frame.drawn, log);
+    FrameOutput with_furniture = output;  // a plan view's furniture comes from the scene
+    with_furniture.furniture = scene.furniture, with_furniture.map_scale = scene.map_scale;
+    frame.written = write_frame(frame.drawn.drawing, style, scene.seed, frame.terrain, with_furniture);
+    return frame;
 }
 
 void log_finish(const FinishStats& stats, const Log& log) {

@@ -26,6 +26,7 @@ struct FrameOutput {
     LayerSplit split = LayerSplit::kind;
     std::string document_format;     // "" or svg, ps, eps, pdf: the document returned in memory
     bool width_report = false;       // the styled layers' width measures (export_drawing.hpp's width_report)
+    bool line_measures = true;       // FinishStats' small loops and doubled share (FinishOptions::measure)
     // A terrain's plan view gets its map furniture (scene/map_furniture.hpp), after finishing.
     MapFurnitureOptions furniture;
     double map_scale = 0.0;  // the scene's 1:N, 0: none
@@ -48,6 +49,16 @@ FrameOutputResult write_frame(Drawing& drawing, const Style& style, std::uint64_
 // --verbose lines: per layer, what finishing did (strokes in, joined, lines, length, pen-up
 // travel before and after ordering, small loops, doubled share); the frame's GPU pass times,
 // tracing time and triangles.
+// What `penink render` and `penink preview` make of a scene: its style resolved (scene_style:
+// named or file, then the scene's [style] overrides), a terrain's object-space sketch taken from
+// it (apply_object_sketch), the scene's own view drawn (draw_scene) and written (write_frame).
+struct RenderedFrame {
+    SceneDrawing drawn;
+    FrameOutputResult written;
+    bool terrain = false;
+};
+RenderedFrame render_scene_frame(Scene& scene, GlContext& context, const FrameOutput& output, const Log& log);
+
 void log_finish(const FinishStats& stats, const Log& log);
 void log_frame_timings(const SceneDrawing& drawing, const Log& log);
 // For a plan view of a terrain: each crease and ridge layer's grid-direction share and angle to
