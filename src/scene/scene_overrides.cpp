@@ -49,6 +49,7 @@ Scene load_scene_with_overrides(const SceneOverrides& o) {
     if (!o.scale.empty()) scene.map_scale = parse_map_scale(o.scale);
     if (o.sea_level) scene.sea_level = o.sea_level;
     if (!o.style.empty()) scene.style = o.style;
+    if (!o.cache_dir.empty()) scene.cache_dir = o.cache_dir;
     validate_scene(scene);
     check_scene_memory(scene, o.max_memory);
     return scene;

@@ -22,6 +22,7 @@ struct SceneOverrides {
     bool map = false;                          // --map: orthographic plan view of the whole DEM
     std::string scale;                         // --scale 1:N; "": the scene's
     std::uint64_t max_memory = 0;              // --max-memory; 0: the memory available
+    std::string cache_dir;                     // --cache-dir; "": the scene's [cache] dir
     // The camera ([camera] keys of the same names, scene.hpp); none: the scene's.
     std::optional<std::string> position, target;
     std::optional<double> elevation, azimuth, altitude, fov, distance;
