@@ -31,11 +31,11 @@ std::vector<fs::path> files_ending(const fs::path& dir, const std::string& ext) 
     return out;
 }
 
-// Paths (or polylines) in each top-level layer group of an SVG, by the layer's id.
+// Paths in a layer group of an SVG, by the layer's id.
 std::size_t layer_paths(const std::string& svg, const std::string& layer) {
     const std::size_t at = svg.find("id=\"" + layer + "\"");
     if (at == std::string::npos) return 0;
-    const std::size_t end = svg.find("</g>\n  <g", at);
+    const std::size_t end = svg.find("</g>", at);  // layers hold no groups of their own here
     const std::string part = svg.substr(at, end == std::string::npos ? std::string::npos : end - at);
     std::size_t n = 0;
     for (std::size_t p = part.find("<path"); p != std::string::npos; p = part.find("<path", p + 1)) ++n;
