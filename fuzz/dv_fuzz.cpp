@@ -1,7 +1,9 @@
 // Fuzz target: the drainage cache reader. The input's first byte chooses whether its checksums
 // are set right first (odd: the rest of the file reaches the parser instead of stopping at the
 // checksum), the rest is the file: decoded from memory (decode_drainage_db) and read from a file
-// (read_drainage_db, both parts and lines alone; read_drainage_line_index).
+// (read_drainage_db, both parts and lines alone; read_drainage_line_index, then every vertex read
+// from the file, block by block).
+#include <algorithm>
 #include <cstring>
 #include <vector>
 
@@ -50,6 +52,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     try {
         DvLineVertices vertices;
         read_drainage_line_index(path, nullptr, vertices);
+        std::vector<DrapedVertex> out(1024);  // every vertex, a block's worth at a time (checked by block)
+        for (int set = 0; set < 2; ++set)
+            for (std::uint64_t first = 0; first < vertices.count[set]; first += out.size())
+                vertices.read(set, first, std::min<std::uint64_t>(out.size(), vertices.count[set] - first), out.data());
     } catch (const Error&) {
     }
     return 0;

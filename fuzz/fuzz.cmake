@@ -5,7 +5,7 @@
 #  - PENINK_FUZZ=ON with clang: fuzz_<target>, libFuzzer binaries; the whole build is then
 #    instrumented (-fsanitize=fuzzer-no-link,address,undefined, set in CMakeLists.txt) and
 #    scripts/fuzz.sh runs them.
-set(penink_fuzz_targets scene style mesh_obj mesh_ply mesh_off dv flight_csv ascii_grid)
+set(penink_fuzz_targets scene style mesh_obj mesh_ply mesh_off dv terrain_cache flight_csv ascii_grid)
 set(fuzz_gen ${CMAKE_BINARY_DIR}/generated/fuzz)
 set(fuzz_decls "")
 set(fuzz_rows "")

@@ -34,7 +34,7 @@ _penink() {
         --routing) COMPREPLY=($(compgen -W "priority-flood least-cost" -- "$cur")); return ;;
         --analytic) COMPREPLY=($(compgen -W "hill two-hills smooth-cliff saddle" -- "$cur")); return ;;
         --page) COMPREPLY=($(compgen -W "A0 A1 A2 A3 A4 A5 A6 B4 B5 letter legal tabloid" -- "$cur")); return ;;
-        --out | --rasters)
+        --out | --rasters | --cache-dir)
             COMPREPLY=($(compgen -d -- "$cur"))
             compopt -o filenames 2>/dev/null
             return ;;

@@ -119,14 +119,14 @@ int run(const DrainageCommand& cmd, std::ostream& log) {
     const DemSize size = read_dem_size(cmd.dem);  // the header alone: the build's memory before the read
     const int factor = drainage_factor_for(size.cols, size.rows, cmd.resample);
     check_drainage_memory("drainage", cmd.dem, size.cols, size.rows, factor, budget);
-    const std::string out = cmd.output.empty() ? drainage_cache_path(cmd.dem) : cmd.output;  // render's cache
+    const std::string out = cmd.output.empty() ? drainage_cache_path(cmd.dem, cmd.cache_dir) : cmd.output;  // render's cache
     const double file_bytes = drainage_points(size.cols, size.rows, factor) * dv_file_bytes_per_point;
     check_database_target(out, file_bytes);  // before the build: a read-only folder or a full disk
     const std::vector<std::string> rasters = raster_paths(cmd.rasters_dir);
     {  // no output replaces the DEM or its side files, nor a raster penink did not write
         std::vector<std::string> outs = rasters;
         outs.push_back(out);
-        if (out == drainage_cache_path(cmd.dem)) outs.push_back(terrain_cache_path(cmd.dem));
+        if (out == drainage_cache_path(cmd.dem, cmd.cache_dir)) outs.push_back(terrain_cache_path(cmd.dem, cmd.cache_dir));
         check_outputs_not_inputs("drainage", outs, dem_inputs(cmd.dem));
         std::error_code ec;
         for (const std::string& r : rasters)
@@ -141,43 +141,58 @@ int run(const DrainageCommand& cmd, std::ostream& log) {
     DrainageOptions o;
     o.resample = cmd.resample;
     o.routing = cmd.routing;
+    o.cache_dir = cmd.cache_dir;
     DrainageResult res;
     DrainageDb db;
+    const DrainageFingerprint fp = drainage_fingerprint(cmd.dem, t, o);
+    // The database and the rasters are one set, placed together or not at all (atomic_file.hpp):
+    // each written to a temporary beside its path, the database first (the rasters come from its
+    // build).
+    std::vector<std::string> paths{out};
+    paths.insert(paths.end(), rasters.begin(), rasters.end());
+    if (!rasters.empty()) {
+        std::error_code ec;
+        std::filesystem::create_directories(cmd.rasters_dir, ec);
+        if (!std::filesystem::is_directory(cmd.rasters_dir))
+            throw Error("drainage", cmd.rasters_dir, "cannot create raster directory");
+    }
     try {
-        db = build_and_write_drainage_db(t, o, drainage_fingerprint(cmd.dem, t, o), out,
-                                         progress_printer(progress, timer), &res);
+        write_atomically_together(paths, [&](std::size_t i, const std::string& temp) {
+            if (i == 0) {
+                try {
+                    db = build_and_write_drainage_db(t, o, fp, temp, progress_printer(progress, timer), &res);
+                } catch (const Error& e) {  // named by its place, not its temporary
+                    throw Error(e.stage(), e.file() == temp ? out : e.file(),
+                                std::string(e.what()).substr(format_error(e.stage(), e.file(), "").size()), e.code());
+                }
+                if (!rasters.empty()) timer.next("writing rasters");
+                return;
+            }
+            // the grid's valid mask: exactly the points with a basin label
+            std::vector<std::uint8_t> valid(res.net.basin.size());
+            for (std::size_t k = 0; k < valid.size(); ++k) valid[k] = res.net.basin[k] != 0;
+            const DrainageGeoref geo = drainage_georef(cmd.dem, t, db.factor);
+            write_drainage_raster(i - 1, temp, paths[i], geo, db.cols, db.rows, valid, res);
+        });
     } catch (const Error& e) {
         // The writer names no reason: the folder or the disk may tell it now (the disk filled
         // during the build), else its error stands.
         if (e.file() == out) check_database_target(out, file_bytes);
         throw;
     }
-    timer.next("writing rasters");
-    if (!cmd.rasters_dir.empty()) {
-        // the grid's valid mask: exactly the points with a basin label
-        std::vector<std::uint8_t> valid(res.net.basin.size());
-        for (std::size_t i = 0; i < valid.size(); ++i) valid[i] = res.net.basin[i] != 0;
-        std::error_code ec;
-        std::filesystem::create_directories(cmd.rasters_dir, ec);
-        if (!std::filesystem::is_directory(cmd.rasters_dir))
-            throw Error("drainage", cmd.rasters_dir, "cannot create raster directory");
-        const DrainageGeoref geo = drainage_georef(cmd.dem, t, db.factor);
-        // all four or none: each to a temporary, flushed, then placed together (atomic_file.hpp)
-        write_atomically_together(rasters, [&](std::size_t i, const std::string& temp) {
-            write_drainage_raster(i, temp, rasters[i], geo, db.cols, db.rows, valid, res);
-        });
-    }
     std::string terrain_cache;
-    if (out == drainage_cache_path(cmd.dem)) {  // render's caches: the terrain cache beside the drainage database too
+    if (out == drainage_cache_path(cmd.dem, cmd.cache_dir)) {  // render's caches: the terrain cache beside the drainage database too
         timer.next("terrain cache");
-        terrain_cache = terrain_cache_path(cmd.dem);
-        open_stored_terrain(cmd.dem, Log{});  // kept when valid, else built and written
+        terrain_cache = terrain_cache_path(cmd.dem, cmd.cache_dir);
+        open_stored_terrain(cmd.dem, Log{}, cmd.cache_dir);  // kept when valid, else built and written
     }
     timer.next("");
     const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
-    if (!cmd.quiet) print_summary(log, res.stats, db, secs), log << "drainage: wrote " << out << "\n";
+    // with -v, each file's size too
+    const auto named = [&](const std::string& p) { return cmd.verbose ? cache_file_report(p) : p; };
+    if (!cmd.quiet) print_summary(log, res.stats, db, secs), log << "drainage: wrote " << named(out) << "\n";
     if (!cmd.quiet && !terrain_cache.empty() && std::filesystem::exists(terrain_cache))
-        log << "drainage: terrain cache " << terrain_cache << "\n";
+        log << "drainage: terrain cache " << named(terrain_cache) << "\n";
     return 0;
 }
 

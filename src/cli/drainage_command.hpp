@@ -24,6 +24,7 @@ struct DrainageCommand {
     bool verbose = false;     // also each stage's wall and CPU seconds
     bool progress = false;    // progress lines also when stderr is not a terminal
     DrainageRouting routing = DrainageRouting::priority_flood;
+    std::string cache_dir;  // --cache-dir; "": drainage_cache_path's default
     std::uint64_t max_memory = 0;  // --max-memory; 0 = the memory available
 };
 

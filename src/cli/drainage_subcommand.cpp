@@ -24,6 +24,7 @@ Subcommand add_drainage_command(CLI::App& app) {
                     "Fine nodes per DEM cell side, 1..1000, within --max-memory (1 = the DEM's own nodes; default: 5, lowered to keep <= 4M points)")
         ->check(number_between(0, 1000));
     add_max_memory_option(cmd, o.max_memory);
+    add_cache_dir_option(cmd, o.cache_dir);
     cmd->add_option("--rasters", o.rasters_dir,
                     "Also write GeoTIFFs (flow_direction ESRI D8, accumulation, basin, stream_order) to DIR");
     auto routing = std::make_shared<std::string>("priority-flood");

@@ -84,6 +84,12 @@ CLI::Validator positive_at_most_or_auto(double hi) {
         "(0, " + short_number(hi) + "] or auto");
 }
 
+void add_cache_dir_option(CLI::App* cmd, std::string& dir) {
+    cmd->add_option("--cache-dir", dir,
+                    "Folder of the DEM's caches (.dv, .lod; default: beside the DEM when its folder is writable and "
+                    "not installed, else $XDG_CACHE_HOME/penink or ~/.cache/penink)");
+}
+
 void add_max_memory_option(CLI::App* cmd, std::uint64_t& max_memory) {
     cmd->add_option_function<std::string>(
            "--max-memory",

@@ -24,6 +24,8 @@ CLI::Validator map_scale_check();
 
 // --max-memory SIZE into `max_memory` (bytes; left 0 when not given = the memory available).
 void add_max_memory_option(CLI::App* cmd, std::uint64_t& max_memory);
+// --cache-dir DIR into `dir`: the folder of the DEM's caches (drainage_cache_path).
+void add_cache_dir_option(CLI::App* cmd, std::string& dir);
 
 struct NamedInput;
 // Refuses output files (with their raster side files, world_file.hpp) that are one of `inputs`

@@ -30,6 +30,7 @@ void add_scene_override_options(CLI::App* cmd, SceneOverrides& o) {
     cmd->add_option("--gl", o.gl, "OpenGL backend: osmesa (software, default) or egl (GPU)")
         ->check(CLI::IsMember({"osmesa", "egl"}));
     add_max_memory_option(cmd, o.max_memory);
+    add_cache_dir_option(cmd, o.cache_dir);
     const char* place = "(\"LON,LAT\", \"EASTING NORTHING ZONE\" such as \"588497 4589846 18N\", or \"X Y\" in the DEM's CRS)";
     cmd->add_option("--position", o.position, std::string("Camera position ") + place + "; goes with --elevation");
     cmd->add_option("--elevation", o.elevation, "Camera elevation, metres above the DEM's datum (unexaggerated)")

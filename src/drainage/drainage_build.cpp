@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "core/error.hpp"
+#include "core/memory_budget.hpp"
 #include "core/parallel_chunks.hpp"
 #include "drainage/branches.hpp"
 #include "drainage/d8_ties.hpp"
@@ -186,41 +187,105 @@ DrainageFingerprint drainage_fingerprint(const std::string& dem_path, const Terr
     return fp;
 }
 
-std::string drainage_cache_path(const std::string& dem_path, bool folder_writable, const std::string& user_cache) {
-    if (folder_writable || user_cache.empty()) return dem_path + ".dv";
+std::string cache_file_in(const std::string& folder, const std::string& dem_path) {
     const std::string absolute = std::filesystem::absolute(dem_path).lexically_normal().string();
     char hex[17];
     std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash64(absolute.data(), absolute.size())));
     const std::string name = std::filesystem::path(dem_path).filename().string();
-    return (std::filesystem::path(user_cache) / "penink" / (name + "-" + hex + ".dv")).string();
+    return (std::filesystem::path(folder) / (name + "-" + hex + ".dv")).string();
 }
 
-std::string drainage_cache_path(const std::string& dem_path) {
+std::string drainage_cache_path(const std::string& dem_path, bool folder_usable, const std::string& user_cache) {
+    if (folder_usable || user_cache.empty()) return dem_path + ".dv";
+    return cache_file_in((std::filesystem::path(user_cache) / "penink").string(), dem_path);
+}
+
+bool under_install_prefix(const std::string& folder, const std::string& prefix) {
+    if (prefix.empty()) return false;
+    std::error_code ec;
+    auto resolved = [&](const std::string& p) {
+        const std::filesystem::path c = std::filesystem::weakly_canonical(std::filesystem::absolute(p, ec), ec);
+        return (ec ? std::filesystem::absolute(p, ec) : c).lexically_normal();
+    };
+    const std::filesystem::path f = resolved(folder), p = resolved(prefix);
+    if (p == p.root_path()) return false;
+    auto fi = f.begin();
+    for (auto pi = p.begin(); pi != p.end(); ++pi, ++fi) {
+        if (pi->empty()) continue;  // a trailing separator
+        if (fi == f.end() || *fi != *pi) return false;
+    }
+    return true;
+}
+
+#ifndef PENINK_INSTALL_PREFIX
+#define PENINK_INSTALL_PREFIX ""
+#endif
+
+namespace {
+
+// Where penink is installed: CMake's prefix, and P for a running binary at P/bin/penink beside
+// P/share/penink (the Debian package's /usr, whatever prefix the build had).
+std::vector<std::string> install_prefixes() {
+    std::vector<std::string> prefixes{PENINK_INSTALL_PREFIX};
+    std::error_code ec;
+    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    const std::filesystem::path prefix = exe.parent_path().parent_path();
+    if (!ec && exe.parent_path().filename() == "bin" && std::filesystem::is_directory(prefix / "share" / "penink", ec))
+        prefixes.push_back(prefix.string());
+    return prefixes;
+}
+
+}  // namespace
+
+std::string drainage_cache_path(const std::string& dem_path, const std::string& cache_dir) {
+    std::error_code ec;  // a folder that cannot be made shows up as a failed write, logged
+    if (!cache_dir.empty()) {
+        std::filesystem::create_directories(cache_dir, ec);
+        return cache_file_in(cache_dir, dem_path);
+    }
     std::filesystem::path folder = std::filesystem::path(dem_path).parent_path();
     if (folder.empty()) folder = ".";
-    const bool writable = ::access(folder.c_str(), W_OK) == 0;
+    bool usable = ::access(folder.c_str(), W_OK) == 0;
+    for (const std::string& prefix : install_prefixes()) usable = usable && !under_install_prefix(folder.string(), prefix);
     std::string user_cache;
     if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) user_cache = xdg;
     else if (const char* home = std::getenv("HOME"); home && *home) user_cache = std::string(home) + "/.cache";
-    const std::string path = drainage_cache_path(dem_path, writable, user_cache);
-    if (!writable && !user_cache.empty()) {
-        std::error_code ec;  // a folder that cannot be made shows up as a failed write, logged
+    const std::string path = drainage_cache_path(dem_path, usable, user_cache);
+    if (!usable && !user_cache.empty())
         std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ec);
-    }
     return path;
+}
+
+bool occupied_by_other_than_file(const std::string& path) {
+    std::error_code ec;
+    const std::filesystem::file_status s = std::filesystem::symlink_status(path, ec);
+    if (ec || !std::filesystem::exists(s)) return false;
+    return !std::filesystem::is_regular_file(std::filesystem::status(path, ec));
+}
+
+std::string cache_file_size(const std::string& path) {
+    std::error_code ec;
+    const std::uintmax_t n = std::filesystem::file_size(path, ec);
+    return ec ? std::string() : format_bytes(double(n));
+}
+
+std::string cache_file_report(const std::string& path) {
+    std::error_code ec;
+    const std::uintmax_t n = std::filesystem::file_size(path, ec);
+    return ec ? path : path + " (" + format_bytes(double(n)) + ")";
 }
 
 DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& terrain,
                                   const DrainageOptions& options, const DrainageLog& log,
                                   const DrainageProgress& progress, DvLineVertices* in_file) {
-    const std::string cache = drainage_cache_path(dem_path);
+    const std::string cache = drainage_cache_path(dem_path, options.cache_dir);
     const DrainageFingerprint fp = drainage_fingerprint(dem_path, terrain, options);
     auto say = [&](const std::string& m) { if (log) log(m); };
     if (const std::string beside = dem_path + ".dv"; cache != beside && std::filesystem::exists(beside)) {
         try {  // a read-only folder's cache: read when valid (a stale one is rebuilt in the user's cache)
             DrainageDb db = in_file ? read_drainage_line_index(beside, &fp, *in_file)
                                     : read_drainage_db(beside, &fp, DvParts::lines);
-            say("drainage: using cached " + beside);
+            say("drainage: using cached " + cache_file_report(beside));
             return db;
         } catch (const Error& e) {
             say(std::string(e.what()) + "; trying " + cache);
@@ -229,7 +294,7 @@ DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& te
     try {
         DrainageDb db = in_file ? read_drainage_line_index(cache, &fp, *in_file)
                                 : read_drainage_db(cache, &fp, DvParts::lines);
-        say("drainage: using cached " + cache);
+        say("drainage: using cached " + cache_file_report(cache));
         return db;
     } catch (const Error& e) {
         say(std::string(e.what()) + "; rebuilding");
@@ -254,9 +319,14 @@ DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& te
     DrainageDb meta = build_streamed(
         g, crs, options, fp,
         [&](const DrainageDb& built, const DvBranchSource& branches) {
+            if (occupied_by_other_than_file(cache)) {  // a FIFO, a folder: neither read nor replaced
+                std::cerr << "penink: warning: drainage: " << cache << ": not a regular file; the drainage cache is "
+                          << "neither read nor written (the database is built in memory)\n";
+                return;
+            }
             try {
                 write_drainage_db(cache, built, branches);
-                say("drainage: wrote " + cache);
+                say("drainage: wrote " + cache_file_report(cache));
             } catch (const Error& e) {  // said once a run, verbose or not: every run builds it again
                 std::cerr << "penink: warning: drainage: " << cache << ": cannot write the drainage cache; using the "
                           << "database built in memory (built again on every run)\n";

@@ -54,6 +54,7 @@ struct DrainageOptions {
     int resample = 0;                      // fine nodes per DEM cell side; 0 = automatic
     std::size_t max_points = 4'000'000;    // automatic factor: largest <= 5 within this budget
     DrainageRouting routing = DrainageRouting::priority_flood;
+    std::string cache_dir;  // where the caches go (--cache-dir, [cache] dir); "": drainage_cache_path's default
 };
 
 // The automatic resample factor: 5 (Mower, "Concurrent Drainage Network Rendering": 10 m from 50 m) lowered until the resampled grid
@@ -107,17 +108,38 @@ DrainageDb build_and_write_drainage_db(Terrain& t, const DrainageOptions& option
 DrainageFingerprint drainage_fingerprint(const std::string& dem_path, const Terrain& terrain,
                                          const DrainageOptions& options);
 
-// Where the cache of a DEM lives: beside it (`<dem>.dv`) when its folder is writable, else in
-// the user's cache folder: `<user_cache>/penink/<file name>-<16 hex digits of a hash of the
-// absolute path>.dv`, user_cache = $XDG_CACHE_HOME, else $HOME/.cache ("" when neither is set).
-std::string drainage_cache_path(const std::string& dem_path);
-std::string drainage_cache_path(const std::string& dem_path, bool folder_writable, const std::string& user_cache);
+// Where the drainage cache of a DEM lives (the terrain cache is the same path with .lod):
+// - with a cache folder (`cache_dir`: --cache-dir, [cache] dir): `<cache_dir>/<file name>-<16
+//   hex digits of a hash of the DEM's absolute path>.dv` (the folder is made when missing);
+// - else beside the DEM (`<dem>.dv`) when its folder is writable and not under an install
+//   prefix (CMake's CMAKE_INSTALL_PREFIX, and P for a binary running as P/bin/penink with
+//   P/share/penink: the examples installed with penink are not written to);
+// - else in the user's cache folder `<user_cache>/penink/<file name>-<16 hex>.dv`, user_cache =
+//   $XDG_CACHE_HOME, else $HOME/.cache ("" when neither is set: beside the DEM after all, and a
+//   write that fails is logged).
+std::string drainage_cache_path(const std::string& dem_path, const std::string& cache_dir = "");
+std::string drainage_cache_path(const std::string& dem_path, bool folder_usable, const std::string& user_cache);
+// `<folder>/<file name>-<16 hex>.dv` for the DEM at dem_path.
+std::string cache_file_in(const std::string& folder, const std::string& dem_path);
+// Whether `folder` is `prefix` or inside it (both made absolute and normal first; symbolic links
+// resolved where they exist). False for an empty prefix or "/".
+bool under_install_prefix(const std::string& folder, const std::string& prefix);
+// "PATH (SIZE)" of a cache file as -v reports it (format_bytes), "PATH" when it cannot be stat'ed;
+// cache_file_size: SIZE alone ("" then).
+std::string cache_file_report(const std::string& path);
+std::string cache_file_size(const std::string& path);
+// Whether something other than a regular file (after symbolic links) is at `path`: a FIFO, a
+// folder, a device, a dangling link. A cache there is neither read nor replaced.
+bool occupied_by_other_than_file(const std::string& path);
 
 // The cache of a render (drainage_cache_path): its lines part read (DvParts::lines) when its
 // fingerprint matches the DEM and options, else rebuilt as `penink drainage` builds it (the same
 // bytes) and written atomically; when it cannot be written the database built in memory is used
-// and a warning line goes to stderr. A valid `<dem>.dv` beside a DEM whose folder cannot be
-// written is read first (the cache path is then the user's cache folder).
+// and a warning line goes to stderr. A valid `<dem>.dv` beside the DEM is read first when the
+// cache path is elsewhere (a read-only or installed folder, a cache folder): a cache in a
+// read-only folder is still read. The cache folder is options.cache_dir. Something other than a
+// regular file at the cache path (a FIFO, a folder) is neither read nor replaced: a warning line,
+// and the database built in memory.
 // Returns what a lines-only read gives (drainage_lines_only) either way. `terrain` is the DEM
 // read with any vertical exaggeration, or only its grid and georeference (no node arrays, as the
 // terrain cache gives them): unless it holds the heights unexaggerated, a build reads the DEM

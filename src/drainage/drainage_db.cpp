@@ -1,4 +1,4 @@
-// DV file layout (version 8, all little-endian; compact: what the builder's invariants give is
+// DV file layout (version 11, all little-endian; compact: what the builder's invariants give is
 // not stored, see layout_ok and derived_ok). Two parts, each with its checksum: the network
 // (header, branches, divides) and the lines (creases and ridges for drawing, line_set.hpp),
 // which a render reads and checks alone (read_drainage_db, DvParts::lines).
@@ -34,6 +34,9 @@
 //     lines: f32 box lo.x, lo.y, hi.x, hi.y, f32 3-D length (unexaggerated), u32 count, u8 order, 3 zero bytes
 //            (first = running sum of counts)
 //     vertices: f32 x, y, z, nx, ny, nz, flow (28 bytes each: DrapedVertex)
+//     vertex block checksums: u64 hash64 of each block of 1024 vertices (dv::vertex_block; the
+//            last one short), ceil(vertices / 1024) of them: a render that leaves the vertices in
+//            the file checks each block the first time it reads from it (DvLineVertices::read)
 //     index: f32 origin x, y, f32 level-0 cell side, u32 levels; u32 cols, rows per level; u32
 //            cell starts (cells of all levels + 1); u32 line ids (one per line)
 //   u64      index checksum: hash64 of the part's bytes before it but the two vertex arrays, as
@@ -43,7 +46,7 @@
 // Versions 2-4 stored each vertex's flow (16 bytes) and fixed 13-byte branches without head_acc;
 // 4 added the routing; 5 varint records; 6 grid positions; 7 vertices after each record; 8 the
 // lines part and no vertical exaggeration in the fingerprint; 9 3-D line lengths and the index
-// checksum.
+// checksum; 11 the vertex block checksums.
 #include "drainage/drainage_db.hpp"
 
 #include <bit>

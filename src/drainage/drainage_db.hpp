@@ -6,6 +6,7 @@
 // in two checksummed parts (the network; the lines, which a render reads alone); the layout is
 // documented in drainage_db.cpp and docs of write_drainage_db.
 #pragma once
+#include <atomic>
 #include <cstdint>
 #include <cstdio>
 #include <memory>
@@ -16,6 +17,7 @@
 #include <glm/vec2.hpp>
 
 #include "core/big_allocator.hpp"
+#include "core/error.hpp"
 #include "core/hash64.hpp"
 #include "drainage/line_set.hpp"
 #include "input/terrain.hpp"
@@ -97,7 +99,9 @@ struct DrainageDb {
 // checksum of everything in it but the vertex arrays, which a render checks without reading them.
 // 10: the creases follow the surface's fall line (fall_line_stems.hpp) and the ridges are
 // smoothed by a Gaussian, both joined smoothly at junctions (the lines part's content, not its layout).
-inline constexpr std::uint32_t drainage_db_version = 10;
+// 11: each line set's vertex array is followed by a checksum per block of 1024 vertices, which a
+// render reading vertices from the file checks block by block.
+inline constexpr std::uint32_t drainage_db_version = 11;
 
 // Fingerprint of the DEM file at `dem_path` with the given resample factor: its size, mtime and
 // a hash of its whole content (streamed) and of every side file GDAL may read with it (world
@@ -183,9 +187,20 @@ struct DvLineVertices {
     std::string path;
     std::uint64_t at[2] = {0, 0};     // file offsets of the vertex arrays
     std::uint64_t count[2] = {0, 0};  // vertices in each
-    // Vertices [first, first + n) of set 0 or 1 into out (pread: any thread). Throws
-    // penink::Error "truncated drainage database" when the file has shrunk since.
+    std::vector<std::uint64_t> block_sums[2];  // checksum of each block of 1024 vertices (dv_format.hpp)
+    // Per block of either set (set 0's first): checked already. Shared by copies.
+    std::shared_ptr<std::vector<std::atomic<bool>>> checked;
+    // Vertices [first, first + n) of set 0 or 1 into out (pread: any thread). The first read from
+    // a block reads the whole block and checks its checksum. Throws DvCorrupt for a block that
+    // does not match or a file that has shrunk since.
     void read(int set, std::uint64_t first, std::uint64_t n, DrapedVertex* out) const;
+};
+
+// A drainage database found damaged while a render reads it (DvLineVertices::read): the caller
+// reads the database again whole (every checksum checked) or rebuilds it.
+class DvCorrupt : public Error {
+public:
+    using Error::Error;
 };
 
 // The lines part's line records and index, as DvParts::lines reads them (the same errors), its

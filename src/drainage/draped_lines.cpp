@@ -535,6 +535,21 @@ void smooth_and_drape(DrapedLineSet& set, const DemSurface& surface, const LineP
     drape_lines(set, surface, progress);
 }
 
+bool has_relief(const DrainageGrid& g) {
+    // the DEM's own heights: the coarse nodes' at factor > 1 (the resampled surface may round)
+    const bool coarse = !g.coarse_z.empty();
+    const std::vector<float>& z = coarse ? g.coarse_z : g.z;
+    const std::vector<std::uint8_t>& valid = coarse ? g.coarse_valid : g.valid;
+    bool any = false;
+    float lo = 0.0f, hi = 0.0f;
+    for (std::size_t i = 0; i < z.size() && i < valid.size(); ++i) {
+        if (!valid[i]) continue;
+        if (!any) lo = hi = z[i], any = true;
+        lo = std::min(lo, z[i]), hi = std::max(hi, z[i]);
+    }
+    return any && hi > lo;
+}
+
 void build_draped_lines(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                         DrainageDb& db, const LineProgress& progress) {
     auto report = [&](double f) {
@@ -551,6 +566,8 @@ void build_draped_lines(const DrainageGrid& g, const std::vector<std::uint8_t>& 
     db.ridges = listed_lines(db.divide_vertices, divide_polylines(db));
     smooth_lines(db.ridges, 3.0 * fall_line_options(g).sigma);
     report(0.15);
+    if (!has_relief(g))  // a plane: its network follows only the tie-breaking of flats; nothing to draw
+        for (DrapedLineSet* set : {&db.creases, &db.ridges}) set->lines.clear(), set->vertices.clear();
     const DemSurface surface(g);
     report(0.2);
     const double nc = double(db.creases.vertices.size()), nr = double(db.divide_vertices.size());

@@ -58,8 +58,13 @@ void drape_lines(DrapedLineSet& set, const DemSurface& surface, const LineProgre
 // smooth_lines, then steps 3 and 4, on a set made by step 1.
 void smooth_and_drape(DrapedLineSet& set, const DemSurface& surface, const LineProgress& progress = {});
 
+// Whether the DEM's valid nodes differ in height (its own nodes: g's coarse nodes at factor > 1);
+// false for a plane (every valid height equal) or no valid node.
+bool has_relief(const DrainageGrid& g);
+
 // Both sets of a built network into db.creases and db.ridges (the divides from db.divides and
 // db.divide_vertices), on the DEM of `g` (DemSurface(g): g.z must hold the original elevations).
+// On a DEM without relief (has_relief) both sets are empty: a plane has no creases nor ridges.
 // `progress` gets the fraction of the two sets done.
 void build_draped_lines(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                         DrainageDb& db, const LineProgress& progress = {});

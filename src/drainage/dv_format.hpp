@@ -108,6 +108,16 @@ struct ConcatHash {
     std::uint64_t digest() const { return hash64(tail, tail_n, h); }
 };
 
+// Vertices of a line set checked by one checksum of the lines part (its block checksums follow
+// the set's vertex array).
+inline constexpr std::uint64_t vertex_block = 1024;
+inline std::uint64_t vertex_blocks(std::uint64_t vertices) { return (vertices + vertex_block - 1) / vertex_block; }
+// hash64 of block k of the n vertices at v.
+inline std::uint64_t vertex_block_hash(const DrapedVertex* v, std::uint64_t n, std::uint64_t k) {
+    const std::uint64_t first = k * vertex_block, count = n - first < vertex_block ? n - first : vertex_block;
+    return hash64(v + first, std::size_t(count * sizeof(DrapedVertex)));
+}
+
 // One line as the lines part stores it (28 bytes): f32 lo.x, lo.y, hi.x, hi.y, length; u32
 // count; u8 order; 3 zero bytes.
 inline constexpr std::size_t line_record_bytes = 28;

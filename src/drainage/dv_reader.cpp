@@ -2,10 +2,12 @@
 // before it is used, the checksum before anything is decoded.
 #include "drainage/drainage_db.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <vector>
 
 #include <unistd.h>
 
@@ -210,7 +212,11 @@ std::uint64_t read_u64(const std::uint8_t* b, std::size_t at) {
 // a frame selects).
 // With `vertices_at` (a StreamReader only), the vertex array is hashed but not kept: its file
 // offset goes to *vertices_at and set.vertices stays empty (line_set_ok checked on the count).
-template <class R> void get_line_set(R& r, DrapedLineSet& set, std::uint64_t* vertices_at = nullptr) {
+// The vertex block checksums go to *block_sums when given (else they are read and dropped: the
+// part's checksum covers the vertices).
+template <class R>
+void get_line_set(R& r, DrapedLineSet& set, std::uint64_t* vertices_at = nullptr,
+                  std::vector<std::uint64_t>* block_sums = nullptr) {
     const std::uint64_t nl = r.template get<std::uint64_t>(), nv = r.template get<std::uint64_t>();
     if (nl > r.left() / (line_record_bytes + 4) || nv > r.left() / sizeof(DrapedVertex) || nl > 0xffffffffu ||
         nv > 0xffffffffu)
@@ -246,6 +252,8 @@ template <class R> void get_line_set(R& r, DrapedLineSet& set, std::uint64_t* ve
     } else {
         r.template array<DrapedVertex>(set.vertices, nv);
     }
+    std::vector<std::uint64_t> sums;
+    r.template array<std::uint64_t>(block_sums ? *block_sums : sums, vertex_blocks(nv));
     LineIndex& x = set.index;
     x.origin.x = r.template get<float>(), x.origin.y = r.template get<float>(), x.cell = r.template get<float>();
     const std::uint32_t levels = r.template get<std::uint32_t>();
@@ -265,7 +273,9 @@ template <class R> void get_line_set(R& r, DrapedLineSet& set, std::uint64_t* ve
 
 // The lines part from the reader's position on: the fingerprint, grid and origin, which must
 // agree with `db`'s when `header` is set (a whole file), then both line sets.
-template <class R> void get_lines(R& r, DrainageDb& db, bool header, std::uint64_t* vertices_at = nullptr) {
+template <class R>
+void get_lines(R& r, DrainageDb& db, bool header, std::uint64_t* vertices_at = nullptr,
+               std::vector<std::uint64_t>* block_sums = nullptr) {
     DrainageFingerprint f;
     f.file_size = r.template get<std::uint64_t>(), f.mtime_ns = r.template get<std::int64_t>();
     f.content_hash = r.template get<std::uint64_t>(), f.resample = r.template get<std::uint32_t>();
@@ -279,8 +289,8 @@ template <class R> void get_lines(R& r, DrainageDb& db, bool header, std::uint64
                     ox == db.origin.x && oy == db.origin.y))
         r.corrupt();
     db.fingerprint = f, db.cols = cols, db.rows = rows, db.factor = factor, db.origin = {ox, oy};
-    get_line_set(r, db.creases, vertices_at);
-    get_line_set(r, db.ridges, vertices_at ? vertices_at + 1 : nullptr);
+    get_line_set(r, db.creases, vertices_at, block_sums);
+    get_line_set(r, db.ridges, vertices_at ? vertices_at + 1 : nullptr, block_sums ? block_sums + 1 : nullptr);
     // The index checksum: a StreamReader checks it (it may not have read the vertices); a whole
     // file's lines checksum covers it.
     if constexpr (requires { r.index.digest(); }) {
@@ -392,7 +402,7 @@ namespace {
 // The lines part alone: the prefix, then the part read from its offset into the database's
 // arrays and hashed on the way, then its checksum compared.
 DrainageDb read_lines_part(std::FILE* in, std::uint64_t size, const std::string& path,
-                           std::uint64_t* vertices_at = nullptr) {
+                           std::uint64_t* vertices_at = nullptr, std::vector<std::uint64_t>* block_sums = nullptr) {
     std::uint8_t prefix[prefix_bytes];
     const std::size_t got = std::fread(prefix, 1, std::size_t(std::min<std::uint64_t>(size, prefix_bytes)), in);
     std::uint64_t total, lines_at;
@@ -403,7 +413,7 @@ DrainageDb read_lines_part(std::FILE* in, std::uint64_t size, const std::string&
     StreamReader r{in, total - 8 - lines_at, lines_at, path, false, {}, {}, false};
     r.seek_vertices = vertices_at != nullptr;
     DrainageDb db;
-    get_lines(r, db, false, vertices_at);
+    get_lines(r, db, false, vertices_at, block_sums);
     if (r.left() != 0) r.corrupt();
     std::uint64_t stored;
     if (std::fread(&stored, 8, 1, in) != 1) truncated(path);
@@ -457,27 +467,60 @@ DrainageDb read_drainage_line_index(const std::string& path, const DrainageFinge
     std::FILE* in = open_dv(path, size);
     std::shared_ptr<std::FILE> file(in, [](std::FILE* f) { std::fclose(f); });
     std::uint64_t at[2] = {0, 0};
-    DrainageDb db = read_lines_part(in, size, path, at);
+    DrainageDb db = read_lines_part(in, size, path, at, vertices.block_sums);
     if (expected && !(db.fingerprint == *expected))
         throw Error("drainage", path, "drainage database is stale (DEM changed)");
     vertices.file = std::move(file), vertices.path = path;
     vertices.at[0] = at[0], vertices.at[1] = at[1];
     vertices.count[0] = db.creases.lines.empty() ? 0 : db.creases.lines.back().first + db.creases.lines.back().count;
     vertices.count[1] = db.ridges.lines.empty() ? 0 : db.ridges.lines.back().first + db.ridges.lines.back().count;
+    for (int s = 0; s < 2; ++s)
+        if (vertices.block_sums[s].size() != vertex_blocks(vertices.count[s]))
+            throw Error("drainage", path, "drainage database checksum mismatch (file corrupt)");
+    vertices.checked = std::make_shared<std::vector<std::atomic<bool>>>(vertices.block_sums[0].size() +
+                                                                        vertices.block_sums[1].size());
     return db;
 }
 
-void DvLineVertices::read(int set, std::uint64_t first, std::uint64_t n, DrapedVertex* out) const {
-    if (!file || set < 0 || set > 1 || first > count[set] || n > count[set] - first)
-        throw Error("drainage", path, "drainage line vertices out of range", ExitCode::internal);
-    auto* dst = reinterpret_cast<char*>(out);
-    std::uint64_t bytes = n * sizeof(DrapedVertex), from = at[set] + first * sizeof(DrapedVertex);
-    while (bytes > 0) {
-        const ssize_t got = ::pread(::fileno(file.get()), dst, std::size_t(std::min<std::uint64_t>(bytes, 1u << 30)),
-                                    off_t(from));
+namespace {
+
+// n bytes at `from` of the file into dst; false when the file ends first.
+bool pread_all(std::FILE* file, char* dst, std::uint64_t n, std::uint64_t from) {
+    while (n > 0) {
+        const ssize_t got = ::pread(::fileno(file), dst, std::size_t(std::min<std::uint64_t>(n, 1u << 30)), off_t(from));
         if (got < 0 && errno == EINTR) continue;
-        if (got <= 0) throw Error("drainage", path, "truncated drainage database");
-        dst += got, from += std::uint64_t(got), bytes -= std::uint64_t(got);
+        if (got <= 0) return false;
+        dst += got, from += std::uint64_t(got), n -= std::uint64_t(got);
+    }
+    return true;
+}
+
+}  // namespace
+
+void DvLineVertices::read(int set, std::uint64_t first, std::uint64_t n, DrapedVertex* out) const {
+    if (!file || !checked || set < 0 || set > 1 || first > count[set] || n > count[set] - first)
+        throw Error("drainage", path, "drainage line vertices out of range", ExitCode::internal);
+    auto corrupt = [&] { throw DvCorrupt("drainage", path, "drainage database checksum mismatch (file corrupt)"); };
+    if (n == 0) return;
+    const std::size_t offset = set == 0 ? 0 : block_sums[0].size();  // set's first entry in `checked`
+    std::vector<DrapedVertex> block;
+    for (std::uint64_t k = first / vertex_block, last = (first + n - 1) / vertex_block; k <= last; ++k) {
+        const std::uint64_t b0 = k * vertex_block, b1 = std::min(b0 + vertex_block, count[set]);
+        const std::uint64_t lo = std::max(first, b0), hi = std::min(first + n, b1);  // what is wanted of it
+        std::atomic<bool>& done = (*checked)[offset + std::size_t(k)];
+        if (done.load(std::memory_order_acquire)) {
+            if (!pread_all(file.get(), reinterpret_cast<char*>(out + (lo - first)), (hi - lo) * sizeof(DrapedVertex),
+                           at[set] + lo * sizeof(DrapedVertex)))
+                corrupt();
+            continue;
+        }
+        block.resize(std::size_t(b1 - b0));
+        if (!pread_all(file.get(), reinterpret_cast<char*>(block.data()), (b1 - b0) * sizeof(DrapedVertex),
+                       at[set] + b0 * sizeof(DrapedVertex)) ||
+            hash64(block.data(), block.size() * sizeof(DrapedVertex)) != block_sums[set][std::size_t(k)])
+            corrupt();
+        done.store(true, std::memory_order_release);
+        std::memcpy(out + (lo - first), block.data() + (lo - b0), std::size_t(hi - lo) * sizeof(DrapedVertex));
     }
 }
 

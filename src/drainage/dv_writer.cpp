@@ -186,6 +186,8 @@ void put_line_set(Sink& w, const DrapedLineSet& set) {
     for (std::size_t i = 0; i < set.vertices.size(); i += per)
         w.bytes(set.vertices.data() + i, std::min(per, set.vertices.size() - i) * sizeof(DrapedVertex));
     w.index = index;
+    for (std::uint64_t k = 0; k < vertex_blocks(set.vertices.size()); ++k)
+        w.put(vertex_block_hash(set.vertices.data(), set.vertices.size(), k));
     const LineIndex& x = set.index;
     w.put(x.origin.x), w.put(x.origin.y), w.put(x.cell), w.put(std::uint32_t(x.level_cols.size()));
     for (std::size_t k = 0; k < x.level_cols.size(); ++k) w.put(x.level_cols[k]), w.put(x.level_rows[k]);

@@ -274,15 +274,20 @@ DrainageLineData prepare_drainage_lines(const DrainageLineSource& source, const 
     DrainageLineData data;
     if (!(box.lo.x <= box.hi.x && box.lo.y <= box.hi.y)) return data;
     int which = 0;
-    for (const auto& [set, out] :
-         {std::pair(&source.db.creases, &data.creases), std::pair(&source.db.ridges, &data.ridges)}) {
-        const std::vector<std::uint32_t> ids = lines_meeting_box(*set, box.lo, box.hi);
-        // the vertices a batch at a time (batch_bytes, or one longer line): the memory held
-        // follows the lines drawn, not those meeting the box
-        FileBatches batches{*set, ids, source.vertices, which,
-                            std::max<std::size_t>(source.batch_bytes / sizeof(DrapedVertex), 1), {}, {}};
-        *out = select_lines(set->lines, ids, batches, box, culling);
-        ++which;
+    try {
+        for (const auto& [set, out] :
+             {std::pair(&source.db.creases, &data.creases), std::pair(&source.db.ridges, &data.ridges)}) {
+            const std::vector<std::uint32_t> ids = lines_meeting_box(*set, box.lo, box.hi);
+            // the vertices a batch at a time (batch_bytes, or one longer line): the memory held
+            // follows the lines drawn, not those meeting the box
+            FileBatches batches{*set, ids, source.vertices, which,
+                                std::max<std::size_t>(source.batch_bytes / sizeof(DrapedVertex), 1), {}, {}};
+            *out = select_lines(set->lines, ids, batches, box, culling);
+            ++which;
+        }
+    } catch (const DvCorrupt&) {
+        if (!source.read_whole) throw;
+        return prepare_drainage_lines(source.read_whole(), box, culling);
     }
     return data;
 }

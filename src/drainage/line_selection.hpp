@@ -4,6 +4,7 @@
 // index, culled and decimated at the frames' screen size, exaggerated, and laid out as runs of
 // one vertex array for the DM pass (render/dm.hpp). Positions in local metres.
 #pragma once
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -68,10 +69,14 @@ struct DrainageLineSource {
     DrainageDb db;
     DvLineVertices vertices;  // file set: db's creases and ridges hold no vertices; they are here
     std::size_t batch_bytes = std::size_t(4) << 20;  // vertices read from the file at a time (at least one line)
+    // The database read whole (every checksum checked) or rebuilt: what a file set falls back to
+    // when a block of its vertices is found damaged (DvCorrupt). None: the error goes on.
+    std::function<DrainageDb()> read_whole;
 };
 // The same lines as prepare_drainage_lines(db) gives for the database whose lines `source` holds
 // (same pieces, order and floats); from a file, only the vertices of the lines meeting the box
-// are read (memory and time follow the selection).
+// are read (memory and time follow the selection), each block checked the first time it is read;
+// a damaged block makes it select from source.read_whole() instead (never from damaged vertices).
 DrainageLineData prepare_drainage_lines(const DrainageLineSource& source, const LineBox& box,
                                         const LineCulling& culling = {});
 DrainageLineData prepare_drainage_lines(const DrainageLineSource& source, const Terrain& model,

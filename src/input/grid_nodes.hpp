@@ -1,7 +1,6 @@
 // A read-only view of a DEM grid's nodes, wherever they are stored: a Terrain's own arrays, or a
-// terrain cache file mapped into memory (surface/terrain_cache.hpp), so that a frame touches only
-// the nodes it uses. cols x rows nodes, row-major, row 0 north, in the Terrain's local frame
-// (metres, x east, y north, conventions.md). The drawn (exaggerated) height of a node is its
+// terrain cache file read into memory (surface/terrain_cache.hpp). cols x rows nodes, row-major,
+// row 0 north, in the Terrain's local frame (metres, x east, y north, conventions.md). The drawn (exaggerated) height of a node is its
 // stored z times z_scale: 1 for a Terrain read at the drawing's exaggeration, the exaggeration
 // for heights stored unexaggerated, computed as the DEM reader computes it (in double, rounded
 // once to float). With a sea level (unexaggerated, in the stored z's units) a node below it is

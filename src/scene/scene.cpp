@@ -56,6 +56,7 @@ const std::vector<KnownTable>& known_tables() {
         {"ridges", crease},
         {"hachures", hachure_keys()},
         {"drainage", {"routing"}},
+        {"cache", {"dir"}},
         {"style", {}},
         {"mesh", {"file", "up", "subdivide"}},
         {"pels", {"enabled", "threshold", "smoothing", "normal_filter", "line_strength"}},
@@ -281,6 +282,12 @@ Scene parse_scene_file(const std::string& path) {
     read_crease(root, "ridges", s.ridges, path);
     read_hachures(root, s.hachures, path);
     if (has_key(root, "drainage")) read_key(root.at("drainage"), "routing", s.drainage_routing, path, "drainage");
+    if (has_key(root, "cache")) {
+        read_key(root.at("cache"), "dir", s.cache_dir, path, "cache");
+        check_local_path("scene", s.cache_dir);
+        if (!s.cache_dir.empty() && fs::path(s.cache_dir).is_relative())
+            s.cache_dir = (fs::path(path).parent_path() / s.cache_dir).lexically_normal().string();
+    }
     if (has_key(root, "style")) {
         s.style_overrides = root.at("style");
         read_key(root.at("style"), "name", s.style, path, "style");

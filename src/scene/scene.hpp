@@ -92,6 +92,7 @@ struct Scene {
     // DEMs. width_px 0 takes the style's hachures width (apply_object_sketch).
     HachureParams hachures = hachure_defaults();
     std::string drainage_routing = "priority-flood";  // [drainage] routing (drainage_build.hpp)
+    std::string cache_dir;  // [cache] dir or --cache-dir (resolved); "": the default (drainage_cache_path)
     std::string style = "technical";
     // Object-space sketchiness of creases and ridges (Potter et al., "NPR-Style 3D Line Textures", 4.3: end points moved within the
     // surface's tangent plane), pixels, and strokes per line; set from the style by the command.

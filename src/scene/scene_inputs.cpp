@@ -21,8 +21,8 @@ std::vector<NamedInput> scene_inputs(const Scene& s) {
     if (!s.mesh.empty()) in.push_back({s.mesh, "the mesh"});
     if (!s.style.empty()) in.push_back({s.style, "the style"});
     if (!s.dem.empty()) {
-        in.push_back({drainage_cache_path(s.dem), "the DEM's drainage cache"});
-        in.push_back({terrain_cache_path(s.dem), "the DEM's terrain cache"});
+        in.push_back({drainage_cache_path(s.dem, s.cache_dir), "the DEM's drainage cache"});
+        in.push_back({terrain_cache_path(s.dem, s.cache_dir), "the DEM's terrain cache"});
     }
     return in;
 }

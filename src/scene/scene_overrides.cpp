@@ -54,6 +54,7 @@ Scene load_scene_with_overrides(const SceneOverrides& o) {
     if (o.grid) scene.furniture.grid = map_grid_named(*o.grid);  // CLI11 checked the name
     if (o.title) scene.furniture.title = *o.title;
     if (!o.style.empty()) scene.style = o.style;
+    if (!o.cache_dir.empty()) scene.cache_dir = o.cache_dir;
     validate_scene(scene);
     check_scene_memory(scene, o.max_memory);
     return scene;

@@ -25,6 +25,7 @@ struct SceneOverrides {
     // A plan view's furniture ([map] keys, scene/map_furniture.hpp): --title, --grid, --no-furniture.
     std::optional<std::string> title, grid;
     bool no_furniture = false;
+    std::string cache_dir;                     // --cache-dir; "": the scene's [cache] dir
     // The camera ([camera] keys of the same names, scene.hpp); none: the scene's.
     std::optional<std::string> position, target;
     std::optional<double> elevation, azimuth, altitude, fov, distance;

@@ -116,6 +116,7 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terra
     StageProgress progress(std::cerr, log.progress, "building drainage database");
     DrainageOptions options;
     options.routing = *drainage_routing_named(scene.drainage_routing);  // validate_scene checked it
+    options.cache_dir = scene.cache_dir;
     DrainageLineSource source;
     const auto t0 = Clock::now();
     source.db = load_or_build_drainage(
@@ -127,8 +128,18 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terra
 }
 
 std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const SceneTerrain& dem, const Log& log) {
-    if (dem.stored.in_memory) return scene_drainage(scene, *dem.stored.in_memory, log);
-    return scene_drainage(scene, dem.stored.meta, log);
+    std::optional<DrainageLineSource> source = dem.stored.in_memory ? scene_drainage(scene, *dem.stored.in_memory, log)
+                                                                    : scene_drainage(scene, dem.stored.meta, log);
+    if (source && source->vertices.file) {  // vertices found damaged while drawn: the cache read whole, or rebuilt
+        DrainageOptions options;
+        options.routing = *drainage_routing_named(scene.drainage_routing);
+        options.cache_dir = scene.cache_dir;
+        source->read_whole = [dem_path = scene.dem, meta = dem.stored.meta, options, log] {
+            log.info("drainage: " + dem_path + ": damaged vertices in the cache; reading it whole");
+            return load_or_build_drainage(dem_path, meta, options, [&log](const std::string& m) { log.info(m); });
+        };
+    }
+    return source;
 }
 
 TerrainFrames::TerrainFrames(GlContext& context, std::optional<DrainageLineSource> drainage, FrameTerrain terrain,

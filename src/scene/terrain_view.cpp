@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/memory_budget.hpp"
 #include "core/progress_bar.hpp"
 #include "core/stopwatch.hpp"
 #include "drainage/drainage_build.hpp"
@@ -17,6 +18,7 @@
 #include "export/page.hpp"
 #include "scene/auto_exaggeration.hpp"
 #include "scene/map_scale.hpp"
+#include "scene/scene_memory.hpp"
 #include "surface/grid_ground.hpp"
 
 namespace penink {
@@ -183,8 +185,8 @@ Terrain read_scene_dem(Scene& scene, const Log& log) {
     return dem;
 }
 
-std::string terrain_cache_path(const std::string& dem_path) {
-    std::string path = drainage_cache_path(dem_path);
+std::string terrain_cache_path(const std::string& dem_path, const std::string& cache_dir) {
+    std::string path = drainage_cache_path(dem_path, cache_dir);
     if (path.size() >= 3 && path.compare(path.size() - 3, 3, ".dv") == 0) path.resize(path.size() - 3);
     return path + ".lod";
 }
@@ -194,9 +196,9 @@ TerrainCacheKey terrain_cache_key(const std::string& dem_path) {
     return {f.file_size, f.mtime_ns, f.content_hash, 0, true};
 }
 
-StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log) {
+StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, const std::string& cache_dir) {
     auto t0 = Clock::now();
-    const std::string path = terrain_cache_path(dem_path);
+    const std::string path = terrain_cache_path(dem_path, cache_dir);
     TerrainCacheKey key;
     try {
         key = terrain_cache_key(dem_path);
@@ -211,13 +213,25 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log) {
         if (p != path && !std::filesystem::exists(p)) continue;
         if (std::optional<StoredTerrain> cached = read_terrain_cache(p, key, &why)) {
             cached->meta.source = dem_path;
-            log.info("terrain: using cached " + p + " (" + std::to_string(cached->meta.cols) + "x" +
+            log.info("terrain: using cached " + p + " (" + cache_file_size(p) + ", " + std::to_string(cached->meta.cols) + "x" +
                      std::to_string(cached->meta.rows) + " nodes, " + std::to_string(int(ms_since(t0))) + " ms)");
             return std::move(*cached);
         }
         if (p == path) break;
     }
     log.info("terrain: " + path + ": " + why + "; building");
+    const bool occupied = occupied_by_other_than_file(path);  // a FIFO, a folder: neither read nor replaced
+    if (occupied)
+        std::cerr << "penink: warning: terrain: " << path
+                  << ": not a regular file; the terrain cache is neither read nor written (built in memory)\n";
+    {  // before the read: a long thin DEM's pyramid covers the padded square (terrain_lod.hpp)
+        const DemSize size = read_dem_size(dem_path);
+        const double side = std::ldexp(1.0, lod_padded_levels(size.cols, size.rows)) + 1.0;
+        check_memory("surface", dem_path,
+                     "the level-of-detail pyramid of the DEM's " + std::to_string(size.cols) + "x" +
+                         std::to_string(size.rows) + " nodes (" + std::to_string(std::int64_t(side)) + "^2 padded nodes)",
+                     size.nodes() * render_bytes_per_node + side * side * lod_bytes_per_padded_node, memory_budget(0));
+    }
     StageProgress progress(std::cerr, log.progress, "building terrain cache");
     progress.update("reading the DEM", 0.0);
     Terrain flat = read_dem(dem_path);
@@ -228,17 +242,21 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log) {
     log.info("level-of-detail pyramid: " + std::to_string(stored.lod.side()) + "^2 nodes (" +
              std::to_string(int(lap_ms(t0))) + " ms)");
     progress.update("writing", 0.8);
+    if (occupied) {
+        progress.update("done", 1.0);
+        return stored;
+    }
     try {
         write_terrain_cache(path, stored, key);
-        log.info("terrain: wrote " + path + " (" + std::to_string(int(lap_ms(t0))) + " ms)");
+        log.info("terrain: wrote " + path + " (" + cache_file_size(path) + ", " + std::to_string(int(lap_ms(t0))) + " ms)");
     } catch (const Error& e) {
         log.info(std::string(e.what()) + "; using the terrain built in memory");
         progress.update("done", 1.0);
         return stored;
     }
     progress.update("done", 1.0);
-    // Drawn from the file as a warm render would (the same values), so the memory held is what
-    // frames touch, not the DEM, while a drainage build that follows holds its own copy.
+    // Drawn from the file as a warm render would (the same values), so the memory held is the
+    // nodes and pyramid, not the whole DEM read, while a drainage build that follows holds its own copy.
     if (std::optional<StoredTerrain> mapped = read_terrain_cache(path, key)) {
         mapped->meta.source = dem_path;
         return std::move(*mapped);
@@ -247,17 +265,19 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log) {
 }
 
 SceneTerrain open_scene_terrain(Scene& scene, const Log& log) {
-    StoredTerrain stored = open_stored_terrain(scene.dem, log);
+    StoredTerrain stored = open_stored_terrain(scene.dem, log, scene.cache_dir);
     resolve_vertical_exaggeration(scene, stored.lod.z_min, stored.lod.z_max, stored.plan_lo, stored.plan_hi, log);
     const double e = scene.vertical_exaggeration;
     if (!std::isfinite(e) || e <= 0.0) throw Error("scene", scene_file(scene), "vertical exaggeration must be > 0");
     SceneTerrain t{std::move(stored), e, scene_file(scene)};
     if (scene.sea_level) {
         t.sea_level = *scene.sea_level;
-        // Water over part of the DEM: the pyramid of the clamped nodes (terrain_lod.hpp), so the
-        // flat sea takes no triangles; O(nodes) once per command, held in memory.
+        // Water over part or all of the DEM: the pyramid of the clamped nodes (terrain_lod.hpp),
+        // so the flat sea takes no triangles and the pyramid's bounds hold the water drawn (a
+        // DEM wholly under water is framed and seen at the sea's height); O(nodes) once per
+        // command, held in memory.
         const TerrainLod& dry = t.stored.lod;
-        if (t.sea_level > double(dry.z_min) && t.sea_level < double(dry.z_max)) {
+        if (t.sea_level > double(dry.z_min)) {
             const Clock::time_point t0 = Clock::now();
             t.stored.lod = build_terrain_lod(t.stored.drawn(1.0, t.sea_level), 1.0);
             std::ostringstream msg;

@@ -7,8 +7,8 @@
 // Then the part of the DEM the view needs, with near/far planes fitted to it.
 //
 // The nodes and level-of-detail pyramid come from the terrain cache (surface/terrain_cache.hpp)
-// beside the drainage database (`<dem>.lod` where the drainage cache is `<dem>.dv`), mapped
-// into memory; a missing or stale cache is built from the DEM, read unexaggerated, and written.
+// beside the drainage database (`<dem>.lod` where the drainage cache is `<dem>.dv`), read
+// into memory and checked block by block; a missing or stale cache is built from the DEM, read unexaggerated, and written.
 // One cache serves every vertical exaggeration, view, light and style. Frames: the Terrain's
 // local metres, z exaggerated as drawn (GridNodes::at).
 #pragma once
@@ -39,16 +39,18 @@ Terrain read_scene_dem(Scene& scene, const Log& log);
 void resolve_vertical_exaggeration(Scene& scene, double z_min, double z_max, const glm::dvec2& plan_lo,
                                    const glm::dvec2& plan_hi, const Log& log);
 
-// The terrain cache of a DEM: the drainage cache's path (drainage_cache_path) with .lod for .dv.
-std::string terrain_cache_path(const std::string& dem_path);
+// The terrain cache of a DEM: the drainage cache's path (drainage_cache_path, in `cache_dir`
+// when one is given) with .lod for .dv.
+std::string terrain_cache_path(const std::string& dem_path, const std::string& cache_dir = "");
 // What a DEM's terrain cache is keyed by: the DEM file (as the drainage database's fingerprint)
 // and the UTM zone forced on a geographic DEM (none: 0).
 TerrainCacheKey terrain_cache_key(const std::string& dem_path);
 
-// The scene's DEM: nodes and pyramid, stored (mapped from the cache, or read and cached), drawn
+// The scene's DEM: nodes and pyramid, stored (read from the cache, or from the DEM and cached), drawn
 // at the scene's vertical exaggeration, with water below its sea level (GridNodes::sea_level).
-// When the sea level lies inside the DEM's range, open_scene_terrain replaces the cached pyramid
-// by one built (in memory) on the clamped nodes, so the water costs no triangles.
+// When the sea level lies above the DEM's lowest node, open_scene_terrain replaces the cached
+// pyramid by one built (in memory) on the clamped nodes, so the water costs no triangles and the
+// pyramid's bounds are those of the surface drawn, water included.
 struct SceneTerrain {
     StoredTerrain stored;
     double exaggeration = 1.0;
@@ -64,13 +66,15 @@ struct SceneTerrain {
     }
 };
 
-// The DEM's stored terrain: mapped when a valid cache lies beside the DEM (`<dem>.lod`, even in a
+// The DEM's stored terrain: read from the cache when a valid one lies beside the DEM (`<dem>.lod`, even in a
 // folder render cannot write) or at terrain_cache_path, else the DEM
 // read unexaggerated, its pyramid built and the cache written (a cache that cannot be written is
 // logged and the terrain kept in memory). Throws penink::Error (stage "input") for a DEM that
-// cannot be read and (stage "scene") for a vertical exaggeration that is not a finite number > 0.
+// cannot be read, (stage "surface") for one whose nodes and pyramid would not fit the memory
+// available (checked from its header before it is read: a long thin DEM's pyramid covers the
+// padded square) and (stage "scene") for a vertical exaggeration that is not a finite number > 0.
 // open_scene_terrain resolves the scene's "auto" vertical exaggeration first.
-StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log);
+StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, const std::string& cache_dir = "");
 SceneTerrain open_scene_terrain(Scene& scene, const Log& log);
 
 Camera scene_camera(const Scene& scene, const SceneTerrain& terrain);
@@ -81,8 +85,8 @@ Camera scene_camera(const Scene& scene, const Terrain& terrain);
 std::vector<glm::dvec3> frame_samples(const GridNodes& nodes);
 std::vector<glm::dvec3> frame_samples(const Terrain& terrain);
 
-// What a TerrainFrames draws: nodes and pyramid at the drawing's exaggeration (in memory or
-// mapped) and the part of them the frames may see.
+// What a TerrainFrames draws: nodes and pyramid at the drawing's exaggeration (built, or read
+// from the cache) and the part of them the frames may see.
 struct FrameTerrain {
     Terrain meta;                          // grid and georeference, vertical_exaggeration; no node arrays
     GridNodes nodes;                       // as drawn

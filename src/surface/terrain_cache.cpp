@@ -11,7 +11,6 @@
 #include <vector>
 
 #include <fcntl.h>
-#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -27,6 +26,8 @@ namespace {
 constexpr char magic[8] = {'P', 'E', 'N', 'I', 'N', 'K', 'T', 'C'};
 constexpr std::uint64_t page = 4096;
 constexpr std::uint64_t max_crs_bytes = 1 << 20;
+// Bytes of array checked by one checksum: a frame that needs a node reads and checks its block.
+constexpr std::uint64_t block_bytes = 1 << 16;
 
 std::uint64_t align_up(std::uint64_t n, std::uint64_t a) { return (n + a - 1) / a * a; }
 
@@ -68,6 +69,16 @@ Sizes array_sizes(int cols, int rows, int levels) {
     return {nodes * sizeof(glm::vec3), nodes, side * side * sizeof(float)};
 }
 
+// Blocks of an array of n bytes (the last one may be short).
+std::uint64_t block_count(std::uint64_t n) { return (n + block_bytes - 1) / block_bytes; }
+
+// hash64 of each block_bytes block of the n bytes at p, appended to w.
+void block_sums(Writer& w, const void* p, std::uint64_t n) {
+    const auto* b = static_cast<const std::uint8_t*>(p);
+    for (std::uint64_t at = 0; at < n; at += block_bytes)
+        w.put(hash64(b + at, std::size_t(std::min<std::uint64_t>(block_bytes, n - at))));
+}
+
 // The header and the array offsets of `t` (offsets relative to the file's start).
 std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCacheKey& key, std::uint64_t at[3],
                                         std::uint64_t& total) {
@@ -91,9 +102,14 @@ std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCac
     w.put(std::uint64_t(m.crs_wkt.size()));
     w.bytes(m.crs_wkt.data(), m.crs_wkt.size());
     while (w.b.size() % 8) w.b.push_back(0);
+    // the block checksums of the three arrays (block_sums), each array's blocks in turn
+    const Sizes s = array_sizes(m.cols, m.rows, t.lod.levels);
+    w.put(std::uint32_t(block_bytes)), w.put(std::uint32_t(0));
+    block_sums(w, t.nodes.pos, s.pos);
+    block_sums(w, t.nodes.valid, s.valid);
+    block_sums(w, t.lod.error.data(), s.error);
     const std::uint32_t length = std::uint32_t(w.b.size() + 8);
     std::memcpy(w.b.data() + 12, &length, 4);
-    const Sizes s = array_sizes(m.cols, m.rows, t.lod.levels);
     at[0] = align_up(length, page);
     at[1] = align_up(at[0] + s.pos, page);
     at[2] = align_up(at[1] + s.valid, page);
@@ -108,14 +124,31 @@ std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCac
     throw Error("surface", path, std::string("cannot write terrain cache: ") + std::strerror(err));
 }
 
-// A read-only mapping of a whole file, unmapped when the last StoredTerrain using it goes.
-struct Mapping {
-    void* data = MAP_FAILED;
-    std::size_t size = 0;
-    ~Mapping() {
-        if (data != MAP_FAILED) ::munmap(data, size);
-    }
+// The arrays read from a cache file, owned by the StoredTerrain (and its pyramid) made from it.
+struct ReadArrays {
+    std::vector<glm::vec3> pos;
+    std::vector<std::uint8_t> valid;
+    std::vector<float> error;
 };
+
+// n bytes at `offset` of fd into dst, each block checked against its checksum at sums[k] as it is
+// read. False on a short read or a mismatch.
+bool read_checked(int fd, std::uint64_t offset, void* dst, std::uint64_t n, const std::uint64_t* sums) {
+    auto* b = static_cast<std::uint8_t*>(dst);
+    for (std::uint64_t at = 0, k = 0; at < n; at += block_bytes, ++k) {
+        const std::size_t len = std::size_t(std::min<std::uint64_t>(block_bytes, n - at));
+        for (std::size_t got = 0; got < len;) {
+            const ssize_t r = ::pread(fd, b + at + got, len - got, off_t(offset + at + got));
+            if (r < 0 && errno == EINTR) continue;
+            if (r <= 0) return false;
+            got += std::size_t(r);
+        }
+        std::uint64_t want;
+        std::memcpy(&want, sums + k, 8);
+        if (hash64(b + at, len) != want) return false;
+    }
+    return true;
+}
 
 std::optional<StoredTerrain> fail(std::string* why, const std::string& reason) {
     if (why) *why = reason;
@@ -142,11 +175,11 @@ StoredTerrain store_terrain(Terrain flat) {
 }
 
 void write_terrain_cache(const std::string& path, const StoredTerrain& t, const TerrainCacheKey& key) {
-    std::uint64_t at[3], total = 0;
-    const std::vector<std::uint8_t> header = encode_header(t, key, at, total);
     const Sizes s = array_sizes(t.meta.cols, t.meta.rows, t.lod.levels);
     if (t.lod.error.size() * sizeof(float) != s.error || t.nodes.size() != t.meta.size())
         throw std::invalid_argument("terrain cache: pyramid and nodes do not match the grid");
+    std::uint64_t at[3], total = 0;
+    const std::vector<std::uint8_t> header = encode_header(t, key, at, total);
     const std::string tmp = path + ".tmp" + std::to_string(::getpid());
     std::FILE* out = std::fopen(tmp.c_str(), "wb");
     if (!out) write_failed(path, errno);
@@ -179,27 +212,28 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     // O_NONBLOCK: a FIFO in the cache's place does not block the open (fstat refuses it below)
     const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
     if (fd < 0) return fail(why, "no terrain cache");
+    struct Closer {
+        int fd;
+        ~Closer() { ::close(fd); }
+    } closer{fd};
     struct stat st {};
-    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-        ::close(fd);
-        return fail(why, "terrain cache is not a regular file");
-    }
-    auto map = std::make_shared<Mapping>();
-    map->size = std::size_t(st.st_size);
-    if (map->size >= 32) map->data = ::mmap(nullptr, map->size, PROT_READ, MAP_SHARED, fd, 0);
-    ::close(fd);
-    if (map->data == MAP_FAILED) return fail(why, "truncated terrain cache");
-    const auto* b = static_cast<const std::uint8_t*>(map->data);
-    if (std::memcmp(b, magic, 8) != 0) return fail(why, "not a terrain cache (bad magic)");
-    Reader r{b, map->size, 8};
-    const std::uint32_t version = r.get<std::uint32_t>(), length = r.get<std::uint32_t>();
+    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) return fail(why, "terrain cache is not a regular file");
+    // Read, not mapped: a file that shrinks while it is used cannot fault the process.
+    const std::uint64_t size = std::uint64_t(st.st_size);
+    std::uint8_t prefix[16];
+    if (size < 32 || ::pread(fd, prefix, 16, 0) != 16) return fail(why, "truncated terrain cache");
+    if (std::memcmp(prefix, magic, 8) != 0) return fail(why, "not a terrain cache (bad magic)");
+    std::uint32_t version, length;
+    std::memcpy(&version, prefix + 8, 4), std::memcpy(&length, prefix + 12, 4);
     if (version != terrain_cache_version) return fail(why, "terrain cache of another version");
-    if (length < 16 || length % 8 || length > map->size || length > page + max_crs_bytes)
-        return fail(why, "damaged terrain cache (header length)");
+    if (length < 24 || length % 8 || length > size) return fail(why, "damaged terrain cache (header length)");
+    std::vector<std::uint8_t> header(length);
+    if (::pread(fd, header.data(), length, 0) != ssize_t(length)) return fail(why, "truncated terrain cache");
+    const std::uint8_t* b = header.data();
     std::uint64_t stored = 0;
     std::memcpy(&stored, b + length - 8, 8);
     if (hash64(b, length - 8) != stored) return fail(why, "damaged terrain cache (header checksum)");
-    r.n = length - 8;
+    Reader r{b, std::size_t(length) - 8, 16};
     TerrainCacheKey k;
     k.file_size = r.get<std::uint64_t>(), k.mtime_ns = r.get<std::int64_t>(), k.content_hash = r.get<std::uint64_t>();
     k.utm_zone = r.get<std::int32_t>(), k.north = r.get<std::uint32_t>() != 0;
@@ -219,21 +253,40 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     std::uint64_t at[3];
     for (std::uint64_t& a : at) a = r.get<std::uint64_t>();
     const std::uint64_t total = r.get<std::uint64_t>(), crs = r.get<std::uint64_t>();
-    if (!r.ok || crs > r.n - r.at) return fail(why, "damaged terrain cache (header)");
+    if (!r.ok || crs > max_crs_bytes || crs > r.n - r.at) return fail(why, "damaged terrain cache (header)");
     m.crs_wkt.assign(reinterpret_cast<const char*>(b + r.at), std::size_t(crs));
+    r.at = std::size_t(align_up(r.at + crs, 8));
     if (m.cols < 2 || m.rows < 2 || std::max(m.cols, m.rows) > (1 << 30) || levels != lod_padded_levels(m.cols, m.rows))
         return fail(why, "damaged terrain cache (grid)");
     const Sizes s = array_sizes(m.cols, m.rows, levels);
-    if (total != map->size || at[0] < length || at[1] < at[0] + s.pos || at[2] < at[1] + s.valid ||
+    if (total != size || at[0] < length || at[1] < at[0] + s.pos || at[2] < at[1] + s.valid ||
         at[2] + s.error != total || at[0] % page || at[1] % page || at[2] % page)
         return fail(why, "damaged terrain cache (lengths)");
+    const std::uint32_t block = r.get<std::uint32_t>();
+    r.get<std::uint32_t>();
+    const std::uint64_t blocks[3] = {block_count(s.pos), block_count(s.valid), block_count(s.error)};
+    if (!r.ok || block != block_bytes || (blocks[0] + blocks[1] + blocks[2]) * 8 != r.n - r.at)
+        return fail(why, "damaged terrain cache (block checksums)");
+    const auto* sums = reinterpret_cast<const std::uint64_t*>(b + r.at);  // 8-aligned in the header
+    auto arrays = std::make_shared<ReadArrays>();
+    try {
+        arrays->pos.resize(std::size_t(s.pos / sizeof(glm::vec3)));
+        arrays->valid.resize(std::size_t(s.valid));
+        arrays->error.resize(std::size_t(s.error / sizeof(float)));
+    } catch (const std::bad_alloc&) {
+        return fail(why, "terrain cache too large for memory");
+    }
+    if (!read_checked(fd, at[0], arrays->pos.data(), s.pos, sums) ||
+        !read_checked(fd, at[1], arrays->valid.data(), s.valid, sums + blocks[0]) ||
+        !read_checked(fd, at[2], arrays->error.data(), s.error, sums + blocks[0] + blocks[1]))
+        return fail(why, "damaged terrain cache (block checksum)");
     t.nodes.cols = m.cols, t.nodes.rows = m.rows;
-    t.nodes.pos = reinterpret_cast<const glm::vec3*>(b + at[0]);
-    t.nodes.valid = b + at[1];
+    t.nodes.pos = arrays->pos.data();
+    t.nodes.valid = arrays->valid.data();
     t.lod.cols = m.cols, t.lod.rows = m.rows, t.lod.levels = levels;
-    t.lod.error = std::span<const float>(reinterpret_cast<const float*>(b + at[2]), std::size_t(s.error / sizeof(float)));
-    t.lod.storage = map;
-    t.storage = std::move(map);
+    t.lod.error = std::span<const float>(arrays->error.data(), arrays->error.size());
+    t.lod.storage = arrays;
+    t.storage = std::move(arrays);
     return t;
 }
 

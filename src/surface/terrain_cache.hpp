@@ -1,28 +1,30 @@
 // The terrain cache: a DEM's nodes (plan positions, unexaggerated heights, data flags) and its
 // level-of-detail pyramid (terrain_lod.hpp), written once per DEM beside the drainage database
-// and mapped into memory by later renders, so that a frame reads only the nodes and pyramid
-// entries its selection visits: render-time memory follows the frame, not the DEM (the page
-// cache holds the rest, shared between runs). Keyed by the DEM file (size, modification time,
-// hash of its whole content and side files, as the drainage database is keyed: dem_fingerprint) and by the UTM zone a
-// geographic DEM is projected to; never by view, style, light or vertical exaggeration.
+// and read back by later renders, which then skip reading the DEM and building the pyramid.
+// Keyed by the DEM file (size, modification time, hash of its whole content and side files, as
+// the drainage database is keyed: dem_fingerprint) and by the UTM zone a geographic DEM is
+// projected to; never by view, style, light or vertical exaggeration.
 //
 // Frames and units: the Terrain's local metres (x east, y north, z elevation unexaggerated),
 // row 0 north (conventions.md); GridNodes::z_scale draws them at any exaggeration.
 //
-// File layout, little-endian, version 1 (one header, then three arrays):
+// File layout, little-endian, version 2 (one header, then three arrays):
 //   "PENINKTC", u32 version, u32 header length (bytes, up to and including its checksum)
 //   key: u64 DEM file size, i64 mtime (ns), u64 content hash, i32 forced UTM zone, u32 north
 //   grid: i32 cols, rows, levels, u32 source_geographic; f64 origin x, y; f64 geotransform[6];
 //         f64 xy_unit, elevation_min, elevation_max; i32 utm_zone, u32 north
 //   pyramid: f32 lipschitz, z_min, z_max, 0; f64 plan bounds lo.x, lo.y, hi.x, hi.y
 //   u64 offsets of pos, valid, error; u64 file length; u64 CRS length, CRS WKT bytes (padded to 8)
+//   u32 block bytes (65536), u32 0; u64 hash64 of each block of pos, then of valid, then of error
+//     (each array cut into blocks from its start, the last one short)
 //   u64 checksum: hash64 of every header byte before it
 //   at 4096-byte aligned offsets: f32 x, y, z per node (cols * rows); u8 valid per node; f32
 //   error per padded node ((2^levels + 1)^2)
 // The header is checksummed and every length and offset is checked against the grid and the
-// file's size before anything is mapped. The arrays are not read whole to check them (that
-// would cost what the cache saves): the file is penink's own, written to a temporary file and
-// renamed into place, so a crash leaves no partial cache.
+// file's size before any array is read; the arrays are read (never mapped, so a file cut short
+// meanwhile cannot fault the process) block by block, each block checked against its checksum
+// as it arrives: a flipped byte, a cut or a foreign file is refused with its reason, and the
+// caller rebuilds the cache. Written to a temporary file and renamed into place.
 #pragma once
 #include <cstdint>
 #include <limits>
@@ -38,7 +40,7 @@
 
 namespace penink {
 
-inline constexpr std::uint32_t terrain_cache_version = 1;
+inline constexpr std::uint32_t terrain_cache_version = 2;
 
 struct TerrainCacheKey {
     std::uint64_t file_size = 0;
@@ -49,14 +51,15 @@ struct TerrainCacheKey {
     bool operator==(const TerrainCacheKey&) const = default;
 };
 
-// A DEM's nodes and pyramid, held in memory or mapped from a cache file.
+// A DEM's nodes and pyramid, held in memory (built, or read from a cache file).
 struct StoredTerrain {
     Terrain meta;     // grid size and georeference; pos, valid, z, xy empty; vertical_exaggeration 1
     GridNodes nodes;  // z unexaggerated (z_scale 1); points into `storage`
     TerrainLod lod;
     glm::dvec2 plan_lo{0.0}, plan_hi{0.0};  // plan bounds of the valid nodes, metres
     std::shared_ptr<const void> storage;    // owns what `nodes` points to
-    // The whole Terrain when it was read in this process (nodes point into it); null when mapped.
+    // The whole Terrain when it was read from the DEM in this process (nodes point into it); null
+    // when read from a cache file.
     const Terrain* in_memory = nullptr;
 
     // The nodes as drawn at a vertical exaggeration, with water at a sea level (unexaggerated;
@@ -77,8 +80,9 @@ StoredTerrain store_terrain(Terrain flat);
 // (stage "surface", file path) with the system's reason when it cannot be written.
 void write_terrain_cache(const std::string& path, const StoredTerrain& terrain, const TerrainCacheKey& key);
 
-// Maps a cache file. nullopt, with the reason in *why, when it is missing, of another version,
-// built from another DEM (key), or damaged (checksum, lengths, offsets).
+// Reads a cache file. nullopt, with the reason in *why, when it is missing, not a regular file
+// (a FIFO, a folder: never opened for blocking reads), of another version, built from another
+// DEM (key), or damaged (header checksum, lengths, offsets, a block's checksum).
 std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const TerrainCacheKey& key,
                                                 std::string* why = nullptr);
 

@@ -117,7 +117,7 @@ TEST(DrainageCommand, WritesTheCacheTheRenderPathReads) {
         const DrainageDb db = load_or_build_drainage(cmd.dem, read_dem(cmd.dem, o), DrainageOptions{},
                                                      [&](const std::string& m) { log.push_back(m); });
         ASSERT_EQ(log.size(), 1u) << e;
-        EXPECT_EQ(log[0], "drainage: using cached " + cache) << e;
+        EXPECT_EQ(log[0], "drainage: using cached " + cache_file_report(cache)) << e;
         EXPECT_GT(db.creases.vertices.size(), 100000u);
         struct stat after{};
         ASSERT_EQ(::stat(cache.c_str(), &after), 0);

@@ -277,7 +277,7 @@ TEST(HostileInputs, CacheInAReadOnlyFolderIsReadNotRebuilt) {
     read_only_data(dir);
     const RunResult r = run_penink_unprivileged("render ro/volcano.asc -o out.svg --width 200 --height 150 -v", dir);
     EXPECT_EQ(r.code, 0) << r.output;
-    EXPECT_NE(r.output.find("penink: drainage: using cached ro/volcano.asc.dv\n"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("penink: drainage: using cached ro/volcano.asc.dv ("), std::string::npos) << r.output;
     EXPECT_EQ(dv_files_under(dir / "home"), 0u) << "rebuilt into the user's cache";
     EXPECT_TRUE(fs::exists(dir / "out.svg"));
 }

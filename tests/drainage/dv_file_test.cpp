@@ -12,6 +12,7 @@
 #include "drainage/branches.hpp"
 #include "drainage/drainage_build.hpp"
 #include "drainage/dv_format.hpp"
+#include "drainage/line_selection.hpp"
 #include "input/dem_reader.hpp"
 
 namespace penink {
@@ -182,9 +183,9 @@ TEST(DvFile, GridPositionsOnAnAffineDemReadBackExactly) {
 
 // Bytes of a line set in the lines part: counts 16, 28 a line and a vertex, index origin, side
 // and level count 16, 8 a level, 4 a cell start (+ 1) and a line id.
-std::size_t line_set_bytes(const DrapedLineSet& s) {
-    return 16 + 28 * s.lines.size() + 28 * s.vertices.size() + 16 + 8 * s.index.level_cols.size() +
-           4 * s.index.start.size() + 4 * s.index.ids.size();
+std::size_t line_set_bytes(const DrapedLineSet& s) {  // with a checksum per 1024 vertices
+    return 16 + 28 * s.lines.size() + 28 * s.vertices.size() + 8 * ((s.vertices.size() + 1023) / 1024) + 16 +
+           8 * s.index.level_cols.size() + 4 * s.index.start.size() + 4 * s.index.ids.size();
 }
 
 TEST(DvFile, CompactLayoutSizeAndShapeCheck) {
@@ -241,7 +242,7 @@ TEST(DvFile, CorruptionsAreDetected) {
     b = good;
     b[8] = 7;  // a file of the layout before the lines part
     spit(p, b);
-    EXPECT_EQ(read_error(p), pre + "unsupported drainage database version 7 (expected 10)");
+    EXPECT_EQ(read_error(p), pre + "unsupported drainage database version 7 (expected 11)");
 
     b = good;
     b[0] = 'X';
@@ -416,6 +417,70 @@ TEST(DvFile, LineIndexReadLeavesVerticesInTheFileAndChecksTheRest) {
     fs::remove_all(d);
 }
 
+// Each block of 1024 vertices carries a checksum, checked the first time a render reads from the
+// block: a flipped bit in the vertices (which the index read cannot see) is found when those
+// vertices are read, and only then (a block without damage reads as before); a file cut short
+// after it was opened is found too. Both as DvCorrupt, which makes a selection fall back to the
+// database read whole (DrainageLineSource::read_whole), never drawing the damaged vertices.
+TEST(DvFile, VertexBlocksAreCheckedAsTheyAreRead) {
+    const fs::path d = temp_dir("vertex_blocks");
+    const DrainageDb db = rough_db();
+    const fs::path p = d / "x.dv";
+    write_drainage_db(p.string(), db);
+    const std::vector<char> good = slurp(p);
+    DvLineVertices where;
+    read_drainage_line_index(p.string(), nullptr, where);
+    ASSERT_GT(where.count[0], 2 * dv::vertex_block);  // damage in one block, another read clean
+    ASSERT_EQ(where.block_sums[0].size(), dv::vertex_blocks(where.count[0]));
+    const DrainageDb lines = drainage_lines_only(db);
+    const std::uint64_t bad = dv::vertex_block + 17;  // a vertex of the second block
+    for (const std::size_t byte : {std::size_t(0), std::size_t(13), std::size_t(27)}) {
+        std::vector<char> b = good;
+        b[std::size_t(where.at[0] + bad * sizeof(DrapedVertex)) + byte] ^= 0x08;
+        spit(p, b);
+        DvLineVertices v;
+        read_drainage_line_index(p.string(), nullptr, v);  // the index read does not see it
+        DrapedVertices out(3);
+        v.read(0, 5, 3, out.data());  // the first block: clean
+        EXPECT_TRUE(std::equal(out.begin(), out.end(), lines.creases.vertices.begin() + 5));
+        EXPECT_THROW(v.read(0, bad - 1, 3, out.data()), DvCorrupt) << byte;
+        EXPECT_THROW(v.read(0, bad, 1, out.data()), DvCorrupt) << byte;  // still, on a second read
+        v.read(0, 2 * dv::vertex_block + 1, 2, out.data());  // the third block: clean
+        EXPECT_TRUE(std::equal(out.begin(), out.begin() + 2, lines.creases.vertices.begin() + 2 * dv::vertex_block + 1));
+    }
+    {  // cut after the index was read
+        spit(p, good);
+        DvLineVertices v;
+        read_drainage_line_index(p.string(), nullptr, v);
+        fs::resize_file(p, where.at[0] + 100);
+        DrapedVertices out(3);
+        EXPECT_THROW(v.read(0, 2 * dv::vertex_block, 3, out.data()), DvCorrupt);
+    }
+    {  // a selection from the damaged file: the whole database instead, as the builder gave it
+        std::vector<char> b = good;
+        b[std::size_t(where.at[0] + bad * sizeof(DrapedVertex))] ^= 0x08;
+        spit(p, b);
+        DrainageLineSource source;
+        source.db = read_drainage_line_index(p.string(), nullptr, source.vertices);
+        int whole_reads = 0;
+        source.read_whole = [&] { return ++whole_reads, lines; };
+        LineBox box;
+        box.lo = {-1e9f, -1e9f}, box.hi = {1e9f, 1e9f};
+        const DrainageLineData got = prepare_drainage_lines(source, box), want = prepare_drainage_lines(lines, box);
+        EXPECT_EQ(whole_reads, 1);
+        const auto same = [](const ScoredLineSet& a, const ScoredLineSet& b) {  // the same bytes to draw
+            return a.upload.size() == b.upload.size() &&
+                   std::memcmp(a.upload.data(), b.upload.data(), a.upload.size() * sizeof(DmVertex)) == 0;
+        };
+        EXPECT_GT(want.creases.upload.size(), 2 * dv::vertex_block);
+        EXPECT_TRUE(same(got.creases, want.creases));
+        EXPECT_TRUE(same(got.ridges, want.ridges));
+        source.read_whole = nullptr;  // none: the error goes on
+        EXPECT_THROW(prepare_drainage_lines(source, box), DvCorrupt);
+    }
+    fs::remove_all(d);
+}
+
 Terrain small_terrain() {
     Terrain t;
     t.cols = 6, t.rows = 5, t.origin = {500000.0, 4000000.0};
@@ -438,16 +503,16 @@ TEST(DvFile, CacheNextToDemIsReusedAndRebuilt) {
     o.resample = 2;
     const DrainageDb first = load_or_build_drainage(dem.string(), t, o, say);
     ASSERT_TRUE(fs::exists(d / "dem.asc.dv"));
-    EXPECT_EQ(log.back(), "drainage: wrote " + (d / "dem.asc.dv").string());
+    EXPECT_EQ(log.back(), "drainage: wrote " + cache_file_report((d / "dem.asc.dv").string()));
     EXPECT_EQ(first.cols, 11);
     const DrainageDb again = load_or_build_drainage(dem.string(), t, o, say);
-    EXPECT_EQ(log.back(), "drainage: using cached " + (d / "dem.asc.dv").string());
+    EXPECT_EQ(log.back(), "drainage: using cached " + cache_file_report((d / "dem.asc.dv").string()));
     EXPECT_TRUE(again == first);
     spit(dem, std::vector<char>(101, 'b'));  // the DEM changed
     load_or_build_drainage(dem.string(), t, o, say);
     EXPECT_EQ(log[log.size() - 2], "penink: drainage: " + (d / "dem.asc.dv").string() +
                                        ": drainage database is stale (DEM changed); rebuilding");
-    EXPECT_EQ(log.back(), "drainage: wrote " + (d / "dem.asc.dv").string());
+    EXPECT_EQ(log.back(), "drainage: wrote " + cache_file_report((d / "dem.asc.dv").string()));
 }
 
 TEST(DvFile, UnwritableCacheBuildsInMemory) {
@@ -461,9 +526,9 @@ TEST(DvFile, UnwritableCacheBuildsInMemory) {
     const DrainageDb db = load_or_build_drainage(dem.string(), small_terrain(), o,
                                                  [&](const std::string& m) { log.push_back(m); });
     EXPECT_EQ(db.cols, 6);
-    EXPECT_EQ(log.back(), "penink: drainage: " + (d / "dem.asc.dv").string() +
-                              ": cannot write drainage database (Is a directory); using the drainage database "
-                              "built in memory");
+    // neither read nor replaced (a warning on stderr says so)
+    EXPECT_EQ(log.back(), "penink: drainage: " + (d / "dem.asc.dv").string() + ": cannot open drainage database; rebuilding");
+    EXPECT_TRUE(fs::is_directory(d / "dem.asc.dv" / "blocker"));
 }
 
 }  // namespace

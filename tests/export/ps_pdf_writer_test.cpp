@@ -1,6 +1,8 @@
-// PostScript/EPS DSC structure and layer comments; PDF optional content groups and xref.
+// PostScript/EPS DSC structure and layer comments; PDF optional content groups and xref; text from
+// input escaped in both.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <regex>
 
 #include "core/version.hpp"
@@ -89,4 +91,82 @@ TEST(PdfWriter, XrefOffsetsPointAtObjects) {
 
 TEST(PdfWriter, StringEscapes) {
     EXPECT_EQ(pdf_string("a(b)c\\d\xc3\xa9"), "(a\\(b\\)c\\\\d\\303\\251)");
+}
+
+namespace {
+
+// Every byte value, the delimiters of PostScript and PDF strings and markup among them: what a
+// title, a file name or a CRS name read from input may hold.
+std::string hostile_text() {
+    std::string s = "a(b))((c\\d<svg>&amp;%%EOF\n%!PS\r";
+    for (int b = 0; b < 256; ++b) s += char(b);
+    return s + "\\";
+}
+
+// The PDF literal string starting at `at` (its "(") read back: escapes \ddd, \n, \\, \(, \)
+// and balanced parentheses (PDF 32000-1, 7.3.4.2). `end` gets the offset after its ")".
+std::string pdf_literal(const std::string& pdf, std::size_t at, std::size_t& end) {
+    std::string out;
+    int depth = 0;
+    for (std::size_t i = at; i < pdf.size(); ++i) {
+        const char c = pdf[i];
+        if (c == '\\') {
+            const char n = pdf[++i];
+            if (n >= '0' && n <= '7') {
+                int v = 0, k = 0;
+                for (; k < 3 && pdf[i] >= '0' && pdf[i] <= '7'; ++k, ++i) v = v * 8 + (pdf[i] - '0');
+                --i;
+                out += char(v);
+            } else {
+                out += n == 'n' ? '\n' : n == 'r' ? '\r' : n == 't' ? '\t' : n;
+            }
+            continue;
+        }
+        if (c == '(' && depth++ == 0) continue;
+        if (c == ')' && --depth == 0) {
+            end = i + 1;
+            return out;
+        }
+        out += c;
+    }
+    end = std::string::npos;
+    return out;
+}
+
+}  // namespace
+
+// Text from input goes into PostScript only as 7-bit comment text (one line each) and into PDF as
+// literal strings that read back to the same bytes: no byte ends a string, a comment or the file
+// early, whatever the title, the metadata or the CRS's WKT hold.
+TEST(PsPdfWriter, TextFromInputIsEscaped) {
+    StyledDrawing d = drawing();
+    const std::string text = hostile_text();
+    d.metadata["title"] = text;
+    d.metadata["description"] = text;
+    d.metadata["source"] = text;
+    d.metadata[text] = "key";
+    for (const bool eps : {false, true}) {
+        const std::string ps = ps_document(d, PageOptions{}, eps, "x.ps");
+        for (const char c : ps)
+            ASSERT_TRUE(c == '\n' || (c >= 32 && c < 127)) << int(static_cast<unsigned char>(c));  // Clean7Bit
+        const std::size_t title = ps.find("%%Title: ");
+        ASSERT_NE(title, std::string::npos);
+        EXPECT_LT(ps.find('\n', title), ps.find("%%BoundingBox"));  // one line
+        EXPECT_EQ(ps.find("\n%%EOF"), ps.size() - 7);  // the text's own %%EOF is not at a line's start
+        EXPECT_EQ(ps.find("\n%!PS"), std::string::npos);
+        EXPECT_EQ(matches(ps, "\\(([^)]+)\\) Ln\n"), kLayers);
+    }
+    const std::string pdf = pdf_document(d, PageOptions{}, "x.pdf");
+    for (const char* key : {"/Title ", "/Subject ", "/penink_source "}) {
+        const std::size_t at = pdf.find(key);
+        ASSERT_NE(at, std::string::npos) << key;
+        std::size_t end = 0;
+        EXPECT_EQ(pdf_literal(pdf, at + std::strlen(key), end), text) << key;
+        ASSERT_NE(end, std::string::npos);
+        EXPECT_EQ(pdf[end], ' ') << key;  // the dictionary goes on after the string
+    }
+    EXPECT_NE(pdf.find("/Title ("), std::string::npos);
+    EXPECT_EQ(pdf.find(text.substr(0, 4)), std::string::npos);  // "a(b)" only ever escaped
+    const std::size_t xref = std::stoul(pdf.substr(pdf.rfind("startxref\n") + 10));
+    EXPECT_EQ(pdf.compare(xref, 5, "xref\n"), 0);
 }

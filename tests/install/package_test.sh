@@ -57,6 +57,10 @@ for l in surface ridges creases silhouettes; do grep -q "inkscape:label=\"$l\"" 
 size=$(od -An -tu1 -j16 -N8 v.png | awk '{ printf "%dx%d", $3 * 256 + $4, $7 * 256 + $8 }')
 [[ $size == 320x240 ]] || fail "v.png is $size, want 320x240 (160x120 at 192 dpi)"
 grep -q pHYs v.png || fail "v.png has no resolution (pHYs)"
+# The installed examples' folder is writable here (root) but under the install prefix: the
+# caches went to the user's cache folder.
+! ls "$root/usr/share/penink/examples" | grep -qE '\.(dv|lod)$' || fail "a cache was written beside the installed example"
+ls "$tmp/home/.cache/penink/"volcano.asc-*.dv >/dev/null 2>&1 || fail "no drainage cache in the user's cache folder"
 out=$(HOME=$tmp/home "$penink" render "$root/usr/share/penink/examples/volcano.toml" -o v.gif 2>&1) && fail "v.gif accepted"
 [[ $out == 'penink: export: v.gif: unknown output format ".gif"'* ]] || fail "v.gif: $out"
 

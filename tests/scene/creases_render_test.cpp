@@ -485,13 +485,13 @@ TEST(CreasesRender, CacheSurvivesAnExaggerationChange) {
     const fs::path dem = dir / "volcano.asc", cache = dir / "volcano.asc.dv";
     std::vector<std::string> log;
     const DrainageDb at1 = render_cache(dem, 1.0, log);
-    ASSERT_EQ(log.back(), "drainage: wrote " + cache.string());
+    ASSERT_EQ(log.back(), "drainage: wrote " + cache_file_report(cache.string()));
     const auto mtime = fs::last_write_time(cache);
     const std::string bytes = read_text(cache);
     const DrainageDb at3 = render_cache(dem, 3.0, log);
-    EXPECT_EQ(log.back(), "drainage: using cached " + cache.string());
+    EXPECT_EQ(log.back(), "drainage: using cached " + cache_file_report(cache.string()));
     const DrainageDb again = render_cache(dem, 1.0, log);
-    EXPECT_EQ(log.back(), "drainage: using cached " + cache.string());
+    EXPECT_EQ(log.back(), "drainage: using cached " + cache_file_report(cache.string()));
     EXPECT_EQ(log.size(), 4u);  // missing + wrote, then two reads
     EXPECT_EQ(fs::last_write_time(cache), mtime);
     EXPECT_TRUE(at3 == at1);
@@ -531,7 +531,7 @@ TEST(CreasesRender, CacheSurvivesAnExaggerationChange) {
     fs::last_write_time(other / "volcano.asc", fs::last_write_time(dem));
     std::vector<std::string> log3;
     render_cache(other / "volcano.asc", 3.0, log3);
-    ASSERT_EQ(log3.back(), "drainage: wrote " + (other / "volcano.asc.dv").string());
+    ASSERT_EQ(log3.back(), "drainage: wrote " + cache_file_report((other / "volcano.asc.dv").string()));
     EXPECT_TRUE(read_text(other / "volcano.asc.dv") == bytes);
 }
 
@@ -547,7 +547,7 @@ TEST(CreasesRender, DrainageCommandWritesTheRendersCache) {
     std::vector<std::string> log;
     render_cache(dir / "volcano.asc", 1.0, log);
     ASSERT_EQ(log.size(), 1u);
-    EXPECT_EQ(log[0], "drainage: using cached " + cache.string());
+    EXPECT_EQ(log[0], "drainage: using cached " + cache_file_report(cache.string()));
     const RunResult r = run_penink("render volcano.asc --width 300 --height 225 -o x.svg --verbose "
                                    "--vertical-exaggeration 2", dir);
     ASSERT_EQ(r.code, 0) << r.output;
@@ -725,7 +725,7 @@ TEST(CreasesRender, StreamedCacheReadRebuildsACorruptRecord) {
     EXPECT_EQ(read_text(cache), good);
     const DrainageDb cached = load_or_build_drainage(dem.string(), read_dem(dem.string()), DrainageOptions{},
                                                      [&](const std::string& m) { log.push_back(m); }, {}, &in_file);
-    EXPECT_EQ(log.back(), "drainage: using cached " + cache.string());
+    EXPECT_EQ(log.back(), "drainage: using cached " + cache_file_report(cache.string()));
     ASSERT_TRUE(in_file.file);
     EXPECT_TRUE(cached.creases.vertices.empty());
     EXPECT_TRUE(cached.creases.lines == built.creases.lines && cached.ridges.index == built.ridges.index);

@@ -1,7 +1,13 @@
-// The terrain cache: what is written is what is mapped back (nodes, pyramid, georeference), a
-// frame selected from the mapping is the frame selected in memory, at any exaggeration; a stale,
-// damaged, truncated or missing file is refused with its reason; an unwritable place is an Error.
+// The terrain cache: what is written is what is read back (nodes, pyramid, georeference), a
+// frame selected from the file is the frame selected in memory, at any exaggeration; a stale,
+// damaged (header or any block of the arrays: flipped, zeroed, NaN, cut), truncated, missing or
+// not regular (FIFO, folder) file is refused with its reason; an unwritable place is an Error.
+#include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <limits>
+
+#include <sys/stat.h>
 #include <filesystem>
 #include <fstream>
 #include <vector>
@@ -180,4 +186,81 @@ TEST(TerrainCache, StoreTerrainNeedsUnexaggeratedHeights) {
     Terrain t = hills();
     t.vertical_exaggeration = 2.0;
     EXPECT_THROW(store_terrain(t), std::invalid_argument);
+}
+
+namespace {
+
+std::vector<char> file_bytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+void put_bytes(const std::string& path, const std::vector<char>& b) {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(b.data(), std::streamsize(b.size()));
+}
+
+}  // namespace
+
+// Every block of the arrays carries its checksum: damage anywhere in them (the first node, the
+// middle of the nodes, the flags, the last pyramid entry) is found as the block is read, whatever
+// the damage (one bit, a zeroed run, NaN or huge floats written over good ones, the tail cut).
+TEST(TerrainCache, DamageInAnyBlockOfTheArraysIsRefused) {
+    test::TempDir dir;
+    const StoredTerrain mem = store_terrain(hills());
+    const std::string path = dir.file("h.lod");
+    write_terrain_cache(path, mem, key());
+    const std::vector<char> bytes = file_bytes(path);
+    ASSERT_TRUE(read_terrain_cache(path, key()));
+    // array offsets: 4096-aligned after the header; pos 300 * 257 * 12 bytes, then valid, then error
+    std::uint64_t at[3];
+    // prefix 16, key 32, grid 16 + 16 + 48 + 24 + 8, pyramid 16 + 32 bytes (terrain_cache.hpp)
+    std::memcpy(at, bytes.data() + 16 + 32 + 16 + 16 + 48 + 24 + 8 + 16 + 32, 24);
+    ASSERT_EQ(at[0] % 4096, 0u);
+    ASSERT_EQ(at[1], (at[0] + 300 * 257 * 12 + 4095) / 4096 * 4096);  // the offsets were read right
+    const std::size_t offsets[] = {std::size_t(at[0]), std::size_t(at[0] + 300 * 257 * 6), std::size_t(at[1] + 1000),
+                                   bytes.size() - 4};
+    std::string why;
+    int damaged = 0;
+    auto expect_refused = [&](const std::vector<char>& b) {
+        if (b == bytes) return;  // the damage wrote what was there (a zero over a zero)
+        ++damaged;
+        put_bytes(path, b);
+        EXPECT_FALSE(read_terrain_cache(path, key(), &why));
+        EXPECT_EQ(why, "damaged terrain cache (block checksum)");
+    };
+    for (const std::size_t o : offsets) {
+        SCOPED_TRACE(o);
+        std::vector<char> b = bytes;
+        b[o] ^= 1;  // one bit
+        expect_refused(b);
+        b = bytes;
+        std::fill(b.begin() + std::ptrdiff_t(o), b.begin() + std::ptrdiff_t(std::min(o + 64, b.size())), 0);
+        expect_refused(b);
+        for (const float v : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(), 3e38f}) {
+            b = bytes;
+            std::memcpy(b.data() + o, &v, 4);
+            expect_refused(b);
+        }
+    }
+    EXPECT_GE(damaged, 16);  // of 20: at most the last entry's zeroing and its infinity may change nothing
+    // cut in the middle of the nodes: the lengths no longer match the file
+    put_bytes(path, std::vector<char>(bytes.begin(), bytes.begin() + std::ptrdiff_t(at[0] + 5000)));
+    EXPECT_FALSE(read_terrain_cache(path, key(), &why));
+    EXPECT_EQ(why, "damaged terrain cache (lengths)");
+    put_bytes(path, bytes);
+    EXPECT_TRUE(read_terrain_cache(path, key(), &why)) << why;
+}
+
+// A FIFO or a folder where the cache would be is not read (a FIFO would block the render).
+TEST(TerrainCache, NotARegularFileIsIgnored) {
+    test::TempDir dir;
+    const std::string fifo = dir.file("fifo.lod");
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    std::string why;
+    EXPECT_FALSE(read_terrain_cache(fifo, key(), &why));
+    EXPECT_EQ(why, "terrain cache is not a regular file");
+    std::filesystem::create_directory(dir.file("dir.lod"));
+    EXPECT_FALSE(read_terrain_cache(dir.file("dir.lod"), key(), &why));
+    EXPECT_EQ(why, "terrain cache is not a regular file");
 }
