@@ -97,7 +97,9 @@ struct DrainageDb {
 // checksum of everything in it but the vertex arrays, which a render checks without reading them.
 // 10: the creases follow the surface's fall line (fall_line_stems.hpp) and the ridges are
 // smoothed by a Gaussian, both joined smoothly at junctions (the lines part's content, not its layout).
-inline constexpr std::uint32_t drainage_db_version = 10;
+// 11: the creases traced on the DEM nodes' own fall line in a corridor that widens on slopes, the
+// ridges moved onto the surface's crest (ridge_crests.hpp) (content, not layout).
+inline constexpr std::uint32_t drainage_db_version = 11;
 
 // Fingerprint of the DEM file at `dem_path` with the given resample factor: its size, mtime and
 // a hash of its whole content (streamed) and of every side file GDAL may read with it (world
