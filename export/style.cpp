@@ -74,7 +74,7 @@ Style default_style() {
     // the hierarchy of weight: tapered creases and ridges, trunks heavier than twigs, profile
     // lines heavier than folds (styles/README.md)
     set_taper(s.layer(LayerKind::hachures), 5.0, 0.2, 1.0, 1.0);  // the pen's lift; tone by spacing
-    set_taper(s.layer(LayerKind::ridges), 6.0, 0.15, 1.0, 1.0);
+    set_taper(s.layer(LayerKind::ridges), 6.0, 0.15, 0.35, 1.65);
     set_taper(s.layer(LayerKind::creases), 6.0, 0.15, 0.5, 1.75);
     set_taper(s.layer(LayerKind::silhouettes), 8.0, 0.3, 0.5, 1.25);
     return s;
@@ -107,7 +107,7 @@ Style field_sketch_style() {
     s.layer(LayerKind::silhouettes).repeat = 2;
     s.layer(LayerKind::textures).dash = {6.0, 3.0};
     set_taper(s.layer(LayerKind::hachures), 6.0, 0.15, 1.0, 1.0);
-    set_taper(s.layer(LayerKind::ridges), 8.0, 0.1, 1.0, 1.0);
+    set_taper(s.layer(LayerKind::ridges), 8.0, 0.1, 0.35, 1.65);
     set_taper(s.layer(LayerKind::creases), 8.0, 0.1, 0.5, 1.6);
     set_taper(s.layer(LayerKind::silhouettes), 10.0, 0.25, 0.45, 1.3);
     // tone by spacing: one width at every depth (the hachures' own spacing and contrast fall
