@@ -23,8 +23,8 @@
 //    to 22.5 degrees off the fall line: the trace keeps to the fall line), up to `max_corridor`,
 //    and narrows at the same rate elsewhere (flats, where the fall line heads for another valley);
 //    in a valley the fall lines converge on the floor the D8 path follows and it does not bind.
-//    On a stem whose end joins another (`joined`) it also narrows towards that end at `widen`
-//    cells a cell, so the stem comes back to its junction. A step that would leave the grid goes to
+//    On a stem whose end joins another (`joined`) it also narrows towards that end at
+//    narrow_to_joined_end cells a cell, so the stem comes back to its junction. A step that would leave the grid goes to
 //    S(k + 1) instead (no run along the grid's edge);
 // 3. plan x, y from grid_xy_at (the resampler's interpolation). The last vertex is where the trace ends;
 //    a stem ending at a junction is brought back to it afterwards (draped_lines.cpp: join_ends).
