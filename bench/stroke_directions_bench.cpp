@@ -5,7 +5,9 @@
 // length within 1 degree of the 8 grid directions, and the length-weighted median and 90th
 // percentile of each segment's angle to the fall line where the slope exceeds 5 degrees.
 // Usage: stroke_directions_bench DEM... (REPEAT=n in the environment; MIN_ORDER=k: only the
-// stems of Strahler order k or more, what a drawing keeps of them).
+// stems of Strahler order k or more, what a drawing keeps of them; ENDS=n: also the measures of
+// the first n vertices of each line, its last n and the rest apart).
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -20,8 +22,10 @@ using namespace penink;
 
 namespace {
 
-// The lines of Strahler order >= min_order (divides: all) in plan.
-std::vector<std::vector<glm::dvec2>> plan_lines(const DrapedLineSet& set, int min_order) {
+// The lines of Strahler order >= min_order (divides: all) in plan; part 0: whole lines, 1: the
+// `ends` vertices at either end, 2: the rest.
+std::vector<std::vector<glm::dvec2>> plan_lines(const DrapedLineSet& set, int min_order, int part = 0,
+                                                std::uint32_t ends = 0) {
     std::vector<std::vector<glm::dvec2>> out;
     out.reserve(set.lines.size());
     for (const DrapedLine& l : set.lines) {
@@ -29,6 +33,13 @@ std::vector<std::vector<glm::dvec2>> plan_lines(const DrapedLineSet& set, int mi
         std::vector<glm::dvec2> p;
         p.reserve(l.count);
         for (std::uint32_t k = 0; k < l.count; ++k) {
+            const bool near_end = part == 3 ? k < ends : part == 4 ? k + ends >= l.count : k < ends || k + ends >= l.count;
+            if (part != 0 && part != 2 && !near_end) {
+                if (p.size() > 1) out.push_back(std::move(p));
+                p.clear();
+                continue;
+            }
+            if (part == 2 && near_end) continue;
             const DrapedVertex& v = set.vertices[l.first + k];
             p.emplace_back(v.x, v.y);
         }
@@ -63,6 +74,15 @@ int main(int argc, char** argv) {
             const StrokeDirections d = stroke_directions(plan_lines(*set, min_order), field);
             std::printf("%-28s %-7s %8zu %10.3f %9.1f° %9.1f° %9.3f\n", argv[a], name, set->lines.size(), d.grid_share(),
                         d.fall_median_deg, d.fall_p90_deg, best);
+            if (const char* e = std::getenv("ENDS")) {  // the measures near the lines' ends and elsewhere
+                const std::uint32_t n = std::uint32_t(std::atoi(e));
+                for (int part : {3, 4, 2}) {
+                    const StrokeDirections p = stroke_directions(plan_lines(*set, min_order, part, n), field);
+                    std::printf("  %s %u vertices: length share %.3f, grid share %.3f, fall median %.1f°, p90 %.1f°\n",
+                                part == 3 ? "first" : part == 4 ? "last" : "beyond", n, p.length / std::max(d.length, 1e-30), p.grid_share(),
+                                p.fall_median_deg, p.fall_p90_deg);
+                }
+            }
         }
     }
     return 0;

@@ -76,7 +76,7 @@ Style default_style() {
     // tone by spacing, and by width where the spacing alone cannot reach it (dark tones, gaps
     // where lines end: lines/hachures.hpp); a short lift so that short strokes keep their ink
     set_taper(s.layer(LayerKind::hachures), 2.0, 0.4, 0.6, 1.8);
-    set_taper(s.layer(LayerKind::ridges), 6.0, 0.15, 1.0, 1.0);
+    set_taper(s.layer(LayerKind::ridges), 6.0, 0.15, 0.35, 1.65);
     set_taper(s.layer(LayerKind::creases), 6.0, 0.15, 0.5, 1.75);
     set_taper(s.layer(LayerKind::silhouettes), 8.0, 0.3, 0.5, 1.25);
     // map furniture (lines/map_furniture.hpp): a heavy neatline, fine ticks, labels in points
@@ -118,7 +118,7 @@ Style field_sketch_style() {
     s.layer(LayerKind::silhouettes).repeat = 2;
     s.layer(LayerKind::textures).dash = {6.0, 3.0};
     set_taper(s.layer(LayerKind::hachures), 2.5, 0.3, 0.6, 1.8);
-    set_taper(s.layer(LayerKind::ridges), 8.0, 0.1, 1.0, 1.0);
+    set_taper(s.layer(LayerKind::ridges), 8.0, 0.1, 0.35, 1.65);
     set_taper(s.layer(LayerKind::creases), 8.0, 0.1, 0.5, 1.6);
     set_taper(s.layer(LayerKind::silhouettes), 10.0, 0.25, 0.45, 1.3);
     // tone by spacing: one width at every depth (the hachures' own spacing and contrast fall

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 #include "export/stroke_outline.hpp"
 
@@ -136,19 +137,35 @@ std::string offset_points(const StyledPath& p) {
         if (!s.empty()) s += " | ";
         append_number(s, std::clamp(double(k), 0.01, double(n - 1) - 0.01), 2);
         s += ',';
-        append_number(s, 0.5 * p.widths[k], 3);
+        append_number(s, 0.5 * p.widths[k], 2);
     }
     return s;
 }
 
+// The power-stroke effects of a document: one <inkscape:path-effect> per distinct set of offset
+// points, shared by every path that has it (Inkscape forks a shared effect when one of its paths
+// is edited), numbered in order of first use.
+struct PathEffects {
+    std::string defs;
+    std::unordered_map<std::string, std::size_t> ids;
+
+    std::string id_for(const std::string& offsets) {
+        const auto [it, added] = ids.emplace(offsets, ids.size());
+        const std::string id = "powerstroke-" + std::to_string(it->second);
+        if (added)
+            defs += "<inkscape:path-effect effect=\"powerstroke\" id=\"" + id +
+                    "\" is_visible=\"true\" lpeversion=\"1\" offset_points=\"" + offsets +
+                    "\" not_jump=\"false\" sort_points=\"true\" interpolator_type=\"CentripetalCatmullRom\" "
+                    "interpolator_beta=\"0.2\" scale_width=\"1\" start_linecap_type=\"round\" end_linecap_type=\"round\" "
+                    "linejoin_type=\"round\" miter_limit=\"4\"/>\n";
+        return id;
+    }
+};
+
 // A variable-width path: the filled outline (d, what every viewer draws), its centre line
 // (inkscape:original-d) and widths, and Inkscape's power-stroke effect that keeps it a stroke.
-void outline_path(std::string& o, std::string& defs, const StyledPath& p, const std::string& effect_id) {
-    defs += "<inkscape:path-effect effect=\"powerstroke\" id=\"" + effect_id +
-         "\" is_visible=\"true\" lpeversion=\"1\" offset_points=\"" + offset_points(p) +
-         "\" not_jump=\"false\" sort_points=\"true\" interpolator_type=\"CentripetalCatmullRom\" "
-         "interpolator_beta=\"0.2\" scale_width=\"1\" start_linecap_type=\"round\" end_linecap_type=\"round\" "
-         "linejoin_type=\"round\" miter_limit=\"4\"/>\n";
+void outline_path(std::string& o, PathEffects& effects, const StyledPath& p) {
+    const std::string effect_id = effects.id_for(offset_points(p));
     o += "<path d=\"";
     const std::vector<glm::vec2> outline = stroke_outline(p.points, p.widths);
     append_points_d(o, outline);
@@ -166,7 +183,7 @@ void outline_path(std::string& o, std::string& defs, const StyledPath& p, const 
     std::string widths;
     for (size_t i = 0; i < p.widths.size(); ++i) {
         if (i) widths += ' ';
-        append_number(widths, p.widths[i], 3);
+        append_number(widths, p.widths[i], 2);
     }
     attr(o, "data-widths", widths);
     o += "/>\n";
@@ -210,7 +227,7 @@ void text_label(std::string& o, const StyledLabel& t) {
     o += ">" + xml_escape(t.text) + "</text>\n";
 }
 
-void layer(std::string& o, const StyledLayer& l, bool split, std::string& defs, size_t& effects) {
+void layer(std::string& o, const StyledLayer& l, bool split, PathEffects& effects) {
     layer_open(o, l.name);
     attr(o, "fill", "none");
     attr(o, "stroke", rgb_hex(l.style.color));
@@ -227,7 +244,7 @@ void layer(std::string& o, const StyledLayer& l, bool split, std::string& defs, 
         }
         for (const StyledPath& p : g.paths) {
             if (p.widths.empty()) stroke_path(o, p, l.style);
-            else outline_path(o, defs, p, "powerstroke-" + std::to_string(effects++));
+            else outline_path(o, effects, p);
         }
         if (split) o += "</g>\n";
     }
@@ -287,12 +304,12 @@ std::string svg_document(const StyledDrawing& d, const PageOptions& page, const 
     std::string o;
     o.reserve(4096 + path_count(d) * 64);
     header(o, d, L, page);
-    size_t effects = 0;
-    std::string layers, defs;  // the power-stroke effects go in <defs>, before the layers
+    PathEffects effects;
+    std::string layers;  // the power-stroke effects go in <defs>, before the layers
     layers.reserve(path_count(d) * 64);
     for (const StyledLayer& l : d.layers)
-        if (layer_written(d, l)) layer(layers, l, d.split == LayerSplit::kind_distance, defs, effects);
-    if (!defs.empty()) o += "<defs id=\"defs\">\n" + defs + "</defs>\n";
+        if (layer_written(d, l)) layer(layers, l, d.split == LayerSplit::kind_distance, effects);
+    if (!effects.defs.empty()) o += "<defs id=\"defs\">\n" + effects.defs + "</defs>\n";
     o += layers;
     o += "</svg>\n";
     return o;

@@ -101,7 +101,9 @@ struct DrainageDb {
 // smoothed by a Gaussian, both joined smoothly at junctions (the lines part's content, not its layout).
 // 11: each line set's vertex array is followed by a checksum per block of 1024 vertices, which a
 // render reading vertices from the file checks block by block.
-inline constexpr std::uint32_t drainage_db_version = 11;
+// 12: the creases traced on the DEM nodes' own fall line in a corridor that widens on slopes, the
+// ridges moved onto the surface's crest (ridge_crests.hpp) (content, not layout).
+inline constexpr std::uint32_t drainage_db_version = 12;
 
 // Fingerprint of the DEM file at `dem_path` with the given resample factor: its size, mtime and
 // a hash of its whole content (streamed) and of every side file GDAL may read with it (world

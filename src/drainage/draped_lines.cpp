@@ -14,6 +14,7 @@
 #include "drainage/stems.hpp"
 #include "drainage/fall_line_stems.hpp"
 #include "drainage/polyline_smoothing.hpp"
+#include "drainage/ridge_crests.hpp"
 
 namespace penink {
 
@@ -494,7 +495,10 @@ void smooth_stems(DrapedLineSet& set, const std::vector<std::uint32_t>& cells, c
     const std::vector<std::uint32_t> follow = end_matches(set);
     glm::vec2 lo, hi;
     vertex_box(set, lo, hi);
-    trace_fall_lines(set, cells, g, options);
+    std::vector<std::uint8_t> joined(set.lines.size(), 0);  // lines whose last vertex is a junction
+    for (std::size_t k = 0; k < follow.size(); k += 3)
+        if (follow[k + 1] != set.lines[follow[k]].first) joined[follow[k]] = 1;
+    trace_fall_lines(set, cells, g, options, joined);
     join_ends(set, follow, int(std::ceil(3.0 * options.sigma)), int(std::ceil(2.0 * options.corridor)), line_ids(set));
     clamp_to_box(set, lo, hi);
 }
@@ -569,6 +573,7 @@ void build_draped_lines(const DrainageGrid& g, const std::vector<std::uint8_t>& 
     if (!has_relief(g))  // a plane: its network follows only the tie-breaking of flats; nothing to draw
         for (DrapedLineSet* set : {&db.creases, &db.ridges}) set->lines.clear(), set->vertices.clear();
     const DemSurface surface(g);
+    snap_to_crests(db.ridges, surface, crest_options(g));
     report(0.2);
     const double nc = double(db.creases.vertices.size()), nr = double(db.divide_vertices.size());
     const double share = nc + nr > 0.0 ? nc / (nc + nr) : 1.0;

@@ -9,10 +9,12 @@
 //    another line's interior vertex (a tributary's junction) is brought back to that vertex over
 //    the vertices next to it (rejoin_line_ends' matches), over all the lines of a set at once,
 //    and every vertex clamped to the plan box the set's vertices spanned before (the DEM's);
-// 3. draping: each vertex's z and unit normal from the PN surface of the full-resolution DEM
+// 3. the divides moved across onto the PN surface's crest (ridge_crests.hpp) once the surface
+//    below is made, their ends fixed;
+// 4. draping: each vertex's z and unit normal from the PN surface of the full-resolution DEM
 //    (dem_surface.hpp, no mesh of it; TerrainLocator's lookup on mesh_from_terrain bit for bit);
 //    a vertex off the surface keeps its z and gets a zero normal;
-// 4. each line's plan box and length, and the set's spatial index (index_lines).
+// 5. each line's plan box and length, and the set's spatial index (index_lines).
 // Memory beyond the result (28 B a vertex, 28 B a line): while smoothing, the ends of the lines in
 // a hash table with a bitmap of their hashes (19 B an end), and for the stems each vertex's grid
 // cell and line (8 B a vertex); while the stems are walked, one block of 65536 stems' vertices
@@ -53,9 +55,9 @@ void smooth_lines(DrapedLineSet& set, double sigma = 2.0);
 // at least 3 options.sigma vertices.
 void smooth_stems(DrapedLineSet& set, const std::vector<std::uint32_t>& cells, const DrainageGrid& g,
                   const FallLineOptions& options);
-// Steps 3 and 4 on a smoothed set.
+// Steps 4 and 5 on a smoothed set.
 void drape_lines(DrapedLineSet& set, const DemSurface& surface, const LineProgress& progress = {});
-// smooth_lines, then steps 3 and 4, on a set made by step 1.
+// smooth_lines, then steps 4 and 5, on a set made by step 1.
 void smooth_and_drape(DrapedLineSet& set, const DemSurface& surface, const LineProgress& progress = {});
 
 // Whether the DEM's valid nodes differ in height (its own nodes: g's coarse nodes at factor > 1);

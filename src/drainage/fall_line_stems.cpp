@@ -12,6 +12,7 @@ namespace penink {
 
 namespace {
 
+constexpr double deg = 3.14159265358979323846 / 180.0;
 constexpr double min_cos = 0.3420201433256687;    // cos 70 degrees
 
 struct Frame {
@@ -20,31 +21,43 @@ struct Frame {
 
 class GridField {
 public:
-    explicit GridField(const DrainageGrid& g) : g_(g) {}
+    // The gradient comes from the DEM's own nodes (g.coarse_z at factor > 1, g.z at factor 1).
+    explicit GridField(const DrainageGrid& g) : g_(g) {
+        const std::size_t coarse = std::size_t(g.coarse_cols) * std::size_t(g.coarse_rows);
+        if (g.factor > 1 && coarse > 0 && g.coarse_z.size() == coarse && g.coarse_valid.size() == coarse) {
+            z_ = g.coarse_z.data(), valid_ = g.coarse_valid.data();
+            cols_ = g.coarse_cols, rows_ = g.coarse_rows, scale_ = double(g.factor);
+        } else {
+            z_ = g.z.data(), valid_ = g.valid.data(), cols_ = g.cols, rows_ = g.rows, scale_ = 1.0;
+        }
+    }
 
     // Plan steps of a column and a row at the cell holding p (index space).
     Frame frame(glm::dvec2 p) const {
-        int c, r;
-        cell(p, c, r);
+        const int c = int(std::clamp(std::floor(p.x), 0.0, double(g_.cols - 2)));
+        const int r = int(std::clamp(std::floor(p.y), 0.0, double(g_.rows - 2)));
         const glm::dvec2 o = grid_xy(g_, c, r);
         return {grid_xy(g_, c + 1, r) - o, grid_xy(g_, c, r + 1) - o};
     }
 
-    // dz/dc, dz/dr at p, bilinear between the four nodes' central differences; false beside nodata.
-    bool gradient(glm::dvec2 p, glm::dvec2& grad) const {
+    // dz/dc, dz/dr at fine index point p: bilinear between the four DEM nodes' central
+    // differences around it; false beside nodata.
+    bool gradient(glm::dvec2 fine, glm::dvec2& grad) const {
+        const glm::dvec2 p = fine / scale_;
         int c, r;
         cell(p, c, r);
         const double fu = std::clamp(p.x - c, 0.0, 1.0), fv = std::clamp(p.y - r, 0.0, 1.0);
         grad = glm::dvec2(0.0);
         const double w[4] = {(1 - fu) * (1 - fv), fu * (1 - fv), (1 - fu) * fv, fu * fv};
-        if (c >= 1 && r >= 1 && c + 2 < g_.cols && r + 2 < g_.rows && block_valid(c, r)) {
+        if (c >= 1 && r >= 1 && c + 2 < cols_ && r + 2 < rows_ && block_valid(c, r)) {
             // the 4 x 4 nodes around all hold data: central differences throughout
-            const float* z = g_.z.data() + g_.index(c, r);
-            const std::ptrdiff_t row = g_.cols;
+            const float* z = z_ + index(c, r);
+            const std::ptrdiff_t row = cols_;
             for (int k = 0; k < 4; ++k) {
                 const float* n = z + (k >> 1) * row + (k & 1);
                 grad += w[k] * glm::dvec2(0.5 * (double(n[1]) - n[-1]), 0.5 * (double(n[row]) - n[-row]));
             }
+            grad /= scale_;
             return true;
         }
         for (int k = 0; k < 4; ++k) {
@@ -52,34 +65,42 @@ public:
             if (!node_gradient(c + (k & 1), r + (k >> 1), n)) return false;
             grad += w[k] * n;
         }
+        grad /= scale_;
         return true;
     }
 
     // Plan x, y of index point p.
     glm::dvec2 xy(glm::dvec2 p) const { return grid_xy_at(g_, p.x, p.y); }
+    int cols() const { return g_.cols; }
+    int rows() const { return g_.rows; }
 
 private:
     const DrainageGrid& g_;
+    const float* z_ = nullptr;  // the nodes the gradient comes from
+    const std::uint8_t* valid_ = nullptr;
+    int cols_ = 0, rows_ = 0;
+    double scale_ = 1.0;  // fine cells a cell of theirs
 
+    std::size_t index(int c, int r) const { return std::size_t(r) * std::size_t(cols_) + std::size_t(c); }
     void cell(glm::dvec2 p, int& c, int& r) const {
-        c = int(std::clamp(std::floor(p.x), 0.0, double(g_.cols - 2)));
-        r = int(std::clamp(std::floor(p.y), 0.0, double(g_.rows - 2)));
+        c = int(std::clamp(std::floor(p.x), 0.0, double(cols_ - 2)));
+        r = int(std::clamp(std::floor(p.y), 0.0, double(rows_ - 2)));
     }
     // The 4 x 4 nodes from (c - 1, r - 1) hold data (corners not needed, read anyway).
     bool block_valid(int c, int r) const {
-        const std::uint8_t* v = g_.valid.data() + g_.index(c - 1, r - 1);
+        const std::uint8_t* v = valid_ + index(c - 1, r - 1);
         unsigned all = 1;
-        for (int j = 0; j < 4; ++j, v += g_.cols) all &= v[0] & v[1] & v[2] & v[3];
+        for (int j = 0; j < 4; ++j, v += cols_) all &= v[0] & v[1] & v[2] & v[3];
         return all != 0;
     }
-    bool ok(int c, int r) const { return c >= 0 && r >= 0 && c < g_.cols && r < g_.rows && g_.valid[g_.index(c, r)]; }
+    bool ok(int c, int r) const { return c >= 0 && r >= 0 && c < cols_ && r < rows_ && valid_[index(c, r)]; }
     bool node_gradient(int c, int r, glm::dvec2& n) const {
         if (!ok(c, r)) return false;
         auto diff = [&](int dc, int dr, double& d) {
             const bool f = ok(c + dc, r + dr), b = ok(c - dc, r - dr);
             if (!f && !b) return false;
-            const double zf = g_.z[g_.index(f ? c + dc : c, f ? r + dr : r)];
-            const double zb = g_.z[g_.index(b ? c - dc : c, b ? r - dr : r)];
+            const double zf = z_[index(f ? c + dc : c, f ? r + dr : r)];
+            const double zb = z_[index(b ? c - dc : c, b ? r - dr : r)];
             d = (zf - zb) / ((f ? 1 : 0) + (b ? 1 : 0));
             return true;
         };
@@ -99,30 +120,67 @@ bool descent(const Frame& f, glm::dvec2 gr, glm::dvec2& d) {
     return d.x != 0.0 || d.y != 0.0;
 }
 
+// Unit index-space fall direction at p on frame f; false where there is none (nodata, flat).
+// `slope2`: the squared plan slope there (|grad z|^2 = -gr . d before d is made a unit vector).
+bool fall_direction(const GridField& field, const Frame& f, glm::dvec2 p, glm::dvec2& d, double* slope2 = nullptr) {
+    glm::dvec2 gr;
+    if (!field.gradient(p, gr) || !descent(f, gr, d)) return false;
+    if (slope2) *slope2 = -glm::dot(gr, d);
+    d /= norm(d.x, d.y);
+    return true;
+}
+
+// The corridor's radius at vertex k + 1 of a stem whose centre line has arc lengths `arc` (see
+// the header).
+double corridor_at(std::uint32_t k, const std::vector<double>& arc, bool joined, const FallLineOptions& o, double run) {
+    double c = run;
+    if (joined) c = std::min(c, o.corridor + o.narrow_to_joined_end * (arc.back() - arc[k + 1]));
+    return std::min(o.max_corridor, c);
+}
+
 void trace_stem(DrapedVertex* v, const std::uint32_t* cells, std::uint32_t n, const GridField& field, int cols,
-                double sigma, double corridor, std::vector<glm::dvec2>& q, std::vector<glm::dvec2>& s) {
+                const FallLineOptions& o, bool joined, std::vector<glm::dvec2>& q, std::vector<glm::dvec2>& s,
+                std::vector<double>& arc) {
     q.resize(n);
     for (std::uint32_t k = 0; k < n; ++k) q[k] = {double(cells[k] % std::uint32_t(cols)), double(cells[k] / std::uint32_t(cols))};
-    gaussian_smooth(q, sigma, s);
+    gaussian_smooth(q, o.sigma, s);
+    arc.assign(n, 0.0);
+    for (std::uint32_t k = 1; k < n; ++k) arc[k] = arc[k - 1] + norm(s[k].x - s[k - 1].x, s[k].y - s[k - 1].y);
     glm::dvec2 p = s[0];
     // the grid's metric at the source serves the whole stem (a UTM-projected grid's cells change
     // shape by far less than a percent along one)
     const Frame f = field.frame(p);
+    const double widen_cos = std::cos(o.widen_max_deg * deg), widen_slope2 = std::pow(std::tan(o.widen_min_slope_deg * deg), 2);
+    double run = o.corridor;  // the corridor, widening on slopes and narrowing on flats
     for (std::uint32_t k = 0; k + 1 < n; ++k) {
         const glm::dvec2 step = s[k + 1] - s[k];
         const double ds = norm(step.x, step.y);
         glm::dvec2 next = s[k + 1] + 0.8 * (p - s[k]);  // no usable fall line: along S, back towards it
-        glm::dvec2 gr, d;
-        if (ds > 0.0 && field.gradient(p, gr)) {
-            if (descent(f, gr, d)) {
-                const glm::dvec2 pt = step.x * f.u + step.y * f.v, pd = d.x * f.u + d.y * f.v;
-                const double cosine = glm::dot(pt, pd) / (norm(pt.x, pt.y) * norm(pd.x, pd.y));
-                if (cosine > min_cos) next = p + ds * d / norm(d.x, d.y);
+        glm::dvec2 d1, d2;
+        double slope2 = 0.0;
+        bool along = false;  // the fall line runs with the stem: the corridor may widen
+        if (ds > 0.0 && fall_direction(field, f, p, d1, &slope2)) {
+            // Heun's step: the mean of the directions here and one step on (across a V-shaped
+            // valley's floor they cancel across it and add along it)
+            glm::dvec2 d = d1;
+            if (fall_direction(field, f, p + ds * d1, d2)) {
+                const glm::dvec2 m = d1 + d2;
+                const double ml = norm(m.x, m.y);
+                if (ml > 1e-6) d = m / ml;
             }
+            const glm::dvec2 pt = step.x * f.u + step.y * f.v, pd = d.x * f.u + d.y * f.v;
+            const double cosine = glm::dot(pt, pd) / (norm(pt.x, pt.y) * norm(pd.x, pd.y));
+            along = cosine > widen_cos;
+            if (cosine > min_cos) next = p + ds * d;
         }
+        run = slope2 > widen_slope2 && along ? std::min(o.max_corridor, run + o.widen * ds) : std::max(o.corridor, run - o.widen * ds);
         const glm::dvec2 e = next - s[k + 1];
-        const double el = norm(e.x, e.y);
-        p = el > corridor ? s[k + 1] + e * (corridor / el) : next;
+        const double el = norm(e.x, e.y), corridor = corridor_at(k, arc, joined, o, run);
+        const glm::dvec2 moved = el > corridor ? s[k + 1] + e * (corridor / el) : next;
+        // a trace leaving the grid goes back to the centre line (inside) instead of running
+        // along the grid's edge
+        const bool inside = moved.x >= 0.0 && moved.y >= 0.0 && moved.x <= double(field.cols() - 1) && moved.y <= double(field.rows() - 1);
+        p = inside ? moved : s[k + 1];
         if (k + 2 < n) {
             const glm::dvec2 xy = field.xy(p);
             v[k + 1].x = float(xy.x), v[k + 1].y = float(xy.y);
@@ -138,20 +196,22 @@ FallLineOptions fall_line_options(const DrainageGrid& g) {
     FallLineOptions o;
     o.sigma = std::max(2.0, double(g.factor));
     o.corridor = std::max(3.0, double(g.factor));
+    o.max_corridor = std::max(o.corridor, o.max_corridor_dem_cells * double(g.factor));
     return o;
 }
 
 void trace_fall_lines(DrapedLineSet& set, const std::vector<std::uint32_t>& cells, const DrainageGrid& g,
-                      const FallLineOptions& o) {
+                      const FallLineOptions& o, const std::vector<std::uint8_t>& joined) {
     if (g.cols < 2 || g.rows < 2) return;
     const GridField field(g);
     parallel_chunks(set.lines.size(), 1024, [&](std::size_t l0, std::size_t l1) {
         std::vector<glm::dvec2> q, s;
+        std::vector<double> arc;
         for (std::size_t i = l0; i < l1; ++i) {
             const DrapedLine& l = set.lines[i];
             if (l.count < 3) continue;
-            trace_stem(set.vertices.data() + l.first, cells.data() + l.first, l.count, field, g.cols, o.sigma,
-                       o.corridor, q, s);
+            trace_stem(set.vertices.data() + l.first, cells.data() + l.first, l.count, field, g.cols, o,
+                       i < joined.size() && joined[i], q, s, arc);
         }
     });
 }

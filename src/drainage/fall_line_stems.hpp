@@ -7,12 +7,25 @@
 // 1. centre line S: the cells' path smoothed by a Gaussian of `sigma` cells along the stem (ends
 //    fixed, the path reflected through them);
 // 2. from the source, vertex k + 1 is one step |S(k + 1) - S(k)| from vertex k along the fall
-//    direction of the grid's surface there (central differences of g.z at the four nodes around,
-//    bilinear; turned into the index frame with the grid's metric from grid_xy at the source's
-//    cell, so non-square and UTM-projected cells give the plan's steepest descent); where the fall line leaves the stem's
-//    direction by more than 70 degrees, on flats or beside nodata, the vertex moves with S and
-//    a fifth of the way back to it instead; a vertex farther than `corridor` cells from S(k) is
-//    drawn back onto that circle;
+//    direction of the DEM's own surface: the central differences at the DEM's nodes (g.coarse_z
+//    at factor > 1, g.z at factor 1), bilinear between the four around the point (the field
+//    lines/stroke_directions.hpp measures against; the resampled PN grid's own differences bend
+//    the trace off it by a fraction of a DEM cell, which on a V-shaped valley floor is a large
+//    angle); turned into the index frame with the grid's metric from grid_xy at the source's
+//    cell, so non-square and UTM-projected cells give the plan's steepest descent; taken as
+//    Heun's step, the mean of the directions at vertex k and one step along its own (a trace
+//    reaching a valley's floor runs along it instead of zigzagging across). Where the fall line
+//    leaves the stem's direction by more than 70 degrees, on flats or beside nodata, the vertex
+//    moves with S and a fifth of the way back to it instead; a vertex farther from S(k + 1) than
+//    the corridor is drawn back onto that circle. The corridor is `corridor` cells at the source;
+//    it widens by `widen` cells a cell of S while the slope exceeds widen_min_slope_deg and the
+//    fall line runs within widen_max_deg of the stem (a plane or a cone, where a D8 path runs up
+//    to 22.5 degrees off the fall line: the trace keeps to the fall line), up to `max_corridor`,
+//    and narrows at the same rate elsewhere (flats, where the fall line heads for another valley);
+//    in a valley the fall lines converge on the floor the D8 path follows and it does not bind.
+//    On a stem whose end joins another (`joined`) it also narrows towards that end at
+//    narrow_to_joined_end cells a cell, so the stem comes back to its junction. A step that would leave the grid goes to
+//    S(k + 1) instead (no run along the grid's edge);
 // 3. plan x, y from grid_xy_at (the resampler's interpolation). The last vertex is where the trace ends;
 //    a stem ending at a junction is brought back to it afterwards (draped_lines.cpp: join_ends).
 // Deterministic, one stem per task on all cores.
@@ -26,18 +39,23 @@
 namespace penink {
 
 struct FallLineOptions {
-    double sigma = 2.0;     // cells
-    double corridor = 3.0;  // cells
+    double sigma = 2.0;                // cells
+    double corridor = 3.0;             // cells, at the source (and a joined end)
+    double widen = 0.5;                // corridor cells a cell of the stem's length
+    double narrow_to_joined_end = 0.5;  // corridor cells a cell towards a joined end
+    double widen_max_deg = 25.0;       // widening while the fall line runs this close to the stem
+    double widen_min_slope_deg = 5.0;  // and the slope is steeper
+    double max_corridor = 60.0;        // cells
+    double max_corridor_dem_cells = 20.0;  // fall_line_options' max_corridor, in DEM cells
 };
 
 // The build's options on a grid: sigma and corridor one DEM cell (the factor; at least 2 and 3
-// cells). A wider corridor lets a stem leave its D8 cells farther: on a cone, where the D8 paths
-// run up to 22.5 degrees off the radial fall lines, 20 DEM cells draw radial creases; on real
-// DEMs one cell keeps them nearest the valley floors the D8 paths find (bench/stroke_directions_bench).
+// cells), max_corridor max_corridor_dem_cells DEM cells.
 FallLineOptions fall_line_options(const DrainageGrid& g);
 
 // Moves the x, y of each stem of `set` (network_stems with its `cells`) onto its fall line.
+// `joined`: per line, nonzero when its last vertex is a junction on another line (empty: none).
 void trace_fall_lines(DrapedLineSet& set, const std::vector<std::uint32_t>& cells, const DrainageGrid& g,
-                      const FallLineOptions& options);
+                      const FallLineOptions& options, const std::vector<std::uint8_t>& joined = {});
 
 }  // namespace penink

@@ -14,6 +14,20 @@ float flow_weight(float flow) {
     return std::clamp(1.0f + std::log10(flow) / 3.0f, 0.0f, 1.0f);
 }
 
+std::vector<float> height_weights(const VertexLines& lines) {
+    const std::size_t n = lines.positions.size();
+    const auto on_surface = [&](std::size_t i) {
+        return i < lines.normals.size() && (lines.normals[i].x != 0.0f || lines.normals[i].y != 0.0f || lines.normals[i].z != 0.0f);
+    };
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    for (std::size_t i = 0; i < n; ++i)
+        if (on_surface(i)) lo = std::min(lo, lines.positions[i].z), hi = std::max(hi, lines.positions[i].z);
+    std::vector<float> out(n, 0.0f);
+    for (std::size_t i = 0; i < n; ++i)
+        if (on_surface(i)) out[i] = hi > lo ? std::clamp((lines.positions[i].z - lo) / (hi - lo), 0.0f, 1.0f) : 1.0f;
+    return out;
+}
+
 float gap_weight(float gap, float gap_half) {
     if (!(gap > 0.0f)) return 0.0f;
     if (!std::isfinite(gap)) return 1.0f;

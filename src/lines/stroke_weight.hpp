@@ -3,6 +3,10 @@
 //  - Creases by flow: trunk streams heavier than twigs. The drainage vertices carry normalised
 //    flow f (accumulation / basin total, in [0, 1]); weight = clamp(1 + log10(f) / 3, 0, 1), so
 //    three decades of flow, 0.001 of the basin to all of it, span the range.
+//  - Ridges by height (basin divides carry no flow): the relief a ridge stands above, from the
+//    lowest to the highest of a frame's ridge vertices on the surface (z_lo, z_hi; exaggerated or
+//    not, the ratio is the same): weight = (z - z_lo) / (z_hi - z_lo), so the main crests are
+//    heavier than the low spurs, and a ridge thins as it falls from a summit.
 //  - Silhouettes by the depth gap behind them (Lobeck's profile lines; Winkenbach & Salesin,
 //    "Computer-generated pen-and-ink illustration": outline accents): at each point, within
 //    `radius` px of it in the toward (TFT) eye-distance image, the nearest surface's distance n and
@@ -15,11 +19,15 @@
 
 #include "core/drawing.hpp"
 #include "core/pixel_mask.hpp"
+#include "core/vertex_run.hpp"
 
 namespace penink {
 
 // Weight of normalised flow f (see above); 0 for f <= 0.001.
 float flow_weight(float flow);
+// Ridge weights by height (see above): one per vertex of `lines`; vertices off the surface (zero
+// normal) weigh 0 and do not count in z_lo, z_hi; all 1 when z_hi = z_lo.
+std::vector<float> height_weights(const VertexLines& lines);
 // Weight of a relative depth gap g >= 0 (+inf: 1).
 float gap_weight(float gap, float gap_half = 0.1f);
 

@@ -54,9 +54,10 @@ void DrainageLines::draw(const Camera& camera, const Scene& scene, GLuint toward
         std::vector<float> scores = crease_scores(terms, l.params, max_distance);
         const double per_metre = max_distance > 0.0f ? l.params.distance_attenuation / double(max_distance) : 0.0;
         whole_or_nothing_by_distance(scores, lines.positions, lines.runs, camera, per_metre);
-        std::vector<float> weight;  // creases by flow (lines/stroke_weight.hpp)
+        std::vector<float> weight;  // creases by flow, ridges by height (lines/stroke_weight.hpp)
         if (l.layer == LayerKind::creases)
             for (float f : lines.flow) weight.push_back(flow_weight(f));
+        else weight = height_weights(lines);
         drawing.layer(l.layer).strokes = thin_by_spacing(
             line_strokes(lines, scores, camera, l.kind, ObjectSketch{l.sketch_px, l.repeat, scene.seed}, weight),
             float(l.params.spacing_px));

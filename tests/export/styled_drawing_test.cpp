@@ -36,9 +36,10 @@ TEST(StyledDrawing, TechnicalKeepsEveryStrokeAsOnePath) {
     ASSERT_EQ(ridge.widths.size(), ridge.points.size());
     EXPECT_EQ(ridge.points.front(), glm::vec2(20, 70));
     EXPECT_EQ(ridge.points.back(), glm::vec2(180, 70));
-    EXPECT_NEAR(ridge.widths.front(), 0.6 * 0.15, 1e-12);  // taper_min at the ends
-    EXPECT_NEAR(ridge.widths.back(), 0.6 * 0.15, 1e-12);
-    EXPECT_DOUBLE_EQ(ridge.width, 0.6);
+    // a stroke without weights takes weight_max (1.65 for ridges); taper_min at the ends
+    EXPECT_NEAR(ridge.widths.front(), 0.6 * 1.65 * 0.15, 1e-12);
+    EXPECT_NEAR(ridge.widths.back(), 0.6 * 1.65 * 0.15, 1e-12);
+    EXPECT_DOUBLE_EQ(ridge.width, 0.6 * 1.65);
     EXPECT_NEAR(ridge.depth, 540.0, 1e-9);  // mean of 100 300 500 800 1000
     EXPECT_EQ(ridge.kind, "ridge");
     EXPECT_EQ(s.layers[0].fill.size(), 2u);

@@ -66,12 +66,14 @@ double half_width_near(const std::vector<glm::vec2>& outline, float x0, float x1
     return h;
 }
 
-// The filled outline of a tapered stroke of width 4 over 10 px: at the middle half the width,
+// The filled outline of a tapered stroke of width 4 over 10 px: from 10 px in half the width,
 // 2 px; within 1.5 px of an end (the ease 1 - (1 - u)^2 at u = 0.15 gives 0.28 of the width, and
 // the round cap of a zero end adds nothing) under 0.6 px.
 void expect_tapered(const std::vector<glm::vec2>& outline) {
-    ASSERT_GT(outline.size(), 20u);
-    EXPECT_NEAR(half_width_near(outline, 55.0f, 65.0f), 2.0, 0.01);
+    ASSERT_GT(outline.size(), 14u);  // caps and taper (points within 0.02 px of a chord left out)
+    // the full width from 10 px in (the straight middle keeps only its ends: points within
+    // 0.02 px of a chord are left out)
+    EXPECT_NEAR(half_width_near(outline, 19.9f, 100.1f), 2.0, 0.01);
     EXPECT_LT(half_width_near(outline, 9.0f, 11.5f), 0.6);
     EXPECT_LT(half_width_near(outline, 108.5f, 111.0f), 0.6);
     EXPECT_GT(half_width_near(outline, 14.0f, 16.0f), 1.0);  // 5 px in: 0.75 of the width
