@@ -1,5 +1,5 @@
 // The preview's page (src/preview/page/*.html, *.js, *.css), embedded at build time by
-// cmake/embed_page.cmake.
+// cmake/embed_files.cmake.
 #pragma once
 #include <string>
 #include <vector>

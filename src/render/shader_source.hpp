@@ -1,4 +1,4 @@
-// GLSL sources embedded at build time from shaders/*.glsl (cmake/embed_shaders.cmake), and
+// GLSL sources embedded at build time from shaders/*.glsl (cmake/embed_files.cmake), and
 // their assembly for compilation: `#include "common.glsl"` is expanded in place with `#line`
 // directives whose source-string numbers map back to file names, so a driver log line
 // "0:12(3)" can be reported as "common.glsl:12".

@@ -11,7 +11,7 @@
 
 namespace penink {
 
-// tests/support/shaders/*.glsl, embedded at build time by cmake/embed_shaders.cmake.
+// tests/support/shaders/*.glsl, embedded at build time by cmake/embed_files.cmake.
 const std::vector<ShaderFile>& test_support_shaders();
 
 namespace {
