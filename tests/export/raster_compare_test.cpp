@@ -96,7 +96,8 @@ TEST(PngWriter, CapsuleAndFillCoverage) {
     Style s = default_style();
     s.fill = Rgb{0, 0, 0};
     s.layer(LayerKind::ridges).width = s.layer(LayerKind::ridges).width_far = 4.0;
-    s.layer(LayerKind::ridges).taper = 0.0;  // a plain capsule stroke
+    s.layer(LayerKind::ridges).taper = 0.0;  // a plain capsule stroke of one width
+    s.layer(LayerKind::ridges).weight_min = s.layer(LayerKind::ridges).weight_max = 1.0;
     const RgbImage img = rasterise(style_drawing(d, s), RasterTransform{64, 32, 1.0, 0.0, 0.0});
     const auto at = [&](int x, int y) { return int(img.rgb[3 * size_t(y * 64 + x)]); };
     for (int y = 8; y <= 11; ++y) EXPECT_EQ(at(45, y), 0) << y;  // line covers y in [8, 12]

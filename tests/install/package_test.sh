@@ -70,7 +70,7 @@ complete_words() {  # complete_words WORD... : the completions of the last word
         _ "$root/usr/share/bash-completion/completions/penink" "$@" | sort | tr '\n' ' '
 }
 [[ $(complete_words penink r) == "render " ]] || fail "completion of 'penink r': $(complete_words penink r)"
-[[ $(complete_words penink '') == "batch bench drainage render " ]] || fail "subcommands: $(complete_words penink '')"
+[[ $(complete_words penink '') == "batch bench drainage preview render " ]] || fail "subcommands: $(complete_words penink '')"
 [[ $(complete_words penink render --ou) == "--output " ]] || fail "render --ou: $(complete_words penink render --ou)"
 [[ $(complete_words penink drainage --rou) == "--routing " ]] || fail "drainage --rou: $(complete_words penink drainage --rou)"
 [[ $(complete_words penink render x.toml --gl '') == "egl osmesa " ]] || fail "--gl: $(complete_words penink render x.toml --gl '')"
