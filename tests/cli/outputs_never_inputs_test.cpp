@@ -180,3 +180,53 @@ TEST(OutputsNeverInputs, DottedKeysAreBounded) {
     write_text(dir / "dots.toml", "[terrain]\ndem = \"volcano.asc\"\n[" + key + "]\nx = 1\n");
     expect_refused(dir, "render dots.toml -o out.svg", "penink: scene: dots.toml: TOML key has more than 64 dotted parts");
 }
+
+namespace {
+
+// Sets or clears the immutable attribute of `path` (chattr): a file that can be neither replaced,
+// renamed onto nor linked, so placing an output over it fails after every temporary is written.
+// False where the file system or the user cannot (not root, tmpfs, no chattr).
+bool set_immutable(const fs::path& path, bool on) {
+    return std::system(("chattr " + std::string(on ? "+i" : "-i") + " '" + path.string() + "' 2>/dev/null").c_str()) == 0;
+}
+
+// `args` in `dir` while `frozen` is immutable: exit 2 with one line naming it, and every file in
+// `dir` as it was before (the set rolled back, no temporary or kept old file left).
+void expect_placement_rolled_back(const fs::path& dir, const fs::path& frozen, const std::string& args) {
+    const auto before = snapshot(dir);
+    if (!set_immutable(frozen, true)) GTEST_SKIP() << "cannot make a file immutable here (chattr +i needs root on ext4/xfs/btrfs)";
+    const RunResult r = run_penink(args, dir);
+    set_immutable(frozen, false);
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_EQ(r.output.rfind("penink: ", 0), 0u) << r.output;
+    EXPECT_NE(r.output.find(frozen.filename().string()), std::string::npos) << r.output;
+    const auto after = snapshot(dir);
+    EXPECT_TRUE(after == before) << args << ": a file changed, appeared or went (" << before.size() << " files before, "
+                                 << after.size() << " after)";
+}
+
+}  // namespace
+
+// The drainage database and its rasters are one set: when the last raster cannot be placed, the
+// database placed before it is put back as it was, and nothing is left beside either.
+TEST(OutputsNeverInputs, DrainageSetThatCannotBePlacedStaysAsItWas) {
+    const auto dir = fresh_dir("never_inputs_drainage_set");
+    fs::copy_file(volcano_asc, dir / "volcano.asc");
+    const RunResult first = run_penink("drainage volcano.asc -o v.dv --rasters R -q", dir);
+    ASSERT_EQ(first.code, 0) << first.output;
+    ASSERT_TRUE(fs::exists(dir / "R/stream_order.tif"));
+    // least-cost routing gives another database and other rasters: a real replacement to roll back
+    expect_placement_rolled_back(dir, dir / "R/stream_order.tif",
+                                 "drainage volcano.asc -o v.dv --rasters R --routing least-cost -q");
+}
+
+// A render's outputs are one set: an SVG placed before a PNG that cannot be is put back.
+TEST(OutputsNeverInputs, RenderSetThatCannotBePlacedStaysAsItWas) {
+    const auto dir = fresh_dir("never_inputs_render_set");
+    fs::copy_file(volcano_asc, dir / "volcano.asc");
+    const RunResult first = run_penink("render volcano.asc -o a.svg -o a.png --width 160 --height 120 -q", dir);
+    ASSERT_EQ(first.code, 0) << first.output;
+    expect_placement_rolled_back(dir, dir / "a.png",
+                                 "render volcano.asc -o a.svg -o a.png --width 160 --height 120 --azimuth 90 -q");
+}
