@@ -130,11 +130,11 @@ int main(int argc, char** argv) {
                 if (k != LayerKind::hachures) only.layer(k).strokes.clear(), only.layer(k).fill.clear();
             const RgbImage hrgb = rasterise(style_drawing(only, style), tr);
             const ToneImage hink = ink_from_rgb(hrgb.width, hrgb.height, hrgb.rgb);
-            double n[5] = {}, all[5] = {}, hach[5] = {};
+            double count[5] = {}, all[5] = {}, hach[5] = {};
             for (std::size_t i = 0; i < target.v.size(); ++i) {
                 if (!std::isfinite(target.v[i])) continue;
                 const int b = std::clamp(int(target.v[i] * 5.0), 0, 4);
-                n[b] += 1, all[b] += ink.v[i], hach[b] += hink.v[i];
+                count[b] += 1, all[b] += ink.v[i], hach[b] += hink.v[i];
             }
             double len = 0.0, terrain = 0.0;
             std::size_t shorter = 0;
@@ -150,10 +150,10 @@ int main(int argc, char** argv) {
                         len * scene.hachures.width_px / std::max(terrain, 1.0));
             std::printf("target band   share  ink (all)  ink (hachures)\n");
             double total = 0;
-            for (double v : n) total += v;
+            for (double v : count) total += v;
             for (int b = 0; b < 5; ++b)
-                if (n[b] > 0)
-                    std::printf("  %.1f-%.1f   %5.3f  %9.3f  %14.3f\n", b / 5.0, (b + 1) / 5.0, n[b] / total, all[b] / n[b], hach[b] / n[b]);
+                if (count[b] > 0)
+                    std::printf("  %.1f-%.1f   %5.3f  %9.3f  %14.3f\n", b / 5.0, (b + 1) / 5.0, count[b] / total, all[b] / count[b], hach[b] / count[b]);
         }
         const auto thirds = ink_by_depth_thirds(ink, target, d.toward);
         std::printf("ink per terrain pixel near %.3f  middle %.3f  far %.3f  (near/far %.2f)\n", thirds[0], thirds[1],

@@ -111,11 +111,13 @@ std::string content(const StyledDrawing& d, const PageLayout& L, const std::vect
 std::string oc_properties(const std::vector<Ocg>& ocgs) {
     std::string all, order;
     for (size_t i = 0; i < ocgs.size(); ++i) {
-        all += (i ? " " : "") + ref(ocgs[i].object);
         const bool first_child = ocgs[i].parent >= 0 && (i == 0 || ocgs[i - 1].parent < 0);
         const bool last_child = ocgs[i].parent >= 0 && (i + 1 == ocgs.size() || ocgs[i + 1].parent < 0);
-        order += (i ? " " : "") + std::string(first_child ? "[" : "") + ref(ocgs[i].object) +
-                 (last_child ? "]" : "");
+        if (i) all += ' ', order += ' ';
+        all += ref(ocgs[i].object);
+        if (first_child) order += '[';
+        order += ref(ocgs[i].object);
+        if (last_child) order += ']';
     }
     return "/OCProperties << /OCGs [" + all + "] /D << /Name (penink layers) /Order [" + order +
            "] /ON [" + all + "] /OFF [] >> >>";

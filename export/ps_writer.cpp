@@ -2,7 +2,6 @@
 #include "export/ps_writer.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 
 #include "core/helvetica_metrics.hpp"
@@ -63,8 +62,8 @@ void ink_box_pt(const StyledDrawing& d, const PageLayout& L, double margin_mm, d
             for (const StyledPath& path : g.paths)
                 for (const glm::vec2& p : path.points) add(p, 0.5 * path.width);
         for (const StyledLabel& t : l.labels) {  // the text's advance, from its descent to its cap height
-            const float x0 = float(label_start_x(t)), x1 = float(x0 + helvetica_advance_em(t.text) * t.size_px);
-            add({x0, t.at.y - 0.75f * float(t.size_px)}, 0.0), add({x1, t.at.y + 0.25f * float(t.size_px)}, 0.0);
+            const float left = float(label_start_x(t)), right = float(left + helvetica_advance_em(t.text) * t.size_px);
+            add({left, t.at.y - 0.75f * float(t.size_px)}, 0.0), add({right, t.at.y + 0.25f * float(t.size_px)}, 0.0);
         }
     }
     if (x0 > x1) x0 = 0.0, y0 = 0.0, x1 = L.page_w_mm, y1 = L.page_h_mm;
@@ -168,13 +167,6 @@ void layer(std::string& o, const StyledLayer& l, bool split, Rgb paper) {
          ps_string(l.name) + " Ln\nq\n";
     layer_body(o, l, split, paper);
     o += "Q\nLB\n%AI5_EndLayer--\n%%EndLayer\n";
-}
-
-bool ends_with_eps(const std::string& path) {
-    if (path.size() < 4) return false;
-    std::string ext = path.substr(path.size() - 4);
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext == ".eps";
 }
 
 }  // namespace

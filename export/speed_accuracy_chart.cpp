@@ -98,8 +98,8 @@ void curve(std::ostream& s, const Frame& f, const ChartSeries& c) {
         s << "<circle cx=\"" << at.x << "\" cy=\"" << at.y << "\" r=\"3.5\" fill=\"" << c.colour << "\"/>\n";
         if (p.label.empty()) continue;
         if (!labels.empty() && std::abs(labels.back().first.x - at.x) < 20.0 && std::abs(labels.back().first.y - at.y) < 10.0)
-            labels.back().second += "," + p.label.substr(p.label.find_first_of("0123456789") == std::string::npos
-                                                             ? 0 : p.label.find_first_of("0123456789"));
+            labels.back().second.append(",").append(p.label.substr(
+                p.label.find_first_of("0123456789") == std::string::npos ? 0 : p.label.find_first_of("0123456789")));
         else
             labels.emplace_back(at, p.label);
     }

@@ -224,7 +224,9 @@ void text_label(std::string& o, const StyledLabel& t) {
     attr(o, "fill", rgb_hex(t.color));
     attr(o, "stroke", "none");
     attr(o, "data-kind", xml_escape(t.kind));
-    o += ">" + xml_escape(t.text) + "</text>\n";
+    o += '>';
+    o += xml_escape(t.text);
+    o += "</text>\n";
 }
 
 void layer(std::string& o, const StyledLayer& l, bool split, PathEffects& effects) {

@@ -29,12 +29,12 @@ Subcommand add_preview_command(CLI::App& app) {
     add_scene_override_options(cmd, o);
     cmd->add_flag("-v,--verbose", o.verbose, "Print each frame's passes and times");
     return {cmd, [options] {
-                const PreviewOptions& o = *options;
-                const Scene scene = load_scene_with_overrides(o);
-                PreviewServerOptions server{o.port, o.save, parse_gl_backend(o.gl)};
+                const PreviewOptions& given = *options;
+                const Scene scene = load_scene_with_overrides(given);
+                PreviewServerOptions server{given.port, given.save, parse_gl_backend(given.gl)};
                 if (server.save_path.empty())
-                    server.save_path = std::filesystem::path(o.input).stem().string() + "-view.toml";
-                return serve_preview(scene, server, Log{o.verbose, ProgressMode::off}, std::cout);
+                    server.save_path = std::filesystem::path(given.input).stem().string() + "-view.toml";
+                return serve_preview(scene, server, Log{given.verbose, ProgressMode::off}, std::cout);
             }};
 }
 

@@ -46,7 +46,7 @@ struct Stroke {
     // layer's hierarchy of weight (creases by flow, silhouettes by the depth gap behind them:
     // lines/stroke_weight.hpp); the style maps it to a width between its weight_min and 1 times
     // the layer's width (styles/README.md). Any layer's strokes may carry it.
-    std::vector<float> weight;
+    std::vector<float> weight{};
 };
 
 // True when the stroke has >= 3 points and its first and last points are equal.

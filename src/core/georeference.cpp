@@ -49,7 +49,10 @@ std::array<double, 6> tidy_geotransform(std::array<double, 6> gt) {
 std::string geotransform_text(const Georeference& g) {
     const std::array<double, 6> gt = tidy_geotransform(g.geotransform);
     std::string s;
-    for (size_t i = 0; i < gt.size(); ++i) s += (i ? " " : "") + exact_decimal(gt[i]);
+    for (size_t i = 0; i < gt.size(); ++i) {
+        if (i) s += ' ';
+        s += exact_decimal(gt[i]);
+    }
     return s;
 }
 

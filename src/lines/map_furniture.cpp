@@ -214,7 +214,7 @@ void add_grid(Layer& layer, const FurnitureFrame& f, const Layout& L, MapGrid gr
             if (glm::length(t.at - a) < clear || glm::length(t.at - b) < clear) continue;
             const glm::dvec2 end = t.at + in * tick;
             const Box tick_box{std::min(t.at.x, end.x), std::min(t.at.y, end.y), std::max(t.at.x, end.x), std::max(t.at.y, end.y)};
-            if (std::any_of(taken.begin(), taken.end(), [&](const Box& b) { return overlaps(b, tick_box); })) continue;
+            if (std::any_of(taken.begin(), taken.end(), [&](const Box& other) { return overlaps(other, tick_box); })) continue;
             layer.strokes.push_back(line({t.at, end}, "grid-tick"));
             if (!(ts > 0.0)) continue;
             const std::string text = grid == MapGrid::map ? (interval[axis] >= 1.0 ? fixed_text(t.value, 0) : fixed_text(t.value, 3))
@@ -226,7 +226,7 @@ void add_grid(Layer& layer, const FurnitureFrame& f, const Layout& L, MapGrid gr
             const double w = text_width(text, ts), x0 = l.at.x - (e % 2 == 0 ? 0.5 * w : e == 1 ? w : 0.0);
             const double pad = L.mm(0.4);
             const Box box{x0 - pad, l.at.y - 0.75 * ts - pad, x0 + w + pad, l.at.y + 0.22 * ts + pad};
-            if (std::any_of(taken.begin(), taken.end(), [&](const Box& b) { return overlaps(b, box); })) continue;
+            if (std::any_of(taken.begin(), taken.end(), [&](const Box& other) { return overlaps(other, box); })) continue;
             layer.labels.push_back(std::move(l));
             layer.fill.push_back(box_ring(box));  // the label on paper, not on the hachures
         }

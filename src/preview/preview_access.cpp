@@ -19,7 +19,8 @@ std::string random_token() {
 bool host_allowed(const std::string& host, int port) {
     std::string lower;
     for (char c : host) lower += char(std::tolower(static_cast<unsigned char>(c)));
-    const std::string p = ":" + std::to_string(port);
+    std::string p = ":";
+    p += std::to_string(port);
     return lower == "127.0.0.1" + p || lower == "localhost" + p;
 }
 

@@ -28,7 +28,7 @@ struct FrameOutput {
     bool width_report = false;       // the styled layers' width measures (export_drawing.hpp's width_report)
     bool line_measures = true;       // FinishStats' small loops and doubled share (FinishOptions::measure)
     // A terrain's plan view gets its map furniture (scene/map_furniture.hpp), after finishing.
-    MapFurnitureOptions furniture;
+    MapFurnitureOptions furniture{};
     double map_scale = 0.0;  // the scene's 1:N, 0: none
 };
 

@@ -109,8 +109,8 @@ TEST(BatchCommand, ShardsDrawTheUnshardedFramesBytes) {
     const auto dir = fresh_dir("batch_shard");
     std::string csv = head;
     for (int i = 0; i < 5; ++i)
-        csv += "\"" + std::to_string(1756568 - 40 * i) + " " + std::to_string(5916728 + 60 * i) + "\",400," +
-               std::to_string(45 + 8 * i) + ",-20,,,\n";
+        csv.append("\"").append(std::to_string(1756568 - 40 * i) + " " + std::to_string(5916728 + 60 * i) + "\",400," +
+                                 std::to_string(45 + 8 * i) + ",-20,,,\n");
     write_text(dir / "path.csv", csv);
     const std::string run = "batch " + volcano + " --path path.csv --width 160 --height 120 --formats svg --out ";
     ASSERT_EQ(run_penink(run + "all", dir).code, 0);

@@ -115,16 +115,17 @@ TEST(CacheDir, DamagedCachesAreRebuiltNeverDrawn) {
         d[std::size_t(double(lines_at) + where * double(d.size() - lines_at))] ^= 0x40;
         write_text(dir / "volcano.asc.lod", l);
         write_text(dir / "volcano.asc.dv", d);
-        const std::string out = "d" + std::to_string(k++) + ".svg";
+        const std::string out = std::string("d").append(std::to_string(k++)).append(".svg");
         const RunResult r = run_penink("render volcano.asc -o " + out + " -v" + size_args, dir);
         ASSERT_EQ(r.code, 0) << r.output;
         EXPECT_NE(r.output.find("penink: terrain: volcano.asc.lod: damaged terrain cache (block checksum); building"),
                   std::string::npos)
             << where << "\n" << r.output;
-        if (where > 0.99)  // the index: found when it is read
+        if (where > 0.99) {  // the index: found when it is read
             EXPECT_NE(r.output.find("volcano.asc.dv: drainage database checksum mismatch (file corrupt); rebuilding"),
                       std::string::npos)
                 << r.output;
+        }
         EXPECT_EQ(read_text(dir / out), clean) << where;
         EXPECT_EQ(read_text(dir / "volcano.asc.lod"), lod) << "rebuilt as it was";
     }

@@ -34,8 +34,9 @@ TEST(PlotterStyleCli, StrokesOnlyOnePenPerLayerWidthsInMillimetres) {
             ++layers;
             colours.insert((*it)[2]);
             const auto pen = pen_mm.find((*it)[1]);
-            if (pen != pen_mm.end())
+            if (pen != pen_mm.end()) {
                 EXPECT_NEAR(std::stod((*it)[3]) * mm_per_unit, pen->second, 0.001) << page << " " << (*it)[1];
+            }
         }
         EXPECT_EQ(layers, 9u) << page;
         EXPECT_EQ(colours.size(), 9u) << page << ": one pen colour per layer";

@@ -468,9 +468,9 @@ TEST(DvFile, VertexBlocksAreCheckedAsTheyAreRead) {
         box.lo = {-1e9f, -1e9f}, box.hi = {1e9f, 1e9f};
         const DrainageLineData got = prepare_drainage_lines(source, box), want = prepare_drainage_lines(lines, box);
         EXPECT_EQ(whole_reads, 1);
-        const auto same = [](const ScoredLineSet& a, const ScoredLineSet& b) {  // the same bytes to draw
-            return a.upload.size() == b.upload.size() &&
-                   std::memcmp(a.upload.data(), b.upload.data(), a.upload.size() * sizeof(DmVertex)) == 0;
+        const auto same = [](const ScoredLineSet& x, const ScoredLineSet& y) {  // the same bytes to draw
+            return x.upload.size() == y.upload.size() &&
+                   std::memcmp(x.upload.data(), y.upload.data(), x.upload.size() * sizeof(DmVertex)) == 0;
         };
         EXPECT_GT(want.creases.upload.size(), 2 * dv::vertex_block);
         EXPECT_TRUE(same(got.creases, want.creases));

@@ -59,8 +59,9 @@ TEST(Style, ShippedStylesHaveTheirCharacter) {
     // silhouettes drop fragments under 8 px in both styles, other layers only under 2 px
     for (const Style* s : {&tech, &sketch})
         for (LayerKind k : all_layers)
-            if (!is_furniture(k))
+            if (!is_furniture(k)) {
                 EXPECT_EQ(s->layer(k).min_length, k == LayerKind::silhouettes ? 8.0 : 2.0) << layer_name(k);
+            }
     // map furniture: one plain pen (no sketch, no taper), every tick kept, labels in points; the
     // plotter's lines in millimetres and no text
     const Style plotter = builtin_style("plotter");

@@ -120,13 +120,14 @@ TEST(OrthographicView, TowardAwayFindsTheExactContourAtAGrazingAngle) {
     // across the view here) has no sub-pixel triangles to step over: measured precision 1.000,
     // recall 0.997.
     scene.silhouette_method = SilhouetteMethod::adjacency;
+    const int default_max_level = scene.tess_max_level;
     scene.tess_max_level = 1;
     const LineAccuracy flat = line_accuracy(frames.draw(cam, scene).silhouette_mask, exact, {1.5});
     std::printf("orthographic grazing view, adjacency at max level 1: precision %.3f recall %.3f at 1.5 px\n",
                 flat.at(1.5).precision, flat.at(1.5).recall);
     EXPECT_GE(flat.at(1.5).precision, 0.95);
     EXPECT_GE(flat.at(1.5).recall, 0.95);
-    scene.tess_max_level = Scene{}.tess_max_level;
+    scene.tess_max_level = default_max_level;
     scene.silhouette_method = SilhouetteMethod::toward_away;
     // Depths are distances along the view direction: the hill's top is nearer than its foot by
     // the view direction's component, and every stroke depth is positive.
