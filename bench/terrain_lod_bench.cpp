@@ -49,7 +49,7 @@ const Terrain& terrain(int side, bool rough) {
 Camera framing(const Terrain& t) {
     glm::dvec3 lo, hi;
     terrain_bounds(t, lo, hi);
-    return frame_box(lo, hi, 45.0, -30.0, 40.0, 1000, 750);
+    return frame_box(lo, hi, {.azimuth = 45.0, .altitude = -30.0, .fov = 40.0, .width = 1000, .height = 750});
 }
 
 void BM_BuildTerrainLod(benchmark::State& state) {

@@ -87,26 +87,24 @@ double world_per_pixel(const Camera& cam, double depth) {
     return depth * 2.0 * std::tan(cam.fov * deg / 2.0) / double(cam.width);
 }
 
-Camera frame_box(const glm::dvec3& lo, const glm::dvec3& hi, double azimuth, double altitude,
-                 double fov, int width, int height, double fill) {
+Camera frame_box(const glm::dvec3& lo, const glm::dvec3& hi, const Framing& f) {
     std::vector<glm::dvec3> corners;
     for (int i = 0; i < 8; ++i) corners.emplace_back(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
-    return frame_points(corners, azimuth, altitude, fov, width, height, fill);
+    return frame_points(corners, f);
 }
 
-Camera frame_points(const std::vector<glm::dvec3>& points, double azimuth, double altitude, double fov,
-                    int width, int height, double fill) {
+Camera frame_points(const std::vector<glm::dvec3>& points, const Framing& f) {
     Camera cam;
-    cam.azimuth = azimuth, cam.altitude = altitude, cam.fov = fov;
-    cam.width = width, cam.height = height;
+    cam.azimuth = f.azimuth, cam.altitude = f.altitude, cam.fov = f.fov;
+    cam.width = f.width, cam.height = f.height;
     glm::dvec3 lo(1e300), hi(-1e300);
     for (const glm::dvec3& p : points) lo = glm::min(lo, p), hi = glm::max(hi, p);
-    const glm::dvec3 centre = (lo + hi) * 0.5, d = direction_from_angles(azimuth, altitude);
+    const glm::dvec3 centre = (lo + hi) * 0.5, d = direction_from_angles(f.azimuth, f.altitude);
     // Start far enough to see the bounding sphere; then, step by step, slide the eye sideways so
-    // the projected points are centred in the image, and scale the distance so they span `fill`
+    // the projected points are centred in the image, and scale the distance so they span f.fill
     // of the width, or of the height when that is the tighter fit.
     const double radius = glm::length(hi - lo) * 0.5;
-    const double tan_x = std::tan(fov * deg / 2.0), tan_y = tan_x * double(height) / double(width);
+    const double tan_x = std::tan(f.fov * deg / 2.0), tan_y = tan_x * double(f.height) / double(f.width);
     double dist = radius / std::sin(std::atan(std::min(tan_x, tan_y)));
     glm::dvec3 shift(0.0);
     for (int it = 0; it < 12; ++it) {  // converges geometrically; 12 steps reach ~1e-3
@@ -121,7 +119,7 @@ Camera frame_points(const std::vector<glm::dvec3>& points, double azimuth, doubl
         }
         const glm::dmat4 inv = glm::inverse(v);  // camera right and up in the world
         shift += (glm::dvec3(inv[0]) * (xl + xr) + glm::dvec3(inv[1]) * (yl + yr)) * (0.5 * dist);
-        dist *= std::max((xr - xl) / (2.0 * tan_x * fill), (yr - yl) / (2.0 * tan_y * fill));
+        dist *= std::max((xr - xl) / (2.0 * tan_x * f.fill), (yr - yl) / (2.0 * tan_y * f.fill));
         dist = std::max(dist, radius * 1.05);
     }
     cam.eye = centre + shift - d * dist;
@@ -129,12 +127,11 @@ Camera frame_points(const std::vector<glm::dvec3>& points, double azimuth, doubl
     return cam;
 }
 
-Camera frame_points_orthographic(const std::vector<glm::dvec3>& points, double azimuth, double altitude,
-                                 int width, int height, double view_width, double fill) {
+Camera frame_points_orthographic(const std::vector<glm::dvec3>& points, const Framing& f) {
     Camera cam;
     cam.projection = Projection::orthographic;
-    cam.azimuth = azimuth, cam.altitude = altitude;
-    cam.width = width, cam.height = height;
+    cam.azimuth = f.azimuth, cam.altitude = f.altitude;
+    cam.width = f.width, cam.height = f.height;
     glm::dvec3 lo(1e300), hi(-1e300);
     for (const glm::dvec3& p : points) lo = glm::min(lo, p), hi = glm::max(hi, p);
     if (points.empty()) lo = hi = glm::dvec3(0.0);
@@ -147,8 +144,8 @@ Camera frame_points_orthographic(const std::vector<glm::dvec3>& points, double a
         xl = std::min(xl, e.x), xr = std::max(xr, e.x), yl = std::min(yl, e.y), yr = std::max(yr, e.y);
     }
     if (points.empty()) xl = xr = yl = yr = 0.0;
-    const double aspect = double(width) / double(height);
-    cam.view_width = view_width > 0.0 ? view_width : std::max({xr - xl, (yr - yl) * aspect, 1e-9}) / fill;
+    const double aspect = double(f.width) / double(f.height);
+    cam.view_width = f.view_width > 0.0 ? f.view_width : std::max({xr - xl, (yr - yl) * aspect, 1e-9}) / f.fill;
     const glm::dmat4 inv = glm::inverse(v);
     const glm::dvec3 shift = (glm::dvec3(inv[0]) * (xl + xr) + glm::dvec3(inv[1]) * (yl + yr)) * 0.5;
     cam.eye = centre + shift;

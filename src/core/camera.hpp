@@ -72,23 +72,33 @@ glm::dvec3 toward_viewer(const Camera& cam, const glm::dvec3& world);
 // width at any depth (orthographic).
 double world_per_pixel(const Camera& cam, double depth);
 
-// Perspective camera looking at the box [lo, hi] from azimuth/altitude, placed so the box is
-// centred and spans `fill` of the image width, or of its height when that is the tighter fit
-// (conventions.md default: from the south-west, looking down).
-Camera frame_box(const glm::dvec3& lo, const glm::dvec3& hi, double azimuth, double altitude,
-                 double fov, int width, int height, double fill = 0.9);
+// What a framer is asked for: the view direction and the image as Camera has them (azimuth,
+// altitude and fov in degrees, width and height in pixels; fov for perspective only), and how
+// large the framed points appear: an orthographic image `view_width` world units across when it
+// is > 0 (a map scale fixes it), else the points spanning `fill` of the image width, or of its
+// height when that is the tighter fit.
+struct Framing {
+    double azimuth = 0.0, altitude = -30.0;
+    double fov = 40.0;
+    int width = 1000, height = 750;
+    double view_width = 0.0;  // orthographic only
+    double fill = 0.9;
+};
+
+// Perspective camera looking at the box [lo, hi] from f's azimuth/altitude, placed so the box is
+// centred and spans f.fill of the image (conventions.md default: from the south-west, looking
+// down).
+Camera frame_box(const glm::dvec3& lo, const glm::dvec3& hi, const Framing& f);
 
 // The same for a set of points (e.g. a model's vertices): the points themselves (not their box's
-// empty corners) are centred in the image and span `fill` of its width or height.
-Camera frame_points(const std::vector<glm::dvec3>& points, double azimuth, double altitude, double fov,
-                    int width, int height, double fill = 0.9);
+// empty corners) are centred in the image and span f.fill of its width or height.
+Camera frame_points(const std::vector<glm::dvec3>& points, const Framing& f);
 
-// Orthographic camera looking along azimuth/altitude with the points centred in the image; the
-// image spans `view_width` world units across when it is > 0 (a map scale fixes it), else the
-// points span `fill` of the width or height. The eye lies on the plane touching the front of the
-// points' box (a thousandth of its depth in front), so depths count from there and are positive.
-Camera frame_points_orthographic(const std::vector<glm::dvec3>& points, double azimuth, double altitude,
-                                 int width, int height, double view_width = 0.0, double fill = 0.9);
+// Orthographic camera looking along f's azimuth/altitude with the points centred in the image,
+// f.view_width across or fitted by f.fill (Framing). The eye lies on the plane touching the
+// front of the points' box (a thousandth of its depth in front), so depths count from there and
+// are positive.
+Camera frame_points_orthographic(const std::vector<glm::dvec3>& points, const Framing& f);
 
 // Moves an orthographic camera's eye along its view direction (the image unchanged) so its plane
 // touches the front of the box [lo, hi], a thousandth of the box's depth in front, and fits the

@@ -80,12 +80,12 @@ struct Ties {
 
 }  // namespace
 
-std::size_t break_d8_ties(std::vector<std::uint32_t>& ties, const std::vector<float>& filled,
-                          const std::vector<std::uint8_t>& flags,
-                          const CellWords& orig_bits,
-                          const CellWords& flat_mask, const GridShape& g,
-                          double dx, double dy, std::vector<std::uint8_t>& dir, int depth) {
-    Ties t{filled, flags, orig_bits, g, d8_steps(g, dx, dy), dir, flat_mask, std::clamp(depth, 1, 64)};
+std::size_t break_d8_ties(const RoutingGrid& grid, RoutingArrays& arrays, const CellWords& flat_mask, int depth) {
+    std::vector<std::uint32_t>& ties = arrays.ties;
+    const std::vector<std::uint8_t>& flags = arrays.flags;
+    std::vector<std::uint8_t>& dir = arrays.dir;
+    Ties t{arrays.z, flags, arrays.orig_bits, grid.shape, d8_steps(grid.shape, grid.dx, grid.dy), dir, flat_mask,
+           std::clamp(depth, 1, 64)};
     std::sort(ties.begin(), ties.end(), [&](std::uint32_t a, std::uint32_t b) { return t.before(a, b); });
     ties.erase(std::unique(ties.begin(), ties.end()), ties.end());
     std::size_t changed = 0;

@@ -16,18 +16,15 @@
 #include <vector>
 
 #include "drainage/d8.hpp"
+#include "drainage/routing_grid.hpp"
 
 namespace penink {
 
-// `ties`: cells reported tied by the direction stages (duplicates allowed; left deduplicated and
-// sorted in the order settled);
-// `filled`, `flags`, `orig_bits`: the fill's state (priority_flood.hpp); `flat_mask`: the flat
-// gradients resolve_flats left; `dir` re-aimed in place, lower cells first (on one level: flat
-// cells nearer their exit first). Returns the number of cells whose direction changed.
-std::size_t break_d8_ties(std::vector<std::uint32_t>& ties, const std::vector<float>& filled,
-                          const std::vector<std::uint8_t>& flags,
-                          const CellWords& orig_bits,
-                          const CellWords& flat_mask, const GridShape& g,
-                          double dx, double dy, std::vector<std::uint8_t>& dir, int depth = 16);
+// arrays.ties: cells reported tied by the direction stages (duplicates allowed; left
+// deduplicated and sorted in the order settled); arrays.z (filled), arrays.flags,
+// arrays.orig_bits: the fill's state (priority_flood.hpp); `flat_mask`: the flat gradients
+// resolve_flats left; arrays.dir re-aimed in place, lower cells first (on one level: flat cells
+// nearer their exit first). Returns the number of cells whose direction changed.
+std::size_t break_d8_ties(const RoutingGrid& g, RoutingArrays& arrays, const CellWords& flat_mask, int depth = 16);
 
 }  // namespace penink

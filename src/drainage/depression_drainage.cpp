@@ -73,12 +73,13 @@ struct Depressions {
 
 }  // namespace
 
-void drain_rims_into_depressions(const std::vector<float>& filled,
-                                 const std::vector<std::uint8_t>& flags,
-                                 const CellWords& orig_bits, const GridShape& g,
-                                 double dx, double dy, std::vector<std::uint8_t>& dir,
-                                 std::vector<std::uint32_t>* ties) {
-    const D8Steps st = d8_steps(g, dx, dy);
+void drain_rims_into_depressions(const RoutingGrid& grid, RoutingArrays& arrays) {
+    const GridShape& g = grid.shape;
+    const std::vector<float>& filled = arrays.z;
+    const std::vector<std::uint8_t>& flags = arrays.flags;
+    const CellWords& orig_bits = arrays.orig_bits;
+    std::vector<std::uint8_t>& dir = arrays.dir;
+    const D8Steps st = d8_steps(g, grid.dx, grid.dy);
     auto original = [&](std::size_t n) { return original_z(filled, flags, orig_bits, n); };
     // each rim cell (valid, not raised, next to a raised one) re-aimed once; rows in parallel
     // chunks (a cell writes only its own direction), the tied ones collected in row order
@@ -90,15 +91,14 @@ void drain_rims_into_depressions(const std::vector<float>& filled,
             dir[x] = d.code();
             if (d.tie()) out.push_back(std::uint32_t(x));
         });
-    if (ties) ties->insert(ties->end(), tied.begin(), tied.end());
+    arrays.ties.insert(arrays.ties.end(), tied.begin(), tied.end());
 }
 
-std::size_t drain_depressions(const std::vector<float>& filled, std::vector<std::uint8_t>& flags,
-                              const CellWords& orig_bits,
-                              const CellWords& flat_mask, const GridShape& g,
-                              double dx, double dy, std::vector<std::uint8_t>& dir,
-                              std::vector<std::uint32_t>* ties) {
-    Depressions d{filled, flags, orig_bits, flat_mask, g, d8_steps(g, dx, dy), dir};
+std::size_t drain_depressions(const RoutingGrid& grid, RoutingArrays& arrays, const CellWords& flat_mask) {
+    const GridShape& g = grid.shape;
+    std::vector<std::uint8_t>& flags = arrays.flags;
+    std::vector<std::uint8_t>& dir = arrays.dir;
+    Depressions d{arrays.z, flags, arrays.orig_bits, flat_mask, g, d8_steps(g, grid.dx, grid.dy), dir};
     // down the original slopes (cells in parallel chunks: each writes its own direction), low
     // points (first) and tied cells (second) noted in cell order
     const std::vector<std::pair<std::uint32_t, bool>> noted = parallel_collect<std::pair<std::uint32_t, bool>>(
@@ -117,7 +117,7 @@ std::size_t drain_depressions(const std::vector<float>& filled, std::vector<std:
     std::vector<std::uint32_t> low;
     for (const auto& [i, is_low] : noted)
         if (is_low) low.push_back(i);
-        else if (ties) ties->push_back(i);
+        else arrays.ties.push_back(i);
     return d.mark_outflows(low);
 }
 

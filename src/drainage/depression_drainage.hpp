@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "drainage/d8.hpp"
+#include "drainage/routing_grid.hpp"
 
 namespace penink {
 
@@ -26,24 +27,18 @@ inline constexpr std::uint8_t depression_outflow = 32;
 // its steepest neighbour measured on the ORIGINAL elevations, chosen among the neighbours
 // strictly lower on the FILLED surface, so a slope drains into the lake as on the real terrain
 // and a spill cell cannot point back into its own depression. Cells without such a neighbour
-// keep code 0. Re-aimed cells with tied steepest neighbours are appended to `ties` when given
-// (maybe twice).
-void drain_rims_into_depressions(const std::vector<float>& filled,
-                                 const std::vector<std::uint8_t>& flags,
-                                 const CellWords& orig_bits, const GridShape& g,
-                                 double dx, double dy, std::vector<std::uint8_t>& dir,
-                                 std::vector<std::uint32_t>* ties = nullptr);
+// keep code 0. Reads arrays.z (the filled surface), arrays.flags and arrays.orig_bits; re-aims
+// arrays.dir; re-aimed cells with tied steepest neighbours are appended to arrays.ties (maybe
+// twice).
+void drain_rims_into_depressions(const RoutingGrid& g, RoutingArrays& arrays);
 
 // Then inside, after the flat resolution.
-// `filled`: the filled surface; `flags`/`orig_bits`: the fill's state (fill_raised and original
-// elevations of raised cells); `flat_mask`: the flat gradients resolve_flats left; `dir`:
-// flat-resolved ESRI codes, re-aimed in place. Raised cells whose steepest original descent is
-// tied are appended to `ties` when given (those later found on an outflow path are skipped by
-// break_d8_ties). Returns the number of cells on outflow paths.
-std::size_t drain_depressions(const std::vector<float>& filled, std::vector<std::uint8_t>& flags,
-                              const CellWords& orig_bits,
-                              const CellWords& flat_mask, const GridShape& g,
-                              double dx, double dy, std::vector<std::uint8_t>& dir,
-                              std::vector<std::uint32_t>* ties = nullptr);
+// arrays.z: the filled surface; arrays.flags / arrays.orig_bits: the fill's state (fill_raised
+// and original elevations of raised cells), the outflow paths marked depression_outflow in
+// arrays.flags; `flat_mask`: the flat gradients resolve_flats left; arrays.dir: flat-resolved ESRI
+// codes, re-aimed in place. Raised cells whose steepest original descent is tied are appended to
+// arrays.ties (those later found on an outflow path are skipped by break_d8_ties). Returns the
+// number of cells on outflow paths.
+std::size_t drain_depressions(const RoutingGrid& g, RoutingArrays& arrays, const CellWords& flat_mask);
 
 }  // namespace penink

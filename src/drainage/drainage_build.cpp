@@ -69,15 +69,17 @@ void priority_flood_directions(DrainageGrid& g, const GridShape& shape, const Dr
     CellWords& orig = net.acc;
     report(progress, "filling depressions, flow directions", 0.0);
     std::vector<std::uint32_t> ties;
-    res.stats.filled = fill_with_directions(g.z, shape, g.dx, g.dy, flags, orig, res.dir, ties, net.basin).raised;
+    const RoutingGrid grid{shape, g.dx, g.dy};
+    RoutingArrays arrays{g.z, flags, orig, res.dir, ties};
+    res.stats.filled = fill_with_directions(grid, arrays, net.basin).raised;
     report(progress, "draining into depressions", 0.35);
-    drain_rims_into_depressions(g.z, flags, orig, shape, g.dx, g.dy, res.dir, &ties);
+    drain_rims_into_depressions(grid, arrays);
     report(progress, "resolving flats", 0.45);
     // raised cells get their codes from drain_depressions
-    res.stats.unresolved_flats = resolve_flats(g.z, shape, res.dir, flags, net.basin, &ties, false);
+    res.stats.unresolved_flats = resolve_flats(shape, arrays, net.basin, false);
     report(progress, "draining depressions, breaking ties", 0.5);
-    res.stats.outflow = drain_depressions(g.z, flags, orig, net.basin, shape, g.dx, g.dy, res.dir, &ties);
-    break_d8_ties(ties, g.z, flags, orig, net.basin, shape, g.dx, g.dy, res.dir);
+    res.stats.outflow = drain_depressions(grid, arrays, net.basin);
+    break_d8_ties(grid, arrays, net.basin);
     res.stats.ties = ties.size();  // deduplicated by break_d8_ties
     res.stats.working_bytes = bytes_of(res.dir, flags, orig, net.basin);
     swap_raised(g.z, flags, orig);

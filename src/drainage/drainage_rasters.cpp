@@ -35,9 +35,22 @@ struct QuietErrors {
     }
 };
 
+// Where one raster goes: the file written (`path`), the name errors show, its owner metadata item
+// (`name`), its georeference and size (drainage points).
+struct RasterFile {
+    const std::string& path;
+    const std::string& shown;
+    const std::string& name;
+    const DrainageGeoref& geo;
+    int cols = 0, rows = 0;
+};
+
 template <class T, class A>
-void write_raster(const std::string& path, const std::string& shown, const std::string& name, const DrainageGeoref& geo,
-                  int cols, int rows, GDALDataType type, const std::vector<T, A>& data, double nodata) {
+void write_raster(const RasterFile& file, GDALDataType type, const std::vector<T, A>& data, double nodata) {
+    const std::string& path = file.path;
+    const std::string& shown = file.shown;
+    const DrainageGeoref& geo = file.geo;
+    const int cols = file.cols, rows = file.rows;
     const QuietErrors errors;
     auto fail = [&] { throw Error("drainage", shown, "cannot write raster (" + errors.what() + ")"); };
     GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
@@ -50,7 +63,7 @@ void write_raster(const std::string& path, const std::string& shown, const std::
     std::array<double, 6> gt = geo.gt;
     ds->SetGeoTransform(gt.data());
     if (!geo.wkt.empty()) ds->SetProjection(geo.wkt.c_str());
-    ds->SetMetadataItem(owner_key, name.c_str());
+    ds->SetMetadataItem(owner_key, file.name.c_str());
     GDALRasterBand* band = ds->GetRasterBand(1);
     band->SetNoDataValue(nodata);
     if (band->RasterIO(GF_Write, 0, 0, cols, rows, const_cast<T*>(data.data()), cols, rows, type, 0, 0) != CE_None)
@@ -103,17 +116,18 @@ void write_drainage_raster(std::size_t which, const std::string& path, const std
                            const DrainageResult& res) {
     GDALAllRegister();
     const std::string name = drainage_raster_names().at(which);
+    const RasterFile file{path, shown, name, geo, cols, rows};
     if (which == 0) {
         std::vector<std::uint8_t> codes = res.dir;
         for (std::size_t i = 0; i < codes.size(); ++i)
             if (!valid[i]) codes[i] = 255;
-        write_raster(path, shown, name, geo, cols, rows, GDT_Byte, codes, 255.0);
+        write_raster(file, GDT_Byte, codes, 255.0);
     } else if (which == 1) {
-        write_raster(path, shown, name, geo, cols, rows, GDT_UInt32, res.net.acc, 0.0);
+        write_raster(file, GDT_UInt32, res.net.acc, 0.0);
     } else if (which == 2) {
-        write_raster(path, shown, name, geo, cols, rows, GDT_UInt32, res.net.basin, 0.0);
+        write_raster(file, GDT_UInt32, res.net.basin, 0.0);
     } else {
-        write_raster(path, shown, name, geo, cols, rows, GDT_Byte, res.net.order, 0.0);
+        write_raster(file, GDT_Byte, res.net.order, 0.0);
     }
 }
 

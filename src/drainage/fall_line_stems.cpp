@@ -138,11 +138,32 @@ double corridor_at(std::uint32_t k, const std::vector<double>& arc, bool joined,
     return std::min(o.max_corridor, c);
 }
 
-void trace_stem(DrapedVertex* v, const std::uint32_t* cells, std::uint32_t n, const GridField& field, int cols,
-                const FallLineOptions& o, bool joined, std::vector<glm::dvec2>& q, std::vector<glm::dvec2>& s,
-                std::vector<double>& arc) {
+// One stem to trace: its n vertices (x, y moved in place) and the grid cells they came from, and
+// whether it ends at a junction.
+struct Stem {
+    DrapedVertex* v;
+    const std::uint32_t* cells;
+    std::uint32_t n;
+    bool joined;
+};
+
+// Buffers a thread reuses from stem to stem: the cells as index-space points, smoothed, and the
+// smoothed line's arc lengths.
+struct StemScratch {
+    std::vector<glm::dvec2> q, s;
+    std::vector<double> arc;
+};
+
+void trace_stem(const Stem& stem, const GridField& field, const FallLineOptions& o, StemScratch& scratch) {
+    DrapedVertex* const v = stem.v;
+    const std::uint32_t n = stem.n;
+    const bool joined = stem.joined;
+    std::vector<glm::dvec2>& q = scratch.q;
+    std::vector<glm::dvec2>& s = scratch.s;
+    std::vector<double>& arc = scratch.arc;
+    const auto cols = std::uint32_t(field.cols());
     q.resize(n);
-    for (std::uint32_t k = 0; k < n; ++k) q[k] = {double(cells[k] % std::uint32_t(cols)), double(cells[k] / std::uint32_t(cols))};
+    for (std::uint32_t k = 0; k < n; ++k) q[k] = {double(stem.cells[k] % cols), double(stem.cells[k] / cols)};
     gaussian_smooth(q, o.sigma, s);
     arc.assign(n, 0.0);
     for (std::uint32_t k = 1; k < n; ++k) arc[k] = arc[k - 1] + norm(s[k].x - s[k - 1].x, s[k].y - s[k - 1].y);
@@ -205,13 +226,12 @@ void trace_fall_lines(DrapedLineSet& set, const std::vector<std::uint32_t>& cell
     if (g.cols < 2 || g.rows < 2) return;
     const GridField field(g);
     parallel_chunks(set.lines.size(), 1024, [&](std::size_t l0, std::size_t l1) {
-        std::vector<glm::dvec2> q, s;
-        std::vector<double> arc;
+        StemScratch scratch;
         for (std::size_t i = l0; i < l1; ++i) {
             const DrapedLine& l = set.lines[i];
             if (l.count < 3) continue;
-            trace_stem(set.vertices.data() + l.first, cells.data() + l.first, l.count, field, g.cols, o,
-                       i < joined.size() && joined[i], q, s, arc);
+            const Stem stem{set.vertices.data() + l.first, cells.data() + l.first, l.count, i < joined.size() && joined[i]};
+            trace_stem(stem, field, o, scratch);
         }
     });
 }

@@ -20,12 +20,15 @@ bool near_raised(const GridShape& g, const std::vector<std::uint8_t>& flags, int
 
 // Directions (and ties) of the cells near raised ones taken again on z, the filled surface;
 // rows in parallel chunks (a cell writes only its own direction).
-void redo_near_raised(const std::vector<float>& z, const GridShape& g, double dx, double dy,
-                      const std::vector<std::uint8_t>& flags, std::vector<std::uint8_t>& dir,
-                      std::vector<std::uint32_t>& ties) {
+void redo_near_raised(const RoutingGrid& grid, RoutingArrays& arrays) {
+    const GridShape& g = grid.shape;
+    const std::vector<float>& z = arrays.z;
+    const std::vector<std::uint8_t>& flags = arrays.flags;
+    std::vector<std::uint8_t>& dir = arrays.dir;
+    std::vector<std::uint32_t>& ties = arrays.ties;
     const auto cols = std::uint32_t(g.cols);
     std::erase_if(ties, [&](std::uint32_t i) { return near_raised(g, flags, int(i % cols), int(i / cols)); });
-    const D8Steps st = d8_steps(g, dx, dy);
+    const D8Steps st = d8_steps(g, grid.dx, grid.dy);
     auto zn = [&](std::size_t n) { return z[n]; };
     const std::vector<std::uint32_t> tied = collect_near_raised(
         g, flags, [&](int c, int r, std::size_t i, std::vector<std::uint32_t>& out) {
@@ -38,22 +41,21 @@ void redo_near_raised(const std::vector<float>& z, const GridShape& g, double dx
 
 }  // namespace
 
-FillStats fill_with_directions(std::vector<float>& z, const GridShape& g, double dx, double dy,
-                               std::vector<std::uint8_t>& flags, CellWords& orig_bits,
-                               std::vector<std::uint8_t>& dir, std::vector<std::uint32_t>& ties,
-                               CellWords& scratch, int bands) {
+FillStats fill_with_directions(const RoutingGrid& grid, RoutingArrays& arrays, CellWords& scratch, int bands) {
+    const GridShape& g = grid.shape;
     FillStats st;
     if (bands <= 0) bands = fill_bands(g.rows);
     if (bands > 1) {  // the fill takes every core, then D8 on the filled surface
-        st = priority_flood_levels_banded(z, g, flags, orig_bits, scratch, bands);
-        swap_raised(z, flags, orig_bits);
-        dir = d8_directions(z, g, dx, dy, &ties);
+        st = priority_flood_levels_banded(arrays.z, g, arrays.flags, arrays.orig_bits, scratch, bands);
+        swap_raised(arrays.z, arrays.flags, arrays.orig_bits);
+        arrays.dir = d8_directions(arrays.z, g, grid.dx, grid.dy, &arrays.ties);
         return st;
     }
-    run_beside([&] { dir = d8_directions(z, g, dx, dy, &ties, false); },  // reads z and g only, like the fill
-               [&] { st = priority_flood_levels(z, g, flags, orig_bits); });
-    swap_raised(z, flags, orig_bits);
-    redo_near_raised(z, g, dx, dy, flags, dir, ties);
+    // D8 reads z and g only, like the fill
+    run_beside([&] { arrays.dir = d8_directions(arrays.z, g, grid.dx, grid.dy, &arrays.ties, false); },
+               [&] { st = priority_flood_levels(arrays.z, g, arrays.flags, arrays.orig_bits); });
+    swap_raised(arrays.z, arrays.flags, arrays.orig_bits);
+    redo_near_raised(grid, arrays);
     return st;
 }
 

@@ -10,18 +10,17 @@
 
 #include "drainage/d8.hpp"
 #include "drainage/priority_flood.hpp"
+#include "drainage/routing_grid.hpp"
 
 namespace penink {
 
-// What priority_flood_fill(z, g, flags, orig_bits) and then dir = d8_directions(z, g, dx, dy,
-// &ties) give: z filled, flags and orig_bits as the fill leaves them, dir, and ties holding the
-// same cells (in another order: break_d8_ties sorts them). With several `bands` (0: fill_bands, one
-// per core) the fill runs in row bands on all cores (banded_fill.hpp) with `scratch` as its label
-// array (resized; pass one a later stage fills anew), then D8 on the filled surface; with one band
-// the fill runs beside D8 on the original surface, the cells near raised ones redone after.
-FillStats fill_with_directions(std::vector<float>& z, const GridShape& g, double dx, double dy,
-                               std::vector<std::uint8_t>& flags, CellWords& orig_bits,
-                               std::vector<std::uint8_t>& dir, std::vector<std::uint32_t>& ties,
-                               CellWords& scratch, int bands = 0);
+// What priority_flood_fill(z, g.shape, flags, orig_bits) and then dir = d8_directions(z, g.shape,
+// g.dx, g.dy, &ties) give, all but g in `arrays`: z filled, flags and orig_bits as the fill leaves
+// them, dir, and ties holding the same cells (in another order: break_d8_ties sorts them).
+// With several `bands` (0: fill_bands, one per core) the fill runs in row bands on all cores
+// (banded_fill.hpp) with `scratch` as its label array (resized; pass one a later stage fills
+// anew), then D8 on the filled surface; with one band the fill runs beside D8 on the original
+// surface, the cells near raised ones redone after.
+FillStats fill_with_directions(const RoutingGrid& g, RoutingArrays& arrays, CellWords& scratch, int bands = 0);
 
 }  // namespace penink

@@ -189,12 +189,10 @@ std::size_t settle_flats(Flats& s, bool raised_too) {
 // The away-from-higher BFS (distances into mask) and the towards-lower BFS (levels kept in a
 // list) on two threads, each with its own seen bits; then the gradients combined and every flat
 // cell reached settled (its neighbours' gradients all final), in the list's order.
-std::size_t resolve_flats(const std::vector<float>& z, const GridShape& g,
-                          std::vector<std::uint8_t>& dir, std::vector<std::uint8_t>& flags,
-                          CellWords& mask, std::vector<std::uint32_t>* ties, bool raised_too) {
+std::size_t resolve_flats(const GridShape& g, RoutingArrays& arrays, CellWords& mask, bool raised_too) {
     mask.resize(g.size());
-    Flats s{z.data(), g, dir.data(), flags.data(), reinterpret_cast<std::int32_t*>(mask.data()),
-            d8_offsets(g), {}, {}, ties};
+    Flats s{arrays.z.data(), g, arrays.dir.data(), arrays.flags.data(), reinterpret_cast<std::int32_t*>(mask.data()),
+            d8_offsets(g), {}, {}, &arrays.ties};
     find_edges(s);
     CellBits high(g.size()), low_seen(g.size());
     std::size_t high_cells = 0;

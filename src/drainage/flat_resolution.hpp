@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "drainage/d8.hpp"
+#include "drainage/routing_grid.hpp"
 
 namespace penink {
 
@@ -22,20 +23,17 @@ namespace penink {
 inline constexpr std::uint8_t flat_seen_high = 4, flat_seen_low = 8;
 inline constexpr std::uint8_t flat_interior = 64;  // a flat interior cell (what resolve_flats gave a code)
 
-// Gives every flat interior cell of `dir` (valid, code 0, not a boundary cell) a D8 code, on the
-// filled elevations `z`. `mask` is a scratch buffer (resized to cols*rows; pass the one that later
-// holds basins to save memory), `flags` the fill's per-cell state
+// Gives every flat interior cell of arrays.dir (valid, code 0, not a boundary cell) a D8 code, on
+// the filled elevations arrays.z. `mask` is a scratch buffer (resized to cols*rows; pass the one
+// that later holds basins to save memory), arrays.flags the fill's per-cell state
 // (priority_flood.hpp: fill_boundary marks the boundary cells; bits 2, 3 and 6 are set here).
 // Returns the number of flat cells that stay without a direction (0 on a filled surface).
 // Afterwards `mask` holds, for every cell marked flat_seen_low, its combined gradient as int32
 // (INT32_MIN on low edges); flat cells with several neighbours of least gradient are appended to
-// `ties` when given, raised cells excepted (break_d8_ties settles them). With raised_too false the
-// cells the fill raised keep code 0 (for drain_depressions, which gives every one of them its
-// code, from flat_candidates where it keeps the flat's).
-std::size_t resolve_flats(const std::vector<float>& z, const GridShape& g,
-                          std::vector<std::uint8_t>& dir, std::vector<std::uint8_t>& flags,
-                          CellWords& mask,
-                          std::vector<std::uint32_t>* ties = nullptr, bool raised_too = true);
+// arrays.ties, raised cells excepted (break_d8_ties settles them). With raised_too false the cells
+// the fill raised keep code 0 (for drain_depressions, which gives every one of them its code, from
+// flat_candidates where it keeps the flat's). arrays.orig_bits is not used.
+std::size_t resolve_flats(const GridShape& g, RoutingArrays& arrays, CellWords& mask, bool raised_too = true);
 
 // Flat cell i (flat_seen_low set, not a low edge): bit k set for each neighbour k of least
 // gradient, from `flags` and `mask` as resolve_flats left them; resolve_flats gave the cell the

@@ -146,8 +146,12 @@ Camera mesh_camera(const Scene& s, const MeshScene& ms, const std::vector<glm::v
         throw Error("scene", scene_name(s), "camera eye and target go together (give both or neither)");
     if (!ms.eye) {
         const std::vector<glm::dvec3> pts(points.begin(), points.end());
-        return frame_points(pts, sc.azimuth.value_or(default_view_azimuth),
-                            sc.altitude.value_or(default_view_altitude), sc.fov, sc.width, sc.height, 0.9);
+        return frame_points(pts, {.azimuth = sc.azimuth.value_or(default_view_azimuth),
+                                  .altitude = sc.altitude.value_or(default_view_altitude),
+                                  .fov = sc.fov,
+                                  .width = sc.width,
+                                  .height = sc.height,
+                                  .fill = 0.9});
     }
     const glm::dvec3 eye = mesh_to_world(ms, *ms.eye), d = mesh_to_world(ms, *ms.target) - eye;
     if (!(glm::length(d) > 0.0)) throw Error("scene", scene_name(s), "camera eye and target coincide");

@@ -44,7 +44,9 @@ Camera place_camera(const Scene& scene, const Terrain& meta, const GridNodes& no
     double az = sc.azimuth.value_or(default_view_azimuth);
     double alt = sc.altitude.value_or(default_view_altitude);
     if (sc.projection == Projection::orthographic) {
-        Camera cam = frame_points_orthographic(frame_samples(nodes), az, alt, sc.width, sc.height, sc.view_width, 0.95);
+        Camera cam = frame_points_orthographic(frame_samples(nodes), {.azimuth = az, .altitude = alt, .width = sc.width,
+                                                                         .height = sc.height, .view_width = sc.view_width,
+                                                                         .fill = 0.95});
         if (const auto& centre = sc.position ? sc.position : sc.target) {  // the view centred on its plan point
             const glm::dvec3 d = direction_from_angles(az, alt);
             const glm::dvec3 to_target = ground_point(scene, *centre, meta, nodes, lo, hi) - cam.eye;
@@ -53,7 +55,9 @@ Camera place_camera(const Scene& scene, const Terrain& meta, const GridNodes& no
         }
         return cam;
     }
-    if (!sc.position && !sc.target) return frame_points(frame_samples(nodes), az, alt, sc.fov, sc.width, sc.height, 0.9);
+    if (!sc.position && !sc.target)
+        return frame_points(frame_samples(nodes),
+                            {.azimuth = az, .altitude = alt, .fov = sc.fov, .width = sc.width, .height = sc.height, .fill = 0.9});
     Camera cam;
     if (sc.position) {
         const glm::dvec2 xy = parse_scene_position(*sc.position, meta, scene_file(scene));

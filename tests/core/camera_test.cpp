@@ -48,7 +48,7 @@ void box_extent(const Camera& c, glm::dvec3 lo, glm::dvec3 hi, glm::dvec2& min, 
 
 TEST(Camera, FrameBoxFillsTheWidthOfAFlatBox) {
     const glm::dvec3 lo(0, 0, 0), hi(1000, 800, 50);
-    const Camera c = frame_box(lo, hi, 45, -30, 40, 1000, 750, 0.9);
+    const Camera c = frame_box(lo, hi, {.azimuth = 45, .altitude = -30, .fov = 40, .width = 1000, .height = 750, .fill = 0.9});
     glm::dvec2 mn, mx;
     box_extent(c, lo, hi, mn, mx);
     EXPECT_NEAR((mx.x - mn.x) / 1000.0, 0.9, 0.02);
@@ -58,7 +58,7 @@ TEST(Camera, FrameBoxFillsTheWidthOfAFlatBox) {
 
 TEST(Camera, FrameBoxFitsTheHeightOfATallBox) {
     const glm::dvec3 lo(-1, -1, 0), hi(1, 1, 10);  // a tower
-    const Camera c = frame_box(lo, hi, 0, 0, 40, 1000, 750, 0.9);
+    const Camera c = frame_box(lo, hi, {.azimuth = 0, .altitude = 0, .fov = 40, .width = 1000, .height = 750, .fill = 0.9});
     glm::dvec2 mn, mx;
     box_extent(c, lo, hi, mn, mx);
     EXPECT_NEAR((mx.y - mn.y) / 750.0, 0.9, 0.02);
@@ -69,7 +69,7 @@ TEST(Camera, FrameBoxFitsTheHeightOfATallBox) {
 // the view direction, and framing puts every point in front of the eye plane and inside the image.
 TEST(Camera, OrthographicProjectsByViewWidthAndDepthAlongTheViewDirection) {
     const std::vector<glm::dvec3> pts = {{0, 0, 0}, {1000, 0, 50}, {0, 500, 120}, {1000, 500, 10}};
-    const Camera c = frame_points_orthographic(pts, 0.0, -90.0, 800, 400, 1250.0);
+    const Camera c = frame_points_orthographic(pts, {.azimuth = 0.0, .altitude = -90.0, .width = 800, .height = 400, .view_width = 1250.0});
     ASSERT_TRUE(is_orthographic(c));
     EXPECT_DOUBLE_EQ(c.view_width, 1250.0);
     EXPECT_DOUBLE_EQ(world_per_pixel(c, 1.0), 1250.0 / 800.0);
@@ -96,7 +96,7 @@ TEST(Camera, OrthographicFramingFitsTheTighterSide) {
     // An oblique orthographic view: the points span fill of the width or height, whichever binds.
     std::vector<glm::dvec3> pts;
     for (int i = 0; i < 8; ++i) pts.emplace_back(i & 1 ? 300.0 : 0.0, i & 2 ? 2000.0 : 0.0, i & 4 ? 100.0 : 0.0);
-    const Camera c = frame_points_orthographic(pts, 30.0, -35.0, 600, 600, 0.0, 0.8);
+    const Camera c = frame_points_orthographic(pts, {.azimuth = 30.0, .altitude = -35.0, .width = 600, .height = 600, .fill = 0.8});
     double xl = 1e9, xr = -1e9, yl = 1e9, yr = -1e9;
     for (const glm::dvec3& p : pts) {
         glm::dvec2 px;

@@ -11,7 +11,7 @@ using namespace penink;
 
 TEST(Georeference, NorthUpPlanViewMapsPixelCornersToMapMetres) {
     const std::vector<glm::dvec3> pts = {{0, 0, 0}, {1000, 500, 100}};
-    const Camera c = frame_points_orthographic(pts, 0.0, -90.0, 800, 400, 2000.0);
+    const Camera c = frame_points_orthographic(pts, {.azimuth = 0.0, .altitude = -90.0, .width = 800, .height = 400, .view_width = 2000.0});
     const auto g = plan_view_georeference(c, {500000.0, 4000000.0}, "WKT");
     ASSERT_TRUE(g);
     EXPECT_EQ(g->crs_wkt, "WKT");
@@ -34,7 +34,7 @@ TEST(Georeference, NorthUpPlanViewMapsPixelCornersToMapMetres) {
 
 TEST(Georeference, RotatedPlanViewIsARotatedAffineTransform) {
     const std::vector<glm::dvec3> pts = {{0, 0, 0}, {1000, 500, 100}};
-    const Camera c = frame_points_orthographic(pts, 90.0, -90.0, 500, 500, 1000.0);  // east up
+    const Camera c = frame_points_orthographic(pts, {.azimuth = 90.0, .altitude = -90.0, .width = 500, .height = 500, .view_width = 1000.0});  // east up
     const auto g = plan_view_georeference(c, {0.0, 0.0}, "");
     ASSERT_TRUE(g);
     for (const glm::dvec3 p : {glm::dvec3(0, 0, 0), glm::dvec3(1000, 500, 0), glm::dvec3(250, 100, 40)}) {
@@ -51,19 +51,19 @@ TEST(Georeference, RotatedPlanViewIsARotatedAffineTransform) {
 
 TEST(Georeference, ObliqueAndPerspectiveViewsHaveNone) {
     const std::vector<glm::dvec3> pts = {{0, 0, 0}, {1000, 500, 100}};
-    EXPECT_FALSE(plan_view_georeference(frame_points_orthographic(pts, 0.0, -60.0, 500, 500), {0, 0}, ""));
-    EXPECT_FALSE(plan_view_georeference(frame_points(pts, 0.0, -90.0, 40.0, 500, 500), {0, 0}, ""));
+    EXPECT_FALSE(plan_view_georeference(frame_points_orthographic(pts, {.azimuth = 0.0, .altitude = -60.0, .width = 500, .height = 500}), {0, 0}, ""));
+    EXPECT_FALSE(plan_view_georeference(frame_points(pts, {.azimuth = 0.0, .altitude = -90.0, .fov = 40.0, .width = 500, .height = 500}), {0, 0}, ""));
 }
 
 TEST(Georeference, MetadataSaysWhetherAndHowTheViewIsGeoreferenced) {
     const std::vector<glm::dvec3> pts = {{0, 0, 0}, {1000, 500, 100}};
-    const Camera oblique = frame_points_orthographic(pts, 0.0, -60.0, 500, 500);
-    const Camera perspective = frame_points(pts, 0.0, -90.0, 40.0, 500, 500);
+    const Camera oblique = frame_points_orthographic(pts, {.azimuth = 0.0, .altitude = -60.0, .width = 500, .height = 500});
+    const Camera perspective = frame_points(pts, {.azimuth = 0.0, .altitude = -90.0, .fov = 40.0, .width = 500, .height = 500});
     EXPECT_EQ(georeference_metadata(oblique, std::nullopt),
               (std::map<std::string, std::string>{{"georeferenced", "no (oblique view)"}}));
     EXPECT_EQ(georeference_metadata(perspective, std::nullopt),
               (std::map<std::string, std::string>{{"georeferenced", "no (perspective view)"}}));
-    const Camera plan = frame_points_orthographic(pts, 30.0, -90.0, 500, 400, 1000.0);
+    const Camera plan = frame_points_orthographic(pts, {.azimuth = 30.0, .altitude = -90.0, .width = 500, .height = 400, .view_width = 1000.0});
     const auto g = plan_view_georeference(plan, {500000.0, 4000000.0}, "WKT");
     const auto m = georeference_metadata(plan, g);
     EXPECT_EQ(m.at("georeferenced"), "yes (plan view)");

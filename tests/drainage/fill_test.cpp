@@ -172,7 +172,8 @@ TEST(FillWithDirections, EqualsFillThenDirections) {
         const std::vector<std::uint8_t> dir_a = d8_directions(a.z, s, a.dx, a.dy, &ties_a);
         CellWords labels;
         const int bands = int(seed % 3) + 1;  // 1: the fill beside D8; 2, 3: banded, D8 after
-        const FillStats st_b = fill_with_directions(b.z, s, b.dx, b.dy, flags_b, orig_b, dir_b, ties_b, labels, bands);
+        RoutingArrays arrays_b{b.z, flags_b, orig_b, dir_b, ties_b};
+        const FillStats st_b = fill_with_directions({s, b.dx, b.dy}, arrays_b, labels, bands);
         EXPECT_GT(st_a.raised, 20u);
         EXPECT_EQ(st_b.raised, st_a.raised);
         EXPECT_EQ(b.z, a.z);

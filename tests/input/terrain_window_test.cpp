@@ -40,7 +40,7 @@ TEST(TerrainWindow, WholeGridInViewKeepsEverything) {
     const Terrain t = flat_grid(101, 10);
     glm::dvec3 lo, hi;
     ASSERT_TRUE(terrain_bounds(t, lo, hi));
-    const Camera cam = frame_box(lo, hi, 225, -40, 40, 1000, 750);
+    const Camera cam = frame_box(lo, hi, {.azimuth = 225, .altitude = -40, .fov = 40, .width = 1000, .height = 750});
     const GridWindow w = visible_window(t, view_projection(cam), 0);
     EXPECT_EQ(w.c0, 0);
     EXPECT_EQ(w.r0, 0);
@@ -50,7 +50,7 @@ TEST(TerrainWindow, WholeGridInViewKeepsEverything) {
 
 TEST(TerrainWindow, CameraOnTheNorthEastQuarterKeepsAboutAQuarter) {
     const Terrain t = flat_grid(101, 10);  // x, y in -500..500
-    const Camera cam = frame_box({0, 0, 0}, {500, 500, 0}, 0, -90, 40, 800, 800);
+    const Camera cam = frame_box({0, 0, 0}, {500, 500, 0}, {.azimuth = 0, .altitude = -90, .fov = 40, .width = 800, .height = 800});
     const glm::dmat4 vp = view_projection(cam);
     const GridWindow seen = visible_nodes(t, vp);
     ASSERT_GT(seen.cols(), 40);
@@ -95,7 +95,7 @@ TEST(TerrainWindow, CellStraddlingTheViewIsKeptThoughNoNodeIsInside) {
 
 TEST(TerrainWindow, InvalidNodesAreIgnored) {
     Terrain t = flat_grid(101, 10);
-    const Camera cam = frame_box({0, 0, 0}, {500, 500, 0}, 0, -90, 40, 800, 800);
+    const Camera cam = frame_box({0, 0, 0}, {500, 500, 0}, {.azimuth = 0, .altitude = -90, .fov = 40, .width = 800, .height = 800});
     const GridWindow full = visible_window(t, view_projection(cam), 0);
     // Invalidate the columns of the visible window's west part: the window shrinks east.
     for (int r = 0; r < t.rows; ++r)

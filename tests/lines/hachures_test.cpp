@@ -36,7 +36,7 @@ HachureGrid grid_of(const Terrain& t) {
 Camera plan_view(const Terrain& t, int size) {
     std::vector<glm::dvec3> corners;
     for (const glm::vec3& p : t.pos) corners.emplace_back(p);
-    return frame_points_orthographic(corners, 0.0, -90.0, size, size, 0.0, 1.0);
+    return frame_points_orthographic(corners, {.azimuth = 0.0, .altitude = -90.0, .width = size, .height = size, .fill = 1.0});
 }
 
 TriangleMesh mesh_of(const Terrain& t) {

@@ -41,8 +41,8 @@ Terrain hills() {
 TerrainCacheKey key() { return {123456, 789, 0xabcdef, 0, true}; }
 
 Camera oblique(const StoredTerrain& t, double e) {
-    return frame_box(glm::dvec3(t.plan_lo, t.lod.z_min * e), glm::dvec3(t.plan_hi, t.lod.z_max * e), 30.0, -20.0, 40.0,
-                     800, 600);
+    return frame_box(glm::dvec3(t.plan_lo, t.lod.z_min * e), glm::dvec3(t.plan_hi, t.lod.z_max * e),
+                     {.azimuth = 30.0, .altitude = -20.0, .fov = 40.0, .width = 800, .height = 600});
 }
 
 void expect_same_mesh(const SurfaceMesh& a, const SurfaceMesh& b) {

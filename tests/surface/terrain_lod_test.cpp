@@ -60,7 +60,7 @@ const Terrain& big_hills() {
 Camera framing_camera(const Terrain& t, int width = 1000, int height = 750) {
     glm::dvec3 lo, hi;
     terrain_bounds(t, lo, hi);
-    return frame_box(lo, hi, 45.0, -30.0, 40.0, width, height);
+    return frame_box(lo, hi, {.azimuth = 45.0, .altitude = -30.0, .fov = 40.0, .width = width, .height = height});
 }
 
 // A low camera inside the DEM looking across it (grazing, much of the DEM culled).
