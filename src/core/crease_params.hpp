@@ -54,20 +54,20 @@ struct CreaseTerms {
     float slope = 0.0f, illumination = 0.0f, flow = 0.0f, distance = dm_hidden;
 };
 
-// The scene's names of the normalisations ("thirds", "paper", "rank"); nullopt for any other.
-inline std::optional<ScoreNormalisation> score_normalisation_named(const std::string& name) {
-    if (name == "thirds") return ScoreNormalisation::thirds;
-    if (name == "paper") return ScoreNormalisation::paper;
-    if (name == "rank") return ScoreNormalisation::rank;
-    return std::nullopt;
-}
-
+// The scene's name of a normalisation ("thirds", "paper", "rank").
 inline const char* score_normalisation_name(ScoreNormalisation n) {
     switch (n) {
     case ScoreNormalisation::paper: return "paper";
     case ScoreNormalisation::rank: return "rank";
     default: return "thirds";
     }
+}
+
+// The normalisation a scene names; nullopt for any other name.
+inline std::optional<ScoreNormalisation> score_normalisation_named(const std::string& name) {
+    for (const ScoreNormalisation n : {ScoreNormalisation::thirds, ScoreNormalisation::paper, ScoreNormalisation::rank})
+        if (name == score_normalisation_name(n)) return n;
+    return std::nullopt;
 }
 
 }  // namespace penink

@@ -81,28 +81,4 @@ std::vector<std::uint8_t> d8_directions(const std::vector<float>& z, const GridS
     return dir;
 }
 
-int d8_inflow_count(const std::vector<std::uint8_t>& dir, const GridShape& g, int c, int r) {
-    int n = 0;
-    for (int k = 0; k < 8; ++k) {
-        const int nc = c + d8_dc[k], nr = r + d8_dr[k];
-        if (nc < 0 || nr < 0 || nc >= g.cols || nr >= g.rows) continue;
-        // the neighbour drains back towards us when its code is the opposite direction (k+4)
-        if (dir[std::size_t(nr) * g.cols + nc] == std::uint8_t(1u << ((k + 4) & 7))) ++n;
-    }
-    return n;
-}
-
-std::vector<PointClass> classify_points(const std::vector<std::uint8_t>& dir, const GridShape& g) {
-    std::vector<PointClass> cls(g.size(), PointClass::none);
-    for (int r = 0; r < g.rows; ++r)
-        for (int c = 0; c < g.cols; ++c) {
-            const std::size_t i = std::size_t(r) * g.cols + c;
-            if (!g.valid[i]) continue;
-            if (dir[i] == 0) { cls[i] = PointClass::pit; continue; }
-            const int in = d8_inflow_count(dir, g, c, r);
-            cls[i] = in == 0 ? PointClass::ridge : in == 1 ? PointClass::channel : PointClass::junction;
-        }
-    return cls;
-}
-
 }  // namespace penink

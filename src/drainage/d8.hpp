@@ -1,8 +1,6 @@
 // D8 steepest-descent flow directions (O'Callaghan & Mark 1984) on a row-major grid (row 0 north)
 // with ESRI codes: 1=E, 2=SE, 4=S, 8=SW, 16=W, 32=NW, 64=N, 128=NE, 0 = no downhill neighbour.
 // Drop per distance: cardinal steps dx (E/W) or dy (N/S) metres, diagonals hypot(dx, dy).
-// Point classes (Mower, "Concurrent Drainage Network Rendering"): pit (no downhill), ridge (no neighbour drains into it), channel (one),
-// junction (more than one).
 #pragma once
 #include "core/big_allocator.hpp"
 #include <array>
@@ -57,13 +55,5 @@ std::vector<std::uint8_t> d8_directions(const std::vector<float>& z, const GridS
                                         double dx, double dy,
                                         std::vector<std::uint32_t>* ties = nullptr,
                                         bool two_threads = true);
-
-enum class PointClass : std::uint8_t { pit = 0, ridge = 1, channel = 2, junction = 3, none = 255 };
-
-// Number of valid neighbours whose direction points at cell (c, r).
-int d8_inflow_count(const std::vector<std::uint8_t>& dir, const GridShape& g, int c, int r);
-
-// Class of every cell from its direction and in-flow count (none for invalid cells).
-std::vector<PointClass> classify_points(const std::vector<std::uint8_t>& dir, const GridShape& g);
 
 }  // namespace penink

@@ -1,5 +1,5 @@
 // DV file layout (version 11, all little-endian; compact: what the builder's invariants give is
-// not stored, see layout_ok and derived_ok). Two parts, each with its checksum: the network
+// not stored, see layout_ok). Two parts, each with its checksum: the network
 // (header, branches, divides) and the lines (creases and ridges for drawing, line_set.hpp),
 // which a render reads and checks alone (read_drainage_db, DvParts::lines).
 //   char[8]  magic "PNKDV\0\0\0"
@@ -79,13 +79,13 @@ bool basin_totals(const DrainageDb& db, std::vector<double>& total) {
     return true;
 }
 
-// Whether `db` has the shape drainage_db_from_grid gives it, which the compact layout relies on,
-// in two checks. layout_ok (sequential, cheap; encode refuses a database failing it): branches'
-// and divides' vertices consecutive, downstream links in range, basins of the outlet branches
-// numbered 1..outlets. derived_ok (what is not stored; the builder's invariants, checked by
-// drainage_db_canonical): a branch ending at a junction repeats the downstream branch's first
-// vertex; upstream lists derived from `downstream` in branch order; divide vertices with flow 0;
-// vertex flows as head_acc and the basin totals give them (branch_flow).
+// The shape drainage_db_from_grid gives `db` that the compact layout relies on and encode checks
+// (sequential, cheap; encode refuses a database failing it): branches' and divides' vertices
+// consecutive, downstream links in range, basins of the outlet branches numbered 1..outlets. What
+// is not stored is the builder's invariant, which tests check (dv_file_test.cpp): a branch
+// ending at a junction repeats the downstream branch's first vertex; upstream lists derived from
+// `downstream` in branch order; divide vertices with flow 0; vertex flows as head_acc and the
+// basin totals give them (branch_flow).
 bool layout_ok(const DrainageDb& db) {
     std::size_t next = 0, id = 0;
     for (const DvBranch& b : db.branches) {
@@ -106,31 +106,6 @@ bool layout_ok(const DrainageDb& db) {
 
 }  // namespace dv
 
-namespace {
-
-using namespace dv;
-
-bool derived_ok(const DrainageDb& db) {
-    for (const DvBranch& b : db.branches)
-        if (b.downstream >= 0 &&
-            !(db.vertices[b.first + b.count - 1] == db.vertices[db.branches[std::size_t(b.downstream)].first]))
-            return false;
-    DvBranches linked = db.branches;  // upstream lists as the reader derives them
-    std::vector<std::uint32_t> upstream;
-    link_upstream(linked, upstream);
-    if (!(linked == db.branches) || upstream != db.upstream) return false;
-    for (const DvVertex& v : db.divide_vertices)
-        if (v.flow != 0.0f) return false;
-    std::vector<double> total;
-    if (!basin_totals(db, total)) return false;
-    for (const DvBranch& b : db.branches)
-        for (std::uint32_t k = 0; k + (b.downstream >= 0) < b.count; ++k)
-            if (db.vertices[b.first + k].flow != branch_flow(b, k, total)) return false;
-    return true;
-}
-
-}  // namespace
-
 void link_upstream(DvBranches& branches, std::vector<std::uint32_t>& upstream) {
     std::vector<std::uint32_t> count(branches.size() + 1, 0);
     for (const DvBranch& b : branches)
@@ -143,10 +118,6 @@ void link_upstream(DvBranches& branches, std::vector<std::uint32_t>& upstream) {
     upstream.assign(count.back(), 0);
     for (std::size_t b = 0; b < branches.size(); ++b)
         if (branches[b].downstream >= 0) upstream[count[std::size_t(branches[b].downstream)]++] = std::uint32_t(b);
-}
-
-bool drainage_db_canonical(const DrainageDb& db) {
-    return layout_ok(db) && derived_ok(db) && line_set_ok(db.creases) && line_set_ok(db.ridges);
 }
 
 namespace {

@@ -147,16 +147,11 @@ public:
 // links (in range, -1 at outlets), upstream branches in branch order.
 void link_upstream(DvBranches& branches, std::vector<std::uint32_t>& upstream);
 
-// Whether `db` has the shape drainage_db_from_grid gives it, all of which the compact layout
-// relies on (drainage_db.cpp): the database read back from its encoding is then `db` exactly.
-bool drainage_db_canonical(const DrainageDb& db);
-
 // Serialised bytes (header, counts, data, trailing checksum). The compact layout needs `db` in
 // the shape drainage_db_from_grid gives it; a database whose layout breaks it (vertex ranges,
 // links, basin ids: cheap checks) throws penink::Error("drainage", "", "drainage database is not
 // in the shape the builder gives it", internal); what is derived on reading (repeated junction
-// vertices, upstream lists, flows) is the builder's invariant, not checked here (see
-// drainage_db_canonical).
+// vertices, upstream lists, flows) is the builder's invariant, not checked here (tests check it).
 std::vector<std::uint8_t> encode_drainage_db(const DrainageDb& db);
 
 // Streams the encoding (4 MiB buffer) to a temp file in the same directory, then renames it. Throws

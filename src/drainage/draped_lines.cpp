@@ -144,8 +144,8 @@ std::uint64_t xy_key(const DrapedVertex& v) {
 }
 
 // The x, y keys of the lines' ends (open addressing, 12 bytes a slot, 1.5 slots an end), each
-// with the first interior vertex (in line order) at the same x, y: rejoin_line_ends' matches,
-// found before smoothing. Made on all cores: the ends inserted with compare-and-swap (where a key
+// with the first interior vertex (in line order) at the same x, y: the end matches (draped_lines.hpp,
+// step 2), found before smoothing. Made on all cores: the ends inserted with compare-and-swap (where a key
 // lands may depend on the threads, what a lookup finds does not), the interior vertices looked
 // up through a bitmap of the ends' hashes (1 bit in 8 set at most; 1 bit an end) that turns most
 // of them away before the table's random reads, and the least matching vertex kept.
@@ -293,8 +293,8 @@ std::vector<std::uint32_t, UninitAllocator<std::uint32_t>> line_ids(const Draped
     return out;
 }
 
-// rejoin_line_ends' matches of the set as it is: (line, end vertex, interior vertex) triples, in
-// line order (a line's first end before its last).
+// The end matches of the set as it is: (line, end vertex, interior vertex) triples, in line order
+// (a line's first end before its last).
 std::vector<std::uint32_t> end_matches(const DrapedLineSet& set) {
     const EndMatches matches(set);
     return parallel_collect<std::uint32_t>(set.lines.size(), 4096, [&](std::size_t l0, std::size_t l1, std::vector<std::uint32_t>& follow) {

@@ -6,8 +6,9 @@
 // 2. smoothing: the stems traced along the surface's fall line within a corridor of their cells
 //    (fall_line_stems.hpp), the divides smoothed by a Gaussian along each line
 //    (polyline_smoothing.hpp: gaussian_smooth) of three DEM cells; then each line end that sat on
-//    another line's interior vertex (a tributary's junction) is brought back to that vertex over
-//    the vertices next to it (rejoin_line_ends' matches), over all the lines of a set at once,
+//    another line's interior vertex (a tributary's junction; the same x, y bit for bit before
+//    smoothing) is brought back to that vertex over the vertices next to it, over all the lines
+//    of a set at once,
 //    and every vertex clamped to the plan box the set's vertices spanned before (the DEM's);
 // 3. the divides moved across onto the PN surface's crest (ridge_crests.hpp) once the surface
 //    below is made, their ends fixed;

@@ -179,15 +179,4 @@ PixelMask rasterize_strokes(const std::vector<Stroke>& strokes, int width, int h
     return rasterize_polylines(lines, width, height);
 }
 
-std::map<LayerKind, LineAccuracy> drawing_accuracy(const Drawing& drawing,
-                                                   const std::map<LayerKind, std::vector<ImagePolyline>>& reference,
-                                                   const std::vector<double>& tolerances) {
-    std::map<LayerKind, LineAccuracy> out;
-    for (const auto& [kind, ref] : reference) {
-        const PixelMask drawn = rasterize_strokes(drawing.layer(kind).strokes, drawing.width, drawing.height);
-        out[kind] = line_accuracy(drawn, ref, tolerances);
-    }
-    return out;
-}
-
 }  // namespace penink

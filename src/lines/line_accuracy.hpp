@@ -8,7 +8,6 @@
 // inputs: no drawn pixels -> precision 1; no reference -> recall 1; a mean over nothing is 0 and
 // a distance to nothing is +inf.
 #pragma once
-#include <map>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -40,11 +39,5 @@ LineAccuracy line_accuracy(const PixelMask& drawn, const std::vector<ImagePolyli
 // Marks every pixel a polyline passes through (sampled every 0.1 px): a 1-px-wide raster.
 PixelMask rasterize_polylines(const std::vector<ImagePolyline>& lines, int width, int height);
 PixelMask rasterize_strokes(const std::vector<Stroke>& strokes, int width, int height);
-
-// Per layer of a drawing: its strokes rasterised at 1 px against that layer's reference.
-// Layers without a reference entry are skipped.
-std::map<LayerKind, LineAccuracy> drawing_accuracy(const Drawing& drawing,
-                                                   const std::map<LayerKind, std::vector<ImagePolyline>>& reference,
-                                                   const std::vector<double>& tolerances = {1.0, 2.0});
 
 }  // namespace penink

@@ -58,8 +58,7 @@ public:
 
     // Tessellated triangles of the last edge-walk frame (0 for the other methods).
     std::size_t edge_walk_triangles() const { return edge_walk_ ? edge_walk_->triangle_count() : 0; }
-    // The edge-walk and adjacency passes themselves (null until their first frame), for tests.
-    const EdgeWalkSilPass* edge_walk_pass() const { return edge_walk_.get(); }
+    // The adjacency pass itself (null until its first frame), for tests.
     const IdAdjacencySilPass* adjacency_pass() const { return adjacency_.get(); }
 
 private:

@@ -10,6 +10,22 @@ namespace {
 
 GridShape shape_of(const DrainageGrid& g) { return {g.cols, g.rows, g.valid.data()}; }
 
+// Point classes (Mower, "Concurrent Drainage Network Rendering"): pit (no downhill), ridge (no
+// neighbour drains into it), channel (one), junction (more than one); none for invalid cells.
+enum class PointClass : std::uint8_t { pit, ridge, channel, junction, none };
+
+std::vector<PointClass> classify_points(const std::vector<std::uint8_t>& dir, const GridShape& g) {
+    const std::vector<std::uint8_t> in = inflow_counts(dir, g);
+    std::vector<PointClass> cls(g.size(), PointClass::none);
+    for (std::size_t i = 0; i < g.size(); ++i)
+        if (g.valid[i])
+            cls[i] = dir[i] == 0 ? PointClass::pit
+                     : in[i] == 0 ? PointClass::ridge
+                     : in[i] == 1 ? PointClass::channel
+                                  : PointClass::junction;
+    return cls;
+}
+
 // 3x3 slope falling to the south-east corner.
 DrainageGrid slope3() { return make_regular_grid(3, 3, 1.0, {9, 8, 7, 6, 5, 4, 3, 2, 1}); }
 

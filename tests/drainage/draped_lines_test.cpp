@@ -1,9 +1,8 @@
 // Creases and ridges draped at build time (draped_lines.hpp, dem_surface.hpp, line_set.hpp):
 // the stems walked on the network are drainage_stems' vertices exactly; smoothing and draping on
-// the DEM grid without a mesh give what smoothing (smooth_runs_xy 3, rejoin_line_ends) and
-// draping with TerrainLocator on mesh_from_terrain of the whole DEM give (volcano at factors 5
-// and 1, geographic jacksboro on its curvilinear UTM grid, a rotated affine grid, a grid with
-// nodata); the line index returns exactly the lines whose box meets a query box; the build's
+// the DEM grid without a mesh give what draping the smoothed lines with TerrainLocator on
+// mesh_from_terrain of the whole DEM gives (volcano at factors 5 and 1, geographic jacksboro on
+// its curvilinear UTM grid, a rotated affine grid, a grid with nodata); the line index returns exactly the lines whose box meets a query box; the build's
 // progress rises monotonically through the draping stage; the network bytes of volcano do not
 // depend on the lines part.
 #include <algorithm>
@@ -17,12 +16,12 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "core/vertex_run.hpp"
 #include "drainage/dem_surface.hpp"
 #include "drainage/draped_lines.hpp"
 #include "drainage/drainage_build.hpp"
 #include "drainage/stems.hpp"
 #include "input/dem_reader.hpp"
-#include "drainage/polyline_smoothing.hpp"
 #include "support/synthetic_terrain.hpp"
 #include "surface/surface_mesh.hpp"
 #include "surface/terrain_locator.hpp"
@@ -33,8 +32,8 @@ namespace {
 namespace fs = std::filesystem;
 
 // The lines as a per-frame preparation drew them from the whole DEM: the index lists laid out,
-// smoothed (smooth_runs_xy 3, rejoin_line_ends), each vertex draped with TerrainLocator on the
-// mesh (z and PN normal; off the mesh its own z and a zero normal).
+// smoothed, each vertex draped with TerrainLocator on the mesh (z and PN normal; off the mesh its
+// own z and a zero normal).
 struct LocatorLines {
     std::vector<glm::vec3> positions, normals;
     std::vector<float> flow;

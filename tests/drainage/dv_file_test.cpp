@@ -20,6 +20,32 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Whether `db` has the shape drainage_db_from_grid gives it, all of which the compact layout
+// relies on (drainage_db.cpp): the layout encode checks (dv::layout_ok, line_set_ok), and what is
+// not stored: a branch ending at a junction repeats the downstream branch's first vertex; upstream
+// lists derived from `downstream` in branch order; divide vertices with flow 0; vertex flows as
+// head_acc and the basin totals give them (branch_flow). The database read back from its encoding
+// is then `db` exactly.
+bool drainage_db_canonical(const DrainageDb& db) {
+    if (!dv::layout_ok(db) || !line_set_ok(db.creases) || !line_set_ok(db.ridges)) return false;
+    for (const DvBranch& b : db.branches)
+        if (b.downstream >= 0 &&
+            !(db.vertices[b.first + b.count - 1] == db.vertices[db.branches[std::size_t(b.downstream)].first]))
+            return false;
+    DvBranches linked = db.branches;  // upstream lists as the reader derives them
+    std::vector<std::uint32_t> upstream;
+    link_upstream(linked, upstream);
+    if (!(linked == db.branches) || upstream != db.upstream) return false;
+    for (const DvVertex& v : db.divide_vertices)
+        if (v.flow != 0.0f) return false;
+    std::vector<double> total;
+    if (!dv::basin_totals(db, total)) return false;
+    for (const DvBranch& b : db.branches)
+        for (std::uint32_t k = 0; k + (b.downstream >= 0) < b.count; ++k)
+            if (db.vertices[b.first + k].flow != dv::branch_flow(b, k, total)) return false;
+    return true;
+}
+
 fs::path temp_dir(const std::string& name) {
     const fs::path d = fs::temp_directory_path() / ("penink_dv_" + name + "_" + std::to_string(::getpid()));
     fs::remove_all(d);

@@ -1,6 +1,7 @@
 // Line accuracy metric on hand cases with exact answers: precision/recall at 1 and 2 px, mean
 // distances both ways, empty inputs, per-layer scores, and the 1-px polyline rasteriser.
 #include <cmath>
+#include <map>
 
 #include <gtest/gtest.h>
 
@@ -19,6 +20,16 @@ PixelMask mask(int w, int h) {
 }
 
 void set(PixelMask& m, int x, int y) { m.on[std::size_t(y) * m.width + x] = 1; }
+
+// Per layer of a drawing: its strokes rasterised at 1 px against that layer's reference; layers
+// without a reference entry are skipped.
+std::map<LayerKind, LineAccuracy> drawing_accuracy(const Drawing& drawing,
+                                                   const std::map<LayerKind, std::vector<ImagePolyline>>& reference) {
+    std::map<LayerKind, LineAccuracy> out;
+    for (const auto& [kind, ref] : reference)
+        out[kind] = line_accuracy(rasterize_strokes(drawing.layer(kind).strokes, drawing.width, drawing.height), ref);
+    return out;
+}
 
 }  // namespace
 
