@@ -5,6 +5,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "core/error.hpp"
@@ -76,9 +77,43 @@ PageLayout page_layout(int width, int height, const PageOptions& o, const std::s
     return L;
 }
 
+namespace {
+
+// append_number's text for |value| < 1e14 and 0..4 decimals without std::to_chars (whose
+// arbitrary-precision path costs ~500 instructions a number; an SVG frame writes ~10^5 of them):
+// value * 10^decimals is exact in x87 long double (53 significant bits times at most 10 for
+// 10^4 = 2^4 * 625 fit its 64), and rounding it to the nearest integer, ties to even, is the
+// rounding to_chars' fixed format makes of the exact binary value. Then the same trimming.
+bool append_number_exactly(std::string& out, double value, int decimals) {
+    static_assert(std::numeric_limits<long double>::digits >= 64, "x87 extended precision");
+    if (decimals < 0 || decimals > 4 || !(std::fabs(value) < 1e14)) return false;
+    static constexpr long double scale[] = {1.0L, 10.0L, 100.0L, 1000.0L, 10000.0L};
+    const long long q = std::llrintl(static_cast<long double>(value) * scale[decimals]);  // |q| < 1e18
+    if (q == 0) {  // "0", "-0" and "-0.00" all read "0"
+        out += '0';
+        return true;
+    }
+    unsigned long long a = q < 0 ? 0ull - static_cast<unsigned long long>(q) : static_cast<unsigned long long>(q);
+    char buf[32];
+    char* end = buf + sizeof buf;
+    char* p = end;
+    int frac = decimals;
+    while (frac > 0 && a % 10 == 0) a /= 10, --frac;  // trailing zeros of the fraction dropped
+    for (int k = 0; k < frac; ++k) *--p = char('0' + a % 10), a /= 10;
+    if (frac > 0) *--p = '.';
+    do *--p = char('0' + a % 10), a /= 10;
+    while (a > 0);
+    if (q < 0) *--p = '-';
+    out.append(p, end);
+    return true;
+}
+
+}  // namespace
+
 void append_number(std::string& out, double value, int decimals) {
-    char buf[64];
+    char buf[512];  // the largest double has 309 digits before the point
     if (!std::isfinite(value)) value = 0.0;
+    if (append_number_exactly(out, value, decimals)) return;
     auto r = std::to_chars(buf, buf + sizeof buf, value, std::chars_format::fixed, decimals);
     char* end = r.ptr;
     if (decimals > 0) {

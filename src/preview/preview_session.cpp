@@ -62,6 +62,10 @@ PreviewSession::PreviewSession(const Scene& scene, std::string save_path, GlBack
     if (is_mesh_scene(scene)) throw Error("cli", name, "penink preview draws terrains (a DEM or a terrain scene), not meshes");
     dem_ = fs::absolute(scene.dem).lexically_normal().string();
     base_ = scene.file.empty() ? toml::value(toml::table{}) : scene.table;
+    if (!scene.cache_dir.empty()) {  // [cache] dir or --cache-dir, for the frames and the file saved
+        if (!base_.contains("cache") || !base_.at("cache").is_table()) base_.as_table()["cache"] = toml::table{};
+        base_.at("cache").as_table()["dir"] = fs::absolute(scene.cache_dir).lexically_normal().string();
+    }
     save_path_ = fs::absolute(save_path).lexically_normal().string();
     std::string pattern = (fs::temp_directory_path() / "penink-preview-XXXXXX").string();
     if (!mkdtemp(pattern.data())) throw Error("cli", pattern, "cannot make the preview's private folder");
@@ -73,15 +77,15 @@ PreviewSession::PreviewSession(const Scene& scene, std::string save_path, GlBack
     Scene first = scene;  // the scene's own view, drawn once
     first.dem = dem_;
     apply_map_scale(first, PageOptions{});
-    RenderedFrame frame = render_scene_frame(first, *context_, FrameOutput{}, log_);
-    meta_ = open_stored_terrain(dem_, log_).meta;
-    const Camera& cam = frame.drawn.camera;
+    const SceneDrawing drawn = draw_scene(first, *context_, log_, &keep_);  // its camera and depths alone
+    meta_ = keep_.stored(first, log_).meta;
+    const Camera& cam = drawn.camera;
     PreviewView& v = initial_;
     v.orthographic = is_orthographic(cam);
     v.azimuth = cam.azimuth, v.altitude = cam.altitude, v.fov = scene.camera.fov;
     v.width = scene.camera.width, v.height = scene.camera.height;
     const glm::dvec3 dir = direction_from_angles(cam.azimuth, cam.altitude);
-    const glm::dvec3 centre = unproject_pixel(cam, frame.drawn.toward, cam.width / 2.0, cam.height / 2.0)
+    const glm::dvec3 centre = unproject_pixel(cam, drawn.toward, cam.width / 2.0, cam.height / 2.0)
                                   .value_or(cam.eye + dir * (0.5 * (cam.near_plane + cam.far_plane)));
     const double unit = linear_unit_of(meta_.crs_wkt);
     v.target_x = (centre.x + meta_.origin.x) / unit, v.target_y = (centre.y + meta_.origin.y) / unit;
@@ -126,7 +130,7 @@ PreviewFrame PreviewSession::draw(const PreviewView& view, double scale) {
     }
     Scene scene = load_view(v);
     const double load_ms = ms_since(t0);
-    RenderedFrame frame = render_scene_frame(scene, *context_, svg_in_memory(log_.verbose), log_);
+    RenderedFrame frame = render_scene_frame(scene, *context_, svg_in_memory(log_.verbose), log_, &keep_);
     log_.info("frame " + std::to_string(v.width) + "x" + std::to_string(v.height) + ": scene " +
               std::to_string(int(load_ms)) + " ms, hachures " + std::to_string(int(frame.drawn.hachure_ms)) +
               " ms, finish " + std::to_string(int(frame.written.finish_ms)) + " ms, SVG " +
@@ -166,7 +170,7 @@ std::vector<std::string> PreviewSession::export_files(const PreviewView& view, c
     check_output_targets(paths, PageOptions{}, scene.camera.width, scene.camera.height);
     FrameOutput out;
     out.files = paths;
-    render_scene_frame(scene, *context_, out, log_);
+    render_scene_frame(scene, *context_, out, log_, &keep_);
     return paths;
 }
 

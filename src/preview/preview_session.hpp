@@ -20,6 +20,7 @@
 #include "preview/preview_view.hpp"
 #include "render/gl_context.hpp"
 #include "scene/scene.hpp"
+#include "scene/terrain_keep.hpp"
 
 namespace penink {
 
@@ -68,6 +69,7 @@ private:
     std::string scene_file_;  // folder_/<save file name>
     Log log_;
     std::unique_ptr<GlContext> context_;
+    TerrainKeep keep_;        // the frames' terrain, drainage lines and renderers (before context_ goes)
     PreviewView initial_;
     Terrain meta_;            // the DEM's CRS and origin (no nodes)
     Camera camera_;           // of the last full-size frame

@@ -7,11 +7,15 @@
 namespace penink {
 
 DmPass::DmPass(const GlApi& gl, const std::vector<DmVertex>& vertices)
-    : gl_(&gl), count_(vertices.size()),
-      program_(build_program(gl, {"dm.comp.glsl"})),
-      vertices_(make_buffer(gl, vertices.data(), std::max<std::size_t>(1, vertices.size()) * sizeof(DmVertex))),
-      terms_(make_buffer(gl, nullptr, std::max<std::size_t>(1, vertices.size()) * sizeof(CreaseTerms), GL_DYNAMIC_READ)),
-      timer_(gl) {}
+    : gl_(&gl), count_(0), program_(build_program(gl, {"dm.comp.glsl"})), timer_(gl) {
+    set_vertices(vertices);
+}
+
+void DmPass::set_vertices(const std::vector<DmVertex>& vertices) {
+    count_ = vertices.size();
+    vertices_ = make_buffer(*gl_, vertices.data(), std::max<std::size_t>(1, vertices.size()) * sizeof(DmVertex));
+    terms_ = make_buffer(*gl_, nullptr, std::max<std::size_t>(1, vertices.size()) * sizeof(CreaseTerms), GL_DYNAMIC_READ);
+}
 
 double DmPass::run(const DmFrame& f, std::vector<CreaseTerms>& terms) {
     static_assert(sizeof(CreaseTerms) == 4 * sizeof(float), "one vec4 per vertex");

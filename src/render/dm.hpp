@@ -30,6 +30,8 @@ struct DmFrame {
 class DmPass {
 public:
     DmPass(const GlApi& gl, const std::vector<DmVertex>& vertices);
+    // Replaces the vertices (new buffers; the program, compiled once, stays).
+    void set_vertices(const std::vector<DmVertex>& vertices);
     // Returns GPU milliseconds; fills `terms` (one per vertex).
     double run(const DmFrame& frame, std::vector<CreaseTerms>& terms);
     std::size_t size() const { return count_; }

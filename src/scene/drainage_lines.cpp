@@ -25,6 +25,14 @@ DrainageLines::DrainageLines(const GlApi& gl, DrainageLineData data)
     }
 }
 
+void DrainageLines::set_lines(DrainageLineData data) {
+    creases_.lines = std::move(data.creases), ridges_.lines = std::move(data.ridges);
+    for (UploadedLines* set : {&creases_, &ridges_}) {
+        set->pass->set_vertices(set->lines.upload);
+        set->lines.upload = {};
+    }
+}
+
 DrainageLines::DrainageLines(const GlApi& gl, const DrainageDb& db, const Terrain& model)
     : DrainageLines(gl, prepare_drainage_lines(db, model)) {}
 

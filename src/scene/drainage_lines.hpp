@@ -35,6 +35,9 @@ public:
     DrainageLines(const GlApi& gl, const DrainageDb& db, const Terrain& model);
     // Uploads prepared data (the GL half).
     DrainageLines(const GlApi& gl, DrainageLineData data);
+    // Replaces the lines by other prepared data (uploaded into the same passes, whose programs
+    // stay compiled).
+    void set_lines(DrainageLineData data);
     // Adds the creases and ridges of one frame; DM and RIDGES GPU times go into `times`.
     void draw(const Camera& camera, const Scene& scene, GLuint toward_texture, float max_distance,
               Drawing& drawing, PassTimings& times);

@@ -57,7 +57,9 @@ struct RenderedFrame {
     FrameOutputResult written;
     bool terrain = false;
 };
-RenderedFrame render_scene_frame(Scene& scene, GlContext& context, const FrameOutput& output, const Log& log);
+// `keep`: kept between the frames of a process that draws one scene after another (frame_source.hpp).
+RenderedFrame render_scene_frame(Scene& scene, GlContext& context, const FrameOutput& output, const Log& log,
+                                 TerrainKeep* keep = nullptr);
 
 void log_finish(const FinishStats& stats, const Log& log);
 void log_frame_timings(const SceneDrawing& drawing, const Log& log);

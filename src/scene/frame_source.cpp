@@ -14,12 +14,12 @@ bool is_mesh_scene(const Scene& scene) {
     return ext == ".obj" || ext == ".ply" || ext == ".off";
 }
 
-SceneView open_scene_view(Scene& scene, GlContext& context, const Log& log) {
-    return is_mesh_scene(scene) ? open_mesh_view(scene, context, log) : open_terrain_view(scene, context, log);
+SceneView open_scene_view(Scene& scene, GlContext& context, const Log& log, TerrainKeep* keep) {
+    return is_mesh_scene(scene) ? open_mesh_view(scene, context, log) : open_terrain_view(scene, context, log, keep);
 }
 
-SceneDrawing draw_scene(Scene& scene, GlContext& context, const Log& log) {
-    SceneView view = open_scene_view(scene, context, log);
+SceneDrawing draw_scene(Scene& scene, GlContext& context, const Log& log, TerrainKeep* keep) {
+    SceneView view = open_scene_view(scene, context, log, keep);
     return view.frames->draw(view.camera, scene);
 }
 

@@ -50,10 +50,14 @@ struct SceneView {
 // True when the scene's input is a mesh (.obj .ply .off, or a scene with [mesh]).
 bool is_mesh_scene(const Scene& scene);
 
+class TerrainKeep;
+
 // The scene's view; a terrain scene's "auto" vertical exaggeration is resolved into `scene`.
-SceneView open_scene_view(Scene& scene, GlContext& context, const Log& log);
+// `keep`: what a terrain scene's view takes from and leaves to the views drawn after it
+// (scene/terrain_keep.hpp); none for a mesh.
+SceneView open_scene_view(Scene& scene, GlContext& context, const Log& log, TerrainKeep* keep = nullptr);
 
 // One frame of the scene's own view.
-SceneDrawing draw_scene(Scene& scene, GlContext& context, const Log& log);
+SceneDrawing draw_scene(Scene& scene, GlContext& context, const Log& log, TerrainKeep* keep = nullptr);
 
 }  // namespace penink

@@ -19,6 +19,7 @@
 #include "lines/trace_pixel_lines.hpp"
 #include "scene/hachure_lines.hpp"
 #include "scene/map_scale.hpp"
+#include "scene/terrain_keep.hpp"
 #include "scene/terrain_view.hpp"
 #include "surface/boundary_curves.hpp"
 #include "surface/pn_tessellation.hpp"
@@ -144,13 +145,20 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Scene
 
 TerrainFrames::TerrainFrames(GlContext& context, std::optional<DrainageLineSource> drainage, FrameTerrain terrain,
                              int width, int height, const Log&, LineCulling culling)
-    : context_(&context), terrain_(std::move(terrain)), width_(width), height_(height) {
+    : TerrainFrames(context,
+                    drainage ? std::make_shared<const DrainageLineSource>(std::move(*drainage)) : nullptr,
+                    std::move(terrain), width, height, std::move(culling), nullptr) {}
+
+TerrainFrames::TerrainFrames(GlContext& context, std::shared_ptr<const DrainageLineSource> drainage,
+                             FrameTerrain terrain, int width, int height, LineCulling culling,
+                             TerrainGpuKeep* gpu)
+    : context_(&context), terrain_(std::move(terrain)), width_(width), height_(height), gpu_(gpu) {
     if (!drainage) return;
     LineBox box;
     box.lo = glm::vec2(terrain_.lo), box.hi = glm::vec2(terrain_.hi), box.exaggeration = terrain_.meta.vertical_exaggeration;
     box.sea_level = terrain_.nodes.sea_level;
-    pending_lines_ = std::async(std::launch::async, [db = std::move(*drainage), box, culling = std::move(culling)] {
-        return prepare_drainage_lines(db, box, culling);
+    pending_lines_ = std::async(std::launch::async, [db = std::move(drainage), box, culling = std::move(culling)] {
+        return prepare_drainage_lines(*db, box, culling);
     });
 }
 
@@ -192,7 +200,8 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
         mesh_ = frame_mesh(camera, frame);
         mesh_is_full_ = full;
         if (renderer_) renderer_->set_surface(mesh_);
-        else renderer_ = std::make_unique<TerrainRenderer>(context_->gl(), mesh_, width_, height_);
+        else if (gpu_) renderer_ = gpu_->renderers.get(context_->gl(), mesh_, width_, height_);
+        else renderer_ = std::make_shared<TerrainRenderer>(context_->gl(), mesh_, width_, height_);
     }
     out.times.select = ms_since(t_select);
     out.triangles = mesh_.tri.size();
@@ -206,8 +215,12 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
         out.times.sil = ms_since(t0);
     }
     out.drawing.width = camera.width, out.drawing.height = camera.height;
-    if (pending_lines_.valid())
-        lines_ = std::make_unique<DrainageLines>(context_->gl(), pending_lines_.get());
+    if (pending_lines_.valid()) {
+        std::unique_ptr<DrainageLines>& made = gpu_ ? gpu_->lines : own_lines_;
+        if (made) made->set_lines(pending_lines_.get());
+        else made = std::make_unique<DrainageLines>(context_->gl(), pending_lines_.get());
+        lines_ = made.get();
+    }
     if (lines_)
         lines_->draw(camera, frame, renderer_->surface_pass().toward_texture(),
                      max_visible_distance(images.toward), out.drawing, out.times);
@@ -231,17 +244,19 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
     return out;
 }
 
-SceneView open_terrain_view(Scene& scene, GlContext& context, const Log& log) {
-    const SceneTerrain dem = open_scene_terrain(scene, log);
+SceneView open_terrain_view(Scene& scene, GlContext& context, const Log& log, TerrainKeep* keep) {
+    TerrainKeep once;  // without a keep: what this view reads and builds, for it alone
+    TerrainKeep& k = keep ? *keep : once;
+    const SceneTerrain dem = k.terrain(scene, log);
     SceneView view;
     view.camera = scene_camera(scene, dem);
-    std::optional<DrainageLineSource> drainage = scene_drainage(scene, dem, log);
+    std::shared_ptr<const DrainageLineSource> drainage = k.drainage(scene, dem, log);
     const auto t0 = Clock::now();
     FrameTerrain model = terrain_for_view(dem, view.camera, scene, log);
     log.info("view window found (" + std::to_string(int(ms_since(t0))) + " ms)");
     view.frames = std::make_unique<TerrainFrames>(context, std::move(drainage), std::move(model), view.camera.width,
-                                                  view.camera.height, log,
-                                                  LineCulling{{view.camera}, line_culling_px(scene)});
+                                                  view.camera.height, LineCulling{{view.camera}, line_culling_px(scene)},
+                                                  keep ? &keep->gpu() : nullptr);
     return view;
 }
 

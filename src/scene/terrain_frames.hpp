@@ -12,12 +12,26 @@
 #include "scene/frame_source.hpp"
 #include "scene/terrain_view.hpp"
 #include "surface/surface_mesh.hpp"
+#include "render/terrain_renderer_pool.hpp"
 #include "surface/terrain_lod.hpp"
 
 namespace penink {
 
+class TerrainKeep;
+
+// What TerrainFrames leave on the GPU for the TerrainFrames that follow on the same context
+// (terrain_keep.hpp): a renderer per image size drawn last and the drainage lines' DM passes, their
+// programs compiled once (llvmpipe compiles a program's shaders again for every new program
+// object, at its first draw); each frame uploads its own mesh and lines into them.
+struct TerrainGpuKeep {
+    TerrainRendererPool renderers;
+    std::unique_ptr<DrainageLines> lines;
+};
+
 // The scene's DEM read, its camera placed, the DEM cropped to that view and set up for frames.
-SceneView open_terrain_view(Scene& scene, GlContext& context, const Log& log);
+// With a keep (terrain_keep.hpp; it must outlive the view): what it holds is used, and what is
+// read or made is kept there.
+SceneView open_terrain_view(Scene& scene, GlContext& context, const Log& log, TerrainKeep* keep = nullptr);
 
 // The scene's drainage lines (cached beside the DEM: drainage/drainage_build.hpp), read or built
 // with progress on a terminal; none when the scene draws neither creases nor ridges. A valid
@@ -40,6 +54,10 @@ public:
     // ridge cannot be drawn (prepare_drainage_lines); default: every line of the modelled box.
     TerrainFrames(GlContext& context, std::optional<DrainageLineSource> drainage, FrameTerrain terrain, int width,
                   int height, const Log& log, LineCulling culling = {});
+    // The same with drainage lines shared with other frame sources (null: none) and, when given,
+    // the renderer and DM passes taken from `gpu` (which must outlive the frames) instead of made.
+    TerrainFrames(GlContext& context, std::shared_ptr<const DrainageLineSource> drainage, FrameTerrain terrain,
+                  int width, int height, LineCulling culling, TerrainGpuKeep* gpu);
     // A Terrain in memory, all of it modelled (frame_terrain).
     TerrainFrames(GlContext& context, std::optional<DrainageLineSource> drainage, Terrain terrain, int width, int height,
                   const Log& log, LineCulling culling = {});
@@ -63,8 +81,10 @@ private:
     SurfaceMesh mesh_;
     bool mesh_is_full_ = false;  // mesh_ is (and the renderer holds) the full-resolution mesh
     int width_, height_;
-    std::unique_ptr<TerrainRenderer> renderer_;  // made with the first frame's mesh
-    std::unique_ptr<DrainageLines> lines_;
+    TerrainGpuKeep* gpu_ = nullptr;              // where renderer_ and lines_ come from; null: made here
+    std::shared_ptr<TerrainRenderer> renderer_;  // with the first frame's mesh
+    std::unique_ptr<DrainageLines> own_lines_;
+    DrainageLines* lines_ = nullptr;             // own_lines_ or gpu_'s
     std::unique_ptr<CoastlineLines> coast_;  // with water: the shore, made with the first frame
     std::future<DrainageLineData> pending_lines_;  // prepared on another core during the first frame
 };

@@ -269,7 +269,10 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, c
 }
 
 SceneTerrain open_scene_terrain(Scene& scene, const Log& log) {
-    StoredTerrain stored = open_stored_terrain(scene.dem, log, scene.cache_dir);
+    return scene_terrain(scene, open_stored_terrain(scene.dem, log, scene.cache_dir), log);
+}
+
+SceneTerrain scene_terrain(Scene& scene, StoredTerrain stored, const Log& log, const TerrainLod* sea_pyramid) {
     resolve_vertical_exaggeration(scene, stored.lod.z_min, stored.lod.z_max, stored.plan_lo, stored.plan_hi, log);
     const double e = scene.vertical_exaggeration;
     if (!std::isfinite(e) || e <= 0.0) throw Error("scene", scene_file(scene), "vertical exaggeration must be > 0");
@@ -281,7 +284,9 @@ SceneTerrain open_scene_terrain(Scene& scene, const Log& log) {
         // DEM wholly under water is framed and seen at the sea's height); O(nodes) once per
         // command, held in memory.
         const TerrainLod& dry = t.stored.lod;
-        if (t.sea_level > double(dry.z_min)) {
+        if (t.sea_level > double(dry.z_min) && sea_pyramid && sea_pyramid->sea_level == t.sea_level) {
+            t.stored.lod = *sea_pyramid;
+        } else if (t.sea_level > double(dry.z_min)) {
             const Clock::time_point t0 = Clock::now();
             t.stored.lod = build_terrain_lod(t.stored.drawn(1.0, t.sea_level), 1.0);
             std::ostringstream msg;

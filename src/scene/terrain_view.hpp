@@ -76,6 +76,10 @@ struct SceneTerrain {
 // open_scene_terrain resolves the scene's "auto" vertical exaggeration first.
 StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, const std::string& cache_dir = "");
 SceneTerrain open_scene_terrain(Scene& scene, const Log& log);
+// The same from the DEM's stored terrain opened before (open_stored_terrain, no sea level in its
+// pyramid); `sea_pyramid`, when its sea level is the scene's, is the pyramid built for it before
+// (a process that draws many scenes of one DEM builds it once).
+SceneTerrain scene_terrain(Scene& scene, StoredTerrain stored, const Log& log, const TerrainLod* sea_pyramid = nullptr);
 
 Camera scene_camera(const Scene& scene, const SceneTerrain& terrain);
 Camera scene_camera(const Scene& scene, const Terrain& terrain);
