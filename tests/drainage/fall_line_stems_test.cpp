@@ -55,15 +55,21 @@ struct Cone {
         drainage_db_from_grid(g, {}, &res);
     }
     DrapedLineSet stems(std::vector<std::uint32_t>& cells) const { return network_stems(g, res.dir, res.net, &cells); }
+    // Its stems as D8 paths and traced with the build's options: smoothed as the build does
+    // (smooth_stems: the trace, then the ends) or only traced (trace_fall_lines).
+    std::pair<DrapedLineSet, DrapedLineSet> d8_and_traced(bool smooth) const {
+        std::vector<std::uint32_t> cells;
+        std::pair<DrapedLineSet, DrapedLineSet> out{stems(cells), DrapedLineSet{}};
+        out.second = out.first;
+        if (smooth) smooth_stems(out.second, cells, g, fall_line_options(g));
+        else trace_fall_lines(out.second, cells, g, fall_line_options(g));
+        return out;
+    }
 };
 
 TEST(FallLineStems, ConeCreasesAreRadialWithTheBuildsOptions) {
-    const Cone cone;
-    std::vector<std::uint32_t> cells;
-    const DrapedLineSet d8 = cone.stems(cells);
-    DrapedLineSet traced = d8;
-    // what build_draped_lines does: the trace with the build's options, then the ends joined
-    smooth_stems(traced, cells, cone.g, fall_line_options(cone.g));
+    // what build_draped_lines does: the trace with the build's options, then the ends
+    const auto [d8, traced] = Cone().d8_and_traced(true);
     // the apex's neighbourhood (where one cell spans a large angle) left out: 30 m
     const auto before = radial_angles(d8, 30.0), after = radial_angles(traced, 30.0);
     ASSERT_GT(after.size(), 10000u);
@@ -178,11 +184,8 @@ TEST(FallLineStems, TributariesWhoseFallLineReachesTheFloorJoinIt) {
 // trunk end where they meet it).
 TEST(FallLineStems, TributariesWhoseFallLineLeadsElsewhereEndOnIt) {
     const Cone cone;
-    std::vector<std::uint32_t> cells;
-    const DrapedLineSet d8 = cone.stems(cells);
-    DrapedLineSet traced = d8;
+    const auto [d8, traced] = cone.d8_and_traced(true);
     const FallLineOptions o = fall_line_options(cone.g);
-    smooth_stems(traced, cells, cone.g, o);
     std::size_t matched = 0;
     const std::size_t near = ends_at_their_trunk(d8, traced, o.meet * 2.0 + 1e-3, &matched);
     std::printf("cone: %zu of %zu tributaries end at their trunk\n", near, matched);
@@ -193,11 +196,7 @@ TEST(FallLineStems, TributariesWhoseFallLineLeadsElsewhereEndOnIt) {
 // A trace that reaches the grid's edge stops there: no vertex jumps back to the D8 path's centre
 // line, so no segment of a stem is longer than a few cells.
 TEST(FallLineStems, TracesStopAtTheGridsEdge) {
-    const Cone cone;
-    std::vector<std::uint32_t> cells;
-    const DrapedLineSet d8 = cone.stems(cells);
-    DrapedLineSet traced = d8;
-    trace_fall_lines(traced, cells, cone.g, fall_line_options(cone.g));
+    const auto traced = Cone().d8_and_traced(false).second;
     double longest = 0.0;
     for (const DrapedLine& l : traced.lines)
         for (std::uint32_t k = 1; k < l.count; ++k) {
