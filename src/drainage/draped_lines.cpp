@@ -395,10 +395,11 @@ double grid_cell_length(const DrainageGrid& g) {
 }
 
 // Each stem end that sat on another line's interior vertex (end_matches' triples), after
-// tracing: the stem ends at its first vertex, among its last `reach`, within `meet` (plan units)
-// of the line it joins (that line's vertices within `reach` of the matched one), its later
-// vertices moved onto that vertex (the tributary stops where its fall line reaches its trunk, no
-// overshoot along it); a stem whose trace never comes that close keeps its trace to the end (a
+// tracing: the stem ends at its vertex, among its last `reach`, that comes closest to the line it
+// joins (that line's vertices within `reach` of the matched one) when that is within `meet`
+// (plan units), its later vertices moved onto it (the tributary stops where its fall line
+// reaches its trunk, no overshoot along it); a stem whose trace never comes that close keeps its
+// trace to the end (a
 // cone's D8 paths merge where its fall lines never do). No vertex is moved sideways: the stem
 // keeps its fall line's direction to its end. All ends found first, then moved (the line joined
 // may be a stem that ends too).
@@ -416,13 +417,13 @@ void end_stems_where_they_meet(DrapedLineSet& set, const std::vector<std::uint32
             const std::int64_t lo = std::max<std::int64_t>(into.first, std::int64_t(t) - reach);
             const std::int64_t hi = std::min<std::int64_t>(std::int64_t(into.first) + into.count - 1, std::int64_t(t) + reach);
             const std::uint32_t from = std::uint32_t(std::max<std::int64_t>(l.first + 1, std::int64_t(e) - reach));
-            for (std::uint32_t i = from; i <= e && stop[k] == 0xffffffffu; ++i) {
+            double closest = meet;  // the closest approach within meet (the first of equals)
+            for (std::uint32_t i = from; i <= e; ++i) {
                 const DrapedVertex& v = set.vertices[i];
-                for (std::int64_t j = lo; j <= hi; ++j)
-                    if (plan_length(double(set.vertices[j].x) - v.x, double(set.vertices[j].y) - v.y) <= meet) {
-                        stop[k] = i;
-                        break;
-                    }
+                for (std::int64_t j = lo; j <= hi; ++j) {
+                    const double d = plan_length(double(set.vertices[j].x) - v.x, double(set.vertices[j].y) - v.y);
+                    if (d < closest || (d == closest && stop[k] == 0xffffffffu)) closest = d, stop[k] = i;
+                }
             }
         }
     });
