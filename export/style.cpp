@@ -78,7 +78,7 @@ Style default_style() {
     set_taper(s.layer(LayerKind::hachures), 2.0, 0.4, 0.6, 1.8);
     set_taper(s.layer(LayerKind::ridges), 6.0, 0.15, 0.35, 1.65);
     set_taper(s.layer(LayerKind::creases), 6.0, 0.15, 0.5, 1.75);
-    set_taper(s.layer(LayerKind::silhouettes), 8.0, 0.3, 0.5, 1.25);
+    set_taper(s.layer(LayerKind::silhouettes), 8.0, 0.3, 0.4, 1.25);
     // map furniture (lines/map_furniture.hpp): a heavy neatline, fine ticks, labels in points
     const struct { LayerKind k; double w, pt; } furniture[] = {
         {LayerKind::neatline, 1.5, 0.0}, {LayerKind::grid, 0.5, 6.0}, {LayerKind::scale_bar, 0.8, 7.0},

@@ -103,7 +103,9 @@ struct DrainageDb {
 // render reading vertices from the file checks block by block.
 // 12: the creases traced on the DEM nodes' own fall line in a corridor that widens on slopes, the
 // ridges moved onto the surface's crest (ridge_crests.hpp) (content, not layout).
-inline constexpr std::uint32_t drainage_db_version = 12;
+// 13: a crease whose fall line does not lead back to its junction ends where its trace ends, and
+// a trace leaving the grid stops there (content, not layout).
+inline constexpr std::uint32_t drainage_db_version = 13;
 
 // Fingerprint of the DEM file at `dem_path` with the given resample factor: its size, mtime and
 // a hash of its whole content (streamed) and of every side file GDAL may read with it (world

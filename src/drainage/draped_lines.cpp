@@ -308,14 +308,11 @@ std::vector<std::uint32_t> end_matches(const DrapedLineSet& set) {
     });
 }
 
-// Each matched end brought to its line's new x, y: first its target slides along the line it
-// joins to that line's vertex nearest the end, within `window` vertices of the matched one and
-// on the same line (the junction keeps its two lines and moves along the one it joins: the
-// tributary meets the main stem where its own trace comes closest); then three rounds in which
-// every end's gap is closed over the vertices next to it, as many as make the gap at most tan 8
-// degrees of their length (at least `ramp`; weights (1 + cos(pi j / m)) / 2 over m vertices,
-// j = 0 at the end: the line bends smoothly to its junction; all gaps of a round measured before
-// any is closed, so the result does not depend on the order), then the end set to it exactly.
+// Each matched end brought to its line's new x, y: three rounds in which every end's gap to its
+// target is closed over the vertices next to it, as many as make the gap at most tan 8 degrees of
+// their length (at least `ramp`; weights (1 + cos(pi j / m)) / 2 over m vertices, j = 0 at the
+// end: the line bends smoothly to its junction; all gaps of a round measured before any is
+// closed, so the result does not depend on the order), then the end set to it exactly.
 // On all cores: the gaps of a round in any order, the closing by whole lines (the two ends of a
 // line in turn, as their ramps may meet), each moving only its own line's vertices.
 inline double plan_length(double x, double y) { return std::sqrt(x * x + y * y); }
@@ -343,29 +340,10 @@ private:
     }
 };
 
-// `line_of`: the line of each vertex (with window > 0).
-template <class LineOf>
-void join_ends(DrapedLineSet& set, std::vector<std::uint32_t> follow, int ramp, int window, const LineOf& line_of) {
+void join_ends(DrapedLineSet& set, const std::vector<std::uint32_t>& follow, int ramp) {
     constexpr double tan_bend = 0.14054083470239145;  // tan 8 degrees
     const std::size_t nf = follow.size() / 3;
     std::vector<glm::vec2> gap(nf);
-    if (window > 0)
-        parallel_chunks(nf, 4096, [&](std::size_t k0, std::size_t k1) {
-            for (std::size_t k = k0; k < k1; ++k) {
-                const DrapedVertex& e = set.vertices[follow[3 * k + 1]];
-                const std::uint32_t t = follow[3 * k + 2];
-                const DrapedLine& into = set.lines[line_of[t]];
-                // interior vertices only (an end's target stays an interior vertex)
-                const std::uint32_t lo = std::max<std::int64_t>(std::int64_t(into.first) + 1, std::int64_t(t) - window);
-                const std::uint32_t hi =
-                    std::min<std::int64_t>(std::int64_t(into.first) + into.count - 2, std::int64_t(t) + window);
-                double best = 1e300;
-                for (std::uint32_t j = lo; j <= hi; ++j) {
-                    const double d = plan_length(double(set.vertices[j].x) - e.x, double(set.vertices[j].y) - e.y);
-                    if (d < best) best = d, follow[3 * k + 2] = j;
-                }
-            }
-        });
     // the follows of each line together (end_matches gives them in line order): closed by one task
     std::vector<std::uint32_t> group;
     for (std::size_t k = 0; k < nf; ++k)
@@ -404,6 +382,56 @@ void join_ends(DrapedLineSet& set, std::vector<std::uint32_t> follow, int ramp, 
         for (std::size_t k = k0; k < k1; ++k) {
             set.vertices[follow[3 * k + 1]].x = set.vertices[follow[3 * k + 2]].x;
             set.vertices[follow[3 * k + 1]].y = set.vertices[follow[3 * k + 2]].y;
+        }
+    });
+}
+
+// A grid cell's plan length: the mean of a column's and a row's step at the grid's middle.
+double grid_cell_length(const DrainageGrid& g) {
+    if (g.cols < 2 || g.rows < 2) return 1.0;
+    const int c = (g.cols - 2) / 2, r = (g.rows - 2) / 2;
+    const glm::dvec2 o = grid_xy(g, c, r), u = grid_xy(g, c + 1, r) - o, v = grid_xy(g, c, r + 1) - o;
+    return 0.5 * (plan_length(u.x, u.y) + plan_length(v.x, v.y));
+}
+
+// Each stem end that sat on another line's interior vertex (end_matches' triples), after
+// tracing: the stem ends at its vertex, among its last `reach`, that comes closest to the line it
+// joins (that line's vertices within `reach` of the matched one) when that is within `meet`
+// (plan units), its later vertices moved onto it (the tributary stops where its fall line
+// reaches its trunk, no overshoot along it); a stem whose trace never comes that close keeps its
+// trace to the end (a
+// cone's D8 paths merge where its fall lines never do). No vertex is moved sideways: the stem
+// keeps its fall line's direction to its end. All ends found first, then moved (the line joined
+// may be a stem that ends too).
+template <class LineOf>
+void end_stems_where_they_meet(DrapedLineSet& set, const std::vector<std::uint32_t>& follow, int reach, double meet,
+                               const LineOf& line_of) {
+    const std::size_t nf = follow.size() / 3;
+    std::vector<std::uint32_t> stop(nf, 0xffffffffu);  // the vertex the stem ends at, none: it keeps its trace
+    parallel_chunks(nf, 4096, [&](std::size_t k0, std::size_t k1) {
+        for (std::size_t k = k0; k < k1; ++k) {
+            const DrapedLine& l = set.lines[follow[3 * k]];
+            const std::uint32_t e = follow[3 * k + 1], t = follow[3 * k + 2];
+            if (e != l.first + l.count - 1) continue;  // a stem's first vertex is its source
+            const DrapedLine& into = set.lines[line_of[t]];
+            const std::int64_t lo = std::max<std::int64_t>(into.first, std::int64_t(t) - reach);
+            const std::int64_t hi = std::min<std::int64_t>(std::int64_t(into.first) + into.count - 1, std::int64_t(t) + reach);
+            const std::uint32_t from = std::uint32_t(std::max<std::int64_t>(l.first + 1, std::int64_t(e) - reach));
+            double closest = meet;  // the closest approach within meet (the first of equals)
+            for (std::uint32_t i = from; i <= e; ++i) {
+                const DrapedVertex& v = set.vertices[i];
+                for (std::int64_t j = lo; j <= hi; ++j) {
+                    const double d = plan_length(double(set.vertices[j].x) - v.x, double(set.vertices[j].y) - v.y);
+                    if (d < closest || (d == closest && stop[k] == 0xffffffffu)) closest = d, stop[k] = i;
+                }
+            }
+        }
+    });
+    parallel_chunks(nf, 4096, [&](std::size_t k0, std::size_t k1) {
+        for (std::size_t k = k0; k < k1; ++k) {
+            if (stop[k] == 0xffffffffu) continue;
+            const DrapedVertex at = set.vertices[stop[k]];
+            for (std::uint32_t i = stop[k] + 1; i <= follow[3 * k + 1]; ++i) set.vertices[i].x = at.x, set.vertices[i].y = at.y;
         }
     });
 }
@@ -486,7 +514,7 @@ void smooth_lines(DrapedLineSet& set, double sigma) {
     glm::vec2 lo, hi;
     vertex_box(set, lo, hi);
     smooth_each_line(set, sigma);
-    join_ends(set, follow, int(std::ceil(3.0 * sigma)), 0, std::vector<std::uint32_t>());
+    join_ends(set, follow, int(std::ceil(3.0 * sigma)));
     clamp_to_box(set, lo, hi);
 }
 
@@ -495,11 +523,9 @@ void smooth_stems(DrapedLineSet& set, const std::vector<std::uint32_t>& cells, c
     const std::vector<std::uint32_t> follow = end_matches(set);
     glm::vec2 lo, hi;
     vertex_box(set, lo, hi);
-    std::vector<std::uint8_t> joined(set.lines.size(), 0);  // lines whose last vertex is a junction
-    for (std::size_t k = 0; k < follow.size(); k += 3)
-        if (follow[k + 1] != set.lines[follow[k]].first) joined[follow[k]] = 1;
-    trace_fall_lines(set, cells, g, options, joined);
-    join_ends(set, follow, int(std::ceil(3.0 * options.sigma)), int(std::ceil(2.0 * options.corridor)), line_ids(set));
+    trace_fall_lines(set, cells, g, options);
+    end_stems_where_they_meet(set, follow, int(std::ceil(4.0 * options.corridor)), options.meet * grid_cell_length(g),
+                              line_ids(set));
     clamp_to_box(set, lo, hi);
 }
 

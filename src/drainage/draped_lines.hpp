@@ -8,7 +8,8 @@
 //    (polyline_smoothing.hpp: gaussian_smooth) of three DEM cells; then each line end that sat on
 //    another line's interior vertex (a tributary's junction; the same x, y bit for bit before
 //    smoothing) is brought back to that vertex over the vertices next to it, over all the lines
-//    of a set at once,
+//    of a set at once (a stem instead ends where its trace first comes within
+//    FallLineOptions::meet of the line it joins, or where its trace ends: fall_line_stems.hpp),
 //    and every vertex clamped to the plan box the set's vertices spanned before (the DEM's);
 // 3. the divides moved across onto the PN surface's crest (ridge_crests.hpp) once the surface
 //    below is made, their ends fixed;
@@ -52,8 +53,9 @@ DrapedLineSet listed_lines(const DvVertices& vertices, const std::vector<std::ve
 // Step 2 for lines without grid cells (the divides; listed_lines): Gaussian smoothing of `sigma`
 // vertices, then the ends joined.
 void smooth_lines(DrapedLineSet& set, double sigma = 2.0);
-// Step 2 for stems (network_stems with its cells): trace_fall_lines, then the ends joined over
-// at least 3 options.sigma vertices.
+// Step 2 for stems (network_stems with its cells): trace_fall_lines, then each stem ending at a
+// junction ends where its trace first comes within options.meet cells of the line it joins (among
+// its last 4 options.corridor vertices), else where its trace ends.
 void smooth_stems(DrapedLineSet& set, const std::vector<std::uint32_t>& cells, const DrainageGrid& g,
                   const FallLineOptions& options);
 // Steps 4 and 5 on a smoothed set.

@@ -130,53 +130,50 @@ bool fall_direction(const GridField& field, const Frame& f, glm::dvec2 p, glm::d
     return true;
 }
 
-// The corridor's radius at vertex k + 1 of a stem whose centre line has arc lengths `arc` (see
-// the header).
-double corridor_at(std::uint32_t k, const std::vector<double>& arc, bool joined, const FallLineOptions& o, double run) {
-    double c = run;
-    if (joined) c = std::min(c, o.corridor + o.narrow_to_joined_end * (arc.back() - arc[k + 1]));
-    return std::min(o.max_corridor, c);
+// A fifth of the way back along `offset` (from the trace to S), at most half a step `ds`: a trace
+// far off S comes back gradually instead of jumping.
+glm::dvec2 back_towards(glm::dvec2 offset, double ds) {
+    const glm::dvec2 b = 0.2 * offset;
+    const double len = norm(b.x, b.y), cap = 0.5 * ds;
+    return len > cap ? b * (cap / len) : b;
 }
 
-// One stem to trace: its n vertices (x, y moved in place) and the grid cells they came from, and
-// whether it ends at a junction.
+// One stem to trace: its n vertices (x, y moved in place) and the grid cells they came from.
 struct Stem {
     DrapedVertex* v;
     const std::uint32_t* cells;
     std::uint32_t n;
-    bool joined;
 };
 
-// Buffers a thread reuses from stem to stem: the cells as index-space points, smoothed, and the
-// smoothed line's arc lengths.
+// Buffers a thread reuses from stem to stem: the cells as index-space points, and smoothed.
 struct StemScratch {
     std::vector<glm::dvec2> q, s;
-    std::vector<double> arc;
 };
 
 void trace_stem(const Stem& stem, const GridField& field, const FallLineOptions& o, StemScratch& scratch) {
     DrapedVertex* const v = stem.v;
     const std::uint32_t n = stem.n;
-    const bool joined = stem.joined;
     std::vector<glm::dvec2>& q = scratch.q;
     std::vector<glm::dvec2>& s = scratch.s;
-    std::vector<double>& arc = scratch.arc;
     const auto cols = std::uint32_t(field.cols());
     q.resize(n);
     for (std::uint32_t k = 0; k < n; ++k) q[k] = {double(stem.cells[k] % cols), double(stem.cells[k] / cols)};
     gaussian_smooth(q, o.sigma, s);
-    arc.assign(n, 0.0);
-    for (std::uint32_t k = 1; k < n; ++k) arc[k] = arc[k - 1] + norm(s[k].x - s[k - 1].x, s[k].y - s[k - 1].y);
     glm::dvec2 p = s[0];
     // the grid's metric at the source serves the whole stem (a UTM-projected grid's cells change
     // shape by far less than a percent along one)
     const Frame f = field.frame(p);
     const double widen_cos = std::cos(o.widen_max_deg * deg), widen_slope2 = std::pow(std::tan(o.widen_min_slope_deg * deg), 2);
     double run = o.corridor;  // the corridor, widening on slopes and narrowing on flats
+    bool stopped = false;  // the trace left the grid: the remaining vertices stay where it left
     for (std::uint32_t k = 0; k + 1 < n; ++k) {
+        if (stopped) {
+            if (k + 2 < n) v[k + 1].x = v[k].x, v[k + 1].y = v[k].y;
+            continue;
+        }
         const glm::dvec2 step = s[k + 1] - s[k];
         const double ds = norm(step.x, step.y);
-        glm::dvec2 next = s[k + 1] + 0.8 * (p - s[k]);  // no usable fall line: along S, back towards it
+        glm::dvec2 next = p + step + back_towards(s[k] - p, ds);  // no usable fall line: along S, back towards it
         glm::dvec2 d1, d2;
         double slope2 = 0.0;
         bool along = false;  // the fall line runs with the stem: the corridor may widen
@@ -193,15 +190,25 @@ void trace_stem(const Stem& stem, const GridField& field, const FallLineOptions&
             const double cosine = glm::dot(pt, pd) / (norm(pt.x, pt.y) * norm(pd.x, pd.y));
             along = cosine > widen_cos;
             if (cosine > min_cos) next = p + ds * d;
+            const glm::dvec2 ahead = p + ds * d1;  // the fall line leaves the grid: the crease ends
+            if (ahead.x < 0.0 || ahead.y < 0.0 || ahead.x > double(field.cols() - 1) || ahead.y > double(field.rows() - 1)) {
+                stopped = true;
+                if (k + 2 < n) v[k + 1].x = v[k].x, v[k + 1].y = v[k].y;
+                continue;
+            }
         }
         run = slope2 > widen_slope2 && along ? std::min(o.max_corridor, run + o.widen * ds) : std::max(o.corridor, run - o.widen * ds);
         const glm::dvec2 e = next - s[k + 1];
-        const double el = norm(e.x, e.y), corridor = corridor_at(k, arc, joined, o, run);
+        const double el = norm(e.x, e.y), corridor = std::min(o.max_corridor, run);
         const glm::dvec2 moved = el > corridor ? s[k + 1] + e * (corridor / el) : next;
-        // a trace leaving the grid goes back to the centre line (inside) instead of running
-        // along the grid's edge
+        // a trace leaving the grid stops where it is instead of running along the grid's edge
         const bool inside = moved.x >= 0.0 && moved.y >= 0.0 && moved.x <= double(field.cols() - 1) && moved.y <= double(field.rows() - 1);
-        p = inside ? moved : s[k + 1];
+        if (!inside) {
+            stopped = true;
+            if (k + 2 < n) v[k + 1].x = v[k].x, v[k + 1].y = v[k].y;  // vertex k's plan position (the source's at k = 0)
+            continue;
+        }
+        p = moved;
         if (k + 2 < n) {
             const glm::dvec2 xy = field.xy(p);
             v[k + 1].x = float(xy.x), v[k + 1].y = float(xy.y);
@@ -217,12 +224,13 @@ FallLineOptions fall_line_options(const DrainageGrid& g) {
     FallLineOptions o;
     o.sigma = std::max(2.0, double(g.factor));
     o.corridor = std::max(3.0, double(g.factor));
+    o.meet = o.corridor;
     o.max_corridor = std::max(o.corridor, o.max_corridor_dem_cells * double(g.factor));
     return o;
 }
 
 void trace_fall_lines(DrapedLineSet& set, const std::vector<std::uint32_t>& cells, const DrainageGrid& g,
-                      const FallLineOptions& o, const std::vector<std::uint8_t>& joined) {
+                      const FallLineOptions& o) {
     if (g.cols < 2 || g.rows < 2) return;
     const GridField field(g);
     parallel_chunks(set.lines.size(), 1024, [&](std::size_t l0, std::size_t l1) {
@@ -230,8 +238,7 @@ void trace_fall_lines(DrapedLineSet& set, const std::vector<std::uint32_t>& cell
         for (std::size_t i = l0; i < l1; ++i) {
             const DrapedLine& l = set.lines[i];
             if (l.count < 3) continue;
-            const Stem stem{set.vertices.data() + l.first, cells.data() + l.first, l.count, i < joined.size() && joined[i]};
-            trace_stem(stem, field, o, scratch);
+            trace_stem(Stem{set.vertices.data() + l.first, cells.data() + l.first, l.count}, field, o, scratch);
         }
     });
 }

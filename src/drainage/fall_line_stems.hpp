@@ -16,18 +16,20 @@
 //    Heun's step, the mean of the directions at vertex k and one step along its own (a trace
 //    reaching a valley's floor runs along it instead of zigzagging across). Where the fall line
 //    leaves the stem's direction by more than 70 degrees, on flats or beside nodata, the vertex
-//    moves with S and a fifth of the way back to it instead; a vertex farther from S(k + 1) than
+//    moves with S and a fifth of the way back to it (at most half a step) instead; a vertex farther from S(k + 1) than
 //    the corridor is drawn back onto that circle. The corridor is `corridor` cells at the source;
 //    it widens by `widen` cells a cell of S while the slope exceeds widen_min_slope_deg and the
 //    fall line runs within widen_max_deg of the stem (a plane or a cone, where a D8 path runs up
 //    to 22.5 degrees off the fall line: the trace keeps to the fall line), up to `max_corridor`,
 //    and narrows at the same rate elsewhere (flats, where the fall line heads for another valley);
 //    in a valley the fall lines converge on the floor the D8 path follows and it does not bind.
-//    On a stem whose end joins another (`joined`) it also narrows towards that end at
-//    narrow_to_joined_end cells a cell, so the stem comes back to its junction. A step that would leave the grid goes to
-//    S(k + 1) instead (no run along the grid's edge);
-// 3. plan x, y from grid_xy_at (the resampler's interpolation). The last vertex is where the trace ends;
-//    a stem ending at a junction is brought back to it afterwards (draped_lines.cpp: join_ends).
+//    Where the fall line, or a step, would leave the grid the trace stops: the stem's remaining
+//    vertices stay where it stopped (no run along the grid's edge, no jump back to S);
+// 3. plan x, y from grid_xy_at (the resampler's interpolation). The last vertex is where the trace
+//    ends; a stem ending at a junction ends where its trace first comes within `meet` of the line
+//    it joins, or where its trace ends when it never does (draped_lines.cpp: smooth_stems): a
+//    junction the fall line does not lead to (D8 paths merge where a cone's fall lines never do)
+//    is not drawn, and no tributary bends aside into its junction.
 // Deterministic, one stem per task on all cores.
 #pragma once
 #include <cstdint>
@@ -40,22 +42,22 @@ namespace penink {
 
 struct FallLineOptions {
     double sigma = 2.0;                // cells
-    double corridor = 3.0;             // cells, at the source (and a joined end)
+    double corridor = 3.0;             // cells, at the source
     double widen = 0.5;                // corridor cells a cell of the stem's length
-    double narrow_to_joined_end = 0.5;  // corridor cells a cell towards a joined end
-    double widen_max_deg = 25.0;       // widening while the fall line runs this close to the stem
+    double widen_max_deg = 30.0;       // widening while the fall line runs this close to the stem
     double widen_min_slope_deg = 5.0;  // and the slope is steeper
     double max_corridor = 60.0;        // cells
+    double meet = 3.0;                 // cells: a stem ending at a junction ends where its trace
+                                       // first comes this close to the line it joins (smooth_stems)
     double max_corridor_dem_cells = 20.0;  // fall_line_options' max_corridor, in DEM cells
 };
 
 // The build's options on a grid: sigma and corridor one DEM cell (the factor; at least 2 and 3
-// cells), max_corridor max_corridor_dem_cells DEM cells.
+// cells), meet one corridor, max_corridor max_corridor_dem_cells DEM cells.
 FallLineOptions fall_line_options(const DrainageGrid& g);
 
 // Moves the x, y of each stem of `set` (network_stems with its `cells`) onto its fall line.
-// `joined`: per line, nonzero when its last vertex is a junction on another line (empty: none).
 void trace_fall_lines(DrapedLineSet& set, const std::vector<std::uint32_t>& cells, const DrainageGrid& g,
-                      const FallLineOptions& options, const std::vector<std::uint8_t>& joined = {});
+                      const FallLineOptions& options);
 
 }  // namespace penink

@@ -9,9 +9,43 @@
 
 namespace penink {
 
-float flow_weight(float flow) {
-    if (!(flow > 0.0f)) return 0.0f;
-    return std::clamp(1.0f + std::log10(flow) / 3.0f, 0.0f, 1.0f);
+float log_flow(float flow) { return std::log10(std::max(flow, 1e-12f)); }
+
+void equalise_weights(std::vector<Stroke>& strokes) {
+    struct Sample {
+        float weight;
+        double length;
+    };
+    std::vector<Sample> samples;
+    for (const Stroke& s : strokes) {
+        if (s.weight.size() != s.points.size()) continue;
+        for (std::size_t i = 0; i < s.points.size(); ++i) {
+            double len = 0.0;
+            if (i > 0) len += 0.5 * double(glm::length(s.points[i] - s.points[i - 1]));
+            if (i + 1 < s.points.size()) len += 0.5 * double(glm::length(s.points[i + 1] - s.points[i]));
+            samples.push_back({s.weight[i], len});
+        }
+    }
+    std::sort(samples.begin(), samples.end(), [](const Sample& a, const Sample& b) { return a.weight < b.weight; });
+    // the cumulative share at the top of each step of equal weights
+    std::vector<float> steps;
+    std::vector<double> share;
+    double total = 0.0;
+    for (const Sample& s : samples) total += s.length;
+    if (!(total > 0.0)) return;
+    double acc = 0.0;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+        acc += samples[i].length;
+        if (i + 1 == samples.size() || samples[i + 1].weight != samples[i].weight)
+            steps.push_back(samples[i].weight), share.push_back(acc / total);
+    }
+    for (Stroke& s : strokes) {
+        if (s.weight.size() != s.points.size()) continue;
+        for (float& w : s.weight) {
+            const std::size_t k = std::size_t(std::lower_bound(steps.begin(), steps.end(), w) - steps.begin());
+            w = float(std::clamp(share[std::min(k, share.size() - 1)], 0.0, 1.0));
+        }
+    }
 }
 
 std::vector<float> height_weights(const VertexLines& lines) {

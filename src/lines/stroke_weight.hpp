@@ -1,8 +1,7 @@
 // Stroke weights: a per-point weight in [0, 1] (core/drawing.hpp Stroke::weight) that places a
 // line in its layer's hierarchy of weight, which the style turns into width (styles/README.md).
 //  - Creases by flow: trunk streams heavier than twigs. The drainage vertices carry normalised
-//    flow f (accumulation / basin total, in [0, 1]); weight = clamp(1 + log10(f) / 3, 0, 1), so
-//    three decades of flow, 0.001 of the basin to all of it, span the range.
+//    flow f (accumulation / basin total, in [0, 1]); the measure is log10 f.
 //  - Ridges by height (basin divides carry no flow): the relief a ridge stands above, from the
 //    lowest to the highest of a frame's ridge vertices on the surface (z_lo, z_hi; exaggerated or
 //    not, the ratio is the same): weight = (z - z_lo) / (z_hi - z_lo), so the main crests are
@@ -14,6 +13,14 @@
 //    edge's own distance; weight = g / (g + gap_half), 1 against the sky. A ridge against the sky
 //    or a far valley is heavy; a fold against the slope just behind it is light. The weights are
 //    then smoothed along the stroke (a running mean over `smooth_px` of arc length each side).
+// The raw measures (log flow, height, gap weight) are then spread over the whole range by their
+// rank among the layer's drawn strokes (equalise_weights): a point's weight is the share of the
+// layer's drawn length whose raw measure is at most its own (the length-weighted cumulative
+// distribution, histogram equalisation). The order is the measure's, so the hierarchy stays real
+// (a trunk stays heavier than its twigs, a skyline heavier than a fold), but a frame whose
+// creases are all twigs, whose ridges all stand at mid height or whose silhouettes all stand
+// before far ridges uses the layer's full range of widths instead of a compressed corner of it.
+// Ties take the top of their step: every point against the sky weighs 1.
 #pragma once
 #include <vector>
 
@@ -23,8 +30,8 @@
 
 namespace penink {
 
-// Weight of normalised flow f (see above); 0 for f <= 0.001.
-float flow_weight(float flow);
+// The raw measure of flow that equalise_weights ranks: log10 f (f <= 1e-12 as 1e-12).
+float log_flow(float flow);
 // Ridge weights by height (see above): one per vertex of `lines`; vertices off the surface (zero
 // normal) weigh 0 and do not count in z_lo, z_hi; all 1 when z_hi = z_lo.
 std::vector<float> height_weights(const VertexLines& lines);
@@ -43,6 +50,11 @@ float depth_gap_at(const DepthImage& toward, glm::vec2 p, int radius);
 
 // Sets every stroke's weight from the depth gap behind it (see above).
 void weigh_by_depth_gap(std::vector<Stroke>& strokes, const DepthImage& toward, const DepthGapParams& params = {});
+
+// Replaces every point's weight by its rank among all the strokes' points: the share of their
+// length (each point standing for half of each segment it ends) whose weight is at most its own
+// (see above). Strokes without weights are left alone; nothing changes when no point has length.
+void equalise_weights(std::vector<Stroke>& strokes);
 
 // Running mean of per-point values over `half_px` of arc length each side (in place).
 void smooth_along(const std::vector<glm::vec2>& points, std::vector<float>& values, float half_px);

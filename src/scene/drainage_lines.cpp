@@ -5,6 +5,7 @@
 #include "lines/crease_scores.hpp"
 #include "lines/line_strokes.hpp"
 #include "lines/scored_polylines.hpp"
+#include "lines/short_stroke_clusters.hpp"
 #include "lines/spacing_thinning.hpp"
 #include "lines/stroke_weight.hpp"
 
@@ -64,11 +65,15 @@ void DrainageLines::draw(const Camera& camera, const Scene& scene, GLuint toward
         whole_or_nothing_by_distance(scores, lines.positions, lines.runs, camera, per_metre);
         std::vector<float> weight;  // creases by flow, ridges by height (lines/stroke_weight.hpp)
         if (l.layer == LayerKind::creases)
-            for (float f : lines.flow) weight.push_back(flow_weight(f));
+            for (float f : lines.flow) weight.push_back(log_flow(f));
         else weight = height_weights(lines);
-        drawing.layer(l.layer).strokes = thin_by_spacing(
+        std::vector<Stroke>& strokes = drawing.layer(l.layer).strokes;
+        strokes = thin_by_spacing(
             line_strokes(lines, scores, camera, l.kind, ObjectSketch{l.sketch_px, l.repeat, scene.seed}, weight),
             float(l.params.spacing_px));
+        if (l.layer == LayerKind::creases)  // no stars of short stubs (lines/short_stroke_clusters.hpp)
+            strokes = thin_star_clusters(std::move(strokes), float(4.0 * l.params.spacing_px), float(1.5 * l.params.spacing_px));
+        equalise_weights(strokes);  // the rank among the drawn lines
     }
 }
 

@@ -96,6 +96,7 @@ void add_frame_lines(const FrameImages& images, const SurfaceMesh& mesh, const C
     visibility.rel_tolerance = 0.002f;  // terrain: the boundary lies on the rendered surface
     for (Stroke& s : visible_strokes(boundary, images.toward, camera, visibility)) strokes.push_back(std::move(s));
     weigh_by_depth_gap(strokes, images.toward);  // profile lines heaviest (lines/stroke_weight.hpp)
+    equalise_weights(strokes);
     drawing.layer(LayerKind::silhouettes).strokes = std::move(strokes);
 }
 

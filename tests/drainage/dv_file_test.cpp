@@ -268,7 +268,7 @@ TEST(DvFile, CorruptionsAreDetected) {
     b = good;
     b[8] = 7;  // a file of the layout before the lines part
     spit(p, b);
-    EXPECT_EQ(read_error(p), pre + "unsupported drainage database version 7 (expected 12)");
+    EXPECT_EQ(read_error(p), pre + "unsupported drainage database version 7 (expected 13)");
 
     b = good;
     b[0] = 'X';

@@ -1,5 +1,6 @@
 // Stroke weights (lines/stroke_weight.hpp): creases heavier with flow, silhouettes heavier with
 // the depth gap behind them, and the weights carried through joining, simplifying and merging.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -32,17 +33,69 @@ Stroke vertical_stroke() {
 
 }  // namespace
 
-TEST(FlowWeight, RisesWithFlowOverThreeDecades) {
-    EXPECT_FLOAT_EQ(flow_weight(0.0f), 0.0f);
-    EXPECT_FLOAT_EQ(flow_weight(0.001f), 0.0f);
-    EXPECT_NEAR(flow_weight(0.01f), 1.0f / 3.0f, 1e-6f);  // log10: one decade of three
-    EXPECT_NEAR(flow_weight(0.1f), 2.0f / 3.0f, 1e-6f);
-    EXPECT_FLOAT_EQ(flow_weight(1.0f), 1.0f);
-    float last = -1.0f;
-    for (float f = 0.0011f; f <= 1.0f; f *= 1.5f) {  // strictly rising inside the range
-        EXPECT_GT(flow_weight(f), last) << f;
-        last = flow_weight(f);
+TEST(FlowWeight, LogFlowRisesWithFlow) {
+    EXPECT_FLOAT_EQ(log_flow(1.0f), 0.0f);
+    EXPECT_NEAR(log_flow(0.01f), -2.0f, 1e-6f);
+    EXPECT_FLOAT_EQ(log_flow(0.0f), -12.0f);  // no flow: the floor
+    float last = -13.0f;
+    for (float f = 1e-9f; f <= 1.0f; f *= 1.5f) {
+        EXPECT_GT(log_flow(f), last) << f;
+        last = log_flow(f);
     }
+}
+
+namespace {
+// Length-weighted CV of widths 0.5 + 1.25 w (the technical creases' weight_min, weight_max) over
+// the strokes' segments (mean of their ends' widths).
+double width_cv(const std::vector<Stroke>& strokes) {
+    double sum = 0.0, sum2 = 0.0, total = 0.0;
+    for (const Stroke& s : strokes)
+        for (std::size_t i = 1; i < s.points.size(); ++i) {
+            const double len = glm::length(s.points[i] - s.points[i - 1]);
+            const double w = 0.5 + 1.25 * 0.5 * (s.weight[i - 1] + s.weight[i]);
+            sum += len * w, sum2 += len * w * w, total += len;
+        }
+    const double mean = sum / total;
+    return std::sqrt(std::max(0.0, sum2 / total - mean * mean)) / mean;
+}
+}  // namespace
+
+// A frame of twigs: log flows within half a decade of each other, flow rising down each stroke.
+// Ranked, they span the whole range of weights; the order (trunk over twig, downstream over
+// upstream) is kept; ties at the top weigh 1.
+TEST(EqualiseWeights, SpreadsACompressedLayerOverTheRangeKeepingItsOrder) {
+    std::vector<Stroke> strokes;
+    for (int k = 0; k < 10; ++k) {
+        Stroke s;
+        for (int i = 0; i <= 20; ++i) {
+            s.points.emplace_back(float(10 * k), float(i));
+            s.weight.push_back(log_flow(0.001f * (1.0f + 0.1f * float(k) + 0.01f * float(i))));
+        }
+        strokes.push_back(s);
+    }
+    std::vector<Stroke> raw = strokes;
+    for (Stroke& s : raw)  // the three-decade rule of a basin: 1 + log10 f / 3, about 0 for all
+        for (float& w : s.weight) w = std::clamp(1.0f + w / 3.0f, 0.0f, 1.0f);
+    equalise_weights(strokes);
+    float lo = 1.0f, hi = 0.0f;
+    for (const Stroke& s : strokes)
+        for (std::size_t i = 0; i < s.weight.size(); ++i) {
+            lo = std::min(lo, s.weight[i]), hi = std::max(hi, s.weight[i]);
+            if (i > 0) EXPECT_GT(s.weight[i], s.weight[i - 1]);  // downstream heavier
+        }
+    EXPECT_LT(lo, 0.01f);
+    EXPECT_FLOAT_EQ(hi, 1.0f);
+    for (std::size_t k = 1; k < strokes.size(); ++k) EXPECT_GT(strokes[k].weight[10], strokes[k - 1].weight[10]);
+    EXPECT_LT(width_cv(raw), 0.1);
+    EXPECT_GT(width_cv(strokes), 0.3);  // uniform weights: 1.25 / sqrt 12 / 1.125 = 0.32
+    // ties: every point at the top weighs 1; strokes without weights are left alone
+    std::vector<Stroke> ties(2);
+    for (Stroke& s : ties) s.points = {{0, 0}, {0, 5}, {0, 10}};
+    ties[0].weight = {0.2f, 0.2f, 1.0f};
+    equalise_weights(ties);
+    EXPECT_FLOAT_EQ(ties[0].weight[2], 1.0f);
+    EXPECT_FLOAT_EQ(ties[0].weight[0], 0.75f);  // 7.5 of 10 px at 0.2 (the third point's half segment above)
+    EXPECT_TRUE(ties[1].weight.empty());
 }
 
 TEST(DepthGapWeight, SkyHeaviestThenFarValleyThenFoldCloseBehind) {
