@@ -113,7 +113,8 @@ int main(int argc, char** argv) {
         const RgbImage rgb = rasterise(styled, tr);
         const ToneImage ink = ink_from_rgb(rgb.width, rgb.height, rgb.rgb);
         const GridNodes& n = frames->terrain().nodes;
-        const ToneGrid grid{n.cols, n.rows, n.pos, n.valid, n.z_scale};
+        ToneGrid grid{n.cols, n.rows, n.pos, n.valid, n.z_scale};
+        if (n.has_sea()) grid.sea_z = n.sea_z();  // water: no target (tone_measure.hpp)
         const ToneImage target = target_tone(grid, d.camera, d.toward, light_vector(Light{scene.light.azimuth, scene.light.altitude}));
         std::printf("%s%s: %zu hachures, frame %.0f ms (warm %.0f ms, hachures %.0f ms)\n", argv[1],
                     is_orthographic(d.camera) ? " (orthographic)" : "", d.drawing.layer(LayerKind::hachures).strokes.size(),

@@ -32,6 +32,11 @@ struct HachureParams {
     // the lightest and the heaviest stroke as factors of width_px (the style's weight_min and
     // weight_max of the hachures layer). Equal: one width, tone by spacing alone.
     double weight_min = 1.0, weight_max = 1.0;
+    // The pen's taper (the style's taper px and taper_min of the hachures layer) and the mean pen
+    // width of the strokes the hachures yield to (creases, ridges, coastline, silhouettes): the
+    // ink they lay, which the coverage feedback counts (lines/hachures.hpp).
+    double taper_px = 0.0, taper_min = 1.0;
+    double obstacle_width_px = 0.0;
 };
 
 // The defaults (lines/hachures.cpp), the one set of them.

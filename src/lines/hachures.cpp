@@ -9,6 +9,8 @@
 #include <glm/trigonometric.hpp>
 #include <glm/vec2.hpp>
 
+#include "core/stroke_taper.hpp"
+#include "lines/hachure_coverage.hpp"
 #include "lines/mesh_visibility.hpp"
 #include "lines/simplify.hpp"
 
@@ -68,6 +70,12 @@ namespace {
 // Parallel streamlines lie d_sep apart (seeded at d_sep beside each other), so d_sep = w / t;
 // where they converge and end at d_test x d_sep the mean spacing is wider (the measure reports it).
 constexpr double kFill = 1.0;
+
+// The coverage feedback (Tracer::balance): cells of 8 px (the measure's sigma), three rounds, a
+// gain of at most 4 (the pens' widest range is 3: 0.6-1.8).
+constexpr float kCoverageCell = 8.0f;
+constexpr int kCoverageRounds = 3;
+constexpr double kMaxGain = 4.0;
 
 // The grid as a continuous surface: bilinear positions, bilinearly interpolated node gradients.
 class SlopeField {
@@ -224,15 +232,17 @@ class Tracer {
 public:
     Tracer(const HachureGrid& grid, const HachureFrame& frame, const HachureParams& params)
         : field_(grid), frame_(frame), p_(params), cam_(*frame.camera), project_(cam_),
-          occ_(cam_.width, cam_.height, 3.0f) {
+          occ_(cam_.width, cam_.height, 3.0f), cov_(cam_.width, cam_.height, kCoverageCell) {
         min_grad_ = std::tan(glm::radians(std::clamp(p_.min_slope_deg, 0.0, 89.9)));
         width_ = frame.width_px > 0.0 ? frame.width_px : default_hachure_width_px;
         perspective_ = !is_orthographic(cam_);
         visibility_.rel_tolerance = 0.002f;  // as the outline: the lines lie on the rendered surface
         near_ = frame.max_distance;  // the nearest visible eye distance: where the aerial fade starts
-        if (frame.toward)
+        if (frame.toward) {
             for (float d : frame.toward->depth)
                 if (std::isfinite(d)) near_ = std::min(near_, double(d));
+            cov_.set_terrain(*frame.toward);
+        }
     }
 
     void add_obstacles() {
@@ -253,15 +263,15 @@ public:
                     if (!inside || t0 > t1) continue;
                     const int n = std::max(1, int(std::ceil(glm::length(d) * (t1 - t0))));
                     for (int k = 0; k <= n; ++k) occ_.add(a + d * (t0 + (t1 - t0) * float(k) / n), Occupancy::obstacle);
+                    cov_.add_ink(a + d * t0, a + d * t1, p_.obstacle_width_px, true);
                 }
     }
 
-    // The surface, image and tone at uv; false where no hachure may be.
-    bool sample(glm::dvec2 uv, Sample& s) {
+    // The surface, image and drawn tone at uv; false where it is not drawn terrain (off the
+    // cells with data or the image, turned away, hidden).
+    bool surface(glm::dvec2 uv, Sample& s) {
         s.uv = uv;
         if (!field_.eval(uv, s.f)) return false;
-        const double g = glm::length(s.f.grad);
-        if (!(g >= min_grad_) || g <= 0.0) return false;
         const glm::dvec3 n = glm::normalize(glm::dvec3(-s.f.grad.x, -s.f.grad.y, 1.0));
         if (glm::dot(n, toward_viewer(cam_, s.f.p)) <= 0.0) return false;  // turned away: silhouette
         glm::dvec2 px;
@@ -273,9 +283,7 @@ public:
         if (perspective_ && frame_.max_distance > near_)
             t *= 1.0 - p_.aerial * std::clamp((s.depth - near_) / (frame_.max_distance - near_), 0.0, 1.0);
         s.tone = t;
-        const double sep = kFill * width_ / t;
-        if (!(t > 0.0) || sep > p_.spacing_max_px) return false;
-        s.sep = std::max(sep, p_.spacing_min_px);
+        s.sep = 0.0;
         if (frame_.toward && !is_empty(*frame_.toward)) {
             VisibilityOptions v = visibility_;
             // the level of detail's 1 px, and a cell: the rendered PN surface and this bilinear one
@@ -285,6 +293,19 @@ public:
         }
         return true;
     }
+
+    // Whether a hachure may pass a drawn point (steep and dark enough); sets its separation.
+    bool hatched(Sample& s) const {
+        const double g = glm::length(s.f.grad);
+        if (!(g >= min_grad_) || g <= 0.0) return false;
+        const double sep = kFill * width_ / s.tone;
+        if (!(s.tone > 0.0) || sep > p_.spacing_max_px) return false;
+        s.sep = std::max(sep, p_.spacing_min_px);
+        return true;
+    }
+
+    // The surface, image and tone at uv; false where no hachure may be.
+    bool sample(glm::dvec2 uv, Sample& s) { return surface(uv, s) && hatched(s); }
 
     // Image pixels per unit of grid parameter along param direction t at sample s.
     double px_per_unit(const Sample& s, glm::dvec2 t) const {
@@ -422,12 +443,14 @@ public:
                 int m = 1;
                 if (project_(field_.node_position(c, r), a, da) &&
                     project_(field_.node_position(c2, r2), b, db))
-                    m = std::clamp(int(std::ceil(glm::length(b - a) / 6.0)), 1, 8);
+                    m = std::clamp(int(std::ceil(glm::length(b - a) / 6.0)), 1, 16);
                 for (int j = 0; j < m; ++j)
                     for (int i = 0; i < m; ++i) {
                         Sample s;
                         const glm::dvec2 uv(c + (c2 - c) * (i + 0.5) / m, r + (r2 - r) * (j + 0.5) / m);
-                        if (sample(uv, s) && seed_free(s) && line_from(s)) drain_queue();
+                        if (!surface(uv, s)) continue;
+                        cov_.add_target(s.px, s.tone);  // the tone the coverage feedback aims at
+                        if (hatched(s) && seed_free(s) && line_from(s)) drain_queue();
                     }
             }
     }
@@ -463,6 +486,40 @@ public:
         return out;
     }
 
+    // The coverage feedback: the widths of the gap rule (weights) scaled by the gain of the ink
+    // they lay against the target tone per image cell (InkCoverage: lines of the pen's widths
+    // with its taper, and the lines yielded to), clamped to the pen's range; kCoverageRounds
+    // rounds, as a clamped cell hands its shortfall to its neighbours.
+    void balance() {
+        const double lo = p_.weight_min * width_, hi = p_.weight_max * width_;
+        weights_.assign(lines_.size(), {});
+        if (!(hi > lo)) return;
+        std::vector<std::vector<double>> w(lines_.size());
+        for (std::uint32_t id = 0; id < lines_.size(); ++id)
+            for (float u : weights(id)) w[id].push_back(lo + double(u) * (hi - lo));
+        for (int round = 0; round < kCoverageRounds; ++round) {
+            cov_.clear_ink();
+            for (std::uint32_t id = 0; id < lines_.size(); ++id) {
+                const std::vector<Sample>& line = lines_[id];
+                double length = 0.0;
+                for (std::size_t i = 1; i < line.size(); ++i) length += glm::length(line[i].px - line[i - 1].px);
+                double arc = 0.0;
+                for (std::size_t i = 1; i < line.size(); ++i) {
+                    const double len = glm::length(line[i].px - line[i - 1].px);
+                    const double taper = taper_factor(arc + 0.5 * len, length, p_.taper_px, p_.taper_min);
+                    cov_.add_ink(line[i - 1].px, line[i].px, 0.5 * (w[id][i - 1] + w[id][i]) * taper);
+                    arc += len;
+                }
+            }
+            cov_.update(kMaxGain);
+            for (std::uint32_t id = 0; id < lines_.size(); ++id)
+                for (std::size_t i = 0; i < lines_[id].size(); ++i)
+                    w[id][i] = std::clamp(w[id][i] * cov_.gain(lines_[id][i].px, kMaxGain), lo, hi);
+        }
+        for (std::uint32_t id = 0; id < lines_.size(); ++id)
+            for (double v : w[id]) weights_[id].push_back(float((v - lo) / (hi - lo)));
+    }
+
     std::vector<Stroke> strokes() const {
         std::vector<Stroke> out;
         out.reserve(lines_.size());
@@ -476,7 +533,7 @@ public:
                 s.depth.push_back(float(p.depth));
                 tone += p.tone;
             }
-            s.weight = weights(id);
+            s.weight = id < weights_.size() ? weights_[id] : weights(id);
             s.strength = float(tone / double(line.size()));
             out.push_back(simplify_stroke(s, 0.2f));
         }
@@ -496,7 +553,9 @@ private:
     double near_ = 0.0;    // nearest visible eye distance
     bool perspective_ = true;
     std::vector<std::vector<Sample>> lines_;
+    std::vector<std::vector<float>> weights_;  // per line and point, after balance()
     std::deque<std::uint32_t> queue_;
+    InkCoverage cov_;
 };
 
 }  // namespace
@@ -506,6 +565,7 @@ std::vector<Stroke> trace_hachures(const HachureGrid& grid, const HachureFrame& 
         return {};
     Tracer tracer(grid, frame, params);
     tracer.run(grid);
+    tracer.balance();
     return tracer.strokes();
 }
 

@@ -53,11 +53,12 @@ TriangleMesh mesh_of(const Terrain& t) {
     return m;
 }
 
-// The defaults with the default style's pen range (as apply_object_sketch sets it).
+// The defaults with the default style's pen range and taper (as apply_object_sketch sets them).
 HachureParams styled_defaults() {
     HachureParams p = hachure_defaults();
-    p.weight_min = default_style().layer(LayerKind::hachures).weight_min;
-    p.weight_max = default_style().layer(LayerKind::hachures).weight_max;
+    const LayerStyle& pen = default_style().layer(LayerKind::hachures);
+    p.weight_min = pen.weight_min, p.weight_max = pen.weight_max;
+    p.taper_px = pen.taper, p.taper_min = pen.taper_min;
     return p;
 }
 
