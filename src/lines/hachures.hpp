@@ -83,6 +83,7 @@ struct HachureFrame {
     double max_distance = 0.0;           // D: the largest visible eye distance (0: no aerial fade)
     double width_px = default_hachure_width_px;
     std::vector<const std::vector<Stroke>*> obstacles;  // strokes the hachures yield to
+    std::vector<HachurePen> obstacle_pens;              // the pen of each (missing: a HachurePen{})
 };
 
 // The target tone T of a unit normal (before contrast, gamma and distance), in [0, 1].

@@ -1,7 +1,5 @@
 #include "scene/scene_style.hpp"
 
-#include <iterator>
-
 namespace penink {
 
 Style scene_style(const Scene& scene) {
@@ -23,13 +21,10 @@ void apply_object_sketch(Scene& scene, const Style& style) {
     // its taper and the ink of the lines it yields to, which the coverage feedback counts
     scene.hachures.taper_px = style.layer(LayerKind::hachures).taper * px;
     scene.hachures.taper_min = style.layer(LayerKind::hachures).taper_min;
-    double w = 0.0;
-    const LayerKind yielded[] = {LayerKind::creases, LayerKind::ridges, LayerKind::coastline, LayerKind::silhouettes};
-    for (LayerKind k : yielded) {
-        const LayerStyle& ls = style.layer(k);
-        w += ls.width * px * 0.5 * (ls.weight_min + ls.weight_max);
+    for (std::size_t i = 0; i < hachure_obstacle_layers.size(); ++i) {
+        const LayerStyle& ls = style.layer(hachure_obstacle_layers[i]);
+        scene.hachures.obstacle_pens[i] = HachurePen{ls.width * px, ls.weight_min, ls.weight_max, ls.taper * px, ls.taper_min};
     }
-    scene.hachures.obstacle_width_px = w / double(std::size(yielded));
 }
 
 FinishOptions finish_options(const Style& style, std::uint64_t seed, bool object_space_terrain_lines) {
