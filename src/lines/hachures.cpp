@@ -71,10 +71,10 @@ namespace {
 // where they converge and end at d_test x d_sep the mean spacing is wider (the measure reports it).
 constexpr double kFill = 1.0;
 
-// The coverage feedback (Tracer::balance): cells of 8 px (the measure's sigma), three rounds, a
+// The coverage feedback (Tracer::balance): cells of 8 px (the measure's sigma), two rounds, a
 // gain of at most 4 (the pens' widest range is 3: 0.6-1.8).
 constexpr float kCoverageCell = 8.0f;
-constexpr int kCoverageRounds = 3;
+constexpr int kCoverageRounds = 2;
 constexpr double kMaxGain = 4.0;
 // A point whose wanted width is under this share of the lightest pen is cut out (Tracer::balance).
 constexpr double kDropWidth = 1.0;
@@ -525,17 +525,23 @@ public:
 
     // The gaps across line id at each point on the image (left, right): the nearest other
     // hachure or obstacle point within 45 deg of the normal, 2 s at most; 0 where the line has no
-    // direction.
+    // direction. Searched at every other point (the points are about 1 px apart and the widths
+    // are smoothed over 5), the points between taking the mean of their neighbours'.
     std::vector<glm::vec2> gaps(std::uint32_t id) const {
         const std::vector<Sample>& line = lines_[id];
-        std::vector<glm::vec2> out(line.size(), glm::vec2(0.0f));
-        for (std::size_t i = 0; i < line.size(); ++i) {
-            const glm::vec2 a = line[i > 0 ? i - 1 : i].px, b = line[i + 1 < line.size() ? i + 1 : i].px;
+        const std::size_t n = line.size();
+        std::vector<glm::vec2> out(n, glm::vec2(0.0f));
+        const auto search = [&](std::size_t i) {
+            const glm::vec2 a = line[i > 0 ? i - 1 : i].px, b = line[i + 1 < n ? i + 1 : i].px;
             const float len = glm::length(b - a);
-            if (!(len > 0.0f)) continue;
+            if (!(len > 0.0f)) return;
             const float r = float(2.0 * line[i].sep);
             occ_.gaps(line[i].px, (b - a) / len, id, r, out[i].x, out[i].y);
-        }
+        };
+        for (std::size_t i = 0; i < n; i += 2) search(i);
+        if (n > 1 && (n - 1) % 2 == 1) search(n - 1);
+        for (std::size_t i = 1; i + 1 < n; i += 2)
+            out[i] = out[i - 1].x > 0.0f && out[i + 1].x > 0.0f ? 0.5f * (out[i - 1] + out[i + 1]) : out[i - 1];
         return out;
     }
 
@@ -569,9 +575,11 @@ public:
     // of those cells are tried again with the separation tightened by the shortfall,
     // s x max(kMinTighten, 1 / gain), and so are the seeds beside the lines they start.
     void reseed() {
+        // the heaviest pen, no wider than the line's separation (its neighbours' gap as placed)
         const double hi = p_.weight_max * width_;
         std::vector<std::vector<glm::vec2>> gap(lines_.size());
-        for (std::uint32_t id = 0; id < lines_.size(); ++id) gap[id] = gaps(id);
+        for (std::uint32_t id = 0; id < lines_.size(); ++id)
+            for (const Sample& s : lines_[id]) gap[id].push_back(glm::vec2(float(s.sep)));
         lay_ink([&](std::uint32_t, std::size_t) { return hi; }, gap);
         cov_.update(kMaxGain);
         tighten_ = true;
