@@ -33,10 +33,10 @@ void InkCoverage::set_terrain(const DepthImage& depth) {
             }
 }
 
-void InkCoverage::add_target(glm::vec2 px, double tone) {
+void InkCoverage::add_target(glm::vec2 px, double tone, double weight) {
     const int i = index(px);
-    if (i < 0) return;
-    tone_sum_[std::size_t(i)] += tone, tone_n_[std::size_t(i)] += 1.0;
+    if (i < 0 || !(weight > 0.0)) return;
+    tone_sum_[std::size_t(i)] += weight * tone, tone_n_[std::size_t(i)] += weight;
     if (!counted_terrain_) terrain_[std::size_t(i)] = double(cell_) * cell_;
 }
 

@@ -7,7 +7,7 @@
 // in it, and the ink laid in it (each stroke segment's length x its pen width, at its midpoint's
 // cell). The gain at a pixel is (box-summed target ink) / (box-summed ink) over the 3 x 3 cells
 // around the cell, target ink = mean tone x terrain pixels, interpolated bilinearly between cell
-// centres: > 1 where the drawing is lighter than its target, < 1 where it is darker. A cell's ink
+// centres (the mean tone weighs each sample by its area): > 1 where the drawing is lighter than its target, < 1 where it is darker. A cell's ink
 // counts at most its terrain pixels (overlapping lines do not darken paper twice); only cells with
 // a target sample count, and a cell with none around it has gain 1.
 #pragma once
@@ -26,8 +26,9 @@ public:
     // The terrain pixels of each cell: the finite depths of `depth` (same size as the image); an
     // empty image leaves every cell that gets a target sample counted whole.
     void set_terrain(const DepthImage& depth);
-    // A sample of the target tone at an image point of the drawn terrain.
-    void add_target(glm::vec2 px, double tone);
+    // A sample of the target tone at an image point of the drawn terrain, weighed by the image
+    // area it stands for (the mean tone of a cell is an area mean).
+    void add_target(glm::vec2 px, double tone, double weight = 1.0);
     // Ink of a segment a-b drawn `width` px wide, counted in the cells it crosses (split at 1 px);
     // `fixed`: ink that clear_ink keeps (lines drawn before).
     void add_ink(glm::vec2 a, glm::vec2 b, double width, bool fixed = false);

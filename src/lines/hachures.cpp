@@ -48,7 +48,7 @@ HachureParams hachure_defaults() {
     p.d_test = 0.6;
     p.yield_px = 0.5;  // a hair's clearance: wider clearances lighten the shaded slopes the creases gather on (docs/tone.md)
     p.max_turn_deg = 25.0;
-    p.aerial = 0.4;
+    p.aerial = 0.6;
     p.min_length_px = 4.0;
     return p;
 }
@@ -295,8 +295,12 @@ public:
         s.px = glm::vec2(px);
         double t = hachure_tone(p_.tone, p_.blend, n, frame_.light);
         t = std::pow(std::clamp(0.5 + p_.contrast * (t - 0.5), 0.0, 1.0), p_.gamma);
-        if (perspective_ && frame_.max_distance > near_)
-            t *= 1.0 - p_.aerial * std::clamp((s.depth - near_) / (frame_.max_distance - near_), 0.0, 1.0);
+        if (perspective_ && frame_.max_distance > near_) {
+            // the fade grows with the square of the depth's fraction: the middle distance keeps
+            // its tone, the far ridges (where the creases and skylines crowd) lose most of theirs
+            const double f = std::clamp((s.depth - near_) / (frame_.max_distance - near_), 0.0, 1.0);
+            t *= 1.0 - p_.aerial * f * f;
+        }
         s.tone = t;
         s.sep = 0.0;
         if (frame_.toward && !is_empty(*frame_.toward)) {
@@ -332,6 +336,19 @@ public:
         double d;
         if (!project_(q, px, d)) return 0.0;
         return glm::length(px - glm::dvec2(s.px)) / eps;
+    }
+
+    // Image area (px^2) of the parallelogram of grid parameter sides dc x dr on the surface's
+    // tangent plane at s.
+    double image_area(const Sample& s, double dc, double dr) const {
+        const auto offset = [&](glm::dvec2 w) {
+            glm::dvec2 px;
+            double d;
+            if (!project_(s.f.p + glm::dvec3(w, glm::dot(s.f.grad, w)), px, d)) return glm::dvec2(0.0);
+            return px - glm::dvec2(s.px);
+        };
+        const glm::dvec2 a = offset(dc * s.f.du), b = offset(dr * s.f.dv);
+        return std::abs(a.x * b.y - a.y * b.x);
     }
 
     // Fall-line direction in grid parameters (sign +1 downhill, -1 uphill), unit world length.
@@ -488,7 +505,8 @@ public:
                         // is left white, as a map leaves it
                         const bool water = std::isfinite(floor_z_) && s.f.p.z <= double(floor_z_) + 1e-6 * std::abs(double(floor_z_));
                         const bool flat = !(glm::length(s.f.grad) >= min_grad_);
-                        cov_.add_target(s.px, water || flat ? 0.0 : s.tone);
+                        cov_.add_target(s.px, water || flat ? 0.0 : s.tone,
+                                        image_area(s, double(c2 - c) / m, double(r2 - r) / m));
                         if (!hatched(s)) continue;
                         seeds_.push_back({uv, s.px});
                         if (seed_free(s) && line_from(s)) drain_queue();
