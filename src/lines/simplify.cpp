@@ -19,9 +19,11 @@ float point_segment_distance(glm::vec2 p, glm::vec2 a, glm::vec2 b) {
 
 namespace {
 
-// Marks the kept points of pts[first..last] (both ends already kept).
+// Marks the kept points of pts[first..last] (both ends already kept). With weights, a point's
+// error is the larger of its distance and tol x its weight's distance from the chord's (linear in
+// the index) / weight_tol.
 void dp_range(const std::vector<glm::vec2>& pts, std::size_t first, std::size_t last, float tol,
-              std::vector<char>& keep) {
+              std::vector<char>& keep, const std::vector<float>* weights = nullptr, float weight_tol = 1.0f) {
     std::vector<std::pair<std::size_t, std::size_t>> stack{{first, last}};
     while (!stack.empty()) {
         auto [a, b] = stack.back();
@@ -30,6 +32,11 @@ void dp_range(const std::vector<glm::vec2>& pts, std::size_t first, std::size_t 
         std::size_t at = a;
         for (std::size_t i = a + 1; i < b; ++i) {
             float d = point_segment_distance(pts[i], pts[a], pts[b]);
+            if (weights) {
+                const float f = float(i - a) / float(b - a);
+                const float chord = (*weights)[a] + f * ((*weights)[b] - (*weights)[a]);
+                d = std::max(d, tol * std::abs((*weights)[i] - chord) / weight_tol);
+            }
             if (d > worst) worst = d, at = i;
         }
         if (at == a || worst <= tol) continue;
@@ -124,6 +131,12 @@ Stroke simplify_stroke(const Stroke& s, float tol) {
     if (is_closed(clean)) {
         std::vector<glm::vec2> ring(clean.points.begin(), clean.points.end() - 1);
         return pick(clean, douglas_peucker_ring_indices(ring, tol), true);
+    }
+    if (clean.weight.size() == clean.points.size()) {  // the width along the stroke kept too
+        std::vector<char> keep(clean.points.size(), 0);
+        keep.front() = keep.back() = 1;
+        dp_range(clean.points, 0, clean.points.size() - 1, tol, keep, &clean.weight, kWeightTolerance);
+        return pick(clean, kept(keep), false);
     }
     return pick(clean, douglas_peucker_indices(clean.points, tol), false);
 }

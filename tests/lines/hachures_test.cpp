@@ -135,7 +135,7 @@ TEST(Hachures, CoverageFollowsTheToneOfPlanes) {
 
 // Width rises with the tone: on a plane in full shade (tone 1) the lines lie spacing_min_px apart
 // and widen to carry the tone; on a plane of tone 0.35 they keep the nominal width. The drawn
-// coverage (length x the style's width at each point's weight, over the area) is the tone; in full
+// coverage (length x the style's width at each point's weight and taper, over the area) is the tone; in full
 // shade it is at least the tone and at most the heaviest pen at the closest spacing (the coverage
 // feedback widens the lines to black out their tapered ends and the gaps where lines end).
 TEST(Hachures, WidthRisesInTheDarkTones) {
@@ -155,11 +155,14 @@ TEST(Hachures, WidthRisesInTheDarkTones) {
         double ink = 0.0, len = 0.0, weight = 0.0;
         for (const Stroke& s : hachures(t, cam, DepthImage{})) {
             ASSERT_EQ(s.weight.size(), s.points.size());
+            const double length = total_length({s});
+            double arc = 0.0;
             for (std::size_t i = 1; i < s.points.size(); ++i) {
                 const double seg = glm::length(s.points[i] - s.points[i - 1]);
                 const double u = 0.5 * (s.weight[i] + s.weight[i - 1]);
-                ink += seg * pen.width * (pen.weight_min + (pen.weight_max - pen.weight_min) * u);
-                len += seg, weight += seg * u;
+                ink += seg * pen.width * (pen.weight_min + (pen.weight_max - pen.weight_min) * u) *
+                       taper_factor(arc + 0.5 * seg, length, pen.taper, pen.taper_min);
+                len += seg, weight += seg * u, arc += seg;
             }
         }
         mean_weight[c] = weight / len;
