@@ -113,7 +113,8 @@ int main(int argc, char** argv) {
         const RgbImage rgb = rasterise(styled, tr);
         const ToneImage ink = ink_from_rgb(rgb.width, rgb.height, rgb.rgb);
         const GridNodes& n = frames->terrain().nodes;
-        const ToneGrid grid{n.cols, n.rows, n.pos, n.valid, n.z_scale};
+        ToneGrid grid{n.cols, n.rows, n.pos, n.valid, n.z_scale};
+        if (n.has_sea()) grid.sea_z = n.sea_z();  // water: no target (tone_measure.hpp)
         const ToneImage target = target_tone(grid, d.camera, d.toward, light_vector(Light{scene.light.azimuth, scene.light.altitude}));
         std::printf("%s%s: %zu hachures, frame %.0f ms (warm %.0f ms, hachures %.0f ms)\n", argv[1],
                     is_orthographic(d.camera) ? " (orthographic)" : "", d.drawing.layer(LayerKind::hachures).strokes.size(),
@@ -158,6 +159,9 @@ int main(int argc, char** argv) {
         const auto thirds = ink_by_depth_thirds(ink, target, d.toward);
         std::printf("ink per terrain pixel near %.3f  middle %.3f  far %.3f  (near/far %.2f)\n", thirds[0], thirds[1],
                     thirds[2], thirds[2] > 0 ? thirds[0] / thirds[2] : 0.0);
+        const auto asked = ink_by_depth_thirds(target, target, d.toward);  // the target's own thirds
+        std::printf("target per terrain pixel near %.3f  middle %.3f  far %.3f  (near/far %.2f)\n", asked[0], asked[1],
+                    asked[2], asked[2] > 0 ? asked[0] / asked[2] : 0.0);
         if (!ink_png.empty()) write_png(ink_png, rgb.width, rgb.height, rgb.rgb);
         if (!target_png.empty()) write_png(target_png, target.width, target.height, grey(target));
     } catch (const std::exception& e) {

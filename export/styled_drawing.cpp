@@ -175,14 +175,6 @@ StyledLayer style_layer(const Layer& layer, const Style& style, const DistanceMa
 
 bool variable_width(const LayerStyle& s) { return s.dash.empty() && (s.taper > 0.0 || s.weight_min != s.weight_max); }
 
-double taper_factor(double at, double length, double taper, double taper_min) {
-    if (!(taper > 0.0)) return 1.0;
-    const double zone = std::min(taper, 0.5 * length);
-    if (!(zone > 0.0)) return taper_min;
-    const double u = std::clamp(std::min(at, length - at) / zone, 0.0, 1.0);
-    return taper_min + (1.0 - taper_min) * (1.0 - (1.0 - u) * (1.0 - u));
-}
-
 LayerSplit parse_layer_split(const std::string& text) {
     if (text == "kind") return LayerSplit::kind;
     if (text == "kind+distance") return LayerSplit::kind_distance;

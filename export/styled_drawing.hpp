@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/drawing.hpp"
+#include "core/stroke_taper.hpp"
 #include "export/style.hpp"
 
 namespace penink {
@@ -86,9 +87,7 @@ inline bool layer_written(const StyledDrawing& drawing, const StyledLayer& layer
 // Whether a layer's strokes get variable widths: taper or weight_min != weight_max, undashed.
 bool variable_width(const LayerStyle& style);
 
-// Width factor of a tapered stroke at arc length `at` of `length` px: taper_min at the ends,
-// 1 from `taper` px in (half the length when shorter), easing in between (1 - (1 - u)^2).
-double taper_factor(double at, double length, double taper, double taper_min);
+// taper_factor (the width factor towards a stroke's ends): core/stroke_taper.hpp.
 
 // Applies `style`'s colours, widths (by distance, in bands; or per point, with taper and weight,
 // on variable_width layers), opacity and dashes to `drawing`.

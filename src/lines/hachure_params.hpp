@@ -1,7 +1,10 @@
 // The parameters of the hachures layer (lines/hachures.hpp), apart so that the scene can hold
 // them without the tracing's interface.
 #pragma once
+#include <array>
 #include <string>
+
+#include "core/drawing.hpp"
 
 namespace penink {
 
@@ -10,6 +13,16 @@ enum class HachureTone { light, slope, blend };
 // "light", "slope", "blend"; false for another name.
 bool hachure_tone_named(const std::string& name, HachureTone& out);
 const char* hachure_tone_name(HachureTone tone);
+
+// A pen as the style draws a layer, in image pixels: width times lerp(weight_min, weight_max,
+// the stroke's weight), thinning to taper_min over taper_px at each end.
+struct HachurePen {
+    double width_px = 1.0, weight_min = 1.0, weight_max = 1.0, taper_px = 0.0, taper_min = 1.0;
+};
+
+// The layers the hachures yield to (drawn before them), in this order.
+inline constexpr std::array<LayerKind, 4> hachure_obstacle_layers = {LayerKind::creases, LayerKind::ridges,
+                                                                     LayerKind::coastline, LayerKind::silhouettes};
 
 // The [hachures] table of a scene (conventions.md, styles/README.md); the defaults are
 // hachure_defaults()'s.
@@ -32,6 +45,11 @@ struct HachureParams {
     // the lightest and the heaviest stroke as factors of width_px (the style's weight_min and
     // weight_max of the hachures layer). Equal: one width, tone by spacing alone.
     double weight_min = 1.0, weight_max = 1.0;
+    // The pen's taper (the style's taper px and taper_min of the hachures layer) and the pens of
+    // hachure_obstacle_layers: the ink they lay, which the coverage feedback counts
+    // (lines/hachures.hpp).
+    double taper_px = 0.0, taper_min = 1.0;
+    std::array<HachurePen, hachure_obstacle_layers.size()> obstacle_pens{};
 };
 
 // The defaults (lines/hachures.cpp), the one set of them.

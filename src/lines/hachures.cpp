@@ -9,6 +9,8 @@
 #include <glm/trigonometric.hpp>
 #include <glm/vec2.hpp>
 
+#include "core/stroke_taper.hpp"
+#include "lines/hachure_coverage.hpp"
 #include "lines/mesh_visibility.hpp"
 #include "lines/simplify.hpp"
 
@@ -46,7 +48,7 @@ HachureParams hachure_defaults() {
     p.d_test = 0.6;
     p.yield_px = 0.5;  // a hair's clearance: wider clearances lighten the shaded slopes the creases gather on (docs/tone.md)
     p.max_turn_deg = 25.0;
-    p.aerial = 0.5;
+    p.aerial = 0.6;
     p.min_length_px = 4.0;
     return p;
 }
@@ -68,6 +70,18 @@ namespace {
 // Parallel streamlines lie d_sep apart (seeded at d_sep beside each other), so d_sep = w / t;
 // where they converge and end at d_test x d_sep the mean spacing is wider (the measure reports it).
 constexpr double kFill = 1.0;
+
+// The coverage feedback (Tracer::balance): cells of 8 px (the measure's sigma), two rounds, a
+// gain of at most 4 (the pens' widest range is 3: 0.6-1.8).
+constexpr float kCoverageCell = 8.0f;
+constexpr int kCoverageRounds = 2;
+constexpr double kMaxGain = 4.0;
+// A point whose wanted width is under this share of the lightest pen is cut out (Tracer::balance).
+constexpr double kDropWidth = 1.0;
+// reseed(): cells that even the heaviest pen leaves this much lighter than their target, and the
+// tightest separation, as a share of the tone's.
+constexpr double kReseedGain = 1.05;
+constexpr double kMinTighten = 0.35;
 
 // The grid as a continuous surface: bilinear positions, bilinearly interpolated node gradients.
 class SlopeField {
@@ -224,21 +238,26 @@ class Tracer {
 public:
     Tracer(const HachureGrid& grid, const HachureFrame& frame, const HachureParams& params)
         : field_(grid), frame_(frame), p_(params), cam_(*frame.camera), project_(cam_),
-          occ_(cam_.width, cam_.height, 3.0f) {
+          occ_(cam_.width, cam_.height, 3.0f), cov_(cam_.width, cam_.height, kCoverageCell) {
         min_grad_ = std::tan(glm::radians(std::clamp(p_.min_slope_deg, 0.0, 89.9)));
         width_ = frame.width_px > 0.0 ? frame.width_px : default_hachure_width_px;
         perspective_ = !is_orthographic(cam_);
         visibility_.rel_tolerance = 0.002f;  // as the outline: the lines lie on the rendered surface
         near_ = frame.max_distance;  // the nearest visible eye distance: where the aerial fade starts
-        if (frame.toward)
+        if (frame.toward) {
             for (float d : frame.toward->depth)
                 if (std::isfinite(d)) near_ = std::min(near_, double(d));
+            cov_.set_terrain(*frame.toward);
+        }
     }
 
     void add_obstacles() {
-        for (const std::vector<Stroke>* strokes : frame_.obstacles)
-            for (const Stroke& s : *strokes)
-                for (std::size_t i = 0; i + 1 < s.points.size(); ++i) {
+        for (std::size_t layer = 0; layer < frame_.obstacles.size(); ++layer) {
+            const HachurePen pen = layer < frame_.obstacle_pens.size() ? frame_.obstacle_pens[layer] : HachurePen{};
+            for (const Stroke& s : *frame_.obstacles[layer]) {
+                double length = 0.0, arc = 0.0;
+                for (std::size_t i = 0; i + 1 < s.points.size(); ++i) length += glm::length(s.points[i + 1] - s.points[i]);
+                for (std::size_t i = 0; i + 1 < s.points.size(); arc += glm::length(s.points[i + 1] - s.points[i]), ++i) {
                     // the segment's part inside the image (Liang-Barsky), sampled every pixel
                     const glm::vec2 a = s.points[i], d = s.points[i + 1] - a;
                     float t0 = 0.0f, t1 = 1.0f;
@@ -253,15 +272,21 @@ public:
                     if (!inside || t0 > t1) continue;
                     const int n = std::max(1, int(std::ceil(glm::length(d) * (t1 - t0))));
                     for (int k = 0; k <= n; ++k) occ_.add(a + d * (t0 + (t1 - t0) * float(k) / n), Occupancy::obstacle);
+                    // its ink as the style draws it: weight and taper at the segment's middle
+                    const double u = 0.5 * (double(weight_at(s, i)) + double(weight_at(s, i + 1)));
+                    const double w = pen.width_px * (pen.weight_min + u * (pen.weight_max - pen.weight_min)) *
+                                     taper_factor(arc + 0.5 * glm::length(d), length, pen.taper_px, pen.taper_min);
+                    cov_.add_ink(a + d * t0, a + d * t1, w, true);
                 }
+            }
+        }
     }
 
-    // The surface, image and tone at uv; false where no hachure may be.
-    bool sample(glm::dvec2 uv, Sample& s) {
+    // The surface, image and drawn tone at uv; false where it is not drawn terrain (off the
+    // cells with data or the image, turned away, hidden).
+    bool surface(glm::dvec2 uv, Sample& s) {
         s.uv = uv;
         if (!field_.eval(uv, s.f)) return false;
-        const double g = glm::length(s.f.grad);
-        if (!(g >= min_grad_) || g <= 0.0) return false;
         const glm::dvec3 n = glm::normalize(glm::dvec3(-s.f.grad.x, -s.f.grad.y, 1.0));
         if (glm::dot(n, toward_viewer(cam_, s.f.p)) <= 0.0) return false;  // turned away: silhouette
         glm::dvec2 px;
@@ -270,12 +295,14 @@ public:
         s.px = glm::vec2(px);
         double t = hachure_tone(p_.tone, p_.blend, n, frame_.light);
         t = std::pow(std::clamp(0.5 + p_.contrast * (t - 0.5), 0.0, 1.0), p_.gamma);
-        if (perspective_ && frame_.max_distance > near_)
-            t *= 1.0 - p_.aerial * std::clamp((s.depth - near_) / (frame_.max_distance - near_), 0.0, 1.0);
+        if (perspective_ && frame_.max_distance > near_) {
+            // the fade grows with the square of the depth's fraction: the middle distance keeps
+            // its tone, the far ridges (where the creases and skylines crowd) lose most of theirs
+            const double f = std::clamp((s.depth - near_) / (frame_.max_distance - near_), 0.0, 1.0);
+            t *= 1.0 - p_.aerial * f * f;
+        }
         s.tone = t;
-        const double sep = kFill * width_ / t;
-        if (!(t > 0.0) || sep > p_.spacing_max_px) return false;
-        s.sep = std::max(sep, p_.spacing_min_px);
+        s.sep = 0.0;
         if (frame_.toward && !is_empty(*frame_.toward)) {
             VisibilityOptions v = visibility_;
             // the level of detail's 1 px, and a cell: the rendered PN surface and this bilinear one
@@ -286,6 +313,20 @@ public:
         return true;
     }
 
+    // Whether a hachure may pass a drawn point (steep and dark enough); sets its separation.
+    bool hatched(Sample& s) const {
+        const double g = glm::length(s.f.grad);
+        if (!(g >= min_grad_) || g <= 0.0) return false;
+        const double sep = kFill * width_ / s.tone;
+        if (!(s.tone > 0.0) || sep > p_.spacing_max_px) return false;
+        s.sep = std::max(sep, p_.spacing_min_px);
+        if (tighten_) s.sep *= std::clamp(1.0 / cov_.gain(s.px, kMaxGain), kMinTighten, 1.0);
+        return true;
+    }
+
+    // The surface, image and tone at uv; false where no hachure may be.
+    bool sample(glm::dvec2 uv, Sample& s) { return surface(uv, s) && hatched(s); }
+
     // Image pixels per unit of grid parameter along param direction t at sample s.
     double px_per_unit(const Sample& s, glm::dvec2 t) const {
         const glm::dvec2 w = s.f.du * t.x + s.f.dv * t.y;
@@ -295,6 +336,19 @@ public:
         double d;
         if (!project_(q, px, d)) return 0.0;
         return glm::length(px - glm::dvec2(s.px)) / eps;
+    }
+
+    // Image area (px^2) of the parallelogram of grid parameter sides dc x dr on the surface's
+    // tangent plane at s.
+    double image_area(const Sample& s, double dc, double dr) const {
+        const auto offset = [&](glm::dvec2 w) {
+            glm::dvec2 px;
+            double d;
+            if (!project_(s.f.p + glm::dvec3(w, glm::dot(s.f.grad, w)), px, d)) return glm::dvec2(0.0);
+            return px - glm::dvec2(s.px);
+        };
+        const glm::dvec2 a = offset(dc * s.f.du), b = offset(dr * s.f.dv);
+        return std::abs(a.x * b.y - a.y * b.x);
     }
 
     // Fall-line direction in grid parameters (sign +1 downhill, -1 uphill), unit world length.
@@ -379,6 +433,23 @@ public:
         }
     }
 
+    // With a sea: the aerial fade starts at the nearest land node in the image (the water in
+    // front of a coast is not toned), not at the nearest water.
+    void near_land(const HachureGrid& grid) {
+        double nearest = std::numeric_limits<double>::infinity();
+        for (int r = grid.r0; r < grid.r1; ++r)
+            for (int c = grid.c0; c < grid.c1; ++c) {
+                if (!grid.valid[std::size_t(r) * grid.cols + c]) continue;
+                const glm::dvec3 p = field_.node_position(c, r);
+                if (!(p.z > double(grid.floor_z))) continue;
+                glm::dvec2 px;
+                double d;
+                if (project_(p, px, d) && px.x >= 0.0 && px.y >= 0.0 && px.x < cam_.width && px.y < cam_.height)
+                    nearest = std::min(nearest, d);
+            }
+        if (nearest < frame_.max_distance) near_ = std::max(near_, nearest);
+    }
+
     // The stencil: about 1.5 px of ground, from the median image size of a cell over a lattice
     // of 16 x 16 nodes that project into the image (and the median cell size, metres).
     int stencil(const HachureGrid& grid) {
@@ -408,6 +479,8 @@ public:
 
     void run(const HachureGrid& grid) {
         field_.set_stencil(stencil(grid));
+        floor_z_ = grid.floor_z;
+        if (std::isfinite(grid.floor_z)) near_land(grid);
         add_obstacles();
         const double cells = double(std::max(grid.c1 - grid.c0 - 1, 0)) * std::max(grid.r1 - grid.r0 - 1, 0);
         const double target = double(cam_.width) * cam_.height / std::pow(2.0 * std::max(p_.spacing_min_px, 0.5), 2.0);
@@ -422,12 +495,21 @@ public:
                 int m = 1;
                 if (project_(field_.node_position(c, r), a, da) &&
                     project_(field_.node_position(c2, r2), b, db))
-                    m = std::clamp(int(std::ceil(glm::length(b - a) / 6.0)), 1, 8);
+                    m = std::clamp(int(std::ceil(glm::length(b - a) / 6.0)), 1, 16);
                 for (int j = 0; j < m; ++j)
                     for (int i = 0; i < m; ++i) {
                         Sample s;
                         const glm::dvec2 uv(c + (c2 - c) * (i + 0.5) / m, r + (r2 - r) * (j + 0.5) / m);
-                        if (sample(uv, s) && seed_free(s) && line_from(s)) drain_queue();
+                        if (!surface(uv, s)) continue;
+                        // the tone the coverage feedback aims at; water (flat at the sea level)
+                        // is left white, as a map leaves it
+                        const bool water = std::isfinite(floor_z_) && s.f.p.z <= double(floor_z_) + 1e-6 * std::abs(double(floor_z_));
+                        const bool flat = !(glm::length(s.f.grad) >= min_grad_);
+                        cov_.add_target(s.px, water || flat ? 0.0 : s.tone,
+                                        image_area(s, double(c2 - c) / m, double(r2 - r) / m));
+                        if (!hatched(s)) continue;
+                        seeds_.push_back({uv, s.px});
+                        if (seed_free(s) && line_from(s)) drain_queue();
                     }
             }
     }
@@ -436,20 +518,16 @@ public:
     // neighbours the tone, w = t (g_left + g_right) / 2 (g the gaps across the line on the image,
     // each at most 2 s; a side with no line within 2 s counts s), as a fraction of the style's
     // range [weight_min, weight_max] x width, smoothed over 5 points.
-    std::vector<float> weights(std::uint32_t id) const {
+    std::vector<float> weights(std::uint32_t id, const std::vector<glm::vec2>& gap) const {
         const std::vector<Sample>& line = lines_[id];
         const double lo = p_.weight_min * width_, hi = p_.weight_max * width_;
         std::vector<float> u(line.size(), 0.0f);
         if (!(hi > lo)) return {};
         for (std::size_t i = 0; i < line.size(); ++i) {
-            const glm::vec2 a = line[i > 0 ? i - 1 : i].px, b = line[i + 1 < line.size() ? i + 1 : i].px;
-            const float len = glm::length(b - a);
-            if (!(len > 0.0f)) continue;
-            const float r = float(2.0 * line[i].sep);
-            float gl = 0.0f, gr = 0.0f;
-            occ_.gaps(line[i].px, (b - a) / len, id, r, gl, gr);
-            if (gl >= r) gl = float(line[i].sep);
-            if (gr >= r) gr = float(line[i].sep);
+            if (!(gap[i].x > 0.0f)) continue;
+            // a side with no line within 2 s counts s
+            const float r = float(2.0 * line[i].sep), s = float(line[i].sep);
+            const float gl = gap[i].x >= r ? s : gap[i].x, gr = gap[i].y >= r ? s : gap[i].y;
             const double w = line[i].tone * 0.5 * (double(gl) + double(gr));
             u[i] = float(std::clamp((w - lo) / (hi - lo), 0.0, 1.0));
         }
@@ -461,6 +539,135 @@ public:
             out[i] = float(sum / double(i1 - i0 + 1));
         }
         return out;
+    }
+
+    // The gaps across line id at each point on the image (left, right): the nearest other
+    // hachure or obstacle point within 45 deg of the normal, 2 s at most; 0 where the line has no
+    // direction. Searched at every other point (the points are about 1 px apart and the widths
+    // are smoothed over 5), the points between taking the mean of their neighbours'.
+    std::vector<glm::vec2> gaps(std::uint32_t id) const {
+        const std::vector<Sample>& line = lines_[id];
+        const std::size_t n = line.size();
+        std::vector<glm::vec2> out(n, glm::vec2(0.0f));
+        const auto search = [&](std::size_t i) {
+            const glm::vec2 a = line[i > 0 ? i - 1 : i].px, b = line[i + 1 < n ? i + 1 : i].px;
+            const float len = glm::length(b - a);
+            if (!(len > 0.0f)) return;
+            const float r = float(2.0 * line[i].sep);
+            occ_.gaps(line[i].px, (b - a) / len, id, r, out[i].x, out[i].y);
+        };
+        for (std::size_t i = 0; i < n; i += 2) search(i);
+        if (n > 1 && (n - 1) % 2 == 1) search(n - 1);
+        for (std::size_t i = 1; i + 1 < n; i += 2)
+            out[i] = out[i - 1].x > 0.0f && out[i + 1].x > 0.0f ? 0.5f * (out[i - 1] + out[i + 1]) : out[i - 1];
+        return out;
+    }
+
+    // Ink of every line at the widths width(line, point), with the pen's taper, into cov_. A line
+    // inks half its width on each side, but no more than the gap to its neighbour there (what
+    // overlaps is paper already black).
+    template <class Width>
+    void lay_ink(const Width& width, const std::vector<std::vector<glm::vec2>>& gap) {
+        cov_.clear_ink();
+        for (std::uint32_t id = 0; id < lines_.size(); ++id) {
+            const std::vector<Sample>& line = lines_[id];
+            const auto ink = [&](std::size_t i) {
+                const double w = width(id, i);
+                if (!(gap[id][i].x > 0.0f)) return w;
+                return 0.5 * (std::min(w, double(gap[id][i].x)) + std::min(w, double(gap[id][i].y)));
+            };
+            double length = 0.0;
+            for (std::size_t i = 1; i < line.size(); ++i) length += glm::length(line[i].px - line[i - 1].px);
+            double arc = 0.0;
+            for (std::size_t i = 1; i < line.size(); ++i) {
+                const double len = glm::length(line[i].px - line[i - 1].px);
+                const double taper = taper_factor(arc + 0.5 * len, length, p_.taper_px, p_.taper_min);
+                cov_.add_ink(line[i - 1].px, line[i].px, 0.5 * (ink(i - 1) + ink(i)) * taper);
+                arc += len;
+            }
+        }
+    }
+
+    // Where even the heaviest pen leaves a cell lighter than its target (the holes between line
+    // ends on rough ground, where fall lines meet and part every few pixels), the lattice seeds
+    // of those cells are tried again with the separation tightened by the shortfall,
+    // s x max(kMinTighten, 1 / gain), and so are the seeds beside the lines they start.
+    void reseed() {
+        // the heaviest pen, no wider than the line's separation (its neighbours' gap as placed)
+        const double hi = p_.weight_max * width_;
+        std::vector<std::vector<glm::vec2>> gap(lines_.size());
+        for (std::uint32_t id = 0; id < lines_.size(); ++id)
+            for (const Sample& s : lines_[id]) gap[id].push_back(glm::vec2(float(s.sep)));
+        lay_ink([&](std::uint32_t, std::size_t) { return hi; }, gap);
+        cov_.update(kMaxGain);
+        tighten_ = true;
+        for (const LatticeSeed& seed : seeds_) {
+            if (cov_.gain(seed.px, kMaxGain) < kReseedGain) continue;
+            Sample s;
+            if (sample(seed.uv, s) && seed_free(s) && line_from(s)) drain_queue();
+        }
+        tighten_ = false;
+        seeds_ = {};
+    }
+
+    // The coverage feedback: the widths of the gap rule (weights) scaled by the gain of the ink
+    // they lay against the target tone per image cell (InkCoverage: lines of the pen's widths
+    // with its taper, and the lines yielded to), clamped to the pen's range; kCoverageRounds
+    // rounds, as a clamped cell hands its shortfall to its neighbours. Then the points that would
+    // want less than kDropWidth of the lightest pen (cells the lines yielded to already darken,
+    // the far creases of a panorama) are cut out of their lines, pieces shorter than
+    // min_length_px dropped, and one more round sets the widths of what is left.
+    void balance() {
+        const double lo = p_.weight_min * width_, hi = p_.weight_max * width_;
+        weights_.assign(lines_.size(), {});
+        if (!(hi > lo)) return;
+        std::vector<std::vector<double>> w(lines_.size());
+        std::vector<std::vector<glm::vec2>> gap(lines_.size());
+        for (std::uint32_t id = 0; id < lines_.size(); ++id) {
+            gap[id] = gaps(id);
+            for (float u : weights(id, gap[id])) w[id].push_back(lo + double(u) * (hi - lo));
+        }
+        for (int round = 0; round < kCoverageRounds; ++round) rebalance(w, gap, lo, hi, round + 1 == kCoverageRounds);
+        rebalance(w, gap, lo, hi, false);
+        weights_.assign(lines_.size(), {});
+        for (std::uint32_t id = 0; id < lines_.size(); ++id) {
+            for (double v : w[id]) weights_[id].push_back(float((v - lo) / (hi - lo)));
+        }
+    }
+
+    // One round of balance(): the ink of widths w, then each width times its gain, clamped; with
+    // `cut`, the points wanting under kDropWidth x lo are cut out of their lines.
+    void rebalance(std::vector<std::vector<double>>& w, std::vector<std::vector<glm::vec2>>& gap, double lo, double hi,
+                   bool cut) {
+        lay_ink([&](std::uint32_t id, std::size_t i) { return w[id][i]; }, gap);
+        cov_.update(kMaxGain);
+        std::vector<std::vector<Sample>> kept_lines;
+        std::vector<std::vector<double>> kept_w;
+        std::vector<std::vector<glm::vec2>> kept_gap;
+        for (std::uint32_t id = 0; id < lines_.size(); ++id) {
+            std::vector<Sample> piece;
+            std::vector<double> piece_w;
+            std::vector<glm::vec2> piece_gap;
+            float length = 0.0f;
+            const auto close = [&] {
+                if (piece.size() >= 2 && length >= p_.min_length_px) {
+                    kept_lines.push_back(std::move(piece)), kept_w.push_back(std::move(piece_w));
+                    kept_gap.push_back(std::move(piece_gap));
+                }
+                piece.clear(), piece_w.clear(), piece_gap.clear(), length = 0.0f;
+            };
+            for (std::size_t i = 0; i < lines_[id].size(); ++i) {
+                const double want = w[id][i] * cov_.gain(lines_[id][i].px, kMaxGain);
+                if (cut && want < kDropWidth * lo) {
+                    close();
+                    continue;
+                }
+                if (!piece.empty()) length += glm::length(lines_[id][i].px - piece.back().px);
+                piece.push_back(lines_[id][i]), piece_w.push_back(std::clamp(want, lo, hi)), piece_gap.push_back(gap[id][i]);
+            }
+            close();
+        }
+        lines_ = std::move(kept_lines), w = std::move(kept_w), gap = std::move(kept_gap);
     }
 
     std::vector<Stroke> strokes() const {
@@ -476,7 +683,7 @@ public:
                 s.depth.push_back(float(p.depth));
                 tone += p.tone;
             }
-            s.weight = weights(id);
+            s.weight = id < weights_.size() ? weights_[id] : weights(id, gaps(id));
             s.strength = float(tone / double(line.size()));
             out.push_back(simplify_stroke(s, 0.2f));
         }
@@ -493,10 +700,19 @@ private:
     VisibilityOptions visibility_;
     double min_grad_ = 0.0, width_ = 1.0;
     double cell_m_ = 0.0;  // median node spacing, metres
-    double near_ = 0.0;    // nearest visible eye distance
+    double near_ = 0.0;    // nearest visible eye distance (of land, with a sea)
+    float floor_z_ = -std::numeric_limits<float>::infinity();
     bool perspective_ = true;
     std::vector<std::vector<Sample>> lines_;
+    std::vector<std::vector<float>> weights_;  // per line and point, after balance()
     std::deque<std::uint32_t> queue_;
+    InkCoverage cov_;
+    struct LatticeSeed {
+        glm::dvec2 uv;
+        glm::vec2 px;
+    };
+    std::vector<LatticeSeed> seeds_;  // the lattice's hatched seeds, for reseed()
+    bool tighten_ = false;            // reseed(): separations tightened by the coverage
 };
 
 }  // namespace
@@ -506,6 +722,8 @@ std::vector<Stroke> trace_hachures(const HachureGrid& grid, const HachureFrame& 
         return {};
     Tracer tracer(grid, frame, params);
     tracer.run(grid);
+    tracer.reseed();
+    tracer.balance();
     return tracer.strokes();
 }
 

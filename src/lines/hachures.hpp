@@ -17,8 +17,9 @@
 // l the unit vector towards the light); "slope" T = min(1, slope / 45 deg) (Lehmann: steeper is
 // darker); "blend" (1 - b) light + b slope. Drawn tone t = clamp(0.5 + contrast (T - 0.5), 0, 1)^gamma
 // (contrast about mid-grey: flats under a 45 deg sun, T = 0.29, fall to white first), times
-// (1 - aerial * d / D) in perspective (d the point's eye distance, D the frame's largest; Bratkova,
-// Shirley & Thompson 2009: contrast falls with distance). Parallel lines of width w px at spacing s
+// (1 - aerial * ((d - d0) / (D - d0))^2) in perspective (d the point's eye distance, D the frame's
+// largest, d0 its nearest, or with a sea the nearest land node's; Bratkova, Shirley & Thompson
+// 2009: contrast falls with distance). Parallel lines of width w px at spacing s
 // px cover w / s of the paper, so the separation is s = w / t on the image, clamped below at
 // spacing_min_px; where w / t exceeds spacing_max_px, or the slope is under min_slope_deg, no line
 // is drawn (lit slopes and flats stay white).
@@ -32,6 +33,18 @@
 // where lines end, are drawn by wider lines, crowded lines by thinner ones. With weight_min ==
 // weight_max (the plotter style) no weights: tone by spacing alone.
 //
+// Coverage feedback (Winkenbach & Salesin 1994: strokes until the tone is reached; lines/
+// hachure_coverage.hpp), on 8 px image cells: the drawn tone is sampled at every lattice seed
+// (flats under min_slope_deg and water at the sea level aim at white), the ink is each line's
+// length x width with the style's taper (a side's share no wider than the gap there: overlapping
+// ink is paper already black) plus the lines yielded to, drawn with their own pens. (1) Where even
+// the heaviest pen leaves a cell lighter than its target by 5 %, its lattice seeds are tried again
+// with the separation tightened by the shortfall, down to 0.35 s (the holes between line ends on
+// rough ground). (2) Each point's width is multiplied by the gain target / ink of its cells
+// (3 x 3 box, bilinear), clamped to the pen, two rounds; then points wanting less than the
+// lightest pen (cells the creases or silhouettes already darken) are cut out, pieces shorter
+// than min_length_px dropped, and a last round sets the widths.
+//
 // Placement, all in image pixels on an occupancy grid (a spatial hash of 3 px cells): a line grows
 // from its seed while each new point is on a valid cell, in the image, visible against the frame's
 // depth image (lines/mesh_visibility.hpp point_visible: the depth test of the outline and creases),
@@ -42,9 +55,9 @@
 // dropped. Seeds are tried beside each accepted line, at s to either side along the contour
 // direction, every s / 2 along it (a seed needs its whole separation free: 0.95 s), then on a
 // lattice of the grid's cells (north to south, west to east) about one per (2 spacing_min_px)^2 of
-// image, a block wider than 6 px on the image split into up to 8 x 8 seeds. Node gradients use
+// image, a block wider than 6 px on the image split into up to 16 x 16 seeds. Node gradients use
 // differences over +-k nodes, k about 1.5 px of ground at the median cell size. No random numbers and no hash or thread order: the same input gives the same strokes.
-// Cost: O(drawn length + lattice seeds).
+// Cost: O(drawn length + lattice seeds + image cells).
 #pragma once
 #include <cstdint>
 #include <limits>
@@ -83,6 +96,7 @@ struct HachureFrame {
     double max_distance = 0.0;           // D: the largest visible eye distance (0: no aerial fade)
     double width_px = default_hachure_width_px;
     std::vector<const std::vector<Stroke>*> obstacles;  // strokes the hachures yield to
+    std::vector<HachurePen> obstacle_pens;              // the pen of each (missing: a HachurePen{})
 };
 
 // The target tone T of a unit normal (before contrast, gamma and distance), in [0, 1].

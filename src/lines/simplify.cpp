@@ -19,9 +19,17 @@ float point_segment_distance(glm::vec2 p, glm::vec2 a, glm::vec2 b) {
 
 namespace {
 
-// Marks the kept points of pts[first..last] (both ends already kept).
+// A stroke's weights and the arc length at each point, for dp_range.
+struct WeightProfile {
+    const std::vector<float>* weight = nullptr;
+    std::vector<double> arc;
+};
+
+// Marks the kept points of pts[first..last] (both ends already kept). With weights, a point's
+// error is the larger of its distance and tol x its weight's distance from the chord's (linear in
+// arc length, as the writers draw it) / weight_tol.
 void dp_range(const std::vector<glm::vec2>& pts, std::size_t first, std::size_t last, float tol,
-              std::vector<char>& keep) {
+              std::vector<char>& keep, const WeightProfile* profile = nullptr, float weight_tol = 1.0f) {
     std::vector<std::pair<std::size_t, std::size_t>> stack{{first, last}};
     while (!stack.empty()) {
         auto [a, b] = stack.back();
@@ -30,6 +38,13 @@ void dp_range(const std::vector<glm::vec2>& pts, std::size_t first, std::size_t 
         std::size_t at = a;
         for (std::size_t i = a + 1; i < b; ++i) {
             float d = point_segment_distance(pts[i], pts[a], pts[b]);
+            if (profile) {
+                const std::vector<float>& w = *profile->weight;
+                const double span = profile->arc[b] - profile->arc[a];
+                const float f = span > 0.0 ? float((profile->arc[i] - profile->arc[a]) / span) : 0.0f;
+                const float chord = w[a] + f * (w[b] - w[a]);
+                d = std::max(d, tol * std::abs(w[i] - chord) / weight_tol);
+            }
             if (d > worst) worst = d, at = i;
         }
         if (at == a || worst <= tol) continue;
@@ -124,6 +139,15 @@ Stroke simplify_stroke(const Stroke& s, float tol) {
     if (is_closed(clean)) {
         std::vector<glm::vec2> ring(clean.points.begin(), clean.points.end() - 1);
         return pick(clean, douglas_peucker_ring_indices(ring, tol), true);
+    }
+    if (clean.weight.size() == clean.points.size()) {  // the width along the stroke kept too
+        WeightProfile profile{&clean.weight, std::vector<double>(clean.points.size(), 0.0)};
+        for (std::size_t i = 1; i < clean.points.size(); ++i)
+            profile.arc[i] = profile.arc[i - 1] + double(glm::length(clean.points[i] - clean.points[i - 1]));
+        std::vector<char> keep(clean.points.size(), 0);
+        keep.front() = keep.back() = 1;
+        dp_range(clean.points, 0, clean.points.size() - 1, tol, keep, &profile, kWeightTolerance);
+        return pick(clean, kept(keep), false);
     }
     return pick(clean, douglas_peucker_indices(clean.points, tol), false);
 }

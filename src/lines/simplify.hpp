@@ -21,6 +21,10 @@ std::vector<std::size_t> douglas_peucker_ring_indices(const std::vector<glm::vec
 
 // Simplified copy of a stroke (depth, strength and kind kept); tol <= 0 only removes
 // duplicate consecutive points. A closed stroke stays closed (first point repeated at the end).
+// An open stroke with a weight per point also keeps the points whose weight lies more than
+// kWeightTolerance off the chord's (the width the style draws follows the weight: the hachures'
+// widths carry their tone).
+inline constexpr float kWeightTolerance = 0.05f;
 Stroke simplify_stroke(const Stroke& s, float tol);
 std::vector<Stroke> simplify_strokes(const std::vector<Stroke>& strokes, float tol);
 

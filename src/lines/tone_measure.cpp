@@ -95,6 +95,7 @@ ToneImage target_tone(const ToneGrid& grid, const Camera& camera, const DepthIma
             if (!ok) continue;
             const double fc = c - ci, fr = r - ri;
             const double z00 = z_at(ci, ri), z10 = z_at(ci + 1, ri), z01 = z_at(ci, ri + 1), z11 = z_at(ci + 1, ri + 1);
+            if ((1 - fr) * ((1 - fc) * z00 + fc * z10) + fr * ((1 - fc) * z01 + fc * z11) <= grid.sea_z) continue;
             const double zc = (1 - fr) * (z10 - z00) + fr * (z11 - z01), zr = (1 - fc) * (z01 - z00) + fc * (z11 - z10);
             // tangents along c and r: (a, zc), (b, zr); normal = their cross product, z up
             const auto xy = [&](int i, int j) { return glm::dvec2(grid.pos[std::size_t(ri + j) * grid.cols + ci + i]); };

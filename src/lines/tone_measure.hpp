@@ -5,7 +5,8 @@
 // DEM's grid (the affine basis of nodes (0, 0), (1, 0), (0, 1), then Newton steps on the cells'
 // bilinear maps for a curvilinear grid) and n the normal of the bilinear patch of its cell's four
 // nodes (finite differences), l the unit vector towards the
-// light. Both are blurred with a Gaussian of sigma px normalised over the drawn terrain (pixels
+// light; a point whose bilinear height is at or below the grid's sea level is water and has no
+// target (a map does not tone the sea: it is drawn flat, without hachures). Both are blurred with a Gaussian of sigma px normalised over the drawn terrain (pixels
 // with a finite depth and a target), and compared on the terrain pixels farther than 2 sigma from
 // its outline: Pearson r, SSIM of the two blurred fields as one window (absolute values; C1 =
 // 0.01^2, C2 = 0.03^2; Wang, Bovik, Sheikh & Simoncelli 2004), mean I and mean T. Ink per unit
@@ -31,6 +32,9 @@ struct ToneGrid {
     const glm::vec3* pos = nullptr;
     const std::uint8_t* valid = nullptr;
     double z_scale = 1.0;  // drawn z = stored z * z_scale
+    // A sea level (drawn z): ground at or below it is drawn as flat water, which a map leaves
+    // untoned (no hachures on water), so the target leaves it out; -inf: no sea.
+    double sea_z = -std::numeric_limits<double>::infinity();
 };
 
 // Row-major width x height floats; NaN where there is no value.
@@ -42,7 +46,7 @@ struct ToneImage {
 // 1 - luminance of 8-bit RGB pixels (3 bytes each).
 ToneImage ink_from_rgb(int width, int height, const std::vector<std::uint8_t>& rgb);
 
-// T at each pixel with a finite depth that lands on a valid cell, else NaN.
+// T at each pixel with a finite depth that lands on a valid cell above the sea, else NaN.
 ToneImage target_tone(const ToneGrid& grid, const Camera& camera, const DepthImage& depth, const glm::dvec3& light);
 
 struct ToneScore {

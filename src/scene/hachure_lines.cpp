@@ -97,8 +97,10 @@ void add_hachures(const FrameTerrain& terrain, const Camera& camera, const Depth
     frame.light = light;
     frame.max_distance = max_visible_distance(toward);
     frame.width_px = params.width_px > 0.0 ? params.width_px : default_hachure_width_px;
-    for (LayerKind k : {LayerKind::creases, LayerKind::ridges, LayerKind::coastline, LayerKind::silhouettes})
-        frame.obstacles.push_back(&drawing.layer(k).strokes);
+    for (std::size_t i = 0; i < hachure_obstacle_layers.size(); ++i) {
+        frame.obstacles.push_back(&drawing.layer(hachure_obstacle_layers[i]).strokes);
+        frame.obstacle_pens.push_back(params.obstacle_pens[i]);
+    }
     drawing.layer(LayerKind::hachures).strokes = trace_hachures(grid, frame, params);
 }
 

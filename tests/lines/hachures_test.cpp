@@ -53,11 +53,12 @@ TriangleMesh mesh_of(const Terrain& t) {
     return m;
 }
 
-// The defaults with the default style's pen range (as apply_object_sketch sets it).
+// The defaults with the default style's pen range and taper (as apply_object_sketch sets them).
 HachureParams styled_defaults() {
     HachureParams p = hachure_defaults();
-    p.weight_min = default_style().layer(LayerKind::hachures).weight_min;
-    p.weight_max = default_style().layer(LayerKind::hachures).weight_max;
+    const LayerStyle& pen = default_style().layer(LayerKind::hachures);
+    p.weight_min = pen.weight_min, p.weight_max = pen.weight_max;
+    p.taper_px = pen.taper, p.taper_min = pen.taper_min;
     return p;
 }
 
@@ -134,7 +135,9 @@ TEST(Hachures, CoverageFollowsTheToneOfPlanes) {
 
 // Width rises with the tone: on a plane in full shade (tone 1) the lines lie spacing_min_px apart
 // and widen to carry the tone; on a plane of tone 0.35 they keep the nominal width. The drawn
-// coverage (length x the style's width at each point's weight, over the area) is the tone.
+// coverage (length x the style's width at each point's weight and taper, over the area) is the tone; in full
+// shade it is at least the tone and at most the heaviest pen at the closest spacing (the coverage
+// feedback widens the lines to black out their tapered ends and the gaps where lines end).
 TEST(Hachures, WidthRisesInTheDarkTones) {
     const Style style = default_style();
     const LayerStyle& pen = style.layer(LayerKind::hachures);
@@ -152,18 +155,26 @@ TEST(Hachures, WidthRisesInTheDarkTones) {
         double ink = 0.0, len = 0.0, weight = 0.0;
         for (const Stroke& s : hachures(t, cam, DepthImage{})) {
             ASSERT_EQ(s.weight.size(), s.points.size());
+            const double length = total_length({s});
+            double arc = 0.0;
             for (std::size_t i = 1; i < s.points.size(); ++i) {
                 const double seg = glm::length(s.points[i] - s.points[i - 1]);
                 const double u = 0.5 * (s.weight[i] + s.weight[i - 1]);
-                ink += seg * pen.width * (pen.weight_min + (pen.weight_max - pen.weight_min) * u);
-                len += seg, weight += seg * u;
+                ink += seg * pen.width * (pen.weight_min + (pen.weight_max - pen.weight_min) * u) *
+                       taper_factor(arc + 0.5 * seg, length, pen.taper, pen.taper_min);
+                len += seg, weight += seg * u, arc += seg;
             }
         }
         mean_weight[c] = weight / len;
         const double coverage = ink / (400.0 * 400.0);
         std::printf("plane tone %.3f: coverage %.3f, mean weight %.3f\n", tone, coverage, mean_weight[c]);
-        // within 8 %: the lines at the frame's edge and their 1 px steps, as for the planes above
-        EXPECT_NEAR(coverage, tone, 0.08 * tone);
+        if (tone < 0.99) {
+            // within 8 %: the lines at the frame's edge and their 1 px steps, as for the planes above
+            EXPECT_NEAR(coverage, tone, 0.08 * tone);
+        } else {
+            EXPECT_GE(coverage, 0.95 * tone);
+            EXPECT_LE(coverage, pen.weight_max * pen.width / hachure_defaults().spacing_min_px + 0.01);
+        }
     }
     EXPECT_GT(mean_weight[1], mean_weight[0] + 0.3);  // 1.6 px against 1 px: weights 0.83 and 0.33
 }
@@ -259,11 +270,12 @@ TEST(Hachures, ToneMeasureOnAnalyticHills) {
         std::printf("%s: r %.3f SSIM %.3f ink %.3f target %.3f\n", t == &hill ? "hill" : "cone", s.r, s.ssim, s.mean_ink,
                     s.mean_target);
         ASSERT_GT(s.pixels, 50000u);
-        // the targets at sigma 8 px (measured r 0.92, SSIM 0.85-0.88, ink 18-23 % under the
-        // target: the flat ground around the hills has the target's 0.29 and no line)
+        // the targets at sigma 8 px (measured r 0.91-0.92, SSIM 0.88-0.91, ink 5-11 % under the
+        // target: the coverage feedback fills the gaps where lines end; the flat ground around the
+        // hills, which the target gives 0.29, stays white)
         EXPECT_GE(s.r, 0.85);
         EXPECT_GE(s.ssim, 0.5);
-        EXPECT_NEAR(s.mean_ink, s.mean_target, 0.25 * s.mean_target);
+        EXPECT_NEAR(s.mean_ink, s.mean_target, 0.15 * s.mean_target);
     }
 }
 
@@ -283,11 +295,28 @@ TEST(ToneMeasure, TargetOfAPlaneIsItsClosedFormTone) {
     EXPECT_GT(n, 190u * 190u);
 }
 
+// Water is no target: a plane whose lower half lies under a sea level has a target on its upper
+// half only (the drawing leaves the sea white, as a map does).
+TEST(ToneMeasure, WaterHasNoTarget) {
+    const Terrain t = plane(0.0, 0.5);  // z = 0.5 y: -250 m at the south edge, +250 m at the north
+    const Camera cam = plan_view(t, 200);
+    const DepthImage depth = rasterize_depth(mesh_of(t), cam);
+    ToneGrid grid{t.cols, t.rows, t.pos.data(), t.valid.data(), 1.0};
+    grid.sea_z = 0.0;
+    const ToneImage target = target_tone(grid, cam, depth, kLight);
+    std::size_t north = 0, south = 0;
+    for (int y = 0; y < target.height; ++y)
+        for (int x = 0; x < target.width; ++x)
+            if (std::isfinite(target.v[std::size_t(y) * target.width + x])) ++(y < target.height / 2 ? north : south);
+    EXPECT_GT(north, 95u * 195u);  // row 0 is north in the plan view
+    EXPECT_LE(south, 2u * 200u);   // the shore's pixel row at most
+}
+
 // Rough ground: ridges and valleys a few spacings apart in several directions (sines of 60 to
 // 240 m on a 5 m grid, 1 km seen at 400 px: 24 to 96 px), where fall lines converge and part
-// every few pixels. The lines end often there and leave holes the widths cannot fill: the bound
-// is what the placement reaches today (measured ink 0.60 of the target's, r 0.99), short of the
-// +-25 % it aims at (docs/tone.md).
+// every few pixels. The lines end often there; the coverage feedback widens the lines around the
+// holes they leave and seeds more lines where the heaviest pen cannot fill them (measured ink 0.94
+// of the target's, r 0.99; 0.60 without the feedback).
 TEST(Hachures, MeanInkOnRoughGround) {
     const Terrain rough = terrain_from_function(201, 201, 5.0, [](double x, double y) {
         return 10.0 * std::sin(x / 60.0 * 6.283 + 0.3) * std::cos(y / 85.0 * 6.283) +
@@ -306,7 +335,7 @@ TEST(Hachures, MeanInkOnRoughGround) {
     const ToneScore s = tone_score(ink, target, 8.0);
     std::printf("rough: r %.3f SSIM %.3f ink %.3f target %.3f, %zu strokes, %.0f px\n", s.r, s.ssim, s.mean_ink, s.mean_target,
                 d.layer(LayerKind::hachures).strokes.size(), total_length(d.layer(LayerKind::hachures).strokes));
-    EXPECT_GE(s.mean_ink, 0.55 * s.mean_target);
-    EXPECT_LE(s.mean_ink, 1.25 * s.mean_target);
+    EXPECT_GE(s.mean_ink, 0.85 * s.mean_target);
+    EXPECT_LE(s.mean_ink, 1.15 * s.mean_target);
     EXPECT_GE(s.r, 0.85);
 }

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 namespace penink {
 namespace {
 
@@ -44,6 +46,32 @@ TEST(Simplify, RingCollinearRemoval) {
     EXPECT_EQ(remove_collinear(r), (Ring{{0, 0}, {10, 0}, {10, 10}, {0, 10}}));
     EXPECT_FLOAT_EQ(point_segment_distance({5, 3}, {0, 0}, {10, 0}), 3.0f);
     EXPECT_FLOAT_EQ(point_segment_distance({13, 4}, {0, 0}, {10, 0}), 5.0f);
+}
+
+
+// A straight stroke whose weight rises from 0 to 1 over its first half and stays: the points
+// where the weight bends are kept (the width follows them), within kWeightTolerance of the chord
+// everywhere; without weights it would be its two ends.
+TEST(Simplify, StrokeKeepsItsWidthProfile) {
+    Stroke s;
+    for (int i = 0; i <= 40; ++i) {
+        s.points.push_back(glm::vec2(float(i), 0.0f));
+        s.depth.push_back(1.0f);
+        s.weight.push_back(std::min(1.0f, float(i) / 20.0f));
+    }
+    const Stroke out = simplify_stroke(s, 0.4f);
+    ASSERT_EQ(out.weight.size(), out.points.size());
+    ASSERT_GE(out.points.size(), 3u);
+    EXPECT_NE(std::find(out.points.begin(), out.points.end(), glm::vec2(20.0f, 0.0f)), out.points.end());
+    for (int i = 0; i <= 40; ++i) {  // the drawn weight, linear between kept points
+        std::size_t k = 0;
+        while (k + 2 < out.points.size() && out.points[k + 1].x <= float(i)) ++k;
+        const float f = (float(i) - out.points[k].x) / (out.points[k + 1].x - out.points[k].x);
+        EXPECT_NEAR(out.weight[k] + f * (out.weight[k + 1] - out.weight[k]), s.weight[std::size_t(i)], kWeightTolerance + 1e-6f) << i;
+    }
+    Stroke plain = s;
+    plain.weight.clear();
+    EXPECT_EQ(simplify_stroke(plain, 0.4f).points.size(), 2u);
 }
 
 }  // namespace
