@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
 """`penink preview` in a real browser: Debian's chromium, headless, driven by chromedriver
 through Selenium. Checks that requests without the token, or naming another Host, are refused
-(403); that a drag changes the camera and draws smaller frames while it lasts; that a click on
-the terrain gives its coordinates; and that Save writes a scene whose `penink render` is the
-page's SVG byte for byte. Prints the redraw times it measured (no limit is asserted: speed
+(403); that a frame goes uncompressed to a client that accepts brotli; that a drag changes the
+camera and draws smaller frames while it lasts; that a click on the terrain gives its
+coordinates; and that Save writes a scene whose `penink render` is the page's SVG byte for byte. Prints the redraw times it measured (no limit is asserted: speed
 goals belong to bench/). Exit 77 (CTest: skipped) with the reason when chromium, chromedriver
 or Selenium is missing or chromium cannot start.
 
 Usage: browser_test.py PENINK SOURCE_DIR [SCENE_OR_DEM] [SCREENSHOT.png]
 """
+import json
 import os
 import re
 import shutil
@@ -89,6 +90,16 @@ def main():
         assert status_of(base + "preview.js?token=" + token) == 200
         assert status_of(base + "etc/passwd?token=" + token) == 404
         assert status_of(base + "../CMakeLists.txt?token=" + token) in (400, 404)
+
+        # a frame goes uncompressed to a client that accepts brotli, as browsers do (the
+        # server's brotli took seconds a frame)
+        with urllib.request.urlopen(base + "view?token=" + token, timeout=20) as r:
+            start_view = json.load(r)["view"]
+        req = urllib.request.Request(base + "frame?token=" + token + "&scale=0.1", data=json.dumps(start_view).encode(),
+                                     headers={"Accept-Encoding": "gzip, deflate, br"})
+        with urllib.request.urlopen(req, timeout=120) as r:
+            assert r.headers.get("Content-Encoding") is None, r.headers.get("Content-Encoding")
+            assert r.read().startswith(b"<?xml")
 
         opts = webdriver.ChromeOptions()
         opts.binary_location = chromium
