@@ -2,6 +2,8 @@
 
 #include <filesystem>
 
+#include "core/checked_blocks.hpp"
+
 #include "scene/mesh_frames.hpp"
 #include "scene/terrain_frames.hpp"
 
@@ -19,6 +21,14 @@ SceneView open_scene_view(Scene& scene, GlContext& context, const Log& log) {
 }
 
 SceneDrawing draw_scene(Scene& scene, GlContext& context, const Log& log) {
+    try {
+        SceneView view = open_scene_view(scene, context, log);
+        return view.frames->draw(view.camera, scene);
+    } catch (const DamagedBlockError& e) {
+        log.info("terrain: " + e.file() + ": damaged terrain cache (block checksum); building");
+        std::error_code ec;
+        std::filesystem::remove(e.file(), ec);
+    }
     SceneView view = open_scene_view(scene, context, log);
     return view.frames->draw(view.camera, scene);
 }
