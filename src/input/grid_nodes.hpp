@@ -1,5 +1,5 @@
 // A read-only view of a DEM grid's nodes, wherever they are stored: a Terrain's own arrays, or a
-// terrain cache file read into memory (surface/terrain_cache.hpp). cols x rows nodes, row-major,
+// terrain cache file read on demand (surface/terrain_cache.hpp). cols x rows nodes, row-major,
 // row 0 north, in the Terrain's local frame (metres, x east, y north, conventions.md). The drawn (exaggerated) height of a node is its
 // stored z times z_scale: 1 for a Terrain read at the drawing's exaggeration, the exaggeration
 // for heights stored unexaggerated, computed as the DEM reader computes it (in double, rounded
