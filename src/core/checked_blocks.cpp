@@ -72,7 +72,8 @@ void CheckedBlocks::load(int k, std::uint64_t block, std::uint64_t last) const {
         throw DamagedBlockError(path_, std::string("damaged cache: ") + what + " in block " +
                                            std::to_string(a.first + block + (at >> shift_)) + " (bytes " +
                                            std::to_string(from) + " to " +
-                                           std::to_string(std::min(from + size, a.offset + a.bytes)) + ")");
+                                           std::to_string(std::min(from + size, a.offset + a.bytes)) +
+                                           "); remove it to have it rebuilt");
     };
     for (std::uint64_t got = 0; got < len;) {
         const ssize_t r = ::pread(fd_, dst + got, std::size_t(len - got), off_t(a.offset + begin + got));

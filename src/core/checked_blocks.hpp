@@ -24,7 +24,8 @@
 namespace penink {
 
 // A block found damaged (short read or checksum mismatch) after the file was opened: an Error of
-// stage "surface" naming the file; the caller rebuilds the cache or reports it in one line.
+// stage "surface" naming the file, the block and its bytes, and saying that removing the file has
+// it rebuilt; the caller rebuilds the cache (render) or reports it in one line (batch, bench).
 class DamagedBlockError : public Error {
 public:
     DamagedBlockError(const std::string& file, const std::string& what) : Error("surface", file, what) {}

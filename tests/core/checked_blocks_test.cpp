@@ -97,7 +97,8 @@ TEST(CheckedBlocks, DamageIsFoundWhenItsBlockIsRead) {
     } catch (const DamagedBlockError& e) {
         EXPECT_EQ(e.file(), dir.file("d.bin"));
         EXPECT_EQ(std::string(e.what()), "penink: surface: " + dir.file("d.bin") +
-                                             ": damaged cache: checksum mismatch in block 5 (bytes 24576 to 28672)");
+                                             ": damaged cache: checksum mismatch in block 5 (bytes 24576 to 28672); "
+                                             "remove it to have it rebuilt");
     }
     EXPECT_FALSE(blocks.has_read(0, 5 * block));
     EXPECT_THROW(blocks.need(0, 5 * block, 5 * block + 1), DamagedBlockError);  // again, on every read
