@@ -75,7 +75,7 @@ Subcommand add_render_command(CLI::App& app) {
 
 int run_render(const RenderOptions& o) {
     const auto start = std::chrono::steady_clock::now();
-    const Log log{o.verbose, progress_mode(o.quiet, o.progress)};
+    const Log log{o.verbose, progress_mode(o.quiet, o.progress || o.verbose)};  // -v: the builds' progress too
     check_outputs(o, o.width > 0 ? o.width : 1, o.height > 0 ? o.height : 1);
     Scene scene = load_scene_with_overrides(o);
     apply_map_scale(scene, page_options(o));

@@ -1,5 +1,5 @@
 // A read-only view of a DEM grid's nodes, wherever they are stored: a Terrain's own arrays, or a
-// terrain cache file read into memory (surface/terrain_cache.hpp). cols x rows nodes, row-major,
+// terrain cache file read on demand (surface/terrain_cache.hpp). cols x rows nodes, row-major,
 // row 0 north, in the Terrain's local frame (metres, x east, y north, conventions.md). The drawn (exaggerated) height of a node is its
 // stored z times z_scale: 1 for a Terrain read at the drawing's exaggeration, the exaggeration
 // for heights stored unexaggerated, computed as the DEM reader computes it (in double, rounded
@@ -7,6 +7,9 @@
 // drawn at it: z = max(z * z_scale, sea_level * z_scale), each rounded once to float, so the water
 // is one flat surface hiding the sea floor; the stored z (pos) is unchanged, valid flags too
 // (nodata stays nodata). The level-of-detail bound for clamped nodes: terrain_lod.hpp.
+// Nodes read from a terrain cache on demand (`blocks`, core/checked_blocks.hpp: array 0 the
+// positions, 1 the valid flags) are read when first asked for: at() and has_data() ask for their
+// node, and code reading `pos` or `valid` directly asks first (need).
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -14,6 +17,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "core/checked_blocks.hpp"
 #include "input/terrain.hpp"
 
 namespace penink {
@@ -24,6 +28,23 @@ struct GridNodes {
     const std::uint8_t* valid = nullptr;   // cols * rows, 1 where the node has data
     double z_scale = 1.0;
     double sea_level = -std::numeric_limits<double>::infinity();  // unexaggerated; -inf: no water
+    const CheckedBlocks* blocks = nullptr;  // the cache file pos and valid are read from; null: in memory
+    static constexpr int pos_array = 0, valid_array = 1;  // their arrays in `blocks`
+
+    // Makes nodes [i0, i1) (positions and valid flags) readable; a no-op for nodes in memory.
+    // Throws DamagedBlockError when their blocks are damaged.
+    void need(std::size_t i0, std::size_t i1) const {
+        if (!blocks) return;
+        blocks->need(pos_array, i0 * sizeof(glm::vec3), i1 * sizeof(glm::vec3));
+        blocks->need(valid_array, i0, i1);
+    }
+    // The nodes of a window (clamped to the grid), row by row.
+    void need(GridWindow w) const;
+    // Whether node i holds data.
+    bool has_data(std::size_t i) const {
+        need(i, i + 1);
+        return valid[i] != 0;
+    }
 
     bool has_sea() const { return sea_level > -std::numeric_limits<double>::infinity(); }
     // The drawn height of the water surface (sea_level * z_scale, rounded once to float).
@@ -32,6 +53,7 @@ struct GridNodes {
     std::size_t size() const { return std::size_t(cols) * std::size_t(rows); }
     // Position of node i as drawn.
     glm::vec3 at(std::size_t i) const {
+        need(i, i + 1);
         glm::vec3 p = pos[i];
         if (z_scale != 1.0) p.z = float(double(p.z) * z_scale);
         if (has_sea() && p.z < sea_z()) p.z = sea_z();

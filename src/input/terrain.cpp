@@ -11,9 +11,18 @@ namespace penink {
 
 Terrain crop_terrain(const Terrain& t, GridWindow w) { return crop_nodes(t, grid_nodes(t), w); }
 
+void GridNodes::need(GridWindow w) const {
+    if (!blocks) return;
+    w.c0 = std::clamp(w.c0, 0, cols), w.c1 = std::clamp(w.c1, w.c0, cols);
+    w.r0 = std::clamp(w.r0, 0, rows), w.r1 = std::clamp(w.r1, w.r0, rows);
+    if (w.c0 == w.c1) return;
+    for (int r = w.r0; r < w.r1; ++r) need(index(w.c0, r), index(w.c1 - 1, r) + 1);
+}
+
 Terrain crop_nodes(const Terrain& grid, const GridNodes& nodes, GridWindow w) {
     w.c0 = std::clamp(w.c0, 0, nodes.cols), w.c1 = std::clamp(w.c1, w.c0, nodes.cols);
     w.r0 = std::clamp(w.r0, 0, nodes.rows), w.r1 = std::clamp(w.r1, w.r0, nodes.rows);
+    nodes.need(w);
     Terrain out = grid;
     out.cols = w.cols(), out.rows = w.rows();
     out.source_col0 = grid.source_col0 + w.c0, out.source_row0 = grid.source_row0 + w.r0;

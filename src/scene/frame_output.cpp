@@ -80,6 +80,13 @@ void log_frame_timings(const SceneDrawing& r, const Log& log) {
       << ", read-back " << r.times.readback << "; trace " << r.trace_ms << " ms; "
       << r.triangles << " triangles";
     log.info(s.str());
+    if (r.cache_bytes > 0) {
+        std::ostringstream c;
+        c.precision(3);
+        c << "terrain cache: " << double(r.cache_bytes_read) / 1048576.0 << " of " << double(r.cache_bytes) / 1048576.0
+          << " MiB of nodes and pyramid read";
+        log.info(c.str());
+    }
 }
 
 }  // namespace penink

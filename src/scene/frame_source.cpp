@@ -2,8 +2,11 @@
 
 #include <filesystem>
 
+#include "core/checked_blocks.hpp"
+
 #include "scene/mesh_frames.hpp"
 #include "scene/terrain_frames.hpp"
+#include "scene/terrain_keep.hpp"
 
 namespace penink {
 
@@ -19,6 +22,15 @@ SceneView open_scene_view(Scene& scene, GlContext& context, const Log& log, Terr
 }
 
 SceneDrawing draw_scene(Scene& scene, GlContext& context, const Log& log, TerrainKeep* keep) {
+    try {
+        SceneView view = open_scene_view(scene, context, log, keep);
+        return view.frames->draw(view.camera, scene);
+    } catch (const DamagedBlockError& e) {
+        log.info("terrain: " + e.file() + ": damaged terrain cache (block checksum); building");
+        if (keep) keep->forget_terrain();  // it holds the damaged cache open
+        std::error_code ec;
+        std::filesystem::remove(e.file(), ec);
+    }
     SceneView view = open_scene_view(scene, context, log, keep);
     return view.frames->draw(view.camera, scene);
 }

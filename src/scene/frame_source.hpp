@@ -6,6 +6,7 @@
 // record, `bench` one per configuration. Drawings are in image pixels with eye distances in metres
 // (world units for meshes); each carries the camera used and per-pass timings.
 #pragma once
+#include <cstdint>
 #include <memory>
 
 #include "core/drawing.hpp"
@@ -31,6 +32,9 @@ struct SceneDrawing {
     double hachure_ms = 0; // CPU: the hachures (terrains)
     MeshLineTimings lines; // a mesh frame's object-space steps (parts of trace_ms)
     std::size_t cells = 0, triangles = 0;
+    // Of a terrain cache read on demand (core/checked_blocks.hpp): bytes of its arrays read so
+    // far, and all of them; 0 for nodes in memory.
+    std::uint64_t cache_bytes_read = 0, cache_bytes = 0;
     PixelMask silhouette_mask;  // the frame's silhouette pixels before tracing (terrains)
     DepthImage toward;          // the frame's nearest-surface eye distances (terrains; tone measure)
 };
@@ -57,7 +61,11 @@ class TerrainKeep;
 // (scene/terrain_keep.hpp); none for a mesh.
 SceneView open_scene_view(Scene& scene, GlContext& context, const Log& log, TerrainKeep* keep = nullptr);
 
-// One frame of the scene's own view.
+// One frame of the scene's own view. A block of the terrain cache found damaged while the frame
+// reads it (DamagedBlockError, surface/terrain_cache.hpp) is logged, the cache removed (and
+// forgotten by `keep`) and the frame drawn again from a rebuilt one; damage found again (a cache
+// that cannot be removed) is the error. Frames drawn from an open view (flights, batches) report
+// such damage as the error.
 SceneDrawing draw_scene(Scene& scene, GlContext& context, const Log& log, TerrainKeep* keep = nullptr);
 
 }  // namespace penink

@@ -87,6 +87,7 @@ void add_hachures(const FrameTerrain& terrain, const Camera& camera, const Depth
                   const glm::dvec3& light, const HachureParams& params, Drawing& drawing) {
     if (!params.enabled) return;
     const GridNodes& n = terrain.nodes;
+    n.need(terrain.window);  // read directly below
     HachureGrid grid;
     grid.cols = n.cols, grid.rows = n.rows, grid.pos = n.pos, grid.valid = n.valid, grid.z_scale = n.z_scale;
     if (n.has_sea()) grid.floor_z = n.sea_z();

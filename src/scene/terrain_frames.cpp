@@ -17,6 +17,7 @@
 #include "lines/frustum_clip.hpp"
 #include "lines/mesh_visibility.hpp"
 #include "lines/trace_pixel_lines.hpp"
+#include "scene/cache_build_estimate.hpp"
 #include "scene/hachure_lines.hpp"
 #include "scene/map_scale.hpp"
 #include "scene/terrain_keep.hpp"
@@ -121,9 +122,17 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terra
     options.cache_dir = scene.cache_dir;
     DrainageLineSource source;
     const auto t0 = Clock::now();
+    bool building = false;  // the progress callback is called by a build alone
     source.db = load_or_build_drainage(
         scene.dem, dem, options, [&](const std::string& m) { log.info(m); },
-        [&progress](const std::string& stage, double fraction) { progress.update(stage, fraction); },
+        [&](const std::string& stage, double fraction) {
+            if (!building && double(dem.cols - 1) * double(dem.rows - 1) > estimate_from_cells)
+                std::cerr << describe_cache_estimate("drainage", "drainage database", dem.cols, dem.rows,
+                                                     drainage_cache_estimate(dem.cols, dem.rows))
+                          << "\n";
+            building = true;
+            progress.update(stage, fraction);
+        },
         &source.vertices);
     log.info("drainage database ready (" + std::to_string(int(ms_since(t0))) + " ms)");
     return source;
@@ -238,6 +247,8 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
     out.hachure_ms = ms_since(t_hachures);
     out.silhouette_mask = std::move(images.silhouettes);
     out.toward = std::move(images.toward);
+    if (const CheckedBlocks* blocks = terrain_.nodes.blocks)
+        out.cache_bytes_read = blocks->bytes_read(), out.cache_bytes = blocks->bytes();
     fill_metadata(frame, camera, terrain_.meta, out.drawing);
     out.drawing.georeference = plan_view_georeference(camera, terrain_.meta.origin, terrain_.meta.crs_wkt);
     if (out.drawing.georeference) add_geographic_corners(*out.drawing.georeference, camera.width, camera.height);

@@ -44,7 +44,7 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Scene
 // A terrain set up once and drawn in many frames (render, batch, bench): its level-of-detail
 // pyramid (surface/terrain_lod.hpp), from which each frame selects the mesh its camera needs
 // ([surface] tolerance_px; 0 = the full-resolution mesh), its GPU copy, and its drainage lines.
-// `terrain` is what gets modelled: the nodes (in memory or mapped from the terrain cache) and the
+// `terrain` is what gets modelled: the nodes (in memory or read on demand from the terrain cache) and the
 // window of them the frames may see (the view's for a single frame, the union of the frames'
 // windows for a flight), which bounds the drainage lines read; `drainage` holds the lines of the
 // whole DEM (scene_drainage).

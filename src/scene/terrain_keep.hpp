@@ -31,6 +31,8 @@ public:
     // creases nor ridges.
     std::shared_ptr<const DrainageLineSource> drainage(const Scene& scene, const SceneTerrain& dem, const Log& log);
     TerrainGpuKeep& gpu() { return gpu_; }
+    // Drops the stored terrain and its pyramid (a cache found damaged): the next frame reads it again.
+    void forget_terrain() { stored_.reset(), sea_pyramid_.reset(); }
 
 private:
     // What identifies a DEM's stored terrain: its path, size and modification time, the cache folder.

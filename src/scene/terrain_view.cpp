@@ -17,6 +17,7 @@
 #include "core/georeference.hpp"
 #include "export/page.hpp"
 #include "scene/auto_exaggeration.hpp"
+#include "scene/cache_build_estimate.hpp"
 #include "scene/map_scale.hpp"
 #include "scene/scene_memory.hpp"
 #include "surface/grid_ground.hpp"
@@ -141,20 +142,20 @@ std::vector<glm::dvec3> frame_samples(const GridNodes& t) {
     constexpr std::size_t enough = 20000;  // enough to frame by
     if (t.size() <= enough) {
         for (std::size_t i = 0; i < t.size(); ++i)
-            if (t.valid[i]) pts.emplace_back(t.at(i));
+            if (t.has_data(i)) pts.emplace_back(t.at(i));
     } else {
         // every k-th node of every k-th row: a frame touches 1/k of the rows, not every page
         const int k = int(std::ceil(std::sqrt(double(t.size()) / double(enough))));
         for (int r = 0; r < t.rows; r += k)
             for (int c = 0; c < t.cols; c += k)
-                if (t.valid[t.index(c, r)]) pts.emplace_back(t.at(c, r));
+                if (t.has_data(t.index(c, r))) pts.emplace_back(t.at(c, r));
     }
     for (int c = 0; c < t.cols; ++c)  // the edges decide the frame: keep all of them
         for (int r : {0, t.rows - 1})
-            if (t.valid[t.index(c, r)]) pts.emplace_back(t.at(c, r));
+            if (t.has_data(t.index(c, r))) pts.emplace_back(t.at(c, r));
     for (int r = 0; r < t.rows; ++r)
         for (int c : {0, t.cols - 1})
-            if (t.valid[t.index(c, r)]) pts.emplace_back(t.at(c, r));
+            if (t.has_data(t.index(c, r))) pts.emplace_back(t.at(c, r));
     return pts;
 }
 
@@ -235,6 +236,10 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, c
                      "the level-of-detail pyramid of the DEM's " + std::to_string(size.cols) + "x" +
                          std::to_string(size.rows) + " nodes (" + std::to_string(std::int64_t(side)) + "^2 padded nodes)",
                      size.nodes() * render_bytes_per_node + side * side * lod_bytes_per_padded_node, memory_budget(0));
+        if (double(size.cols - 1) * double(size.rows - 1) > estimate_from_cells)
+            std::cerr << describe_cache_estimate("terrain", "terrain cache", size.cols, size.rows,
+                                                 terrain_cache_estimate(size.cols, size.rows))
+                      << "\n";
     }
     StageProgress progress(std::cerr, log.progress, "building terrain cache");
     progress.update("reading the DEM", 0.0);

@@ -7,8 +7,9 @@
 // Then the part of the DEM the view needs, with near/far planes fitted to it.
 //
 // The nodes and level-of-detail pyramid come from the terrain cache (surface/terrain_cache.hpp)
-// beside the drainage database (`<dem>.lod` where the drainage cache is `<dem>.dv`), read
-// into memory and checked block by block; a missing or stale cache is built from the DEM, read unexaggerated, and written.
+// beside the drainage database (`<dem>.lod` where the drainage cache is `<dem>.dv`), whose
+// blocks are read and checked as the frames first need them; a missing or stale cache is built
+// from the DEM, read unexaggerated, and written.
 // One cache serves every vertical exaggeration, view, light and style. Frames: the Terrain's
 // local metres, z exaggerated as drawn (GridNodes::at).
 #pragma once

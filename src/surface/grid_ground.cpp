@@ -21,7 +21,7 @@ bool barycentric(glm::dvec2 p, glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, double 
     return true;
 }
 
-glm::dvec2 plan(const GridNodes& t, int c, int r) { return glm::dvec2(t.pos[t.index(c, r)]); }
+glm::dvec2 plan(const GridNodes& t, int c, int r) { return glm::dvec2(t.at(c, r)); }
 
 }  // namespace
 
@@ -53,7 +53,7 @@ bool grid_ground_height(const GridNodes& t, double x, double y, double& z) {
     z = 0.0;
     for (int j = 0; j < 3; ++j) {
         const std::size_t n = t.index(ic[best_k][j], ir[best_k][j]);
-        if (!t.valid[n]) return false;
+        if (!t.has_data(n)) return false;
         z += best_w[j] * double(t.at(n).z);
     }
     return true;

@@ -106,6 +106,7 @@ std::vector<ShoreLine> sea_level_contour(const GridNodes& nodes, GridWindow w) {
     if (!nodes.has_sea() || !nodes.pos || !nodes.valid) return {};
     w.c0 = std::max(w.c0, 0), w.r0 = std::max(w.r0, 0);
     w.c1 = std::min(w.c1, nodes.cols), w.r1 = std::min(w.r1, nodes.rows);
+    nodes.need(w);
     ShoreGraph graph(nodes);
     for (int r = w.r0; r + 1 < w.r1; ++r)
         for (int c = w.c0; c + 1 < w.c1; ++c) {

@@ -14,6 +14,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "core/checked_blocks.hpp"
 #include "core/error.hpp"
 #include "core/hash64.hpp"
 
@@ -26,8 +27,14 @@ namespace {
 constexpr char magic[8] = {'P', 'E', 'N', 'I', 'N', 'K', 'T', 'C'};
 constexpr std::uint64_t page = 4096;
 constexpr std::uint64_t max_crs_bytes = 1 << 20;
-// Bytes of array checked by one checksum: a frame that needs a node reads and checks its block.
-constexpr std::uint64_t block_bytes = 1 << 16;
+// Bytes of array checked by one checksum: a frame that needs a node reads and checks its block
+// (core/checked_blocks.hpp). A page: the nodes are row-major, so a frame that needs the DEM's
+// edge columns (the automatic framing) or a thin window reads a page per row and node, not a
+// whole row (0.17 of the nodes' blocks at 4030 columns with 64 KiB blocks it read them all);
+// the checksums take 8 bytes a page (0.2 % of the file). Caches written with other powers of
+// two, page to max_block_bytes, are read as well.
+constexpr std::uint64_t block_bytes = 4096;
+constexpr std::uint64_t max_block_bytes = 1 << 24;
 
 std::uint64_t align_up(std::uint64_t n, std::uint64_t a) { return (n + a - 1) / a * a; }
 
@@ -68,9 +75,6 @@ Sizes array_sizes(int cols, int rows, int levels) {
     const std::uint64_t side = (std::uint64_t(1) << levels) + 1;
     return {nodes * sizeof(glm::vec3), nodes, side * side * sizeof(float)};
 }
-
-// Blocks of an array of n bytes (the last one may be short).
-std::uint64_t block_count(std::uint64_t n) { return (n + block_bytes - 1) / block_bytes; }
 
 // hash64 of each block_bytes block of the n bytes at p, appended to w.
 void block_sums(Writer& w, const void* p, std::uint64_t n) {
@@ -122,32 +126,6 @@ std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCac
 
 [[noreturn]] void write_failed(const std::string& path, int err) {
     throw Error("surface", path, std::string("cannot write terrain cache: ") + std::strerror(err));
-}
-
-// The arrays read from a cache file, owned by the StoredTerrain (and its pyramid) made from it.
-struct ReadArrays {
-    std::vector<glm::vec3> pos;
-    std::vector<std::uint8_t> valid;
-    std::vector<float> error;
-};
-
-// n bytes at `offset` of fd into dst, each block checked against its checksum at sums[k] as it is
-// read. False on a short read or a mismatch.
-bool read_checked(int fd, std::uint64_t offset, void* dst, std::uint64_t n, const std::uint64_t* sums) {
-    auto* b = static_cast<std::uint8_t*>(dst);
-    for (std::uint64_t at = 0, k = 0; at < n; at += block_bytes, ++k) {
-        const std::size_t len = std::size_t(std::min<std::uint64_t>(block_bytes, n - at));
-        for (std::size_t got = 0; got < len;) {
-            const ssize_t r = ::pread(fd, b + at + got, len - got, off_t(offset + at + got));
-            if (r < 0 && errno == EINTR) continue;
-            if (r <= 0) return false;
-            got += std::size_t(r);
-        }
-        std::uint64_t want;
-        std::memcpy(&want, sums + k, 8);
-        if (hash64(b + at, len) != want) return false;
-    }
-    return true;
 }
 
 std::optional<StoredTerrain> fail(std::string* why, const std::string& reason) {
@@ -264,30 +242,38 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
         return fail(why, "damaged terrain cache (lengths)");
     const std::uint32_t block = r.get<std::uint32_t>();
     r.get<std::uint32_t>();
-    const std::uint64_t blocks[3] = {block_count(s.pos), block_count(s.valid), block_count(s.error)};
-    if (!r.ok || block != block_bytes || (blocks[0] + blocks[1] + blocks[2]) * 8 != r.n - r.at)
+    if (!r.ok || !std::has_single_bit(block) || block < page || block > max_block_bytes)
         return fail(why, "damaged terrain cache (block checksums)");
-    const auto* sums = reinterpret_cast<const std::uint64_t*>(b + r.at);  // 8-aligned in the header
-    auto arrays = std::make_shared<ReadArrays>();
+    const auto count = [block](std::uint64_t n) { return (n + block - 1) / block; };
+    const std::uint64_t blocks = count(s.pos) + count(s.valid) + count(s.error);
+    if (blocks * 8 != r.n - r.at) return fail(why, "damaged terrain cache (block checksums)");
+    std::vector<std::uint64_t> sums(blocks);
+    std::memcpy(sums.data(), b + r.at, std::size_t(blocks) * 8);
+    std::shared_ptr<CheckedBlocks> arrays;
     try {
-        arrays->pos.resize(std::size_t(s.pos / sizeof(glm::vec3)));
-        arrays->valid.resize(std::size_t(s.valid));
-        arrays->error.resize(std::size_t(s.error / sizeof(float)));
+        arrays = std::make_shared<CheckedBlocks>(
+            fd, path, std::vector<CheckedBlocks::Array>{{at[0], s.pos}, {at[1], s.valid}, {at[2], s.error}}, block,
+            std::move(sums));
     } catch (const std::bad_alloc&) {
         return fail(why, "terrain cache too large for memory");
     }
-    if (!read_checked(fd, at[0], arrays->pos.data(), s.pos, sums) ||
-        !read_checked(fd, at[1], arrays->valid.data(), s.valid, sums + blocks[0]) ||
-        !read_checked(fd, at[2], arrays->error.data(), s.error, sums + blocks[0] + blocks[1]))
-        return fail(why, "damaged terrain cache (block checksum)");
+    static_assert(GridNodes::pos_array == 0 && GridNodes::valid_array == 1 && TerrainLod::error_array == 2);
     t.nodes.cols = m.cols, t.nodes.rows = m.rows;
-    t.nodes.pos = arrays->pos.data();
-    t.nodes.valid = arrays->valid.data();
+    t.nodes.pos = static_cast<const glm::vec3*>(arrays->data(GridNodes::pos_array));
+    t.nodes.valid = static_cast<const std::uint8_t*>(arrays->data(GridNodes::valid_array));
+    t.nodes.blocks = arrays.get();
     t.lod.cols = m.cols, t.lod.rows = m.rows, t.lod.levels = levels;
-    t.lod.error = std::span<const float>(arrays->error.data(), arrays->error.size());
+    t.lod.error = std::span<const float>(static_cast<const float*>(arrays->data(TerrainLod::error_array)),
+                                         std::size_t(s.error / sizeof(float)));
+    t.lod.blocks = arrays.get();
     t.lod.storage = arrays;
     t.storage = std::move(arrays);
     return t;
+}
+
+void read_whole(const StoredTerrain& t) {
+    t.nodes.need(GridWindow{0, 0, t.nodes.cols, t.nodes.rows});
+    if (t.lod.blocks) t.lod.blocks->need(TerrainLod::error_array, 0, t.lod.error.size() * sizeof(float));
 }
 
 }  // namespace penink

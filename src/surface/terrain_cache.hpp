@@ -15,16 +15,20 @@
 //         f64 xy_unit, elevation_min, elevation_max; i32 utm_zone, u32 north
 //   pyramid: f32 lipschitz, z_min, z_max, 0; f64 plan bounds lo.x, lo.y, hi.x, hi.y
 //   u64 offsets of pos, valid, error; u64 file length; u64 CRS length, CRS WKT bytes (padded to 8)
-//   u32 block bytes (65536), u32 0; u64 hash64 of each block of pos, then of valid, then of error
+//   u32 block bytes (4096; older caches 65536), u32 0; u64 hash64 of each block of pos, then of valid, then of error
 //     (each array cut into blocks from its start, the last one short)
 //   u64 checksum: hash64 of every header byte before it
 //   at 4096-byte aligned offsets: f32 x, y, z per node (cols * rows); u8 valid per node; f32
 //   error per padded node ((2^levels + 1)^2)
 // The header is checksummed and every length and offset is checked against the grid and the
-// file's size before any array is read; the arrays are read (never mapped, so a file cut short
-// meanwhile cannot fault the process) block by block, each block checked against its checksum
-// as it arrives: a flipped byte, a cut or a foreign file is refused with its reason, and the
-// caller rebuilds the cache. Written to a temporary file and renamed into place.
+// file's size when the file is opened: a flipped header byte, a cut or a foreign file is refused
+// with its reason, and the caller rebuilds the cache. The arrays are read on demand
+// (core/checked_blocks.hpp: pread, never mapped, so a file cut short meanwhile cannot fault the
+// process): a frame reads and checks only the blocks its level-of-detail selection and its view
+// window touch (GridNodes::need, TerrainLod::error_at), so its time and memory follow the image,
+// not the DEM. A damaged block is found when it is first needed and throws DamagedBlockError;
+// draw_scene (scene/frame_source.hpp) then removes the cache and draws again from a rebuilt one.
+// Written to a temporary file and renamed into place.
 #pragma once
 #include <cstdint>
 #include <limits>
@@ -80,10 +84,15 @@ StoredTerrain store_terrain(Terrain flat);
 // (stage "surface", file path) with the system's reason when it cannot be written.
 void write_terrain_cache(const std::string& path, const StoredTerrain& terrain, const TerrainCacheKey& key);
 
-// Reads a cache file. nullopt, with the reason in *why, when it is missing, not a regular file
-// (a FIFO, a folder: never opened for blocking reads), of another version, built from another
-// DEM (key), or damaged (header checksum, lengths, offsets, a block's checksum).
+// Opens a cache file: reads and checks its header only (the arrays are read as they are needed).
+// nullopt, with the reason in *why, when it is missing, not a regular file (a FIFO, a folder:
+// never opened for blocking reads), of another version, built from another DEM (key), or its
+// header is damaged (header checksum, lengths, offsets, block checksums' count).
 std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const TerrainCacheKey& key,
                                                 std::string* why = nullptr);
+
+// Reads and checks every block of a terrain opened from a cache file (a no-op for one in memory).
+// Throws DamagedBlockError at the first damaged block.
+void read_whole(const StoredTerrain& t);
 
 }  // namespace penink

@@ -125,6 +125,7 @@ int lod_padded_levels(int cols, int rows) {
 
 TerrainLod build_terrain_lod(const GridNodes& t, double ex) {
     check_nodes(t);
+    t.need(GridWindow{0, 0, t.cols, t.rows});  // every node, read directly below (and by other threads)
     if (!(ex > 0.0) || !std::isfinite(ex)) throw std::invalid_argument("terrain lod: vertical exaggeration must be > 0");
     TerrainLod lod;
     lod.cols = t.cols, lod.rows = t.rows;
@@ -443,9 +444,9 @@ private:
     std::size_t active_count_ = 0;
 
     // The error bound of padded node k for the nodes as drawn (water included).
-    float error(std::size_t k) const { return water_ > 0.0f ? lod_.error[k] + water_ : lod_.error[k]; }
+    float error(std::size_t k) const { return water_ > 0.0f ? lod_.error_at(k) + water_ : lod_.error_at(k); }
     bool in_dem(int c, int r) const { return c < cols_ && r < rows_; }
-    bool ok(int c, int r) const { return in_dem(c, r) && t_.valid[t_.index(c, r)]; }
+    bool ok(int c, int r) const { return in_dem(c, r) && t_.has_data(t_.index(c, r)); }
 
     // Lindstrom & Pascucci's test: error projected at the distance from the eye to the node's
     // bounding region exceeds the tolerance. Monotone from a node to its parents.
@@ -454,7 +455,7 @@ private:
         if (!(err < kInf)) return true;  // forced (or NaN)
         if (!(err > 0.0f)) return false;
         if (!in_dem(c, r)) return true;  // cannot happen: padding nodes are forced
-        const glm::vec3& p = t_.pos[t_.index(c, r)];  // plan position: z unused
+        const glm::vec3 p = t_.at(c, r);  // plan position: z unused
         const double dx = double(p.x) - eye_.x, dy = double(p.y) - eye_.y;
         int level = 0;
         bool centre = false;
@@ -495,6 +496,7 @@ private:
     // compute_normals(mesh_from_terrain(t)) at node (c, r): its up-to-6 full-resolution triangles
     // in the order that mesh lists them (cells row by row; {NW, SW, SE} before {NW, SE, NE}).
     glm::vec3 full_res_normal(int c, int r) const {
+        t_.need(GridWindow{c - 1, r - 1, c + 2, r + 2});  // the valid flags are read directly
         const std::uint8_t* v = t_.valid;
         glm::vec3 sum(0.0f);
         auto tri = [&](std::size_t a, std::size_t b, std::size_t d) {

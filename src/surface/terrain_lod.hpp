@@ -61,7 +61,7 @@
 // Frames and units: grid node (c, r) is Terrain node (c, r) (row 0 north); positions are the
 // Terrain's local metres, z exaggerated as in Terrain::pos (or as GridNodes::at draws them);
 // error unexaggerated metres; radius plan metres. Memory: 4 bytes per padded node (error), held
-// in memory or mapped from the terrain cache (terrain_cache.hpp).
+// in memory or read on demand from the terrain cache (terrain_cache.hpp).
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -82,9 +82,13 @@ struct TerrainLod {
     int cols = 0, rows = 0;      // the DEM grid
     int levels = 0;              // padded side = 2^levels + 1
     // Per padded node (index(c, r)), metres of elevation, unexaggerated; +inf: must split. Points
-    // into `storage` (an array in memory, or a mapped cache file).
+    // into `storage` (an array in memory, or a cache file read on demand).
     std::span<const float> error;
     std::shared_ptr<const void> storage;
+    // The cache file `error` is read from on demand (array 2, core/checked_blocks.hpp); null: in
+    // memory. error_at reads its node's block first.
+    const CheckedBlocks* blocks = nullptr;
+    static constexpr int error_array = 2;
     float lipschitz = 0.0f;      // L: the plan positions' Lipschitz constant over the grid, metres per grid unit
     float z_min = 0.0f, z_max = 0.0f;  // range of the valid elevations, metres, unexaggerated
     // The sea level (unexaggerated) whose clamp the errors and range include; -inf: none. Selecting
@@ -92,6 +96,10 @@ struct TerrainLod {
     double sea_level = -std::numeric_limits<double>::infinity();
 
     int side() const { return (1 << levels) + 1; }
+    float error_at(std::size_t k) const {
+        if (blocks) blocks->need(error_array, k * sizeof(float), (k + 1) * sizeof(float));
+        return error[k];
+    }
     std::size_t index(int c, int r) const { return std::size_t(r) * std::size_t(side()) + std::size_t(c); }
     // The nested plan radius of node (c, r), metres: L times the grid-unit radius of its level;
     // 0 at the padded square's corners (never split).

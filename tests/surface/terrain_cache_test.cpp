@@ -1,7 +1,9 @@
 // The terrain cache: what is written is what is read back (nodes, pyramid, georeference), a
 // frame selected from the file is the frame selected in memory, at any exaggeration; a stale,
-// damaged (header or any block of the arrays: flipped, zeroed, NaN, cut), truncated, missing or
-// not regular (FIFO, folder) file is refused with its reason; an unwritable place is an Error.
+// damaged header, truncated, missing or not regular (FIFO, folder) file is refused with its
+// reason; damage in any block of the arrays (flipped, zeroed, NaN) is found when that block is
+// read; a frame of a small view reads a small part of a large cache, and damage outside what it
+// reads does not touch it; an unwritable place is an Error.
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -15,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include "core/camera.hpp"
+#include "core/checked_blocks.hpp"
 #include "core/error.hpp"
 #include "surface/terrain_cache.hpp"
 #include "support/synthetic_terrain.hpp"
@@ -68,6 +71,10 @@ TEST(TerrainCache, RoundTripMapsWhatWasWritten) {
     const std::optional<StoredTerrain> map = read_terrain_cache(path, key(), &why);
     ASSERT_TRUE(map) << why;
     EXPECT_EQ(map->in_memory, nullptr);
+    ASSERT_NE(map->nodes.blocks, nullptr);
+    EXPECT_EQ(map->nodes.blocks->bytes_read(), 0u) << "opening reads the header alone";
+    read_whole(*map);
+    EXPECT_EQ(map->nodes.blocks->bytes_read(), 300u * 257u * 13u + mem.lod.error.size() * 4u);
     EXPECT_EQ(map->meta.cols, 300);
     EXPECT_EQ(map->meta.rows, 257);
     EXPECT_EQ(map->meta.origin, flat.origin);
@@ -204,8 +211,9 @@ void put_bytes(const std::string& path, const std::vector<char>& b) {
 
 // Every block of the arrays carries its checksum: damage anywhere in them (the first node, the
 // middle of the nodes, the flags, the last pyramid entry) is found as the block is read, whatever
-// the damage (one bit, a zeroed run, NaN or huge floats written over good ones, the tail cut).
-TEST(TerrainCache, DamageInAnyBlockOfTheArraysIsRefused) {
+// the damage (one bit, a zeroed run, NaN or huge floats written over good ones); the file opens
+// (its header is sound) and reading the damaged block throws. A cut is found at the open.
+TEST(TerrainCache, DamageInAnyBlockOfTheArraysIsFoundWhenRead) {
     test::TempDir dir;
     const StoredTerrain mem = store_terrain(hills());
     const std::string path = dir.file("h.lod");
@@ -226,8 +234,15 @@ TEST(TerrainCache, DamageInAnyBlockOfTheArraysIsRefused) {
         if (b == bytes) return;  // the damage wrote what was there (a zero over a zero)
         ++damaged;
         put_bytes(path, b);
-        EXPECT_FALSE(read_terrain_cache(path, key(), &why));
-        EXPECT_EQ(why, "damaged terrain cache (block checksum)");
+        const std::optional<StoredTerrain> opened = read_terrain_cache(path, key(), &why);
+        ASSERT_TRUE(opened) << why;
+        try {
+            read_whole(*opened);
+            ADD_FAILURE() << "damage not found";
+        } catch (const DamagedBlockError& e) {
+            EXPECT_EQ(e.file(), path);
+            EXPECT_NE(std::string(e.what()).find("checksum mismatch in block"), std::string::npos) << e.what();
+        }
     };
     for (const std::size_t o : offsets) {
         SCOPED_TRACE(o);
@@ -263,4 +278,76 @@ TEST(TerrainCache, NotARegularFileIsIgnored) {
     std::filesystem::create_directory(dir.file("dir.lod"));
     EXPECT_FALSE(read_terrain_cache(dir.file("dir.lod"), key(), &why));
     EXPECT_EQ(why, "terrain cache is not a regular file");
+}
+
+namespace {
+
+// Flips one bit of the file at `offset`, in place.
+void flip_byte(const std::string& path, std::uint64_t offset) {
+    std::fstream f(path, std::ios::binary | std::ios::in | std::ios::out);
+    f.seekg(std::streamoff(offset));
+    char c = 0;
+    f.get(c);
+    f.seekp(std::streamoff(offset));
+    f.put(char(c ^ 1));
+}
+
+}  // namespace
+
+// A frame of a small part of a large cache reads and checks the blocks its selection touches, a
+// small share of the file; damage in a block it does not read leaves the frame as it was, damage
+// in one it reads is found (DamagedBlockError) when it is read.
+TEST(TerrainCache, SmallViewReadsASmallPartAndOnlyItsDamageCounts) {
+    test::TempDir dir;
+    const StoredTerrain mem = store_terrain(terrain_from_function(1025, 1025, 5.0, rough_hills));
+    const std::string path = dir.file("big.lod");
+    write_terrain_cache(path, mem, key());
+    const std::uint64_t file_bytes = std::filesystem::file_size(path);
+    ASSERT_GT(file_bytes, 17000000u);  // 1025^2 nodes * 13 bytes + 1025^2 errors * 4 bytes
+    // straight down (orthographic) on the 100 x 100 nodes around node (200, 200): 1 % of the DEM
+    std::vector<glm::dvec3> corners;
+    for (const int c : {150, 250})
+        for (const int r : {150, 250}) {
+            const glm::vec3 p = mem.nodes.at(c, r);
+            corners.emplace_back(p.x, p.y, double(mem.lod.z_min));
+            corners.emplace_back(p.x, p.y, double(mem.lod.z_max));
+        }
+    const Camera cam = frame_points_orthographic(corners, 0.0, -89.0, 400, 300, 0.0, 1.0);
+    LodOptions o;
+    LodSelection in_memory, from_file;
+    const SurfaceMesh want = select_lod_mesh(mem.lod, mem.drawn(1.0), 1.0, cam, o, &in_memory);
+    ASSERT_GT(in_memory.triangles, 1000u);
+    auto frame = [&](LodSelection* stats) {
+        const std::optional<StoredTerrain> map = read_terrain_cache(path, key());
+        if (!map) throw std::runtime_error("not opened");
+        const SurfaceMesh mesh = select_lod_mesh(map->lod, map->drawn(1.0), 1.0, cam, o, stats);
+        return std::make_pair(mesh, map);
+    };
+    auto [mesh, map] = frame(&from_file);
+    expect_same_mesh(want, mesh);
+    const CheckedBlocks& blocks = *map->nodes.blocks;
+    std::printf("small view: %llu of %llu bytes of the cache read (%llu of %llu blocks)\n",
+                (unsigned long long)blocks.bytes_read(), (unsigned long long)file_bytes,
+                (unsigned long long)blocks.blocks_read(), (unsigned long long)blocks.block_count());
+    EXPECT_LT(blocks.bytes_read() * 8, file_bytes);
+    EXPECT_LT(blocks.blocks_read() * 8, blocks.block_count());
+    // a block of node positions the frame did not read (the DEM's south-east) and one it read
+    const std::uint64_t unread = map->nodes.index(900, 900) * 12, read = map->nodes.index(200, 200) * 12;
+    ASSERT_FALSE(blocks.has_read(GridNodes::pos_array, unread));
+    ASSERT_TRUE(blocks.has_read(GridNodes::pos_array, read));
+    const std::uint64_t pos_at = blocks.file_offset(GridNodes::pos_array);
+    flip_byte(path, pos_at + unread);
+    {
+        LodSelection again;
+        const auto [damaged_elsewhere, opened] = frame(&again);
+        expect_same_mesh(want, damaged_elsewhere);
+    }
+    flip_byte(path, pos_at + read);
+    try {
+        frame(nullptr);
+        ADD_FAILURE() << "damage in the view not found";
+    } catch (const DamagedBlockError& e) {
+        EXPECT_EQ(e.file(), path);
+        EXPECT_EQ(e.stage(), "surface");
+    }
 }

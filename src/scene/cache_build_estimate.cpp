@@ -1,0 +1,64 @@
+#include "scene/cache_build_estimate.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "drainage/drainage_memory.hpp"
+#include "scene/scene_memory.hpp"
+#include "surface/terrain_lod.hpp"
+
+namespace penink {
+
+namespace {
+
+// Fitted to cold and warm renders of jacksboro refined 5 and 10 times (3.47 M and 13.86 M nodes,
+// bench/scale_curve.sh; docs/timings.md, "Scale"): CPU seconds (user + system; about the wall
+// time on an idle machine of 2 cores, less where the build runs on both) and peak resident
+// memory of the cold render less the warm one's, with and without creases and ridges.
+constexpr double terrain_s_per_node = 0.083e-6;  // 1.15 s at 13.86 M nodes
+// Held while the pyramid is built: the DEM read (about 26 B a node: positions, flags, heights)
+// and the build's heights, flags and errors over the padded square (10 B a padded node,
+// terrain_lod.cpp), over what the process holds before it (126 MB: fitted, the image's buffers).
+constexpr double terrain_bytes_per_node = 26.3, terrain_bytes_per_padded_node = 10.0;
+constexpr double terrain_base_bytes = 126e6;
+// 13.6 s at 13.86 M points and 2.7 s at 3.47 M: a power law, exponent ln(13.6/2.7)/ln(4) = 1.17.
+constexpr double drainage_s_at_reference = 13.6, drainage_reference_points = 13.86e6, drainage_exponent = 1.17;
+// Peak resident memory 477 MB at 3.47 M points and 1327 MB at 13.86 M: a line.
+constexpr double drainage_peak_bytes_per_point = 81.8, drainage_base_bytes = 193e6;
+// The files written: 52 and 55.6 B a point.
+constexpr double drainage_disk_bytes_per_point = 56.0;
+
+}  // namespace
+
+CacheBuildEstimate terrain_cache_estimate(int cols, int rows) {
+    const double nodes = double(cols) * double(rows);
+    const double side = std::ldexp(1.0, lod_padded_levels(cols, rows)) + 1.0;
+    CacheBuildEstimate e;
+    e.seconds = terrain_s_per_node * nodes;
+    e.peak_bytes = terrain_base_bytes + terrain_bytes_per_node * nodes + terrain_bytes_per_padded_node * side * side;
+    // terrain_cache.hpp's arrays, and their checksums: 8 bytes a 4 KiB block
+    e.disk_bytes = (13.0 * nodes + lod_bytes_per_padded_node * side * side) * (1.0 + 8.0 / 4096.0);
+    return e;
+}
+
+CacheBuildEstimate drainage_cache_estimate(int cols, int rows) {
+    const double points = drainage_points(cols, rows, drainage_factor_for(cols, rows, 0));
+    CacheBuildEstimate e;
+    e.seconds = drainage_s_at_reference * std::pow(points / drainage_reference_points, drainage_exponent);
+    e.peak_bytes = drainage_base_bytes + drainage_peak_bytes_per_point * points;
+    e.disk_bytes = drainage_disk_bytes_per_point * points;
+    return e;
+}
+
+std::string describe_cache_estimate(const std::string& what, const std::string& cache, int cols, int rows,
+                                    const CacheBuildEstimate& e) {
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "penink: %s: building the %s of a %dx%d DEM (%.1f M cells): about %.0f s, %.1f GB of memory at peak, "
+                  "%.1f GB on disk (estimate)",
+                  what.c_str(), cache.c_str(), cols, rows, double(cols - 1) * double(rows - 1) * 1e-6, e.seconds,
+                  e.peak_bytes * 1e-9, e.disk_bytes * 1e-9);
+    return line;
+}
+
+}  // namespace penink

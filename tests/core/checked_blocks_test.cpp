@@ -1,0 +1,119 @@
+// Arrays read on demand: a byte range reads exactly the blocks holding it (counted), once; what
+// is read is the file's bytes; a damaged block throws DamagedBlockError naming the file and the
+// block when it is read, the sound blocks read with it stay read, and a block never read is
+// never checked.
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <vector>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include "core/checked_blocks.hpp"
+#include "core/hash64.hpp"
+#include "support/temp_dir.hpp"
+
+using namespace penink;
+
+namespace {
+
+constexpr std::uint64_t block = 4096;
+
+// A file of two arrays: 10 blocks and a half at offset 4096, 3 blocks at offset 49152; bytes
+// i * 7 + array.
+struct TwoArrays {
+    std::vector<std::uint8_t> file;
+    std::vector<CheckedBlocks::Array> arrays{{4096, 10 * block + 2048}, {49152, 3 * block}};
+    std::vector<std::uint64_t> sums;
+    TwoArrays() {
+        file.assign(49152 + 3 * block, 0);
+        for (std::size_t k = 0; k < arrays.size(); ++k)
+            for (std::uint64_t i = 0; i < arrays[k].bytes; ++i)
+                file[arrays[k].offset + i] = std::uint8_t(i * 7 + k);
+        for (const CheckedBlocks::Array& a : arrays)
+            for (std::uint64_t at = 0; at < a.bytes; at += block)
+                sums.push_back(hash64(file.data() + a.offset + at, std::size_t(std::min(block, a.bytes - at))));
+    }
+    void write(const std::string& path) const {
+        std::ofstream out(path, std::ios::binary | std::ios::trunc);
+        out.write(reinterpret_cast<const char*>(file.data()), std::streamsize(file.size()));
+    }
+};
+
+struct Fd {
+    int fd;
+    explicit Fd(const std::string& path) : fd(::open(path.c_str(), O_RDONLY)) {}
+    ~Fd() { ::close(fd); }
+};
+
+}  // namespace
+
+TEST(CheckedBlocks, ReadsTheBlocksOfARangeOnce) {
+    test::TempDir dir;
+    const TwoArrays f;
+    f.write(dir.file("a.bin"));
+    const Fd fd(dir.file("a.bin"));
+    const CheckedBlocks blocks(fd.fd, dir.file("a.bin"), f.arrays, block, f.sums);
+    EXPECT_EQ(blocks.block_count(), 11u + 3u);
+    EXPECT_EQ(blocks.bytes(), 10 * block + 2048 + 3 * block);
+    EXPECT_EQ(blocks.bytes_read(), 0u);
+    blocks.need(0, 5000, 9000);  // blocks 1 and 2
+    EXPECT_EQ(blocks.bytes_read(), 2 * block);
+    EXPECT_EQ(blocks.blocks_read(), 2u);
+    EXPECT_FALSE(blocks.has_read(0, 4095));
+    EXPECT_TRUE(blocks.has_read(0, 4096));
+    EXPECT_TRUE(blocks.has_read(0, 3 * block - 1));
+    EXPECT_FALSE(blocks.has_read(0, 3 * block));
+    const auto* a = static_cast<const std::uint8_t*>(blocks.data(0));
+    for (std::uint64_t i = 4096; i < 3 * block; ++i) ASSERT_EQ(a[i], std::uint8_t(i * 7)) << i;
+    blocks.need(0, 6000, 7000);  // read already
+    EXPECT_EQ(blocks.bytes_read(), 2 * block);
+    blocks.need(0, 0, 10 * block + 2048);  // the rest of the array: 9 blocks, the last short
+    EXPECT_EQ(blocks.bytes_read(), 10 * block + 2048);
+    EXPECT_EQ(blocks.blocks_read(), 11u);
+    for (std::uint64_t i = 0; i < 10 * block + 2048; ++i) ASSERT_EQ(a[i], std::uint8_t(i * 7)) << i;
+    blocks.need(1, 3 * block - 1, 3 * block);
+    const auto* b = static_cast<const std::uint8_t*>(blocks.data(1));
+    EXPECT_EQ(b[3 * block - 1], std::uint8_t((3 * block - 1) * 7 + 1));
+    EXPECT_EQ(blocks.bytes_read(), 11 * block + 2048);
+}
+
+TEST(CheckedBlocks, DamageIsFoundWhenItsBlockIsRead) {
+    test::TempDir dir;
+    TwoArrays f;
+    f.file[4096 + 5 * block + 17] ^= 1;  // block 5 of the first array
+    f.write(dir.file("d.bin"));
+    const Fd fd(dir.file("d.bin"));
+    const CheckedBlocks blocks(fd.fd, dir.file("d.bin"), f.arrays, block, f.sums);
+    blocks.need(0, 0, 5 * block);  // blocks 0-4: sound
+    blocks.need(1, 0, 3 * block);
+    EXPECT_EQ(blocks.blocks_read(), 8u);
+    try {
+        blocks.need(0, 3 * block, 8 * block);  // 3, 4 read; 5 damaged; 6, 7 after it
+        FAIL() << "no error";
+    } catch (const DamagedBlockError& e) {
+        EXPECT_EQ(e.file(), dir.file("d.bin"));
+        EXPECT_EQ(std::string(e.what()), "penink: surface: " + dir.file("d.bin") +
+                                             ": damaged cache: checksum mismatch in block 5 (bytes 24576 to 28672); "
+                                             "remove it to have it rebuilt");
+    }
+    EXPECT_FALSE(blocks.has_read(0, 5 * block));
+    EXPECT_THROW(blocks.need(0, 5 * block, 5 * block + 1), DamagedBlockError);  // again, on every read
+    blocks.need(0, 6 * block, 11 * block);  // past it: sound
+    EXPECT_EQ(blocks.blocks_read(), 13u);
+}
+
+TEST(CheckedBlocks, AFileCutShortIsDamageWhereItIsCut) {
+    test::TempDir dir;
+    TwoArrays f;
+    f.file.resize(49152 + block);  // the second array's last two blocks gone
+    f.write(dir.file("c.bin"));
+    const Fd fd(dir.file("c.bin"));
+    const CheckedBlocks blocks(fd.fd, dir.file("c.bin"), f.arrays, block, f.sums);
+    blocks.need(0, 0, 10 * block + 2048);
+    blocks.need(1, 0, block);
+    EXPECT_THROW(blocks.need(1, block, 3 * block), DamagedBlockError);
+}

@@ -1,0 +1,50 @@
+// The cache build estimate: the terrain cache's disk is the file written (to its header and
+// page padding); time and memory reproduce the measurements they were fitted to (jacksboro
+// refined 5 and 10 times: 2015x1720 and 4030x3440 nodes) and grow with the DEM; the line
+// printed.
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "scene/cache_build_estimate.hpp"
+#include "surface/terrain_cache.hpp"
+#include "support/synthetic_terrain.hpp"
+#include "support/temp_dir.hpp"
+
+using namespace penink;
+
+TEST(CacheBuildEstimate, TerrainDiskIsTheFileWritten) {
+    test::TempDir dir;
+    const StoredTerrain t = store_terrain(terrain_from_function(300, 257, 5.0, rough_hills));
+    write_terrain_cache(dir.file("h.lod"), t, {1, 2, 3, 0, true});
+    const double file = double(std::filesystem::file_size(dir.file("h.lod")));
+    const double want = terrain_cache_estimate(300, 257).disk_bytes;
+    EXPECT_LE(want, file);
+    EXPECT_LE(file - want, 4.0 * 4096.0);  // the header but its checksums, and three pages of padding at most
+}
+
+TEST(CacheBuildEstimate, ReproducesTheMeasurementsItWasFittedTo) {
+    const CacheBuildEstimate d5 = drainage_cache_estimate(2015, 1720), d10 = drainage_cache_estimate(4030, 3440);
+    EXPECT_NEAR(d10.seconds, 13.6, 0.2);
+    EXPECT_NEAR(d5.seconds, 2.7, 0.15);
+    EXPECT_NEAR(d5.peak_bytes, 477e6, 10e6);  // cold render peaks (MiB of /usr/bin/time, as MB)
+    EXPECT_NEAR(d10.peak_bytes, 1327e6, 20e6);
+    EXPECT_NEAR(d10.disk_bytes, 770.8e6, 10e6);  // the .dv written
+    const CacheBuildEstimate t5 = terrain_cache_estimate(2015, 1720), t10 = terrain_cache_estimate(4030, 3440);
+    EXPECT_NEAR(t10.seconds, 1.15, 0.01);
+    EXPECT_NEAR(t5.peak_bytes, 259e6, 5e6);
+    EXPECT_NEAR(t10.peak_bytes, 658e6, 5e6);
+    EXPECT_NEAR(t10.disk_bytes, 247.9e6, 0.5e6);  // the .lod written
+    // a 1/3 arc-second NED tile, 10812 x 10812 nodes: 2.6 GB of terrain cache
+    const CacheBuildEstimate ned = terrain_cache_estimate(10812, 10812);
+    EXPECT_NEAR(ned.disk_bytes, 2.6e9, 0.01e9);
+    EXPECT_GT(drainage_cache_estimate(10812, 10812).seconds, 8.0 * d10.seconds);  // superlinear
+}
+
+TEST(CacheBuildEstimate, OneLine) {
+    CacheBuildEstimate e;
+    e.seconds = 164.6, e.peak_bytes = 9.76e9, e.disk_bytes = 6.54e9;
+    EXPECT_EQ(describe_cache_estimate("drainage", "drainage database", 10812, 10812, e),
+              "penink: drainage: building the drainage database of a 10812x10812 DEM (116.9 M cells): about 165 s, "
+              "9.8 GB of memory at peak, 6.5 GB on disk (estimate)");
+}
