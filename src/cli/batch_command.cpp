@@ -18,7 +18,6 @@
 #include "scene/flight_frames.hpp"
 #include "scene/mesh_frames.hpp"
 #include "scene/scene_inputs.hpp"
-#include "scene/scene_style.hpp"
 #include "scene/terrain_frames.hpp"
 
 namespace penink {
@@ -129,7 +128,7 @@ void prepare_out_dir(const BatchOptions& o, const std::vector<std::string>& form
     std::error_code ec;
     fs::create_directories(o.out_dir, ec);
     if (!fs::is_directory(o.out_dir)) throw Error("batch", o.out_dir, "cannot create the output directory");
-    check_output_targets(frame_paths(o.out_dir, 1, formats), PageOptions{}, scene.camera.width, scene.camera.height);
+    check_output_targets(frame_paths(o.out_dir, 1, formats), PageOptions{}, scene.view.camera.width, scene.view.camera.height);
 }
 
 }  // namespace
@@ -144,10 +143,9 @@ int run_batch(const BatchOptions& o) {
     BatchSummary summary;
     summary.mesh = is_mesh_scene(scene);
     check_flight_options(o, summary.mesh);
-    const Style style = scene_style(scene);
-    if (!summary.mesh) apply_object_sketch(scene, style);  // as `penink render`
+    const Style& style = scene.style.resolved;
     summary.scene = o.input, summary.warmup = o.warmup;
-    summary.width = scene.camera.width, summary.height = scene.camera.height;
+    summary.width = scene.view.camera.width, summary.height = scene.view.camera.height;
     std::unique_ptr<GlContext> context;  // outlives the frames' GL objects
     BatchFlight flight;
     if (summary.mesh) {
@@ -195,8 +193,8 @@ int run_batch(const BatchOptions& o) {
                                              flight.records.empty() ? scene : frame_scene(scene, flight.records[i]));
         t.times = d.times, t.lines = d.lines, t.trace = d.trace_ms;
         FrameOutput output{frame_paths(o.out_dir, t.frame, formats), {}, LayerSplit::kind, ""};
-        output.furniture = scene.furniture, output.map_scale = scene.map_scale;
-        const FrameOutputResult e = write_frame(d.drawing, style, scene.seed, !summary.mesh, output);
+        output.furniture = scene.view.furniture, output.map_scale = scene.view.map_scale;
+        const FrameOutputResult e = write_frame(d.drawing, style, scene.style.seed, !summary.mesh, output);
         t.finish = e.finish_ms, t.write = e.write_ms;
         t.total = ms_since(t0);
         timings.push_back(t);

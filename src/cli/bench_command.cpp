@@ -160,10 +160,10 @@ int run_bench(const BenchOptions& o) {
     if (!o.needs_size.empty()) config.needs_size = parse_sizes(o.needs_size).front();
     if (o.input.empty() == o.analytic.empty()) throw Error("cli", "", "bench: give a DEM or scene file, or --analytic NAME");
     Scene scene;
-    scene.exaggeration_auto = false;  // an analytic terrain is drawn as its closed form says
+    scene.terrain.exaggeration_auto = false;  // an analytic terrain is drawn as its closed form says
     Terrain dem;
     if (!o.analytic.empty()) {
-        config.analytic = analytic_case(o.analytic, scene.camera.width, scene.camera.height);
+        config.analytic = analytic_case(o.analytic, scene.view.camera.width, scene.view.camera.height);
         if (!config.analytic)
             throw Error("cli", "", "--analytic: unknown terrain \"" + o.analytic + "\" (use " + analytic_case_names() + ")");
         dem = analytic_grid(config.analytic->shape, config.analytic->spacing);

@@ -79,7 +79,7 @@ int run_render(const RenderOptions& o) {
     check_outputs(o, o.width > 0 ? o.width : 1, o.height > 0 ? o.height : 1);
     Scene scene = load_scene_with_overrides(o);
     apply_map_scale(scene, page_options(o));
-    check_outputs(o, scene.camera.width, scene.camera.height);
+    check_outputs(o, scene.view.camera.width, scene.view.camera.height);
     check_outputs_are_not_inputs(output_files(o), scene_inputs(scene));  // before anything is written
     const auto context = make_gl_context(parse_gl_backend(o.gl));
     context->set_timed(o.verbose);  // the pass times are only logged
@@ -88,7 +88,7 @@ int run_render(const RenderOptions& o) {
     const RenderedFrame frame = render_scene_frame(scene, *context, output, log);
     const FrameOutputResult& written = frame.written;
     log_finish(written.finish, log);
-    if (o.verbose && frame.terrain && !scene.dem.empty()) log_directions(frame.drawn.drawing, scene.dem, log);
+    if (o.verbose && frame.terrain && !scene.source.dem.empty()) log_directions(frame.drawn.drawing, scene.source.dem, log);
     if (!o.format.empty()) {
         std::cout.write(written.document.data(), std::streamsize(written.document.size()));
         std::cout.flush();

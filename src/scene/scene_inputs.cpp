@@ -16,13 +16,13 @@ std::vector<NamedInput> dem_inputs(const std::string& dem) {
 }
 
 std::vector<NamedInput> scene_inputs(const Scene& s) {
-    std::vector<NamedInput> in = dem_inputs(s.dem);
-    if (!s.file.empty()) in.push_back({s.file, "the scene"});
-    if (!s.mesh.empty()) in.push_back({s.mesh, "the mesh"});
-    if (!s.style.empty()) in.push_back({s.style, "the style"});
-    if (!s.dem.empty()) {
-        in.push_back({drainage_cache_path(s.dem, s.cache_dir), "the DEM's drainage cache"});
-        in.push_back({terrain_cache_path(s.dem, s.cache_dir), "the DEM's terrain cache"});
+    std::vector<NamedInput> in = dem_inputs(s.source.dem);
+    if (!s.source.file.empty()) in.push_back({s.source.file, "the scene"});
+    if (!s.source.mesh.empty()) in.push_back({s.source.mesh, "the mesh"});
+    if (!s.style.name.empty()) in.push_back({s.style.name, "the style"});
+    if (!s.source.dem.empty()) {
+        in.push_back({drainage_cache_path(s.source.dem, s.terrain.cache_dir), "the DEM's drainage cache"});
+        in.push_back({terrain_cache_path(s.source.dem, s.terrain.cache_dir), "the DEM's terrain cache"});
     }
     return in;
 }

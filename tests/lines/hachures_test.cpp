@@ -53,7 +53,7 @@ TriangleMesh mesh_of(const Terrain& t) {
     return m;
 }
 
-// The defaults with the default style's pen range (as apply_object_sketch sets it).
+// The defaults with the default style's pen range (as hachure_pen sets it).
 HachureParams styled_defaults() {
     HachureParams p = hachure_defaults();
     p.weight_min = default_style().layer(LayerKind::hachures).weight_min;
