@@ -9,7 +9,7 @@
 
 #include "core/error.hpp"
 #include "core/stopwatch.hpp"
-#include "core/toml_file.hpp"
+#include "core/input_files.hpp"
 #include "export/atomic_file.hpp"
 #include "export/export_drawing.hpp"
 #include "input/crs_util.hpp"
@@ -22,16 +22,6 @@ namespace penink {
 namespace fs = std::filesystem;
 
 namespace {
-
-// The scene's layers drawn or not, from its [style.<layer>] visible keys.
-std::map<std::string, bool> scene_visibility(const toml::value& base) {
-    std::map<std::string, bool> visible;
-    if (!base.is_table() || !base.contains("style") || !base.at("style").is_table()) return visible;
-    for (const auto& [name, t] : base.at("style").as_table())
-        if (t.is_table() && t.as_table().count("visible") && t.as_table().at("visible").is_boolean())
-            visible[name] = t.as_table().at("visible").as_boolean();
-    return visible;
-}
 
 FrameOutput svg_in_memory(bool measure) {
     FrameOutput out;
@@ -62,7 +52,8 @@ PreviewSession::PreviewSession(const Scene& scene, std::string save_path, GlBack
     if (scene.source.dem.empty()) throw Error("input", name, "no DEM given");
     if (is_mesh_scene(scene)) throw Error("cli", name, "penink preview draws terrains (a DEM or a terrain scene), not meshes");
     dem_ = fs::absolute(scene.source.dem).lexically_normal().string();
-    base_ = scene.source.file.empty() ? toml::value(toml::table{}) : read_toml_file("scene", scene.source.file, "scene file");
+    if (!scene.source.file.empty())
+        base_ = read_input_text("scene", scene.source.file, max_text_input_bytes, "scene file");
     save_path_ = fs::absolute(save_path).lexically_normal().string();
     std::string pattern = (fs::temp_directory_path() / "penink-preview-XXXXXX").string();
     if (!mkdtemp(pattern.data())) throw Error("cli", pattern, "cannot make the preview's private folder");

@@ -470,7 +470,8 @@ Scene parse_scene_file(const std::string& path, const std::string& style) {
     if (!s.source.mesh.empty()) s.mesh = read_mesh_settings(root, path);
     if (!style.empty()) s.style.name = style;
     s.style.resolved = resolve_style(s.style.name);
-    if (has_key(root, "style")) apply_style_overrides(s.style.resolved, root.at("style"), path);
+    // the [style] table written out as TOML (numbers to 17 digits: they read back exactly)
+    if (has_key(root, "style")) apply_style_overrides(s.style.resolved, toml::format(root.at("style")), path);
     return s;
 }
 

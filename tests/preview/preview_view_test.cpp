@@ -54,7 +54,7 @@ PreviewView odd_view() {
 
 TEST(PreviewView, SceneTextReadsBackExactly) {
     const PreviewView v = odd_view();
-    const std::string text = scene_text(toml::table{}, "/data/dem.tif", v);
+    const std::string text = scene_text("", "/data/dem.tif", v);
     const Scene s = load_text(text, "view.toml");
     EXPECT_EQ(s.source.dem, "/data/dem.tif");
     ASSERT_TRUE(s.view.camera.target);
@@ -89,7 +89,7 @@ TEST(PreviewView, SceneTextReadsBackExactly) {
 }
 
 TEST(PreviewView, TheBaseSceneKeepsItsOtherKeys) {
-    std::istringstream text(R"(
+    const std::string base = R"(
 seed = 3
 [terrain]
 dem = "old.asc"
@@ -105,8 +105,7 @@ slope_weight = 0.7
 [style.creases]
 width = 1.5
 visible = false
-)");
-    const toml::value base = toml::parse(text, "base.toml");
+)";
     PreviewView v = odd_view();
     v.visible = {{"creases", true}};
     v.sea_level.reset();
@@ -132,7 +131,7 @@ visible = false
 TEST(PreviewView, OrthographicViewsAreCentredOnTheTarget) {
     PreviewView v = odd_view();
     v.orthographic = true, v.altitude = -90.0, v.map_scale = 25000.0;
-    const Scene s = load_text(scene_text(toml::table{}, "/d.tif", v), "map.toml");
+    const Scene s = load_text(scene_text("", "/d.tif", v), "map.toml");
     EXPECT_EQ(s.view.camera.projection, Projection::orthographic);
     EXPECT_TRUE(s.view.camera.target);
     EXPECT_FALSE(s.view.camera.distance);
