@@ -72,9 +72,7 @@ Subcommand add_batch_command(CLI::App& app) {
                     "K/N: draw only frames K, K+N, K+2N, ... (one of N machines or jobs); the frames are the same "
                     "bytes as an unsharded run's; timings go to timings_K-of-N.csv/.md");
     add_scene_override_options(cmd, o);
-    cmd->add_flag("-v,--verbose", o.verbose, "Print the modelled cells and set-up steps");
-    cmd->add_flag("-q,--quiet", o.quiet, "No progress");
-    cmd->add_flag("--progress", o.progress, "Progress lines on stderr also when it is not a terminal");
+    add_log_flags(cmd, o.log, "Print the modelled cells and set-up steps");
     return {cmd, [options] { return run_batch(*options); }};
 }
 
@@ -135,7 +133,7 @@ void prepare_out_dir(const BatchOptions& o, const std::vector<std::string>& form
 
 int run_batch(const BatchOptions& o) {
     const auto start = Clock::now();
-    const Log log{o.verbose, progress_mode(o.quiet, o.progress)};
+    const Log log = o.log.log();
     int shard = 1, shards = 1;
     parse_shard(o.shard, shard, shards);
     const std::vector<std::string> formats = parse_formats(o.formats);

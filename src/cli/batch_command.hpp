@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/option_checks.hpp"
 #include "scene/timing_tables.hpp"
 #include "cli/scene_overrides.hpp"
 #include "export/style.hpp"
@@ -23,9 +24,7 @@ struct BatchOptions : SceneOverrides {
     std::string formats = "png,svg";
     int warmup = 3;  // the creases paper reports its first three frames apart
     bool whole_dem = false;  // model the whole DEM instead of the union of the frames' windows
-    bool verbose = false;
-    bool quiet = false;      // no progress
-    bool progress = false;   // progress lines also when stderr is not a terminal
+    LogFlags log;
     std::string shard;       // "K/N": draw frames K, K+N, K+2N, ... (1-based) of the flight only
 };
 
