@@ -39,9 +39,4 @@ struct LogFlags {
 };
 void add_log_flags(CLI::App* cmd, LogFlags& flags, const std::string& verbose_help);
 
-struct NamedInput;
-// Refuses output files (with their raster side files, world_file.hpp) that are one of `inputs`
-// (check_outputs_not_inputs): Error("export", output, "is the DEM ...").
-void check_outputs_are_not_inputs(const std::vector<std::string>& outputs, const std::vector<NamedInput>& inputs);
-
 }  // namespace penink

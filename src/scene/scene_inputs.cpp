@@ -3,6 +3,7 @@
 
 #include "input/dem_side_files.hpp"
 #include "drainage/drainage_build.hpp"
+#include "export/world_file.hpp"
 #include "scene/terrain_view.hpp"
 
 namespace penink {
@@ -25,6 +26,13 @@ std::vector<NamedInput> scene_inputs(const Scene& s) {
         in.push_back({terrain_cache_path(s.source.dem, s.terrain.cache_dir), "the DEM's terrain cache"});
     }
     return in;
+}
+
+void check_outputs_are_not_inputs(const std::vector<std::string>& outputs, const std::vector<NamedInput>& inputs) {
+    std::vector<std::string> all = outputs;
+    for (const std::string& p : outputs)
+        for (std::string& f : raster_side_file_names(p)) all.push_back(std::move(f));
+    check_outputs_not_inputs("export", all, inputs);
 }
 
 }  // namespace penink
