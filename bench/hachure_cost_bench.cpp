@@ -37,16 +37,15 @@ Times render_once(const std::string& input, bool map, int width, int height, boo
     const auto start = Clock::now();
     Scene scene = load_scene(input);
     if (map) {
-        scene.camera.projection = Projection::orthographic;
-        scene.camera.azimuth = 0.0, scene.camera.altitude = -90.0;
-        scene.camera.position.reset(), scene.camera.elevation.reset();
+        scene.view.camera.projection = Projection::orthographic;
+        scene.view.camera.azimuth = 0.0, scene.view.camera.altitude = -90.0;
+        scene.view.camera.position.reset(), scene.view.camera.elevation.reset();
     }
-    if (width > 0) scene.camera.width = width;
-    if (height > 0) scene.camera.height = height;
-    scene.hachures.enabled = hachures;
+    if (width > 0) scene.view.camera.width = width;
+    if (height > 0) scene.view.camera.height = height;
+    scene.lines.hachures.enabled = hachures;
     validate_scene(scene);
-    const Style style = scene_style(scene);
-    apply_object_sketch(scene, style);
+    const Style& style = scene.style.resolved;
     const auto context = make_gl_context();
     const Log quiet;
     SceneView view = open_terrain_view(scene, *context, quiet);
@@ -58,7 +57,7 @@ Times render_once(const std::string& input, bool map, int width, int height, boo
     t.hachures = double(d.drawing.layer(LayerKind::hachures).strokes.size());
     FrameOutput out;
     out.document_format = "svg";
-    const FrameOutputResult written = write_frame(d.drawing, style, scene.seed, true, out);
+    const FrameOutputResult written = write_frame(d.drawing, style, scene.style.seed, true, out);
     if (written.document.empty()) std::exit(3);
     t.total_ms = ms_since(start);
     const auto t_warm = Clock::now();

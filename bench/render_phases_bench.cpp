@@ -44,14 +44,14 @@ int main(int argc, char** argv) {
     }
     Phases p;
     Scene scene = load_scene(argv[1]);
-    if (argc >= 4) scene.camera.width = std::stoi(argv[2]), scene.camera.height = std::stoi(argv[3]);
-    const Style style = resolve_style(scene.style);
+    if (argc >= 4) scene.view.camera.width = std::stoi(argv[2]), scene.view.camera.height = std::stoi(argv[3]);
+    const Style style = resolve_style(scene.style.name);
     p.mark("scene + style");
     const auto context = make_gl_context(GlBackend::osmesa);
     p.mark("GL context");
     DemOptions dem_options;
-    dem_options.vertical_exaggeration = scene.vertical_exaggeration;
-    const Terrain dem = read_dem(scene.dem, dem_options);
+    dem_options.vertical_exaggeration = scene.terrain.vertical_exaggeration;
+    const Terrain dem = read_dem(scene.source.dem, dem_options);
     p.mark("DEM read (GDAL)");
     const Log quiet;
     Camera camera = scene_camera(scene, dem);
@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
     p.mark("surface mesh");
     TerrainRenderer renderer(context->gl(), mesh, camera.width, camera.height);
     p.mark("renderer (programs)");
-    const DrainageDb db = load_or_build_drainage(scene.dem, dem, DrainageOptions{}, [](const std::string&) {});
+    const DrainageDb db = load_or_build_drainage(scene.source.dem, dem, DrainageOptions{}, [](const std::string&) {});
     p.mark("drainage cache load");
     DrainageLines lines(context->gl(), db, view);
     p.mark("drainage line sets");
@@ -72,7 +72,7 @@ int main(int argc, char** argv) {
     SceneDrawing d = frames.draw(camera, scene);
     p.mark("frame: passes + tracing");
     const FrameOutputResult lay_times =
-        write_frame(d.drawing, style, scene.seed, true, FrameOutput{{"/tmp/render_phases_bench.svg"}, {}, LayerSplit::kind, ""});
+        write_frame(d.drawing, style, scene.style.seed, true, FrameOutput{{"/tmp/render_phases_bench.svg"}, {}, LayerSplit::kind, ""});
     const double lay = lay_times.finish_ms + lay_times.write_ms;
     std::printf("%-34s %8.1f ms\n", "finish + style + SVG", lay);
     p.last = Clock::now();

@@ -56,41 +56,38 @@ int main(int argc, char** argv) {
         return 2;
     }
     try {
-        Scene scene = load_scene(argv[1]);
+        std::string style_name;  // --style: the scene's [style] table goes over it
+        for (int i = 2; i + 1 < argc; ++i)
+            if (std::string(argv[i]) == "--style") style_name = argv[i + 1];
+        Scene scene = load_scene(argv[1], style_name);
         std::string ink_png, target_png;
-        toml::table sets;
         for (int i = 2; i < argc; ++i) {
             const std::string a = argv[i];
             const auto next = [&] { return i + 1 < argc ? std::string(argv[++i]) : std::string(); };
             if (a == "--map") {
-                scene.camera.projection = Projection::orthographic;
-                scene.camera.azimuth = 0.0, scene.camera.altitude = -90.0;
-                scene.camera.position.reset(), scene.camera.elevation.reset();
-            } else if (a == "--width") scene.camera.width = std::stoi(next());
-            else if (a == "--height") scene.camera.height = std::stoi(next());
-            else if (a == "--style") scene.style = next();
-            else if (a == "--no-hachures") scene.hachures.enabled = false;
+                scene.view.camera.projection = Projection::orthographic;
+                scene.view.camera.azimuth = 0.0, scene.view.camera.altitude = -90.0;
+                scene.view.camera.position.reset(), scene.view.camera.elevation.reset();
+            } else if (a == "--width") scene.view.camera.width = std::stoi(next());
+            else if (a == "--height") scene.view.camera.height = std::stoi(next());
+            else if (a == "--style") next();
+            else if (a == "--no-hachures") scene.lines.hachures.enabled = false;
             else if (a == "--ink") ink_png = next();
             else if (a == "--target") target_png = next();
             else if (a == "--set") {
                 const std::string kv = next();
                 const std::size_t eq = kv.find('=');
                 const std::string k = kv.substr(0, eq), v = kv.substr(eq + 1);
-                if (v == "light" || v == "slope" || v == "blend") sets[k] = v;
-                else sets[k] = std::stod(v);
+                HachureParams& h = scene.lines.hachures;
+                if (k == "tone") hachure_tone_named(v, h.tone);
+                else if (double* number = hachure_number(h, k)) *number = std::stod(v);
             } else {
                 std::fprintf(stderr, "tone_bench: unknown option %s\n", a.c_str());
                 return 2;
             }
         }
-        if (!sets.empty()) {
-            toml::table root;
-            root["hachures"] = sets;
-            read_hachures(toml::value(root), scene.hachures, "--set");
-        }
         validate_scene(scene);
-        const Style style = scene_style(scene);
-        apply_object_sketch(scene, style);
+        const Style& style = scene.style.resolved;
         auto context = make_gl_context();
         const Log log;
         SceneView view = open_terrain_view(scene, *context, log);
@@ -106,7 +103,7 @@ int main(int argc, char** argv) {
                 for (std::size_t i = 1; i < st.points.size(); ++i) len += glm::length(st.points[i] - st.points[i - 1]);
             if (len > 0) std::printf("  %s: %zu strokes, %.0f px\n", std::string(layer_name(k)).c_str(), d.drawing.layer(k).strokes.size(), len);
         }
-        finish_drawing(d.drawing, finish_options(style, scene.seed, true));
+        finish_drawing(d.drawing, finish_options(style, scene.style.seed, true));
         const StyledDrawing styled = style_drawing(d.drawing, style);
         RasterTransform tr;
         tr.width = d.camera.width, tr.height = d.camera.height;
@@ -115,7 +112,7 @@ int main(int argc, char** argv) {
         const GridNodes& n = frames->terrain().nodes;
         ToneGrid grid{n.cols, n.rows, n.pos, n.valid, n.z_scale};
         if (n.has_sea()) grid.sea_z = n.sea_z();  // water: no target (tone_measure.hpp)
-        const ToneImage target = target_tone(grid, d.camera, d.toward, light_vector(Light{scene.light.azimuth, scene.light.altitude}));
+        const ToneImage target = target_tone(grid, d.camera, d.toward, light_vector(Light{scene.view.light.azimuth, scene.view.light.altitude}));
         std::printf("%s%s: %zu hachures, frame %.0f ms (warm %.0f ms, hachures %.0f ms)\n", argv[1],
                     is_orthographic(d.camera) ? " (orthographic)" : "", d.drawing.layer(LayerKind::hachures).strokes.size(),
                     frame_ms, warm_ms, d.hachure_ms);
@@ -148,7 +145,7 @@ int main(int argc, char** argv) {
             std::printf("hachures: mean length %.1f px, %.0f %% under 12 px; length x width / terrain %.3f\n",
                         len / std::max<std::size_t>(1, d.drawing.layer(LayerKind::hachures).strokes.size()),
                         100.0 * shorter / std::max<std::size_t>(1, d.drawing.layer(LayerKind::hachures).strokes.size()),
-                        len * scene.hachures.width_px / std::max(terrain, 1.0));
+                        len * hachure_pen(scene.lines.hachures, style).width_px / std::max(terrain, 1.0));
             std::printf("target band   share  ink (all)  ink (hachures)\n");
             double total = 0;
             for (double v : count) total += v;

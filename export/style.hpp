@@ -9,8 +9,6 @@
 #include <string>
 #include <vector>
 
-#include <toml.hpp>
-
 #include "core/drawing.hpp"
 
 namespace penink {
@@ -85,9 +83,10 @@ Style load_style(const std::string& path);
 // Either a built-in name or a path to a .toml file.
 Style resolve_style(const std::string& name_or_path);
 
-// Applies a style table (a style file's root or a scene's [style] table: top-level keys and
-// one sub-table per layer name or "all"; "all" sets the nine drawing layers, never the map
-// furniture's). Throws Error("style", source, what) on bad input.
-void apply_style_overrides(Style& style, const toml::value& table, const std::string& source = "");
+// Applies a style table given as TOML text (a style file's text, or a scene's [style] table
+// written out: top-level keys and one sub-table per layer name or "all"; "all" sets the nine
+// drawing layers, never the map furniture's). Throws Error("style", source, what) on bad input
+// (nothing applied then), "invalid TOML: ..." among them.
+void apply_style_overrides(Style& style, const std::string& toml_text, const std::string& source = "");
 
 }  // namespace penink

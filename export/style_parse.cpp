@@ -192,7 +192,10 @@ void apply_table(Style& s, const toml::value& table) {
 
 }  // namespace
 
-void apply_style_overrides(Style& style, const toml::value& table, const std::string& source) {
+namespace {
+
+// The table over `style`, whole or not at all.
+void apply_style_table(Style& style, const toml::value& table, const std::string& source) {
     Style s = style;
     try {
         apply_table(s, table);
@@ -202,11 +205,17 @@ void apply_style_overrides(Style& style, const toml::value& table, const std::st
     style = s;
 }
 
+}  // namespace
+
+void apply_style_overrides(Style& style, const std::string& toml_text, const std::string& source) {
+    apply_style_table(style, parse_toml_text("style", source, toml_text), source);
+}
+
 Style load_style(const std::string& path) {
     const toml::value root = read_toml_file("style", path, "style file");
     Style s = default_style();
     s.name.clear();
-    apply_style_overrides(s, root, path);
+    apply_style_table(s, root, path);
     if (s.name.empty()) {
         const size_t slash = path.find_last_of('/'), dot = path.find_last_of('.');
         const size_t from = slash == std::string::npos ? 0 : slash + 1;

@@ -5,15 +5,15 @@
 // --out DIR`: the same for a mesh, N frames orbiting it (scene/orbit.hpp; the walk-throughs of
 // Potter et al., "NPR-Style 3D Line Textures"). Per-frame pass times (ms) go to DIR/timings.csv
 // and the papers' tables (scene/timing_tables.hpp) to DIR/timings.md and standard output
-// (warm-up frames in their own row, outside the means).
+// (warm-up frames in their own row, outside the means). Here: the options, parsed into a
+// BatchRun (scene/batch_run.hpp: the frames and tables).
 #pragma once
 #include <string>
 #include <vector>
 
 #include "cli/commands.hpp"
-#include "scene/timing_tables.hpp"
+#include "cli/option_checks.hpp"
 #include "cli/scene_overrides.hpp"
-#include "export/style.hpp"
 
 namespace penink {
 
@@ -23,9 +23,7 @@ struct BatchOptions : SceneOverrides {
     std::string formats = "png,svg";
     int warmup = 3;  // the creases paper reports its first three frames apart
     bool whole_dem = false;  // model the whole DEM instead of the union of the frames' windows
-    bool verbose = false;
-    bool quiet = false;      // no progress
-    bool progress = false;   // progress lines also when stderr is not a terminal
+    LogFlags log;
     std::string shard;       // "K/N": draw frames K, K+N, K+2N, ... (1-based) of the flight only
 };
 

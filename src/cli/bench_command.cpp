@@ -141,14 +141,12 @@ Subcommand add_bench_command(CLI::App& app) {
     cmd->add_option("--needs-size", o.needs_size, "Image size WxH of those rows (default: the scene's)");
     cmd->add_option("--gl", o.gl, "OpenGL backend: osmesa (software, default) or egl (GPU)")
         ->check(CLI::IsMember({"osmesa", "egl"}));
-    cmd->add_flag("-v,--verbose", o.verbose, "Print modelled cells per view");
-    cmd->add_flag("-q,--quiet", o.quiet, "No progress");
-    cmd->add_flag("--progress", o.progress, "Progress lines on stderr also when it is not a terminal");
+    add_log_flags(cmd, o.log, "Print modelled cells per view");
     return {cmd, [options] { return run_bench(*options); }};
 }
 
 int run_bench(const BenchOptions& o) {
-    const Log log{o.verbose, progress_mode(o.quiet, o.progress)};
+    const Log log = o.log.log();
     SpeedAccuracyConfig config = o.config;
     if (!o.levels.empty()) config.levels = parse_int_list(o.levels, "--levels");
     if (!o.sizes.empty()) config.sizes = parse_sizes(o.sizes);
@@ -160,10 +158,10 @@ int run_bench(const BenchOptions& o) {
     if (!o.needs_size.empty()) config.needs_size = parse_sizes(o.needs_size).front();
     if (o.input.empty() == o.analytic.empty()) throw Error("cli", "", "bench: give a DEM or scene file, or --analytic NAME");
     Scene scene;
-    scene.exaggeration_auto = false;  // an analytic terrain is drawn as its closed form says
+    scene.terrain.exaggeration_auto = false;  // an analytic terrain is drawn as its closed form says
     Terrain dem;
     if (!o.analytic.empty()) {
-        config.analytic = analytic_case(o.analytic, scene.camera.width, scene.camera.height);
+        config.analytic = analytic_case(o.analytic, scene.view.camera.width, scene.view.camera.height);
         if (!config.analytic)
             throw Error("cli", "", "--analytic: unknown terrain \"" + o.analytic + "\" (use " + analytic_case_names() + ")");
         dem = analytic_grid(config.analytic->shape, config.analytic->spacing);

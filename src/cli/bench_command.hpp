@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/option_checks.hpp"
 #include "scene/speed_accuracy.hpp"
 
 namespace penink {
@@ -21,9 +22,7 @@ struct BenchOptions {
     std::string levels, sizes, methods, tolerances, needs_size;
     SpeedAccuracyConfig config;  // frames, warmup, ref_edge_px, ref_supersample, needs
     std::string gl = "osmesa";
-    bool verbose = false;
-    bool quiet = false;     // no progress
-    bool progress = false;  // progress lines also when stderr is not a terminal
+    LogFlags log;
 };
 
 // "1,2,4" -> {1,2,4}; "500x375,..." -> sizes. Errors: Error("cli", "", "--levels: ...").

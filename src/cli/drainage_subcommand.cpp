@@ -6,7 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "cli/drainage_command.hpp"
+#include "scene/drainage_command.hpp"
 #include "cli/option_checks.hpp"
 
 namespace penink {

@@ -1,5 +1,5 @@
 // `penink drainage DEM [-o OUT.dv] [--resample F] [--rasters DIR] [--routing priority-flood|least-cost]`:
-// CLI11 wiring of run_drainage_command (src/drainage/drainage_command.hpp).
+// CLI11 wiring of run_drainage_command (scene/drainage_command.hpp).
 #pragma once
 #include "cli/commands.hpp"
 

@@ -7,7 +7,6 @@
 
 #include "core/input_files.hpp"
 #include "core/memory_budget.hpp"
-#include "export/world_file.hpp"
 #include "scene/map_scale.hpp"
 
 namespace penink {
@@ -104,11 +103,10 @@ void add_max_memory_option(CLI::App* cmd, std::uint64_t& max_memory) {
             "SIZE"));
 }
 
-void check_outputs_are_not_inputs(const std::vector<std::string>& outputs, const std::vector<NamedInput>& inputs) {
-    std::vector<std::string> all = outputs;
-    for (const std::string& p : outputs)
-        for (std::string& f : raster_side_file_names(p)) all.push_back(std::move(f));
-    check_outputs_not_inputs("export", all, inputs);
+void add_log_flags(CLI::App* cmd, LogFlags& flags, const std::string& verbose_help) {
+    cmd->add_flag("-v,--verbose", flags.verbose, verbose_help);
+    cmd->add_flag("-q,--quiet", flags.quiet, "No progress");
+    cmd->add_flag("--progress", flags.progress, "Progress lines on stderr also when it is not a terminal");
 }
 
 }  // namespace penink

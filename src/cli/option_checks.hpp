@@ -1,13 +1,16 @@
 // Checks of command-line values with short, readable messages (CLI11's own ranges print
 // std::to_string of their bounds: "not in range 0.000000 to 1797...", a 309-digit number): a
 // number within [lo, hi] or (0, hi], and the --max-memory option (a byte size such as 2G or
-// 512M, core/memory_budget.hpp) of the commands that read DEMs.
+// 512M, core/memory_budget.hpp) of the commands that read DEMs; the log flags every drawing
+// command takes.
 #pragma once
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
+
+#include "core/log.hpp"
 
 namespace penink {
 
@@ -27,9 +30,13 @@ void add_max_memory_option(CLI::App* cmd, std::uint64_t& max_memory);
 // --cache-dir DIR into `dir`: the folder of the DEM's caches (drainage_cache_path).
 void add_cache_dir_option(CLI::App* cmd, std::string& dir);
 
-struct NamedInput;
-// Refuses output files (with their raster side files, world_file.hpp) that are one of `inputs`
-// (check_outputs_not_inputs): Error("export", output, "is the DEM ...").
-void check_outputs_are_not_inputs(const std::vector<std::string>& outputs, const std::vector<NamedInput>& inputs);
+// -v/--verbose (its help text `verbose_help`), -q/--quiet, --progress of render, batch and bench.
+struct LogFlags {
+    bool verbose = false;
+    bool quiet = false;     // no progress
+    bool progress = false;  // progress lines also when stderr is not a terminal
+    Log log() const { return Log{verbose, progress_mode(quiet, progress)}; }
+};
+void add_log_flags(CLI::App* cmd, LogFlags& flags, const std::string& verbose_help);
 
 }  // namespace penink

@@ -67,28 +67,26 @@ Subcommand add_render_command(CLI::App& app) {
     add_scene_override_options(cmd, o);
     cmd->add_option("--format", o.format, "Format of -o - (standard output, for a pipe): svg, ps, eps or pdf")
         ->check(CLI::IsMember({"svg", "ps", "eps", "pdf"}));
-    cmd->add_flag("-v,--verbose", o.verbose, "Print cells used, per-pass times and line statistics");
-    cmd->add_flag("-q,--quiet", o.quiet, "No progress");
-    cmd->add_flag("--progress", o.progress, "Progress lines on stderr also when it is not a terminal");
+    add_log_flags(cmd, o.log, "Print cells used, per-pass times and line statistics");
     return {cmd, [options] { return run_render(*options); }};
 }
 
 int run_render(const RenderOptions& o) {
     const auto start = std::chrono::steady_clock::now();
-    const Log log{o.verbose, progress_mode(o.quiet, o.progress || o.verbose)};  // -v: the builds' progress too
+    const Log log{o.log.verbose, progress_mode(o.log.quiet, o.log.progress || o.log.verbose)};  // -v: the builds' progress too
     check_outputs(o, o.width > 0 ? o.width : 1, o.height > 0 ? o.height : 1);
     Scene scene = load_scene_with_overrides(o);
     apply_map_scale(scene, page_options(o));
-    check_outputs(o, scene.camera.width, scene.camera.height);
+    check_outputs(o, scene.view.camera.width, scene.view.camera.height);
     check_outputs_are_not_inputs(output_files(o), scene_inputs(scene));  // before anything is written
     const auto context = make_gl_context(parse_gl_backend(o.gl));
-    context->set_timed(o.verbose);  // the pass times are only logged
+    context->set_timed(log.verbose);  // the pass times are only logged
     log.info(context->description());
-    FrameOutput output{output_files(o), page_options(o), parse_layer_split(o.layers), o.format, o.verbose, o.verbose};
+    FrameOutput output{output_files(o), page_options(o), parse_layer_split(o.layers), o.format, log.verbose, log.verbose};
     const RenderedFrame frame = render_scene_frame(scene, *context, output, log);
     const FrameOutputResult& written = frame.written;
     log_finish(written.finish, log);
-    if (o.verbose && frame.terrain && !scene.dem.empty()) log_directions(frame.drawn.drawing, scene.dem, log);
+    if (log.verbose && frame.terrain && !scene.source.dem.empty()) log_directions(frame.drawn.drawing, scene.source.dem, log);
     if (!o.format.empty()) {
         std::cout.write(written.document.data(), std::streamsize(written.document.size()));
         std::cout.flush();

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/option_checks.hpp"
 #include "cli/scene_overrides.hpp"
 
 namespace penink {
@@ -16,9 +17,7 @@ struct RenderOptions : SceneOverrides {
     double margin_mm = 0.0;      // --margin: blank border on each side, mm
     std::string layers = "kind";  // "kind" or "kind+distance"
     std::string format;          // of the output "-" (standard output): svg, ps, eps or pdf
-    bool verbose = false;
-    bool quiet = false;          // no progress
-    bool progress = false;       // progress lines also when stderr is not a terminal
+    LogFlags log;
 };
 
 Subcommand add_render_command(CLI::App& app);

@@ -18,7 +18,10 @@ std::string first_line(std::string text) {
 }  // namespace
 
 toml::value read_toml_file(const std::string& stage, const std::string& path, const std::string& what) {
-    const std::string text = read_input_text(stage, path, max_text_input_bytes, what);
+    return parse_toml_text(stage, path, read_input_text(stage, path, max_text_input_bytes, what));
+}
+
+toml::value parse_toml_text(const std::string& stage, const std::string& path, const std::string& text) {
     check_toml_nesting(stage, path, text);  // before the parser, whose recursion has no bound
     if (const std::size_t bad = invalid_utf8_at(text); bad != npos_utf8)
         throw Error(stage, path, "invalid TOML: not UTF-8 text (byte " + std::to_string(bad + 1) + ")");

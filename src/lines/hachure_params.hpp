@@ -41,7 +41,7 @@ struct HachureParams {
     double max_turn_deg = 0.0;     // largest turn of the image direction per pixel
     double aerial = 0.0;           // perspective: tone falls to (1 - aerial) at the farthest depth
     double min_length_px = 0.0;    // shorter lines are dropped
-    // The pen's range, from the style (apply_object_sketch; not [hachures] keys): the widths of
+    // The pen's range, from the style (hachure_pen, scene/hachure_lines.hpp; not [hachures] keys): the widths of
     // the lightest and the heaviest stroke as factors of width_px (the style's weight_min and
     // weight_max of the hachures layer). Equal: one width, tone by spacing alone.
     double weight_min = 1.0, weight_max = 1.0;

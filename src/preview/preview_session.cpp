@@ -9,6 +9,7 @@
 
 #include "core/error.hpp"
 #include "core/stopwatch.hpp"
+#include "core/input_files.hpp"
 #include "export/atomic_file.hpp"
 #include "export/export_drawing.hpp"
 #include "input/crs_util.hpp"
@@ -21,16 +22,6 @@ namespace penink {
 namespace fs = std::filesystem;
 
 namespace {
-
-// The scene's layers drawn or not, from its [style.<layer>] visible keys.
-std::map<std::string, bool> scene_visibility(const Scene& scene) {
-    std::map<std::string, bool> visible;
-    if (!scene.style_overrides.is_table()) return visible;
-    for (const auto& [name, t] : scene.style_overrides.as_table())
-        if (t.is_table() && t.as_table().count("visible") && t.as_table().at("visible").is_boolean())
-            visible[name] = t.as_table().at("visible").as_boolean();
-    return visible;
-}
 
 FrameOutput svg_in_memory(bool measure) {
     FrameOutput out;
@@ -57,15 +48,14 @@ std::optional<glm::dvec3> unproject_pixel(const Camera& cam, const DepthImage& d
 
 PreviewSession::PreviewSession(const Scene& scene, std::string save_path, GlBackend gl, const Log& log)
     : log_(log) {
-    const std::string& name = scene.file.empty() ? scene.dem : scene.file;
-    if (scene.dem.empty()) throw Error("input", name, "no DEM given");
+    const std::string& name = scene.source.file.empty() ? scene.source.dem : scene.source.file;
+    if (scene.source.dem.empty()) throw Error("input", name, "no DEM given");
     if (is_mesh_scene(scene)) throw Error("cli", name, "penink preview draws terrains (a DEM or a terrain scene), not meshes");
-    dem_ = fs::absolute(scene.dem).lexically_normal().string();
-    base_ = scene.file.empty() ? toml::value(toml::table{}) : scene.table;
-    if (!scene.cache_dir.empty()) {  // [cache] dir or --cache-dir, for the frames and the file saved
-        if (!base_.contains("cache") || !base_.at("cache").is_table()) base_.as_table()["cache"] = toml::table{};
-        base_.at("cache").as_table()["dir"] = fs::absolute(scene.cache_dir).lexically_normal().string();
-    }
+    dem_ = fs::absolute(scene.source.dem).lexically_normal().string();
+    if (!scene.source.file.empty())
+        base_ = read_input_text("scene", scene.source.file, max_text_input_bytes, "scene file");
+    if (!scene.terrain.cache_dir.empty())  // [cache] dir or --cache-dir, for the frames and the file saved
+        base_ = with_cache_dir(base_, fs::absolute(scene.terrain.cache_dir).lexically_normal().string());
     save_path_ = fs::absolute(save_path).lexically_normal().string();
     std::string pattern = (fs::temp_directory_path() / "penink-preview-XXXXXX").string();
     if (!mkdtemp(pattern.data())) throw Error("cli", pattern, "cannot make the preview's private folder");
@@ -75,31 +65,31 @@ PreviewSession::PreviewSession(const Scene& scene, std::string save_path, GlBack
     log_.info(context_->description());
 
     Scene first = scene;  // the scene's own view, drawn once
-    first.dem = dem_;
+    first.source.dem = dem_;
     apply_map_scale(first, PageOptions{});
     const SceneDrawing drawn = draw_scene(first, *context_, log_, &keep_);  // its camera and depths alone
     meta_ = keep_.stored(first, log_).meta;
     const Camera& cam = drawn.camera;
     PreviewView& v = initial_;
     v.orthographic = is_orthographic(cam);
-    v.azimuth = cam.azimuth, v.altitude = cam.altitude, v.fov = scene.camera.fov;
-    v.width = scene.camera.width, v.height = scene.camera.height;
+    v.azimuth = cam.azimuth, v.altitude = cam.altitude, v.fov = scene.view.camera.fov;
+    v.width = scene.view.camera.width, v.height = scene.view.camera.height;
     const glm::dvec3 dir = direction_from_angles(cam.azimuth, cam.altitude);
     const glm::dvec3 centre = unproject_pixel(cam, drawn.toward, cam.width / 2.0, cam.height / 2.0)
                                   .value_or(cam.eye + dir * (0.5 * (cam.near_plane + cam.far_plane)));
     const double unit = linear_unit_of(meta_.crs_wkt);
     v.target_x = (centre.x + meta_.origin.x) / unit, v.target_y = (centre.y + meta_.origin.y) / unit;
     v.distance = std::max(glm::length(centre - cam.eye), 1.0);
-    v.light_azimuth = first.light.azimuth, v.light_altitude = first.light.altitude;
-    v.vertical_exaggeration = first.vertical_exaggeration;
-    v.crease_min_score = first.creases.min_score, v.ridge_min_score = first.ridges.min_score;
-    v.hachure_spacing_min = first.hachures.spacing_min_px, v.hachure_spacing_max = first.hachures.spacing_max_px;
-    v.style = first.style;
+    v.light_azimuth = first.view.light.azimuth, v.light_altitude = first.view.light.altitude;
+    v.vertical_exaggeration = first.terrain.vertical_exaggeration;
+    v.crease_min_score = first.lines.creases.min_score, v.ridge_min_score = first.lines.ridges.min_score;
+    v.hachure_spacing_min = first.lines.hachures.spacing_min_px, v.hachure_spacing_max = first.lines.hachures.spacing_max_px;
+    v.style = first.style.name;
     if (fs::is_regular_file(v.style)) v.style = fs::absolute(v.style).lexically_normal().string();
-    v.visible = scene_visibility(first);
-    v.seed = first.seed;
-    v.sea_level = first.sea_level;
-    v.map_scale = first.map_scale;
+    v.visible = scene_visibility(base_);
+    v.seed = first.style.seed;
+    v.sea_level = first.terrain.sea_level;
+    v.map_scale = first.view.map_scale;
 }
 
 PreviewSession::~PreviewSession() {
@@ -138,7 +128,7 @@ PreviewFrame PreviewSession::draw(const PreviewView& view, double scale) {
     if (scale >= 1.0) {
         camera_ = frame.drawn.camera;
         depth_ = std::move(frame.drawn.toward);
-        exaggeration_ = scene.vertical_exaggeration;
+        exaggeration_ = scene.terrain.vertical_exaggeration;
     }
     PreviewFrame out;
     out.svg = std::move(frame.written.document);
@@ -167,7 +157,7 @@ std::vector<std::string> PreviewSession::export_files(const PreviewView& view, c
     std::vector<std::string> paths;
     for (const std::string& ext : extensions) paths.push_back(fs::path(save_path_).replace_extension(ext).string());
     Scene scene = load_view(view);
-    check_output_targets(paths, PageOptions{}, scene.camera.width, scene.camera.height);
+    check_output_targets(paths, PageOptions{}, scene.view.camera.width, scene.view.camera.height);
     FrameOutput out;
     out.files = paths;
     render_scene_frame(scene, *context_, out, log_, &keep_);

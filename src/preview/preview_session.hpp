@@ -62,7 +62,7 @@ public:
 private:
     Scene load_view(const PreviewView& view);
 
-    toml::value base_;
+    std::string base_;  // the scene file's TOML text ("" for a bare DEM)
     std::string dem_;
     std::string save_path_;
     std::string folder_;      // private folder of the frames' scene files

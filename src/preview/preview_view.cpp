@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/drawing.hpp"
+#include "core/toml_file.hpp"
 #include "scene/scene.hpp"
 
 namespace penink {
@@ -116,8 +117,28 @@ PreviewView view_from_json(const json& j, const PreviewView& view) {
     return v;
 }
 
-std::string scene_text(const toml::value& base, const std::string& dem, const PreviewView& v) {
-    toml::table root = base.is_table() ? base.as_table() : toml::table{};
+std::map<std::string, bool> scene_visibility(const std::string& base) {
+    std::map<std::string, bool> visible;
+    const toml::value root = parse_toml_text("scene", "", base);
+    if (!root.is_table() || !root.contains("style") || !root.at("style").is_table()) return visible;
+    for (const auto& [name, t] : root.at("style").as_table())
+        if (t.is_table() && t.as_table().count("visible") && t.as_table().at("visible").is_boolean())
+            visible[name] = t.as_table().at("visible").as_boolean();
+    return visible;
+}
+
+std::string with_cache_dir(const std::string& base, const std::string& dir) {
+    const toml::value parsed = parse_toml_text("scene", "", base);
+    toml::table root = parsed.is_table() ? parsed.as_table() : toml::table{};
+    table_at(root, "cache")["dir"] = dir;
+    std::ostringstream o;
+    write_table(o, "", root);
+    return o.str();
+}
+
+std::string scene_text(const std::string& base, const std::string& dem, const PreviewView& v) {
+    const toml::value parsed = parse_toml_text("scene", "", base);
+    toml::table root = parsed.is_table() ? parsed.as_table() : toml::table{};
     toml::table& terrain = table_at(root, "terrain");
     terrain["dem"] = dem;
     terrain["vertical_exaggeration"] = v.vertical_exaggeration;

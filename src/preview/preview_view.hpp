@@ -11,7 +11,6 @@
 #include <string>
 
 #include <nlohmann/json.hpp>
-#include <toml.hpp>
 
 namespace penink {
 
@@ -41,10 +40,18 @@ nlohmann::json view_json(const PreviewView& view);
 // Image sizes are held to 16..max_image_side, distances to (0, 1e8].
 PreviewView view_from_json(const nlohmann::json& j, const PreviewView& view);
 
-// The scene file of `view`: `base` (a scene file's table; its [camera] position, elevation and
-// distance and [terrain] keys replaced) with the view's keys set, `dem` as [terrain] dem. Keys
-// sorted, tables after the keys, numbers written so that they read back exactly.
-std::string scene_text(const toml::value& base, const std::string& dem, const PreviewView& view);
+// The scene file of `view`: `base` (a scene file's TOML text, "" for none; its [camera] position,
+// elevation and distance and [terrain] keys replaced) with the view's keys set, `dem` as
+// [terrain] dem. Keys sorted, tables after the keys, numbers written so that they read back
+// exactly. Throws Error("scene", "", "invalid TOML: ...") when `base` is not TOML.
+std::string scene_text(const std::string& base, const std::string& dem, const PreviewView& view);
+
+// `base` (a scene file's TOML text, "" for none) with [cache] dir set to `dir` (an absolute path),
+// so that the frames and the file saved keep the cache folder the preview was started with.
+std::string with_cache_dir(const std::string& base, const std::string& dir);
+
+// The layers `base` (a scene file's TOML text) draws or not: its [style.<layer>] visible keys.
+std::map<std::string, bool> scene_visibility(const std::string& base);
 
 // A number as TOML writes it, the shortest text that reads back as the same double.
 std::string toml_number(double value);

@@ -12,8 +12,9 @@
 namespace penink {
 
 float line_culling_px(const Scene& scene) {
-    const double spacing = std::min(scene.creases.spacing_px, scene.ridges.spacing_px);
-    const double sketch = std::max(scene.crease_sketch_px, scene.ridge_sketch_px);
+    const double spacing = std::min(scene.lines.creases.spacing_px, scene.lines.ridges.spacing_px);
+    const Style& style = scene.style.resolved;
+    const double sketch = std::max(float(style.layer(LayerKind::creases).sketch), float(style.layer(LayerKind::ridges).sketch));
     const double margin = sketch > 0.0 ? 0.5 : 1.0;  // sketch offsets are sized at a line's mean depth
     return float(std::max(0.0, margin * (3.0 * spacing - 2.0 * sketch - 1.0)));
 }
@@ -41,7 +42,7 @@ void DrainageLines::draw(const Camera& camera, const Scene& scene, GLuint toward
                          float max_distance, Drawing& drawing, PassTimings& times) {
     DmFrame frame;
     frame.camera = &camera;
-    frame.light = glm::vec3(light_vector(Light{scene.light.azimuth, scene.light.altitude}));
+    frame.light = glm::vec3(light_vector(Light{scene.view.light.azimuth, scene.view.light.altitude}));
     frame.toward_texture = toward_texture;
     struct LayerLines {
         const UploadedLines& set;
@@ -52,10 +53,14 @@ void DrainageLines::draw(const Camera& camera, const Scene& scene, GLuint toward
         int repeat;
         double& ms;
     };
-    for (const LayerLines& l : {LayerLines{creases_, scene.creases, LayerKind::creases, "crease", scene.crease_sketch_px,
-                                           scene.crease_repeat, times.dm},
-                                LayerLines{ridges_, scene.ridges, LayerKind::ridges, "ridge", scene.ridge_sketch_px,
-                                           scene.ridge_repeat, times.ridges}}) {
+    // object-space sketch and repeats of creases and ridges: the style's (Potter et al., "NPR-Style
+    // 3D Line Textures", 4.3: end points moved within the surface's tangent plane)
+    const LayerStyle &crease_pen = scene.style.resolved.layer(LayerKind::creases),
+                     &ridge_pen = scene.style.resolved.layer(LayerKind::ridges);
+    for (const LayerLines& l : {LayerLines{creases_, scene.lines.creases, LayerKind::creases, "crease",
+                                           float(crease_pen.sketch), crease_pen.repeat, times.dm},
+                                LayerLines{ridges_, scene.lines.ridges, LayerKind::ridges, "ridge", float(ridge_pen.sketch),
+                                           ridge_pen.repeat, times.ridges}}) {
         if (!l.params.enabled) continue;
         std::vector<CreaseTerms> terms;
         l.ms = l.set.pass->run(frame, terms);
@@ -69,7 +74,7 @@ void DrainageLines::draw(const Camera& camera, const Scene& scene, GLuint toward
         else weight = height_weights(lines);
         std::vector<Stroke>& strokes = drawing.layer(l.layer).strokes;
         strokes = thin_by_spacing(
-            line_strokes(lines, scores, camera, l.kind, ObjectSketch{l.sketch_px, l.repeat, scene.seed}, weight),
+            line_strokes(lines, scores, camera, l.kind, ObjectSketch{l.sketch_px, l.repeat, scene.style.seed}, weight),
             float(l.params.spacing_px));
         if (l.layer == LayerKind::creases)  // no stars of short stubs (lines/short_stroke_clusters.hpp)
             strokes = thin_star_clusters(std::move(strokes), float(4.0 * l.params.spacing_px), float(1.5 * l.params.spacing_px));

@@ -45,7 +45,7 @@ std::vector<CoherenceRow> flight_coherence(const Scene& flight_scene, const std:
                                            double tolerance_px, const Log& log) {
     Scene scene = flight_scene;  // its vertical exaggeration resolved by plan_flight
     Flight f = plan_flight(scene, flight_csv, false, log);
-    const int w = scene.camera.width, h = scene.camera.height;
+    const int w = scene.view.camera.width, h = scene.view.camera.height;
     TerrainFrames frames(context, scene_drainage(scene, f.dem, log), std::move(f.model), w, h, log,
                          LineCulling{f.cameras, line_culling_px(scene)});
     std::vector<CoherenceRow> rows;

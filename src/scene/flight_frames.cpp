@@ -28,14 +28,14 @@ Camera flight_camera(const Scene& scene, const SceneTerrain& dem, const FlightRe
     } catch (const Error& e) {
         throw Error("batch", csv, "line " + std::to_string(r.line) + ": " + error_what(e));
     }
-    cam.eye = {xy.x, xy.y, r.elevation * scene.vertical_exaggeration};
-    cam.azimuth = r.azimuth, cam.altitude = r.altitude, cam.fov = scene.camera.fov;
-    cam.width = scene.camera.width, cam.height = scene.camera.height;
+    cam.eye = {xy.x, xy.y, r.elevation * scene.terrain.vertical_exaggeration};
+    cam.azimuth = r.azimuth, cam.altitude = r.altitude, cam.fov = scene.view.camera.fov;
+    cam.width = scene.view.camera.width, cam.height = scene.view.camera.height;
     double ground = 0.0;
     if (grid_ground_height(dem.nodes(), xy.x, xy.y, ground) && cam.eye.z <= ground) {
         std::ostringstream m;
         m << "line " << r.line << ": camera is inside the terrain (elevation " << r.elevation << " m, ground "
-          << ground / scene.vertical_exaggeration << " m)";
+          << ground / scene.terrain.vertical_exaggeration << " m)";
         throw Error("batch", csv, m.str());
     }
     return cam;
@@ -43,16 +43,16 @@ Camera flight_camera(const Scene& scene, const SceneTerrain& dem, const FlightRe
 
 Scene frame_scene(const Scene& scene, const FlightRecord& r) {
     Scene s = scene;
-    if (r.light_azimuth) s.light.azimuth = *r.light_azimuth;
-    if (r.light_altitude) s.light.altitude = *r.light_altitude;
-    if (r.min_score) s.creases.min_score = *r.min_score;
+    if (r.light_azimuth) s.view.light.azimuth = *r.light_azimuth;
+    if (r.light_altitude) s.view.light.altitude = *r.light_altitude;
+    if (r.min_score) s.lines.creases.min_score = *r.min_score;
     return s;
 }
 
 Flight plan_flight(Scene& scene, const std::string& csv, bool whole_dem, const Log& log) {
     Flight f;
-    if (scene.camera.projection == Projection::orthographic)
-        throw Error("batch", scene.file.empty() ? scene.dem : scene.file,
+    if (scene.view.camera.projection == Projection::orthographic)
+        throw Error("batch", scene.source.file.empty() ? scene.source.dem : scene.source.file,
                     "a flight's cameras are perspective: [camera] projection = \"orthographic\" (or --map) is for one view");
     f.records = read_flight_path(csv);
     f.dem = open_scene_terrain(scene, log);

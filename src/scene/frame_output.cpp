@@ -33,14 +33,13 @@ FrameOutputResult write_frame(Drawing& drawing, const Style& style, std::uint64_
 RenderedFrame render_scene_frame(Scene& scene, GlContext& context, const FrameOutput& output, const Log& log,
                                  TerrainKeep* keep) {
     RenderedFrame frame;
-    const Style style = scene_style(scene);
+    const Style& style = scene.style.resolved;
     frame.terrain = !is_mesh_scene(scene);
-    if (frame.terrain) apply_object_sketch(scene, style);
     frame.drawn = draw_scene(scene, context, log, keep);
     log_frame_timings(frame.drawn, log);
     FrameOutput with_furniture = output;  // a plan view's furniture comes from the scene
-    with_furniture.furniture = scene.furniture, with_furniture.map_scale = scene.map_scale;
-    frame.written = write_frame(frame.drawn.drawing, style, scene.seed, frame.terrain, with_furniture);
+    with_furniture.furniture = scene.view.furniture, with_furniture.map_scale = scene.view.map_scale;
+    frame.written = write_frame(frame.drawn.drawing, style, scene.style.seed, frame.terrain, with_furniture);
     return frame;
 }
 

@@ -49,9 +49,8 @@ FrameOutputResult write_frame(Drawing& drawing, const Style& style, std::uint64_
 // --verbose lines: per layer, what finishing did (strokes in, joined, lines, length, pen-up
 // travel before and after ordering, small loops, doubled share); the frame's GPU pass times,
 // tracing time and triangles.
-// What `penink render` and `penink preview` make of a scene: its style resolved (scene_style:
-// named or file, then the scene's [style] overrides), a terrain's object-space sketch taken from
-// it (apply_object_sketch), the scene's own view drawn (draw_scene) and written (write_frame).
+// What `penink render` and `penink preview` make of a scene: the scene's own view drawn
+// (draw_scene) and written (write_frame) with the style load_scene resolved.
 struct RenderedFrame {
     SceneDrawing drawn;
     FrameOutputResult written;

@@ -11,8 +11,8 @@
 namespace penink {
 
 bool is_mesh_scene(const Scene& scene) {
-    if (!scene.mesh.empty()) return true;
-    std::string ext = std::filesystem::path(scene.dem).extension().string();
+    if (!scene.source.mesh.empty()) return true;
+    std::string ext = std::filesystem::path(scene.source.dem).extension().string();
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
     return ext == ".obj" || ext == ".ply" || ext == ".off";
 }

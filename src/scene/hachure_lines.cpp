@@ -17,15 +17,6 @@ std::string number_text(double v) {
     return s;
 }
 
-void read_value(const toml::value& t, const char* key, double& out, const std::string& file) {
-    if (!t.contains(key)) return;
-    const toml::value& v = t.at(key);
-    if (v.is_integer()) out = double(v.as_integer());
-    else if (v.is_floating()) out = v.as_floating();
-    else throw Error("scene", file, std::string("[hachures] ") + key + ": expected a number");
-    if (!std::isfinite(out)) throw Error("scene", file, std::string("[hachures] ") + key + ": expected a finite number");
-}
-
 void check(const std::string& file, const char* key, double v, double lo, double hi) {
     if (v >= lo && v <= hi) return;
     throw Error("scene", file, std::string("[hachures] ") + key + " must be between " + number_text(lo) + " and " +
@@ -41,31 +32,31 @@ const std::vector<std::string>& hachure_keys() {
     return keys;
 }
 
-void read_hachures(const toml::value& root, HachureParams& p, const std::string& file) {
-    if (!root.is_table() || !root.contains("hachures")) return;
-    const toml::value& t = root.at("hachures");
-    if (t.contains("enabled")) {
-        if (!t.at("enabled").is_boolean()) throw Error("scene", file, "[hachures] enabled: must be true or false");
-        p.enabled = t.at("enabled").as_boolean();
+double* hachure_number(HachureParams& p, const std::string& key) {
+    const std::pair<const char*, double*> numbers[] = {
+        {"blend", &p.blend},        {"contrast", &p.contrast},         {"gamma", &p.gamma},
+        {"min_slope_deg", &p.min_slope_deg}, {"spacing_min_px", &p.spacing_min_px}, {"spacing_max_px", &p.spacing_max_px},
+        {"width_px", &p.width_px},  {"d_test", &p.d_test},             {"yield_px", &p.yield_px},
+        {"max_turn_deg", &p.max_turn_deg},   {"aerial", &p.aerial},    {"min_length_px", &p.min_length_px}};
+    for (const auto& [name, value] : numbers)
+        if (key == name) return value;
+    return nullptr;
+}
+
+HachureParams hachure_pen(HachureParams params, const Style& style) {
+    // the hachures' spacing is computed for the pen that draws them (millimetres at 96 dpi)
+    const double px = style.widths_mm ? 96.0 / 25.4 : 1.0;
+    const LayerStyle& pen = style.layer(LayerKind::hachures);
+    if (params.width_px <= 0.0) params.width_px = pen.width * px;
+    // and the range its width takes with the tone (the layer's weight factors)
+    params.weight_min = pen.weight_min, params.weight_max = pen.weight_max;
+    // its taper and the ink of the lines it yields to, which the coverage feedback counts
+    params.taper_px = pen.taper * px, params.taper_min = pen.taper_min;
+    for (std::size_t i = 0; i < hachure_obstacle_layers.size(); ++i) {
+        const LayerStyle& ls = style.layer(hachure_obstacle_layers[i]);
+        params.obstacle_pens[i] = HachurePen{ls.width * px, ls.weight_min, ls.weight_max, ls.taper * px, ls.taper_min};
     }
-    if (t.contains("tone")) {
-        const toml::value& v = t.at("tone");
-        if (!v.is_string() || !hachure_tone_named(v.as_string().str, p.tone))
-            throw Error("scene", file, "[hachures] tone must be \"light\", \"slope\" or \"blend\"" +
-                                           (v.is_string() ? " (got \"" + v.as_string().str + "\")" : std::string()));
-    }
-    read_value(t, "blend", p.blend, file);
-    read_value(t, "contrast", p.contrast, file);
-    read_value(t, "gamma", p.gamma, file);
-    read_value(t, "min_slope_deg", p.min_slope_deg, file);
-    read_value(t, "spacing_min_px", p.spacing_min_px, file);
-    read_value(t, "spacing_max_px", p.spacing_max_px, file);
-    read_value(t, "width_px", p.width_px, file);
-    read_value(t, "d_test", p.d_test, file);
-    read_value(t, "yield_px", p.yield_px, file);
-    read_value(t, "max_turn_deg", p.max_turn_deg, file);
-    read_value(t, "aerial", p.aerial, file);
-    read_value(t, "min_length_px", p.min_length_px, file);
+    return params;
 }
 
 void validate_hachures(const HachureParams& p, const std::string& file) {

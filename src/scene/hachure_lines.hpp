@@ -5,21 +5,26 @@
 #include <string>
 #include <vector>
 
-#include <toml.hpp>
-
 #include "core/drawing.hpp"
 #include "core/pixel_mask.hpp"
+#include "export/style.hpp"
 #include "lines/hachures.hpp"
 #include "scene/terrain_view.hpp"
 
 namespace penink {
 
-// Reads [hachures] (enabled, tone, blend, contrast, gamma, min_slope_deg, spacing_min_px,
-// spacing_max_px, width_px, d_test, yield_px, max_turn_deg, aerial, min_length_px) into p;
-// throws Error("scene", file, "[hachures] KEY: ...") on a wrong type or name.
-// The keys [hachures] takes.
+// The keys [hachures] takes (read by the scene file's reader, scene_file.cpp): enabled, tone,
+// blend, contrast, gamma, min_slope_deg, spacing_min_px, spacing_max_px, width_px, d_test,
+// yield_px, max_turn_deg, aerial, min_length_px.
 const std::vector<std::string>& hachure_keys();
-void read_hachures(const toml::value& root, HachureParams& p, const std::string& file);
+// The number that [hachures] `key` sets in `p`; nullptr for enabled, tone and any other name.
+double* hachure_number(HachureParams& p, const std::string& key);
+// The scene's hachure settings with the style's pen (style resolved by load_scene): width_px, when
+// the scene gives none, from the hachures layer's width (millimetres at 96 dpi), since the
+// spacing is computed for the pen that draws them, and the weight range its width takes with
+// the tone (the layer's weight_min, weight_max).
+HachureParams hachure_pen(HachureParams params, const Style& style);
+
 // One-line range errors ("[hachures] KEY must be between LO and HI (got V)").
 void validate_hachures(const HachureParams& p, const std::string& file);
 

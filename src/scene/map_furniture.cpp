@@ -11,18 +11,6 @@ namespace {
 
 constexpr int graticule_samples = 65;  // per side: lon/lat between them is linear within metres
 
-bool read_bool(const toml::value& t, const char* key, bool fallback, const std::string& file) {
-    if (!t.contains(key)) return fallback;
-    if (!t.at(key).is_boolean()) throw Error("scene", file, std::string("[map] ") + key + ": expected true or false");
-    return t.at(key).as_boolean();
-}
-
-std::string read_string(const toml::value& t, const char* key, const std::string& fallback, const std::string& file) {
-    if (!t.contains(key)) return fallback;
-    if (!t.at(key).is_string()) throw Error("scene", file, std::string("[map] ") + key + ": expected a string");
-    return t.at(key).as_string().str;
-}
-
 }  // namespace
 
 std::vector<std::string> map_furniture_keys() {
@@ -34,27 +22,6 @@ MapGrid map_grid_named(const std::string& name) {
     if (name == "map") return MapGrid::map;
     if (name == "graticule") return MapGrid::graticule;
     throw std::invalid_argument("grid must be \"none\", \"map\" or \"graticule\" (got \"" + name + "\")");
-}
-
-MapFurnitureOptions read_map_furniture(const toml::value& map, const std::string& file) {
-    MapFurnitureOptions o;
-    if (!map.is_table()) return o;
-    const bool on = read_bool(map, "furniture", true, file);
-    o.neatline = read_bool(map, "neatline", on, file);
-    o.scale_bar = read_bool(map, "scale_bar", on, file);
-    o.north_arrow = read_bool(map, "north_arrow", on, file);
-    try {
-        o.grid = map_grid_named(read_string(map, "grid", "none", file));
-    } catch (const std::invalid_argument& e) {
-        throw Error("scene", file, std::string("[map] ") + e.what());
-    }
-    o.title = read_string(map, "title", "", file);
-    if (o.title.size() > 1000) throw Error("scene", file, "[map] title: at most 1000 bytes");
-    const std::string units = read_string(map, "units", "metric", file);
-    if (units != "metric" && units != "imperial")
-        throw Error("scene", file, "[map] units: must be \"metric\" or \"imperial\" (got \"" + units + "\")");
-    o.imperial = units == "imperial";
-    return o;
 }
 
 void add_scene_furniture(Drawing& drawing, const MapFurnitureOptions& options, double map_scale, const Style& style,

@@ -7,8 +7,6 @@
 #include <string>
 #include <vector>
 
-#include <toml.hpp>
-
 #include "core/drawing.hpp"
 #include "export/page.hpp"
 #include "export/style.hpp"
@@ -18,12 +16,8 @@ namespace penink {
 
 // The furniture keys of [map] (besides scale): furniture (false turns every piece off),
 // neatline, scale_bar, north_arrow (true or false), grid ("none", "map", "graticule"), title (a
-// string), units ("metric", "imperial").
+// string), units ("metric", "imperial"); read by the scene file's reader (scene_file.cpp).
 std::vector<std::string> map_furniture_keys();
-
-// Reads them from the scene's [map] table (a table, or nothing); throws
-// Error("scene", file, "[map] KEY: ...") on a wrong type or name.
-MapFurnitureOptions read_map_furniture(const toml::value& map, const std::string& file);
 
 // "none", "map", "graticule"; throws std::invalid_argument otherwise.
 MapGrid map_grid_named(const std::string& name);

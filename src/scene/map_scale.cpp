@@ -10,9 +10,9 @@
 namespace penink {
 
 void apply_map_scale(Scene& scene, const PageOptions& page) {
-    if (!(scene.map_scale > 0.0)) return;
-    const std::string& file = scene.file.empty() ? scene.dem : scene.file;
-    SceneCamera& cam = scene.camera;
+    if (!(scene.view.map_scale > 0.0)) return;
+    const std::string& file = scene.source.file.empty() ? scene.source.dem : scene.source.file;
+    SceneCamera& cam = scene.view.camera;
     if (!page.page.empty()) {
         double w_mm = 0.0, h_mm = 0.0;
         try {
@@ -33,16 +33,16 @@ void apply_map_scale(Scene& scene, const PageOptions& page) {
         cam.width = int(w), cam.height = int(h);
     }
     const PageLayout layout = page_layout(cam.width, cam.height, page, file);
-    cam.view_width = double(cam.width) * layout.scale_mm / 1000.0 * scene.map_scale;
+    cam.view_width = double(cam.width) * layout.scale_mm / 1000.0 * scene.view.map_scale;
     // A map wider than the Earth has no place in any CRS (GDAL's "point outside of projection
     // domain"): refused here with the scale that fits.
     constexpr double earth_circumference_m = 40075017.0;
     const double across = std::max(cam.view_width, cam.view_width * cam.height / std::max(cam.width, 1));
     if (!(across <= earth_circumference_m))
-        throw Error("scene", file, "--scale 1:" + map_scale_text(scene.map_scale) + " makes the map " +
+        throw Error("scene", file, "--scale 1:" + map_scale_text(scene.view.map_scale) + " makes the map " +
                                        format_number(across / 1000.0, 0) + " km across, more than the Earth's " +
                                        "circumference (at most 1:" +
-                                       map_scale_text(std::floor(scene.map_scale * earth_circumference_m / across)) + " here)");
+                                       map_scale_text(std::floor(scene.view.map_scale * earth_circumference_m / across)) + " here)");
 }
 
 double parse_map_scale(const std::string& text) {

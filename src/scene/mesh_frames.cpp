@@ -25,7 +25,7 @@ namespace penink {
 
 namespace {
 
-PelOptions pel_options(const MeshScene& ms) {
+PelOptions pel_options(const MeshSettings& ms) {
     PelOptions o;
     o.threshold = ms.pel_threshold;
     if (ms.light) {
@@ -41,14 +41,14 @@ float mesh_diagonal(const TriangleMesh& mesh) {
 }
 
 // Texture styles: the scene's material.NAME entries, else by material-name keywords.
-TextureOptions texture_options(const TriangleMesh& mesh, const MeshScene& ms, const Scene& scene) {
+TextureOptions texture_options(const TriangleMesh& mesh, const MeshSettings& ms, const Scene& scene) {
     TextureOptions o;
     const float scale = ms.texture_scale.value_or(mesh_diagonal(mesh) / 24.0f);
     o.threshold = ms.texture_threshold;
     o.noise_scale = 4.0f * scale;
     o.edge_band = 1.5f * scale;
     o.features.crease_angle = ms.crease_angle;
-    o.seed = scene.seed;
+    o.seed = scene.style.seed;
     for (const std::string& name : mesh.material_names) {
         auto it = ms.materials.find(name);
         const std::string tex = it != ms.materials.end() ? it->second : default_texture_for_material(name);
@@ -57,14 +57,14 @@ TextureOptions texture_options(const TriangleMesh& mesh, const MeshScene& ms, co
     return o;
 }
 
-std::vector<ObjectPolyline> mesh_textures(const TriangleMesh& mesh, const MeshScene& ms, const Scene& scene,
+std::vector<ObjectPolyline> mesh_textures(const TriangleMesh& mesh, const MeshSettings& ms, const Scene& scene,
                                           const Log& log) {
     const TextureOptions o = texture_options(mesh, ms, scene);
     if (o.materials.empty()) return {};
-    const std::string dir = find_texture_library(scene, ms);
+    const std::string dir = find_texture_library(scene);
     if (dir.empty()) {
         if (!ms.materials.empty())
-            throw Error("scene", scene.file.empty() ? ms.path : scene.file,
+            throw Error("scene", scene.source.file.empty() ? mesh_file(scene) : scene.source.file,
                         "no texture library found (set [textures] library or PENINK_TEXTURES)");
         std::cerr << "penink: warning: no texture library found, textures left out "
                      "(set [textures] library or PENINK_TEXTURES)\n";
@@ -73,7 +73,7 @@ std::vector<ObjectPolyline> mesh_textures(const TriangleMesh& mesh, const MeshSc
     const TextureLibrary lib = load_texture_library(dir);
     for (const auto& [material, style] : o.materials)
         if (!lib.textures.count(style.texture))
-            throw Error("scene", scene.file.empty() ? ms.path : scene.file,
+            throw Error("scene", scene.source.file.empty() ? mesh_file(scene) : scene.source.file,
                         "[textures] material." + material + ": unknown texture \"" + style.texture + "\" (not in " + dir + ")");
     log.info("texture library " + dir);
     return indication_textures(mesh, lib, o);
@@ -81,7 +81,7 @@ std::vector<ObjectPolyline> mesh_textures(const TriangleMesh& mesh, const MeshSc
 
 }  // namespace
 
-MeshLines mesh_lines(const TriangleMesh& mesh, const MeshScene& ms, const Scene& scene, const glm::vec3& eye,
+MeshLines mesh_lines(const TriangleMesh& mesh, const MeshSettings& ms, const Scene& scene, const glm::vec3& eye,
                      const Log& log) {
     MeshLines out;
     auto t0 = Clock::now();
@@ -138,7 +138,7 @@ std::string format_vec(const glm::dvec3& v) {
     return s.str();
 }
 
-void fill_metadata(const Scene& scene, const MeshScene& ms, const Camera& c, Drawing& d) {
+void fill_metadata(const Scene& scene, const MeshSettings& ms, const Camera& c, Drawing& d) {
     std::ostringstream cam, params;
     cam.precision(8);
     cam << "eye " << format_vec(c.eye) << " (z-up world), azimuth " << c.azimuth << ", altitude " << c.altitude
@@ -147,13 +147,13 @@ void fill_metadata(const Scene& scene, const MeshScene& ms, const Camera& c, Dra
            << ms.pel_threshold << " smoothing " << ms.smoothing << " normal_filter " << ms.normal_filter
            << " line_strength " << ms.line_strength << ", crease_angle " << ms.crease_angle
            << ", textures " << (ms.textures ? "on" : "off") << " threshold " << ms.texture_threshold
-           << ", seed " << scene.seed << ", style " << scene.style;
-    d.metadata["source"] = ms.path;
+           << ", seed " << scene.style.seed << ", style " << scene.style.name;
+    d.metadata["source"] = mesh_file(scene);
     d.metadata["camera"] = cam.str();
     d.metadata["light"] = ms.light ? "direction " + format_vec(*ms.light) + " (mesh frame)" : "at the camera";
     d.metadata["parameters"] = params.str();
     d.metadata["generator"] = std::string("penink ") + penink_version;
-    const std::string name = std::filesystem::path(ms.path).filename().string();
+    const std::string name = std::filesystem::path(mesh_file(scene)).filename().string();
     d.metadata["title"] = name + ": pen-and-ink drawing";
     d.metadata["description"] = "Pen-and-ink drawing of the mesh " + name + " by penink " + penink_version +
                                 "; camera " + d.metadata["camera"] + "; light " + d.metadata["light"];
@@ -173,20 +173,20 @@ void log_mesh_timings(const MeshLines& l, std::size_t triangles, const Log& log)
 }  // namespace
 
 MeshFrames::MeshFrames(const Scene& scene, GlContext& context, const Log& log)
-    : log_(&log), ms_(load_mesh_scene(scene)), mesh_(read_mesh(ms_.path)) {
+    : log_(&log), ms_(scene.mesh), mesh_(read_mesh(mesh_file(scene))) {
     loop_subdivide(mesh_, ms_.subdivide);
     if (ms_.y_up) mesh_y_up_to_z_up(mesh_);
-    log.info("read " + ms_.path + ": " + std::to_string(mesh_.positions.size()) + " vertices, " +
+    log.info("read " + mesh_file(scene) + ": " + std::to_string(mesh_.positions.size()) + " vertices, " +
              std::to_string(mesh_.triangles.size()) + " triangles, " + std::to_string(mesh_.material_names.size()) +
              " materials");
     surface_ = surface_mesh_from(mesh_, mesh_vertex_normals(mesh_));
-    renderer_ = std::make_unique<TerrainRenderer>(context.gl(), surface_, scene.camera.width, scene.camera.height);
+    renderer_ = std::make_unique<TerrainRenderer>(context.gl(), surface_, scene.view.camera.width, scene.view.camera.height);
 }
 
 Camera MeshFrames::scene_camera(const Scene& scene) const {
     glm::vec3 lo, hi;
     mesh_bounds(mesh_, lo, hi);
-    return mesh_camera(scene, ms_, mesh_.positions, lo, hi);
+    return mesh_camera(scene, mesh_.positions, lo, hi);
 }
 
 std::vector<Camera> MeshFrames::orbit(const Scene& scene, int frames) const {

@@ -26,7 +26,7 @@ struct MeshLines {
 // Every object-space line of the frame for the eye (and the light of `ms`, else at the eye):
 // PELs and interpolated silhouettes on the crease-split mesh (PELs left out in flat-shaded
 // triangles), contour creases as silhouettes, feature edges, textures.
-MeshLines mesh_lines(const TriangleMesh& mesh, const MeshScene& ms, const Scene& scene, const glm::vec3& eye,
+MeshLines mesh_lines(const TriangleMesh& mesh, const MeshSettings& ms, const Scene& scene, const glm::vec3& eye,
                      const Log& log);
 
 // A mesh read once (Loop-subdivided, turned z-up) with its GPU copy, drawn in any number of frames.
@@ -44,7 +44,7 @@ public:
 
 private:
     const Log* log_;
-    MeshScene ms_;
+    MeshSettings ms_;
     TriangleMesh mesh_;
     SurfaceMesh surface_;
     std::unique_ptr<TerrainRenderer> renderer_;

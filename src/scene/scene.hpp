@@ -11,17 +11,23 @@
 // plus per-layer overrides; seed. Angles in degrees, distances in metres (conventions.md).
 // A scene with [mesh] file draws a mesh instead (its keys: scene/mesh_scene.hpp). Any other key or
 // table is an error naming the nearest known one; validate_scene holds the values to their ranges.
+// A Scene is made of plain parts: where it comes from (SceneSource), how the terrain is modelled
+// (TerrainSettings), what is seen (ViewSettings), which lines are traced (LineSettings), the pens
+// (SceneStyle: the style resolved once at load) and a mesh's keys (MeshSettings). The file is read
+// by scene_file.cpp, the only reader of its TOML.
 #pragma once
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 
-#include <toml.hpp>
+#include <glm/vec3.hpp>
 
 #include "core/camera.hpp"
 #include "core/crease_params.hpp"
 #include "lines/hachure_params.hpp"
 #include "lines/map_furniture.hpp"
+#include "export/style.hpp"
 #include "render/terrain_renderer.hpp"
 
 namespace penink {
@@ -55,51 +61,100 @@ struct SceneLight {
     double azimuth = 315.0, altitude = 45.0;
 };
 
-struct Scene {
-    std::string file;          // the scene file ("" for a bare DEM)
-    std::string dem;           // DEM path (resolved relative to the scene file)
-    std::string mesh;          // [mesh] file (resolved); mesh keys: scene/mesh_scene.hpp
-    toml::value table;         // the whole scene file (mesh keys are read from it)
+// Where the scene comes from.
+struct SceneSource {
+    std::string file;  // the scene file ("" for a bare DEM or mesh path)
+    std::string dem;   // DEM path (resolved relative to the scene file); a bare mesh path too
+    std::string mesh;  // [mesh] file (resolved); "" for a terrain or a bare mesh path
+};
+
+// How the terrain is modelled: its heights, level of detail, tessellation and caches.
+struct TerrainSettings {
     // [terrain] vertical_exaggeration: a number, or "auto" (the default for DEMs; resolved by
     // open_scene_terrain with auto_vertical_exaggeration, scene/auto_exaggeration.hpp).
     double vertical_exaggeration = 1.0;
     bool exaggeration_auto = true;
     bool exaggeration_was_auto = false;  // vertical_exaggeration was chosen automatically (metadata)
-    // [map] scale: 25000 means 1:25 000 on the physical page (0: no scale); orthographic only.
-    double map_scale = 0.0;
-    // [map] furniture of a plan view (scene/map_furniture.hpp): neatline, scale bar, north arrow,
-    // grid, title.
-    MapFurnitureOptions furniture;
     // [terrain] sea_level: DEM elevation units, unexaggerated; nodes below it are drawn as a flat
     // water surface at it (GridNodes::sea_level) and its contour is the coastline layer. None: off.
     std::optional<double> sea_level;
-    SceneCamera camera;
-    SceneLight light;
     // [surface] level of detail (surface/terrain_lod.hpp): largest projected vertical error of the
     // frame's mesh against the DEM, pixels (0 = the full-resolution mesh), and the size floor: a
     // triangle whose bounding circle projects under min_radius_px pixels is not split further.
     float surface_tolerance_px = 1.0f;
     float surface_min_radius_px = 2.0f;
-    int tess_max_level = 8;
-    float tess_target_edge_px = 6.0f;
-    float silhouette_min_gap = 0.0f;
-    SilhouetteMethod silhouette_method = SilhouetteMethod::toward_away;  // [silhouettes] method
-    bool cull_patches = true;  // [tessellation] cull: leave out patches outside the view
-    bool separate_passes = false;
+    int tess_max_level = 8;             // [tessellation] max_level
+    float tess_target_edge_px = 6.0f;   // [tessellation] target_edge_px
+    bool cull_patches = true;           // [tessellation] cull: leave out patches outside the view
+    std::string drainage_routing = "priority-flood";  // [drainage] routing (drainage_build.hpp)
+    std::string cache_dir;  // [cache] dir or --cache-dir (resolved); "": the default (drainage_cache_path)
+};
+
+// What is seen and how it is lit: the camera, a plan view's scale and furniture, the sun.
+struct ViewSettings {
+    SceneCamera camera;
+    // [map] scale: 25000 means 1:25 000 on the physical page (0: no scale); orthographic only.
+    double map_scale = 0.0;
+    // [map] furniture of a plan view (scene/map_furniture.hpp): neatline, scale bar, north arrow,
+    // grid, title.
+    MapFurnitureOptions furniture;
+    SceneLight light;
+};
+
+// Which lines a terrain frame traces and how: creases, ridges, hachures, silhouettes.
+struct LineSettings {
     CreaseParams creases = crease_defaults();
     CreaseParams ridges = ridge_defaults();
     // [hachures] (lines/hachures.hpp, scene/hachure_lines.hpp): slope lines spaced by tone; on for
-    // DEMs. width_px 0 takes the style's hachures width (apply_object_sketch).
+    // DEMs. width_px 0 takes the style's hachures pen (hachure_pen, scene/hachure_lines.hpp).
     HachureParams hachures = hachure_defaults();
-    std::string drainage_routing = "priority-flood";  // [drainage] routing (drainage_build.hpp)
-    std::string cache_dir;  // [cache] dir or --cache-dir (resolved); "": the default (drainage_cache_path)
-    std::string style = "technical";
-    // Object-space sketchiness of creases and ridges (Potter et al., "NPR-Style 3D Line Textures", 4.3: end points moved within the
-    // surface's tangent plane), pixels, and strokes per line; set from the style by the command.
-    float crease_sketch_px = 0.0f, ridge_sketch_px = 0.0f;
-    int crease_repeat = 1, ridge_repeat = 1;
+    float silhouette_min_gap = 0.0f;                                     // [silhouettes] min_gap
+    SilhouetteMethod silhouette_method = SilhouetteMethod::toward_away;  // [silhouettes] method
+    bool separate_passes = false;                                        // [silhouettes] separate_passes
+};
+
+// The pens: the style as named (or a style file), resolved once at load with the scene's [style]
+// overrides applied, and the seed of the sketchy perturbation. The object-space sketch of creases
+// and ridges (Potter et al., "NPR-Style 3D Line Textures", 4.3) and the hachures' pen are read
+// from `resolved` by the terrain path.
+struct SceneStyle {
+    std::string name = "technical";    // [style] name or --style: a built-in name or a .toml path
+    Style resolved = default_style();  // resolve_style(name) with the scene's [style] table over it
     std::uint64_t seed = 1;
-    toml::value style_overrides;  // the [style] table, applied over the named style
+};
+
+// A mesh scene's keys (scene/mesh_scene.hpp): [mesh] up, subdivide; [camera] eye, target, up;
+// [light] direction; [pels], [features], [textures]. Defaults for a bare mesh path and terrains.
+struct MeshSettings {
+    bool y_up = true;             // [mesh] up = "y" (default) or "z"
+    int subdivide = 0;            // [mesh] subdivide: Loop subdivision iterations (0..4)
+    std::optional<glm::dvec3> eye, target;  // [camera], mesh frame
+    glm::dvec3 up{0, 1, 0};                 // [camera] up, mesh frame (default: the mesh's up)
+    std::optional<glm::dvec3> light;        // [light] direction, mesh frame, towards the light
+    bool pels = true;
+    float pel_threshold = 0.1f;   // tau on the normalised |grad phi| (0..1)
+    int smoothing = 0;            // Laplacian normal smoothing iterations
+    // Xie et al., "Photic Extremum Lines" post-processing (docs/reproduction.md, PELs), both in
+    // mean edge lengths of the mesh drawn (after subdivision), so they follow its resolution:
+    float normal_filter = 0.0f;   // sigma of the Gaussian normal filter; 0 = none
+    float line_strength = 0.0f;   // least integral of g along a PEL line; 0 = keep every line
+    bool features = true;
+    float crease_angle = 40.0f;   // degrees
+    bool textures = true;
+    float texture_threshold = 0.65f;
+    float texture_confidence = 0.6f;       // 1 = exact strokes, 0 = very sketchy
+    std::optional<float> texture_scale;    // cluster cell, mesh units (default: from the size)
+    std::string texture_library;           // folder of *.txt clusters ("" = search: find_texture_library)
+    std::map<std::string, std::string> materials;  // material name -> texture name
+};
+
+struct Scene {
+    SceneSource source;
+    TerrainSettings terrain;
+    ViewSettings view;
+    LineSettings lines;
+    SceneStyle style;
+    MeshSettings mesh;
 };
 
 // Silhouette methods by their scene and command-line names: "toward-away", "adjacency", "edge-walk",
@@ -111,9 +166,11 @@ const char* silhouette_method_name(SilhouetteMethod method);
 std::optional<Projection> projection_named(const std::string& name);
 const char* projection_name(Projection projection);
 
-// A path ending in .toml is a scene file; anything else is taken as a DEM.
-// Throws penink::Error(stage "scene", file) with one line on a bad key or value.
-Scene load_scene(const std::string& input);
+// A path ending in .toml is a scene file; anything else is taken as a DEM (or a mesh by its
+// extension). `style`, when not "", replaces the scene's [style] name (--style); the style is then
+// resolved and the scene's [style] table applied over it. Throws penink::Error(stage "scene",
+// file) with one line on a bad key or value, Error("style", ...) on a bad style.
+Scene load_scene(const std::string& input, const std::string& style = "");
 
 // Checks values that must hold whatever their source (CLI overrides included).
 void validate_scene(const Scene& scene);

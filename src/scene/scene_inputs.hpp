@@ -15,4 +15,8 @@ std::vector<NamedInput> scene_inputs(const Scene& scene);
 // The DEM and its side files alone.
 std::vector<NamedInput> dem_inputs(const std::string& dem);
 
+// Refuses output files (with their raster side files, export/world_file.hpp) that are one of
+// `inputs` (check_outputs_not_inputs): Error("export", output, "is the DEM ...").
+void check_outputs_are_not_inputs(const std::vector<std::string>& outputs, const std::vector<NamedInput>& inputs);
+
 }  // namespace penink

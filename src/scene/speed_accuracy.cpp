@@ -99,7 +99,7 @@ struct BenchView {
 
 Scene silhouettes_only(const Scene& scene) {
     Scene s = scene;
-    s.creases.enabled = s.ridges.enabled = false;
+    s.lines.creases.enabled = s.lines.ridges.enabled = false;
     return s;
 }
 
@@ -107,7 +107,7 @@ std::unique_ptr<BenchView> make_view(const Scene& scene, const Terrain& dem, con
                                      GlContext& context, int w, int h, bool zoom, bool crop, const Log& log) {
     auto v = std::make_unique<BenchView>();
     Scene sized = silhouettes_only(scene);
-    sized.camera.width = w, sized.camera.height = h;
+    sized.view.camera.width = w, sized.view.camera.height = h;
     v->name = zoom ? "zoom4" : "scene";
     v->camera = analytic ? analytic->camera : scene_camera(sized, dem);
     v->camera.width = w, v->camera.height = h;
@@ -202,7 +202,7 @@ struct BenchRun {
 
 void sweep(BenchRun& run) {
     const SpeedAccuracyConfig& c = run.config;
-    const std::vector<float> tolerances = c.tolerances.empty() ? std::vector<float>{run.scene.surface_tolerance_px}
+    const std::vector<float> tolerances = c.tolerances.empty() ? std::vector<float>{run.scene.terrain.surface_tolerance_px}
                                                                : c.tolerances;
     ProgressBar bar(std::cerr, run.log.progress, "bench",
                     int(tolerances.size() * c.sizes.size() * c.methods.size() * c.levels.size()));
@@ -216,9 +216,9 @@ void sweep(BenchRun& run) {
                 for (std::size_t li = 0; li < c.levels.size(); ++li) {
                     const int level = c.levels[li];
                     Scene frame = silhouettes_only(run.scene);
-                    frame.silhouette_method = m;
-                    frame.tess_max_level = level;
-                    frame.surface_tolerance_px = tolerance;
+                    frame.lines.silhouette_method = m;
+                    frame.terrain.tess_max_level = level;
+                    frame.terrain.surface_tolerance_px = tolerance;
                     BenchRow row;
                     row.group = "sweep", row.method = silhouette_method_name(m), row.level = level;
                     row.tolerance_px = tolerance;
@@ -249,13 +249,13 @@ void needs_rows(BenchRun& run, int level, int w, int h) {
             const int warmup = warm ? 0 : run.config.warmup;
             warm = true;
             Scene frame = silhouettes_only(run.scene);
-            frame.silhouette_method = SilhouetteMethod::toward_away;
-            frame.tess_max_level = level;
-            if (!c.adaptive) frame.tess_target_edge_px = 1e-3f;  // fixed: all at max
-            frame.cull_patches = c.culling;
+            frame.lines.silhouette_method = SilhouetteMethod::toward_away;
+            frame.terrain.tess_max_level = level;
+            if (!c.adaptive) frame.terrain.tess_target_edge_px = 1e-3f;  // fixed: all at max
+            frame.terrain.cull_patches = c.culling;
             BenchRow row;
-            row.group = "needs", row.method = silhouette_method_name(frame.silhouette_method), row.level = level;
-            row.tolerance_px = frame.surface_tolerance_px;
+            row.group = "needs", row.method = silhouette_method_name(frame.lines.silhouette_method), row.level = level;
+            row.tolerance_px = frame.terrain.surface_tolerance_px;
             row.adaptive = c.adaptive, row.culling = c.culling, row.cropping = c.cropping;
             measure(c.cropping ? *cropped : *whole, frame, run.config.frames, warmup, cropped->reference, run.references.kind(), row);
             row.ref_ms = cropped->ref_ms;
@@ -274,7 +274,7 @@ std::vector<BenchRow> speed_accuracy_rows(const Scene& scene, const Terrain& dem
     sweep(run);
     if (config.needs) {
         const auto size = config.needs_size.first > 0 ? config.needs_size
-                                                       : std::pair{scene.camera.width, scene.camera.height};
+                                                       : std::pair{scene.view.camera.width, scene.view.camera.height};
         needs_rows(run, *std::max_element(config.levels.begin(), config.levels.end()), size.first, size.second);
     }
     return run.rows;

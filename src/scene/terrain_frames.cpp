@@ -43,24 +43,24 @@ std::string format_camera(const Camera& c, const Terrain& t) {  // t: georeferen
 
 void fill_metadata(const Scene& scene, const Camera& cam, const Terrain& t, Drawing& d) {
     std::ostringstream light, params;
-    light << "azimuth " << scene.light.azimuth << ", altitude " << scene.light.altitude;
-    params << "vertical_exaggeration " << scene.vertical_exaggeration << (scene.exaggeration_was_auto ? " (auto)" : "");
-    if (scene.map_scale > 0.0) params << ", map scale 1:" << map_scale_text(scene.map_scale);
+    light << "azimuth " << scene.view.light.azimuth << ", altitude " << scene.view.light.altitude;
+    params << "vertical_exaggeration " << scene.terrain.vertical_exaggeration << (scene.terrain.exaggeration_was_auto ? " (auto)" : "");
+    if (scene.view.map_scale > 0.0) params << ", map scale 1:" << map_scale_text(scene.view.map_scale);
     params << ", tessellation max_level "
-           << scene.tess_max_level << " target_edge_px " << scene.tess_target_edge_px << ", surface tolerance_px "
-           << scene.surface_tolerance_px << " min_radius_px " << scene.surface_min_radius_px << ", seed "
-           << scene.seed << ", style " << scene.style;
-    if (scene.sea_level) params << ", sea_level " << *scene.sea_level;
-    d.metadata["source"] = scene.dem;
+           << scene.terrain.tess_max_level << " target_edge_px " << scene.terrain.tess_target_edge_px << ", surface tolerance_px "
+           << scene.terrain.surface_tolerance_px << " min_radius_px " << scene.terrain.surface_min_radius_px << ", seed "
+           << scene.style.seed << ", style " << scene.style.name;
+    if (scene.terrain.sea_level) params << ", sea_level " << *scene.terrain.sea_level;
+    d.metadata["source"] = scene.source.dem;
     d.metadata["camera"] = format_camera(cam, t);
     d.metadata["light"] = light.str();
     d.metadata["parameters"] = params.str();
     d.metadata["generator"] = std::string("penink ") + penink_version;
-    const std::string name = std::filesystem::path(scene.file.empty() ? scene.dem : scene.file).filename().string();
+    const std::string name = std::filesystem::path(scene.source.file.empty() ? scene.source.dem : scene.source.file).filename().string();
     d.metadata["title"] = name + ": pen-and-ink drawing";
     std::ostringstream desc;
-    desc << "Pen-and-ink drawing of the DEM " << std::filesystem::path(scene.dem).filename().string() << " by penink "
-         << penink_version << ", vertical exaggeration " << scene.vertical_exaggeration << "; camera "
+    desc << "Pen-and-ink drawing of the DEM " << std::filesystem::path(scene.source.dem).filename().string() << " by penink "
+         << penink_version << ", vertical exaggeration " << scene.terrain.vertical_exaggeration << "; camera "
          << d.metadata["camera"] << "; light " << d.metadata["light"];
     d.metadata["description"] = desc.str();
 }
@@ -104,27 +104,27 @@ void add_frame_lines(const FrameImages& images, const SurfaceMesh& mesh, const C
 namespace {
 FrameOptions frame_options(const Scene& scene) {
     FrameOptions options;
-    options.tessellation.max_level = scene.tess_max_level;
-    options.tessellation.target_edge_px = scene.tess_target_edge_px;
-    options.separate_passes = scene.separate_passes;
-    options.silhouette_min_gap = scene.silhouette_min_gap;
-    options.tessellation.cull_patches = scene.cull_patches;
-    options.silhouette_method = scene.silhouette_method;
+    options.tessellation.max_level = scene.terrain.tess_max_level;
+    options.tessellation.target_edge_px = scene.terrain.tess_target_edge_px;
+    options.separate_passes = scene.lines.separate_passes;
+    options.silhouette_min_gap = scene.lines.silhouette_min_gap;
+    options.tessellation.cull_patches = scene.terrain.cull_patches;
+    options.silhouette_method = scene.lines.silhouette_method;
     return options;
 }
 }  // namespace
 
 std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terrain& dem, const Log& log) {
-    if (!scene.creases.enabled && !scene.ridges.enabled) return std::nullopt;
+    if (!scene.lines.creases.enabled && !scene.lines.ridges.enabled) return std::nullopt;
     StageProgress progress(std::cerr, log.progress, "building drainage database");
     DrainageOptions options;
-    options.routing = *drainage_routing_named(scene.drainage_routing);  // validate_scene checked it
-    options.cache_dir = scene.cache_dir;
+    options.routing = *drainage_routing_named(scene.terrain.drainage_routing);  // validate_scene checked it
+    options.cache_dir = scene.terrain.cache_dir;
     DrainageLineSource source;
     const auto t0 = Clock::now();
     bool building = false;  // the progress callback is called by a build alone
     source.db = load_or_build_drainage(
-        scene.dem, dem, options, [&](const std::string& m) { log.info(m); },
+        scene.source.dem, dem, options, [&](const std::string& m) { log.info(m); },
         [&](const std::string& stage, double fraction) {
             if (!building && double(dem.cols - 1) * double(dem.rows - 1) > estimate_from_cells)
                 std::cerr << describe_cache_estimate("drainage", "drainage database", dem.cols, dem.rows,
@@ -143,9 +143,9 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Scene
                                                                     : scene_drainage(scene, dem.stored.meta, log);
     if (source && source->vertices.file) {  // vertices found damaged while drawn: the cache read whole, or rebuilt
         DrainageOptions options;
-        options.routing = *drainage_routing_named(scene.drainage_routing);
-        options.cache_dir = scene.cache_dir;
-        source->read_whole = [dem_path = scene.dem, meta = dem.stored.meta, options, log] {
+        options.routing = *drainage_routing_named(scene.terrain.drainage_routing);
+        options.cache_dir = scene.terrain.cache_dir;
+        source->read_whole = [dem_path = scene.source.dem, meta = dem.stored.meta, options, log] {
             log.info("drainage: " + dem_path + ": damaged vertices in the cache; reading it whole");
             return load_or_build_drainage(dem_path, meta, options, [&log](const std::string& m) { log.info(m); });
         };
@@ -193,10 +193,10 @@ TerrainFrames::~TerrainFrames() {
 }
 
 SurfaceMesh TerrainFrames::frame_mesh(const Camera& camera, const Scene& frame) const {
-    if (frame.surface_tolerance_px <= 0.0f) return mesh_from_terrain(window_terrain(terrain_));
+    if (frame.terrain.surface_tolerance_px <= 0.0f) return mesh_from_terrain(window_terrain(terrain_));
     LodOptions lod;
-    lod.tolerance_px = frame.surface_tolerance_px;
-    lod.min_radius_px = frame.surface_min_radius_px;
+    lod.tolerance_px = frame.terrain.surface_tolerance_px;
+    lod.min_radius_px = frame.terrain.surface_min_radius_px;
     return select_lod_mesh(terrain_.lod, terrain_.nodes, terrain_.meta.vertical_exaggeration, camera, lod);
 }
 
@@ -205,7 +205,7 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
     out.camera = camera;
     out.cells = terrain_.cells();
     const auto t_select = Clock::now();
-    const bool full = frame.surface_tolerance_px <= 0.0f;
+    const bool full = frame.terrain.surface_tolerance_px <= 0.0f;
     if (!(full && mesh_is_full_)) {  // the full-resolution mesh, once made and uploaded, serves every frame
         mesh_ = frame_mesh(camera, frame);
         mesh_is_full_ = full;
@@ -242,8 +242,8 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
     add_frame_lines(images, mesh_, camera, out.drawing);
     out.trace_ms = ms_since(t0);
     const auto t_hachures = Clock::now();  // after the lines they yield to
-    add_hachures(terrain_, camera, images.toward, light_vector(Light{frame.light.azimuth, frame.light.altitude}),
-                 frame.hachures, out.drawing);
+    add_hachures(terrain_, camera, images.toward, light_vector(Light{frame.view.light.azimuth, frame.view.light.altitude}),
+                 hachure_pen(frame.lines.hachures, frame.style.resolved), out.drawing);
     out.hachure_ms = ms_since(t_hachures);
     out.silhouette_mask = std::move(images.silhouettes);
     out.toward = std::move(images.toward);

@@ -7,10 +7,10 @@
 namespace penink {
 
 TerrainKeep::DemKey TerrainKeep::key_of(const Scene& scene) {
-    DemKey k{scene.dem, scene.cache_dir};
+    DemKey k{scene.source.dem, scene.terrain.cache_dir};
     std::error_code ec;  // a DEM that cannot be read is reported by open_stored_terrain
-    k.size = std::filesystem::file_size(scene.dem, ec);
-    const auto t = std::filesystem::last_write_time(scene.dem, ec);
+    k.size = std::filesystem::file_size(scene.source.dem, ec);
+    const auto t = std::filesystem::last_write_time(scene.source.dem, ec);
     if (!ec) k.mtime_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count();
     return k;
 }
@@ -19,7 +19,7 @@ const StoredTerrain& TerrainKeep::stored(const Scene& scene, const Log& log) {
     const DemKey key = key_of(scene);
     if (!stored_ || !(key == stored_key_)) {
         stored_.reset(), sea_pyramid_.reset();
-        stored_ = open_stored_terrain(scene.dem, log, scene.cache_dir);
+        stored_ = open_stored_terrain(scene.source.dem, log, scene.terrain.cache_dir);
         stored_key_ = key;
     }
     return *stored_;
@@ -33,13 +33,13 @@ SceneTerrain TerrainKeep::terrain(Scene& scene, const Log& log) {
 
 std::shared_ptr<const DrainageLineSource> TerrainKeep::drainage(const Scene& scene, const SceneTerrain& dem,
                                                                 const Log& log) {
-    if (!scene.creases.enabled && !scene.ridges.enabled) return nullptr;
+    if (!scene.lines.creases.enabled && !scene.lines.ridges.enabled) return nullptr;
     const DemKey key = key_of(scene);
-    if (!drainage_ || !(key == drainage_key_) || scene.drainage_routing != drainage_routing_) {
+    if (!drainage_ || !(key == drainage_key_) || scene.terrain.drainage_routing != drainage_routing_) {
         drainage_.reset();
         std::optional<DrainageLineSource> source = scene_drainage(scene, dem, log);
         if (source) drainage_ = std::make_shared<const DrainageLineSource>(std::move(*source));
-        drainage_key_ = key, drainage_routing_ = scene.drainage_routing;
+        drainage_key_ = key, drainage_routing_ = scene.terrain.drainage_routing;
     }
     return drainage_;
 }

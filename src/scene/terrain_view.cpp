@@ -26,7 +26,7 @@ namespace penink {
 
 namespace {
 
-const std::string& scene_file(const Scene& s) { return s.file.empty() ? s.dem : s.file; }
+const std::string& scene_file(const Scene& s) { return s.source.file.empty() ? s.source.dem : s.source.file; }
 
 // The camera of a scene over a DEM's nodes (drawn) with bounds lo, hi.
 // A scene place (position or target) on the drawn ground: its plan point and the surface's height
@@ -41,7 +41,7 @@ glm::dvec3 ground_point(const Scene& scene, const std::string& place, const Terr
 
 Camera place_camera(const Scene& scene, const Terrain& meta, const GridNodes& nodes, const glm::dvec3& lo,
                     const glm::dvec3& hi) {
-    const SceneCamera& sc = scene.camera;
+    const SceneCamera& sc = scene.view.camera;
     double az = sc.azimuth.value_or(default_view_azimuth);
     double alt = sc.altitude.value_or(default_view_altitude);
     if (sc.projection == Projection::orthographic) {
@@ -62,7 +62,7 @@ Camera place_camera(const Scene& scene, const Terrain& meta, const GridNodes& no
     Camera cam;
     if (sc.position) {
         const glm::dvec2 xy = parse_scene_position(*sc.position, meta, scene_file(scene));
-        cam.eye = {xy.x, xy.y, *sc.elevation * scene.vertical_exaggeration};
+        cam.eye = {xy.x, xy.y, *sc.elevation * scene.terrain.vertical_exaggeration};
     }
     if (sc.target) {
         const glm::dvec3 target = ground_point(scene, *sc.target, meta, nodes, lo, hi);
@@ -85,10 +85,10 @@ Camera place_camera(const Scene& scene, const Terrain& meta, const GridNodes& no
 // Throws when a placed camera is at or below the ground under it.
 void check_above_ground(const Scene& scene, const GridNodes& nodes, const Camera& cam) {
     double ground = 0.0;
-    if ((scene.camera.position || scene.camera.target) && !is_orthographic(cam) && grid_ground_height(nodes, cam.eye.x, cam.eye.y, ground) && cam.eye.z <= ground) {
+    if ((scene.view.camera.position || scene.view.camera.target) && !is_orthographic(cam) && grid_ground_height(nodes, cam.eye.x, cam.eye.y, ground) && cam.eye.z <= ground) {
         std::ostringstream msg;
-        msg << "camera is inside the terrain (elevation " << cam.eye.z / scene.vertical_exaggeration
-            << " m, ground " << ground / scene.vertical_exaggeration << " m)";
+        msg << "camera is inside the terrain (elevation " << cam.eye.z / scene.terrain.vertical_exaggeration
+            << " m, ground " << ground / scene.terrain.vertical_exaggeration << " m)";
         throw Error("scene", scene_file(scene), msg.str());
     }
 }
@@ -105,10 +105,10 @@ void log_window(const Log& log, const GridWindow& w, int cols, int rows) {
 // the rows and columns drawn (the view's window, grid nodes) and the map coordinates the image
 // spans (its corners through the plan view's geotransform; an oblique view's window alone).
 void warn_map_crop(const Scene& scene, const GridWindow& w, const Terrain& meta, const Camera& cam) {
-    if (!(scene.map_scale > 0.0)) return;
+    if (!(scene.view.map_scale > 0.0)) return;
     if (w.c0 <= 0 && w.r0 <= 0 && w.c1 >= meta.cols && w.r1 >= meta.rows) return;
     std::ostringstream s;
-    s << "penink: warning: at 1:" << map_scale_text(scene.map_scale) << " the map shows part of the DEM: rows "
+    s << "penink: warning: at 1:" << map_scale_text(scene.view.map_scale) << " the map shows part of the DEM: rows "
       << std::max(w.r0, 0) << ".." << std::min(w.r1, meta.rows) - 1 << " and columns " << std::max(w.c0, 0) << ".."
       << std::min(w.c1, meta.cols) - 1 << " of " << meta.rows << " x " << meta.cols;
     if (const auto g = plan_view_georeference(cam, meta.origin, meta.crs_wkt)) {
@@ -163,29 +163,29 @@ std::vector<glm::dvec3> frame_samples(const Terrain& t) { return frame_samples(g
 
 void resolve_vertical_exaggeration(Scene& scene, double z_min, double z_max, const glm::dvec2& plan_lo,
                                    const glm::dvec2& plan_hi, const Log& log) {
-    if (!scene.exaggeration_auto) return;
-    if (scene.sea_level) z_min = std::max(z_min, *scene.sea_level);  // the sea floor is not drawn
+    if (!scene.terrain.exaggeration_auto) return;
+    if (scene.terrain.sea_level) z_min = std::max(z_min, *scene.terrain.sea_level);  // the sea floor is not drawn
     const double relief = std::max(z_max - z_min, 0.0), extent = std::max(plan_hi.x - plan_lo.x, plan_hi.y - plan_lo.y);
-    scene.vertical_exaggeration = auto_vertical_exaggeration(relief, extent);
-    scene.exaggeration_auto = false;
-    scene.exaggeration_was_auto = true;
-    log.info(describe_auto_exaggeration(relief, extent, scene.vertical_exaggeration));
+    scene.terrain.vertical_exaggeration = auto_vertical_exaggeration(relief, extent);
+    scene.terrain.exaggeration_auto = false;
+    scene.terrain.exaggeration_was_auto = true;
+    log.info(describe_auto_exaggeration(relief, extent, scene.terrain.vertical_exaggeration));
 }
 
 Terrain read_scene_dem(Scene& scene, const Log& log) {
-    if (scene.exaggeration_auto) {  // read at 1 to find the relief; read again only when it is not 1
-        Terrain flat = read_dem(scene.dem);
+    if (scene.terrain.exaggeration_auto) {  // read at 1 to find the relief; read again only when it is not 1
+        Terrain flat = read_dem(scene.source.dem);
         glm::dvec3 lo, hi;
         if (!terrain_bounds(flat, lo, hi)) lo = hi = glm::dvec3(0.0);
         resolve_vertical_exaggeration(scene, flat.elevation_min, flat.elevation_max, glm::dvec2(lo), glm::dvec2(hi), log);
-        if (scene.vertical_exaggeration == 1.0) {
+        if (scene.terrain.vertical_exaggeration == 1.0) {
             if (const std::string w = missing_crs_warning(flat); !w.empty()) std::cerr << w << "\n";
             return flat;
         }
     }
     DemOptions options;
-    options.vertical_exaggeration = scene.vertical_exaggeration;
-    Terrain dem = read_dem(scene.dem, options);
+    options.vertical_exaggeration = scene.terrain.vertical_exaggeration;
+    Terrain dem = read_dem(scene.source.dem, options);
     if (const std::string w = missing_crs_warning(dem); !w.empty()) std::cerr << w << "\n";
     return dem;
 }
@@ -274,16 +274,16 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, c
 }
 
 SceneTerrain open_scene_terrain(Scene& scene, const Log& log) {
-    return scene_terrain(scene, open_stored_terrain(scene.dem, log, scene.cache_dir), log);
+    return scene_terrain(scene, open_stored_terrain(scene.source.dem, log, scene.terrain.cache_dir), log);
 }
 
 SceneTerrain scene_terrain(Scene& scene, StoredTerrain stored, const Log& log, const TerrainLod* sea_pyramid) {
     resolve_vertical_exaggeration(scene, stored.lod.z_min, stored.lod.z_max, stored.plan_lo, stored.plan_hi, log);
-    const double e = scene.vertical_exaggeration;
+    const double e = scene.terrain.vertical_exaggeration;
     if (!std::isfinite(e) || e <= 0.0) throw Error("scene", scene_file(scene), "vertical exaggeration must be > 0");
     SceneTerrain t{std::move(stored), e, scene_file(scene)};
-    if (scene.sea_level) {
-        t.sea_level = *scene.sea_level;
+    if (scene.terrain.sea_level) {
+        t.sea_level = *scene.terrain.sea_level;
         // Water over part or all of the DEM: the pyramid of the clamped nodes (terrain_lod.hpp),
         // so the flat sea takes no triangles and the pyramid's bounds hold the water drawn (a
         // DEM wholly under water is framed and seen at the sea's height); O(nodes) once per

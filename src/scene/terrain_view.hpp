@@ -35,7 +35,7 @@ inline constexpr double default_view_altitude = -30.0;  // looking down
 // missing-CRS warning (missing_crs_warning, dem_reader.hpp) goes to stderr.
 Terrain read_scene_dem(Scene& scene, const Log& log);
 
-// Resolves an "auto" vertical exaggeration (scene.exaggeration_auto; auto_vertical_exaggeration)
+// Resolves an "auto" vertical exaggeration (scene.terrain.exaggeration_auto; auto_vertical_exaggeration)
 // from the DEM's valid elevation range and plan box (local metres), logged; a number is kept.
 void resolve_vertical_exaggeration(Scene& scene, double z_min, double z_max, const glm::dvec2& plan_lo,
                                    const glm::dvec2& plan_hi, const Log& log);

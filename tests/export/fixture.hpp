@@ -7,6 +7,8 @@
 #include <sstream>
 #include <string>
 
+#include <toml.hpp>
+
 #include "core/drawing.hpp"
 #include "core/error.hpp"
 #include "export/style.hpp"
@@ -51,7 +53,7 @@ inline toml::value parse_toml(const std::string& text) {
 // Wide pens so rasterisations can be compared; widths and opacity fall with distance.
 inline Style visible_style() {
     Style s = default_style();
-    apply_style_overrides(s, parse_toml(R"(
+    apply_style_overrides(s, R"(
         fill = "#d8d8d8"
         [all]
         width = 3.0
@@ -69,7 +71,7 @@ inline Style visible_style() {
         [silhouettes]
         width = 4.0
         color = "#203080"
-    )"));
+    )");
     return s;
 }
 

@@ -84,14 +84,15 @@ TEST(Style, OverridesFromSceneTable) {
     Style s = builtin_style("field-sketch");
     const toml::value scene = parse_toml("[style]\nnear = 0.2\n[style.ridges]\nwidth = 2.5\n"
                                          "color = \"#ff8000\"\n[style.textures]\nvisible = false\n");
-    apply_style_overrides(s, scene.at("style"));
+    apply_style_overrides(s, toml::format(scene.at("style")));  // as the scene's reader hands it over
     EXPECT_DOUBLE_EQ(s.near, 0.2);
     EXPECT_DOUBLE_EQ(s.layer(LayerKind::ridges).width, 2.5);
     EXPECT_DOUBLE_EQ(s.layer(LayerKind::ridges).width_far, 2.5);  // width alone: uniform
     EXPECT_TRUE(s.layer(LayerKind::ridges).color == (Rgb{255, 128, 0}));
     EXPECT_FALSE(s.layer(LayerKind::textures).visible);
-    apply_style_overrides(s, parse_toml("[style.silhouettes]\nmin_length = 0\n").at("style"));
+    apply_style_overrides(s, toml::format(parse_toml("[style.silhouettes]\nmin_length = 0\nwidth = 0.30000000000000004\n").at("style")));
     EXPECT_EQ(s.layer(LayerKind::silhouettes).min_length, 0.0);
+    EXPECT_EQ(s.layer(LayerKind::silhouettes).width, 0.1 + 0.2);  // written out and read back exactly
     EXPECT_DOUBLE_EQ(s.layer(LayerKind::creases).width_far, 0.35);  // untouched
 }
 
@@ -99,7 +100,7 @@ TEST(Style, OverrideErrorNamesTheSource) {
     Style s = default_style();
     const Style before = s;
     try {
-        apply_style_overrides(s, parse_toml("[foo]\nwidth = 1\n"), "scene.toml");
+        apply_style_overrides(s, "[foo]\nwidth = 1\n", "scene.toml");
         FAIL() << "no error";
     } catch (const Error& e) {
         EXPECT_STREQ(e.what(), "penink: style: scene.toml: unknown layer \"foo\"");

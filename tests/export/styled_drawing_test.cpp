@@ -80,7 +80,7 @@ TEST(StyledDrawing, KindDistanceSublayers) {
 
 TEST(StyledDrawing, InvisibleLayerIsWrittenEmpty) {
     Style style = default_style();
-    apply_style_overrides(style, parse_toml("[creases]\nvisible = false\n"));
+    apply_style_overrides(style, "[creases]\nvisible = false\n");
     const StyledDrawing s = style_drawing(small_drawing(), style);
     EXPECT_TRUE(s.layers[size_t(LayerKind::creases)].groups[0].paths.empty());
     EXPECT_EQ(s.layers[size_t(LayerKind::creases)].name, "creases");

@@ -30,14 +30,14 @@ Drawing one_crease(std::vector<float> weight = {}) {
 
 Style tapered_style() {
     Style s = default_style();
-    apply_style_overrides(s, parse_toml(R"(
+    apply_style_overrides(s, R"(
         [creases]
         width = 4.0
         taper = 10.0
         taper_min = 0.0
         weight_min = 1.0
         weight_max = 1.0
-    )"));
+    )");
     return s;
 }
 
@@ -139,7 +139,7 @@ TEST(TaperedStrokes, PdfAndPsFillTheSameOutline) {
 
 TEST(TaperedStrokes, WeightScalesWidthBetweenItsFactors) {
     Style s = tapered_style();
-    apply_style_overrides(s, parse_toml("[creases]\ntaper = 0.0\nweight_min = 0.5\nweight_max = 2.0\n"));
+    apply_style_overrides(s, "[creases]\ntaper = 0.0\nweight_min = 0.5\nweight_max = 2.0\n");
     const StyledDrawing d = style_drawing(one_crease({0.0f, 0.5f, 1.0f}), s);
     const StyledPath& p = d.layers[static_cast<std::size_t>(LayerKind::creases)].groups[0].paths.at(0);
     ASSERT_EQ(p.widths.size(), 3u);

@@ -53,7 +53,7 @@ TriangleMesh mesh_of(const Terrain& t) {
     return m;
 }
 
-// The defaults with the default style's pen range and taper (as apply_object_sketch sets them).
+// The defaults with the default style's pen range and taper (as hachure_pen sets them).
 HachureParams styled_defaults() {
     HachureParams p = hachure_defaults();
     const LayerStyle& pen = default_style().layer(LayerKind::hachures);

@@ -9,6 +9,8 @@
 #include <sstream>
 #include <unistd.h>
 
+#include <toml.hpp>
+
 #include "core/camera.hpp"
 #include "core/pixel_mask.hpp"
 #include "preview/preview_session.hpp"
@@ -52,38 +54,42 @@ PreviewView odd_view() {
 
 TEST(PreviewView, SceneTextReadsBackExactly) {
     const PreviewView v = odd_view();
-    const Scene s = load_text(scene_text(toml::table{}, "/data/dem.tif", v), "view.toml");
-    EXPECT_EQ(s.dem, "/data/dem.tif");
-    ASSERT_TRUE(s.camera.target);
-    EXPECT_EQ(*s.camera.target, toml_number(v.target_x) + " " + toml_number(v.target_y));
-    EXPECT_EQ(std::strtod(s.camera.target->c_str(), nullptr), v.target_x);  // exact, not near
-    EXPECT_FALSE(s.camera.position);
-    EXPECT_EQ(s.camera.distance, v.distance);
-    EXPECT_EQ(s.camera.azimuth, v.azimuth);
-    EXPECT_EQ(s.camera.altitude, v.altitude);
-    EXPECT_EQ(s.camera.fov, v.fov);
-    EXPECT_EQ(s.camera.width, 1200);
-    EXPECT_EQ(s.camera.height, 801);
-    EXPECT_EQ(s.camera.projection, Projection::perspective);
-    EXPECT_EQ(s.light.azimuth, v.light_azimuth);
-    EXPECT_EQ(s.light.altitude, v.light_altitude);
-    EXPECT_EQ(s.vertical_exaggeration, v.vertical_exaggeration);
-    EXPECT_FALSE(s.exaggeration_auto);
-    EXPECT_EQ(s.creases.min_score, v.crease_min_score);
-    EXPECT_EQ(s.ridges.min_score, v.ridge_min_score);
-    EXPECT_EQ(s.hachures.spacing_min_px, v.hachure_spacing_min);
-    EXPECT_EQ(s.hachures.spacing_max_px, v.hachure_spacing_max);
-    EXPECT_EQ(s.style, "field-sketch");
-    EXPECT_EQ(s.seed, v.seed);
-    ASSERT_TRUE(s.sea_level);
-    EXPECT_EQ(*s.sea_level, 350.25);
-    const toml::value& hachures = s.style_overrides.at("hachures");
-    EXPECT_FALSE(hachures.at("visible").as_boolean());
-    EXPECT_FALSE(s.style_overrides.contains("ridges") && s.style_overrides.at("ridges").contains("visible"));
+    const std::string text = scene_text("", "/data/dem.tif", v);
+    const Scene s = load_text(text, "view.toml");
+    EXPECT_EQ(s.source.dem, "/data/dem.tif");
+    ASSERT_TRUE(s.view.camera.target);
+    EXPECT_EQ(*s.view.camera.target, toml_number(v.target_x) + " " + toml_number(v.target_y));
+    EXPECT_EQ(std::strtod(s.view.camera.target->c_str(), nullptr), v.target_x);  // exact, not near
+    EXPECT_FALSE(s.view.camera.position);
+    EXPECT_EQ(s.view.camera.distance, v.distance);
+    EXPECT_EQ(s.view.camera.azimuth, v.azimuth);
+    EXPECT_EQ(s.view.camera.altitude, v.altitude);
+    EXPECT_EQ(s.view.camera.fov, v.fov);
+    EXPECT_EQ(s.view.camera.width, 1200);
+    EXPECT_EQ(s.view.camera.height, 801);
+    EXPECT_EQ(s.view.camera.projection, Projection::perspective);
+    EXPECT_EQ(s.view.light.azimuth, v.light_azimuth);
+    EXPECT_EQ(s.view.light.altitude, v.light_altitude);
+    EXPECT_EQ(s.terrain.vertical_exaggeration, v.vertical_exaggeration);
+    EXPECT_FALSE(s.terrain.exaggeration_auto);
+    EXPECT_EQ(s.lines.creases.min_score, v.crease_min_score);
+    EXPECT_EQ(s.lines.ridges.min_score, v.ridge_min_score);
+    EXPECT_EQ(s.lines.hachures.spacing_min_px, v.hachure_spacing_min);
+    EXPECT_EQ(s.lines.hachures.spacing_max_px, v.hachure_spacing_max);
+    EXPECT_EQ(s.style.name, "field-sketch");
+    EXPECT_EQ(s.style.seed, v.seed);
+    ASSERT_TRUE(s.terrain.sea_level);
+    EXPECT_EQ(*s.terrain.sea_level, 350.25);
+    EXPECT_FALSE(s.style.resolved.layer(LayerKind::hachures).visible);
+    EXPECT_TRUE(s.style.resolved.layer(LayerKind::ridges).visible);
+    std::istringstream in(text);
+    const toml::value style = toml::parse(in, "view.toml").at("style");
+    EXPECT_FALSE(style.at("hachures").at("visible").as_boolean());
+    EXPECT_FALSE(style.contains("ridges") && style.at("ridges").contains("visible"));
 }
 
 TEST(PreviewView, TheBaseSceneKeepsItsOtherKeys) {
-    std::istringstream text(R"(
+    const std::string base = R"(
 seed = 3
 [terrain]
 dem = "old.asc"
@@ -99,33 +105,37 @@ slope_weight = 0.7
 [style.creases]
 width = 1.5
 visible = false
-)");
-    const toml::value base = toml::parse(text, "base.toml");
+)";
     PreviewView v = odd_view();
     v.visible = {{"creases", true}};
     v.sea_level.reset();
-    const Scene s = load_text(scene_text(base, "/abs/new.asc", v), "kept.toml");
-    EXPECT_EQ(s.dem, "/abs/new.asc");
-    EXPECT_FALSE(s.camera.position);   // the view's target and distance place the camera
-    EXPECT_FALSE(s.camera.elevation);
-    EXPECT_EQ(s.camera.width, 1200);
-    EXPECT_EQ(s.silhouette_min_gap, 2.5f);
-    EXPECT_EQ(s.creases.slope_weight, 0.7);
-    EXPECT_EQ(s.creases.min_score, v.crease_min_score);
-    EXPECT_EQ(s.style_overrides.at("creases").at("width").as_floating(), 1.5);
-    EXPECT_FALSE(s.style_overrides.at("creases").contains("visible"));  // shown again
-    EXPECT_FALSE(s.sea_level);
-    EXPECT_EQ(s.seed, v.seed);
+    const std::string saved = scene_text(base, "/abs/new.asc", v);
+    const Scene s = load_text(saved, "kept.toml");
+    EXPECT_EQ(s.source.dem, "/abs/new.asc");
+    EXPECT_FALSE(s.view.camera.position);   // the view's target and distance place the camera
+    EXPECT_FALSE(s.view.camera.elevation);
+    EXPECT_EQ(s.view.camera.width, 1200);
+    EXPECT_EQ(s.lines.silhouette_min_gap, 2.5f);
+    EXPECT_EQ(s.lines.creases.slope_weight, 0.7);
+    EXPECT_EQ(s.lines.creases.min_score, v.crease_min_score);
+    EXPECT_EQ(s.style.resolved.layer(LayerKind::creases).width, 1.5);
+    EXPECT_TRUE(s.style.resolved.layer(LayerKind::creases).visible);  // shown again
+    std::istringstream in(saved);
+    const toml::value creases = toml::parse(in, "kept.toml").at("style").at("creases");
+    EXPECT_EQ(creases.at("width").as_floating(), 1.5);
+    EXPECT_FALSE(creases.contains("visible"));
+    EXPECT_FALSE(s.terrain.sea_level);
+    EXPECT_EQ(s.style.seed, v.seed);
 }
 
 TEST(PreviewView, OrthographicViewsAreCentredOnTheTarget) {
     PreviewView v = odd_view();
     v.orthographic = true, v.altitude = -90.0, v.map_scale = 25000.0;
-    const Scene s = load_text(scene_text(toml::table{}, "/d.tif", v), "map.toml");
-    EXPECT_EQ(s.camera.projection, Projection::orthographic);
-    EXPECT_TRUE(s.camera.target);
-    EXPECT_FALSE(s.camera.distance);
-    EXPECT_EQ(s.map_scale, 25000.0);
+    const Scene s = load_text(scene_text("", "/d.tif", v), "map.toml");
+    EXPECT_EQ(s.view.camera.projection, Projection::orthographic);
+    EXPECT_TRUE(s.view.camera.target);
+    EXPECT_FALSE(s.view.camera.distance);
+    EXPECT_EQ(s.view.map_scale, 25000.0);
 }
 
 TEST(PreviewView, NumbersAreTheShortestExactText) {

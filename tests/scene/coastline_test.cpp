@@ -37,7 +37,7 @@ FrameTerrain with_sea(Terrain t, double sea) {
 
 Scene no_drainage() {
     Scene s;
-    s.creases.enabled = s.ridges.enabled = false;
+    s.lines.creases.enabled = s.lines.ridges.enabled = false;
     return s;
 }
 
@@ -236,9 +236,9 @@ std::string error_of(const test::TempDir& dir, const std::string& terrain_lines)
 
 TEST(SeaLevelScene, ReadValidatedAndStrict) {
     const test::TempDir dir;
-    EXPECT_FALSE(scene_with(dir, "").sea_level.has_value());  // off by default
-    EXPECT_EQ(scene_with(dir, "sea_level = 350\n").sea_level, 350.0);
-    EXPECT_EQ(scene_with(dir, "sea_level = -2.5\n").sea_level, -2.5);
+    EXPECT_FALSE(scene_with(dir, "").terrain.sea_level.has_value());  // off by default
+    EXPECT_EQ(scene_with(dir, "sea_level = 350\n").terrain.sea_level, 350.0);
+    EXPECT_EQ(scene_with(dir, "sea_level = -2.5\n").terrain.sea_level, -2.5);
     const std::string f = dir.file("s.toml");
     EXPECT_EQ(error_of(dir, "sea_level = \"high\"\n"), "penink: scene: " + f + ": [terrain] sea_level: expected a number");
     EXPECT_EQ(error_of(dir, "sea_level = nan\n"), "penink: scene: " + f + ": [terrain] sea_level: expected a finite number");

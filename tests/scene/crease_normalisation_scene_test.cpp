@@ -26,9 +26,9 @@ TEST(CreaseNormalisationScene, ReadsBothNamesAndDefaultsToThirds) {
     write_text(dir / "a.toml", scene_text("normalisation = \"paper\"\nmin_score = 0.8\n"));
     write_text(dir / "b.toml", scene_text("min_score = 0.8\n"));
     const Scene a = load_scene((dir / "a.toml").string()), b = load_scene((dir / "b.toml").string());
-    EXPECT_EQ(a.creases.normalisation, ScoreNormalisation::paper);
-    EXPECT_EQ(b.creases.normalisation, ScoreNormalisation::thirds);
-    EXPECT_EQ(b.ridges.normalisation, ScoreNormalisation::paper);
+    EXPECT_EQ(a.lines.creases.normalisation, ScoreNormalisation::paper);
+    EXPECT_EQ(b.lines.creases.normalisation, ScoreNormalisation::thirds);
+    EXPECT_EQ(b.lines.ridges.normalisation, ScoreNormalisation::paper);
     fs::remove_all(dir);
 }
 

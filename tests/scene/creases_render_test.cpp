@@ -183,9 +183,9 @@ struct Frame {  // volcano at 300x225 from the default viewpoint, drainage built
     SurfaceMesh mesh;
     DrainageDb db;
     Frame() {
-        scene.dem = PENINK_SOURCE_DIR "/examples/volcano.asc";
-        scene.camera.width = 300, scene.camera.height = 225;
-        dem = read_dem(scene.dem);
+        scene.source.dem = PENINK_SOURCE_DIR "/examples/volcano.asc";
+        scene.view.camera.width = 300, scene.view.camera.height = 225;
+        dem = read_dem(scene.source.dem);
         camera = scene_camera(scene, dem);
         view = terrain_for_view(dem, camera, scene, Log{});
         mesh = mesh_from_terrain(view);
@@ -249,10 +249,10 @@ TEST(CreasesRender, RaisingMinScoreRemovesCreasesInProcess) {
         std::vector<std::size_t> strokes;
         for (double min_score : {-0.2, 0.0, 0.1, 0.2, 0.35, 0.5, 0.8, 1.2, 2.5}) {
             Scene s = f.scene;
-            s.creases.min_score = min_score, s.creases.spacing_px = spacing;
+            s.lines.creases.min_score = min_score, s.lines.creases.spacing_px = spacing;
             // No distance attenuation: drawing far stems whole or not at all
             // (whole_or_nothing_by_distance) is not monotone in min_score by design.
-            s.creases.distance_attenuation = 0.0;
+            s.lines.creases.distance_attenuation = 0.0;
             const Drawing d = f.draw(s);
             const LayerStats now = layer_stats(d.layer(LayerKind::creases), "crease", f.camera);
             EXPECT_EQ(now.outside, 0u);
@@ -278,9 +278,9 @@ TEST(CreasesRender, RidgesAndCreasesSwitchIndependently) {
     RenderedFrame f;
     Scene s = f.scene;
     const Drawing both = f.draw(s);
-    s.ridges.enabled = false;
+    s.lines.ridges.enabled = false;
     const Drawing no_ridges = f.draw(s);
-    s.ridges.enabled = true, s.creases.enabled = false;
+    s.lines.ridges.enabled = true, s.lines.creases.enabled = false;
     const Drawing no_creases = f.draw(s);
     const LayerStats c = layer_stats(both.layer(LayerKind::creases), "crease", f.camera);
     const LayerStats r = layer_stats(both.layer(LayerKind::ridges), "ridge", f.camera);
@@ -338,8 +338,8 @@ TEST(CreasesRender, TributaryStaysJoinedToSmoothedMainStem) {
     const FrameImages img = renderer.render(cam, {});
     DrainageLines lines(ctx.gl(), db, ground);
     Scene s;
-    s.creases.min_score = -10.0, s.creases.distance_attenuation = 0.0, s.creases.spacing_px = 0.0;
-    s.ridges.enabled = false;
+    s.lines.creases.min_score = -10.0, s.lines.creases.distance_attenuation = 0.0, s.lines.creases.spacing_px = 0.0;
+    s.lines.ridges.enabled = false;
     Drawing d;
     PassTimings t;
     lines.draw(cam, s, renderer.surface_pass().toward_texture(), max_visible_distance(img.toward), d, t);
@@ -642,7 +642,7 @@ TEST(CreasesRender, StreamedSelectionEqualsTheInMemoryOne) {
             o.vertical_exaggeration = e;
             const Terrain at_e = read_dem(dem_path, o);
             Scene scene;
-            scene.camera.width = 400, scene.camera.height = 300;
+            scene.view.camera.width = 400, scene.view.camera.height = 300;
             const Camera cam = scene_camera(scene, at_e);
             const int c = at_e.cols, r = at_e.rows;
             const std::vector<Terrain> models = {at_e, crop_terrain(at_e, GridWindow{c / 4, r / 5, c / 2 + 3, r * 3 / 4}),
@@ -676,7 +676,7 @@ TEST(CreasesRender, DecimationKeepsVerticesHalfAPixelApart) {
     const Terrain dem = read_dem(dem_path);
     const DrainageDb db = build_drainage_db(dem, DrainageOptions{});
     Scene scene;
-    scene.camera.width = 400, scene.camera.height = 300;
+    scene.view.camera.width = 400, scene.view.camera.height = 300;
     const Camera cam = scene_camera(scene, dem);
     const DrainageLineData all = prepare_drainage_lines(db, dem, LineCulling{{cam}, 0.0f, 0.0f});
     const DrainageLineData few = prepare_drainage_lines(db, dem, LineCulling{{cam}, 0.0f, 0.5f});
@@ -744,8 +744,8 @@ TEST(CreasesRender, Table5WeightsDrawUnderPaperNormalisationOnly) {
     RenderedFrame f;
     const auto strokes = [&](ScoreNormalisation n, double min_score) {
         Scene s = f.scene;
-        s.creases.slope_weight = 0.1, s.creases.illumination_weight = 0.3, s.creases.flow_weight = 0.6;
-        s.creases.min_score = min_score, s.creases.normalisation = n;
+        s.lines.creases.slope_weight = 0.1, s.lines.creases.illumination_weight = 0.3, s.lines.creases.flow_weight = 0.6;
+        s.lines.creases.min_score = min_score, s.lines.creases.normalisation = n;
         const LayerStats st = layer_stats(f.draw(s).layer(LayerKind::creases), "crease", f.camera);
         RecordProperty(std::string(score_normalisation_name(n)) + "_min" + std::to_string(int(std::lround(min_score * 100))),
                        std::to_string(st.strokes) + " " + std::to_string(int(st.length)));
@@ -773,8 +773,8 @@ TEST(CreasesRender, Table5MinScoreDrawsTheTopOfTheNetworkUnderRankNormalisation)
     RenderedFrame f;
     const auto strokes = [&](double min_score) {
         Scene s = f.scene;
-        s.creases.slope_weight = 0.1, s.creases.illumination_weight = 0.3, s.creases.flow_weight = 0.6;
-        s.creases.min_score = min_score, s.creases.normalisation = ScoreNormalisation::rank;
+        s.lines.creases.slope_weight = 0.1, s.lines.creases.illumination_weight = 0.3, s.lines.creases.flow_weight = 0.6;
+        s.lines.creases.min_score = min_score, s.lines.creases.normalisation = ScoreNormalisation::rank;
         const LayerStats st = layer_stats(f.draw(s).layer(LayerKind::creases), "crease", f.camera);
         RecordProperty("rank_min" + std::to_string(int(std::lround(min_score * 100))),
                        std::to_string(st.strokes) + " " + std::to_string(int(st.length)));

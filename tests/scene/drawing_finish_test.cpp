@@ -30,7 +30,7 @@ constexpr double kPi = 3.14159265358979323846;
 // The silhouettes layer of one finished frame.
 std::vector<Stroke> silhouettes(const Terrain& t, const Camera& cam) {
     Scene scene;
-    scene.creases.enabled = scene.ridges.enabled = false;
+    scene.lines.creases.enabled = scene.lines.ridges.enabled = false;
     TerrainFrames frames(test::test_context(), std::nullopt, t, cam.width, cam.height, Log{});
     SceneDrawing d = frames.draw(cam, scene);
     finish_drawing(d.drawing, finish_options(default_style(), 1, true));
@@ -102,7 +102,7 @@ TEST(DrawingFinish, CutEdgeAndSkylineDrawOneLine) {
     // merge, 2 % of the silhouettes' length is doubled here; 5.9 % in the example scene).
     const Terrain t = read_dem(PENINK_SOURCE_DIR "/examples/volcano.asc");
     Scene scene;
-    scene.camera.width = 1000, scene.camera.height = 750;
+    scene.view.camera.width = 1000, scene.view.camera.height = 750;
     const Camera cam = scene_camera(scene, t);
     const std::vector<Stroke> sil = silhouettes(t, cam);
     ASSERT_FALSE(sil.empty());

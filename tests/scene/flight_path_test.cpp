@@ -53,18 +53,18 @@ TEST(FlightPath, RecordValuesReachTheFrameScene) {
     const auto r = parse_flight_path(text, "path.csv");
     ASSERT_EQ(r.size(), 2u);
     Scene scene;
-    scene.light.azimuth = 315, scene.light.altitude = 40;
-    scene.creases.min_score = 0.8, scene.creases.normalisation = ScoreNormalisation::paper;
+    scene.view.light.azimuth = 315, scene.view.light.altitude = 40;
+    scene.lines.creases.min_score = 0.8, scene.lines.creases.normalisation = ScoreNormalisation::paper;
     const Scene a = frame_scene(scene, r[0]), b = frame_scene(scene, r[1]);
-    EXPECT_DOUBLE_EQ(a.creases.min_score, 0.19);
-    EXPECT_DOUBLE_EQ(a.light.azimuth, 315.0);
-    EXPECT_DOUBLE_EQ(a.light.altitude, 40.0);
-    EXPECT_DOUBLE_EQ(b.creases.min_score, 0.8);
-    EXPECT_DOUBLE_EQ(b.light.azimuth, 120.0);
-    EXPECT_DOUBLE_EQ(b.light.altitude, 25.0);
+    EXPECT_DOUBLE_EQ(a.lines.creases.min_score, 0.19);
+    EXPECT_DOUBLE_EQ(a.view.light.azimuth, 315.0);
+    EXPECT_DOUBLE_EQ(a.view.light.altitude, 40.0);
+    EXPECT_DOUBLE_EQ(b.lines.creases.min_score, 0.8);
+    EXPECT_DOUBLE_EQ(b.view.light.azimuth, 120.0);
+    EXPECT_DOUBLE_EQ(b.view.light.altitude, 25.0);
     for (const Scene* s : {&a, &b}) {
-        EXPECT_EQ(s->creases.normalisation, ScoreNormalisation::paper);
-        EXPECT_DOUBLE_EQ(s->ridges.min_score, scene.ridges.min_score);
+        EXPECT_EQ(s->lines.creases.normalisation, ScoreNormalisation::paper);
+        EXPECT_DOUBLE_EQ(s->lines.ridges.min_score, scene.lines.ridges.min_score);
     }
 }
 

@@ -60,13 +60,13 @@ size_t unjoined_pairs(const std::vector<Stroke>& strokes, float tol) {
 
 TEST(GoldenChaining, VolcanoHasFewLongPathsAndNoUnjoinedEnds) {
     Scene scene = load_scene(PENINK_SOURCE_DIR "/examples/volcano.asc");
-    scene.camera.width = 400, scene.camera.height = 300;
+    scene.view.camera.width = 400, scene.view.camera.height = 300;
     validate_scene(scene);
     const auto context = make_gl_context(GlBackend::osmesa);
     Drawing d = draw_scene(scene, *context, Log{}).drawing;
     const Counts raw = count(d);
     FinishOptions options;
-    options.seed = scene.seed;
+    options.seed = scene.style.seed;
     const FinishStats stats = finish_drawing(d, options);
     const Counts done = count(d);
     std::printf("volcano 400x300: %zu traced chains (%zu segments) -> %zu paths; paths/chains %.3f, "

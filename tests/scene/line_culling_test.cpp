@@ -34,8 +34,8 @@ TEST(LineCulling, DrawingIsTheSameWithAndWithoutIt) {
     o.vertical_exaggeration = 2.0;
     const Terrain dem = read_dem(path, o);
     Scene scene;
-    scene.vertical_exaggeration = 2.0;
-    scene.camera.width = 500, scene.camera.height = 375;
+    scene.terrain.vertical_exaggeration = 2.0;
+    scene.view.camera.width = 500, scene.view.camera.height = 375;
     Camera whole = scene_camera(scene, dem);
     Camera narrow = whole;
     narrow.fov /= 4.0;  // the far side, magnified
@@ -43,7 +43,7 @@ TEST(LineCulling, DrawingIsTheSameWithAndWithoutIt) {
     std::size_t dropped = 0;
     for (const float sketch : {0.0f, 1.5f}) {
         Scene s = scene;
-        s.crease_sketch_px = s.ridge_sketch_px = sketch;
+        s.style.resolved.layer(LayerKind::creases).sketch = s.style.resolved.layer(LayerKind::ridges).sketch = sketch;
         const float min_px = line_culling_px(s);
         EXPECT_GT(min_px, 2.0f);
         for (const Camera& cam : {whole, narrow}) {

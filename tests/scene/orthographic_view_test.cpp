@@ -87,7 +87,7 @@ TEST(OrthographicView, TowardAwayFindsTheExactContourAtAGrazingAngle) {
     const Terrain t = analytic_grid(shape, 10.0);
     const Camera cam = grazing_orthographic();
     Scene scene;
-    scene.creases.enabled = scene.ridges.enabled = false;
+    scene.lines.creases.enabled = scene.lines.ridges.enabled = false;
     TerrainFrames frames(test::test_context(), std::nullopt, t, cam.width, cam.height, Log{});
     SceneDrawing d = frames.draw(cam, scene);
     const std::vector<ImagePolyline> exact = exact_silhouettes(cam);
@@ -104,7 +104,7 @@ TEST(OrthographicView, TowardAwayFindsTheExactContourAtAGrazingAngle) {
     // The other methods see the same contour in an orthographic view (facing by the view
     // direction, depths along it); their own accuracy on perspective views bounds what they reach.
     for (SilhouetteMethod m : {SilhouetteMethod::adjacency, SilhouetteMethod::edge_walk, SilhouetteMethod::object_space}) {
-        scene.silhouette_method = m;
+        scene.lines.silhouette_method = m;
         const SceneDrawing dm = frames.draw(cam, scene);
         const LineAccuracy am = line_accuracy(dm.silhouette_mask, exact, {1.5});
         std::printf("orthographic grazing view, %s: precision %.3f recall %.3f at 1.5 px\n", silhouette_method_name(m),
@@ -119,16 +119,16 @@ TEST(OrthographicView, TowardAwayFindsTheExactContourAtAGrazingAngle) {
     // The paper's Adjacency with untessellated patches (max level 1: triangles at least a pixel
     // across the view here) has no sub-pixel triangles to step over: measured precision 1.000,
     // recall 0.997.
-    scene.silhouette_method = SilhouetteMethod::adjacency;
-    const int default_max_level = scene.tess_max_level;
-    scene.tess_max_level = 1;
+    scene.lines.silhouette_method = SilhouetteMethod::adjacency;
+    const int default_max_level = scene.terrain.tess_max_level;
+    scene.terrain.tess_max_level = 1;
     const LineAccuracy flat = line_accuracy(frames.draw(cam, scene).silhouette_mask, exact, {1.5});
     std::printf("orthographic grazing view, adjacency at max level 1: precision %.3f recall %.3f at 1.5 px\n",
                 flat.at(1.5).precision, flat.at(1.5).recall);
     EXPECT_GE(flat.at(1.5).precision, 0.95);
     EXPECT_GE(flat.at(1.5).recall, 0.95);
-    scene.tess_max_level = default_max_level;
-    scene.silhouette_method = SilhouetteMethod::toward_away;
+    scene.terrain.tess_max_level = default_max_level;
+    scene.lines.silhouette_method = SilhouetteMethod::toward_away;
     // Depths are distances along the view direction: the hill's top is nearer than its foot by
     // the view direction's component, and every stroke depth is positive.
     EXPECT_NEAR(eye_depth(cam, {0, 0, 0}) - eye_depth(cam, {0, 0, hill_h}), hill_h * std::sin(10.0 * M_PI / 180.0), 1e-6);
@@ -140,13 +140,13 @@ TEST(OrthographicView, TowardAwayFindsTheExactContourAtAGrazingAngle) {
 // 1.3229 m, so the volcano's node box (600 m x 860 m) spans 453.5 x 650.1 px.
 TEST(OrthographicView, PlanViewAtAMapScaleSpansTheDemByTheScale) {
     Scene scene = load_scene(std::string(PENINK_SOURCE_DIR) + "/examples/volcano.asc");
-    scene.camera.projection = Projection::orthographic;
-    scene.camera.azimuth = 0.0, scene.camera.altitude = -90.0;
-    scene.map_scale = 5000.0;
+    scene.view.camera.projection = Projection::orthographic;
+    scene.view.camera.azimuth = 0.0, scene.view.camera.altitude = -90.0;
+    scene.view.map_scale = 5000.0;
     validate_scene(scene);
     PageOptions page;  // no page: the image at 96 dpi
     apply_map_scale(scene, page);
-    EXPECT_NEAR(scene.camera.view_width, 1000 * 25.4 / 96.0 / 1000.0 * 5000.0, 1e-9);
+    EXPECT_NEAR(scene.view.camera.view_width, 1000 * 25.4 / 96.0 / 1000.0 * 5000.0, 1e-9);
     const SceneDrawing d = draw_scene(scene, test::test_context(), Log{});
     glm::vec2 lo(1e9f), hi(-1e9f);
     for (const Ring& r : d.drawing.layer(LayerKind::surface).fill)
@@ -168,21 +168,21 @@ TEST(OrthographicView, PlanViewAtAMapScaleSpansTheDemByTheScale) {
 // 277 x 190 mm = 1636 x 1122 px, and 1:100 000 makes it 27.7 km across.
 TEST(OrthographicView, MapScaleOnAPageFillsThePrintableArea) {
     Scene scene;
-    scene.dem = "x.tif";
-    scene.camera.projection = Projection::orthographic;
-    scene.map_scale = 100000.0;
+    scene.source.dem = "x.tif";
+    scene.view.camera.projection = Projection::orthographic;
+    scene.view.map_scale = 100000.0;
     PageOptions page;
     page.page = "A4", page.dpi = 150.0, page.margin_mm = 10.0;
     apply_map_scale(scene, page);
-    EXPECT_EQ(scene.camera.width, 1636);
-    EXPECT_EQ(scene.camera.height, 1122);
-    const PageLayout layout = page_layout(scene.camera.width, scene.camera.height, page, "x.pdf");
-    EXPECT_NEAR(scene.camera.view_width, 1636 * layout.scale_mm * 100.0, 1e-9);
-    EXPECT_NEAR(scene.camera.view_width, 27700.0, 20.0);  // within the rounding to whole pixels
-    scene.camera.width = 500, scene.camera.height = 800;  // a tall scene: portrait
+    EXPECT_EQ(scene.view.camera.width, 1636);
+    EXPECT_EQ(scene.view.camera.height, 1122);
+    const PageLayout layout = page_layout(scene.view.camera.width, scene.view.camera.height, page, "x.pdf");
+    EXPECT_NEAR(scene.view.camera.view_width, 1636 * layout.scale_mm * 100.0, 1e-9);
+    EXPECT_NEAR(scene.view.camera.view_width, 27700.0, 20.0);  // within the rounding to whole pixels
+    scene.view.camera.width = 500, scene.view.camera.height = 800;  // a tall scene: portrait
     apply_map_scale(scene, page);
-    EXPECT_EQ(scene.camera.width, 1122);
-    EXPECT_EQ(scene.camera.height, 1636);
+    EXPECT_EQ(scene.view.camera.width, 1122);
+    EXPECT_EQ(scene.view.camera.height, 1636);
 }
 
 }  // namespace

@@ -204,7 +204,7 @@ TEST(SilhouetteMethods, SceneNames) {
         const std::string file = (dir / "scene.toml").string();
         std::ofstream(file) << "[terrain]\ndem = \"" PENINK_SOURCE_DIR "/examples/volcano.asc\"\n[silhouettes]\nmethod = \""
                             << method << "\"\n";
-        return load_scene(file).silhouette_method;
+        return load_scene(file).lines.silhouette_method;
     };
     EXPECT_EQ(load("adjacency"), SilhouetteMethod::adjacency);
     EXPECT_EQ(load("edge-walk"), SilhouetteMethod::edge_walk);

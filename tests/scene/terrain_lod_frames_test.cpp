@@ -28,8 +28,8 @@ const Terrain& hill_grid() {  // built once: 4 M nodes
 
 Scene silhouettes_scene(float tolerance_px) {
     Scene s;
-    s.creases.enabled = s.ridges.enabled = false;
-    s.surface_tolerance_px = tolerance_px;
+    s.lines.creases.enabled = s.lines.ridges.enabled = false;
+    s.terrain.surface_tolerance_px = tolerance_px;
     return s;
 }
 
@@ -78,7 +78,7 @@ TEST(TerrainLodFrames, TrianglesFollowTheImageNotTheDem) {
     const Terrain& t = hill_grid();
     ASSERT_GE(t.cols, 2000);
     Scene scene = silhouettes_scene(1.0f);
-    scene.camera.width = 1000, scene.camera.height = 750;
+    scene.view.camera.width = 1000, scene.view.camera.height = 750;
     const Camera cam = scene_camera(scene, t);  // the whole DEM from the south-west
     const SceneDrawing d = draw(t, cam, 1.0f);
     const std::size_t full = 2 * std::size_t(t.cols - 1) * (t.rows - 1);

@@ -312,7 +312,7 @@ TEST(TerrainCache, SmallViewReadsASmallPartAndOnlyItsDamageCounts) {
             corners.emplace_back(p.x, p.y, double(mem.lod.z_min));
             corners.emplace_back(p.x, p.y, double(mem.lod.z_max));
         }
-    const Camera cam = frame_points_orthographic(corners, 0.0, -89.0, 400, 300, 0.0, 1.0);
+    const Camera cam = frame_points_orthographic(corners, {.azimuth = 0.0, .altitude = -89.0, .width = 400, .height = 300, .view_width = 0.0, .fill = 1.0});
     LodOptions o;
     LodSelection in_memory, from_file;
     const SurfaceMesh want = select_lod_mesh(mem.lod, mem.drawn(1.0), 1.0, cam, o, &in_memory);

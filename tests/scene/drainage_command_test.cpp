@@ -12,7 +12,7 @@
 #include <gdal_priv.h>
 #include <gtest/gtest.h>
 
-#include "cli/drainage_command.hpp"
+#include "scene/drainage_command.hpp"
 #include "scene/terrain_view.hpp"
 #include "drainage/drainage_build.hpp"
 #include "input/dem_reader.hpp"

@@ -1,4 +1,4 @@
-#include "cli/drainage_command.hpp"
+#include "scene/drainage_command.hpp"
 
 #include <sys/statvfs.h>
 #include <unistd.h>
