@@ -22,12 +22,6 @@ struct StyleProblem : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-std::string short_number(double v) {
-    char s[32];
-    std::snprintf(s, sizeof s, "%g", v);
-    return s;
-}
-
 std::string where(const std::string& table) { return table.empty() ? "" : " (in [" + table + "])"; }
 
 double number(const toml::value& v, const std::string& key, const std::string& table) {
@@ -69,13 +63,13 @@ std::vector<double> dash_array(const toml::value& v, const std::string& table) {
     for (const toml::value& x : v.as_array()) {
         dash.push_back(number_at_least(x, "dash", table, 0.0));
         if (dash.back() > 0.0 && dash.back() < min_dash_px)
-            throw StyleProblem("dash lengths must be 0 or at least 0.1 px (got " + short_number(dash.back()) + ")" +
+            throw StyleProblem("dash lengths must be 0 or at least 0.1 px (got " + message_number(dash.back()) + ")" +
                                where(table));
         sum += dash.back();
     }
     if (!dash.empty() && sum <= 0.0) throw StyleProblem("dash must not be all zeros" + where(table));
     if (!dash.empty() && sum < min_dash_pattern_px)
-        throw StyleProblem("dash pattern must add up to at least 1 px (got " + short_number(sum) + ")" + where(table));
+        throw StyleProblem("dash pattern must add up to at least 1 px (got " + message_number(sum) + ")" + where(table));
     return dash;
 }
 

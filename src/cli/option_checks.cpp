@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "core/error.hpp"
 #include "core/input_files.hpp"
 #include "core/memory_budget.hpp"
 #include "scene/map_scale.hpp"
@@ -12,12 +13,6 @@
 namespace penink {
 
 namespace {
-
-std::string short_number(double v) {
-    char s[32];
-    std::snprintf(s, sizeof s, "%g", v);
-    return s;
-}
 
 // The value as a finite double; false for text that is not one.
 bool finite_number(const std::string& text, double& v) {
@@ -37,25 +32,25 @@ std::string shown(const std::string& text) {
 }  // namespace
 
 CLI::Validator number_between(double lo, double hi) {
-    const std::string range = "between " + short_number(lo) + " and " + short_number(hi);
+    const std::string range = "between " + message_number(lo) + " and " + message_number(hi);
     return CLI::Validator(
         [lo, hi, range](std::string& text) -> std::string {
             double v = 0.0;
             if (!finite_number(text, v) || v < lo || v > hi) return "must be " + range + " (got " + shown(text) + ")";
             return {};
         },
-        "[" + short_number(lo) + ", " + short_number(hi) + "]");
+        "[" + message_number(lo) + ", " + message_number(hi) + "]");
 }
 
 CLI::Validator positive_at_most(double hi) {
-    const std::string range = "> 0 and at most " + short_number(hi);
+    const std::string range = "> 0 and at most " + message_number(hi);
     return CLI::Validator(
         [hi, range](std::string& text) -> std::string {
             double v = 0.0;
             if (!finite_number(text, v) || !(v > 0.0) || v > hi) return "must be " + range + " (got " + shown(text) + ")";
             return {};
         },
-        "(0, " + short_number(hi) + "]");
+        "(0, " + message_number(hi) + "]");
 }
 
 CLI::Validator map_scale_check() {
@@ -80,7 +75,7 @@ CLI::Validator positive_at_most_or_auto(double hi) {
             const std::string why = number(t);  // "must be > 0 and ..."
             return why.empty() ? why : "must be auto or " + why.substr(8);
         },
-        "(0, " + short_number(hi) + "] or auto");
+        "(0, " + message_number(hi) + "] or auto");
 }
 
 void add_cache_dir_option(CLI::App* cmd, std::string& dir) {

@@ -1,6 +1,14 @@
 #include "core/error.hpp"
 
+#include <cstdio>
+
 namespace penink {
+
+std::string message_number(double v) {
+    char s[32];
+    std::snprintf(s, sizeof s, "%g", v);
+    return s;
+}
 
 std::string format_error(const std::string& stage, const std::string& file, const std::string& what) {
     std::string s = "penink: " + stage + ": ";

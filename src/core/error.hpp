@@ -21,6 +21,9 @@ private:
     ExitCode code_;
 };
 
+// A number as error messages quote it: printf's %g (six significant digits, no trailing zeros).
+std::string message_number(double v);
+
 // "penink: stage: file: what" (the file part is left out when file is empty).
 std::string format_error(const std::string& stage, const std::string& file, const std::string& what);
 

@@ -11,16 +11,10 @@ namespace penink {
 
 namespace {
 
-std::string number_text(double v) {
-    char s[32];
-    std::snprintf(s, sizeof s, "%g", v);
-    return s;
-}
-
 void check(const std::string& file, const char* key, double v, double lo, double hi) {
     if (v >= lo && v <= hi) return;
-    throw Error("scene", file, std::string("[hachures] ") + key + " must be between " + number_text(lo) + " and " +
-                                   number_text(hi) + " (got " + number_text(v) + ")");
+    throw Error("scene", file, std::string("[hachures] ") + key + " must be between " + message_number(lo) + " and " +
+                                   message_number(hi) + " (got " + message_number(v) + ")");
 }
 
 }  // namespace

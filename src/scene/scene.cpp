@@ -12,18 +12,12 @@ namespace penink {
 
 namespace {
 
-std::string short_number(double v) {
-    char s[32];
-    std::snprintf(s, sizeof s, "%g", v);
-    return s;
-}
-
 // "NAME must be between LO and HI UNIT (got V)" unless lo <= v <= hi.
 void check_range(const std::string& file, const std::string& name, double v, double lo, double hi,
                  const std::string& unit = "") {
     if (v >= lo && v <= hi) return;
-    throw Error("scene", file, name + " must be between " + short_number(lo) + " and " + short_number(hi) + unit +
-                                   " (got " + short_number(v) + ")");
+    throw Error("scene", file, name + " must be between " + message_number(lo) + " and " + message_number(hi) + unit +
+                                   " (got " + message_number(v) + ")");
 }
 
 void check_range(const std::string& file, const std::string& name, const std::optional<double>& v, double lo,
@@ -61,7 +55,7 @@ void validate_scene(const Scene& s) {
         throw Error("scene", f, "camera fov must be between 0 and 179 degrees");
     if (!(s.terrain.vertical_exaggeration > 0.0 && s.terrain.vertical_exaggeration <= max_vertical_exaggeration))
         throw Error("scene", f, "vertical exaggeration must be > 0 and at most 1000 (got " +
-                                    short_number(s.terrain.vertical_exaggeration) + ")");
+                                    message_number(s.terrain.vertical_exaggeration) + ")");
     check_range(f, "[camera] altitude", s.view.camera.altitude, -90.0, 90.0, " degrees");
     check_range(f, "[camera] azimuth", s.view.camera.azimuth, -360.0, 360.0, " degrees");
     check_range(f, "[camera] elevation", s.view.camera.elevation, -1e7, 1e7, " metres");
