@@ -56,7 +56,8 @@ TriangleMesh mesh_of(const Terrain& t) {
 // The defaults with the default style's pen range and taper (as hachure_pen sets them).
 HachureParams styled_defaults() {
     HachureParams p = hachure_defaults();
-    const LayerStyle& pen = default_style().layer(LayerKind::hachures);
+    const Style style = default_style();
+    const LayerStyle& pen = style.layer(LayerKind::hachures);
     p.weight_min = pen.weight_min, p.weight_max = pen.weight_max;
     p.taper_px = pen.taper, p.taper_min = pen.taper_min;
     return p;
