@@ -61,4 +61,13 @@ std::string describe_cache_estimate(const std::string& what, const std::string& 
     return line;
 }
 
+void announce_cache_build(std::ostream& out, CacheKind kind, int cols, int rows) {
+    if (!(double(cols - 1) * double(rows - 1) > estimate_from_cells)) return;
+    if (kind == CacheKind::terrain)
+        out << describe_cache_estimate("terrain", "terrain cache", cols, rows, terrain_cache_estimate(cols, rows)) << "\n";
+    else
+        out << describe_cache_estimate("drainage", "drainage database", cols, rows, drainage_cache_estimate(cols, rows))
+            << "\n";
+}
+
 }  // namespace penink

@@ -7,6 +7,7 @@
 // estimate_from_cells cells, so a long wait is announced with what it will take.
 #pragma once
 #include <cstdint>
+#include <ostream>
 #include <string>
 
 namespace penink {
@@ -30,5 +31,10 @@ CacheBuildEstimate drainage_cache_estimate(int cols, int rows);
 // peak, D GB on disk (estimate)".
 std::string describe_cache_estimate(const std::string& what, const std::string& cache, int cols, int rows,
                                     const CacheBuildEstimate& e);
+
+enum class CacheKind { terrain, drainage };
+// Writes the estimate line of the `kind` cache of a cols x rows DEM (its estimate and
+// describe_cache_estimate) to `out`, when the DEM has more than estimate_from_cells cells.
+void announce_cache_build(std::ostream& out, CacheKind kind, int cols, int rows);
 
 }  // namespace penink

@@ -126,10 +126,7 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terra
     source.db = load_or_build_drainage(
         scene.source.dem, dem, options, [&](const std::string& m) { log.info(m); },
         [&](const std::string& stage, double fraction) {
-            if (!building && double(dem.cols - 1) * double(dem.rows - 1) > estimate_from_cells)
-                std::cerr << describe_cache_estimate("drainage", "drainage database", dem.cols, dem.rows,
-                                                     drainage_cache_estimate(dem.cols, dem.rows))
-                          << "\n";
+            if (!building) announce_cache_build(std::cerr, CacheKind::drainage, dem.cols, dem.rows);
             building = true;
             progress.update(stage, fraction);
         },

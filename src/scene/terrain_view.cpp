@@ -236,10 +236,7 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, c
                      "the level-of-detail pyramid of the DEM's " + std::to_string(size.cols) + "x" +
                          std::to_string(size.rows) + " nodes (" + std::to_string(std::int64_t(side)) + "^2 padded nodes)",
                      size.nodes() * render_bytes_per_node + side * side * lod_bytes_per_padded_node, memory_budget(0));
-        if (double(size.cols - 1) * double(size.rows - 1) > estimate_from_cells)
-            std::cerr << describe_cache_estimate("terrain", "terrain cache", size.cols, size.rows,
-                                                 terrain_cache_estimate(size.cols, size.rows))
-                      << "\n";
+        announce_cache_build(std::cerr, CacheKind::terrain, size.cols, size.rows);
     }
     StageProgress progress(std::cerr, log.progress, "building terrain cache");
     progress.update("reading the DEM", 0.0);

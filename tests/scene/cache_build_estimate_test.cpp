@@ -3,6 +3,7 @@
 // refined 5 and 10 times: 2015x1720 and 4030x3440 nodes) and grow with the DEM; the line
 // printed.
 #include <filesystem>
+#include <sstream>
 
 #include <gtest/gtest.h>
 
@@ -47,4 +48,16 @@ TEST(CacheBuildEstimate, OneLine) {
     EXPECT_EQ(describe_cache_estimate("drainage", "drainage database", 10812, 10812, e),
               "penink: drainage: building the drainage database of a 10812x10812 DEM (116.9 M cells): about 165 s, "
               "9.8 GB of memory at peak, 6.5 GB on disk (estimate)");
+}
+
+TEST(CacheBuildEstimate, AnnouncedAboveTenMillionCellsOnly) {
+    std::ostringstream small, large, terrain;
+    announce_cache_build(small, CacheKind::drainage, 3001, 3001);  // 9.0 M cells: no line
+    EXPECT_EQ(small.str(), "");
+    announce_cache_build(large, CacheKind::drainage, 4030, 3440);
+    EXPECT_EQ(large.str(), describe_cache_estimate("drainage", "drainage database", 4030, 3440,
+                                                   drainage_cache_estimate(4030, 3440)) + "\n");
+    announce_cache_build(terrain, CacheKind::terrain, 4030, 3440);
+    EXPECT_EQ(terrain.str(), describe_cache_estimate("terrain", "terrain cache", 4030, 3440,
+                                                     terrain_cache_estimate(4030, 3440)) + "\n");
 }
