@@ -37,22 +37,24 @@ Clusters find_clusters(const std::vector<Stroke>& strokes, float short_px, float
         return length[a] > length[b];
     });
     if (!(radius > 0.0f)) return c;
-    const auto key = [&](glm::vec2 p) {
-        return (std::uint64_t(std::uint32_t(std::int32_t(std::floor(p.x / radius)))) << 32) |
-               std::uint32_t(std::int32_t(std::floor(p.y / radius)));
+    const auto cell_of = [&](glm::vec2 p) {
+        return glm::ivec2(std::int32_t(std::floor(p.x / radius)), std::int32_t(std::floor(p.y / radius)));
+    };
+    const auto key = [](glm::ivec2 cell) {
+        return (std::uint64_t(std::uint32_t(cell.x)) << 32) | std::uint32_t(cell.y);
     };
     std::unordered_map<std::uint64_t, std::vector<std::size_t>> grid;  // cell -> short strokes with an end there
     for (std::size_t i : c.order)
-        for (const glm::vec2& e : {strokes[i].points.front(), strokes[i].points.back()}) grid[key(e)].push_back(i);
+        for (const glm::vec2& e : {strokes[i].points.front(), strokes[i].points.back()}) grid[key(cell_of(e))].push_back(i);
     std::vector<std::size_t> near;
     for (std::size_t i : c.order) {
         if (c.dropped[i]) continue;
         for (const glm::vec2& e : {strokes[i].points.front(), strokes[i].points.back()}) {
             near.clear();
-            const std::int32_t cx = std::int32_t(std::floor(e.x / radius)), cy = std::int32_t(std::floor(e.y / radius));
+            const glm::ivec2 cell = cell_of(e);
             for (std::int32_t dy = -1; dy <= 1; ++dy)
                 for (std::int32_t dx = -1; dx <= 1; ++dx) {
-                    const auto it = grid.find((std::uint64_t(std::uint32_t(cx + dx)) << 32) | std::uint32_t(cy + dy));
+                    const auto it = grid.find(key(cell + glm::ivec2(dx, dy)));
                     if (it == grid.end()) continue;
                     for (std::size_t j : it->second) {
                         if (j == i || c.dropped[j]) continue;
