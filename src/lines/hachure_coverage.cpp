@@ -53,17 +53,13 @@ void InkCoverage::add_ink(glm::vec2 a, glm::vec2 b, double width, bool fixed) {
 void InkCoverage::clear_ink() { std::fill(ink_.begin(), ink_.end(), 0.0); }
 
 void InkCoverage::update(double max_gain) {
-    // target ink per cell: the mean sampled tone over its terrain pixels
-    std::vector<double> want(terrain_.size(), 0.0);
-    for (std::size_t i = 0; i < want.size(); ++i)
-        if (tone_n_[i] > 0.0) want[i] = tone_sum_[i] / tone_n_[i] * terrain_[i];
     for (int cy = 0; cy < rows_; ++cy)
         for (int cx = 0; cx < cols_; ++cx) {
             double w = 0.0, k = 0.0;
             for (int y = std::max(0, cy - 1); y <= std::min(rows_ - 1, cy + 1); ++y)
                 for (int x = std::max(0, cx - 1); x <= std::min(cols_ - 1, cx + 1); ++x) {
                     const std::size_t i = std::size_t(y) * cols_ + x;
-                    if (tone_n_[i] > 0.0) w += want[i], k += std::min(ink_[i] + fixed_[i], terrain_[i]);
+                    if (tone_n_[i] > 0.0) w += wanted(i), k += laid(i);
                 }
             double g = 1.0;
             if (k > 0.0) g = std::min(max_gain, w / k);
@@ -87,7 +83,7 @@ double InkCoverage::gain(glm::vec2 px, double max_gain) const {
 double InkCoverage::ink_share() const {
     double want = 0.0, ink = 0.0;
     for (std::size_t i = 0; i < terrain_.size(); ++i)
-        if (tone_n_[i] > 0.0) want += tone_sum_[i] / tone_n_[i] * terrain_[i], ink += std::min(ink_[i] + fixed_[i], terrain_[i]);
+        if (tone_n_[i] > 0.0) want += wanted(i), ink += laid(i);
     return want > 0.0 ? ink / want : 0.0;
 }
 

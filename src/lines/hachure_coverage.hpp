@@ -11,6 +11,8 @@
 // counts at most its terrain pixels (overlapping lines do not darken paper twice); only cells with
 // a target sample count, and a cell with none around it has gain 1.
 #pragma once
+#include <algorithm>
+#include <cstddef>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -44,6 +46,10 @@ public:
 
 private:
     int index(glm::vec2 px) const;
+    // Cell i's target ink (its mean sampled tone over its terrain pixels; call where it has a
+    // sample) and the ink laid in it, at most its terrain pixels.
+    double wanted(std::size_t i) const { return tone_sum_[i] / tone_n_[i] * terrain_[i]; }
+    double laid(std::size_t i) const { return std::min(ink_[i] + fixed_[i], terrain_[i]); }
     int cols_ = 0, rows_ = 0;
     float cell_ = 8.0f;
     bool counted_terrain_ = false;
