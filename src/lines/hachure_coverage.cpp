@@ -25,12 +25,17 @@ void InkCoverage::set_terrain(const DepthImage& depth) {
     if (is_empty(depth)) return;
     counted_terrain_ = true;
     std::fill(terrain_.begin(), terrain_.end(), 0.0);
-    for (int y = 0; y < depth.height; ++y)
+    // index()'s cell of each pixel centre, per column and per row (counts: exact in any order)
+    std::vector<int> cell_x(std::size_t(depth.width));
+    for (int x = 0; x < depth.width; ++x) cell_x[std::size_t(x)] = int(std::floor((float(x) + 0.5f) / cell_));
+    for (int y = 0; y < depth.height; ++y) {
+        const int cy = int(std::floor((float(y) + 0.5f) / cell_));
+        if (cy >= rows_) break;
+        const float* row = depth.depth.data() + std::size_t(y) * depth.width;
+        double* cells = terrain_.data() + std::size_t(cy) * cols_;
         for (int x = 0; x < depth.width; ++x)
-            if (std::isfinite(depth.depth[std::size_t(y) * depth.width + x])) {
-                const int i = index(glm::vec2(x + 0.5f, y + 0.5f));
-                if (i >= 0) terrain_[std::size_t(i)] += 1.0;
-            }
+            if (std::isfinite(row[x]) && cell_x[std::size_t(x)] < cols_) cells[cell_x[std::size_t(x)]] += 1.0;
+    }
 }
 
 void InkCoverage::add_target(glm::vec2 px, double tone, double weight) {

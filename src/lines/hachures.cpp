@@ -54,15 +54,14 @@ HachureParams hachure_defaults() {
 }
 
 double hachure_tone(HachureTone tone, double blend, const glm::dvec3& normal, const glm::dvec3& light) {
-    const double lit = 1.0 - std::max(0.0, glm::dot(normal, light));
-    const double slope_deg = glm::degrees(std::acos(std::clamp(normal.z, -1.0, 1.0)));
-    const double steep = std::min(1.0, slope_deg / 45.0);
+    const auto lit = [&] { return 1.0 - std::max(0.0, glm::dot(normal, light)); };
+    const auto steep = [&] { return std::min(1.0, glm::degrees(std::acos(std::clamp(normal.z, -1.0, 1.0))) / 45.0); };
     switch (tone) {
-        case HachureTone::slope: return steep;
-        case HachureTone::blend: return (1.0 - blend) * lit + blend * steep;
+        case HachureTone::slope: return steep();
+        case HachureTone::blend: return (1.0 - blend) * lit() + blend * steep();
         case HachureTone::light: break;
     }
-    return lit;
+    return lit();
 }
 
 namespace {
@@ -83,12 +82,30 @@ constexpr double kDropWidth = 1.0;
 constexpr double kReseedGain = 1.05;
 constexpr double kMinTighten = 0.35;
 
+// The segments of a polyline of n image points at(i) with a pen's taper factor at each
+// segment's middle (core/stroke_taper.hpp): f(i, taper) for the segment i -> i + 1. The one walk
+// of the ink the coverage counts, of the lines yielded to and of the hachures.
+template <class At, class F>
+void tapered_segments(std::size_t n, const At& at, double taper_px, double taper_min, const F& f) {
+    double length = 0.0;
+    for (std::size_t i = 0; i + 1 < n; ++i) length += glm::length(at(i + 1) - at(i));
+    double arc = 0.0;
+    for (std::size_t i = 0; i + 1 < n; ++i) {
+        const double len = glm::length(at(i + 1) - at(i));
+        f(i, taper_factor(arc + 0.5 * len, length, taper_px, taper_min));
+        arc += len;
+    }
+}
+
 // The grid as a continuous surface: bilinear positions, bilinearly interpolated node gradients.
 class SlopeField {
 public:
-    explicit SlopeField(const HachureGrid& g) : g_(g) {}
+    explicit SlopeField(const HachureGrid& g) : g_(g), cache_(std::size_t(kCacheSide) * kCacheSide) {}
     // Node gradients from differences over +-k nodes (the slope at the scale of the drawing).
-    void set_stencil(int k) { k_ = std::max(1, k), cell_c_ = -1, cell_r_ = -1; }
+    void set_stencil(int k) {
+        k_ = std::max(1, k), cell_c_ = -1, cell_r_ = -1;
+        std::fill(cache_.begin(), cache_.end(), CachedGradient{});
+    }
     glm::dvec3 node_position(int c, int r) const { return node(c, r); }
 
     struct Point {
@@ -146,9 +163,19 @@ private:
         for (int k = 0; k < 4; ++k) {
             if (!valid(cs[k], rs[k])) return false;
             n_[k] = node(cs[k], rs[k]);
-            gr_[k] = node_gradient(cs[k], rs[k]);
+            gr_[k] = cached_gradient(cs[k], rs[k]);
         }
         return true;
+    }
+    // node_gradient through a direct-mapped cache of kCacheSide^2 nodes (node (c, r) in slot
+    // (c mod side, r mod side): any kCacheSide x kCacheSide block of nodes fits): the lines and
+    // their neighbours walk the same cells again and again, and a window may hold millions of
+    // nodes, too many to keep a gradient for each. The same values as node_gradient.
+    glm::dvec2 cached_gradient(int c, int r) {
+        const std::int64_t key = std::int64_t(r) * g_.cols + c;
+        CachedGradient& e = cache_[std::size_t(r & (kCacheSide - 1)) * kCacheSide + std::size_t(c & (kCacheSide - 1))];
+        if (e.key != key) e.key = key, e.grad = node_gradient(c, r);
+        return e.grad;
     }
 
     const HachureGrid& g_;
@@ -157,6 +184,12 @@ private:
     bool cell_ok_ = false;
     glm::dvec3 n_[4];
     glm::dvec2 gr_[4];
+    static constexpr int kCacheSide = 128;  // 16 Ki nodes, 384 KiB
+    struct CachedGradient {
+        std::int64_t key = -1;  // node index r cols + c; -1: empty
+        glm::dvec2 grad{0.0};
+    };
+    std::vector<CachedGradient> cache_;
 };
 
 // World direction (x, y) -> grid parameter direction: solve [du dv] t = d.
@@ -166,63 +199,110 @@ glm::dvec2 to_param(const SlopeField::Point& f, glm::dvec2 d) {
     return glm::dvec2((d.x * f.dv.y - f.dv.x * d.y) / det, (f.du.x * d.y - d.x * f.du.y) / det);
 }
 
-// Points of all lines on the image, bucketed in square cells (insertion order kept).
+// Points of all lines on the image, bucketed in square cells: each cell a chain through one
+// array of entries, newest first (no allocation per cell; the queries' answers do not depend on
+// the order).
 class Occupancy {
 public:
     static constexpr std::uint32_t obstacle = 0xffffffffu;
     Occupancy(int width, int height, float cell) : cell_(cell) {
         cols_ = std::max(1, int(std::ceil(width / cell))) + 2;
         rows_ = std::max(1, int(std::ceil(height / cell))) + 2;
-        cells_.resize(std::size_t(cols_) * rows_);
+        head_.assign(std::size_t(cols_) * rows_, kEnd);
     }
     void add(glm::vec2 p, std::uint32_t line) {
         const int cx = cell_of(p.x, cols_), cy = cell_of(p.y, rows_);
-        cells_[std::size_t(cy) * cols_ + cx].push_back({p, line});
+        std::uint32_t& head = head_[std::size_t(cy) * cols_ + cx];
+        entries_.push_back({p, line, head});
+        head = std::uint32_t(entries_.size() - 1);
     }
     // True when a point of another line lies within r_line, or an obstacle within r_obstacle.
+    // The cells are visited from p's outwards (ring by ring), where a blocking point is most
+    // likely; the answer does not depend on the order.
     bool blocked(glm::vec2 p, std::uint32_t self, float r_line, float r_obstacle) const {
         const float r = std::max(r_line, r_obstacle);
         const int x0 = cell_of(p.x - r, cols_), x1 = cell_of(p.x + r, cols_);
         const int y0 = cell_of(p.y - r, rows_), y1 = cell_of(p.y + r, rows_);
+        const int cx = cell_of(p.x, cols_), cy = cell_of(p.y, rows_);
         const float rl2 = r_line * r_line, ro2 = r_obstacle * r_obstacle;
-        for (int y = y0; y <= y1; ++y)
-            for (int x = x0; x <= x1; ++x)
-                for (const Entry& e : cells_[std::size_t(y) * cols_ + x]) {
-                    if (e.line == self) continue;
-                    const glm::vec2 d = e.p - p;
-                    const float d2 = d.x * d.x + d.y * d.y;
-                    if (d2 < (e.line == obstacle ? ro2 : rl2)) return true;
-                }
+        const auto hit = [&](int x, int y) {
+            for (std::uint32_t i = head_[std::size_t(y) * cols_ + x]; i != kEnd; i = entries_[i].next) {
+                const Entry& e = entries_[i];
+                if (e.line == self) continue;
+                const glm::vec2 d = e.p - p;
+                const float d2 = d.x * d.x + d.y * d.y;
+                if (d2 < (e.line == obstacle ? ro2 : rl2)) return true;
+            }
+            return false;
+        };
+        const int rings = std::max({cx - x0, x1 - cx, cy - y0, y1 - cy});
+        for (int k = 0; k <= rings; ++k)
+            if (ring(cx, cy, k, x0, x1, y0, y1, hit)) return true;
         return false;
     }
 
     // The nearest point of another line (or an obstacle) on each side of p across the unit
     // tangent t, within a cone of 45 degrees about the normal and a distance r; r where none.
+    // Rings of cells outwards from p's; a point of ring k lies at least (k - 1) cells from p, and
+    // one in the cone at least that over sqrt(2) across, so the search stops at the ring that can
+    // no longer bring either side nearer (the answer is the full search's).
     void gaps(glm::vec2 p, glm::vec2 t, std::uint32_t self, float r, float& left, float& right) const {
         left = right = r;
         const int x0 = cell_of(p.x - r, cols_), x1 = cell_of(p.x + r, cols_);
         const int y0 = cell_of(p.y - r, rows_), y1 = cell_of(p.y + r, rows_);
-        for (int y = y0; y <= y1; ++y)
-            for (int x = x0; x <= x1; ++x)
-                for (const Entry& e : cells_[std::size_t(y) * cols_ + x]) {
-                    if (e.line == self) continue;
-                    const glm::vec2 d = e.p - p;
-                    const float along = d.x * t.x + d.y * t.y, across = d.y * t.x - d.x * t.y;
-                    if (std::abs(along) > std::abs(across)) continue;
-                    if (across > 0.0f) left = std::min(left, across);
-                    else right = std::min(right, -across);
-                }
+        const int cx = cell_of(p.x, cols_), cy = cell_of(p.y, rows_);
+        const auto visit = [&](int x, int y) {
+            for (std::uint32_t i = head_[std::size_t(y) * cols_ + x]; i != kEnd; i = entries_[i].next) {
+                const Entry& e = entries_[i];
+                if (e.line == self) continue;
+                const glm::vec2 d = e.p - p;
+                const float along = d.x * t.x + d.y * t.y, across = d.y * t.x - d.x * t.y;
+                if (std::abs(along) > std::abs(across)) continue;
+                if (across > 0.0f) left = std::min(left, across);
+                else right = std::min(right, -across);
+            }
+            return false;
+        };
+        const int rings = std::max({cx - x0, x1 - cx, cy - y0, y1 - cy});
+        for (int k = 0; k <= rings; ++k) {
+            if (float(k - 1) * cell_ * 0.7f >= std::max(left, right)) break;  // 0.7 < 1 / sqrt(2): a margin
+            ring(cx, cy, k, x0, x1, y0, y1, visit);
+        }
     }
 
 private:
+    static constexpr std::uint32_t kEnd = 0xffffffffu;  // no further entry in the cell
     struct Entry {
         glm::vec2 p;
         std::uint32_t line;
+        std::uint32_t next;  // the cell's previous entry, or kEnd
     };
     int cell_of(float v, int n) const { return std::clamp(int(std::floor(v / cell_)) + 1, 0, n - 1); }
+    // The cells of [x0, x1] x [y0, y1] at Chebyshev distance k from (cx, cy), each given to f
+    // until it returns true; true when it did.
+    template <class F>
+    static bool ring(int cx, int cy, int k, int x0, int x1, int y0, int y1, const F& f) {
+        if (k == 0) return f(cx, cy);
+        const int xa = std::max(x0, cx - k), xb = std::min(x1, cx + k);
+        if (cy - k >= y0)
+            for (int x = xa; x <= xb; ++x)
+                if (f(x, cy - k)) return true;
+        if (cy + k <= y1)
+            for (int x = xa; x <= xb; ++x)
+                if (f(x, cy + k)) return true;
+        const int ya = std::max(y0, cy - k + 1), yb = std::min(y1, cy + k - 1);
+        if (cx - k >= x0)
+            for (int y = ya; y <= yb; ++y)
+                if (f(cx - k, y)) return true;
+        if (cx + k <= x1)
+            for (int y = ya; y <= yb; ++y)
+                if (f(cx + k, y)) return true;
+        return false;
+    }
     float cell_;
     int cols_ = 0, rows_ = 0;
-    std::vector<std::vector<Entry>> cells_;
+    std::vector<std::uint32_t> head_;  // per cell, its newest entry or kEnd
+    std::vector<Entry> entries_;
 };
 
 struct Sample {
@@ -242,11 +322,13 @@ public:
         min_grad_ = std::tan(glm::radians(std::clamp(p_.min_slope_deg, 0.0, 89.9)));
         width_ = frame.width_px > 0.0 ? frame.width_px : default_hachure_width_px;
         perspective_ = !is_orthographic(cam_);
+        toward_ortho_ = toward_viewer(cam_, glm::dvec3(0.0));  // the same at every point
         visibility_.rel_tolerance = 0.002f;  // as the outline: the lines lie on the rendered surface
         near_ = frame.max_distance;  // the nearest visible eye distance: where the aerial fade starts
         if (frame.toward) {
-            for (float d : frame.toward->depth)
-                if (std::isfinite(d)) near_ = std::min(near_, double(d));
+            if (perspective_)  // the fade's alone
+                for (float d : frame.toward->depth)
+                    if (std::isfinite(d)) near_ = std::min(near_, double(d));
             cov_.set_terrain(*frame.toward);
         }
     }
@@ -255,9 +337,8 @@ public:
         for (std::size_t layer = 0; layer < frame_.obstacles.size(); ++layer) {
             const HachurePen pen = layer < frame_.obstacle_pens.size() ? frame_.obstacle_pens[layer] : HachurePen{};
             for (const Stroke& s : *frame_.obstacles[layer]) {
-                double length = 0.0, arc = 0.0;
-                for (std::size_t i = 0; i + 1 < s.points.size(); ++i) length += glm::length(s.points[i + 1] - s.points[i]);
-                for (std::size_t i = 0; i + 1 < s.points.size(); arc += glm::length(s.points[i + 1] - s.points[i]), ++i) {
+                const auto at = [&](std::size_t i) { return s.points[i]; };
+                tapered_segments(s.points.size(), at, pen.taper_px, pen.taper_min, [&](std::size_t i, double taper) {
                     // the segment's part inside the image (Liang-Barsky), sampled every pixel
                     const glm::vec2 a = s.points[i], d = s.points[i + 1] - a;
                     float t0 = 0.0f, t1 = 1.0f;
@@ -269,32 +350,32 @@ public:
                         else if (p[e] < 0.0f) t0 = std::max(t0, q[e] / p[e]);
                         else t1 = std::min(t1, q[e] / p[e]);
                     }
-                    if (!inside || t0 > t1) continue;
+                    if (!inside || t0 > t1) return;
                     const int n = std::max(1, int(std::ceil(glm::length(d) * (t1 - t0))));
                     for (int k = 0; k <= n; ++k) occ_.add(a + d * (t0 + (t1 - t0) * float(k) / n), Occupancy::obstacle);
                     // its ink as the style draws it: weight and taper at the segment's middle
                     const double u = 0.5 * (double(weight_at(s, i)) + double(weight_at(s, i + 1)));
-                    const double w = pen.width_px * (pen.weight_min + u * (pen.weight_max - pen.weight_min)) *
-                                     taper_factor(arc + 0.5 * glm::length(d), length, pen.taper_px, pen.taper_min);
+                    const double w = pen.width_px * (pen.weight_min + u * (pen.weight_max - pen.weight_min)) * taper;
                     cov_.add_ink(a + d * t0, a + d * t1, w, true);
-                }
+                });
             }
         }
     }
 
-    // The surface, image and drawn tone at uv; false where it is not drawn terrain (off the
-    // cells with data or the image, turned away, hidden).
-    bool surface(glm::dvec2 uv, Sample& s) {
+    // The surface, image and drawn tone at uv; false off the cells with data or the image, or
+    // turned away (hidden points are visible()'s).
+    bool place(glm::dvec2 uv, Sample& s) {
         s.uv = uv;
         if (!field_.eval(uv, s.f)) return false;
         const glm::dvec3 n = glm::normalize(glm::dvec3(-s.f.grad.x, -s.f.grad.y, 1.0));
-        if (glm::dot(n, toward_viewer(cam_, s.f.p)) <= 0.0) return false;  // turned away: silhouette
+        if (glm::dot(n, perspective_ ? toward_viewer(cam_, s.f.p) : toward_ortho_) <= 0.0) return false;  // turned away: silhouette
         glm::dvec2 px;
         if (!project_(s.f.p, px, s.depth)) return false;
         if (!(px.x >= 0.0 && px.y >= 0.0 && px.x < cam_.width && px.y < cam_.height)) return false;
         s.px = glm::vec2(px);
         double t = hachure_tone(p_.tone, p_.blend, n, frame_.light);
-        t = std::pow(std::clamp(0.5 + p_.contrast * (t - 0.5), 0.0, 1.0), p_.gamma);
+        t = std::clamp(0.5 + p_.contrast * (t - 0.5), 0.0, 1.0);
+        if (p_.gamma != 1.0) t = std::pow(t, p_.gamma);
         if (perspective_ && frame_.max_distance > near_) {
             // the fade grows with the square of the depth's fraction: the middle distance keeps
             // its tone, the far ridges (where the creases and skylines crowd) lose most of theirs
@@ -303,15 +384,22 @@ public:
         }
         s.tone = t;
         s.sep = 0.0;
-        if (frame_.toward && !is_empty(*frame_.toward)) {
-            VisibilityOptions v = visibility_;
-            // the level of detail's 1 px, and a cell: the rendered PN surface and this bilinear one
-            // differ by up to a fraction of a cell's relief, which a grazing ray stretches in depth
-            v.abs_tolerance = float(3.0 * project_.world_per_pixel(s.depth) + cell_m_);
-            if (!point_visible(*frame_.toward, cam_, project_, glm::vec3(s.f.p), v)) return false;
-        }
         return true;
     }
+
+    // Whether placed sample s is not hidden (against the frame's depth image).
+    bool visible(const Sample& s) const {
+        if (!frame_.toward || is_empty(*frame_.toward)) return true;
+        VisibilityOptions v = visibility_;
+        // the level of detail's 1 px, and a cell: the rendered PN surface and this bilinear one
+        // differ by up to a fraction of a cell's relief, which a grazing ray stretches in depth
+        v.abs_tolerance = float(3.0 * project_.world_per_pixel(s.depth) + cell_m_);
+        return point_visible(*frame_.toward, cam_, project_, glm::vec3(s.f.p), v);
+    }
+
+    // The surface, image and drawn tone at uv; false where it is not drawn terrain (place, then
+    // visible).
+    bool surface(glm::dvec2 uv, Sample& s) { return place(uv, s) && visible(s); }
 
     // Whether a hachure may pass a drawn point (steep and dark enough); sets its separation.
     bool hatched(Sample& s) const {
@@ -325,7 +413,9 @@ public:
     }
 
     // The surface, image and tone at uv; false where no hachure may be.
-    bool sample(glm::dvec2 uv, Sample& s) { return surface(uv, s) && hatched(s); }
+    bool sample(glm::dvec2 uv, Sample& s) { return place(uv, s) && hatched(s) && visible(s); }
+    // A seed at uv where no hachure is near (the depth test, the costliest check, last).
+    bool free_seed(glm::dvec2 uv, Sample& s) { return place(uv, s) && hatched(s) && seed_free(s) && visible(s); }
 
     // Image pixels per unit of grid parameter along param direction t at sample s.
     double px_per_unit(const Sample& s, glm::dvec2 t) const {
@@ -371,7 +461,7 @@ public:
             SlopeField::Point mid;
             if (!field_.eval(cur.uv + 0.5 * h * t0, mid) || !(glm::length(mid.grad) > 0.0)) return;
             Sample next;
-            if (!sample(cur.uv + h * fall(mid, sign), next)) return;
+            if (!place(cur.uv + h * fall(mid, sign), next) || !hatched(next)) return;
             const glm::vec2 step = next.px - cur.px;
             const float len = glm::length(step);
             if (!(len > 1e-4f)) return;
@@ -380,7 +470,7 @@ public:
                 const double turn = std::acos(std::clamp(double(glm::dot(dir, prev_dir)), -1.0, 1.0));
                 if (turn > max_turn * std::max(1.0, double(len))) return;
             }
-            if (occ_.blocked(next.px, id, float(p_.d_test * next.sep), float(p_.yield_px)))
+            if (occ_.blocked(next.px, id, float(p_.d_test * next.sep), float(p_.yield_px)) || !visible(next))
                 return;
             prev_dir = dir;
             out.push_back(next);
@@ -391,12 +481,12 @@ public:
     // A line from a seed (accepted and recorded, or nothing); true when accepted.
     bool line_from(const Sample& seed) {
         const std::uint32_t id = std::uint32_t(lines_.size());
-        std::vector<Sample> up, down;
-        grow(seed, -1.0, id, up);
-        grow(seed, +1.0, id, down);
-        std::vector<Sample> line(up.rbegin(), up.rend());
+        std::vector<Sample> line;
+        line.reserve(64);
+        grow(seed, -1.0, id, line);  // up, then reversed: the line runs downhill
+        std::reverse(line.begin(), line.end());
         line.push_back(seed);
-        line.insert(line.end(), down.begin(), down.end());
+        grow(seed, +1.0, id, line);
         float length = 0.0f;
         for (std::size_t i = 1; i < line.size(); ++i) length += glm::length(line[i].px - line[i - 1].px);
         if (line.size() < 2 || length < p_.min_length_px) return false;
@@ -417,9 +507,9 @@ public:
             queue_.pop_front();
             double since = 1e30;
             for (std::size_t i = 0; i < lines_[id].size(); ++i) {
+                if (i > 0) since += glm::length(lines_[id][i].px - lines_[id][i - 1].px);
+                if (since < 0.5 * lines_[id][i].sep) continue;
                 const Sample s = lines_[id][i];  // copy: lines_ grows below
-                if (i > 0) since += glm::length(s.px - lines_[id][i - 1].px);
-                if (since < 0.5 * s.sep) continue;
                 since = 0.0;
                 const double g = glm::length(s.f.grad);
                 const glm::dvec2 contour = to_param(s.f, glm::dvec2(-s.f.grad.y, s.f.grad.x) / g);
@@ -427,14 +517,15 @@ public:
                 if (!(ppu > 0.0)) continue;
                 for (double side : {-1.0, 1.0}) {
                     Sample cand;
-                    if (sample(s.uv + side * (s.sep / ppu) * contour, cand) && seed_free(cand)) line_from(cand);
+                    if (free_seed(s.uv + side * (s.sep / ppu) * contour, cand)) line_from(cand);
                 }
             }
         }
     }
 
-    // With a sea: the aerial fade starts at the nearest land node in the image (the water in
-    // front of a coast is not toned), not at the nearest water.
+    // With a sea, in perspective: the aerial fade starts at the nearest land node in the image
+    // (the water in front of a coast is not toned), not at the nearest water. A node no nearer
+    // to the eye than the nearest so far is not projected (its depth is that distance).
     void near_land(const HachureGrid& grid) {
         double nearest = std::numeric_limits<double>::infinity();
         for (int r = grid.r0; r < grid.r1; ++r)
@@ -442,6 +533,7 @@ public:
                 if (!grid.valid[std::size_t(r) * grid.cols + c]) continue;
                 const glm::dvec3 p = field_.node_position(c, r);
                 if (!(p.z > double(grid.floor_z))) continue;
+                if (glm::length(p - cam_.eye) > nearest * (1.0 + 1e-9)) continue;  // a margin for rounding
                 glm::dvec2 px;
                 double d;
                 if (project_(p, px, d) && px.x >= 0.0 && px.y >= 0.0 && px.x < cam_.width && px.y < cam_.height)
@@ -480,7 +572,7 @@ public:
     void run(const HachureGrid& grid) {
         field_.set_stencil(stencil(grid));
         floor_z_ = grid.floor_z;
-        if (std::isfinite(grid.floor_z)) near_land(grid);
+        if (std::isfinite(grid.floor_z) && perspective_) near_land(grid);
         add_obstacles();
         const double cells = double(std::max(grid.c1 - grid.c0 - 1, 0)) * std::max(grid.r1 - grid.r0 - 1, 0);
         const double target = double(cam_.width) * cam_.height / std::pow(2.0 * std::max(p_.spacing_min_px, 0.5), 2.0);
@@ -576,15 +668,10 @@ public:
                 if (!(gap[id][i].x > 0.0f)) return w;
                 return 0.5 * (std::min(w, double(gap[id][i].x)) + std::min(w, double(gap[id][i].y)));
             };
-            double length = 0.0;
-            for (std::size_t i = 1; i < line.size(); ++i) length += glm::length(line[i].px - line[i - 1].px);
-            double arc = 0.0;
-            for (std::size_t i = 1; i < line.size(); ++i) {
-                const double len = glm::length(line[i].px - line[i - 1].px);
-                const double taper = taper_factor(arc + 0.5 * len, length, p_.taper_px, p_.taper_min);
-                cov_.add_ink(line[i - 1].px, line[i].px, 0.5 * (ink(i - 1) + ink(i)) * taper);
-                arc += len;
-            }
+            const auto at = [&](std::size_t i) { return line[i].px; };
+            tapered_segments(line.size(), at, p_.taper_px, p_.taper_min, [&](std::size_t i, double taper) {
+                cov_.add_ink(line[i].px, line[i + 1].px, 0.5 * (ink(i) + ink(i + 1)) * taper);
+            });
         }
     }
 
@@ -604,7 +691,7 @@ public:
         for (const LatticeSeed& seed : seeds_) {
             if (cov_.gain(seed.px, kMaxGain) < kReseedGain) continue;
             Sample s;
-            if (sample(seed.uv, s) && seed_free(s) && line_from(s)) drain_queue();
+            if (free_seed(seed.uv, s) && line_from(s)) drain_queue();
         }
         tighten_ = false;
         seeds_ = {};
@@ -641,6 +728,12 @@ public:
                    bool cut) {
         lay_ink([&](std::uint32_t id, std::size_t i) { return w[id][i]; }, gap);
         cov_.update(kMaxGain);
+        if (!cut) {  // every line stays whole (each is min_length_px long or more)
+            for (std::uint32_t id = 0; id < lines_.size(); ++id)
+                for (std::size_t i = 0; i < lines_[id].size(); ++i)
+                    w[id][i] = std::clamp(w[id][i] * cov_.gain(lines_[id][i].px, kMaxGain), lo, hi);
+            return;
+        }
         std::vector<std::vector<Sample>> kept_lines;
         std::vector<std::vector<double>> kept_w;
         std::vector<std::vector<glm::vec2>> kept_gap;
@@ -703,6 +796,7 @@ private:
     double near_ = 0.0;    // nearest visible eye distance (of land, with a sea)
     float floor_z_ = -std::numeric_limits<float>::infinity();
     bool perspective_ = true;
+    glm::dvec3 toward_ortho_{0.0};  // towards the viewer, orthographic
     std::vector<std::vector<Sample>> lines_;
     std::vector<std::vector<float>> weights_;  // per line and point, after balance()
     std::deque<std::uint32_t> queue_;
