@@ -57,6 +57,7 @@ Times render_once(const std::string& input, bool map, int width, int height, boo
     t.hachures = double(d.drawing.layer(LayerKind::hachures).strokes.size());
     FrameOutput out;
     out.document_format = "svg";
+    out.line_measures = false;  // as `penink render` without -v, which alone prints them
     const FrameOutputResult written = write_frame(d.drawing, style, scene.style.seed, true, out);
     if (written.document.empty()) std::exit(3);
     t.total_ms = ms_since(start);
