@@ -70,11 +70,16 @@ namespace {
 // where they converge and end at d_test x d_sep the mean spacing is wider (the measure reports it).
 constexpr double kFill = 1.0;
 
-// The coverage feedback (Tracer::balance): cells of 8 px (the measure's sigma), two rounds, a
-// gain of at most 4 (the pens' widest range is 3: 0.6-1.8).
+// The coverage feedback (Tracer::balance): cells of 8 px (the measure's sigma), a gain of at
+// most 4 (the pens' widest range is 3: 0.6-1.8).
 constexpr float kCoverageCell = 8.0f;
-constexpr int kCoverageRounds = 2;
 constexpr double kMaxGain = 4.0;
+// The image length of a tracing step, px (hachures.hpp: the chord's departure from the curve;
+// 1 px drew the same tone, r and SSIM within 0.005, for half again the tracing's cost).
+constexpr double kStepPx = 2.0;
+// The lattice's blocks of cells wider than this on the image, px, get sub-lattices (run(); 6 px
+// drew the same tone, r and SSIM within 0.005, for a tenth more of the tracing).
+constexpr double kSeedBlockPx = 9.0;
 // A point whose wanted width is under this share of the lightest pen is cut out (Tracer::balance).
 constexpr double kDropWidth = 1.0;
 // reseed(): cells that even the heaviest pen leaves this much lighter than their target, and the
@@ -394,7 +399,7 @@ public:
         // the level of detail's 1 px, and a cell: the rendered PN surface and this bilinear one
         // differ by up to a fraction of a cell's relief, which a grazing ray stretches in depth
         v.abs_tolerance = float(3.0 * project_.world_per_pixel(s.depth) + cell_m_);
-        return point_visible(*frame_.toward, cam_, project_, glm::vec3(s.f.p), v);
+        return pixel_visible(*frame_.toward, cam_, glm::dvec2(s.px), s.depth, v);  // place() projected it
     }
 
     // The surface, image and drawn tone at uv; false where it is not drawn terrain (place, then
@@ -457,7 +462,7 @@ public:
             const glm::dvec2 t0 = fall(cur.f, sign);
             const double ppu = px_per_unit(cur, t0);
             if (!(ppu > 0.0)) return;
-            const double h = std::min(1.0 / ppu, 4.0 / std::max(glm::length(t0), 1e-12));  // ~1 px, at most ~4 cells
+            const double h = std::min(kStepPx / ppu, 4.0 / std::max(glm::length(t0), 1e-12));  // at most ~4 cells
             SlopeField::Point mid;
             if (!field_.eval(cur.uv + 0.5 * h * t0, mid) || !(glm::length(mid.grad) > 0.0)) return;
             Sample next;
@@ -579,7 +584,7 @@ public:
         const int stride = std::max(1, int(std::sqrt(cells / std::max(target, 1.0))));
         for (int r = grid.r0; r + 1 < grid.r1; r += stride)
             for (int c = grid.c0; c + 1 < grid.c1; c += stride) {
-                // a block of cells larger than 6 px on the image (the near ground of a perspective
+                // a block of cells larger than kSeedBlockPx on the image (the near ground of a perspective
                 // view) gets a sub-lattice, so every region between creases has seeds of its own
                 const int c2 = std::min(c + stride, grid.c1 - 1), r2 = std::min(r + stride, grid.r1 - 1);
                 glm::dvec2 a, b;
@@ -587,7 +592,7 @@ public:
                 int m = 1;
                 if (project_(field_.node_position(c, r), a, da) &&
                     project_(field_.node_position(c2, r2), b, db))
-                    m = std::clamp(int(std::ceil(glm::length(b - a) / 6.0)), 1, 16);
+                    m = std::clamp(int(std::ceil(glm::length(b - a) / kSeedBlockPx)), 1, 16);
                 for (int j = 0; j < m; ++j)
                     for (int i = 0; i < m; ++i) {
                         Sample s;
@@ -635,7 +640,7 @@ public:
 
     // The gaps across line id at each point on the image (left, right): the nearest other
     // hachure or obstacle point within 45 deg of the normal, 2 s at most; 0 where the line has no
-    // direction. Searched at every other point (the points are about 1 px apart and the widths
+    // direction. Searched at every other point (the points are about 2 px apart and the widths
     // are smoothed over 5), the points between taking the mean of their neighbours'.
     std::vector<glm::vec2> gaps(std::uint32_t id) const {
         const std::vector<Sample>& line = lines_[id];
@@ -699,11 +704,12 @@ public:
 
     // The coverage feedback: the widths of the gap rule (weights) scaled by the gain of the ink
     // they lay against the target tone per image cell (InkCoverage: lines of the pen's widths
-    // with its taper, and the lines yielded to), clamped to the pen's range; kCoverageRounds
-    // rounds, as a clamped cell hands its shortfall to its neighbours. Then the points that would
-    // want less than kDropWidth of the lightest pen (cells the lines yielded to already darken,
-    // the far creases of a panorama) are cut out of their lines, pieces shorter than
-    // min_length_px dropped, and one more round sets the widths of what is left.
+    // with its taper, and the lines yielded to), clamped to the pen's range, and in the same
+    // round the points that would want less than kDropWidth of the lightest pen (cells the
+    // lines yielded to already darken, the far creases of a panorama) cut out of their lines,
+    // pieces shorter than min_length_px dropped; one more round sets the widths of what is left
+    // (a second round before the cut changed r and SSIM by under 0.01 on the tone views and
+    // cost a twentieth of the tracing).
     void balance() {
         const double lo = p_.weight_min * width_, hi = p_.weight_max * width_;
         weights_.assign(lines_.size(), {});
@@ -714,7 +720,7 @@ public:
             gap[id] = gaps(id);
             for (float u : weights(id, gap[id])) w[id].push_back(lo + double(u) * (hi - lo));
         }
-        for (int round = 0; round < kCoverageRounds; ++round) rebalance(w, gap, lo, hi, round + 1 == kCoverageRounds);
+        rebalance(w, gap, lo, hi, true);
         rebalance(w, gap, lo, hi, false);
         weights_.assign(lines_.size(), {});
         for (std::uint32_t id = 0; id < lines_.size(); ++id) {

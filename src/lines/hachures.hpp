@@ -11,7 +11,10 @@
 // node from central differences of its neighbours (one-sided at the grid's edge or beside nodata),
 // interpolated bilinearly between nodes. Lines are traced in object space along that field (the
 // fall line, both ways from a seed: down along -grad z, up along +grad z) with a midpoint (RK2)
-// step whose image length is about 1 px, each point projected by the camera (core/camera.hpp).
+// step whose image length is about 2 px, each point projected by the camera (core/camera.hpp):
+// a step's chord departs from the traced curve by L theta / 8 (L = 2 px, theta its turn), under
+// 0.05 px where fall lines turn less than 5 deg/px and 0.22 px at max_turn_deg, about the 0.2 px
+// the strokes are simplified by.
 //
 // Tone at a point: "light" T = 1 - max(0, n . l) (n the unit normal of the interpolated gradient,
 // l the unit vector towards the light); "slope" T = min(1, slope / 45 deg) (Lehmann: steeper is
@@ -29,7 +32,7 @@
 // the ink between the line and its neighbours the tone, g_l and g_r the gaps across the line to
 // the nearest other hachure or obstacle point on each side (within 45 deg of the normal, at most
 // 2 s; a side with none within 2 s counts s), u = (w' - weight_min w) / ((weight_max - weight_min) w)
-// clamped and averaged over 5 points. So the dark tones that spacing_min_px stops, and the gaps
+// clamped and averaged over 5 points (about 10 px). So the dark tones that spacing_min_px stops, and the gaps
 // where lines end, are drawn by wider lines, crowded lines by thinner ones. With weight_min ==
 // weight_max (the plotter style) no weights: tone by spacing alone.
 //
@@ -41,7 +44,7 @@
 // the heaviest pen leaves a cell lighter than its target by 5 %, its lattice seeds are tried again
 // with the separation tightened by the shortfall, down to 0.35 s (the holes between line ends on
 // rough ground). (2) Each point's width is multiplied by the gain target / ink of its cells
-// (3 x 3 box, bilinear), clamped to the pen, two rounds; then points wanting less than the
+// (3 x 3 box, bilinear), clamped to the pen; then points wanting less than the
 // lightest pen (cells the creases or silhouettes already darken) are cut out, pieces shorter
 // than min_length_px dropped, and a last round sets the widths.
 //
@@ -55,7 +58,7 @@
 // dropped. Seeds are tried beside each accepted line, at s to either side along the contour
 // direction, every s / 2 along it (a seed needs its whole separation free: 0.95 s), then on a
 // lattice of the grid's cells (north to south, west to east) about one per (2 spacing_min_px)^2 of
-// image, a block wider than 6 px on the image split into up to 16 x 16 seeds. Node gradients use
+// image, a block wider than 9 px on the image split into up to 16 x 16 seeds. Node gradients use
 // differences over +-k nodes, k about 1.5 px of ground at the median cell size. No random numbers and no hash or thread order: the same input gives the same strokes.
 // Cost: O(drawn length + lattice seeds + image cells).
 #pragma once

@@ -119,6 +119,10 @@ bool point_visible(const DepthImage& img, const Camera& cam, const PixelProjecto
     glm::dvec2 px;
     double d;
     if (!project(glm::dvec3(p), px, d)) return false;
+    return pixel_visible(img, cam, px, d, o);
+}
+
+bool pixel_visible(const DepthImage& img, const Camera& cam, glm::dvec2 px, double d, const VisibilityOptions& o) {
     int x = int(std::floor(px.x)), y = int(std::floor(px.y));
     if (x < 0 || y < 0 || x >= cam.width || y >= cam.height) return false;
     if (img.width <= 0 || img.height <= 0) return true;  // no depth image: everything visible

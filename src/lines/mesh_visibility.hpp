@@ -37,6 +37,8 @@ bool point_visible(const DepthImage& img, const Camera& cam, const PixelProjecto
                    const VisibilityOptions& o);
 bool point_visible(const DepthImage& img, const Camera& cam, const glm::vec3& p,
                    const VisibilityOptions& options = {});
+// The same test for a point already projected: image pixel px, eye distance depth.
+bool pixel_visible(const DepthImage& img, const Camera& cam, glm::dvec2 px, double depth, const VisibilityOptions& o);
 
 // Visible runs of each polyline as image-space strokes (pixels + eye distance per point),
 // keeping the polyline's vertices and the run ends; kind and strength are copied.

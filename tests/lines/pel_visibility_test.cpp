@@ -119,3 +119,27 @@ TEST(PelVisibility, SilhouetteOfTheSphereStaysVisible) {
     EXPECT_NEAR(all, 2 * M_PI * rad, 0.02 * 2 * M_PI * rad);
     EXPECT_GT(vis, 0.97 * all);
 }
+
+TEST(PelVisibility, PixelVisibleIsPointVisibleOfTheProjectedPoint) {
+    // The same answer for a point and its projection, across a sphere's front, back and outline
+    // and outside the image: pixel_visible is point_visible's test after the projection.
+    TriangleMesh m = test::uv_sphere(64, 1.0f);
+    Camera cam = looking_north(5.0f);
+    DepthImage img = rasterize_depth(m, cam);
+    const PixelProjector project(cam);
+    VisibilityOptions o;
+    o.rel_tolerance = 0.002f, o.abs_tolerance = 0.01f;
+    int visible = 0, hidden = 0;
+    for (int i = 0; i <= 40; ++i)
+        for (int j = 0; j <= 40; ++j) {
+            const glm::vec3 p(-3.0f + 0.15f * float(i), -1.2f + 0.06f * float(j), 0.3f);
+            glm::dvec2 px;
+            double d;
+            const bool a = point_visible(img, cam, project, p, o);
+            const bool b = project(glm::dvec3(p), px, d) && pixel_visible(img, cam, px, d, o);
+            EXPECT_EQ(a, b) << p.x << " " << p.y;
+            (a ? visible : hidden) += 1;
+        }
+    EXPECT_GT(visible, 100);  // both answers occur: the grid spans the sphere's front and back
+    EXPECT_GT(hidden, 100);
+}
