@@ -743,28 +743,31 @@ public:
         std::vector<std::vector<Sample>> kept_lines;
         std::vector<std::vector<double>> kept_w;
         std::vector<std::vector<glm::vec2>> kept_gap;
+        std::vector<double> want;
+        const auto dropped = [&](std::size_t i) { return want[i] < kDropWidth * lo; };
         for (std::uint32_t id = 0; id < lines_.size(); ++id) {
-            std::vector<Sample> piece;
-            std::vector<double> piece_w;
-            std::vector<glm::vec2> piece_gap;
-            float length = 0.0f;
-            const auto close = [&] {
-                if (piece.size() >= 2 && length >= p_.min_length_px) {
-                    kept_lines.push_back(std::move(piece)), kept_w.push_back(std::move(piece_w));
-                    kept_gap.push_back(std::move(piece_gap));
-                }
-                piece.clear(), piece_w.clear(), piece_gap.clear(), length = 0.0f;
-            };
-            for (std::size_t i = 0; i < lines_[id].size(); ++i) {
-                const double want = w[id][i] * cov_.gain(lines_[id][i].px, kMaxGain);
-                if (cut && want < kDropWidth * lo) {
-                    close();
+            const std::size_t n = lines_[id].size();
+            want.resize(n);
+            for (std::size_t i = 0; i < n; ++i) want[i] = w[id][i] * cov_.gain(lines_[id][i].px, kMaxGain);
+            // each run of points not dropped, kept when it has 2 points and min_length_px
+            for (std::size_t i = 0, e = 0; i < n; i = e) {
+                if (dropped(i)) {
+                    e = i + 1;
                     continue;
                 }
-                if (!piece.empty()) length += glm::length(lines_[id][i].px - piece.back().px);
-                piece.push_back(lines_[id][i]), piece_w.push_back(std::clamp(want, lo, hi)), piece_gap.push_back(gap[id][i]);
+                float length = 0.0f;
+                for (e = i + 1; e < n && !dropped(e); ++e) length += glm::length(lines_[id][e].px - lines_[id][e - 1].px);
+                if (e - i < 2 || !(length >= p_.min_length_px)) continue;
+                std::vector<double> piece_w(want.begin() + std::ptrdiff_t(i), want.begin() + std::ptrdiff_t(e));
+                for (double& v : piece_w) v = std::clamp(v, lo, hi);
+                kept_w.push_back(std::move(piece_w));
+                if (i == 0 && e == n) {  // the whole line
+                    kept_lines.push_back(std::move(lines_[id])), kept_gap.push_back(std::move(gap[id]));
+                } else {
+                    kept_lines.emplace_back(lines_[id].begin() + std::ptrdiff_t(i), lines_[id].begin() + std::ptrdiff_t(e));
+                    kept_gap.emplace_back(gap[id].begin() + std::ptrdiff_t(i), gap[id].begin() + std::ptrdiff_t(e));
+                }
             }
-            close();
         }
         lines_ = std::move(kept_lines), w = std::move(kept_w), gap = std::move(kept_gap);
     }
@@ -777,6 +780,7 @@ public:
             Stroke s;
             s.kind = "hachure";
             double tone = 0.0;
+            s.points.reserve(line.size()), s.depth.reserve(line.size());
             for (const Sample& p : line) {
                 s.points.push_back(p.px);
                 s.depth.push_back(float(p.depth));
