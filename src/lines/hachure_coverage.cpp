@@ -16,8 +16,10 @@ InkCoverage::InkCoverage(int width, int height, float cell) : cell_(std::max(cel
 }
 
 int InkCoverage::index(glm::vec2 px) const {
-    const int cx = int(std::floor(px.x / cell_)), cy = int(std::floor(px.y / cell_));
-    if (cx < 0 || cy < 0 || cx >= cols_ || cy >= rows_) return -1;
+    // floor(px / cell) within [0, cols) x [0, rows): truncation where the quotient is >= 0
+    const float fx = px.x / cell_, fy = px.y / cell_;
+    if (!(fx >= 0.0f && fy >= 0.0f && fx < float(cols_) && fy < float(rows_))) return -1;
+    const int cx = std::min(int(fx), cols_ - 1), cy = std::min(int(fy), rows_ - 1);
     return cy * cols_ + cx;
 }
 

@@ -282,7 +282,12 @@ private:
         std::uint32_t line;
         std::uint32_t next;  // the cell's previous entry, or kEnd
     };
-    int cell_of(float v, int n) const { return std::clamp(int(std::floor(v / cell_)) + 1, 0, n - 1); }
+    // clamp(floor(v / cell) + 1, 0, n - 1), truncating where the quotient is >= 0
+    int cell_of(float v, int n) const {
+        const float f = v / cell_;
+        if (!(f >= 0.0f)) return 0;
+        return f >= float(n) ? n - 1 : std::min(int(f) + 1, n - 1);
+    }
     // The cells of [x0, x1] x [y0, y1] at Chebyshev distance k from (cx, cy), each given to f
     // until it returns true; true when it did.
     template <class F>
