@@ -108,7 +108,7 @@ public:
     explicit SlopeField(const HachureGrid& g) : g_(g), cache_(std::size_t(kCacheSide) * kCacheSide) {}
     // Node gradients from differences over +-k nodes (the slope at the scale of the drawing).
     void set_stencil(int k) {
-        k_ = std::max(1, k), cell_c_ = -1, cell_r_ = -1;
+        k_ = std::max(1, k), cells_[0] = cells_[1] = Cell{};
         std::fill(cache_.begin(), cache_.end(), CachedGradient{});
     }
     glm::dvec3 node_position(int c, int r) const { return node(c, r); }
@@ -124,17 +124,21 @@ public:
         const double fc = std::floor(uv.x), fr = std::floor(uv.y);
         if (!(fc >= g_.c0 && fc + 1 < g_.c1 && fr >= g_.r0 && fr + 1 < g_.r1)) return false;
         const int c = int(fc), r = int(fr);
-        if (c != cell_c_ || r != cell_r_) {
-            cell_ok_ = load_cell(c, r);
-            cell_c_ = c, cell_r_ = r;
+        // the last two cells kept: a step's midpoint and end often lie on either side of an edge
+        if (cells_[0].c != c || cells_[0].r != r) {
+            std::swap(cells_[0], cells_[1]);
+            if (cells_[0].c != c || cells_[0].r != r) cells_[0].ok = load_cell(c, r, cells_[0]);
         }
-        if (!cell_ok_) return false;
+        const Cell& cell = cells_[0];
+        if (!cell.ok) return false;
+        const glm::dvec3* pos = cell.n;
+        const glm::dvec2* grad = cell.gr;
         const double a = uv.x - fc, b = uv.y - fr;
         const double w00 = (1 - a) * (1 - b), w10 = a * (1 - b), w01 = (1 - a) * b, w11 = a * b;
-        out.p = w00 * n_[0] + w10 * n_[1] + w01 * n_[2] + w11 * n_[3];
-        out.grad = w00 * gr_[0] + w10 * gr_[1] + w01 * gr_[2] + w11 * gr_[3];
-        const glm::dvec3 du = (1 - b) * (n_[1] - n_[0]) + b * (n_[3] - n_[2]);
-        const glm::dvec3 dv = (1 - a) * (n_[2] - n_[0]) + a * (n_[3] - n_[1]);
+        out.p = w00 * pos[0] + w10 * pos[1] + w01 * pos[2] + w11 * pos[3];
+        out.grad = w00 * grad[0] + w10 * grad[1] + w01 * grad[2] + w11 * grad[3];
+        const glm::dvec3 du = (1 - b) * (pos[1] - pos[0]) + b * (pos[3] - pos[2]);
+        const glm::dvec3 dv = (1 - a) * (pos[2] - pos[0]) + a * (pos[3] - pos[1]);
         out.du = glm::dvec2(du), out.dv = glm::dvec2(dv);
         return true;
     }
@@ -163,12 +167,20 @@ private:
         if (std::abs(det) < 1e-12) return glm::dvec2(0.0);
         return glm::dvec2((pc.z * pr.y - pc.y * pr.z) / det, (pc.x * pr.z - pc.z * pr.x) / det);
     }
-    bool load_cell(int c, int r) {
+    // A cell's four nodes (c, r), (c + 1, r), (c, r + 1), (c + 1, r + 1) and their gradients.
+    struct Cell {
+        int c = -1, r = -1;
+        bool ok = false;
+        glm::dvec3 n[4];
+        glm::dvec2 gr[4];
+    };
+    bool load_cell(int c, int r, Cell& out) {
+        out.c = c, out.r = r;
         const int cs[4] = {c, c + 1, c, c + 1}, rs[4] = {r, r, r + 1, r + 1};
         for (int k = 0; k < 4; ++k) {
             if (!valid(cs[k], rs[k])) return false;
-            n_[k] = node(cs[k], rs[k]);
-            gr_[k] = cached_gradient(cs[k], rs[k]);
+            out.n[k] = node(cs[k], rs[k]);
+            out.gr[k] = cached_gradient(cs[k], rs[k]);
         }
         return true;
     }
@@ -185,10 +197,7 @@ private:
 
     const HachureGrid& g_;
     int k_ = 1;
-    int cell_c_ = -1, cell_r_ = -1;
-    bool cell_ok_ = false;
-    glm::dvec3 n_[4];
-    glm::dvec2 gr_[4];
+    Cell cells_[2];  // the cell eval() used last, and the one before
     static constexpr int kCacheSide = 128;  // 16 Ki nodes, 384 KiB
     struct CachedGradient {
         std::int64_t key = -1;  // node index r cols + c; -1: empty
