@@ -89,7 +89,9 @@ Terrain plane(double kx, double ky) {
 
 }  // namespace
 
-// On a cone z = 300 (1 - r / 500) every hachure runs along the fall line: radially in the plan.
+// On a cone z = 300 (1 - r / 500) every hachure runs along the fall line: radially in the plan
+// (201 x 201 nodes: more than the slope field's cache of 128 x 128 node gradients, whose every
+// slot serves several nodes).
 TEST(Hachures, FollowTheFallLineOfACone) {
     const Terrain cone = terrain_from_function(201, 201, 5.0, [](double x, double y) {
         return 300.0 * std::max(0.0, 1.0 - std::hypot(x, y) / 500.0);
