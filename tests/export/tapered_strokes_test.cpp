@@ -148,6 +148,31 @@ TEST(TaperedStrokes, SvgOutlineThinAtTheEndsWithItsPowerStroke) {
     }
 }
 
+// The outline's coordinates are rounded as finely as the page needs (within 0.02 mm): one
+// decimal at 96 dpi (0.26 mm per pixel), three when the 120 px drawing fills an A0 page
+// (9.9 mm per pixel); the same polygon either way, within the coarser rounding's 0.05 px.
+TEST(TaperedStrokes, SvgOutlineRoundedToThePage) {
+    const StyledDrawing styled = style_drawing(one_crease(), tapered_style());
+    PageOptions a0;
+    a0.page = "A0";
+    std::vector<std::vector<glm::vec2>> outlines;
+    std::vector<std::size_t> longest_fraction;
+    for (const PageOptions& page : {PageOptions{}, a0}) {
+        const std::string svg = export_document(styled, page, "x.svg");
+        std::smatch m;
+        ASSERT_TRUE(std::regex_search(svg, m, std::regex("<path d=\"([^\"]+)\" inkscape:path-effect")));
+        const std::string d = m[1].str();
+        std::size_t longest = 0;
+        for (std::size_t i = 0; i < d.size(); ++i)
+            if (d[i] == '.') longest = std::max(longest, d.find_first_not_of("0123456789", i + 1) - i - 1);
+        longest_fraction.push_back(longest);
+        outlines.push_back(numbers_as_points(d));
+    }
+    EXPECT_EQ(longest_fraction, (std::vector<std::size_t>{1, 3}));
+    ASSERT_EQ(outlines[0].size(), outlines[1].size());
+    for (std::size_t i = 0; i < outlines[0].size(); ++i) EXPECT_LE(glm::length(outlines[0][i] - outlines[1][i]), 0.0501f * std::sqrt(2.0f)) << i;
+}
+
 // A long wavy tapered stroke: the SVG's centre line keeps no more vertices than the stroke's own
 // (the taper's inserted points left out, Douglas-Peucker at 0.05 px) and stays within 0.05 px
 // of every point of the styled path.
