@@ -55,6 +55,7 @@ void dp_range(const std::vector<glm::vec2>& pts, std::size_t first, std::size_t 
 
 std::vector<std::size_t> kept(const std::vector<char>& keep) {
     std::vector<std::size_t> out;
+    out.reserve(std::size_t(std::count(keep.begin(), keep.end(), char(1))));
     for (std::size_t i = 0; i < keep.size(); ++i)
         if (keep[i]) out.push_back(i);
     return out;
@@ -97,7 +98,7 @@ std::vector<std::size_t> douglas_peucker_ring_indices(const std::vector<glm::vec
     dp_range(closed, 0, far, tol, keep);
     dp_range(closed, far, n, tol, keep);
     keep.pop_back();
-    if (kept(keep).size() < 3) {  // collapsed to a segment: keep the point farthest from it
+    if (std::count(keep.begin(), keep.end(), char(1)) < 3) {  // collapsed to a segment: keep the point farthest from it
         std::size_t at = 0;
         float worst = -1.0f;
         for (std::size_t i = 1; i < n; ++i) {
