@@ -140,8 +140,8 @@ WidthStats width_stats(const StyledLayer& layer) {
             const auto width_at = [&](std::size_t i) { return p.widths.empty() ? p.width : p.widths[i]; };
             for (std::size_t i = 1; i < p.points.size(); ++i) {
                 const double len = glm::length(p.points[i] - p.points[i - 1]);
-                const double w = 0.5 * (width_at(i - 1) + width_at(i));
-                s.length_px += len, sum += len * w, sum2 += len * w * w;
+                const double a = width_at(i - 1), b = width_at(i);
+                s.length_px += len, sum += len * 0.5 * (a + b), sum2 += len * (a * a + a * b + b * b) / 3.0;
             }
             const std::size_t n = p.points.size();
             if (n < 2 || (n > 2 && p.points.front() == p.points.back())) continue;

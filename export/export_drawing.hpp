@@ -45,8 +45,11 @@ struct PlotStats {
 // Stats in drawing order (layers bottom to top, groups, paths); surface fill rings excluded.
 PlotStats plot_stats(const StyledDrawing& drawing);
 
-// The weight of a layer's lines (styles/README.md, "Weight"): every segment of every path with
-// the mean width of its ends (a path's width where it has one), weighted by its length.
+// The weight of a layer's lines (styles/README.md, "Weight"): the widths along every segment of
+// every path, linear between its ends as the writers draw them (a path's width where it has
+// one), weighted by length: a segment of length l from width a to b adds l (a + b) / 2 to the
+// integral of the width and l (a^2 + ab + b^2) / 3 to that of its square, whatever the points
+// between (a path's collinear points change nothing).
 struct WidthStats {
     std::size_t paths = 0;
     double length_px = 0.0;

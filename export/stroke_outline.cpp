@@ -6,6 +6,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/polyline_simplify.hpp"
+
 namespace penink {
 
 namespace {
@@ -18,39 +20,7 @@ glm::vec2 rotated(glm::vec2 v, double a) {
 }
 
 constexpr double tolerance_px = 0.05;  // the polygon's largest distance from the true round outline
-constexpr double thin_px = 0.02;       // a point of the polygon left out within this of its chord
-
-// Distance of q from the segment ab.
-double segment_distance(glm::vec2 q, glm::vec2 a, glm::vec2 b) {
-    const glm::vec2 ab = b - a;
-    const float l2 = glm::dot(ab, ab);
-    const float t = l2 > 0.0f ? std::clamp(glm::dot(q - a, ab) / l2, 0.0f, 1.0f) : 0.0f;
-    return double(glm::length(q - (a + ab * t)));
-}
-
-// The ring without the points that lie within thin_px of the chord from the last point kept to
-// a later one (every point between within it), greedily from the first point (always kept).
-std::vector<glm::vec2> thinned(const std::vector<glm::vec2>& ring) {
-    const std::size_t n = ring.size();
-    if (n < 4) return ring;
-    std::vector<glm::vec2> out{ring[0]};
-    std::size_t a = 0;
-    while (a + 1 < n) {
-        // the farthest b (up to n: the first point again) whose chord from a holds a + 1 .. b - 1
-        std::size_t b = a + 1;
-        while (b + 1 <= n) {
-            const glm::vec2 end = ring[(b + 1) % n];
-            bool holds = true;
-            for (std::size_t k = a + 1; k <= b && holds; ++k) holds = segment_distance(ring[k], ring[a], end) <= thin_px;
-            if (!holds) break;
-            ++b;
-        }
-        if (b >= n) break;
-        out.push_back(ring[b]);
-        a = b;
-    }
-    return out;
-}
+constexpr float thin_px = 0.05f;       // Douglas-Peucker tolerance of the polygon's points
 
 // Points of the arc of radius r about c from direction `from` through `sweep` radians, the
 // first point left out, the last included; chords within tolerance_px of the arc (at most 90
@@ -127,7 +97,10 @@ std::vector<glm::vec2> stroke_outline(const std::vector<glm::vec2>& points, cons
     out.push_back(p[0] - perp(d[0]) * float(r[0]));
     arc(out, p[0], r[0], -perp(d[0]), -M_PI);
     out.pop_back();  // the first point again
-    return thinned(out);
+    std::vector<glm::vec2> kept;
+    kept.reserve(out.size());
+    for (std::size_t i : douglas_peucker_ring_indices(out, thin_px)) kept.push_back(out[i]);
+    return kept;
 }
 
 }  // namespace penink

@@ -4,9 +4,9 @@
 // cap (zero-width ends close to a point). Joins are round on the outer side and mitred (at most
 // twice the half-width) on the inner side; where a mitre stays within 0.05 px of the round join
 // (and under 10 degrees of turn always) both sides are mitred. Arcs are chords within 0.05 px.
-// Then points within 0.02 px of the chord between their neighbours kept are left out (greedily
-// along the polygon): the outline stays within 0.07 px of the round one with about half the
-// points on gently curving strokes.
+// Then the polygon is simplified, Douglas-Peucker at 0.05 px (core/polyline_simplify.hpp): it
+// stays within 0.1 px of the round outline, the points along straight or gently curving sides
+// (one per centre-line point) left out.
 // Fill with the nonzero rule: a stroke crossing itself stays solid.
 #pragma once
 #include <vector>

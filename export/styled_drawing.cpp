@@ -78,60 +78,75 @@ std::vector<StyledPath> split_bands(const Stroke& s, const LayerStyle& ls, const
     return out;
 }
 
-// Points of `s` with more inserted where the taper changes the width (no gap over taper / 4 px
-// within `taper` of either end), and their arc lengths; depth and weight interpolated.
-struct DenseStroke {
-    std::vector<glm::vec2> points;
-    std::vector<double> depth, weight, arc;
-};
-
-DenseStroke densified(const Stroke& s, double taper) {
-    DenseStroke d;
-    const size_t n = s.points.size();
+// A stroke's length, px.
+double stroke_length(const Stroke& s) {
     double total = 0.0;
-    for (size_t i = 1; i < n; ++i) total += glm::length(s.points[i] - s.points[i - 1]);
-    const auto depth_at = [&](size_t i) { return i < s.depth.size() ? double(s.depth[i]) : 0.0; };
-    const auto push = [&](glm::vec2 p, double depth, double weight, double arc) {
-        d.points.push_back(p), d.depth.push_back(depth), d.weight.push_back(weight), d.arc.push_back(arc);
-    };
-    const double zone = std::min(taper, 0.5 * total), step = taper / 4.0;
-    double arc = 0.0;
-    push(s.points[0], depth_at(0), weight_at(s, 0), 0.0);
-    for (size_t i = 1; i < n; ++i) {
-        const double len = glm::length(s.points[i] - s.points[i - 1]);
-        const bool in_zone = arc < zone || arc + len > total - zone;
-        const int k = in_zone && step > 0.0 ? std::max(1, int(std::ceil(len / step))) : 1;
-        for (int j = 1; j < k; ++j) {
-            const double f = double(j) / k;
-            push(s.points[i - 1] + (s.points[i] - s.points[i - 1]) * float(f), depth_at(i - 1) + (depth_at(i) - depth_at(i - 1)) * f,
-                 weight_at(s, i - 1) + (weight_at(s, i) - weight_at(s, i - 1)) * f, arc + len * f);
-        }
-        arc += len;
-        push(s.points[i], depth_at(i), weight_at(s, i), arc);
-    }
-    return d;
+    for (size_t i = 1; i < s.points.size(); ++i) total += glm::length(s.points[i] - s.points[i - 1]);
+    return total;
 }
 
-// One path per stroke, a width per point: distance (continuous), weight and taper.
+// The arc lengths (ascending, strictly inside (0, total)) where a stroke of `total` px is cut for
+// its taper: every taper / 4 px from either end up to where the taper stops (`taper` px in, or
+// the middle of a shorter stroke) and there. None without a taper.
+std::vector<double> taper_cuts(double total, double taper) {
+    std::vector<double> cuts;
+    if (!(taper > 0.0)) return cuts;
+    const double zone = std::min(taper, 0.5 * total), step = taper / 4.0;
+    for (int j = 1; j * step < zone; ++j) cuts.push_back(j * step), cuts.push_back(total - j * step);
+    cuts.push_back(zone), cuts.push_back(total - zone);
+    std::sort(cuts.begin(), cuts.end());
+    std::vector<double> out;
+    for (double c : cuts)
+        if (c > 0.0 && c < total && (out.empty() || c - out.back() > 1e-6)) out.push_back(c);
+    return out;
+}
+
+// Calls emit(point, depth, weight, arc length) for the points of `s` in order, with a point
+// inserted at each of `cuts` (arc lengths, ascending) that is not within 1e-3 px of a vertex;
+// depth and weight interpolated.
+template <class Emit>
+void densify(const Stroke& s, const std::vector<double>& cuts, Emit&& emit) {
+    const size_t n = s.points.size();
+    const auto depth_at = [&](size_t i) { return i < s.depth.size() ? double(s.depth[i]) : 0.0; };
+    constexpr double apart = 1e-3;  // px: a cut this close to a vertex is the vertex
+    size_t c = 0;
+    double arc = 0.0;
+    emit(s.points[0], depth_at(0), double(weight_at(s, 0)), 0.0);
+    for (size_t i = 1; i < n; ++i) {
+        const double len = glm::length(s.points[i] - s.points[i - 1]);
+        for (; c < cuts.size() && cuts[c] < arc + len; ++c) {
+            if (cuts[c] - arc < apart || arc + len - cuts[c] < apart) continue;
+            const double f = (cuts[c] - arc) / len;
+            emit(s.points[i - 1] + (s.points[i] - s.points[i - 1]) * float(f), depth_at(i - 1) + (depth_at(i) - depth_at(i - 1)) * f,
+                 weight_at(s, i - 1) + (weight_at(s, i) - weight_at(s, i - 1)) * f, cuts[c]);
+        }
+        arc += len;
+        emit(s.points[i], depth_at(i), double(weight_at(s, i)), arc);
+    }
+}
+
+// One path per stroke, a width per point: distance (continuous), weight and taper; points
+// inserted where the taper changes the width (taper_cuts).
 StyledPath variable_path(const Stroke& s, const LayerStyle& ls, const DistanceMap& dm, int bands) {
     const bool tapered = ls.taper > 0.0 && !is_closed(s);
-    const DenseStroke d = densified(s, tapered ? ls.taper : 0.0);
+    const double total = stroke_length(s);
+    const std::vector<double> cuts = taper_cuts(total, tapered ? ls.taper : 0.0);
     StyledPath p;
-    p.points = d.points;
     p.color = ls.color;
     p.kind = s.kind;
     p.strength = s.strength;
     p.depth = mean_depth(s, 0, s.points.size() - 1);  // of the stroke's own points, as a band's
     p.opacity = lerp(ls.opacity, ls.opacity_far, level_t(level_of(dm.t(p.depth), bands), bands));
-    const double total = d.arc.back();
-    p.widths.resize(d.points.size());
+    p.points.reserve(s.points.size() + cuts.size());
+    p.widths.reserve(s.points.size() + cuts.size());
     p.width = 0.0;
-    for (size_t i = 0; i < d.points.size(); ++i) {
-        double w = lerp(ls.width, ls.width_far, dm.t(d.depth[i])) * lerp(ls.weight_min, ls.weight_max, d.weight[i]);
-        if (tapered) w *= taper_factor(d.arc[i], total, ls.taper, ls.taper_min);
-        p.widths[i] = w;
+    densify(s, cuts, [&](glm::vec2 q, double depth, double weight, double arc) {
+        double w = lerp(ls.width, ls.width_far, dm.t(depth)) * lerp(ls.weight_min, ls.weight_max, weight);
+        if (tapered) w *= taper_factor(arc, total, ls.taper, ls.taper_min);
+        p.points.push_back(q);
+        p.widths.push_back(w);
         p.width = std::max(p.width, w);
-    }
+    });
     return p;
 }
 

@@ -5,6 +5,9 @@
 #include <cmath>
 #include <unordered_map>
 
+#include <glm/geometric.hpp>
+
+#include "core/polyline_simplify.hpp"
 #include "export/stroke_outline.hpp"
 
 namespace penink {
@@ -36,10 +39,10 @@ std::string dash_text(const std::vector<double>& dash) {
     return s;
 }
 
-void append_point(std::string& o, glm::vec2 p) {
-    append_number(o, p.x);
+void append_point(std::string& o, glm::vec2 p, int decimals = 2) {
+    append_number(o, p.x, decimals);
     o += ' ';
-    append_number(o, p.y);
+    append_number(o, p.y, decimals);
 }
 
 void header(std::string& o, const StyledDrawing& d, const PageLayout& L, const PageOptions& page) {
@@ -109,42 +112,75 @@ void surface_fill(std::string& o, const StyledLayer& l) {
     o += "\"/>\n";
 }
 
-void append_points_d(std::string& o, const std::vector<glm::vec2>& pts) {
+void append_points_d(std::string& o, const std::vector<glm::vec2>& pts, int decimals = 2) {
     o += 'M';
-    append_point(o, pts[0]);
+    append_point(o, pts[0], decimals);
     o += " L";
-    if (pts.size() == 1) append_point(o, pts[0]);
+    if (pts.size() == 1) append_point(o, pts[0], decimals);
     for (size_t i = 1; i < pts.size(); ++i) {
         if (i > 1) o += ' ';
-        append_point(o, pts[i]);
+        append_point(o, pts[i], decimals);
     }
 }
 
-// Inkscape's power-stroke offset points ("t,half-width | ..."; t the centre line's segment time):
-// the ends, every (n - 1) / 8-th point between and where the widths kink (their second difference
-// over a fifth of the widest).
-std::string offset_points(const StyledPath& p) {
+// Decimals of a filled outline's coordinates (image pixels): the fewest (1 to 3) whose rounding,
+// half the last place, stays within outline_rounding_mm on the page (under a 1200 dpi printer's
+// dot, 0.021 mm): 1 at 96 dpi (0.05 px = 0.013 mm).
+constexpr double outline_rounding_mm = 0.02;
+int outline_decimals(const PageLayout& L) {
+    int d = 1;
+    while (d < 3 && 0.5 * std::pow(10.0, -d) * L.scale_mm > outline_rounding_mm) ++d;
+    return d;
+}
+
+// What a variable-width path writes besides its outline: its centre line simplified (the
+// points the taper inserted, and those within centre_tolerance_px of the chord, left out), the
+// width at each of those vertices, and Inkscape's power-stroke offset points ("t,half-width |
+// ..."; t the simplified centre line's path time, the segment index plus the fraction of its
+// length, written to within 0.05 px along it, and 0.01 from either end) at the knots of the
+// width profile: the points a Douglas-Peucker of half-width against arc length keeps within
+// knot_tolerance_px (linear between knots; Inkscape draws a smooth curve through them).
+constexpr float centre_tolerance_px = 0.05f;
+constexpr float knot_tolerance_px = 0.05f;
+
+struct PowerStroke {
+    std::vector<std::size_t> centre;  // indices of the centre line's vertices in the path's points
+    std::string offsets;
+};
+
+PowerStroke power_stroke(const StyledPath& p) {
+    PowerStroke out;
     const size_t n = p.points.size();
-    std::vector<size_t> knots{0};
-    const size_t stride = std::max<size_t>(1, (n - 1) / 8);
-    for (size_t i = 1; i + 1 < n; ++i) {
-        const bool bend = std::abs(p.widths[i + 1] - p.widths[i] - (p.widths[i] - p.widths[i - 1])) > 0.2 * p.width;
-        if (bend || i % stride == 0) knots.push_back(i);
+    out.centre = douglas_peucker_indices(p.points, centre_tolerance_px);
+    std::vector<double> arc(n, 0.0);
+    for (size_t i = 1; i < n; ++i) arc[i] = arc[i - 1] + double(glm::length(p.points[i] - p.points[i - 1]));
+    std::vector<glm::vec2> profile(n);  // (arc, 0): the knots' error is the half-width's alone
+    std::vector<float> half(n);
+    for (size_t i = 0; i < n; ++i) profile[i] = glm::vec2(float(arc[i]), 0.0f), half[i] = float(0.5 * p.widths[i]);
+    const double last = double(out.centre.size() - 1);
+    // t's decimals: the fewest (2 to 5) that place a knot within 0.05 px along the longest segment
+    double longest = 0.0;
+    for (size_t j = 0; j + 1 < out.centre.size(); ++j) longest = std::max(longest, arc[out.centre[j + 1]] - arc[out.centre[j]]);
+    int t_decimals = 2;
+    while (t_decimals < 5 && 0.5 * std::pow(10.0, -t_decimals) * longest > 0.05) ++t_decimals;
+    size_t seg = 0;
+    for (size_t k : douglas_peucker_indices(profile, knot_tolerance_px, half, knot_tolerance_px)) {
+        while (seg + 1 < out.centre.size() - 1 && out.centre[seg + 1] <= k) ++seg;
+        const size_t a = out.centre[seg], b = out.centre[std::min(seg + 1, out.centre.size() - 1)];
+        const double t = b > a && arc[b] > arc[a] ? double(seg) + (arc[k] - arc[a]) / (arc[b] - arc[a]) : double(seg);
+        if (!out.offsets.empty()) out.offsets += " | ";
+        append_number(out.offsets, std::clamp(t, 0.01, std::max(0.01, last - 0.01)), t_decimals);
+        out.offsets += ',';
+        append_number(out.offsets, 0.5 * p.widths[k], 2);
     }
-    knots.push_back(n - 1);
-    std::string s;
-    for (size_t k : knots) {
-        if (!s.empty()) s += " | ";
-        append_number(s, std::clamp(double(k), 0.01, double(n - 1) - 0.01), 2);
-        s += ',';
-        append_number(s, 0.5 * p.widths[k], 2);
-    }
-    return s;
+    return out;
 }
 
 // The power-stroke effects of a document: one <inkscape:path-effect> per distinct set of offset
 // points, shared by every path that has it (Inkscape forks a shared effect when one of its paths
-// is edited), numbered in order of first use.
+// is edited), numbered in order of first use. The parameters every Inkscape version defaults
+// alike (is_visible true, sort_points true, not_jump false, interpolator_beta 0.2, scale_width 1,
+// miter_limit 4) are not written; those whose defaults changed between versions are.
 struct PathEffects {
     std::string defs;
     std::unordered_map<std::string, std::size_t> ids;
@@ -153,43 +189,45 @@ struct PathEffects {
         const auto [it, added] = ids.emplace(offsets, ids.size());
         const std::string id = "powerstroke-" + std::to_string(it->second);
         if (added)
-            defs += "<inkscape:path-effect effect=\"powerstroke\" id=\"" + id +
-                    "\" is_visible=\"true\" lpeversion=\"1\" offset_points=\"" + offsets +
-                    "\" not_jump=\"false\" sort_points=\"true\" interpolator_type=\"CentripetalCatmullRom\" "
-                    "interpolator_beta=\"0.2\" scale_width=\"1\" start_linecap_type=\"round\" end_linecap_type=\"round\" "
-                    "linejoin_type=\"round\" miter_limit=\"4\"/>\n";
+            defs += "<inkscape:path-effect effect=\"powerstroke\" id=\"" + id + "\" lpeversion=\"1\" offset_points=\"" + offsets +
+                    "\" interpolator_type=\"CentripetalCatmullRom\" start_linecap_type=\"round\" end_linecap_type=\"round\" "
+                    "linejoin_type=\"round\"/>\n";
         return id;
     }
 };
 
 // A variable-width path: the filled outline (d, what every viewer draws), its centre line
 // (inkscape:original-d) and widths, and Inkscape's power-stroke effect that keeps it a stroke.
-void outline_path(std::string& o, PathEffects& effects, const StyledPath& p) {
-    const std::string effect_id = effects.id_for(offset_points(p));
+void outline_path(std::string& o, PathEffects& effects, const StyledPath& p, const LayerStyle& ls, int decimals) {
+    const PowerStroke ps = power_stroke(p);
+    const std::string effect_id = effects.id_for(ps.offsets);
     o += "<path d=\"";
     const std::vector<glm::vec2> outline = stroke_outline(p.points, p.widths);
-    append_points_d(o, outline);
+    append_points_d(o, outline, decimals);
     o += "Z\"";
-    attr(o, "fill", rgb_hex(p.color));
-    attr(o, "stroke", "none");
+    if (!(p.color == ls.color)) attr(o, "fill", rgb_hex(p.color));
     if (p.opacity < 1.0) attr_num(o, "opacity", p.opacity, 3);
     attr(o, "inkscape:path-effect", "#" + effect_id);
+    std::vector<glm::vec2> centre;
+    centre.reserve(ps.centre.size());
+    for (size_t i : ps.centre) centre.push_back(p.points[i]);
     o += " inkscape:original-d=\"";
-    append_points_d(o, p.points);
+    append_points_d(o, centre);
     o += '"';
     attr(o, "data-kind", xml_escape(p.kind));
     attr_num(o, "data-depth", p.depth, 2);
     attr_num(o, "data-strength", p.strength, 3);
-    std::string widths;
-    for (size_t i = 0; i < p.widths.size(); ++i) {
-        if (i) widths += ' ';
-        append_number(widths, p.widths[i], 2);
+    o += " data-widths=\"";
+    for (size_t k = 0; k < ps.centre.size(); ++k) {
+        if (k) o += ' ';
+        append_number(o, p.widths[ps.centre[k]], 2);
     }
-    attr(o, "data-widths", widths);
-    o += "/>\n";
+    o += "\"/>\n";
 }
 
-void stroke_path(std::string& o, const StyledPath& p, const LayerStyle& ls) {
+// A single-width path; in a layer of variable-width paths (filled, `filled`) its stroke and no
+// fill written on it.
+void stroke_path(std::string& o, const StyledPath& p, const LayerStyle& ls, bool filled) {
     o += "<path d=\"M";
     append_point(o, p.points[0]);
     o += " L";
@@ -199,7 +237,8 @@ void stroke_path(std::string& o, const StyledPath& p, const LayerStyle& ls) {
         append_point(o, p.points[i]);
     }
     o += '"';
-    if (!(p.color == ls.color)) attr(o, "stroke", rgb_hex(p.color));
+    if (filled) attr(o, "fill", "none");
+    if (filled || !(p.color == ls.color)) attr(o, "stroke", rgb_hex(p.color));
     if (format_number(p.width, 3) != format_number(ls.width, 3)) attr_num(o, "stroke-width", p.width, 3);
     if (p.opacity < 1.0) attr_num(o, "opacity", p.opacity, 3);
     if (p.dash != ls.dash) attr(o, "stroke-dasharray", p.dash.empty() ? "none" : dash_text(p.dash));
@@ -229,10 +268,13 @@ void text_label(std::string& o, const StyledLabel& t) {
     o += "</text>\n";
 }
 
-void layer(std::string& o, const StyledLayer& l, bool split, PathEffects& effects) {
+// A layer's <g>: the common attributes of its paths, the pen's stroke; a layer of variable-width
+// paths (their outlines filled) fills in the pen's colour instead and strokes none.
+void layer(std::string& o, const StyledLayer& l, bool split, PathEffects& effects, int outline_decimals) {
+    const bool filled = variable_width(l.style);
     layer_open(o, l.name);
-    attr(o, "fill", "none");
-    attr(o, "stroke", rgb_hex(l.style.color));
+    attr(o, "fill", filled ? rgb_hex(l.style.color) : "none");
+    attr(o, "stroke", filled ? "none" : rgb_hex(l.style.color));
     attr_num(o, "stroke-width", l.style.width, 3);
     attr(o, "stroke-linecap", "round");
     attr(o, "stroke-linejoin", "round");
@@ -245,8 +287,8 @@ void layer(std::string& o, const StyledLayer& l, bool split, PathEffects& effect
             o += ">\n";
         }
         for (const StyledPath& p : g.paths) {
-            if (p.widths.empty()) stroke_path(o, p, l.style);
-            else outline_path(o, effects, p);
+            if (p.widths.empty()) stroke_path(o, p, l.style, filled);
+            else outline_path(o, effects, p, l.style, outline_decimals);
         }
         if (split) o += "</g>\n";
     }
@@ -310,7 +352,7 @@ std::string svg_document(const StyledDrawing& d, const PageOptions& page, const 
     std::string layers;  // the power-stroke effects go in <defs>, before the layers
     layers.reserve(path_count(d) * 64);
     for (const StyledLayer& l : d.layers)
-        if (layer_written(d, l)) layer(layers, l, d.split == LayerSplit::kind_distance, effects);
+        if (layer_written(d, l)) layer(layers, l, d.split == LayerSplit::kind_distance, effects, outline_decimals(L));
     if (!effects.defs.empty()) o += "<defs id=\"defs\">\n" + effects.defs + "</defs>\n";
     o += layers;
     o += "</svg>\n";

@@ -1,7 +1,9 @@
 // SVG 1.1 writer with Inkscape layers: viewBox in image pixels, width/height in millimetres
 // (page or image size at dpi), one <g inkscape:groupmode="layer"> per layer in conventions.md
 // order (sublayers near/middle/far with --layers kind+distance), surface mask as an even-odd
-// white path, strokes as round-capped paths carrying data-kind/data-depth/data-strength.
+// white path, strokes as round-capped paths carrying data-kind/data-depth/data-strength;
+// variable-width strokes as their filled outlines with Inkscape's power stroke (the centre line,
+// its widths and offset points: styles/README.md, "How the formats show a style").
 #pragma once
 #include <string>
 

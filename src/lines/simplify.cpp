@@ -8,97 +8,6 @@
 
 namespace penink {
 
-float point_segment_distance(glm::vec2 p, glm::vec2 a, glm::vec2 b) {
-    glm::vec2 ab = b - a;
-    float len2 = glm::dot(ab, ab);
-    if (len2 <= 0.0f) return glm::length(p - a);
-    float t = std::clamp(glm::dot(p - a, ab) / len2, 0.0f, 1.0f);
-    return glm::length(p - (a + t * ab));
-}
-
-
-namespace {
-
-// A stroke's weights and the arc length at each point, for dp_range.
-struct WeightProfile {
-    const std::vector<float>* weight = nullptr;
-    std::vector<double> arc;
-};
-
-// Marks the kept points of pts[first..last] (both ends already kept). With weights, a point's
-// error is the larger of its distance and tol x its weight's distance from the chord's (linear in
-// arc length, as the writers draw it) / weight_tol.
-void dp_range(const std::vector<glm::vec2>& pts, std::size_t first, std::size_t last, float tol,
-              std::vector<char>& keep, const WeightProfile* profile = nullptr, float weight_tol = 1.0f) {
-    std::vector<std::pair<std::size_t, std::size_t>> stack{{first, last}};
-    while (!stack.empty()) {
-        auto [a, b] = stack.back();
-        stack.pop_back();
-        float worst = -1.0f;
-        std::size_t at = a;
-        for (std::size_t i = a + 1; i < b; ++i) {
-            float d = point_segment_distance(pts[i], pts[a], pts[b]);
-            if (profile) {
-                const std::vector<float>& w = *profile->weight;
-                const double span = profile->arc[b] - profile->arc[a];
-                const float f = span > 0.0 ? float((profile->arc[i] - profile->arc[a]) / span) : 0.0f;
-                const float chord = w[a] + f * (w[b] - w[a]);
-                d = std::max(d, tol * std::abs(w[i] - chord) / weight_tol);
-            }
-            if (d > worst) worst = d, at = i;
-        }
-        if (at == a || worst <= tol) continue;
-        keep[at] = 1;
-        stack.push_back({at, b});
-        stack.push_back({a, at});
-    }
-}
-
-std::vector<std::size_t> kept(const std::vector<char>& keep) {
-    std::vector<std::size_t> out;
-    for (std::size_t i = 0; i < keep.size(); ++i)
-        if (keep[i]) out.push_back(i);
-    return out;
-}
-
-}  // namespace
-
-std::vector<std::size_t> douglas_peucker_indices(const std::vector<glm::vec2>& pts, float tol) {
-    if (pts.empty()) return {};
-    std::vector<char> keep(pts.size(), 0);
-    keep.front() = keep.back() = 1;
-    dp_range(pts, 0, pts.size() - 1, tol, keep);
-    return kept(keep);
-}
-
-std::vector<std::size_t> douglas_peucker_ring_indices(const std::vector<glm::vec2>& pts, float tol) {
-    std::size_t n = pts.size();
-    if (n < 4) return kept(std::vector<char>(n, 1));
-    std::size_t far = 0;
-    float best = -1.0f;
-    for (std::size_t i = 1; i < n; ++i) {
-        float d = glm::length(pts[i] - pts[0]);
-        if (d > best) best = d, far = i;
-    }
-    std::vector<glm::vec2> closed(pts);
-    closed.push_back(pts[0]);
-    std::vector<char> keep(n + 1, 0);
-    keep[0] = keep[far] = keep[n] = 1;
-    dp_range(closed, 0, far, tol, keep);
-    dp_range(closed, far, n, tol, keep);
-    keep.pop_back();
-    if (kept(keep).size() < 3) {  // collapsed to a segment: keep the point farthest from it
-        std::size_t at = 0;
-        float worst = -1.0f;
-        for (std::size_t i = 1; i < n; ++i) {
-            float d = point_segment_distance(pts[i], pts[0], pts[far]);
-            if (i != far && d > worst) worst = d, at = i;
-        }
-        keep[at] = 1;
-    }
-    return kept(keep);
-}
-
 namespace {
 
 Stroke without_duplicates(const Stroke& s) {
@@ -140,15 +49,8 @@ Stroke simplify_stroke(const Stroke& s, float tol) {
         std::vector<glm::vec2> ring(clean.points.begin(), clean.points.end() - 1);
         return pick(clean, douglas_peucker_ring_indices(ring, tol), true);
     }
-    if (clean.weight.size() == clean.points.size()) {  // the width along the stroke kept too
-        WeightProfile profile{&clean.weight, std::vector<double>(clean.points.size(), 0.0)};
-        for (std::size_t i = 1; i < clean.points.size(); ++i)
-            profile.arc[i] = profile.arc[i - 1] + double(glm::length(clean.points[i] - clean.points[i - 1]));
-        std::vector<char> keep(clean.points.size(), 0);
-        keep.front() = keep.back() = 1;
-        dp_range(clean.points, 0, clean.points.size() - 1, tol, keep, &profile, kWeightTolerance);
-        return pick(clean, kept(keep), false);
-    }
+    if (clean.weight.size() == clean.points.size())  // the width along the stroke kept too
+        return pick(clean, douglas_peucker_indices(clean.points, tol, clean.weight, kWeightTolerance), false);
     return pick(clean, douglas_peucker_indices(clean.points, tol), false);
 }
 

@@ -48,17 +48,17 @@ void equalise_weights(std::vector<Stroke>& strokes) {
     }
 }
 
-std::vector<float> height_weights(const VertexLines& lines) {
+std::vector<float> ridge_heights(const VertexLines& lines) {
     const std::size_t n = lines.positions.size();
     const auto on_surface = [&](std::size_t i) {
         return i < lines.normals.size() && (lines.normals[i].x != 0.0f || lines.normals[i].y != 0.0f || lines.normals[i].z != 0.0f);
     };
-    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    float lo = std::numeric_limits<float>::infinity();
     for (std::size_t i = 0; i < n; ++i)
-        if (on_surface(i)) lo = std::min(lo, lines.positions[i].z), hi = std::max(hi, lines.positions[i].z);
-    std::vector<float> out(n, 0.0f);
+        if (on_surface(i)) lo = std::min(lo, lines.positions[i].z);
+    std::vector<float> out(n, std::isfinite(lo) ? lo : 0.0f);
     for (std::size_t i = 0; i < n; ++i)
-        if (on_surface(i)) out[i] = hi > lo ? std::clamp((lines.positions[i].z - lo) / (hi - lo), 0.0f, 1.0f) : 1.0f;
+        if (on_surface(i)) out[i] = lines.positions[i].z;
     return out;
 }
 

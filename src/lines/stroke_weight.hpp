@@ -2,10 +2,9 @@
 // line in its layer's hierarchy of weight, which the style turns into width (styles/README.md).
 //  - Creases by flow: trunk streams heavier than twigs. The drainage vertices carry normalised
 //    flow f (accumulation / basin total, in [0, 1]); the measure is log10 f.
-//  - Ridges by height (basin divides carry no flow): the relief a ridge stands above, from the
-//    lowest to the highest of a frame's ridge vertices on the surface (z_lo, z_hi; exaggerated or
-//    not, the ratio is the same): weight = (z - z_lo) / (z_hi - z_lo), so the main crests are
-//    heavier than the low spurs, and a ridge thins as it falls from a summit.
+//  - Ridges by height (basin divides carry no flow): the measure is the vertex's height z on the
+//    surface (exaggerated or not, the order is the same), so the main crests are heavier than
+//    the low spurs, and a ridge thins as it falls from a summit.
 //  - Silhouettes by the depth gap behind them (Lobeck's profile lines; Winkenbach & Salesin,
 //    "Computer-generated pen-and-ink illustration": outline accents): at each point, within
 //    `radius` px of it in the toward (TFT) eye-distance image, the nearest surface's distance n and
@@ -32,9 +31,10 @@ namespace penink {
 
 // The raw measure of flow that equalise_weights ranks: log10 f (f <= 1e-12 as 1e-12).
 float log_flow(float flow);
-// Ridge weights by height (see above): one per vertex of `lines`; vertices off the surface (zero
-// normal) weigh 0 and do not count in z_lo, z_hi; all 1 when z_hi = z_lo.
-std::vector<float> height_weights(const VertexLines& lines);
+// The raw measure of height that equalise_weights ranks for ridges: one per vertex of `lines`,
+// its z; a vertex off the surface (zero normal) takes the lowest z of those on it, so it ranks
+// with the lowest ridge vertex (all 0 when none is on the surface).
+std::vector<float> ridge_heights(const VertexLines& lines);
 // Weight of a relative depth gap g >= 0 (+inf: 1).
 float gap_weight(float gap, float gap_half = 0.1f);
 

@@ -71,7 +71,7 @@ void DrainageLines::draw(const Camera& camera, const Scene& scene, GLuint toward
         std::vector<float> weight;  // creases by flow, ridges by height (lines/stroke_weight.hpp)
         if (l.layer == LayerKind::creases)
             for (float f : lines.flow) weight.push_back(log_flow(f));
-        else weight = height_weights(lines);
+        else weight = ridge_heights(lines);
         std::vector<Stroke>& strokes = drawing.layer(l.layer).strokes;
         strokes = thin_by_spacing(
             line_strokes(lines, scores, camera, l.kind, ObjectSketch{l.sketch_px, l.repeat, scene.style.seed}, weight),

@@ -1,12 +1,15 @@
 // Tapered and weighted strokes (styles/README.md, "Weight"): the written SVG and PDF outlines
 // are thin at the ends and full in the middle, the SVG keeps an editable power stroke, weights
 // scale widths, and untapered styles write today's plain strokes.
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <regex>
 #include <sstream>
 
 #include <gtest/gtest.h>
 
+#include "core/polyline_simplify.hpp"
 #include "export/export_drawing.hpp"
 #include "export/rasterise.hpp"
 #include "export/stroke_outline.hpp"
@@ -96,28 +99,104 @@ TEST(TaperedStrokes, SvgOutlineThinAtTheEndsWithItsPowerStroke) {
     const std::string path = (dir.path / "t.svg").string();
     export_drawing(style_drawing(one_crease(), tapered_style()), PageOptions{}, path);
     const std::string svg = read_text(path);
+    // the layer fills in the pen's colour and strokes none; the path inherits both
+    EXPECT_NE(svg.find("id=\"creases\" fill=\"#000000\" stroke=\"none\""), std::string::npos);
     std::smatch m;
-    ASSERT_TRUE(std::regex_search(svg, m, std::regex("<path d=\"([^\"]+)\" fill=\"#000000\" stroke=\"none\" "
+    ASSERT_TRUE(std::regex_search(svg, m, std::regex("<path d=\"([^\"]+)\" "
                                                      "inkscape:path-effect=\"#(powerstroke-0)\" "
                                                      "inkscape:original-d=\"([^\"]+)\"[^>]*data-kind=\"crease\"[^>]*"
                                                      "data-widths=\"([^\"]+)\"/>")));
     expect_tapered(numbers_as_points(m[1].str()));
+    // the centre line: the straight stroke's two ends (its collinear middle point and the points
+    // the taper inserted left out), a width at each
     const std::vector<glm::vec2> centre = numbers_as_points(m[3].str());
-    ASSERT_GE(centre.size(), 3u);  // the centre line, densified in the taper zones
+    ASSERT_EQ(centre.size(), 2u);
     EXPECT_EQ(centre.front(), glm::vec2(10, 50));
     EXPECT_EQ(centre.back(), glm::vec2(110, 50));
     std::istringstream widths(m[4].str());
     std::vector<double> w;
     for (double x; widths >> x;) w.push_back(x);
-    EXPECT_EQ(w.size(), centre.size());  // one width per centre-line point
-    EXPECT_DOUBLE_EQ(w.front(), 0.0);
-    EXPECT_DOUBLE_EQ(*std::max_element(w.begin(), w.end()), 4.0);
+    EXPECT_EQ(w, (std::vector<double>{0.0, 0.0}));
     // the effect in <defs>, before the layers
     const std::size_t defs = svg.find("<defs id=\"defs\">"), effect = svg.find("effect=\"powerstroke\" id=\"powerstroke-0\"");
     ASSERT_NE(defs, std::string::npos);
     EXPECT_GT(effect, defs);
     EXPECT_LT(effect, svg.find("</defs>"));
     EXPECT_LT(svg.find("</defs>"), svg.find("inkscape:groupmode=\"layer\""));
+    // its offset points carry the taper: t along the one segment (t x 100 px), the half-width of
+    // the eased taper there within 0.03 px (t written to 0.0005: 0.05 px, at the ease's steepest
+    // 0.4 px per px, and the half-width's 0.005), 0 at the ends (t 0.01 from them), 2 px from
+    // 10 px in; knots in the taper zones and none between
+    ASSERT_TRUE(std::regex_search(svg, m, std::regex("offset_points=\"([^\"]+)\"")));
+    std::vector<glm::dvec2> offsets;
+    std::istringstream in(m[1].str());
+    for (std::string item; std::getline(in, item, '|');) {
+        glm::dvec2 o;
+        ASSERT_EQ(std::sscanf(item.c_str(), " %lf,%lf", &o.x, &o.y), 2) << item;
+        offsets.push_back(o);
+    }
+    ASSERT_GE(offsets.size(), 6u);
+    EXPECT_LE(offsets.size(), 10u);
+    EXPECT_EQ(offsets.front(), glm::dvec2(0.01, 0.0));
+    EXPECT_EQ(offsets.back(), glm::dvec2(0.99, 0.0));
+    for (const glm::dvec2& o : offsets) {
+        const double at = std::clamp(100.0 * o.x, 0.0, 100.0);
+        EXPECT_TRUE(at <= 10.05 || at >= 89.95) << at;
+        if (o.x > 0.011 && o.x < 0.989) {
+            EXPECT_NEAR(o.y, 2.0 * taper_factor(at, 100.0, 10.0, 0.0), 0.03) << at;
+        }
+    }
+}
+
+// The outline's coordinates are rounded as finely as the page needs (within 0.02 mm): one
+// decimal at 96 dpi (0.26 mm per pixel), three when the 120 px drawing fills an A0 page
+// (9.9 mm per pixel); the same polygon either way, within the coarser rounding's 0.05 px.
+TEST(TaperedStrokes, SvgOutlineRoundedToThePage) {
+    const StyledDrawing styled = style_drawing(one_crease(), tapered_style());
+    PageOptions a0;
+    a0.page = "A0";
+    std::vector<std::vector<glm::vec2>> outlines;
+    std::vector<std::size_t> longest_fraction;
+    for (const PageOptions& page : {PageOptions{}, a0}) {
+        const std::string svg = export_document(styled, page, "x.svg");
+        std::smatch m;
+        ASSERT_TRUE(std::regex_search(svg, m, std::regex("<path d=\"([^\"]+)\" inkscape:path-effect")));
+        const std::string d = m[1].str();
+        std::size_t longest = 0;
+        for (std::size_t i = 0; i < d.size(); ++i)
+            if (d[i] == '.') longest = std::max(longest, d.find_first_not_of("0123456789", i + 1) - i - 1);
+        longest_fraction.push_back(longest);
+        outlines.push_back(numbers_as_points(d));
+    }
+    EXPECT_EQ(longest_fraction, (std::vector<std::size_t>{1, 3}));
+    ASSERT_EQ(outlines[0].size(), outlines[1].size());
+    for (std::size_t i = 0; i < outlines[0].size(); ++i) EXPECT_LE(glm::length(outlines[0][i] - outlines[1][i]), 0.0501f * std::sqrt(2.0f)) << i;
+}
+
+// A long wavy tapered stroke: the SVG's centre line keeps no more vertices than the stroke's own
+// (the taper's inserted points left out, Douglas-Peucker at 0.05 px) and stays within 0.05 px
+// of every point of the styled path.
+TEST(TaperedStrokes, SvgCentreLineKeepsTheStrokesVertices) {
+    Drawing d;
+    d.width = 200, d.height = 100;
+    std::vector<glm::vec2> pts;
+    std::vector<float> depth;
+    for (int i = 0; i <= 60; ++i) pts.push_back({10.0f + 3.0f * float(i), 50.0f + 20.0f * std::sin(0.1f * float(i))}), depth.push_back(100.0f);
+    d.layer(LayerKind::creases).strokes.push_back(make_stroke(pts, depth, 0.5f, "crease"));
+    const StyledDrawing styled = style_drawing(d, tapered_style());
+    const StyledPath& p = styled.layers[static_cast<std::size_t>(LayerKind::creases)].groups[0].paths.at(0);
+    EXPECT_GT(p.points.size(), pts.size());  // the taper's points inserted
+    const std::string svg = export_document(styled, PageOptions{}, "x.svg");
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(svg, m, std::regex("inkscape:original-d=\"([^\"]+)\"")));
+    const std::vector<glm::vec2> centre = numbers_as_points(m[1].str());
+    EXPECT_LE(centre.size(), pts.size());
+    EXPECT_GE(centre.size(), 10u);
+    for (const glm::vec2& q : p.points) {
+        double best = 1e9;
+        for (std::size_t i = 1; i < centre.size(); ++i) best = std::min(best, double(point_segment_distance(q, centre[i - 1], centre[i])));
+        EXPECT_LE(best, 0.05 + 0.006) << q.x << " " << q.y;  // and the written 2 decimals
+    }
 }
 
 TEST(TaperedStrokes, PdfAndPsFillTheSameOutline) {
@@ -137,6 +216,18 @@ TEST(TaperedStrokes, PdfAndPsFillTheSameOutline) {
     EXPECT_NE(read_text(ps_path).find("/f /fill load def"), std::string::npos);
 }
 
+// The styled path of a tapered stroke: points every taper / 4 = 2.5 px from either end up to
+// 10 px in, the stroke's own points, none between (the middle's width is linear already).
+TEST(TaperedStrokes, TaperInsertsPointsOnlyWhereItChangesTheWidth) {
+    const StyledDrawing d = style_drawing(one_crease(), tapered_style());
+    const StyledPath& p = d.layers[static_cast<std::size_t>(LayerKind::creases)].groups[0].paths.at(0);
+    std::vector<float> xs;
+    for (const glm::vec2& q : p.points) xs.push_back(q.x);
+    EXPECT_EQ(xs, (std::vector<float>{10, 12.5f, 15, 17.5f, 20, 60, 100, 102.5f, 105, 107.5f, 110}));
+    ASSERT_EQ(p.widths.size(), p.points.size());
+    for (std::size_t i = 0; i < xs.size(); ++i) EXPECT_NEAR(p.widths[i], 4.0 * taper_factor(xs[i] - 10.0, 100.0, 10.0, 0.0), 1e-6) << xs[i];
+}
+
 TEST(TaperedStrokes, WeightScalesWidthBetweenItsFactors) {
     Style s = tapered_style();
     apply_style_overrides(s, "[creases]\ntaper = 0.0\nweight_min = 0.5\nweight_max = 2.0\n");
@@ -147,8 +238,10 @@ TEST(TaperedStrokes, WeightScalesWidthBetweenItsFactors) {
     EXPECT_DOUBLE_EQ(p.widths[1], 5.0);   // 4 px * 1.25
     EXPECT_DOUBLE_EQ(p.widths[2], 8.0);   // 4 px * 2
     const WidthStats st = width_stats(d.layers[static_cast<std::size_t>(LayerKind::creases)]);
-    EXPECT_NEAR(st.mean_width, 5.0, 1e-9);  // segments of 3.5 and 6.5 px, 50 px each
-    EXPECT_NEAR(st.cv, 1.5 / 5.0, 1e-9);
+    // 50 px from 2 to 5 px and 50 px from 5 to 8 px: mean 5, mean square ((4 + 10 + 25) / 3 +
+    // (25 + 40 + 64) / 3) / 2 = 28, variance 3
+    EXPECT_NEAR(st.mean_width, 5.0, 1e-9);
+    EXPECT_NEAR(st.cv, std::sqrt(3.0) / 5.0, 1e-9);
     EXPECT_DOUBLE_EQ(st.tapered_share, 0.0);  // thicker at one end only
 }
 

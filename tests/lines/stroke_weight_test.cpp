@@ -166,34 +166,37 @@ TEST(StrokeWeightCarried, ThroughJoinSimplifyAndMerge) {
     EXPECT_NEAR(merged[0].weight.back(), merged[0].points.back().x / 20.0f, 1e-4f);
 }
 
-// Ridges by height: from the lowest ridge vertex on the surface (0) to the highest (1); a vertex
-// off the surface (zero normal) weighs 0 and does not count; one height: all 1.
+// Ridges by height: each vertex's z, a vertex off the surface (zero normal) the lowest z on it
+// (900 m off the surface does not count); ranked by equalise_weights, the lowest ridge vertex and
+// the one off the surface weigh the same, the highest 1.
 TEST(HeightWeight, RidgesWeighByTheReliefTheyStandAbove) {
     VertexLines lines;
     const glm::vec3 up(0.0f, 0.0f, 1.0f), off(0.0f);
     lines.positions = {{0, 0, 100}, {1, 0, 200}, {2, 0, 300}, {3, 0, 900}, {0, 5, 250}};
     lines.normals = {up, up, up, off, up};
     lines.runs = {{0, 4}, {4, 1}};
-    const std::vector<float> w = height_weights(lines);
-    ASSERT_EQ(w.size(), 5u);
-    EXPECT_FLOAT_EQ(w[0], 0.0f);
-    EXPECT_FLOAT_EQ(w[1], 0.5f);
-    EXPECT_FLOAT_EQ(w[2], 1.0f);
-    EXPECT_FLOAT_EQ(w[3], 0.0f);   // off the surface: 900 m does not stretch the range
-    EXPECT_FLOAT_EQ(w[4], 0.75f);
-    // the weights spread: a ridge falling evenly from a summit has widths varying by CV >= 0.3
-    // between the styles' weight_min 0.35 and weight_max 1.65 (uniform weights: CV 0.375 / sqrt 3)
+    EXPECT_EQ(ridge_heights(lines), (std::vector<float>{100, 200, 300, 100, 250}));
+    VertexLines none = lines;
+    for (glm::vec3& n : none.normals) n = off;
+    EXPECT_EQ(ridge_heights(none), std::vector<float>(5, 0.0f));
+    // a ridge falling evenly from a summit: its ranked weights spread evenly over [0, 1], widths
+    // between the styles' weight_min 0.35 and weight_max 1.65 varying by CV >= 0.3 (uniform
+    // weights: mean 1.0, standard deviation 1.3 / sqrt 12 = 0.375)
     VertexLines fall;
     for (int k = 0; k <= 100; ++k) fall.positions.emplace_back(float(k), 0.0f, float(1000 - 5 * k)), fall.normals.push_back(up);
     fall.runs = {{0, 101}};
+    Stroke s;
+    for (const glm::vec3& p : fall.positions) s.points.emplace_back(p.x, p.y), s.depth.push_back(10.0f);
+    s.weight = ridge_heights(fall);
+    std::vector<Stroke> strokes{s};
+    equalise_weights(strokes);
+    EXPECT_FLOAT_EQ(strokes[0].weight.front(), 1.0f);  // the summit
+    EXPECT_LT(strokes[0].weight.back(), 0.01f);
     double sum = 0.0, sum2 = 0.0;
-    for (float x : height_weights(fall)) {
+    for (float x : strokes[0].weight) {
         const double width = 0.35 + 1.3 * x;
         sum += width, sum2 += width * width;
     }
     const double mean = sum / 101.0, cv = std::sqrt(sum2 / 101.0 - mean * mean) / mean;
     EXPECT_GT(cv, 0.3);
-    VertexLines flat = fall;
-    for (glm::vec3& p : flat.positions) p.z = 7.0f;
-    for (float x : height_weights(flat)) EXPECT_FLOAT_EQ(x, 1.0f);
 }
