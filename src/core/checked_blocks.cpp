@@ -11,12 +11,16 @@
 #include <unistd.h>
 
 #include "core/hash64.hpp"
+#include "core/parallel_chunks.hpp"
 
 namespace penink {
 
 namespace {
 constexpr std::uint64_t page_bytes = 4096;
 constexpr std::uint64_t max_run_bytes = std::uint64_t(1) << 20;  // one pread at most
+// Blocks of a run checked and decoded by one thread at least: a run of a few blocks (a frame's
+// scattered nodes) stays on the calling thread, a long one (a window's rows) is shared out.
+constexpr std::size_t decode_chunk_blocks = 64;
 std::uint64_t round_up(std::uint64_t n, std::uint64_t a) { return (n + a - 1) / a * a; }
 }  // namespace
 
@@ -116,14 +120,24 @@ void CheckedBlocks::load(int k, std::uint64_t block, std::uint64_t last) const {
         }
         got += std::uint64_t(r);
     }
-    for (std::uint64_t b = block; b < end; ++b, ++good) {
-        const std::uint8_t* c = in + (a.starts[b] - from);
-        const std::size_t size = std::size_t(a.starts[b + 1] - a.starts[b]);
-        if (hash64(c, size) != sums_[a.first + b]) damaged("checksum mismatch", b);
-        const std::uint64_t n = std::min(elems_per_block, a.elems - b * elems_per_block);
-        if (a.decode && !a.decode(c, size, dst + (b - block) * block_bytes, std::size_t(n)))
-            damaged("undecodable data", b);
-    }
+    // each block checked, then decoded: on all cores when the run is long (a window's rows)
+    enum : std::uint8_t { sound, mismatch, undecodable };
+    std::vector<std::uint8_t> state(std::size_t(end - block), sound);
+    parallel_chunks(state.size(), decode_chunk_blocks, [&](std::size_t j0, std::size_t j1) {
+        for (std::size_t j = j0; j < j1; ++j) {
+            const std::uint64_t b = block + j;
+            const std::uint8_t* c = in + (a.starts[b] - from);
+            const std::size_t size = std::size_t(a.starts[b + 1] - a.starts[b]);
+            if (hash64(c, size) != sums_[a.first + b]) {
+                state[j] = mismatch;
+                continue;
+            }
+            const std::uint64_t n = std::min(elems_per_block, a.elems - b * elems_per_block);
+            if (a.decode && !a.decode(c, size, dst + j * block_bytes, std::size_t(n))) state[j] = undecodable;
+        }
+    });
+    for (; good < state.size(); ++good)  // the first damaged block, in order
+        if (state[good] != sound) damaged(state[good] == mismatch ? "checksum mismatch" : "undecodable data", block + good);
     bytes_read_.fetch_add(len, std::memory_order_relaxed);
     blocks_read_.fetch_add(end - block, std::memory_order_relaxed);
     for (std::uint64_t b = block; b < end; ++b) loaded_[a.first + b].store(true, std::memory_order_release);

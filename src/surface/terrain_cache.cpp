@@ -79,11 +79,12 @@ std::uint64_t block_count(std::uint64_t elems, unsigned shift) {
     return (elems + (std::uint64_t(1) << shift) - 1) >> shift;
 }
 
-// How each array is coded (core/block_codec.hpp): positions x, y, z differenced twice along a
-// block (a grid row's x, y are nearly linear in the column; heights of a smooth slope too), valid
-// flags deflated as they are, errors as they are (neighbouring entries belong to different
-// levels of the pyramid, so differences do not shrink them).
-constexpr int pos_order = 2, error_order = 0;
+// How each array is coded (core/block_codec.hpp): positions x, y differenced twice along a block
+// (a grid row's x, y are nearly linear in the column), z once (twice codes jacksboro x10's 7 %
+// larger: the heights' second differences are noisier than their first), valid flags deflated as
+// they are, errors as they are (neighbouring entries belong to different levels of the pyramid,
+// so differences do not shrink them).
+constexpr int pos_orders[3] = {2, 2, 1}, error_orders[1] = {0};
 
 // The coded blocks of one array.
 using CodedBlocks = std::vector<std::vector<std::uint8_t>>;
@@ -105,11 +106,11 @@ CodedTerrain code_terrain(const StoredTerrain& t) {
     const Counts n = array_counts(t.meta.cols, t.meta.rows, t.lod.levels);
     CodedTerrain c;
     c.pos = code_blocks(n.nodes, [&](std::uint64_t i, std::uint64_t k) {
-        return encode_floats(&t.nodes.pos[i].x, std::size_t(k), 3, pos_order);
+        return encode_floats(&t.nodes.pos[i].x, std::size_t(k), pos_orders);
     });
     c.valid = code_blocks(n.nodes, [&](std::uint64_t i, std::uint64_t k) { return encode_bytes(t.nodes.valid + i, std::size_t(k)); });
     c.error = code_blocks(n.padded, [&](std::uint64_t i, std::uint64_t k) {
-        return encode_floats(t.lod.error.data() + i, std::size_t(k), 1, error_order);
+        return encode_floats(t.lod.error.data() + i, std::size_t(k), error_orders);
     });
     return c;
 }
@@ -292,7 +293,7 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     }
     arrays[0].elems = n.nodes, arrays[0].elem_bytes = sizeof(glm::vec3);
     arrays[0].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::size_t count) {
-        return decode_floats(c, bytes, static_cast<float*>(out), count, 3, pos_order);
+        return decode_floats(c, bytes, static_cast<float*>(out), count, pos_orders);
     };
     arrays[1].elems = n.nodes, arrays[1].elem_bytes = 1;
     arrays[1].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::size_t count) {
@@ -300,7 +301,7 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     };
     arrays[2].elems = n.padded, arrays[2].elem_bytes = sizeof(float);
     arrays[2].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::size_t count) {
-        return decode_floats(c, bytes, static_cast<float*>(out), count, 1, error_order);
+        return decode_floats(c, bytes, static_cast<float*>(out), count, error_orders);
     };
     std::vector<std::uint64_t> sums(static_cast<std::size_t>(blocks));
     std::memcpy(sums.data(), b + r.at + align_up(blocks * 4, 8), std::size_t(blocks) * 8);

@@ -20,12 +20,14 @@
 //     last one short; padded to 8); u64 hash64 of each block's coded bytes, in the same order
 //   u64 checksum: hash64 of every header byte before it
 //   then each array's blocks, coded (core/block_codec.hpp), back to back: pos (f32 x, y, z per
-//   node, cols * rows: encode_floats, differenced twice), valid (u8 per node: encode_bytes),
+//   node, cols * rows: encode_floats, x, y differenced twice, z once), valid (u8 per node: encode_bytes),
 //   error (f32 per padded node, (2^levels + 1)^2: encode_floats as they are).
 // The coding is lossless: a frame drawn from the file is the frame drawn from memory, bit for bit.
-// Its size follows the DEM's smoothness: 1.8 bytes a node (0.45 of the DEM's float32 heights) on
-// jacksboro refined 10 times (13.9 M nodes; 1.09 of positions, 0.02 of flags, 0.53 of errors,
-// 0.15 of header), 3.0 on examples/volcano.asc; stored as floats it took 17.8.
+// Its size follows the DEM's smoothness: 1.72 bytes a node (0.43 of the DEM's float32 heights) on
+// jacksboro refined 10 times (13.9 M nodes; 1.02 of positions, 0.02 of flags, 0.53 of errors,
+// 0.15 of header), 2.85 on examples/volcano.asc, 4.19 on examples/jacksboro.tif (1" heights in
+// whole metres, rough at the cell scale: 1.05 of its float32 heights); stored as floats it took
+// 17.8 to 20.7.
 // The header is checksummed and every length and offset is checked against the grid and the
 // file's size when the file is opened: a flipped header byte, a cut or a foreign file is refused
 // with its reason, and the caller rebuilds the cache. The arrays are read on demand

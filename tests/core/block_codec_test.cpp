@@ -50,15 +50,17 @@ TEST(BlockCodec, FloatsComeBackBitForBitAtEveryOrder) {
         for (const int order : {0, 1, 2}) {
             SCOPED_TRACE(testing::Message() << comps << " components, order " << order);
             const std::size_t n = v.size() / std::size_t(comps);
-            const std::vector<std::uint8_t> c = encode_floats(v.data(), n, comps, order);
+            const std::vector<int> orders(std::size_t(comps), order);
+            const std::vector<std::uint8_t> c = encode_floats(v.data(), n, orders);
             std::vector<float> back(v.size(), 1.0f);
-            ASSERT_TRUE(decode_floats(c.data(), c.size(), back.data(), n, comps, order));
+            ASSERT_TRUE(decode_floats(c.data(), c.size(), back.data(), n, orders));
             expect_same_bits(v, back);
         }
     // a short last block, and a block of one
     std::vector<float> back(6);
-    const std::vector<std::uint8_t> c = encode_floats(v.data(), 2, 3, 2);
-    ASSERT_TRUE(decode_floats(c.data(), c.size(), back.data(), 2, 3, 2));
+    const int mixed[3] = {2, 2, 1};
+    const std::vector<std::uint8_t> c = encode_floats(v.data(), 2, mixed);
+    ASSERT_TRUE(decode_floats(c.data(), c.size(), back.data(), 2, mixed));
     expect_same_bits(std::vector<float>(v.begin(), v.begin() + 6), back);
 }
 
@@ -68,7 +70,7 @@ TEST(BlockCodec, FloatsComeBackBitForBitAtEveryOrder) {
 TEST(BlockCodec, ASmoothRowCodesSmall) {
     const std::vector<float> v = grid_row();
     std::size_t size[3];
-    for (int order = 0; order < 3; ++order) size[order] = encode_floats(v.data(), 256, 3, order).size();
+    for (int order = 0; order < 3; ++order) size[order] = encode_floats(v.data(), 256, std::vector<int>(3, order)).size();
     std::printf("256 nodes of a smooth row: %zu, %zu, %zu bytes at orders 0, 1, 2 (%zu as floats)\n", size[0], size[1],
                 size[2], v.size() * 4);
     EXPECT_LT(size[2] * 3, v.size() * 4);
@@ -88,14 +90,15 @@ TEST(BlockCodec, BytesComeBackAndARunOfOnesCodesToAFewBytes) {
 
 TEST(BlockCodec, DamagedShortOrMisfitCodedBytesDoNotDecode) {
     const std::vector<float> v = grid_row();
-    const std::vector<std::uint8_t> c = encode_floats(v.data(), 256, 3, 2);
+    const int orders[3] = {2, 2, 2};
+    const std::vector<std::uint8_t> c = encode_floats(v.data(), 256, orders);
     std::vector<float> back(v.size());
-    EXPECT_FALSE(decode_floats(c.data(), c.size() - 1, back.data(), 256, 3, 2));         // cut short
-    EXPECT_FALSE(decode_floats(c.data(), c.size(), back.data(), 255, 3, 2));             // longer than said
+    EXPECT_FALSE(decode_floats(c.data(), c.size() - 1, back.data(), 256, orders));      // cut short
+    EXPECT_FALSE(decode_floats(c.data(), c.size(), back.data(), 255, orders));          // longer than said
     std::vector<std::uint8_t> extra = c;
     extra.push_back(0);
-    EXPECT_FALSE(decode_floats(extra.data(), extra.size(), back.data(), 256, 3, 2));     // bytes after the stream
+    EXPECT_FALSE(decode_floats(extra.data(), extra.size(), back.data(), 256, orders));  // bytes after the stream
     const std::uint8_t junk[] = {0xff, 0xff, 0xff, 0xff, 0xff, 0xff};
-    EXPECT_FALSE(decode_floats(junk, sizeof junk, back.data(), 256, 3, 2));
+    EXPECT_FALSE(decode_floats(junk, sizeof junk, back.data(), 256, orders));
     EXPECT_FALSE(decode_bytes(junk, sizeof junk, reinterpret_cast<std::uint8_t*>(back.data()), 16));
 }

@@ -23,6 +23,11 @@ namespace {
 
 constexpr std::uint64_t block = 4096;
 
+void write_file(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+}
+
 // A file of two arrays: 10 blocks and a half at offset 4096, 3 blocks at offset 49152; bytes
 // i * 7 + array.
 struct TwoArrays {
@@ -38,10 +43,7 @@ struct TwoArrays {
             for (std::uint64_t at = 0; at < a.bytes; at += block)
                 sums.push_back(hash64(file.data() + a.offset + at, std::size_t(std::min(block, a.bytes - at))));
     }
-    void write(const std::string& path) const {
-        std::ofstream out(path, std::ios::binary | std::ios::trunc);
-        out.write(reinterpret_cast<const char*>(file.data()), std::streamsize(file.size()));
-    }
+    void write(const std::string& path) const { write_file(path, file); }
 };
 
 struct Fd {
@@ -121,6 +123,8 @@ TEST(CheckedBlocks, AFileCutShortIsDamageWhereItIsCut) {
 
 namespace {
 
+constexpr int once[1] = {1};  // floats differenced once (core/block_codec.hpp)
+
 // A file of one coded array: 1000 floats (i * 0.5) in blocks of 64 (the last one of 40), coded
 // (core/block_codec.hpp) back to back from offset 100.
 struct CodedFile {
@@ -131,7 +135,7 @@ struct CodedFile {
     CodedFile() {
         for (int i = 0; i < 1000; ++i) values.push_back(float(i) * 0.5f);
         for (std::size_t i = 0; i < values.size(); i += 64) {
-            const std::vector<std::uint8_t> c = encode_floats(values.data() + i, std::min<std::size_t>(64, 1000 - i), 1, 1);
+            const std::vector<std::uint8_t> c = encode_floats(values.data() + i, std::min<std::size_t>(64, 1000 - i), once);
             sizes.push_back(std::uint32_t(c.size()));
             sums.push_back(hash64(c.data(), c.size()));
             file.insert(file.end(), c.begin(), c.end());
@@ -141,14 +145,11 @@ struct CodedFile {
         CheckedBlocks::CodedArray a;
         a.offset = 100, a.sizes = sizes, a.elems = 1000, a.elem_bytes = 4, a.shift = 6;
         a.decode = [](const std::uint8_t* c, std::size_t size, void* out, std::size_t n) {
-            return decode_floats(c, size, static_cast<float*>(out), n, 1, 1);
+            return decode_floats(c, size, static_cast<float*>(out), n, once);
         };
         return {a};
     }
-    void write(const std::string& path) const {
-        std::ofstream out(path, std::ios::binary | std::ios::trunc);
-        out.write(reinterpret_cast<const char*>(file.data()), std::streamsize(file.size()));
-    }
+    void write(const std::string& path) const { write_file(path, file); }
 };
 
 }  // namespace
@@ -201,7 +202,7 @@ TEST(CheckedBlocks, DamagedOrUndecodableCodedBlocksAreFound) {
     // matches, the bytes do not decode to the block's 64 elements
     CodedFile g;
     const std::size_t at = 100 + g.sizes[0] + g.sizes[1];
-    const std::vector<std::uint8_t> shorter = encode_floats(g.values.data(), 32, 1, 1);
+    const std::vector<std::uint8_t> shorter = encode_floats(g.values.data(), 32, once);
     g.file.erase(g.file.begin() + std::ptrdiff_t(at), g.file.begin() + std::ptrdiff_t(at + g.sizes[2]));
     g.file.insert(g.file.begin() + std::ptrdiff_t(at), shorter.begin(), shorter.end());
     g.sizes[2] = std::uint32_t(shorter.size()), g.sums[2] = hash64(shorter.data(), shorter.size());
