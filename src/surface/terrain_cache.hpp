@@ -23,10 +23,10 @@
 //   node, cols * rows: encode_floats, x, y differenced twice, z once), valid (u8 per node: encode_bytes),
 //   error (f32 per padded node, (2^levels + 1)^2: encode_floats as they are).
 // The coding is lossless: a frame drawn from the file is the frame drawn from memory, bit for bit.
-// Its size follows the DEM's smoothness: 1.72 bytes a node (0.43 of the DEM's float32 heights) on
-// jacksboro refined 10 times (13.9 M nodes; 1.02 of positions, 0.02 of flags, 0.53 of errors,
-// 0.15 of header), 2.85 on examples/volcano.asc, 4.19 on examples/jacksboro.tif (1" heights in
-// whole metres, rough at the cell scale: 1.05 of its float32 heights); stored as floats it took
+// Its size follows the DEM's smoothness: 1.93 bytes a node (0.48 of the DEM's float32 heights) on
+// jacksboro refined 10 times (13.9 M nodes; 1.17 of positions, 0.02 of flags, 0.58 of errors,
+// 0.15 of header), 2.93 on examples/volcano.asc, 4.36 on examples/jacksboro.tif (1" heights in
+// whole metres, rough at the cell scale: 1.09 of its float32 heights); stored as floats it took
 // 17.8 to 20.7.
 // The header is checksummed and every length and offset is checked against the grid and the
 // file's size when the file is opened: a flipped header byte, a cut or a foreign file is refused
