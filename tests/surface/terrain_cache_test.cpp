@@ -355,3 +355,29 @@ TEST(TerrainCache, SmallViewReadsASmallPartAndOnlyItsDamageCounts) {
         EXPECT_EQ(e.stage(), "surface");
     }
 }
+
+// The arrays are coded (core/block_codec.hpp): the file is a fraction of the floats it holds (13
+// bytes a node of positions and flags, 4 a padded node of errors; 0.25 and 0.24 of them here,
+// heights at float precision either way: a bound of 0.3 leaves room for another zlib's choices),
+// and holds exactly the header and the blocks CheckedBlocks reads.
+TEST(TerrainCache, CodedFileIsAFractionOfItsFloats) {
+    test::TempDir dir;
+    for (const bool smooth : {false, true}) {
+        SCOPED_TRACE(smooth ? "gaussian hill" : "rough hills");
+        const Terrain flat = smooth ? terrain_from_function(300, 257, 5.0, gaussian_hill(300.0, 250.0))
+                                    : terrain_from_function(300, 257, 5.0, rough_hills);
+        const StoredTerrain mem = store_terrain(flat);
+        const std::string path = dir.file(smooth ? "smooth.lod" : "rough.lod");
+        write_terrain_cache(path, mem, key());
+        const double floats = 13.0 * double(flat.size()) + 4.0 * double(mem.lod.error.size());
+        const double file = double(std::filesystem::file_size(path));
+        std::printf("%s: %.0f bytes, %.3f of its floats\n", smooth ? "smooth" : "rough", file, file / floats);
+        EXPECT_LT(file, 0.3 * floats);
+        const std::optional<StoredTerrain> map = read_terrain_cache(path, key());
+        ASSERT_TRUE(map);
+        std::uint32_t header = 0;
+        const std::vector<char> bytes = file_bytes(path);
+        std::memcpy(&header, bytes.data() + 12, 4);
+        EXPECT_EQ(double(map->nodes.blocks->bytes() + header), file);
+    }
+}
