@@ -133,7 +133,8 @@ void CheckedBlocks::load(int k, std::uint64_t block, std::uint64_t last) const {
                 continue;
             }
             const std::uint64_t n = std::min(elems_per_block, a.elems - b * elems_per_block);
-            if (a.decode && !a.decode(c, size, dst + j * block_bytes, std::size_t(n))) state[j] = undecodable;
+            if (a.decode && !a.decode(c, size, dst + j * block_bytes, b * elems_per_block, std::size_t(n)))
+                state[j] = undecodable;
         }
     });
     for (; good < state.size(); ++good)  // the first damaged block, in order

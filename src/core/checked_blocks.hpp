@@ -44,9 +44,10 @@ public:
     };
     // An array stored coded (core/block_codec.hpp): block after block from `offset`, each of
     // sizes[b] bytes in the file, decoding to 2^shift elements of elem_bytes bytes (the last block
-    // short: elems in all). decode(coded, size, out, n) writes the n elements of a block to out;
-    // false when the coded bytes do not decode.
-    using Decoder = std::function<bool(const std::uint8_t* coded, std::size_t size, void* out, std::size_t n)>;
+    // short: elems in all). decode(coded, size, out, first, n) writes the n elements of a block,
+    // from element `first` of the array on, to out; false when the coded bytes do not decode.
+    using Decoder = std::function<bool(const std::uint8_t* coded, std::size_t size, void* out, std::uint64_t first,
+                                       std::size_t n)>;
     struct CodedArray {
         std::uint64_t offset = 0;
         std::vector<std::uint32_t> sizes;

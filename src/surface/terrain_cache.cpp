@@ -1,6 +1,7 @@
 #include "surface/terrain_cache.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cerrno>
 #include <cmath>
@@ -84,7 +85,31 @@ std::uint64_t block_count(std::uint64_t elems, unsigned shift) {
 // larger: the heights' second differences are noisier than their first), valid flags deflated as
 // they are, errors as they are (neighbouring entries belong to different levels of the pyramid,
 // so differences do not shrink them).
-constexpr int pos_orders[3] = {2, 2, 1}, error_orders[1] = {0};
+constexpr int pos_orders[3] = {2, 2, 1}, z_orders[1] = {1}, error_orders[1] = {0};
+constexpr std::uint32_t xy_derived = 1;  // header flag: x, y not stored, the affine grid gives them
+
+// The affine grid the nodes' x, y lie on exactly (affine_node_xy of every node is its x, y, as the
+// DEM reader computes them on a projected DEM), from the grid's first node: then the cache stores
+// z alone. nullopt otherwise (a geographic DEM projected to UTM node by node, a terrain made
+// otherwise): x, y are stored.
+std::optional<AffineNodes> derived_xy(const Terrain& meta, const GridNodes& nodes) {
+    AffineNodes a;
+    if (!terrain_affine(meta, a) || a.col0 != 0 || a.row0 != 0) return std::nullopt;
+    std::atomic<bool> exact{true};
+    parallel_chunks(std::size_t(nodes.rows), 64, [&](std::size_t r0, std::size_t r1) {
+        for (std::size_t r = r0; r < r1 && exact.load(std::memory_order_relaxed); ++r)
+            for (int c = 0; c < nodes.cols; ++c) {
+                const glm::vec2 xy = affine_node_xy(a, meta.origin, c, int(r));
+                const glm::vec3& p = nodes.pos[nodes.index(c, int(r))];
+                if (std::bit_cast<std::uint32_t>(xy.x) != std::bit_cast<std::uint32_t>(p.x) ||
+                    std::bit_cast<std::uint32_t>(xy.y) != std::bit_cast<std::uint32_t>(p.y)) {
+                    exact.store(false, std::memory_order_relaxed);
+                    break;
+                }
+            }
+    });
+    return exact.load() ? std::optional<AffineNodes>(a) : std::nullopt;
+}
 
 // The coded blocks of one array.
 using CodedBlocks = std::vector<std::vector<std::uint8_t>>;
@@ -101,13 +126,23 @@ template <class F> CodedBlocks code_blocks(std::uint64_t elems, F&& code) {
 
 struct CodedTerrain {
     CodedBlocks pos, valid, error;
+    std::uint32_t flags = 0;
 };
 CodedTerrain code_terrain(const StoredTerrain& t) {
     const Counts n = array_counts(t.meta.cols, t.meta.rows, t.lod.levels);
     CodedTerrain c;
-    c.pos = code_blocks(n.nodes, [&](std::uint64_t i, std::uint64_t k) {
-        return encode_floats(&t.nodes.pos[i].x, std::size_t(k), pos_orders);
-    });
+    if (derived_xy(t.meta, t.nodes)) {
+        c.flags |= xy_derived;
+        c.pos = code_blocks(n.nodes, [&](std::uint64_t i, std::uint64_t k) {
+            std::vector<float> z(static_cast<std::size_t>(k));
+            for (std::size_t j = 0; j < z.size(); ++j) z[j] = t.nodes.pos[i + j].z;
+            return encode_floats(z.data(), z.size(), z_orders);
+        });
+    } else {
+        c.pos = code_blocks(n.nodes, [&](std::uint64_t i, std::uint64_t k) {
+            return encode_floats(&t.nodes.pos[i].x, std::size_t(k), pos_orders);
+        });
+    }
     c.valid = code_blocks(n.nodes, [&](std::uint64_t i, std::uint64_t k) { return encode_bytes(t.nodes.valid + i, std::size_t(k)); });
     c.error = code_blocks(n.padded, [&](std::uint64_t i, std::uint64_t k) {
         return encode_floats(t.lod.error.data() + i, std::size_t(k), error_orders);
@@ -145,7 +180,7 @@ std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCac
     w.bytes(m.crs_wkt.data(), m.crs_wkt.size());
     while (w.b.size() % 8) w.b.push_back(0);
     // each block's coded size, then its checksum, the three arrays' blocks in turn
-    w.put(std::uint32_t(block_shift)), w.put(std::uint32_t(0));
+    w.put(std::uint32_t(block_shift)), w.put(coded.flags);
     const CodedBlocks* arrays[3] = {&coded.pos, &coded.valid, &coded.error};
     for (const CodedBlocks* a : arrays)
         for (const auto& b : *a) w.put(std::uint32_t(b.size()));
@@ -272,9 +307,8 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     const Counts n = array_counts(m.cols, m.rows, levels);
     if (total != size || at[0] < length || at[1] < at[0] || at[2] < at[1] || total < at[2])
         return fail(why, "damaged terrain cache (lengths)");
-    const std::uint32_t shift = r.get<std::uint32_t>();
-    r.get<std::uint32_t>();
-    if (!r.ok || shift < min_block_shift || shift > max_block_shift)
+    const std::uint32_t shift = r.get<std::uint32_t>(), flags = r.get<std::uint32_t>();
+    if (!r.ok || shift < min_block_shift || shift > max_block_shift || (flags & ~xy_derived) != 0)
         return fail(why, "damaged terrain cache (block checksums)");
     const std::uint64_t counts[3] = {block_count(n.nodes, shift), block_count(n.nodes, shift), block_count(n.padded, shift)};
     const std::uint64_t blocks = counts[0] + counts[1] + counts[2];
@@ -292,15 +326,32 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
         if (at[j] + coded != (j < 2 ? at[j + 1] : total)) return fail(why, "damaged terrain cache (lengths)");
     }
     arrays[0].elems = n.nodes, arrays[0].elem_bytes = sizeof(glm::vec3);
-    arrays[0].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::size_t count) {
-        return decode_floats(c, bytes, static_cast<float*>(out), count, pos_orders);
-    };
+    AffineNodes affine;
+    if ((flags & xy_derived) && !terrain_affine(m, affine)) return fail(why, "damaged terrain cache (grid)");
+    if (flags & xy_derived) {
+        arrays[0].decode = [affine, origin = m.origin, cols = std::uint64_t(m.cols)](
+                               const std::uint8_t* c, std::size_t bytes, void* out, std::uint64_t first, std::size_t count) {
+            thread_local std::vector<float> z;
+            z.resize(count);
+            if (!decode_floats(c, bytes, z.data(), count, z_orders)) return false;
+            auto* p = static_cast<glm::vec3*>(out);
+            for (std::size_t j = 0; j < count; ++j) {
+                const std::uint64_t i = first + j;
+                p[j] = glm::vec3(affine_node_xy(affine, origin, int(i % cols), int(i / cols)), z[j]);
+            }
+            return true;
+        };
+    } else {
+        arrays[0].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::uint64_t, std::size_t count) {
+            return decode_floats(c, bytes, static_cast<float*>(out), count, pos_orders);
+        };
+    }
     arrays[1].elems = n.nodes, arrays[1].elem_bytes = 1;
-    arrays[1].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::size_t count) {
+    arrays[1].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::uint64_t, std::size_t count) {
         return decode_bytes(c, bytes, static_cast<std::uint8_t*>(out), count);
     };
     arrays[2].elems = n.padded, arrays[2].elem_bytes = sizeof(float);
-    arrays[2].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::size_t count) {
+    arrays[2].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::uint64_t, std::size_t count) {
         return decode_floats(c, bytes, static_cast<float*>(out), count, error_orders);
     };
     std::vector<std::uint64_t> sums(static_cast<std::size_t>(blocks));

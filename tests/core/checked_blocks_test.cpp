@@ -144,7 +144,7 @@ struct CodedFile {
     std::vector<CheckedBlocks::CodedArray> arrays() const {
         CheckedBlocks::CodedArray a;
         a.offset = 100, a.sizes = sizes, a.elems = 1000, a.elem_bytes = 4, a.shift = 6;
-        a.decode = [](const std::uint8_t* c, std::size_t size, void* out, std::size_t n) {
+        a.decode = [](const std::uint8_t* c, std::size_t size, void* out, std::uint64_t, std::size_t n) {
             return decode_floats(c, size, static_cast<float*>(out), n, once);
         };
         return {a};

@@ -381,3 +381,43 @@ TEST(TerrainCache, CodedFileIsAFractionOfItsFloats) {
         EXPECT_EQ(double(map->nodes.blocks->bytes() + header), file);
     }
 }
+
+// On an affine grid (a projected DEM: every node's x, y is affine_node_xy of the geotransform, as
+// the DEM reader computes them) the cache stores z alone and derives x, y as it reads: the nodes
+// and the frames come back bit for bit, in a smaller file than the same terrain with one node's x
+// a float step off the grid, whose x, y are all stored (and come back as well, that node too).
+TEST(TerrainCache, XYOfAnAffineGridAreDerivedNotStored) {
+    test::TempDir dir;
+    Terrain grid = hills();
+    AffineNodes a;
+    ASSERT_TRUE(terrain_affine(grid, a));
+    for (int r = 0; r < grid.rows; ++r)
+        for (int c = 0; c < grid.cols; ++c) {
+            const glm::vec2 xy = affine_node_xy(a, grid.origin, c, r);
+            grid.pos[grid.index(c, r)].x = xy.x, grid.pos[grid.index(c, r)].y = xy.y;
+        }
+    Terrain off = grid;
+    float& x = off.pos[off.index(150, 100)].x;
+    x = std::nextafter(x, 1e9f);
+    for (const Terrain* t : {&grid, &off}) {
+        const bool affine = t == &grid;
+        SCOPED_TRACE(affine ? "affine" : "one node off");
+        const StoredTerrain mem = store_terrain(*t);
+        const std::string path = dir.file(affine ? "affine.lod" : "off.lod");
+        write_terrain_cache(path, mem, key());
+        const std::optional<StoredTerrain> map = read_terrain_cache(path, key());
+        ASSERT_TRUE(map);
+        read_whole(*map);
+        for (std::size_t i = 0; i < t->size(); ++i) {
+            ASSERT_EQ(map->nodes.pos[i], t->pos[i]) << i;
+            ASSERT_EQ(map->nodes.valid[i], t->valid[i]) << i;
+        }
+        const Camera cam = oblique(mem, 2.0);
+        expect_same_mesh(select_lod_mesh(mem.lod, mem.drawn(2.0), 2.0, cam, LodOptions{}),
+                         select_lod_mesh(map->lod, map->drawn(2.0), 2.0, cam, LodOptions{}));
+    }
+    const double derived = double(std::filesystem::file_size(dir.file("affine.lod")));
+    const double stored = double(std::filesystem::file_size(dir.file("off.lod")));
+    std::printf("x, y derived: %.0f bytes; stored: %.0f\n", derived, stored);
+    EXPECT_LT(derived + 0.4 * double(grid.size()), stored);  // x, y coded take 0.65 bytes a node here
+}
