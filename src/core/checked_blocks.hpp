@@ -8,12 +8,16 @@
 // mappings, vm.max_map_count. A reader that forgets to ask for a block reads zeros there; the
 // tests compare frames drawn from a cache with frames drawn from memory.)
 // Memory and time therefore follow the blocks a caller asks for, not the file. Neighbouring
-// blocks asked for together are read in one call.
+// blocks asked for together are read in one call. An array may be stored coded
+// (core/block_codec.hpp: fewer bytes in the file): its blocks then hold a power of two of
+// elements each, their checksums are of the coded bytes, and a block is decoded into its place
+// in the mapping once found sound.
 // Thread-safe: blocks are loaded under a mutex, the loaded flags are atomic.
 #pragma once
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -33,60 +37,86 @@ public:
 
 class CheckedBlocks {
 public:
+    // An array stored as it is in memory: `bytes` bytes from `offset`, one element a byte.
     struct Array {
-        std::uint64_t offset = 0;  // in the file, a multiple of the page size
+        std::uint64_t offset = 0;
         std::uint64_t bytes = 0;
+    };
+    // An array stored coded (core/block_codec.hpp): block after block from `offset`, each of
+    // sizes[b] bytes in the file, decoding to 2^shift elements of elem_bytes bytes (the last block
+    // short: elems in all). decode(coded, size, out, first, n) writes the n elements of a block,
+    // from element `first` of the array on, to out; false when the coded bytes do not decode.
+    using Decoder = std::function<bool(const std::uint8_t* coded, std::size_t size, void* out, std::uint64_t first,
+                                       std::size_t n)>;
+    struct CodedArray {
+        std::uint64_t offset = 0;
+        std::vector<std::uint32_t> sizes;
+        std::uint64_t elems = 0;
+        std::uint32_t elem_bytes = 1;
+        unsigned shift = 0;
+        Decoder decode;
     };
     // `fd` is duplicated (the caller keeps its own). `sums`: the blocks' checksums, array after
     // array. `block_bytes`: a power of two, a multiple of the page size. Throws std::bad_alloc
     // when the address space cannot be reserved.
     CheckedBlocks(int fd, std::string path, std::vector<Array> arrays, std::uint64_t block_bytes,
                   std::vector<std::uint64_t> sums);
+    // Coded arrays: `sums` the checksums of the blocks' coded bytes, array after array.
+    CheckedBlocks(int fd, std::string path, std::vector<CodedArray> arrays, std::vector<std::uint64_t> sums);
     ~CheckedBlocks();
     CheckedBlocks(const CheckedBlocks&) = delete;
     CheckedBlocks& operator=(const CheckedBlocks&) = delete;
 
-    // Where array k lives in memory (its bytes readable only once needed).
+    // Where array k lives in memory, decoded (its elements readable only once needed).
     const void* data(int k) const { return base_ + arrays_[std::size_t(k)].at; }
-    // Makes bytes [begin, end) of array k readable, reading and checking the blocks not yet read.
-    // Throws DamagedBlockError on a short read or a checksum mismatch.
+    // Makes elements [begin, end) of array k readable (bytes, for an Array), reading, checking and
+    // decoding the blocks not yet read. Throws DamagedBlockError on a short read, a checksum
+    // mismatch or a block that does not decode.
     void need(int k, std::uint64_t begin, std::uint64_t end) const {
         if (begin >= end) return;
         const Slot& a = arrays_[std::size_t(k)];
-        for (std::uint64_t b = begin >> shift_, last = (end - 1) >> shift_; b <= last; ++b)
+        for (std::uint64_t b = begin >> a.shift, last = (end - 1) >> a.shift; b <= last; ++b)
             if (!loaded_[a.first + b].load(std::memory_order_acquire)) load(k, b, last);
     }
     // Bytes read from the file so far (blocks checked), and blocks of all arrays.
     std::uint64_t bytes_read() const { return bytes_read_.load(std::memory_order_relaxed); }
     std::uint64_t blocks_read() const { return blocks_read_.load(std::memory_order_relaxed); }
     std::uint64_t block_count() const { return sums_.size(); }
-    // Bytes of all the arrays.
+    // Bytes of all the arrays in the file.
     std::uint64_t bytes() const {
         std::uint64_t n = 0;
-        for (const Slot& a : arrays_) n += a.bytes;
+        for (const Slot& a : arrays_) n += a.starts.back() - a.starts.front();
         return n;
     }
-    // Whether the block holding byte `at` of array k has been read (and found sound).
+    // Whether the block holding element `at` of array k has been read (and found sound).
     bool has_read(int k, std::uint64_t at) const {
-        return loaded_[arrays_[std::size_t(k)].first + (at >> shift_)].load(std::memory_order_acquire);
+        const Slot& a = arrays_[std::size_t(k)];
+        return loaded_[a.first + (at >> a.shift)].load(std::memory_order_acquire);
     }
-    // Where array k starts in the file.
-    std::uint64_t file_offset(int k) const { return arrays_[std::size_t(k)].offset; }
+    // Where array k starts in the file, and where the block holding its element `at` does.
+    std::uint64_t file_offset(int k) const { return arrays_[std::size_t(k)].starts.front(); }
+    std::uint64_t file_offset(int k, std::uint64_t at) const {
+        const Slot& a = arrays_[std::size_t(k)];
+        return a.starts[std::size_t(at >> a.shift)];
+    }
     const std::string& path() const { return path_; }
 
 private:
     struct Slot {
-        std::uint64_t offset, bytes, at;  // in the file; length; in the mapping
-        std::size_t first;                // index of its first block in sums_ / loaded_
+        std::vector<std::uint64_t> starts;  // file offset of each block, then the array's end
+        std::uint64_t elems = 0, elem_bytes = 1, at = 0;  // elements, bytes of one; offset in the mapping
+        unsigned shift = 0;                 // 2^shift elements a block
+        std::size_t first = 0;              // index of its first block in sums_ / loaded_
+        Decoder decode;  // empty: stored as in memory
     };
+    void reserve(int fd);
     // Reads the run of blocks not yet read from `block` on (at most to `last`, and max_run_bytes)
-    // in one pread, then checks them one by one.
+    // in one pread, then checks (and decodes) them one by one.
     void load(int k, std::uint64_t block, std::uint64_t last) const;
 
     int fd_ = -1;
     std::string path_;
     std::vector<Slot> arrays_;
-    unsigned shift_ = 16;
     std::vector<std::uint64_t> sums_;
     std::uint8_t* base_ = nullptr;
     std::size_t mapped_ = 0;

@@ -35,7 +35,7 @@ struct GridNodes {
     // Throws DamagedBlockError when their blocks are damaged.
     void need(std::size_t i0, std::size_t i1) const {
         if (!blocks) return;
-        blocks->need(pos_array, i0 * sizeof(glm::vec3), i1 * sizeof(glm::vec3));
+        blocks->need(pos_array, i0, i1);
         blocks->need(valid_array, i0, i1);
     }
     // The nodes of a window (clamped to the grid), row by row.

@@ -16,6 +16,7 @@ void GridNodes::need(GridWindow w) const {
     w.c0 = std::clamp(w.c0, 0, cols), w.c1 = std::clamp(w.c1, w.c0, cols);
     w.r0 = std::clamp(w.r0, 0, rows), w.r1 = std::clamp(w.r1, w.r0, rows);
     if (w.c0 == w.c1) return;
+    if (w.c0 == 0 && w.c1 == cols) return need(index(0, w.r0), index(0, w.r1));  // whole rows: one range
     for (int r = w.r0; r < w.r1; ++r) need(index(w.c0, r), index(w.c1 - 1, r) + 1);
 }
 

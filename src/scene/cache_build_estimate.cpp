@@ -15,7 +15,10 @@ namespace {
 // bench/scale_curve.sh; docs/timings.md, "Scale"): CPU seconds (user + system; about the wall
 // time on an idle machine of 2 cores, less where the build runs on both) and peak resident
 // memory of the cold render less the warm one's, with and without creases and ridges.
-constexpr double terrain_s_per_node = 0.083e-6;  // 1.15 s at 13.86 M nodes
+// The terrain cache's coding (terrain_cache.hpp) added 1.35 s to the 1.39 s that cold render took
+// over the warm one in the same run (the cache of x10 alone, drainage database present), so 2.3 s
+// where the fit gave 1.15.
+constexpr double terrain_s_per_node = 0.166e-6;  // 2.3 s at 13.86 M nodes
 // Held while the pyramid is built: the DEM read (about 26 B a node: positions, flags, heights)
 // and the build's heights, flags and errors over the padded square (10 B a padded node,
 // terrain_lod.cpp), over what the process holds before it (126 MB: fitted, the image's buffers).
@@ -25,6 +28,10 @@ constexpr double terrain_base_bytes = 126e6;
 constexpr double drainage_s_at_reference = 13.6, drainage_reference_points = 13.86e6, drainage_exponent = 1.17;
 // Peak resident memory 477 MB at 3.47 M points and 1327 MB at 13.86 M: a line.
 constexpr double drainage_peak_bytes_per_point = 81.8, drainage_base_bytes = 193e6;
+// The terrain cache written (terrain_cache.hpp, coded: its size follows the DEM's smoothness):
+// 1.93 B a node on jacksboro refined 10 times, header included (2.4 refined 5 times, 2.3 on the
+// volcano, whose x, y are derived, 4.4 on jacksboro itself, up to 6.5 on a synthetic DEM of noise; 17.8 B as floats).
+constexpr double terrain_disk_bytes_per_node = 1.93;
 // The files written: 52 and 55.6 B a point.
 constexpr double drainage_disk_bytes_per_point = 56.0;
 
@@ -36,8 +43,7 @@ CacheBuildEstimate terrain_cache_estimate(int cols, int rows) {
     CacheBuildEstimate e;
     e.seconds = terrain_s_per_node * nodes;
     e.peak_bytes = terrain_base_bytes + terrain_bytes_per_node * nodes + terrain_bytes_per_padded_node * side * side;
-    // terrain_cache.hpp's arrays, and their checksums: 8 bytes a 4 KiB block
-    e.disk_bytes = (13.0 * nodes + lod_bytes_per_padded_node * side * side) * (1.0 + 8.0 / 4096.0);
+    e.disk_bytes = terrain_disk_bytes_per_node * nodes;
     return e;
 }
 
@@ -52,12 +58,14 @@ CacheBuildEstimate drainage_cache_estimate(int cols, int rows) {
 
 std::string describe_cache_estimate(const std::string& what, const std::string& cache, int cols, int rows,
                                     const CacheBuildEstimate& e) {
-    char line[256];
+    char disk[32], line[256];
+    if (e.disk_bytes < 0.95e9) std::snprintf(disk, sizeof disk, "%.0f MB", e.disk_bytes * 1e-6);  // a coded terrain cache
+    else std::snprintf(disk, sizeof disk, "%.1f GB", e.disk_bytes * 1e-9);
     std::snprintf(line, sizeof line,
                   "penink: %s: building the %s of a %dx%d DEM (%.1f M cells): about %.0f s, %.1f GB of memory at peak, "
-                  "%.1f GB on disk (estimate)",
+                  "%s on disk (estimate)",
                   what.c_str(), cache.c_str(), cols, rows, double(cols - 1) * double(rows - 1) * 1e-6, e.seconds,
-                  e.peak_bytes * 1e-9, e.disk_bytes * 1e-9);
+                  e.peak_bytes * 1e-9, disk);
     return line;
 }
 

@@ -1,6 +1,7 @@
 #include "surface/terrain_cache.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cerrno>
 #include <cmath>
@@ -14,9 +15,11 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "core/block_codec.hpp"
 #include "core/checked_blocks.hpp"
 #include "core/error.hpp"
 #include "core/hash64.hpp"
+#include "core/parallel_chunks.hpp"
 
 namespace penink {
 
@@ -25,16 +28,15 @@ static_assert(std::endian::native == std::endian::little, "terrain caches are wr
 namespace {
 
 constexpr char magic[8] = {'P', 'E', 'N', 'I', 'N', 'K', 'T', 'C'};
-constexpr std::uint64_t page = 4096;
 constexpr std::uint64_t max_crs_bytes = 1 << 20;
-// Bytes of array checked by one checksum: a frame that needs a node reads and checks its block
-// (core/checked_blocks.hpp). A page: the nodes are row-major, so a frame that needs the DEM's
-// edge columns (the automatic framing) or a thin window reads a page per row and node, not a
-// whole row (0.17 of the nodes' blocks at 4030 columns with 64 KiB blocks it read them all);
-// the checksums take 8 bytes a page (0.2 % of the file). Caches written with other powers of
-// two, page to max_block_bytes, are read as well.
-constexpr std::uint64_t block_bytes = 4096;
-constexpr std::uint64_t max_block_bytes = 1 << 24;
+// Elements (nodes, pyramid entries) of one block, coded and checked as one (core/block_codec.hpp,
+// core/checked_blocks.hpp): a frame that needs a node reads and decodes its block. 256: the nodes
+// are row-major, so a frame that needs the DEM's edge columns (the automatic framing) or a thin
+// window reads a block per row and node, not a whole row; the block's size and checksum take 12
+// bytes of header (0.15 bytes a node over the three arrays on jacksboro x10), and deflate still
+// finds the runs of a block's high byte planes. Caches written with other powers of two, 2^4 to 2^20, are read as well.
+constexpr unsigned block_shift = 8;
+constexpr unsigned min_block_shift = 4, max_block_shift = 20;
 
 std::uint64_t align_up(std::uint64_t n, std::uint64_t a) { return (n + a - 1) / a * a; }
 
@@ -66,26 +68,97 @@ struct Reader {
     }
 };
 
-// Array sizes of a grid, in bytes.
-struct Sizes {
-    std::uint64_t pos, valid, error;
+// The three arrays' elements: nodes (positions, valid flags), padded nodes (errors).
+struct Counts {
+    std::uint64_t nodes, padded;
 };
-Sizes array_sizes(int cols, int rows, int levels) {
-    const std::uint64_t nodes = std::uint64_t(cols) * std::uint64_t(rows);
+Counts array_counts(int cols, int rows, int levels) {
     const std::uint64_t side = (std::uint64_t(1) << levels) + 1;
-    return {nodes * sizeof(glm::vec3), nodes, side * side * sizeof(float)};
+    return {std::uint64_t(cols) * std::uint64_t(rows), side * side};
+}
+std::uint64_t block_count(std::uint64_t elems, unsigned shift) {
+    return (elems + (std::uint64_t(1) << shift) - 1) >> shift;
 }
 
-// hash64 of each block_bytes block of the n bytes at p, appended to w.
-void block_sums(Writer& w, const void* p, std::uint64_t n) {
-    const auto* b = static_cast<const std::uint8_t*>(p);
-    for (std::uint64_t at = 0; at < n; at += block_bytes)
-        w.put(hash64(b + at, std::size_t(std::min<std::uint64_t>(block_bytes, n - at))));
+// How each array is coded (core/block_codec.hpp): positions x, y differenced twice along a block
+// (a grid row's x, y are nearly linear in the column), z once (twice codes jacksboro x10's 7 %
+// larger: the heights' second differences are noisier than their first), valid flags deflated as
+// they are, errors as they are (neighbouring entries belong to different levels of the pyramid,
+// so differences do not shrink them).
+constexpr int pos_orders[3] = {2, 2, 1}, z_orders[1] = {1}, error_orders[1] = {0};
+constexpr std::uint32_t xy_derived = 1;  // header flag: x, y not stored, the affine grid gives them
+
+// The affine grid the nodes' x, y lie on exactly (affine_node_xy of every node is its x, y, as the
+// DEM reader computes them on a projected DEM), from the grid's first node: then the cache stores
+// z alone. nullopt otherwise (a geographic DEM projected to UTM node by node, a terrain made
+// otherwise): x, y are stored.
+std::optional<AffineNodes> derived_xy(const Terrain& meta, const GridNodes& nodes) {
+    AffineNodes a;
+    if (!terrain_affine(meta, a) || a.col0 != 0 || a.row0 != 0) return std::nullopt;
+    std::atomic<bool> exact{true};
+    parallel_chunks(std::size_t(nodes.rows), 64, [&](std::size_t r0, std::size_t r1) {
+        for (std::size_t r = r0; r < r1 && exact.load(std::memory_order_relaxed); ++r)
+            for (int c = 0; c < nodes.cols; ++c) {
+                const glm::vec2 xy = affine_node_xy(a, meta.origin, c, int(r));
+                const glm::vec3& p = nodes.pos[nodes.index(c, int(r))];
+                if (std::bit_cast<std::uint32_t>(xy.x) != std::bit_cast<std::uint32_t>(p.x) ||
+                    std::bit_cast<std::uint32_t>(xy.y) != std::bit_cast<std::uint32_t>(p.y)) {
+                    exact.store(false, std::memory_order_relaxed);
+                    break;
+                }
+            }
+    });
+    return exact.load() ? std::optional<AffineNodes>(a) : std::nullopt;
+}
+
+// The coded blocks of one array.
+using CodedBlocks = std::vector<std::vector<std::uint8_t>>;
+template <class F> CodedBlocks code_blocks(std::uint64_t elems, F&& code) {
+    CodedBlocks out(std::size_t(block_count(elems, block_shift)));
+    parallel_chunks(out.size(), 64, [&](std::size_t b0, std::size_t b1) {
+        for (std::size_t b = b0; b < b1; ++b) {
+            const std::uint64_t first = std::uint64_t(b) << block_shift;
+            out[b] = code(first, std::min<std::uint64_t>(std::uint64_t(1) << block_shift, elems - first));
+        }
+    });
+    return out;
+}
+
+struct CodedTerrain {
+    CodedBlocks pos, valid, error;
+    std::uint32_t flags = 0;
+};
+CodedTerrain code_terrain(const StoredTerrain& t) {
+    const Counts n = array_counts(t.meta.cols, t.meta.rows, t.lod.levels);
+    CodedTerrain c;
+    if (derived_xy(t.meta, t.nodes)) {
+        c.flags |= xy_derived;
+        c.pos = code_blocks(n.nodes, [&](std::uint64_t i, std::uint64_t k) {
+            std::vector<float> z(static_cast<std::size_t>(k));
+            for (std::size_t j = 0; j < z.size(); ++j) z[j] = t.nodes.pos[i + j].z;
+            return encode_floats(z.data(), z.size(), z_orders);
+        });
+    } else {
+        c.pos = code_blocks(n.nodes, [&](std::uint64_t i, std::uint64_t k) {
+            return encode_floats(&t.nodes.pos[i].x, std::size_t(k), pos_orders);
+        });
+    }
+    c.valid = code_blocks(n.nodes, [&](std::uint64_t i, std::uint64_t k) { return encode_bytes(t.nodes.valid + i, std::size_t(k)); });
+    c.error = code_blocks(n.padded, [&](std::uint64_t i, std::uint64_t k) {
+        return encode_floats(t.lod.error.data() + i, std::size_t(k), error_orders);
+    });
+    return c;
+}
+
+std::uint64_t coded_bytes(const CodedBlocks& blocks) {
+    std::uint64_t n = 0;
+    for (const auto& b : blocks) n += b.size();
+    return n;
 }
 
 // The header and the array offsets of `t` (offsets relative to the file's start).
-std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCacheKey& key, std::uint64_t at[3],
-                                        std::uint64_t& total) {
+std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCacheKey& key, const CodedTerrain& coded,
+                                        std::uint64_t at[3], std::uint64_t& total) {
     const Terrain& m = t.meta;
     Writer w;
     w.bytes(magic, 8);
@@ -106,18 +179,20 @@ std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCac
     w.put(std::uint64_t(m.crs_wkt.size()));
     w.bytes(m.crs_wkt.data(), m.crs_wkt.size());
     while (w.b.size() % 8) w.b.push_back(0);
-    // the block checksums of the three arrays (block_sums), each array's blocks in turn
-    const Sizes s = array_sizes(m.cols, m.rows, t.lod.levels);
-    w.put(std::uint32_t(block_bytes)), w.put(std::uint32_t(0));
-    block_sums(w, t.nodes.pos, s.pos);
-    block_sums(w, t.nodes.valid, s.valid);
-    block_sums(w, t.lod.error.data(), s.error);
+    // each block's coded size, then its checksum, the three arrays' blocks in turn
+    w.put(std::uint32_t(block_shift)), w.put(coded.flags);
+    const CodedBlocks* arrays[3] = {&coded.pos, &coded.valid, &coded.error};
+    for (const CodedBlocks* a : arrays)
+        for (const auto& b : *a) w.put(std::uint32_t(b.size()));
+    while (w.b.size() % 8) w.b.push_back(0);
+    for (const CodedBlocks* a : arrays)
+        for (const auto& b : *a) w.put(hash64(b.data(), b.size()));
     const std::uint32_t length = std::uint32_t(w.b.size() + 8);
     std::memcpy(w.b.data() + 12, &length, 4);
-    at[0] = align_up(length, page);
-    at[1] = align_up(at[0] + s.pos, page);
-    at[2] = align_up(at[1] + s.valid, page);
-    total = at[2] + s.error;
+    at[0] = length;
+    at[1] = at[0] + coded_bytes(coded.pos);
+    at[2] = at[1] + coded_bytes(coded.valid);
+    total = at[2] + coded_bytes(coded.error);
     std::memcpy(w.b.data() + offsets, at, 24);
     std::memcpy(w.b.data() + offsets + 24, &total, 8);
     w.put(hash64(w.b.data(), w.b.size()));
@@ -153,29 +228,22 @@ StoredTerrain store_terrain(Terrain flat) {
 }
 
 void write_terrain_cache(const std::string& path, const StoredTerrain& t, const TerrainCacheKey& key) {
-    const Sizes s = array_sizes(t.meta.cols, t.meta.rows, t.lod.levels);
-    if (t.lod.error.size() * sizeof(float) != s.error || t.nodes.size() != t.meta.size())
+    const Counts n = array_counts(t.meta.cols, t.meta.rows, t.lod.levels);
+    if (t.lod.error.size() != n.padded || t.nodes.size() != t.meta.size())
         throw std::invalid_argument("terrain cache: pyramid and nodes do not match the grid");
+    const CodedTerrain coded = code_terrain(t);
     std::uint64_t at[3], total = 0;
-    const std::vector<std::uint8_t> header = encode_header(t, key, at, total);
+    const std::vector<std::uint8_t> header = encode_header(t, key, coded, at, total);
     const std::string tmp = path + ".tmp" + std::to_string(::getpid());
     std::FILE* out = std::fopen(tmp.c_str(), "wb");
     if (!out) write_failed(path, errno);
-    std::uint64_t written = 0;
     bool ok = true;
-    auto put = [&](const void* p, std::uint64_t n) {
-        if (ok && n > 0 && std::fwrite(p, 1, std::size_t(n), out) != n) ok = false;
-        written += n;
+    auto put = [&](const void* p, std::uint64_t len) {
+        if (ok && len > 0 && std::fwrite(p, 1, std::size_t(len), out) != len) ok = false;
     };
-    const std::vector<std::uint8_t> zeros(page, 0);
-    auto pad_to = [&](std::uint64_t offset) { put(zeros.data(), offset - written); };
     put(header.data(), header.size());
-    pad_to(at[0]);
-    put(t.nodes.pos, s.pos);
-    pad_to(at[1]);
-    put(t.nodes.valid, s.valid);
-    pad_to(at[2]);
-    put(t.lod.error.data(), s.error);
+    for (const CodedBlocks* a : {&coded.pos, &coded.valid, &coded.error})
+        for (const auto& b : *a) put(b.data(), b.size());
     int err = ok ? 0 : errno;
     if (std::fclose(out) != 0 && ok) ok = false, err = errno;
     std::error_code ec;
@@ -236,44 +304,81 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     r.at = std::size_t(align_up(r.at + crs, 8));
     if (m.cols < 2 || m.rows < 2 || std::max(m.cols, m.rows) > (1 << 30) || levels != lod_padded_levels(m.cols, m.rows))
         return fail(why, "damaged terrain cache (grid)");
-    const Sizes s = array_sizes(m.cols, m.rows, levels);
-    if (total != size || at[0] < length || at[1] < at[0] + s.pos || at[2] < at[1] + s.valid ||
-        at[2] + s.error != total || at[0] % page || at[1] % page || at[2] % page)
+    const Counts n = array_counts(m.cols, m.rows, levels);
+    if (total != size || at[0] < length || at[1] < at[0] || at[2] < at[1] || total < at[2])
         return fail(why, "damaged terrain cache (lengths)");
-    const std::uint32_t block = r.get<std::uint32_t>();
-    r.get<std::uint32_t>();
-    if (!r.ok || !std::has_single_bit(block) || block < page || block > max_block_bytes)
+    const std::uint32_t shift = r.get<std::uint32_t>(), flags = r.get<std::uint32_t>();
+    if (!r.ok || shift < min_block_shift || shift > max_block_shift || (flags & ~xy_derived) != 0)
         return fail(why, "damaged terrain cache (block checksums)");
-    const auto count = [block](std::uint64_t n) { return (n + block - 1) / block; };
-    const std::uint64_t blocks = count(s.pos) + count(s.valid) + count(s.error);
-    if (blocks * 8 != r.n - r.at) return fail(why, "damaged terrain cache (block checksums)");
-    std::vector<std::uint64_t> sums(blocks);
-    std::memcpy(sums.data(), b + r.at, std::size_t(blocks) * 8);
-    std::shared_ptr<CheckedBlocks> arrays;
+    const std::uint64_t counts[3] = {block_count(n.nodes, shift), block_count(n.nodes, shift), block_count(n.padded, shift)};
+    const std::uint64_t blocks = counts[0] + counts[1] + counts[2];
+    if (align_up(blocks * 4, 8) + blocks * 8 != r.n - r.at) return fail(why, "damaged terrain cache (block checksums)");
+    std::vector<CheckedBlocks::CodedArray> arrays(3);
+    const std::uint8_t* sizes = b + r.at;
+    for (int j = 0; j < 3; ++j) {
+        CheckedBlocks::CodedArray& a = arrays[std::size_t(j)];
+        a.offset = at[j], a.shift = shift;
+        a.sizes.resize(std::size_t(counts[j]));
+        std::memcpy(a.sizes.data(), sizes, std::size_t(counts[j]) * 4);
+        sizes += counts[j] * 4;
+        std::uint64_t coded = 0;
+        for (const std::uint32_t c : a.sizes) coded += c;
+        if (at[j] + coded != (j < 2 ? at[j + 1] : total)) return fail(why, "damaged terrain cache (lengths)");
+    }
+    arrays[0].elems = n.nodes, arrays[0].elem_bytes = sizeof(glm::vec3);
+    AffineNodes affine;
+    if ((flags & xy_derived) && !terrain_affine(m, affine)) return fail(why, "damaged terrain cache (grid)");
+    if (flags & xy_derived) {
+        arrays[0].decode = [affine, origin = m.origin, cols = std::uint64_t(m.cols)](
+                               const std::uint8_t* c, std::size_t bytes, void* out, std::uint64_t first, std::size_t count) {
+            thread_local std::vector<float> z;
+            z.resize(count);
+            if (!decode_floats(c, bytes, z.data(), count, z_orders)) return false;
+            auto* p = static_cast<glm::vec3*>(out);
+            for (std::size_t j = 0; j < count; ++j) {
+                const std::uint64_t i = first + j;
+                p[j] = glm::vec3(affine_node_xy(affine, origin, int(i % cols), int(i / cols)), z[j]);
+            }
+            return true;
+        };
+    } else {
+        arrays[0].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::uint64_t, std::size_t count) {
+            return decode_floats(c, bytes, static_cast<float*>(out), count, pos_orders);
+        };
+    }
+    arrays[1].elems = n.nodes, arrays[1].elem_bytes = 1;
+    arrays[1].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::uint64_t, std::size_t count) {
+        return decode_bytes(c, bytes, static_cast<std::uint8_t*>(out), count);
+    };
+    arrays[2].elems = n.padded, arrays[2].elem_bytes = sizeof(float);
+    arrays[2].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::uint64_t, std::size_t count) {
+        return decode_floats(c, bytes, static_cast<float*>(out), count, error_orders);
+    };
+    std::vector<std::uint64_t> sums(static_cast<std::size_t>(blocks));
+    std::memcpy(sums.data(), b + r.at + align_up(blocks * 4, 8), std::size_t(blocks) * 8);
+    std::shared_ptr<CheckedBlocks> coded;
     try {
-        arrays = std::make_shared<CheckedBlocks>(
-            fd, path, std::vector<CheckedBlocks::Array>{{at[0], s.pos}, {at[1], s.valid}, {at[2], s.error}}, block,
-            std::move(sums));
+        coded = std::make_shared<CheckedBlocks>(fd, path, std::move(arrays), std::move(sums));
     } catch (const std::bad_alloc&) {
         return fail(why, "terrain cache too large for memory");
     }
     static_assert(GridNodes::pos_array == 0 && GridNodes::valid_array == 1 && TerrainLod::error_array == 2);
     t.nodes.cols = m.cols, t.nodes.rows = m.rows;
-    t.nodes.pos = static_cast<const glm::vec3*>(arrays->data(GridNodes::pos_array));
-    t.nodes.valid = static_cast<const std::uint8_t*>(arrays->data(GridNodes::valid_array));
-    t.nodes.blocks = arrays.get();
+    t.nodes.pos = static_cast<const glm::vec3*>(coded->data(GridNodes::pos_array));
+    t.nodes.valid = static_cast<const std::uint8_t*>(coded->data(GridNodes::valid_array));
+    t.nodes.blocks = coded.get();
     t.lod.cols = m.cols, t.lod.rows = m.rows, t.lod.levels = levels;
-    t.lod.error = std::span<const float>(static_cast<const float*>(arrays->data(TerrainLod::error_array)),
-                                         std::size_t(s.error / sizeof(float)));
-    t.lod.blocks = arrays.get();
-    t.lod.storage = arrays;
-    t.storage = std::move(arrays);
+    t.lod.error = std::span<const float>(static_cast<const float*>(coded->data(TerrainLod::error_array)),
+                                         std::size_t(n.padded));
+    t.lod.blocks = coded.get();
+    t.lod.storage = coded;
+    t.storage = std::move(coded);
     return t;
 }
 
 void read_whole(const StoredTerrain& t) {
     t.nodes.need(GridWindow{0, 0, t.nodes.cols, t.nodes.rows});
-    if (t.lod.blocks) t.lod.blocks->need(TerrainLod::error_array, 0, t.lod.error.size() * sizeof(float));
+    if (t.lod.blocks) t.lod.blocks->need(TerrainLod::error_array, 0, t.lod.error.size());
 }
 
 }  // namespace penink

@@ -97,7 +97,7 @@ struct TerrainLod {
 
     int side() const { return (1 << levels) + 1; }
     float error_at(std::size_t k) const {
-        if (blocks) blocks->need(error_array, k * sizeof(float), (k + 1) * sizeof(float));
+        if (blocks) blocks->need(error_array, k, k + 1);
         return error[k];
     }
     std::size_t index(int c, int r) const { return std::size_t(r) * std::size_t(side()) + std::size_t(c); }

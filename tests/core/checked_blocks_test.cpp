@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/block_codec.hpp"
 #include "core/checked_blocks.hpp"
 #include "core/hash64.hpp"
 #include "support/temp_dir.hpp"
@@ -21,6 +22,11 @@ using namespace penink;
 namespace {
 
 constexpr std::uint64_t block = 4096;
+
+void write_file(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+}
 
 // A file of two arrays: 10 blocks and a half at offset 4096, 3 blocks at offset 49152; bytes
 // i * 7 + array.
@@ -37,10 +43,7 @@ struct TwoArrays {
             for (std::uint64_t at = 0; at < a.bytes; at += block)
                 sums.push_back(hash64(file.data() + a.offset + at, std::size_t(std::min(block, a.bytes - at))));
     }
-    void write(const std::string& path) const {
-        std::ofstream out(path, std::ios::binary | std::ios::trunc);
-        out.write(reinterpret_cast<const char*>(file.data()), std::streamsize(file.size()));
-    }
+    void write(const std::string& path) const { write_file(path, file); }
 };
 
 struct Fd {
@@ -116,4 +119,101 @@ TEST(CheckedBlocks, AFileCutShortIsDamageWhereItIsCut) {
     blocks.need(0, 0, 10 * block + 2048);
     blocks.need(1, 0, block);
     EXPECT_THROW(blocks.need(1, block, 3 * block), DamagedBlockError);
+}
+
+namespace {
+
+constexpr int once[1] = {1};  // floats differenced once (core/block_codec.hpp)
+
+// A file of one coded array: 1000 floats (i * 0.5) in blocks of 64 (the last one of 40), coded
+// (core/block_codec.hpp) back to back from offset 100.
+struct CodedFile {
+    std::vector<float> values;
+    std::vector<std::uint8_t> file = std::vector<std::uint8_t>(100, 0xee);
+    std::vector<std::uint32_t> sizes;
+    std::vector<std::uint64_t> sums;
+    CodedFile() {
+        for (int i = 0; i < 1000; ++i) values.push_back(float(i) * 0.5f);
+        for (std::size_t i = 0; i < values.size(); i += 64) {
+            const std::vector<std::uint8_t> c = encode_floats(values.data() + i, std::min<std::size_t>(64, 1000 - i), once);
+            sizes.push_back(std::uint32_t(c.size()));
+            sums.push_back(hash64(c.data(), c.size()));
+            file.insert(file.end(), c.begin(), c.end());
+        }
+    }
+    std::vector<CheckedBlocks::CodedArray> arrays() const {
+        CheckedBlocks::CodedArray a;
+        a.offset = 100, a.sizes = sizes, a.elems = 1000, a.elem_bytes = 4, a.shift = 6;
+        a.decode = [](const std::uint8_t* c, std::size_t size, void* out, std::uint64_t, std::size_t n) {
+            return decode_floats(c, size, static_cast<float*>(out), n, once);
+        };
+        return {a};
+    }
+    void write(const std::string& path) const { write_file(path, file); }
+};
+
+}  // namespace
+
+// Elements of a coded array: a range reads (file bytes, counted) and decodes exactly its blocks.
+TEST(CheckedBlocks, CodedArraysReadAndDecodeTheBlocksOfARange) {
+    test::TempDir dir;
+    const CodedFile f;
+    f.write(dir.file("c.bin"));
+    const Fd fd(dir.file("c.bin"));
+    const CheckedBlocks blocks(fd.fd, dir.file("c.bin"), f.arrays(), f.sums);
+    EXPECT_EQ(blocks.block_count(), 16u);
+    EXPECT_EQ(blocks.bytes(), f.file.size() - 100);
+    EXPECT_EQ(blocks.file_offset(0, 130), 100u + f.sizes[0] + f.sizes[1]);
+    blocks.need(0, 100, 130);  // blocks 1 and 2
+    EXPECT_EQ(blocks.bytes_read(), std::uint64_t(f.sizes[1] + f.sizes[2]));
+    EXPECT_EQ(blocks.blocks_read(), 2u);
+    EXPECT_FALSE(blocks.has_read(0, 63));
+    EXPECT_TRUE(blocks.has_read(0, 64));
+    EXPECT_TRUE(blocks.has_read(0, 191));
+    EXPECT_FALSE(blocks.has_read(0, 192));
+    const auto* v = static_cast<const float*>(blocks.data(0));
+    for (int i = 64; i < 192; ++i) ASSERT_EQ(v[i], f.values[std::size_t(i)]) << i;
+    blocks.need(0, 0, 1000);
+    EXPECT_EQ(blocks.bytes_read(), blocks.bytes());
+    for (int i = 0; i < 1000; ++i) ASSERT_EQ(v[i], f.values[std::size_t(i)]) << i;
+}
+
+// Damage in a coded block is found by its checksum; coded bytes whose checksum matches but which
+// do not decode to the block's elements (a foreign or mislabelled block) are damage as well.
+TEST(CheckedBlocks, DamagedOrUndecodableCodedBlocksAreFound) {
+    test::TempDir dir;
+    CodedFile f;
+    f.file[100 + f.sizes[0] + f.sizes[1] + 2] ^= 4;  // block 2
+    f.write(dir.file("d.bin"));
+    {
+        const Fd fd(dir.file("d.bin"));
+        const CheckedBlocks blocks(fd.fd, dir.file("d.bin"), f.arrays(), f.sums);
+        blocks.need(0, 0, 128);
+        try {
+            blocks.need(0, 100, 300);
+            FAIL() << "no error";
+        } catch (const DamagedBlockError& e) {
+            EXPECT_NE(std::string(e.what()).find("checksum mismatch in block 2"), std::string::npos) << e.what();
+        }
+        blocks.need(0, 192, 1000);  // past it: sound
+        EXPECT_FALSE(blocks.has_read(0, 128));
+    }
+    // block 2 replaced by a sound block of 32 floats, its size and checksum too: the checksum
+    // matches, the bytes do not decode to the block's 64 elements
+    CodedFile g;
+    const std::size_t at = 100 + g.sizes[0] + g.sizes[1];
+    const std::vector<std::uint8_t> shorter = encode_floats(g.values.data(), 32, once);
+    g.file.erase(g.file.begin() + std::ptrdiff_t(at), g.file.begin() + std::ptrdiff_t(at + g.sizes[2]));
+    g.file.insert(g.file.begin() + std::ptrdiff_t(at), shorter.begin(), shorter.end());
+    g.sizes[2] = std::uint32_t(shorter.size()), g.sums[2] = hash64(shorter.data(), shorter.size());
+    g.write(dir.file("u.bin"));
+    const Fd fd(dir.file("u.bin"));
+    const CheckedBlocks blocks(fd.fd, dir.file("u.bin"), g.arrays(), g.sums);
+    blocks.need(0, 192, 1000);  // the blocks after it are where the sizes say
+    try {
+        blocks.need(0, 128, 129);
+        FAIL() << "no error";
+    } catch (const DamagedBlockError& e) {
+        EXPECT_NE(std::string(e.what()).find("undecodable data in block 2"), std::string::npos) << e.what();
+    }
 }

@@ -1,5 +1,5 @@
-// The cache build estimate: the terrain cache's disk is the file written (to its header and
-// page padding); time and memory reproduce the measurements they were fitted to (jacksboro
+// The cache build estimate: the terrain cache's disk is of the order of the file written (its
+// coded size follows the DEM's roughness; noise codes to a few times the estimate); time and memory reproduce the measurements they were fitted to (jacksboro
 // refined 5 and 10 times: 2015x1720 and 4030x3440 nodes) and grow with the DEM; the line
 // printed.
 #include <filesystem>
@@ -14,14 +14,14 @@
 
 using namespace penink;
 
-TEST(CacheBuildEstimate, TerrainDiskIsTheFileWritten) {
+TEST(CacheBuildEstimate, TerrainDiskIsOfTheOrderOfTheFileWritten) {
     test::TempDir dir;
     const StoredTerrain t = store_terrain(terrain_from_function(300, 257, 5.0, rough_hills));
     write_terrain_cache(dir.file("h.lod"), t, {1, 2, 3, 0, true});
     const double file = double(std::filesystem::file_size(dir.file("h.lod")));
     const double want = terrain_cache_estimate(300, 257).disk_bytes;
-    EXPECT_LE(want, file);
-    EXPECT_LE(file - want, 4.0 * 4096.0);  // the header but its checksums, and three pages of padding at most
+    EXPECT_LE(want, file);      // rough_hills: noise at the cell scale, coded larger than a real DEM
+    EXPECT_LE(file, 4.0 * want);
 }
 
 TEST(CacheBuildEstimate, ReproducesTheMeasurementsItWasFittedTo) {
@@ -32,13 +32,13 @@ TEST(CacheBuildEstimate, ReproducesTheMeasurementsItWasFittedTo) {
     EXPECT_NEAR(d10.peak_bytes, 1327e6, 20e6);
     EXPECT_NEAR(d10.disk_bytes, 770.8e6, 10e6);  // the .dv written
     const CacheBuildEstimate t5 = terrain_cache_estimate(2015, 1720), t10 = terrain_cache_estimate(4030, 3440);
-    EXPECT_NEAR(t10.seconds, 1.15, 0.01);
+    EXPECT_NEAR(t10.seconds, 2.3, 0.01);
     EXPECT_NEAR(t5.peak_bytes, 259e6, 5e6);
     EXPECT_NEAR(t10.peak_bytes, 658e6, 5e6);
-    EXPECT_NEAR(t10.disk_bytes, 247.9e6, 0.5e6);  // the .lod written
-    // a 1/3 arc-second NED tile, 10812 x 10812 nodes: 2.6 GB of terrain cache
+    EXPECT_NEAR(t10.disk_bytes, 26.7e6, 0.1e6);  // the .lod written
+    // a 1/3 arc-second NED tile, 10812 x 10812 nodes: 0.23 GB of terrain cache
     const CacheBuildEstimate ned = terrain_cache_estimate(10812, 10812);
-    EXPECT_NEAR(ned.disk_bytes, 2.6e9, 0.01e9);
+    EXPECT_NEAR(ned.disk_bytes, 0.23e9, 0.01e9);
     EXPECT_GT(drainage_cache_estimate(10812, 10812).seconds, 8.0 * d10.seconds);  // superlinear
 }
 
@@ -48,6 +48,10 @@ TEST(CacheBuildEstimate, OneLine) {
     EXPECT_EQ(describe_cache_estimate("drainage", "drainage database", 10812, 10812, e),
               "penink: drainage: building the drainage database of a 10812x10812 DEM (116.9 M cells): about 165 s, "
               "9.8 GB of memory at peak, 6.5 GB on disk (estimate)");
+    e.seconds = 2.3, e.peak_bytes = 0.66e9, e.disk_bytes = 26.7e6;  // under a gigabyte: megabytes
+    EXPECT_EQ(describe_cache_estimate("terrain", "terrain cache", 4030, 3440, e),
+              "penink: terrain: building the terrain cache of a 4030x3440 DEM (13.9 M cells): about 2 s, "
+              "0.7 GB of memory at peak, 27 MB on disk (estimate)");
 }
 
 TEST(CacheBuildEstimate, AnnouncedAboveTenMillionCellsOnly) {

@@ -74,7 +74,8 @@ TEST(TerrainCache, RoundTripMapsWhatWasWritten) {
     ASSERT_NE(map->nodes.blocks, nullptr);
     EXPECT_EQ(map->nodes.blocks->bytes_read(), 0u) << "opening reads the header alone";
     read_whole(*map);
-    EXPECT_EQ(map->nodes.blocks->bytes_read(), 300u * 257u * 13u + mem.lod.error.size() * 4u);
+    EXPECT_EQ(map->nodes.blocks->bytes_read(), map->nodes.blocks->bytes()) << "every block, once";
+    EXPECT_EQ(map->nodes.blocks->blocks_read(), map->nodes.blocks->block_count());
     EXPECT_EQ(map->meta.cols, 300);
     EXPECT_EQ(map->meta.rows, 257);
     EXPECT_EQ(map->meta.origin, flat.origin);
@@ -220,13 +221,17 @@ TEST(TerrainCache, DamageInAnyBlockOfTheArraysIsFoundWhenRead) {
     write_terrain_cache(path, mem, key());
     const std::vector<char> bytes = file_bytes(path);
     ASSERT_TRUE(read_terrain_cache(path, key()));
-    // array offsets: 4096-aligned after the header; pos 300 * 257 * 12 bytes, then valid, then error
+    // array offsets: the coded arrays follow the header: pos, then valid, then error
     std::uint64_t at[3];
     // prefix 16, key 32, grid 16 + 16 + 48 + 24 + 8, pyramid 16 + 32 bytes (terrain_cache.hpp)
     std::memcpy(at, bytes.data() + 16 + 32 + 16 + 16 + 48 + 24 + 8 + 16 + 32, 24);
-    ASSERT_EQ(at[0] % 4096, 0u);
-    ASSERT_EQ(at[1], (at[0] + 300 * 257 * 12 + 4095) / 4096 * 4096);  // the offsets were read right
-    const std::size_t offsets[] = {std::size_t(at[0]), std::size_t(at[0] + 300 * 257 * 6), std::size_t(at[1] + 1000),
+    std::uint32_t header = 0;
+    std::memcpy(&header, bytes.data() + 12, 4);
+    ASSERT_EQ(at[0], header);  // the offsets were read right
+    ASSERT_LT(at[0], at[1]);
+    ASSERT_LT(at[1], at[2]);
+    // the first node block, one amid the nodes, one amid the flags, the last pyramid block
+    const std::size_t offsets[] = {std::size_t(at[0]), std::size_t((at[0] + at[1]) / 2), std::size_t((at[1] + at[2]) / 2),
                                    bytes.size() - 4};
     std::string why;
     int damaged = 0;
@@ -303,7 +308,7 @@ TEST(TerrainCache, SmallViewReadsASmallPartAndOnlyItsDamageCounts) {
     const std::string path = dir.file("big.lod");
     write_terrain_cache(path, mem, key());
     const std::uint64_t file_bytes = std::filesystem::file_size(path);
-    ASSERT_GT(file_bytes, 17000000u);  // 1025^2 nodes * 13 bytes + 1025^2 errors * 4 bytes
+    ASSERT_GT(file_bytes, 1025u * 1025u);  // coded: well under the 17 MB of its floats, still over a byte a node
     // straight down (orthographic) on the 100 x 100 nodes around node (200, 200): 1 % of the DEM
     std::vector<glm::dvec3> corners;
     for (const int c : {150, 250})
@@ -332,17 +337,16 @@ TEST(TerrainCache, SmallViewReadsASmallPartAndOnlyItsDamageCounts) {
     EXPECT_LT(blocks.bytes_read() * 8, file_bytes);
     EXPECT_LT(blocks.blocks_read() * 8, blocks.block_count());
     // a block of node positions the frame did not read (the DEM's south-east) and one it read
-    const std::uint64_t unread = map->nodes.index(900, 900) * 12, read = map->nodes.index(200, 200) * 12;
+    const std::uint64_t unread = map->nodes.index(900, 900), read = map->nodes.index(200, 200);
     ASSERT_FALSE(blocks.has_read(GridNodes::pos_array, unread));
     ASSERT_TRUE(blocks.has_read(GridNodes::pos_array, read));
-    const std::uint64_t pos_at = blocks.file_offset(GridNodes::pos_array);
-    flip_byte(path, pos_at + unread);
+    flip_byte(path, blocks.file_offset(GridNodes::pos_array, unread));
     {
         LodSelection again;
         const auto [damaged_elsewhere, opened] = frame(&again);
         expect_same_mesh(want, damaged_elsewhere);
     }
-    flip_byte(path, pos_at + read);
+    flip_byte(path, blocks.file_offset(GridNodes::pos_array, read));
     try {
         frame(nullptr);
         ADD_FAILURE() << "damage in the view not found";
@@ -350,4 +354,70 @@ TEST(TerrainCache, SmallViewReadsASmallPartAndOnlyItsDamageCounts) {
         EXPECT_EQ(e.file(), path);
         EXPECT_EQ(e.stage(), "surface");
     }
+}
+
+// The arrays are coded (core/block_codec.hpp): the file is a fraction of the floats it holds (13
+// bytes a node of positions and flags, 4 a padded node of errors; 0.25 and 0.24 of them here,
+// heights at float precision either way: a bound of 0.3 leaves room for another zlib's choices),
+// and holds exactly the header and the blocks CheckedBlocks reads.
+TEST(TerrainCache, CodedFileIsAFractionOfItsFloats) {
+    test::TempDir dir;
+    for (const bool smooth : {false, true}) {
+        SCOPED_TRACE(smooth ? "gaussian hill" : "rough hills");
+        const Terrain flat = smooth ? terrain_from_function(300, 257, 5.0, gaussian_hill(300.0, 250.0))
+                                    : terrain_from_function(300, 257, 5.0, rough_hills);
+        const StoredTerrain mem = store_terrain(flat);
+        const std::string path = dir.file(smooth ? "smooth.lod" : "rough.lod");
+        write_terrain_cache(path, mem, key());
+        const double floats = 13.0 * double(flat.size()) + 4.0 * double(mem.lod.error.size());
+        const double file = double(std::filesystem::file_size(path));
+        std::printf("%s: %.0f bytes, %.3f of its floats\n", smooth ? "smooth" : "rough", file, file / floats);
+        EXPECT_LT(file, 0.3 * floats);
+        const std::optional<StoredTerrain> map = read_terrain_cache(path, key());
+        ASSERT_TRUE(map);
+        std::uint32_t header = 0;
+        const std::vector<char> bytes = file_bytes(path);
+        std::memcpy(&header, bytes.data() + 12, 4);
+        EXPECT_EQ(double(map->nodes.blocks->bytes() + header), file);
+    }
+}
+
+// On an affine grid (a projected DEM: every node's x, y is affine_node_xy of the geotransform, as
+// the DEM reader computes them) the cache stores z alone and derives x, y as it reads: the nodes
+// and the frames come back bit for bit, in a smaller file than the same terrain with one node's x
+// a float step off the grid, whose x, y are all stored (and come back as well, that node too).
+TEST(TerrainCache, XYOfAnAffineGridAreDerivedNotStored) {
+    test::TempDir dir;
+    Terrain grid = hills();
+    AffineNodes a;
+    ASSERT_TRUE(terrain_affine(grid, a));
+    for (int r = 0; r < grid.rows; ++r)
+        for (int c = 0; c < grid.cols; ++c) {
+            const glm::vec2 xy = affine_node_xy(a, grid.origin, c, r);
+            grid.pos[grid.index(c, r)].x = xy.x, grid.pos[grid.index(c, r)].y = xy.y;
+        }
+    Terrain off = grid;
+    float& x = off.pos[off.index(150, 100)].x;
+    x = std::nextafter(x, 1e9f);
+    for (const Terrain* t : {&grid, &off}) {
+        const bool affine = t == &grid;
+        SCOPED_TRACE(affine ? "affine" : "one node off");
+        const StoredTerrain mem = store_terrain(*t);
+        const std::string path = dir.file(affine ? "affine.lod" : "off.lod");
+        write_terrain_cache(path, mem, key());
+        const std::optional<StoredTerrain> map = read_terrain_cache(path, key());
+        ASSERT_TRUE(map);
+        read_whole(*map);
+        for (std::size_t i = 0; i < t->size(); ++i) {
+            ASSERT_EQ(map->nodes.pos[i], t->pos[i]) << i;
+            ASSERT_EQ(map->nodes.valid[i], t->valid[i]) << i;
+        }
+        const Camera cam = oblique(mem, 2.0);
+        expect_same_mesh(select_lod_mesh(mem.lod, mem.drawn(2.0), 2.0, cam, LodOptions{}),
+                         select_lod_mesh(map->lod, map->drawn(2.0), 2.0, cam, LodOptions{}));
+    }
+    const double derived = double(std::filesystem::file_size(dir.file("affine.lod")));
+    const double stored = double(std::filesystem::file_size(dir.file("off.lod")));
+    std::printf("x, y derived: %.0f bytes; stored: %.0f\n", derived, stored);
+    EXPECT_LT(derived + 0.4 * double(grid.size()), stored);  // x, y coded take 0.65 bytes a node here
 }

@@ -1,0 +1,32 @@
+// Lossless coding of one block of a cache array, so a cache stores fewer bytes than the floats it
+// holds and each block is still read and decoded on its own (core/checked_blocks.hpp).
+//
+// Floats (encode_floats): a block of n elements of orders.size() interleaved float32s each (a
+// node's x, y, z; one error) is taken component by component; each float's bits are mapped to an
+// unsigned integer in the order of the floats (negative ones reversed: the map is monotone, so
+// neighbouring values on a smooth grid give neighbouring integers), differenced orders[k] times
+// along the block (0: as they are; 1: each minus the previous; 2: the differences' differences,
+// which vanish on a line sampled evenly: the x, y of a grid row),
+// zigzag-mapped (small magnitudes to small integers), split into byte planes (all low bytes, then
+// the next, ...: the high planes of small integers are runs of zeros), and deflated (zlib, raw
+// stream). Decoding inverts each step exactly: the floats come back bit for bit (NaN payloads,
+// signed zeros and infinities included).
+// Bytes (encode_bytes): deflated as they are.
+// decode_* return false when the coded bytes do not inflate to exactly the block's size (a
+// damaged or foreign block); the cache checks a checksum of the coded bytes before decoding.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace penink {
+
+// n elements of orders.size() float32s each, at `data`; each order 0, 1 or 2.
+std::vector<std::uint8_t> encode_floats(const float* data, std::size_t n, std::span<const int> orders);
+bool decode_floats(const std::uint8_t* coded, std::size_t size, float* out, std::size_t n, std::span<const int> orders);
+
+std::vector<std::uint8_t> encode_bytes(const std::uint8_t* data, std::size_t n);
+bool decode_bytes(const std::uint8_t* coded, std::size_t size, std::uint8_t* out, std::size_t n);
+
+}  // namespace penink
