@@ -418,11 +418,17 @@ void end_stems_where_they_meet(DrapedLineSet& set, const std::vector<std::uint32
             const std::int64_t hi = std::min<std::int64_t>(std::int64_t(into.first) + into.count - 1, std::int64_t(t) + reach);
             const std::uint32_t from = std::uint32_t(std::max<std::int64_t>(l.first + 1, std::int64_t(e) - reach));
             double closest = meet;  // the closest approach within meet (the first of equals)
+            // a squared distance above this one's square root exceeds `closest` (the bound's
+            // 1e-9 lies far above sqrt's rounding): skipped without the square root
+            double beyond = closest * closest * (1.0 + 1e-9);
             for (std::uint32_t i = from; i <= e; ++i) {
                 const DrapedVertex& v = set.vertices[i];
                 for (std::int64_t j = lo; j <= hi; ++j) {
-                    const double d = plan_length(double(set.vertices[j].x) - v.x, double(set.vertices[j].y) - v.y);
-                    if (d < closest || (d == closest && stop[k] == 0xffffffffu)) closest = d, stop[k] = i;
+                    const double dx = double(set.vertices[j].x) - v.x, dy = double(set.vertices[j].y) - v.y;
+                    if (dx * dx + dy * dy > beyond) continue;
+                    const double d = plan_length(dx, dy);
+                    if (d < closest || (d == closest && stop[k] == 0xffffffffu))
+                        closest = d, stop[k] = i, beyond = closest * closest * (1.0 + 1e-9);
                 }
             }
         }

@@ -145,9 +145,15 @@ struct Stem {
     std::uint32_t n;
 };
 
-// Buffers a thread reuses from stem to stem: the cells as index-space points, and smoothed.
+// What a thread reuses from stem to stem: the cells as index-space points, and smoothed; the
+// smoothing's kernel and the widening's thresholds (of the options, the same for every stem).
 struct StemScratch {
+    explicit StemScratch(const FallLineOptions& o)
+        : kernel(o.sigma), widen_cos(std::cos(o.widen_max_deg * deg)),
+          widen_slope2(std::pow(std::tan(o.widen_min_slope_deg * deg), 2)) {}
     std::vector<glm::dvec2> q, s;
+    GaussianKernel kernel;
+    double widen_cos, widen_slope2;
 };
 
 void trace_stem(const Stem& stem, const GridField& field, const FallLineOptions& o, StemScratch& scratch) {
@@ -158,12 +164,12 @@ void trace_stem(const Stem& stem, const GridField& field, const FallLineOptions&
     const auto cols = std::uint32_t(field.cols());
     q.resize(n);
     for (std::uint32_t k = 0; k < n; ++k) q[k] = {double(stem.cells[k] % cols), double(stem.cells[k] / cols)};
-    gaussian_smooth(q, o.sigma, s);
+    scratch.kernel.smooth(q, s);
     glm::dvec2 p = s[0];
     // the grid's metric at the source serves the whole stem (a UTM-projected grid's cells change
     // shape by far less than a percent along one)
     const Frame f = field.frame(p);
-    const double widen_cos = std::cos(o.widen_max_deg * deg), widen_slope2 = std::pow(std::tan(o.widen_min_slope_deg * deg), 2);
+    const double widen_cos = scratch.widen_cos, widen_slope2 = scratch.widen_slope2;
     double run = o.corridor;  // the corridor, widening on slopes and narrowing on flats
     bool stopped = false;  // the trace left the grid: the remaining vertices stay where it left
     for (std::uint32_t k = 0; k + 1 < n; ++k) {
@@ -234,7 +240,7 @@ void trace_fall_lines(DrapedLineSet& set, const std::vector<std::uint32_t>& cell
     if (g.cols < 2 || g.rows < 2) return;
     const GridField field(g);
     parallel_chunks(set.lines.size(), 1024, [&](std::size_t l0, std::size_t l1) {
-        StemScratch scratch;
+        StemScratch scratch(o);
         for (std::size_t i = l0; i < l1; ++i) {
             const DrapedLine& l = set.lines[i];
             if (l.count < 3) continue;
