@@ -42,9 +42,12 @@ struct StemWalk {
     }
     StemWalk(const StemWalk&) = delete;
 
-    // The drainage vertex of cell i (build_branches' point_vertex).
+    // The drainage vertex of cell i (build_branches' point_vertex; grid_xy's nodes read here
+    // where it would read them from coarse_xy).
+    const bool node_xy = g.factor == 1 && !g.has_affine && g.coarse_xy.size() == g.size();
     DvVertex vertex(std::size_t i) const {
-        const glm::dvec2 p = grid_xy(g, int(i % std::size_t(g.cols)), int(i / std::size_t(g.cols)));
+        const glm::dvec2 p = node_xy ? glm::dvec2(g.coarse_xy[i])
+                                     : grid_xy(g, int(i % std::size_t(g.cols)), int(i / std::size_t(g.cols)));
         return {float(p.x), float(p.y), g.z[i], float(double(net.acc[i]) / total[net.basin[i] - 1])};
     }
 
