@@ -309,17 +309,26 @@ TEST(DrapedLines, BuildProgressRisesMonotonicallyThroughDraping) {
     fs::remove_all(d);
 }
 
-// The network part of volcano's database at the automatic factor: the bytes after the
-// fingerprint, up to the network checksum, pinned by their hash (the lines part and the vertical
-// exaggeration leave them alone).
-TEST(DrapedLines, VolcanoNetworkBytesArePinned) {
+// The bytes of volcano's database at the automatic factor, written with an empty fingerprint.
+std::vector<char> volcano_dv_bytes() {
     const fs::path d = fs::temp_directory_path() / ("penink_drape_pin_" + std::to_string(::getpid()));
     fs::remove_all(d);
     fs::create_directories(d);
     Terrain dem = read_dem(PENINK_SOURCE_DIR "/examples/volcano.asc");
     build_and_write_drainage_db(dem, DrainageOptions{}, DrainageFingerprint{}, (d / "v.dv").string());
     std::ifstream in(d / "v.dv", std::ios::binary);
-    const std::vector<char> b{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    std::vector<char> b{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    in.close();
+    fs::remove_all(d);
+    return b;
+}
+
+// The network part of volcano's database at the automatic factor: the bytes after the
+// fingerprint, up to the network checksum, pinned by their hash (the lines part and the vertical
+// exaggeration leave them alone).
+TEST(DrapedLines, VolcanoNetworkBytesArePinned) {
+    const std::vector<char> b = volcano_dv_bytes();
+    ASSERT_GT(b.size(), 32u);
     std::uint64_t lines_at = 0;
     std::memcpy(&lines_at, b.data() + 24, 8);
     constexpr std::size_t after_fingerprint = 32 + 36;
@@ -327,7 +336,6 @@ TEST(DrapedLines, VolcanoNetworkBytesArePinned) {
     EXPECT_EQ(lines_at - 8 - after_fingerprint, 1838508u);
     EXPECT_EQ(hash64(b.data() + after_fingerprint, std::size_t(lines_at - 8 - after_fingerprint)),
               0x2f2275f3fcb0b3baull);
-    fs::remove_all(d);
 }
 
 // The lines part of volcano's database at the automatic factor: its bytes after the part's
@@ -335,13 +343,8 @@ TEST(DrapedLines, VolcanoNetworkBytesArePinned) {
 // change of the build that is meant to be only faster (threads, kernels, the order of work) must
 // leave every crease and ridge vertex as it was.
 TEST(DrapedLines, VolcanoLinesBytesArePinned) {
-    const fs::path d = fs::temp_directory_path() / ("penink_drape_lines_pin_" + std::to_string(::getpid()));
-    fs::remove_all(d);
-    fs::create_directories(d);
-    Terrain dem = read_dem(PENINK_SOURCE_DIR "/examples/volcano.asc");
-    build_and_write_drainage_db(dem, DrainageOptions{}, DrainageFingerprint{}, (d / "v.dv").string());
-    std::ifstream in(d / "v.dv", std::ios::binary);
-    const std::vector<char> b{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    const std::vector<char> b = volcano_dv_bytes();
+    ASSERT_GT(b.size(), 32u);
     std::uint64_t total = 0, lines_at = 0;
     std::memcpy(&total, b.data() + 16, 8);
     std::memcpy(&lines_at, b.data() + 24, 8);
@@ -351,7 +354,6 @@ TEST(DrapedLines, VolcanoLinesBytesArePinned) {
     const std::size_t n = std::size_t(total - lines_at - fingerprint - checksums);
     EXPECT_EQ(n, 4857736u);
     EXPECT_EQ(hash64(b.data() + lines_at + fingerprint, n), 0xbda2b6ecfd6ea02full);
-    fs::remove_all(d);
 }
 
 }  // namespace
