@@ -447,12 +447,12 @@ void end_stems_where_they_meet(DrapedLineSet& set, const std::vector<std::uint32
 
 }  // namespace
 
-DrapedLineSet network_stems(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
-                            std::vector<std::uint32_t>* cells) {
-    const StemWalk walk(g, dir, net);
-    std::vector<std::uint32_t> sources;
-    for (std::size_t i = 0; i < g.size(); ++i)
-        if (g.valid[i] && walk.indeg[i] == 0) sources.push_back(std::uint32_t(i));
+namespace {
+
+// The stems starting at `sources` (cells), in that order, each walked by `walk` (network_stems'
+// layout); `cells`, when given, gets each vertex's grid cell.
+DrapedLineSet walk_stems(const StemWalk& walk, const DrainageGrid& g, const std::vector<std::uint32_t>& sources,
+                         std::vector<std::uint32_t>* cells) {
     DrapedLineSet set;
     set.lines.resize(sources.size());
     // Every cell is walked by one stem, whose end junction is its last vertex and may be another
@@ -461,8 +461,11 @@ DrapedLineSet network_stems(const DrainageGrid& g, const std::vector<std::uint8_
     const std::size_t bound = g.size() + sources.size();
     if (bound > 0xffffffffull)
         throw Error("drainage", "", "too many stem vertices for the database (4 G or more)", ExitCode::internal);
-    set.vertices.resize(bound);
-    if (cells) cells->resize(bound);
+    // a part's stems (fewer than one an 8 cells): as many vertices as they hold, grown per block,
+    // not the grid's cells
+    const bool whole = sources.size() * 8 >= g.size();
+    set.vertices.resize(whole ? bound : 0);
+    if (cells) cells->resize(whole ? bound : 0);
     constexpr std::size_t block = std::size_t(1) << 16, min_chunk = 1024;
     struct Buffer {
         std::vector<DrapedVertex> v;
@@ -492,6 +495,10 @@ DrapedLineSet network_stems(const DrainageGrid& g, const std::vector<std::uint8_
                 throw Error("drainage", "", "stems hold more vertices than the grid has cells", ExitCode::internal);
             l.first = std::uint32_t(next), next += l.count;
         }
+        if (!whole) {
+            set.vertices.resize(std::size_t(next));
+            if (cells) cells->resize(std::size_t(next));
+        }
         parallel_chunks(n, min_chunk, [&](std::size_t s0, std::size_t) {
             const Buffer& in = buffer[s0 / per];
             std::copy(in.v.begin(), in.v.end(), set.vertices.begin() + std::ptrdiff_t(in.at));
@@ -501,6 +508,27 @@ DrapedLineSet network_stems(const DrainageGrid& g, const std::vector<std::uint8_
     set.vertices.resize(std::size_t(next));
     if (cells) cells->resize(std::size_t(next));
     return set;
+}
+
+std::vector<std::uint32_t> sources_of(const StemWalk& walk, const DrainageGrid& g) {
+    std::vector<std::uint32_t> sources;
+    for (std::size_t i = 0; i < g.size(); ++i)
+        if (g.valid[i] && walk.indeg[i] == 0) sources.push_back(std::uint32_t(i));
+    return sources;
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> stem_sources(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
+                                        const FlowNetwork& net) {
+    const StemWalk walk(g, dir, net);
+    return sources_of(walk, g);
+}
+
+DrapedLineSet network_stems(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
+                            std::vector<std::uint32_t>* cells) {
+    const StemWalk walk(g, dir, net);
+    return walk_stems(walk, g, sources_of(walk, g), cells);
 }
 
 DrapedLineSet listed_lines(const DvVertices& vertices, const std::vector<std::vector<std::uint32_t>>& lines) {
@@ -518,13 +546,65 @@ DrapedLineSet listed_lines(const DvVertices& vertices, const std::vector<std::ve
     return set;
 }
 
+namespace {
+
+// Step 2 with the end matches `follow` (end_matches' triples) and the box [lo, hi] given.
+void smooth_lines_joined(DrapedLineSet& set, double sigma, const std::vector<std::uint32_t>& follow, glm::vec2 lo,
+                         glm::vec2 hi) {
+    smooth_each_line(set, sigma);
+    join_ends(set, follow, int(std::ceil(3.0 * sigma)));
+    clamp_to_box(set, lo, hi);
+}
+void smooth_stems_joined(DrapedLineSet& set, const std::vector<std::uint32_t>& cells, const DrainageGrid& g,
+                         const FallLineOptions& options, const std::vector<std::uint32_t>& follow, glm::vec2 lo,
+                         glm::vec2 hi) {
+    trace_fall_lines(set, cells, g, options);
+    end_stems_where_they_meet(set, follow, int(std::ceil(4.0 * options.corridor)), options.meet * grid_cell_length(g),
+                              line_ids(set));
+    clamp_to_box(set, lo, hi);
+}
+
+// The end matches among `set`'s lines, which are the whole set's lines `ids` (in that order), as
+// end_matches' triples: the joins of each line whose joined line is among them, in line order.
+std::vector<std::uint32_t> part_follow(const DrapedLineSet& set, const LineJoins& joins,
+                                       const std::vector<std::uint32_t>& ids) {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> local(ids.size());  // (whole id, local id)
+    for (std::size_t i = 0; i < ids.size(); ++i) local[i] = {ids[i], std::uint32_t(i)};
+    std::sort(local.begin(), local.end());
+    auto find = [&](std::uint32_t id) -> std::uint32_t {
+        const auto it = std::lower_bound(local.begin(), local.end(), std::pair<std::uint32_t, std::uint32_t>(id, 0));
+        return it != local.end() && it->first == id ? it->second : EndMatches::none;
+    };
+    std::vector<std::uint32_t> follow;
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+        const DrapedLine& l = set.lines[i];
+        for (std::uint32_t k = joins.start[ids[i]]; k < joins.start[ids[i] + 1]; ++k) {
+            const LineJoin& j = joins.joins[k];
+            const std::uint32_t into = find(j.into);
+            if (into == EndMatches::none) continue;
+            if (j.offset >= set.lines[into].count || l.count < 2)
+                throw Error("drainage", "", "line joins do not fit the lines", ExitCode::internal);
+            follow.push_back(std::uint32_t(i)), follow.push_back(j.last ? l.first + l.count - 1 : l.first);
+            follow.push_back(set.lines[into].first + j.offset);
+        }
+    }
+    return follow;
+}
+
+// The first n lines of a set whose lines lie in order from vertex 0.
+void keep_first_lines(DrapedLineSet& set, std::size_t n) {
+    if (n >= set.lines.size()) return;
+    set.vertices.resize(n ? std::size_t(set.lines[n - 1].first) + set.lines[n - 1].count : 0);
+    set.lines.resize(n);
+}
+
+}  // namespace
+
 void smooth_lines(DrapedLineSet& set, double sigma) {
     const std::vector<std::uint32_t> follow = end_matches(set);
     glm::vec2 lo, hi;
     vertex_box(set, lo, hi);
-    smooth_each_line(set, sigma);
-    join_ends(set, follow, int(std::ceil(3.0 * sigma)));
-    clamp_to_box(set, lo, hi);
+    smooth_lines_joined(set, sigma, follow, lo, hi);
 }
 
 void smooth_stems(DrapedLineSet& set, const std::vector<std::uint32_t>& cells, const DrainageGrid& g,
@@ -532,10 +612,82 @@ void smooth_stems(DrapedLineSet& set, const std::vector<std::uint32_t>& cells, c
     const std::vector<std::uint32_t> follow = end_matches(set);
     glm::vec2 lo, hi;
     vertex_box(set, lo, hi);
-    trace_fall_lines(set, cells, g, options);
-    end_stems_where_they_meet(set, follow, int(std::ceil(4.0 * options.corridor)), options.meet * grid_cell_length(g),
-                              line_ids(set));
-    clamp_to_box(set, lo, hi);
+    smooth_stems_joined(set, cells, g, options, follow, lo, hi);
+}
+
+LineJoins line_joins(const DrapedLineSet& set) {
+    LineJoins out;
+    vertex_box(set, out.lo, out.hi);
+    const std::vector<std::uint32_t> follow = end_matches(set);  // in line order, first end first
+    const auto line_of = line_ids(set);
+    out.start.assign(set.lines.size() + 1, 0);
+    out.joins.reserve(follow.size() / 3);
+    for (std::size_t k = 0; k < follow.size(); k += 3) {
+        const DrapedLine& l = set.lines[follow[k]];
+        const std::uint32_t into = line_of[follow[k + 2]];
+        out.joins.push_back({follow[k], follow[k + 1] == l.first ? 0u : 1u, into, follow[k + 2] - set.lines[into].first});
+        ++out.start[follow[k] + 1];
+    }
+    for (std::size_t l = 0; l < set.lines.size(); ++l) out.start[l + 1] += out.start[l];
+    return out;
+}
+
+std::vector<std::uint32_t> join_closure(const LineJoins& joins, const std::vector<std::uint32_t>& ids, int depth) {
+    std::vector<std::uint8_t> seen(joins.start.size() - 1, 0);
+    for (std::uint32_t id : ids) seen.at(id) = 1;
+    std::vector<std::uint32_t> level = ids, added;
+    for (int d = 0; d < depth && !level.empty(); ++d) {
+        std::vector<std::uint32_t> next;
+        for (std::uint32_t id : level)
+            for (std::uint32_t k = joins.start[id]; k < joins.start[id + 1]; ++k)
+                if (const std::uint32_t into = joins.joins[k].into; !seen[into]) seen[into] = 1, next.push_back(into);
+        added.insert(added.end(), next.begin(), next.end());
+        level = std::move(next);
+    }
+    std::sort(added.begin(), added.end());
+    std::vector<std::uint32_t> out = ids;
+    out.insert(out.end(), added.begin(), added.end());
+    return out;
+}
+
+DrapedLineSet crease_part(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
+                          const DemSurface& surface, const std::vector<std::uint32_t>& sources,
+                          const LineJoins& joins, const std::vector<std::uint32_t>& ids) {
+    // a stem's end reads its trunk's trace, which reads nothing of other stems: one level
+    const std::vector<std::uint32_t> closure = join_closure(joins, ids, 1);
+    std::vector<std::uint32_t> closure_sources(closure.size());
+    for (std::size_t i = 0; i < closure.size(); ++i) closure_sources[i] = sources.at(closure[i]);
+    const StemWalk walk(g, dir, net);
+    std::vector<std::uint32_t> cells;
+    DrapedLineSet set = walk_stems(walk, g, closure_sources, &cells);
+    smooth_stems_joined(set, cells, g, fall_line_options(g), part_follow(set, joins, closure), joins.lo, joins.hi);
+    keep_first_lines(set, ids.size());
+    drape_lines(set, surface);
+    return set;
+}
+
+DrapedLineSet ridge_part(const DrainageGrid& g, const DemSurface& surface, const DrapedLineSet& listed,
+                         const LineJoins& joins, const std::vector<std::uint32_t>& ids) {
+    // join_ends' three rounds and its final snap each read the joined line as the round before
+    // left it: a line's result reads lines up to four joins away
+    const std::vector<std::uint32_t> closure = join_closure(joins, ids, 4);
+    DrapedLineSet set;
+    std::size_t n = 0;
+    for (std::uint32_t id : closure) n += listed.lines.at(id).count;
+    set.vertices.resize(n);
+    set.lines.reserve(closure.size());
+    std::size_t at = 0;
+    for (std::uint32_t id : closure) {
+        DrapedLine l = listed.lines[id];
+        std::copy_n(listed.vertices.begin() + l.first, l.count, set.vertices.begin() + std::ptrdiff_t(at));
+        l.first = std::uint32_t(at), at += l.count;
+        set.lines.push_back(l);
+    }
+    smooth_lines_joined(set, 3.0 * fall_line_options(g).sigma, part_follow(set, joins, closure), joins.lo, joins.hi);
+    keep_first_lines(set, ids.size());
+    snap_to_crests(set, surface, crest_options(g));
+    drape_lines(set, surface);
+    return set;
 }
 
 void drape_lines(DrapedLineSet& set, const DemSurface& surface, const LineProgress& progress) {
