@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <unordered_map>
 
 #include <glm/common.hpp>
 
@@ -105,6 +106,18 @@ struct StemWalk {
             if (c[i].cell != n && c[i].order == c[best].order && c[i].flow == c[best].flow && head(c[i].cell) < own)
                 return false;
         return true;
+    }
+
+    // The cell one step up the stem walking through cell m: the one cell draining into a
+    // single-inflow cell, the main upstream one (main_into) at a junction; m itself at a cell
+    // nothing valid drains into (a source).
+    std::size_t main_up(std::size_t m) const {
+        std::size_t up = m;
+        if (indeg[m] == 1) each_upstream(m, [&](std::size_t u) { up = u; });
+        else if (indeg[m] > 1) each_upstream(m, [&](std::size_t u) {
+            if (main_into(u, m)) up = u;
+        });
+        return up;
     }
 
     float vertex_flow(std::size_t i) const { return float(double(net.acc[i]) / total[net.basin[i] - 1]); }
@@ -519,10 +532,19 @@ std::vector<std::uint32_t> sources_of(const StemWalk& walk, const DrainageGrid& 
 
 }  // namespace
 
-std::vector<std::uint32_t> stem_sources(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
-                                        const FlowNetwork& net) {
+StemParts stem_parts(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net) {
     const StemWalk walk(g, dir, net);
-    return sources_of(walk, g);
+    StemParts out;
+    out.sources = sources_of(walk, g);
+    // every valid cell is a vertex of the stem through it (or a junction ending one)
+    glm::vec2 lo(std::numeric_limits<float>::infinity()), hi = -lo;
+    for (std::size_t i = 0; i < g.size(); ++i)
+        if (g.valid[i]) {
+            const DvVertex v = walk.vertex(i);
+            lo = glm::min(lo, glm::vec2(v.x, v.y)), hi = glm::max(hi, glm::vec2(v.x, v.y));
+        }
+    out.lo = lo, out.hi = hi;
+    return out;
 }
 
 DrapedLineSet network_stems(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
@@ -651,16 +673,92 @@ std::vector<std::uint32_t> join_closure(const LineJoins& joins, const std::vecto
 }
 
 DrapedLineSet crease_part(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
-                          const DemSurface& surface, const std::vector<std::uint32_t>& sources,
-                          const LineJoins& joins, const std::vector<std::uint32_t>& ids) {
-    // a stem's end reads its trunk's trace, which reads nothing of other stems: one level
-    const std::vector<std::uint32_t> closure = join_closure(joins, ids, 1);
-    std::vector<std::uint32_t> closure_sources(closure.size());
-    for (std::size_t i = 0; i < closure.size(); ++i) closure_sources[i] = sources.at(closure[i]);
+                          const DemSurface& surface, const StemParts& parts, const std::vector<std::uint32_t>& ids) {
     const StemWalk walk(g, dir, net);
+    std::vector<std::uint32_t> own(ids.size());
+    for (std::size_t i = 0; i < ids.size(); ++i) own[i] = parts.sources.at(ids[i]);
+    // a stem's end reads its trunk's trace, which reads nothing of other stems: one level
     std::vector<std::uint32_t> cells;
-    DrapedLineSet set = walk_stems(walk, g, closure_sources, &cells);
-    smooth_stems_joined(set, cells, g, fall_line_options(g), part_follow(set, joins, closure), joins.lo, joins.hi);
+    DrapedLineSet set = walk_stems(walk, g, own, &cells);
+    const DrapedLineSet& walked = set;
+    // the source of the stem each joins (its own: none), up from its end junction; the cells
+    // climbed remembered with their source (the tributaries of one trunk climb it once)
+    std::vector<std::uint32_t> trunk(ids.size());
+    std::unordered_map<std::uint32_t, std::uint32_t> climbed;
+    std::vector<std::uint32_t> path;
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+        const DrapedLine& l = walked.lines[i];
+        if (l.count < 2) {
+            trunk[i] = own[i];
+            continue;
+        }
+        std::size_t m = cells[l.first + l.count - 1];
+        path.clear();
+        std::uint32_t source;
+        for (;;) {
+            if (const auto it = climbed.find(std::uint32_t(m)); it != climbed.end()) {
+                source = it->second;
+                break;
+            }
+            const std::size_t up = walk.main_up(m);
+            if (up == m) {
+                source = std::uint32_t(m);
+                break;
+            }
+            if (path.size() > g.size()) StemWalk::cycle();
+            path.push_back(std::uint32_t(m)), m = up;
+        }
+        for (std::uint32_t c : path) climbed.emplace(c, source);
+        trunk[i] = source;
+    }
+    std::vector<std::uint32_t> closure = own, added;
+    {
+        std::vector<std::uint32_t> sorted_own = own;
+        std::sort(sorted_own.begin(), sorted_own.end());
+        for (std::size_t i = 0; i < ids.size(); ++i)
+            if (trunk[i] != own[i] && !std::binary_search(sorted_own.begin(), sorted_own.end(), trunk[i]))
+                added.push_back(trunk[i]);
+        std::sort(added.begin(), added.end());
+        added.erase(std::unique(added.begin(), added.end()), added.end());
+        closure.insert(closure.end(), added.begin(), added.end());
+    }
+    {  // the trunks walked after the part's own stems
+        std::vector<std::uint32_t> trunk_cells;
+        const DrapedLineSet trunks = walk_stems(walk, g, added, &trunk_cells);
+        const auto at = std::uint32_t(set.vertices.size());
+        set.vertices.insert(set.vertices.end(), trunks.vertices.begin(), trunks.vertices.end());
+        cells.insert(cells.end(), trunk_cells.begin(), trunk_cells.end());
+        for (DrapedLine l : trunks.lines) l.first += at, set.lines.push_back(l);
+    }
+    // the joins: each stem's last vertex follows its trunk's interior vertex at the junction cell
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> local(closure.size());  // (source, line)
+    for (std::size_t i = 0; i < closure.size(); ++i) local[i] = {closure[i], std::uint32_t(i)};
+    std::sort(local.begin(), local.end());
+    // the trunks' interior vertices by cell (the first of a cell: a stem walks a cell once)
+    std::vector<std::uint32_t> into_line(ids.size(), EndMatches::none);
+    std::vector<std::uint8_t> is_trunk(closure.size(), 0);
+    for (std::size_t i = 0; i < ids.size(); ++i)
+        if (trunk[i] != own[i]) {
+            into_line[i] = std::lower_bound(local.begin(), local.end(), std::pair<std::uint32_t, std::uint32_t>(trunk[i], 0))->second;
+            is_trunk[into_line[i]] = 1;
+        }
+    std::unordered_map<std::uint32_t, std::uint32_t> interior;  // cell -> vertex
+    for (std::size_t t = 0; t < closure.size(); ++t)
+        if (is_trunk[t])
+            for (std::uint32_t k = 1; k + 1 < set.lines[t].count; ++k)
+                interior.emplace(cells[set.lines[t].first + k], set.lines[t].first + k);
+    std::vector<std::uint32_t> follow;
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+        if (into_line[i] == EndMatches::none) continue;
+        const DrapedLine& l = set.lines[i];
+        const std::uint32_t end = l.first + l.count - 1;
+        const auto it = interior.find(cells[end]);
+        if (it == interior.end()) continue;  // the trunk ends there too (an outlet): no interior to follow
+        const DrapedLine& into = set.lines[into_line[i]];
+        if (it->second < into.first || it->second >= into.first + into.count) continue;
+        follow.push_back(std::uint32_t(i)), follow.push_back(end), follow.push_back(it->second);
+    }
+    smooth_stems_joined(set, cells, g, fall_line_options(g), follow, parts.lo, parts.hi);
     keep_first_lines(set, ids.size());
     drape_lines(set, surface);
     return set;

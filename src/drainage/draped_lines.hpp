@@ -72,7 +72,7 @@ bool has_relief(const DrainageGrid& g);
 // ends join (step 2: the end matches) and the box of the whole set's vertices, so a part is built
 // on the closure of its lines under "joins" (stems: one level, a stem ends against its trunk's
 // trace; divides: four, the three rounds of join_ends and the final snap each read the joined
-// line as the round before left it), the joins and box taken from the whole set unsmoothed.
+// line as the round before left it), the box taken from the whole set unsmoothed.
 // One end's match: line `line`'s first (last = 0) or last (last = 1) vertex follows vertex
 // `offset` of line `into` (end_matches on the whole set).
 struct LineJoin {
@@ -93,16 +93,22 @@ LineJoins line_joins(const DrapedLineSet& set);
 // each once, the added ones ascending.
 std::vector<std::uint32_t> join_closure(const LineJoins& joins, const std::vector<std::uint32_t>& ids, int depth);
 
-// The stems' sources in cell order: stem s starts at cell sources[s] (network_stems' line order).
-std::vector<std::uint32_t> stem_sources(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
-                                        const FlowNetwork& net);
-// Steps 1 to 5 for stems `ids` of network_stems(g, dir, net) (whose joins are `joins`): the lines
-// build_draped_lines stores for them in db.creases (vertices, order, box, length equal bit for
-// bit), in the order of `ids`, indexed. On a DEM without relief (has_relief) the whole build
-// keeps no lines: ask for none there.
+// What a part's stems need of the whole network, made in one pass over its cells: the stems'
+// sources in cell order (stem s starts at cell sources[s]: network_stems' line order) and the box
+// of all stems' vertices (every valid cell's drainage vertex), which the whole build clamps to.
+struct StemParts {
+    std::vector<std::uint32_t> sources;
+    glm::vec2 lo{0.0f}, hi{-1.0f};
+};
+StemParts stem_parts(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net);
+// Steps 1 to 5 for stems `ids` of network_stems(g, dir, net): the lines build_draped_lines stores
+// for them in db.creases (vertices, order, box, length equal bit for bit), in the order of `ids`,
+// indexed. A stem's join is found on the network: the stem it joins is the one through its end
+// junction (up the junction's main upstream cells to their source), its vertex the junction's
+// (end_matches' x, y match, where every cell has its own x, y). On a DEM without relief
+// (has_relief) the whole build keeps no lines: ask for none there.
 DrapedLineSet crease_part(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
-                          const DemSurface& surface, const std::vector<std::uint32_t>& sources,
-                          const LineJoins& joins, const std::vector<std::uint32_t>& ids);
+                          const DemSurface& surface, const StemParts& parts, const std::vector<std::uint32_t>& ids);
 // The same for divides `ids` of `listed` (listed_lines of the database's divides, unsmoothed;
 // joins: line_joins(listed)): the lines build_draped_lines stores for them in db.ridges.
 DrapedLineSet ridge_part(const DrainageGrid& g, const DemSurface& surface, const DrapedLineSet& listed,

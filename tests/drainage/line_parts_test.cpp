@@ -70,9 +70,14 @@ void expect_parts_equal_whole(Terrain t, int factor, const std::string& what, st
     const DemSurface surface(g);
 
     // stems: tiles of 32 x 32 cells by their source cell
-    const std::vector<std::uint32_t> sources = stem_sources(g, res.dir, res.net);
+    const StemParts stems_of = stem_parts(g, res.dir, res.net);
+    const std::vector<std::uint32_t>& sources = stems_of.sources;
     ASSERT_EQ(sources.size(), db.creases.lines.size()) << what;
+    // the joins the whole set's x, y matching finds (those crossing parts counted below), and its
+    // box, which stem_parts makes from the cells
     const LineJoins stem_joins = line_joins(network_stems(g, res.dir, res.net));
+    EXPECT_EQ(stems_of.lo, stem_joins.lo) << what;
+    EXPECT_EQ(stems_of.hi, stem_joins.hi) << what;
     constexpr std::uint32_t tile = 32;
     const std::uint32_t tiles_x = (std::uint32_t(g.cols) + tile - 1) / tile;
     const std::uint32_t tiles_y = (std::uint32_t(g.rows) + tile - 1) / tile;
@@ -83,7 +88,7 @@ void expect_parts_equal_whole(Terrain t, int factor, const std::string& what, st
     EXPECT_GE(crossing_joins(stem_joins, stem_parts), min_crossing) << what;
     std::size_t stems = 0, bad_stems = 0;
     for (const auto& ids : stem_parts) {
-        const DrapedLineSet part = crease_part(g, res.dir, res.net, surface, sources, stem_joins, ids);
+        const DrapedLineSet part = crease_part(g, res.dir, res.net, surface, stems_of, ids);
         ASSERT_TRUE(line_set_ok(part)) << what;
         ASSERT_EQ(part.lines.size(), ids.size()) << what;
         bad_stems += mismatches(db.creases, part, ids), stems += ids.size();
