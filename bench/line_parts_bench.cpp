@@ -5,7 +5,9 @@
 //   divides listed and their joins, the PN surface's normals;
 // - for tiles of T x T cells (stems by their source cell), the tile at the grid's centre built
 //   alone, and every tile built one after the other (the closure's repeated lines and the per-part
-//   passes are the overhead over the whole build).
+//   passes are the overhead over the whole build);
+// - CreaseTiles (256-cell tiles): made once, a box of a tenth of the DEM's side at its centre,
+//   then the whole DEM.
 // Usage: line_parts_bench DEM [factor (default 1)] [tile sizes... (default 64 128 256 512)]
 // Wall seconds, best of 3 for the single tile.
 #include <algorithm>
@@ -14,6 +16,9 @@
 #include <cstdlib>
 #include <vector>
 
+#include <glm/common.hpp>
+
+#include "drainage/crease_tiles.hpp"
 #include "drainage/dem_surface.hpp"
 #include "drainage/draped_lines.hpp"
 #include "drainage/drainage_build.hpp"
@@ -90,6 +95,22 @@ int run(int argc, char** argv) {
                     "(%zu vertices)\n",
                     tile, tx, ty, best, lines, vertices, seconds_since(t0), total_vertices);
     }
+    // the tiles a frame needs (crease_tiles.hpp, 256-cell tiles): made once, then a box of a
+    // tenth of the DEM's side at its centre, then the whole DEM
+    t0 = std::chrono::steady_clock::now();
+    CreaseTiles crease_tiles(g, res.dir, res.net);
+    std::printf("crease tiles: made in %.3f s (%zu tiles)\n", seconds_since(t0), crease_tiles.tile_count());
+    glm::vec2 lo(1e30f), hi(-1e30f);
+    for (const DrapedLine& l : db.creases.lines) lo = glm::min(lo, l.lo), hi = glm::max(hi, l.hi);
+    const glm::vec2 c = 0.5f * (lo + hi), half = 0.05f * (hi - lo);
+    t0 = std::chrono::steady_clock::now();
+    std::size_t n = crease_tiles.lines_for_box(c - half, c + half).lines.size();
+    std::printf("crease tiles: a box of a tenth of the side %.3f s (%zu tiles, %zu stems)\n", seconds_since(t0),
+                crease_tiles.tiles_built(), n);
+    t0 = std::chrono::steady_clock::now();
+    n = crease_tiles.lines_for_box(lo, hi).lines.size();
+    std::printf("crease tiles: then the whole DEM %.3f s (%zu tiles, %zu stems)\n", seconds_since(t0),
+                crease_tiles.tiles_built(), n);
     return 0;
 }
 

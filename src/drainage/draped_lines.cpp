@@ -547,6 +547,20 @@ StemParts stem_parts(const DrainageGrid& g, const std::vector<std::uint8_t>& dir
     return out;
 }
 
+void for_each_stem_cells(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
+                         const StemParts& parts,
+                         const std::function<void(std::uint32_t, const std::uint32_t*, std::uint32_t)>& f) {
+    const StemWalk walk(g, dir, net);
+    parallel_chunks(parts.sources.size(), 1024, [&](std::size_t s0, std::size_t s1) {
+        std::vector<std::uint32_t> cells;
+        for (std::size_t s = s0; s < s1; ++s) {
+            cells.clear();
+            walk.walk(parts.sources[s], [&](const DvVertex&, std::size_t c) { cells.push_back(std::uint32_t(c)); });
+            f(std::uint32_t(s), cells.data(), std::uint32_t(cells.size()));
+        }
+    });
+}
+
 DrapedLineSet network_stems(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                             std::vector<std::uint32_t>* cells) {
     const StemWalk walk(g, dir, net);
