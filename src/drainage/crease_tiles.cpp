@@ -5,14 +5,17 @@
 
 #include <glm/common.hpp>
 
+#include "core/hash64.hpp"
 #include "drainage/fall_line_stems.hpp"
+#include "drainage/line_tile_files.hpp"
 #include "drainage/stem_reach.hpp"
 
 namespace penink {
 
-CreaseTiles::CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net, int tile)
-    : g_(g), dir_(dir), net_(net), parts_(stem_parts(g, dir, net)) {
-    const auto side = std::uint32_t(std::max(1, tile));
+CreaseTiles::CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net, int tile,
+                         TileStore store)
+    : g_(g), dir_(dir), net_(net), side_(std::max(1, tile)), store_(std::move(store)), parts_(stem_parts(g, dir, net)) {
+    const auto side = std::uint32_t(side_);
     const std::uint32_t tx = (std::uint32_t(g.cols) + side - 1) / side, ty = (std::uint32_t(g.rows) + side - 1) / side;
     tiles_.resize(std::size_t(tx) * ty);
     for (Tile& t : tiles_) t.lo = glm::vec2(std::numeric_limits<float>::infinity()), t.hi = -t.lo;
@@ -42,11 +45,23 @@ DrapedLineSet CreaseTiles::lines_for_box(glm::vec2 lo, glm::vec2 hi, std::vector
         std::uint32_t line;
     };
     std::vector<Pick> picks;
-    for (Tile& t : tiles_) {
+    for (std::size_t k = 0; k < tiles_.size(); ++k) {
+        Tile& t = tiles_[k];
         if (t.stems.empty() || t.hi.x < lo.x || t.lo.x > hi.x || t.hi.y < lo.y || t.lo.y > hi.y) continue;
         if (!t.lines) {
-            if (!surface_) surface_ = std::make_unique<DemSurface>(g_);
-            t.lines = std::make_unique<DrapedLineSet>(crease_part(g_, dir_, net_, *surface_, parts_, t.stems));
+            auto lines = std::make_unique<DrapedLineSet>();
+            const std::uint64_t fields[3] = {store_.key, std::uint64_t(side_), std::uint64_t(k)};
+            const std::uint64_t key = hash64(fields, sizeof fields);
+            const std::string path = store_.folder.empty() ? std::string() : line_tile_path(store_.folder, std::uint32_t(k));
+            std::vector<std::uint32_t> stems;
+            if (!path.empty() && read_line_tile(path, key, stems, *lines) && stems == t.stems) {
+                ++read_;
+            } else {
+                if (!surface_) surface_ = std::make_unique<DemSurface>(g_);
+                *lines = crease_part(g_, dir_, net_, *surface_, parts_, t.stems);
+                if (!path.empty() && write_line_tile(path, key, t.stems, *lines)) ++written_;
+            }
+            t.lines = std::move(lines);
         }
         for (std::uint32_t i = 0; i < t.stems.size(); ++i) picks.push_back({t.stems[i], t.lines.get(), i});
     }

@@ -10,9 +10,13 @@
 // its stems' trunks along), 512-cell ones four times a 256-cell tile for a frame that needs one.
 // Made once (the constructor): the stems' sources and box (stem_parts) and each tile's reach,
 // from one walk of every stem (its cells, 4 B a vertex while it runs).
+// With a tile store, a tile needed is first looked for in its file (line_tile_files.hpp: read
+// when its key, sizes and checksum hold and it lists the tile's stems), else built and its file
+// written, so the next process reads what this one built.
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -22,11 +26,20 @@
 
 namespace penink {
 
+// Where built tiles are kept between processes: one file a tile in `folder` (none: empty), each
+// keyed by hash64 of `key` (the caller's: what the network was built from), the tile size and
+// the tile's index.
+struct TileStore {
+    std::string folder;
+    std::uint64_t key = 0;
+};
+
 class CreaseTiles {
 public:
     // g, dir and net must outlive this (g.z: the original elevations, as build_draped_lines reads).
     // On a DEM without relief (has_relief) the whole build keeps no creases: make none there.
-    CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net, int tile = 256);
+    CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net, int tile = 256,
+                TileStore store = {});
 
     // The stems whose tiles' reach meets the closed plan box [lo, hi], built where not yet, in
     // stem order (network_stems' ids in `ids`), indexed: lines_meeting_box on it gives the whole
@@ -34,7 +47,9 @@ public:
     DrapedLineSet lines_for_box(glm::vec2 lo, glm::vec2 hi, std::vector<std::uint32_t>* ids = nullptr);
 
     std::size_t tile_count() const { return tiles_.size(); }
-    std::size_t tiles_built() const;
+    std::size_t tiles_built() const;  // in memory: built here or read
+    std::size_t tiles_read() const { return read_; }        // from their files
+    std::size_t tiles_written() const { return written_; }  // files written
 
 private:
     struct Tile {
@@ -45,6 +60,9 @@ private:
     const DrainageGrid& g_;
     const std::vector<std::uint8_t>& dir_;
     const FlowNetwork& net_;
+    int side_ = 256;
+    TileStore store_;
+    std::size_t read_ = 0, written_ = 0;
     StemParts parts_;
     std::vector<Tile> tiles_;
     std::unique_ptr<DemSurface> surface_;  // made with the first tile built
