@@ -13,6 +13,7 @@
 // With a tile store, a tile needed is first looked for in its file (line_tile_files.hpp: read
 // when its key, sizes and checksum hold and it lists the tile's stems), else built and its file
 // written, so the next process reads what this one built.
+// Not thread-safe: one query at a time (a tile's build runs on all cores).
 #pragma once
 #include <cstdint>
 #include <memory>
