@@ -273,6 +273,12 @@ glm::dvec2 grid_xy_at(const DrainageGrid& g, double c, double r) {
         const int c0 = int(std::clamp(std::floor(c), 0.0, double(g.cols - 2)));
         const int r0 = int(std::clamp(std::floor(r), 0.0, double(g.rows - 2)));
         const double u = std::clamp(c - c0, 0.0, 1.0), v = std::clamp(r - r0, 0.0, 1.0);
+        if (g.factor == 1 && !g.has_affine && g.coarse_xy.size() == g.size()) {  // grid_xy's nodes, read here
+            const glm::vec2* n = g.coarse_xy.data() + g.index(c0, r0);
+            const std::size_t row = std::size_t(g.cols);
+            return (1 - v) * ((1 - u) * glm::dvec2(n[0]) + u * glm::dvec2(n[1])) +
+                   v * ((1 - u) * glm::dvec2(n[row]) + u * glm::dvec2(n[row + 1]));
+        }
         return (1 - v) * ((1 - u) * grid_xy(g, c0, r0) + u * grid_xy(g, c0 + 1, r0)) +
                v * ((1 - u) * grid_xy(g, c0, r0 + 1) + u * grid_xy(g, c0 + 1, r0 + 1));
     }

@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <unordered_map>
 
 #include <glm/common.hpp>
 
@@ -42,9 +43,12 @@ struct StemWalk {
     }
     StemWalk(const StemWalk&) = delete;
 
-    // The drainage vertex of cell i (build_branches' point_vertex).
+    // The drainage vertex of cell i (build_branches' point_vertex; grid_xy's nodes read here
+    // where it would read them from coarse_xy).
+    const bool node_xy = g.factor == 1 && !g.has_affine && g.coarse_xy.size() == g.size();
     DvVertex vertex(std::size_t i) const {
-        const glm::dvec2 p = grid_xy(g, int(i % std::size_t(g.cols)), int(i / std::size_t(g.cols)));
+        const glm::dvec2 p = node_xy ? glm::dvec2(g.coarse_xy[i])
+                                     : grid_xy(g, int(i % std::size_t(g.cols)), int(i / std::size_t(g.cols)));
         return {float(p.x), float(p.y), g.z[i], float(double(net.acc[i]) / total[net.basin[i] - 1])};
     }
 
@@ -102,6 +106,18 @@ struct StemWalk {
             if (c[i].cell != n && c[i].order == c[best].order && c[i].flow == c[best].flow && head(c[i].cell) < own)
                 return false;
         return true;
+    }
+
+    // The cell one step up the stem walking through cell m: the one cell draining into a
+    // single-inflow cell, the main upstream one (main_into) at a junction; m itself at a cell
+    // nothing valid drains into (a source).
+    std::size_t main_up(std::size_t m) const {
+        std::size_t up = m;
+        if (indeg[m] == 1) each_upstream(m, [&](std::size_t u) { up = u; });
+        else if (indeg[m] > 1) each_upstream(m, [&](std::size_t u) {
+            if (main_into(u, m)) up = u;
+        });
+        return up;
     }
 
     float vertex_flow(std::size_t i) const { return float(double(net.acc[i]) / total[net.basin[i] - 1]); }
@@ -418,11 +434,17 @@ void end_stems_where_they_meet(DrapedLineSet& set, const std::vector<std::uint32
             const std::int64_t hi = std::min<std::int64_t>(std::int64_t(into.first) + into.count - 1, std::int64_t(t) + reach);
             const std::uint32_t from = std::uint32_t(std::max<std::int64_t>(l.first + 1, std::int64_t(e) - reach));
             double closest = meet;  // the closest approach within meet (the first of equals)
+            // a squared distance above this one's square root exceeds `closest` (the bound's
+            // 1e-9 lies far above sqrt's rounding): skipped without the square root
+            double beyond = closest * closest * (1.0 + 1e-9);
             for (std::uint32_t i = from; i <= e; ++i) {
                 const DrapedVertex& v = set.vertices[i];
                 for (std::int64_t j = lo; j <= hi; ++j) {
-                    const double d = plan_length(double(set.vertices[j].x) - v.x, double(set.vertices[j].y) - v.y);
-                    if (d < closest || (d == closest && stop[k] == 0xffffffffu)) closest = d, stop[k] = i;
+                    const double dx = double(set.vertices[j].x) - v.x, dy = double(set.vertices[j].y) - v.y;
+                    if (dx * dx + dy * dy > beyond) continue;
+                    const double d = plan_length(dx, dy);
+                    if (d < closest || (d == closest && stop[k] == 0xffffffffu))
+                        closest = d, stop[k] = i, beyond = closest * closest * (1.0 + 1e-9);
                 }
             }
         }
@@ -438,12 +460,12 @@ void end_stems_where_they_meet(DrapedLineSet& set, const std::vector<std::uint32
 
 }  // namespace
 
-DrapedLineSet network_stems(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
-                            std::vector<std::uint32_t>* cells) {
-    const StemWalk walk(g, dir, net);
-    std::vector<std::uint32_t> sources;
-    for (std::size_t i = 0; i < g.size(); ++i)
-        if (g.valid[i] && walk.indeg[i] == 0) sources.push_back(std::uint32_t(i));
+namespace {
+
+// The stems starting at `sources` (cells), in that order, each walked by `walk` (network_stems'
+// layout); `cells`, when given, gets each vertex's grid cell.
+DrapedLineSet walk_stems(const StemWalk& walk, const DrainageGrid& g, const std::vector<std::uint32_t>& sources,
+                         std::vector<std::uint32_t>* cells) {
     DrapedLineSet set;
     set.lines.resize(sources.size());
     // Every cell is walked by one stem, whose end junction is its last vertex and may be another
@@ -452,8 +474,11 @@ DrapedLineSet network_stems(const DrainageGrid& g, const std::vector<std::uint8_
     const std::size_t bound = g.size() + sources.size();
     if (bound > 0xffffffffull)
         throw Error("drainage", "", "too many stem vertices for the database (4 G or more)", ExitCode::internal);
-    set.vertices.resize(bound);
-    if (cells) cells->resize(bound);
+    // a part's stems (fewer than one an 8 cells): as many vertices as they hold, grown per block,
+    // not the grid's cells
+    const bool whole = sources.size() * 8 >= g.size();
+    set.vertices.resize(whole ? bound : 0);
+    if (cells) cells->resize(whole ? bound : 0);
     constexpr std::size_t block = std::size_t(1) << 16, min_chunk = 1024;
     struct Buffer {
         std::vector<DrapedVertex> v;
@@ -483,6 +508,10 @@ DrapedLineSet network_stems(const DrainageGrid& g, const std::vector<std::uint8_
                 throw Error("drainage", "", "stems hold more vertices than the grid has cells", ExitCode::internal);
             l.first = std::uint32_t(next), next += l.count;
         }
+        if (!whole) {
+            set.vertices.resize(std::size_t(next));
+            if (cells) cells->resize(std::size_t(next));
+        }
         parallel_chunks(n, min_chunk, [&](std::size_t s0, std::size_t) {
             const Buffer& in = buffer[s0 / per];
             std::copy(in.v.begin(), in.v.end(), set.vertices.begin() + std::ptrdiff_t(in.at));
@@ -492,6 +521,50 @@ DrapedLineSet network_stems(const DrainageGrid& g, const std::vector<std::uint8_
     set.vertices.resize(std::size_t(next));
     if (cells) cells->resize(std::size_t(next));
     return set;
+}
+
+std::vector<std::uint32_t> sources_of(const StemWalk& walk, const DrainageGrid& g) {
+    std::vector<std::uint32_t> sources;
+    for (std::size_t i = 0; i < g.size(); ++i)
+        if (g.valid[i] && walk.indeg[i] == 0) sources.push_back(std::uint32_t(i));
+    return sources;
+}
+
+}  // namespace
+
+StemParts stem_parts(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net) {
+    const StemWalk walk(g, dir, net);
+    StemParts out;
+    out.sources = sources_of(walk, g);
+    // every valid cell is a vertex of the stem through it (or a junction ending one)
+    glm::vec2 lo(std::numeric_limits<float>::infinity()), hi = -lo;
+    for (std::size_t i = 0; i < g.size(); ++i)
+        if (g.valid[i]) {
+            const DvVertex v = walk.vertex(i);
+            lo = glm::min(lo, glm::vec2(v.x, v.y)), hi = glm::max(hi, glm::vec2(v.x, v.y));
+        }
+    out.lo = lo, out.hi = hi;
+    return out;
+}
+
+void for_each_stem_cells(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
+                         const StemParts& parts,
+                         const std::function<void(std::uint32_t, const std::uint32_t*, std::uint32_t)>& f) {
+    const StemWalk walk(g, dir, net);
+    parallel_chunks(parts.sources.size(), 1024, [&](std::size_t s0, std::size_t s1) {
+        std::vector<std::uint32_t> cells;
+        for (std::size_t s = s0; s < s1; ++s) {
+            cells.clear();
+            walk.walk(parts.sources[s], [&](const DvVertex&, std::size_t c) { cells.push_back(std::uint32_t(c)); });
+            f(std::uint32_t(s), cells.data(), std::uint32_t(cells.size()));
+        }
+    });
+}
+
+DrapedLineSet network_stems(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
+                            std::vector<std::uint32_t>* cells) {
+    const StemWalk walk(g, dir, net);
+    return walk_stems(walk, g, sources_of(walk, g), cells);
 }
 
 DrapedLineSet listed_lines(const DvVertices& vertices, const std::vector<std::vector<std::uint32_t>>& lines) {
@@ -509,13 +582,65 @@ DrapedLineSet listed_lines(const DvVertices& vertices, const std::vector<std::ve
     return set;
 }
 
+namespace {
+
+// Step 2 with the end matches `follow` (end_matches' triples) and the box [lo, hi] given.
+void smooth_lines_joined(DrapedLineSet& set, double sigma, const std::vector<std::uint32_t>& follow, glm::vec2 lo,
+                         glm::vec2 hi) {
+    smooth_each_line(set, sigma);
+    join_ends(set, follow, int(std::ceil(3.0 * sigma)));
+    clamp_to_box(set, lo, hi);
+}
+void smooth_stems_joined(DrapedLineSet& set, const std::vector<std::uint32_t>& cells, const DrainageGrid& g,
+                         const FallLineOptions& options, const std::vector<std::uint32_t>& follow, glm::vec2 lo,
+                         glm::vec2 hi) {
+    trace_fall_lines(set, cells, g, options);
+    end_stems_where_they_meet(set, follow, int(std::ceil(4.0 * options.corridor)), options.meet * grid_cell_length(g),
+                              line_ids(set));
+    clamp_to_box(set, lo, hi);
+}
+
+// The end matches among `set`'s lines, which are the whole set's lines `ids` (in that order), as
+// end_matches' triples: the joins of each line whose joined line is among them, in line order.
+std::vector<std::uint32_t> part_follow(const DrapedLineSet& set, const LineJoins& joins,
+                                       const std::vector<std::uint32_t>& ids) {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> local(ids.size());  // (whole id, local id)
+    for (std::size_t i = 0; i < ids.size(); ++i) local[i] = {ids[i], std::uint32_t(i)};
+    std::sort(local.begin(), local.end());
+    auto find = [&](std::uint32_t id) -> std::uint32_t {
+        const auto it = std::lower_bound(local.begin(), local.end(), std::pair<std::uint32_t, std::uint32_t>(id, 0));
+        return it != local.end() && it->first == id ? it->second : EndMatches::none;
+    };
+    std::vector<std::uint32_t> follow;
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+        const DrapedLine& l = set.lines[i];
+        for (std::uint32_t k = joins.start[ids[i]]; k < joins.start[ids[i] + 1]; ++k) {
+            const LineJoin& j = joins.joins[k];
+            const std::uint32_t into = find(j.into);
+            if (into == EndMatches::none) continue;
+            if (j.offset >= set.lines[into].count || l.count < 2)
+                throw Error("drainage", "", "line joins do not fit the lines", ExitCode::internal);
+            follow.push_back(std::uint32_t(i)), follow.push_back(j.last ? l.first + l.count - 1 : l.first);
+            follow.push_back(set.lines[into].first + j.offset);
+        }
+    }
+    return follow;
+}
+
+// The first n lines of a set whose lines lie in order from vertex 0.
+void keep_first_lines(DrapedLineSet& set, std::size_t n) {
+    if (n >= set.lines.size()) return;
+    set.vertices.resize(n ? std::size_t(set.lines[n - 1].first) + set.lines[n - 1].count : 0);
+    set.lines.resize(n);
+}
+
+}  // namespace
+
 void smooth_lines(DrapedLineSet& set, double sigma) {
     const std::vector<std::uint32_t> follow = end_matches(set);
     glm::vec2 lo, hi;
     vertex_box(set, lo, hi);
-    smooth_each_line(set, sigma);
-    join_ends(set, follow, int(std::ceil(3.0 * sigma)));
-    clamp_to_box(set, lo, hi);
+    smooth_lines_joined(set, sigma, follow, lo, hi);
 }
 
 void smooth_stems(DrapedLineSet& set, const std::vector<std::uint32_t>& cells, const DrainageGrid& g,
@@ -523,10 +648,158 @@ void smooth_stems(DrapedLineSet& set, const std::vector<std::uint32_t>& cells, c
     const std::vector<std::uint32_t> follow = end_matches(set);
     glm::vec2 lo, hi;
     vertex_box(set, lo, hi);
-    trace_fall_lines(set, cells, g, options);
-    end_stems_where_they_meet(set, follow, int(std::ceil(4.0 * options.corridor)), options.meet * grid_cell_length(g),
-                              line_ids(set));
-    clamp_to_box(set, lo, hi);
+    smooth_stems_joined(set, cells, g, options, follow, lo, hi);
+}
+
+LineJoins line_joins(const DrapedLineSet& set) {
+    LineJoins out;
+    vertex_box(set, out.lo, out.hi);
+    const std::vector<std::uint32_t> follow = end_matches(set);  // in line order, first end first
+    const auto line_of = line_ids(set);
+    out.start.assign(set.lines.size() + 1, 0);
+    out.joins.reserve(follow.size() / 3);
+    for (std::size_t k = 0; k < follow.size(); k += 3) {
+        const DrapedLine& l = set.lines[follow[k]];
+        const std::uint32_t into = line_of[follow[k + 2]];
+        out.joins.push_back({follow[k], follow[k + 1] == l.first ? 0u : 1u, into, follow[k + 2] - set.lines[into].first});
+        ++out.start[follow[k] + 1];
+    }
+    for (std::size_t l = 0; l < set.lines.size(); ++l) out.start[l + 1] += out.start[l];
+    return out;
+}
+
+std::vector<std::uint32_t> join_closure(const LineJoins& joins, const std::vector<std::uint32_t>& ids, int depth) {
+    std::vector<std::uint8_t> seen(joins.start.size() - 1, 0);
+    for (std::uint32_t id : ids) seen.at(id) = 1;
+    std::vector<std::uint32_t> level = ids, added;
+    for (int d = 0; d < depth && !level.empty(); ++d) {
+        std::vector<std::uint32_t> next;
+        for (std::uint32_t id : level)
+            for (std::uint32_t k = joins.start[id]; k < joins.start[id + 1]; ++k)
+                if (const std::uint32_t into = joins.joins[k].into; !seen[into]) seen[into] = 1, next.push_back(into);
+        added.insert(added.end(), next.begin(), next.end());
+        level = std::move(next);
+    }
+    std::sort(added.begin(), added.end());
+    std::vector<std::uint32_t> out = ids;
+    out.insert(out.end(), added.begin(), added.end());
+    return out;
+}
+
+DrapedLineSet crease_part(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
+                          const DemSurface& surface, const StemParts& parts, const std::vector<std::uint32_t>& ids) {
+    const StemWalk walk(g, dir, net);
+    std::vector<std::uint32_t> own(ids.size());
+    for (std::size_t i = 0; i < ids.size(); ++i) own[i] = parts.sources.at(ids[i]);
+    // a stem's end reads its trunk's trace, which reads nothing of other stems: one level
+    std::vector<std::uint32_t> cells;
+    DrapedLineSet set = walk_stems(walk, g, own, &cells);
+    const DrapedLineSet& walked = set;
+    // the source of the stem each joins (its own: none), up from its end junction; the cells
+    // climbed remembered with their source (the tributaries of one trunk climb it once)
+    std::vector<std::uint32_t> trunk(ids.size());
+    std::unordered_map<std::uint32_t, std::uint32_t> climbed;
+    std::vector<std::uint32_t> path;
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+        const DrapedLine& l = walked.lines[i];
+        if (l.count < 2) {
+            trunk[i] = own[i];
+            continue;
+        }
+        std::size_t m = cells[l.first + l.count - 1];
+        path.clear();
+        std::uint32_t source;
+        for (;;) {
+            if (const auto it = climbed.find(std::uint32_t(m)); it != climbed.end()) {
+                source = it->second;
+                break;
+            }
+            const std::size_t up = walk.main_up(m);
+            if (up == m) {
+                source = std::uint32_t(m);
+                break;
+            }
+            if (path.size() > g.size()) StemWalk::cycle();
+            path.push_back(std::uint32_t(m)), m = up;
+        }
+        for (std::uint32_t c : path) climbed.emplace(c, source);
+        trunk[i] = source;
+    }
+    std::vector<std::uint32_t> closure = own, added;
+    {
+        std::vector<std::uint32_t> sorted_own = own;
+        std::sort(sorted_own.begin(), sorted_own.end());
+        for (std::size_t i = 0; i < ids.size(); ++i)
+            if (trunk[i] != own[i] && !std::binary_search(sorted_own.begin(), sorted_own.end(), trunk[i]))
+                added.push_back(trunk[i]);
+        std::sort(added.begin(), added.end());
+        added.erase(std::unique(added.begin(), added.end()), added.end());
+        closure.insert(closure.end(), added.begin(), added.end());
+    }
+    {  // the trunks walked after the part's own stems
+        std::vector<std::uint32_t> trunk_cells;
+        const DrapedLineSet trunks = walk_stems(walk, g, added, &trunk_cells);
+        const auto at = std::uint32_t(set.vertices.size());
+        set.vertices.insert(set.vertices.end(), trunks.vertices.begin(), trunks.vertices.end());
+        cells.insert(cells.end(), trunk_cells.begin(), trunk_cells.end());
+        for (DrapedLine l : trunks.lines) l.first += at, set.lines.push_back(l);
+    }
+    // the joins: each stem's last vertex follows its trunk's interior vertex at the junction cell
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> local(closure.size());  // (source, line)
+    for (std::size_t i = 0; i < closure.size(); ++i) local[i] = {closure[i], std::uint32_t(i)};
+    std::sort(local.begin(), local.end());
+    // the trunks' interior vertices by cell (the first of a cell: a stem walks a cell once)
+    std::vector<std::uint32_t> into_line(ids.size(), EndMatches::none);
+    std::vector<std::uint8_t> is_trunk(closure.size(), 0);
+    for (std::size_t i = 0; i < ids.size(); ++i)
+        if (trunk[i] != own[i]) {
+            into_line[i] = std::lower_bound(local.begin(), local.end(), std::pair<std::uint32_t, std::uint32_t>(trunk[i], 0))->second;
+            is_trunk[into_line[i]] = 1;
+        }
+    std::unordered_map<std::uint32_t, std::uint32_t> interior;  // cell -> vertex
+    for (std::size_t t = 0; t < closure.size(); ++t)
+        if (is_trunk[t])
+            for (std::uint32_t k = 1; k + 1 < set.lines[t].count; ++k)
+                interior.emplace(cells[set.lines[t].first + k], set.lines[t].first + k);
+    std::vector<std::uint32_t> follow;
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+        if (into_line[i] == EndMatches::none) continue;
+        const DrapedLine& l = set.lines[i];
+        const std::uint32_t end = l.first + l.count - 1;
+        const auto it = interior.find(cells[end]);
+        if (it == interior.end()) continue;  // the trunk ends there too (an outlet): no interior to follow
+        const DrapedLine& into = set.lines[into_line[i]];
+        if (it->second < into.first || it->second >= into.first + into.count) continue;
+        follow.push_back(std::uint32_t(i)), follow.push_back(end), follow.push_back(it->second);
+    }
+    smooth_stems_joined(set, cells, g, fall_line_options(g), follow, parts.lo, parts.hi);
+    keep_first_lines(set, ids.size());
+    drape_lines(set, surface);
+    return set;
+}
+
+DrapedLineSet ridge_part(const DrainageGrid& g, const DemSurface& surface, const DrapedLineSet& listed,
+                         const LineJoins& joins, const std::vector<std::uint32_t>& ids) {
+    // join_ends' three rounds and its final snap each read the joined line as the round before
+    // left it: a line's result reads lines up to four joins away
+    const std::vector<std::uint32_t> closure = join_closure(joins, ids, 4);
+    DrapedLineSet set;
+    std::size_t n = 0;
+    for (std::uint32_t id : closure) n += listed.lines.at(id).count;
+    set.vertices.resize(n);
+    set.lines.reserve(closure.size());
+    std::size_t at = 0;
+    for (std::uint32_t id : closure) {
+        DrapedLine l = listed.lines[id];
+        std::copy_n(listed.vertices.begin() + l.first, l.count, set.vertices.begin() + std::ptrdiff_t(at));
+        l.first = std::uint32_t(at), at += l.count;
+        set.lines.push_back(l);
+    }
+    smooth_lines_joined(set, 3.0 * fall_line_options(g).sigma, part_follow(set, joins, closure), joins.lo, joins.hi);
+    keep_first_lines(set, ids.size());
+    snap_to_crests(set, surface, crest_options(g));
+    drape_lines(set, surface);
+    return set;
 }
 
 void drape_lines(DrapedLineSet& set, const DemSurface& surface, const LineProgress& progress) {

@@ -67,6 +67,59 @@ void smooth_and_drape(DrapedLineSet& set, const DemSurface& surface, const LineP
 // false for a plane (every valid height equal) or no valid node.
 bool has_relief(const DrainageGrid& g);
 
+// Lines built for part of the DEM with the same per-line results as the whole set's build
+// (build_draped_lines): a line's smoothing reads, besides its own vertices, those of the lines its
+// ends join (step 2: the end matches) and the box of the whole set's vertices, so a part is built
+// on the closure of its lines under "joins" (stems: one level, a stem ends against its trunk's
+// trace; divides: four, the three rounds of join_ends and the final snap each read the joined
+// line as the round before left it), the box taken from the whole set unsmoothed.
+// One end's match: line `line`'s first (last = 0) or last (last = 1) vertex follows vertex
+// `offset` of line `into` (end_matches on the whole set).
+struct LineJoin {
+    std::uint32_t line, last, into, offset;
+    bool operator==(const LineJoin&) const = default;
+};
+// The whole set's joins, by line (CSR: line l's are joins[start[l], start[l + 1]), its first end's
+// before its last), and the plan box of its vertices before smoothing (what clamping keeps to).
+struct LineJoins {
+    std::vector<std::uint32_t> start{0};
+    std::vector<LineJoin> joins;
+    glm::vec2 lo{0.0f}, hi{-1.0f};
+    bool operator==(const LineJoins&) const = default;
+};
+// The joins of a set made by step 1 (network_stems, listed_lines), before smoothing.
+LineJoins line_joins(const DrapedLineSet& set);
+// `ids` (line ids, no repeats) followed by every line they reach through up to `depth` joins,
+// each once, the added ones ascending.
+std::vector<std::uint32_t> join_closure(const LineJoins& joins, const std::vector<std::uint32_t>& ids, int depth);
+
+// What a part's stems need of the whole network, made in one pass over its cells: the stems'
+// sources in cell order (stem s starts at cell sources[s]: network_stems' line order) and the box
+// of all stems' vertices (every valid cell's drainage vertex), which the whole build clamps to.
+struct StemParts {
+    std::vector<std::uint32_t> sources;
+    glm::vec2 lo{0.0f}, hi{-1.0f};
+};
+StemParts stem_parts(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net);
+// Calls f(s, cells, n) for each stem s of network_stems(g, dir, net) (parts.sources) with its n
+// grid cells in stem order, on all cores (f must be safe to call from several threads at once);
+// no stem's vertices are kept.
+void for_each_stem_cells(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
+                         const StemParts& parts,
+                         const std::function<void(std::uint32_t, const std::uint32_t*, std::uint32_t)>& f);
+// Steps 1 to 5 for stems `ids` of network_stems(g, dir, net): the lines build_draped_lines stores
+// for them in db.creases (vertices, order, box, length equal bit for bit), in the order of `ids`,
+// indexed. A stem's join is found on the network: the stem it joins is the one through its end
+// junction (up the junction's main upstream cells to their source), its vertex the junction's
+// (end_matches' x, y match, where every cell has its own x, y). On a DEM without relief
+// (has_relief) the whole build keeps no lines: ask for none there.
+DrapedLineSet crease_part(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
+                          const DemSurface& surface, const StemParts& parts, const std::vector<std::uint32_t>& ids);
+// The same for divides `ids` of `listed` (listed_lines of the database's divides, unsmoothed;
+// joins: line_joins(listed)): the lines build_draped_lines stores for them in db.ridges.
+DrapedLineSet ridge_part(const DrainageGrid& g, const DemSurface& surface, const DrapedLineSet& listed,
+                         const LineJoins& joins, const std::vector<std::uint32_t>& ids);
+
 // Both sets of a built network into db.creases and db.ridges (the divides from db.divides and
 // db.divide_vertices), on the DEM of `g` (DemSurface(g): g.z must hold the original elevations).
 // On a DEM without relief (has_relief) both sets are empty: a plane has no creases nor ridges.

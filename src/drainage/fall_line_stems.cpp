@@ -16,7 +16,10 @@ constexpr double deg = 3.14159265358979323846 / 180.0;
 constexpr double min_cos = 0.3420201433256687;    // cos 70 degrees
 
 struct Frame {
-    glm::dvec2 u{1.0, 0.0}, v{0.0, -1.0};  // plan steps of one column, one row
+    Frame(glm::dvec2 col, glm::dvec2 row)
+        : u(col), v(row), a(glm::dot(u, u)), b(glm::dot(u, v)), c(glm::dot(v, v)), det(a * c - b * b) {}
+    glm::dvec2 u, v;       // plan steps of one column, one row
+    double a, b, c, det;   // the metric JᵀJ = [a b; b c] and its determinant
 };
 
 class GridField {
@@ -43,7 +46,7 @@ public:
     // dz/dc, dz/dr at fine index point p: bilinear between the four DEM nodes' central
     // differences around it; false beside nodata.
     bool gradient(glm::dvec2 fine, glm::dvec2& grad) const {
-        const glm::dvec2 p = fine / scale_;
+        const glm::dvec2 p = scale_ == 1.0 ? fine : fine / scale_;  // x / 1 is x: no division at factor 1
         int c, r;
         cell(p, c, r);
         const double fu = std::clamp(p.x - c, 0.0, 1.0), fv = std::clamp(p.y - r, 0.0, 1.0);
@@ -57,7 +60,7 @@ public:
                 const float* n = z + (k >> 1) * row + (k & 1);
                 grad += w[k] * glm::dvec2(0.5 * (double(n[1]) - n[-1]), 0.5 * (double(n[row]) - n[-row]));
             }
-            grad /= scale_;
+            if (scale_ != 1.0) grad /= scale_;
             return true;
         }
         for (int k = 0; k < 4; ++k) {
@@ -65,7 +68,7 @@ public:
             if (!node_gradient(c + (k & 1), r + (k >> 1), n)) return false;
             grad += w[k] * n;
         }
-        grad /= scale_;
+        if (scale_ != 1.0) grad /= scale_;
         return true;
     }
 
@@ -113,8 +116,7 @@ inline double norm(double x, double y) { return std::sqrt(x * x + y * y); }
 
 // Index-space direction of steepest descent for index-space gradient gr on frame f: -(JᵀJ)⁻¹ gr.
 bool descent(const Frame& f, glm::dvec2 gr, glm::dvec2& d) {
-    const double a = glm::dot(f.u, f.u), b = glm::dot(f.u, f.v), c = glm::dot(f.v, f.v);
-    const double det = a * c - b * b;
+    const double a = f.a, b = f.b, c = f.c, det = f.det;
     if (!(std::abs(det) > 0.0)) return false;
     d = -glm::dvec2(c * gr.x - b * gr.y, a * gr.y - b * gr.x) / det;
     return d.x != 0.0 || d.y != 0.0;
@@ -145,9 +147,15 @@ struct Stem {
     std::uint32_t n;
 };
 
-// Buffers a thread reuses from stem to stem: the cells as index-space points, and smoothed.
+// What a thread reuses from stem to stem: the cells as index-space points, and smoothed; the
+// smoothing's kernel and the widening's thresholds (of the options, the same for every stem).
 struct StemScratch {
+    explicit StemScratch(const FallLineOptions& o)
+        : kernel(o.sigma), widen_cos(std::cos(o.widen_max_deg * deg)),
+          widen_slope2(std::pow(std::tan(o.widen_min_slope_deg * deg), 2)) {}
     std::vector<glm::dvec2> q, s;
+    GaussianKernel kernel;
+    double widen_cos, widen_slope2;
 };
 
 void trace_stem(const Stem& stem, const GridField& field, const FallLineOptions& o, StemScratch& scratch) {
@@ -158,12 +166,12 @@ void trace_stem(const Stem& stem, const GridField& field, const FallLineOptions&
     const auto cols = std::uint32_t(field.cols());
     q.resize(n);
     for (std::uint32_t k = 0; k < n; ++k) q[k] = {double(stem.cells[k] % cols), double(stem.cells[k] / cols)};
-    gaussian_smooth(q, o.sigma, s);
+    scratch.kernel.smooth(q, s);
     glm::dvec2 p = s[0];
     // the grid's metric at the source serves the whole stem (a UTM-projected grid's cells change
     // shape by far less than a percent along one)
     const Frame f = field.frame(p);
-    const double widen_cos = std::cos(o.widen_max_deg * deg), widen_slope2 = std::pow(std::tan(o.widen_min_slope_deg * deg), 2);
+    const double widen_cos = scratch.widen_cos, widen_slope2 = scratch.widen_slope2;
     double run = o.corridor;  // the corridor, widening on slopes and narrowing on flats
     bool stopped = false;  // the trace left the grid: the remaining vertices stay where it left
     for (std::uint32_t k = 0; k + 1 < n; ++k) {
@@ -234,7 +242,7 @@ void trace_fall_lines(DrapedLineSet& set, const std::vector<std::uint32_t>& cell
     if (g.cols < 2 || g.rows < 2) return;
     const GridField field(g);
     parallel_chunks(set.lines.size(), 1024, [&](std::size_t l0, std::size_t l1) {
-        StemScratch scratch;
+        StemScratch scratch(o);
         for (std::size_t i = l0; i < l1; ++i) {
             const DrapedLine& l = set.lines[i];
             if (l.count < 3) continue;

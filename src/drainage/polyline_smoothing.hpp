@@ -12,4 +12,17 @@ namespace penink {
 // reflection through that end (so the end keeps its place and its tangent). `out` = `in`'s size.
 void gaussian_smooth(const std::vector<glm::dvec2>& in, double sigma, std::vector<glm::dvec2>& out);
 
+// The kernel of gaussian_smooth for one sigma, made once and applied to many polylines (the same
+// floats as gaussian_smooth(in, sigma, out)).
+class GaussianKernel {
+public:
+    explicit GaussianKernel(double sigma);
+    void smooth(const std::vector<glm::dvec2>& in, std::vector<glm::dvec2>& out) const;
+
+private:
+    bool smooths_ = false;  // sigma > 0
+    std::vector<double> w_;  // weights of offsets 0 .. radius
+    double total_ = 0.0;
+};
+
 }  // namespace penink

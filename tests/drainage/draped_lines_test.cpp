@@ -4,7 +4,8 @@
 // mesh_from_terrain of the whole DEM gives (volcano at factors 5 and 1, geographic jacksboro on
 // its curvilinear UTM grid, a rotated affine grid, a grid with nodata); the line index returns exactly the lines whose box meets a query box; the build's
 // progress rises monotonically through the draping stage; the network bytes of volcano do not
-// depend on the lines part.
+// depend on the lines part, and its lines part's bytes are pinned (a faster build gives the same
+// lines).
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -308,17 +309,26 @@ TEST(DrapedLines, BuildProgressRisesMonotonicallyThroughDraping) {
     fs::remove_all(d);
 }
 
-// The network part of volcano's database at the automatic factor: the bytes after the
-// fingerprint, up to the network checksum, pinned by their hash (the lines part and the vertical
-// exaggeration leave them alone).
-TEST(DrapedLines, VolcanoNetworkBytesArePinned) {
+// The bytes of volcano's database at the automatic factor, written with an empty fingerprint.
+std::vector<char> volcano_dv_bytes() {
     const fs::path d = fs::temp_directory_path() / ("penink_drape_pin_" + std::to_string(::getpid()));
     fs::remove_all(d);
     fs::create_directories(d);
     Terrain dem = read_dem(PENINK_SOURCE_DIR "/examples/volcano.asc");
     build_and_write_drainage_db(dem, DrainageOptions{}, DrainageFingerprint{}, (d / "v.dv").string());
     std::ifstream in(d / "v.dv", std::ios::binary);
-    const std::vector<char> b{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    std::vector<char> b{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    in.close();
+    fs::remove_all(d);
+    return b;
+}
+
+// The network part of volcano's database at the automatic factor: the bytes after the
+// fingerprint, up to the network checksum, pinned by their hash (the lines part and the vertical
+// exaggeration leave them alone).
+TEST(DrapedLines, VolcanoNetworkBytesArePinned) {
+    const std::vector<char> b = volcano_dv_bytes();
+    ASSERT_GT(b.size(), 32u);
     std::uint64_t lines_at = 0;
     std::memcpy(&lines_at, b.data() + 24, 8);
     constexpr std::size_t after_fingerprint = 32 + 36;
@@ -326,7 +336,24 @@ TEST(DrapedLines, VolcanoNetworkBytesArePinned) {
     EXPECT_EQ(lines_at - 8 - after_fingerprint, 1838508u);
     EXPECT_EQ(hash64(b.data() + after_fingerprint, std::size_t(lines_at - 8 - after_fingerprint)),
               0x2f2275f3fcb0b3baull);
-    fs::remove_all(d);
+}
+
+// The lines part of volcano's database at the automatic factor: its bytes after the part's
+// fingerprint, up to its two checksums (which hash the fingerprint too), pinned by their hash: a
+// change of the build that is meant to be only faster (threads, kernels, the order of work) must
+// leave every crease and ridge vertex as it was.
+TEST(DrapedLines, VolcanoLinesBytesArePinned) {
+    const std::vector<char> b = volcano_dv_bytes();
+    ASSERT_GT(b.size(), 32u);
+    std::uint64_t total = 0, lines_at = 0;
+    std::memcpy(&total, b.data() + 16, 8);
+    std::memcpy(&lines_at, b.data() + 24, 8);
+    constexpr std::size_t fingerprint = 36, checksums = 16;
+    ASSERT_EQ(total, b.size());
+    ASSERT_GT(total, lines_at + fingerprint + checksums);
+    const std::size_t n = std::size_t(total - lines_at - fingerprint - checksums);
+    EXPECT_EQ(n, 4857736u);
+    EXPECT_EQ(hash64(b.data() + lines_at + fingerprint, n), 0xbda2b6ecfd6ea02full);
 }
 
 }  // namespace

@@ -17,6 +17,13 @@ void cut_hole(Terrain& t, double cx, double cy, double radius) {
         if (glm::length(glm::dvec2(t.pos[i].x - cx, t.pos[i].y - cy)) <= radius) t.valid[i] = 0;
 }
 
+Terrain holed_hills() {
+    Terrain t = terrain_from_function(90, 70, 10.0, [](double x, double y) { return rough_hills(4 * x, 4 * y) * 0.2; });
+    cut_hole(t, 60.0, -40.0, 55.0);
+    cut_hole(t, -250.0, 200.0, 80.0);
+    return t;
+}
+
 double rough_hills(double x, double y) {
     struct Hill {
         double x, y, h, s;

@@ -16,4 +16,8 @@ double rough_hills(double x, double y);
 // Marks the nodes within `radius` of (cx, cy) as nodata.
 void cut_hole(Terrain& terrain, double cx, double cy, double radius);
 
+// A 90 x 70 DEM of 10 m cells of rough_hills (4 times as dense, a fifth as high) with two nodata
+// holes, one inside and one on the north-west edge: the drainage lines' tests' DEM with nodata.
+Terrain holed_hills();
+
 }  // namespace penink

@@ -1,0 +1,87 @@
+#include "drainage/crease_tiles.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include <glm/common.hpp>
+
+#include "core/hash64.hpp"
+#include "drainage/fall_line_stems.hpp"
+#include "drainage/line_tile_files.hpp"
+#include "drainage/stem_reach.hpp"
+
+namespace penink {
+
+CreaseTiles::CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net, int tile,
+                         TileStore store)
+    : g_(g), dir_(dir), net_(net), side_(std::max(1, tile)), store_(std::move(store)), parts_(stem_parts(g, dir, net)) {
+    const auto side = std::uint32_t(side_);
+    const std::uint32_t tx = (std::uint32_t(g.cols) + side - 1) / side, ty = (std::uint32_t(g.rows) + side - 1) / side;
+    tiles_.resize(std::size_t(tx) * ty);
+    for (Tile& t : tiles_) t.lo = glm::vec2(std::numeric_limits<float>::infinity()), t.hi = -t.lo;
+    const PlanBoxes boxes(g);
+    const FallLineOptions options = fall_line_options(g);
+    // each stem's reach on all cores, then joined into its tile's in stem order
+    std::vector<glm::vec2> reach_lo(parts_.sources.size()), reach_hi(parts_.sources.size());
+    for_each_stem_cells(g, dir, net, parts_, [&](std::uint32_t s, const std::uint32_t* cells, std::uint32_t n) {
+        boxes.plan_box(stem_cell_reach(cells, n, g, options), reach_lo[s], reach_hi[s]);
+    });
+    for (std::uint32_t s = 0; s < parts_.sources.size(); ++s) {
+        const std::uint32_t c = parts_.sources[s] % std::uint32_t(g.cols), r = parts_.sources[s] / std::uint32_t(g.cols);
+        Tile& t = tiles_[std::size_t(r / side) * tx + c / side];
+        t.stems.push_back(s);
+        t.lo = glm::min(t.lo, reach_lo[s]), t.hi = glm::max(t.hi, reach_hi[s]);
+    }
+}
+
+std::size_t CreaseTiles::tiles_built() const {
+    return std::size_t(std::count_if(tiles_.begin(), tiles_.end(), [](const Tile& t) { return t.lines != nullptr; }));
+}
+
+DrapedLineSet CreaseTiles::lines_for_box(glm::vec2 lo, glm::vec2 hi, std::vector<std::uint32_t>* ids) {
+    struct Pick {
+        std::uint32_t stem;
+        const DrapedLineSet* set;
+        std::uint32_t line;
+    };
+    std::vector<Pick> picks;
+    for (std::size_t k = 0; k < tiles_.size(); ++k) {
+        Tile& t = tiles_[k];
+        if (t.stems.empty() || t.hi.x < lo.x || t.lo.x > hi.x || t.hi.y < lo.y || t.lo.y > hi.y) continue;
+        if (!t.lines) {
+            auto lines = std::make_unique<DrapedLineSet>();
+            const std::uint64_t fields[3] = {store_.key, std::uint64_t(side_), std::uint64_t(k)};
+            const std::uint64_t key = hash64(fields, sizeof fields);
+            const std::string path = store_.folder.empty() ? std::string() : line_tile_path(store_.folder, std::uint32_t(k));
+            std::vector<std::uint32_t> stems;
+            if (!path.empty() && read_line_tile(path, key, stems, *lines) && stems == t.stems) {
+                ++read_;
+            } else {
+                if (!surface_) surface_ = std::make_unique<DemSurface>(g_);
+                *lines = crease_part(g_, dir_, net_, *surface_, parts_, t.stems);
+                if (!path.empty() && write_line_tile(path, key, t.stems, *lines)) ++written_;
+            }
+            t.lines = std::move(lines);
+        }
+        for (std::uint32_t i = 0; i < t.stems.size(); ++i) picks.push_back({t.stems[i], t.lines.get(), i});
+    }
+    std::sort(picks.begin(), picks.end(), [](const Pick& a, const Pick& b) { return a.stem < b.stem; });
+    DrapedLineSet out;
+    std::size_t n = 0;
+    for (const Pick& p : picks) n += p.set->lines[p.line].count;
+    out.vertices.resize(n);
+    out.lines.reserve(picks.size());
+    if (ids) ids->clear();
+    std::size_t at = 0;
+    for (const Pick& p : picks) {
+        DrapedLine l = p.set->lines[p.line];
+        std::copy_n(p.set->vertices.begin() + l.first, l.count, out.vertices.begin() + std::ptrdiff_t(at));
+        l.first = std::uint32_t(at), at += l.count;
+        out.lines.push_back(l);
+        if (ids) ids->push_back(p.stem);
+    }
+    index_lines(out);
+    return out;
+}
+
+}  // namespace penink

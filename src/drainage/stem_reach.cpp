@@ -1,0 +1,79 @@
+#include "drainage/stem_reach.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/common.hpp>
+
+#include "core/parallel_chunks.hpp"
+
+namespace penink {
+
+CellBox stem_cell_reach(const std::uint32_t* cells, std::uint32_t n, const DrainageGrid& g, const FallLineOptions& options) {
+    CellBox b;
+    if (n == 0 || g.cols < 1) return b;
+    const auto cols = std::uint32_t(g.cols);
+    auto at = [&](std::uint32_t k) { return glm::dvec2(double(cells[k] % cols), double(cells[k] / cols)); };
+    glm::dvec2 lo = at(0), hi = lo;
+    auto add = [&](glm::dvec2 p) { lo = glm::min(lo, p), hi = glm::max(hi, p); };
+    for (std::uint32_t k = 1; k < n; ++k) add(at(k));
+    // the reflections through the ends within the kernel's radius (GaussianKernel: ceil(3 sigma))
+    const auto radius = std::uint32_t(std::ceil(3.0 * options.sigma));
+    for (std::uint32_t m = 1; m <= radius && m < n; ++m) add(2.0 * at(0) - at(m)), add(2.0 * at(n - 1) - at(n - 1 - m));
+    const double grow = options.max_corridor + 1.0;
+    b.c0 = std::max(0.0, lo.x - grow), b.r0 = std::max(0.0, lo.y - grow);
+    b.c1 = std::min(double(g.cols - 1), hi.x + grow), b.r1 = std::min(double(g.rows - 1), hi.y + grow);
+    return b;
+}
+
+PlanBoxes::PlanBoxes(const DrainageGrid& g) : g_(&g) {
+    coarse_ = g.factor > 1 && g.coarse_cols >= 2 && g.coarse_rows >= 2;
+    affine_ = g.has_affine;
+    factor_ = coarse_ ? double(g.factor) : 1.0;
+    cols_ = coarse_ ? g.coarse_cols : g.cols, rows_ = coarse_ ? g.coarse_rows : g.rows;
+    if (affine_) return;
+    bcols_ = (cols_ + block - 1) / block, brows_ = (rows_ + block - 1) / block;
+    lo_.assign(std::size_t(bcols_) * std::size_t(brows_), glm::dvec2(std::numeric_limits<double>::infinity()));
+    hi_.assign(lo_.size(), glm::dvec2(-std::numeric_limits<double>::infinity()));
+    parallel_chunks(std::size_t(brows_), 1, [&](std::size_t b0, std::size_t b1) {
+        for (std::size_t br = b0; br < b1; ++br)
+            for (int r = int(br) * block; r < std::min(rows_, int(br + 1) * block); ++r)
+                for (int c = 0; c < cols_; ++c) {
+                    const glm::dvec2 p = node(c, r);
+                    const std::size_t k = br * std::size_t(bcols_) + std::size_t(c / block);
+                    lo_[k] = glm::min(lo_[k], p), hi_[k] = glm::max(hi_[k], p);
+                }
+    });
+}
+
+// The x, y grid_xy_at interpolates between at node (c, r): coarse_xy at factor > 1, grid_xy's
+// at factor 1.
+glm::dvec2 PlanBoxes::node(int c, int r) const {
+    return coarse_ ? glm::dvec2(g_->coarse_xy[std::size_t(r) * std::size_t(cols_) + std::size_t(c)]) : grid_xy(*g_, c, r);
+}
+
+void PlanBoxes::plan_box(const CellBox& b, glm::vec2& lo, glm::vec2& hi) const {
+    lo = glm::vec2(std::numeric_limits<float>::infinity()), hi = -lo;
+    if (b.c1 < b.c0 || b.r1 < b.r0 || cols_ < 1 || rows_ < 1) return;
+    // the nodes of every grid cell an index point of b may be interpolated from (grid_xy_at
+    // clamps the cell to the grid's last but one node), one more each side
+    auto first = [&](double x, int n) { return std::clamp(int(std::floor(x / factor_)) - 1, 0, n - 1); };
+    auto last = [&](double x, int n) { return std::clamp(int(std::floor(x / factor_)) + 2, 0, n - 1); };
+    const int c0 = first(b.c0, cols_), c1 = last(b.c1, cols_), r0 = first(b.r0, rows_), r1 = last(b.r1, rows_);
+    glm::dvec2 l(std::numeric_limits<double>::infinity()), h = -l;
+    if (affine_) {  // an affine image of the node range: its corners span it
+        for (const glm::dvec2 p : {node(c0, r0), node(c1, r0), node(c0, r1), node(c1, r1)}) l = glm::min(l, p), h = glm::max(h, p);
+    } else {
+        for (int br = r0 / block; br <= r1 / block; ++br)
+            for (int bc = c0 / block; bc <= c1 / block; ++bc) {
+                const std::size_t k = std::size_t(br) * std::size_t(bcols_) + std::size_t(bc);
+                l = glm::min(l, lo_[k]), h = glm::max(h, hi_[k]);
+            }
+    }
+    // outward to floats: the vertices are the doubles rounded to floats
+    lo = glm::vec2(std::nextafter(float(l.x), -INFINITY), std::nextafter(float(l.y), -INFINITY));
+    hi = glm::vec2(std::nextafter(float(h.x), INFINITY), std::nextafter(float(h.y), INFINITY));
+}
+
+}  // namespace penink

@@ -1,0 +1,57 @@
+// Where a stem's built crease can lie, from its network cells alone (before it is traced, smoothed
+// or draped: draped_lines.hpp), so that a frame can tell which stems it may need without building
+// them. In the drainage grid's index space (c east, r south; fine cells):
+// - the centre line S of the trace (fall_line_stems.hpp, step 1) is a Gaussian average of the
+//   cells and of their point reflections through the two ends over the kernel's radius
+//   (polyline_smoothing.hpp): it lies in the box of those points;
+// - every traced vertex lies within the corridor (at most options.max_corridor cells) of S and in
+//   the grid's index range, or where the vertex before it lies (a stopped trace), or at its own
+//   cell (the source; a stem of fewer than 3 vertices is not traced);
+// - ending a stem where it meets its trunk moves vertices onto the stem's own vertices, and the
+//   clamp to the whole set's box keeps a vertex inside any box holding its cell.
+// So every vertex lies in the box of the cells and reflections grown by max_corridor (+ 1 cell for
+// rounding), within the grid. Its plan position is grid_xy_at there, a convex combination of the
+// nodes of the grid cell holding it (bilinear at factor 1, the cell triangle's substituted nodes
+// at factor > 1): the plan box of the nodes under the index box holds it. PlanBoxes answers that
+// on an affine grid from the node range's four corners (the nodes are an affine image of their
+// indices), elsewhere from the boxes of 8 x 8 node blocks (a superset: whole blocks).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "drainage/drainage_grid.hpp"
+#include "drainage/fall_line_stems.hpp"
+
+namespace penink {
+
+struct CellBox {  // index space, fine cells; empty when c1 < c0
+    double c0 = 0.0, r0 = 0.0, c1 = -1.0, r1 = -1.0;
+};
+
+// The index box holding every vertex of the crease built from a stem with these `n` cells (in
+// stem order: network_stems' cells) on `g` with `options` (fall_line_options(g) in the build).
+CellBox stem_cell_reach(const std::uint32_t* cells, std::uint32_t n, const DrainageGrid& g, const FallLineOptions& options);
+
+// Plan boxes (local metres) of index boxes of a grid: the box of every node whose grid cells an
+// index point of the box may be interpolated from: the corners of their range on an affine grid,
+// else by blocks of 8 x 8 nodes.
+class PlanBoxes {
+public:
+    explicit PlanBoxes(const DrainageGrid& g);
+    // A plan box holding grid_xy_at of every point of `b` (rounded outward to floats), or an
+    // empty one (hi < lo) for an empty b.
+    void plan_box(const CellBox& b, glm::vec2& lo, glm::vec2& hi) const;
+
+private:
+    static constexpr int block = 8;
+    const DrainageGrid* g_ = nullptr;
+    bool affine_ = false, coarse_ = false;
+    double factor_ = 1.0;  // fine index / node index
+    int cols_ = 0, rows_ = 0, bcols_ = 0, brows_ = 0;  // nodes, blocks
+    std::vector<glm::dvec2> lo_, hi_;  // per block (not on an affine grid)
+    glm::dvec2 node(int c, int r) const;
+};
+
+}  // namespace penink
