@@ -102,6 +102,12 @@ struct HachureFrame {
     std::vector<HachurePen> obstacle_pens;              // the pen of each (missing: a HachurePen{})
 };
 
+// The pen's width for drawn tone t in [0, 1], px: width x lerp(weight_min, weight_max, t^p) with
+// p = hachure_width_exponent (the lightest tones thin, the darkest heaviest, the middle tones
+// nearer the thin end); the spacing w / t makes up the rest of the tone. Equal weights: one width.
+inline constexpr double hachure_width_exponent = 2.0;
+double hachure_pen_width(double tone, double width, double weight_min, double weight_max);
+
 // The target tone T of a unit normal (before contrast, gamma and distance), in [0, 1].
 double hachure_tone(HachureTone tone, double blend, const glm::dvec3& normal, const glm::dvec3& light);
 
