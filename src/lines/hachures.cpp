@@ -76,7 +76,7 @@ namespace {
 constexpr double kFill = 1.0;
 
 // The coverage feedback (Tracer::balance): cells of 8 px (the measure's sigma), a gain of at
-// most 4 (the pens' widest range is 3: 0.6-1.8).
+// most 4 (the pens' widest range is 4: 0.55-2.2).
 constexpr float kCoverageCell = 8.0f;
 constexpr double kMaxGain = 4.0;
 // The image length of a tracing step, px (hachures.hpp: the chord's departure from the curve;
