@@ -73,9 +73,10 @@ Style default_style() {
     s.layer(LayerKind::silhouettes).min_length = 8.0;
     // the hierarchy of weight: tapered creases and ridges, trunks heavier than twigs, profile
     // lines heavier than folds (styles/README.md)
-    // tone by spacing, and by width where the spacing alone cannot reach it (dark tones, gaps
-    // where lines end: lines/hachures.hpp); a short lift so that short strokes keep their ink
-    set_taper(s.layer(LayerKind::hachures), 2.0, 0.4, 0.6, 1.8);
+    // tone by width and spacing: thin sparse strokes in the light tones, heavy close ones in the
+    // dark (the pen's width on a curve of the tone, lines/hachures.hpp); a short lift so that
+    // short strokes keep their ink
+    set_taper(s.layer(LayerKind::hachures), 2.0, 0.4, 0.55, 2.2);
     set_taper(s.layer(LayerKind::ridges), 6.0, 0.15, 0.35, 1.65);
     set_taper(s.layer(LayerKind::creases), 6.0, 0.15, 0.5, 1.75);
     set_taper(s.layer(LayerKind::silhouettes), 8.0, 0.3, 0.4, 1.25);
@@ -117,7 +118,7 @@ Style field_sketch_style() {
     s.layer(LayerKind::coastline).color = Rgb{0x1e, 0x2a, 0x3a};  // blue-black ink
     s.layer(LayerKind::silhouettes).repeat = 2;
     s.layer(LayerKind::textures).dash = {6.0, 3.0};
-    set_taper(s.layer(LayerKind::hachures), 2.5, 0.3, 0.6, 1.8);
+    set_taper(s.layer(LayerKind::hachures), 2.5, 0.3, 0.55, 2.2);
     set_taper(s.layer(LayerKind::ridges), 8.0, 0.1, 0.35, 1.65);
     set_taper(s.layer(LayerKind::creases), 8.0, 0.1, 0.5, 1.6);
     set_taper(s.layer(LayerKind::silhouettes), 10.0, 0.25, 0.45, 1.3);

@@ -53,6 +53,11 @@ HachureParams hachure_defaults() {
     return p;
 }
 
+double hachure_pen_width(double tone, double width, double weight_min, double weight_max) {
+    const double c = std::pow(std::clamp(tone, 0.0, 1.0), hachure_width_exponent);
+    return width * (weight_min + (weight_max - weight_min) * c);
+}
+
 double hachure_tone(HachureTone tone, double blend, const glm::dvec3& normal, const glm::dvec3& light) {
     const auto lit = [&] { return 1.0 - std::max(0.0, glm::dot(normal, light)); };
     const auto steep = [&] { return std::min(1.0, glm::degrees(std::acos(std::clamp(normal.z, -1.0, 1.0))) / 45.0); };
@@ -71,7 +76,7 @@ namespace {
 constexpr double kFill = 1.0;
 
 // The coverage feedback (Tracer::balance): cells of 8 px (the measure's sigma), a gain of at
-// most 4 (the pens' widest range is 3: 0.6-1.8).
+// most 4 (the pens' widest range is 4: 0.55-2.2).
 constexpr float kCoverageCell = 8.0f;
 constexpr double kMaxGain = 4.0;
 // The image length of a tracing step, px (hachures.hpp: the chord's departure from the curve;
@@ -424,7 +429,7 @@ public:
     bool hatched(Sample& s) const {
         const double g = glm::length(s.f.grad);
         if (!(g >= min_grad_) || g <= 0.0) return false;
-        const double sep = kFill * width_ / s.tone;
+        const double sep = kFill * hachure_pen_width(s.tone, width_, p_.weight_min, p_.weight_max) / s.tone;
         if (!(s.tone > 0.0) || sep > p_.spacing_max_px) return false;
         s.sep = std::max(sep, p_.spacing_min_px);
         if (tighten_) s.sep *= std::clamp(1.0 / cov_.gain(s.px, kMaxGain), kMinTighten, 1.0);

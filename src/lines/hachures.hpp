@@ -22,17 +22,20 @@
 // (contrast about mid-grey: flats under a 45 deg sun, T = 0.29, fall to white first), times
 // (1 - aerial * ((d - d0) / (D - d0))^2) in perspective (d the point's eye distance, D the frame's
 // largest, d0 its nearest, or with a sea the nearest land node's; Bratkova, Shirley & Thompson
-// 2009: contrast falls with distance). Parallel lines of width w px at spacing s
-// px cover w / s of the paper, so the separation is s = w / t on the image, clamped below at
-// spacing_min_px; where w / t exceeds spacing_max_px, or the slope is under min_slope_deg, no line
-// is drawn (lit slopes and flats stay white).
+// 2009: contrast falls with distance). The pen for tone t is w(t) = w (weight_min + (weight_max -
+// weight_min) t^2) (hachure_pen_width: Lehmann's light tones in thin, sparse strokes, dark tones
+// in heavy, close ones). Parallel lines of width w(t) px at spacing s px cover w(t) / s of the
+// paper, so the separation is s = w(t) / t on the image, clamped below at spacing_min_px; where
+// w(t) / t exceeds spacing_max_px, or the slope is under min_slope_deg, no line is drawn (lit
+// slopes and flats stay white).
 //
 // Width: each point of a line carries a weight u in [0, 1] (Stroke::weight) that the style maps to
 // a width between weight_min and weight_max times w: the width w' = t (g_l + g_r) / 2 that makes
 // the ink between the line and its neighbours the tone, g_l and g_r the gaps across the line to
 // the nearest other hachure or obstacle point on each side (within 45 deg of the normal, at most
 // 2 s; a side with none within 2 s counts s), u = (w' - weight_min w) / ((weight_max - weight_min) w)
-// clamped and averaged over 5 points (about 10 px). So the dark tones that spacing_min_px stops, and the gaps
+// clamped and averaged over 5 points (about 10 px): w(t) where the lines lie w(t) / t apart. So the
+// dark tones that spacing_min_px stops, and the gaps
 // where lines end, are drawn by wider lines, crowded lines by thinner ones. With weight_min ==
 // weight_max (the plotter style) no weights: tone by spacing alone.
 //
@@ -101,6 +104,12 @@ struct HachureFrame {
     std::vector<const std::vector<Stroke>*> obstacles;  // strokes the hachures yield to
     std::vector<HachurePen> obstacle_pens;              // the pen of each (missing: a HachurePen{})
 };
+
+// The pen's width for drawn tone t in [0, 1], px: width x lerp(weight_min, weight_max, t^p) with
+// p = hachure_width_exponent (the lightest tones thin, the darkest heaviest, the middle tones
+// nearer the thin end); the spacing w / t makes up the rest of the tone. Equal weights: one width.
+inline constexpr double hachure_width_exponent = 2.0;
+double hachure_pen_width(double tone, double width, double weight_min, double weight_max);
 
 // The target tone T of a unit normal (before contrast, gamma and distance), in [0, 1].
 double hachure_tone(HachureTone tone, double blend, const glm::dvec3& normal, const glm::dvec3& light);
