@@ -23,7 +23,7 @@
 // (1 - aerial * ((d - d0) / (D - d0))^2) in perspective (d the point's eye distance, D the frame's
 // largest, d0 its nearest, or with a sea the nearest land node's; Bratkova, Shirley & Thompson
 // 2009: contrast falls with distance). The pen for tone t is w(t) = w (weight_min + (weight_max -
-// weight_min) t^2) (hachure_pen_width: Lehmann's light tones in thin, sparse strokes, dark tones
+// weight_min) t^1.5) (hachure_pen_width: Lehmann's light tones in thin, sparse strokes, dark tones
 // in heavy, close ones). Parallel lines of width w(t) px at spacing s px cover w(t) / s of the
 // paper, so the separation is s = w(t) / t on the image, clamped below at spacing_min_px; where
 // w(t) / t exceeds spacing_max_px, or the slope is under min_slope_deg, no line is drawn (lit
@@ -108,7 +108,7 @@ struct HachureFrame {
 // The pen's width for drawn tone t in [0, 1], px: width x lerp(weight_min, weight_max, t^p) with
 // p = hachure_width_exponent (the lightest tones thin, the darkest heaviest, the middle tones
 // nearer the thin end); the spacing w / t makes up the rest of the tone. Equal weights: one width.
-inline constexpr double hachure_width_exponent = 2.0;
+inline constexpr double hachure_width_exponent = 1.5;
 double hachure_pen_width(double tone, double width, double weight_min, double weight_max);
 
 // The target tone T of a unit normal (before contrast, gamma and distance), in [0, 1].

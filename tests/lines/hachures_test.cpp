@@ -141,7 +141,7 @@ TEST(Hachures, CoverageFollowsTheToneOfPlanes) {
 }
 
 // Width rises with the tone: on a plane in full shade (tone 1) the pen is the heaviest (2.2 px,
-// 2.2 px apart); on a plane of tone 0.35 it is 0.55 + 1.65 x 0.35^2 = 0.75 px. The drawn
+// 2.2 px apart); on a plane of tone 0.35 it is 0.55 + 1.65 x 0.35^1.5 = 0.89 px. The drawn
 // coverage (length x the style's width at each point's weight and taper, over the area) is the tone; in full
 // shade it is at least the tone and at most the heaviest pen at spacing_min_px (the coverage
 // feedback widens the lines to black out their tapered ends and the gaps where lines end).
@@ -290,10 +290,11 @@ TEST(Hachures, ToneMeasureOnAnalyticHills) {
 // sun and style): the mean pen width (length-weighted, from each point's weight) of the hachure
 // segments whose target tone lies in the darkest band [0.7, 1] is at least 1.5 x that of the
 // lightest band [0.1, 0.3), and the layer's width CV (the -v measure: taper included) is >= 0.3.
-// The pen curve alone gives 0.55 + 1.65 t^2: 0.62 px at t = 0.2 against 1.74 px at t = 0.85, 2.8 x;
-// the coverage feedback widens the light band's lines where the fall lines part downhill and
-// leave gaps (the gap rule), measured 1.67 x (0.91 against 1.51 px) and CV 0.31; k = 1.5 keeps
-// most of that and fails a pen of one width for all tones.
+// The pen curve alone gives 0.55 + 1.65 t^1.5: 0.70 px at t = 0.2 against 1.84 px at t = 0.85,
+// 2.6 x; the coverage feedback widens the light band's lines where the fall lines part downhill
+// and leave gaps (the gap rule), measured 1.79 x (0.91 against 1.62 px) and CV 0.32; k = 1.5
+// keeps most of that and fails a pen of one width for all tones (hachure_width_exponent 0:
+// 0.98 x, CV 0.18).
 TEST(Hachures, WidthFollowsTheToneOnAHill) {
     const Terrain hill = analytic_grid(AnalyticTerrain{AnalyticShape::gaussian_hill, 250.0, 150.0, 450.0}, 5.0);
     const Camera cam = plan_view(hill, 400);
