@@ -1,12 +1,11 @@
 #include "drainage/line_tile_files.hpp"
 
-#include <unistd.h>
 
-#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 
+#include "core/cache_file_write.hpp"
 #include "core/hash64.hpp"
 
 namespace penink {
@@ -57,17 +56,7 @@ bool write_line_tile(const std::string& path, std::uint64_t key, const std::vect
     put(out, hash64(out.data(), out.size()));
     std::error_code ec;
     std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ec);
-    const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
-    std::FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) return false;
-    const bool written = std::fwrite(out.data(), 1, out.size(), f) == out.size();
-    if (std::fclose(f) != 0 || !written) {
-        std::filesystem::remove(tmp, ec);
-        return false;
-    }
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) std::filesystem::remove(tmp, ec);
-    return !ec;
+    return write_cache_file(path, {out}) == 0;
 }
 
 bool read_line_tile(const std::string& path, std::uint64_t key, std::vector<std::uint32_t>& stems,

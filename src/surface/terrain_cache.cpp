@@ -5,7 +5,6 @@
 #include <bit>
 #include <cerrno>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
@@ -16,6 +15,7 @@
 #include <unistd.h>
 
 #include "core/block_codec.hpp"
+#include "core/cache_file_write.hpp"
 #include "core/checked_blocks.hpp"
 #include "core/error.hpp"
 #include "core/hash64.hpp"
@@ -234,24 +234,10 @@ void write_terrain_cache(const std::string& path, const StoredTerrain& t, const 
     const CodedTerrain coded = code_terrain(t);
     std::uint64_t at[3], total = 0;
     const std::vector<std::uint8_t> header = encode_header(t, key, coded, at, total);
-    const std::string tmp = path + ".tmp" + std::to_string(::getpid());
-    std::FILE* out = std::fopen(tmp.c_str(), "wb");
-    if (!out) write_failed(path, errno);
-    bool ok = true;
-    auto put = [&](const void* p, std::uint64_t len) {
-        if (ok && len > 0 && std::fwrite(p, 1, std::size_t(len), out) != len) ok = false;
-    };
-    put(header.data(), header.size());
+    std::vector<std::span<const std::uint8_t>> parts{header};
     for (const CodedBlocks* a : {&coded.pos, &coded.valid, &coded.error})
-        for (const auto& b : *a) put(b.data(), b.size());
-    int err = ok ? 0 : errno;
-    if (std::fclose(out) != 0 && ok) ok = false, err = errno;
-    std::error_code ec;
-    if (ok) std::filesystem::rename(tmp, path, ec);
-    if (!ok || ec) {
-        std::filesystem::remove(tmp, ec);
-        write_failed(path, ok ? ec.value() : (err ? err : EIO));
-    }
+        for (const auto& b : *a) parts.emplace_back(b);
+    if (const int err = write_cache_file(path, parts)) write_failed(path, err);
 }
 
 std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const TerrainCacheKey& key, std::string* why) {
