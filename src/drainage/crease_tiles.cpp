@@ -5,6 +5,7 @@
 
 #include <glm/common.hpp>
 
+#include "core/error.hpp"
 #include "core/hash64.hpp"
 #include "drainage/fall_line_stems.hpp"
 #include "drainage/line_tile_files.hpp"
@@ -12,26 +13,59 @@
 
 namespace penink {
 
-CreaseTiles::CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net, int tile,
-                         TileStore store)
-    : g_(g), dir_(dir), net_(net), side_(std::max(1, tile)), store_(std::move(store)), parts_(stem_parts(g, dir, net)) {
-    const auto side = std::uint32_t(side_);
+CreaseTileIndex crease_tile_index(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
+                                  int tile) {
+    CreaseTileIndex out;
+    out.side = std::max(1, tile);
+    out.parts = stem_parts(g, dir, net);
+    const auto side = std::uint32_t(out.side);
     const std::uint32_t tx = (std::uint32_t(g.cols) + side - 1) / side, ty = (std::uint32_t(g.rows) + side - 1) / side;
-    tiles_.resize(std::size_t(tx) * ty);
-    for (Tile& t : tiles_) t.lo = glm::vec2(std::numeric_limits<float>::infinity()), t.hi = -t.lo;
+    out.lo.assign(std::size_t(tx) * ty, glm::vec2(std::numeric_limits<float>::infinity()));
+    out.hi.assign(out.lo.size(), -out.lo[0]);
     const PlanBoxes boxes(g);
     const FallLineOptions options = fall_line_options(g);
     // each stem's reach on all cores, then joined into its tile's in stem order
-    std::vector<glm::vec2> reach_lo(parts_.sources.size()), reach_hi(parts_.sources.size());
-    for_each_stem_cells(g, dir, net, parts_, [&](std::uint32_t s, const std::uint32_t* cells, std::uint32_t n) {
+    const StemParts& parts = out.parts;
+    std::vector<glm::vec2> reach_lo(parts.sources.size()), reach_hi(parts.sources.size());
+    for_each_stem_cells(g, dir, net, parts, [&](std::uint32_t s, const std::uint32_t* cells, std::uint32_t n) {
         boxes.plan_box(stem_cell_reach(cells, n, g, options), reach_lo[s], reach_hi[s]);
     });
+    for (std::uint32_t s = 0; s < parts.sources.size(); ++s) {
+        const std::uint32_t c = parts.sources[s] % std::uint32_t(g.cols), r = parts.sources[s] / std::uint32_t(g.cols);
+        const std::size_t k = std::size_t(r / side) * tx + c / side;
+        out.lo[k] = glm::min(out.lo[k], reach_lo[s]), out.hi[k] = glm::max(out.hi[k], reach_hi[s]);
+    }
+    return out;
+}
+
+CreaseTiles::CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net, int tile,
+                         TileStore store)
+    : CreaseTiles(g, dir, net, crease_tile_index(g, dir, net, tile), std::move(store)) {}
+
+CreaseTiles::CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
+                         CreaseTileIndex index, TileStore store)
+    : g_(g), dir_(dir), net_(net), side_(std::max(1, index.side)), store_(std::move(store)),
+      parts_(std::move(index.parts)) {
+    const auto side = std::uint32_t(side_);
+    const std::uint32_t tx = (std::uint32_t(g.cols) + side - 1) / side, ty = (std::uint32_t(g.rows) + side - 1) / side;
+    tiles_.resize(std::size_t(tx) * ty);
+    if (index.lo.size() != tiles_.size() || index.hi.size() != tiles_.size())
+        throw Error("drainage", "", "crease tile index of " + std::to_string(index.lo.size()) + " tiles for a grid of " +
+                                        std::to_string(tiles_.size()),
+                    ExitCode::internal);
+    for (std::size_t k = 0; k < tiles_.size(); ++k) tiles_[k].lo = index.lo[k], tiles_[k].hi = index.hi[k];
     for (std::uint32_t s = 0; s < parts_.sources.size(); ++s) {
         const std::uint32_t c = parts_.sources[s] % std::uint32_t(g.cols), r = parts_.sources[s] / std::uint32_t(g.cols);
-        Tile& t = tiles_[std::size_t(r / side) * tx + c / side];
-        t.stems.push_back(s);
-        t.lo = glm::min(t.lo, reach_lo[s]), t.hi = glm::max(t.hi, reach_hi[s]);
+        tiles_[std::size_t(r / side) * tx + c / side].stems.push_back(s);
     }
+}
+
+CreaseTileIndex CreaseTiles::index() const {
+    CreaseTileIndex out;
+    out.side = side_;
+    out.parts = parts_;
+    for (const Tile& t : tiles_) out.lo.push_back(t.lo), out.hi.push_back(t.hi);
+    return out;
 }
 
 std::size_t CreaseTiles::tiles_built() const {

@@ -35,12 +35,27 @@ struct TileStore {
     std::uint64_t key = 0;
 };
 
+// What a CreaseTiles is made from besides the network: the tile side (cells), the stems' sources
+// and box (stem_parts), and each tile's plan box of its stems' reaches (row-major tiles; empty,
+// hi < lo, for a tile without stems). Made by one walk of every stem (crease_tile_index); a
+// database stores it (crease_source.hpp) so that a render makes its tiles without that walk.
+struct CreaseTileIndex {
+    int side = 256;
+    StemParts parts;
+    std::vector<glm::vec2> lo, hi;
+};
+CreaseTileIndex crease_tile_index(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
+                                  int tile = 256);
+
 class CreaseTiles {
 public:
     // g, dir and net must outlive this (g.z: the original elevations, as build_draped_lines reads).
     // On a DEM without relief (has_relief) the whole build keeps no creases: make none there.
     CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net, int tile = 256,
                 TileStore store = {});
+    // The same from a stored index (crease_tile_index of this network; index.side is the tile size).
+    CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
+                CreaseTileIndex index, TileStore store = {});
 
     // The stems whose tiles' reach meets the closed plan box [lo, hi], built where not yet, in
     // stem order (network_stems' ids in `ids`), indexed: lines_meeting_box on it gives the whole
@@ -48,6 +63,8 @@ public:
     DrapedLineSet lines_for_box(glm::vec2 lo, glm::vec2 hi, std::vector<std::uint32_t>* ids = nullptr);
 
     std::size_t tile_count() const { return tiles_.size(); }
+    // The index the tiles were made from (crease_tile_index's, or the one given).
+    CreaseTileIndex index() const;
     std::size_t tiles_built() const;  // in memory: built here or read
     std::size_t tiles_read() const { return read_; }        // from their files
     std::size_t tiles_written() const { return written_; }  // files written

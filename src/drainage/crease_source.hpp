@@ -1,0 +1,41 @@
+// What building crease tiles (crease_tiles.hpp) reads of a drainage build, stored so that a render
+// builds the creases a frame needs without computing the network again: the drainage grid's fine
+// nodes' elevations and valid mask, the resolved flow directions, and the tiles' index (tile
+// side, the stems' sources and box, each tile's reach box). The accumulation, Strahler orders
+// and basins follow from the directions in one pass each (network_of_directions: accumulate_flow
+// and label_basins, the build's own functions, so the same arrays); the grid's other fields
+// (size, spacing, origin, coarse nodes) are the DEM reader's and the resampler's (the caller's).
+// Coding (encode_crease_source): the three arrays cut in blocks of 2^16 nodes, each block coded
+// on its own by core/block_codec.hpp (elevations as floats differenced once along the block,
+// the mask and directions as bytes: deflate), the source cells as deltas (deflated u32), the
+// boxes as floats. Lossless: decoding gives the arrays and the index bit for bit.
+// Layout (little-endian): u32 cols, u32 rows, u32 side, u32 tiles, f32 x 4 stems' box (lo, hi),
+// tiles x f32 x 4 reach boxes, u64 sources, u32 coded bytes + the coded source deltas, then for
+// z, valid, dir: u32 blocks, blocks x u32 coded sizes, the coded blocks.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "drainage/crease_tiles.hpp"
+#include "drainage/drainage_grid.hpp"
+#include "drainage/flow_network.hpp"
+
+namespace penink {
+
+// g.z, g.valid (g.cols x g.rows), dir and the index, coded (blocks coded on all cores).
+std::vector<std::uint8_t> encode_crease_source(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
+                                               const CreaseTileIndex& index);
+
+// Decodes `size` bytes written by encode_crease_source for a grid of g.cols x g.rows nodes into
+// g.z, g.valid, dir and index; false (nothing promised of the outputs) when they are not such
+// bytes: another grid size, cut short, trailing bytes, a block that does not decode, counts or
+// source cells out of range.
+bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGrid& g, std::vector<std::uint8_t>& dir,
+                          CreaseTileIndex& index);
+
+// The accumulation, orders, in-degrees, basins and outlets of the flow directions `dir` on g's
+// valid nodes (accumulate_flow and label_basins, one beside the other).
+FlowNetwork network_of_directions(const DrainageGrid& g, const std::vector<std::uint8_t>& dir);
+
+}  // namespace penink

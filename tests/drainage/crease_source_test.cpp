@@ -1,0 +1,83 @@
+// What crease tiles read of a build, coded (crease_source.hpp), decodes to the same grid arrays,
+// directions and tile index bit for bit; the network made again from the directions equals the
+// build's; tiles made from the decoded parts give the whole build's creases bit for bit (volcano
+// at its automatic factor and geographic jacksboro, 64-cell tiles); bytes cut short, with a byte
+// more, or for another grid size do not decode.
+#include <cstring>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "drainage/crease_source.hpp"
+#include "drainage/drainage_build.hpp"
+#include "input/dem_reader.hpp"
+
+namespace penink {
+namespace {
+
+void expect_round_trip(const Terrain& t, int factor, const std::string& what) {
+    DrainageGrid g = resample_pn(t, factor);
+    DrainageResult res;
+    const DrainageDb db = drainage_db_from_grid(g, {}, &res);
+    ASSERT_FALSE(db.creases.lines.empty()) << what;
+    const CreaseTileIndex index = crease_tile_index(g, res.dir, res.net, 64);
+    const std::vector<std::uint8_t> bytes = encode_crease_source(g, res.dir, index);
+    ::testing::Test::RecordProperty(what + "_bytes", int(bytes.size()));
+    ::testing::Test::RecordProperty(what + "_nodes", int(g.size()));
+
+    DrainageGrid h = g;
+    h.z.assign(g.size(), 0.0f), h.valid.assign(g.size(), 0);
+    std::vector<std::uint8_t> dir;
+    CreaseTileIndex got;
+    ASSERT_TRUE(decode_crease_source(bytes.data(), bytes.size(), h, dir, got)) << what;
+    EXPECT_EQ(std::memcmp(h.z.data(), g.z.data(), g.z.size() * sizeof(float)), 0) << what;
+    EXPECT_EQ(h.valid, g.valid) << what;
+    EXPECT_EQ(dir, res.dir) << what;
+    EXPECT_EQ(got.side, 64) << what;
+    EXPECT_EQ(got.parts.sources, index.parts.sources) << what;
+    EXPECT_EQ(got.parts.lo, index.parts.lo) << what;
+    EXPECT_EQ(got.parts.hi, index.parts.hi) << what;
+    EXPECT_EQ(got.lo, index.lo) << what;
+    EXPECT_EQ(got.hi, index.hi) << what;
+
+    const FlowNetwork net = network_of_directions(h, dir);
+    EXPECT_TRUE(std::equal(net.acc.begin(), net.acc.end(), res.net.acc.begin(), res.net.acc.end())) << what;
+    EXPECT_EQ(net.order, res.net.order) << what;
+    EXPECT_TRUE(std::equal(net.basin.begin(), net.basin.end(), res.net.basin.begin(), res.net.basin.end())) << what;
+    EXPECT_EQ(net.outlet, res.net.outlet) << what;
+
+    CreaseTiles tiles(h, dir, net, got);
+    EXPECT_EQ(tiles.tile_count(), index.lo.size()) << what;
+    glm::vec2 lo(-1e30f), hi(1e30f);
+    std::vector<std::uint32_t> ids;
+    const DrapedLineSet all = tiles.lines_for_box(lo, hi, &ids);
+    ASSERT_EQ(all.lines.size(), db.creases.lines.size()) << what;
+    std::size_t bad = 0;
+    for (std::size_t i = 0; i < all.lines.size(); ++i) {
+        const DrapedLine &a = all.lines[i], &b = db.creases.lines[ids[i]];
+        bad += !(ids[i] == i && std::memcmp(&a.lo, &b.lo, sizeof a.lo) == 0 && std::memcmp(&a.hi, &b.hi, sizeof a.hi) == 0 &&
+                 std::memcmp(&a.length, &b.length, sizeof a.length) == 0 && a.count == b.count && a.order == b.order &&
+                 std::memcmp(all.vertices.data() + a.first, db.creases.vertices.data() + b.first,
+                             sizeof(DrapedVertex) * a.count) == 0);
+    }
+    EXPECT_EQ(bad, 0u) << what;
+
+    // damaged or foreign bytes
+    EXPECT_FALSE(decode_crease_source(bytes.data(), bytes.size() - 1, h, dir, got)) << what;
+    EXPECT_FALSE(decode_crease_source(bytes.data(), bytes.size() / 2, h, dir, got)) << what;
+    std::vector<std::uint8_t> longer = bytes;
+    longer.push_back(0);
+    EXPECT_FALSE(decode_crease_source(longer.data(), longer.size(), h, dir, got)) << what;
+    DrainageGrid other = g;
+    other.cols -= 1;
+    EXPECT_FALSE(decode_crease_source(bytes.data(), bytes.size(), other, dir, got)) << what;
+}
+
+TEST(CreaseSource, DecodesToTheBuildsPartsAndTheSameCreases) {
+    const Terrain volcano = read_dem(PENINK_SOURCE_DIR "/examples/volcano.asc");
+    expect_round_trip(volcano, drainage_resample_factor(volcano, DrainageOptions{}), "volcano_auto");
+    expect_round_trip(read_dem(PENINK_SOURCE_DIR "/examples/jacksboro.tif"), 1, "jacksboro_factor1");
+}
+
+}  // namespace
+}  // namespace penink
