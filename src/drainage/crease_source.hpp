@@ -4,14 +4,18 @@
 // side, the stems' sources and box, each tile's reach box). The accumulation, Strahler orders
 // and basins follow from the directions in one pass each (network_of_directions: accumulate_flow
 // and label_basins, the build's own functions, so the same arrays); the grid's other fields
-// (size, spacing, origin, coarse nodes) are the DEM reader's and the resampler's (the caller's).
+// (size, factor, spacing, origin, the coarse nodes' x, y, mask and heights, the affine grid) are
+// stored too, so the creases are built from these bytes alone, on the unexaggerated DEM.
 // Coding (encode_crease_source): the three arrays cut in blocks of 2^16 nodes, each block coded
 // on its own by core/block_codec.hpp (elevations as floats differenced once along the block,
 // the mask and directions as bytes: deflate), the source cells as deltas (deflated u32), the
 // boxes as floats. Lossless: decoding gives the arrays and the index bit for bit.
-// Layout (little-endian): u32 cols, u32 rows, u32 side, u32 tiles, f32 x 4 stems' box (lo, hi),
-// tiles x f32 x 4 reach boxes, u64 sources, u32 coded bytes + the coded source deltas, then for
-// z, valid, dir: u32 blocks, blocks x u32 coded sizes, the coded blocks.
+// (coarse x, y as float pairs differenced twice, coarse heights like z, the coarse mask as bytes).
+// Layout (little-endian): u32 cols, rows, i32 factor, f64 dx, dy, origin x, y, i32 coarse cols,
+// rows, u32 has_affine, f64 gt[6], f64 unit, i32 col0, row0, u32 side, u32 tiles, f32 x 4 stems'
+// box (lo, hi), tiles x f32 x 4 reach boxes, u64 sources, u32 coded bytes + the coded source
+// deltas, then for z, valid, dir, coarse_xy, coarse_valid, coarse_z: u64 elements (the coarse
+// ones may be 0), u32 blocks, blocks x u32 coded sizes, the coded blocks.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -27,9 +31,9 @@ namespace penink {
 std::vector<std::uint8_t> encode_crease_source(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
                                                const CreaseTileIndex& index);
 
-// Decodes `size` bytes written by encode_crease_source for a grid of g.cols x g.rows nodes into
-// g.z, g.valid, dir and index; false (nothing promised of the outputs) when they are not such
-// bytes: another grid size, cut short, trailing bytes, a block that does not decode, counts or
+// Decodes `size` bytes written by encode_crease_source into g (every field encode_crease_source
+// reads), dir and index; false (nothing promised of the outputs) when they are not such bytes:
+// sizes that do not agree, cut short, trailing bytes, a block that does not decode, counts or
 // source cells out of range.
 bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGrid& g, std::vector<std::uint8_t>& dir,
                           CreaseTileIndex& index);

@@ -2,7 +2,7 @@
 // directions and tile index bit for bit; the network made again from the directions equals the
 // build's; tiles made from the decoded parts give the whole build's creases bit for bit (volcano
 // at its automatic factor and geographic jacksboro, 64-cell tiles); bytes cut short, with a byte
-// more, or for another grid size do not decode.
+// more, or of another grid width do not decode.
 #include <cstring>
 #include <vector>
 
@@ -25,13 +25,26 @@ void expect_round_trip(const Terrain& t, int factor, const std::string& what) {
     ::testing::Test::RecordProperty(what + "_bytes", int(bytes.size()));
     ::testing::Test::RecordProperty(what + "_nodes", int(g.size()));
 
-    DrainageGrid h = g;
-    h.z.assign(g.size(), 0.0f), h.valid.assign(g.size(), 0);
+    DrainageGrid h;
     std::vector<std::uint8_t> dir;
     CreaseTileIndex got;
     ASSERT_TRUE(decode_crease_source(bytes.data(), bytes.size(), h, dir, got)) << what;
     EXPECT_EQ(std::memcmp(h.z.data(), g.z.data(), g.z.size() * sizeof(float)), 0) << what;
     EXPECT_EQ(h.valid, g.valid) << what;
+    EXPECT_EQ(h.cols, g.cols) << what;
+    EXPECT_EQ(h.rows, g.rows) << what;
+    EXPECT_EQ(h.factor, g.factor) << what;
+    EXPECT_EQ(h.dx, g.dx) << what;
+    EXPECT_EQ(h.dy, g.dy) << what;
+    EXPECT_EQ(h.origin, g.origin) << what;
+    EXPECT_EQ(h.coarse_cols, g.coarse_cols) << what;
+    EXPECT_EQ(h.coarse_rows, g.coarse_rows) << what;
+    EXPECT_EQ(h.coarse_xy, g.coarse_xy) << what;
+    EXPECT_EQ(h.coarse_valid, g.coarse_valid) << what;
+    EXPECT_EQ(std::memcmp(h.coarse_z.data(), g.coarse_z.data(), g.coarse_z.size() * sizeof(float)), 0) << what;
+    EXPECT_EQ(h.coarse_z.size(), g.coarse_z.size()) << what;
+    EXPECT_EQ(h.has_affine, g.has_affine) << what;
+    EXPECT_EQ(h.affine, g.affine) << what;
     EXPECT_EQ(dir, res.dir) << what;
     EXPECT_EQ(got.side, 64) << what;
     EXPECT_EQ(got.parts.sources, index.parts.sources) << what;
@@ -68,9 +81,9 @@ void expect_round_trip(const Terrain& t, int factor, const std::string& what) {
     std::vector<std::uint8_t> longer = bytes;
     longer.push_back(0);
     EXPECT_FALSE(decode_crease_source(longer.data(), longer.size(), h, dir, got)) << what;
-    DrainageGrid other = g;
-    other.cols -= 1;
-    EXPECT_FALSE(decode_crease_source(bytes.data(), bytes.size(), other, dir, got)) << what;
+    std::vector<std::uint8_t> other = bytes;
+    other[0] ^= 1;  // another grid width
+    EXPECT_FALSE(decode_crease_source(other.data(), other.size(), h, dir, got)) << what;
 }
 
 TEST(CreaseSource, DecodesToTheBuildsPartsAndTheSameCreases) {
