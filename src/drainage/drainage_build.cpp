@@ -1,5 +1,7 @@
 #include "drainage/drainage_build.hpp"
 
+#include "drainage/crease_source.hpp"
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -13,6 +15,7 @@
 #include "core/memory_budget.hpp"
 #include "core/parallel_chunks.hpp"
 #include "drainage/branches.hpp"
+#include "drainage/crease_source.hpp"
 #include "drainage/d8_ties.hpp"
 #include "drainage/depression_drainage.hpp"
 #include "drainage/draped_lines.hpp"
@@ -115,7 +118,13 @@ DrainageDb build_streamed(DrainageGrid& g, const std::string& crs_wkt, const Dra
     report(progress, "tracing branches and divides", tracing_at);
     const NetworkBranches branches(g, res.dir, res.net);
     res.stats.branches = branches.branch_count(), res.stats.divides = meta.divides.size();
-    drape_lines(g, res, meta, progress);
+    // the ridges built; of the creases, what a render builds those a frame needs from
+    report(progress, "draping ridges", draping_from);
+    build_draped_ridges(g, meta, [&](double f) {
+        report(progress, "draping ridges", draping_from + (writing_at - draping_from) * 0.5 * f);
+    });
+    report(progress, "indexing creases", draping_from + (writing_at - draping_from) * 0.5);
+    if (has_relief(g)) meta.crease_source = encode_crease_source(g, res.dir, crease_tile_index(g, res.dir, res.net));
     report(progress, "writing the database", writing_at);
     write(meta, branches);
     report(progress, "done", 1.0);
@@ -279,7 +288,8 @@ std::string cache_file_report(const std::string& path) {
 
 DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& terrain,
                                   const DrainageOptions& options, const DrainageLog& log,
-                                  const DrainageProgress& progress, DvLineVertices* in_file) {
+                                  const DrainageProgress& progress, DvLineVertices* in_file, std::string* file_used) {
+    if (file_used) file_used->clear();
     const std::string cache = drainage_cache_path(dem_path, options.cache_dir);
     const DrainageFingerprint fp = drainage_fingerprint(dem_path, terrain, options);
     auto say = [&](const std::string& m) { if (log) log(m); };
@@ -288,6 +298,7 @@ DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& te
             DrainageDb db = in_file ? read_drainage_line_index(beside, &fp, *in_file)
                                     : read_drainage_db(beside, &fp, DvParts::lines);
             say("drainage: using cached " + cache_file_report(beside));
+            if (file_used) *file_used = beside;
             return db;
         } catch (const Error& e) {
             say(std::string(e.what()) + "; trying " + cache);
@@ -297,6 +308,7 @@ DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& te
         DrainageDb db = in_file ? read_drainage_line_index(cache, &fp, *in_file)
                                 : read_drainage_db(cache, &fp, DvParts::lines);
         say("drainage: using cached " + cache_file_report(cache));
+        if (file_used) *file_used = cache;
         return db;
     } catch (const Error& e) {
         say(std::string(e.what()) + "; rebuilding");
@@ -329,6 +341,7 @@ DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& te
             try {
                 write_drainage_db(cache, built, branches);
                 say("drainage: wrote " + cache_file_report(cache));
+                if (file_used) *file_used = cache;
             } catch (const Error& e) {  // said once a run, verbose or not: every run builds it again
                 std::cerr << "penink: warning: drainage: " << cache << ": cannot write the drainage cache; using the "
                           << "database built in memory (built again on every run)\n";

@@ -1,4 +1,4 @@
-// DV file layout (version 11, all little-endian; compact: what the builder's invariants give is
+// DV file layout (version 14, all little-endian; compact: what the builder's invariants give is
 // not stored, see layout_ok). Two parts, each with its checksum: the network
 // (header, branches, divides) and the lines (creases and ridges for drawing, line_set.hpp),
 // which a render reads and checks alone (read_drainage_db, DvParts::lines).
@@ -39,6 +39,8 @@
 //            the file checks each block the first time it reads from it (DvLineVertices::read)
 //     index: f32 origin x, y, f32 level-0 cell side, u32 levels; u32 cols, rows per level; u32
 //            cell starts (cells of all levels + 1); u32 line ids (one per line)
+//   u64 n + n bytes: what building the creases reads (crease_source.hpp), coded; n = 0 where the
+//            creases are stored (a database built in memory) or the DEM has no relief
 //   u64      index checksum: hash64 of the part's bytes before it but the two vertex arrays, as
 //            one array (what a render reads: it leaves the vertices in the file, read_lines_part)
 //   u64      lines checksum: hash64 of the part's bytes before it, then of its offset and of the
@@ -46,7 +48,7 @@
 // Versions 2-4 stored each vertex's flow (16 bytes) and fixed 13-byte branches without head_acc;
 // 4 added the routing; 5 varint records; 6 grid positions; 7 vertices after each record; 8 the
 // lines part and no vertical exaggeration in the fingerprint; 9 3-D line lengths and the index
-// checksum; 11 the vertex block checksums.
+// checksum; 11 the vertex block checksums; 14 the crease source in place of the creases.
 #include "drainage/drainage_db.hpp"
 
 #include <bit>

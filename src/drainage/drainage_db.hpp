@@ -79,6 +79,10 @@ struct DrainageDb {
     // What frames draw: the stems (creases) and divides (ridges) smoothed and draped on the PN
     // surface of the DEM (draped_lines.hpp), unexaggerated.
     DrapedLineSet creases, ridges;
+    // What building the creases reads, coded (crease_source.hpp), where they are built where a
+    // frame needs them (a cache `penink drainage` writes): `creases` is then empty. Empty where
+    // `creases` holds them (a build in memory) or on a DEM without relief.
+    std::vector<std::uint8_t> crease_source;
     bool operator==(const DrainageDb&) const = default;
 };
 
@@ -105,7 +109,10 @@ struct DrainageDb {
 // ridges moved onto the surface's crest (ridge_crests.hpp) (content, not layout).
 // 13: a crease whose fall line does not lead back to its junction ends where its trace ends, and
 // a trace leaving the grid stops there (content, not layout).
-inline constexpr std::uint32_t drainage_db_version = 13;
+// 14: the lines part stores, after the ridges, what building the creases reads (crease_source.hpp:
+// the drainage grid, flow directions and crease tiles' index, coded) and no creases: a render
+// builds those a frame needs, per tile, on first use.
+inline constexpr std::uint32_t drainage_db_version = 14;
 
 // Fingerprint of the DEM file at `dem_path` with the given resample factor: its size, mtime and
 // a hash of its whole content (streamed) and of every side file GDAL may read with it (world

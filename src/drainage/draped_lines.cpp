@@ -853,6 +853,24 @@ bool has_relief(const DrainageGrid& g) {
     return any && hi > lo;
 }
 
+namespace {
+
+// Steps 1 and 2 for the divides of db (empty on a DEM without relief).
+void smoothed_ridges(const DrainageGrid& g, DrainageDb& db) {
+    db.ridges = listed_lines(db.divide_vertices, divide_polylines(db));
+    smooth_lines(db.ridges, 3.0 * fall_line_options(g).sigma);
+    if (!has_relief(g)) db.ridges.lines.clear(), db.ridges.vertices.clear();
+}
+
+}  // namespace
+
+void build_draped_ridges(const DrainageGrid& g, DrainageDb& db, const LineProgress& progress) {
+    smoothed_ridges(g, db);
+    const DemSurface surface(g);
+    snap_to_crests(db.ridges, surface, crest_options(g));
+    drape_lines(db.ridges, surface, progress);
+}
+
 void build_draped_lines(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                         DrainageDb& db, const LineProgress& progress) {
     auto report = [&](double f) {
@@ -866,11 +884,10 @@ void build_draped_lines(const DrainageGrid& g, const std::vector<std::uint8_t>& 
         smooth_stems(db.creases, cells, g, fall_line_options(g));
     }
     report(0.1);
-    db.ridges = listed_lines(db.divide_vertices, divide_polylines(db));
-    smooth_lines(db.ridges, 3.0 * fall_line_options(g).sigma);
+    smoothed_ridges(g, db);
     report(0.15);
     if (!has_relief(g))  // a plane: its network follows only the tie-breaking of flats; nothing to draw
-        for (DrapedLineSet* set : {&db.creases, &db.ridges}) set->lines.clear(), set->vertices.clear();
+        db.creases.lines.clear(), db.creases.vertices.clear();
     const DemSurface surface(g);
     snap_to_crests(db.ridges, surface, crest_options(g));
     report(0.2);

@@ -126,5 +126,8 @@ DrapedLineSet ridge_part(const DrainageGrid& g, const DemSurface& surface, const
 // `progress` gets the fraction of the two sets done.
 void build_draped_lines(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                         DrainageDb& db, const LineProgress& progress = {});
+// The ridges alone (db.ridges as build_draped_lines gives them), for a database whose creases are
+// built where a frame needs them (crease_source.hpp).
+void build_draped_ridges(const DrainageGrid& g, DrainageDb& db, const LineProgress& progress = {});
 
 }  // namespace penink

@@ -291,6 +291,10 @@ void get_lines(R& r, DrainageDb& db, bool header, std::uint64_t* vertices_at = n
     db.fingerprint = f, db.cols = cols, db.rows = rows, db.factor = factor, db.origin = {ox, oy};
     get_line_set(r, db.creases, vertices_at, block_sums);
     get_line_set(r, db.ridges, vertices_at ? vertices_at + 1 : nullptr, block_sums ? block_sums + 1 : nullptr);
+    const std::uint64_t source_bytes = r.template get<std::uint64_t>();
+    r.template array<std::uint8_t>(db.crease_source, source_bytes);
+    // the stored creases, or the source to build them from: never both
+    if (!db.crease_source.empty() && !db.creases.lines.empty()) r.corrupt();
     // The index checksum: a StreamReader checks it (it may not have read the vertices); a whole
     // file's lines checksum covers it.
     if constexpr (requires { r.index.digest(); }) {
@@ -529,6 +533,7 @@ DrainageDb drainage_lines_only(DrainageDb db) {
     out.fingerprint = db.fingerprint;
     out.cols = db.cols, out.rows = db.rows, out.factor = db.factor, out.origin = db.origin;
     out.creases = std::move(db.creases), out.ridges = std::move(db.ridges);
+    out.crease_source = std::move(db.crease_source);
     return out;
 }
 

@@ -196,7 +196,8 @@ void put_line_set(Sink& w, const DrapedLineSet& set) {
     for (std::size_t i = 0; i < x.ids.size(); i += per) w.bytes(x.ids.data() + i, std::min(per, x.ids.size() - i) * 4);
 }
 
-// The lines part: fingerprint (again, so it is checked alone), grid, origin, creases, ridges.
+// The lines part: fingerprint (again, so it is checked alone), grid, origin, creases, ridges,
+// crease source.
 void put_lines(Sink& w, const DrainageDb& db) {
     ConcatHash index;
     w.index = &index;
@@ -206,6 +207,8 @@ void put_lines(Sink& w, const DrainageDb& db) {
     w.put(db.origin.x), w.put(db.origin.y);
     put_line_set(w, db.creases);
     put_line_set(w, db.ridges);
+    w.put(std::uint64_t(db.crease_source.size()));
+    w.bytes(db.crease_source.data(), db.crease_source.size());
     w.index = nullptr;
     w.put(index.digest());
 }

@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/parallel_chunks.hpp"
+#include "drainage/stored_creases.hpp"
 #include "surface/terrain_lod.hpp"
 
 namespace penink {
@@ -253,15 +254,36 @@ LineBox line_box(const Terrain& model) {
     return box;
 }
 
-DrainageLineData prepare_drainage_lines(const DrainageDb& db, const LineBox& box, const LineCulling& culling) {
+namespace {
+
+// The crease set a frame selects from: db.creases, or where the database stores their source
+// those built for the box, by `stored` (made here from db when none).
+const DrapedLineSet& creases_for_box(const DrainageDb& db, StoredCreases* stored, const LineBox& box,
+                                     DrapedLineSet& built) {
+    if (!stored && db.crease_source.empty()) return db.creases;
+    if (stored) built = stored->lines_for_box(box.lo, box.hi);
+    else built = StoredCreases(db.crease_source).lines_for_box(box.lo, box.hi);
+    return built;
+}
+
+DrainageLineData prepare_from_memory(const DrainageDb& db, StoredCreases* stored, const LineBox& box,
+                                     const LineCulling& culling) {
     DrainageLineData data;
     if (!(box.lo.x <= box.hi.x && box.lo.y <= box.hi.y)) return data;
-    for (const auto& [set, out] : {std::pair(&db.creases, &data.creases), std::pair(&db.ridges, &data.ridges)}) {
+    DrapedLineSet built;
+    const DrapedLineSet& creases = creases_for_box(db, stored, box, built);
+    for (const auto& [set, out] : {std::pair(&creases, &data.creases), std::pair(&db.ridges, &data.ridges)}) {
         const std::vector<std::uint32_t> ids = lines_meeting_box(*set, box.lo, box.hi);
         MemoryBatches batches{*set, ids};
         *out = select_lines(set->lines, ids, batches, box, culling);
     }
     return data;
+}
+
+}  // namespace
+
+DrainageLineData prepare_drainage_lines(const DrainageDb& db, const LineBox& box, const LineCulling& culling) {
+    return prepare_from_memory(db, nullptr, box, culling);
 }
 
 DrainageLineData prepare_drainage_lines(const DrainageDb& db, const Terrain& model, const LineCulling& culling) {
@@ -270,14 +292,22 @@ DrainageLineData prepare_drainage_lines(const DrainageDb& db, const Terrain& mod
 
 DrainageLineData prepare_drainage_lines(const DrainageLineSource& source, const LineBox& box,
                                         const LineCulling& culling) {
-    if (!source.vertices.file) return prepare_drainage_lines(source.db, box, culling);
+    if (!source.vertices.file) return prepare_from_memory(source.db, source.creases.get(), box, culling);
     DrainageLineData data;
     if (!(box.lo.x <= box.hi.x && box.lo.y <= box.hi.y)) return data;
     int which = 0;
     try {
+        DrapedLineSet built;
+        const DrapedLineSet& creases = creases_for_box(source.db, source.creases.get(), box, built);
         for (const auto& [set, out] :
-             {std::pair(&source.db.creases, &data.creases), std::pair(&source.db.ridges, &data.ridges)}) {
+             {std::pair(&creases, &data.creases), std::pair(&source.db.ridges, &data.ridges)}) {
             const std::vector<std::uint32_t> ids = lines_meeting_box(*set, box.lo, box.hi);
+            if (set == &built) {  // built here: in memory
+                MemoryBatches batches{*set, ids};
+                *out = select_lines(set->lines, ids, batches, box, culling);
+                ++which;
+                continue;
+            }
             // the vertices a batch at a time (batch_bytes, or one longer line): the memory held
             // follows the lines drawn, not those meeting the box
             FileBatches batches{*set, ids, source.vertices, which,

@@ -5,6 +5,7 @@
 // one vertex array for the DM pass (render/dm.hpp). Positions in local metres.
 #pragma once
 #include <functional>
+#include <memory>
 #include <limits>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "core/camera.hpp"
 #include "core/vertex_run.hpp"
 #include "drainage/drainage_db.hpp"
+#include "drainage/stored_creases.hpp"
 #include "input/terrain.hpp"
 
 namespace penink {
@@ -68,6 +70,10 @@ DrainageLineData prepare_drainage_lines(const DrainageDb& db, const Terrain& mod
 struct DrainageLineSource {
     DrainageDb db;
     DvLineVertices vertices;  // file set: db's creases and ridges hold no vertices; they are here
+    // Where db stores the creases' source (DrainageDb::crease_source): the creases built per tile
+    // for each frame's box, kept for the next frame (and in tile files). None: a StoredCreases
+    // made for each frame from db (tiles kept in neither).
+    std::shared_ptr<StoredCreases> creases;
     std::size_t batch_bytes = std::size_t(4) << 20;  // vertices read from the file at a time (at least one line)
     // The database read whole (every checksum checked) or rebuilt: what a file set falls back to
     // when a block of its vertices is found damaged (DvCorrupt). None: the error goes on.

@@ -123,6 +123,7 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terra
     DrainageLineSource source;
     const auto t0 = Clock::now();
     bool building = false;  // the progress callback is called by a build alone
+    std::string file;
     source.db = load_or_build_drainage(
         scene.source.dem, dem, options, [&](const std::string& m) { log.info(m); },
         [&](const std::string& stage, double fraction) {
@@ -130,7 +131,10 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terra
             building = true;
             progress.update(stage, fraction);
         },
-        &source.vertices);
+        &source.vertices, &file);
+    if (!source.db.crease_source.empty())  // creases built per tile as frames need them, kept beside the file
+        source.creases = std::make_shared<StoredCreases>(std::move(source.db.crease_source),
+                                                         file.empty() ? std::string() : crease_tile_folder(file));
     log.info("drainage database ready (" + std::to_string(int(ms_since(t0))) + " ms)");
     return source;
 }

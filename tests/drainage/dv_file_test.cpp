@@ -171,7 +171,8 @@ TEST(DvFile, StreamedNetworkWritesTheDatabasesBytes) {
 }
 
 // On a projected DEM at factor 1 the file stores cells (a head cell per branch, a step per vertex:
-// 5 instead of 12 bytes) and reads back to the database built in memory, x and y included.
+// 5 instead of 12 bytes) and reads back to the database built in memory, x and y included; the
+// streamed build stores the creases' source instead of the creases, which builds them bit for bit.
 TEST(DvFile, GridPositionsOnAnAffineDemReadBackExactly) {
     const fs::path d = temp_dir("grid");
     Terrain t = read_dem(PENINK_SOURCE_DIR "/examples/volcano.asc");
@@ -182,7 +183,17 @@ TEST(DvFile, GridPositionsOnAnAffineDemReadBackExactly) {
     write_drainage_db((d / "explicit.dv").string(), built);
     build_and_write_drainage_db(t, o, built.fingerprint, (d / "grid.dv").string());
     EXPECT_TRUE(t.pos.empty());  // released once resampled
-    EXPECT_TRUE(read_drainage_db((d / "grid.dv").string()) == built);
+    DrainageDb grid = read_drainage_db((d / "grid.dv").string());
+    ASSERT_FALSE(grid.crease_source.empty());
+    EXPECT_TRUE(grid.creases.lines.empty());
+    const DrapedLineSet creases =
+        StoredCreases(grid.crease_source).lines_for_box(glm::vec2(-1e30f), glm::vec2(1e30f));
+    ASSERT_EQ(creases.lines, built.creases.lines);
+    EXPECT_EQ(std::memcmp(creases.vertices.data(), built.creases.vertices.data(),
+                          sizeof(DrapedVertex) * built.creases.vertices.size()),
+              0);
+    grid.crease_source.clear(), grid.creases = built.creases;
+    EXPECT_TRUE(grid == built);
     EXPECT_TRUE(read_drainage_db((d / "explicit.dv").string()) == built);
     // the network parts (the lines parts are alike)
     auto network_bytes = [&](const fs::path& p) {
@@ -221,12 +232,13 @@ TEST(DvFile, CompactLayoutSizeAndShapeCheck) {
     ASSERT_GT(junction_ends, 0u);
     // header 100 + WKT + positions byte, counts 40, branches 5 B (count, link, order, basin,
     // head_acc: one byte each here), stored vertices 12 B, divides 4 + 12 B, zeros to a multiple
-    // of 8, network hash 8; lines part: header 72, the two sets, index hash 8, hash 8
+    // of 8, network hash 8; lines part: header 72, the two sets, the crease source's size 8 (and
+    // none of it: the creases are stored), index hash 8, hash 8
     const std::size_t network = 100 + db.crs_wkt.size() + 1 + 40 + 5 * db.branches.size() +
                                 12 * (db.vertices.size() - junction_ends) + 4 * db.divides.size() +
                                 12 * db.divide_vertices.size();
     const std::size_t expect =
-        (network + 7) / 8 * 8 + 8 + 72 + line_set_bytes(db.creases) + line_set_bytes(db.ridges) + 8 + 8;
+        (network + 7) / 8 * 8 + 8 + 72 + line_set_bytes(db.creases) + line_set_bytes(db.ridges) + 8 + 8 + 8;
     EXPECT_EQ(encode_drainage_db(db).size(), expect);
     EXPECT_EQ(db.creases.index.level_cols.size(), db.creases.index.level_rows.size());
     EXPECT_GE(db.creases.index.level_cols.size(), 1u);
@@ -268,7 +280,7 @@ TEST(DvFile, CorruptionsAreDetected) {
     b = good;
     b[8] = 7;  // a file of the layout before the lines part
     spit(p, b);
-    EXPECT_EQ(read_error(p), pre + "unsupported drainage database version 7 (expected 13)");
+    EXPECT_EQ(read_error(p), pre + "unsupported drainage database version 7 (expected 14)");
 
     b = good;
     b[0] = 'X';

@@ -697,8 +697,9 @@ TEST(CreasesRender, DecimationKeepsVerticesHalfAPixelApart) {
 }
 
 // The render path's cache read (load_or_build_drainage with `in_file`) checks what it reads, the
-// line records and index: one bit flipped in a crease's record is found and the cache rebuilt,
-// after which the file is used with its vertices left in it.
+// line records, index and the creases' source: one bit flipped in a ridge's record or in the
+// creases' source is found and the cache rebuilt, after which the file is used with its vertices
+// left in it.
 TEST(CreasesRender, StreamedCacheReadRebuildsACorruptRecord) {
     const fs::path dir = volcano_dir("streamed_corrupt");
     const Cleanup cleanup{dir};
@@ -706,32 +707,47 @@ TEST(CreasesRender, StreamedCacheReadRebuildsACorruptRecord) {
     const fs::path dem = dir / "volcano.asc", cache = dir / "volcano.asc.dv";
     const std::string good = read_text(cache);
     DvLineVertices where;
-    read_drainage_line_index(cache.string(), nullptr, where);
-    ASSERT_GT(where.count[0], 100u);
-    std::string bad = good;
+    const DrainageDb stored = read_drainage_line_index(cache.string(), nullptr, where);
+    ASSERT_EQ(where.count[0], 0u);  // the creases: built by the frames from their source
+    ASSERT_GT(where.count[1], 100u);
+    ASSERT_GT(stored.crease_source.size(), 1000u);
     std::uint64_t lines_at = 0;
     std::memcpy(&lines_at, good.data() + 24, 8);
-    const std::size_t at = std::size_t(lines_at) + 88 + 28 * 7 + 5;  // the eighth crease's record
-    bad[at] = char(bad[at] ^ 0x10);
-    std::ofstream(cache, std::ios::binary) << bad;
-    std::vector<std::string> log;
-    DvLineVertices in_file;
-    const DrainageDb built = load_or_build_drainage(dem.string(), read_dem(dem.string()), DrainageOptions{},
-                                                    [&](const std::string& m) { log.push_back(m); }, {}, &in_file);
-    ASSERT_EQ(log.size(), 2u);
-    EXPECT_EQ(log[0], "penink: drainage: " + cache.string() + ": drainage database checksum mismatch (file corrupt); rebuilding");
-    EXPECT_FALSE(in_file.file);  // a build hands its lines directly
-    EXPECT_FALSE(built.creases.vertices.empty());
-    EXPECT_EQ(read_text(cache), good);
-    const DrainageDb cached = load_or_build_drainage(dem.string(), read_dem(dem.string()), DrainageOptions{},
-                                                     [&](const std::string& m) { log.push_back(m); }, {}, &in_file);
-    EXPECT_EQ(log.back(), "drainage: using cached " + cache_file_report(cache.string()));
-    ASSERT_TRUE(in_file.file);
-    EXPECT_TRUE(cached.creases.vertices.empty());
-    EXPECT_TRUE(cached.creases.lines == built.creases.lines && cached.ridges.index == built.ridges.index);
-    DrapedVertices v(built.creases.vertices.size());
-    in_file.read(0, 0, v.size(), v.data());
-    EXPECT_TRUE(v == built.creases.vertices);
+    // the lines part's header 72 B, the empty crease set 16 B of counts and its index, then the
+    // ridges' counts (16 B) and records: where its index ends, measured as the part's size less
+    // what follows the ridges' records
+    const std::size_t source_at = good.size() - 16 - stored.crease_source.size();
+    const std::size_t ridges_records_end =
+        source_at - 8 - (28 * where.count[1] + 8 * ((where.count[1] + 1023) / 1024) + 16 +
+                         8 * stored.ridges.index.level_cols.size() + 4 * stored.ridges.index.start.size() +
+                         4 * stored.ridges.index.ids.size());
+    ASSERT_GT(ridges_records_end, std::size_t(lines_at) + 88 + 28 * 8);
+    for (const std::size_t at : {ridges_records_end - 28 * 7 + 5, source_at + stored.crease_source.size() / 2}) {
+        std::string bad = good;
+        bad[at] = char(bad[at] ^ 0x10);
+        std::ofstream(cache, std::ios::binary) << bad;
+        std::vector<std::string> log;
+        DvLineVertices in_file;
+        const DrainageDb built = load_or_build_drainage(dem.string(), read_dem(dem.string()), DrainageOptions{},
+                                                        [&](const std::string& m) { log.push_back(m); }, {}, &in_file);
+        ASSERT_EQ(log.size(), 2u) << at;
+        EXPECT_EQ(log[0], "penink: drainage: " + cache.string() +
+                              ": drainage database checksum mismatch (file corrupt); rebuilding")
+            << at;
+        EXPECT_FALSE(in_file.file);  // a build hands its lines directly
+        EXPECT_FALSE(built.ridges.vertices.empty());
+        EXPECT_EQ(built.crease_source, stored.crease_source);
+        EXPECT_EQ(read_text(cache), good);
+        const DrainageDb cached = load_or_build_drainage(dem.string(), read_dem(dem.string()), DrainageOptions{},
+                                                         [&](const std::string& m) { log.push_back(m); }, {}, &in_file);
+        EXPECT_EQ(log.back(), "drainage: using cached " + cache_file_report(cache.string()));
+        ASSERT_TRUE(in_file.file);
+        EXPECT_TRUE(cached.ridges.vertices.empty());
+        EXPECT_TRUE(cached.ridges.lines == built.ridges.lines && cached.ridges.index == built.ridges.index);
+        DrapedVertices v(built.ridges.vertices.size());
+        in_file.read(1, 0, v.size(), v.data());
+        EXPECT_TRUE(v == built.ridges.vertices);
+    }
 }
 
 // The creases paper's Table 5 weights (slope .1, illumination .3, flow .6) with Figure 15's min
