@@ -124,7 +124,11 @@ DrainageDb build_streamed(DrainageGrid& g, const std::string& crs_wkt, const Dra
         report(progress, "draping ridges", draping_from + (writing_at - draping_from) * 0.5 * f);
     });
     report(progress, "indexing creases", draping_from + (writing_at - draping_from) * 0.5);
-    if (has_relief(g)) meta.crease_source = encode_crease_source(g, res.dir, crease_tile_index(g, res.dir, res.net));
+    if (has_relief(g)) {
+        const CreaseTileIndex index = crease_tile_index(g, res.dir, res.net);
+        report(progress, "coding the creases' source", draping_from + (writing_at - draping_from) * 0.75);
+        meta.crease_source = encode_crease_source(g, res.dir, index);
+    }
     report(progress, "writing the database", writing_at);
     write(meta, branches);
     report(progress, "done", 1.0);
