@@ -116,7 +116,7 @@ std::vector<std::uint8_t> encode_crease_source(const DrainageGrid& g, const std:
 }
 
 bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGrid& g, std::vector<std::uint8_t>& dir,
-                          CreaseTileIndex& index) {
+                          CreaseTileIndex& index, bool arrays) {
     Reader r{data, size};
     std::uint32_t cols = 0, rows = 0, affine = 0, side = 0, tiles = 0;
     std::int32_t factor = 0, ccols = 0, crows = 0, col0 = 0, row0 = 0;
@@ -157,23 +157,23 @@ bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGr
     }
     auto floats = [&](std::vector<float>& v, std::size_t want, bool may_be_empty) {
         return get_blocks(
-            r, want, may_be_empty, [&](std::size_t k) { v.resize(k); },
+            r, want, may_be_empty, [&](std::size_t k) { v.resize(arrays ? k : 0); },
             [&](const std::uint8_t* c, std::size_t s, std::size_t first, std::size_t k) {
-                return decode_floats(c, s, v.data() + first, k, z_orders);
+                return !arrays || decode_floats(c, s, v.data() + first, k, z_orders);
             });
     };
     auto bytes = [&](std::vector<std::uint8_t>& v, std::size_t want, bool may_be_empty) {
         return get_blocks(
-            r, want, may_be_empty, [&](std::size_t k) { v.resize(k); },
+            r, want, may_be_empty, [&](std::size_t k) { v.resize(arrays ? k : 0); },
             [&](const std::uint8_t* c, std::size_t s, std::size_t first, std::size_t k) {
-                return decode_bytes(c, s, v.data() + first, k);
+                return !arrays || decode_bytes(c, s, v.data() + first, k);
             });
     };
     if (!floats(g.z, n, false) || !bytes(g.valid, n, false) || !bytes(dir, n, false)) return false;
     if (!get_blocks(
-            r, coarse, true, [&](std::size_t k) { g.coarse_xy.resize(k); },
+            r, coarse, true, [&](std::size_t k) { g.coarse_xy.resize(arrays ? k : 0); },
             [&](const std::uint8_t* c, std::size_t s, std::size_t first, std::size_t k) {
-                return decode_floats(c, s, &g.coarse_xy[first].x, k, xy_orders);
+                return !arrays || decode_floats(c, s, &g.coarse_xy[first].x, k, xy_orders);
             }))
         return false;
     if (!bytes(g.coarse_valid, coarse, true) || !floats(g.coarse_z, coarse, true)) return false;

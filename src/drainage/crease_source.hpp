@@ -35,8 +35,11 @@ std::vector<std::uint8_t> encode_crease_source(const DrainageGrid& g, const std:
 // reads), dir and index; false (nothing promised of the outputs) when they are not such bytes:
 // sizes that do not agree, cut short, trailing bytes, a block that does not decode, counts or
 // source cells out of range.
+// With arrays = false only g's scalar fields (size, factor, spacing, origin, affine grid) and the
+// index are decoded, the arrays checked for their sizes and left empty (a render whose tiles are
+// all read from their files needs no more).
 bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGrid& g, std::vector<std::uint8_t>& dir,
-                          CreaseTileIndex& index);
+                          CreaseTileIndex& index, bool arrays = true);
 
 // The accumulation, orders, in-degrees, basins and outlets of the flow directions `dir` on g's
 // valid nodes (accumulate_flow and label_basins, one beside the other).

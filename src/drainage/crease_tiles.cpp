@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <utility>
 
 #include <glm/common.hpp>
 
@@ -91,7 +92,10 @@ DrapedLineSet CreaseTiles::lines_for_box(glm::vec2 lo, glm::vec2 hi, std::vector
             if (!path.empty() && read_line_tile(path, key, stems, *lines) && stems == t.stems) {
                 ++read_;
             } else {
-                if (!surface_) surface_ = std::make_unique<DemSurface>(g_);
+                if (!surface_) {
+                    if (before_build_) std::exchange(before_build_, {})();
+                    surface_ = std::make_unique<DemSurface>(g_);
+                }
                 *lines = crease_part(g_, dir_, net_, *surface_, parts_, t.stems);
                 if (!path.empty() && write_line_tile(path, key, t.stems, *lines)) ++written_;
             }

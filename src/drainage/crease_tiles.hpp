@@ -16,6 +16,7 @@
 // Not thread-safe: one query at a time (a tile's build runs on all cores).
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -49,7 +50,8 @@ CreaseTileIndex crease_tile_index(const DrainageGrid& g, const std::vector<std::
 
 class CreaseTiles {
 public:
-    // g, dir and net must outlive this (g.z: the original elevations, as build_draped_lines reads).
+    // g, dir and net must outlive this (g.z: the original elevations, as build_draped_lines reads);
+    // with before_first_build, only g's cols and rows are read before the first build.
     // On a DEM without relief (has_relief) the whole build keeps no creases: make none there.
     CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net, int tile = 256,
                 TileStore store = {});
@@ -61,6 +63,10 @@ public:
     // stem order (network_stems' ids in `ids`), indexed: lines_meeting_box on it gives the whole
     // build's lines meeting the box, in the same order, equal bit for bit.
     DrapedLineSet lines_for_box(glm::vec2 lo, glm::vec2 hi, std::vector<std::uint32_t>* ids = nullptr);
+
+    // Called once, before the first tile is built here (not for tiles read from their files): a
+    // caller that made g, dir and net with their sizes only fills them there.
+    void before_first_build(std::function<void()> f) { before_build_ = std::move(f); }
 
     std::size_t tile_count() const { return tiles_.size(); }
     // The index the tiles were made from (crease_tile_index's, or the one given).
@@ -84,6 +90,7 @@ private:
     StemParts parts_;
     std::vector<Tile> tiles_;
     std::unique_ptr<DemSurface> surface_;  // made with the first tile built
+    std::function<void()> before_build_;
 };
 
 }  // namespace penink

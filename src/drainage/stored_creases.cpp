@@ -24,15 +24,21 @@ DrapedLineSet StoredCreases::lines_for_box(glm::vec2 lo, glm::vec2 hi) {
     if (!decoded_) {
         auto d = std::make_unique<Decoded>();
         CreaseTileIndex index;
-        if (!decode_crease_source(source_.data(), source_.size(), d->g, d->dir, index))
+        // the index now; the grid, directions and network only when a tile is built here
+        if (!decode_crease_source(source_.data(), source_.size(), d->g, d->dir, index, false))
             throw Error("drainage", "", "stored crease source does not decode", ExitCode::internal);
-        d->net = network_of_directions(d->g, d->dir);
         TileStore store;
         if (!folder_.empty()) {
             const std::uint64_t fields[2] = {std::uint64_t(drainage_db_version), hash64(source_.data(), source_.size())};
             store.folder = folder_, store.key = hash64(fields, sizeof fields);
         }
         d->tiles = std::make_unique<CreaseTiles>(d->g, d->dir, d->net, std::move(index), std::move(store));
+        d->tiles->before_first_build([this, d = d.get()] {
+            CreaseTileIndex again;
+            if (!decode_crease_source(source_.data(), source_.size(), d->g, d->dir, again))
+                throw Error("drainage", "", "stored crease source does not decode", ExitCode::internal);
+            d->net = network_of_directions(d->g, d->dir);
+        });
         decoded_ = std::move(d);
     }
     return decoded_->tiles->lines_for_box(lo, hi);

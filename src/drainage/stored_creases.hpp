@@ -1,7 +1,7 @@
 // The creases of a drainage database that stores what building them reads (DrainageDb::
-// crease_source, crease_source.hpp) instead of the creases: decoded on the first query (the grid,
-// directions and tile index; the accumulation, orders and basins made again from the
-// directions), then built per tile of the drainage grid where a query's plan box needs them
+// crease_source, crease_source.hpp) instead of the creases: the tile index decoded on the first
+// query, the grid and directions when a tile is first built here (the accumulation, orders and
+// basins then made again from the directions), the creases built per tile of the drainage grid where a query's plan box needs them
 // (crease_tiles.hpp: the whole build's lines bit for bit), each tile kept for the next query and,
 // given a folder, in a file of its own (line_tile_files.hpp), so the next process reads it
 // instead of building it. A folder that cannot be written keeps the tiles in memory only.

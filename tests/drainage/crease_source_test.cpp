@@ -53,6 +53,19 @@ void expect_round_trip(const Terrain& t, int factor, const std::string& what) {
     EXPECT_EQ(got.lo, index.lo) << what;
     EXPECT_EQ(got.hi, index.hi) << what;
 
+    {  // the index and the grid's scalars alone
+        DrainageGrid s;
+        std::vector<std::uint8_t> no_dir;
+        CreaseTileIndex index_only;
+        ASSERT_TRUE(decode_crease_source(bytes.data(), bytes.size(), s, no_dir, index_only, false)) << what;
+        EXPECT_EQ(s.cols, g.cols) << what;
+        EXPECT_EQ(s.rows, g.rows) << what;
+        EXPECT_EQ(s.origin, g.origin) << what;
+        EXPECT_TRUE(s.z.empty() && s.valid.empty() && s.coarse_xy.empty() && no_dir.empty()) << what;
+        EXPECT_EQ(index_only.lo, index.lo) << what;
+        EXPECT_EQ(index_only.parts.sources, index.parts.sources) << what;
+    }
+
     const FlowNetwork net = network_of_directions(h, dir);
     EXPECT_TRUE(std::equal(net.acc.begin(), net.acc.end(), res.net.acc.begin(), res.net.acc.end())) << what;
     EXPECT_EQ(net.order, res.net.order) << what;
