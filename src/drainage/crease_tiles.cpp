@@ -73,12 +73,7 @@ std::size_t CreaseTiles::tiles_built() const {
     return std::size_t(std::count_if(tiles_.begin(), tiles_.end(), [](const Tile& t) { return t.lines != nullptr; }));
 }
 
-DrapedLineSet CreaseTiles::lines_for_box(glm::vec2 lo, glm::vec2 hi, std::vector<std::uint32_t>* ids) {
-    struct Pick {
-        std::uint32_t stem;
-        const DrapedLineSet* set;
-        std::uint32_t line;
-    };
+std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec2 hi) {
     std::vector<Pick> picks;
     for (std::size_t k = 0; k < tiles_.size(); ++k) {
         Tile& t = tiles_[k];
@@ -104,6 +99,22 @@ DrapedLineSet CreaseTiles::lines_for_box(glm::vec2 lo, glm::vec2 hi, std::vector
         for (std::uint32_t i = 0; i < t.stems.size(); ++i) picks.push_back({t.stems[i], t.lines.get(), i});
     }
     std::sort(picks.begin(), picks.end(), [](const Pick& a, const Pick& b) { return a.stem < b.stem; });
+    return picks;
+}
+
+CreaseTiles::LineRefs CreaseTiles::line_refs_for_box(glm::vec2 lo, glm::vec2 hi) {
+    const std::vector<Pick> picks = picks_for_box(lo, hi);
+    LineRefs out;
+    out.lines.reserve(picks.size()), out.vertices.reserve(picks.size());
+    for (const Pick& p : picks) {
+        const DrapedLine& l = p.set->lines[p.line];
+        out.lines.push_back(l), out.vertices.push_back(p.set->vertices.data() + l.first);
+    }
+    return out;
+}
+
+DrapedLineSet CreaseTiles::lines_for_box(glm::vec2 lo, glm::vec2 hi, std::vector<std::uint32_t>* ids) {
+    const std::vector<Pick> picks = picks_for_box(lo, hi);
     DrapedLineSet out;
     std::size_t n = 0;
     for (const Pick& p : picks) n += p.set->lines[p.line].count;

@@ -63,6 +63,14 @@ public:
     // stem order (network_stems' ids in `ids`), indexed: lines_meeting_box on it gives the whole
     // build's lines meeting the box, in the same order, equal bit for bit.
     DrapedLineSet lines_for_box(glm::vec2 lo, glm::vec2 hi, std::vector<std::uint32_t>* ids = nullptr);
+    // The same lines without copying their vertices: each line's record (box, length, count,
+    // order; `first` meaningless) and a pointer to its vertices in its tile, which stays valid
+    // and unchanged as long as this object lives.
+    struct LineRefs {
+        std::vector<DrapedLine> lines;
+        std::vector<const DrapedVertex*> vertices;
+    };
+    LineRefs line_refs_for_box(glm::vec2 lo, glm::vec2 hi);
 
     // Called once, before the first tile is built here (not for tiles read from their files): a
     // caller that made g, dir and net with their sizes only fills them there.
@@ -76,6 +84,12 @@ public:
     std::size_t tiles_written() const { return written_; }  // files written
 
 private:
+    struct Pick {
+        std::uint32_t stem;
+        const DrapedLineSet* set;
+        std::uint32_t line;
+    };
+    std::vector<Pick> picks_for_box(glm::vec2 lo, glm::vec2 hi);  // built where needed, in stem order
     struct Tile {
         std::vector<std::uint32_t> stems;  // ids, ascending
         glm::vec2 lo{0.0f}, hi{-1.0f};     // plan box of its stems' reaches

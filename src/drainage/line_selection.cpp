@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -256,23 +257,42 @@ LineBox line_box(const Terrain& model) {
 
 namespace {
 
-// The crease set a frame selects from: db.creases, or where the database stores their source
-// those built for the box, by `stored` (made here from db when none).
-const DrapedLineSet& creases_for_box(const DrainageDb& db, StoredCreases* stored, const LineBox& box,
-                                     DrapedLineSet& built) {
-    if (!stored && db.crease_source.empty()) return db.creases;
-    if (stored) built = stored->lines_for_box(box.lo, box.hi);
-    else built = StoredCreases(db.crease_source).lines_for_box(box.lo, box.hi);
-    return built;
+// Lines kept in crease tiles (StoredCreases::line_refs_for_box): records and a pointer to each
+// line's vertices.
+struct RefBatches {
+    const CreaseTiles::LineRefs& refs;
+    const std::vector<std::uint32_t>& ids;
+    const std::vector<std::uint32_t>* list = nullptr;
+    std::size_t fetch(const std::vector<std::uint32_t>& l, std::size_t) { return list = &l, l.size(); }
+    const DrapedVertex* vertices(std::size_t i) const { return refs.vertices[ids[(*list)[i]]]; }
+};
+
+// Where the database stores the creases' source: out = the creases selected from those built
+// (or read) for the box by `stored` (made here from db when none), their vertices not copied;
+// false where db holds its creases.
+bool select_stored_creases(const DrainageDb& db, StoredCreases* stored, const LineBox& box, const LineCulling& culling,
+                           ScoredLineSet& out) {
+    if (!stored && db.crease_source.empty()) return false;
+    std::optional<StoredCreases> local;
+    if (!stored) stored = &local.emplace(db.crease_source);
+    const CreaseTiles::LineRefs refs = stored->line_refs_for_box(box.lo, box.hi);
+    std::vector<std::uint32_t> ids;  // those meeting the box, ascending (what lines_meeting_box gives)
+    for (std::uint32_t i = 0; i < refs.lines.size(); ++i) {
+        const DrapedLine& l = refs.lines[i];
+        if (l.lo.x <= box.hi.x && l.hi.x >= box.lo.x && l.lo.y <= box.hi.y && l.hi.y >= box.lo.y) ids.push_back(i);
+    }
+    RefBatches batches{refs, ids};
+    out = select_lines(refs.lines, ids, batches, box, culling);
+    return true;
 }
 
 DrainageLineData prepare_from_memory(const DrainageDb& db, StoredCreases* stored, const LineBox& box,
                                      const LineCulling& culling) {
     DrainageLineData data;
     if (!(box.lo.x <= box.hi.x && box.lo.y <= box.hi.y)) return data;
-    DrapedLineSet built;
-    const DrapedLineSet& creases = creases_for_box(db, stored, box, built);
-    for (const auto& [set, out] : {std::pair(&creases, &data.creases), std::pair(&db.ridges, &data.ridges)}) {
+    const bool stored_creases = select_stored_creases(db, stored, box, culling, data.creases);
+    for (const auto& [set, out] : {std::pair(&db.creases, &data.creases), std::pair(&db.ridges, &data.ridges)}) {
+        if (out == &data.creases && stored_creases) continue;
         const std::vector<std::uint32_t> ids = lines_meeting_box(*set, box.lo, box.hi);
         MemoryBatches batches{*set, ids};
         *out = select_lines(set->lines, ids, batches, box, culling);
@@ -297,17 +317,14 @@ DrainageLineData prepare_drainage_lines(const DrainageLineSource& source, const 
     if (!(box.lo.x <= box.hi.x && box.lo.y <= box.hi.y)) return data;
     int which = 0;
     try {
-        DrapedLineSet built;
-        const DrapedLineSet& creases = creases_for_box(source.db, source.creases.get(), box, built);
+        const bool stored_creases = select_stored_creases(source.db, source.creases.get(), box, culling, data.creases);
         for (const auto& [set, out] :
-             {std::pair(&creases, &data.creases), std::pair(&source.db.ridges, &data.ridges)}) {
-            const std::vector<std::uint32_t> ids = lines_meeting_box(*set, box.lo, box.hi);
-            if (set == &built) {  // built here: in memory
-                MemoryBatches batches{*set, ids};
-                *out = select_lines(set->lines, ids, batches, box, culling);
+             {std::pair(&source.db.creases, &data.creases), std::pair(&source.db.ridges, &data.ridges)}) {
+            if (out == &data.creases && stored_creases) {
                 ++which;
                 continue;
             }
+            const std::vector<std::uint32_t> ids = lines_meeting_box(*set, box.lo, box.hi);
             // the vertices a batch at a time (batch_bytes, or one longer line): the memory held
             // follows the lines drawn, not those meeting the box
             FileBatches batches{*set, ids, source.vertices, which,

@@ -19,8 +19,7 @@ StoredCreases::StoredCreases(std::vector<std::uint8_t> source, std::string folde
 
 StoredCreases::~StoredCreases() = default;
 
-DrapedLineSet StoredCreases::lines_for_box(glm::vec2 lo, glm::vec2 hi) {
-    const std::lock_guard<std::mutex> lock(mutex_);
+CreaseTiles& StoredCreases::tiles() {
     if (!decoded_) {
         auto d = std::make_unique<Decoded>();
         CreaseTileIndex index;
@@ -41,7 +40,17 @@ DrapedLineSet StoredCreases::lines_for_box(glm::vec2 lo, glm::vec2 hi) {
         });
         decoded_ = std::move(d);
     }
-    return decoded_->tiles->lines_for_box(lo, hi);
+    return *decoded_->tiles;
+}
+
+DrapedLineSet StoredCreases::lines_for_box(glm::vec2 lo, glm::vec2 hi) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return tiles().lines_for_box(lo, hi);
+}
+
+CreaseTiles::LineRefs StoredCreases::line_refs_for_box(glm::vec2 lo, glm::vec2 hi) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return tiles().line_refs_for_box(lo, hi);
 }
 
 std::size_t StoredCreases::tile_count() const {

@@ -35,6 +35,9 @@ public:
     // gives for the box. Throws penink::Error("drainage", "", ..., internal) when the source does
     // not decode (it was checked by the database's checksum: a builder's fault).
     DrapedLineSet lines_for_box(glm::vec2 lo, glm::vec2 hi);
+    // The same lines as records and pointers to their vertices in the kept tiles (valid while this
+    // object lives): what a frame selects from without copying the vertices.
+    CreaseTiles::LineRefs line_refs_for_box(glm::vec2 lo, glm::vec2 hi);
 
     // Tiles in all, built here, read from their files (0 before the first query).
     std::size_t tile_count() const;
@@ -47,6 +50,7 @@ private:
     std::vector<std::uint8_t> source_;
     std::string folder_;
     std::unique_ptr<Decoded> decoded_;
+    CreaseTiles& tiles();  // decoded on first use; under mutex_
 };
 
 // The folder beside a drainage database file that keeps its crease tiles.
