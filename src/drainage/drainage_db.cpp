@@ -1,7 +1,9 @@
-// DV file layout (version 14, all little-endian; compact: what the builder's invariants give is
+// DV file layout (version 15, all little-endian; compact: what the builder's invariants give is
 // not stored, see layout_ok). Two parts, each with its checksum: the network
 // (header, branches, divides) and the lines (creases and ridges for drawing, line_set.hpp),
-// which a render reads and checks alone (read_drainage_db, DvParts::lines).
+// which a render reads and checks alone (read_drainage_db, DvParts::lines). A file holding the
+// creases' source (what `penink drainage` and a render's cache write) stores no branches or
+// divides: they follow from the drainage grid and flow directions it holds (positions 2 below).
 //   char[8]  magic "PNKDV\0\0\0"
 //   u32      format version
 //   u32      reserved (0)
@@ -10,9 +12,13 @@
 //   fingerprint: u64 DEM size, i64 DEM mtime (ns), u64 DEM hash, u32 resample, u32 options (0),
 //            u32 routing
 //   i32 cols, rows, factor; f64 origin easting, northing; u32 n + n bytes of CRS WKT
-//   u8 positions: 0 explicit, 1 grid cells (then f64 gt[6], f64 unit, i32 col0, row0)
+//   u8 positions: 0 explicit, 1 grid cells (then f64 gt[6], f64 unit, i32 col0, row0), 2 none:
+//            the network is made again from the crease source (lines part) on a whole read
+//            (decode_crease_source, network_of_directions, build_branches, build_divides: the
+//            database built in memory, bit for bit); nothing follows the counts, which the network
+//            made must match
 //   u64 counts: vertices, branches, upstream links, divide vertices, divides
-//   branches, each a record then its stored vertices:
+//   (positions 0 and 1) branches, each a record then its stored vertices:
 //     record: varint count; varint link: 0 for an outlet branch, else zigzag(downstream - own
 //             id); u8 order; varint basin; varint head_acc; with grid positions varint head cell
 //             minus the branch before's (varint: LEB128, 7 bits a byte, low first; zigzag: 2d for
@@ -23,7 +29,8 @@
 //             head and u8 step (ESRI code index of the move) + f32 z for each next one; the flow
 //             of vertex k is (head_acc + k) / the basin's total, the total being the
 //             accumulation at the last vertex of the basin's outlet branch (head_acc + count - 1)
-//   divides: u32 count (first = running sum); divide vertices: f32 x, y, z (flow 0)
+//   (positions 0 and 1) divides: u32 count (first = running sum); divide vertices: f32 x, y, z
+//            (flow 0)
 //   zero bytes up to a multiple of 8
 //   u64      network checksum: hash64 (FNV-1a, 64-bit words) of every byte before it with the two
 //            length fields read as 0, then of the lines part's offset (dv_format.hpp: network_hash)
@@ -48,7 +55,8 @@
 // Versions 2-4 stored each vertex's flow (16 bytes) and fixed 13-byte branches without head_acc;
 // 4 added the routing; 5 varint records; 6 grid positions; 7 vertices after each record; 8 the
 // lines part and no vertical exaggeration in the fingerprint; 9 3-D line lengths and the index
-// checksum; 11 the vertex block checksums; 14 the crease source in place of the creases.
+// checksum; 11 the vertex block checksums; 14 the crease source in place of the creases; 15 no
+// network beside a crease source (positions 2).
 #include "drainage/drainage_db.hpp"
 
 #include <bit>

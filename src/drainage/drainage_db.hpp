@@ -112,7 +112,10 @@ struct DrainageDb {
 // 14: the lines part stores, after the ridges, what building the creases reads (crease_source.hpp:
 // the drainage grid, flow directions and crease tiles' index, coded) and no creases: a render
 // builds those a frame needs, per tile, on first use.
-inline constexpr std::uint32_t drainage_db_version = 14;
+// 15: a file storing the crease source stores no network but its counts (positions mode 2): the
+// branches and divides follow from the grid and directions the crease source holds, made again
+// on a whole read.
+inline constexpr std::uint32_t drainage_db_version = 15;
 
 // Fingerprint of the DEM file at `dem_path` with the given resample factor: its size, mtime and
 // a hash of its whole content (streamed) and of every side file GDAL may read with it (world

@@ -13,9 +13,10 @@ inline constexpr char magic[8] = {'P', 'N', 'K', 'D', 'V', 0, 0, 0};
 // magic, version, reserved, total length, offset of the lines part
 inline constexpr std::size_t prefix_bytes = 8 + 4 + 4 + 8 + 8;
 
-// How vertex positions are stored (the byte after the CRS): x, y per vertex, or grid cells on an
-// affine grid (then f64 gt[6], f64 unit, i32 col0, row0 follow).
-inline constexpr std::uint8_t positions_explicit = 0, positions_grid = 1;
+// How the network is stored (the byte after the CRS): branches with x, y per vertex, or with
+// grid cells on an affine grid (then f64 gt[6], f64 unit, i32 col0, row0 follow), or not at all:
+// the crease source in the lines part gives it (only the counts are stored).
+inline constexpr std::uint8_t positions_explicit = 0, positions_grid = 1, positions_source = 2;
 
 // LEB128 varint of v at p (at most 10 bytes); returns the byte after it.
 inline std::uint8_t* put_varint(std::uint8_t* p, std::uint64_t v) {

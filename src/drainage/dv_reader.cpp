@@ -12,6 +12,9 @@
 #include <unistd.h>
 
 #include "core/error.hpp"
+#include "core/parallel_chunks.hpp"
+#include "drainage/branches.hpp"
+#include "drainage/crease_source.hpp"
 #include "drainage/d8.hpp"
 #include "drainage/dv_format.hpp"
 
@@ -67,10 +70,13 @@ struct Reader {
     }
 };
 
-// How the file stores vertex positions (dv_format.hpp).
+// How the file stores the network (dv_format.hpp): with explicit or grid positions, or not at all
+// (from_source: made again from the crease source; `counts` are the stored ones to check it by).
 struct Positions {
     bool grid = false;
+    bool from_source = false;
     AffineNodes nodes;
+    std::uint64_t counts[5] = {};
 };
 
 DrainageFingerprint get_fingerprint(Reader& r) {
@@ -91,8 +97,8 @@ void get_header(Reader& r, DrainageDb& db, Positions& pos) {
     db.crs_wkt.assign(reinterpret_cast<const char*>(r.buf.data() + r.pos), n);
     r.pos += n;
     const std::uint8_t mode = r.get<std::uint8_t>();
-    if (mode != positions_explicit && mode != positions_grid) r.corrupt();
-    pos.grid = mode == positions_grid;
+    if (mode != positions_explicit && mode != positions_grid && mode != positions_source) r.corrupt();
+    pos.grid = mode == positions_grid, pos.from_source = mode == positions_source;
     if (!pos.grid) return;
     for (double& v : pos.nodes.gt) v = r.get<double>();
     pos.nodes.unit = r.get<double>(), pos.nodes.col0 = r.get<std::int32_t>(), pos.nodes.row0 = r.get<std::int32_t>();
@@ -188,8 +194,9 @@ void get_divides(Reader& r, DrainageDb& db) {
 }
 
 void get_body(Reader& r, DrainageDb& db, Positions& pos) {
-    std::uint64_t counts[5];
-    for (std::uint64_t& c : counts) c = r.get<std::uint64_t>();
+    std::uint64_t* counts = pos.counts;
+    for (int k = 0; k < 5; ++k) counts[k] = r.get<std::uint64_t>();
+    if (pos.from_source) return;  // nothing allocated from them: checked against the network made
     const std::size_t min_sizes[5] = {4, 5, 0, 12, 4};  // bytes each needs at least
     for (int k = 0; k < 5; ++k)
         if (counts[k] > r.buf.size() || (min_sizes[k] && counts[k] > (r.buf.size() - r.pos) / min_sizes[k] * 2))
@@ -379,6 +386,31 @@ void check_prefix(const std::uint8_t* b, std::size_t size, const std::string& pa
         throw Error("drainage", path, "drainage database checksum mismatch (file corrupt)");
 }
 
+// The network of a file storing none (positions_source): the drainage grid and directions
+// decoded from the crease source, the accumulation and basins made from the directions
+// (network_of_directions), then the branches and divides as the builder traces them
+// (build_branches, build_divides: the database built in memory, bit for bit). The grid must be
+// the header's and the network the stored counts'; else the file is corrupt.
+void network_from_source(DrainageDb& db, const Positions& pos, const std::string& path) {
+    auto corrupt = [&] { throw Error("drainage", path, "drainage database checksum mismatch (file corrupt)"); };
+    DrainageGrid g;
+    std::vector<std::uint8_t> dir;
+    CreaseTileIndex index;
+    if (db.crease_source.empty() ||
+        !decode_crease_source(db.crease_source.data(), db.crease_source.size(), g, dir, index))
+        corrupt();
+    if (g.cols != db.cols || g.rows != db.rows || g.factor != db.factor || g.origin != db.origin) corrupt();
+    try {
+        const FlowNetwork net = network_of_directions(g, dir);
+        run_beside([&] { build_divides(g, net, db); }, [&] { build_branches(g, dir, net, db); });
+    } catch (const Error&) {  // directions that do not drain (a cycle): not what a builder stores
+        corrupt();
+    }
+    const std::uint64_t made[5] = {db.vertices.size(), db.branches.size(), db.upstream.size(),
+                                   db.divide_vertices.size(), db.divides.size()};
+    if (!std::equal(made, made + 5, pos.counts)) corrupt();
+}
+
 }  // namespace
 
 DrainageDb decode_drainage_db(const std::vector<std::uint8_t>& b, const std::string& path) {
@@ -398,6 +430,7 @@ DrainageDb decode_drainage_db(const std::vector<std::uint8_t>& b, const std::str
     Reader l{Bytes{b.data() + lines_at, n - 8 - std::size_t(lines_at)}, 0, path};
     get_lines(l, db, true);
     if (l.pos != l.buf.size()) l.corrupt();
+    if (pos.from_source) network_from_source(db, pos, path);
     return db;
 }
 

@@ -140,7 +140,8 @@ void put_fingerprint(Sink& w, const DrainageFingerprint& f) {
     w.put(f.file_size), w.put(f.mtime_ns), w.put(f.content_hash), w.put(f.resample), w.put(f.options), w.put(f.routing);
 }
 
-void put_header(Sink& w, const DrainageDb& db, const AffineNodes* grid) {
+// `from_source`: the network is not stored but follows from db.crease_source (positions_source).
+void put_header(Sink& w, const DrainageDb& db, const AffineNodes* grid, bool from_source) {
     w.bytes(magic, 8);
     w.put(drainage_db_version), w.put(std::uint32_t(0));
     w.put(std::uint64_t(0)), w.put(std::uint64_t(0));  // total length, lines part offset: at the end
@@ -148,16 +149,18 @@ void put_header(Sink& w, const DrainageDb& db, const AffineNodes* grid) {
     w.put(db.cols), w.put(db.rows), w.put(db.factor), w.put(db.origin.x), w.put(db.origin.y);
     w.put(std::uint32_t(db.crs_wkt.size()));
     w.bytes(db.crs_wkt.data(), db.crs_wkt.size());
-    w.put(std::uint8_t(grid ? positions_grid : positions_explicit));
-    if (!grid) return;
+    w.put(std::uint8_t(from_source ? positions_source : grid ? positions_grid : positions_explicit));
+    if (from_source || !grid) return;
     for (double v : grid->gt) w.put(v);
     w.put(grid->unit), w.put(std::int32_t(grid->col0)), w.put(std::int32_t(grid->row0));
 }
 
-void put_body(Sink& w, const DrainageDb& meta, const DvBranchSource& src) {
+// The counts, then (unless the network follows from the crease source) branches and divides.
+void put_body(Sink& w, const DrainageDb& meta, const DvBranchSource& src, bool from_source) {
     w.put(std::uint64_t(src.vertex_count())), w.put(std::uint64_t(src.branch_count()));
     w.put(std::uint64_t(src.link_count())), w.put(std::uint64_t(meta.divide_vertices.size()));
     w.put(std::uint64_t(meta.divides.size()));
+    if (from_source) return;
     const std::size_t nb = src.branch_count(), parts = (nb + branches_per_part - 1) / branches_per_part;
     ordered_parts<DvBytes>(
         parts, 4,
@@ -218,8 +221,9 @@ Lengths encode(const DrainageDb& meta, const DvBranchSource& src, Sink& w) {
     if (!line_set_ok(meta.creases) || !line_set_ok(meta.ridges))
         throw Error("drainage", "", "drainage lines are not in the shape the builder gives them", ExitCode::internal);
     Lengths l;
-    put_header(w, meta, src.grid_nodes());
-    put_body(w, meta, src);
+    const bool from_source = !meta.crease_source.empty();  // the network is the one it gives
+    put_header(w, meta, src.grid_nodes(), from_source);
+    put_body(w, meta, src, from_source);
     l.lines_at = w.end_network();
     put_lines(w, meta);
     l.total = w.finish(l.lines_at);

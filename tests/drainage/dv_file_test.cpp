@@ -170,9 +170,19 @@ TEST(DvFile, StreamedNetworkWritesTheDatabasesBytes) {
     }
 }
 
-// On a projected DEM at factor 1 the file stores cells (a head cell per branch, a step per vertex:
-// 5 instead of 12 bytes) and reads back to the database built in memory, x and y included; the
-// streamed build stores the creases' source instead of the creases, which builds them bit for bit.
+// Bytes of a file's network part, up to the lines part's offset.
+double network_bytes(const fs::path& p) {
+    const std::vector<char> b = slurp(p);
+    std::uint64_t lines_at = 0;
+    std::memcpy(&lines_at, b.data() + 24, 8);
+    return double(lines_at);
+}
+
+// On a projected DEM at factor 1 a file streamed from the network without a crease source stores
+// cells (a head cell per branch, a step per vertex: 5 instead of 12 bytes) and reads back to the
+// database built in memory, x and y included; the streamed build stores the creases' source
+// instead of the creases, which builds them bit for bit, and no network: a whole read makes it
+// again from the source, the database built in memory again.
 TEST(DvFile, GridPositionsOnAnAffineDemReadBackExactly) {
     const fs::path d = temp_dir("grid");
     Terrain t = read_dem(PENINK_SOURCE_DIR "/examples/volcano.asc");
@@ -181,41 +191,139 @@ TEST(DvFile, GridPositionsOnAnAffineDemReadBackExactly) {
     DrainageDb built = build_drainage_db(t, o);
     built.crs_wkt = t.crs_wkt, built.fingerprint = {7, 8, 9, 1, 0, 0};
     write_drainage_db((d / "explicit.dv").string(), built);
-    build_and_write_drainage_db(t, o, built.fingerprint, (d / "grid.dv").string());
+    {  // the network streamed, no crease source: grid cells
+        DrainageGrid g = resample_pn(t, 1);
+        DrainageResult res;
+        drainage_db_from_grid(g, {}, &res);
+        DrainageDb meta = built;
+        meta.vertices.clear(), meta.branches.clear(), meta.upstream.clear();
+        write_drainage_db((d / "grid.dv").string(), meta, NetworkBranches(g, res.dir, res.net));
+    }
+    build_and_write_drainage_db(t, o, built.fingerprint, (d / "source.dv").string());
     EXPECT_TRUE(t.pos.empty());  // released once resampled
-    DrainageDb grid = read_drainage_db((d / "grid.dv").string());
-    ASSERT_FALSE(grid.crease_source.empty());
-    EXPECT_TRUE(grid.creases.lines.empty());
+    DrainageDb source = read_drainage_db((d / "source.dv").string());
+    ASSERT_FALSE(source.crease_source.empty());
+    EXPECT_TRUE(source.creases.lines.empty());
     const DrapedLineSet creases =
-        StoredCreases(grid.crease_source).lines_for_box(glm::vec2(-1e30f), glm::vec2(1e30f));
+        StoredCreases(source.crease_source).lines_for_box(glm::vec2(-1e30f), glm::vec2(1e30f));
     ASSERT_EQ(creases.lines, built.creases.lines);
     EXPECT_EQ(std::memcmp(creases.vertices.data(), built.creases.vertices.data(),
                           sizeof(DrapedVertex) * built.creases.vertices.size()),
               0);
-    grid.crease_source.clear(), grid.creases = built.creases;
-    EXPECT_TRUE(grid == built);
+    source.crease_source.clear(), source.creases = built.creases;
+    EXPECT_TRUE(source == built);
     EXPECT_TRUE(read_drainage_db((d / "explicit.dv").string()) == built);
-    // the network parts (the lines parts are alike)
-    auto network_bytes = [&](const fs::path& p) {
-        const std::vector<char> b = slurp(p);
-        std::uint64_t lines_at = 0;
-        std::memcpy(&lines_at, b.data() + 24, 8);
-        return double(lines_at);
-    };
+    EXPECT_TRUE(read_drainage_db((d / "grid.dv").string()) == built);
     const double ratio = network_bytes(d / "grid.dv") / network_bytes(d / "explicit.dv");
     EXPECT_LT(ratio, 0.75) << network_bytes(d / "grid.dv") << " vs " << network_bytes(d / "explicit.dv");
+    // header 100 + WKT + mode byte, counts 40, zeros to a multiple of 8, checksum 8
+    EXPECT_EQ(network_bytes(d / "source.dv"), double((100 + built.crs_wkt.size() + 1 + 40 + 7) / 8 * 8 + 8));
     // an unknown positions mode is refused even with a matching checksum
-    std::vector<char> b = slurp(d / "grid.dv");
-    const std::size_t mode_at = 100 + built.crs_wkt.size();
-    ASSERT_EQ(b[mode_at], 1);
-    b[mode_at] = 2;
-    std::uint64_t lines_at;
-    std::memcpy(&lines_at, b.data() + 24, 8);
-    const std::uint64_t h = dv::network_hash(reinterpret_cast<const std::uint8_t*>(b.data()), lines_at);
-    std::memcpy(b.data() + lines_at - 8, &h, 8);
-    spit(d / "bad.dv", b);
-    EXPECT_EQ(read_error(d / "bad.dv"),
-              "penink: drainage: " + (d / "bad.dv").string() + ": drainage database checksum mismatch (file corrupt)");
+    for (const char* name : {"grid.dv", "source.dv"}) {
+        std::vector<char> b = slurp(d / name);
+        const std::size_t mode_at = 100 + built.crs_wkt.size();
+        ASSERT_EQ(b[mode_at], name[0] == 'g' ? 1 : 2);
+        b[mode_at] = 3;
+        std::uint64_t lines_at;
+        std::memcpy(&lines_at, b.data() + 24, 8);
+        const std::uint64_t h = dv::network_hash(reinterpret_cast<const std::uint8_t*>(b.data()), lines_at);
+        std::memcpy(b.data() + lines_at - 8, &h, 8);
+        spit(d / "bad.dv", b);
+        EXPECT_EQ(read_error(d / "bad.dv"),
+                  "penink: drainage: " + (d / "bad.dv").string() + ": drainage database checksum mismatch (file corrupt)");
+    }
+}
+
+// The streamed build's file (no network stored: it follows from the crease source) reads back
+// whole to the database built in memory, field by field, on volcano at its automatic factor and
+// on geographic jacksboro (explicit positions); its network part is the header and counts alone.
+// Damaged: a count that is not the network's, a crease source whose bytes do not decode, each
+// with its checksum made to match, a short file, a flipped bit: the one-line errors.
+TEST(DvFile, NetworkMadeAgainFromTheCreaseSourceEqualsTheBuilds) {
+    const fs::path d = temp_dir("from_source");
+    for (const char* dem : {"volcano.asc", "jacksboro.tif"}) {
+        const std::string what = dem;
+        Terrain t = read_dem(std::string(PENINK_SOURCE_DIR "/examples/") + dem);
+        const DrainageOptions o;
+        const DrainageDb built = build_drainage_db(t, o);
+        ASSERT_GT(built.branches.size(), 1000u) << what;
+        ASSERT_GT(built.divides.size(), 10u) << what;
+        const DrainageFingerprint fp{11, 12, 13, std::uint32_t(built.factor), 0, 0};
+        const fs::path p = d / (what + ".dv");
+        const DrainageDb meta = build_and_write_drainage_db(t, o, fp, p.string());
+        EXPECT_TRUE(meta.branches.empty() && meta.vertices.empty()) << what;
+        const DrainageDb back = read_drainage_db(p.string(), &fp);
+        ASSERT_FALSE(back.crease_source.empty()) << what;
+        EXPECT_EQ(back.cols, built.cols) << what;
+        EXPECT_EQ(back.factor, built.factor) << what;
+        EXPECT_EQ(back.origin, built.origin) << what;
+        EXPECT_EQ(back.crs_wkt, built.crs_wkt) << what;
+        EXPECT_EQ(back.vertices.size(), built.vertices.size()) << what;
+        EXPECT_EQ(std::memcmp(back.vertices.data(), built.vertices.data(), sizeof(DvVertex) * built.vertices.size()), 0)
+            << what;
+        EXPECT_TRUE(back.branches == built.branches) << what;
+        EXPECT_EQ(back.upstream, built.upstream) << what;
+        EXPECT_TRUE(back.divide_vertices == built.divide_vertices) << what;
+        EXPECT_EQ(back.divides, built.divides) << what;
+        EXPECT_TRUE(back.ridges == built.ridges) << what;
+        EXPECT_EQ(network_bytes(p), double((100 + built.crs_wkt.size() + 1 + 40 + 7) / 8 * 8 + 8)) << what;
+        // written again from what was read: the same bytes
+        write_drainage_db((d / "again.dv").string(), back);
+        EXPECT_EQ(slurp(d / "again.dv"), slurp(p)) << what;
+
+        const std::vector<char> good = slurp(p);
+        std::uint64_t lines_at = 0;
+        std::memcpy(&lines_at, good.data() + 24, 8);
+        const std::string pre = "penink: drainage: " + p.string() + ": ";
+        const std::string corrupt = pre + "drainage database checksum mismatch (file corrupt)";
+        std::vector<char> b = good;  // one branch more than the network has
+        const std::size_t counts_at = 100 + built.crs_wkt.size() + 1;
+        std::uint64_t branches;
+        std::memcpy(&branches, b.data() + counts_at + 8, 8);
+        EXPECT_EQ(branches, built.branches.size()) << what;
+        ++branches;
+        std::memcpy(b.data() + counts_at + 8, &branches, 8);
+        const std::uint64_t h = dv::network_hash(reinterpret_cast<const std::uint8_t*>(b.data()), lines_at);
+        std::memcpy(b.data() + lines_at - 8, &h, 8);
+        spit(p, b);
+        EXPECT_EQ(read_error(p), corrupt) << what;
+        // a byte of the crease source's coded arrays changed (its last bytes), the checksums made
+        // to match: it does not decode
+        b = good;
+        const std::size_t source_at = good.size() - 16 - back.crease_source.size();
+        ASSERT_EQ(std::memcmp(b.data() + source_at, back.crease_source.data(), back.crease_source.size()), 0) << what;
+        b[good.size() - 17] ^= 0x5a;
+        DvLineVertices where;  // the index checksum: the part's bytes before it but the vertex arrays
+        read_drainage_line_index((d / "again.dv").string(), nullptr, where);
+        dv::ConcatHash index;
+        const auto* fb = reinterpret_cast<const std::uint8_t*>(b.data());
+        std::uint64_t from = lines_at;
+        for (int set = 0; set < 2; ++set) {
+            index.feed(fb + from, std::size_t(where.at[set] - from));
+            from = where.at[set] + sizeof(DrapedVertex) * where.count[set];
+        }
+        index.feed(fb + from, std::size_t(good.size() - 16 - from));
+        const auto* lp = fb + lines_at;
+        const std::uint64_t ih = index.digest();
+        std::memcpy(b.data() + good.size() - 16, &ih, 8);
+        const std::uint64_t total = good.size();
+        const std::uint64_t lh = dv::lines_hash(lp, std::size_t(total - 8 - lines_at), lines_at, total);
+        std::memcpy(b.data() + total - 8, &lh, 8);
+        spit(p, b);
+        EXPECT_EQ(read_error(p), corrupt) << what;
+        EXPECT_EQ(read_drainage_db(p.string(), nullptr, DvParts::lines).crease_source.size(),
+                  back.crease_source.size())
+            << what;  // the checksums do match: only the whole read decodes the source
+        b = good;
+        b.resize(good.size() - 100);
+        spit(p, b);
+        EXPECT_EQ(read_error(p), pre + "truncated drainage database") << what;
+        b = good;
+        b[std::size_t(lines_at) + (good.size() - std::size_t(lines_at)) / 2] ^= 0x08;
+        spit(p, b);
+        EXPECT_EQ(read_error(p), corrupt) << what;
+    }
+    fs::remove_all(d);
 }
 
 // Bytes of a line set in the lines part: counts 16, 28 a line and a vertex, index origin, side
@@ -280,7 +388,7 @@ TEST(DvFile, CorruptionsAreDetected) {
     b = good;
     b[8] = 7;  // a file of the layout before the lines part
     spit(p, b);
-    EXPECT_EQ(read_error(p), pre + "unsupported drainage database version 7 (expected 14)");
+    EXPECT_EQ(read_error(p), pre + "unsupported drainage database version 7 (expected 15)");
 
     b = good;
     b[0] = 'X';
