@@ -38,17 +38,29 @@ struct Reader {
 
 std::size_t block_count(std::size_t n) { return (n + block_nodes - 1) / block_nodes; }
 
-// Codes n elements of `elem` bytes block by block on all cores, appended as count, sizes, bytes.
-template <class Code> void put_blocks(std::vector<std::uint8_t>& out, std::size_t n, Code code) {
-    put(out, std::uint64_t(n));
-    std::vector<std::vector<std::uint8_t>> blocks(block_count(n));
-    parallel_chunks(blocks.size(), 1, [&](std::size_t b0, std::size_t b1) {
-        for (std::size_t b = b0; b < b1; ++b) blocks[b] = code(b * block_nodes, std::min(block_nodes, n - b * block_nodes));
+// Codes n elements block by block on all cores (code(first, count) codes one block).
+template <class Code> CodedSourceArray code_blocks(std::size_t n, Code code) {
+    CodedSourceArray a;
+    a.elements = n;
+    a.blocks.resize(block_count(n));
+    parallel_chunks(a.blocks.size(), 1, [&](std::size_t b0, std::size_t b1) {
+        for (std::size_t b = b0; b < b1; ++b) a.blocks[b] = code(b * block_nodes, std::min(block_nodes, n - b * block_nodes));
     });
-    put(out, std::uint32_t(blocks.size()));
-    for (const auto& b : blocks) put(out, std::uint32_t(b.size()));
-    for (const auto& b : blocks) out.insert(out.end(), b.begin(), b.end());
+    return a;
 }
+
+// Appends a coded array as count, blocks, sizes, bytes.
+void put_blocks(std::vector<std::uint8_t>& out, const CodedSourceArray& a) {
+    put(out, a.elements);
+    put(out, std::uint32_t(a.blocks.size()));
+    std::size_t bytes = 0;
+    for (const auto& b : a.blocks) put(out, std::uint32_t(b.size())), bytes += b.size();
+    out.reserve(out.size() + bytes);
+    for (const auto& b : a.blocks) out.insert(out.end(), b.begin(), b.end());
+}
+
+// At factor 1 the coarse nodes are the fine ones: their mask is g.valid, not stored twice.
+bool coarse_valid_shared(const DrainageGrid& g) { return g.factor == 1 && g.coarse_valid == g.valid; }
 
 // Reads what put_blocks wrote for n elements, decoding block by block on all cores.
 // n: the element count stored, which must be `want` or (with may_be_empty) 0; resize(n) sizes
@@ -82,12 +94,35 @@ bool get_box(Reader& r, glm::vec2& lo, glm::vec2& hi) { return r.get(lo.x) && r.
 
 }  // namespace
 
-std::vector<std::uint8_t> encode_crease_source(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
-                                               const CreaseTileIndex& index) {
+CodedSourceArray code_source_array(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, SourceArray a) {
+    auto floats = [](const std::vector<float>& v) {
+        return code_blocks(v.size(), [&](std::size_t first, std::size_t k) { return encode_floats(v.data() + first, k, z_orders); });
+    };
+    auto bytes = [](const std::vector<std::uint8_t>& v, std::size_t n) {
+        return code_blocks(n, [&](std::size_t first, std::size_t k) { return encode_bytes(v.data() + first, k); });
+    };
+    switch (a) {
+        case SourceArray::z: return floats(g.z);
+        case SourceArray::valid: return bytes(g.valid, g.valid.size());
+        case SourceArray::dir: return bytes(dir, dir.size());
+        case SourceArray::coarse_xy:
+            return code_blocks(g.coarse_xy.size(), [&](std::size_t first, std::size_t k) {
+                return encode_floats(&g.coarse_xy[first].x, k, xy_orders);
+            });
+        case SourceArray::coarse_valid:
+            return bytes(g.coarse_valid, coarse_valid_shared(g) ? 0 : g.coarse_valid.size());
+        case SourceArray::coarse_z: return floats(g.coarse_z);
+    }
+    return {};
+}
+
+std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const CreaseTileIndex& index,
+                                                 const std::vector<CodedSourceArray>& arrays) {
     std::vector<std::uint8_t> out;
     put(out, std::uint32_t(g.cols)), put(out, std::uint32_t(g.rows)), put(out, std::int32_t(g.factor));
     put(out, g.dx), put(out, g.dy), put(out, g.origin.x), put(out, g.origin.y);
     put(out, std::int32_t(g.coarse_cols)), put(out, std::int32_t(g.coarse_rows)), put(out, std::uint32_t(g.has_affine));
+    put(out, std::uint32_t(coarse_valid_shared(g)));
     for (double v : g.affine.gt) put(out, v);
     put(out, g.affine.unit), put(out, std::int32_t(g.affine.col0)), put(out, std::int32_t(g.affine.row0));
     put(out, std::uint32_t(index.side));
@@ -101,35 +136,33 @@ std::vector<std::uint8_t> encode_crease_source(const DrainageGrid& g, const std:
         encode_bytes(reinterpret_cast<const std::uint8_t*>(deltas.data()), deltas.size() * sizeof(std::uint32_t));
     put(out, std::uint64_t(src.size())), put(out, std::uint32_t(coded.size()));
     out.insert(out.end(), coded.begin(), coded.end());
-    const std::size_t n = g.size();
-    put_blocks(out, n, [&](std::size_t first, std::size_t k) { return encode_floats(g.z.data() + first, k, z_orders); });
-    put_blocks(out, n, [&](std::size_t first, std::size_t k) { return encode_bytes(g.valid.data() + first, k); });
-    put_blocks(out, n, [&](std::size_t first, std::size_t k) { return encode_bytes(dir.data() + first, k); });
-    put_blocks(out, g.coarse_xy.size(), [&](std::size_t first, std::size_t k) {
-        return encode_floats(&g.coarse_xy[first].x, k, xy_orders);
-    });
-    put_blocks(out, g.coarse_valid.size(),
-               [&](std::size_t first, std::size_t k) { return encode_bytes(g.coarse_valid.data() + first, k); });
-    put_blocks(out, g.coarse_z.size(),
-               [&](std::size_t first, std::size_t k) { return encode_floats(g.coarse_z.data() + first, k, z_orders); });
+    for (const CodedSourceArray& a : arrays) put_blocks(out, a);
     return out;
+}
+
+std::vector<std::uint8_t> encode_crease_source(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
+                                               const CreaseTileIndex& index) {
+    std::vector<CodedSourceArray> arrays;
+    for (std::size_t a = 0; a < source_array_count; ++a) arrays.push_back(code_source_array(g, dir, SourceArray(a)));
+    return assemble_crease_source(g, index, arrays);
 }
 
 bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGrid& g, std::vector<std::uint8_t>& dir,
                           CreaseTileIndex& index, bool arrays) {
     Reader r{data, size};
-    std::uint32_t cols = 0, rows = 0, affine = 0, side = 0, tiles = 0;
+    std::uint32_t cols = 0, rows = 0, affine = 0, shared = 0, side = 0, tiles = 0;
     std::int32_t factor = 0, ccols = 0, crows = 0, col0 = 0, row0 = 0;
     g = DrainageGrid{};
     if (!r.get(cols) || !r.get(rows) || !r.get(factor) || !r.get(g.dx) || !r.get(g.dy) || !r.get(g.origin.x) ||
-        !r.get(g.origin.y) || !r.get(ccols) || !r.get(crows) || !r.get(affine))
+        !r.get(g.origin.y) || !r.get(ccols) || !r.get(crows) || !r.get(affine) || !r.get(shared))
         return false;
     for (double& v : g.affine.gt)
         if (!r.get(v)) return false;
     if (!r.get(g.affine.unit) || !r.get(col0) || !r.get(row0) || !r.get(side) || !r.get(tiles)) return false;
     if (cols < 2 || rows < 2 || cols > (1u << 30) || rows > (1u << 30) || std::uint64_t(cols) * rows > (1ull << 32) ||
         factor < 1 || ccols < 2 || crows < 2 || std::uint64_t(ccols - 1) * std::uint64_t(factor) + 1 != cols ||
-        std::uint64_t(crows - 1) * std::uint64_t(factor) + 1 != rows || affine > 1 || side == 0 || side > (1u << 30))
+        std::uint64_t(crows - 1) * std::uint64_t(factor) + 1 != rows || affine > 1 || shared > (factor == 1) || side == 0 ||
+        side > (1u << 30))
         return false;
     g.cols = int(cols), g.rows = int(rows), g.factor = factor, g.coarse_cols = ccols, g.coarse_rows = crows;
     g.has_affine = affine == 1, g.affine.col0 = col0, g.affine.row0 = row0;
@@ -176,7 +209,8 @@ bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGr
                 return !arrays || decode_floats(c, s, &g.coarse_xy[first].x, k, xy_orders);
             }))
         return false;
-    if (!bytes(g.coarse_valid, coarse, true) || !floats(g.coarse_z, coarse, true)) return false;
+    if (!bytes(g.coarse_valid, shared ? 0 : coarse, true) || !floats(g.coarse_z, coarse, true)) return false;
+    if (shared) g.coarse_valid = g.valid;
     return r.left == 0;
 }
 

@@ -11,11 +11,16 @@
 // the mask and directions as bytes: deflate), the source cells as deltas (deflated u32), the
 // boxes as floats. Lossless: decoding gives the arrays and the index bit for bit.
 // (coarse x, y as float pairs differenced twice, coarse heights like z, the coarse mask as bytes).
+// At factor 1 the coarse mask is the fine one (coarse_valid_shared): not stored again.
 // Layout (little-endian): u32 cols, rows, i32 factor, f64 dx, dy, origin x, y, i32 coarse cols,
-// rows, u32 has_affine, f64 gt[6], f64 unit, i32 col0, row0, u32 side, u32 tiles, f32 x 4 stems'
+// rows, u32 has_affine, u32 coarse mask shared (1: coarse_valid is valid, stored with 0
+// elements), f64 gt[6], f64 unit, i32 col0, row0, u32 side, u32 tiles, f32 x 4 stems'
 // box (lo, hi), tiles x f32 x 4 reach boxes, u64 sources, u32 coded bytes + the coded source
 // deltas, then for z, valid, dir, coarse_xy, coarse_valid, coarse_z: u64 elements (the coarse
 // ones may be 0), u32 blocks, blocks x u32 coded sizes, the coded blocks.
+// The arrays may be coded one by one as each becomes final (code_source_array; a build codes
+// the grid's while the directions are found, and z and the directions while the ridges are
+// draped and the index made) and put together with the index after (assemble_crease_source).
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -27,9 +32,29 @@
 
 namespace penink {
 
-// g.z, g.valid (g.cols x g.rows), dir and the index, coded (blocks coded on all cores).
+// g.z, g.valid (g.cols x g.rows), dir and the index, coded (blocks coded on all cores):
+// assemble_crease_source of every code_source_array.
 std::vector<std::uint8_t> encode_crease_source(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
                                                const CreaseTileIndex& index);
+
+// The arrays of a crease source in the order it stores them.
+enum class SourceArray { z, valid, dir, coarse_xy, coarse_valid, coarse_z };
+inline constexpr std::size_t source_array_count = 6;
+
+// One array coded: its element count and its blocks of 2^16 elements, each coded on its own.
+struct CodedSourceArray {
+    std::uint64_t elements = 0;
+    std::vector<std::vector<std::uint8_t>> blocks;
+};
+
+// Array `a` of g (dir for SourceArray::dir) coded, its blocks on all cores; reads only that
+// array (and, for coarse_valid, g.valid and g.factor).
+CodedSourceArray code_source_array(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, SourceArray a);
+
+// The crease source of g's scalars, the index and the coded arrays (code_source_array of each
+// SourceArray, in order): the bytes encode_crease_source gives.
+std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const CreaseTileIndex& index,
+                                                 const std::vector<CodedSourceArray>& arrays);
 
 // Decodes `size` bytes written by encode_crease_source into g (every field encode_crease_source
 // reads), dir and index; false (nothing promised of the outputs) when they are not such bytes:

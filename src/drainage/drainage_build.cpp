@@ -3,10 +3,12 @@
 #include "drainage/crease_source.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
+#include <future>
 #include <iostream>
 
 #include <unistd.h>
@@ -114,20 +116,41 @@ DrainageDb build_streamed(DrainageGrid& g, const std::string& crs_wkt, const Dra
                           DrainageResult* keep) {
     DrainageDb meta = grid_database(g);
     meta.crs_wkt = crs_wkt, meta.fingerprint = fp;
+    // Of the creases, what a render builds those a frame needs from (crease_source.hpp): each
+    // array coded on other threads as soon as it is final, beside the stages still running, most
+    // of which keep one core (the grid's arrays and z beside the directions, z from a copy taken
+    // before the fill changes it; the directions beside the ridges and the index). A DEM without
+    // relief has no creases. The threads own what they read but g, which outlives them.
+    const bool relief = has_relief(g);
+    std::array<std::future<CodedSourceArray>, source_array_count> coded;
+    auto code = [&](SourceArray a, DrainageGrid copy = {}, std::vector<std::uint8_t> dir = {}) {
+        coded[std::size_t(a)] = std::async(std::launch::async, [&g, copy = std::move(copy), dir = std::move(dir), a] {
+            return code_source_array(a == SourceArray::z ? copy : g, dir, a);
+        });
+    };
+    if (relief) {
+        DrainageGrid z;
+        z.z = g.z;
+        code(SourceArray::z, std::move(z));
+        for (SourceArray a : {SourceArray::coarse_xy, SourceArray::valid, SourceArray::coarse_valid, SourceArray::coarse_z})
+            code(a);
+    }
     DrainageResult res = compute_drainage(g, progress, options.routing, &meta);
+    if (relief) code(SourceArray::dir, {}, res.dir);
     report(progress, "tracing branches and divides", tracing_at);
     const NetworkBranches branches(g, res.dir, res.net);
     res.stats.branches = branches.branch_count(), res.stats.divides = meta.divides.size();
-    // the ridges built; of the creases, what a render builds those a frame needs from
     report(progress, "draping ridges", draping_from);
     build_draped_ridges(g, meta, [&](double f) {
         report(progress, "draping ridges", draping_from + (writing_at - draping_from) * 0.5 * f);
     });
     report(progress, "indexing creases", draping_from + (writing_at - draping_from) * 0.5);
-    if (has_relief(g)) {
+    if (relief) {
         const CreaseTileIndex index = crease_tile_index(g, res.dir, res.net);
         report(progress, "coding the creases' source", draping_from + (writing_at - draping_from) * 0.75);
-        meta.crease_source = encode_crease_source(g, res.dir, index);
+        std::vector<CodedSourceArray> arrays;
+        for (auto& a : coded) arrays.push_back(a.get());
+        meta.crease_source = assemble_crease_source(g, index, arrays);
     }
     report(progress, "writing the database", writing_at);
     write(meta, branches);

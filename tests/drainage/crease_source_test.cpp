@@ -105,5 +105,34 @@ TEST(CreaseSource, DecodesToTheBuildsPartsAndTheSameCreases) {
     expect_round_trip(read_dem(PENINK_SOURCE_DIR "/examples/jacksboro.tif"), 1, "jacksboro_factor1");
 }
 
+// At factor 1 the coarse mask is the fine one and is stored once; a grid whose coarse mask
+// differs (one node) stores it and decodes to it. The arrays coded one by one and assembled give
+// encode_crease_source's bytes.
+TEST(CreaseSource, CoarseMaskAtFactorOneStoredOnce) {
+    DrainageGrid g = resample_pn(read_dem(PENINK_SOURCE_DIR "/examples/volcano.asc"), 1);
+    DrainageResult res;
+    drainage_db_from_grid(g, {}, &res);
+    ASSERT_EQ(g.coarse_valid, g.valid);
+    const CreaseTileIndex index = crease_tile_index(g, res.dir, res.net, 64);
+    const std::vector<std::uint8_t> shared = encode_crease_source(g, res.dir, index);
+    std::vector<CodedSourceArray> arrays;
+    for (std::size_t a = 0; a < source_array_count; ++a) arrays.push_back(code_source_array(g, res.dir, SourceArray(a)));
+    EXPECT_EQ(arrays[std::size_t(SourceArray::coarse_valid)].elements, 0u);
+    EXPECT_EQ(assemble_crease_source(g, index, arrays), shared);
+    DrainageGrid other = g;
+    other.coarse_valid[other.coarse_valid.size() / 2] ^= 1;
+    const std::vector<std::uint8_t> own = encode_crease_source(other, res.dir, index);
+    EXPECT_GT(own.size(), shared.size());
+    for (const auto* grid : {&g, &other}) {
+        const std::vector<std::uint8_t>& bytes = grid == &g ? shared : own;
+        DrainageGrid h;
+        std::vector<std::uint8_t> dir;
+        CreaseTileIndex got;
+        ASSERT_TRUE(decode_crease_source(bytes.data(), bytes.size(), h, dir, got));
+        EXPECT_EQ(h.coarse_valid, grid->coarse_valid);
+        EXPECT_EQ(h.valid, g.valid);
+    }
+}
+
 }  // namespace
 }  // namespace penink
