@@ -44,7 +44,10 @@ template <class Code> CodedSourceArray code_blocks(std::size_t n, Code code) {
     a.elements = n;
     a.blocks.resize(block_count(n));
     parallel_chunks(a.blocks.size(), 1, [&](std::size_t b0, std::size_t b1) {
-        for (std::size_t b = b0; b < b1; ++b) a.blocks[b] = code(b * block_nodes, std::min(block_nodes, n - b * block_nodes));
+        for (std::size_t b = b0; b < b1; ++b) {
+            a.blocks[b] = code(b * block_nodes, std::min(block_nodes, n - b * block_nodes));
+            a.blocks[b].shrink_to_fit();  // the coder's room for the worst case given back: arrays wait to be assembled
+        }
     });
     return a;
 }
@@ -53,9 +56,7 @@ template <class Code> CodedSourceArray code_blocks(std::size_t n, Code code) {
 void put_blocks(std::vector<std::uint8_t>& out, const CodedSourceArray& a) {
     put(out, a.elements);
     put(out, std::uint32_t(a.blocks.size()));
-    std::size_t bytes = 0;
-    for (const auto& b : a.blocks) put(out, std::uint32_t(b.size())), bytes += b.size();
-    out.reserve(out.size() + bytes);
+    for (const auto& b : a.blocks) put(out, std::uint32_t(b.size()));
     for (const auto& b : a.blocks) out.insert(out.end(), b.begin(), b.end());
 }
 
@@ -119,6 +120,12 @@ CodedSourceArray code_source_array(const DrainageGrid& g, const std::vector<std:
 std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const CreaseTileIndex& index,
                                                  const std::vector<CodedSourceArray>& arrays) {
     std::vector<std::uint8_t> out;
+    std::size_t size = 256 + 16 * index.lo.size() + 4 * index.parts.sources.size();  // at most, but the arrays
+    for (const CodedSourceArray& a : arrays) {
+        size += 12 + 4 * a.blocks.size();
+        for (const auto& b : a.blocks) size += b.size();
+    }
+    out.reserve(size);
     put(out, std::uint32_t(g.cols)), put(out, std::uint32_t(g.rows)), put(out, std::int32_t(g.factor));
     put(out, g.dx), put(out, g.dy), put(out, g.origin.x), put(out, g.origin.y);
     put(out, std::int32_t(g.coarse_cols)), put(out, std::int32_t(g.coarse_rows)), put(out, std::uint32_t(g.has_affine));

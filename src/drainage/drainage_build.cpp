@@ -124,8 +124,10 @@ DrainageDb build_streamed(DrainageGrid& g, const std::string& crs_wkt, const Dra
     const bool relief = has_relief(g);
     std::array<std::future<CodedSourceArray>, source_array_count> coded;
     auto code = [&](SourceArray a, DrainageGrid copy = {}, std::vector<std::uint8_t> dir = {}) {
-        coded[std::size_t(a)] = std::async(std::launch::async, [&g, copy = std::move(copy), dir = std::move(dir), a] {
-            return code_source_array(a == SourceArray::z ? copy : g, dir, a);
+        coded[std::size_t(a)] = std::async(std::launch::async, [&g, copy = std::move(copy), dir = std::move(dir), a]() mutable {
+            CodedSourceArray c = code_source_array(a == SourceArray::z ? copy : g, dir, a);
+            copy = {}, dir = {};  // freed now, not when the result is taken
+            return c;
         });
     };
     if (relief) {
