@@ -63,13 +63,12 @@ void put_blocks(std::vector<std::uint8_t>& out, const CodedSourceArray& a) {
 // At factor 1 the coarse nodes are the fine ones: their mask is g.valid, not stored twice.
 bool coarse_valid_shared(const DrainageGrid& g) { return g.factor == 1 && g.coarse_valid == g.valid; }
 
-// Reads what put_blocks wrote for n elements, decoding block by block on all cores.
-// n: the element count stored, which must be `want` or (with may_be_empty) 0; resize(n) sizes
-// the output before the blocks are decoded.
-template <class Resize, class Decode>
-bool get_blocks(Reader& r, std::size_t want, bool may_be_empty, Resize resize, Decode decode) {
+// Reads what put_blocks wrote, decoding block by block on all cores. The element count stored
+// must satisfy accept(n); resize(n) sizes the output before the blocks are decoded.
+template <class Accept, class Resize, class Decode>
+bool get_blocks(Reader& r, Accept accept, Resize resize, Decode decode) {
     std::uint64_t n = 0;
-    if (!r.get(n) || !(n == want || (may_be_empty && n == 0))) return false;
+    if (!r.get(n) || !accept(n)) return false;
     resize(std::size_t(n));
     std::uint32_t count = 0;
     if (!r.get(count) || count != block_count(n) || r.left / 4 < count) return false;
@@ -139,10 +138,9 @@ std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const Cr
     const std::vector<std::uint32_t>& src = index.parts.sources;
     std::vector<std::uint32_t> deltas(src.size());
     for (std::size_t s = 0; s < src.size(); ++s) deltas[s] = src[s] - (s ? src[s - 1] : 0u);
-    const std::vector<std::uint8_t> coded =
-        encode_bytes(reinterpret_cast<const std::uint8_t*>(deltas.data()), deltas.size() * sizeof(std::uint32_t));
-    put(out, std::uint64_t(src.size())), put(out, std::uint32_t(coded.size()));
-    out.insert(out.end(), coded.begin(), coded.end());
+    put_blocks(out, code_blocks(deltas.size(), [&](std::size_t first, std::size_t k) {
+                   return encode_bytes(reinterpret_cast<const std::uint8_t*>(deltas.data() + first), 4 * k);
+               }));
     for (const CodedSourceArray& a : arrays) put_blocks(out, a);
     return out;
 }
@@ -180,13 +178,12 @@ bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGr
     index.lo.resize(tiles), index.hi.resize(tiles);
     for (std::uint32_t k = 0; k < tiles; ++k) get_box(r, index.lo[k], index.hi[k]);
     const std::size_t n = g.size(), coarse = std::size_t(ccols) * std::size_t(crows);
-    std::uint64_t sources = 0;
-    std::uint32_t coded = 0;
-    const std::uint8_t* at = nullptr;
-    if (!r.get(sources) || sources > n || !r.get(coded) || !r.take(coded, at)) return false;
     std::vector<std::uint32_t>& src = index.parts.sources;
-    src.resize(sources);
-    if (!decode_bytes(at, coded, reinterpret_cast<std::uint8_t*>(src.data()), src.size() * sizeof(std::uint32_t)))
+    if (!get_blocks(
+            r, [&](std::uint64_t k) { return k <= n; }, [&](std::size_t k) { src.resize(k); },
+            [&](const std::uint8_t* c, std::size_t s, std::size_t first, std::size_t k) {
+                return decode_bytes(c, s, reinterpret_cast<std::uint8_t*>(src.data() + first), 4 * k);
+            }))
         return false;
     std::uint64_t cell = 0;
     for (std::size_t s = 0; s < src.size(); ++s) {
@@ -195,23 +192,26 @@ bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGr
         if (cell >= n) return false;
         src[s] = std::uint32_t(cell);
     }
+    auto sized = [](std::size_t want, bool may_be_empty) {
+        return [=](std::uint64_t k) { return k == want || (may_be_empty && k == 0); };
+    };
     auto floats = [&](std::vector<float>& v, std::size_t want, bool may_be_empty) {
         return get_blocks(
-            r, want, may_be_empty, [&](std::size_t k) { v.resize(arrays ? k : 0); },
+            r, sized(want, may_be_empty), [&](std::size_t k) { v.resize(arrays ? k : 0); },
             [&](const std::uint8_t* c, std::size_t s, std::size_t first, std::size_t k) {
                 return !arrays || decode_floats(c, s, v.data() + first, k, z_orders);
             });
     };
     auto bytes = [&](std::vector<std::uint8_t>& v, std::size_t want, bool may_be_empty) {
         return get_blocks(
-            r, want, may_be_empty, [&](std::size_t k) { v.resize(arrays ? k : 0); },
+            r, sized(want, may_be_empty), [&](std::size_t k) { v.resize(arrays ? k : 0); },
             [&](const std::uint8_t* c, std::size_t s, std::size_t first, std::size_t k) {
                 return !arrays || decode_bytes(c, s, v.data() + first, k);
             });
     };
     if (!floats(g.z, n, false) || !bytes(g.valid, n, false) || !bytes(dir, n, false)) return false;
     if (!get_blocks(
-            r, coarse, true, [&](std::size_t k) { g.coarse_xy.resize(arrays ? k : 0); },
+            r, sized(coarse, true), [&](std::size_t k) { g.coarse_xy.resize(arrays ? k : 0); },
             [&](const std::uint8_t* c, std::size_t s, std::size_t first, std::size_t k) {
                 return !arrays || decode_floats(c, s, &g.coarse_xy[first].x, k, xy_orders);
             }))

@@ -8,16 +8,16 @@
 // stored too, so the creases are built from these bytes alone, on the unexaggerated DEM.
 // Coding (encode_crease_source): the three arrays cut in blocks of 2^16 nodes, each block coded
 // on its own by core/block_codec.hpp (elevations as floats differenced once along the block,
-// the mask and directions as bytes: deflate), the source cells as deltas (deflated u32), the
-// boxes as floats. Lossless: decoding gives the arrays and the index bit for bit.
+// the mask and directions as bytes: deflate), the source cells as deltas (u32, deflated in
+// blocks alike), the boxes as floats. Lossless: decoding gives the arrays and the index bit for bit.
 // (coarse x, y as float pairs differenced twice, coarse heights like z, the coarse mask as bytes).
 // At factor 1 the coarse mask is the fine one (coarse_valid_shared): not stored again.
 // Layout (little-endian): u32 cols, rows, i32 factor, f64 dx, dy, origin x, y, i32 coarse cols,
 // rows, u32 has_affine, u32 coarse mask shared (1: coarse_valid is valid, stored with 0
 // elements), f64 gt[6], f64 unit, i32 col0, row0, u32 side, u32 tiles, f32 x 4 stems'
-// box (lo, hi), tiles x f32 x 4 reach boxes, u64 sources, u32 coded bytes + the coded source
-// deltas, then for z, valid, dir, coarse_xy, coarse_valid, coarse_z: u64 elements (the coarse
-// ones may be 0), u32 blocks, blocks x u32 coded sizes, the coded blocks.
+// box (lo, hi), tiles x f32 x 4 reach boxes, then for the source cells' deltas (u32), z, valid,
+// dir, coarse_xy, coarse_valid, coarse_z: u64 elements (the coarse ones may be 0), u32 blocks,
+// blocks x u32 coded sizes, the coded blocks.
 // The arrays may be coded one by one as each becomes final (code_source_array; a build codes
 // the grid's while the directions are found, and z and the directions while the ridges are
 // draped and the index made) and put together with the index after (assemble_crease_source).
