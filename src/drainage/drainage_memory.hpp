@@ -10,10 +10,11 @@ namespace penink {
 
 constexpr double drainage_bytes_per_point = 64.0;
 
-// Bytes a drainage database file takes a point at least (measured 16 B on jacksboro refined to
-// 0.6", 55.3 MB for 3.47 M points, 18.7 B on volcano at its automatic factor, 2.43 MB for
-// 130 k): the room checked for before a build.
-constexpr double dv_file_bytes_per_point = 14.0;
+// Bytes a drainage database file takes a point at least (it stores the ridges and the creases'
+// source, not the network: measured 3.2 B on jacksboro refined to 0.6", 11.0 MB for 3.47 M
+// points, 1.8 B on /tmp/j5.tif, 6.2 MB for 3.5 M, 4.6 B on volcano at its automatic factor,
+// 0.59 MB for 130 k): the room checked for before a build.
+constexpr double dv_file_bytes_per_point = 1.5;
 
 // Points of a cols x rows node grid resampled `factor` times finer: ((cols-1)f+1)((rows-1)f+1),
 // as a double (no wrap for any factor).
