@@ -2,9 +2,13 @@
 
 #include <array>
 #include <cstring>
+#include <filesystem>
 
 #include "core/block_codec.hpp"
+#include "core/error.hpp"
+#include "core/hash64.hpp"
 #include "core/parallel_chunks.hpp"
+#include "input/dem_reader.hpp"
 
 namespace penink {
 namespace {
@@ -116,10 +120,22 @@ CodedSourceArray code_source_array(const DrainageGrid& g, const std::vector<std:
     return {};
 }
 
+std::string absolute_dem_path(const std::string& path) {
+    return std::filesystem::absolute(path).lexically_normal().string();
+}
+
+std::uint64_t dem_arrays_hash(const DrainageGrid& g) {
+    const std::uint64_t z = hash64(g.z.data(), g.z.size() * sizeof(float));
+    return hash64(g.coarse_xy.data(), g.coarse_xy.size() * sizeof(glm::vec2), z ^ 0x9e3779b97f4a7c15ull);
+}
+
 std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const CreaseTileIndex& index,
-                                                 const std::vector<CodedSourceArray>& arrays) {
+                                                 const std::vector<CodedSourceArray>& arrays, const DemHeightsRef* dem,
+                                                 std::uint64_t arrays_hash) {
+    if (dem && g.factor != 1)
+        throw Error("drainage", "", "a crease source refers to the DEM at factor 1 only", ExitCode::internal);
     std::vector<std::uint8_t> out;
-    std::size_t size = 256 + 16 * index.lo.size() + 4 * index.parts.sources.size();  // at most, but the arrays
+    std::size_t size = 256 + (dem ? dem->path.size() : 0) + 16 * index.lo.size() + 4 * index.parts.sources.size();
     for (const CodedSourceArray& a : arrays) {
         size += 12 + 4 * a.blocks.size();
         for (const auto& b : a.blocks) size += b.size();
@@ -129,6 +145,12 @@ std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const Cr
     put(out, g.dx), put(out, g.dy), put(out, g.origin.x), put(out, g.origin.y);
     put(out, std::int32_t(g.coarse_cols)), put(out, std::int32_t(g.coarse_rows)), put(out, std::uint32_t(g.has_affine));
     put(out, std::uint32_t(coarse_valid_shared(g)));
+    put(out, std::uint32_t(dem != nullptr));
+    if (dem) {
+        put(out, std::uint32_t(dem->path.size()));
+        out.insert(out.end(), dem->path.begin(), dem->path.end());
+        put(out, std::int32_t(dem->utm_zone)), put(out, std::uint32_t(dem->north)), put(out, arrays_hash);
+    }
     for (double v : g.affine.gt) put(out, v);
     put(out, g.affine.unit), put(out, std::int32_t(g.affine.col0)), put(out, std::int32_t(g.affine.row0));
     put(out, std::uint32_t(index.side));
@@ -146,21 +168,76 @@ std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const Cr
 }
 
 std::vector<std::uint8_t> encode_crease_source(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
-                                               const CreaseTileIndex& index) {
+                                               const CreaseTileIndex& index, const DemHeightsRef* dem) {
     std::vector<CodedSourceArray> arrays;
-    for (std::size_t a = 0; a < source_array_count; ++a) arrays.push_back(code_source_array(g, dir, SourceArray(a)));
-    return assemble_crease_source(g, index, arrays);
+    for (std::size_t a = 0; a < source_array_count; ++a) {
+        const bool referred = dem && (SourceArray(a) == SourceArray::z || SourceArray(a) == SourceArray::coarse_xy);
+        arrays.push_back(referred ? CodedSourceArray{} : code_source_array(g, dir, SourceArray(a)));
+    }
+    return assemble_crease_source(g, index, arrays, dem, dem ? dem_arrays_hash(g) : 0);
+}
+
+namespace {
+
+// The fields up to and including the DEM reference: false when they do not read.
+struct SourceHead {
+    std::uint32_t cols = 0, rows = 0, affine = 0, shared = 0, referred = 0;
+    std::int32_t factor = 0, ccols = 0, crows = 0;
+    DemHeightsRef dem;
+    std::uint64_t arrays_hash = 0;
+};
+
+bool get_head(Reader& r, DrainageGrid& g, SourceHead& h) {
+    if (!r.get(h.cols) || !r.get(h.rows) || !r.get(h.factor) || !r.get(g.dx) || !r.get(g.dy) || !r.get(g.origin.x) ||
+        !r.get(g.origin.y) || !r.get(h.ccols) || !r.get(h.crows) || !r.get(h.affine) || !r.get(h.shared) ||
+        !r.get(h.referred) || h.referred > 1)
+        return false;
+    if (!h.referred) return true;
+    std::uint32_t n = 0, north = 0;
+    const std::uint8_t* at = nullptr;
+    if (!r.get(n) || !r.take(n, at) || !r.get(h.dem.utm_zone) || !r.get(north) || north > 1 || !r.get(h.arrays_hash))
+        return false;
+    h.dem.path.assign(reinterpret_cast<const char*>(at), n), h.dem.north = north == 1;
+    return true;
+}
+
+// g.z and g.coarse_xy read again from the DEM `h` refers to (heights only, its zone and
+// hemisphere; the grid of a factor-1 build), checked by their hash; false when the DEM cannot be
+// read or gives other arrays.
+bool read_referred_arrays(const SourceHead& h, DrainageGrid& g) {
+    try {
+        DemOptions read;
+        read.heights_only = true, read.utm_zone = h.dem.utm_zone, read.north = h.dem.north;
+        Terrain t = read_dem(h.dem.path, read);
+        DrainageGrid again = resample_pn_releasing(t, 1);
+        if (again.cols != g.cols || again.rows != g.rows) return false;
+        g.z = std::move(again.z), g.coarse_xy = std::move(again.coarse_xy);
+    } catch (const Error&) {
+        return false;
+    }
+    return dem_arrays_hash(g) == h.arrays_hash;
+}
+
+}  // namespace
+
+std::string crease_source_dem(const std::uint8_t* data, std::size_t size) {
+    Reader r{data, size};
+    DrainageGrid g;
+    SourceHead h;
+    return get_head(r, g, h) && h.referred ? h.dem.path : std::string();
 }
 
 bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGrid& g, std::vector<std::uint8_t>& dir,
                           CreaseTileIndex& index, bool arrays) {
     Reader r{data, size};
-    std::uint32_t cols = 0, rows = 0, affine = 0, shared = 0, side = 0, tiles = 0;
-    std::int32_t factor = 0, ccols = 0, crows = 0, col0 = 0, row0 = 0;
+    std::uint32_t side = 0, tiles = 0;
+    std::int32_t col0 = 0, row0 = 0;
     g = DrainageGrid{};
-    if (!r.get(cols) || !r.get(rows) || !r.get(factor) || !r.get(g.dx) || !r.get(g.dy) || !r.get(g.origin.x) ||
-        !r.get(g.origin.y) || !r.get(ccols) || !r.get(crows) || !r.get(affine) || !r.get(shared))
-        return false;
+    SourceHead head;
+    if (!get_head(r, g, head)) return false;
+    const std::uint32_t cols = head.cols, rows = head.rows, affine = head.affine, shared = head.shared;
+    const std::int32_t factor = head.factor, ccols = head.ccols, crows = head.crows;
+    if (head.referred && factor != 1) return false;
     for (double& v : g.affine.gt)
         if (!r.get(v)) return false;
     if (!r.get(g.affine.unit) || !r.get(col0) || !r.get(row0) || !r.get(side) || !r.get(tiles)) return false;
@@ -209,16 +286,17 @@ bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGr
                 return !arrays || decode_bytes(c, s, v.data() + first, k);
             });
     };
-    if (!floats(g.z, n, false) || !bytes(g.valid, n, false) || !bytes(dir, n, false)) return false;
+    if (!floats(g.z, head.referred ? 0 : n, false) || !bytes(g.valid, n, false) || !bytes(dir, n, false)) return false;
     if (!get_blocks(
-            r, sized(coarse, true), [&](std::size_t k) { g.coarse_xy.resize(arrays ? k : 0); },
+            r, sized(head.referred ? 0 : coarse, true), [&](std::size_t k) { g.coarse_xy.resize(arrays ? k : 0); },
             [&](const std::uint8_t* c, std::size_t s, std::size_t first, std::size_t k) {
                 return !arrays || decode_floats(c, s, &g.coarse_xy[first].x, k, xy_orders);
             }))
         return false;
     if (!bytes(g.coarse_valid, shared ? 0 : coarse, true) || !floats(g.coarse_z, coarse, true)) return false;
     if (shared) g.coarse_valid = g.valid;
-    return r.left == 0;
+    if (r.left != 0) return false;
+    return !(arrays && head.referred) || read_referred_arrays(head, g);
 }
 
 FlowNetwork network_of_directions(const DrainageGrid& g, const std::vector<std::uint8_t>& dir) {

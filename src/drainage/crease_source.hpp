@@ -12,9 +12,15 @@
 // blocks alike), the boxes as floats. Lossless: decoding gives the arrays and the index bit for bit.
 // (coarse x, y as float pairs differenced twice, coarse heights like z, the coarse mask as bytes).
 // At factor 1 the coarse mask is the fine one (coarse_valid_shared): not stored again.
+// At factor 1 the grid's heights and (on a geographic DEM) its nodes' UTM x, y are the DEM's own
+// as read_dem gives them: with a DEM reference (a build from a DEM file: drainage_build.cpp) they
+// are not stored but the DEM's absolute path, the UTM zone and hemisphere read and a hash of
+// the two arrays; decoding reads them from the DEM again (heights only) and refuses them unless
+// they hash alike (a DEM changed or gone: the source does not decode).
 // Layout (little-endian): u32 cols, rows, i32 factor, f64 dx, dy, origin x, y, i32 coarse cols,
 // rows, u32 has_affine, u32 coarse mask shared (1: coarse_valid is valid, stored with 0
-// elements), f64 gt[6], f64 unit, i32 col0, row0, u32 side, u32 tiles, f32 x 4 stems'
+// elements), u32 DEM reference (1: then u32 n + n bytes of the DEM's path, i32 UTM zone, u32
+// north, u64 dem_arrays_hash; z and coarse_xy stored with 0 elements), f64 gt[6], f64 unit, i32 col0, row0, u32 side, u32 tiles, f32 x 4 stems'
 // box (lo, hi), tiles x f32 x 4 reach boxes, then for the source cells' deltas (u32), z, valid,
 // dir, coarse_xy, coarse_valid, coarse_z: u64 elements (the coarse ones may be 0), u32 blocks,
 // blocks x u32 coded sizes, the coded blocks.
@@ -24,6 +30,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "drainage/crease_tiles.hpp"
@@ -32,10 +39,27 @@
 
 namespace penink {
 
+// Where a factor-1 grid's heights and node x, y are read again: the DEM file (its absolute
+// path, absolute_dem_path) read with heights_only, this UTM zone (0 for a projected DEM) and
+// hemisphere.
+struct DemHeightsRef {
+    std::string path;
+    int utm_zone = 0;
+    bool north = true;
+};
+std::string absolute_dem_path(const std::string& path);
+
+// hash64 of g.z, then of g.coarse_xy: what a DEM reference checks the arrays read again by.
+std::uint64_t dem_arrays_hash(const DrainageGrid& g);
+
 // g.z, g.valid (g.cols x g.rows), dir and the index, coded (blocks coded on all cores):
-// assemble_crease_source of every code_source_array.
+// assemble_crease_source of every code_source_array. With `dem` (factor 1 only), z and
+// coarse_xy are referred to, not stored.
 std::vector<std::uint8_t> encode_crease_source(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
-                                               const CreaseTileIndex& index);
+                                               const CreaseTileIndex& index, const DemHeightsRef* dem = nullptr);
+
+// The DEM path a crease source refers to ("" when it stores its arrays or does not decode).
+std::string crease_source_dem(const std::uint8_t* data, std::size_t size);
 
 // The arrays of a crease source in the order it stores them.
 enum class SourceArray { z, valid, dir, coarse_xy, coarse_valid, coarse_z };
@@ -52,9 +76,11 @@ struct CodedSourceArray {
 CodedSourceArray code_source_array(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, SourceArray a);
 
 // The crease source of g's scalars, the index and the coded arrays (code_source_array of each
-// SourceArray, in order): the bytes encode_crease_source gives.
+// SourceArray, in order): the bytes encode_crease_source gives. With `dem`, z and coarse_xy are
+// empty CodedSourceArrays and `arrays_hash` is dem_arrays_hash(g).
 std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const CreaseTileIndex& index,
-                                                 const std::vector<CodedSourceArray>& arrays);
+                                                 const std::vector<CodedSourceArray>& arrays,
+                                                 const DemHeightsRef* dem = nullptr, std::uint64_t arrays_hash = 0);
 
 // Decodes `size` bytes written by encode_crease_source into g (every field encode_crease_source
 // reads), dir and index; false (nothing promised of the outputs) when they are not such bytes:

@@ -90,6 +90,22 @@ void priority_flood_directions(DrainageGrid& g, const GridShape& shape, const Dr
     swap_raised(g.z, flags, orig);
 }
 
+// Where a factor-1 build of the DEM file at `dem_path`, read as `t` (whole, or its grid and
+// georeference), reads its heights and x, y again (crease_source.hpp: the creases' source then
+// refers to them); none at another factor or for a Terrain not read from a file.
+std::optional<DemHeightsRef> heights_ref(const std::string& dem_path, const Terrain& t, int factor) {
+    std::error_code ec;
+    if (factor != 1 || dem_path.empty() || !std::filesystem::is_regular_file(dem_path, ec)) return std::nullopt;
+    return DemHeightsRef{absolute_dem_path(dem_path), t.source_geographic ? t.utm_zone : 0, t.north};
+}
+
+// Whether a cached database's creases' source refers to the heights of a DEM other than the one
+// at `dem_path` (a cache moved with its DEM or found for another path): built again.
+bool refers_to_other_dem(const DrainageDb& db, const std::string& dem_path) {
+    const std::string dem = crease_source_dem(db.crease_source.data(), db.crease_source.size());
+    return !dem.empty() && dem != absolute_dem_path(dem_path);
+}
+
 // A database of `g`'s size, factor and origin, nothing in it yet.
 DrainageDb grid_database(const DrainageGrid& g) {
     DrainageDb db;
@@ -111,9 +127,11 @@ using WriteNetwork = std::function<void(const DrainageDb& meta, const DvBranchSo
 
 // The streamed build from a resampled grid: network, divides and lines into the returned
 // database (no branches or vertices), which `write` gets with the network's branches.
+// `dem`: where the grid's heights and x, y are read again (factor 1), which the creases' source
+// then refers to instead of storing them (crease_source.hpp); null: stored.
 DrainageDb build_streamed(DrainageGrid& g, const std::string& crs_wkt, const DrainageOptions& options,
                           const DrainageFingerprint& fp, const WriteNetwork& write, const DrainageProgress& progress,
-                          DrainageResult* keep) {
+                          DrainageResult* keep, const DemHeightsRef* dem) {
     DrainageDb meta = grid_database(g);
     meta.crs_wkt = crs_wkt, meta.fingerprint = fp;
     // Of the creases, what a render builds those a frame needs from (crease_source.hpp): each
@@ -130,12 +148,18 @@ DrainageDb build_streamed(DrainageGrid& g, const std::string& crs_wkt, const Dra
             return c;
         });
     };
+    std::uint64_t arrays_hash = 0;  // of z and coarse_xy, which the source refers to the DEM for
     if (relief) {
-        DrainageGrid z;
-        z.z = g.z;
-        code(SourceArray::z, std::move(z));
-        for (SourceArray a : {SourceArray::coarse_xy, SourceArray::valid, SourceArray::coarse_valid, SourceArray::coarse_z})
-            code(a);
+        if (dem) {
+            arrays_hash = dem_arrays_hash(g);  // before the fill changes z
+            for (SourceArray a : {SourceArray::z, SourceArray::coarse_xy})
+                coded[std::size_t(a)] = std::async(std::launch::deferred, [] { return CodedSourceArray{}; });
+        } else {
+            DrainageGrid z;
+            z.z = g.z;
+            code(SourceArray::z, std::move(z)), code(SourceArray::coarse_xy);
+        }
+        for (SourceArray a : {SourceArray::valid, SourceArray::coarse_valid, SourceArray::coarse_z}) code(a);
     }
     DrainageResult res = compute_drainage(g, progress, options.routing, &meta);
     if (relief) code(SourceArray::dir, {}, res.dir);
@@ -152,7 +176,7 @@ DrainageDb build_streamed(DrainageGrid& g, const std::string& crs_wkt, const Dra
         report(progress, "coding the creases' source", draping_from + (writing_at - draping_from) * 0.75);
         std::vector<CodedSourceArray> arrays;
         for (auto& a : coded) arrays.push_back(a.get());
-        meta.crease_source = assemble_crease_source(g, index, arrays);
+        meta.crease_source = assemble_crease_source(g, index, arrays, dem, arrays_hash);
     }
     report(progress, "writing the database", writing_at);
     write(meta, branches);
@@ -202,11 +226,13 @@ DrainageDb drainage_db_from_grid(DrainageGrid& g, const DrainageProgress& progre
 DrainageDb build_and_write_drainage_db(Terrain& t, const DrainageOptions& options, const DrainageFingerprint& fp,
                                        const std::string& path, const DrainageProgress& progress, DrainageResult* keep) {
     report(progress, "resampling the PN surface", 0.0);
-    DrainageGrid g = resample_pn_releasing(t, drainage_resample_factor(t, options));  // memory back
+    const int factor = drainage_resample_factor(t, options);
+    const std::optional<DemHeightsRef> dem = heights_ref(t.source, t, factor);
+    DrainageGrid g = resample_pn_releasing(t, factor);  // memory back
     return build_streamed(
         g, t.crs_wkt, options, fp,
         [&](const DrainageDb& meta, const DvBranchSource& branches) { write_drainage_db(path, meta, branches); },
-        progress, keep);
+        progress, keep, dem ? &*dem : nullptr);
 }
 
 DrainageDb build_drainage_db(const Terrain& t, const DrainageOptions& options,
@@ -326,6 +352,7 @@ DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& te
         try {  // a read-only folder's cache: read when valid (a stale one is rebuilt in the user's cache)
             DrainageDb db = in_file ? read_drainage_line_index(beside, &fp, *in_file)
                                     : read_drainage_db(beside, &fp, DvParts::lines);
+            if (refers_to_other_dem(db, dem_path)) throw Error("drainage", beside, "drainage database refers to another DEM path");
             say("drainage: using cached " + cache_file_report(beside));
             if (file_used) *file_used = beside;
             return db;
@@ -336,6 +363,7 @@ DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& te
     try {
         DrainageDb db = in_file ? read_drainage_line_index(cache, &fp, *in_file)
                                 : read_drainage_db(cache, &fp, DvParts::lines);
+        if (refers_to_other_dem(db, dem_path)) throw Error("drainage", cache, "drainage database refers to another DEM path");
         say("drainage: using cached " + cache_file_report(cache));
         if (file_used) *file_used = cache;
         return db;
@@ -343,6 +371,7 @@ DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& te
         say(std::string(e.what()) + "; rebuilding");
     }
     const int factor = drainage_resample_factor(terrain, options);
+    const std::optional<DemHeightsRef> dem = heights_ref(dem_path, terrain, factor);
     report(progress, "resampling the PN surface", 0.0);
     DrainageGrid g;
     std::string crs = terrain.crs_wkt;
@@ -377,7 +406,7 @@ DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& te
                 say(std::string(e.what()) + "; using the drainage database built in memory");
             }
         },
-        progress, nullptr);
+        progress, nullptr, dem ? &*dem : nullptr);
     return drainage_lines_only(std::move(meta));
 }
 

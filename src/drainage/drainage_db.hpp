@@ -182,7 +182,9 @@ enum class DvParts { all, lines };
 // with what = "cannot open drainage database", "not a drainage database (bad magic)",
 // "unsupported drainage database version N (expected M)", "truncated drainage database",
 // "drainage database checksum mismatch (file corrupt)",
-// "drainage database is stale (DEM changed)" (only when expected is given).
+// "drainage database is stale (DEM changed)" (when expected is given and differs; on a whole
+// read also when the crease source's heights are its DEM's and the DEM at its path changed or
+// is gone: crease_source.hpp).
 DrainageDb read_drainage_db(const std::string& path, const DrainageFingerprint* expected = nullptr,
                             DvParts parts = DvParts::all);
 DrainageDb decode_drainage_db(const std::vector<std::uint8_t>& bytes, const std::string& path);

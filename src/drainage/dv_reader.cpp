@@ -390,15 +390,19 @@ void check_prefix(const std::uint8_t* b, std::size_t size, const std::string& pa
 // decoded from the crease source, the accumulation and basins made from the directions
 // (network_of_directions), then the branches and divides as the builder traces them
 // (build_branches, build_divides: the database built in memory, bit for bit). The grid must be
-// the header's and the network the stored counts'; else the file is corrupt.
+// the header's and the network the stored counts'; else the file is corrupt. A source whose
+// heights are read from its DEM (crease_source.hpp) that does not decode: the DEM changed.
 void network_from_source(DrainageDb& db, const Positions& pos, const std::string& path) {
     auto corrupt = [&] { throw Error("drainage", path, "drainage database checksum mismatch (file corrupt)"); };
     DrainageGrid g;
     std::vector<std::uint8_t> dir;
     CreaseTileIndex index;
-    if (db.crease_source.empty() ||
-        !decode_crease_source(db.crease_source.data(), db.crease_source.size(), g, dir, index))
+    if (db.crease_source.empty()) corrupt();
+    if (!decode_crease_source(db.crease_source.data(), db.crease_source.size(), g, dir, index)) {
+        if (!crease_source_dem(db.crease_source.data(), db.crease_source.size()).empty())  // its heights are the DEM's
+            throw Error("drainage", path, "drainage database is stale (DEM changed)");
         corrupt();
+    }
     if (g.cols != db.cols || g.rows != db.rows || g.factor != db.factor || g.origin != db.origin) corrupt();
     try {
         const FlowNetwork net = network_of_directions(g, dir);

@@ -4,7 +4,11 @@
 // at its automatic factor and geographic jacksboro, 64-cell tiles); bytes cut short, with a byte
 // more, or of another grid width do not decode.
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <vector>
+
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 
@@ -132,6 +136,47 @@ TEST(CreaseSource, CoarseMaskAtFactorOneStoredOnce) {
         EXPECT_EQ(h.coarse_valid, grid->coarse_valid);
         EXPECT_EQ(h.valid, g.valid);
     }
+}
+
+// At factor 1 a source referring to its DEM stores neither the heights nor the nodes' UTM x, y
+// (geographic jacksboro: a fraction of the bytes) and decodes to the same arrays, read from the
+// DEM again; its index decodes without the DEM; a DEM gone or another at its path: no decode.
+TEST(CreaseSource, HeightsReadFromTheDemItRefersTo) {
+    namespace fs = std::filesystem;
+    const fs::path d = fs::temp_directory_path() / ("penink_source_dem_" + std::to_string(::getpid()));
+    fs::remove_all(d);
+    fs::create_directories(d);
+    const fs::path dem = d / "j.tif";
+    fs::copy_file(PENINK_SOURCE_DIR "/examples/jacksboro.tif", dem);
+    const Terrain t = read_dem(dem.string());
+    ASSERT_TRUE(t.source_geographic);
+    DrainageGrid g = resample_pn(t, 1);
+    DrainageResult res;
+    drainage_db_from_grid(g, {}, &res);
+    const CreaseTileIndex index = crease_tile_index(g, res.dir, res.net, 64);
+    const DemHeightsRef ref{absolute_dem_path(dem.string()), t.utm_zone, t.north};
+    const std::vector<std::uint8_t> stored = encode_crease_source(g, res.dir, index);
+    const std::vector<std::uint8_t> referred = encode_crease_source(g, res.dir, index, &ref);
+    EXPECT_LT(referred.size() * 3, stored.size()) << referred.size() << " vs " << stored.size();
+    EXPECT_EQ(crease_source_dem(referred.data(), referred.size()), ref.path);
+    EXPECT_EQ(crease_source_dem(stored.data(), stored.size()), "");
+    DrainageGrid h;
+    std::vector<std::uint8_t> dir;
+    CreaseTileIndex got;
+    ASSERT_TRUE(decode_crease_source(referred.data(), referred.size(), h, dir, got));
+    EXPECT_EQ(std::memcmp(h.z.data(), g.z.data(), g.z.size() * sizeof(float)), 0);
+    EXPECT_EQ(h.z.size(), g.z.size());
+    EXPECT_EQ(h.coarse_xy, g.coarse_xy);
+    EXPECT_EQ(h.valid, g.valid);
+    EXPECT_EQ(dir, res.dir);
+    EXPECT_EQ(got.parts.sources, index.parts.sources);
+    fs::remove(dem);
+    EXPECT_FALSE(decode_crease_source(referred.data(), referred.size(), h, dir, got));  // gone
+    EXPECT_TRUE(decode_crease_source(referred.data(), referred.size(), h, dir, got, false));  // the index alone
+    EXPECT_EQ(got.lo, index.lo);
+    fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.asc", dem);  // another DEM at its path
+    EXPECT_FALSE(decode_crease_source(referred.data(), referred.size(), h, dir, got));
+    fs::remove_all(d);
 }
 
 }  // namespace

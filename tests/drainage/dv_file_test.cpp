@@ -10,6 +10,7 @@
 
 #include "core/error.hpp"
 #include "drainage/branches.hpp"
+#include "drainage/crease_source.hpp"
 #include "drainage/drainage_build.hpp"
 #include "drainage/dv_format.hpp"
 #include "drainage/line_selection.hpp"
@@ -659,6 +660,36 @@ TEST(DvFile, CacheNextToDemIsReusedAndRebuilt) {
     EXPECT_EQ(log[log.size() - 2], "penink: drainage: " + (d / "dem.asc.dv").string() +
                                        ": drainage database is stale (DEM changed); rebuilding");
     EXPECT_EQ(log.back(), "drainage: wrote " + cache_file_report((d / "dem.asc.dv").string()));
+}
+
+// A cache whose creases' source reads its heights from the DEM (factor 1) moved with its DEM to
+// another folder: the render's load builds it again there (it refers to the old path); a whole
+// read of a database whose DEM is gone says it is stale.
+TEST(DvFile, CacheMovedWithItsDemIsRebuilt) {
+    const fs::path d = temp_dir("moved");
+    fs::create_directories(d / "a");
+    fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.asc", d / "a" / "v.asc");
+    DrainageOptions o;
+    o.resample = 1;
+    std::vector<std::string> log;
+    auto say = [&](const std::string& m) { log.push_back(m); };
+    const Terrain t = read_dem((d / "a" / "v.asc").string());
+    load_or_build_drainage((d / "a" / "v.asc").string(), t, o, say);
+    ASSERT_TRUE(fs::exists(d / "a" / "v.asc.dv"));
+    const DrainageDb whole = read_drainage_db((d / "a" / "v.asc.dv").string());
+    EXPECT_EQ(crease_source_dem(whole.crease_source.data(), whole.crease_source.size()),
+              fs::absolute(d / "a" / "v.asc").lexically_normal().string());
+    fs::rename(d / "a", d / "b");
+    const Terrain moved = read_dem((d / "b" / "v.asc").string());
+    load_or_build_drainage((d / "b" / "v.asc").string(), moved, o, say);
+    EXPECT_EQ(log[log.size() - 2], "penink: drainage: " + (d / "b" / "v.asc.dv").string() +
+                                       ": drainage database refers to another DEM path; rebuilding");
+    EXPECT_EQ(log.back(), "drainage: wrote " + cache_file_report((d / "b" / "v.asc.dv").string()));
+    EXPECT_TRUE(read_drainage_db((d / "b" / "v.asc.dv").string()).branches == whole.branches);
+    fs::rename(d / "b" / "v.asc", d / "b" / "w.asc");
+    EXPECT_EQ(read_error(d / "b" / "v.asc.dv"),
+              "penink: drainage: " + (d / "b" / "v.asc.dv").string() + ": drainage database is stale (DEM changed)");
+    fs::remove_all(d);
 }
 
 TEST(DvFile, UnwritableCacheBuildsInMemory) {
