@@ -166,13 +166,17 @@ DrainageDb build_streamed(DrainageGrid& g, const std::string& crs_wkt, const Dra
     report(progress, "tracing branches and divides", tracing_at);
     const NetworkBranches branches(g, res.dir, res.net);
     res.stats.branches = branches.branch_count(), res.stats.divides = meta.divides.size();
+    // The creases' index on another thread while the ridges are draped here (each reads the
+    // network and the grid only; "indexing creases" is then what is left of it).
+    std::future<CreaseTileIndex> indexing;
+    if (relief) indexing = std::async(std::launch::async, [&] { return crease_tile_index(g, res.dir, res.net); });
     report(progress, "draping ridges", draping_from);
     build_draped_ridges(g, meta, [&](double f) {
         report(progress, "draping ridges", draping_from + (writing_at - draping_from) * 0.5 * f);
     });
     report(progress, "indexing creases", draping_from + (writing_at - draping_from) * 0.5);
     if (relief) {
-        const CreaseTileIndex index = crease_tile_index(g, res.dir, res.net);
+        const CreaseTileIndex index = indexing.get();
         report(progress, "coding the creases' source", draping_from + (writing_at - draping_from) * 0.75);
         std::vector<CodedSourceArray> arrays;
         for (auto& a : coded) arrays.push_back(a.get());

@@ -11,10 +11,10 @@ namespace penink {
 constexpr double drainage_bytes_per_point = 64.0;
 
 // Bytes a drainage database file takes a point at least (it stores the ridges and the creases'
-// source, not the network: measured 3.2 B on jacksboro refined to 0.6", 11.0 MB for 3.47 M
-// points, 1.8 B on /tmp/j5.tif, 6.2 MB for 3.5 M, 4.6 B on volcano at its automatic factor,
-// 0.59 MB for 130 k): the room checked for before a build.
-constexpr double dv_file_bytes_per_point = 1.5;
+// source, not the network, and at factor 1 not the heights: measured 0.53 B on jacksboro refined
+// to 0.6", 1.84 MB for 3.47 M points, 0.76 B on /tmp/j5.tif, 2.66 MB for 3.5 M, 4.6 B on volcano
+// at its automatic factor, 0.59 MB for 130 k): the room checked for before a build.
+constexpr double dv_file_bytes_per_point = 0.5;
 
 // Points of a cols x rows node grid resampled `factor` times finer: ((cols-1)f+1)((rows-1)f+1),
 // as a double (no wrap for any factor).
