@@ -112,7 +112,9 @@ struct DrainageDb {
 // 14: the lines part stores, after the ridges, what building the creases reads (crease_source.hpp:
 // the drainage grid, flow directions and crease tiles' index, coded) and no creases: a render
 // builds those a frame needs, per tile, on first use.
-inline constexpr std::uint32_t drainage_db_version = 14;
+// 15: the crease tiles' index holds each stem's bound (stem_reach.hpp: StemBound, its reach's box
+// and a bound of its crease's length), so a render builds only the stems its frame can draw.
+inline constexpr std::uint32_t drainage_db_version = 15;
 
 // Fingerprint of the DEM file at `dem_path` with the given resample factor: its size, mtime and
 // a hash of its whole content (streamed) and of every side file GDAL may read with it (world

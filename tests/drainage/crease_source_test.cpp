@@ -1,5 +1,5 @@
 // What crease tiles read of a build, coded (crease_source.hpp), decodes to the same grid arrays,
-// directions and tile index bit for bit; the network made again from the directions equals the
+// directions and tile index (the stems' bounds too) bit for bit; the network made again from the directions equals the
 // build's; tiles made from the decoded parts give the whole build's creases bit for bit (volcano
 // at its automatic factor and geographic jacksboro, 64-cell tiles); bytes cut short, with a byte
 // more, or of another grid width do not decode.
@@ -52,6 +52,7 @@ void expect_round_trip(const Terrain& t, int factor, const std::string& what) {
     EXPECT_EQ(got.parts.hi, index.parts.hi) << what;
     EXPECT_EQ(got.lo, index.lo) << what;
     EXPECT_EQ(got.hi, index.hi) << what;
+    EXPECT_TRUE(got.stems == index.stems) << what;
 
     {  // the index and the grid's scalars alone
         DrainageGrid s;
@@ -64,6 +65,7 @@ void expect_round_trip(const Terrain& t, int factor, const std::string& what) {
         EXPECT_TRUE(s.z.empty() && s.valid.empty() && s.coarse_xy.empty() && no_dir.empty()) << what;
         EXPECT_EQ(index_only.lo, index.lo) << what;
         EXPECT_EQ(index_only.parts.sources, index.parts.sources) << what;
+        EXPECT_TRUE(index_only.stems == index.stems) << what;
     }
 
     const FlowNetwork net = network_of_directions(h, dir);
