@@ -76,6 +76,7 @@ CreaseTileIndex CreaseTiles::index() const {
 std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show) {
     const auto meets = [&](glm::vec2 a, glm::vec2 b) { return !(b.x < lo.x || a.x > hi.x || b.y < lo.y || a.y > hi.y); };
     std::vector<std::uint32_t> wanted, missing;
+    std::vector<std::size_t> cuts{0};  // missing[cuts[k], cuts[k + 1]): a tile's, ascending
     DrapedLine bound;  // a stem's bound as a line record
     for (const Tile& t : tiles_) {
         if (t.stems.empty() || !meets(t.lo, t.hi)) continue;
@@ -86,21 +87,26 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
             wanted.push_back(s);
             if (set_[s] == not_built) missing.push_back(s);
         }
+        if (missing.size() > cuts.back()) cuts.push_back(missing.size());
     }
     std::sort(wanted.begin(), wanted.end());
-    if (!missing.empty()) {  // built together, on all cores
-        std::sort(missing.begin(), missing.end());
+    if (!missing.empty()) ++builds_;
+    // a tile's missing stems at a time (each build on all cores): one build of many tiles' stems
+    // costs more than theirs one by one (larger working sets)
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+        const std::vector<std::uint32_t> ids(missing.begin() + std::ptrdiff_t(cuts[k]),
+                                             missing.begin() + std::ptrdiff_t(cuts[k + 1]));
         if (!surface_) {
             if (before_build_) std::exchange(before_build_, {})();
             surface_ = std::make_unique<DemSurface>(g_);
         }
-        auto lines = std::make_unique<DrapedLineSet>(crease_part(g_, dir_, net_, *surface_, parts_, missing));
-        if (lines->lines.size() != missing.size())
+        auto lines = std::make_unique<DrapedLineSet>(crease_part(g_, dir_, net_, *surface_, parts_, ids));
+        if (lines->lines.size() != ids.size())
             throw Error("drainage", "", "crease part of " + std::to_string(lines->lines.size()) + " lines for " +
-                                            std::to_string(missing.size()) + " stems",
+                                            std::to_string(ids.size()) + " stems",
                         ExitCode::internal);
-        for (std::uint32_t i = 0; i < missing.size(); ++i) set_[missing[i]] = std::uint32_t(sets_.size()), line_[missing[i]] = i;
-        stems_built_ += missing.size(), vertices_built_ += lines->vertices.size();
+        for (std::uint32_t i = 0; i < ids.size(); ++i) set_[ids[i]] = std::uint32_t(sets_.size()), line_[ids[i]] = i;
+        stems_built_ += ids.size(), vertices_built_ += lines->vertices.size();
         sets_.push_back(std::move(lines));
     }
     std::vector<Pick> picks;

@@ -6,10 +6,10 @@
 // of the whole build meeting the box; given a test of a line's record (LineCulling's screen size:
 // its box and 3-D length), only the stems whose bound (StemBound: their reach's box and a bound
 // of their length) passes it are built and returned: a line whose bound fails fails too.
-// The stems a query needs that are not built yet are built together in one crease_part (on all
-// cores); a tile's stems (256 x 256 cells) are the unit the index keeps reach boxes of. On
-// jacksboro refined to 0.6" (2015 x 1720 cells) one such tile builds in about 0.03 s and all of
-// them one after the other about as fast as the whole build (bench/line_parts_bench.cpp).
+// The stems a query needs that are not built yet are built a tile's (256 x 256 cells) at a time,
+// crease_part on all cores: one part of every stem costs more than the tiles one by one (on
+// jacksboro refined to 0.6", 2015 x 1720 cells, all stems 3.1 s in one part, 1.8 s in 56 tiles:
+// bench/line_parts_bench.cpp, a loaded machine), a tile's alone about 0.03 s.
 // Made once (the constructor): the stems' sources and box (stem_parts), each stem's bound and
 // each tile's reach, from one walk of every stem (its cells, 4 B a vertex while it runs).
 // Not thread-safe: one query at a time.
@@ -83,7 +83,7 @@ public:
     CreaseTileIndex index() const;
     std::size_t stems_built() const { return stems_built_; }        // kept, built by the queries so far
     std::size_t vertices_built() const { return vertices_built_; }  // their lines' vertices
-    std::size_t builds() const { return sets_.size(); }             // crease_part calls
+    std::size_t builds() const { return builds_; }                  // queries that built stems
 
 private:
     struct Pick {
@@ -105,10 +105,10 @@ private:
     StemParts parts_;
     std::vector<StemBound> bounds_;
     std::vector<Tile> tiles_;
-    // the lines built so far, one set a build; stem s's is line line_[s] of sets_[set_[s]]
+    // the lines built so far, one set a crease_part; stem s's is line line_[s] of sets_[set_[s]]
     std::vector<std::unique_ptr<DrapedLineSet>> sets_;
     std::vector<std::uint32_t> set_, line_;
-    std::size_t stems_built_ = 0, vertices_built_ = 0;
+    std::size_t stems_built_ = 0, vertices_built_ = 0, builds_ = 0;
     std::unique_ptr<DemSurface> surface_;  // made with the first build
     std::function<void()> before_build_;
 };

@@ -36,7 +36,8 @@ public:
     // object lives): what a frame selects from without copying the vertices.
     CreaseTiles::LineRefs line_refs_for_box(glm::vec2 lo, glm::vec2 hi, const CreaseTiles::LineTest& may_show = {});
 
-    // Stems in all, built so far and their vertices, crease_part calls (0 before the first query).
+    // Stems in all, built so far and their vertices, queries that built stems (0 before the first
+    // query).
     std::size_t stem_count() const;
     std::size_t stems_built() const;
     std::size_t vertices_built() const;
