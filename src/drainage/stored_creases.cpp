@@ -46,24 +46,14 @@ CreaseTiles::LineRefs StoredCreases::line_refs_for_box(glm::vec2 lo, glm::vec2 h
     return tiles().line_refs_for_box(lo, hi, may_show);
 }
 
-std::size_t StoredCreases::stem_count() const {
+std::size_t StoredCreases::count(std::size_t (CreaseTiles::*of)() const) const {
     const std::lock_guard<std::mutex> lock(mutex_);
-    return decoded_ ? decoded_->tiles->stem_count() : 0;
+    return decoded_ ? (*decoded_->tiles.*of)() : 0;
 }
 
-std::size_t StoredCreases::stems_built() const {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    return decoded_ ? decoded_->tiles->stems_built() : 0;
-}
-
-std::size_t StoredCreases::vertices_built() const {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    return decoded_ ? decoded_->tiles->vertices_built() : 0;
-}
-
-std::size_t StoredCreases::builds() const {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    return decoded_ ? decoded_->tiles->builds() : 0;
-}
+std::size_t StoredCreases::stem_count() const { return count(&CreaseTiles::stem_count); }
+std::size_t StoredCreases::stems_built() const { return count(&CreaseTiles::stems_built); }
+std::size_t StoredCreases::vertices_built() const { return count(&CreaseTiles::vertices_built); }
+std::size_t StoredCreases::builds() const { return count(&CreaseTiles::builds); }
 
 }  // namespace penink

@@ -49,6 +49,7 @@ private:
     std::vector<std::uint8_t> source_;
     std::unique_ptr<Decoded> decoded_;
     CreaseTiles& tiles();  // decoded on first use; under mutex_
+    std::size_t count(std::size_t (CreaseTiles::*of)() const) const;  // of the tiles, 0 before
 };
 
 }  // namespace penink
