@@ -105,12 +105,12 @@ int run(int argc, char** argv) {
     const glm::vec2 c = 0.5f * (lo + hi), half = 0.05f * (hi - lo);
     t0 = std::chrono::steady_clock::now();
     std::size_t n = crease_tiles.lines_for_box(c - half, c + half).lines.size();
-    std::printf("crease tiles: a box of a tenth of the side %.3f s (%zu tiles, %zu stems)\n", seconds_since(t0),
-                crease_tiles.tiles_built(), n);
+    std::printf("crease tiles: a box of a tenth of the side %.3f s (%zu stems built, %zu lines)\n", seconds_since(t0),
+                crease_tiles.stems_built(), n);
     t0 = std::chrono::steady_clock::now();
     n = crease_tiles.lines_for_box(lo, hi).lines.size();
-    std::printf("crease tiles: then the whole DEM %.3f s (%zu tiles, %zu stems)\n", seconds_since(t0),
-                crease_tiles.tiles_built(), n);
+    std::printf("crease tiles: then the whole DEM %.3f s (%zu stems built, %zu lines)\n", seconds_since(t0),
+                crease_tiles.stems_built(), n);
     return 0;
 }
 

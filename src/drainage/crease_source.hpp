@@ -1,7 +1,7 @@
 // What building crease tiles (crease_tiles.hpp) reads of a drainage build, stored so that a render
 // builds the creases a frame needs without computing the network again: the drainage grid's fine
 // nodes' elevations and valid mask, the resolved flow directions, and the tiles' index (tile
-// side, the stems' sources and box, each tile's reach box). The accumulation, Strahler orders
+// side, the stems' sources, box and bounds, each tile's reach box). The accumulation, Strahler orders
 // and basins follow from the directions in one pass each (network_of_directions: accumulate_flow
 // and label_basins, the build's own functions, so the same arrays); the grid's other fields
 // (size, factor, spacing, origin, the coarse nodes' x, y, mask and heights, the affine grid) are
@@ -9,7 +9,9 @@
 // Coding (encode_crease_source): the three arrays cut in blocks of 2^16 nodes, each block coded
 // on its own by core/block_codec.hpp (elevations as floats differenced once along the block,
 // the mask and directions as bytes: deflate), the source cells as deltas (u32, deflated in
-// blocks alike), the boxes as floats. Lossless: decoding gives the arrays and the index bit for bit.
+// blocks alike), the boxes as floats, the stems' bounds (StemBound) in blocks of 2^16 stems, each
+// as ten byte planes (x0 and y0 each minus the stem before's, x1 - x0, y1 - y0, length; low
+// bytes, then high ones), deflated. Lossless: decoding gives the arrays and the index bit for bit.
 // (coarse x, y as float pairs differenced twice, coarse heights like z, the coarse mask as bytes).
 // At factor 1 the coarse mask is the fine one (coarse_valid_shared): not stored again.
 // At factor 1 the grid's heights and (on a geographic DEM) its nodes' UTM x, y are the DEM's own
@@ -21,9 +23,9 @@
 // rows, u32 has_affine, u32 coarse mask shared (1: coarse_valid is valid, stored with 0
 // elements), u32 DEM reference (1: then u32 n + n bytes of the DEM's path, i32 UTM zone, u32
 // north, u64 dem_arrays_hash; z and coarse_xy stored with 0 elements), f64 gt[6], f64 unit, i32 col0, row0, u32 side, u32 tiles, f32 x 4 stems'
-// box (lo, hi), tiles x f32 x 4 reach boxes, then for the source cells' deltas (u32), z, valid,
-// dir, coarse_xy, coarse_valid, coarse_z: u64 elements (the coarse ones may be 0), u32 blocks,
-// blocks x u32 coded sizes, the coded blocks.
+// box (lo, hi), tiles x f32 x 4 reach boxes, then for the source cells' deltas (u32), the stems'
+// bounds (one a source), z, valid, dir, coarse_xy, coarse_valid, coarse_z: u64 elements (the
+// coarse ones may be 0), u32 blocks, blocks x u32 coded sizes, the coded blocks.
 // The arrays may be coded one by one as each becomes final (code_source_array; a build codes
 // the grid's while the directions are found, and z and the directions while the ridges are
 // draped and the index made) and put together with the index after (assemble_crease_source).

@@ -7,9 +7,7 @@
 #include <glm/common.hpp>
 
 #include "core/error.hpp"
-#include "core/hash64.hpp"
 #include "drainage/fall_line_stems.hpp"
-#include "drainage/line_tile_files.hpp"
 #include "drainage/stem_reach.hpp"
 
 namespace penink {
@@ -28,8 +26,10 @@ CreaseTileIndex crease_tile_index(const DrainageGrid& g, const std::vector<std::
     // each stem's reach on all cores, then joined into its tile's in stem order
     const StemParts& parts = out.parts;
     std::vector<glm::vec2> reach_lo(parts.sources.size()), reach_hi(parts.sources.size());
+    out.stems.resize(parts.sources.size());
     for_each_stem_cells(g, dir, net, parts, [&](std::uint32_t s, const std::uint32_t* cells, std::uint32_t n) {
         boxes.plan_box(stem_cell_reach(cells, n, g, options), reach_lo[s], reach_hi[s]);
+        out.stems[s] = stem_bound(reach_lo[s], reach_hi[s], stem_cell_length(cells, n, g), parts.lo, parts.hi);
     });
     for (std::uint32_t s = 0; s < parts.sources.size(); ++s) {
         const std::uint32_t c = parts.sources[s] % std::uint32_t(g.cols), r = parts.sources[s] / std::uint32_t(g.cols);
@@ -39,20 +39,23 @@ CreaseTileIndex crease_tile_index(const DrainageGrid& g, const std::vector<std::
     return out;
 }
 
-CreaseTiles::CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net, int tile,
-                         TileStore store)
-    : CreaseTiles(g, dir, net, crease_tile_index(g, dir, net, tile), std::move(store)) {}
+CreaseTiles::CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net, int tile)
+    : CreaseTiles(g, dir, net, crease_tile_index(g, dir, net, tile)) {}
 
 CreaseTiles::CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
-                         CreaseTileIndex index, TileStore store)
-    : g_(g), dir_(dir), net_(net), side_(std::max(1, index.side)), store_(std::move(store)),
-      parts_(std::move(index.parts)) {
+                         CreaseTileIndex index)
+    : g_(g), dir_(dir), net_(net), side_(std::max(1, index.side)), parts_(std::move(index.parts)),
+      bounds_(std::move(index.stems)), set_(parts_.sources.size(), not_built), line_(parts_.sources.size(), 0) {
     const auto side = std::uint32_t(side_);
     const std::uint32_t tx = (std::uint32_t(g.cols) + side - 1) / side, ty = (std::uint32_t(g.rows) + side - 1) / side;
     tiles_.resize(std::size_t(tx) * ty);
     if (index.lo.size() != tiles_.size() || index.hi.size() != tiles_.size())
         throw Error("drainage", "", "crease tile index of " + std::to_string(index.lo.size()) + " tiles for a grid of " +
                                         std::to_string(tiles_.size()),
+                    ExitCode::internal);
+    if (bounds_.size() != parts_.sources.size())
+        throw Error("drainage", "", "crease tile index of " + std::to_string(bounds_.size()) + " stem bounds for " +
+                                        std::to_string(parts_.sources.size()) + " stems",
                     ExitCode::internal);
     for (std::size_t k = 0; k < tiles_.size(); ++k) tiles_[k].lo = index.lo[k], tiles_[k].hi = index.hi[k];
     for (std::uint32_t s = 0; s < parts_.sources.size(); ++s) {
@@ -65,45 +68,55 @@ CreaseTileIndex CreaseTiles::index() const {
     CreaseTileIndex out;
     out.side = side_;
     out.parts = parts_;
+    out.stems = bounds_;
     for (const Tile& t : tiles_) out.lo.push_back(t.lo), out.hi.push_back(t.hi);
     return out;
 }
 
-std::size_t CreaseTiles::tiles_built() const {
-    return std::size_t(std::count_if(tiles_.begin(), tiles_.end(), [](const Tile& t) { return t.lines != nullptr; }));
-}
-
-std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec2 hi) {
-    std::vector<Pick> picks;
-    for (std::size_t k = 0; k < tiles_.size(); ++k) {
-        Tile& t = tiles_[k];
-        if (t.stems.empty() || t.hi.x < lo.x || t.lo.x > hi.x || t.hi.y < lo.y || t.lo.y > hi.y) continue;
-        if (!t.lines) {
-            auto lines = std::make_unique<DrapedLineSet>();
-            const std::uint64_t fields[3] = {store_.key, std::uint64_t(side_), std::uint64_t(k)};
-            const std::uint64_t key = hash64(fields, sizeof fields);
-            const std::string path = store_.folder.empty() ? std::string() : line_tile_path(store_.folder, std::uint32_t(k));
-            std::vector<std::uint32_t> stems;
-            if (!path.empty() && read_line_tile(path, key, stems, *lines) && stems == t.stems) {
-                ++read_;
-            } else {
-                if (!surface_) {
-                    if (before_build_) std::exchange(before_build_, {})();
-                    surface_ = std::make_unique<DemSurface>(g_);
-                }
-                *lines = crease_part(g_, dir_, net_, *surface_, parts_, t.stems);
-                if (!path.empty() && write_line_tile(path, key, t.stems, *lines)) ++written_;
-            }
-            t.lines = std::move(lines);
+std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show) {
+    const auto meets = [&](glm::vec2 a, glm::vec2 b) { return !(b.x < lo.x || a.x > hi.x || b.y < lo.y || a.y > hi.y); };
+    std::vector<std::uint32_t> wanted, missing;
+    std::vector<std::size_t> cuts{0};  // missing[cuts[k], cuts[k + 1]): a tile's, ascending
+    DrapedLine bound;  // a stem's bound as a line record
+    for (const Tile& t : tiles_) {
+        if (t.stems.empty() || !meets(t.lo, t.hi)) continue;
+        for (std::uint32_t s : t.stems) {
+            stem_bound_box(bounds_[s], parts_.lo, parts_.hi, bound.lo, bound.hi);
+            bound.length = stem_bound_length(bounds_[s]);
+            if (!meets(bound.lo, bound.hi) || (may_show && !may_show(bound))) continue;
+            wanted.push_back(s);
+            if (set_[s] == not_built) missing.push_back(s);
         }
-        for (std::uint32_t i = 0; i < t.stems.size(); ++i) picks.push_back({t.stems[i], t.lines.get(), i});
+        if (missing.size() > cuts.back()) cuts.push_back(missing.size());
     }
-    std::sort(picks.begin(), picks.end(), [](const Pick& a, const Pick& b) { return a.stem < b.stem; });
+    std::sort(wanted.begin(), wanted.end());
+    if (!missing.empty()) ++builds_;
+    // a tile's missing stems at a time (each build on all cores): one build of many tiles' stems
+    // costs more than theirs one by one (larger working sets)
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+        const std::vector<std::uint32_t> ids(missing.begin() + std::ptrdiff_t(cuts[k]),
+                                             missing.begin() + std::ptrdiff_t(cuts[k + 1]));
+        if (!surface_) {
+            if (before_build_) std::exchange(before_build_, {})();
+            surface_ = std::make_unique<DemSurface>(g_);
+        }
+        auto lines = std::make_unique<DrapedLineSet>(crease_part(g_, dir_, net_, *surface_, parts_, ids));
+        if (lines->lines.size() != ids.size())
+            throw Error("drainage", "", "crease part of " + std::to_string(lines->lines.size()) + " lines for " +
+                                            std::to_string(ids.size()) + " stems",
+                        ExitCode::internal);
+        for (std::uint32_t i = 0; i < ids.size(); ++i) set_[ids[i]] = std::uint32_t(sets_.size()), line_[ids[i]] = i;
+        stems_built_ += ids.size(), vertices_built_ += lines->vertices.size();
+        sets_.push_back(std::move(lines));
+    }
+    std::vector<Pick> picks;
+    picks.reserve(wanted.size());
+    for (std::uint32_t s : wanted) picks.push_back({s, sets_[set_[s]].get(), line_[s]});
     return picks;
 }
 
-CreaseTiles::LineRefs CreaseTiles::line_refs_for_box(glm::vec2 lo, glm::vec2 hi) {
-    const std::vector<Pick> picks = picks_for_box(lo, hi);
+CreaseTiles::LineRefs CreaseTiles::line_refs_for_box(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show) {
+    const std::vector<Pick> picks = picks_for_box(lo, hi, may_show);
     LineRefs out;
     out.lines.reserve(picks.size()), out.vertices.reserve(picks.size());
     for (const Pick& p : picks) {
@@ -113,8 +126,9 @@ CreaseTiles::LineRefs CreaseTiles::line_refs_for_box(glm::vec2 lo, glm::vec2 hi)
     return out;
 }
 
-DrapedLineSet CreaseTiles::lines_for_box(glm::vec2 lo, glm::vec2 hi, std::vector<std::uint32_t>* ids) {
-    const std::vector<Pick> picks = picks_for_box(lo, hi);
+DrapedLineSet CreaseTiles::lines_for_box(glm::vec2 lo, glm::vec2 hi, std::vector<std::uint32_t>* ids,
+                                         const LineTest& may_show) {
+    const std::vector<Pick> picks = picks_for_box(lo, hi, may_show);
     DrapedLineSet out;
     std::size_t n = 0;
     for (const Pick& p : picks) n += p.set->lines[p.line].count;

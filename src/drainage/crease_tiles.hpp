@@ -1,48 +1,42 @@
 // The creases of a drainage network built where they are needed: the stems grouped in square
-// tiles of the drainage grid by their source cell, a tile's stems built together (crease_part,
-// draped_lines.hpp: the whole build's lines bit for bit) the first time a query needs them, and
-// kept. A query for a plan box needs every tile holding a stem whose reach (stem_reach.hpp: where
-// its crease can lie, from its cells) meets the box, so the lines it returns include every line of
-// the whole build meeting the box.
-// Tile size: 256 x 256 cells. On jacksboro refined to 0.6" (2015 x 1720 cells) one such tile
-// builds in about 0.03 s and all of them one after the other about as fast as the whole build
-// (bench/line_parts_bench.cpp); 64-cell tiles cost 1.6 times the whole build in all (each brings
-// its stems' trunks along), 512-cell ones four times a 256-cell tile for a frame that needs one.
-// Made once (the constructor): the stems' sources and box (stem_parts) and each tile's reach,
-// from one walk of every stem (its cells, 4 B a vertex while it runs).
-// With a tile store, a tile needed is first looked for in its file (line_tile_files.hpp: read
-// when its key, sizes and checksum hold and it lists the tile's stems), else built and its file
-// written, so the next process reads what this one built.
-// Not thread-safe: one query at a time (a tile's build runs on all cores).
+// tiles of the drainage grid by their source cell, each stem built (crease_part, draped_lines.hpp:
+// the whole build's line bit for bit) the first time a query needs it, and kept. A query for a
+// plan box needs every stem whose reach (stem_reach.hpp: where its crease can lie, from its cells)
+// meets the box, found through the tiles' reach boxes, so the lines it returns include every line
+// of the whole build meeting the box; given a test of a line's record (LineCulling's screen size:
+// its box and 3-D length), only the stems whose bound (StemBound: their reach's box and a bound
+// of their length) passes it are built and returned: a line whose bound fails fails too.
+// The stems a query needs that are not built yet are built a tile's (256 x 256 cells) at a time,
+// crease_part on all cores: one part of every stem costs more than the tiles one by one (on
+// jacksboro refined to 0.6", 2015 x 1720 cells, all stems 3.1 s in one part, 1.8 s in 56 tiles:
+// bench/line_parts_bench.cpp, a loaded machine), a tile's alone about 0.03 s.
+// Made once (the constructor): the stems' sources and box (stem_parts), each stem's bound and
+// each tile's reach, from one walk of every stem (its cells, 4 B a vertex while it runs).
+// Not thread-safe: one query at a time.
 #pragma once
 #include <cstdint>
 #include <functional>
 #include <memory>
-#include <string>
 #include <vector>
 
 #include <glm/vec2.hpp>
 
 #include "drainage/dem_surface.hpp"
 #include "drainage/draped_lines.hpp"
+#include "drainage/stem_reach.hpp"
 
 namespace penink {
 
-// Where built tiles are kept between processes: one file a tile in `folder` (none: empty), each
-// keyed by hash64 of `key` (the caller's: what the network was built from), the tile size and
-// the tile's index.
-struct TileStore {
-    std::string folder;
-    std::uint64_t key = 0;
-};
-
 // What a CreaseTiles is made from besides the network: the tile side (cells), the stems' sources
-// and box (stem_parts), and each tile's plan box of its stems' reaches (row-major tiles; empty,
-// hi < lo, for a tile without stems). Made by one walk of every stem (crease_tile_index); a
-// database stores it (crease_source.hpp) so that a render makes its tiles without that walk.
+// and box (stem_parts), each stem's bound (stem_bound of its reach's plan box and
+// stem_cell_length, across parts' box; in parts.sources' order) and each tile's plan box of its
+// stems' reaches (row-major tiles; empty, hi < lo, for a tile without stems). Made by one walk of
+// every stem (crease_tile_index); a database stores it (crease_source.hpp) so that a render makes
+// its tiles without that walk.
 struct CreaseTileIndex {
     int side = 256;
     StemParts parts;
+    std::vector<StemBound> stems;
     std::vector<glm::vec2> lo, hi;
 };
 CreaseTileIndex crease_tile_index(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
@@ -53,35 +47,43 @@ public:
     // g, dir and net must outlive this (g.z: the original elevations, as build_draped_lines reads);
     // with before_first_build, only g's cols and rows are read before the first build.
     // On a DEM without relief (has_relief) the whole build keeps no creases: make none there.
-    CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net, int tile = 256,
-                TileStore store = {});
+    CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net, int tile = 256);
     // The same from a stored index (crease_tile_index of this network; index.side is the tile size).
     CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
-                CreaseTileIndex index, TileStore store = {});
+                CreaseTileIndex index);
 
-    // The stems whose tiles' reach meets the closed plan box [lo, hi], built where not yet, in
-    // stem order (network_stems' ids in `ids`), indexed: lines_meeting_box on it gives the whole
-    // build's lines meeting the box, in the same order, equal bit for bit.
-    DrapedLineSet lines_for_box(glm::vec2 lo, glm::vec2 hi, std::vector<std::uint32_t>* ids = nullptr);
+    // Whether a line may be drawn, from its record alone (its plan box lo, hi and 3-D length; the
+    // other fields unset): called with each stem's bound (stem_bound_box, stem_bound_length) as
+    // such a record, so it must pass a stem whenever it passes the stem's line (a test growing
+    // with the length and the box, as LineCulling's screen size does). Empty: every stem.
+    using LineTest = std::function<bool(const DrapedLine&)>;
+
+    // The stems whose bound's box meets the closed plan box [lo, hi] and passes `may_show`, built
+    // where not yet, in stem order (network_stems' ids in `ids`), indexed: lines_meeting_box on
+    // it gives the whole build's lines meeting the box (those passing may_show, which the others
+    // fail), in the same order, equal bit for bit.
+    DrapedLineSet lines_for_box(glm::vec2 lo, glm::vec2 hi, std::vector<std::uint32_t>* ids = nullptr,
+                                const LineTest& may_show = {});
     // The same lines without copying their vertices: each line's record (box, length, count,
-    // order; `first` meaningless) and a pointer to its vertices in its tile, which stays valid
-    // and unchanged as long as this object lives.
+    // order; `first` meaningless) and a pointer to its vertices where it was built, which stays
+    // valid and unchanged as long as this object lives.
     struct LineRefs {
         std::vector<DrapedLine> lines;
         std::vector<const DrapedVertex*> vertices;
     };
-    LineRefs line_refs_for_box(glm::vec2 lo, glm::vec2 hi);
+    LineRefs line_refs_for_box(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show = {});
 
-    // Called once, before the first tile is built here (not for tiles read from their files): a
-    // caller that made g, dir and net with their sizes only fills them there.
+    // Called once, before the first stem is built: a caller that made g, dir and net with their
+    // sizes only fills them there.
     void before_first_build(std::function<void()> f) { before_build_ = std::move(f); }
 
     std::size_t tile_count() const { return tiles_.size(); }
+    std::size_t stem_count() const { return parts_.sources.size(); }
     // The index the tiles were made from (crease_tile_index's, or the one given).
     CreaseTileIndex index() const;
-    std::size_t tiles_built() const;  // in memory: built here or read
-    std::size_t tiles_read() const { return read_; }        // from their files
-    std::size_t tiles_written() const { return written_; }  // files written
+    std::size_t stems_built() const { return stems_built_; }        // kept, built by the queries so far
+    std::size_t vertices_built() const { return vertices_built_; }  // their lines' vertices
+    std::size_t builds() const { return builds_; }                  // queries that built stems
 
 private:
     struct Pick {
@@ -89,21 +91,25 @@ private:
         const DrapedLineSet* set;
         std::uint32_t line;
     };
-    std::vector<Pick> picks_for_box(glm::vec2 lo, glm::vec2 hi);  // built where needed, in stem order
+    // built where needed, in stem order
+    std::vector<Pick> picks_for_box(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show);
     struct Tile {
         std::vector<std::uint32_t> stems;  // ids, ascending
         glm::vec2 lo{0.0f}, hi{-1.0f};     // plan box of its stems' reaches
-        std::unique_ptr<DrapedLineSet> lines;  // built: line i is stems[i]
     };
+    static constexpr std::uint32_t not_built = 0xffffffffu;
     const DrainageGrid& g_;
     const std::vector<std::uint8_t>& dir_;
     const FlowNetwork& net_;
     int side_ = 256;
-    TileStore store_;
-    std::size_t read_ = 0, written_ = 0;
     StemParts parts_;
+    std::vector<StemBound> bounds_;
     std::vector<Tile> tiles_;
-    std::unique_ptr<DemSurface> surface_;  // made with the first tile built
+    // the lines built so far, one set a crease_part; stem s's is line line_[s] of sets_[set_[s]]
+    std::vector<std::unique_ptr<DrapedLineSet>> sets_;
+    std::vector<std::uint32_t> set_, line_;
+    std::size_t stems_built_ = 0, vertices_built_ = 0, builds_ = 0;
+    std::unique_ptr<DemSurface> surface_;  // made with the first build
     std::function<void()> before_build_;
 };
 

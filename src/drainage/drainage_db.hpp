@@ -115,7 +115,9 @@ struct DrainageDb {
 // 15: a file storing the crease source stores no network but its counts (positions mode 2): the
 // branches and divides follow from the grid and directions the crease source holds, made again
 // on a whole read.
-inline constexpr std::uint32_t drainage_db_version = 15;
+// 16: the crease tiles' index holds each stem's bound (stem_reach.hpp: StemBound, its reach's box
+// and a bound of its crease's length), so a render builds only the stems its frame can draw.
+inline constexpr std::uint32_t drainage_db_version = 16;
 
 // Fingerprint of the DEM file at `dem_path` with the given resample factor: its size, mtime and
 // a hash of its whole content (streamed) and of every side file GDAL may read with it (world

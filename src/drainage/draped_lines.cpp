@@ -5,12 +5,12 @@
 #include <bit>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
 
 #include <glm/common.hpp>
 
 #include "core/error.hpp"
 #include "core/parallel_chunks.hpp"
+#include "core/u32_map.hpp"
 #include "drainage/d8.hpp"
 #include "drainage/stems.hpp"
 #include "drainage/fall_line_stems.hpp"
@@ -698,7 +698,7 @@ DrapedLineSet crease_part(const DrainageGrid& g, const std::vector<std::uint8_t>
     // the source of the stem each joins (its own: none), up from its end junction; the cells
     // climbed remembered with their source (the tributaries of one trunk climb it once)
     std::vector<std::uint32_t> trunk(ids.size());
-    std::unordered_map<std::uint32_t, std::uint32_t> climbed;
+    U32Map climbed;
     std::vector<std::uint32_t> path;
     for (std::size_t i = 0; i < ids.size(); ++i) {
         const DrapedLine& l = walked.lines[i];
@@ -710,8 +710,8 @@ DrapedLineSet crease_part(const DrainageGrid& g, const std::vector<std::uint8_t>
         path.clear();
         std::uint32_t source;
         for (;;) {
-            if (const auto it = climbed.find(std::uint32_t(m)); it != climbed.end()) {
-                source = it->second;
+            if (const std::uint32_t* at = climbed.find(std::uint32_t(m))) {
+                source = *at;
                 break;
             }
             const std::size_t up = walk.main_up(m);
@@ -722,7 +722,7 @@ DrapedLineSet crease_part(const DrainageGrid& g, const std::vector<std::uint8_t>
             if (path.size() > g.size()) StemWalk::cycle();
             path.push_back(std::uint32_t(m)), m = up;
         }
-        for (std::uint32_t c : path) climbed.emplace(c, source);
+        for (std::uint32_t c : path) climbed.insert(c, source);
         trunk[i] = source;
     }
     std::vector<std::uint32_t> closure = own, added;
@@ -756,21 +756,21 @@ DrapedLineSet crease_part(const DrainageGrid& g, const std::vector<std::uint8_t>
             into_line[i] = std::lower_bound(local.begin(), local.end(), std::pair<std::uint32_t, std::uint32_t>(trunk[i], 0))->second;
             is_trunk[into_line[i]] = 1;
         }
-    std::unordered_map<std::uint32_t, std::uint32_t> interior;  // cell -> vertex
+    U32Map interior;  // cell -> vertex
     for (std::size_t t = 0; t < closure.size(); ++t)
         if (is_trunk[t])
             for (std::uint32_t k = 1; k + 1 < set.lines[t].count; ++k)
-                interior.emplace(cells[set.lines[t].first + k], set.lines[t].first + k);
+                interior.insert(cells[set.lines[t].first + k], set.lines[t].first + k);
     std::vector<std::uint32_t> follow;
     for (std::size_t i = 0; i < ids.size(); ++i) {
         if (into_line[i] == EndMatches::none) continue;
         const DrapedLine& l = set.lines[i];
         const std::uint32_t end = l.first + l.count - 1;
-        const auto it = interior.find(cells[end]);
-        if (it == interior.end()) continue;  // the trunk ends there too (an outlet): no interior to follow
+        const std::uint32_t* at = interior.find(cells[end]);
+        if (!at) continue;  // the trunk ends there too (an outlet): no interior to follow
         const DrapedLine& into = set.lines[into_line[i]];
-        if (it->second < into.first || it->second >= into.first + into.count) continue;
-        follow.push_back(std::uint32_t(i)), follow.push_back(end), follow.push_back(it->second);
+        if (*at < into.first || *at >= into.first + into.count) continue;
+        follow.push_back(std::uint32_t(i)), follow.push_back(end), follow.push_back(*at);
     }
     smooth_stems_joined(set, cells, g, fall_line_options(g), follow, parts.lo, parts.hi);
     keep_first_lines(set, ids.size());

@@ -275,7 +275,12 @@ bool select_stored_creases(const DrainageDb& db, StoredCreases* stored, const Li
     if (!stored && db.crease_source.empty()) return false;
     std::optional<StoredCreases> local;
     if (!stored) stored = &local.emplace(db.crease_source);
-    const CreaseTiles::LineRefs refs = stored->line_refs_for_box(box.lo, box.hi);
+    // only the stems whose bound some culling camera can show min_px long (ScreenSize::may_show
+    // on the bound: a crease failing it would be culled line by line anyway)
+    const ScreenSize size(culling, box.exaggeration);
+    CreaseTiles::LineTest may_show;
+    if (size.culls()) may_show = [&size](const DrapedLine& l) { return size.may_show(l); };
+    const CreaseTiles::LineRefs refs = stored->line_refs_for_box(box.lo, box.hi, may_show);
     std::vector<std::uint32_t> ids;  // those meeting the box, ascending (what lines_meeting_box gives)
     for (std::uint32_t i = 0; i < refs.lines.size(); ++i) {
         const DrapedLine& l = refs.lines[i];

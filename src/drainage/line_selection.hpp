@@ -70,9 +70,9 @@ DrainageLineData prepare_drainage_lines(const DrainageDb& db, const Terrain& mod
 struct DrainageLineSource {
     DrainageDb db;
     DvLineVertices vertices;  // file set: db's creases and ridges hold no vertices; they are here
-    // Where db stores the creases' source (DrainageDb::crease_source): the creases built per tile
-    // for each frame's box, kept for the next frame (and in tile files). None: a StoredCreases
-    // made for each frame from db (tiles kept in neither).
+    // Where db stores the creases' source (DrainageDb::crease_source): the creases a frame's box
+    // and culling can draw built stem by stem, kept for the next frame of this process. None: a
+    // StoredCreases made for each frame from db (nothing kept).
     std::shared_ptr<StoredCreases> creases;
     std::size_t batch_bytes = std::size_t(4) << 20;  // vertices read from the file at a time (at least one line)
     // The database read whole (every checksum checked) or rebuilt: what a file set falls back to

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
 #include "core/parallel_chunks.hpp"
 
@@ -25,6 +27,81 @@ CellBox stem_cell_reach(const std::uint32_t* cells, std::uint32_t n, const Drain
     b.c0 = std::max(0.0, lo.x - grow), b.r0 = std::max(0.0, lo.y - grow);
     b.c1 = std::min(double(g.cols - 1), hi.x + grow), b.r1 = std::min(double(g.rows - 1), hi.y + grow);
     return b;
+}
+
+double stem_cell_length(const std::uint32_t* cells, std::uint32_t n, const DrainageGrid& g) {
+    const auto cols = std::uint32_t(g.cols);
+    auto at = [&](std::uint32_t k) {
+        const glm::dvec2 xy = grid_xy(g, int(cells[k] % cols), int(cells[k] / cols));
+        return glm::dvec3(xy, double(g.z[cells[k]]));
+    };
+    double length = 0.0;
+    glm::dvec3 last = n ? at(0) : glm::dvec3(0.0);
+    for (std::uint32_t k = 1; k < n; ++k) {
+        const glm::dvec3 p = at(k);
+        length += glm::length(p - last), last = p;
+    }
+    return length;
+}
+
+namespace {
+
+constexpr double bound_steps = 65535.0;
+
+// The plan coordinate of step q across [lo, hi], rounded to a float downward (or upward).
+float step_value(std::uint16_t q, float lo, float hi, bool up) {
+    const double v = double(lo) + (double(hi) - double(lo)) * (double(q) / bound_steps);
+    const float f = float(v);
+    if (up) return double(f) < v ? std::nextafter(f, INFINITY) : f;
+    return double(f) > v ? std::nextafter(f, -INFINITY) : f;
+}
+
+// The last step whose value (rounded down) is at most v, or (up) the first whose value (rounded
+// up) is at least v; 0 or 65535 beyond [lo, hi].
+std::uint16_t step_of(float v, float lo, float hi, bool up) {
+    if (!(hi > lo)) return up ? std::uint16_t(65535) : std::uint16_t(0);
+    const double t = std::clamp((double(v) - double(lo)) / (double(hi) - double(lo)) * bound_steps, 0.0, bound_steps);
+    int q = int(up ? std::ceil(t) : std::floor(t));
+    if (up)
+        while (q < 65535 && step_value(std::uint16_t(q), lo, hi, true) < v) ++q;
+    else
+        while (q > 0 && step_value(std::uint16_t(q), lo, hi, false) > v) --q;
+    return std::uint16_t(q);
+}
+
+}  // namespace
+
+StemBound stem_bound(glm::vec2 reach_lo, glm::vec2 reach_hi, double length, glm::vec2 lo, glm::vec2 hi) {
+    StemBound b;
+    const glm::vec2 l = glm::max(reach_lo, lo), h = glm::min(reach_hi, hi);
+    if (l.x <= h.x && l.y <= h.y)
+        b.x0 = step_of(l.x, lo.x, hi.x, false), b.y0 = step_of(l.y, lo.y, hi.y, false),
+        b.x1 = step_of(h.x, lo.x, hi.x, true), b.y1 = step_of(h.y, lo.y, hi.y, true);
+    // the float at or above the bound, then its high half rounded up
+    const double want = crease_length_factor * length;
+    float f = float(want);
+    if (double(f) < want) f = std::nextafter(f, INFINITY);
+    std::uint32_t bits;
+    std::memcpy(&bits, &f, 4);
+    if (bits & 0xffffu) bits += 0x10000u;
+    b.length = std::uint16_t(bits >> 16);
+    return b;
+}
+
+void stem_bound_box(const StemBound& b, glm::vec2 lo, glm::vec2 hi, glm::vec2& box_lo, glm::vec2& box_hi) {
+    if (b.x1 < b.x0 || b.y1 < b.y0) {
+        box_lo = glm::vec2(std::numeric_limits<float>::infinity()), box_hi = -box_lo;
+        return;
+    }
+    box_lo = {step_value(b.x0, lo.x, hi.x, false), step_value(b.y0, lo.y, hi.y, false)};
+    box_hi = {step_value(b.x1, lo.x, hi.x, true), step_value(b.y1, lo.y, hi.y, true)};
+}
+
+float stem_bound_length(const StemBound& b) {
+    const std::uint32_t bits = std::uint32_t(b.length) << 16;
+    float f;
+    std::memcpy(&f, &bits, 4);
+    return f;
 }
 
 PlanBoxes::PlanBoxes(const DrainageGrid& g) : g_(&g) {

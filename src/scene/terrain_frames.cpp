@@ -123,7 +123,6 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terra
     DrainageLineSource source;
     const auto t0 = Clock::now();
     bool building = false;  // the progress callback is called by a build alone
-    std::string file;
     source.db = load_or_build_drainage(
         scene.source.dem, dem, options, [&](const std::string& m) { log.info(m); },
         [&](const std::string& stage, double fraction) {
@@ -131,10 +130,9 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terra
             building = true;
             progress.update(stage, fraction);
         },
-        &source.vertices, &file);
-    if (!source.db.crease_source.empty())  // creases built per tile as frames need them, kept beside the file
-        source.creases = std::make_shared<StoredCreases>(std::move(source.db.crease_source),
-                                                         file.empty() ? std::string() : crease_tile_folder(file));
+        &source.vertices);
+    if (!source.db.crease_source.empty())  // creases built as frames need them, kept for the next frame
+        source.creases = std::make_shared<StoredCreases>(std::move(source.db.crease_source));
     log.info("drainage database ready (" + std::to_string(int(ms_since(t0))) + " ms)");
     return source;
 }
@@ -155,21 +153,25 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Scene
 }
 
 TerrainFrames::TerrainFrames(GlContext& context, std::optional<DrainageLineSource> drainage, FrameTerrain terrain,
-                             int width, int height, const Log&, LineCulling culling)
+                             int width, int height, const Log& log, LineCulling culling)
     : TerrainFrames(context,
                     drainage ? std::make_shared<const DrainageLineSource>(std::move(*drainage)) : nullptr,
-                    std::move(terrain), width, height, std::move(culling), nullptr) {}
+                    std::move(terrain), width, height, std::move(culling), nullptr, log) {}
 
 TerrainFrames::TerrainFrames(GlContext& context, std::shared_ptr<const DrainageLineSource> drainage,
                              FrameTerrain terrain, int width, int height, LineCulling culling,
-                             TerrainGpuKeep* gpu)
-    : context_(&context), terrain_(std::move(terrain)), width_(width), height_(height), gpu_(gpu) {
+                             TerrainGpuKeep* gpu, const Log& log)
+    : context_(&context), terrain_(std::move(terrain)), width_(width), height_(height), gpu_(gpu), log_(log) {
     if (!drainage) return;
     LineBox box;
     box.lo = glm::vec2(terrain_.lo), box.hi = glm::vec2(terrain_.hi), box.exaggeration = terrain_.meta.vertical_exaggeration;
     box.sea_level = terrain_.nodes.sea_level;
-    pending_lines_ = std::async(std::launch::async, [db = std::move(drainage), box, culling = std::move(culling)] {
-        return prepare_drainage_lines(*db, box, culling);
+    drainage_ = drainage;
+    pending_lines_ = std::async(std::launch::async, [this, db = std::move(drainage), box, culling = std::move(culling)] {
+        const auto t0 = Clock::now();
+        DrainageLineData data = prepare_drainage_lines(*db, box, culling);
+        lines_ms_ = ms_since(t0);
+        return data;
     });
 }
 
@@ -231,6 +233,11 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
         if (made) made->set_lines(pending_lines_.get());
         else made = std::make_unique<DrainageLines>(context_->gl(), pending_lines_.get());
         lines_ = made.get();
+        std::string built;
+        if (const StoredCreases* c = drainage_ ? drainage_->creases.get() : nullptr)
+            built = "; creases built for " + std::to_string(c->stems_built()) + " of " + std::to_string(c->stem_count()) +
+                    " stems (" + std::to_string(c->vertices_built()) + " vertices)";
+        log_.info("drainage lines prepared (" + std::to_string(int(lines_ms_)) + " ms" + built + ")");
     }
     if (lines_)
         lines_->draw(camera, frame, renderer_->surface_pass().toward_texture(),
@@ -269,7 +276,7 @@ SceneView open_terrain_view(Scene& scene, GlContext& context, const Log& log, Te
     log.info("view window found (" + std::to_string(int(ms_since(t0))) + " ms)");
     view.frames = std::make_unique<TerrainFrames>(context, std::move(drainage), std::move(model), view.camera.width,
                                                   view.camera.height, LineCulling{{view.camera}, line_culling_px(scene)},
-                                                  keep ? &keep->gpu() : nullptr);
+                                                  keep ? &keep->gpu() : nullptr, log);
     return view;
 }
 

@@ -55,9 +55,10 @@ public:
     TerrainFrames(GlContext& context, std::optional<DrainageLineSource> drainage, FrameTerrain terrain, int width,
                   int height, const Log& log, LineCulling culling = {});
     // The same with drainage lines shared with other frame sources (null: none) and, when given,
-    // the renderer and DM passes taken from `gpu` (which must outlive the frames) instead of made.
+    // the renderer and DM passes taken from `gpu` (which must outlive the frames) instead of made;
+    // `log` gets the lines' preparation time and the creases built with the first frame.
     TerrainFrames(GlContext& context, std::shared_ptr<const DrainageLineSource> drainage, FrameTerrain terrain,
-                  int width, int height, LineCulling culling, TerrainGpuKeep* gpu);
+                  int width, int height, LineCulling culling, TerrainGpuKeep* gpu, const Log& log = {});
     // A Terrain in memory, all of it modelled (frame_terrain).
     TerrainFrames(GlContext& context, std::optional<DrainageLineSource> drainage, Terrain terrain, int width, int height,
                   const Log& log, LineCulling culling = {});
@@ -87,6 +88,9 @@ private:
     DrainageLines* lines_ = nullptr;             // own_lines_ or gpu_'s
     std::unique_ptr<CoastlineLines> coast_;  // with water: the shore, made with the first frame
     std::future<DrainageLineData> pending_lines_;  // prepared on another core during the first frame
+    std::shared_ptr<const DrainageLineSource> drainage_;
+    Log log_;
+    double lines_ms_ = 0.0;  // the preparation's wall time, set before pending_lines_ is ready
 };
 
 // Object-space silhouettes (the exact front/back edges of the CPU PN tessellation, ray-cast

@@ -1,5 +1,5 @@
 // What crease tiles read of a build, coded (crease_source.hpp), decodes to the same grid arrays,
-// directions and tile index bit for bit; the network made again from the directions equals the
+// directions and tile index (the stems' bounds too) bit for bit; the network made again from the directions equals the
 // build's; tiles made from the decoded parts give the whole build's creases bit for bit (volcano
 // at its automatic factor and geographic jacksboro, 64-cell tiles); bytes cut short, with a byte
 // more, or of another grid width do not decode.
@@ -56,6 +56,7 @@ void expect_round_trip(const Terrain& t, int factor, const std::string& what) {
     EXPECT_EQ(got.parts.hi, index.parts.hi) << what;
     EXPECT_EQ(got.lo, index.lo) << what;
     EXPECT_EQ(got.hi, index.hi) << what;
+    EXPECT_TRUE(got.stems == index.stems) << what;
 
     {  // the index and the grid's scalars alone
         DrainageGrid s;
@@ -68,6 +69,7 @@ void expect_round_trip(const Terrain& t, int factor, const std::string& what) {
         EXPECT_TRUE(s.z.empty() && s.valid.empty() && s.coarse_xy.empty() && no_dir.empty()) << what;
         EXPECT_EQ(index_only.lo, index.lo) << what;
         EXPECT_EQ(index_only.parts.sources, index.parts.sources) << what;
+        EXPECT_TRUE(index_only.stems == index.stems) << what;
     }
 
     const FlowNetwork net = network_of_directions(h, dir);
@@ -157,7 +159,9 @@ TEST(CreaseSource, HeightsReadFromTheDemItRefersTo) {
     const DemHeightsRef ref{absolute_dem_path(dem.string()), t.utm_zone, t.north};
     const std::vector<std::uint8_t> stored = encode_crease_source(g, res.dir, index);
     const std::vector<std::uint8_t> referred = encode_crease_source(g, res.dir, index, &ref);
-    EXPECT_LT(referred.size() * 3, stored.size()) << referred.size() << " vs " << stored.size();
+    // The heights and x, y coded take about 1.9 B a node on jacksboro (their deltas deflated); the
+    // rest (mask, directions, index, stems' bounds) is the same in both.
+    EXPECT_GT(stored.size(), referred.size() + 3 * g.size() / 2) << referred.size() << " vs " << stored.size();
     EXPECT_EQ(crease_source_dem(referred.data(), referred.size()), ref.path);
     EXPECT_EQ(crease_source_dem(stored.data(), stored.size()), "");
     DrainageGrid h;

@@ -1,14 +1,12 @@
 // Creases built tile by tile on first use (crease_tiles.hpp) give, for any plan box, exactly the
 // whole build's lines meeting it (lines_meeting_box on each: the same lines in the same order,
 // equal bit for bit), on volcano at its automatic factor and geographic jacksboro, for boxes of
-// several sizes at seeded random places, the tiles built in the order the boxes need them; a box
-// of a tenth of the DEM's side builds only some tiles, and asking again builds none. With a tile
-// store, a second process-like instance reads the tiles the first wrote instead of building them
-// and gets the same lines; a tile file damaged (a byte flipped, cut short) or of another key is
-// built again and rewritten, the others read.
+// several sizes at seeded random places, the stems built in the order the boxes need them; a box
+// of a tenth of the DEM's side builds only some stems, and asking again builds none. With a line
+// test (a camera's screen size), only the stems whose bound passes it are built, once.
+#include <algorithm>
+#include <cmath>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <random>
 #include <string>
 #include <vector>
@@ -18,9 +16,7 @@
 
 #include "drainage/crease_tiles.hpp"
 #include "drainage/drainage_build.hpp"
-#include "drainage/line_tile_files.hpp"
 #include "input/dem_reader.hpp"
-#include "support/temp_dir.hpp"
 
 namespace penink {
 namespace {
@@ -47,13 +43,14 @@ void expect_boxes_as_whole(const Terrain& t, int factor, int tile, const std::st
     const glm::vec2 c = lo + 0.5f * size, small = 0.05f * size;
     std::vector<std::uint32_t> ids;
     const DrapedLineSet first = tiles.lines_for_box(c - small, c + small, &ids);
-    const std::size_t built = tiles.tiles_built();
+    const std::size_t built = tiles.stems_built();
     EXPECT_GT(built, 0u) << what;
-    EXPECT_LT(built, tiles.tile_count()) << what;
+    EXPECT_LT(built, tiles.stem_count()) << what;
     tiles.lines_for_box(c - small, c + small);
-    EXPECT_EQ(tiles.tiles_built(), built) << what;
-    ::testing::Test::RecordProperty(what + "_tiles_for_small_box", int(built));
-    ::testing::Test::RecordProperty(what + "_tiles", int(tiles.tile_count()));
+    EXPECT_EQ(tiles.stems_built(), built) << what;
+    EXPECT_EQ(tiles.builds(), 1u) << what;
+    ::testing::Test::RecordProperty(what + "_stems_for_small_box", int(built));
+    ::testing::Test::RecordProperty(what + "_stems", int(tiles.stem_count()));
 
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
@@ -82,73 +79,82 @@ TEST(CreaseTiles, BoxesGetTheWholeBuildsLines) {
     expect_boxes_as_whole(jacksboro, 1, 64, "jacksboro_factor1");
 }
 
-// The lines a box gets from `tiles`, mapped to the whole build's: the number differing from it.
-std::size_t differing(CreaseTiles& tiles, const DrainageDb& db, glm::vec2 a, glm::vec2 b) {
+// The lines a box gets from `tiles` with the line test `may_show`, mapped to the whole build's
+// lines meeting the box that pass it: the number differing from them.
+std::size_t differing(CreaseTiles& tiles, const DrainageDb& db, glm::vec2 a, glm::vec2 b,
+                      const CreaseTiles::LineTest& may_show) {
     std::vector<std::uint32_t> ids;
-    const DrapedLineSet part = tiles.lines_for_box(a, b, &ids);
-    const std::vector<std::uint32_t> want = lines_meeting_box(db.creases, a, b);
-    const std::vector<std::uint32_t> got = lines_meeting_box(part, a, b);
+    const DrapedLineSet part = tiles.lines_for_box(a, b, &ids, may_show);
+    std::vector<std::uint32_t> want;
+    for (std::uint32_t i : lines_meeting_box(db.creases, a, b))
+        if (may_show(db.creases.lines[i])) want.push_back(i);
+    std::vector<std::uint32_t> got;
+    for (std::uint32_t i : lines_meeting_box(part, a, b))
+        if (may_show(part.lines[i])) got.push_back(i);
     if (got.size() != want.size()) return std::max(got.size(), want.size());
     std::size_t bad = 0;
     for (std::size_t i = 0; i < got.size(); ++i) bad += ids[got[i]] != want[i] || !same_line(part, got[i], db.creases, want[i]);
     return bad;
 }
 
-TEST(CreaseTiles, StoredTilesAreReadByTheNextInstanceAndDamagedOnesRebuilt) {
-    const test::TempDir dir;
+// A line test as a perspective camera's screen size makes it: a line passes when its length is
+// at least `per_metre` times its box's plan distance from `eye` (a longer line or a box nearer
+// the eye passes sooner).
+CreaseTiles::LineTest size_test(glm::vec2 eye, double per_metre) {
+    return [eye, per_metre](const DrapedLine& l) {
+        const double dx = std::max({double(l.lo.x) - eye.x, double(eye.x) - l.hi.x, 0.0});
+        const double dy = std::max({double(l.lo.y) - eye.y, double(eye.y) - l.hi.y, 0.0});
+        return double(l.length) >= per_metre * std::sqrt(dx * dx + dy * dy);
+    };
+}
+
+// With a line test, a query builds only the stems whose bound passes it (counted from the index),
+// and gets exactly the whole build's lines that pass it; a laxer test later builds only the
+// stems it adds, in one more build; asking again builds none.
+TEST(CreaseTiles, ALineTestBuildsOnlyTheStemsItPassesOnce) {
     const Terrain jacksboro = read_dem(PENINK_SOURCE_DIR "/examples/jacksboro.tif");
     DrainageGrid g = resample_pn(jacksboro, 1);
     DrainageResult res;
     const DrainageDb db = drainage_db_from_grid(g, {}, &res);
     glm::vec2 lo(1e30f), hi(-1e30f);
     for (const DrapedLine& l : db.creases.lines) lo = glm::min(lo, l.lo), hi = glm::max(hi, l.hi);
-    const glm::vec2 c = 0.5f * (lo + hi), half = 0.1f * (hi - lo);
-    const TileStore store{dir.file("tiles"), 42};
+    CreaseTiles tiles(g, res.dir, res.net, 64);
+    const CreaseTileIndex index = tiles.index();
+    // the stems whose bound passes a test, and the whole build's lines that do
+    auto bounds_passing = [&](const CreaseTiles::LineTest& t) {
+        std::size_t n = 0;
+        for (const StemBound& b : index.stems) {
+            DrapedLine l;
+            stem_bound_box(b, index.parts.lo, index.parts.hi, l.lo, l.hi);
+            l.length = stem_bound_length(b);
+            n += t(l);
+        }
+        return n;
+    };
+    auto lines_passing = [&](const CreaseTiles::LineTest& t) {
+        return std::size_t(std::count_if(db.creases.lines.begin(), db.creases.lines.end(), t));
+    };
+    const CreaseTiles::LineTest strict = size_test(lo, 0.05), lax = size_test(lo, 0.02);
+    const std::size_t strict_stems = bounds_passing(strict), lax_stems = bounds_passing(lax);
+    ASSERT_GT(lines_passing(strict), 100u);
+    EXPECT_LT(strict_stems, tiles.stem_count() / 2);
+    EXPECT_GT(lax_stems, strict_stems);
+    EXPECT_GE(strict_stems, lines_passing(strict));
 
-    CreaseTiles first(g, res.dir, res.net, 64, store);
-    EXPECT_EQ(differing(first, db, c - half, c + half), 0u);
-    const std::size_t built = first.tiles_built();
-    EXPECT_GT(built, 1u);
-    EXPECT_EQ(first.tiles_read(), 0u);
-    EXPECT_EQ(first.tiles_written(), built);
-
-    CreaseTiles second(g, res.dir, res.net, 64, store);
-    EXPECT_EQ(differing(second, db, c - half, c + half), 0u);
-    EXPECT_EQ(second.tiles_read(), built);
-    EXPECT_EQ(second.tiles_written(), 0u);
-
-    // one file with a byte flipped in its vertices, one cut short: both built again and rewritten
-    std::vector<std::filesystem::path> files;
-    for (const auto& e : std::filesystem::directory_iterator(store.folder)) files.push_back(e.path());
-    std::sort(files.begin(), files.end());
-    ASSERT_EQ(files.size(), built);
-    {
-        std::fstream f(files[0], std::ios::in | std::ios::out | std::ios::binary);
-        f.seekg(std::streamoff(std::filesystem::file_size(files[0]) / 2));
-        char b = 0;
-        f.read(&b, 1);
-        b = char(b ^ 0x10);
-        f.seekp(std::streamoff(std::filesystem::file_size(files[0]) / 2));
-        f.write(&b, 1);
-    }
-    std::filesystem::resize_file(files[1], std::filesystem::file_size(files[1]) - 3);
-    CreaseTiles third(g, res.dir, res.net, 64, store);
-    EXPECT_EQ(differing(third, db, c - half, c + half), 0u);
-    EXPECT_EQ(third.tiles_read(), built - 2);
-    EXPECT_EQ(third.tiles_written(), 2u);
-    CreaseTiles fourth(g, res.dir, res.net, 64, store);
-    EXPECT_EQ(differing(fourth, db, c - half, c + half), 0u);
-    EXPECT_EQ(fourth.tiles_read(), built);
-
-    // another key (another network): nothing read
-    CreaseTiles other(g, res.dir, res.net, 64, TileStore{store.folder, 43});
-    EXPECT_EQ(differing(other, db, c - half, c + half), 0u);
-    EXPECT_EQ(other.tiles_read(), 0u);
-    EXPECT_EQ(other.tiles_written(), built);
-    // a folder that cannot be written: the tiles stay in memory, the lines the same
-    CreaseTiles nowhere(g, res.dir, res.net, 64, TileStore{"/proc/penink-no-such-folder", 42});
-    EXPECT_EQ(differing(nowhere, db, c - half, c + half), 0u);
-    EXPECT_EQ(nowhere.tiles_written(), 0u);
+    EXPECT_EQ(differing(tiles, db, lo, hi, strict), 0u);
+    EXPECT_EQ(tiles.stems_built(), strict_stems);
+    EXPECT_EQ(tiles.builds(), 1u);
+    EXPECT_EQ(differing(tiles, db, lo, hi, lax), 0u);
+    EXPECT_EQ(tiles.stems_built(), lax_stems);
+    EXPECT_EQ(tiles.builds(), 2u);
+    EXPECT_EQ(differing(tiles, db, lo, hi, strict), 0u);
+    EXPECT_EQ(differing(tiles, db, lo, hi, lax), 0u);
+    EXPECT_EQ(tiles.builds(), 2u);
+    ::testing::Test::RecordProperty("stems", int(tiles.stem_count()));
+    ::testing::Test::RecordProperty("stems_strict", int(strict_stems));
+    ::testing::Test::RecordProperty("lines_strict", int(lines_passing(strict)));
+    ::testing::Test::RecordProperty("stems_lax", int(lax_stems));
+    ::testing::Test::RecordProperty("lines_lax", int(lines_passing(lax)));
 }
 
 }  // namespace

@@ -389,7 +389,7 @@ TEST(DvFile, CorruptionsAreDetected) {
     b = good;
     b[8] = 7;  // a file of the layout before the lines part
     spit(p, b);
-    EXPECT_EQ(read_error(p), pre + "unsupported drainage database version 7 (expected 15)");
+    EXPECT_EQ(read_error(p), pre + "unsupported drainage database version 7 (expected " + std::to_string(drainage_db_version) + ")");
 
     b = good;
     b[0] = 'X';

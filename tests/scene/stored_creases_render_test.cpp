@@ -1,13 +1,13 @@
 // A render draws the creases `penink drainage` stores the source of (crease_source.hpp) from the
-// tiles its view needs: the first render after the database is built builds those tiles and
-// writes their files beside the database; a warm render (a new source from the same cache) reads
-// exactly those and builds none, and the lines it selects equal the first render's and those of
-// a database holding every crease (built in memory) bit for bit; a wider view builds only the
-// tiles not yet built; a damaged tile file is built again; several frames asking at once (frames
-// prepared on threads) get what one asking alone gets.
+// stems its frame can draw: a frame builds only the stems whose bound (their reach's box and a
+// bound of their length) meets its box and passes its screen-size culling, fewer than all, and
+// selects the same lines, bit for bit, as a database holding every crease; a later frame of the
+// same source builds only the stems it needs that no frame built before (a wider view: the
+// difference; the first view again: none); without culling every stem of the whole DEM is built,
+// once, and equals the whole build; several frames asking at once (frames prepared on threads)
+// get what one asking alone gets. Nothing is written but the drainage cache in a temporary folder.
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <thread>
 #include <vector>
 
@@ -18,7 +18,9 @@
 #include "drainage/line_selection.hpp"
 #include "drainage/stored_creases.hpp"
 #include "input/dem_reader.hpp"
+#include "scene/drainage_lines.hpp"
 #include "scene/scene.hpp"
+#include "scene/terrain_view.hpp"
 #include "scene/terrain_frames.hpp"
 #include "support/temp_dir.hpp"
 
@@ -27,12 +29,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::size_t files_in(const fs::path& folder) {
-    std::size_t n = 0;
-    for (const auto& e : fs::directory_iterator(folder)) n += e.is_regular_file();
-    return n;
-}
-
 bool same_lines(const ScoredLineSet& a, const ScoredLineSet& b) {
     return a.positions.size() == b.positions.size() && a.runs.size() == b.runs.size() &&
            std::memcmp(a.positions.data(), b.positions.data(), sizeof(a.positions[0]) * a.positions.size()) == 0 &&
@@ -40,91 +36,104 @@ bool same_lines(const ScoredLineSet& a, const ScoredLineSet& b) {
            a.flow == b.flow;
 }
 
-TEST(StoredCreasesRender, AWarmRenderBuildsOrReadsOnlyTheTilesItsViewNeeds) {
-    const test::TempDir dir("stored_creases");
-    const fs::path dem = dir.path / "volcano.asc";
-    fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.asc", dem);
-    fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.prj", dir.path / "volcano.prj");
+struct VolcanoCache {
+    test::TempDir dir{"stored_creases"};
     Scene scene;
-    scene.source.dem = dem.string();
-    const Terrain t = read_dem(dem.string());
-    const fs::path tiles = crease_tile_folder(drainage_cache_path(dem.string()));
+    Terrain t;
+    VolcanoCache() {
+        const fs::path dem = dir.path / "volcano.asc";
+        fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.asc", dem);
+        fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.prj", dir.path / "volcano.prj");
+        scene.source.dem = dem.string();
+        scene.view.camera.width = 400, scene.view.camera.height = 300;
+        t = read_dem(dem.string());
+    }
+    // a render's source: the cache read (built the first time), its creases' source undecoded
+    DrainageLineSource source() const {
+        std::optional<DrainageLineSource> s = scene_drainage(scene, t, Log{});
+        EXPECT_TRUE(s && s->creases);
+        return std::move(*s);
+    }
+};
 
-    std::optional<DrainageLineSource> first = scene_drainage(scene, t, Log{});  // builds and writes the cache
-    ASSERT_TRUE(first && first->creases);
-    LineBox all = line_box(t), view = all;
+TEST(StoredCreasesRender, AFrameBuildsOnlyTheStemsItCanDrawOnce) {
+    const VolcanoCache v;
+    DrainageLineSource first = v.source();  // builds and writes the cache
+    const DrainageDb whole = build_drainage_db(v.t, DrainageOptions{});
+    ASSERT_TRUE(whole.crease_source.empty());
+    LineBox all = line_box(v.t), view = all;
     const glm::vec2 size = all.hi - all.lo;  // a tenth of the side, near a corner
     view.lo = all.lo + 0.1f * size, view.hi = all.lo + 0.2f * size;
-    const DrainageLineData a = prepare_drainage_lines(*first, view);
-    const std::size_t needed = first->creases->tiles_built();
+    const LineCulling culling{{scene_camera(v.scene, v.t)}, line_culling_px(v.scene)};
+    ASSERT_GT(culling.min_px, 2.0f);
+
+    // the view: some stems, the lines of a database holding every crease
+    DrainageLineSource warm = v.source();
+    const DrainageLineData a = prepare_drainage_lines(warm, view, culling);
+    const StoredCreases& built = *warm.creases;
+    const std::size_t for_view = built.stems_built();
     ASSERT_GT(a.creases.positions.size(), 100u);
-    EXPECT_GT(needed, 0u);
-    EXPECT_LT(needed, first->creases->tile_count());
-    EXPECT_EQ(first->creases->tiles_read(), 0u);
-    EXPECT_EQ(files_in(tiles), needed);
-    RecordProperty("tiles", int(first->creases->tile_count()));
-    RecordProperty("tiles_for_view", int(needed));
+    EXPECT_GT(for_view, 0u);
+    EXPECT_LT(for_view, built.stem_count() / 4);
+    EXPECT_EQ(built.builds(), 1u);
+    EXPECT_TRUE(same_lines(prepare_drainage_lines(whole, view, culling).creases, a.creases));
+    EXPECT_TRUE(same_lines(prepare_drainage_lines(whole, view, culling).ridges, a.ridges));
 
-    // a database holding every crease draws the same
-    const DrainageDb whole = build_drainage_db(t, DrainageOptions{});
-    ASSERT_TRUE(whole.crease_source.empty());
-    EXPECT_TRUE(same_lines(prepare_drainage_lines(whole, view).creases, a.creases));
-
-    // a warm render: reads the view's tiles, builds none
-    std::optional<DrainageLineSource> warm = scene_drainage(scene, t, Log{});
-    ASSERT_TRUE(warm && warm->creases && warm->vertices.file);
-    const DrainageLineData b = prepare_drainage_lines(*warm, view);
-    EXPECT_EQ(warm->creases->tiles_read(), needed);
-    EXPECT_EQ(warm->creases->tiles_built(), 0u);
-    EXPECT_TRUE(same_lines(a.creases, b.creases));
-    EXPECT_TRUE(same_lines(a.ridges, b.ridges));
-    // the whole DEM: the other tiles built, those read kept
-    const DrainageLineData w = prepare_drainage_lines(*warm, all);
-    EXPECT_EQ(warm->creases->tiles_read(), needed);
-    EXPECT_EQ(warm->creases->tiles_built(), warm->creases->tile_count() - needed);
-    EXPECT_TRUE(same_lines(prepare_drainage_lines(whole, all).creases, w.creases));
-
-    // a damaged tile file is built again, the others read
-    fs::path one;
-    for (const auto& e : fs::directory_iterator(tiles)) one = e.path();
-    {
-        std::fstream f(one, std::ios::in | std::ios::out | std::ios::binary);
-        f.seekp(40);
-        f.put('\x5a');
-    }
-    std::optional<DrainageLineSource> again = scene_drainage(scene, t, Log{});
-    EXPECT_TRUE(same_lines(prepare_drainage_lines(*again, all).creases, w.creases));
-    EXPECT_EQ(again->creases->tiles_built(), 1u);
-    EXPECT_EQ(again->creases->tiles_read(), again->creases->tile_count() - 1);
+    // the whole DEM: the stems a source asked for it alone builds, of which those built for the
+    // view are not built again
+    DrainageLineSource alone = v.source();
+    const DrainageLineData w = prepare_drainage_lines(alone, all, culling);
+    const std::size_t for_all = alone.creases->stems_built();
+    EXPECT_TRUE(same_lines(prepare_drainage_lines(whole, all, culling).creases, w.creases));
+    EXPECT_GT(for_all, for_view);
+    EXPECT_LT(for_all, built.stem_count());  // the culling leaves stems unbuilt
+    EXPECT_TRUE(same_lines(prepare_drainage_lines(warm, all, culling).creases, w.creases));
+    EXPECT_EQ(built.stems_built(), for_all);
+    EXPECT_EQ(built.builds(), 2u);
+    // the view again: nothing built
+    EXPECT_TRUE(same_lines(prepare_drainage_lines(warm, view, culling).creases, a.creases));
+    EXPECT_EQ(built.builds(), 2u);
+    // without culling: every stem, once more
+    const DrainageLineData u = prepare_drainage_lines(warm, all);
+    EXPECT_TRUE(same_lines(prepare_drainage_lines(whole, all).creases, u.creases));
+    EXPECT_EQ(built.stems_built(), built.stem_count());
+    EXPECT_EQ(built.builds(), 3u);
+    RecordProperty("stems", int(built.stem_count()));
+    RecordProperty("stems_for_view", int(for_view));
+    RecordProperty("stems_for_all", int(for_all));
+    RecordProperty("vertices_for_all", int(alone.creases->vertices_built()));
+    RecordProperty("vertices", int(built.vertices_built()));
 
     // frames on threads share one source: each gets what it gets alone
-    std::optional<DrainageLineSource> shared = scene_drainage(scene, t, Log{});
+    const DrainageLineSource shared = v.source();
     std::vector<DrainageLineData> got(4);
     std::vector<std::thread> threads;
     for (std::size_t k = 0; k < got.size(); ++k)
-        threads.emplace_back([&, k] { got[k] = prepare_drainage_lines(*shared, k % 2 ? all : view); });
+        threads.emplace_back([&, k] { got[k] = prepare_drainage_lines(shared, k % 2 ? all : view, culling); });
     for (std::thread& th : threads) th.join();
     for (std::size_t k = 0; k < got.size(); ++k) EXPECT_TRUE(same_lines(got[k].creases, (k % 2 ? w : a).creases)) << k;
+    EXPECT_EQ(shared.creases->stems_built(), for_all);
 }
 
-// A cache folder that cannot be written keeps the tiles in memory: the creases are the same.
-TEST(StoredCreasesRender, AnUnwritableTileFolderKeepsTilesInMemory) {
-    const test::TempDir dir("stored_creases_ro");
+// Without a line test, the stored creases of the whole DEM are the whole build's, and asking again
+// builds nothing.
+TEST(StoredCreasesRender, AllStemsGiveTheWholeBuild) {
+    const test::TempDir dir("stored_creases_all");
     const fs::path dem = dir.path / "volcano.asc";
     fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.asc", dem);
     const Terrain t = read_dem(dem.string());
     DvLineVertices in_file;
     const DrainageDb db = load_or_build_drainage(dem.string(), t, DrainageOptions{}, {}, {}, &in_file);
     ASSERT_FALSE(db.crease_source.empty());
-    std::ofstream(dir.path / "file") << "x";  // a folder under a regular file cannot be made
-    StoredCreases stored(db.crease_source, (dir.path / "file" / "tiles").string());
+    StoredCreases stored(db.crease_source);
     const DrapedLineSet lines = stored.lines_for_box(glm::vec2(-1e30f), glm::vec2(1e30f));
-    EXPECT_EQ(stored.tiles_built(), stored.tile_count());
+    EXPECT_EQ(stored.stems_built(), stored.stem_count());
+    EXPECT_EQ(stored.vertices_built(), lines.vertices.size());
     const DrainageDb whole = build_drainage_db(t, DrainageOptions{});
     EXPECT_TRUE(lines.lines == whole.creases.lines);
     EXPECT_TRUE(lines.vertices == whole.creases.vertices);
     EXPECT_EQ(stored.lines_for_box(glm::vec2(-1e30f), glm::vec2(1e30f)).vertices.size(), lines.vertices.size());
-    EXPECT_EQ(stored.tiles_built(), stored.tile_count());  // kept, not built again
+    EXPECT_EQ(stored.builds(), 1u);  // kept, not built again
 }
 
 }  // namespace
