@@ -19,6 +19,8 @@
 #include "core/camera.hpp"
 #include "core/checked_blocks.hpp"
 #include "core/error.hpp"
+#include "input/dem_reader.hpp"
+#include "input/geographic_nodes.hpp"
 #include "surface/terrain_cache.hpp"
 #include "support/synthetic_terrain.hpp"
 #include "support/temp_dir.hpp"
@@ -223,8 +225,8 @@ TEST(TerrainCache, DamageInAnyBlockOfTheArraysIsFoundWhenRead) {
     ASSERT_TRUE(read_terrain_cache(path, key()));
     // array offsets: the coded arrays follow the header: pos, then valid, then error
     std::uint64_t at[3];
-    // prefix 16, key 32, grid 16 + 16 + 48 + 24 + 8, pyramid 16 + 32 bytes (terrain_cache.hpp)
-    std::memcpy(at, bytes.data() + 16 + 32 + 16 + 16 + 48 + 24 + 8 + 16 + 32, 24);
+    // prefix 16, key 32, grid 16 + 16 + 48 + 24 + 8 + 16, pyramid 16 + 32 bytes (terrain_cache.hpp)
+    std::memcpy(at, bytes.data() + 16 + 32 + 16 + 16 + 48 + 24 + 8 + 16 + 16 + 32, 24);
     std::uint32_t header = 0;
     std::memcpy(&header, bytes.data() + 12, 4);
     ASSERT_EQ(at[0], header);  // the offsets were read right
@@ -420,4 +422,43 @@ TEST(TerrainCache, XYOfAnAffineGridAreDerivedNotStored) {
     const double stored = double(std::filesystem::file_size(dir.file("off.lod")));
     std::printf("x, y derived: %.0f bytes; stored: %.0f\n", derived, stored);
     EXPECT_LT(derived + 0.4 * double(grid.size()), stored);  // x, y coded take 0.65 bytes a node here
+}
+
+// On a geographic DEM read whole (examples/jacksboro.tif, WGS 84) the DEM reader projects each
+// node's longitude, latitude to UTM (input/geographic_nodes.hpp): the cache stores z alone and
+// recomputes x, y as it reads, bit for bit as the reader made them, in a smaller file than the
+// same terrain with one node's y a float step off, whose x, y are all stored (and come back too).
+TEST(TerrainCache, XYOfAGeographicDemAreDerivedBitForBit) {
+    test::TempDir dir;
+    const Terrain dem = read_dem(PENINK_SOURCE_DIR "/examples/jacksboro.tif");
+    ASSERT_TRUE(dem.source_geographic);
+    GeographicNodes g;
+    ASSERT_TRUE(terrain_geographic(dem, g));
+    Terrain off = dem;
+    float& y = off.pos[off.index(200, 170)].y;
+    y = std::nextafter(y, 1e9f);
+    for (const Terrain* t : {&dem, static_cast<const Terrain*>(&off)}) {
+        const bool derived = t == &dem;
+        SCOPED_TRACE(derived ? "as read" : "one node off");
+        const StoredTerrain mem = store_terrain(*t);
+        const std::string path = dir.file(derived ? "derived.lod" : "off.lod");
+        write_terrain_cache(path, mem, key());
+        const std::optional<StoredTerrain> map = read_terrain_cache(path, key());
+        ASSERT_TRUE(map);
+        EXPECT_TRUE(map->meta.source_geographic);
+        EXPECT_EQ(map->meta.angular_unit, 1.0);
+        EXPECT_EQ(map->meta.prime_meridian, 0.0);
+        read_whole(*map);
+        for (std::size_t i = 0; i < t->size(); ++i) {
+            ASSERT_EQ(std::memcmp(&map->nodes.pos[i], &t->pos[i], sizeof(glm::vec3)), 0) << i;  // bit for bit
+            ASSERT_EQ(map->nodes.valid[i], t->valid[i]) << i;
+        }
+        const Camera cam = oblique(mem, 2.0);
+        expect_same_mesh(select_lod_mesh(mem.lod, mem.drawn(2.0), 2.0, cam, LodOptions{}),
+                         select_lod_mesh(map->lod, map->drawn(2.0), 2.0, cam, LodOptions{}));
+    }
+    const double derived = double(std::filesystem::file_size(dir.file("derived.lod")));
+    const double stored = double(std::filesystem::file_size(dir.file("off.lod")));
+    std::printf("jacksboro: x, y derived: %.0f bytes; stored: %.0f\n", derived, stored);
+    EXPECT_LT(derived + 0.4 * double(dem.size()), stored);
 }
