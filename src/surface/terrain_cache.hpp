@@ -30,12 +30,13 @@
 //   valid (u8 per node: encode_bytes), error (f32 per padded node, (2^levels + 1)^2:
 //   encode_floats as they are).
 // The coding is lossless: a frame drawn from the file is the frame drawn from memory, bit for bit.
-// Its size follows the DEM's smoothness: 1.30 bytes a node (0.33 of the DEM's float32 heights) on
-// jacksboro refined 10 times (13.9 M nodes, geographic: x, y derived; 0.55 of heights, 0.02 of
-// flags, 0.58 of errors, 0.15 of header; 1.93 with x, y stored), 1.65 refined 5 times, 2.32 on
-// examples/volcano.asc (projected), 3.07 on examples/jacksboro.tif (1" heights in whole metres,
-// rough at the cell scale: 0.77 of its float32 heights; 4.38 with x, y stored); stored as floats
-// it took 17.8 to 20.7. (`penink render DEM --cache-dir D`, then the size of D/*.lod.)
+// Its size follows the DEM's smoothness: 1.17 bytes a node (0.29 of the DEM's float32 heights) on
+// jacksboro refined 10 times (13.9 M nodes, geographic: x, y derived; 0.48 of heights, 0.02 of
+// flags, 0.51 of errors, 0.15 of header; 1.93 with x, y stored and zlib's deflate), 1.52 refined
+// 5 times, 2.18 on examples/volcano.asc (projected), 2.95 on examples/jacksboro.tif (1" heights
+// in whole metres, rough at the cell scale: 0.74 of its float32 heights; 4.36 with x, y stored
+// and zlib); stored as floats it took 17.8 to 20.7. (`penink render DEM --cache-dir D`, then the
+// size of D/*.lod; bench/terrain_cache_bench.cpp.)
 // The header is checksummed and every length and offset is checked against the grid and the
 // file's size when the file is opened: a flipped header byte, a cut or a foreign file is refused
 // with its reason, and the caller rebuilds the cache. The arrays are read on demand

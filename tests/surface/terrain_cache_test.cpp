@@ -360,7 +360,7 @@ TEST(TerrainCache, SmallViewReadsASmallPartAndOnlyItsDamageCounts) {
 
 // The arrays are coded (core/block_codec.hpp): the file is a fraction of the floats it holds (13
 // bytes a node of positions and flags, 4 a padded node of errors; 0.25 and 0.24 of them here,
-// heights at float precision either way: a bound of 0.3 leaves room for another zlib's choices),
+// heights at float precision either way: a bound of 0.3 leaves room for another deflater's choices),
 // and holds exactly the header and the blocks CheckedBlocks reads.
 TEST(TerrainCache, CodedFileIsAFractionOfItsFloats) {
     test::TempDir dir;
