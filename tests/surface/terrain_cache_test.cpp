@@ -384,6 +384,26 @@ TEST(TerrainCache, CodedFileIsAFractionOfItsFloats) {
     }
 }
 
+// Writes t's cache to `path` and reads it back whole: every node's position bit for bit and its
+// flag, and an oblique frame's mesh, as in memory; the georeference of a geographic DEM too.
+void expect_round_trip(const Terrain& t, const std::string& path) {
+    const StoredTerrain mem = store_terrain(t);
+    write_terrain_cache(path, mem, key());
+    const std::optional<StoredTerrain> map = read_terrain_cache(path, key());
+    ASSERT_TRUE(map);
+    EXPECT_EQ(map->meta.source_geographic, t.source_geographic);
+    EXPECT_EQ(map->meta.angular_unit, t.angular_unit);
+    EXPECT_EQ(map->meta.prime_meridian, t.prime_meridian);
+    read_whole(*map);
+    for (std::size_t i = 0; i < t.size(); ++i) {
+        ASSERT_EQ(std::memcmp(&map->nodes.pos[i], &t.pos[i], sizeof(glm::vec3)), 0) << i;  // bit for bit
+        ASSERT_EQ(map->nodes.valid[i], t.valid[i]) << i;
+    }
+    const Camera cam = oblique(mem, 2.0);
+    expect_same_mesh(select_lod_mesh(mem.lod, mem.drawn(2.0), 2.0, cam, LodOptions{}),
+                     select_lod_mesh(map->lod, map->drawn(2.0), 2.0, cam, LodOptions{}));
+}
+
 // On an affine grid (a projected DEM: every node's x, y is affine_node_xy of the geotransform, as
 // the DEM reader computes them) the cache stores z alone and derives x, y as it reads: the nodes
 // and the frames come back bit for bit, in a smaller file than the same terrain with one node's x
@@ -404,19 +424,7 @@ TEST(TerrainCache, XYOfAnAffineGridAreDerivedNotStored) {
     for (const Terrain* t : {&grid, &off}) {
         const bool affine = t == &grid;
         SCOPED_TRACE(affine ? "affine" : "one node off");
-        const StoredTerrain mem = store_terrain(*t);
-        const std::string path = dir.file(affine ? "affine.lod" : "off.lod");
-        write_terrain_cache(path, mem, key());
-        const std::optional<StoredTerrain> map = read_terrain_cache(path, key());
-        ASSERT_TRUE(map);
-        read_whole(*map);
-        for (std::size_t i = 0; i < t->size(); ++i) {
-            ASSERT_EQ(map->nodes.pos[i], t->pos[i]) << i;
-            ASSERT_EQ(map->nodes.valid[i], t->valid[i]) << i;
-        }
-        const Camera cam = oblique(mem, 2.0);
-        expect_same_mesh(select_lod_mesh(mem.lod, mem.drawn(2.0), 2.0, cam, LodOptions{}),
-                         select_lod_mesh(map->lod, map->drawn(2.0), 2.0, cam, LodOptions{}));
+        expect_round_trip(*t, dir.file(affine ? "affine.lod" : "off.lod"));
     }
     const double derived = double(std::filesystem::file_size(dir.file("affine.lod")));
     const double stored = double(std::filesystem::file_size(dir.file("off.lod")));
@@ -440,22 +448,7 @@ TEST(TerrainCache, XYOfAGeographicDemAreDerivedBitForBit) {
     for (const Terrain* t : {&dem, static_cast<const Terrain*>(&off)}) {
         const bool derived = t == &dem;
         SCOPED_TRACE(derived ? "as read" : "one node off");
-        const StoredTerrain mem = store_terrain(*t);
-        const std::string path = dir.file(derived ? "derived.lod" : "off.lod");
-        write_terrain_cache(path, mem, key());
-        const std::optional<StoredTerrain> map = read_terrain_cache(path, key());
-        ASSERT_TRUE(map);
-        EXPECT_TRUE(map->meta.source_geographic);
-        EXPECT_EQ(map->meta.angular_unit, 1.0);
-        EXPECT_EQ(map->meta.prime_meridian, 0.0);
-        read_whole(*map);
-        for (std::size_t i = 0; i < t->size(); ++i) {
-            ASSERT_EQ(std::memcmp(&map->nodes.pos[i], &t->pos[i], sizeof(glm::vec3)), 0) << i;  // bit for bit
-            ASSERT_EQ(map->nodes.valid[i], t->valid[i]) << i;
-        }
-        const Camera cam = oblique(mem, 2.0);
-        expect_same_mesh(select_lod_mesh(mem.lod, mem.drawn(2.0), 2.0, cam, LodOptions{}),
-                         select_lod_mesh(map->lod, map->drawn(2.0), 2.0, cam, LodOptions{}));
+        expect_round_trip(*t, dir.file(derived ? "derived.lod" : "off.lod"));
     }
     const double derived = double(std::filesystem::file_size(dir.file("derived.lod")));
     const double stored = double(std::filesystem::file_size(dir.file("off.lod")));
