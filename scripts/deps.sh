@@ -11,7 +11,8 @@ pkgs=(
   libosmesa6-dev libgl-dev libegl-dev  # headless OpenGL 4.5 core (OSMesa), EGL for GPUs
   libegl-mesa0 libgl1-mesa-dri         # Mesa's EGL (surfaceless llvmpipe): tests the --gl egl path without a GPU
   libglm-dev                           # vector maths
-  zlib1g-dev                           # deflate: the terrain cache's coded blocks (core/block_codec)
+  libdeflate-dev                       # deflate of the terrain cache's coded blocks (core/block_codec): a
+                                       # whole-buffer coder, a quarter faster than zlib to decode 256-node blocks
   libgdal-dev                          # DEM input (GeoTIFF, ASCII grid, ...)
   libgeographiclib-dev                 # geographic -> UTM
   libcgal-dev                          # mesh I/O

@@ -8,8 +8,9 @@
 // along the block (0: as they are; 1: each minus the previous; 2: the differences' differences,
 // which vanish on a line sampled evenly: the x, y of a grid row),
 // zigzag-mapped (small magnitudes to small integers), split into byte planes (all low bytes, then
-// the next, ...: the high planes of small integers are runs of zeros), and deflated (zlib, raw
-// stream). Decoding inverts each step exactly: the floats come back bit for bit (NaN payloads,
+// the next, ...: the high planes of small integers are runs of zeros), and deflated (libdeflate,
+// raw DEFLATE stream, RFC 1951: any inflater reads it, so blocks coded by another deflater or
+// level decode alike; the level and its measurement in block_codec.cpp). Decoding inverts each step exactly: the floats come back bit for bit (NaN payloads,
 // signed zeros and infinities included).
 // Bytes (encode_bytes): deflated as they are.
 // decode_* return false when the coded bytes do not inflate to exactly the block's size (a

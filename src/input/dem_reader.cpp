@@ -21,6 +21,7 @@
 #include "core/parallel_chunks.hpp"
 #include "input/crs_util.hpp"
 #include "input/dem_raster.hpp"
+#include "input/geographic_nodes.hpp"
 #include "input/utm_projection.hpp"
 
 namespace penink {
@@ -31,23 +32,12 @@ using namespace dem;
 
 constexpr double pi = 3.14159265358979323846;
 
-glm::dvec2 affine(const std::array<double, 6>& gt, int c, int r) {
-    const double x = c + 0.5, y = r + 0.5;
-    return {gt[0] + x * gt[1] + y * gt[2], gt[3] + x * gt[4] + y * gt[5]};
-}
-
-// Node centre (c, row) in the source CRS, scaled by `unit` (metres or degrees per CRS unit).
-glm::dvec2 scaled_node(const Raster& r, double unit, double offset_x, int c, int row) {
-    const glm::dvec2 p = affine(r.gt, c, row);
-    return {p.x * unit + offset_x, p.y * unit};
-}
-
 [[noreturn]] void fail_utm(const std::string& path, int zone, bool north, const GeographicLib::GeographicErr& e) {
     fail(path, "DEM cannot be projected to UTM zone " + std::to_string(zone) + (north ? "N" : "S") + ": " + e.what());
 }
 
-// World (projected CRS) coordinates of the nodes, a row at a time: scaled_node with `unit`, or
-// for a geographic DEM the nodes projected to UTM/UPS (utm_projection.hpp); lo / hi bound them.
+// World (projected CRS) coordinates of the nodes, a row at a time: affine_node_world with `unit`,
+// or for a geographic DEM the nodes projected to UTM/UPS (geographic_nodes.hpp); lo / hi bound them.
 struct WorldXY {
     double unit = 1.0;
     std::optional<UtmRowProjector> utm;
@@ -89,18 +79,20 @@ WorldXY world_coordinates(const Raster& r, const DemOptions& options, Terrain& t
         const double deg = r.srs->GetAngularUnits(nullptr) * 180.0 / pi;
         const double unit = std::abs(deg - 1.0) < 1e-9 ? 1.0 : deg, meridian = r.srs->GetPrimeMeridian(nullptr);
         t.source_geographic = true;
-        w.lonlat = [&r, unit, meridian](int c, int row) { return scaled_node(r, unit, meridian, c, row); };
+        GeographicNodes g{r.gt, unit, meridian, r.w, r.h, options.utm_zone, options.north};
+        w.lonlat = [g](int c, int row) { return geographic_node_lonlat(g, c, row); };
         const glm::dvec2 centre = 0.5 * (w.lonlat(0, 0) + w.lonlat(r.w - 1, r.h - 1));
-        int zone = options.utm_zone;
-        bool north = options.north;
+        int& zone = g.zone;
+        bool& north = g.north;
         try {
             if (zone <= 0) zone = GeographicLib::UTMUPS::StandardZone(centre.y, centre.x), north = centre.y >= 0.0;
-            w.utm.emplace(r.w, r.h, w.lonlat, zone, north);  // the lattice form: a DEM is affine
+            w.utm.emplace(geographic_projector(g));
             bound_nodes(r, w);  // projects every row's ends: a row out of the zone's range fails here
         } catch (const GeographicLib::GeographicErr& e) {
             fail_utm(path, zone, north, e);
         }
         t.utm_zone = zone, t.north = north;
+        t.angular_unit = unit, t.prime_meridian = meridian;
         t.crs_wkt = utm_wkt(zone, north);
         return w;
     }
@@ -159,8 +151,8 @@ void each_node_xy(const Raster& r, const WorldXY& xy, const Terrain& t, const st
                 fail_utm(path, t.utm_zone, t.north, e);
             }
             for (int c = 0; c < r.w; ++c) {
-                const glm::dvec2 p = line[std::size_t(c)] - t.origin;
-                f(row * r.w + c, row, c, float(p.x), float(p.y));
+                const glm::vec2 p = local_xy(line[std::size_t(c)], t.origin);
+                f(row * r.w + c, row, c, p.x, p.y);
             }
         }
     });

@@ -33,6 +33,9 @@ struct Terrain {
     // source_row0 + r + 0.5), in the source CRS's units (degrees when source_geographic).
     std::array<double, 6> geotransform{0, 1, 0, 0, 0, -1};
     bool source_geographic = false;
+    // source_geographic: degrees per unit of the geotransform and the prime meridian's longitude
+    // (degrees east of Greenwich): node longitudes, latitudes as geographic_nodes.hpp gives them.
+    double angular_unit = 1.0, prime_meridian = 0.0;
     // > 0: pos.xy of node (c, r) is affine_node_xy(terrain_affine) (a DEM in a projected or no CRS: an affine
     // grid, geotransform in CRS units times xy_unit metres); 0: no such formula (e.g. geographic).
     double xy_unit = 0.0;

@@ -61,18 +61,6 @@ glm::dvec2 cubic(const std::array<double, 4>& k, glm::dvec2 a, glm::dvec2 b, glm
     return k[0] * a + k[1] * b + k[2] * c + k[3] * d;
 }
 
-// One row of w nodes from its values v at the sample columns s: those exact, cubic between.
-void interpolate_row(glm::dvec2* row, int w, const std::vector<int>& s, const std::vector<glm::dvec2>& v, int step,
-                     const std::vector<std::array<double, 4>>& weights) {
-    for (std::size_t i = 0; i + 1 < s.size(); ++i) {
-        const Window win(s, i, step);
-        const std::size_t f = win.first;
-        row[s[i]] = v[i];
-        for (int c = s[i] + 1; c < s[i + 1]; ++c) row[c] = cubic(win.at(s, i, c, weights), v[f], v[f + 1], v[f + 2], v[f + 3]);
-    }
-    row[w - 1] = v.back();
-}
-
 }  // namespace
 
 glm::dvec2 project_to_utm(glm::dvec2 lonlat, int zone, bool north) {
@@ -112,17 +100,35 @@ glm::dvec2 UtmRowProjector::from_lattice(std::size_t k, int r) const {
 }
 
 // Exact at the sample columns (their values from the lattice, the row's two ends always
-// projected), cubic between.
-void UtmRowProjector::row(int r, glm::dvec2* out) const {
+// projected), cubic between: each node from the four samples around its interval, so a span
+// computes only the samples its intervals use and its nodes are the whole row's, bit for bit.
+void UtmRowProjector::row_span(int r, int c0, int c1, glm::dvec2* out) const {
     if (cols_.empty()) {
-        for (int c = 0; c < w_; ++c) out[c] = exact(c, r);
+        for (int c = c0; c < c1; ++c) out[c - c0] = exact(c, r);
         return;
     }
-    std::vector<glm::dvec2> v(cols_.size());
-    for (std::size_t k = 0; k < cols_.size(); ++k)
-        v[k] = lattice_.empty() || k == 0 || k + 1 == cols_.size() ? exact(cols_[k], r) : from_lattice(k, r);
-    interpolate_row(out, w_, cols_, v, step_, weights_);
+    if (c0 >= c1) return;
+    const std::size_t n = cols_.size();
+    // the sample intervals [cols_[i], cols_[i + 1]) holding c0 and c1 - 1 (the last node: the last interval's end)
+    const auto interval = [&](int c) {
+        return std::min(std::size_t(std::upper_bound(cols_.begin(), cols_.end(), c) - cols_.begin()) - 1, n - 2);
+    };
+    const std::size_t i0 = interval(c0), i1 = interval(c1 - 1);
+    const std::size_t k0 = Window(cols_, i0, step_).first, k1 = Window(cols_, i1, step_).first + 4;
+    thread_local std::vector<glm::dvec2> v;  // samples k0 .. k1 - 1
+    v.resize(k1 - k0);
+    for (std::size_t k = k0; k < k1; ++k)
+        v[k - k0] = lattice_.empty() || k == 0 || k + 1 == n ? exact(cols_[k], r) : from_lattice(k, r);
+    for (std::size_t i = i0; i <= i1; ++i) {
+        const Window win(cols_, i, step_);
+        const glm::dvec2* s = v.data() + (win.first - k0);
+        for (int c = std::max(cols_[i], c0); c < std::min(cols_[i + 1], c1); ++c)
+            out[c - c0] = c == cols_[i] ? v[i - k0] : cubic(win.at(cols_, i, c, weights_), s[0], s[1], s[2], s[3]);
+    }
+    if (c1 == w_) out[w_ - 1 - c0] = v[n - 1 - k0];
 }
+
+void UtmRowProjector::row(int r, glm::dvec2* out) const { row_span(r, 0, w_, out); }
 
 UtmNodes project_grid_to_utm(int w, int h, const NodeLonLat& lonlat, int zone, bool north, int step) {
     UtmNodes out(std::size_t(std::max(w, 0)) * std::size_t(std::max(h, 0)));

@@ -37,6 +37,9 @@ public:
     // The lattice form (rows of an h-row grid affine in both directions; rows in parallel chunks).
     UtmRowProjector(int w, int h, NodeLonLat lonlat, int zone, bool north, int step = 16);
     void row(int r, glm::dvec2* out) const;  // out: w nodes
+    // Nodes c0 .. c1 - 1 of row r (0 <= c0 <= c1 <= w), exactly as row() gives them; out: c1 - c0
+    // nodes. Projects or interpolates only the samples around the span.
+    void row_span(int r, int c0, int c1, glm::dvec2* out) const;
     int zone() const { return zone_; }
     bool north() const { return north_; }
 

@@ -28,10 +28,11 @@ constexpr double terrain_base_bytes = 126e6;
 constexpr double drainage_s_at_reference = 13.6, drainage_reference_points = 13.86e6, drainage_exponent = 1.17;
 // Peak resident memory 477 MB at 3.47 M points and 1327 MB at 13.86 M: a line.
 constexpr double drainage_peak_bytes_per_point = 81.8, drainage_base_bytes = 193e6;
-// The terrain cache written (terrain_cache.hpp, coded: its size follows the DEM's smoothness):
-// 1.93 B a node on jacksboro refined 10 times, header included (2.4 refined 5 times, 2.3 on the
-// volcano, whose x, y are derived, 4.4 on jacksboro itself, up to 6.5 on a synthetic DEM of noise; 17.8 B as floats).
-constexpr double terrain_disk_bytes_per_node = 1.93;
+// The terrain cache written (terrain_cache.hpp, coded: its size follows the DEM's smoothness; x, y
+// derived on projected and geographic DEMs): 1.17 B a node on jacksboro refined 10 times, header
+// included (1.52 refined 5 times, 2.2 on the volcano, 2.95 on jacksboro itself, up to 6.5 on a
+// synthetic DEM of noise; 17.8 B as floats).
+constexpr double terrain_disk_bytes_per_node = 1.17;
 // The files written: 52 and 55.6 B a point.
 constexpr double drainage_disk_bytes_per_point = 56.0;
 

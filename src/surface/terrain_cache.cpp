@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include <GeographicLib/Constants.hpp>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -20,6 +21,7 @@
 #include "core/error.hpp"
 #include "core/hash64.hpp"
 #include "core/parallel_chunks.hpp"
+#include "input/geographic_nodes.hpp"
 
 namespace penink {
 
@@ -86,29 +88,83 @@ std::uint64_t block_count(std::uint64_t elems, unsigned shift) {
 // they are, errors as they are (neighbouring entries belong to different levels of the pyramid,
 // so differences do not shrink them).
 constexpr int pos_orders[3] = {2, 2, 1}, z_orders[1] = {1}, error_orders[1] = {0};
-constexpr std::uint32_t xy_derived = 1;  // header flag: x, y not stored, the affine grid gives them
+// Header flags: x, y not stored, the node's x, y given by a formula of the grid: the affine grid
+// (a projected DEM), or the projection of the node's longitude, latitude (a geographic DEM).
+constexpr std::uint32_t xy_affine = 1, xy_geographic = 2;
 
-// The affine grid the nodes' x, y lie on exactly (affine_node_xy of every node is its x, y, as the
-// DEM reader computes them on a projected DEM), from the grid's first node: then the cache stores
-// z alone. nullopt otherwise (a geographic DEM projected to UTM node by node, a terrain made
-// otherwise): x, y are stored.
-std::optional<AffineNodes> derived_xy(const Terrain& meta, const GridNodes& nodes) {
-    AffineNodes a;
-    if (!terrain_affine(meta, a) || a.col0 != 0 || a.row0 != 0) return std::nullopt;
+// The formula a grid's x, y follow (one of the flags), giving the x, y of a run of nodes.
+struct DerivedXY {
+    std::uint32_t flag = 0;
+    AffineNodes affine;
+    std::shared_ptr<const GeographicNodeXY> geographic;
+    glm::dvec2 origin{0.0};
+    int cols = 0;
+
+    // x, y of nodes c0 .. c1 - 1 of row r.
+    void span(int r, int c0, int c1, glm::vec2* out) const {
+        if (geographic) return geographic->span(r, c0, c1, out);
+        for (int c = c0; c < c1; ++c) out[c - c0] = affine_node_xy(affine, origin, c, r);
+    }
+    // x, y of `count` row-major nodes from node `first`, into the x, y of out (x, y, z each).
+    void nodes(std::uint64_t first, std::size_t count, glm::vec3* out) const {
+        thread_local std::vector<glm::vec2> xy;
+        for (std::uint64_t i = first; i < first + count;) {
+            const int r = int(i / std::uint64_t(cols)), c0 = int(i % std::uint64_t(cols));
+            const int c1 = int(std::min<std::uint64_t>(std::uint64_t(cols), c0 + (first + count - i)));
+            xy.resize(std::size_t(c1 - c0));
+            span(r, c0, c1, xy.data());
+            for (int c = c0; c < c1; ++c) out[i - first + std::uint64_t(c - c0)].x = xy[std::size_t(c - c0)].x,
+                                          out[i - first + std::uint64_t(c - c0)].y = xy[std::size_t(c - c0)].y;
+            i += std::uint64_t(c1 - c0);
+        }
+    }
+};
+
+// The formula of a grid's x, y (the flag set in `flags`): affine on a projected DEM's grid
+// (terrain_affine), the UTM projection of the lon/lat grid on a geographic DEM's
+// (terrain_geographic); nullopt when neither applies or fails (a zone that cannot hold the
+// lattice, read from a damaged header).
+std::optional<DerivedXY> derive_xy(const Terrain& meta, std::uint32_t flags) {
+    DerivedXY d;
+    d.origin = meta.origin, d.cols = meta.cols;
+    GeographicNodes g;
+    if ((flags & xy_affine) && terrain_affine(meta, d.affine) && d.affine.col0 == 0 && d.affine.row0 == 0) {
+        d.flag = xy_affine;
+        return d;
+    }
+    if ((flags & xy_geographic) && terrain_geographic(meta, g)) {
+        try {
+            d.geographic = std::make_shared<const GeographicNodeXY>(g, meta.origin);
+        } catch (const GeographicLib::GeographicErr&) {
+            return std::nullopt;
+        }
+        d.flag = xy_geographic;
+        return d;
+    }
+    return std::nullopt;
+}
+
+// The formula that gives every node's x, y exactly as the nodes hold them (bit for bit): then
+// the cache stores z alone. nullopt otherwise (a terrain made otherwise, cropped): x, y stored.
+std::optional<DerivedXY> derived_xy(const Terrain& meta, const GridNodes& nodes) {
+    const std::optional<DerivedXY> d = derive_xy(meta, xy_affine | xy_geographic);
+    if (!d) return std::nullopt;
     std::atomic<bool> exact{true};
     parallel_chunks(std::size_t(nodes.rows), 64, [&](std::size_t r0, std::size_t r1) {
-        for (std::size_t r = r0; r < r1 && exact.load(std::memory_order_relaxed); ++r)
+        std::vector<glm::vec2> xy(std::size_t(nodes.cols));
+        for (std::size_t r = r0; r < r1 && exact.load(std::memory_order_relaxed); ++r) {
+            d->span(int(r), 0, nodes.cols, xy.data());
             for (int c = 0; c < nodes.cols; ++c) {
-                const glm::vec2 xy = affine_node_xy(a, meta.origin, c, int(r));
                 const glm::vec3& p = nodes.pos[nodes.index(c, int(r))];
-                if (std::bit_cast<std::uint32_t>(xy.x) != std::bit_cast<std::uint32_t>(p.x) ||
-                    std::bit_cast<std::uint32_t>(xy.y) != std::bit_cast<std::uint32_t>(p.y)) {
+                if (std::bit_cast<std::uint32_t>(xy[std::size_t(c)].x) != std::bit_cast<std::uint32_t>(p.x) ||
+                    std::bit_cast<std::uint32_t>(xy[std::size_t(c)].y) != std::bit_cast<std::uint32_t>(p.y)) {
                     exact.store(false, std::memory_order_relaxed);
                     break;
                 }
             }
+        }
     });
-    return exact.load() ? std::optional<AffineNodes>(a) : std::nullopt;
+    return exact.load() ? d : std::nullopt;
 }
 
 // The coded blocks of one array.
@@ -131,8 +187,8 @@ struct CodedTerrain {
 CodedTerrain code_terrain(const StoredTerrain& t) {
     const Counts n = array_counts(t.meta.cols, t.meta.rows, t.lod.levels);
     CodedTerrain c;
-    if (derived_xy(t.meta, t.nodes)) {
-        c.flags |= xy_derived;
+    if (const std::optional<DerivedXY> d = derived_xy(t.meta, t.nodes)) {
+        c.flags |= d->flag;
         c.pos = code_blocks(n.nodes, [&](std::uint64_t i, std::uint64_t k) {
             std::vector<float> z(static_cast<std::size_t>(k));
             for (std::size_t j = 0; j < z.size(); ++j) z[j] = t.nodes.pos[i + j].z;
@@ -172,6 +228,7 @@ std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCac
     for (double g : m.geotransform) w.put(g);
     w.put(m.xy_unit), w.put(m.elevation_min), w.put(m.elevation_max);
     w.put(std::int32_t(m.utm_zone)), w.put(std::uint32_t(m.north));
+    w.put(m.angular_unit), w.put(m.prime_meridian);
     w.put(t.lod.lipschitz), w.put(t.lod.z_min), w.put(t.lod.z_max), w.put(0.0f);
     w.put(t.plan_lo.x), w.put(t.plan_lo.y), w.put(t.plan_hi.x), w.put(t.plan_hi.y);
     const std::size_t offsets = w.b.size();
@@ -279,6 +336,7 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     for (double& g : m.geotransform) g = r.get<double>();
     m.xy_unit = r.get<double>(), m.elevation_min = r.get<double>(), m.elevation_max = r.get<double>();
     m.utm_zone = r.get<std::int32_t>(), m.north = r.get<std::uint32_t>() != 0;
+    m.angular_unit = r.get<double>(), m.prime_meridian = r.get<double>();
     t.lod.lipschitz = r.get<float>(), t.lod.z_min = r.get<float>(), t.lod.z_max = r.get<float>();
     r.get<float>();
     t.plan_lo.x = r.get<double>(), t.plan_lo.y = r.get<double>(), t.plan_hi.x = r.get<double>(), t.plan_hi.y = r.get<double>();
@@ -294,7 +352,8 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     if (total != size || at[0] < length || at[1] < at[0] || at[2] < at[1] || total < at[2])
         return fail(why, "damaged terrain cache (lengths)");
     const std::uint32_t shift = r.get<std::uint32_t>(), flags = r.get<std::uint32_t>();
-    if (!r.ok || shift < min_block_shift || shift > max_block_shift || (flags & ~xy_derived) != 0)
+    if (!r.ok || shift < min_block_shift || shift > max_block_shift || (flags & ~(xy_affine | xy_geographic)) != 0 ||
+        flags == (xy_affine | xy_geographic))
         return fail(why, "damaged terrain cache (block checksums)");
     const std::uint64_t counts[3] = {block_count(n.nodes, shift), block_count(n.nodes, shift), block_count(n.padded, shift)};
     const std::uint64_t blocks = counts[0] + counts[1] + counts[2];
@@ -312,19 +371,17 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
         if (at[j] + coded != (j < 2 ? at[j + 1] : total)) return fail(why, "damaged terrain cache (lengths)");
     }
     arrays[0].elems = n.nodes, arrays[0].elem_bytes = sizeof(glm::vec3);
-    AffineNodes affine;
-    if ((flags & xy_derived) && !terrain_affine(m, affine)) return fail(why, "damaged terrain cache (grid)");
-    if (flags & xy_derived) {
-        arrays[0].decode = [affine, origin = m.origin, cols = std::uint64_t(m.cols)](
-                               const std::uint8_t* c, std::size_t bytes, void* out, std::uint64_t first, std::size_t count) {
+    if (flags) {
+        const std::optional<DerivedXY> derived = derive_xy(m, flags);
+        if (!derived) return fail(why, "damaged terrain cache (grid)");
+        arrays[0].decode = [d = *derived](const std::uint8_t* c, std::size_t bytes, void* out, std::uint64_t first,
+                                          std::size_t count) {
             thread_local std::vector<float> z;
             z.resize(count);
             if (!decode_floats(c, bytes, z.data(), count, z_orders)) return false;
             auto* p = static_cast<glm::vec3*>(out);
-            for (std::size_t j = 0; j < count; ++j) {
-                const std::uint64_t i = first + j;
-                p[j] = glm::vec3(affine_node_xy(affine, origin, int(i % cols), int(i / cols)), z[j]);
-            }
+            for (std::size_t j = 0; j < count; ++j) p[j].z = z[j];
+            d.nodes(first, count, p);
             return true;
         };
     } else {

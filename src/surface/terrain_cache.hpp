@@ -8,30 +8,35 @@
 // Frames and units: the Terrain's local metres (x east, y north, z elevation unexaggerated),
 // row 0 north (conventions.md); GridNodes::z_scale draws them at any exaggeration.
 //
-// File layout, little-endian, version 3 (one header, then three coded arrays):
+// File layout, little-endian, version 4 (one header, then three coded arrays):
 //   "PENINKTC", u32 version, u32 header length (bytes, up to and including its checksum)
 //   key: u64 DEM file size, i64 mtime (ns), u64 content hash, i32 forced UTM zone, u32 north
 //   grid: i32 cols, rows, levels, u32 source_geographic; f64 origin x, y; f64 geotransform[6];
-//         f64 xy_unit, elevation_min, elevation_max; i32 utm_zone, u32 north
+//         f64 xy_unit, elevation_min, elevation_max; i32 utm_zone, u32 north;
+//         f64 angular_unit, prime_meridian
 //   pyramid: f32 lipschitz, z_min, z_max, 0; f64 plan bounds lo.x, lo.y, hi.x, hi.y
 //   u64 offsets of pos, valid, error; u64 file length; u64 CRS length, CRS WKT bytes (padded to 8)
-//   u32 block shift s (blocks of 2^s elements: 256), u32 flags (1: x, y not stored, see below);
-//     u32 coded size of each block of pos,
+//   u32 block shift s (blocks of 2^s elements: 256), u32 flags (1 or 2: x, y not stored, see
+//     below); u32 coded size of each block of pos,
 //     then of valid, then of error (each array cut into blocks of elements from its start, the
 //     last one short; padded to 8); u64 hash64 of each block's coded bytes, in the same order
 //   u64 checksum: hash64 of every header byte before it
 //   then each array's blocks, coded (core/block_codec.hpp), back to back: pos (f32 x, y, z per
-//   node, cols * rows: encode_floats, x, y differenced twice, z once; with flag 1, z alone,
-//   differenced once, x, y being affine_node_xy on the grid's geotransform and xy_unit, as on
-//   every projected DEM: written so only when that formula gives every node's x, y exactly),
+//   node, cols * rows: encode_floats, x, y differenced twice, z once; with flag 1 or 2, z alone,
+//   differenced once, the x, y recomputed as the DEM reader computes them: flag 1,
+//   affine_node_xy on the grid's geotransform and xy_unit (a projected DEM); flag 2, the UTM
+//   projection of the node's longitude, latitude (input/geographic_nodes.hpp: a geographic DEM
+//   read whole); written so only when the formula gives every node's x, y bit for bit),
 //   valid (u8 per node: encode_bytes), error (f32 per padded node, (2^levels + 1)^2:
 //   encode_floats as they are).
 // The coding is lossless: a frame drawn from the file is the frame drawn from memory, bit for bit.
-// Its size follows the DEM's smoothness: 1.93 bytes a node (0.48 of the DEM's float32 heights) on
-// jacksboro refined 10 times (13.9 M nodes; 1.17 of positions, 0.02 of flags, 0.58 of errors,
-// 0.15 of header), 2.32 on examples/volcano.asc (projected: x, y derived), 4.36 on
-// examples/jacksboro.tif (1" heights in whole metres, rough at the cell scale: 1.09 of its
-// float32 heights); stored as floats it took 17.8 to 20.7.
+// Its size follows the DEM's smoothness: 1.17 bytes a node (0.29 of the DEM's float32 heights) on
+// jacksboro refined 10 times (13.9 M nodes, geographic: x, y derived; 0.48 of heights, 0.02 of
+// flags, 0.51 of errors, 0.15 of header; 1.93 with x, y stored and zlib's deflate), 1.52 refined
+// 5 times, 2.18 on examples/volcano.asc (projected), 2.95 on examples/jacksboro.tif (1" heights
+// in whole metres, rough at the cell scale: 0.74 of its float32 heights; 4.36 with x, y stored
+// and zlib); stored as floats it took 17.8 to 20.7. (`penink render DEM --cache-dir D`, then the
+// size of D/*.lod; bench/terrain_cache_bench.cpp.)
 // The header is checksummed and every length and offset is checked against the grid and the
 // file's size when the file is opened: a flipped header byte, a cut or a foreign file is refused
 // with its reason, and the caller rebuilds the cache. The arrays are read on demand
@@ -57,7 +62,7 @@
 
 namespace penink {
 
-inline constexpr std::uint32_t terrain_cache_version = 3;
+inline constexpr std::uint32_t terrain_cache_version = 4;
 
 struct TerrainCacheKey {
     std::uint64_t file_size = 0;

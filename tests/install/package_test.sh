@@ -19,7 +19,7 @@ version=$(sed -n 's/^set(CPACK_PACKAGE_VERSION "\(.*\)")$/\1/p' "$build/CPackCon
 [[ $(dpkg-deb -f "$deb" Version) == "$version" ]] || fail "version $(dpkg-deb -f "$deb" Version), want $version"
 depends=$(dpkg-deb -f "$deb" Depends)
 echo "Depends: $depends"
-for d in libopenimageio2.4 libgdal32 libosmesa6 zlib1g libc6 libstdc++6; do
+for d in libopenimageio2.4 libgdal32 libosmesa6 libdeflate0 libc6 libstdc++6; do
     [[ ", $depends," == *", $d "* || ", $depends," == *", $d,"* ]] || fail "Depends lacks $d"
 done
 

@@ -21,7 +21,7 @@ TEST(CacheBuildEstimate, TerrainDiskIsOfTheOrderOfTheFileWritten) {
     const double file = double(std::filesystem::file_size(dir.file("h.lod")));
     const double want = terrain_cache_estimate(300, 257).disk_bytes;
     EXPECT_LE(want, file);      // rough_hills: noise at the cell scale, coded larger than a real DEM
-    EXPECT_LE(file, 4.0 * want);
+    EXPECT_LE(file, 6.0 * want);  // 5.6 times here (6.5 bytes a node against 1.17)
 }
 
 TEST(CacheBuildEstimate, ReproducesTheMeasurementsItWasFittedTo) {
@@ -35,10 +35,10 @@ TEST(CacheBuildEstimate, ReproducesTheMeasurementsItWasFittedTo) {
     EXPECT_NEAR(t10.seconds, 2.3, 0.01);
     EXPECT_NEAR(t5.peak_bytes, 259e6, 5e6);
     EXPECT_NEAR(t10.peak_bytes, 658e6, 5e6);
-    EXPECT_NEAR(t10.disk_bytes, 26.7e6, 0.1e6);  // the .lod written
-    // a 1/3 arc-second NED tile, 10812 x 10812 nodes: 0.23 GB of terrain cache
+    EXPECT_NEAR(t10.disk_bytes, 16.2e6, 0.1e6);  // the .lod written
+    // a 1/3 arc-second NED tile, 10812 x 10812 nodes: 0.14 GB of terrain cache
     const CacheBuildEstimate ned = terrain_cache_estimate(10812, 10812);
-    EXPECT_NEAR(ned.disk_bytes, 0.23e9, 0.01e9);
+    EXPECT_NEAR(ned.disk_bytes, 0.14e9, 0.01e9);
     EXPECT_GT(drainage_cache_estimate(10812, 10812).seconds, 8.0 * d10.seconds);  // superlinear
 }
 

@@ -19,6 +19,8 @@
 #include "core/camera.hpp"
 #include "core/checked_blocks.hpp"
 #include "core/error.hpp"
+#include "input/dem_reader.hpp"
+#include "input/geographic_nodes.hpp"
 #include "surface/terrain_cache.hpp"
 #include "support/synthetic_terrain.hpp"
 #include "support/temp_dir.hpp"
@@ -223,8 +225,8 @@ TEST(TerrainCache, DamageInAnyBlockOfTheArraysIsFoundWhenRead) {
     ASSERT_TRUE(read_terrain_cache(path, key()));
     // array offsets: the coded arrays follow the header: pos, then valid, then error
     std::uint64_t at[3];
-    // prefix 16, key 32, grid 16 + 16 + 48 + 24 + 8, pyramid 16 + 32 bytes (terrain_cache.hpp)
-    std::memcpy(at, bytes.data() + 16 + 32 + 16 + 16 + 48 + 24 + 8 + 16 + 32, 24);
+    // prefix 16, key 32, grid 16 + 16 + 48 + 24 + 8 + 16, pyramid 16 + 32 bytes (terrain_cache.hpp)
+    std::memcpy(at, bytes.data() + 16 + 32 + 16 + 16 + 48 + 24 + 8 + 16 + 16 + 32, 24);
     std::uint32_t header = 0;
     std::memcpy(&header, bytes.data() + 12, 4);
     ASSERT_EQ(at[0], header);  // the offsets were read right
@@ -358,7 +360,7 @@ TEST(TerrainCache, SmallViewReadsASmallPartAndOnlyItsDamageCounts) {
 
 // The arrays are coded (core/block_codec.hpp): the file is a fraction of the floats it holds (13
 // bytes a node of positions and flags, 4 a padded node of errors; 0.25 and 0.24 of them here,
-// heights at float precision either way: a bound of 0.3 leaves room for another zlib's choices),
+// heights at float precision either way: a bound of 0.3 leaves room for another deflater's choices),
 // and holds exactly the header and the blocks CheckedBlocks reads.
 TEST(TerrainCache, CodedFileIsAFractionOfItsFloats) {
     test::TempDir dir;
@@ -382,6 +384,26 @@ TEST(TerrainCache, CodedFileIsAFractionOfItsFloats) {
     }
 }
 
+// Writes t's cache to `path` and reads it back whole: every node's position bit for bit and its
+// flag, and an oblique frame's mesh, as in memory; the georeference of a geographic DEM too.
+void expect_round_trip(const Terrain& t, const std::string& path) {
+    const StoredTerrain mem = store_terrain(t);
+    write_terrain_cache(path, mem, key());
+    const std::optional<StoredTerrain> map = read_terrain_cache(path, key());
+    ASSERT_TRUE(map);
+    EXPECT_EQ(map->meta.source_geographic, t.source_geographic);
+    EXPECT_EQ(map->meta.angular_unit, t.angular_unit);
+    EXPECT_EQ(map->meta.prime_meridian, t.prime_meridian);
+    read_whole(*map);
+    for (std::size_t i = 0; i < t.size(); ++i) {
+        ASSERT_EQ(std::memcmp(&map->nodes.pos[i], &t.pos[i], sizeof(glm::vec3)), 0) << i;  // bit for bit
+        ASSERT_EQ(map->nodes.valid[i], t.valid[i]) << i;
+    }
+    const Camera cam = oblique(mem, 2.0);
+    expect_same_mesh(select_lod_mesh(mem.lod, mem.drawn(2.0), 2.0, cam, LodOptions{}),
+                     select_lod_mesh(map->lod, map->drawn(2.0), 2.0, cam, LodOptions{}));
+}
+
 // On an affine grid (a projected DEM: every node's x, y is affine_node_xy of the geotransform, as
 // the DEM reader computes them) the cache stores z alone and derives x, y as it reads: the nodes
 // and the frames come back bit for bit, in a smaller file than the same terrain with one node's x
@@ -402,22 +424,34 @@ TEST(TerrainCache, XYOfAnAffineGridAreDerivedNotStored) {
     for (const Terrain* t : {&grid, &off}) {
         const bool affine = t == &grid;
         SCOPED_TRACE(affine ? "affine" : "one node off");
-        const StoredTerrain mem = store_terrain(*t);
-        const std::string path = dir.file(affine ? "affine.lod" : "off.lod");
-        write_terrain_cache(path, mem, key());
-        const std::optional<StoredTerrain> map = read_terrain_cache(path, key());
-        ASSERT_TRUE(map);
-        read_whole(*map);
-        for (std::size_t i = 0; i < t->size(); ++i) {
-            ASSERT_EQ(map->nodes.pos[i], t->pos[i]) << i;
-            ASSERT_EQ(map->nodes.valid[i], t->valid[i]) << i;
-        }
-        const Camera cam = oblique(mem, 2.0);
-        expect_same_mesh(select_lod_mesh(mem.lod, mem.drawn(2.0), 2.0, cam, LodOptions{}),
-                         select_lod_mesh(map->lod, map->drawn(2.0), 2.0, cam, LodOptions{}));
+        expect_round_trip(*t, dir.file(affine ? "affine.lod" : "off.lod"));
     }
     const double derived = double(std::filesystem::file_size(dir.file("affine.lod")));
     const double stored = double(std::filesystem::file_size(dir.file("off.lod")));
     std::printf("x, y derived: %.0f bytes; stored: %.0f\n", derived, stored);
     EXPECT_LT(derived + 0.4 * double(grid.size()), stored);  // x, y coded take 0.65 bytes a node here
+}
+
+// On a geographic DEM read whole (examples/jacksboro.tif, WGS 84) the DEM reader projects each
+// node's longitude, latitude to UTM (input/geographic_nodes.hpp): the cache stores z alone and
+// recomputes x, y as it reads, bit for bit as the reader made them, in a smaller file than the
+// same terrain with one node's y a float step off, whose x, y are all stored (and come back too).
+TEST(TerrainCache, XYOfAGeographicDemAreDerivedBitForBit) {
+    test::TempDir dir;
+    const Terrain dem = read_dem(PENINK_SOURCE_DIR "/examples/jacksboro.tif");
+    ASSERT_TRUE(dem.source_geographic);
+    GeographicNodes g;
+    ASSERT_TRUE(terrain_geographic(dem, g));
+    Terrain off = dem;
+    float& y = off.pos[off.index(200, 170)].y;
+    y = std::nextafter(y, 1e9f);
+    for (const Terrain* t : {&dem, static_cast<const Terrain*>(&off)}) {
+        const bool derived = t == &dem;
+        SCOPED_TRACE(derived ? "as read" : "one node off");
+        expect_round_trip(*t, dir.file(derived ? "derived.lod" : "off.lod"));
+    }
+    const double derived = double(std::filesystem::file_size(dir.file("derived.lod")));
+    const double stored = double(std::filesystem::file_size(dir.file("off.lod")));
+    std::printf("jacksboro: x, y derived: %.0f bytes; stored: %.0f\n", derived, stored);
+    EXPECT_LT(derived + 0.4 * double(dem.size()), stored);
 }

@@ -1,0 +1,29 @@
+#include "input/geographic_nodes.hpp"
+
+#include <vector>
+
+namespace penink {
+
+glm::dvec2 geographic_node_lonlat(const GeographicNodes& g, int c, int r) {
+    const glm::dvec2 p = affine_node_world(g.gt, g.unit, c, r);
+    return {p.x + g.meridian, p.y};
+}
+
+UtmRowProjector geographic_projector(const GeographicNodes& g) {
+    return UtmRowProjector(g.cols, g.rows, [g](int c, int r) { return geographic_node_lonlat(g, c, r); }, g.zone, g.north);
+}
+
+bool terrain_geographic(const Terrain& t, GeographicNodes& out) {
+    if (!t.source_geographic || t.utm_zone <= 0 || t.source_col0 != 0 || t.source_row0 != 0) return false;
+    out = {t.geotransform, t.angular_unit, t.prime_meridian, t.cols, t.rows, t.utm_zone, t.north};
+    return true;
+}
+
+void GeographicNodeXY::span(int r, int c0, int c1, glm::vec2* out) const {
+    thread_local std::vector<glm::dvec2> world;
+    world.resize(std::size_t(c1 - c0));
+    rows_.row_span(r, c0, c1, world.data());
+    for (int c = c0; c < c1; ++c) out[c - c0] = local_xy(world[std::size_t(c - c0)], origin_);
+}
+
+}  // namespace penink

@@ -1,0 +1,54 @@
+// The local x, y of a geographic DEM's nodes, as the DEM reader computes them (dem_reader.cpp),
+// so that a cache can recompute them instead of storing them: node (c, r)'s longitude and
+// latitude are the source geotransform at its centre (c + 0.5, r + 0.5) times the angular unit
+// (degrees per CRS unit), the prime meridian's longitude added to the longitude; they are
+// projected to UTM/UPS (zone, hemisphere) by UtmRowProjector in its lattice form over the whole
+// source grid (utm_projection.hpp: every 16th node exact, cubic between), the local origin is
+// subtracted (double) and the result rounded to float. The same functions in the same order on
+// both sides: the x, y come back bit for bit.
+#pragma once
+#include <array>
+
+#include <glm/vec2.hpp>
+
+#include "input/terrain.hpp"
+#include "input/utm_projection.hpp"
+
+namespace penink {
+
+struct GeographicNodes {
+    std::array<double, 6> gt{0, 1, 0, 0, 0, -1};  // source geotransform (row 0 north)
+    double unit = 1.0, meridian = 0.0;           // degrees per CRS unit; prime meridian, degrees east
+    int cols = 0, rows = 0;                      // the source grid (the lattice spans it)
+    int zone = 0;
+    bool north = true;
+};
+
+// (longitude, latitude) in degrees of node (c, r).
+glm::dvec2 geographic_node_lonlat(const GeographicNodes& g, int c, int r);
+
+// The projector of g's rows to UTM/UPS easting, northing (metres). Throws
+// GeographicLib::GeographicErr when a lattice node cannot be projected in g's zone.
+UtmRowProjector geographic_projector(const GeographicNodes& g);
+
+// A Terrain's geographic grid: true when t was read from a geographic DEM and projected to UTM
+// (source_geographic, utm_zone > 0) and is the whole source grid (source_col0, source_row0 0).
+bool terrain_geographic(const Terrain& t, GeographicNodes& out);
+
+// Local float x, y of a world point (metres) relative to `origin`: Terrain::pos.xy.
+inline glm::vec2 local_xy(glm::dvec2 world, glm::dvec2 origin) { return glm::vec2(world - origin); }
+
+// Local x, y of nodes c0 .. c1 - 1 of row r (out: c1 - c0), as the DEM reader stores them in
+// Terrain::pos when it read the whole grid of g. Built once (projects the lattice), then used
+// from any thread.
+class GeographicNodeXY {
+public:
+    GeographicNodeXY(const GeographicNodes& g, glm::dvec2 origin) : rows_(geographic_projector(g)), origin_(origin) {}
+    void span(int r, int c0, int c1, glm::vec2* out) const;
+
+private:
+    UtmRowProjector rows_;
+    glm::dvec2 origin_;
+};
+
+}  // namespace penink
