@@ -437,8 +437,19 @@ void end_stems_where_they_meet(DrapedLineSet& set, const std::vector<std::uint32
             // a squared distance above this one's square root exceeds `closest` (the bound's
             // 1e-9 lies far above sqrt's rounding): skipped without the square root
             double beyond = closest * closest * (1.0 + 1e-9);
+            // the box of the joined line's vertices: a vertex whose squared distance to it (the
+            // same roundings, each no larger than to any vertex inside) exceeds `beyond` is
+            // farther from all of them, and skipped without them
+            float bx0 = set.vertices[lo].x, bx1 = bx0, by0 = set.vertices[lo].y, by1 = by0;
+            for (std::int64_t j = lo + 1; j <= hi; ++j) {
+                bx0 = std::min(bx0, set.vertices[j].x), bx1 = std::max(bx1, set.vertices[j].x);
+                by0 = std::min(by0, set.vertices[j].y), by1 = std::max(by1, set.vertices[j].y);
+            }
             for (std::uint32_t i = from; i <= e; ++i) {
                 const DrapedVertex& v = set.vertices[i];
+                const double bx = std::max({double(bx0) - v.x, 0.0, v.x - double(bx1)});
+                const double by = std::max({double(by0) - v.y, 0.0, v.y - double(by1)});
+                if (bx * bx + by * by > beyond) continue;
                 for (std::int64_t j = lo; j <= hi; ++j) {
                     const double dx = double(set.vertices[j].x) - v.x, dy = double(set.vertices[j].y) - v.y;
                     if (dx * dx + dy * dy > beyond) continue;
@@ -803,15 +814,23 @@ DrapedLineSet ridge_part(const DrainageGrid& g, const DemSurface& surface, const
 }
 
 void drape_lines(DrapedLineSet& set, const DemSurface& surface, const LineProgress& progress) {
-    // In batches of lines so the progress moves; each thread walks its lines with the cell of the
-    // vertex before as the next one's start.
+    // In batches of lines so the progress moves, batches and the threads' chunks cut at the lines
+    // whose first vertex ends an equal share of the vertices (the lines lie in order from vertex
+    // 0: one long stem costs what many short ones do); each thread walks its lines with the cell
+    // of the vertex before as the next one's start.
     constexpr std::size_t batches = 16;
-    const std::size_t nl = set.lines.size(), per = (nl + batches - 1) / batches;
-    for (std::size_t b = 0; b < batches && b * per < nl; ++b) {
-        const std::size_t end = std::min(nl, (b + 1) * per);
-        parallel_chunks(end - b * per, 256, [&](std::size_t l0, std::size_t l1) {
+    const std::size_t nl = set.lines.size(), nv = set.vertices.size();
+    auto line_at = [&](std::size_t v) {  // the first line starting at vertex v or after
+        return std::size_t(std::partition_point(set.lines.begin(), set.lines.end(),
+                                                [&](const DrapedLine& l) { return l.first < v; }) - set.lines.begin());
+    };
+    auto first_of = [&](std::size_t l) { return l < nl ? std::size_t(set.lines[l].first) : nv; };
+    for (std::size_t b = 0, l0 = 0; b < batches && l0 < nl; ++b) {
+        const std::size_t l1 = b + 1 == batches ? nl : std::max(l0 + 1, line_at((b + 1) * nv / batches));
+        const std::size_t v0 = first_of(l0), v1 = first_of(l1);
+        parallel_chunks(v1 - v0, 4096, [&](std::size_t c0, std::size_t c1) {
             const DemDraper draper(surface);
-            for (std::size_t i = b * per + l0; i < b * per + l1; ++i) {
+            for (std::size_t i = line_at(v0 + c0), end = c1 == v1 - v0 ? l1 : line_at(v0 + c1); i < end; ++i) {
                 const DrapedLine& l = set.lines[i];
                 int c = -1, r = -1;
                 for (std::uint32_t k = 0; k < l.count; ++k) {
@@ -827,7 +846,8 @@ void drape_lines(DrapedLineSet& set, const DemSurface& surface, const LineProgre
                 }
             }
         });
-        if (progress) progress(double(end) / double(nl));
+        l0 = l1;
+        if (progress) progress(double(l1) / double(nl));
     }
     index_lines(set);
     if (progress) progress(1.0);

@@ -181,14 +181,14 @@ void trace_stem(const Stem& stem, const GridField& field, const FallLineOptions&
         }
         const glm::dvec2 step = s[k + 1] - s[k];
         const double ds = norm(step.x, step.y);
-        glm::dvec2 next = p + step + back_towards(s[k] - p, ds);  // no usable fall line: along S, back towards it
-        glm::dvec2 d1, d2;
+        bool falls = false;  // next = p + ds * d along the fall line, else along S, back towards it
+        glm::dvec2 d1, d2, d;
         double slope2 = 0.0;
         bool along = false;  // the fall line runs with the stem: the corridor may widen
         if (ds > 0.0 && fall_direction(field, f, p, d1, &slope2)) {
             // Heun's step: the mean of the directions here and one step on (across a V-shaped
             // valley's floor they cancel across it and add along it)
-            glm::dvec2 d = d1;
+            d = d1;
             if (fall_direction(field, f, p + ds * d1, d2)) {
                 const glm::dvec2 m = d1 + d2;
                 const double ml = norm(m.x, m.y);
@@ -197,7 +197,7 @@ void trace_stem(const Stem& stem, const GridField& field, const FallLineOptions&
             const glm::dvec2 pt = step.x * f.u + step.y * f.v, pd = d.x * f.u + d.y * f.v;
             const double cosine = glm::dot(pt, pd) / (norm(pt.x, pt.y) * norm(pd.x, pd.y));
             along = cosine > widen_cos;
-            if (cosine > min_cos) next = p + ds * d;
+            falls = cosine > min_cos;
             const glm::dvec2 ahead = p + ds * d1;  // the fall line leaves the grid: the crease ends
             if (ahead.x < 0.0 || ahead.y < 0.0 || ahead.x > double(field.cols() - 1) || ahead.y > double(field.rows() - 1)) {
                 stopped = true;
@@ -205,6 +205,7 @@ void trace_stem(const Stem& stem, const GridField& field, const FallLineOptions&
                 continue;
             }
         }
+        const glm::dvec2 next = falls ? p + ds * d : p + step + back_towards(s[k] - p, ds);
         run = slope2 > widen_slope2 && along ? std::min(o.max_corridor, run + o.widen * ds) : std::max(o.corridor, run - o.widen * ds);
         const glm::dvec2 e = next - s[k + 1];
         const double el = norm(e.x, e.y), corridor = std::min(o.max_corridor, run);
