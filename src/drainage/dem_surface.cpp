@@ -240,9 +240,13 @@ bool DemDraper::locate(double x, double y, int& c, int& r, DemHit& hit) const {
 // The positions and normals of a hit's three nodes (node, normal): the column and row of its first
 // node divided out once, the others' from their offsets (a cell's corners; any other by division).
 void DemDraper::corners(const DemHit& hit, glm::vec3 p[3], glm::vec3 n[3]) const {
-    const std::uint32_t cols = std::uint32_t(s_->cols()), i0 = hit.node[0];
-    const int c0 = int(i0 % cols), r0 = int(i0 / cols);
     s_->with_nodes([&](const auto& node) {
+        if constexpr (std::decay_t<decltype(node)>::by_index) {
+            for (int k = 0; k < 3; ++k) p[k] = node(hit.node[k]), n[k] = s_->normal(std::size_t(hit.node[k]));
+            return;
+        }
+        const std::uint32_t cols = std::uint32_t(s_->cols()), i0 = hit.node[0];
+        const int c0 = int(i0 % cols), r0 = int(i0 / cols);
         for (int k = 0; k < 3; ++k) {
             const std::uint32_t i = hit.node[k], d = i - i0;
             int c = c0, r = r0;

@@ -109,6 +109,12 @@ public:
         XY xy;
         const float* z;
         const glm::vec3* pos;
+        // node i read without its column and row (per-node x, y)
+        static constexpr bool by_index = std::is_same_v<XY, PosXY> || std::is_same_v<XY, StoredXY>;
+        glm::vec3 operator()(std::size_t i) const {
+            if constexpr (std::is_same_v<XY, PosXY>) return pos[i];
+            else return {xy.xy[i].x, xy.xy[i].y, z[i]};
+        }
         glm::vec3 operator()(int c, int r, std::size_t i) const {
             if constexpr (std::is_same_v<XY, PosXY>) return pos[i];
             else {

@@ -14,6 +14,7 @@
 #include "drainage/d8.hpp"
 #include "drainage/stems.hpp"
 #include "drainage/fall_line_stems.hpp"
+#include "drainage/line_chunks.hpp"
 #include "drainage/polyline_smoothing.hpp"
 #include "drainage/ridge_crests.hpp"
 
@@ -437,25 +438,40 @@ void end_stems_where_they_meet(DrapedLineSet& set, const std::vector<std::uint32
             // a squared distance above this one's square root exceeds `closest` (the bound's
             // 1e-9 lies far above sqrt's rounding): skipped without the square root
             double beyond = closest * closest * (1.0 + 1e-9);
-            // the box of the joined line's vertices: a vertex whose squared distance to it (the
-            // same roundings, each no larger than to any vertex inside) exceeds `beyond` is
-            // farther from all of them, and skipped without them
-            float bx0 = set.vertices[lo].x, bx1 = bx0, by0 = set.vertices[lo].y, by1 = by0;
-            for (std::int64_t j = lo + 1; j <= hi; ++j) {
-                bx0 = std::min(bx0, set.vertices[j].x), bx1 = std::max(bx1, set.vertices[j].x);
-                by0 = std::min(by0, set.vertices[j].y), by1 = std::max(by1, set.vertices[j].y);
+            // the boxes of the joined line's vertices in groups of 4: a group whose box's squared
+            // distance to a vertex (the same roundings, each no larger than to any vertex inside)
+            // exceeds `beyond` lies farther from it with all its vertices, skipped without them
+            constexpr std::int64_t group = 4;
+            struct Box {
+                float x0, x1, y0, y1;
+            };
+            Box boxes[64];
+            const std::int64_t ng = std::min<std::int64_t>((hi - lo + group) / group, 64);
+            for (std::int64_t g = 0; g < ng; ++g) {
+                const std::int64_t j0 = lo + g * group, j1 = g + 1 == ng ? hi : std::min(hi, j0 + group - 1);
+                Box& b = boxes[g];
+                b = {set.vertices[j0].x, set.vertices[j0].x, set.vertices[j0].y, set.vertices[j0].y};
+                for (std::int64_t j = j0 + 1; j <= j1; ++j) {
+                    b.x0 = std::min(b.x0, set.vertices[j].x), b.x1 = std::max(b.x1, set.vertices[j].x);
+                    b.y0 = std::min(b.y0, set.vertices[j].y), b.y1 = std::max(b.y1, set.vertices[j].y);
+                }
             }
-            for (std::uint32_t i = from; i <= e; ++i) {
+            // from the end back (a trace's last vertices come closest: the bound shrinks early), a
+            // distance equal to the closest taking the earlier vertex: the first of equals
+            for (std::uint32_t i = e + 1; i-- > from;) {
                 const DrapedVertex& v = set.vertices[i];
-                const double bx = std::max({double(bx0) - v.x, 0.0, v.x - double(bx1)});
-                const double by = std::max({double(by0) - v.y, 0.0, v.y - double(by1)});
-                if (bx * bx + by * by > beyond) continue;
-                for (std::int64_t j = lo; j <= hi; ++j) {
-                    const double dx = double(set.vertices[j].x) - v.x, dy = double(set.vertices[j].y) - v.y;
-                    if (dx * dx + dy * dy > beyond) continue;
-                    const double d = plan_length(dx, dy);
-                    if (d < closest || (d == closest && stop[k] == 0xffffffffu))
-                        closest = d, stop[k] = i, beyond = closest * closest * (1.0 + 1e-9);
+                for (std::int64_t g = 0; g < ng; ++g) {
+                    const Box& b = boxes[g];
+                    const double bx = std::max({double(b.x0) - v.x, 0.0, v.x - double(b.x1)});
+                    const double by = std::max({double(b.y0) - v.y, 0.0, v.y - double(b.y1)});
+                    if (bx * bx + by * by > beyond) continue;
+                    const std::int64_t j0 = lo + g * group, j1 = g + 1 == ng ? hi : std::min(hi, j0 + group - 1);
+                    for (std::int64_t j = j0; j <= j1; ++j) {
+                        const double dx = double(set.vertices[j].x) - v.x, dy = double(set.vertices[j].y) - v.y;
+                        if (dx * dx + dy * dy > beyond) continue;
+                        const double d = plan_length(dx, dy);
+                        if (d <= closest) closest = d, stop[k] = i, beyond = closest * closest * (1.0 + 1e-9);
+                    }
                 }
             }
         }
@@ -535,10 +551,10 @@ DrapedLineSet walk_stems(const StemWalk& walk, const DrainageGrid& g, const std:
 }
 
 std::vector<std::uint32_t> sources_of(const StemWalk& walk, const DrainageGrid& g) {
-    std::vector<std::uint32_t> sources;
-    for (std::size_t i = 0; i < g.size(); ++i)
-        if (g.valid[i] && walk.indeg[i] == 0) sources.push_back(std::uint32_t(i));
-    return sources;
+    return parallel_collect<std::uint32_t>(g.size(), 1 << 16, [&](std::size_t i0, std::size_t i1, std::vector<std::uint32_t>& out) {
+        for (std::size_t i = i0; i < i1; ++i)
+            if (g.valid[i] && walk.indeg[i] == 0) out.push_back(std::uint32_t(i));
+    });
 }
 
 }  // namespace
@@ -814,23 +830,16 @@ DrapedLineSet ridge_part(const DrainageGrid& g, const DemSurface& surface, const
 }
 
 void drape_lines(DrapedLineSet& set, const DemSurface& surface, const LineProgress& progress) {
-    // In batches of lines so the progress moves, batches and the threads' chunks cut at the lines
-    // whose first vertex ends an equal share of the vertices (the lines lie in order from vertex
-    // 0: one long stem costs what many short ones do); each thread walks its lines with the cell
-    // of the vertex before as the next one's start.
+    // In batches of lines so the progress moves, batches and the threads' chunks of equal shares
+    // of the vertices (line_chunks.hpp); each thread walks its lines with the cell of the vertex
+    // before as the next one's start.
     constexpr std::size_t batches = 16;
     const std::size_t nl = set.lines.size(), nv = set.vertices.size();
-    auto line_at = [&](std::size_t v) {  // the first line starting at vertex v or after
-        return std::size_t(std::partition_point(set.lines.begin(), set.lines.end(),
-                                                [&](const DrapedLine& l) { return l.first < v; }) - set.lines.begin());
-    };
-    auto first_of = [&](std::size_t l) { return l < nl ? std::size_t(set.lines[l].first) : nv; };
     for (std::size_t b = 0, l0 = 0; b < batches && l0 < nl; ++b) {
-        const std::size_t l1 = b + 1 == batches ? nl : std::max(l0 + 1, line_at((b + 1) * nv / batches));
-        const std::size_t v0 = first_of(l0), v1 = first_of(l1);
-        parallel_chunks(v1 - v0, 4096, [&](std::size_t c0, std::size_t c1) {
+        const std::size_t l1 = b + 1 == batches ? nl : std::max(l0 + 1, line_at(set.lines, (b + 1) * nv / batches));
+        parallel_line_chunks(set.lines, nv, l0, l1, 4096, [&](std::size_t i0, std::size_t i1) {
             const DemDraper draper(surface);
-            for (std::size_t i = line_at(v0 + c0), end = c1 == v1 - v0 ? l1 : line_at(v0 + c1); i < end; ++i) {
+            for (std::size_t i = i0; i < i1; ++i) {
                 const DrapedLine& l = set.lines[i];
                 int c = -1, r = -1;
                 for (std::uint32_t k = 0; k < l.count; ++k) {
@@ -863,12 +872,27 @@ bool has_relief(const DrainageGrid& g) {
     const bool coarse = !g.coarse_z.empty();
     const std::vector<float>& z = coarse ? g.coarse_z : g.z;
     const std::vector<std::uint8_t>& valid = coarse ? g.coarse_valid : g.valid;
+    // per chunk on all cores: whether any valid height differs from the chunk's first
+    const std::size_t n = std::min(z.size(), valid.size());
+    struct Span {
+        bool any = false;
+        float lo = 0.0f, hi = 0.0f;
+    };
+    const std::vector<Span> spans = parallel_collect<Span>(n, 1 << 16, [&](std::size_t i0, std::size_t i1, std::vector<Span>& out) {
+        Span s;
+        for (std::size_t i = i0; i < i1; ++i) {
+            if (!valid[i]) continue;
+            if (!s.any) s.lo = s.hi = z[i], s.any = true;
+            s.lo = std::min(s.lo, z[i]), s.hi = std::max(s.hi, z[i]);
+        }
+        out.push_back(s);
+    });
     bool any = false;
     float lo = 0.0f, hi = 0.0f;
-    for (std::size_t i = 0; i < z.size() && i < valid.size(); ++i) {
-        if (!valid[i]) continue;
-        if (!any) lo = hi = z[i], any = true;
-        lo = std::min(lo, z[i]), hi = std::max(hi, z[i]);
+    for (const Span& s : spans) {
+        if (!s.any) continue;
+        if (!any) lo = s.lo, hi = s.hi, any = true;
+        lo = std::min(lo, s.lo), hi = std::max(hi, s.hi);
     }
     return any && hi > lo;
 }

@@ -5,7 +5,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "core/parallel_chunks.hpp"
+#include "drainage/line_chunks.hpp"
 #include "drainage/polyline_smoothing.hpp"
 
 namespace penink {
@@ -43,23 +43,38 @@ public:
         return {grid_xy(g_, c + 1, r) - o, grid_xy(g_, c, r + 1) - o};
     }
 
+    // The central differences at the four nodes of the last cell whose 4 x 4 nodes all hold data
+    // (a thread's: a trace's next points mostly lie in the cell of the one before).
+    struct CellDiffs {
+        int c = -1, r = -1;
+        glm::dvec2 node[4];
+    };
+
     // dz/dc, dz/dr at fine index point p: bilinear between the four DEM nodes' central
     // differences around it; false beside nodata.
-    bool gradient(glm::dvec2 fine, glm::dvec2& grad) const {
+    bool gradient(glm::dvec2 fine, glm::dvec2& grad, CellDiffs& last) const {
         const glm::dvec2 p = scale_ == 1.0 ? fine : fine / scale_;  // x / 1 is x: no division at factor 1
         int c, r;
         cell(p, c, r);
         const double fu = std::clamp(p.x - c, 0.0, 1.0), fv = std::clamp(p.y - r, 0.0, 1.0);
         grad = glm::dvec2(0.0);
         const double w[4] = {(1 - fu) * (1 - fv), fu * (1 - fv), (1 - fu) * fv, fu * fv};
-        if (c >= 1 && r >= 1 && c + 2 < cols_ && r + 2 < rows_ && block_valid(c, r)) {
-            // the 4 x 4 nodes around all hold data: central differences throughout
-            const float* z = z_ + index(c, r);
-            const std::ptrdiff_t row = cols_;
-            for (int k = 0; k < 4; ++k) {
-                const float* n = z + (k >> 1) * row + (k & 1);
-                grad += w[k] * glm::dvec2(0.5 * (double(n[1]) - n[-1]), 0.5 * (double(n[row]) - n[-row]));
+        if (c != last.c || r != last.r) {
+            if (c >= 1 && r >= 1 && c + 2 < cols_ && r + 2 < rows_ && block_valid(c, r)) {
+                // the 4 x 4 nodes around all hold data: central differences throughout
+                const float* z = z_ + index(c, r);
+                const std::ptrdiff_t row = cols_;
+                for (int k = 0; k < 4; ++k) {
+                    const float* n = z + (k >> 1) * row + (k & 1);
+                    last.node[k] = glm::dvec2(0.5 * (double(n[1]) - n[-1]), 0.5 * (double(n[row]) - n[-row]));
+                }
+                last.c = c, last.r = r;
+            } else {
+                last.c = last.r = -1;
             }
+        }
+        if (last.c >= 0) {
+            for (int k = 0; k < 4; ++k) grad += w[k] * last.node[k];
             if (scale_ != 1.0) grad /= scale_;
             return true;
         }
@@ -124,9 +139,10 @@ bool descent(const Frame& f, glm::dvec2 gr, glm::dvec2& d) {
 
 // Unit index-space fall direction at p on frame f; false where there is none (nodata, flat).
 // `slope2`: the squared plan slope there (|grad z|^2 = -gr . d before d is made a unit vector).
-bool fall_direction(const GridField& field, const Frame& f, glm::dvec2 p, glm::dvec2& d, double* slope2 = nullptr) {
+bool fall_direction(const GridField& field, const Frame& f, glm::dvec2 p, glm::dvec2& d, GridField::CellDiffs& last,
+                    double* slope2 = nullptr) {
     glm::dvec2 gr;
-    if (!field.gradient(p, gr) || !descent(f, gr, d)) return false;
+    if (!field.gradient(p, gr, last) || !descent(f, gr, d)) return false;
     if (slope2) *slope2 = -glm::dot(gr, d);
     d /= norm(d.x, d.y);
     return true;
@@ -154,6 +170,7 @@ struct StemScratch {
         : kernel(o.sigma), widen_cos(std::cos(o.widen_max_deg * deg)),
           widen_slope2(std::pow(std::tan(o.widen_min_slope_deg * deg), 2)) {}
     std::vector<glm::dvec2> q, s;
+    GridField::CellDiffs last;
     GaussianKernel kernel;
     double widen_cos, widen_slope2;
 };
@@ -185,11 +202,11 @@ void trace_stem(const Stem& stem, const GridField& field, const FallLineOptions&
         glm::dvec2 d1, d2, d;
         double slope2 = 0.0;
         bool along = false;  // the fall line runs with the stem: the corridor may widen
-        if (ds > 0.0 && fall_direction(field, f, p, d1, &slope2)) {
+        if (ds > 0.0 && fall_direction(field, f, p, d1, scratch.last, &slope2)) {
             // Heun's step: the mean of the directions here and one step on (across a V-shaped
             // valley's floor they cancel across it and add along it)
             d = d1;
-            if (fall_direction(field, f, p + ds * d1, d2)) {
+            if (fall_direction(field, f, p + ds * d1, d2, scratch.last)) {
                 const glm::dvec2 m = d1 + d2;
                 const double ml = norm(m.x, m.y);
                 if (ml > 1e-6) d = m / ml;
@@ -242,7 +259,7 @@ void trace_fall_lines(DrapedLineSet& set, const std::vector<std::uint32_t>& cell
                       const FallLineOptions& o) {
     if (g.cols < 2 || g.rows < 2) return;
     const GridField field(g);
-    parallel_chunks(set.lines.size(), 1024, [&](std::size_t l0, std::size_t l1) {
+    parallel_line_chunks(set.lines, set.vertices.size(), 0, set.lines.size(), 4096, [&](std::size_t l0, std::size_t l1) {
         StemScratch scratch(o);
         for (std::size_t i = l0; i < l1; ++i) {
             const DrapedLine& l = set.lines[i];

@@ -8,8 +8,10 @@ namespace {
 
 // Edge control point near pi on edge pi->pj: (2 pi + pj - ((pj - pi) . ni) ni) / 3, whole
 // (T = vec3) or one coordinate (T = float; d = (pj - pi) . ni either way).
-template <class T> T edge_point(const T& pi, const T& pj, float d, const T& ni) { return (2.0f * pi + pj - d * ni) / 3.0f; }
-glm::vec3 edge_point(const glm::vec3& pi, const glm::vec3& pj, const glm::vec3& ni) {
+template <class T> [[gnu::always_inline]] inline T edge_point(const T& pi, const T& pj, float d, const T& ni) {
+    return (2.0f * pi + pj - d * ni) / 3.0f;
+}
+[[gnu::always_inline]] inline glm::vec3 edge_point(const glm::vec3& pi, const glm::vec3& pj, const glm::vec3& ni) {
     return edge_point(pi, pj, glm::dot(pj - pi, ni), ni);
 }
 
@@ -28,8 +30,10 @@ template <class T> T cubic(const T* b, float w, float u, float v) {
 }
 
 // Mid-edge normal: reflection of ni + nj across the plane perpendicular to the edge.
-glm::vec3 edge_normal(const glm::vec3& pi, const glm::vec3& pj, const glm::vec3& ni,
-                      const glm::vec3& nj) {
+// Inlined with edge_point into their callers (pn_height_normal, pn_patch): the same floats, without
+// the calls.
+[[gnu::always_inline]] inline glm::vec3 edge_normal(const glm::vec3& pi, const glm::vec3& pj, const glm::vec3& ni,
+                                                    const glm::vec3& nj) {
     const glm::vec3 e = pj - pi;
     const float ee = glm::dot(e, e);
     const float v = ee > 0.0f ? 2.0f * glm::dot(e, ni + nj) / ee : 0.0f;
