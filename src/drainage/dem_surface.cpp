@@ -274,4 +274,10 @@ float DemDraper::height_normal(const DemHit& hit, glm::vec3& normal) const {
     return pn_height_normal(p[0], p[1], p[2], n[0], n[1], n[2], hit.bary, normal);
 }
 
+void DemDraper::height_normal4(const DemHit hits[4], float z[4], glm::vec3 normal[4]) const {
+    glm::vec3 p[4][3], n[4][3], t[4];
+    for (int i = 0; i < 4; ++i) corners(hits[i], p[i], n[i]), t[i] = hits[i].bary;
+    pn_height_normal4(p, n, t, z, normal);
+}
+
 }  // namespace penink

@@ -162,6 +162,9 @@ public:
     void position_normal(const DemHit& hit, glm::vec3& position, glm::vec3& normal) const;
     // position_normal's z (returned) and normal, the same floats (pn_height_normal).
     float height_normal(const DemHit& hit, glm::vec3& normal) const;
+    // height_normal of four hits at once (z[i], normal[i] of hits[i]; pn_height_normal4), the
+    // same floats.
+    void height_normal4(const DemHit hits[4], float z[4], glm::vec3 normal[4]) const;
 
 private:
     const DemSurface* s_;

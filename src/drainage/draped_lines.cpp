@@ -839,21 +839,33 @@ void drape_lines(DrapedLineSet& set, const DemSurface& surface, const LineProgre
         const std::size_t l1 = b + 1 == batches ? nl : std::max(l0 + 1, line_at(set.lines, (b + 1) * nv / batches));
         parallel_line_chunks(set.lines, nv, l0, l1, 4096, [&](std::size_t i0, std::size_t i1) {
             const DemDraper draper(surface);
+            // the located vertices evaluated four at a time (height_normal4: the same floats)
+            DemHit hits[4];
+            DrapedVertex* at[4];
+            int pending = 0;
+            auto evaluate = [&] {
+                float z[4];
+                glm::vec3 n[4];
+                if (pending == 4) draper.height_normal4(hits, z, n);
+                else
+                    for (int j = 0; j < pending; ++j) z[j] = draper.height_normal(hits[j], n[j]);
+                for (int j = 0; j < pending; ++j) at[j]->z = z[j], at[j]->nx = n[j].x, at[j]->ny = n[j].y, at[j]->nz = n[j].z;
+                pending = 0;
+            };
             for (std::size_t i = i0; i < i1; ++i) {
                 const DrapedLine& l = set.lines[i];
                 int c = -1, r = -1;
                 for (std::uint32_t k = 0; k < l.count; ++k) {
                     DrapedVertex& v = set.vertices[l.first + k];
-                    DemHit hit;
-                    if (!draper.locate(v.x, v.y, c, r, hit)) {
+                    if (!draper.locate(v.x, v.y, c, r, hits[pending])) {
                         v.nx = v.ny = v.nz = 0.0f;
                         continue;
                     }
-                    glm::vec3 n;
-                    v.z = draper.height_normal(hit, n);
-                    v.nx = n.x, v.ny = n.y, v.nz = n.z;
+                    at[pending++] = &v;
+                    if (pending == 4) evaluate();
                 }
             }
+            evaluate();
         });
         l0 = l1;
         if (progress) progress(double(l1) / double(nl));

@@ -5,6 +5,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/floor_index.hpp"
 #include "drainage/line_chunks.hpp"
 #include "drainage/polyline_smoothing.hpp"
 
@@ -37,8 +38,8 @@ public:
 
     // Plan steps of a column and a row at the cell holding p (index space).
     Frame frame(glm::dvec2 p) const {
-        const int c = int(std::clamp(std::floor(p.x), 0.0, double(g_.cols - 2)));
-        const int r = int(std::clamp(std::floor(p.y), 0.0, double(g_.rows - 2)));
+        const int c = floor_index(p.x, g_.cols - 2);
+        const int r = floor_index(p.y, g_.rows - 2);
         const glm::dvec2 o = grid_xy(g_, c, r);
         return {grid_xy(g_, c + 1, r) - o, grid_xy(g_, c, r + 1) - o};
     }
@@ -101,8 +102,8 @@ private:
 
     std::size_t index(int c, int r) const { return std::size_t(r) * std::size_t(cols_) + std::size_t(c); }
     void cell(glm::dvec2 p, int& c, int& r) const {
-        c = int(std::clamp(std::floor(p.x), 0.0, double(cols_ - 2)));
-        r = int(std::clamp(std::floor(p.y), 0.0, double(rows_ - 2)));
+        c = floor_index(p.x, cols_ - 2);
+        r = floor_index(p.y, rows_ - 2);
     }
     // The 4 x 4 nodes from (c - 1, r - 1) hold data (corners not needed, read anyway).
     bool block_valid(int c, int r) const {

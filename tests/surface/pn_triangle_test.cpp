@@ -111,6 +111,44 @@ TEST(PnTriangle, HeightNormalIsThePatchsZAndNormalBitForBit) {
     EXPECT_EQ(checked, 20000);
 }
 
+// Four patches at once give each patch's pn_height_normal to the bit, lanes mixed with the
+// degenerate cases that take the other side of its choices (a zero-length edge: no reflection;
+// opposite vertex normals: a zero mid-edge normal, the fallback taken).
+TEST(PnTriangle, FourLanesAreTheHeightNormalBitForBit) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> h(-50.0f, 900.0f), tilt(-0.8f, 0.8f), spacing(1.0f, 40.0f), b(0.0f, 1.0f);
+    auto bits = [](float f) {
+        std::uint32_t u;
+        std::memcpy(&u, &f, 4);
+        return u;
+    };
+    for (int i = 0; i < 5000; ++i) {
+        glm::vec3 p[4][3], n[4][3], t[4];
+        for (int lane = 0; lane < 4; ++lane) {
+            const float dx = spacing(rng), dy = spacing(rng), x0 = 1000.0f * b(rng), y0 = 1000.0f * b(rng);
+            p[lane][0] = {x0, y0, h(rng)}, p[lane][1] = {x0, y0 - dy, h(rng)}, p[lane][2] = {x0 + dx, y0 - dy, h(rng)};
+            for (int k = 0; k < 3; ++k) n[lane][k] = glm::normalize(glm::vec3(tilt(rng), tilt(rng), 1.0f));
+            const int odd = (i + lane) % 16;
+            if (odd == 1) p[lane][1] = p[lane][0];                      // a zero-length edge
+            if (odd == 2)  // opposite vertex normals: nothing to reflect, the fallback's normalised sum
+                n[lane][1] = glm::vec3(1, 0, 0), n[lane][0] = glm::vec3(-1, 0, 0);
+            float u = b(rng), w = b(rng);
+            if (u + w > 1.0f) u = 1.0f - u, w = 1.0f - w;
+            t[lane] = glm::vec3(1.0f - u - w, u, w);
+        }
+        float z[4];
+        glm::vec3 normal[4];
+        pn_height_normal4(p, n, t, z, normal);
+        for (int lane = 0; lane < 4; ++lane) {
+            glm::vec3 want_n;
+            const float want_z = pn_height_normal(p[lane][0], p[lane][1], p[lane][2], n[lane][0], n[lane][1], n[lane][2],
+                                                  t[lane], want_n);
+            ASSERT_EQ(bits(z[lane]), bits(want_z)) << i << " " << lane;
+            for (int k = 0; k < 3; ++k) ASSERT_EQ(bits(normal[lane][k]), bits(want_n[k])) << i << " " << lane;
+        }
+    }
+}
+
 TEST(SurfaceMesh, TwoCounterClockwiseTrianglesPerCellAndNormals) {
     // 3x2 nodes of z = x (a 45-degree slope rising east), 10 m spacing.
     const Terrain t = terrain_from_function(3, 2, 10.0, [](double x, double) { return x; });
