@@ -447,6 +447,13 @@ void end_stems_where_they_meet(DrapedLineSet& set, const std::vector<std::uint32
             };
             Box boxes[64];
             const std::int64_t ng = std::min<std::int64_t>((hi - lo + group) / group, 64);
+            // the squared distance from v to a box (0 inside; each difference no larger than v's
+            // to any vertex in it, so neither its square nor the sum)
+            auto box_distance2 = [](const Box& b, const DrapedVertex& v) {
+                const double bx = std::max(std::max(double(b.x0) - v.x, 0.0), v.x - double(b.x1));
+                const double by = std::max(std::max(double(b.y0) - v.y, 0.0), v.y - double(b.y1));
+                return bx * bx + by * by;
+            };
             for (std::int64_t g = 0; g < ng; ++g) {
                 const std::int64_t j0 = lo + g * group, j1 = g + 1 == ng ? hi : std::min(hi, j0 + group - 1);
                 Box& b = boxes[g];
@@ -456,15 +463,17 @@ void end_stems_where_they_meet(DrapedLineSet& set, const std::vector<std::uint32
                     b.y0 = std::min(b.y0, set.vertices[j].y), b.y1 = std::max(b.y1, set.vertices[j].y);
                 }
             }
+            Box all = boxes[0];  // the whole window's: a vertex beyond it skips every group
+            for (std::int64_t g = 1; g < ng; ++g)
+                all = {std::min(all.x0, boxes[g].x0), std::max(all.x1, boxes[g].x1), std::min(all.y0, boxes[g].y0),
+                       std::max(all.y1, boxes[g].y1)};
             // from the end back (a trace's last vertices come closest: the bound shrinks early), a
             // distance equal to the closest taking the earlier vertex: the first of equals
             for (std::uint32_t i = e + 1; i-- > from;) {
                 const DrapedVertex& v = set.vertices[i];
+                if (box_distance2(all, v) > beyond) continue;
                 for (std::int64_t g = 0; g < ng; ++g) {
-                    const Box& b = boxes[g];
-                    const double bx = std::max({double(b.x0) - v.x, 0.0, v.x - double(b.x1)});
-                    const double by = std::max({double(b.y0) - v.y, 0.0, v.y - double(b.y1)});
-                    if (bx * bx + by * by > beyond) continue;
+                    if (box_distance2(boxes[g], v) > beyond) continue;
                     const std::int64_t j0 = lo + g * group, j1 = g + 1 == ng ? hi : std::min(hi, j0 + group - 1);
                     for (std::int64_t j = j0; j <= j1; ++j) {
                         const double dx = double(set.vertices[j].x) - v.x, dy = double(set.vertices[j].y) - v.y;
