@@ -4,10 +4,6 @@
 #include <cmath>
 #include <cstddef>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 namespace penink {
 
 GaussianKernel::GaussianKernel(double sigma) : smooths_(sigma > 0.0) {
@@ -34,19 +30,8 @@ void GaussianKernel::smooth(const std::vector<glm::dvec2>& in, std::vector<glm::
     for (std::ptrdiff_t k = 1; k + 1 < n; ++k) {
         glm::dvec2 acc = w[0] * in[std::size_t(k)];
         if (k >= radius && k + radius < n) {  // away from the ends: no reflection
-#if defined(__SSE2__)
-            // x and y side by side in one register: the same operations on each
-            const double* p = &in[std::size_t(k)].x;
-            __m128d sum = _mm_mul_pd(_mm_set1_pd(w[0]), _mm_loadu_pd(p));
-            for (std::ptrdiff_t j = 1; j <= radius; ++j)
-                sum = _mm_add_pd(sum, _mm_mul_pd(_mm_set1_pd(w[std::size_t(j)]),
-                                                 _mm_add_pd(_mm_loadu_pd(p - 2 * j), _mm_loadu_pd(p + 2 * j))));
-            _mm_storeu_pd(&out[std::size_t(k)].x, _mm_div_pd(sum, _mm_set1_pd(total_)));
-            continue;
-#else
             const glm::dvec2* p = in.data() + k;
             for (std::ptrdiff_t j = 1; j <= radius; ++j) acc += w[std::size_t(j)] * (p[-j] + p[j]);
-#endif
         } else {
             for (std::ptrdiff_t j = 1; j <= radius; ++j) acc += w[std::size_t(j)] * (at(k - j) + at(k + j));
         }
