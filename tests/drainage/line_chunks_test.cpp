@@ -44,5 +44,24 @@ TEST(LineChunks, EachLineOnceInConsecutiveRangesOfEqualShares) {
     }
 }
 
+// Lines out of vertex order still reach f once each, in consecutive ranges.
+TEST(LineChunks, LinesOutOfOrderEachOnce) {
+    std::vector<DrapedLine> lines(3000);
+    for (std::size_t i = 0; i < lines.size(); ++i) lines[i].first = std::uint32_t(3 * (lines.size() - 1 - i)), lines[i].count = 3;
+    std::mutex m;
+    std::vector<std::pair<std::size_t, std::size_t>> ranges;
+    parallel_line_chunks(lines, 3 * lines.size(), 10, 2990, 16, [&](std::size_t i0, std::size_t i1) {
+        std::lock_guard<std::mutex> lock(m);
+        ranges.push_back({i0, i1});
+    });
+    std::sort(ranges.begin(), ranges.end());
+    std::size_t next = 10;
+    for (auto [i0, i1] : ranges) {
+        EXPECT_EQ(i0, next);
+        next = i1;
+    }
+    EXPECT_EQ(next, 2990u);
+}
+
 }  // namespace
 }  // namespace penink
