@@ -96,27 +96,30 @@ void put_box(std::vector<std::uint8_t>& out, glm::vec2 lo, glm::vec2 hi) {
 }
 bool get_box(Reader& r, glm::vec2& lo, glm::vec2& hi) { return r.get(lo.x) && r.get(lo.y) && r.get(hi.x) && r.get(hi.y); }
 
-// The stems' bounds [first, first + n) as ten byte planes (x0 and y0 each minus the stem
-// before's in the block, x1 - x0, y1 - y0, length; the low bytes of a field, then its high
+// The stems' bounds [first, first + n) as twelve byte planes (x0 and y0 each minus the stem
+// before's in the block, x1 - x0, y1 - y0, plan, rise; the low bytes of a field, then its high
 // bytes), deflated.
+constexpr int bound_fields = 6;
 std::vector<std::uint8_t> encode_stem_bounds(const StemBound* b, std::size_t n) {
-    std::vector<std::uint8_t> planes(10 * n);
+    std::vector<std::uint8_t> planes(2 * bound_fields * n);
     for (std::size_t i = 0; i < n; ++i) {
-        const std::uint16_t f[5] = {std::uint16_t(b[i].x0 - (i ? b[i - 1].x0 : 0)),
-                                    std::uint16_t(b[i].y0 - (i ? b[i - 1].y0 : 0)), std::uint16_t(b[i].x1 - b[i].x0),
-                                    std::uint16_t(b[i].y1 - b[i].y0), b[i].length};
-        for (int k = 0; k < 5; ++k) planes[2 * k * n + i] = std::uint8_t(f[k]), planes[(2 * k + 1) * n + i] = std::uint8_t(f[k] >> 8);
+        const std::uint16_t f[bound_fields] = {std::uint16_t(b[i].x0 - (i ? b[i - 1].x0 : 0)),
+                                               std::uint16_t(b[i].y0 - (i ? b[i - 1].y0 : 0)),
+                                               std::uint16_t(b[i].x1 - b[i].x0), std::uint16_t(b[i].y1 - b[i].y0),
+                                               b[i].plan, b[i].rise};
+        for (int k = 0; k < bound_fields; ++k) planes[2 * k * n + i] = std::uint8_t(f[k]), planes[(2 * k + 1) * n + i] = std::uint8_t(f[k] >> 8);
     }
     return encode_bytes(planes.data(), planes.size());
 }
 bool decode_stem_bounds(const std::uint8_t* coded, std::size_t size, StemBound* b, std::size_t n) {
-    std::vector<std::uint8_t> planes(10 * n);
+    std::vector<std::uint8_t> planes(2 * bound_fields * n);
     if (!decode_bytes(coded, size, planes.data(), planes.size())) return false;
     for (std::size_t i = 0; i < n; ++i) {
-        std::uint16_t f[5];
-        for (int k = 0; k < 5; ++k) f[k] = std::uint16_t(planes[2 * k * n + i] | planes[(2 * k + 1) * n + i] << 8);
+        std::uint16_t f[bound_fields];
+        for (int k = 0; k < bound_fields; ++k) f[k] = std::uint16_t(planes[2 * k * n + i] | planes[(2 * k + 1) * n + i] << 8);
         b[i].x0 = std::uint16_t(f[0] + (i ? b[i - 1].x0 : 0)), b[i].y0 = std::uint16_t(f[1] + (i ? b[i - 1].y0 : 0));
-        b[i].x1 = std::uint16_t(b[i].x0 + f[2]), b[i].y1 = std::uint16_t(b[i].y0 + f[3]), b[i].length = f[4];
+        b[i].x1 = std::uint16_t(b[i].x0 + f[2]), b[i].y1 = std::uint16_t(b[i].y0 + f[3]), b[i].plan = f[4],
+        b[i].rise = f[5];
     }
     return true;
 }
@@ -161,7 +164,7 @@ std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const Cr
         throw Error("drainage", "", "a crease source refers to the DEM at factor 1 only", ExitCode::internal);
     std::vector<std::uint8_t> out;
     std::size_t size = 256 + (dem ? dem->path.size() : 0) + 16 * index.lo.size() + 4 * index.parts.sources.size() +
-                       10 * index.stems.size();
+                       2 * bound_fields * index.stems.size();
     for (const CodedSourceArray& a : arrays) {
         size += 12 + 4 * a.blocks.size();
         for (const auto& b : a.blocks) size += b.size();

@@ -10,7 +10,7 @@
 // on its own by core/block_codec.hpp (elevations as floats differenced once along the block,
 // the mask and directions as bytes: deflate), the source cells as deltas (u32, deflated in
 // blocks alike), the boxes as floats, the stems' bounds (StemBound) in blocks of 2^16 stems, each
-// as ten byte planes (x0 and y0 each minus the stem before's, x1 - x0, y1 - y0, length; low
+// as twelve byte planes (x0 and y0 each minus the stem before's, x1 - x0, y1 - y0, plan, rise; low
 // bytes, then high ones), deflated. Lossless: decoding gives the arrays and the index bit for bit.
 // (coarse x, y as float pairs differenced twice, coarse heights like z, the coarse mask as bytes).
 // At factor 1 the coarse mask is the fine one (coarse_valid_shared): not stored again.

@@ -29,7 +29,7 @@ CreaseTileIndex crease_tile_index(const DrainageGrid& g, const std::vector<std::
     out.stems.resize(parts.sources.size());
     for_each_stem_cells(g, dir, net, parts, [&](std::uint32_t s, const std::uint32_t* cells, std::uint32_t n) {
         boxes.plan_box(stem_cell_reach(cells, n, g, options), reach_lo[s], reach_hi[s]);
-        out.stems[s] = stem_bound(reach_lo[s], reach_hi[s], stem_cell_length(cells, n, g), parts.lo, parts.hi);
+        out.stems[s] = stem_bound(reach_lo[s], reach_hi[s], stem_cell_travel(cells, n, g), parts.lo, parts.hi);
     });
     for (std::uint32_t s = 0; s < parts.sources.size(); ++s) {
         const std::uint32_t c = parts.sources[s] % std::uint32_t(g.cols), r = parts.sources[s] / std::uint32_t(g.cols);
@@ -77,13 +77,12 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
     const auto meets = [&](glm::vec2 a, glm::vec2 b) { return !(b.x < lo.x || a.x > hi.x || b.y < lo.y || a.y > hi.y); };
     std::vector<std::uint32_t> wanted, missing;
     std::vector<std::size_t> cuts{0};  // missing[cuts[k], cuts[k + 1]): a tile's, ascending
-    DrapedLine bound;  // a stem's bound as a line record
+    glm::vec2 blo, bhi;  // a stem's bound's box
     for (const Tile& t : tiles_) {
         if (t.stems.empty() || !meets(t.lo, t.hi)) continue;
         for (std::uint32_t s : t.stems) {
-            stem_bound_box(bounds_[s], parts_.lo, parts_.hi, bound.lo, bound.hi);
-            bound.length = stem_bound_length(bounds_[s]);
-            if (!meets(bound.lo, bound.hi) || (may_show && !may_show(bound))) continue;
+            stem_bound_box(bounds_[s], parts_.lo, parts_.hi, blo, bhi);
+            if (!meets(blo, bhi) || (may_show && !may_show(bounds_[s], blo, bhi))) continue;
             wanted.push_back(s);
             if (set_[s] == not_built) missing.push_back(s);
         }

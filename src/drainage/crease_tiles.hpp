@@ -29,7 +29,7 @@ namespace penink {
 
 // What a CreaseTiles is made from besides the network: the tile side (cells), the stems' sources
 // and box (stem_parts), each stem's bound (stem_bound of its reach's plan box and
-// stem_cell_length, across parts' box; in parts.sources' order) and each tile's plan box of its
+// stem_cell_travel, across parts' box; in parts.sources' order) and each tile's plan box of its
 // stems' reaches (row-major tiles; empty, hi < lo, for a tile without stems). Made by one walk of
 // every stem (crease_tile_index); a database stores it (crease_source.hpp) so that a render makes
 // its tiles without that walk.
@@ -52,11 +52,11 @@ public:
     CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                 CreaseTileIndex index);
 
-    // Whether a line may be drawn, from its record alone (its plan box lo, hi and 3-D length; the
-    // other fields unset): called with each stem's bound (stem_bound_box, stem_bound_length) as
-    // such a record, so it must pass a stem whenever it passes the stem's line (a test growing
-    // with the length and the box, as LineCulling's screen size does). Empty: every stem.
-    using LineTest = std::function<bool(const DrapedLine&)>;
+    // Whether a stem's crease may be drawn, from its bound alone (its box lo, hi as stem_bound_box
+    // gives it; its length at exaggeration e: stem_bound_length): it must pass a stem whenever it
+    // passes the stem's line (a test growing with the length and the box, as LineCulling's screen
+    // size does). Empty: every stem.
+    using LineTest = std::function<bool(const StemBound& bound, glm::vec2 lo, glm::vec2 hi)>;
 
     // The stems whose bound's box meets the closed plan box [lo, hi] and passes `may_show`, built
     // where not yet, in stem order (network_stems' ids in `ids`), indexed: lines_meeting_box on

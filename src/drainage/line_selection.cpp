@@ -88,14 +88,22 @@ public:
     // length, and every vertex is at least its plan box's plan distance from the eye, so a piece
     // of it that big_enough would keep passes this test too.
     bool may_show(const DrapedLine& l) const {
+        return may_show(l.lo, l.hi, std::max(1.0, e_) * slack * double(l.length));
+    }
+    // The same for a stem's bound (crease_tiles.hpp): its exaggerated length at most plan + e rise.
+    bool may_show(const StemBound& b, glm::vec2 lo, glm::vec2 hi) const {
+        return may_show(lo, hi, slack * stem_bound_length(b, e_));
+    }
+    // Whether some camera can show min_px long a line of exaggerated length at most `length` (with
+    // the rounding slack) in the plan box [lo, hi].
+    bool may_show(glm::vec2 lo, glm::vec2 hi, double length) const {
         if (!culls()) return true;
-        const double stretch = std::max(1.0, e_) * (1.0 + 1e-5);
         for (std::size_t c = 0; c < scale_.size(); ++c) {
             const glm::dvec3& eye = culling_.cameras[c].eye;
-            const double dx = std::max({double(l.lo.x) - eye.x, eye.x - double(l.hi.x), 0.0});
-            const double dy = std::max({double(l.lo.y) - eye.y, eye.y - double(l.hi.y), 0.0});
+            const double dx = std::max({double(lo.x) - eye.x, eye.x - double(hi.x), 0.0});
+            const double dy = std::max({double(lo.y) - eye.y, eye.y - double(hi.y), 0.0});
             const double plan = is_orthographic(culling_.cameras[c]) ? 1.0 : std::sqrt(dx * dx + dy * dy);
-            if (stretch * double(l.length) * scale_[c] >= double(culling_.min_px) * plan) return true;
+            if (length * scale_[c] >= double(culling_.min_px) * plan) return true;
         }
         return false;
     }
@@ -112,6 +120,7 @@ public:
     }
 
 private:
+    static constexpr double slack = 1.0 + 1e-5;  // float rounding of the lengths
     double distance_to(std::size_t c, const glm::dvec3& p) const {
         return is_orthographic(culling_.cameras[c]) ? 1.0 : glm::length(p - culling_.cameras[c].eye);
     }
@@ -279,7 +288,8 @@ bool select_stored_creases(const DrainageDb& db, StoredCreases* stored, const Li
     // on the bound: a crease failing it would be culled line by line anyway)
     const ScreenSize size(culling, box.exaggeration);
     CreaseTiles::LineTest may_show;
-    if (size.culls()) may_show = [&size](const DrapedLine& l) { return size.may_show(l); };
+    if (size.culls())
+        may_show = [&size](const StemBound& b, glm::vec2 lo, glm::vec2 hi) { return size.may_show(b, lo, hi); };
     const CreaseTiles::LineRefs refs = stored->line_refs_for_box(box.lo, box.hi, may_show);
     std::vector<std::uint32_t> ids;  // those meeting the box, ascending (what lines_meeting_box gives)
     for (std::uint32_t i = 0; i < refs.lines.size(); ++i) {

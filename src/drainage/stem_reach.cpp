@@ -29,19 +29,19 @@ CellBox stem_cell_reach(const std::uint32_t* cells, std::uint32_t n, const Drain
     return b;
 }
 
-double stem_cell_length(const std::uint32_t* cells, std::uint32_t n, const DrainageGrid& g) {
+StemTravel stem_cell_travel(const std::uint32_t* cells, std::uint32_t n, const DrainageGrid& g) {
     const auto cols = std::uint32_t(g.cols);
     auto at = [&](std::uint32_t k) {
         const glm::dvec2 xy = grid_xy(g, int(cells[k] % cols), int(cells[k] / cols));
         return glm::dvec3(xy, double(g.z[cells[k]]));
     };
-    double length = 0.0;
+    StemTravel t;
     glm::dvec3 last = n ? at(0) : glm::dvec3(0.0);
     for (std::uint32_t k = 1; k < n; ++k) {
         const glm::dvec3 p = at(k);
-        length += glm::length(p - last), last = p;
+        t.plan += glm::length(glm::dvec2(p) - glm::dvec2(last)), t.rise += std::abs(p.z - last.z), last = p;
     }
-    return length;
+    return t;
 }
 
 namespace {
@@ -69,22 +69,32 @@ std::uint16_t step_of(float v, float lo, float hi, bool up) {
     return std::uint16_t(q);
 }
 
+// The high half of the float at or above v, rounded up (a bfloat16 at or above v).
+std::uint16_t bfloat_up(double v) {
+    float f = float(v);
+    if (double(f) < v) f = std::nextafter(f, INFINITY);
+    std::uint32_t bits;
+    std::memcpy(&bits, &f, 4);
+    if (bits & 0xffffu) bits += 0x10000u;
+    return std::uint16_t(bits >> 16);
+}
+float bfloat_value(std::uint16_t h) {
+    const std::uint32_t bits = std::uint32_t(h) << 16;
+    float f;
+    std::memcpy(&f, &bits, 4);
+    return f;
+}
+
 }  // namespace
 
-StemBound stem_bound(glm::vec2 reach_lo, glm::vec2 reach_hi, double length, glm::vec2 lo, glm::vec2 hi) {
+StemBound stem_bound(glm::vec2 reach_lo, glm::vec2 reach_hi, StemTravel t, glm::vec2 lo, glm::vec2 hi) {
     StemBound b;
     const glm::vec2 l = glm::max(reach_lo, lo), h = glm::min(reach_hi, hi);
     if (l.x <= h.x && l.y <= h.y)
         b.x0 = step_of(l.x, lo.x, hi.x, false), b.y0 = step_of(l.y, lo.y, hi.y, false),
         b.x1 = step_of(h.x, lo.x, hi.x, true), b.y1 = step_of(h.y, lo.y, hi.y, true);
-    // the float at or above the bound, then its high half rounded up
-    const double want = crease_length_factor * length;
-    float f = float(want);
-    if (double(f) < want) f = std::nextafter(f, INFINITY);
-    std::uint32_t bits;
-    std::memcpy(&bits, &f, 4);
-    if (bits & 0xffffu) bits += 0x10000u;
-    b.length = std::uint16_t(bits >> 16);
+    b.plan = bfloat_up(crease_length_factor * t.plan);
+    b.rise = bfloat_up(crease_rise_factor * (t.rise + crease_rise_slope * t.plan));
     return b;
 }
 
@@ -97,11 +107,10 @@ void stem_bound_box(const StemBound& b, glm::vec2 lo, glm::vec2 hi, glm::vec2& b
     box_hi = {step_value(b.x1, lo.x, hi.x, true), step_value(b.y1, lo.y, hi.y, true)};
 }
 
-float stem_bound_length(const StemBound& b) {
-    const std::uint32_t bits = std::uint32_t(b.length) << 16;
-    float f;
-    std::memcpy(&f, &bits, 4);
-    return f;
+float stem_bound_plan(const StemBound& b) { return bfloat_value(b.plan); }
+float stem_bound_rise(const StemBound& b) { return bfloat_value(b.rise); }
+double stem_bound_length(const StemBound& b, double e) {
+    return double(stem_bound_plan(b)) + std::max(0.0, e) * double(stem_bound_rise(b));
 }
 
 PlanBoxes::PlanBoxes(const DrainageGrid& g) : g_(&g) {

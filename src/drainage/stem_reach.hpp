@@ -15,14 +15,18 @@
 // at factor > 1): the plan box of the nodes under the index box holds it. PlanBoxes answers that
 // on an affine grid from the node range's four corners (the nodes are an affine image of their
 // indices), elsewhere from the boxes of 8 x 8 node blocks (a superset: whole blocks).
-// A bound of the crease's length, from the same cells: the trace (fall_line_stems.hpp) steps from
-// each vertex as far as the smoothed centre line S does, and S, a Gaussian average of the cells'
-// path, is no longer than that path; the drape gives each vertex the PN surface's height, which
-// follows the cells' heights; a stem ending where it meets its trunk only gets shorter. So the
-// crease's 3-D length is about at most the 3-D length of the polyline through its cells' drainage
-// vertices (x, y from grid_xy, z from g.z): not a proof (a trace drawn back onto its corridor, or
-// a drape over a bump between two cells, adds a little), hence the factor crease_length_factor,
-// chosen from the largest ratio measured (tests/drainage/stem_reach_test.cpp).
+// A bound of the crease's length at vertical exaggeration e, from the same cells: the trace
+// (fall_line_stems.hpp) steps from each vertex as far as the smoothed centre line S does, and S, a
+// Gaussian average of the cells' path, is no longer in plan than that path; the drape gives each
+// vertex the PN surface's height, which follows the cells' heights; a stem ending where it meets
+// its trunk only gets shorter. The exaggerated length of a polyline, the sum of
+// sqrt(plan step^2 + e^2 dz^2), is at most its plan length plus e times its vertical travel (the
+// sum of |dz|), so the crease's is about at most plan + e rise of the polyline through its cells'
+// drainage vertices (x, y from grid_xy, z from g.z): not a proof (a trace drawn back onto its
+// corridor, or a drape over a bump between two cells, adds a little), hence the factors
+// crease_length_factor and crease_rise_factor, chosen from the largest ratios measured
+// (tests/drainage/stem_reach_test.cpp). At e = 2 on a gentle DEM this is near half of max(1, e)
+// times the 3-D length.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -42,30 +46,43 @@ struct CellBox {  // index space, fine cells; empty when c1 < c0
 // stem order: network_stems' cells) on `g` with `options` (fall_line_options(g) in the build).
 CellBox stem_cell_reach(const std::uint32_t* cells, std::uint32_t n, const DrainageGrid& g, const FallLineOptions& options);
 
-// The 3-D length (metres, unexaggerated) of the polyline through the drainage vertices of a
-// stem's `n` cells (grid_xy, g.z), in stem order.
-double stem_cell_length(const std::uint32_t* cells, std::uint32_t n, const DrainageGrid& g);
-// Built crease length over stem_cell_length, at most 1.18 measured over every stem of volcano
-// (factors 1 and auto), a DEM with holes, jacksboro and jacksboro refined 5x (the worst on stems
-// of 3 or 4 cells; 1.16 on stems of 30 cells or more): 1.5 leaves a margin of a quarter.
+// The plan length and vertical travel (metres, unexaggerated; the sums of the steps' plan lengths
+// and of their |dz|) of the polyline through the drainage vertices of a stem's `n` cells
+// (grid_xy, g.z), in stem order.
+struct StemTravel {
+    double plan = 0.0, rise = 0.0;
+};
+StemTravel stem_cell_travel(const std::uint32_t* cells, std::uint32_t n, const DrainageGrid& g);
+// A built crease's plan length over its cells', at most 1.18 measured over every stem of volcano
+// (factors 1 and auto), a DEM with holes and jacksboro (the worst on jacksboro), and its vertical
+// travel over its cells' plus crease_rise_slope times their plan length, at most 1.34 (volcano at
+// its automatic factor 5: the coarse PN surface bulges between nodes; 1.18 on jacksboro): the
+// factors leave a margin of a fifth. The slope term covers stems whose cells are flat (no rise)
+// while the drape between them is not (without it, a ratio without bound; with 0.02, 1.74).
 inline constexpr double crease_length_factor = 1.5;
+inline constexpr double crease_rise_factor = 1.65;
+inline constexpr double crease_rise_slope = 0.05;
 
 // What a crease tiles' index (crease_tiles.hpp) keeps of a stem to cull it before it is built,
-// in 10 bytes: its reach's plan box on a grid of 65535 steps across the stems' box [lo, hi]
-// (StemParts: every crease vertex lies in it), rounded outward, and crease_length_factor times
-// stem_cell_length with 8 significant bits (a bfloat16's: the high half of the float), rounded
-// up.
+// in 12 bytes: its reach's plan box on a grid of 65535 steps across the stems' box [lo, hi]
+// (StemParts: every crease vertex lies in it), rounded outward, crease_length_factor times the
+// cells' plan length and crease_rise_factor times their rise plus crease_rise_slope times the
+// plan length,
+// each with 8 significant bits (a bfloat16's: the high half of the float), rounded up.
 struct StemBound {
     std::uint16_t x0 = 1, y0 = 1, x1 = 0, y1 = 0;  // steps; empty when x1 < x0
-    std::uint16_t length = 0;
+    std::uint16_t plan = 0, rise = 0;
     bool operator==(const StemBound&) const = default;
 };
-// The bound of a stem whose reach's plan box is [reach_lo, reach_hi] and cells' length `length`.
-StemBound stem_bound(glm::vec2 reach_lo, glm::vec2 reach_hi, double length, glm::vec2 lo, glm::vec2 hi);
+// The bound of a stem whose reach's plan box is [reach_lo, reach_hi] and cells' travel `t`.
+StemBound stem_bound(glm::vec2 reach_lo, glm::vec2 reach_hi, StemTravel t, glm::vec2 lo, glm::vec2 hi);
 // The plan box the bound stands for (holding reach ∩ [lo, hi]; empty, hi < lo, for an empty
-// reach) and its length bound (at least crease_length_factor times the length given).
+// reach), its plan and rise bounds (at least the factors' products above) and its length bound at
+// vertical exaggeration e >= 0: plan + e rise.
 void stem_bound_box(const StemBound& b, glm::vec2 lo, glm::vec2 hi, glm::vec2& box_lo, glm::vec2& box_hi);
-float stem_bound_length(const StemBound& b);
+float stem_bound_plan(const StemBound& b);
+float stem_bound_rise(const StemBound& b);
+double stem_bound_length(const StemBound& b, double e);
 
 // Plan boxes (local metres) of index boxes of a grid: the box of every node whose grid cells an
 // index point of the box may be interpolated from: the corners of their range on an affine grid,

@@ -79,33 +79,49 @@ TEST(CreaseTiles, BoxesGetTheWholeBuildsLines) {
     expect_boxes_as_whole(jacksboro, 1, 64, "jacksboro_factor1");
 }
 
-// The lines a box gets from `tiles` with the line test `may_show`, mapped to the whole build's
-// lines meeting the box that pass it: the number differing from them.
+// A line test as a perspective camera's screen size makes it, at exaggeration e: a line passes
+// when its length is at least `per_metre` times its box's plan distance from `eye` (a longer line
+// or a box nearer the eye passes sooner); a stem's bound passes with its length at e
+// (stem_bound_length) in its box, a line with its length exaggerated by e (from its vertices).
+struct SizeTest {
+    glm::vec2 eye;
+    double per_metre = 0.0, e = 1.0;
+    bool passes(glm::vec2 lo, glm::vec2 hi, double length) const {
+        const double dx = std::max({double(lo.x) - eye.x, double(eye.x) - hi.x, 0.0});
+        const double dy = std::max({double(lo.y) - eye.y, double(eye.y) - hi.y, 0.0});
+        return length >= per_metre * std::sqrt(dx * dx + dy * dy);
+    }
+    bool line(const DrapedLineSet& set, std::uint32_t i) const {
+        const DrapedLine& l = set.lines[i];
+        double length = 0.0;
+        for (std::uint32_t k = l.first + 1; k < l.first + l.count; ++k) {
+            const DrapedVertex &a = set.vertices[k - 1], &b = set.vertices[k];
+            length += std::sqrt(std::pow(double(b.x) - double(a.x), 2) + std::pow(double(b.y) - double(a.y), 2) +
+                                std::pow(e * (double(b.z) - double(a.z)), 2));
+        }
+        return passes(l.lo, l.hi, length);
+    }
+    CreaseTiles::LineTest bound() const {
+        return [t = *this](const StemBound& b, glm::vec2 lo, glm::vec2 hi) { return t.passes(lo, hi, stem_bound_length(b, t.e)); };
+    }
+};
+
+// The lines a box gets from `tiles` with the line test `t`, mapped to the whole build's lines
+// meeting the box that pass it: the number differing from them.
 std::size_t differing(CreaseTiles& tiles, const DrainageDb& db, glm::vec2 a, glm::vec2 b,
-                      const CreaseTiles::LineTest& may_show) {
+                      const SizeTest& t) {
     std::vector<std::uint32_t> ids;
-    const DrapedLineSet part = tiles.lines_for_box(a, b, &ids, may_show);
+    const DrapedLineSet part = tiles.lines_for_box(a, b, &ids, t.bound());
     std::vector<std::uint32_t> want;
     for (std::uint32_t i : lines_meeting_box(db.creases, a, b))
-        if (may_show(db.creases.lines[i])) want.push_back(i);
+        if (t.line(db.creases, i)) want.push_back(i);
     std::vector<std::uint32_t> got;
     for (std::uint32_t i : lines_meeting_box(part, a, b))
-        if (may_show(part.lines[i])) got.push_back(i);
+        if (t.line(part, i)) got.push_back(i);
     if (got.size() != want.size()) return std::max(got.size(), want.size());
     std::size_t bad = 0;
     for (std::size_t i = 0; i < got.size(); ++i) bad += ids[got[i]] != want[i] || !same_line(part, got[i], db.creases, want[i]);
     return bad;
-}
-
-// A line test as a perspective camera's screen size makes it: a line passes when its length is
-// at least `per_metre` times its box's plan distance from `eye` (a longer line or a box nearer
-// the eye passes sooner).
-CreaseTiles::LineTest size_test(glm::vec2 eye, double per_metre) {
-    return [eye, per_metre](const DrapedLine& l) {
-        const double dx = std::max({double(l.lo.x) - eye.x, double(eye.x) - l.hi.x, 0.0});
-        const double dy = std::max({double(l.lo.y) - eye.y, double(eye.y) - l.hi.y, 0.0});
-        return double(l.length) >= per_metre * std::sqrt(dx * dx + dy * dy);
-    };
 }
 
 // With a line test, a query builds only the stems whose bound passes it (counted from the index),
@@ -121,20 +137,21 @@ TEST(CreaseTiles, ALineTestBuildsOnlyTheStemsItPassesOnce) {
     CreaseTiles tiles(g, res.dir, res.net, 64);
     const CreaseTileIndex index = tiles.index();
     // the stems whose bound passes a test, and the whole build's lines that do
-    auto bounds_passing = [&](const CreaseTiles::LineTest& t) {
+    auto bounds_passing = [&](const SizeTest& t) {
         std::size_t n = 0;
         for (const StemBound& b : index.stems) {
-            DrapedLine l;
-            stem_bound_box(b, index.parts.lo, index.parts.hi, l.lo, l.hi);
-            l.length = stem_bound_length(b);
-            n += t(l);
+            glm::vec2 blo, bhi;
+            stem_bound_box(b, index.parts.lo, index.parts.hi, blo, bhi);
+            n += t.bound()(b, blo, bhi);
         }
         return n;
     };
-    auto lines_passing = [&](const CreaseTiles::LineTest& t) {
-        return std::size_t(std::count_if(db.creases.lines.begin(), db.creases.lines.end(), t));
+    auto lines_passing = [&](const SizeTest& t) {
+        std::size_t n = 0;
+        for (std::uint32_t i = 0; i < db.creases.lines.size(); ++i) n += t.line(db.creases, i);
+        return n;
     };
-    const CreaseTiles::LineTest strict = size_test(lo, 0.05), lax = size_test(lo, 0.02);
+    const SizeTest strict{lo, 0.05, 2.0}, lax{lo, 0.02, 2.0};
     const std::size_t strict_stems = bounds_passing(strict), lax_stems = bounds_passing(lax);
     ASSERT_GT(lines_passing(strict), 100u);
     EXPECT_LT(strict_stems, tiles.stem_count() / 2);

@@ -5,9 +5,10 @@
 // 0.27 on volcano at factor 5, where the margin of 20 DEM cells is a quarter of the DEM's width,
 // 0.32 at factor 1, 0.33 with holes, 0.022 on jacksboro), and without the corridor's margin some
 // traced creases leave their cells' boxes (77, 12 and 32 stems). The stems' bounds (the reach's
-// box and crease_length_factor times the cells' length, quantised) hold every crease's box and
-// length, and quantise outward.
+// box and crease_length_factor times the cells' plan length and rise, quantised) hold every crease's box and
+// plan length and vertical travel, and quantise outward.
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <string>
 #include <vector>
@@ -72,10 +73,12 @@ TEST(StemReach, CreasesLieInTheirReach) {
 }
 
 // Each stem's bound in the crease tiles' index (crease_tile_index: stem_bound of its reach and
-// stem_cell_length) holds the crease the whole build makes of it: the crease's box inside the
-// bound's box, its length at most the bound's. The largest ratio of a crease's length over its
-// cells' (1.18 measured, on stems of 3 or 4 cells of jacksboro and a refinement of it five times
-// finer; 1.12 on volcano) leaves crease_length_factor at least a fifth more.
+// stem_cell_travel) holds the crease the whole build makes of it: the crease's box inside the
+// bound's box, its plan length and vertical travel at most the bound's (so its length at any
+// exaggeration e at most stem_bound_length). The largest ratios of a crease's plan length over its
+// cells' (1.18, jacksboro) and of its vertical travel over its cells' plus crease_rise_slope times
+// their plan length (1.34, volcano at factor 5: a coarse PN surface bulges between its nodes) leave
+// crease_length_factor and crease_rise_factor a margin of a fifth.
 TEST(StemReach, BoundsHoldTheCreasesBoxAndLength) {
     for (const LineTestDem& dem : line_test_dems()) {
         DrainageGrid g = resample_pn(dem.terrain, dem.factor);
@@ -87,23 +90,36 @@ TEST(StemReach, BoundsHoldTheCreasesBoxAndLength) {
         ASSERT_EQ(index.stems.size(), db.creases.lines.size()) << dem.name;
         ASSERT_EQ(walked.lines.size(), db.creases.lines.size()) << dem.name;
         std::size_t outside = 0, longer = 0;
-        double worst = 0.0, bound_sum = 0.0, length_sum = 0.0;
+        double worst_plan = 0.0, worst_rise = 0.0, bound_sum = 0.0, length_sum = 0.0;
         for (std::size_t s = 0; s < index.stems.size(); ++s) {
             const DrapedLine& built = db.creases.lines[s];
             glm::vec2 lo, hi;
             stem_bound_box(index.stems[s], index.parts.lo, index.parts.hi, lo, hi);
             outside += !(built.lo.x >= lo.x && built.lo.y >= lo.y && built.hi.x <= hi.x && built.hi.y <= hi.y);
-            longer += built.length > stem_bound_length(index.stems[s]);
-            const double cells_length = stem_cell_length(cells.data() + walked.lines[s].first, walked.lines[s].count, g);
-            if (cells_length > 0.0) worst = std::max(worst, double(built.length) / cells_length);
-            else EXPECT_EQ(built.length, 0.0f) << dem.name << " stem " << s;
-            bound_sum += stem_bound_length(index.stems[s]), length_sum += built.length;
+            double plan = 0.0, rise = 0.0;  // the built crease's
+            for (std::uint32_t k = built.first + 1; k < built.first + built.count; ++k) {
+                const DrapedVertex &a = db.creases.vertices[k - 1], &b = db.creases.vertices[k];
+                plan += std::hypot(double(b.x) - double(a.x), double(b.y) - double(a.y));
+                rise += std::abs(double(b.z) - double(a.z));
+            }
+            longer += plan > stem_bound_plan(index.stems[s]) || rise > stem_bound_rise(index.stems[s]) ||
+                      double(built.length) > stem_bound_length(index.stems[s], 1.0);
+            const StemTravel t = stem_cell_travel(cells.data() + walked.lines[s].first, walked.lines[s].count, g);
+            if (t.plan > 0.0) {
+                worst_plan = std::max(worst_plan, plan / t.plan);
+                worst_rise = std::max(worst_rise, rise / (t.rise + crease_rise_slope * t.plan));
+            } else {
+                EXPECT_EQ(built.length, 0.0f) << dem.name << " stem " << s;
+            }
+            bound_sum += stem_bound_length(index.stems[s], 1.0), length_sum += built.length;
         }
         EXPECT_EQ(outside, 0u) << dem.name;
         EXPECT_EQ(longer, 0u) << dem.name;
-        EXPECT_GT(worst, 1.0) << dem.name;  // the cells' length alone is no bound
-        EXPECT_LE(1.2 * worst, crease_length_factor) << dem.name;
-        ::testing::Test::RecordProperty(dem.name + "_worst_length_ratio_ppm", int(1e6 * worst));
+        EXPECT_GT(worst_plan, 1.0) << dem.name;  // the cells' plan length alone is no bound
+        EXPECT_LE(1.2 * worst_plan, crease_length_factor) << dem.name;
+        EXPECT_LE(1.2 * worst_rise, crease_rise_factor) << dem.name;
+        ::testing::Test::RecordProperty(dem.name + "_worst_plan_ratio_ppm", int(1e6 * worst_plan));
+        ::testing::Test::RecordProperty(dem.name + "_worst_rise_ratio_ppm", int(1e6 * worst_rise));
         ::testing::Test::RecordProperty(dem.name + "_bound_over_length_ppm", int(1e6 * bound_sum / length_sum));
     }
 }
@@ -119,20 +135,24 @@ TEST(StemReach, BoundsQuantiseOutward) {
     for (int k = 0; k < 20000; ++k) {
         glm::vec2 a = lo + glm::vec2(u(rng), u(rng)) * (hi - lo), b = lo + glm::vec2(u(rng), u(rng)) * (hi - lo);
         const glm::vec2 rlo = glm::min(a, b), rhi = glm::max(a, b);
-        const double length = 1e4 * double(u(rng)) * double(u(rng));
-        const StemBound sb = stem_bound(rlo, rhi, length, lo, hi);
+        const StemTravel t{1e4 * double(u(rng)) * double(u(rng)), 1e3 * double(u(rng)) * double(u(rng))};
+        const StemBound sb = stem_bound(rlo, rhi, t, lo, hi);
         glm::vec2 blo, bhi;
         stem_bound_box(sb, lo, hi, blo, bhi);
         ASSERT_TRUE(blo.x <= rlo.x && blo.y <= rlo.y && bhi.x >= rhi.x && bhi.y >= rhi.y) << k;
         ASSERT_TRUE(rlo.x - blo.x <= 1.01f * step.x + 1e-3f && bhi.y - rhi.y <= 1.01f * step.y + 1e-3f) << k;
-        const double bound = stem_bound_length(sb);
-        ASSERT_GE(bound, crease_length_factor * length) << k;
-        ASSERT_LE(bound, crease_length_factor * length * (1.0 + 1.0 / 128.0) + 1e-30) << k;
+        const double plan = crease_length_factor * t.plan;
+        const double rise = crease_rise_factor * (t.rise + crease_rise_slope * t.plan);
+        ASSERT_GE(stem_bound_plan(sb), plan) << k;
+        ASSERT_LE(stem_bound_plan(sb), plan * (1.0 + 1.0 / 128.0) + 1e-30) << k;
+        ASSERT_GE(stem_bound_rise(sb), rise) << k;
+        ASSERT_LE(stem_bound_rise(sb), rise * (1.0 + 1.0 / 128.0) + 1e-30) << k;
+        ASSERT_EQ(stem_bound_length(sb, 2.0), double(stem_bound_plan(sb)) + 2.0 * double(stem_bound_rise(sb))) << k;
     }
     glm::vec2 blo, bhi;
-    stem_bound_box(stem_bound(glm::vec2(1.0f), glm::vec2(0.0f), 1.0, lo, hi), lo, hi, blo, bhi);
+    stem_bound_box(stem_bound(glm::vec2(1.0f), glm::vec2(0.0f), StemTravel{1.0, 0.0}, lo, hi), lo, hi, blo, bhi);
     EXPECT_TRUE(bhi.x < blo.x);
-    stem_bound_box(stem_bound(lo - 100.0f, hi + 100.0f, 1.0, lo, hi), lo, hi, blo, bhi);
+    stem_bound_box(stem_bound(lo - 100.0f, hi + 100.0f, StemTravel{1.0, 0.0}, lo, hi), lo, hi, blo, bhi);
     EXPECT_EQ(blo, lo);
     EXPECT_EQ(bhi, hi);
 }
