@@ -163,7 +163,7 @@ std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const Cr
     if (dem && g.factor != 1)
         throw Error("drainage", "", "a crease source refers to the DEM at factor 1 only", ExitCode::internal);
     std::vector<std::uint8_t> out;
-    std::size_t size = 256 + (dem ? dem->path.size() : 0) + 16 * index.lo.size() + 4 * index.parts.sources.size() +
+    std::size_t size = 260 + (dem ? dem->path.size() : 0) + 16 * index.lo.size() + 4 * index.parts.sources.size() +
                        2 * bound_fields * index.stems.size();
     for (const CodedSourceArray& a : arrays) {
         size += 12 + 4 * a.blocks.size();
@@ -186,6 +186,7 @@ std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const Cr
     put(out, std::uint32_t(index.lo.size()));
     put_box(out, index.parts.lo, index.parts.hi);
     for (std::size_t k = 0; k < index.lo.size(); ++k) put_box(out, index.lo[k], index.hi[k]);
+    put(out, index.z_top);
     const std::vector<std::uint32_t>& src = index.parts.sources;
     std::vector<std::uint32_t> deltas(src.size());
     for (std::size_t s = 0; s < src.size(); ++s) deltas[s] = src[s] - (s ? src[s - 1] : 0u);
@@ -286,6 +287,7 @@ bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGr
     if (!get_box(r, index.parts.lo, index.parts.hi)) return false;
     index.lo.resize(tiles), index.hi.resize(tiles);
     for (std::uint32_t k = 0; k < tiles; ++k) get_box(r, index.lo[k], index.hi[k]);
+    if (!r.get(index.z_top)) return false;
     const std::size_t n = g.size(), coarse = std::size_t(ccols) * std::size_t(crows);
     std::vector<std::uint32_t>& src = index.parts.sources;
     if (!get_blocks(

@@ -24,6 +24,7 @@ CreaseTileIndex crease_tile_index(const DrainageGrid& g, const std::vector<std::
     const PlanBoxes boxes(g);
     const FallLineOptions options = fall_line_options(g);
     // each stem's reach on all cores, then joined into its tile's in stem order
+    out.z_top = drape_height_top(g);
     const StemParts& parts = out.parts;
     std::vector<glm::vec2> reach_lo(parts.sources.size()), reach_hi(parts.sources.size());
     out.stems.resize(parts.sources.size());
@@ -45,7 +46,7 @@ CreaseTiles::CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>&
 CreaseTiles::CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                          CreaseTileIndex index)
     : g_(g), dir_(dir), net_(net), side_(std::max(1, index.side)), parts_(std::move(index.parts)),
-      bounds_(std::move(index.stems)), set_(parts_.sources.size(), not_built), line_(parts_.sources.size(), 0) {
+      bounds_(std::move(index.stems)), z_top_(index.z_top), set_(parts_.sources.size(), not_built), line_(parts_.sources.size(), 0) {
     const auto side = std::uint32_t(side_);
     const std::uint32_t tx = (std::uint32_t(g.cols) + side - 1) / side, ty = (std::uint32_t(g.rows) + side - 1) / side;
     tiles_.resize(std::size_t(tx) * ty);
@@ -69,6 +70,7 @@ CreaseTileIndex CreaseTiles::index() const {
     out.side = side_;
     out.parts = parts_;
     out.stems = bounds_;
+    out.z_top = z_top_;
     for (const Tile& t : tiles_) out.lo.push_back(t.lo), out.hi.push_back(t.hi);
     return out;
 }
@@ -82,7 +84,7 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
         if (t.stems.empty() || !meets(t.lo, t.hi)) continue;
         for (std::uint32_t s : t.stems) {
             stem_bound_box(bounds_[s], parts_.lo, parts_.hi, blo, bhi);
-            if (!meets(blo, bhi) || (may_show && !may_show(bounds_[s], blo, bhi))) continue;
+            if (!meets(blo, bhi) || (may_show && !may_show(bounds_[s], blo, bhi, z_top_))) continue;
             wanted.push_back(s);
             if (set_[s] == not_built) missing.push_back(s);
         }

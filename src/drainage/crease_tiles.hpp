@@ -16,6 +16,7 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -33,11 +34,13 @@ namespace penink {
 // stems' reaches (row-major tiles; empty, hi < lo, for a tile without stems). Made by one walk of
 // every stem (crease_tile_index); a database stores it (crease_source.hpp) so that a render makes
 // its tiles without that walk.
+// z_top: drape_height_top of the grid, above every crease vertex.
 struct CreaseTileIndex {
     int side = 256;
     StemParts parts;
     std::vector<StemBound> stems;
     std::vector<glm::vec2> lo, hi;
+    float z_top = -std::numeric_limits<float>::infinity();
 };
 CreaseTileIndex crease_tile_index(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                                   int tile = 256);
@@ -53,10 +56,11 @@ public:
                 CreaseTileIndex index);
 
     // Whether a stem's crease may be drawn, from its bound alone (its box lo, hi as stem_bound_box
-    // gives it; its length at exaggeration e: stem_bound_length): it must pass a stem whenever it
-    // passes the stem's line (a test growing with the length and the box, as LineCulling's screen
-    // size does). Empty: every stem.
-    using LineTest = std::function<bool(const StemBound& bound, glm::vec2 lo, glm::vec2 hi)>;
+    // gives it; its length at exaggeration e: stem_bound_length; z_top: a height no crease vertex
+    // exceeds, CreaseTileIndex::z_top): it must pass a stem whenever it passes the stem's line (a
+    // test growing with the length and the box, as LineCulling's screen size does). Empty: every
+    // stem.
+    using LineTest = std::function<bool(const StemBound& bound, glm::vec2 lo, glm::vec2 hi, float z_top)>;
 
     // The stems whose bound's box meets the closed plan box [lo, hi] and passes `may_show`, built
     // where not yet, in stem order (network_stems' ids in `ids`), indexed: lines_meeting_box on
@@ -104,6 +108,7 @@ private:
     int side_ = 256;
     StemParts parts_;
     std::vector<StemBound> bounds_;
+    float z_top_;
     std::vector<Tile> tiles_;
     // the lines built so far, one set a crease_part; stem s's is line line_[s] of sets_[set_[s]]
     std::vector<std::unique_ptr<DrapedLineSet>> sets_;

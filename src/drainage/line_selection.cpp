@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include <glm/common.hpp>
@@ -90,19 +91,23 @@ public:
     bool may_show(const DrapedLine& l) const {
         return may_show(l.lo, l.hi, std::max(1.0, e_) * slack * double(l.length));
     }
-    // The same for a stem's bound (crease_tiles.hpp): its exaggerated length at most plan + e rise.
-    bool may_show(const StemBound& b, glm::vec2 lo, glm::vec2 hi) const {
-        return may_show(lo, hi, slack * stem_bound_length(b, e_));
+    // The same for a stem's bound (crease_tiles.hpp): its exaggerated length at most plan + e rise,
+    // and no vertex higher than e z_top, so a camera whose eye is higher sees every vertex at least
+    // that height difference below it besides the plan distance.
+    bool may_show(const StemBound& b, glm::vec2 lo, glm::vec2 hi, float z_top) const {
+        return may_show(lo, hi, slack * stem_bound_length(b, e_), double(z_top));
     }
     // Whether some camera can show min_px long a line of exaggerated length at most `length` (with
-    // the rounding slack) in the plan box [lo, hi].
-    bool may_show(glm::vec2 lo, glm::vec2 hi, double length) const {
+    // the rounding slack) in the plan box [lo, hi], its vertices no higher than e z_top.
+    bool may_show(glm::vec2 lo, glm::vec2 hi, double length,
+                  double z_top = std::numeric_limits<double>::infinity()) const {
         if (!culls()) return true;
         for (std::size_t c = 0; c < scale_.size(); ++c) {
             const glm::dvec3& eye = culling_.cameras[c].eye;
             const double dx = std::max({double(lo.x) - eye.x, eye.x - double(hi.x), 0.0});
             const double dy = std::max({double(lo.y) - eye.y, eye.y - double(hi.y), 0.0});
-            const double plan = is_orthographic(culling_.cameras[c]) ? 1.0 : std::sqrt(dx * dx + dy * dy);
+            const double dz = std::max(0.0, eye.z - e_ * z_top);
+            const double plan = is_orthographic(culling_.cameras[c]) ? 1.0 : std::sqrt(dx * dx + dy * dy + dz * dz);
             if (length * scale_[c] >= double(culling_.min_px) * plan) return true;
         }
         return false;
@@ -289,7 +294,9 @@ bool select_stored_creases(const DrainageDb& db, StoredCreases* stored, const Li
     const ScreenSize size(culling, box.exaggeration);
     CreaseTiles::LineTest may_show;
     if (size.culls())
-        may_show = [&size](const StemBound& b, glm::vec2 lo, glm::vec2 hi) { return size.may_show(b, lo, hi); };
+        may_show = [&size](const StemBound& b, glm::vec2 lo, glm::vec2 hi, float z_top) {
+            return size.may_show(b, lo, hi, z_top);
+        };
     const CreaseTiles::LineRefs refs = stored->line_refs_for_box(box.lo, box.hi, may_show);
     std::vector<std::uint32_t> ids;  // those meeting the box, ascending (what lines_meeting_box gives)
     for (std::uint32_t i = 0; i < refs.lines.size(); ++i) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <utility>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -111,6 +112,34 @@ float stem_bound_plan(const StemBound& b) { return bfloat_value(b.plan); }
 float stem_bound_rise(const StemBound& b) { return bfloat_value(b.rise); }
 double stem_bound_length(const StemBound& b, double e) {
     return double(stem_bound_plan(b)) + std::max(0.0, e) * double(stem_bound_rise(b));
+}
+
+float drape_height_top(const DrainageGrid& g) {
+    const bool coarse = g.factor > 1 && !g.coarse_z.empty();
+    const int cols = coarse ? g.coarse_cols : g.cols, rows = coarse ? g.coarse_rows : g.rows;
+    const std::vector<float>& z = coarse ? g.coarse_z : g.z;
+    const std::vector<std::uint8_t>& valid = coarse ? g.coarse_valid : g.valid;
+    auto node = [&](int c, int r) {
+        const std::size_t i = std::size_t(r) * std::size_t(cols) + std::size_t(c);
+        const glm::dvec2 xy = coarse ? glm::dvec2(g.coarse_xy[i]) : grid_xy(g, c, r);
+        return glm::dvec3(xy, double(z[i]));
+    };
+    double top = -std::numeric_limits<double>::infinity(), edge = 0.0;
+    for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < cols; ++c) {
+            const std::size_t i = std::size_t(r) * std::size_t(cols) + std::size_t(c);
+            if (!valid[i]) continue;
+            const glm::dvec3 p = node(c, r);
+            top = std::max(top, p.z);
+            for (const auto [dc, dr] : {std::pair(1, 0), std::pair(0, 1), std::pair(1, 1)}) {
+                if (c + dc >= cols || r + dr >= rows || !valid[i + std::size_t(dr) * std::size_t(cols) + std::size_t(dc)]) continue;
+                edge = std::max(edge, glm::length(node(c + dc, r + dr) - p));
+            }
+        }
+    if (!(top > -std::numeric_limits<double>::infinity())) return -std::numeric_limits<float>::infinity();
+    const double bound = top + edge + 1e-3 * (std::abs(top) + edge);
+    const float f = float(bound);
+    return double(f) < bound ? std::nextafter(f, INFINITY) : f;
 }
 
 PlanBoxes::PlanBoxes(const DrainageGrid& g) : g_(&g) {

@@ -84,6 +84,16 @@ float stem_bound_plan(const StemBound& b);
 float stem_bound_rise(const StemBound& b);
 double stem_bound_length(const StemBound& b, double e);
 
+// A height (metres, unexaggerated) no draped vertex of `g`'s creases exceeds: the creases are draped
+// on the PN-triangle surface of the DEM's nodes (dem_surface.hpp: g.z at factor 1, coarse_z at
+// factor > 1), and a PN patch (Vlachos et al. 2001) lies in its control net's hull, whose heights
+// are at most its corners' highest plus its longest 3-D edge L (an edge point (2 P_i + P_j -
+// w_ij N_i) / 3 with |w_ij| <= L rises at most L / 3 above the corners; the centre point E + (E -
+// V) / 2 at most L). So the highest valid node plus the longest edge between valid neighbours (east,
+// south, south-east), plus a thousandth of both for the evaluation's rounding and the locator's
+// tolerance, bounds them; -inf without a valid node.
+float drape_height_top(const DrainageGrid& g);
+
 // Plan boxes (local metres) of index boxes of a grid: the box of every node whose grid cells an
 // index point of the box may be interpolated from: the corners of their range on an affine grid,
 // else by blocks of 8 x 8 nodes.

@@ -57,6 +57,7 @@ void expect_round_trip(const Terrain& t, int factor, const std::string& what) {
     EXPECT_EQ(got.lo, index.lo) << what;
     EXPECT_EQ(got.hi, index.hi) << what;
     EXPECT_TRUE(got.stems == index.stems) << what;
+    EXPECT_EQ(got.z_top, index.z_top) << what;
 
     {  // the index and the grid's scalars alone
         DrainageGrid s;

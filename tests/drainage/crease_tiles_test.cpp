@@ -102,7 +102,9 @@ struct SizeTest {
         return passes(l.lo, l.hi, length);
     }
     CreaseTiles::LineTest bound() const {
-        return [t = *this](const StemBound& b, glm::vec2 lo, glm::vec2 hi) { return t.passes(lo, hi, stem_bound_length(b, t.e)); };
+        return [t = *this](const StemBound& b, glm::vec2 lo, glm::vec2 hi, float) {
+            return t.passes(lo, hi, stem_bound_length(b, t.e));
+        };
     }
 };
 
@@ -142,7 +144,7 @@ TEST(CreaseTiles, ALineTestBuildsOnlyTheStemsItPassesOnce) {
         for (const StemBound& b : index.stems) {
             glm::vec2 blo, bhi;
             stem_bound_box(b, index.parts.lo, index.parts.hi, blo, bhi);
-            n += t.bound()(b, blo, bhi);
+            n += t.bound()(b, blo, bhi, index.z_top);
         }
         return n;
     };

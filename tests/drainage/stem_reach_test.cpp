@@ -75,7 +75,7 @@ TEST(StemReach, CreasesLieInTheirReach) {
 // Each stem's bound in the crease tiles' index (crease_tile_index: stem_bound of its reach and
 // stem_cell_travel) holds the crease the whole build makes of it: the crease's box inside the
 // bound's box, its plan length and vertical travel at most the bound's (so its length at any
-// exaggeration e at most stem_bound_length). The largest ratios of a crease's plan length over its
+// exaggeration e at most stem_bound_length), and its heights at most the index's z_top. The largest ratios of a crease's plan length over its
 // cells' (1.18, jacksboro) and of its vertical travel over its cells' plus crease_rise_slope times
 // their plan length (1.34, volcano at factor 5: a coarse PN surface bulges between its nodes) leave
 // crease_length_factor and crease_rise_factor a margin of a fifth.
@@ -115,6 +115,14 @@ TEST(StemReach, BoundsHoldTheCreasesBoxAndLength) {
         }
         EXPECT_EQ(outside, 0u) << dem.name;
         EXPECT_EQ(longer, 0u) << dem.name;
+        // no crease vertex above the drape's height bound, which is no more than the highest node
+        // plus the relief (the longest edge's rise) and a few cells
+        float z_max = -1e30f, z_lo = 1e30f;
+        for (const DrapedVertex& v : db.creases.vertices) z_max = std::max(z_max, v.z);
+        for (std::size_t i = 0; i < g.size(); ++i)
+            if (g.valid[i]) z_lo = std::min(z_lo, g.z[i]);
+        EXPECT_LE(z_max, index.z_top) << dem.name;
+        EXPECT_LT(index.z_top, z_max + 2.0f * (z_max - z_lo)) << dem.name;
         EXPECT_GT(worst_plan, 1.0) << dem.name;  // the cells' plan length alone is no bound
         EXPECT_LE(1.2 * worst_plan, crease_length_factor) << dem.name;
         EXPECT_LE(1.2 * worst_rise, crease_rise_factor) << dem.name;
