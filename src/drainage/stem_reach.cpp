@@ -124,18 +124,27 @@ float drape_height_top(const DrainageGrid& g) {
         const glm::dvec2 xy = coarse ? glm::dvec2(g.coarse_xy[i]) : grid_xy(g, c, r);
         return glm::dvec3(xy, double(z[i]));
     };
-    double top = -std::numeric_limits<double>::infinity(), edge = 0.0;
-    for (int r = 0; r < rows; ++r)
-        for (int c = 0; c < cols; ++c) {
-            const std::size_t i = std::size_t(r) * std::size_t(cols) + std::size_t(c);
-            if (!valid[i]) continue;
-            const glm::dvec3 p = node(c, r);
-            top = std::max(top, p.z);
-            for (const auto [dc, dr] : {std::pair(1, 0), std::pair(0, 1), std::pair(1, 1)}) {
-                if (c + dc >= cols || r + dr >= rows || !valid[i + std::size_t(dr) * std::size_t(cols) + std::size_t(dc)]) continue;
-                edge = std::max(edge, glm::length(node(c + dc, r + dr) - p));
+    // per row on all cores (the highest node and the longest squared edge down to the next row)
+    std::vector<double> row_top(std::size_t(std::max(rows, 0)), -std::numeric_limits<double>::infinity());
+    std::vector<double> row_edge2(row_top.size(), 0.0);
+    parallel_chunks(row_top.size(), 16, [&](std::size_t r0, std::size_t r1) {
+        for (int r = int(r0); r < int(r1); ++r)
+            for (int c = 0; c < cols; ++c) {
+                const std::size_t i = std::size_t(r) * std::size_t(cols) + std::size_t(c);
+                if (!valid[i]) continue;
+                const glm::dvec3 p = node(c, r);
+                row_top[std::size_t(r)] = std::max(row_top[std::size_t(r)], p.z);
+                for (const auto [dc, dr] : {std::pair(1, 0), std::pair(0, 1), std::pair(1, 1)}) {
+                    if (c + dc >= cols || r + dr >= rows || !valid[i + std::size_t(dr) * std::size_t(cols) + std::size_t(dc)])
+                        continue;
+                    const glm::dvec3 d = node(c + dc, r + dr) - p;
+                    row_edge2[std::size_t(r)] = std::max(row_edge2[std::size_t(r)], glm::dot(d, d));
+                }
             }
-        }
+    });
+    double top = -std::numeric_limits<double>::infinity(), edge2 = 0.0;
+    for (std::size_t r = 0; r < row_top.size(); ++r) top = std::max(top, row_top[r]), edge2 = std::max(edge2, row_edge2[r]);
+    const double edge = std::sqrt(edge2);
     if (!(top > -std::numeric_limits<double>::infinity())) return -std::numeric_limits<float>::infinity();
     const double bound = top + edge + 1e-3 * (std::abs(top) + edge);
     const float f = float(bound);
