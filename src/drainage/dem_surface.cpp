@@ -68,16 +68,20 @@ void face_row(const DemSurface& s, int r, FaceRow& out) {
     const std::size_t cells = std::size_t(s.cols() - 1);
     out.n.resize(2 * cells), out.present.assign(2 * cells, 0);
     if (r < 0 || r > s.rows() - 2) return;
-    for (int c = 0; c + 1 < s.cols(); ++c)
-        for (int which = 0; which < 2; ++which) {
-            if (!s.triangle_valid(c, r, which)) continue;
-            const glm::vec3 a = s.node(c, r), d = s.node(c + 1, r + 1);
-            const glm::vec3 p1 = which == 0 ? s.node(c, r + 1) : d, p2 = which == 0 ? d : s.node(c + 1, r);
-            const glm::vec3 n = glm::cross(p1 - a, p2 - a);
-            const float len = glm::length(n);
-            out.n[2 * std::size_t(c) + which] = len > 0.0f ? n / len : glm::vec3(0, 0, 1);
-            out.present[2 * std::size_t(c) + which] = 1;
-        }
+    s.with_nodes([&](const auto& node) {
+        const std::size_t row = s.index(0, r), below = s.index(0, r + 1);
+        for (int c = 0; c + 1 < s.cols(); ++c)
+            for (int which = 0; which < 2; ++which) {
+                if (!s.triangle_valid(c, r, which)) continue;
+                const std::size_t i = row + std::size_t(c), j = below + std::size_t(c);
+                const glm::vec3 a = node(c, r, i), d = node(c + 1, r + 1, j + 1);
+                const glm::vec3 p1 = which == 0 ? node(c, r + 1, j) : d, p2 = which == 0 ? d : node(c + 1, r, i + 1);
+                const glm::vec3 n = glm::cross(p1 - a, p2 - a);
+                const float len = glm::length(n);
+                out.n[2 * std::size_t(c) + which] = len > 0.0f ? n / len : glm::vec3(0, 0, 1);
+                out.present[2 * std::size_t(c) + which] = 1;
+            }
+    });
 }
 
 }  // namespace
@@ -125,31 +129,48 @@ bool DemSurface::affine_guess(double x, double y, int& c, int& r) const {
 
 
 bool DemSurface::find_cell(double x, double y, int& c, int& r) const {
-    const auto xy = [this](int nc, int nr) { return node_xy(nc, nr); };  // the walk's node positions
     if (cols_ < 2 || rows_ < 2 || !std::isfinite(x) || !std::isfinite(y)) return false;
     if (affine_) {
         if (!affine_guess(x, y, c, r)) return false;
         if (!pos_ && !xy_) return true;  // the nodes are the formula's: its cell
-        return walk_to_cell(xy, cols_, rows_, x, y, c, r);  // stored nodes: the formula's cell starts the walk
     }
-    if ((c < 0 || r < 0 || c > cols_ - 2 || r > rows_ - 2) && !outline_cell(xy, cols_, rows_, x, y, c, r))
-        return false;
-    return walk_to_cell(xy, cols_, rows_, x, y, c, r);
+    return with_node_xy([&](const auto& xy) {  // the walk's node positions
+        if (!affine_ && (c < 0 || r < 0 || c > cols_ - 2 || r > rows_ - 2) && !outline_cell(xy, cols_, rows_, x, y, c, r))
+            return false;
+        return walk_to_cell(xy, cols_, rows_, x, y, c, r);  // stored nodes: the formula's cell starts the walk
+    });
 }
+
+namespace {
+
+// triangle_hit's barycentric test of (x, y) in the triangle of plan corners p0, p1, p2 (u weights
+// p1, w weights p2), the same doubles: false when the triangle is degenerate.
+struct PlanBary {
+    double u = 0.0, w = 0.0;
+    bool ok = false;
+    PlanBary(double x, double y, glm::dvec2 p0, glm::dvec2 p1, glm::dvec2 p2) {
+        const double det = (p1.x - p0.x) * (p2.y - p0.y) - (p2.x - p0.x) * (p1.y - p0.y);
+        if (std::abs(det) < 1e-12) return;
+        u = ((x - p0.x) * (p2.y - p0.y) - (p2.x - p0.x) * (y - p0.y)) / det;
+        w = ((p1.x - p0.x) * (y - p0.y) - (x - p0.x) * (p1.y - p0.y)) / det;
+        ok = true;
+    }
+    // 1e-5 of the triangle's size from every edge
+    bool inside() const { return ok && !(u < 1e-5 || w < 1e-5 || u + w > 1.0 - 1e-5); }
+};
+
+}  // namespace
 
 // Triangle `which` of cell (c, r) tested as TerrainLocator::locate tests it: true when (x, y)
 // lies in it within the tolerance `eps` of each barycentric coordinate (the hit filled in).
-// `inside` (when given) tells whether it lies in it 1e-5 of its size from every edge.
-bool DemDraper::triangle_hit(double x, double y, int c, int r, int which, double eps, DemHit& hit, bool* inside) const {
+bool DemDraper::triangle_hit(double x, double y, int c, int r, int which, double eps, DemHit& hit) const {
     if (!s_->triangle_valid(c, r, which)) return false;
     const int nc[3] = {c, which == 0 ? c : c + 1, c + 1};
     const int nr[3] = {r, r + 1, which == 0 ? r + 1 : r};
-    const glm::dvec2 p0(s_->node_xy(nc[0], nr[0])), p1(s_->node_xy(nc[1], nr[1])), p2(s_->node_xy(nc[2], nr[2]));
-    const double det = (p1.x - p0.x) * (p2.y - p0.y) - (p2.x - p0.x) * (p1.y - p0.y);
-    if (std::abs(det) < 1e-12) return false;
-    const double u = ((x - p0.x) * (p2.y - p0.y) - (p2.x - p0.x) * (y - p0.y)) / det;
-    const double w = ((p1.x - p0.x) * (y - p0.y) - (x - p0.x) * (p1.y - p0.y)) / det;
-    if (inside) *inside = !(u < 1e-5 || w < 1e-5 || u + w > 1.0 - 1e-5);
+    const PlanBary b(x, y, glm::dvec2(s_->node_xy(nc[0], nr[0])), glm::dvec2(s_->node_xy(nc[1], nr[1])),
+                     glm::dvec2(s_->node_xy(nc[2], nr[2])));
+    if (!b.ok) return false;
+    const double u = b.u, w = b.w;
     if (u < -eps || w < -eps || u + w > 1.0 + eps) return false;
     for (int k = 0; k < 3; ++k) hit.node[k] = std::uint32_t(s_->index(nc[k], nr[k]));
     hit.bary = glm::vec3(float(1.0 - u - w), float(u), float(w));
@@ -157,15 +178,56 @@ bool DemDraper::triangle_hit(double x, double y, int c, int r, int which, double
     return true;
 }
 
-bool DemDraper::locate(double x, double y, int& c, int& r, DemHit& hit) const {
-    if (!s_->find_cell(x, y, c, r)) return false;
-    // Well inside one of the cell's triangles (1e-5 of its size from every edge), no other
-    // triangle comes within TerrainLocator's tolerance of the point: that one.
-    // (a hit 1e-5 inside is one within the tolerance 1e-7: filled in by the same test)
+// The triangle of cell (c, r) that (x, y) lies well inside (1e-5 of its size from every edge;
+// triangle_hit's test, the same doubles), the hit filled in; false when there is none. `xy`:
+// the surface's node_xy (with_node_xy).
+template <class XY>
+bool DemDraper::inside_hit(const XY& xy, double x, double y, int c, int r, DemHit& hit) const {
+    const bool t0 = s_->triangle_valid(c, r, 0), t1 = s_->triangle_valid(c, r, 1);
+    if (!t0 && !t1) return false;
+    const glm::dvec2 nw(xy(c, r)), se(xy(c + 1, r + 1));
     for (int which = 0; which < 2; ++which) {
-        bool inside = false;
-        if (triangle_hit(x, y, c, r, which, 1e-7, hit, &inside) && inside) return true;
+        if (!(which == 0 ? t0 : t1)) continue;
+        const glm::dvec2 third(which == 0 ? xy(c, r + 1) : xy(c + 1, r));
+        const PlanBary b = which == 0 ? PlanBary(x, y, nw, third, se) : PlanBary(x, y, nw, se, third);
+        if (!b.inside()) continue;
+        const std::size_t i = s_->index(c, r), cols = std::size_t(s_->cols());
+        hit.node[0] = std::uint32_t(i);
+        hit.node[1] = std::uint32_t(which == 0 ? i + cols : i + cols + 1);
+        hit.node[2] = std::uint32_t(which == 0 ? i + cols + 1 : i + 1);
+        hit.bary = glm::vec3(float(1.0 - b.u - b.w), float(b.u), float(b.w));
+        hit.cell = std::uint32_t(r) * std::uint32_t(s_->cols() - 1) + std::uint32_t(c);
+        return true;
     }
+    return false;
+}
+
+bool DemDraper::locate(double x, double y, int& c, int& r, DemHit& hit) const {
+    // A point well inside a triangle lies within TerrainLocator's tolerance of no other, so that
+    // triangle is the answer whichever cell the search below would stop in. On a grid searched by
+    // walking, a hint cell first predicts the point's cell from its own corners (the point's
+    // coordinates along its column and row edges): the next vertex of a line lies a cell or so
+    // away, and one test of the predicted cell's triangles replaces the walk's steps.
+    const bool hinted = c >= 0 && r >= 0 && c <= s_->cols() - 2 && r <= s_->rows() - 2;
+    if (hinted && s_->walks() && std::isfinite(x) && std::isfinite(y)) {
+        const bool found = s_->with_node_xy([&](const auto& xy) {
+            const glm::dvec2 o(xy(c, r)), ec = glm::dvec2(xy(c + 1, r)) - o, er = glm::dvec2(xy(c, r + 1)) - o;
+            const double det = ec.x * er.y - ec.y * er.x;
+            if (!(std::abs(det) > 0.0)) return false;
+            const glm::dvec2 d = glm::dvec2(x, y) - o;
+            const double u = (d.x * er.y - d.y * er.x) / det, v = (ec.x * d.y - ec.y * d.x) / det;
+            if (!(std::abs(u) < 4.0 && std::abs(v) < 4.0)) return false;  // far: the walk's
+            const int pc = std::clamp(c + int(std::floor(u)), 0, s_->cols() - 2);
+            const int pr = std::clamp(r + int(std::floor(v)), 0, s_->rows() - 2);
+            if (!inside_hit(xy, x, y, pc, pr, hit)) return false;
+            c = pc, r = pr;
+            return true;
+        });
+        if (found) return true;
+    }
+    if (!s_->find_cell(x, y, c, r)) return false;
+    // Well inside one of the cell's triangles: that one.
+    if (s_->with_node_xy([&](const auto& xy) { return inside_hit(xy, x, y, c, r, hit); })) return true;
     // Else TerrainLocator::locate's rule: the first triangle in mesh order whose barycentric
     // coordinates are all >= -1e-7; any such triangle touches the cell's 3 x 3 neighbourhood.
     for (int rr = r - 1; rr <= r + 1; ++rr)
@@ -175,12 +237,32 @@ bool DemDraper::locate(double x, double y, int& c, int& r, DemHit& hit) const {
     return false;
 }
 
+// The positions and normals of a hit's three nodes (node, normal): the column and row of its first
+// node divided out once, the others' from their offsets (a cell's corners; any other by division).
+void DemDraper::corners(const DemHit& hit, glm::vec3 p[3], glm::vec3 n[3]) const {
+    s_->with_nodes([&](const auto& node) {
+        if constexpr (std::decay_t<decltype(node)>::by_index) {
+            for (int k = 0; k < 3; ++k) p[k] = node(hit.node[k]), n[k] = s_->normal(std::size_t(hit.node[k]));
+            return;
+        }
+        const std::uint32_t cols = std::uint32_t(s_->cols()), i0 = hit.node[0];
+        const int c0 = int(i0 % cols), r0 = int(i0 / cols);
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t i = hit.node[k], d = i - i0;
+            int c = c0, r = r0;
+            if (d == 0) {
+            } else if (d == 1) c = c0 + 1;
+            else if (d == cols) r = r0 + 1;
+            else if (d == cols + 1) c = c0 + 1, r = r0 + 1;
+            else c = int(i % cols), r = int(i / cols);
+            p[k] = node(c, r, i), n[k] = s_->normal(i);
+        }
+    });
+}
+
 void DemDraper::position_normal(const DemHit& hit, glm::vec3& position, glm::vec3& normal) const {
     glm::vec3 p[3], n[3];
-    for (int k = 0; k < 3; ++k) {
-        const int c = int(hit.node[k] % std::uint32_t(s_->cols())), r = int(hit.node[k] / std::uint32_t(s_->cols()));
-        p[k] = s_->node(c, r), n[k] = s_->normal(c, r);
-    }
+    corners(hit, p, n);
     const PnPatch patch = pn_patch(p[0], p[1], p[2], n[0], n[1], n[2]);
     position = pn_position(patch, hit.bary);
     normal = pn_normal(patch, hit.bary);
@@ -188,11 +270,14 @@ void DemDraper::position_normal(const DemHit& hit, glm::vec3& position, glm::vec
 
 float DemDraper::height_normal(const DemHit& hit, glm::vec3& normal) const {
     glm::vec3 p[3], n[3];
-    for (int k = 0; k < 3; ++k) {
-        const int c = int(hit.node[k] % std::uint32_t(s_->cols())), r = int(hit.node[k] / std::uint32_t(s_->cols()));
-        p[k] = s_->node(c, r), n[k] = s_->normal(c, r);
-    }
+    corners(hit, p, n);
     return pn_height_normal(p[0], p[1], p[2], n[0], n[1], n[2], hit.bary, normal);
+}
+
+void DemDraper::height_normal4(const DemHit hits[4], float z[4], glm::vec3 normal[4]) const {
+    glm::vec3 p[4][3], n[4][3], t[4];
+    for (int i = 0; i < 4; ++i) corners(hits[i], p[i], n[i]), t[i] = hits[i].bary;
+    pn_height_normal4(p, n, t, z, normal);
 }
 
 }  // namespace penink

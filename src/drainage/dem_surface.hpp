@@ -12,6 +12,7 @@
 // build uses unexaggerated heights).
 #pragma once
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -54,6 +55,7 @@ public:
     std::size_t index(int c, int r) const { return std::size_t(r) * std::size_t(cols_) + std::size_t(c); }
     // The unit vertex normal of node (c, r) as compute_normals gives it ((0, 0, 1) in no triangle).
     glm::vec3 normal(int c, int r) const { return normals_[index(c, r)]; }
+    glm::vec3 normal(std::size_t i) const { return normals_[i]; }  // of node i = index(c, r)
     // Triangle `which` of cell (c, r) (0: NW, SW, SE; 1: NW, SE, NE) is part of the surface: the
     // cell lies on the grid and the triangle's three nodes hold data.
     bool triangle_valid(int c, int r, int which) const {
@@ -65,6 +67,62 @@ public:
     // A cell (c, r) whose quadrilateral holds (x, y) within a tolerance, searched from (c, r) as
     // given (a hint: -1 for none); false when the point lies off the grid.
     bool find_cell(double x, double y, int& c, int& r) const;
+    // Whether find_cell walks over the grid's cells (its nodes do not follow the affine formula
+    // it inverts directly).
+    bool walks() const { return !affine_; }
+
+    // Calls f(nodes) with `nodes(c, r)` giving node_xy(c, r) (the same floats), made for the way
+    // this surface holds its nodes (per node, by column and row, or the affine formula) so that a
+    // loop over many nodes does not choose it at every node; returns what f returns.
+    template <class F> decltype(auto) with_node_xy(F&& f) const {
+        if (pos_) return f(PosXY{pos_, std::size_t(cols_)});
+        if (xy_) return f(StoredXY{xy_, std::size_t(cols_)});
+        if (!col_x_.empty()) return f(AxisXY{col_x_.data(), row_y_.data()});
+        return f(FormulaXY{&nodes_, origin_});
+    }
+    // The same for node(c, r) given its index i = index(c, r) too.
+    template <class F> decltype(auto) with_nodes(F&& f) const {
+        return with_node_xy([&](const auto& xy) { return f(Nodes<std::decay_t<decltype(xy)>>{xy, z_, pos_}); });
+    }
+
+    // node_xy's ways (with_node_xy).
+    struct PosXY {
+        const glm::vec3* pos;
+        std::size_t cols;
+        glm::vec2 operator()(int c, int r) const { return glm::vec2(pos[std::size_t(r) * cols + std::size_t(c)]); }
+    };
+    struct StoredXY {
+        const glm::vec2* xy;
+        std::size_t cols;
+        glm::vec2 operator()(int c, int r) const { return xy[std::size_t(r) * cols + std::size_t(c)]; }
+    };
+    struct AxisXY {
+        const float *x, *y;
+        glm::vec2 operator()(int c, int r) const { return {x[std::size_t(c)], y[std::size_t(r)]}; }
+    };
+    struct FormulaXY {
+        const AffineNodes* nodes;
+        glm::dvec2 origin;
+        glm::vec2 operator()(int c, int r) const { return affine_node_xy(*nodes, origin, c, r); }
+    };
+    template <class XY> struct Nodes {
+        XY xy;
+        const float* z;
+        const glm::vec3* pos;
+        // node i read without its column and row (per-node x, y)
+        static constexpr bool by_index = std::is_same_v<XY, PosXY> || std::is_same_v<XY, StoredXY>;
+        glm::vec3 operator()(std::size_t i) const {
+            if constexpr (std::is_same_v<XY, PosXY>) return pos[i];
+            else return {xy.xy[i].x, xy.xy[i].y, z[i]};
+        }
+        glm::vec3 operator()(int c, int r, std::size_t i) const {
+            if constexpr (std::is_same_v<XY, PosXY>) return pos[i];
+            else {
+                const glm::vec2 p = xy(c, r);
+                return {p.x, p.y, z[i]};
+            }
+        }
+    };
 
 private:
     int cols_ = 0, rows_ = 0;
@@ -104,11 +162,15 @@ public:
     void position_normal(const DemHit& hit, glm::vec3& position, glm::vec3& normal) const;
     // position_normal's z (returned) and normal, the same floats (pn_height_normal).
     float height_normal(const DemHit& hit, glm::vec3& normal) const;
+    // height_normal of four hits at once (z[i], normal[i] of hits[i]; pn_height_normal4), the
+    // same floats.
+    void height_normal4(const DemHit hits[4], float z[4], glm::vec3 normal[4]) const;
 
 private:
     const DemSurface* s_;
-    bool triangle_hit(double x, double y, int c, int r, int which, double eps, DemHit& hit,
-                      bool* inside = nullptr) const;
+    bool triangle_hit(double x, double y, int c, int r, int which, double eps, DemHit& hit) const;
+    void corners(const DemHit& hit, glm::vec3 p[3], glm::vec3 n[3]) const;
+    template <class XY> bool inside_hit(const XY& xy, double x, double y, int c, int r, DemHit& hit) const;
 };
 
 }  // namespace penink

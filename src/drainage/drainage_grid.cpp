@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/error.hpp"
+#include "core/floor_index.hpp"
 #include "core/parallel_chunks.hpp"
 #include "surface/pn_triangle.hpp"
 #include "surface/surface_mesh.hpp"
@@ -270,8 +271,8 @@ glm::dvec2 grid_xy(const DrainageGrid& g, int c, int r) {
 
 glm::dvec2 grid_xy_at(const DrainageGrid& g, double c, double r) {
     if (g.factor == 1 || g.coarse_cols < 2 || g.coarse_rows < 2) {  // bilinear between the nodes
-        const int c0 = int(std::clamp(std::floor(c), 0.0, double(g.cols - 2)));
-        const int r0 = int(std::clamp(std::floor(r), 0.0, double(g.rows - 2)));
+        const int c0 = floor_index(c, g.cols - 2);
+        const int r0 = floor_index(r, g.rows - 2);
         const double u = std::clamp(c - c0, 0.0, 1.0), v = std::clamp(r - r0, 0.0, 1.0);
         if (g.factor == 1 && !g.has_affine && g.coarse_xy.size() == g.size()) {  // grid_xy's nodes, read here
             const glm::vec2* n = g.coarse_xy.data() + g.index(c0, r0);
@@ -283,8 +284,8 @@ glm::dvec2 grid_xy_at(const DrainageGrid& g, double c, double r) {
                v * ((1 - u) * grid_xy(g, c0, r0 + 1) + u * grid_xy(g, c0 + 1, r0 + 1));
     }
     const double f = g.factor;
-    const int C = int(std::clamp(std::floor(c / f), 0.0, double(g.coarse_cols - 2)));
-    const int R = int(std::clamp(std::floor(r / f), 0.0, double(g.coarse_rows - 2)));
+    const int C = floor_index(c / f, g.coarse_cols - 2);
+    const int R = floor_index(r / f, g.coarse_rows - 2);
     const double u = std::clamp(c / f - C, 0.0, 1.0), v = std::clamp(r / f - R, 0.0, 1.0);
     const CellTriangle tri = cell_triangle(g.coarse_cols, C, R, u, v);
     const auto n = substitute(tri.node, g.coarse_valid);

@@ -14,6 +14,7 @@
 #include "drainage/d8.hpp"
 #include "drainage/stems.hpp"
 #include "drainage/fall_line_stems.hpp"
+#include "drainage/line_chunks.hpp"
 #include "drainage/polyline_smoothing.hpp"
 #include "drainage/ridge_crests.hpp"
 
@@ -437,14 +438,49 @@ void end_stems_where_they_meet(DrapedLineSet& set, const std::vector<std::uint32
             // a squared distance above this one's square root exceeds `closest` (the bound's
             // 1e-9 lies far above sqrt's rounding): skipped without the square root
             double beyond = closest * closest * (1.0 + 1e-9);
-            for (std::uint32_t i = from; i <= e; ++i) {
+            // the boxes of the joined line's vertices in groups of 4: a group whose box's squared
+            // distance to a vertex (the same roundings, each no larger than to any vertex inside)
+            // exceeds `beyond` lies farther from it with all its vertices, skipped without them
+            constexpr std::int64_t group = 4;
+            struct Box {
+                float x0, x1, y0, y1;
+            };
+            Box boxes[64];
+            const std::int64_t ng = std::min<std::int64_t>((hi - lo + group) / group, 64);
+            // the squared distance from v to a box (0 inside; each difference no larger than v's
+            // to any vertex in it, so neither its square nor the sum)
+            auto box_distance2 = [](const Box& b, const DrapedVertex& v) {
+                const double bx = std::max(std::max(double(b.x0) - v.x, 0.0), v.x - double(b.x1));
+                const double by = std::max(std::max(double(b.y0) - v.y, 0.0), v.y - double(b.y1));
+                return bx * bx + by * by;
+            };
+            for (std::int64_t g = 0; g < ng; ++g) {
+                const std::int64_t j0 = lo + g * group, j1 = g + 1 == ng ? hi : std::min(hi, j0 + group - 1);
+                Box& b = boxes[g];
+                b = {set.vertices[j0].x, set.vertices[j0].x, set.vertices[j0].y, set.vertices[j0].y};
+                for (std::int64_t j = j0 + 1; j <= j1; ++j) {
+                    b.x0 = std::min(b.x0, set.vertices[j].x), b.x1 = std::max(b.x1, set.vertices[j].x);
+                    b.y0 = std::min(b.y0, set.vertices[j].y), b.y1 = std::max(b.y1, set.vertices[j].y);
+                }
+            }
+            Box all = boxes[0];  // the whole window's: a vertex beyond it skips every group
+            for (std::int64_t g = 1; g < ng; ++g)
+                all = {std::min(all.x0, boxes[g].x0), std::max(all.x1, boxes[g].x1), std::min(all.y0, boxes[g].y0),
+                       std::max(all.y1, boxes[g].y1)};
+            // from the end back (a trace's last vertices come closest: the bound shrinks early), a
+            // distance equal to the closest taking the earlier vertex: the first of equals
+            for (std::uint32_t i = e + 1; i-- > from;) {
                 const DrapedVertex& v = set.vertices[i];
-                for (std::int64_t j = lo; j <= hi; ++j) {
-                    const double dx = double(set.vertices[j].x) - v.x, dy = double(set.vertices[j].y) - v.y;
-                    if (dx * dx + dy * dy > beyond) continue;
-                    const double d = plan_length(dx, dy);
-                    if (d < closest || (d == closest && stop[k] == 0xffffffffu))
-                        closest = d, stop[k] = i, beyond = closest * closest * (1.0 + 1e-9);
+                if (box_distance2(all, v) > beyond) continue;
+                for (std::int64_t g = 0; g < ng; ++g) {
+                    if (box_distance2(boxes[g], v) > beyond) continue;
+                    const std::int64_t j0 = lo + g * group, j1 = g + 1 == ng ? hi : std::min(hi, j0 + group - 1);
+                    for (std::int64_t j = j0; j <= j1; ++j) {
+                        const double dx = double(set.vertices[j].x) - v.x, dy = double(set.vertices[j].y) - v.y;
+                        if (dx * dx + dy * dy > beyond) continue;
+                        const double d = plan_length(dx, dy);
+                        if (d <= closest) closest = d, stop[k] = i, beyond = closest * closest * (1.0 + 1e-9);
+                    }
                 }
             }
         }
@@ -524,10 +560,10 @@ DrapedLineSet walk_stems(const StemWalk& walk, const DrainageGrid& g, const std:
 }
 
 std::vector<std::uint32_t> sources_of(const StemWalk& walk, const DrainageGrid& g) {
-    std::vector<std::uint32_t> sources;
-    for (std::size_t i = 0; i < g.size(); ++i)
-        if (g.valid[i] && walk.indeg[i] == 0) sources.push_back(std::uint32_t(i));
-    return sources;
+    return parallel_collect<std::uint32_t>(g.size(), 1 << 16, [&](std::size_t i0, std::size_t i1, std::vector<std::uint32_t>& out) {
+        for (std::size_t i = i0; i < i1; ++i)
+            if (g.valid[i] && walk.indeg[i] == 0) out.push_back(std::uint32_t(i));
+    });
 }
 
 }  // namespace
@@ -803,31 +839,45 @@ DrapedLineSet ridge_part(const DrainageGrid& g, const DemSurface& surface, const
 }
 
 void drape_lines(DrapedLineSet& set, const DemSurface& surface, const LineProgress& progress) {
-    // In batches of lines so the progress moves; each thread walks its lines with the cell of the
-    // vertex before as the next one's start.
+    // In batches of lines so the progress moves, batches and the threads' chunks of equal shares
+    // of the vertices (line_chunks.hpp); each thread walks its lines with the cell of the vertex
+    // before as the next one's start.
     constexpr std::size_t batches = 16;
-    const std::size_t nl = set.lines.size(), per = (nl + batches - 1) / batches;
-    for (std::size_t b = 0; b < batches && b * per < nl; ++b) {
-        const std::size_t end = std::min(nl, (b + 1) * per);
-        parallel_chunks(end - b * per, 256, [&](std::size_t l0, std::size_t l1) {
+    const std::size_t nl = set.lines.size(), nv = set.vertices.size();
+    for (std::size_t b = 0, l0 = 0; b < batches && l0 < nl; ++b) {
+        const std::size_t l1 = b + 1 == batches ? nl : std::max(l0 + 1, line_at(set.lines, (b + 1) * nv / batches));
+        parallel_line_chunks(set.lines, nv, l0, l1, 4096, [&](std::size_t i0, std::size_t i1) {
             const DemDraper draper(surface);
-            for (std::size_t i = b * per + l0; i < b * per + l1; ++i) {
+            // the located vertices evaluated four at a time (height_normal4: the same floats)
+            DemHit hits[4];
+            DrapedVertex* at[4];
+            int pending = 0;
+            auto evaluate = [&] {
+                float z[4];
+                glm::vec3 n[4];
+                if (pending == 4) draper.height_normal4(hits, z, n);
+                else
+                    for (int j = 0; j < pending; ++j) z[j] = draper.height_normal(hits[j], n[j]);
+                for (int j = 0; j < pending; ++j) at[j]->z = z[j], at[j]->nx = n[j].x, at[j]->ny = n[j].y, at[j]->nz = n[j].z;
+                pending = 0;
+            };
+            for (std::size_t i = i0; i < i1; ++i) {
                 const DrapedLine& l = set.lines[i];
                 int c = -1, r = -1;
                 for (std::uint32_t k = 0; k < l.count; ++k) {
                     DrapedVertex& v = set.vertices[l.first + k];
-                    DemHit hit;
-                    if (!draper.locate(v.x, v.y, c, r, hit)) {
+                    if (!draper.locate(v.x, v.y, c, r, hits[pending])) {
                         v.nx = v.ny = v.nz = 0.0f;
                         continue;
                     }
-                    glm::vec3 n;
-                    v.z = draper.height_normal(hit, n);
-                    v.nx = n.x, v.ny = n.y, v.nz = n.z;
+                    at[pending++] = &v;
+                    if (pending == 4) evaluate();
                 }
             }
+            evaluate();
         });
-        if (progress) progress(double(end) / double(nl));
+        l0 = l1;
+        if (progress) progress(double(l1) / double(nl));
     }
     index_lines(set);
     if (progress) progress(1.0);
@@ -843,12 +893,27 @@ bool has_relief(const DrainageGrid& g) {
     const bool coarse = !g.coarse_z.empty();
     const std::vector<float>& z = coarse ? g.coarse_z : g.z;
     const std::vector<std::uint8_t>& valid = coarse ? g.coarse_valid : g.valid;
+    // per chunk on all cores: whether any valid height differs from the chunk's first
+    const std::size_t n = std::min(z.size(), valid.size());
+    struct Span {
+        bool any = false;
+        float lo = 0.0f, hi = 0.0f;
+    };
+    const std::vector<Span> spans = parallel_collect<Span>(n, 1 << 16, [&](std::size_t i0, std::size_t i1, std::vector<Span>& out) {
+        Span s;
+        for (std::size_t i = i0; i < i1; ++i) {
+            if (!valid[i]) continue;
+            if (!s.any) s.lo = s.hi = z[i], s.any = true;
+            s.lo = std::min(s.lo, z[i]), s.hi = std::max(s.hi, z[i]);
+        }
+        out.push_back(s);
+    });
     bool any = false;
     float lo = 0.0f, hi = 0.0f;
-    for (std::size_t i = 0; i < z.size() && i < valid.size(); ++i) {
-        if (!valid[i]) continue;
-        if (!any) lo = hi = z[i], any = true;
-        lo = std::min(lo, z[i]), hi = std::max(hi, z[i]);
+    for (const Span& s : spans) {
+        if (!s.any) continue;
+        if (!any) lo = s.lo, hi = s.hi, any = true;
+        lo = std::min(lo, s.lo), hi = std::max(hi, s.hi);
     }
     return any && hi > lo;
 }

@@ -5,7 +5,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "core/parallel_chunks.hpp"
+#include "core/floor_index.hpp"
+#include "drainage/line_chunks.hpp"
 #include "drainage/polyline_smoothing.hpp"
 
 namespace penink {
@@ -37,29 +38,44 @@ public:
 
     // Plan steps of a column and a row at the cell holding p (index space).
     Frame frame(glm::dvec2 p) const {
-        const int c = int(std::clamp(std::floor(p.x), 0.0, double(g_.cols - 2)));
-        const int r = int(std::clamp(std::floor(p.y), 0.0, double(g_.rows - 2)));
+        const int c = floor_index(p.x, g_.cols - 2);
+        const int r = floor_index(p.y, g_.rows - 2);
         const glm::dvec2 o = grid_xy(g_, c, r);
         return {grid_xy(g_, c + 1, r) - o, grid_xy(g_, c, r + 1) - o};
     }
 
+    // The central differences at the four nodes of the last cell whose 4 x 4 nodes all hold data
+    // (a thread's: a trace's next points mostly lie in the cell of the one before).
+    struct CellDiffs {
+        int c = -1, r = -1;
+        glm::dvec2 node[4];
+    };
+
     // dz/dc, dz/dr at fine index point p: bilinear between the four DEM nodes' central
     // differences around it; false beside nodata.
-    bool gradient(glm::dvec2 fine, glm::dvec2& grad) const {
+    bool gradient(glm::dvec2 fine, glm::dvec2& grad, CellDiffs& last) const {
         const glm::dvec2 p = scale_ == 1.0 ? fine : fine / scale_;  // x / 1 is x: no division at factor 1
         int c, r;
         cell(p, c, r);
         const double fu = std::clamp(p.x - c, 0.0, 1.0), fv = std::clamp(p.y - r, 0.0, 1.0);
         grad = glm::dvec2(0.0);
         const double w[4] = {(1 - fu) * (1 - fv), fu * (1 - fv), (1 - fu) * fv, fu * fv};
-        if (c >= 1 && r >= 1 && c + 2 < cols_ && r + 2 < rows_ && block_valid(c, r)) {
-            // the 4 x 4 nodes around all hold data: central differences throughout
-            const float* z = z_ + index(c, r);
-            const std::ptrdiff_t row = cols_;
-            for (int k = 0; k < 4; ++k) {
-                const float* n = z + (k >> 1) * row + (k & 1);
-                grad += w[k] * glm::dvec2(0.5 * (double(n[1]) - n[-1]), 0.5 * (double(n[row]) - n[-row]));
+        if (c != last.c || r != last.r) {
+            if (c >= 1 && r >= 1 && c + 2 < cols_ && r + 2 < rows_ && block_valid(c, r)) {
+                // the 4 x 4 nodes around all hold data: central differences throughout
+                const float* z = z_ + index(c, r);
+                const std::ptrdiff_t row = cols_;
+                for (int k = 0; k < 4; ++k) {
+                    const float* n = z + (k >> 1) * row + (k & 1);
+                    last.node[k] = glm::dvec2(0.5 * (double(n[1]) - n[-1]), 0.5 * (double(n[row]) - n[-row]));
+                }
+                last.c = c, last.r = r;
+            } else {
+                last.c = last.r = -1;
             }
+        }
+        if (last.c >= 0) {
+            for (int k = 0; k < 4; ++k) grad += w[k] * last.node[k];
             if (scale_ != 1.0) grad /= scale_;
             return true;
         }
@@ -86,8 +102,8 @@ private:
 
     std::size_t index(int c, int r) const { return std::size_t(r) * std::size_t(cols_) + std::size_t(c); }
     void cell(glm::dvec2 p, int& c, int& r) const {
-        c = int(std::clamp(std::floor(p.x), 0.0, double(cols_ - 2)));
-        r = int(std::clamp(std::floor(p.y), 0.0, double(rows_ - 2)));
+        c = floor_index(p.x, cols_ - 2);
+        r = floor_index(p.y, rows_ - 2);
     }
     // The 4 x 4 nodes from (c - 1, r - 1) hold data (corners not needed, read anyway).
     bool block_valid(int c, int r) const {
@@ -124,9 +140,10 @@ bool descent(const Frame& f, glm::dvec2 gr, glm::dvec2& d) {
 
 // Unit index-space fall direction at p on frame f; false where there is none (nodata, flat).
 // `slope2`: the squared plan slope there (|grad z|^2 = -gr . d before d is made a unit vector).
-bool fall_direction(const GridField& field, const Frame& f, glm::dvec2 p, glm::dvec2& d, double* slope2 = nullptr) {
+bool fall_direction(const GridField& field, const Frame& f, glm::dvec2 p, glm::dvec2& d, GridField::CellDiffs& last,
+                    double* slope2 = nullptr) {
     glm::dvec2 gr;
-    if (!field.gradient(p, gr) || !descent(f, gr, d)) return false;
+    if (!field.gradient(p, gr, last) || !descent(f, gr, d)) return false;
     if (slope2) *slope2 = -glm::dot(gr, d);
     d /= norm(d.x, d.y);
     return true;
@@ -154,6 +171,7 @@ struct StemScratch {
         : kernel(o.sigma), widen_cos(std::cos(o.widen_max_deg * deg)),
           widen_slope2(std::pow(std::tan(o.widen_min_slope_deg * deg), 2)) {}
     std::vector<glm::dvec2> q, s;
+    GridField::CellDiffs last;
     GaussianKernel kernel;
     double widen_cos, widen_slope2;
 };
@@ -181,15 +199,15 @@ void trace_stem(const Stem& stem, const GridField& field, const FallLineOptions&
         }
         const glm::dvec2 step = s[k + 1] - s[k];
         const double ds = norm(step.x, step.y);
-        glm::dvec2 next = p + step + back_towards(s[k] - p, ds);  // no usable fall line: along S, back towards it
-        glm::dvec2 d1, d2;
+        bool falls = false;  // next = p + ds * d along the fall line, else along S, back towards it
+        glm::dvec2 d1, d2, d;
         double slope2 = 0.0;
         bool along = false;  // the fall line runs with the stem: the corridor may widen
-        if (ds > 0.0 && fall_direction(field, f, p, d1, &slope2)) {
+        if (ds > 0.0 && fall_direction(field, f, p, d1, scratch.last, &slope2)) {
             // Heun's step: the mean of the directions here and one step on (across a V-shaped
             // valley's floor they cancel across it and add along it)
-            glm::dvec2 d = d1;
-            if (fall_direction(field, f, p + ds * d1, d2)) {
+            d = d1;
+            if (fall_direction(field, f, p + ds * d1, d2, scratch.last)) {
                 const glm::dvec2 m = d1 + d2;
                 const double ml = norm(m.x, m.y);
                 if (ml > 1e-6) d = m / ml;
@@ -197,7 +215,7 @@ void trace_stem(const Stem& stem, const GridField& field, const FallLineOptions&
             const glm::dvec2 pt = step.x * f.u + step.y * f.v, pd = d.x * f.u + d.y * f.v;
             const double cosine = glm::dot(pt, pd) / (norm(pt.x, pt.y) * norm(pd.x, pd.y));
             along = cosine > widen_cos;
-            if (cosine > min_cos) next = p + ds * d;
+            falls = cosine > min_cos;
             const glm::dvec2 ahead = p + ds * d1;  // the fall line leaves the grid: the crease ends
             if (ahead.x < 0.0 || ahead.y < 0.0 || ahead.x > double(field.cols() - 1) || ahead.y > double(field.rows() - 1)) {
                 stopped = true;
@@ -205,6 +223,7 @@ void trace_stem(const Stem& stem, const GridField& field, const FallLineOptions&
                 continue;
             }
         }
+        const glm::dvec2 next = falls ? p + ds * d : p + step + back_towards(s[k] - p, ds);
         run = slope2 > widen_slope2 && along ? std::min(o.max_corridor, run + o.widen * ds) : std::max(o.corridor, run - o.widen * ds);
         const glm::dvec2 e = next - s[k + 1];
         const double el = norm(e.x, e.y), corridor = std::min(o.max_corridor, run);
@@ -241,7 +260,7 @@ void trace_fall_lines(DrapedLineSet& set, const std::vector<std::uint32_t>& cell
                       const FallLineOptions& o) {
     if (g.cols < 2 || g.rows < 2) return;
     const GridField field(g);
-    parallel_chunks(set.lines.size(), 1024, [&](std::size_t l0, std::size_t l1) {
+    parallel_line_chunks(set.lines, set.vertices.size(), 0, set.lines.size(), 4096, [&](std::size_t l0, std::size_t l1) {
         StemScratch scratch(o);
         for (std::size_t i = l0; i < l1; ++i) {
             const DrapedLine& l = set.lines[i];

@@ -7,6 +7,7 @@
 #include <glm/common.hpp>
 
 #include "core/parallel_chunks.hpp"
+#include "drainage/line_chunks.hpp"
 
 namespace penink {
 
@@ -27,8 +28,9 @@ std::uint32_t cell_of(double v, double origin, double side, std::uint32_t n) {
 void index_lines(DrapedLineSet& set) {
     LineIndex& x = set.index;
     x = LineIndex{};
-    // each line's box and length on all cores, then the set's box over the lines in order
-    parallel_chunks(set.lines.size(), 4096, [&](std::size_t l0, std::size_t l1) {
+    // each line's box and length on all cores (chunks of equal shares of the vertices), then the
+    // set's box over the lines in order
+    parallel_line_chunks(set.lines, set.vertices.size(), 0, set.lines.size(), 1 << 14, [&](std::size_t l0, std::size_t l1) {
         for (std::size_t i = l0; i < l1; ++i) {
             DrapedLine& l = set.lines[i];
             const DrapedVertex* v = set.vertices.data() + l.first;

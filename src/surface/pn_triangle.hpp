@@ -29,5 +29,9 @@ glm::vec3 pn_normal(const PnPatch& patch, const glm::vec3& bary);  // unit lengt
 // (a height field's draping needs only the height: about half the work).
 float pn_height_normal(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& n0,
                        const glm::vec3& n1, const glm::vec3& n2, const glm::vec3& bary, glm::vec3& normal);
+// pn_height_normal of four patches at once (z[i], normal[i] of patch p[i], n[i] at t[i]), the
+// same floats, on 4-wide vector lanes.
+void pn_height_normal4(const glm::vec3 p[4][3], const glm::vec3 n[4][3], const glm::vec3 t[4], float z[4],
+                       glm::vec3 normal[4]);
 
 }  // namespace penink

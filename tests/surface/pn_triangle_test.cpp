@@ -22,6 +22,28 @@ void expect_vec(const glm::vec3& a, const glm::vec3& b, float tol = 1e-6f) {
     EXPECT_NEAR(a.z, b.z, tol);
 }
 
+std::uint32_t float_bits(float f) {
+    std::uint32_t u;
+    std::memcpy(&u, &f, 4);
+    return u;
+}
+
+// Random terrain-like PN triangles (a grid cell's half, heights and tilted unit normals) at random
+// barycentric weights.
+struct RandomPatches {
+    explicit RandomPatches(unsigned seed) : rng(seed) {}
+    void next(glm::vec3 p[3], glm::vec3 n[3], glm::vec3& bary) {
+        const float dx = spacing(rng), dy = spacing(rng), x0 = 1000.0f * b(rng), y0 = 1000.0f * b(rng);
+        p[0] = {x0, y0, h(rng)}, p[1] = {x0, y0 - dy, h(rng)}, p[2] = {x0 + dx, y0 - dy, h(rng)};
+        for (int k = 0; k < 3; ++k) n[k] = glm::normalize(glm::vec3(tilt(rng), tilt(rng), 1.0f));
+        float u = b(rng), w = b(rng);
+        if (u + w > 1.0f) u = 1.0f - u, w = 1.0f - w;
+        bary = glm::vec3(1.0f - u - w, u, w);
+    }
+    std::mt19937 rng;
+    std::uniform_real_distribution<float> h{-50.0f, 900.0f}, tilt{-0.8f, 0.8f}, spacing{1.0f, 40.0f}, b{0.0f, 1.0f};
+};
+
 }  // namespace
 
 // Flat triangle with normals tilted outward. By hand, for p0=(0,0,0), p1=(3,0,0), p2=(0,3,0),
@@ -81,34 +103,49 @@ TEST(PnTriangle, SphereVerticesBulgeTowardTheSphere) {
 // (the drainage drape stores them; its golden files are byte for byte): random terrain-like
 // triangles (a grid cell's half, heights and tilted unit normals) at random barycentric weights.
 TEST(PnTriangle, HeightNormalIsThePatchsZAndNormalBitForBit) {
-    std::mt19937 rng(7);
-    std::uniform_real_distribution<float> h(-50.0f, 900.0f), tilt(-0.8f, 0.8f), spacing(1.0f, 40.0f), b(0.0f, 1.0f);
-    auto bits = [](float f) {
-        std::uint32_t u;
-        std::memcpy(&u, &f, 4);
-        return u;
-    };
+    RandomPatches patches(7);
     int checked = 0;
     for (int i = 0; i < 20000; ++i) {
-        const float dx = spacing(rng), dy = spacing(rng), x0 = 1000.0f * b(rng), y0 = 1000.0f * b(rng);
-        const glm::vec3 p0(x0, y0, h(rng)), p1(x0, y0 - dy, h(rng)), p2(x0 + dx, y0 - dy, h(rng));
-        const glm::vec3 n0 = glm::normalize(glm::vec3(tilt(rng), tilt(rng), 1.0f));
-        const glm::vec3 n1 = glm::normalize(glm::vec3(tilt(rng), tilt(rng), 1.0f));
-        const glm::vec3 n2 = glm::normalize(glm::vec3(tilt(rng), tilt(rng), 1.0f));
-        float u = b(rng), w = b(rng);
-        if (u + w > 1.0f) u = 1.0f - u, w = 1.0f - w;
-        const glm::vec3 bary(1.0f - u - w, u, w);
-        const PnPatch q = pn_patch(p0, p1, p2, n0, n1, n2);
+        glm::vec3 p[3], nv[3], bary;
+        patches.next(p, nv, bary);
+        const PnPatch q = pn_patch(p[0], p[1], p[2], nv[0], nv[1], nv[2]);
         const glm::vec3 want_p = pn_position(q, bary), want_n = pn_normal(q, bary);
         glm::vec3 n;
-        const float z = pn_height_normal(p0, p1, p2, n0, n1, n2, bary, n);
-        ASSERT_EQ(bits(z), bits(want_p.z)) << i;
-        ASSERT_EQ(bits(n.x), bits(want_n.x)) << i;
-        ASSERT_EQ(bits(n.y), bits(want_n.y)) << i;
-        ASSERT_EQ(bits(n.z), bits(want_n.z)) << i;
+        const float z = pn_height_normal(p[0], p[1], p[2], nv[0], nv[1], nv[2], bary, n);
+        ASSERT_EQ(float_bits(z), float_bits(want_p.z)) << i;
+        ASSERT_EQ(float_bits(n.x), float_bits(want_n.x)) << i;
+        ASSERT_EQ(float_bits(n.y), float_bits(want_n.y)) << i;
+        ASSERT_EQ(float_bits(n.z), float_bits(want_n.z)) << i;
         ++checked;
     }
     EXPECT_EQ(checked, 20000);
+}
+
+// Four patches at once give each patch's pn_height_normal to the bit, lanes mixed with the
+// degenerate cases that take the other side of its choices (a zero-length edge: no reflection;
+// opposite vertex normals: a zero mid-edge normal, the fallback taken).
+TEST(PnTriangle, FourLanesAreTheHeightNormalBitForBit) {
+    RandomPatches patches(11);
+    for (int i = 0; i < 5000; ++i) {
+        glm::vec3 p[4][3], n[4][3], t[4];
+        for (int lane = 0; lane < 4; ++lane) {
+            patches.next(p[lane], n[lane], t[lane]);
+            const int odd = (i + lane) % 16;
+            if (odd == 1) p[lane][1] = p[lane][0];  // a zero-length edge
+            if (odd == 2)  // opposite vertex normals: nothing to reflect, the fallback's normalised sum
+                n[lane][1] = glm::vec3(1, 0, 0), n[lane][0] = glm::vec3(-1, 0, 0);
+        }
+        float z[4];
+        glm::vec3 normal[4];
+        pn_height_normal4(p, n, t, z, normal);
+        for (int lane = 0; lane < 4; ++lane) {
+            glm::vec3 want_n;
+            const float want_z = pn_height_normal(p[lane][0], p[lane][1], p[lane][2], n[lane][0], n[lane][1], n[lane][2],
+                                                  t[lane], want_n);
+            ASSERT_EQ(float_bits(z[lane]), float_bits(want_z)) << i << " " << lane;
+            for (int k = 0; k < 3; ++k) ASSERT_EQ(float_bits(normal[lane][k]), float_bits(want_n[k])) << i << " " << lane;
+        }
+    }
 }
 
 TEST(SurfaceMesh, TwoCounterClockwiseTrianglesPerCellAndNormals) {
