@@ -70,8 +70,7 @@ void validate_hachures(const HachureParams& p, const std::string& file) {
 }
 
 int hachure_node_step(const GridNodes& nodes, GridWindow w, const Camera& camera) {
-    w.c0 = std::clamp(w.c0, 0, nodes.cols), w.c1 = std::clamp(w.c1, w.c0, nodes.cols);
-    w.r0 = std::clamp(w.r0, 0, nodes.rows), w.r1 = std::clamp(w.r1, w.r0, nodes.rows);
+    w = w.clamped(nodes.cols, nodes.rows);
     if (w.cols() < 2 || w.rows() < 2) return 1;
     const PixelProjector project(camera);
     double largest = 0.0;  // pixels a cell spans, the largest over the lattice
