@@ -110,6 +110,7 @@ int main(int argc, char** argv) {
         const RgbImage rgb = rasterise(styled, tr);
         const ToneImage ink = ink_from_rgb(rgb.width, rgb.height, rgb.rgb);
         const GridNodes& n = frames->terrain().nodes;
+        n.need(GridWindow{0, 0, n.cols, n.rows});  // the target reads every node directly (the frame may not have)
         ToneGrid grid{n.cols, n.rows, n.pos, n.valid, n.z_scale};
         if (n.has_sea()) grid.sea_z = n.sea_z();  // water: no target (tone_measure.hpp)
         const ToneImage target = target_tone(grid, d.camera, d.toward, light_vector(Light{scene.view.light.azimuth, scene.view.light.altitude}));

@@ -447,6 +447,7 @@ void end_stems_where_they_meet(DrapedLineSet& set, const std::vector<std::uint32
             };
             Box boxes[64];
             const std::int64_t ng = std::min<std::int64_t>((hi - lo + group) / group, 64);
+            if (ng <= 0) continue;  // t lies in `into`, so lo <= t <= hi: never, but boxes[0] is read below
             // the squared distance from v to a box (0 inside; each difference no larger than v's
             // to any vertex in it, so neither its square nor the sum)
             auto box_distance2 = [](const Box& b, const DrapedVertex& v) {

@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -67,6 +68,17 @@ inline GridNodes grid_nodes(const Terrain& t) {
     if (t.pos.size() != t.size() || t.valid.size() != t.size()) return {};
     return {t.cols, t.rows, t.pos.data(), t.valid.data(), 1.0, -std::numeric_limits<double>::infinity()};
 }
+
+// Every step-th node of a window (clamped to the grid) in each direction, from its first node:
+// cols x rows of them, row-major, their stored positions (pos, z unscaled, as GridNodes holds
+// them) and valid flags. Only the rows they lie on are read (need), so a step of s reads about
+// 1/s of the window's blocks. step 1: the window's nodes.
+struct SampledNodes {
+    int cols = 0, rows = 0;
+    std::vector<glm::vec3> pos;
+    std::vector<std::uint8_t> valid;
+};
+SampledNodes sample_nodes(const GridNodes& nodes, GridWindow w, int step);
 
 // A Terrain of the nodes inside `w` (clamped to the grid) as `nodes` draws them, with `grid`'s
 // georeference and exaggeration (its own node arrays are not kept); the source offsets moved to w.

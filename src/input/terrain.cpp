@@ -13,16 +13,32 @@ Terrain crop_terrain(const Terrain& t, GridWindow w) { return crop_nodes(t, grid
 
 void GridNodes::need(GridWindow w) const {
     if (!blocks) return;
-    w.c0 = std::clamp(w.c0, 0, cols), w.c1 = std::clamp(w.c1, w.c0, cols);
-    w.r0 = std::clamp(w.r0, 0, rows), w.r1 = std::clamp(w.r1, w.r0, rows);
+    w = w.clamped(cols, rows);
     if (w.c0 == w.c1) return;
     if (w.c0 == 0 && w.c1 == cols) return need(index(0, w.r0), index(0, w.r1));  // whole rows: one range
     for (int r = w.r0; r < w.r1; ++r) need(index(w.c0, r), index(w.c1 - 1, r) + 1);
 }
 
+SampledNodes sample_nodes(const GridNodes& nodes, GridWindow w, int step) {
+    step = std::max(step, 1);
+    w = w.clamped(nodes.cols, nodes.rows);
+    SampledNodes out;
+    if (w.c0 == w.c1 || w.r0 == w.r1) return out;
+    out.cols = (w.cols() - 1) / step + 1, out.rows = (w.rows() - 1) / step + 1;
+    out.pos.resize(std::size_t(out.cols) * out.rows), out.valid.resize(out.pos.size());
+    for (int j = 0; j < out.rows; ++j) {
+        const int r = w.r0 + j * step;
+        nodes.need(nodes.index(w.c0, r), nodes.index(w.c1 - 1, r) + 1);
+        for (int i = 0; i < out.cols; ++i) {
+            const std::size_t from = nodes.index(w.c0 + i * step, r), to = std::size_t(j) * out.cols + i;
+            out.pos[to] = nodes.pos[from], out.valid[to] = nodes.valid[from];
+        }
+    }
+    return out;
+}
+
 Terrain crop_nodes(const Terrain& grid, const GridNodes& nodes, GridWindow w) {
-    w.c0 = std::clamp(w.c0, 0, nodes.cols), w.c1 = std::clamp(w.c1, w.c0, nodes.cols);
-    w.r0 = std::clamp(w.r0, 0, nodes.rows), w.r1 = std::clamp(w.r1, w.r0, nodes.rows);
+    w = w.clamped(nodes.cols, nodes.rows);
     nodes.need(w);
     Terrain out = grid;
     out.cols = w.cols(), out.rows = w.rows();

@@ -3,6 +3,7 @@
 // local frame's origin, so floats keep centimetre precision). Row 0 is the north edge.
 // A geographic DEM is projected node by node to UTM, so the grid may be curvilinear.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <string>
@@ -68,6 +69,13 @@ struct GridWindow {
     int c0 = 0, r0 = 0, c1 = 0, r1 = 0;
     int cols() const { return c1 - c0; }
     int rows() const { return r1 - r0; }
+    // The window inside a grid of cols x rows nodes (empty where it lies outside).
+    GridWindow clamped(int cols, int rows) const {
+        GridWindow w;
+        w.c0 = std::clamp(c0, 0, cols), w.c1 = std::clamp(c1, w.c0, cols);
+        w.r0 = std::clamp(r0, 0, rows), w.r1 = std::clamp(r1, w.r0, rows);
+        return w;
+    }
 };
 
 // Copy of the nodes inside `w` (clamped to the grid); keeps origin and CRS (crop_nodes).

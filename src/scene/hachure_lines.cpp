@@ -1,6 +1,7 @@
 // The hachures layer of a terrain frame (hachure_lines.hpp).
 #include "scene/hachure_lines.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -68,15 +69,51 @@ void validate_hachures(const HachureParams& p, const std::string& file) {
     check(file, "min_length_px", p.min_length_px, 0.0, 1000.0);
 }
 
+int hachure_node_step(const GridNodes& nodes, GridWindow w, const Camera& camera) {
+    w = w.clamped(nodes.cols, nodes.rows);
+    if (w.cols() < 2 || w.rows() < 2) return 1;
+    const PixelProjector project(camera);
+    double largest = 0.0;  // pixels a cell spans, the largest over the lattice
+    bool seen = false;
+    for (int i = 0; i < 16; ++i)
+        for (int j = 0; j < 16; ++j) {
+            const int c = w.c0 + (w.cols() - 2) * i / 15, r = w.r0 + (w.rows() - 2) * j / 15;
+            if (!nodes.has_data(nodes.index(c, r)) || !nodes.has_data(nodes.index(c + 1, r)) ||
+                !nodes.has_data(nodes.index(c, r + 1)))
+                continue;
+            glm::dvec2 a, b, e;
+            double da, db, de;
+            if (!project(glm::dvec3(nodes.at(c, r)), a, da) || !project(glm::dvec3(nodes.at(c + 1, r)), b, db) ||
+                !project(glm::dvec3(nodes.at(c, r + 1)), e, de))
+                return 1;  // a node behind the eye: keep every node
+            if (a.x < 0 || a.y < 0 || a.x >= camera.width || a.y >= camera.height) continue;
+            largest = std::max({largest, glm::length(b - a), glm::length(e - a)});
+            seen = true;
+        }
+    if (!seen || !(largest > 0.0)) return 1;
+    int step = 1;
+    while (step < hachure_max_node_step && 2.0 * step * largest <= hachure_node_px) step *= 2;
+    return step;
+}
+
 void add_hachures(const FrameTerrain& terrain, const Camera& camera, const DepthImage& toward,
                   const glm::dvec3& light, const HachureParams& params, Drawing& drawing) {
     if (!params.enabled) return;
     const GridNodes& n = terrain.nodes;
-    n.need(terrain.window);  // read directly below
     HachureGrid grid;
-    grid.cols = n.cols, grid.rows = n.rows, grid.pos = n.pos, grid.valid = n.valid, grid.z_scale = n.z_scale;
+    grid.z_scale = n.z_scale;
     if (n.has_sea()) grid.floor_z = n.sea_z();
-    grid.c0 = terrain.window.c0, grid.r0 = terrain.window.r0, grid.c1 = terrain.window.c1, grid.r1 = terrain.window.r1;
+    const int step = hachure_node_step(n, terrain.window, camera);
+    SampledNodes sampled;
+    if (step == 1) {
+        n.need(terrain.window);  // read directly below
+        grid.cols = n.cols, grid.rows = n.rows, grid.pos = n.pos, grid.valid = n.valid;
+        grid.c0 = terrain.window.c0, grid.r0 = terrain.window.r0, grid.c1 = terrain.window.c1, grid.r1 = terrain.window.r1;
+    } else {
+        sampled = sample_nodes(n, terrain.window, step);
+        grid.cols = sampled.cols, grid.rows = sampled.rows, grid.pos = sampled.pos.data(), grid.valid = sampled.valid.data();
+        grid.c1 = sampled.cols, grid.r1 = sampled.rows;
+    }
     HachureFrame frame;
     frame.camera = &camera;
     frame.toward = &toward;

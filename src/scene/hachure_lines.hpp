@@ -28,7 +28,19 @@ HachureParams hachure_pen(HachureParams params, const Style& style);
 // One-line range errors ("[hachures] KEY must be between LO and HI (got V)").
 void validate_hachures(const HachureParams& p, const std::string& file);
 
-// The frame's hachures into drawing's hachures layer (nothing when disabled).
+// The step between the nodes the hachures work from: the largest power of two (at most
+// hachure_max_node_step) at which a cell of the window still spans at most hachure_node_px on the
+// image, its image size the largest of max(|node(c+1, r) - node(c, r)|, |node(c, r+1) - node(c, r)|)
+// (pixels) over a 16 x 16 lattice of the window's nodes (its edges included) that project into the
+// image. 1 (every node) wherever the nodes are not finer than that, as on every DEM a frame shows
+// at a few pixels or more a cell; a whole view of a DEM of many nodes to the pixel gets 2, 4, ...
+inline constexpr double hachure_node_px = 0.5;
+inline constexpr int hachure_max_node_step = 64;
+int hachure_node_step(const GridNodes& nodes, GridWindow window, const Camera& camera);
+
+// The frame's hachures into drawing's hachures layer (nothing when disabled), traced on every
+// hachure_node_step-th node of the window in each direction (sample_nodes: only those rows are
+// read), so a frame of a fine DEM reads a share of its nodes that follows the image.
 // params.width_px is the pen width the spacing is computed for (0: default_hachure_width_px).
 void add_hachures(const FrameTerrain& terrain, const Camera& camera, const DepthImage& toward,
                   const glm::dvec3& light, const HachureParams& params, Drawing& drawing);

@@ -1,0 +1,104 @@
+// The hachures of a frame (scene/hachure_lines.hpp) on a DEM whose nodes are finer than the
+// image's pixels: they work from every hachure_node_step-th node, so a whole view of a fine DEM
+// read from its terrain cache reads a share of the nodes that follows the image, not the DEM.
+#include <cstdio>
+#include <optional>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/checked_blocks.hpp"
+#include "scene/hachure_lines.hpp"
+#include "surface/terrain_cache.hpp"
+#include "support/synthetic_terrain.hpp"
+#include "support/temp_dir.hpp"
+
+namespace penink {
+namespace {
+
+TerrainCacheKey key() { return {1, 2, 3, 0, true}; }
+
+// Straight down (orthographic) on the whole DEM, or in perspective from the south-west, at
+// width x height pixels.
+Camera whole_view(const StoredTerrain& t, int width, int height, bool perspective = false) {
+    std::vector<glm::dvec3> corners;
+    for (const int c : {0, t.nodes.cols - 1})
+        for (const int r : {0, t.nodes.rows - 1}) {
+            const glm::vec3 p = t.nodes.at(c, r);
+            corners.emplace_back(p.x, p.y, double(t.lod.z_min));
+            corners.emplace_back(p.x, p.y, double(t.lod.z_max));
+        }
+    if (perspective) return frame_points(corners, {.azimuth = 225.0, .altitude = -40.0, .width = width, .height = height, .view_width = 0.0, .fill = 1.0});
+    return frame_points_orthographic(corners, {.azimuth = 0.0, .altitude = -89.0, .width = width, .height = height,
+                                               .view_width = 0.0, .fill = 1.0});
+}
+
+GridWindow whole(const GridNodes& n) { return {0, 0, n.cols, n.rows}; }
+
+// A 1025^2 DEM of 5 m cells (5120 m a side) framed in 75 rows of pixels: a cell spans about
+// 75 / 1025 = 0.073 px, so every 4th node keeps cells under half a pixel (0.29 px) and every 8th
+// would not (0.59 px); at 750 rows a cell spans 0.73 px and every node is used.
+TEST(HachureLines, NodeStepFollowsThePixelsACellSpans) {
+    const StoredTerrain t = store_terrain(terrain_from_function(1025, 1025, 5.0, rough_hills));
+    const GridNodes n = t.drawn(1.0);
+    EXPECT_EQ(hachure_node_step(n, whole(n), whole_view(t, 100, 75)), 4);
+    EXPECT_EQ(hachure_node_step(n, whole(n), whole_view(t, 200, 150)), 2);
+    EXPECT_EQ(hachure_node_step(n, whole(n), whole_view(t, 1000, 750)), 1);
+    EXPECT_EQ(hachure_node_step(n, GridWindow{0, 0, 1, 1}, whole_view(t, 100, 75)), 1) << "no cell: every node";
+}
+
+TEST(HachureLines, SampledNodesAreEveryStepthNode) {
+    const StoredTerrain t = store_terrain(terrain_from_function(11, 9, 5.0, rough_hills));
+    const GridNodes n = t.drawn(1.0);
+    const SampledNodes s = sample_nodes(n, GridWindow{1, 2, 11, 9}, 4);  // columns 1, 5, 9; rows 2, 6
+    ASSERT_EQ(s.cols, 3);
+    ASSERT_EQ(s.rows, 2);
+    for (int j = 0; j < s.rows; ++j)
+        for (int i = 0; i < s.cols; ++i) {
+            const std::size_t from = n.index(1 + 4 * i, 2 + 4 * j), to = std::size_t(j) * s.cols + i;
+            EXPECT_EQ(s.pos[to], n.pos[from]);
+            EXPECT_EQ(s.valid[to], n.valid[from]);
+        }
+}
+
+// The hachures of a whole view (in perspective from the south-west, 40 deg down) from the terrain
+// cache of a 2049^2 DEM (a smooth hill 400 m high, sigma 1200 m, on a 5120 m square): at
+// 1000 x 750 (every node used) the frame reads every block of the nodes; at 200 x 150 (every 4th
+// node) it reads the blocks of every 4th row (a row of 2049 nodes spans about 8 blocks
+// of 256 nodes, the block at its end shared with the next row: about 9/32 of them), well under a
+// third, and leaves the rows between unread; both draw hachures.
+TEST(HachureLines, WholeViewOfAFineDemReadsWhatTheImageNeeds) {
+    test::TempDir dir;
+    const StoredTerrain mem = store_terrain(terrain_from_function(2049, 2049, 2.5, gaussian_hill(400.0, 1200.0)));
+    const std::string path = dir.file("fine.lod");
+    write_terrain_cache(path, mem, key());
+    const glm::dvec3 light = glm::normalize(glm::dvec3(-1.0, 1.0, 1.0));
+    auto hachures = [&](int width, int height, std::uint64_t& bytes_read, std::vector<bool>* rows_read) {
+        const std::optional<StoredTerrain> map = read_terrain_cache(path, key());
+        if (!map) throw std::runtime_error("not opened");
+        FrameTerrain terrain;
+        terrain.meta = map->meta, terrain.nodes = map->drawn(1.0), terrain.lod = map->lod, terrain.storage = map->storage;
+        terrain.window = whole(terrain.nodes);
+        const Camera cam = whole_view(*map, width, height, true);
+        EXPECT_EQ(hachure_node_step(terrain.nodes, terrain.window, cam), width == 200 ? 4 : 1);
+        Drawing drawing;
+        add_hachures(terrain, cam, DepthImage{}, light, hachure_defaults(), drawing);
+        const CheckedBlocks& blocks = *map->nodes.blocks;
+        bytes_read = blocks.bytes_read();
+        if (rows_read)
+            for (int r = 0; r < 8; ++r)  // the middle node of rows 1000..1007
+                rows_read->push_back(blocks.has_read(GridNodes::pos_array, map->nodes.index(1024, 1000 + r)));
+        return drawing.layer(LayerKind::hachures).strokes.size();
+    };
+    std::uint64_t full = 0, coarse = 0;
+    std::vector<bool> rows;
+    EXPECT_GT(hachures(1000, 750, full, nullptr), 100u);
+    EXPECT_GT(hachures(200, 150, coarse, &rows), 10u);
+    std::printf("hachures of a 2049^2 cache: %llu bytes read at 1000x750, %llu at 200x150\n",
+                (unsigned long long)full, (unsigned long long)coarse);
+    EXPECT_LT(coarse * 3, full);
+    EXPECT_EQ(rows, (std::vector<bool>{true, false, false, false, true, false, false, false}));
+}
+
+}  // namespace
+}  // namespace penink
