@@ -78,7 +78,11 @@ bool inflate_raw(const std::uint8_t* coded, std::size_t size, std::uint8_t* out,
 
 }  // namespace
 
-std::vector<std::uint8_t> encode_floats(const float* data, std::size_t n, std::span<const int> orders) {
+namespace {
+
+// The byte planes of n elements of orders.size() floats (all low bytes of component 0, then of
+// component 1, ..., then the next byte of each): the floats ordered, differenced, zigzagged.
+std::vector<std::uint8_t> float_planes(const float* data, std::size_t n, std::span<const int> orders) {
     const int comps = int(orders.size());
     const std::size_t count = n * std::size_t(comps);
     std::vector<std::uint8_t> planes(count * 4);
@@ -93,16 +97,14 @@ std::vector<std::uint8_t> encode_floats(const float* data, std::size_t n, std::s
             for (std::size_t b = 0; b < 4; ++b) planes[b * count + at] = std::uint8_t(z >> (8 * b));
         }
     }
-    return deflate_raw(planes.data(), planes.size());
+    return planes;
 }
 
-bool decode_floats(const std::uint8_t* coded, std::size_t size, float* out, std::size_t n, std::span<const int> orders) {
+// float_planes inverted into `out`.
+void planes_to_floats(const std::uint8_t* planes, float* out, std::size_t n, std::span<const int> orders) {
     const std::size_t comps = orders.size(), count = n * comps;
-    thread_local std::vector<std::uint8_t> planes;  // a block's at a time, kept between blocks of a thread
-    planes.resize(count * 4);
-    if (!inflate_raw(coded, size, planes.data(), planes.size())) return false;
     for (std::size_t k = 0; k < comps; ++k) {
-        const std::uint8_t* p0 = planes.data() + k * n;
+        const std::uint8_t* p0 = planes + k * n;
         const std::uint8_t *p1 = p0 + count, *p2 = p1 + count, *p3 = p2 + count;
         // the differences summed back in the same pass (u: the value, d: its first difference)
         std::uint32_t u = 0, d = 0;
@@ -117,6 +119,57 @@ bool decode_floats(const std::uint8_t* coded, std::size_t size, float* out, std:
             out[i * comps + k] = unordered(u);
         }
     }
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encode_floats(const float* data, std::size_t n, std::span<const int> orders) {
+    const std::vector<std::uint8_t> planes = float_planes(data, n, orders);
+    return deflate_raw(planes.data(), planes.size());
+}
+
+bool decode_floats(const std::uint8_t* coded, std::size_t size, float* out, std::size_t n, std::span<const int> orders) {
+    thread_local std::vector<std::uint8_t> planes;  // a block's at a time, kept between blocks of a thread
+    planes.resize(n * orders.size() * 4);
+    if (!inflate_raw(coded, size, planes.data(), planes.size())) return false;
+    planes_to_floats(planes.data(), out, n, orders);
+    return true;
+}
+
+std::vector<std::uint8_t> encode_float_planes(const float* data, std::size_t n, std::span<const int> orders) {
+    const std::vector<std::uint8_t> planes = float_planes(data, n, orders);
+    std::vector<std::uint8_t> out;
+    for (std::size_t at = 0; at < planes.size(); at += n) {
+        const std::vector<std::uint8_t> coded = deflate_raw(planes.data() + at, n);
+        const bool raw = double(coded.size()) > raw_plane_share * double(n);
+        const std::uint64_t size = raw ? 0 : coded.size();  // 0: the plane's n bytes as they are
+        const auto* p = reinterpret_cast<const std::uint8_t*>(&size);
+        out.insert(out.end(), p, p + sizeof size);
+        if (raw) out.insert(out.end(), planes.begin() + std::ptrdiff_t(at), planes.begin() + std::ptrdiff_t(at + n));
+        else out.insert(out.end(), coded.begin(), coded.end());
+    }
+    return out;
+}
+
+bool decode_float_planes(const std::uint8_t* coded, std::size_t size, float* out, std::size_t n,
+                         std::span<const int> orders) {
+    const std::size_t count = n * orders.size() * 4;
+    thread_local std::vector<std::uint8_t> planes;
+    planes.resize(count);
+    std::size_t in = 0;
+    for (std::size_t at = 0; at < count; at += n) {
+        std::uint64_t len;
+        if (size - in < sizeof len) return false;
+        std::memcpy(&len, coded + in, sizeof len);
+        in += sizeof len;
+        const std::uint64_t take = len == 0 ? n : len;
+        if (size - in < take) return false;
+        if (len == 0) std::memcpy(planes.data() + at, coded + in, n);
+        else if (!inflate_raw(coded + in, len, planes.data() + at, n)) return false;
+        in += take;
+    }
+    if (in != size) return false;
+    planes_to_floats(planes.data(), out, n, orders);
     return true;
 }
 

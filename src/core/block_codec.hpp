@@ -27,6 +27,16 @@ namespace penink {
 std::vector<std::uint8_t> encode_floats(const float* data, std::size_t n, std::span<const int> orders);
 bool decode_floats(const std::uint8_t* coded, std::size_t size, float* out, std::size_t n, std::span<const int> orders);
 
+// The same planes, each deflated on its own and kept as it is where deflate does not bring it
+// under raw_plane_share of its size (the low bytes of a difference are near random: inflating
+// them costs time and saves nothing), so decoding inflates only the planes that code smaller.
+// Layout: per plane (4 x orders.size() of n bytes, low bytes first) u64 coded size (0: raw, n
+// bytes follow) and its bytes.
+inline constexpr double raw_plane_share = 0.9;
+std::vector<std::uint8_t> encode_float_planes(const float* data, std::size_t n, std::span<const int> orders);
+bool decode_float_planes(const std::uint8_t* coded, std::size_t size, float* out, std::size_t n,
+                         std::span<const int> orders);
+
 std::vector<std::uint8_t> encode_bytes(const std::uint8_t* data, std::size_t n);
 bool decode_bytes(const std::uint8_t* coded, std::size_t size, std::uint8_t* out, std::size_t n);
 

@@ -1,13 +1,17 @@
 #include "drainage/crease_tiles.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <limits>
 #include <utility>
 
 #include <glm/common.hpp>
 
 #include "core/error.hpp"
+#include "core/hash64.hpp"
+#include "core/parallel_chunks.hpp"
 #include "drainage/fall_line_stems.hpp"
+#include "drainage/line_tile_files.hpp"
 #include "drainage/stem_reach.hpp"
 
 namespace penink {
@@ -40,13 +44,15 @@ CreaseTileIndex crease_tile_index(const DrainageGrid& g, const std::vector<std::
     return out;
 }
 
-CreaseTiles::CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net, int tile)
-    : CreaseTiles(g, dir, net, crease_tile_index(g, dir, net, tile)) {}
+CreaseTiles::CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net, int tile,
+                         TileStore store)
+    : CreaseTiles(g, dir, net, crease_tile_index(g, dir, net, tile), std::move(store)) {}
 
 CreaseTiles::CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
-                         CreaseTileIndex index)
+                         CreaseTileIndex index, TileStore store)
     : g_(g), dir_(dir), net_(net), side_(std::max(1, index.side)), parts_(std::move(index.parts)),
-      bounds_(std::move(index.stems)), z_top_(index.z_top), set_(parts_.sources.size(), not_built), line_(parts_.sources.size(), 0) {
+      bounds_(std::move(index.stems)), z_top_(index.z_top), set_(parts_.sources.size(), not_built),
+      line_(parts_.sources.size(), 0), store_(std::move(store)) {
     const auto side = std::uint32_t(side_);
     const std::uint32_t tx = (std::uint32_t(g.cols) + side - 1) / side, ty = (std::uint32_t(g.rows) + side - 1) / side;
     tiles_.resize(std::size_t(tx) * ty);
@@ -61,7 +67,7 @@ CreaseTiles::CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>&
     for (std::size_t k = 0; k < tiles_.size(); ++k) tiles_[k].lo = index.lo[k], tiles_[k].hi = index.hi[k];
     for (std::uint32_t s = 0; s < parts_.sources.size(); ++s) {
         const std::uint32_t c = parts_.sources[s] % std::uint32_t(g.cols), r = parts_.sources[s] / std::uint32_t(g.cols);
-        tiles_[std::size_t(r / side) * tx + c / side].stems.push_back(s);
+        tiles_[std::size_t(r / side) * tx + c / side].stems[crease_tile_level(bounds_[s], g.dx)].push_back(s);
     }
 }
 
@@ -75,40 +81,134 @@ CreaseTileIndex CreaseTiles::index() const {
     return out;
 }
 
+DemSurface& CreaseTiles::surface() {
+    if (!surface_) {
+        if (before_build_) std::exchange(before_build_, {})();
+        surface_ = std::make_unique<DemSurface>(g_);
+    }
+    return *surface_;
+}
+
+namespace {
+
+// Lines ids (ascending, all in `stems`, ascending, whose line i is from's line i) copied out of
+// `from`, in that order.
+std::unique_ptr<DrapedLineSet> lines_of(const std::vector<std::uint32_t>& ids, const std::vector<std::uint32_t>& stems,
+                                        const DrapedLineSet& from) {
+    auto out = std::make_unique<DrapedLineSet>();
+    std::vector<std::uint32_t> at;  // line of `from` for each id
+    at.reserve(ids.size());
+    std::size_t n = 0, i = 0;
+    for (std::uint32_t s : ids) {
+        while (i < stems.size() && stems[i] < s) ++i;
+        if (i == stems.size() || stems[i] != s)
+            throw Error("drainage", "", "crease tile without stem " + std::to_string(s), ExitCode::internal);
+        at.push_back(std::uint32_t(i)), n += from.lines[i].count;
+    }
+    out->vertices.resize(n);
+    out->lines.reserve(ids.size());
+    std::size_t first = 0;
+    for (std::uint32_t i : at) {
+        DrapedLine l = from.lines[i];
+        std::copy_n(from.vertices.begin() + l.first, l.count, out->vertices.begin() + std::ptrdiff_t(first));
+        l.first = std::uint32_t(first), first += l.count;
+        out->lines.push_back(l);
+    }
+    return out;
+}
+
+}  // namespace
+
+void CreaseTiles::keep(const std::vector<std::uint32_t>& ids, std::unique_ptr<DrapedLineSet> lines) {
+    if (lines->lines.size() != ids.size())
+        throw Error("drainage", "", "crease part of " + std::to_string(lines->lines.size()) + " lines for " +
+                                        std::to_string(ids.size()) + " stems",
+                    ExitCode::internal);
+    for (std::uint32_t i = 0; i < ids.size(); ++i) set_[ids[i]] = std::uint32_t(sets_.size()), line_[ids[i]] = i;
+    stems_built_ += ids.size(), vertices_built_ += lines->vertices.size();
+    sets_.push_back(std::move(lines));
+}
+
+std::uint64_t CreaseTiles::tile_key(std::size_t k, int l) const {
+    const std::uint64_t fields[4] = {store_.key, std::uint64_t(side_), std::uint64_t(k), std::uint64_t(l)};
+    return hash64(fields, sizeof fields);
+}
+
+std::string CreaseTiles::tile_path(std::size_t k, int l) const {
+    return line_tile_path(store_.folder, std::uint32_t(k), l);
+}
+
+int crease_tile_level(const StemBound& b, double cell) {
+    const double cells = double(stem_bound_plan(b)) / cell;
+    int l = 0;
+    for (double top = 4.0; l + 1 < crease_tile_levels && cells >= top; top *= 2.0) ++l;
+    return l;
+}
+
 std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show) {
     const auto meets = [&](glm::vec2 a, glm::vec2 b) { return !(b.x < lo.x || a.x > hi.x || b.y < lo.y || a.y > hi.y); };
     std::vector<std::uint32_t> wanted, missing;
-    std::vector<std::size_t> cuts{0};  // missing[cuts[k], cuts[k + 1]): a tile's, ascending
+    // missing[cuts[k], cuts[k + 1]): level cut_level[k] of tile cut_tile[k]'s, ascending
+    std::vector<std::size_t> cuts{0}, cut_tile;
+    std::vector<int> cut_level;
     glm::vec2 blo, bhi;  // a stem's bound's box
-    for (const Tile& t : tiles_) {
-        if (t.stems.empty() || !meets(t.lo, t.hi)) continue;
-        for (std::uint32_t s : t.stems) {
-            stem_bound_box(bounds_[s], parts_.lo, parts_.hi, blo, bhi);
-            if (!meets(blo, bhi) || (may_show && !may_show(bounds_[s], blo, bhi, z_top_))) continue;
-            wanted.push_back(s);
-            if (set_[s] == not_built) missing.push_back(s);
+    for (std::size_t k = 0; k < tiles_.size(); ++k) {
+        const Tile& t = tiles_[k];
+        if (!meets(t.lo, t.hi)) continue;
+        for (int l = 0; l < crease_tile_levels; ++l) {
+            for (std::uint32_t s : t.stems[l]) {
+                stem_bound_box(bounds_[s], parts_.lo, parts_.hi, blo, bhi);
+                if (!meets(blo, bhi) || (may_show && !may_show(bounds_[s], blo, bhi, z_top_))) continue;
+                wanted.push_back(s);
+                if (set_[s] == not_built) missing.push_back(s);
+            }
+            if (missing.size() > cuts.back())
+                cuts.push_back(missing.size()), cut_tile.push_back(k), cut_level.push_back(l);
         }
-        if (missing.size() > cuts.back()) cuts.push_back(missing.size());
     }
     std::sort(wanted.begin(), wanted.end());
     if (!missing.empty()) ++builds_;
-    // a tile's missing stems at a time (each build on all cores): one build of many tiles' stems
-    // costs more than theirs one by one (larger working sets)
-    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
-        const std::vector<std::uint32_t> ids(missing.begin() + std::ptrdiff_t(cuts[k]),
-                                             missing.begin() + std::ptrdiff_t(cuts[k + 1]));
-        if (!surface_) {
-            if (before_build_) std::exchange(before_build_, {})();
-            surface_ = std::make_unique<DemSurface>(g_);
+    const auto ids_of = [&](std::size_t k) {
+        return std::vector<std::uint32_t>(missing.begin() + std::ptrdiff_t(cuts[k]), missing.begin() + std::ptrdiff_t(cuts[k + 1]));
+    };
+    // the tiles' files first, read and decoded on all cores (a tile's lines whole while its
+    // stems needed are copied out)
+    std::vector<std::unique_ptr<DrapedLineSet>> read(cut_tile.size());
+    if (!store_.folder.empty()) {
+        std::atomic<std::size_t> count{0};
+        parallel_chunks(cut_tile.size(), 1, [&](std::size_t k0, std::size_t k1) {
+            for (std::size_t k = k0; k < k1; ++k) {
+                DrapedLineSet whole;
+                const std::vector<std::uint32_t>& stems = tiles_[cut_tile[k]].stems[cut_level[k]];
+                if (read_line_tile(tile_path(cut_tile[k], cut_level[k]), tile_key(cut_tile[k], cut_level[k]), whole) &&
+                    whole.lines.size() == stems.size())
+                    read[k] = lines_of(ids_of(k), stems, whole), ++count;
+            }
+        });
+        tiles_read_ += count;
+    }
+    // the others built, a tile at a time (each build on all cores: one build of many tiles' stems
+    // costs more than theirs one by one, larger working sets); with a store every stem of the
+    // tile, for its file
+    for (std::size_t k = 0; k < cut_tile.size(); ++k) {
+        const std::vector<std::uint32_t> ids = ids_of(k);
+        if (read[k]) {
+            keep(ids, std::move(read[k]));
+            continue;
         }
-        auto lines = std::make_unique<DrapedLineSet>(crease_part(g_, dir_, net_, *surface_, parts_, ids));
-        if (lines->lines.size() != ids.size())
-            throw Error("drainage", "", "crease part of " + std::to_string(lines->lines.size()) + " lines for " +
-                                            std::to_string(ids.size()) + " stems",
-                        ExitCode::internal);
-        for (std::uint32_t i = 0; i < ids.size(); ++i) set_[ids[i]] = std::uint32_t(sets_.size()), line_[ids[i]] = i;
-        stems_built_ += ids.size(), vertices_built_ += lines->vertices.size();
-        sets_.push_back(std::move(lines));
+        const std::vector<std::uint32_t>& stems = tiles_[cut_tile[k]].stems[cut_level[k]];
+        if (!store_.folder.empty() && writable_) {
+            const DrapedLineSet whole = crease_part(g_, dir_, net_, surface(), parts_, stems);
+            if (whole.lines.size() != stems.size()) keep(stems, std::make_unique<DrapedLineSet>(whole));  // throws
+            ++tiles_built_;
+            if (write_line_tile(tile_path(cut_tile[k], cut_level[k]), tile_key(cut_tile[k], cut_level[k]), whole))
+                ++tiles_written_;
+            else
+                writable_ = false;  // the tiles from now on built as needed, in memory only
+            keep(ids, lines_of(ids, stems, whole));
+            continue;
+        }
+        keep(ids, std::make_unique<DrapedLineSet>(crease_part(g_, dir_, net_, surface(), parts_, ids)));
     }
     std::vector<Pick> picks;
     picks.reserve(wanted.size());

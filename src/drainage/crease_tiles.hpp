@@ -10,14 +10,25 @@
 // crease_part on all cores: one part of every stem costs more than the tiles one by one (on
 // jacksboro refined to 0.6", 2015 x 1720 cells, all stems 3.1 s in one part, 1.8 s in 56 tiles:
 // bench/line_parts_bench.cpp, a loaded machine), a tile's alone about 0.03 s.
+// With a tile store (a folder and a key), a tile's stems are kept on disk by length: each level
+// (crease_tile_level: the stems' plan bound under 4, 8, ..., 256 cells, or longer) of each tile in a
+// file of its own (line_tile_files.hpp). A level of a tile with stems a query needs that are not
+// kept is first looked for in its file (read when its key, sizes and checksum hold), else all its
+// stems are built and its file written, so the next process reads what this one built; either
+// way only the stems the query needs are kept in memory (a later query needing others reads the
+// file again). A view of a whole large DEM, which can show only long stems, so reads and builds
+// only the levels of long ones. Without a store, or once a file cannot be written, only the stems
+// needed are built and nothing is written.
 // Made once (the constructor): the stems' sources and box (stem_parts), each stem's bound and
 // each tile's reach, from one walk of every stem (its cells, 4 B a vertex while it runs).
 // Not thread-safe: one query at a time.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -45,15 +56,29 @@ struct CreaseTileIndex {
 CreaseTileIndex crease_tile_index(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                                   int tile = 256);
 
+// The level of a stem whose bound is b on a grid of cells `cell` metres wide (DrainageGrid::dx):
+// 0 to 7 as stem_bound_plan(b) is under 4, 8, 16, ..., 256 cells, or longer.
+inline constexpr int crease_tile_levels = 8;
+int crease_tile_level(const StemBound& b, double cell);
+
+// Where built tiles are kept between processes: one file a tile in `folder` (none: empty), each
+// keyed by hash64 of `key` (the caller's: what the network was built from), the tile size, the
+// tile's index and the level.
+struct TileStore {
+    std::string folder;
+    std::uint64_t key = 0;
+};
+
 class CreaseTiles {
 public:
     // g, dir and net must outlive this (g.z: the original elevations, as build_draped_lines reads);
     // with before_first_build, only g's cols and rows are read before the first build.
     // On a DEM without relief (has_relief) the whole build keeps no creases: make none there.
-    CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net, int tile = 256);
+    CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net, int tile = 256,
+                TileStore store = {});
     // The same from a stored index (crease_tile_index of this network; index.side is the tile size).
     CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
-                CreaseTileIndex index);
+                CreaseTileIndex index, TileStore store = {});
 
     // Whether a stem's crease may be drawn, from its bound alone (its box lo, hi as stem_bound_box
     // gives it; its length at exaggeration e: stem_bound_length; z_top: a height no crease vertex
@@ -85,9 +110,12 @@ public:
     std::size_t stem_count() const { return parts_.sources.size(); }
     // The index the tiles were made from (crease_tile_index's, or the one given).
     CreaseTileIndex index() const;
-    std::size_t stems_built() const { return stems_built_; }        // kept, built by the queries so far
+    std::size_t stems_built() const { return stems_built_; }        // kept: built or read by the queries so far
     std::size_t vertices_built() const { return vertices_built_; }  // their lines' vertices
-    std::size_t builds() const { return builds_; }                  // queries that built stems
+    std::size_t builds() const { return builds_; }                  // queries that built or read stems
+    std::size_t tiles_read() const { return tiles_read_; }          // tile files read (each time)
+    std::size_t tiles_built() const { return tiles_built_; }        // tiles built whole for their files
+    std::size_t tiles_written() const { return tiles_written_; }    // tile files written
 
 private:
     struct Pick {
@@ -98,7 +126,7 @@ private:
     // built where needed, in stem order
     std::vector<Pick> picks_for_box(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show);
     struct Tile {
-        std::vector<std::uint32_t> stems;  // ids, ascending
+        std::array<std::vector<std::uint32_t>, crease_tile_levels> stems;  // ids by level, ascending
         glm::vec2 lo{0.0f}, hi{-1.0f};     // plan box of its stems' reaches
     };
     static constexpr std::uint32_t not_built = 0xffffffffu;
@@ -114,6 +142,15 @@ private:
     std::vector<std::unique_ptr<DrapedLineSet>> sets_;
     std::vector<std::uint32_t> set_, line_;
     std::size_t stems_built_ = 0, vertices_built_ = 0, builds_ = 0;
+    TileStore store_;
+    bool writable_ = true;  // false once a tile file could not be written
+    std::size_t tiles_read_ = 0, tiles_built_ = 0, tiles_written_ = 0;
+    DemSurface& surface();  // made with the first build (after before_first_build)
+    // keeps `lines` (line i: stem ids[i]) as a new set
+    void keep(const std::vector<std::uint32_t>& ids, std::unique_ptr<DrapedLineSet> lines);
+    // of the file of level l of tile k, and its path
+    std::uint64_t tile_key(std::size_t k, int l) const;
+    std::string tile_path(std::size_t k, int l) const;
     std::unique_ptr<DemSurface> surface_;  // made with the first build
     std::function<void()> before_build_;
 };

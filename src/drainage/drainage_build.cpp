@@ -1,5 +1,7 @@
 #include "drainage/drainage_build.hpp"
 
+#include "drainage/stored_creases.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cstdio>
@@ -345,7 +347,8 @@ std::string cache_file_report(const std::string& path) {
 
 DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& terrain,
                                   const DrainageOptions& options, const DrainageLog& log,
-                                  const DrainageProgress& progress, DvLineVertices* in_file) {
+                                  const DrainageProgress& progress, DvLineVertices* in_file, std::string* file_used) {
+    if (file_used) file_used->clear();
     const std::string cache = drainage_cache_path(dem_path, options.cache_dir);
     const DrainageFingerprint fp = drainage_fingerprint(dem_path, terrain, options);
     auto say = [&](const std::string& m) { if (log) log(m); };
@@ -355,6 +358,7 @@ DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& te
                                     : read_drainage_db(beside, &fp, DvParts::lines);
             if (refers_to_other_dem(db, dem_path)) throw Error("drainage", beside, "drainage database refers to another DEM path");
             say("drainage: using cached " + cache_file_report(beside));
+            if (file_used) *file_used = beside;
             return db;
         } catch (const Error& e) {
             say(std::string(e.what()) + "; trying " + cache);
@@ -365,6 +369,7 @@ DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& te
                                 : read_drainage_db(cache, &fp, DvParts::lines);
         if (refers_to_other_dem(db, dem_path)) throw Error("drainage", cache, "drainage database refers to another DEM path");
         say("drainage: using cached " + cache_file_report(cache));
+        if (file_used) *file_used = cache;
         return db;
     } catch (const Error& e) {
         say(std::string(e.what()) + "; rebuilding");
@@ -398,6 +403,8 @@ DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& te
             try {
                 write_drainage_db(cache, built, branches);
                 say("drainage: wrote " + cache_file_report(cache));
+                remove_crease_tiles(cache);
+                if (file_used) *file_used = cache;
             } catch (const Error& e) {  // said once a run, verbose or not: every run builds it again
                 std::cerr << "penink: warning: drainage: " << cache << ": cannot write the drainage cache; using the "
                           << "database built in memory (built again on every run)\n";

@@ -147,8 +147,11 @@ bool occupied_by_other_than_file(const std::string& path);
 // With `in_file`, a valid cache is read without its lines' vertices (read_drainage_line_index:
 // its records and index checked, the same errors and rebuild) and *in_file says
 // where they are; after a build in_file->file stays empty and the database holds them.
+// With `file_used`, it gets the path of the database file read or written (empty when the
+// database lives in memory only): where its crease tiles are kept (stored_creases.hpp).
 DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& terrain,
                                   const DrainageOptions& options, const DrainageLog& log = {},
-                                  const DrainageProgress& progress = {}, DvLineVertices* in_file = nullptr);
+                                  const DrainageProgress& progress = {}, DvLineVertices* in_file = nullptr,
+                                  std::string* file_used = nullptr);
 
 }  // namespace penink

@@ -1,7 +1,11 @@
 #include "drainage/stored_creases.hpp"
 
+#include <filesystem>
+
 #include "core/error.hpp"
+#include "core/hash64.hpp"
 #include "drainage/crease_source.hpp"
+#include "drainage/drainage_db.hpp"
 
 namespace penink {
 
@@ -12,7 +16,20 @@ struct StoredCreases::Decoded {
     std::unique_ptr<CreaseTiles> tiles;
 };
 
-StoredCreases::StoredCreases(std::vector<std::uint8_t> source) : source_(std::move(source)) {}
+std::string crease_tile_folder(const std::string& dv_path) { return dv_path + ".tiles"; }
+
+void remove_crease_tiles(const std::string& dv_path) {
+    namespace fs = std::filesystem;
+    const fs::path folder = crease_tile_folder(dv_path);
+    std::error_code ec;
+    if (!fs::is_directory(fs::symlink_status(folder, ec))) return;  // never follow a link out of it
+    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec))
+        if (it->path().extension() == ".pnlt" && it->is_regular_file(ec)) fs::remove(it->path(), ec);
+    fs::remove(folder, ec);  // only when empty
+}
+
+StoredCreases::StoredCreases(std::vector<std::uint8_t> source, std::string folder)
+    : source_(std::move(source)), folder_(std::move(folder)) {}
 
 StoredCreases::~StoredCreases() = default;
 
@@ -23,7 +40,12 @@ CreaseTiles& StoredCreases::tiles() {
         // the index now; the grid, directions and network only when a stem is built
         if (!decode_crease_source(source_.data(), source_.size(), d->g, d->dir, index, false))
             throw Error("drainage", "", "stored crease source does not decode", ExitCode::internal);
-        d->tiles = std::make_unique<CreaseTiles>(d->g, d->dir, d->net, std::move(index));
+        TileStore store;
+        if (!folder_.empty()) {
+            const std::uint64_t fields[2] = {std::uint64_t(drainage_db_version), hash64(source_.data(), source_.size())};
+            store.folder = folder_, store.key = hash64(fields, sizeof fields);
+        }
+        d->tiles = std::make_unique<CreaseTiles>(d->g, d->dir, d->net, std::move(index), std::move(store));
         d->tiles->before_first_build([this, d = d.get()] {
             CreaseTileIndex again;
             if (!decode_crease_source(source_.data(), source_.size(), d->g, d->dir, again))
@@ -55,5 +77,7 @@ std::size_t StoredCreases::stem_count() const { return count(&CreaseTiles::stem_
 std::size_t StoredCreases::stems_built() const { return count(&CreaseTiles::stems_built); }
 std::size_t StoredCreases::vertices_built() const { return count(&CreaseTiles::vertices_built); }
 std::size_t StoredCreases::builds() const { return count(&CreaseTiles::builds); }
+std::size_t StoredCreases::tiles_read() const { return count(&CreaseTiles::tiles_read); }
+std::size_t StoredCreases::tiles_written() const { return count(&CreaseTiles::tiles_written); }
 
 }  // namespace penink

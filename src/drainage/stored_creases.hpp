@@ -4,13 +4,18 @@
 // accumulation, orders and basins then made again from the directions), and the creases built
 // stem by stem where a query's plan box and line test need them (crease_tiles.hpp: the whole
 // build's lines bit for bit), each kept for the next query of this object (the frames of one
-// process); nothing is written.
+// process). Given a folder, every tile whose stems a query needs is kept there whole, in a file of
+// its own (crease_tiles.hpp TileStore, line_tile_files.hpp), so the next process reads it instead
+// of building it; a folder that cannot be written keeps only the stems built in memory. Tile files
+// are keyed by the database's version and a hash of the stored source bytes: a file of another
+// network or builder is built again and rewritten.
 // Thread-safe: queries from several threads (frames prepared on threads) run one at a time (a
 // build runs on all cores).
 #pragma once
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <string>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -20,10 +25,18 @@
 
 namespace penink {
 
+// The folder beside a drainage database file that keeps its crease tiles: `<dv_path>.tiles`.
+std::string crease_tile_folder(const std::string& dv_path);
+// Removes that folder's tile files and the folder (when empty then): called when a database file is
+// written anew, whose tiles are all of another key. Errors are ignored (files left are rebuilt
+// when read: their key differs).
+void remove_crease_tiles(const std::string& dv_path);
+
 class StoredCreases {
 public:
-    // `source`: DrainageDb::crease_source (not empty).
-    explicit StoredCreases(std::vector<std::uint8_t> source);
+    // `source`: DrainageDb::crease_source (not empty); `folder`: where tile files are kept (none:
+    // empty, nothing written).
+    explicit StoredCreases(std::vector<std::uint8_t> source, std::string folder = {});
     ~StoredCreases();
 
     // The creases meeting the closed plan box [lo, hi] and passing may_show (CreaseTiles::
@@ -42,11 +55,14 @@ public:
     std::size_t stems_built() const;
     std::size_t vertices_built() const;
     std::size_t builds() const;
+    std::size_t tiles_read() const;     // tile files read
+    std::size_t tiles_written() const;  // tile files written
 
 private:
     struct Decoded;
     mutable std::mutex mutex_;
     std::vector<std::uint8_t> source_;
+    std::string folder_;
     std::unique_ptr<Decoded> decoded_;
     CreaseTiles& tiles();  // decoded on first use; under mutex_
     std::size_t count(std::size_t (CreaseTiles::*of)() const) const;  // of the tiles, 0 before

@@ -1,5 +1,7 @@
 #include "scene/drainage_command.hpp"
 
+#include "drainage/stored_creases.hpp"
+
 #include <sys/statvfs.h>
 #include <unistd.h>
 
@@ -180,6 +182,7 @@ int run(const DrainageCommand& cmd, std::ostream& log) {
         if (e.file() == out) check_database_target(out, file_bytes);
         throw;
     }
+    remove_crease_tiles(out);  // the tiles of the database replaced: all of another key
     std::string terrain_cache;
     if (out == drainage_cache_path(cmd.dem, cmd.cache_dir)) {  // render's caches: the terrain cache beside the drainage database too
         timer.next("terrain cache");

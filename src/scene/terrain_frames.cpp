@@ -123,6 +123,7 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terra
     DrainageLineSource source;
     const auto t0 = Clock::now();
     bool building = false;  // the progress callback is called by a build alone
+    std::string file;
     source.db = load_or_build_drainage(
         scene.source.dem, dem, options, [&](const std::string& m) { log.info(m); },
         [&](const std::string& stage, double fraction) {
@@ -130,9 +131,10 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terra
             building = true;
             progress.update(stage, fraction);
         },
-        &source.vertices);
-    if (!source.db.crease_source.empty())  // creases built as frames need them, kept for the next frame
-        source.creases = std::make_shared<StoredCreases>(std::move(source.db.crease_source));
+        &source.vertices, &file);
+    if (!source.db.crease_source.empty())  // creases built per tile as frames need them, kept beside the file
+        source.creases = std::make_shared<StoredCreases>(std::move(source.db.crease_source),
+                                                         file.empty() ? std::string() : crease_tile_folder(file));
     log.info("drainage database ready (" + std::to_string(int(ms_since(t0))) + " ms)");
     return source;
 }
@@ -235,8 +237,9 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
         lines_ = made.get();
         std::string built;
         if (const StoredCreases* c = drainage_ ? drainage_->creases.get() : nullptr)
-            built = "; creases built for " + std::to_string(c->stems_built()) + " of " + std::to_string(c->stem_count()) +
-                    " stems (" + std::to_string(c->vertices_built()) + " vertices)";
+            built = "; creases kept for " + std::to_string(c->stems_built()) + " of " + std::to_string(c->stem_count()) +
+                    " stems (" + std::to_string(c->vertices_built()) + " vertices), " + std::to_string(c->tiles_read()) +
+                    " tile files read, " + std::to_string(c->tiles_written()) + " written";
         log_.info("drainage lines prepared (" + std::to_string(int(lines_ms_)) + " ms" + built + ")");
     }
     if (lines_)

@@ -1,7 +1,7 @@
 // Block coding: floats come back bit for bit at every differencing order (signed zeros, NaN
 // payloads, infinities, subnormals, random bits), bytes too; a smooth grid row codes to far fewer
 // bytes than its floats, and more so differenced twice; coded bytes cut short, damaged or of
-// another length do not decode.
+// another length do not decode; coded plane by plane, the near-random planes are kept as they are.
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -101,4 +101,34 @@ TEST(BlockCodec, DamagedShortOrMisfitCodedBytesDoNotDecode) {
     const std::uint8_t junk[] = {0xff, 0xff, 0xff, 0xff, 0xff, 0xff};
     EXPECT_FALSE(decode_floats(junk, sizeof junk, back.data(), 256, orders));
     EXPECT_FALSE(decode_bytes(junk, sizeof junk, reinterpret_cast<std::uint8_t*>(back.data()), 16));
+}
+
+// Plane by plane: the floats come back bit for bit; the near-random low planes of the row's
+// random-bit stretch are kept as they are (a coded size of 0), the high planes of the smooth part
+// deflated; cut short, longer or with bytes after, they do not decode.
+TEST(BlockCodec, PlanesComeBackBitForBitTheRandomOnesKeptAsTheyAre) {
+    std::mt19937 rng(9);
+    std::vector<float> v = grid_row();
+    for (std::size_t i = 0; i < v.size(); i += 3) v[i] = std::bit_cast<float>(std::uint32_t(rng()));  // x: random bits
+    const int orders[3] = {1, 1, 1};
+    const std::vector<std::uint8_t> c = encode_float_planes(v.data(), 256, orders);
+    std::vector<float> back(v.size(), 1.0f);
+    ASSERT_TRUE(decode_float_planes(c.data(), c.size(), back.data(), 256, orders));
+    expect_same_bits(v, back);
+    // twelve planes, each with its 8-byte size; x's four random planes raw (256 bytes and a 0 size)
+    std::size_t raw = 0, coded = 0, at = 0;
+    for (int p = 0; p < 12; ++p) {
+        std::uint64_t len;
+        std::memcpy(&len, c.data() + at, 8);
+        at += 8 + (len == 0 ? 256 : len);
+        (len == 0 ? raw : coded) += 1;
+    }
+    EXPECT_EQ(at, c.size());
+    EXPECT_GE(raw, 4u);
+    EXPECT_GE(coded, 4u);  // the high planes of y and z
+    EXPECT_FALSE(decode_float_planes(c.data(), c.size() - 1, back.data(), 256, orders));
+    EXPECT_FALSE(decode_float_planes(c.data(), c.size(), back.data(), 255, orders));
+    std::vector<std::uint8_t> extra = c;
+    extra.push_back(0);
+    EXPECT_FALSE(decode_float_planes(extra.data(), extra.size(), back.data(), 256, orders));
 }

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <random>
 #include <string>
 #include <vector>
@@ -17,6 +19,7 @@
 #include "drainage/crease_tiles.hpp"
 #include "drainage/drainage_build.hpp"
 #include "input/dem_reader.hpp"
+#include "support/temp_dir.hpp"
 
 namespace penink {
 namespace {
@@ -174,6 +177,75 @@ TEST(CreaseTiles, ALineTestBuildsOnlyTheStemsItPassesOnce) {
     ::testing::Test::RecordProperty("lines_strict", int(lines_passing(strict)));
     ::testing::Test::RecordProperty("stems_lax", int(lax_stems));
     ::testing::Test::RecordProperty("lines_lax", int(lines_passing(lax)));
+}
+
+// With a tile store, the levels of the tiles a query needs are built whole and written, a file
+// each; the next instance reads them and builds nothing, keeping only the stems the test passes;
+// a file damaged (a byte flipped, cut short) is built again and rewritten, a file of another key
+// is not read; a folder that cannot be written keeps the stems in memory. The lines are the whole
+// build's throughout.
+TEST(CreaseTiles, StoredTilesAreReadByTheNextInstanceAndDamagedOnesRebuilt) {
+    const test::TempDir dir;
+    const Terrain jacksboro = read_dem(PENINK_SOURCE_DIR "/examples/jacksboro.tif");
+    DrainageGrid g = resample_pn(jacksboro, 1);
+    DrainageResult res;
+    const DrainageDb db = drainage_db_from_grid(g, {}, &res);
+    glm::vec2 lo(1e30f), hi(-1e30f);
+    for (const DrapedLine& l : db.creases.lines) lo = glm::min(lo, l.lo), hi = glm::max(hi, l.hi);
+    const SizeTest strict{lo, 0.05, 2.0};
+    const TileStore store{dir.file("tiles"), 42};
+
+    CreaseTiles first(g, res.dir, res.net, 64, store);
+    EXPECT_EQ(differing(first, db, lo, hi, strict), 0u);
+    const std::size_t built = first.tiles_built(), kept = first.stems_built();
+    EXPECT_GT(built, 4u);
+    EXPECT_EQ(first.tiles_read(), 0u);
+    EXPECT_EQ(first.tiles_written(), built);
+    // a level of a tile is built whole, but only the stems passing are kept
+    EXPECT_LT(kept, first.stem_count() / 2);
+    std::vector<std::filesystem::path> files;
+    for (const auto& e : std::filesystem::directory_iterator(store.folder)) files.push_back(e.path());
+    std::sort(files.begin(), files.end());
+    ASSERT_EQ(files.size(), built);
+    // the long stems' levels are fewer than the tiles times the levels: the strict test passes none
+    // of the shortest stems far from the eye
+    EXPECT_LT(built, first.tile_count() * std::size_t(crease_tile_levels));
+
+    CreaseTiles second(g, res.dir, res.net, 64, store);
+    EXPECT_EQ(differing(second, db, lo, hi, strict), 0u);
+    EXPECT_EQ(second.tiles_read(), built);
+    EXPECT_EQ(second.tiles_built(), 0u);
+    EXPECT_EQ(second.stems_built(), kept);
+
+    {  // one file with a byte flipped in its vertices, one cut short: both built again and rewritten
+        std::fstream f(files[0], std::ios::in | std::ios::out | std::ios::binary);
+        const auto at = std::streamoff(std::filesystem::file_size(files[0]) / 2);
+        f.seekg(at);
+        char b = 0;
+        f.read(&b, 1);
+        b = char(b ^ 0x10);
+        f.seekp(at);
+        f.write(&b, 1);
+    }
+    std::filesystem::resize_file(files[1], std::filesystem::file_size(files[1]) - 3);
+    CreaseTiles third(g, res.dir, res.net, 64, store);
+    EXPECT_EQ(differing(third, db, lo, hi, strict), 0u);
+    EXPECT_EQ(third.tiles_read(), built - 2);
+    EXPECT_EQ(third.tiles_written(), 2u);
+    CreaseTiles fourth(g, res.dir, res.net, 64, store);
+    EXPECT_EQ(differing(fourth, db, lo, hi, strict), 0u);
+    EXPECT_EQ(fourth.tiles_read(), built);
+
+    // another key (another network): nothing read
+    CreaseTiles other(g, res.dir, res.net, 64, TileStore{store.folder, 43});
+    EXPECT_EQ(differing(other, db, lo, hi, strict), 0u);
+    EXPECT_EQ(other.tiles_read(), 0u);
+    EXPECT_EQ(other.tiles_written(), built);
+    // a folder that cannot be written: the stems stay in memory, the lines the same
+    CreaseTiles nowhere(g, res.dir, res.net, 64, TileStore{"/proc/penink-no-such-folder", 42});
+    EXPECT_EQ(differing(nowhere, db, lo, hi, strict), 0u);
+    EXPECT_EQ(nowhere.tiles_written(), 0u);
+    EXPECT_EQ(nowhere.stems_built(), kept);
 }
 
 }  // namespace

@@ -5,9 +5,13 @@
 // same source builds only the stems it needs that no frame built before (a wider view: the
 // difference; the first view again: none); without culling every stem of the whole DEM is built,
 // once, and equals the whole build; several frames asking at once (frames prepared on threads)
-// get what one asking alone gets. Nothing is written but the drainage cache in a temporary folder.
+// get what one asking alone gets. The levels of the tiles a frame needs are kept beside the
+// cache (`<dv>.tiles/`, one file each): a later process reads them and builds none; a cache written
+// anew removes them. Everything is written in a temporary folder.
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <thread>
 #include <vector>
 
@@ -78,6 +82,19 @@ TEST(StoredCreasesRender, AFrameBuildsOnlyTheStemsItCanDrawOnce) {
     EXPECT_EQ(built.builds(), 1u);
     EXPECT_TRUE(same_lines(prepare_drainage_lines(whole, view, culling).creases, a.creases));
     EXPECT_TRUE(same_lines(prepare_drainage_lines(whole, view, culling).ridges, a.ridges));
+    // the tiles the view needed written beside the cache; another process reads them, builds none
+    const std::string folder = crease_tile_folder(drainage_cache_path(v.scene.source.dem, ""));
+    const std::size_t written = built.tiles_written();
+    EXPECT_GT(written, 0u);
+    EXPECT_EQ(built.tiles_read(), 0u);
+    EXPECT_EQ(std::size_t(std::distance(fs::directory_iterator(folder), fs::directory_iterator())), written);
+    {
+        DrainageLineSource again = v.source();
+        EXPECT_TRUE(same_lines(prepare_drainage_lines(again, view, culling).creases, a.creases));
+        EXPECT_EQ(again.creases->tiles_read(), written);
+        EXPECT_EQ(again.creases->tiles_written(), 0u);
+        EXPECT_EQ(again.creases->stems_built(), for_view);
+    }
 
     // the whole DEM: the stems a source asked for it alone builds, of which those built for the
     // view are not built again
@@ -113,6 +130,15 @@ TEST(StoredCreasesRender, AFrameBuildsOnlyTheStemsItCanDrawOnce) {
     for (std::thread& th : threads) th.join();
     for (std::size_t k = 0; k < got.size(); ++k) EXPECT_TRUE(same_lines(got[k].creases, (k % 2 ? w : a).creases)) << k;
     EXPECT_EQ(shared.creases->stems_built(), for_all);
+
+    // a database written anew: its tiles removed (a file not a tile's is left, and the folder)
+    std::ofstream(folder + "/note.txt") << "kept";
+    remove_crease_tiles(drainage_cache_path(v.scene.source.dem, ""));
+    ASSERT_TRUE(fs::exists(folder + "/note.txt"));
+    EXPECT_EQ(std::distance(fs::directory_iterator(folder), fs::directory_iterator()), 1);
+    fs::remove(folder + "/note.txt");
+    remove_crease_tiles(drainage_cache_path(v.scene.source.dem, ""));
+    EXPECT_FALSE(fs::exists(folder));
 }
 
 // Without a line test, the stored creases of the whole DEM are the whole build's, and asking again

@@ -1,0 +1,112 @@
+#include "drainage/line_tile_files.hpp"
+
+#include <array>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "core/block_codec.hpp"
+#include "core/cache_file_write.hpp"
+#include "core/hash64.hpp"
+
+namespace penink {
+
+namespace {
+
+constexpr std::uint32_t magic = 0x544c4e50u;  // "PNLT"
+constexpr std::uint32_t version = 3;
+// x, y, z, nx, ny, nz, flow: each differenced once along the vertices (neighbours on a line lie
+// about a cell apart, their normals and flows alike)
+constexpr std::array<int, 7> orders{1, 1, 1, 1, 1, 1, 1};
+static_assert(sizeof(DrapedVertex) == 7 * sizeof(float));
+
+template <class T> void put(std::vector<std::uint8_t>& out, const T& v) {
+    const auto* p = reinterpret_cast<const std::uint8_t*>(&v);
+    out.insert(out.end(), p, p + sizeof v);
+}
+
+struct Reader {
+    const std::uint8_t* in;
+    std::size_t size, at = 0;
+    bool ok = true;
+    template <class T> T get() {
+        T v{};
+        if (size - at < sizeof v) {
+            ok = false;
+            return v;
+        }
+        std::memcpy(&v, in + at, sizeof v);
+        at += sizeof v;
+        return v;
+    }
+};
+
+}  // namespace
+
+std::string line_tile_path(const std::string& folder, std::uint32_t tile, int level) {
+    return (std::filesystem::path(folder) / ("tile-" + std::to_string(tile) + "-" + std::to_string(level) + ".pnlt"))
+        .string();
+}
+
+std::vector<std::uint8_t> encode_line_tile(std::uint64_t key, const DrapedLineSet& lines) {
+    const std::vector<std::uint8_t> coded = encode_float_planes(reinterpret_cast<const float*>(lines.vertices.data()),
+                                                          lines.vertices.size(), orders);
+    std::vector<std::uint8_t> out;
+    out.reserve(40 + 5 * lines.lines.size() + coded.size());
+    put(out, magic), put(out, version), put(out, key);
+    put(out, std::uint32_t(lines.lines.size())), put(out, std::uint64_t(lines.vertices.size()));
+    for (const DrapedLine& l : lines.lines) put(out, l.count), put(out, l.order);
+    put(out, std::uint64_t(coded.size()));
+    out.insert(out.end(), coded.begin(), coded.end());
+    put(out, hash64(out.data(), out.size()));
+    return out;
+}
+
+bool decode_line_tile(const std::uint8_t* data, std::size_t size, std::uint64_t key, DrapedLineSet& lines) {
+    if (size < 8) return false;
+    std::uint64_t sum;
+    std::memcpy(&sum, data + size - 8, 8);
+    if (hash64(data, size - 8) != sum) return false;
+    Reader r{data, size - 8};
+    if (r.get<std::uint32_t>() != magic || r.get<std::uint32_t>() != version || r.get<std::uint64_t>() != key) return false;
+    const auto nl = r.get<std::uint32_t>();
+    const auto nv = r.get<std::uint64_t>();
+    if (!r.ok || (r.size - r.at) / 5 < nl) return false;
+    lines = DrapedLineSet{};
+    lines.lines.resize(nl);
+    std::uint64_t first = 0;
+    for (DrapedLine& l : lines.lines) {
+        l.count = r.get<std::uint32_t>(), l.order = r.get<std::uint8_t>();
+        l.first = std::uint32_t(first), first += l.count;
+        if (l.count == 0 || first > nv) return false;
+    }
+    const auto coded = r.get<std::uint64_t>();
+    // deflate packs at most 1032 bytes into one (RFC 1951: a 258-byte match in two bits at best):
+    // the vertices' count is bounded by the coded size before anything is allocated
+    if (!r.ok || first != nv || coded != r.size - r.at || nv > (coded * 1032 + 1024) / sizeof(DrapedVertex))
+        return false;
+    lines.vertices.resize(nv);
+    if (!decode_float_planes(data + r.at, coded, reinterpret_cast<float*>(lines.vertices.data()), nv, orders)) return false;
+    index_lines(lines);
+    return line_set_ok(lines);
+}
+
+bool write_line_tile(const std::string& path, std::uint64_t key, const DrapedLineSet& lines) {
+    const std::vector<std::uint8_t> out = encode_line_tile(key, lines);
+    std::error_code ec;
+    std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ec);
+    return write_cache_file(path, {out}) == 0;
+}
+
+bool read_line_tile(const std::string& path, std::uint64_t key, DrapedLineSet& lines) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) return false;
+    const auto size = std::filesystem::file_size(path, ec);
+    std::ifstream f(path, std::ios::binary);
+    if (ec || !f) return false;
+    std::vector<std::uint8_t> in(size);
+    if (!f.read(reinterpret_cast<char*>(in.data()), std::streamsize(size)) || f.peek() != EOF) return false;
+    return decode_line_tile(in.data(), in.size(), key, lines);
+}
+
+}  // namespace penink
