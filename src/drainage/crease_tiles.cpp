@@ -119,7 +119,7 @@ std::unique_ptr<DrapedLineSet> lines_of(const std::vector<std::uint32_t>& ids, c
 
 }  // namespace
 
-void CreaseTiles::keep(const std::vector<std::uint32_t>& ids, std::unique_ptr<DrapedLineSet> lines) {
+void CreaseTiles::keep(const std::vector<std::uint32_t>& ids, std::unique_ptr<DrapedLineSet> lines, bool on_disk) {
     if (lines->lines.size() != ids.size())
         throw Error("drainage", "", "crease part of " + std::to_string(lines->lines.size()) + " lines for " +
                                         std::to_string(ids.size()) + " stems",
@@ -127,6 +127,7 @@ void CreaseTiles::keep(const std::vector<std::uint32_t>& ids, std::unique_ptr<Dr
     for (std::uint32_t i = 0; i < ids.size(); ++i) set_[ids[i]] = std::uint32_t(sets_.size()), line_[ids[i]] = i;
     stems_built_ += ids.size(), vertices_built_ += lines->vertices.size();
     sets_.push_back(std::move(lines));
+    if (on_disk) on_disk_.push_back(ids);
 }
 
 std::uint64_t CreaseTiles::tile_key(std::size_t k, int l) const {
@@ -193,7 +194,7 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
     for (std::size_t k = 0; k < cut_tile.size(); ++k) {
         const std::vector<std::uint32_t> ids = ids_of(k);
         if (read[k]) {
-            keep(ids, std::move(read[k]));
+            keep(ids, std::move(read[k]), true);
             continue;
         }
         const std::vector<std::uint32_t>& stems = tiles_[cut_tile[k]].stems[cut_level[k]];
@@ -201,18 +202,25 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
             const DrapedLineSet whole = crease_part(g_, dir_, net_, surface(), parts_, stems);
             if (whole.lines.size() != stems.size()) keep(stems, std::make_unique<DrapedLineSet>(whole));  // throws
             ++tiles_built_;
-            if (write_line_tile(tile_path(cut_tile[k], cut_level[k]), tile_key(cut_tile[k], cut_level[k]), whole))
-                ++tiles_written_;
-            else
-                writable_ = false;  // the tiles from now on built as needed, in memory only
-            keep(ids, lines_of(ids, stems, whole));
+            const bool written =
+                write_line_tile(tile_path(cut_tile[k], cut_level[k]), tile_key(cut_tile[k], cut_level[k]), whole);
+            if (written) ++tiles_written_;
+            else writable_ = false;  // the tiles from now on built as needed, in memory only
+            keep(ids, lines_of(ids, stems, whole), written);
             continue;
         }
         keep(ids, std::make_unique<DrapedLineSet>(crease_part(g_, dir_, net_, surface(), parts_, ids)));
     }
     std::vector<Pick> picks;
     picks.reserve(wanted.size());
-    for (std::uint32_t s : wanted) picks.push_back({s, sets_[set_[s]].get(), line_[s]});
+    for (std::uint32_t s : wanted) picks.push_back({s, sets_[set_[s]], line_[s]});
+    // the sets in files forgotten (the picks hold them while the caller uses them)
+    for (const std::vector<std::uint32_t>& ids : on_disk_) {
+        if (ids.empty()) continue;
+        sets_[set_[ids[0]]].reset();
+        for (std::uint32_t s : ids) set_[s] = not_built;
+    }
+    on_disk_.clear();
     return picks;
 }
 
@@ -223,6 +231,7 @@ CreaseTiles::LineRefs CreaseTiles::line_refs_for_box(glm::vec2 lo, glm::vec2 hi,
     for (const Pick& p : picks) {
         const DrapedLine& l = p.set->lines[p.line];
         out.lines.push_back(l), out.vertices.push_back(p.set->vertices.data() + l.first);
+        if (out.hold.empty() || out.hold.back() != p.set) out.hold.push_back(p.set);
     }
     return out;
 }

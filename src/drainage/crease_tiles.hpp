@@ -94,11 +94,12 @@ public:
     DrapedLineSet lines_for_box(glm::vec2 lo, glm::vec2 hi, std::vector<std::uint32_t>* ids = nullptr,
                                 const LineTest& may_show = {});
     // The same lines without copying their vertices: each line's record (box, length, count,
-    // order; `first` meaningless) and a pointer to its vertices where it was built, which stays
-    // valid and unchanged as long as this object lives.
+    // order; `first` meaningless) and a pointer to its vertices where it was built or read, which
+    // stays valid and unchanged as long as this LineRefs lives (it holds the sets pointed into).
     struct LineRefs {
         std::vector<DrapedLine> lines;
         std::vector<const DrapedVertex*> vertices;
+        std::vector<std::shared_ptr<const DrapedLineSet>> hold;
     };
     LineRefs line_refs_for_box(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show = {});
 
@@ -110,7 +111,10 @@ public:
     std::size_t stem_count() const { return parts_.sources.size(); }
     // The index the tiles were made from (crease_tile_index's, or the one given).
     CreaseTileIndex index() const;
-    std::size_t stems_built() const { return stems_built_; }        // kept: built or read by the queries so far
+    // Stems a query read from a tile file or built for one are not kept after it (the next query
+    // needing them reads the file again: memory follows the frame); those built without a file
+    // are kept for the next query.
+    std::size_t stems_built() const { return stems_built_; }        // built or read by the queries so far
     std::size_t vertices_built() const { return vertices_built_; }  // their lines' vertices
     std::size_t builds() const { return builds_; }                  // queries that built or read stems
     std::size_t tiles_read() const { return tiles_read_; }          // tile files read (each time)
@@ -120,7 +124,7 @@ public:
 private:
     struct Pick {
         std::uint32_t stem;
-        const DrapedLineSet* set;
+        std::shared_ptr<const DrapedLineSet> set;
         std::uint32_t line;
     };
     // built where needed, in stem order
@@ -139,15 +143,16 @@ private:
     float z_top_;
     std::vector<Tile> tiles_;
     // the lines built so far, one set a crease_part; stem s's is line line_[s] of sets_[set_[s]]
-    std::vector<std::unique_ptr<DrapedLineSet>> sets_;
+    std::vector<std::shared_ptr<const DrapedLineSet>> sets_;
+    std::vector<std::vector<std::uint32_t>> on_disk_;  // the stems of sets kept in files, forgotten after a query
     std::vector<std::uint32_t> set_, line_;
     std::size_t stems_built_ = 0, vertices_built_ = 0, builds_ = 0;
     TileStore store_;
     bool writable_ = true;  // false once a tile file could not be written
     std::size_t tiles_read_ = 0, tiles_built_ = 0, tiles_written_ = 0;
     DemSurface& surface();  // made with the first build (after before_first_build)
-    // keeps `lines` (line i: stem ids[i]) as a new set
-    void keep(const std::vector<std::uint32_t>& ids, std::unique_ptr<DrapedLineSet> lines);
+    // keeps `lines` (line i: stem ids[i]) as a new set; for this query alone when on_disk
+    void keep(const std::vector<std::uint32_t>& ids, std::unique_ptr<DrapedLineSet> lines, bool on_disk = false);
     // of the file of level l of tile k, and its path
     std::uint64_t tile_key(std::size_t k, int l) const;
     std::string tile_path(std::size_t k, int l) const;
