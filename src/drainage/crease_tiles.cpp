@@ -188,28 +188,48 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
         });
         tiles_read_ += count;
     }
-    // the others built, a tile at a time (each build on all cores: one build of many tiles' stems
-    // costs more than theirs one by one, larger working sets); with a store every stem of the
-    // tile, for its file
-    for (std::size_t k = 0; k < cut_tile.size(); ++k) {
-        const std::vector<std::uint32_t> ids = ids_of(k);
-        if (read[k]) {
-            keep(ids, std::move(read[k]), true);
-            continue;
-        }
-        const std::vector<std::uint32_t>& stems = tiles_[cut_tile[k]].stems[cut_level[k]];
+    // the others built, a tile at a time: its levels needed in one build on all cores (a part's
+    // stems walk their trunks again: one build of a tile's levels costs less than one a level;
+    // one build of many tiles' stems more than theirs one by one, larger working sets); with a
+    // store, every stem of those levels, each level then coded and written on all cores
+    const auto merged = [](std::vector<std::uint32_t> a, const std::vector<std::uint32_t>& b) {
+        std::vector<std::uint32_t> out(a.size() + b.size());
+        out.erase(std::merge(a.begin(), a.end(), b.begin(), b.end(), out.begin()), out.end());
+        return out;
+    };
+    for (std::size_t k0 = 0, k1; k0 < cut_tile.size(); k0 = k1) {
+        for (k1 = k0; k1 < cut_tile.size() && cut_tile[k1] == cut_tile[k0]; ++k1)
+            if (read[k1]) keep(ids_of(k1), std::move(read[k1]), true);
+        std::vector<std::size_t> todo;  // cuts of this tile still missing
+        for (std::size_t k = k0; k < k1; ++k)
+            if (set_[missing[cuts[k]]] == not_built) todo.push_back(k);
+        if (todo.empty()) continue;
+        const Tile& t = tiles_[cut_tile[k0]];
         if (!store_.folder.empty() && writable_) {
+            std::vector<std::uint32_t> stems;
+            for (std::size_t k : todo) stems = merged(std::move(stems), t.stems[cut_level[k]]);
             const DrapedLineSet whole = crease_part(g_, dir_, net_, surface(), parts_, stems);
             if (whole.lines.size() != stems.size()) keep(stems, std::make_unique<DrapedLineSet>(whole));  // throws
-            ++tiles_built_;
-            const bool written =
-                write_line_tile(tile_path(cut_tile[k], cut_level[k]), tile_key(cut_tile[k], cut_level[k]), whole);
-            if (written) ++tiles_written_;
-            else writable_ = false;  // the tiles from now on built as needed, in memory only
-            keep(ids, lines_of(ids, stems, whole), written);
+            std::vector<std::uint8_t> written(todo.size(), 0);
+            parallel_chunks(todo.size(), 1, [&](std::size_t j0, std::size_t j1) {
+                for (std::size_t j = j0; j < j1; ++j) {
+                    const std::size_t k = todo[j];
+                    const std::unique_ptr<DrapedLineSet> level = lines_of(t.stems[cut_level[k]], stems, whole);
+                    written[j] = write_line_tile(tile_path(cut_tile[k], cut_level[k]), tile_key(cut_tile[k], cut_level[k]),
+                                                 *level);
+                }
+            });
+            for (std::size_t j = 0; j < todo.size(); ++j) {
+                ++tiles_built_;
+                if (written[j]) ++tiles_written_;
+                else writable_ = false;  // the tiles from now on built as needed, in memory only
+                keep(ids_of(todo[j]), lines_of(ids_of(todo[j]), stems, whole), written[j] != 0);
+            }
             continue;
         }
-        keep(ids, std::make_unique<DrapedLineSet>(crease_part(g_, dir_, net_, surface(), parts_, ids)));
+        std::vector<std::uint32_t> need;
+        for (std::size_t k : todo) need = merged(std::move(need), ids_of(k));
+        keep(need, std::make_unique<DrapedLineSet>(crease_part(g_, dir_, net_, surface(), parts_, need)));
     }
     std::vector<Pick> picks;
     picks.reserve(wanted.size());
