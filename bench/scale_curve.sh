@@ -11,7 +11,7 @@
 # Prints the machine's load (uptime) and a Markdown table: wall seconds and CPU seconds (user +
 # system; steadier than the wall on a shared machine) of one cold run and the best of N warm
 # runs, peak resident memory (/usr/bin/time's maximum RSS, MiB) cold and warm, the caches' size on
-# disk (MiB: .lod + .dv), and the warm wall and CPU time as multiples of the volcano's.
+# disk (MiB: .lod, .dv and the crease tiles the renders wrote, .dv.tiles/), and the warm wall and CPU time as multiples of the volcano's.
 # Usage: bench/scale_curve.sh [path/to/penink] (N=3, SIZES="200 500 1000" by default)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -71,8 +71,8 @@ for dem in $DEMS; do
   rm -rf "$TMP/cache-$dem"
   read -r cs cc cm < <(run "$path")
   cells=$(grep -o -m1 'of [0-9]* DEM cells' "$TMP/log" | awk '{print $2}')
-  caches=$(du -bc "$TMP/cache-$dem"/*.lod "$TMP/cache-$dem"/*.dv | tail -1 | awk '{printf "%.0f", $1 / 1048576}')
   read -r ws wc wm vs vc < <(warm "$path")
+  caches=$(du -sb "$TMP/cache-$dem" | awk '{printf "%.0f", $1 / 1048576}')
   echo "| $dem | $cells | $cs | $cc | $cm | $ws | $wc | $wm | $caches |" \
     "$(awk -v a="$ws" -v b="$vs" -v c="$wc" -v d="$vc" 'BEGIN {printf "%.1f, %.1f", a / b, c / d}') |"
 done

@@ -1,5 +1,6 @@
 #include "core/block_codec.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cstring>
 #include <new>
@@ -136,12 +137,22 @@ bool decode_floats(const std::uint8_t* coded, std::size_t size, float* out, std:
     return true;
 }
 
+namespace {
+constexpr std::size_t plane_sample = 16384;
+}  // namespace
+
 std::vector<std::uint8_t> encode_float_planes(const float* data, std::size_t n, std::span<const int> orders) {
     const std::vector<std::uint8_t> planes = float_planes(data, n, orders);
     std::vector<std::uint8_t> out;
     for (std::size_t at = 0; at < planes.size(); at += n) {
-        const std::vector<std::uint8_t> coded = deflate_raw(planes.data() + at, n);
-        const bool raw = double(coded.size()) > raw_plane_share * double(n);
+        // a plane whose first plane_sample bytes do not code under the share is kept as it is
+        // without deflating the rest (the low planes of differences: deflating near-random bytes
+        // is deflate's slowest work)
+        const std::size_t sample = std::min(n, plane_sample);
+        const bool random =
+            sample < n && double(deflate_raw(planes.data() + at, sample).size()) > raw_plane_share * double(sample);
+        const std::vector<std::uint8_t> coded = random ? std::vector<std::uint8_t>() : deflate_raw(planes.data() + at, n);
+        const bool raw = random || double(coded.size()) > raw_plane_share * double(n);
         const std::uint64_t size = raw ? 0 : coded.size();  // 0: the plane's n bytes as they are
         const auto* p = reinterpret_cast<const std::uint8_t*>(&size);
         out.insert(out.end(), p, p + sizeof size);

@@ -29,7 +29,9 @@ bool decode_floats(const std::uint8_t* coded, std::size_t size, float* out, std:
 
 // The same planes, each deflated on its own and kept as it is where deflate does not bring it
 // under raw_plane_share of its size (the low bytes of a difference are near random: inflating
-// them costs time and saves nothing), so decoding inflates only the planes that code smaller.
+// them costs time and saves nothing), so decoding inflates only the planes that code smaller; a
+// plane of over 16 384 bytes whose first 16 384 do not code under that share is kept as it is
+// without deflating the rest.
 // Layout: per plane (4 x orders.size() of n bytes, low bytes first) u64 coded size (0: raw, n
 // bytes follow) and its bytes.
 inline constexpr double raw_plane_share = 0.9;

@@ -132,3 +132,28 @@ TEST(BlockCodec, PlanesComeBackBitForBitTheRandomOnesKeptAsTheyAre) {
     extra.push_back(0);
     EXPECT_FALSE(decode_float_planes(extra.data(), extra.size(), back.data(), 256, orders));
 }
+
+// Planes longer than the 16 384-byte sample: a random plane is kept as it is (found from its
+// sample), a smooth one deflated; both come back bit for bit.
+TEST(BlockCodec, LongPlanesKeptAsTheyAreFromTheirSample) {
+    std::mt19937 rng(11);
+    const std::size_t n = 40000;
+    std::vector<float> v(2 * n);
+    for (std::size_t i = 0; i < n; ++i)
+        v[2 * i] = std::bit_cast<float>(std::uint32_t(rng())), v[2 * i + 1] = float(100.0 + 0.25 * double(i % 512));
+    const int orders[2] = {1, 1};
+    const std::vector<std::uint8_t> c = encode_float_planes(v.data(), n, orders);
+    std::vector<float> back(v.size());
+    ASSERT_TRUE(decode_float_planes(c.data(), c.size(), back.data(), n, orders));
+    expect_same_bits(v, back);
+    std::size_t raw = 0, at = 0;
+    for (int p = 0; p < 8; ++p) {
+        std::uint64_t len;
+        std::memcpy(&len, c.data() + at, 8);
+        at += 8 + (len == 0 ? n : len);
+        raw += len == 0;
+    }
+    EXPECT_EQ(at, c.size());
+    EXPECT_EQ(raw, 4u);                      // the random component's four planes
+    EXPECT_LT(c.size(), 4 * n + 4 * n / 4);  // the smooth one's in under a quarter of theirs
+}
