@@ -129,16 +129,28 @@ std::size_t differing(CreaseTiles& tiles, const DrainageDb& db, glm::vec2 a, glm
     return bad;
 }
 
+// Jacksboro's network at factor 1, its whole build and the box of its creases.
+struct JacksboroNetwork {
+    DrainageGrid g;
+    DrainageResult res;
+    DrainageDb db;
+    glm::vec2 lo{1e30f}, hi{-1e30f};
+    JacksboroNetwork() {
+        g = resample_pn(read_dem(PENINK_SOURCE_DIR "/examples/jacksboro.tif"), 1);
+        db = drainage_db_from_grid(g, {}, &res);
+        for (const DrapedLine& l : db.creases.lines) lo = glm::min(lo, l.lo), hi = glm::max(hi, l.hi);
+    }
+};
+
 // With a line test, a query builds only the stems whose bound passes it (counted from the index),
 // and gets exactly the whole build's lines that pass it; a laxer test later builds only the
 // stems it adds, in one more build; asking again builds none.
 TEST(CreaseTiles, ALineTestBuildsOnlyTheStemsItPassesOnce) {
-    const Terrain jacksboro = read_dem(PENINK_SOURCE_DIR "/examples/jacksboro.tif");
-    DrainageGrid g = resample_pn(jacksboro, 1);
-    DrainageResult res;
-    const DrainageDb db = drainage_db_from_grid(g, {}, &res);
-    glm::vec2 lo(1e30f), hi(-1e30f);
-    for (const DrapedLine& l : db.creases.lines) lo = glm::min(lo, l.lo), hi = glm::max(hi, l.hi);
+    const JacksboroNetwork n;
+    const DrainageGrid& g = n.g;
+    const DrainageResult& res = n.res;
+    const DrainageDb& db = n.db;
+    const glm::vec2 lo = n.lo, hi = n.hi;
     CreaseTiles tiles(g, res.dir, res.net, 64);
     const CreaseTileIndex index = tiles.index();
     // the stems whose bound passes a test, and the whole build's lines that do
@@ -186,12 +198,11 @@ TEST(CreaseTiles, ALineTestBuildsOnlyTheStemsItPassesOnce) {
 // build's throughout.
 TEST(CreaseTiles, StoredTilesAreReadByTheNextInstanceAndDamagedOnesRebuilt) {
     const test::TempDir dir;
-    const Terrain jacksboro = read_dem(PENINK_SOURCE_DIR "/examples/jacksboro.tif");
-    DrainageGrid g = resample_pn(jacksboro, 1);
-    DrainageResult res;
-    const DrainageDb db = drainage_db_from_grid(g, {}, &res);
-    glm::vec2 lo(1e30f), hi(-1e30f);
-    for (const DrapedLine& l : db.creases.lines) lo = glm::min(lo, l.lo), hi = glm::max(hi, l.hi);
+    const JacksboroNetwork n;
+    const DrainageGrid& g = n.g;
+    const DrainageResult& res = n.res;
+    const DrainageDb& db = n.db;
+    const glm::vec2 lo = n.lo, hi = n.hi;
     const SizeTest strict{lo, 0.05, 2.0};
     const TileStore store{dir.file("tiles"), 42};
 
