@@ -1,6 +1,7 @@
 #include "drainage/draped_lines.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <bit>
 #include <cmath>
@@ -573,14 +574,23 @@ StemParts stem_parts(const DrainageGrid& g, const std::vector<std::uint8_t>& dir
     const StemWalk walk(g, dir, net);
     StemParts out;
     out.sources = sources_of(walk, g);
-    // every valid cell is a vertex of the stem through it (or a junction ending one)
-    glm::vec2 lo(std::numeric_limits<float>::infinity()), hi = -lo;
-    for (std::size_t i = 0; i < g.size(); ++i)
-        if (g.valid[i]) {
-            const DvVertex v = walk.vertex(i);
-            lo = glm::min(lo, glm::vec2(v.x, v.y)), hi = glm::max(hi, glm::vec2(v.x, v.y));
-        }
-    out.lo = lo, out.hi = hi;
+    // every valid cell is a vertex of the stem through it (or a junction ending one): the box of
+    // their plan positions (as walk.vertex gives them), rows on all cores (min and max: the same
+    // box in any order)
+    const std::vector<std::array<glm::vec2, 2>> boxes =
+        parallel_collect<std::array<glm::vec2, 2>>(std::size_t(g.rows), 16, [&](std::size_t r0, std::size_t r1, auto& o) {
+            glm::vec2 lo(std::numeric_limits<float>::infinity()), hi = -lo;
+            for (std::size_t i = r0 * std::size_t(g.cols); i < r1 * std::size_t(g.cols); ++i)
+                if (g.valid[i]) {
+                    const glm::dvec2 p = walk.node_xy ? glm::dvec2(g.coarse_xy[i])
+                                                      : grid_xy(g, int(i % std::size_t(g.cols)), int(i / std::size_t(g.cols)));
+                    const glm::vec2 v(float(p.x), float(p.y));
+                    lo = glm::min(lo, v), hi = glm::max(hi, v);
+                }
+            o.push_back({lo, hi});
+        });
+    out.lo = glm::vec2(std::numeric_limits<float>::infinity()), out.hi = -out.lo;
+    for (const auto& b : boxes) out.lo = glm::min(out.lo, b[0]), out.hi = glm::max(out.hi, b[1]);
     return out;
 }
 
