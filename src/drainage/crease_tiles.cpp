@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <limits>
 #include <utility>
 
@@ -17,7 +18,7 @@
 namespace penink {
 
 CreaseTileIndex crease_tile_index(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
-                                  int tile) {
+                                  int tile, float z_top) {
     CreaseTileIndex out;
     out.side = std::max(1, tile);
     out.parts = stem_parts(g, dir, net);
@@ -28,7 +29,7 @@ CreaseTileIndex crease_tile_index(const DrainageGrid& g, const std::vector<std::
     const PlanBoxes boxes(g);
     const FallLineOptions options = fall_line_options(g);
     // each stem's reach on all cores, then joined into its tile's in stem order
-    out.z_top = drape_height_top(g);
+    out.z_top = std::isnan(z_top) ? drape_height_top(g) : z_top;
     const StemParts& parts = out.parts;
     std::vector<glm::vec2> reach_lo(parts.sources.size()), reach_hi(parts.sources.size());
     out.stems.resize(parts.sources.size());

@@ -53,8 +53,9 @@ struct CreaseTileIndex {
     std::vector<glm::vec2> lo, hi;
     float z_top = -std::numeric_limits<float>::infinity();
 };
+// z_top: drape_height_top(g) when found before (NaN: found here).
 CreaseTileIndex crease_tile_index(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
-                                  int tile = 256);
+                                  int tile = 256, float z_top = std::numeric_limits<float>::quiet_NaN());
 
 // The level of a stem whose bound is b on a grid of cells `cell` metres wide (DrainageGrid::dx):
 // 0 to 7 as stem_bound_plan(b) is under 4, 8, 16, ..., 256 cells, or longer.

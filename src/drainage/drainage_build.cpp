@@ -1,7 +1,5 @@
 #include "drainage/drainage_build.hpp"
 
-#include "drainage/stored_creases.hpp"
-
 #include <algorithm>
 #include <array>
 #include <cstdio>
@@ -10,6 +8,8 @@
 #include <filesystem>
 #include <future>
 #include <iostream>
+#include <limits>
+#include <memory>
 
 #include <unistd.h>
 
@@ -19,11 +19,14 @@
 #include "drainage/branches.hpp"
 #include "drainage/crease_source.hpp"
 #include "drainage/d8_ties.hpp"
+#include "drainage/dem_surface.hpp"
 #include "drainage/depression_drainage.hpp"
 #include "drainage/draped_lines.hpp"
 #include "drainage/fill_directions.hpp"
 #include "drainage/flat_resolution.hpp"
 #include "drainage/least_cost_routing.hpp"
+#include "drainage/stem_reach.hpp"
+#include "drainage/stored_creases.hpp"
 #include "input/dem_reader.hpp"
 
 namespace penink {
@@ -161,7 +164,23 @@ DrainageDb build_streamed(DrainageGrid& g, const std::string& crs_wkt, const Dra
         }
         for (SourceArray a : {SourceArray::valid, SourceArray::coarse_valid, SourceArray::coarse_z}) code(a);
     }
+    // The least-cost search keeps one core and leaves the heights as they are: the surface the
+    // ridges are draped on and the height the creases stay under (both of g alone) are made beside
+    // it. (Priority-Flood fills z in place while its directions are found.)
+    struct OfGrid {
+        std::unique_ptr<DemSurface> surface;
+        float z_top = std::numeric_limits<float>::quiet_NaN();
+    };
+    std::future<OfGrid> of_grid;
+    if (options.routing == DrainageRouting::least_cost)
+        of_grid = std::async(std::launch::async, [&g, relief] {
+            OfGrid o;
+            o.surface = std::make_unique<DemSurface>(g);
+            if (relief) o.z_top = drape_height_top(g);
+            return o;
+        });
     DrainageResult res = compute_drainage(g, progress, options.routing, &meta);
+    const OfGrid made = of_grid.valid() ? of_grid.get() : OfGrid{};
     if (relief) code(SourceArray::dir, {}, res.dir);
     report(progress, "tracing branches and divides", tracing_at);
     const NetworkBranches branches(g, res.dir, res.net);
@@ -169,11 +188,13 @@ DrainageDb build_streamed(DrainageGrid& g, const std::string& crs_wkt, const Dra
     // The creases' index on another thread while the ridges are draped here (each reads the
     // network and the grid only; "indexing creases" is then what is left of it).
     std::future<CreaseTileIndex> indexing;
-    if (relief) indexing = std::async(std::launch::async, [&] { return crease_tile_index(g, res.dir, res.net); });
+    if (relief)
+        indexing = std::async(std::launch::async, [&] { return crease_tile_index(g, res.dir, res.net, 256, made.z_top); });
     report(progress, "draping ridges", draping_from);
-    build_draped_ridges(g, meta, [&](double f) {
-        report(progress, "draping ridges", draping_from + (writing_at - draping_from) * 0.5 * f);
-    });
+    build_draped_ridges(
+        g, meta,
+        [&](double f) { report(progress, "draping ridges", draping_from + (writing_at - draping_from) * 0.5 * f); },
+        made.surface.get());
     report(progress, "indexing creases", draping_from + (writing_at - draping_from) * 0.5);
     if (relief) {
         const CreaseTileIndex index = indexing.get();

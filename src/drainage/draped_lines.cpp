@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <atomic>
 #include <bit>
 #include <cmath>
@@ -940,11 +941,13 @@ void smoothed_ridges(const DrainageGrid& g, DrainageDb& db) {
 
 }  // namespace
 
-void build_draped_ridges(const DrainageGrid& g, DrainageDb& db, const LineProgress& progress) {
+void build_draped_ridges(const DrainageGrid& g, DrainageDb& db, const LineProgress& progress,
+                         const DemSurface* surface) {
     smoothed_ridges(g, db);
-    const DemSurface surface(g);
-    snap_to_crests(db.ridges, surface, crest_options(g));
-    drape_lines(db.ridges, surface, progress);
+    std::optional<DemSurface> own;
+    if (!surface) surface = &own.emplace(g);
+    snap_to_crests(db.ridges, *surface, crest_options(g));
+    drape_lines(db.ridges, *surface, progress);
 }
 
 void build_draped_lines(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,

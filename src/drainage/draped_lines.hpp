@@ -127,7 +127,9 @@ DrapedLineSet ridge_part(const DrainageGrid& g, const DemSurface& surface, const
 void build_draped_lines(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                         DrainageDb& db, const LineProgress& progress = {});
 // The ridges alone (db.ridges as build_draped_lines gives them), for a database whose creases are
-// built where a frame needs them (crease_source.hpp).
-void build_draped_ridges(const DrainageGrid& g, DrainageDb& db, const LineProgress& progress = {});
+// built where a frame needs them (crease_source.hpp). `surface`: DemSurface(g) made before (none:
+// made here).
+void build_draped_ridges(const DrainageGrid& g, DrainageDb& db, const LineProgress& progress = {},
+                         const DemSurface* surface = nullptr);
 
 }  // namespace penink
