@@ -59,4 +59,60 @@ private:
     std::size_t count_ = 0;
 };
 
+// RadixHeap whose equal keys leave in the order they came (first in, first out), so it pops by
+// (key, insertion order) with the 8-byte entries of a 32-bit key. Why it is exact:
+//  - Every entry lies in bucket slot(key ^ last_), a function of its key while last_ stands.
+//    refill moves last_ to the least key of the first non-empty bucket k; the new last_ agrees
+//    with the old above bit k-1, so entries of the buckets above k keep their bucket and bucket
+//    k's entries go to buckets below k. Hence all entries of one key lie in one bucket.
+//  - Within a bucket, the entries of one key stand in insertion order: push appends the newest,
+//    and refill copies bucket k front to back into lower buckets, none of which held those keys
+//    (they all lay in bucket k).
+//  - Bucket 0 holds only keys equal to last_ and is read from the front (head_), pushes of
+//    last_ joining at its back: entries of the least key leave oldest first. refill runs only
+//    when bucket 0 is used up, and every key it moves is above the old last_.
+template <class Key> class FifoRadixHeap {
+public:
+    struct Entry {
+        Key key;
+        std::uint32_t cell;
+    };
+    bool empty() const { return count_ == 0; }
+    Key last() const { return last_; }  // the last key popped (0 before any)
+    void push(Key key, std::uint32_t cell) { bucket_[slot(key ^ last_)].push_back({key, cell}), ++count_; }
+    // The oldest entry with the least key.
+    Entry pop() {
+        if (head_ == bucket_[0].size()) refill();
+        --count_;
+        return bucket_[0][head_++];
+    }
+    // The entry `ahead` pops after the next one, when it already waits in bucket 0 (else null):
+    // lets a caller prefetch what that entry's visit will read.
+    const Entry* peek(std::size_t ahead) const {
+        const std::size_t i = head_ + ahead;
+        return i < bucket_[0].size() ? &bucket_[0][i] : nullptr;
+    }
+
+private:
+    static constexpr int bits = std::numeric_limits<Key>::digits;
+    // Bucket k holds keys whose highest bit differing from last_ is bit k-1 (0: equal to last_).
+    static int slot(Key x) { return x ? bits - std::countl_zero(x) : 0; }
+    // Empties bucket 0, moves last_ to the first non-empty bucket's least key and spreads that
+    // bucket out, front to back.
+    void refill() {
+        bucket_[0].clear(), head_ = 0;
+        int k = 1;
+        while (bucket_[k].empty()) ++k;
+        Key least = bucket_[k].front().key;
+        for (const Entry& e : bucket_[k]) least = std::min(least, e.key);
+        last_ = least;
+        for (const Entry& e : bucket_[k]) bucket_[slot(e.key ^ last_)].push_back(e);
+        bucket_[k].clear();
+    }
+    std::vector<Entry> bucket_[bits + 1];
+    std::size_t head_ = 0;  // next entry of bucket 0 to pop
+    Key last_ = 0;
+    std::size_t count_ = 0;
+};
+
 }  // namespace penink
