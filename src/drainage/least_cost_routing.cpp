@@ -43,11 +43,11 @@ public:
         low_.pop_back();
         return {std::uint32_t(e.key >> 32), e.cell};
     }
-    // The cell popped `ahead` pops after the next one when already known (radix bucket 0, no
-    // depression pending), else null.
-    const std::uint32_t* peek(std::size_t ahead) const {
-        if (!low_.empty()) return nullptr;
-        const auto* e = radix_.peek(ahead);
+    // The cell the next pop returns unless a lower key is pushed first, when cheap to know
+    // (FifoRadixHeap::upcoming; the binary heap's top); else null.
+    const std::uint32_t* upcoming() const {
+        if (!low_.empty()) return &low_.front().cell;
+        const auto* e = radix_.upcoming();
         return e ? &e->cell : nullptr;
     }
 
@@ -79,11 +79,12 @@ public:
         for (int k = 0; k < 8; ++k) off_[k] = std::ptrdiff_t(d8_dr[k]) * std::ptrdiff_t(w_) + d8_dc[k];
         key_.resize(padded);
         cell_.resize(padded);
+        std::fill_n(key_.begin(), w_, 0u), std::fill_n(key_.end() - std::ptrdiff_t(w_), w_, 0u);
         std::fill_n(cell_.begin(), w_, std::uint8_t(nodata));
         std::fill_n(cell_.end() - std::ptrdiff_t(w_), w_, std::uint8_t(nodata));
         for (int r = 0; r < g_.rows; ++r) {
             const std::size_t i0 = std::size_t(r) * g_.cols, p0 = padded_index(r, 0);
-            cell_[p0 - 1] = cell_[p0 + g_.cols] = nodata;
+            cell_[p0 - 1] = cell_[p0 + g_.cols] = nodata, key_[p0 - 1] = key_[p0 + g_.cols] = 0;
             for (int c = 0; c < g_.cols; ++c) {
                 cell_[p0 + c] = g_.valid[i0 + c] ? fresh : nodata;
                 key_[p0 + c] = float_order_key(z[i0 + c]);
@@ -94,8 +95,8 @@ public:
     std::vector<std::uint8_t> run() {
         seed();
         while (!queue_.empty()) {
-            if (const std::uint32_t* next = queue_.peek(prefetch_ahead)) prefetch(*next);
             const SearchQueue::Popped c = queue_.pop();
+            if (const std::uint32_t* next = queue_.upcoming()) prefetch(*next);
             visit(c.cell, c.key);
         }
         std::vector<std::uint8_t> dir(g_.size());
@@ -108,8 +109,6 @@ public:
     }
 
 private:
-    static constexpr std::size_t prefetch_ahead = 4;
-
     std::size_t padded_index(int r, int c) const { return (std::size_t(r) + 1) * w_ + std::size_t(c) + 1; }
 
     // Boundary cells (valid, on the grid border or next to nodata: a nodata byte among the eight
@@ -146,44 +145,48 @@ private:
 
     // Pops cell p (elevation key zc): neighbours in GRASS r.watershed's order S, N, W, E, then
     // the diagonals NE, SW, SE, NW (indices k of d8_dc/d8_dr, ESRI code order E, SE, S, SW, W,
-    // NW, N, NE).
+    // NW, N, NE). All eight state bytes and keys are loaded first, independent loads the CPU
+    // overlaps (the cell's rows are mostly not in cache); the visit changes no byte it then reads
+    // but each neighbour's own, once, when it reaches it, and the diagonal check only asks
+    // whether an orthogonal neighbour is popped, which no step of the visit changes.
     void visit(std::size_t p, std::uint32_t zc) {
+        std::uint8_t b[8];
+        std::uint32_t zn[8];
+        for (int k = 0; k < 8; ++k) {
+            b[k] = cell_[std::size_t(std::ptrdiff_t(p) + off_[k])];
+            zn[k] = key_[std::size_t(std::ptrdiff_t(p) + off_[k])];
+        }
         cell_[p] = std::uint8_t((cell_[p] & ~3u) | worked);
-        for (const int k : {2, 6, 4, 0}) reach(p, zc, k);
+        for (const int k : {2, 6, 4, 0}) reach(p, zc, k, b[k], zn[k]);
         for (const int k : {7, 3, 1, 5}) {
-            const std::size_t n = std::size_t(std::ptrdiff_t(p) + off_[k]);
-            if (cell_[n] > queued) continue;
-            const std::uint32_t zn = key_[n];
-            if (zn > zc && diagonal_biased(p, zn, zc, k)) continue;
-            reach(p, zc, k);
+            if (b[k] > queued) continue;
+            if (zn[k] > zc && diagonal_biased(zn[k], zc, k, b, zn)) continue;
+            reach(p, zc, k, b[k], zn[k]);
         }
     }
 
-    // Neighbour n (direction k from p): a fresh one is queued and drains to p; a queued seed
-    // still draining off the grid is redirected to p when it lies higher (slope > 0).
-    void reach(std::size_t p, std::uint32_t zc, int k) {
-        const std::size_t n = std::size_t(std::ptrdiff_t(p) + off_[k]);
-        const std::uint8_t b = cell_[n];
+    // Neighbour k of p (state byte b, key zn): a fresh one is queued and drains to p; a queued
+    // seed still draining off the grid is redirected to p when it lies higher (slope > 0).
+    void reach(std::size_t p, std::uint32_t zc, int k, std::uint8_t b, std::uint32_t zn) {
         if (b > queued) return;
+        const std::size_t n = std::size_t(std::ptrdiff_t(p) + off_[k]);
         const std::uint8_t toward_p = std::uint8_t((((k + 4) & 7) + 1) << 2 | queued);
-        if (b == fresh) cell_[n] = toward_p, queue_.push(key_[n], std::uint32_t(n));
-        else if (key_[n] > zc) cell_[n] = toward_p;
+        if (b == fresh) cell_[n] = toward_p, queue_.push(zn, std::uint32_t(n));
+        else if (zn > zc) cell_[n] = toward_p;
     }
 
-    // A diagonal neighbour n (direction k from p, rising: zn > zc) is left for later when one of
-    // p's orthogonal neighbours o beside it is still unpopped (on the grid, valid, not worked)
-    // and n rises more steeply from o than from p. Slopes in double as GRASS's comparison was
-    // matched; rise 0 (zn <= zo) never exceeds the positive slope.
-    bool diagonal_biased(std::size_t p, std::uint32_t zn, std::uint32_t zc, int k) const {
+    // A diagonal neighbour k (key zk > zc: rising) is left for later when one of the orthogonal
+    // neighbours o beside it is still unpopped (on the grid, valid, not worked) and it rises more
+    // steeply from o than from p. Slopes in double as GRASS's comparison was matched; rise 0
+    // (zk <= zo) never exceeds the positive slope.
+    bool diagonal_biased(std::uint32_t zk, std::uint32_t zc, int k, const std::uint8_t* b,
+                         const std::uint32_t* z) const {
         for (const int o : {(k + 7) & 7, (k + 1) & 7}) {
-            const std::size_t q = std::size_t(std::ptrdiff_t(p) + off_[o]);
-            if ((cell_[q] & 3) >= worked) continue;
-            const std::uint32_t zo = key_[q];
-            if (zn <= zo) continue;
-            const double fn = float_of_order_key(zn);
+            if ((b[o] & 3) >= worked || zk <= z[o]) continue;
+            const double fn = float_of_order_key(zk);
             const double slope = (fn - float_of_order_key(zc)) / diag_;
-            const double spacing = d8_dc[o] ? dy_ : dx_;  // o east/west of p: n lies north/south of o
-            if (slope < (fn - float_of_order_key(zo)) / spacing) return true;
+            const double spacing = d8_dc[o] ? dy_ : dx_;  // o east/west of p: the diagonal lies north/south of o
+            if (slope < (fn - float_of_order_key(z[o])) / spacing) return true;
         }
         return false;
     }

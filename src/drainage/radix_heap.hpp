@@ -79,18 +79,28 @@ public:
     };
     bool empty() const { return count_ == 0; }
     Key last() const { return last_; }  // the last key popped (0 before any)
-    void push(Key key, std::uint32_t cell) { bucket_[slot(key ^ last_)].push_back({key, cell}), ++count_; }
+    void push(Key key, std::uint32_t cell) {
+        const int k = slot(key ^ last_);
+        bucket_[k].push_back({key, cell}), nonempty_ |= std::uint64_t(1) << k, ++count_;
+    }
     // The oldest entry with the least key.
     Entry pop() {
         if (head_ == bucket_[0].size()) refill();
         --count_;
         return bucket_[0][head_++];
     }
-    // The entry `ahead` pops after the next one, when it already waits in bucket 0 (else null):
-    // lets a caller prefetch what that entry's visit will read.
-    const Entry* peek(std::size_t ahead) const {
-        const std::size_t i = head_ + ahead;
-        return i < bucket_[0].size() ? &bucket_[0][i] : nullptr;
+    // The entry the next pop returns unless a lower key is pushed first, when it is cheap to
+    // know (bucket 0's next, else the least of the next non-empty bucket if it holds at most
+    // `scan` entries); else null. Lets a caller prefetch what that entry's visit reads.
+    const Entry* upcoming(std::size_t scan = 8) const {
+        if (head_ < bucket_[0].size()) return &bucket_[0][head_];
+        const std::uint64_t rest = nonempty_ & ~std::uint64_t(1);
+        if (!rest) return nullptr;
+        const std::vector<Entry>& b = bucket_[std::countr_zero(rest)];
+        if (b.size() > scan) return nullptr;
+        const Entry* least = &b.front();
+        for (const Entry& e : b) least = e.key < least->key ? &e : least;
+        return least;
     }
 
 private:
@@ -101,15 +111,19 @@ private:
     // bucket out, front to back.
     void refill() {
         bucket_[0].clear(), head_ = 0;
-        int k = 1;
-        while (bucket_[k].empty()) ++k;
+        const int k = std::countr_zero(nonempty_ & ~std::uint64_t(1));
         Key least = bucket_[k].front().key;
         for (const Entry& e : bucket_[k]) least = std::min(least, e.key);
         last_ = least;
-        for (const Entry& e : bucket_[k]) bucket_[slot(e.key ^ last_)].push_back(e);
-        bucket_[k].clear();
+        for (const Entry& e : bucket_[k]) {
+            const int j = slot(e.key ^ last_);
+            bucket_[j].push_back(e), nonempty_ |= std::uint64_t(1) << j;
+        }
+        bucket_[k].clear(), nonempty_ &= ~(std::uint64_t(1) << k);
     }
+    static_assert(bits < 64);
     std::vector<Entry> bucket_[bits + 1];
+    std::uint64_t nonempty_ = 0;  // bit k set: bucket k may hold entries (k >= 1: exactly when it does)
     std::size_t head_ = 0;  // next entry of bucket 0 to pop
     Key last_ = 0;
     std::size_t count_ = 0;
