@@ -85,10 +85,7 @@ public:
         for (int r = 0; r < g_.rows; ++r) {
             const std::size_t i0 = std::size_t(r) * g_.cols, p0 = padded_index(r, 0);
             cell_[p0 - 1] = cell_[p0 + g_.cols] = nodata, key_[p0 - 1] = key_[p0 + g_.cols] = 0;
-            for (int c = 0; c < g_.cols; ++c) {
-                cell_[p0 + c] = g_.valid[i0 + c] ? fresh : nodata;
-                key_[p0 + c] = float_order_key(z[i0 + c]);
-            }
+            frame_row(&z[i0], &g_.valid[i0], g_.cols, &key_[p0], &cell_[p0]);
         }
     }
 
@@ -109,31 +106,45 @@ public:
     }
 
 private:
+    // One grid row into the frame: keys and states (separate arrays: the loop vectorises).
+    static void frame_row(const float* __restrict z, const std::uint8_t* __restrict valid, int cols,
+                          std::uint32_t* __restrict key, std::uint8_t* __restrict cell) {
+        for (int c = 0; c < cols; ++c) key[c] = float_order_key(z[c]), cell[c] = valid[c] ? fresh : nodata;
+    }
+
     std::size_t padded_index(int r, int c) const { return (std::size_t(r) + 1) * w_ + std::size_t(c) + 1; }
 
     // Boundary cells (valid, on the grid border or next to nodata: a nodata byte among the eight
-    // neighbour slots) in row-major order: they drain off the grid unless redirected. Rows whose
-    // own and adjacent rows are all data can only have seeds in their first and last column.
+    // neighbour slots) in row-major order: they drain off the grid unless redirected. Per row,
+    // column_gap[j] says whether padded column j holds nodata in this row or the two beside it;
+    // a cell is a boundary cell when its own or an adjacent column's flag is set. Rows whose own
+    // and adjacent rows are all data can only have seeds in their first and last column.
     void seed() {
         std::vector<std::uint8_t> gap(std::size_t(g_.rows) + 2, 1);  // per padded row: any nodata inside
-        for (int r = 0; r < g_.rows; ++r)
-            gap[std::size_t(r) + 1] = std::find(&cell_[padded_index(r, 0)], &cell_[padded_index(r, 0)] + g_.cols,
-                                                std::uint8_t(nodata)) != &cell_[padded_index(r, 0)] + g_.cols;
+        for (int r = 0; r < g_.rows; ++r) {
+            const std::uint8_t* row = &cell_[padded_index(r, 0)];
+            gap[std::size_t(r) + 1] = std::find(row, row + g_.cols, std::uint8_t(nodata)) != row + g_.cols;
+        }
+        std::vector<std::uint8_t> column_gap(w_);
         for (int r = 0; r < g_.rows; ++r) {
             const std::size_t p0 = padded_index(r, 0);
             if (!gap[std::size_t(r)] && !gap[std::size_t(r) + 1] && !gap[std::size_t(r) + 2]) {
-                seed_if_boundary(p0);
-                if (g_.cols > 1) seed_if_boundary(p0 + std::size_t(g_.cols) - 1);
+                seed_if_fresh(p0);
+                if (g_.cols > 1) seed_if_fresh(p0 + std::size_t(g_.cols) - 1);
                 continue;
             }
-            for (int c = 0; c < g_.cols; ++c) seed_if_boundary(p0 + std::size_t(c));
+            mark_column_gaps(&cell_[p0 - 1 - w_], &cell_[p0 - 1], &cell_[p0 - 1 + w_], w_, column_gap.data());
+            for (int c = 0; c < g_.cols; ++c)
+                if (column_gap[std::size_t(c)] | column_gap[std::size_t(c) + 1] | column_gap[std::size_t(c) + 2])
+                    seed_if_fresh(p0 + std::size_t(c));
         }
     }
-    void seed_if_boundary(std::size_t p) {
-        if (cell_[p] != fresh) return;
-        bool boundary = false;
-        for (const std::ptrdiff_t o : off_) boundary |= cell_[std::size_t(std::ptrdiff_t(p) + o)] == nodata;
-        if (boundary) cell_[p] = queued, queue_.push(key_[p], std::uint32_t(p));
+    static void mark_column_gaps(const std::uint8_t* up, const std::uint8_t* mid, const std::uint8_t* down,
+                                 std::size_t w, std::uint8_t* __restrict out) {
+        for (std::size_t j = 0; j < w; ++j) out[j] = (up[j] == nodata) | (mid[j] == nodata) | (down[j] == nodata);
+    }
+    void seed_if_fresh(std::size_t p) {
+        if (cell_[p] == fresh) cell_[p] = queued, queue_.push(key_[p], std::uint32_t(p));
     }
 
     void prefetch(std::size_t p) const {
