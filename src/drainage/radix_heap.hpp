@@ -59,15 +59,21 @@ private:
     std::size_t count_ = 0;
 };
 
-// RadixHeap whose equal keys leave in the order they came (first in, first out), so it pops by
-// (key, insertion order) with the 8-byte entries of a 32-bit key. Why it is exact:
-//  - Every entry lies in bucket slot(key ^ last_), a function of its key while last_ stands.
-//    refill moves last_ to the least key of the first non-empty bucket k; the new last_ agrees
-//    with the old above bit k-1, so entries of the buckets above k keep their bucket and bucket
-//    k's entries go to buckets below k. Hence all entries of one key lie in one bucket.
+// Radix heap whose equal keys leave in the order they came (first in, first out), so it pops by
+// (key, insertion order) with the 8-byte entries of a 32-bit key. Buckets go by 4-bit digits
+// (the radix heap's multi-digit variant, Ahuja et al. 1990 section 4): bucket 1 + 16 i + v holds
+// the keys whose highest digit differing from last_ is digit i, with value v there; bucket 0 the
+// keys equal to last_. For keys >= last_ the bucket order is the key order, and a key moves at
+// most i times (each refill drops it at least one digit) instead of once per bit. Why it is exact:
+//  - Every entry lies in bucket slot(key, last_), a function of its key while last_ stands.
+//    refill moves last_ to the least key of the first non-empty bucket (i, v); the new last_
+//    agrees with the old above digit i, so entries of buckets at higher digits keep their
+//    bucket, entries at digit i with another value w != v still differ first there (with value
+//    w), and bucket (i, v)'s entries go to buckets below digit i or to bucket 0. Hence all
+//    entries of one key lie in one bucket.
 //  - Within a bucket, the entries of one key stand in insertion order: push appends the newest,
-//    and refill copies bucket k front to back into lower buckets, none of which held those keys
-//    (they all lay in bucket k).
+//    and refill copies bucket (i, v) front to back into lower buckets, none of which held those
+//    keys (they all lay in bucket (i, v)).
 //  - Bucket 0 holds only keys equal to last_ and is read from the front (head_), pushes of
 //    last_ joining at its back: entries of the least key leave oldest first. refill runs only
 //    when bucket 0 is used up, and every key it moves is above the old last_.
@@ -80,8 +86,9 @@ public:
     bool empty() const { return count_ == 0; }
     Key last() const { return last_; }  // the last key popped (0 before any)
     void push(Key key, std::uint32_t cell) {
-        const int k = slot(key ^ last_);
-        bucket_[k].push_back({key, cell}), nonempty_ |= std::uint64_t(1) << k, ++count_;
+        const int b = slot(key, last_);
+        bucket_[b].push_back({key, cell}), ++count_;
+        if (b) mark(nonempty_, b);
     }
     // The oldest entry with the least key.
     Entry pop() {
@@ -94,36 +101,52 @@ public:
     // `scan` entries); else null. Lets a caller prefetch what that entry's visit reads.
     const Entry* upcoming(std::size_t scan = 8) const {
         if (head_ < bucket_[0].size()) return &bucket_[0][head_];
-        const std::uint64_t rest = nonempty_ & ~std::uint64_t(1);
-        if (!rest) return nullptr;
-        const std::vector<Entry>& b = bucket_[std::countr_zero(rest)];
-        if (b.size() > scan) return nullptr;
-        const Entry* least = &b.front();
-        for (const Entry& e : b) least = e.key < least->key ? &e : least;
+        const int k = first_nonempty();
+        if (!k || bucket_[k].size() > scan) return nullptr;
+        const Entry* least = &bucket_[k].front();
+        for (const Entry& e : bucket_[k]) least = e.key < least->key ? &e : least;
         return least;
     }
 
 private:
-    static constexpr int bits = std::numeric_limits<Key>::digits;
-    // Bucket k holds keys whose highest bit differing from last_ is bit k-1 (0: equal to last_).
-    static int slot(Key x) { return x ? bits - std::countl_zero(x) : 0; }
+    static constexpr int bits = std::numeric_limits<Key>::digits, digit_bits = 4, radix = 1 << digit_bits;
+    static constexpr int buckets = 1 + bits / digit_bits * radix, mask_words = (buckets - 1 + 63) / 64;
+    static_assert(bits % digit_bits == 0);
+    using Mask = std::uint64_t[mask_words];  // bit b - 1 set: bucket b >= 1 holds entries
+    static int slot(Key key, Key last) {
+        const Key x = key ^ last;
+        if (!x) return 0;
+        const int i = (bits - 1 - std::countl_zero(x)) / digit_bits;
+        return 1 + i * radix + int((key >> (i * digit_bits)) & Key(radix - 1));
+    }
+    static void mark(Mask& m, int b) { m[(b - 1) >> 6] |= std::uint64_t(1) << ((b - 1) & 63); }
+    int first_nonempty() const {  // 0 when buckets 1.. are all empty
+        for (int w = 0; w < mask_words; ++w)
+            if (nonempty_[w]) return 1 + 64 * w + std::countr_zero(nonempty_[w]);
+        return 0;
+    }
     // Empties bucket 0, moves last_ to the first non-empty bucket's least key and spreads that
     // bucket out, front to back.
     void refill() {
         bucket_[0].clear(), head_ = 0;
-        const int k = std::countr_zero(nonempty_ & ~std::uint64_t(1));
-        Key least = bucket_[k].front().key;
-        for (const Entry& e : bucket_[k]) least = std::min(least, e.key);
+        const int k = first_nonempty();
+        std::vector<Entry>& from = bucket_[k];
+        Key least = from.front().key;
+        for (const Entry& e : from) least = std::min(least, e.key);
         last_ = least;
-        for (const Entry& e : bucket_[k]) {
-            const int j = slot(e.key ^ last_);
-            bucket_[j].push_back(e), nonempty_ |= std::uint64_t(1) << j;
+        Mask m;
+        std::copy(std::begin(nonempty_), std::end(nonempty_), std::begin(m));
+        for (const Entry& e : from) {
+            const int b = slot(e.key, least);
+            bucket_[b].push_back(e);
+            if (b) mark(m, b);
         }
-        bucket_[k].clear(), nonempty_ &= ~(std::uint64_t(1) << k);
+        from.clear();
+        m[(k - 1) >> 6] &= ~(std::uint64_t(1) << ((k - 1) & 63));
+        std::copy(std::begin(m), std::end(m), std::begin(nonempty_));
     }
-    static_assert(bits < 64);
-    std::vector<Entry> bucket_[bits + 1];
-    std::uint64_t nonempty_ = 0;  // bit k set: bucket k may hold entries (k >= 1: exactly when it does)
+    std::vector<Entry> bucket_[buckets];
+    Mask nonempty_ = {};
     std::size_t head_ = 0;  // next entry of bucket 0 to pop
     Key last_ = 0;
     std::size_t count_ = 0;
