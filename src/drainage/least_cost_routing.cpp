@@ -1,6 +1,7 @@
 #include "drainage/least_cost_routing.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <stdexcept>
 
@@ -10,6 +11,10 @@
 namespace penink {
 
 namespace {
+
+// Neighbours in GRASS r.watershed's visiting order S, N, W, E, NE, SW, SE, NW, as indices k of
+// d8_dc/d8_dr (ESRI code order E, SE, S, SW, W, NW, N, NE): the orthogonal ones first.
+constexpr int visit_order[8] = {2, 6, 4, 0, 7, 3, 1, 5};
 
 enum CellState : std::uint8_t { fresh = 0, queued = 1, worked = 2, nodata = 3 };
 
@@ -168,10 +173,11 @@ private:
             zn[k] = key_[std::size_t(std::ptrdiff_t(p) + off_[k])];
         }
         cell_[p] = std::uint8_t((cell_[p] & ~3u) | worked);
-        for (const int k : {2, 6, 4, 0}) reach(p, zc, k, b[k], zn[k]);
-        for (const int k : {7, 3, 1, 5}) {
-            if (b[k] > queued) continue;
-            if (zn[k] > zc && diagonal_biased(zn[k], zc, k, b, zn)) continue;
+        unsigned open = 0;  // bit j: neighbour visit_order[j] fresh or a seed, the only ones acted on
+        for (int j = 0; j < 8; ++j) open |= unsigned(b[visit_order[j]] <= queued) << j;
+        for (; open; open &= open - 1) {
+            const int j = std::countr_zero(open), k = visit_order[j];
+            if (j >= 4 && zn[k] > zc && diagonal_biased(zn[k], zc, k, b, zn)) continue;
             reach(p, zc, k, b[k], zn[k]);
         }
     }
