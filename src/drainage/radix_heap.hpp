@@ -90,10 +90,19 @@ public:
         bucket_[b].push_back({key, cell}), ++count_;
         if (b) mark(nonempty_, b);
     }
-    // The oldest entry with the least key.
+    // The oldest entry with the least key. A first non-empty bucket of one entry is popped
+    // directly (what refill would do, less moving it through bucket 0).
     Entry pop() {
-        if (head_ == bucket_[0].size()) refill();
         --count_;
+        if (head_ < bucket_[0].size()) return bucket_[0][head_++];
+        bucket_[0].clear(), head_ = 0;
+        const int k = first_nonempty();
+        if (bucket_[k].size() == 1) {
+            const Entry e = bucket_[k].front();
+            bucket_[k].clear(), unmark(nonempty_, k), last_ = e.key;
+            return e;
+        }
+        refill(k);
         return bucket_[0][head_++];
     }
     // The entry the next pop returns unless a lower key is pushed first, when it is cheap to
@@ -120,16 +129,15 @@ private:
         return 1 + i * radix + int((key >> (i * digit_bits)) & Key(radix - 1));
     }
     static void mark(Mask& m, int b) { m[(b - 1) >> 6] |= std::uint64_t(1) << ((b - 1) & 63); }
+    static void unmark(Mask& m, int b) { m[(b - 1) >> 6] &= ~(std::uint64_t(1) << ((b - 1) & 63)); }
     int first_nonempty() const {  // 0 when buckets 1.. are all empty
         for (int w = 0; w < mask_words; ++w)
             if (nonempty_[w]) return 1 + 64 * w + std::countr_zero(nonempty_[w]);
         return 0;
     }
-    // Empties bucket 0, moves last_ to the first non-empty bucket's least key and spreads that
-    // bucket out, front to back.
-    void refill() {
-        bucket_[0].clear(), head_ = 0;
-        const int k = first_nonempty();
+    // With bucket 0 empty: moves last_ to the least key of bucket k, the first non-empty one,
+    // and spreads that bucket out, front to back.
+    void refill(int k) {
         std::vector<Entry>& from = bucket_[k];
         Key least = from.front().key;
         for (const Entry& e : from) least = std::min(least, e.key);
@@ -141,8 +149,7 @@ private:
             bucket_[b].push_back(e);
             if (b) mark(m, b);
         }
-        from.clear();
-        m[(k - 1) >> 6] &= ~(std::uint64_t(1) << ((k - 1) & 63));
+        from.clear(), unmark(m, k);
         std::copy(std::begin(m), std::end(m), std::begin(nonempty_));
     }
     std::vector<Entry> bucket_[buckets];
