@@ -96,26 +96,8 @@ void BM_NetworkOnly(benchmark::State& state) {  // fill .. basins, without branc
     state.counters["cells/s"] = benchmark::Counter(double(g.size()), benchmark::Counter::kIsIterationInvariantRate);
 }
 
-// The least-cost search alone (least_cost_routing.hpp), on the unquantised fractal (arg 1 = 0)
-// and on one quantised to 0.25 m (arg 1 = 1: long runs of equal elevations).
-void BM_LeastCostSearch(benchmark::State& state) {
-    const int n = int(state.range(0));
-    const DrainageGrid g = fractal_grid(n, state.range(1) ? 0.25f : 0.0f);
-    const GridShape s{g.cols, g.rows, g.valid.data()};
-    for (auto _ : state) {
-        const auto dir = least_cost_directions(g.z, s, g.dx, g.dy);
-        benchmark::DoNotOptimize(dir.data());
-    }
-    state.counters["ns/cell"] = benchmark::Counter(double(g.size()) * 1e-9, benchmark::Counter::kIsIterationInvariantRate |
-                                                                      benchmark::Counter::kInvert);
-}
-
-// The same on the DEM named by PENINK_BENCH_DEM at factor 1 (skipped when unset), e.g. a
-// refinement of jacksboro: PENINK_BENCH_DEM=/tmp/drape-refined.tif drainage_bench --benchmark_filter=LeastCost
-void BM_LeastCostSearchDem(benchmark::State& state) {
-    const char* path = std::getenv("PENINK_BENCH_DEM");
-    if (!path) return state.SkipWithError("PENINK_BENCH_DEM unset");
-    const DrainageGrid g = resample_pn(read_dem(path), 1);
+// The least-cost search alone (least_cost_routing.hpp) on grid g, with its time per cell.
+void time_least_cost(benchmark::State& state, const DrainageGrid& g) {
     const GridShape s{g.cols, g.rows, g.valid.data()};
     for (auto _ : state) {
         const auto dir = least_cost_directions(g.z, s, g.dx, g.dy);
@@ -123,6 +105,20 @@ void BM_LeastCostSearchDem(benchmark::State& state) {
     }
     state.counters["ns/cell"] = benchmark::Counter(double(g.size()) * 1e-9, benchmark::Counter::kIsIterationInvariantRate |
                                                                              benchmark::Counter::kInvert);
+}
+
+// On the unquantised fractal (arg 1 = 0) and on one quantised to 0.25 m (arg 1 = 1: long runs of
+// equal elevations).
+void BM_LeastCostSearch(benchmark::State& state) {
+    time_least_cost(state, fractal_grid(int(state.range(0)), state.range(1) ? 0.25f : 0.0f));
+}
+
+// On the DEM named by PENINK_BENCH_DEM at factor 1 (skipped when unset), e.g. a refinement of
+// jacksboro: PENINK_BENCH_DEM=/tmp/drape-refined.tif drainage_bench --benchmark_filter=LeastCost
+void BM_LeastCostSearchDem(benchmark::State& state) {
+    const char* path = std::getenv("PENINK_BENCH_DEM");
+    if (!path) return state.SkipWithError("PENINK_BENCH_DEM unset");
+    time_least_cost(state, resample_pn(read_dem(path), 1));
 }
 
 BENCHMARK(BM_LeastCostSearch)->Args({2048, 0})->Args({2048, 1})->Unit(benchmark::kMillisecond)->Iterations(3);

@@ -23,12 +23,15 @@ inline float float_of_order_key(std::uint32_t k) {
     return std::bit_cast<float>((k & 0x80000000u) ? (k & 0x7fffffffu) : ~k);
 }
 
+// A queue entry: the key and the cell it orders.
+template <class Key> struct RadixEntry {
+    Key key;
+    std::uint32_t cell;
+};
+
 template <class Key> class RadixHeap {
 public:
-    struct Entry {
-        Key key;
-        std::uint32_t cell;
-    };
+    using Entry = RadixEntry<Key>;
     bool empty() const { return count_ == 0; }
     Key last() const { return last_; }  // the last key popped (0 before any)
     void push(Key key, std::uint32_t cell) { bucket_[slot(key ^ last_)].push_back({key, cell}), ++count_; }
@@ -79,10 +82,7 @@ private:
 //    when bucket 0 is used up, and every key it moves is above the old last_.
 template <class Key> class FifoRadixHeap {
 public:
-    struct Entry {
-        Key key;
-        std::uint32_t cell;
-    };
+    using Entry = RadixEntry<Key>;
     bool empty() const { return count_ == 0; }
     Key last() const { return last_; }  // the last key popped (0 before any)
     void push(Key key, std::uint32_t cell) {
