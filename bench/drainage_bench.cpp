@@ -4,12 +4,15 @@
 // bytes/cell (per-point arrays) and the process's peak RSS per cell.
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 
 #include <sys/resource.h>
 
 #include <benchmark/benchmark.h>
 
 #include "drainage/drainage_build.hpp"
+#include "drainage/least_cost_routing.hpp"
+#include "input/dem_reader.hpp"
 
 namespace penink {
 namespace {
@@ -93,6 +96,33 @@ void BM_NetworkOnly(benchmark::State& state) {  // fill .. basins, without branc
     state.counters["cells/s"] = benchmark::Counter(double(g.size()), benchmark::Counter::kIsIterationInvariantRate);
 }
 
+// The least-cost search alone (least_cost_routing.hpp) on grid g, with its time per cell.
+void time_least_cost(benchmark::State& state, const DrainageGrid& g) {
+    const GridShape s{g.cols, g.rows, g.valid.data()};
+    for (auto _ : state) {
+        const auto dir = least_cost_directions(g.z, s, g.dx, g.dy);
+        benchmark::DoNotOptimize(dir.data());
+    }
+    state.counters["ns/cell"] = benchmark::Counter(double(g.size()) * 1e-9, benchmark::Counter::kIsIterationInvariantRate |
+                                                                             benchmark::Counter::kInvert);
+}
+
+// On the unquantised fractal (arg 1 = 0) and on one quantised to 0.25 m (arg 1 = 1: long runs of
+// equal elevations).
+void BM_LeastCostSearch(benchmark::State& state) {
+    time_least_cost(state, fractal_grid(int(state.range(0)), state.range(1) ? 0.25f : 0.0f));
+}
+
+// On the DEM named by PENINK_BENCH_DEM at factor 1 (skipped when unset), e.g. a refinement of
+// jacksboro: PENINK_BENCH_DEM=/tmp/drape-refined.tif drainage_bench --benchmark_filter=LeastCost
+void BM_LeastCostSearchDem(benchmark::State& state) {
+    const char* path = std::getenv("PENINK_BENCH_DEM");
+    if (!path) return state.SkipWithError("PENINK_BENCH_DEM unset");
+    time_least_cost(state, resample_pn(read_dem(path), 1));
+}
+
+BENCHMARK(BM_LeastCostSearch)->Args({2048, 0})->Args({2048, 1})->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_LeastCostSearchDem)->Unit(benchmark::kMillisecond)->Iterations(5);
 BENCHMARK(BM_DirectionsAccumulation)->Arg(1024)->Arg(4096)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_NetworkOnly)->Arg(1024)->Arg(4096)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_WholeBuild)->Arg(1024)->Arg(4096)->Unit(benchmark::kMillisecond)->Iterations(1);

@@ -2,10 +2,17 @@
 // Expected ESRI codes (1 E, 2 SE, 4 S, 8 SW, 16 W, 32 NW, 64 N, 128 NE, 0 off the grid) are
 // worked out by hand from the search's rules below each grid; every grid was also run through
 // GRASS 8.2 `r.watershed -s`, which gives the same codes (its off-map codes are our 0).
-// Plus the plumbing: compute_drainage and `penink drainage` with the routing, and the fingerprint.
+// Plus the plumbing: compute_drainage and `penink drainage` with the routing, and the fingerprint,
+// and the search against a plain reference of the same rules (std::priority_queue on elevation
+// and insertion counter, bounds checks, slopes in double for every neighbour) on real and
+// synthetic DEMs: every direction byte equal.
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <queue>
+#include <random>
 #include <sstream>
+#include <tuple>
 
 #include <unistd.h>
 
@@ -14,6 +21,9 @@
 #include "drainage/drainage_build.hpp"
 #include "drainage/drainage_db.hpp"
 #include "drainage/least_cost_routing.hpp"
+#include "drainage/radix_heap.hpp"
+#include "input/dem_reader.hpp"
+#include "support/synthetic_terrain.hpp"
 
 namespace penink {
 namespace {
@@ -169,6 +179,170 @@ TEST(LeastCostRouting, RoutingReachesComputeDrainage) {
     EXPECT_EQ(lc.dir, route(5, 5, z));
     EXPECT_NE(pf.dir, lc.dir);
 
+}
+
+
+// The search as first written, kept as the reference the optimised one must match byte for byte:
+// the rules of least_cost_routing.hpp in their plainest form.
+std::vector<std::uint8_t> reference_least_cost(const std::vector<float>& z, const GridShape& g, double dx,
+                                               double dy) {
+    enum : std::uint8_t { fresh = 0, queued = 1, worked = 2, nodata = 3 };
+    constexpr int visit_order[8] = {2, 6, 4, 0, 7, 3, 1, 5};  // S, N, W, E, NE, SW, SE, NW
+    double dist[8];
+    for (int k = 0; k < 8; ++k) dist[k] = d8_dc[k] && d8_dr[k] ? std::hypot(dx, dy) : d8_dc[k] ? dx : dy;
+    std::vector<std::uint8_t> state(g.size()), dir(g.size(), 0);
+    for (std::size_t i = 0; i < g.size(); ++i) state[i] = g.valid[i] ? fresh : nodata;
+    using Item = std::tuple<std::uint32_t, std::uint32_t, std::size_t>;  // elevation key, counter, cell
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+    std::uint32_t counter = 0;
+    auto push = [&](std::size_t i) { queue.emplace(float_order_key(z[i]), counter++, i); };
+    auto on_grid = [&](int r, int c) { return r >= 0 && r < g.rows && c >= 0 && c < g.cols; };
+    for (int r = 0; r < g.rows; ++r)
+        for (int c = 0; c < g.cols; ++c) {
+            const std::size_t i = std::size_t(r) * g.cols + c;
+            if (state[i] == fresh && is_boundary_cell(g, c, r)) state[i] = queued, push(i);
+        }
+    while (!queue.empty()) {
+        const std::size_t i = std::get<2>(queue.top());
+        queue.pop();
+        state[i] = worked;
+        const int r = int(i / std::size_t(g.cols)), c = int(i % std::size_t(g.cols));
+        double slope[8] = {-1, -1, -1, -1, -1, -1, -1, -1};
+        std::size_t nb[8] = {};
+        for (const int k : visit_order) {
+            if (!on_grid(r + d8_dr[k], c + d8_dc[k])) continue;
+            const std::size_t n = std::size_t(r + d8_dr[k]) * g.cols + std::size_t(c + d8_dc[k]);
+            nb[k] = n;
+            if (state[n] >= worked) continue;
+            slope[k] = z[n] > z[i] ? (double(z[n]) - z[i]) / dist[k] : 0.0;
+            if (state[n] == queued && dir[n]) continue;
+            bool biased = false;
+            if (d8_dc[k] && d8_dr[k] && slope[k] > 0)
+                for (const int o : {(k + 7) & 7, (k + 1) & 7}) {
+                    if (slope[o] < 0) continue;
+                    const double spacing = d8_dc[o] ? dy : dx;
+                    const double rise = z[n] > z[nb[o]] ? (double(z[n]) - z[nb[o]]) / spacing : 0.0;
+                    biased |= slope[k] < rise;
+                }
+            if (biased) continue;
+            const std::uint8_t toward = std::uint8_t(1u << ((k + 4) & 7));
+            if (state[n] == queued) {
+                if (slope[k] > 0) dir[n] = toward;
+                continue;
+            }
+            state[n] = queued, dir[n] = toward, push(n);
+        }
+    }
+    return dir;
+}
+
+void expect_same_as_reference(const std::vector<float>& z, const GridShape& g, double dx, double dy,
+                              const char* what) {
+    const std::vector<std::uint8_t> want = reference_least_cost(z, g, dx, dy);
+    const std::vector<std::uint8_t> got = least_cost_directions(z, g, dx, dy);
+    ASSERT_EQ(got.size(), want.size()) << what;
+    std::size_t differ = 0, first = got.size();
+    for (std::size_t i = 0; i < got.size(); ++i)
+        if (got[i] != want[i]) first = std::min(first, i), ++differ;
+    EXPECT_EQ(differ, 0u) << what << ": first at cell " << first;
+    EXPECT_GT(std::count_if(want.begin(), want.end(), [](std::uint8_t d) { return d != 0; }), 0) << what;
+}
+
+void expect_same_as_reference(const DrainageGrid& g, const char* what) {
+    expect_same_as_reference(g.z, GridShape{g.cols, g.rows, g.valid.data()}, g.dx, g.dy, what);
+}
+
+// Elevations rounded to whole metres (long runs of exactly equal keys: ties broken by insertion
+// order), pits (the search pushes below its level), nodata holes and exact zeros of both signs,
+// on a non-square grid with unequal spacing (the diagonal check's two spacings differ).
+DrainageGrid quantised_holed_terrain(int cols, int rows, std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> noise(-3.0f, 3.0f);
+    std::vector<float> z(std::size_t(cols) * rows);
+    for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < cols; ++c) {
+            const float h = 20.0f * std::sin(c * 0.05f) * std::cos(r * 0.07f) + 0.1f * (r + c) + noise(rng);
+            z[std::size_t(r) * cols + c] = std::round(h);
+        }
+    for (std::size_t i = 0; i < z.size(); i += 37) z[i] = (i / 37) % 2 ? -0.0f : 0.0f;
+    DrainageGrid g = make_regular_grid(cols, rows, 1.0, std::move(z));
+    g.dx = 1.0, g.dy = 1.5;
+    std::uniform_int_distribution<int> pick_c(0, cols - 1), pick_r(0, rows - 1);
+    for (int hole = 0; hole < 12; ++hole) {
+        const int c0 = pick_c(rng), r0 = pick_r(rng), size = 1 + hole % 5;
+        for (int r = r0; r < std::min(rows, r0 + size); ++r)
+            for (int c = c0; c < std::min(cols, c0 + size); ++c) g.valid[std::size_t(r) * cols + c] = 0;
+    }
+    return g;
+}
+
+TEST(LeastCostRouting, SameDirectionsAsTheReferenceOnRealDems) {
+    const Terrain volcano = read_dem(PENINK_SOURCE_DIR "/examples/volcano.asc");
+    expect_same_as_reference(resample_pn(volcano, 1), "volcano factor 1");
+    expect_same_as_reference(resample_pn(volcano, 3), "volcano factor 3");
+    const Terrain jacksboro = read_dem(PENINK_SOURCE_DIR "/examples/jacksboro.tif");
+    expect_same_as_reference(resample_pn(jacksboro, 1), "jacksboro factor 1");
+    expect_same_as_reference(resample_pn(jacksboro, 2), "jacksboro factor 2");
+    expect_same_as_reference(resample_pn(holed_hills(), 2), "holed hills factor 2");
+}
+
+TEST(LeastCostRouting, SameDirectionsAsTheReferenceOnQuantisedHoledTerrain) {
+    for (const std::uint32_t seed : {1u, 2u, 3u}) {
+        const DrainageGrid g = quantised_holed_terrain(157 + int(seed), 93, seed);
+        expect_same_as_reference(g, "quantised holed terrain");
+    }
+    const DrainageGrid column = quantised_holed_terrain(1, 40, 4), row = quantised_holed_terrain(40, 1, 5);
+    expect_same_as_reference(column, "one column");
+    expect_same_as_reference(row, "one row");
+}
+
+// A flat plateau (every key equal: the order is insertion order alone), whole and with a hole,
+// and a plateau at 5 m ringed by a 9 m rim with a 0 m notch.
+TEST(LeastCostRouting, SameDirectionsAsTheReferenceOnAFlatPlateau) {
+    DrainageGrid flat = make_regular_grid(64, 48, 2.0, std::vector<float>(64 * 48, 7.0f));
+    expect_same_as_reference(flat, "flat");
+    for (int r = 20; r < 26; ++r)
+        for (int c = 30; c < 41; ++c) flat.valid[std::size_t(r) * 64 + c] = 0;
+    expect_same_as_reference(flat, "flat with a hole");
+    std::vector<float> z(50 * 40, 5.0f);
+    for (int r = 0; r < 40; ++r)
+        for (int c = 0; c < 50; ++c)
+            if (r == 0 || c == 0 || r == 39 || c == 49) z[std::size_t(r) * 50 + c] = 9.0f;
+    z[std::size_t(39) * 50 + 17] = 0.0f;
+    expect_same_as_reference(make_regular_grid(50, 40, 1.0, std::move(z)), "rimmed plateau");
+}
+
+// FifoRadixHeap pops by (key, insertion order), like a binary heap on (key, counter), for any
+// monotone sequence (no key below the last popped): few distinct keys (long ties), keys equal to
+// the last popped pushed between pops, and keys spread over all 32 bits.
+TEST(FifoRadixHeap, PopsLikeAHeapOnKeyThenInsertionOrder) {
+    std::mt19937 rng(11);
+    for (const std::uint32_t spread : {3u, 1000u, 0xffffffffu}) {
+        FifoRadixHeap<std::uint32_t> heap;
+        using Item = std::tuple<std::uint32_t, std::uint32_t>;  // key, counter = cell
+        std::priority_queue<Item, std::vector<Item>, std::greater<Item>> ref;
+        std::uint32_t counter = 0, pops = 0;
+        for (int step = 0; step < 200000; ++step) {
+            if (rng() % 3 || ref.empty()) {
+                const std::uint32_t base = heap.last();
+                const std::uint32_t key =
+                    rng() % 4 == 0 ? base : base + std::uint32_t(std::min<std::uint64_t>(rng() % (std::uint64_t(spread) + 1), 0xffffffffu - base));
+                heap.push(key, counter), ref.emplace(key, counter), ++counter;
+            } else {
+                const auto e = heap.pop();
+                ASSERT_EQ(e.key, std::get<0>(ref.top())) << "pop " << pops;
+                ASSERT_EQ(e.cell, std::get<1>(ref.top())) << "pop " << pops;
+                ref.pop(), ++pops;
+            }
+        }
+        while (!ref.empty()) {
+            const auto e = heap.pop();
+            ASSERT_EQ(e.cell, std::get<1>(ref.top()));
+            ref.pop();
+        }
+        EXPECT_TRUE(heap.empty());
+        EXPECT_GT(pops, 50000u);
+    }
 }
 
 }  // namespace
