@@ -221,7 +221,9 @@ DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progres
     if (routing == DrainageRouting::least_cost) {
         report(progress, "least-cost search", 0.05);
         res.dir = least_cost_directions(g.z, shape, g.dx, g.dy);
-        res.stats.working_bytes = res.dir.size();  // one byte per cell: search state, then direction (queue aside)
+        // the directions, and the search's padded copy: 4 B of elevation key and 1 of state a cell
+        // (least_cost_routing.hpp; the queue aside)
+        res.stats.working_bytes = 6 * res.dir.size();
     } else {
         priority_flood_directions(g, shape, progress, res);
     }
