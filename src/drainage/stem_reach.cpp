@@ -119,28 +119,38 @@ float drape_height_top(const DrainageGrid& g) {
     const int cols = coarse ? g.coarse_cols : g.cols, rows = coarse ? g.coarse_rows : g.rows;
     const std::vector<float>& z = coarse ? g.coarse_z : g.z;
     const std::vector<std::uint8_t>& valid = coarse ? g.coarse_valid : g.valid;
-    auto node = [&](int c, int r) {
-        const std::size_t i = std::size_t(r) * std::size_t(cols) + std::size_t(c);
-        const glm::dvec2 xy = coarse ? glm::dvec2(g.coarse_xy[i]) : grid_xy(g, c, r);
-        return glm::dvec3(xy, double(z[i]));
+    // the nodes of row r (x, y as the drape reads them, z) into `out`
+    auto row_nodes = [&](int r, std::vector<glm::dvec3>& out) {
+        out.resize(std::size_t(cols));
+        for (int c = 0; c < cols; ++c) {
+            const std::size_t i = std::size_t(r) * std::size_t(cols) + std::size_t(c);
+            const glm::dvec2 xy = coarse ? glm::dvec2(g.coarse_xy[i]) : grid_xy(g, c, r);
+            out[std::size_t(c)] = glm::dvec3(xy, double(z[i]));
+        }
     };
-    // per row on all cores (the highest node and the longest squared edge down to the next row)
+    // per row on all cores (the highest node and the longest squared edge down to the next row),
+    // each row's nodes found once
     std::vector<double> row_top(std::size_t(std::max(rows, 0)), -std::numeric_limits<double>::infinity());
     std::vector<double> row_edge2(row_top.size(), 0.0);
     parallel_chunks(row_top.size(), 16, [&](std::size_t r0, std::size_t r1) {
-        for (int r = int(r0); r < int(r1); ++r)
+        std::vector<glm::dvec3> here, below;
+        if (r0 < r1) row_nodes(int(r0), here);
+        for (int r = int(r0); r < int(r1); ++r) {
+            if (r + 1 < rows) row_nodes(r + 1, below);
             for (int c = 0; c < cols; ++c) {
                 const std::size_t i = std::size_t(r) * std::size_t(cols) + std::size_t(c);
                 if (!valid[i]) continue;
-                const glm::dvec3 p = node(c, r);
+                const glm::dvec3 p = here[std::size_t(c)];
                 row_top[std::size_t(r)] = std::max(row_top[std::size_t(r)], p.z);
-                for (const auto [dc, dr] : {std::pair(1, 0), std::pair(0, 1), std::pair(1, 1)}) {
+                for (const auto& [dc, dr] : {std::pair(1, 0), std::pair(0, 1), std::pair(1, 1)}) {
                     if (c + dc >= cols || r + dr >= rows || !valid[i + std::size_t(dr) * std::size_t(cols) + std::size_t(dc)])
                         continue;
-                    const glm::dvec3 d = node(c + dc, r + dr) - p;
+                    const glm::dvec3 d = (dr ? below : here)[std::size_t(c + dc)] - p;
                     row_edge2[std::size_t(r)] = std::max(row_edge2[std::size_t(r)], glm::dot(d, d));
                 }
             }
+            std::swap(here, below);
+        }
     });
     double top = -std::numeric_limits<double>::infinity(), edge2 = 0.0;
     for (std::size_t r = 0; r < row_top.size(); ++r) top = std::max(top, row_top[r]), edge2 = std::max(edge2, row_edge2[r]);
