@@ -132,9 +132,12 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terra
             progress.update(stage, fraction);
         },
         &source.vertices, &file);
-    if (!source.db.crease_source.empty())  // creases built per tile as frames need them, kept beside the file
-        source.creases = std::make_shared<StoredCreases>(std::move(source.db.crease_source),
-                                                         file.empty() ? std::string() : crease_tile_folder(file));
+    // creases built per tile as frames need them, kept where the caches are written (beside the
+    // database, or in the user's cache folder for one read beside a DEM in a read-only folder)
+    if (!source.db.crease_source.empty())
+        source.creases = std::make_shared<StoredCreases>(
+            std::move(source.db.crease_source),
+            file.empty() ? std::string() : crease_tile_folder(drainage_cache_path(scene.source.dem, options.cache_dir)));
     log.info("drainage database ready (" + std::to_string(int(ms_since(t0))) + " ms)");
     return source;
 }

@@ -66,6 +66,11 @@ TEST(CacheDir, CommandLineAndSceneFolders) {
     const std::string name = dv[0].filename().string();
     EXPECT_TRUE(std::regex_match(name, std::regex("volcano\\.asc-[0-9a-f]{16}\\.dv"))) << name;
     EXPECT_EQ(lod[0].filename().string(), name.substr(0, name.size() - 3) + ".lod");
+    // the crease tiles the render built beside the database in the cache folder, none beside the DEM
+    EXPECT_TRUE(fs::is_directory(dir / "caches" / (name + ".tiles")));
+    EXPECT_FALSE(files_ending(dir / "caches" / (name + ".tiles"), ".pnlt").empty());
+    EXPECT_FALSE(fs::exists(dir / "volcano.asc.dv.tiles"));
+    EXPECT_TRUE(std::regex_search(r.output, std::regex("tile files read, [1-9][0-9]* written"))) << r.output;
     // -v: each cache with its size
     EXPECT_NE(r.output.find("penink: drainage: wrote caches/" + name + " ("), std::string::npos) << r.output;
     EXPECT_TRUE(std::regex_search(r.output, std::regex("penink: terrain: wrote caches/volcano\\.asc-[0-9a-f]{16}\\.lod "
@@ -78,6 +83,7 @@ TEST(CacheDir, CommandLineAndSceneFolders) {
               std::string::npos)
         << again.output;
     EXPECT_EQ(read_text(dir / "a.svg"), read_text(dir / "b.svg"));
+    EXPECT_TRUE(std::regex_search(again.output, std::regex("[1-9][0-9]* tile files read, 0 written"))) << again.output;
 
     fs::create_directories(dir / "scene");
     write_text(dir / "scene" / "v.toml", "[terrain]\ndem = \"../volcano.asc\"\n[cache]\ndir = \"cc\"\n");
