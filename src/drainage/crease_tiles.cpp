@@ -198,6 +198,12 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
         out.erase(std::merge(a.begin(), a.end(), b.begin(), b.end(), out.begin()), out.end());
         return out;
     };
+    std::size_t to_build = 0, built = 0;  // tiles with cuts not read, for build_progress_
+    for (std::size_t k = 0, last = std::size_t(-1); k < cut_tile.size(); ++k)
+        if (!read[k] && cut_tile[k] != last) ++to_build, last = cut_tile[k];
+    const auto tile_built = [&] {
+        if (build_progress_) build_progress_(double(++built) / double(std::max<std::size_t>(to_build, 1)));
+    };
     for (std::size_t k0 = 0, k1; k0 < cut_tile.size(); k0 = k1) {
         for (k1 = k0; k1 < cut_tile.size() && cut_tile[k1] == cut_tile[k0]; ++k1)
             if (read[k1]) keep(ids_of(k1), std::move(read[k1]), true);
@@ -226,11 +232,13 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
                 else writable_ = false;  // the tiles from now on built as needed, in memory only
                 keep(ids_of(todo[j]), lines_of(ids_of(todo[j]), stems, whole), written[j] != 0);
             }
+            tile_built();
             continue;
         }
         std::vector<std::uint32_t> need;
         for (std::size_t k : todo) need = merged(std::move(need), ids_of(k));
         keep(need, std::make_unique<DrapedLineSet>(crease_part(g_, dir_, net_, surface(), parts_, need)));
+        tile_built();
     }
     std::vector<Pick> picks;
     picks.reserve(wanted.size());

@@ -107,6 +107,9 @@ public:
     // Called once, before the first stem is built: a caller that made g, dir and net with their
     // sizes only fills them there.
     void before_first_build(std::function<void()> f) { before_build_ = std::move(f); }
+    // Called while a query builds tiles: the fraction of the tiles it builds done so far (after
+    // each tile, 1 after the last; not called for a query that builds none).
+    void on_build_progress(std::function<void(double)> f) { build_progress_ = std::move(f); }
 
     std::size_t tile_count() const { return tiles_.size(); }
     std::size_t stem_count() const { return parts_.sources.size(); }
@@ -159,6 +162,7 @@ private:
     std::string tile_path(std::size_t k, int l) const;
     std::unique_ptr<DemSurface> surface_;  // made with the first build
     std::function<void()> before_build_;
+    std::function<void(double)> build_progress_;
 };
 
 }  // namespace penink

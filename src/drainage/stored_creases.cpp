@@ -46,6 +46,7 @@ CreaseTiles& StoredCreases::tiles() {
             store.folder = folder_, store.key = hash64(fields, sizeof fields);
         }
         d->tiles = std::make_unique<CreaseTiles>(d->g, d->dir, d->net, std::move(index), std::move(store));
+        if (build_progress_) d->tiles->on_build_progress(build_progress_);
         d->tiles->before_first_build([this, d = d.get()] {
             CreaseTileIndex again;
             if (!decode_crease_source(source_.data(), source_.size(), d->g, d->dir, again))

@@ -13,6 +13,7 @@
 // build runs on all cores).
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -55,6 +56,9 @@ public:
     std::size_t stems_built() const;
     std::size_t vertices_built() const;
     std::size_t builds() const;
+    // Called while a query builds tiles (CreaseTiles::on_build_progress); set before the first
+    // query.
+    void on_build_progress(std::function<void(double)> f) { build_progress_ = std::move(f); }
     std::size_t tiles_read() const;     // tile files read
     std::size_t tiles_written() const;  // tile files written
 
@@ -63,6 +67,7 @@ private:
     mutable std::mutex mutex_;
     std::vector<std::uint8_t> source_;
     std::string folder_;
+    std::function<void(double)> build_progress_;
     std::unique_ptr<Decoded> decoded_;
     CreaseTiles& tiles();  // decoded on first use; under mutex_
     std::size_t count(std::size_t (CreaseTiles::*of)() const) const;  // of the tiles, 0 before

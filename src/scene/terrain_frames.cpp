@@ -138,6 +138,10 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terra
         source.creases = std::make_shared<StoredCreases>(
             std::move(source.db.crease_source),
             file.empty() ? std::string() : crease_tile_folder(drainage_cache_path(scene.source.dem, options.cache_dir)));
+    if (source.creases) {  // a frame's first tiles can take minutes on a large DEM: shown as they are built
+        auto shown = std::make_shared<StageProgress>(std::cerr, log.progress, "crease tiles");
+        source.creases->on_build_progress([shown](double f) { shown->update("building", f); });
+    }
     log.info("drainage database ready (" + std::to_string(int(ms_since(t0))) + " ms)");
     return source;
 }

@@ -207,7 +207,13 @@ TEST(CreaseTiles, StoredTilesAreReadByTheNextInstanceAndDamagedOnesRebuilt) {
     const TileStore store{dir.file("tiles"), 42};
 
     CreaseTiles first(g, res.dir, res.net, 64, store);
+    std::vector<double> shown;  // the build's progress: rising to 1
+    first.on_build_progress([&](double f) { shown.push_back(f); });
     EXPECT_EQ(differing(first, db, lo, hi, strict), 0u);
+    ASSERT_GT(shown.size(), 2u);
+    EXPECT_TRUE(std::is_sorted(shown.begin(), shown.end()));
+    EXPECT_GT(shown.front(), 0.0);
+    EXPECT_EQ(shown.back(), 1.0);
     const std::size_t built = first.tiles_built(), kept = first.stems_built();
     EXPECT_GT(built, 4u);
     EXPECT_EQ(first.tiles_read(), 0u);
@@ -223,7 +229,10 @@ TEST(CreaseTiles, StoredTilesAreReadByTheNextInstanceAndDamagedOnesRebuilt) {
     EXPECT_LT(built, first.tile_count() * std::size_t(crease_tile_levels));
 
     CreaseTiles second(g, res.dir, res.net, 64, store);
+    shown.clear();
+    second.on_build_progress([&](double f) { shown.push_back(f); });
     EXPECT_EQ(differing(second, db, lo, hi, strict), 0u);
+    EXPECT_TRUE(shown.empty());  // nothing built
     EXPECT_EQ(second.tiles_read(), built);
     EXPECT_EQ(second.tiles_built(), 0u);
     EXPECT_EQ(second.stems_built(), kept);
