@@ -61,6 +61,7 @@ struct Sink {
         buf.resize(n + k), spare.resize(n + k);
     }
     void bytes(const void* p, std::size_t k) {
+        if (k == 0) return;  // an empty array's data() may be null, which memcpy must not get
         room(k);
         std::memcpy(buf.data() + n, p, k);
         n += k;

@@ -24,17 +24,20 @@ constexpr double terrain_s_per_node = 0.166e-6;  // 2.3 s at 13.86 M nodes
 // terrain_lod.cpp), over what the process holds before it (126 MB: fitted, the image's buffers).
 constexpr double terrain_bytes_per_node = 26.3, terrain_bytes_per_padded_node = 10.0;
 constexpr double terrain_base_bytes = 126e6;
-// 13.6 s at 13.86 M points and 2.7 s at 3.47 M: a power law, exponent ln(13.6/2.7)/ln(4) = 1.17.
-constexpr double drainage_s_at_reference = 13.6, drainage_reference_points = 13.86e6, drainage_exponent = 1.17;
-// Peak resident memory 477 MB at 3.47 M points and 1327 MB at 13.86 M: a line.
-constexpr double drainage_peak_bytes_per_point = 81.8, drainage_base_bytes = 193e6;
+// The drainage database (`penink drainage DEM -o x.dv`: the network, the ridges and the creases'
+// source; the crease tiles come later, built by the renders that need them, with their own
+// progress): 6.07 s at 13.86 M points (jacksboro refined 10 times) and 70.8 s at 116.6 M (29
+// times): a power law, exponent ln(70.8/6.07)/ln(116.6/13.86) = 1.153.
+constexpr double drainage_s_at_reference = 6.07, drainage_reference_points = 13.86e6, drainage_exponent = 1.153;
+// Peak resident memory 800 MB at 13.86 M points and 6063 MB at 116.6 M: a line.
+constexpr double drainage_peak_bytes_per_point = 51.2, drainage_base_bytes = 90.1e6;
 // The terrain cache written (terrain_cache.hpp, coded: its size follows the DEM's smoothness; x, y
 // derived on projected and geographic DEMs): 1.17 B a node on jacksboro refined 10 times, header
 // included (1.52 refined 5 times, 2.2 on the volcano, 2.95 on jacksboro itself, up to 6.5 on a
 // synthetic DEM of noise; 17.8 B as floats).
 constexpr double terrain_disk_bytes_per_node = 1.17;
-// The files written: 52 and 55.6 B a point.
-constexpr double drainage_disk_bytes_per_point = 56.0;
+// The file written: 1.65 and 1.64 B a point (22.9 and 191.6 MB).
+constexpr double drainage_disk_bytes_per_point = 1.65;
 
 }  // namespace
 
