@@ -1,8 +1,10 @@
 // The terrain cache from the command line: `penink drainage DEM` leaves it beside the DEM, and a
 // render reads it there even when that folder cannot be written (as user nobody when the tests
-// run as root), building nothing and writing no cache of its own.
+// run as root), building neither cache again; the crease tiles its frame builds go to the user's
+// cache folder, where the next render reads them.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 
 #include "cli_support.hpp"
@@ -36,8 +38,19 @@ TEST(TerrainCacheCli, ReadBesideTheDemInAReadOnlyFolder) {
     const RunResult r = run_penink_unprivileged("render ro/volcano.asc -o out.svg --width 200 --height 150 -v", dir);
     EXPECT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("penink: terrain: using cached ro/volcano.asc.lod"), std::string::npos) << r.output;
-    EXPECT_EQ(r.output.find("building"), std::string::npos) << r.output;
+    // neither cache built again; the crease tiles, which cannot go beside the cache, go to the
+    // user's cache folder ($HOME/.cache/penink here)
+    EXPECT_EQ(r.output.find("building drainage database"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("wrote"), std::string::npos) << r.output;
     EXPECT_EQ(files_named(dir / "home", ".lod"), 0u) << "built again into the user's cache";
+    EXPECT_EQ(files_named(dir / "ro", ".pnlt"), 0u);
+    if (!std::getenv("XDG_CACHE_HOME")) {
+        EXPECT_GT(files_named(dir / ".cache" / "penink", ".pnlt"), 0u) << r.output;
+        EXPECT_EQ(files_named(dir / ".cache" / "penink", ".dv"), 0u);
+        const RunResult again = run_penink_unprivileged("render ro/volcano.asc -o out2.svg --width 200 --height 150 -v", dir);
+        EXPECT_NE(again.output.find("tile files read, 0 written"), std::string::npos) << again.output;
+        EXPECT_EQ(read_text(dir / "out.svg"), read_text(dir / "out2.svg"));
+    }
     EXPECT_TRUE(fs::exists(dir / "out.svg"));
     fs::permissions(dir / "ro", fs::perms::owner_write, fs::perm_options::add);
     fs::remove_all(dir);
