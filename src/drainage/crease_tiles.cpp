@@ -52,8 +52,7 @@ CreaseTiles::CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>&
 CreaseTiles::CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                          CreaseTileIndex index, TileStore store)
     : g_(g), dir_(dir), net_(net), side_(std::max(1, index.side)), parts_(std::move(index.parts)),
-      bounds_(std::move(index.stems)), z_top_(index.z_top), set_(parts_.sources.size(), not_built),
-      line_(parts_.sources.size(), 0), store_(std::move(store)) {
+      bounds_(std::move(index.stems)), z_top_(index.z_top), store_(std::move(store)) {
     const auto side = std::uint32_t(side_);
     const std::uint32_t tx = (std::uint32_t(g.cols) + side - 1) / side, ty = (std::uint32_t(g.rows) + side - 1) / side;
     tiles_.resize(std::size_t(tx) * ty);
@@ -66,9 +65,16 @@ CreaseTiles::CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>&
                                         std::to_string(parts_.sources.size()) + " stems",
                     ExitCode::internal);
     for (std::size_t k = 0; k < tiles_.size(); ++k) tiles_[k].lo = index.lo[k], tiles_[k].hi = index.hi[k];
+    glm::vec2 blo, bhi;
     for (std::uint32_t s = 0; s < parts_.sources.size(); ++s) {
         const std::uint32_t c = parts_.sources[s] % std::uint32_t(g.cols), r = parts_.sources[s] / std::uint32_t(g.cols);
-        tiles_[std::size_t(r / side) * tx + c / side].stems[crease_tile_level(bounds_[s], g.dx)].push_back(s);
+        Tile& t = tiles_[std::size_t(r / side) * tx + c / side];
+        const int l = crease_tile_level(bounds_[s], g.dx);
+        t.stems[std::size_t(l)].push_back(s);
+        LevelBound& b = t.bound[std::size_t(l)];
+        stem_bound_box(bounds_[s], parts_.lo, parts_.hi, blo, bhi);
+        b.lo = glm::min(b.lo, blo), b.hi = glm::max(b.hi, bhi);
+        b.most.plan = std::max(b.most.plan, bounds_[s].plan), b.most.rise = std::max(b.most.rise, bounds_[s].rise);
     }
 }
 
@@ -125,10 +131,12 @@ void CreaseTiles::keep(const std::vector<std::uint32_t>& ids, std::unique_ptr<Dr
         throw Error("drainage", "", "crease part of " + std::to_string(lines->lines.size()) + " lines for " +
                                         std::to_string(ids.size()) + " stems",
                     ExitCode::internal);
-    for (std::uint32_t i = 0; i < ids.size(); ++i) set_[ids[i]] = std::uint32_t(sets_.size()), line_[ids[i]] = i;
+    U32Map& map = on_disk ? query_ : kept_;
+    auto& at = on_disk ? query_at_ : at_;
+    for (std::uint32_t i = 0; i < ids.size(); ++i)
+        map.insert(ids[i], std::uint32_t(at.size())), at.emplace_back(std::uint32_t(sets_.size()), i);
     stems_built_ += ids.size(), vertices_built_ += lines->vertices.size();
     sets_.push_back(std::move(lines));
-    if (on_disk) on_disk_.push_back(ids);
 }
 
 std::uint64_t CreaseTiles::tile_key(std::size_t k, int l) const {
@@ -158,11 +166,14 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
         const Tile& t = tiles_[k];
         if (!meets(t.lo, t.hi)) continue;
         for (int l = 0; l < crease_tile_levels; ++l) {
-            for (std::uint32_t s : t.stems[l]) {
+            const LevelBound& b = t.bound[std::size_t(l)];
+            if (t.stems[std::size_t(l)].empty() || !meets(b.lo, b.hi) || (may_show && !may_show(b.most, b.lo, b.hi, z_top_)))
+                continue;  // no stem of the level passes
+            for (std::uint32_t s : t.stems[std::size_t(l)]) {
                 stem_bound_box(bounds_[s], parts_.lo, parts_.hi, blo, bhi);
                 if (!meets(blo, bhi) || (may_show && !may_show(bounds_[s], blo, bhi, z_top_))) continue;
                 wanted.push_back(s);
-                if (set_[s] == not_built) missing.push_back(s);
+                if (!kept_.find(s)) missing.push_back(s);
             }
             if (missing.size() > cuts.back())
                 cuts.push_back(missing.size()), cut_tile.push_back(k), cut_level.push_back(l);
@@ -209,7 +220,7 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
             if (read[k1]) keep(ids_of(k1), std::move(read[k1]), true);
         std::vector<std::size_t> todo;  // cuts of this tile still missing
         for (std::size_t k = k0; k < k1; ++k)
-            if (set_[missing[cuts[k]]] == not_built) todo.push_back(k);
+            if (!query_.find(missing[cuts[k]])) todo.push_back(k);
         if (todo.empty()) continue;
         const Tile& t = tiles_[cut_tile[k0]];
         if (!store_.folder.empty() && writable_) {
@@ -242,14 +253,14 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
     }
     std::vector<Pick> picks;
     picks.reserve(wanted.size());
-    for (std::uint32_t s : wanted) picks.push_back({s, sets_[set_[s]], line_[s]});
-    // the sets in files forgotten (the picks hold them while the caller uses them)
-    for (const std::vector<std::uint32_t>& ids : on_disk_) {
-        if (ids.empty()) continue;
-        sets_[set_[ids[0]]].reset();
-        for (std::uint32_t s : ids) set_[s] = not_built;
+    for (std::uint32_t s : wanted) {
+        const std::uint32_t* i = kept_.find(s);
+        const auto [set, line] = i ? at_[*i] : query_at_[*query_.find(s)];
+        picks.push_back({s, sets_[set], line});
     }
-    on_disk_.clear();
+    // the sets in files forgotten (the picks hold them while the caller uses them)
+    for (const auto& [set, line] : query_at_) sets_[set].reset();
+    query_ = U32Map(), query_at_.clear();
     return picks;
 }
 

@@ -19,6 +19,9 @@
 // file again). A view of a whole large DEM, which can show only long stems, so reads and builds
 // only the levels of long ones. Without a store, or once a file cannot be written, only the stems
 // needed are built and nothing is written.
+// A query visits only the levels of the tiles meeting its box whose summary (the box of their
+// stems' bounds and the largest length bound) passes its test; a whole view of a large DEM so
+// visits the stems of the long levels alone.
 // Made once (the constructor): the stems' sources and box (stem_parts), each stem's bound and
 // each tile's reach, from one walk of every stem (its cells, 4 B a vertex while it runs).
 // Not thread-safe: one query at a time.
@@ -29,12 +32,14 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/vec2.hpp>
 
 #include "drainage/dem_surface.hpp"
 #include "drainage/draped_lines.hpp"
+#include "core/u32_map.hpp"
 #include "drainage/stem_reach.hpp"
 
 namespace penink {
@@ -133,11 +138,18 @@ private:
     };
     // built where needed, in stem order
     std::vector<Pick> picks_for_box(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show);
+    // What bounds every stem of a tile's level: the box of their bounds' boxes and the largest
+    // plan and rise bounds (a test of a bound grows with its box and length, so a level whose
+    // summary fails has no stem that passes)
+    struct LevelBound {
+        glm::vec2 lo{std::numeric_limits<float>::infinity()}, hi{-std::numeric_limits<float>::infinity()};
+        StemBound most;  // plan and rise: the largest (bfloat16 bits order as their values)
+    };
     struct Tile {
         std::array<std::vector<std::uint32_t>, crease_tile_levels> stems;  // ids by level, ascending
+        std::array<LevelBound, crease_tile_levels> bound;
         glm::vec2 lo{0.0f}, hi{-1.0f};     // plan box of its stems' reaches
     };
-    static constexpr std::uint32_t not_built = 0xffffffffu;
     const DrainageGrid& g_;
     const std::vector<std::uint8_t>& dir_;
     const FlowNetwork& net_;
@@ -146,10 +158,12 @@ private:
     std::vector<StemBound> bounds_;
     float z_top_;
     std::vector<Tile> tiles_;
-    // the lines built so far, one set a crease_part; stem s's is line line_[s] of sets_[set_[s]]
+    // the lines built so far, one set a crease_part; stem s's is line at_[i].second of
+    // sets_[at_[i].first], i = its entry in kept_ (the stems kept for later queries: built without
+    // a file) or in this query's query_ (those read from or written to a file this query)
     std::vector<std::shared_ptr<const DrapedLineSet>> sets_;
-    std::vector<std::vector<std::uint32_t>> on_disk_;  // the stems of sets kept in files, forgotten after a query
-    std::vector<std::uint32_t> set_, line_;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> at_, query_at_;
+    U32Map kept_, query_;
     std::size_t stems_built_ = 0, vertices_built_ = 0, builds_ = 0;
     TileStore store_;
     bool writable_ = true;  // false once a tile file could not be written
