@@ -115,8 +115,8 @@ std::unique_ptr<DrapedLineSet> lines_of(const std::vector<std::uint32_t>& ids, c
     out->vertices.resize(n);
     out->lines.reserve(ids.size());
     std::size_t first = 0;
-    for (std::uint32_t i : at) {
-        DrapedLine l = from.lines[i];
+    for (std::uint32_t line : at) {
+        DrapedLine l = from.lines[line];
         std::copy_n(from.vertices.begin() + l.first, l.count, out->vertices.begin() + std::ptrdiff_t(first));
         l.first = std::uint32_t(first), first += l.count;
         out->lines.push_back(l);
@@ -124,13 +124,18 @@ std::unique_ptr<DrapedLineSet> lines_of(const std::vector<std::uint32_t>& ids, c
     return out;
 }
 
+// A crease part of `lines` lines built for `stems` stems: one a stem, else a builder's fault.
+void check_part(std::size_t lines, std::size_t stems) {
+    if (lines != stems)
+        throw Error("drainage", "",
+                    "crease part of " + std::to_string(lines) + " lines for " + std::to_string(stems) + " stems",
+                    ExitCode::internal);
+}
+
 }  // namespace
 
 void CreaseTiles::keep(const std::vector<std::uint32_t>& ids, std::unique_ptr<DrapedLineSet> lines, bool on_disk) {
-    if (lines->lines.size() != ids.size())
-        throw Error("drainage", "", "crease part of " + std::to_string(lines->lines.size()) + " lines for " +
-                                        std::to_string(ids.size()) + " stems",
-                    ExitCode::internal);
+    check_part(lines->lines.size(), ids.size());
     U32Map& map = on_disk ? query_ : kept_;
     auto& at = on_disk ? query_at_ : at_;
     for (std::uint32_t i = 0; i < ids.size(); ++i)
@@ -227,7 +232,7 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
             std::vector<std::uint32_t> stems;
             for (std::size_t k : todo) stems = merged(std::move(stems), t.stems[cut_level[k]]);
             const DrapedLineSet whole = crease_part(g_, dir_, net_, surface(), parts_, stems);
-            if (whole.lines.size() != stems.size()) keep(stems, std::make_unique<DrapedLineSet>(whole));  // throws
+            check_part(whole.lines.size(), stems.size());
             std::vector<std::uint8_t> written(todo.size(), 0);
             parallel_chunks(todo.size(), 1, [&](std::size_t j0, std::size_t j1) {
                 for (std::size_t j = j0; j < j1; ++j) {

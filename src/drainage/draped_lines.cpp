@@ -49,10 +49,14 @@ struct StemWalk {
     // The drainage vertex of cell i (build_branches' point_vertex; grid_xy's nodes read here
     // where it would read them from coarse_xy).
     const bool node_xy = g.factor == 1 && !g.has_affine && g.coarse_xy.size() == g.size();
-    DvVertex vertex(std::size_t i) const {
+    glm::vec2 xy(std::size_t i) const {
         const glm::dvec2 p = node_xy ? glm::dvec2(g.coarse_xy[i])
                                      : grid_xy(g, int(i % std::size_t(g.cols)), int(i / std::size_t(g.cols)));
-        return {float(p.x), float(p.y), g.z[i], float(double(net.acc[i]) / total[net.basin[i] - 1])};
+        return {float(p.x), float(p.y)};
+    }
+    DvVertex vertex(std::size_t i) const {
+        const glm::vec2 p = xy(i);
+        return {p.x, p.y, g.z[i], float(double(net.acc[i]) / total[net.basin[i] - 1])};
     }
 
     // Calls f(m) for each valid cell draining into cell d.
@@ -576,16 +580,14 @@ StemParts stem_parts(const DrainageGrid& g, const std::vector<std::uint8_t>& dir
     StemParts out;
     out.sources = sources_of(walk, g);
     // every valid cell is a vertex of the stem through it (or a junction ending one): the box of
-    // their plan positions (as walk.vertex gives them), rows on all cores (min and max: the same
-    // box in any order)
+    // their plan positions (walk.xy, as walk.vertex gives them), rows on all cores (min and max:
+    // the same box in any order)
     const std::vector<std::array<glm::vec2, 2>> boxes =
         parallel_collect<std::array<glm::vec2, 2>>(std::size_t(g.rows), 16, [&](std::size_t r0, std::size_t r1, auto& o) {
             glm::vec2 lo(std::numeric_limits<float>::infinity()), hi = -lo;
             for (std::size_t i = r0 * std::size_t(g.cols); i < r1 * std::size_t(g.cols); ++i)
                 if (g.valid[i]) {
-                    const glm::dvec2 p = walk.node_xy ? glm::dvec2(g.coarse_xy[i])
-                                                      : grid_xy(g, int(i % std::size_t(g.cols)), int(i / std::size_t(g.cols)));
-                    const glm::vec2 v(float(p.x), float(p.y));
+                    const glm::vec2 v = walk.xy(i);
                     lo = glm::min(lo, v), hi = glm::max(hi, v);
                 }
             o.push_back({lo, hi});
