@@ -96,34 +96,6 @@ void put_box(std::vector<std::uint8_t>& out, glm::vec2 lo, glm::vec2 hi) {
 }
 bool get_box(Reader& r, glm::vec2& lo, glm::vec2& hi) { return r.get(lo.x) && r.get(lo.y) && r.get(hi.x) && r.get(hi.y); }
 
-// The stems' bounds [first, first + n) as twelve byte planes (x0 and y0 each minus the stem
-// before's in the block, x1 - x0, y1 - y0, plan, rise; the low bytes of a field, then its high
-// bytes), deflated.
-constexpr int bound_fields = 6;
-std::vector<std::uint8_t> encode_stem_bounds(const StemBound* b, std::size_t n) {
-    std::vector<std::uint8_t> planes(2 * bound_fields * n);
-    for (std::size_t i = 0; i < n; ++i) {
-        const std::uint16_t f[bound_fields] = {std::uint16_t(b[i].x0 - (i ? b[i - 1].x0 : 0)),
-                                               std::uint16_t(b[i].y0 - (i ? b[i - 1].y0 : 0)),
-                                               std::uint16_t(b[i].x1 - b[i].x0), std::uint16_t(b[i].y1 - b[i].y0),
-                                               b[i].plan, b[i].rise};
-        for (int k = 0; k < bound_fields; ++k) planes[2 * k * n + i] = std::uint8_t(f[k]), planes[(2 * k + 1) * n + i] = std::uint8_t(f[k] >> 8);
-    }
-    return encode_bytes(planes.data(), planes.size());
-}
-bool decode_stem_bounds(const std::uint8_t* coded, std::size_t size, StemBound* b, std::size_t n) {
-    std::vector<std::uint8_t> planes(2 * bound_fields * n);
-    if (!decode_bytes(coded, size, planes.data(), planes.size())) return false;
-    for (std::size_t i = 0; i < n; ++i) {
-        std::uint16_t f[bound_fields];
-        for (int k = 0; k < bound_fields; ++k) f[k] = std::uint16_t(planes[2 * k * n + i] | planes[(2 * k + 1) * n + i] << 8);
-        b[i].x0 = std::uint16_t(f[0] + (i ? b[i - 1].x0 : 0)), b[i].y0 = std::uint16_t(f[1] + (i ? b[i - 1].y0 : 0));
-        b[i].x1 = std::uint16_t(b[i].x0 + f[2]), b[i].y1 = std::uint16_t(b[i].y0 + f[3]), b[i].plan = f[4],
-        b[i].rise = f[5];
-    }
-    return true;
-}
-
 }  // namespace
 
 CodedSourceArray code_source_array(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, SourceArray a) {
@@ -163,8 +135,8 @@ std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const Cr
     if (dem && g.factor != 1)
         throw Error("drainage", "", "a crease source refers to the DEM at factor 1 only", ExitCode::internal);
     std::vector<std::uint8_t> out;
-    std::size_t size = 260 + (dem ? dem->path.size() : 0) + 16 * index.lo.size() + 4 * index.parts.sources.size() +
-                       2 * bound_fields * index.stems.size();
+    std::size_t size = 260 + (dem ? dem->path.size() : 0) + 16 * index.lo.size() + 40 * index.units.size() + 4 * index.parts.sources.size() +
+                       12 * index.stems.size();
     for (const CodedSourceArray& a : arrays) {
         size += 12 + 4 * a.blocks.size();
         for (const auto& b : a.blocks) size += b.size();
@@ -187,15 +159,31 @@ std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const Cr
     put_box(out, index.parts.lo, index.parts.hi);
     for (std::size_t k = 0; k < index.lo.size(); ++k) put_box(out, index.lo[k], index.hi[k]);
     put(out, index.z_top);
+    // each unit's stems coded on its own, on all cores
+    const std::vector<std::vector<std::uint32_t>> members = crease_unit_stems(index, g.cols, g.rows, g.dx);
+    std::vector<std::vector<std::uint8_t>> ids(members.size()), bounds(members.size());
+    parallel_chunks(members.size(), 1, [&](std::size_t u0, std::size_t u1) {
+        std::vector<StemBound> b;
+        for (std::size_t u = u0; u < u1; ++u) {
+            b.clear();
+            for (std::uint32_t s : members[u]) b.push_back(index.stems[s]);
+            ids[u] = encode_stem_ids(members[u].data(), members[u].size()), bounds[u] = encode_stem_bounds(b.data(), b.size());
+        }
+    });
+    put(out, std::uint32_t(index.units.size()));
+    for (std::size_t i = 0; i < index.units.size(); ++i) {
+        const CreaseUnit& u = index.units[i];
+        put(out, u.tile), put(out, u.level), put(out, u.count), put_box(out, u.lo, u.hi);
+        put(out, u.most.plan), put(out, u.most.rise), put(out, std::uint32_t(ids[i].size())), put(out, std::uint32_t(bounds[i].size()));
+    }
     const std::vector<std::uint32_t>& src = index.parts.sources;
     std::vector<std::uint32_t> deltas(src.size());
     for (std::size_t s = 0; s < src.size(); ++s) deltas[s] = src[s] - (s ? src[s - 1] : 0u);
     put_blocks(out, code_blocks(deltas.size(), [&](std::size_t first, std::size_t k) {
                    return encode_bytes(reinterpret_cast<const std::uint8_t*>(deltas.data() + first), 4 * k);
                }));
-    put_blocks(out, code_blocks(index.stems.size(), [&](std::size_t first, std::size_t k) {
-                   return encode_stem_bounds(index.stems.data() + first, k);
-               }));
+    for (std::size_t u = 0; u < members.size(); ++u)
+        out.insert(out.end(), ids[u].begin(), ids[u].end()), out.insert(out.end(), bounds[u].begin(), bounds[u].end());
     for (const CodedSourceArray& a : arrays) put_blocks(out, a);
     return out;
 }
@@ -261,7 +249,8 @@ std::string crease_source_dem(const std::uint8_t* data, std::size_t size) {
 }
 
 bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGrid& g, std::vector<std::uint8_t>& dir,
-                          CreaseTileIndex& index, bool arrays) {
+                          CreaseTileIndex& index, SourcePart part, std::vector<SourceUnitBlock>* blocks) {
+    const bool arrays = part == SourcePart::all, stems = part != SourcePart::units;
     Reader r{data, size};
     std::uint32_t side = 0, tiles = 0;
     std::int32_t col0 = 0, row0 = 0;
@@ -287,13 +276,27 @@ bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGr
     if (!get_box(r, index.parts.lo, index.parts.hi)) return false;
     index.lo.resize(tiles), index.hi.resize(tiles);
     for (std::uint32_t k = 0; k < tiles; ++k) get_box(r, index.lo[k], index.hi[k]);
-    if (!r.get(index.z_top)) return false;
+    std::uint32_t units = 0;
+    if (!r.get(index.z_top) || !r.get(units) || r.left / 40 < units) return false;
+    index.units.resize(units);
+    std::vector<SourceUnitBlock> at(units);
+    std::uint64_t in_units = 0, unit_bytes = 0;
+    for (std::uint32_t i = 0; i < units; ++i) {
+        CreaseUnit& u = index.units[i];
+        r.get(u.tile), r.get(u.level), r.get(u.count), get_box(r, u.lo, u.hi), r.get(u.most.plan), r.get(u.most.rise);
+        r.get(at[i].ids), r.get(at[i].bounds);
+        at[i].count = u.count;
+        if (u.tile >= tiles || u.level >= std::uint32_t(crease_tile_levels) || u.count == 0 ||
+            (i && std::pair(u.tile, u.level) <= std::pair(index.units[i - 1].tile, index.units[i - 1].level)))
+            return false;
+        at[i].at = unit_bytes, unit_bytes += std::uint64_t(at[i].ids) + at[i].bounds, in_units += u.count;
+    }
     const std::size_t n = g.size(), coarse = std::size_t(ccols) * std::size_t(crows);
     std::vector<std::uint32_t>& src = index.parts.sources;
     if (!get_blocks(
-            r, [&](std::uint64_t k) { return k <= n; }, [&](std::size_t k) { src.resize(k); },
+            r, [&](std::uint64_t k) { return k == in_units && k <= n; }, [&](std::size_t k) { src.resize(stems ? k : 0); },
             [&](const std::uint8_t* c, std::size_t s, std::size_t first, std::size_t k) {
-                return decode_bytes(c, s, reinterpret_cast<std::uint8_t*>(src.data() + first), 4 * k);
+                return !stems || decode_bytes(c, s, reinterpret_cast<std::uint8_t*>(src.data() + first), 4 * k);
             }))
         return false;
     std::uint64_t cell = 0;
@@ -306,12 +309,30 @@ bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGr
     auto sized = [](std::size_t want, bool may_be_empty) {
         return [=](std::uint64_t k) { return k == want || (may_be_empty && k == 0); };
     };
-    if (!get_blocks(
-            r, sized(src.size(), false), [&](std::size_t k) { index.stems.resize(k); },
-            [&](const std::uint8_t* c, std::size_t s, std::size_t first, std::size_t k) {
-                return decode_stem_bounds(c, s, index.stems.data() + first, k);
-            }))
-        return false;
+    // the units' stems: where they lie; with the index, decoded on all cores and each stem's bound
+    // put in its place (every stem in one unit exactly)
+    const std::uint8_t* unit_data = nullptr;
+    if (!r.take(std::size_t(unit_bytes), unit_data)) return false;
+    for (SourceUnitBlock& b : at) b.at += std::uint64_t(unit_data - data);
+    if (stems) {
+        index.stems.resize(src.size());
+        std::vector<std::uint8_t> ok(units, 0), seen(src.size(), 0);
+        std::vector<std::vector<std::uint32_t>> ids(units);
+        std::vector<std::vector<StemBound>> bounds(units);
+        parallel_chunks(units, 1, [&](std::size_t u0, std::size_t u1) {
+            for (std::size_t u = u0; u < u1; ++u)
+                ok[u] = decode_crease_unit(data, size, at[u], ids[u], bounds[u]);
+        });
+        for (std::size_t u = 0; u < units; ++u) {
+            if (!ok[u]) return false;
+            for (std::size_t i = 0; i < ids[u].size(); ++i) {
+                const std::uint32_t s = ids[u][i];
+                if (s >= src.size() || seen[s]) return false;
+                seen[s] = 1, index.stems[s] = bounds[u][i];
+            }
+        }
+    }
+    if (blocks) *blocks = std::move(at);
     auto floats = [&](std::vector<float>& v, std::size_t want, bool may_be_empty) {
         return get_blocks(
             r, sized(want, may_be_empty), [&](std::size_t k) { v.resize(arrays ? k : 0); },
@@ -337,6 +358,14 @@ bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGr
     if (shared) g.coarse_valid = g.valid;
     if (r.left != 0) return false;
     return !(arrays && head.referred) || read_referred_arrays(head, g);
+}
+
+bool decode_crease_unit(const std::uint8_t* data, std::size_t size, const SourceUnitBlock& block,
+                        std::vector<std::uint32_t>& ids, std::vector<StemBound>& bounds) {
+    if (block.at > size || std::uint64_t(block.ids) + block.bounds > size - block.at) return false;
+    ids.resize(block.count), bounds.resize(block.count);
+    return decode_stem_ids(data + block.at, block.ids, ids.data(), block.count) &&
+           decode_stem_bounds(data + block.at + block.ids, block.bounds, bounds.data(), block.count);
 }
 
 FlowNetwork network_of_directions(const DrainageGrid& g, const std::vector<std::uint8_t>& dir) {

@@ -1,7 +1,7 @@
 // What building crease tiles (crease_tiles.hpp) reads of a drainage build, stored so that a render
 // builds the creases a frame needs without computing the network again: the drainage grid's fine
 // nodes' elevations and valid mask, the resolved flow directions, and the tiles' index (tile
-// side, the stems' sources, box and bounds, each tile's reach box). The accumulation, Strahler orders
+// side, the stems' sources, box and bounds, each tile's reach box, the units' summaries). The accumulation, Strahler orders
 // and basins follow from the directions in one pass each (network_of_directions: accumulate_flow
 // and label_basins, the build's own functions, so the same arrays); the grid's other fields
 // (size, factor, spacing, origin, the coarse nodes' x, y, mask and heights, the affine grid) are
@@ -23,9 +23,13 @@
 // rows, u32 has_affine, u32 coarse mask shared (1: coarse_valid is valid, stored with 0
 // elements), u32 DEM reference (1: then u32 n + n bytes of the DEM's path, i32 UTM zone, u32
 // north, u64 dem_arrays_hash; z and coarse_xy stored with 0 elements), f64 gt[6], f64 unit, i32 col0, row0, u32 side, u32 tiles, f32 x 4 stems'
-// box (lo, hi), tiles x f32 x 4 reach boxes, then for the source cells' deltas (u32), the stems'
-// bounds (one a source), z, valid, dir, coarse_xy, coarse_valid, coarse_z: u64 elements (the
-// coarse ones may be 0), u32 blocks, blocks x u32 coded sizes, the coded blocks.
+// box (lo, hi), tiles x f32 x 4 reach boxes, f32 z_top, u32 units, units x (u32 tile, level,
+// count, f32 x 4 box, u16 plan, rise: CreaseUnit; u32 coded sizes of its ids and of its bounds),
+// for the source cells' deltas (u32): u64 elements, u32 blocks, blocks x u32 coded sizes, the
+// coded blocks; each unit's stems (ids, stem_reach.hpp encode_stem_ids, then their bounds,
+// encode_stem_bounds: a unit decodes alone); then for z, valid, dir, coarse_xy, coarse_valid,
+// coarse_z: u64 elements (the coarse ones may be 0), u32 blocks, blocks x u32 coded sizes, the
+// coded blocks.
 // The arrays may be coded one by one as each becomes final (code_source_array; a build codes
 // the grid's while the directions are found, and z and the directions while the ridges are
 // draped and the index made) and put together with the index after (assemble_crease_source).
@@ -88,11 +92,24 @@ std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const Cr
 // reads), dir and index; false (nothing promised of the outputs) when they are not such bytes:
 // sizes that do not agree, cut short, trailing bytes, a block that does not decode, counts or
 // source cells out of range.
-// With arrays = false only g's scalar fields (size, factor, spacing, origin, affine grid) and the
-// index are decoded, the arrays checked for their sizes and left empty (a render whose tiles are
-// all read from their files needs no more).
+// What is decoded: with SourcePart::index only g's scalar fields (size, factor, spacing, origin,
+// affine grid) and the index, the arrays checked for their sizes and left empty; with
+// SourcePart::units the index's units, box, tile boxes and z_top alone (no sources, no bounds:
+// what a render whose tiles are all read from their files needs), the rest checked for its sizes.
+// `blocks` (when given): where each unit's stems lie in `data`, in index.units' order.
+enum class SourcePart { units, index, all };
+struct SourceUnitBlock {
+    std::uint64_t at = 0;               // offset of its coded ids in the source's bytes
+    std::uint32_t count = 0;            // its stems
+    std::uint32_t ids = 0, bounds = 0;  // coded bytes of its ids, then of their bounds
+};
 bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGrid& g, std::vector<std::uint8_t>& dir,
-                          CreaseTileIndex& index, bool arrays = true);
+                          CreaseTileIndex& index, SourcePart part = SourcePart::all,
+                          std::vector<SourceUnitBlock>* blocks = nullptr);
+// A unit's stems from its block: their ids (ascending) and bounds; false when they do not decode
+// (`size`: the source's bytes, which the block must lie in).
+bool decode_crease_unit(const std::uint8_t* data, std::size_t size, const SourceUnitBlock& block,
+                        std::vector<std::uint32_t>& ids, std::vector<StemBound>& bounds);
 
 // The accumulation, orders, in-degrees, basins and outlets of the flow directions `dir` on g's
 // valid nodes (accumulate_flow and label_basins, one beside the other).

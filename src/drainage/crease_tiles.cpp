@@ -17,6 +17,15 @@
 
 namespace penink {
 
+namespace {
+
+// Tile of the source cell `src` on a grid `cols` wide in tiles of `side`, `tx` tiles a row.
+std::size_t tile_of(std::uint32_t src, std::uint32_t cols, std::uint32_t side, std::uint32_t tx) {
+    return std::size_t(src / cols / side) * tx + src % cols / side;
+}
+
+}  // namespace
+
 CreaseTileIndex crease_tile_index(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                                   int tile, float z_top) {
     CreaseTileIndex out;
@@ -38,9 +47,45 @@ CreaseTileIndex crease_tile_index(const DrainageGrid& g, const std::vector<std::
         out.stems[s] = stem_bound(reach_lo[s], reach_hi[s], stem_cell_travel(cells, n, g), parts.lo, parts.hi);
     });
     for (std::uint32_t s = 0; s < parts.sources.size(); ++s) {
-        const std::uint32_t c = parts.sources[s] % std::uint32_t(g.cols), r = parts.sources[s] / std::uint32_t(g.cols);
-        const std::size_t k = std::size_t(r / side) * tx + c / side;
+        const std::size_t k = tile_of(parts.sources[s], std::uint32_t(g.cols), side, tx);
         out.lo[k] = glm::min(out.lo[k], reach_lo[s]), out.hi[k] = glm::max(out.hi[k], reach_hi[s]);
+    }
+    out.units = crease_units(out, g.cols, g.rows, g.dx);
+    return out;
+}
+
+std::vector<CreaseUnit> crease_units(const CreaseTileIndex& index, int cols, int rows, double cell) {
+    const auto side = std::uint32_t(std::max(1, index.side));
+    const std::uint32_t tx = (std::uint32_t(cols) + side - 1) / side, ty = (std::uint32_t(rows) + side - 1) / side;
+    const std::size_t n = std::min(index.parts.sources.size(), index.stems.size()), slots = std::size_t(tx) * ty * crease_tile_levels;
+    // each chunk of stems into a table of its own, joined after (min, max and sums: any order gives
+    // the same units)
+    const std::size_t per = chunk_length(n, 1 << 16);
+    std::vector<std::vector<CreaseUnit>> parts((n + per - 1) / per);
+    parallel_chunks(n, 1 << 16, [&](std::size_t s0, std::size_t s1) {
+        std::vector<CreaseUnit>& t = parts[s0 / per];
+        t.resize(slots);
+        glm::vec2 blo, bhi;
+        for (std::size_t s = s0; s < s1; ++s) {
+            const StemBound& b = index.stems[s];
+            CreaseUnit& u = t[tile_of(index.parts.sources[s], std::uint32_t(cols), side, tx) * crease_tile_levels +
+                              std::size_t(crease_tile_level(b, cell))];
+            stem_bound_box(b, index.parts.lo, index.parts.hi, blo, bhi);
+            ++u.count, u.lo = glm::min(u.lo, blo), u.hi = glm::max(u.hi, bhi);
+            u.most.plan = std::max(u.most.plan, b.plan), u.most.rise = std::max(u.most.rise, b.rise);
+        }
+    });
+    std::vector<CreaseUnit> out;
+    for (std::size_t i = 0; i < slots; ++i) {
+        CreaseUnit u;
+        for (const std::vector<CreaseUnit>& t : parts) {
+            const CreaseUnit& v = t[i];
+            u.count += v.count, u.lo = glm::min(u.lo, v.lo), u.hi = glm::max(u.hi, v.hi);
+            u.most.plan = std::max(u.most.plan, v.most.plan), u.most.rise = std::max(u.most.rise, v.most.rise);
+        }
+        if (!u.count) continue;
+        u.tile = std::uint32_t(i / crease_tile_levels), u.level = std::uint32_t(i % crease_tile_levels);
+        out.push_back(u);
     }
     return out;
 }
@@ -49,42 +94,88 @@ CreaseTiles::CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>&
                          TileStore store)
     : CreaseTiles(g, dir, net, crease_tile_index(g, dir, net, tile), std::move(store)) {}
 
+std::vector<std::vector<std::uint32_t>> crease_unit_stems(const CreaseTileIndex& index, int cols, int rows, double cell) {
+    const auto side = std::uint32_t(std::max(1, index.side));
+    const std::uint32_t tx = (std::uint32_t(cols) + side - 1) / side, ty = (std::uint32_t(rows) + side - 1) / side;
+    const auto fault = [] {
+        throw Error("drainage", "", "crease tile index whose stems do not fit its units", ExitCode::internal);
+    };
+    std::vector<std::uint32_t> slot_unit(std::size_t(tx) * ty * crease_tile_levels, ~0u);  // tile x level -> unit
+    for (std::size_t i = 0; i < index.units.size(); ++i) {
+        const CreaseUnit& u = index.units[i];
+        const std::size_t slot = std::size_t(u.tile) * crease_tile_levels + u.level;
+        if (u.tile >= std::size_t(tx) * ty || u.level >= std::uint32_t(crease_tile_levels) || slot_unit[slot] != ~0u)
+            fault();
+        slot_unit[slot] = std::uint32_t(i);
+    }
+    std::vector<std::vector<std::uint32_t>> out(index.units.size());
+    for (std::size_t i = 0; i < out.size(); ++i) out[i].reserve(index.units[i].count);
+    if (index.stems.size() != index.parts.sources.size()) fault();
+    for (std::uint32_t s = 0; s < index.parts.sources.size(); ++s) {
+        const std::uint32_t u = slot_unit[tile_of(index.parts.sources[s], std::uint32_t(cols), side, tx) * crease_tile_levels +
+                                          std::size_t(crease_tile_level(index.stems[s], cell))];
+        if (u == ~0u || out[u].size() == index.units[u].count) fault();
+        out[u].push_back(s);
+    }
+    for (std::size_t i = 0; i < out.size(); ++i)
+        if (out[i].size() != index.units[i].count) fault();
+    return out;
+}
+
 CreaseTiles::CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
-                         CreaseTileIndex index, TileStore store)
-    : g_(g), dir_(dir), net_(net), side_(std::max(1, index.side)), parts_(std::move(index.parts)),
-      bounds_(std::move(index.stems)), z_top_(index.z_top), store_(std::move(store)) {
+                         CreaseTileIndex index, TileStore store, CreaseIndexReader reader)
+    : g_(g), dir_(dir), net_(net), side_(std::max(1, index.side)), z_top_(index.z_top), store_(std::move(store)),
+      reader_(std::move(reader)) {
     const auto side = std::uint32_t(side_);
     const std::uint32_t tx = (std::uint32_t(g.cols) + side - 1) / side, ty = (std::uint32_t(g.rows) + side - 1) / side;
     tiles_.resize(std::size_t(tx) * ty);
+    const auto fault = [](const std::string& what) { throw Error("drainage", "", "crease tile index " + what, ExitCode::internal); };
     if (index.lo.size() != tiles_.size() || index.hi.size() != tiles_.size())
-        throw Error("drainage", "", "crease tile index of " + std::to_string(index.lo.size()) + " tiles for a grid of " +
-                                        std::to_string(tiles_.size()),
-                    ExitCode::internal);
-    if (bounds_.size() != parts_.sources.size())
-        throw Error("drainage", "", "crease tile index of " + std::to_string(bounds_.size()) + " stem bounds for " +
-                                        std::to_string(parts_.sources.size()) + " stems",
-                    ExitCode::internal);
+        fault("of " + std::to_string(index.lo.size()) + " tiles for a grid of " + std::to_string(tiles_.size()));
     for (std::size_t k = 0; k < tiles_.size(); ++k) tiles_[k].lo = index.lo[k], tiles_[k].hi = index.hi[k];
-    glm::vec2 blo, bhi;
-    for (std::uint32_t s = 0; s < parts_.sources.size(); ++s) {
-        const std::uint32_t c = parts_.sources[s] % std::uint32_t(g.cols), r = parts_.sources[s] / std::uint32_t(g.cols);
-        Tile& t = tiles_[std::size_t(r / side) * tx + c / side];
-        const int l = crease_tile_level(bounds_[s], g.dx);
-        t.stems[std::size_t(l)].push_back(s);
-        LevelBound& b = t.bound[std::size_t(l)];
-        stem_bound_box(bounds_[s], parts_.lo, parts_.hi, blo, bhi);
-        b.lo = glm::min(b.lo, blo), b.hi = glm::max(b.hi, bhi);
-        b.most.plan = std::max(b.most.plan, bounds_[s].plan), b.most.rise = std::max(b.most.rise, bounds_[s].rise);
+    parts_.lo = index.parts.lo, parts_.hi = index.parts.hi;
+    const bool whole = !index.stems.empty() || !reader_.whole || !reader_.unit;
+    if (whole && index.units.empty()) index.units = crease_units(index, g.cols, g.rows, g.dx);
+    for (std::size_t i = 0; i < index.units.size(); ++i) {
+        const CreaseUnit& u = index.units[i];
+        if (u.tile >= tiles_.size() || u.level >= std::uint32_t(crease_tile_levels) || u.count == 0 ||
+            (i && std::pair(u.tile, u.level) <= std::pair(index.units[i - 1].tile, index.units[i - 1].level)))
+            fault("with a unit out of order or range");
+        tiles_[u.tile].unit[u.level] = u, tiles_[u.tile].at[u.level] = std::uint32_t(i), stem_count_ += u.count;
     }
+    if (whole) take_index(std::move(index));
 }
 
-CreaseTileIndex CreaseTiles::index() const {
+void CreaseTiles::take_index(CreaseTileIndex index) {
+    if (index.parts.lo != parts_.lo || index.parts.hi != parts_.hi)
+        throw Error("drainage", "", "crease tile index of another box", ExitCode::internal);
+    index.units.clear();  // this one's, in order
+    for (const Tile& t : tiles_)
+        for (const CreaseUnit& u : t.unit)
+            if (u.count) index.units.push_back(u);
+    std::vector<std::vector<std::uint32_t>> stems = crease_unit_stems(index, g_.cols, g_.rows, g_.dx);
+    for (std::size_t i = 0; i < stems.size(); ++i)
+        tiles_[index.units[i].tile].stems[index.units[i].level] = std::move(stems[i]);
+    parts_ = std::move(index.parts), bounds_ = std::move(index.stems);
+    loaded_ = true;
+}
+
+void CreaseTiles::load_index() {
+    if (!loaded_) take_index(reader_.whole());
+}
+
+CreaseTileIndex CreaseTiles::index() {
+    load_index();
     CreaseTileIndex out;
     out.side = side_;
     out.parts = parts_;
     out.stems = bounds_;
     out.z_top = z_top_;
-    for (const Tile& t : tiles_) out.lo.push_back(t.lo), out.hi.push_back(t.hi);
+    for (const Tile& t : tiles_) {
+        out.lo.push_back(t.lo), out.hi.push_back(t.hi);
+        for (const CreaseUnit& u : t.unit)
+            if (u.count) out.units.push_back(u);
+    }
     return out;
 }
 
@@ -98,22 +189,13 @@ DemSurface& CreaseTiles::surface() {
 
 namespace {
 
-// Lines ids (ascending, all in `stems`, ascending, whose line i is from's line i) copied out of
-// `from`, in that order.
-std::unique_ptr<DrapedLineSet> lines_of(const std::vector<std::uint32_t>& ids, const std::vector<std::uint32_t>& stems,
-                                        const DrapedLineSet& from) {
+// Lines at[0], at[1], ... of `from` copied out, in that order.
+std::unique_ptr<DrapedLineSet> lines_at(const std::vector<std::uint32_t>& at, const DrapedLineSet& from) {
     auto out = std::make_unique<DrapedLineSet>();
-    std::vector<std::uint32_t> at;  // line of `from` for each id
-    at.reserve(ids.size());
-    std::size_t n = 0, i = 0;
-    for (std::uint32_t s : ids) {
-        while (i < stems.size() && stems[i] < s) ++i;
-        if (i == stems.size() || stems[i] != s)
-            throw Error("drainage", "", "crease tile without stem " + std::to_string(s), ExitCode::internal);
-        at.push_back(std::uint32_t(i)), n += from.lines[i].count;
-    }
+    std::size_t n = 0;
+    for (std::uint32_t line : at) n += from.lines[line].count;
     out->vertices.resize(n);
-    out->lines.reserve(ids.size());
+    out->lines.reserve(at.size());
     std::size_t first = 0;
     for (std::uint32_t line : at) {
         DrapedLine l = from.lines[line];
@@ -122,6 +204,22 @@ std::unique_ptr<DrapedLineSet> lines_of(const std::vector<std::uint32_t>& ids, c
         out->lines.push_back(l);
     }
     return out;
+}
+
+// Lines ids (ascending, all in `stems`, ascending, whose line i is from's line i) copied out of
+// `from`, in that order.
+std::unique_ptr<DrapedLineSet> lines_of(const std::vector<std::uint32_t>& ids, const std::vector<std::uint32_t>& stems,
+                                        const DrapedLineSet& from) {
+    std::vector<std::uint32_t> at;  // line of `from` for each id
+    at.reserve(ids.size());
+    std::size_t i = 0;
+    for (std::uint32_t s : ids) {
+        while (i < stems.size() && stems[i] < s) ++i;
+        if (i == stems.size() || stems[i] != s)
+            throw Error("drainage", "", "crease tile without stem " + std::to_string(s), ExitCode::internal);
+        at.push_back(std::uint32_t(i));
+    }
+    return lines_at(at, from);
 }
 
 // A crease part of `lines` lines built for `stems` stems: one a stem, else a builder's fault.
@@ -162,30 +260,70 @@ int crease_tile_level(const StemBound& b, double cell) {
 
 std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show) {
     const auto meets = [&](glm::vec2 a, glm::vec2 b) { return !(b.x < lo.x || a.x > hi.x || b.y < lo.y || a.y > hi.y); };
-    std::vector<std::uint32_t> wanted, missing;
-    // missing[cuts[k], cuts[k + 1]): level cut_level[k] of tile cut_tile[k]'s, ascending
-    std::vector<std::size_t> cuts{0}, cut_tile;
-    std::vector<int> cut_level;
-    glm::vec2 blo, bhi;  // a stem's bound's box
+    const auto passes = [&](const StemBound& b, glm::vec2 blo, glm::vec2 bhi) {
+        return meets(blo, bhi) && (!may_show || may_show(b, blo, bhi, z_top_));
+    };
+    // the units whose summary passes (the others have no stem that does)
+    std::vector<std::pair<std::size_t, int>> units;
     for (std::size_t k = 0; k < tiles_.size(); ++k) {
         const Tile& t = tiles_[k];
         if (!meets(t.lo, t.hi)) continue;
         for (int l = 0; l < crease_tile_levels; ++l) {
-            const LevelBound& b = t.bound[std::size_t(l)];
-            if (t.stems[std::size_t(l)].empty() || !meets(b.lo, b.hi) || (may_show && !may_show(b.most, b.lo, b.hi, z_top_)))
-                continue;  // no stem of the level passes
-            for (std::uint32_t s : t.stems[std::size_t(l)]) {
-                stem_bound_box(bounds_[s], parts_.lo, parts_.hi, blo, bhi);
-                if (!meets(blo, bhi) || (may_show && !may_show(bounds_[s], blo, bhi, z_top_))) continue;
-                wanted.push_back(s);
-                if (!kept_.find(s)) missing.push_back(s);
-            }
-            if (missing.size() > cuts.back())
-                cuts.push_back(missing.size()), cut_tile.push_back(k), cut_level.push_back(l);
+            const CreaseUnit& u = t.unit[std::size_t(l)];
+            if (u.count && passes(u.most, u.lo, u.hi)) units.emplace_back(k, l);
         }
     }
+    std::vector<std::uint32_t> wanted;
+    // done: read from its file, its stems tested by the bounds there; or without a sound file, no
+    // stem of it passing (its stems' bounds read from the index's unit alone)
+    std::vector<std::uint8_t> done(units.size(), 0);
+    bool touched = false;  // stems read or built
+    if (!loaded_ && !store_.folder.empty()) {
+        std::vector<std::unique_ptr<DrapedLineSet>> got(units.size());
+        std::vector<std::vector<std::uint32_t>> ids(units.size());
+        parallel_chunks(units.size(), 1, [&](std::size_t u0, std::size_t u1) {
+            for (std::size_t u = u0; u < u1; ++u) {
+                const auto [k, l] = units[u];
+                TileLines whole;
+                const bool read = read_line_tile(tile_path(k, l), tile_key(k, l), whole) &&
+                                  whole.stems.size() == tiles_[k].unit[std::size_t(l)].count;
+                if (!read) reader_.unit(tiles_[k].at[std::size_t(l)], whole.stems, whole.bounds);
+                std::vector<std::uint32_t> at;
+                glm::vec2 blo, bhi;
+                for (std::uint32_t i = 0; i < whole.stems.size(); ++i) {
+                    stem_bound_box(whole.bounds[i], parts_.lo, parts_.hi, blo, bhi);
+                    if (passes(whole.bounds[i], blo, bhi)) at.push_back(i), ids[u].push_back(whole.stems[i]);
+                }
+                if (read) got[u] = lines_at(at, whole.lines);
+                else if (at.empty()) done[u] = 1;  // nothing of it needed
+            }
+        });
+        for (std::size_t u = 0; u < units.size(); ++u) {
+            if (!got[u]) continue;
+            done[u] = 1, touched = true, ++tiles_read_;
+            wanted.insert(wanted.end(), ids[u].begin(), ids[u].end());
+            if (!ids[u].empty()) keep(ids[u], std::move(got[u]), true);
+        }
+    }
+    if (std::find(done.begin(), done.end(), 0) != done.end()) load_index();
+    std::vector<std::uint32_t> missing;
+    // missing[cuts[k], cuts[k + 1]): level cut_level[k] of tile cut_tile[k]'s, ascending
+    std::vector<std::size_t> cuts{0}, cut_tile;
+    std::vector<int> cut_level;
+    glm::vec2 blo, bhi;  // a stem's bound's box
+    for (std::size_t u = 0; u < units.size(); ++u) {
+        if (done[u]) continue;
+        const auto [k, l] = units[u];
+        for (std::uint32_t s : tiles_[k].stems[std::size_t(l)]) {
+            stem_bound_box(bounds_[s], parts_.lo, parts_.hi, blo, bhi);
+            if (!passes(bounds_[s], blo, bhi)) continue;
+            wanted.push_back(s);
+            if (!kept_.find(s)) missing.push_back(s);
+        }
+        if (missing.size() > cuts.back()) cuts.push_back(missing.size()), cut_tile.push_back(k), cut_level.push_back(l);
+    }
     std::sort(wanted.begin(), wanted.end());
-    if (!missing.empty()) ++builds_;
+    if (touched || !missing.empty()) ++builds_;
     const auto ids_of = [&](std::size_t k) {
         return std::vector<std::uint32_t>(missing.begin() + std::ptrdiff_t(cuts[k]), missing.begin() + std::ptrdiff_t(cuts[k + 1]));
     };
@@ -196,11 +334,10 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
         std::atomic<std::size_t> count{0};
         parallel_chunks(cut_tile.size(), 1, [&](std::size_t k0, std::size_t k1) {
             for (std::size_t k = k0; k < k1; ++k) {
-                DrapedLineSet whole;
-                const std::vector<std::uint32_t>& stems = tiles_[cut_tile[k]].stems[cut_level[k]];
+                TileLines whole;
                 if (read_line_tile(tile_path(cut_tile[k], cut_level[k]), tile_key(cut_tile[k], cut_level[k]), whole) &&
-                    whole.lines.size() == stems.size())
-                    read[k] = lines_of(ids_of(k), stems, whole), ++count;
+                    whole.stems == tiles_[cut_tile[k]].stems[cut_level[k]])
+                    read[k] = lines_of(ids_of(k), whole.stems, whole.lines), ++count;
             }
         });
         tiles_read_ += count;
@@ -237,9 +374,12 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
             parallel_chunks(todo.size(), 1, [&](std::size_t j0, std::size_t j1) {
                 for (std::size_t j = j0; j < j1; ++j) {
                     const std::size_t k = todo[j];
-                    const std::unique_ptr<DrapedLineSet> level = lines_of(t.stems[cut_level[k]], stems, whole);
+                    const std::vector<std::uint32_t>& ids = t.stems[cut_level[k]];
+                    const std::unique_ptr<DrapedLineSet> level = lines_of(ids, stems, whole);
+                    std::vector<StemBound> bounds(ids.size());
+                    for (std::size_t i = 0; i < ids.size(); ++i) bounds[i] = bounds_[ids[i]];
                     written[j] = write_line_tile(tile_path(cut_tile[k], cut_level[k]), tile_key(cut_tile[k], cut_level[k]),
-                                                 *level);
+                                                 *level, ids, bounds);
                 }
             });
             for (std::size_t j = 0; j < todo.size(); ++j) {

@@ -51,12 +51,26 @@ namespace penink {
 // every stem (crease_tile_index); a database stores it (crease_source.hpp) so that a render makes
 // its tiles without that walk.
 // z_top: drape_height_top of the grid, above every crease vertex.
+// units: crease_units of the above (what a query tests before it needs any stem). An index of
+// units alone (parts.sources and stems empty; parts' box, lo, hi, z_top and units given) is what a
+// frame whose stems are all in tile files needs (decode_crease_source's SourcePart::units).
+// A tile's stems of one level (crease_tile_level): how many, and what bounds every one of them:
+// the box of their bounds' boxes (stem_bound_box) and their largest plan and rise bounds (a test
+// of a bound grows with its box and its length, so a unit whose summary fails has no stem that
+// passes).
+struct CreaseUnit {
+    std::uint32_t tile = 0, level = 0, count = 0;
+    glm::vec2 lo{std::numeric_limits<float>::infinity()}, hi{-std::numeric_limits<float>::infinity()};
+    StemBound most;  // plan and rise: the largest (bfloat16 bits order as their values)
+    bool operator==(const CreaseUnit&) const = default;
+};
 struct CreaseTileIndex {
     int side = 256;
     StemParts parts;
     std::vector<StemBound> stems;
     std::vector<glm::vec2> lo, hi;
     float z_top = -std::numeric_limits<float>::infinity();
+    std::vector<CreaseUnit> units;
 };
 // z_top: drape_height_top(g) when found before (NaN: found here).
 CreaseTileIndex crease_tile_index(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
@@ -66,6 +80,22 @@ CreaseTileIndex crease_tile_index(const DrainageGrid& g, const std::vector<std::
 // 0 to 7 as stem_bound_plan(b) is under 4, 8, 16, ..., 256 cells, or longer.
 inline constexpr int crease_tile_levels = 8;
 int crease_tile_level(const StemBound& b, double cell);
+
+// The units of the stems of `index` (its parts and stems) on a grid of cols x rows cells `cell`
+// metres wide, in tile then level order, those with stems alone; on all cores.
+std::vector<CreaseUnit> crease_units(const CreaseTileIndex& index, int cols, int rows, double cell);
+// The stems of each unit of `index` (index.units' order; ids ascending), from its parts and stems;
+// throws penink::Error(internal) when they do not fit the units (a stem of a tile and level
+// without a unit, a count that differs).
+std::vector<std::vector<std::uint32_t>> crease_unit_stems(const CreaseTileIndex& index, int cols, int rows, double cell);
+
+// Where a CreaseTiles made from an index of units alone finds the rest: one unit's stems (`unit`:
+// its place in CreaseTileIndex::units; ids ascending and their bounds; called from several threads
+// at once) and the whole index. Each throws penink::Error on bytes that do not decode.
+struct CreaseIndexReader {
+    std::function<void(std::size_t unit, std::vector<std::uint32_t>& ids, std::vector<StemBound>& bounds)> unit;
+    std::function<CreaseTileIndex()> whole;
+};
 
 // Where built tiles are kept between processes: one file a tile in `folder` (none: empty), each
 // keyed by hash64 of `key` (the caller's: what the network was built from), the tile size, the
@@ -83,8 +113,13 @@ public:
     CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net, int tile = 256,
                 TileStore store = {});
     // The same from a stored index (crease_tile_index of this network; index.side is the tile size).
+    // An index of units alone (CreaseTileIndex::units, no stems) with a reader of the rest: a
+    // query reads the tile files of the units whose summary passes (they carry their stems' ids
+    // and bounds), tests the stems of a unit without a sound file by reader.unit, and asks for the
+    // whole index (once) only to build stems. Throws penink::Error(internal) on an index that does
+    // not fit the grid.
     CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
-                CreaseTileIndex index, TileStore store = {});
+                CreaseTileIndex index, TileStore store = {}, CreaseIndexReader reader = {});
 
     // Whether a stem's crease may be drawn, from its bound alone (its box lo, hi as stem_bound_box
     // gives it; its length at exaggeration e: stem_bound_length; z_top: a height no crease vertex
@@ -117,9 +152,11 @@ public:
     void on_build_progress(std::function<void(double)> f) { build_progress_ = std::move(f); }
 
     std::size_t tile_count() const { return tiles_.size(); }
-    std::size_t stem_count() const { return parts_.sources.size(); }
-    // The index the tiles were made from (crease_tile_index's, or the one given).
-    CreaseTileIndex index() const;
+    std::size_t stem_count() const { return stem_count_; }
+    // The index the tiles were made from (crease_tile_index's, or the one given; the whole one).
+    CreaseTileIndex index();
+    // Whether the whole index is in memory (made, given, or loaded by a query).
+    bool index_loaded() const { return loaded_; }
     // Stems a query read from a tile file or built for one are not kept after it (the next query
     // needing them reads the file again: memory follows the frame); those built without a file
     // are kept for the next query.
@@ -138,26 +175,25 @@ private:
     };
     // built where needed, in stem order
     std::vector<Pick> picks_for_box(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show);
-    // What bounds every stem of a tile's level: the box of their bounds' boxes and the largest
-    // plan and rise bounds (a test of a bound grows with its box and length, so a level whose
-    // summary fails has no stem that passes)
-    struct LevelBound {
-        glm::vec2 lo{std::numeric_limits<float>::infinity()}, hi{-std::numeric_limits<float>::infinity()};
-        StemBound most;  // plan and rise: the largest (bfloat16 bits order as their values)
-    };
     struct Tile {
-        std::array<std::vector<std::uint32_t>, crease_tile_levels> stems;  // ids by level, ascending
-        std::array<LevelBound, crease_tile_levels> bound;
+        std::array<std::vector<std::uint32_t>, crease_tile_levels> stems;  // ids by level, ascending (loaded_)
+        std::array<CreaseUnit, crease_tile_levels> unit;                   // count 0: no stem of that level
+        std::array<std::uint32_t, crease_tile_levels> at{};                // its place in the index's units
         glm::vec2 lo{0.0f}, hi{-1.0f};     // plan box of its stems' reaches
     };
     const DrainageGrid& g_;
     const std::vector<std::uint8_t>& dir_;
     const FlowNetwork& net_;
     int side_ = 256;
-    StemParts parts_;
-    std::vector<StemBound> bounds_;
+    StemParts parts_;  // its box always, its sources once loaded_
+    std::vector<StemBound> bounds_;  // once loaded_
     float z_top_;
     std::vector<Tile> tiles_;
+    std::size_t stem_count_ = 0;
+    bool loaded_ = false;
+    CreaseIndexReader reader_;
+    void take_index(CreaseTileIndex index);  // the whole index's stems into tiles_ (checked against the units)
+    void load_index();                       // reader_.whole's, once
     // the lines built so far, one set a crease_part; stem s's is line at_[i].second of
     // sets_[at_[i].first], i = its entry in kept_ (the stems kept for later queries: built without
     // a file) or in this query's query_ (those read from or written to a file this query)

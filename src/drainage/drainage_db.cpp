@@ -1,4 +1,4 @@
-// DV file layout (version 17, all little-endian; compact: what the builder's invariants give is
+// DV file layout (version 18, all little-endian; compact: what the builder's invariants give is
 // not stored, see layout_ok). Two parts, each with its checksum: the network
 // (header, branches, divides) and the lines (creases and ridges for drawing, line_set.hpp),
 // which a render reads and checks alone (read_drainage_db, DvParts::lines). A file holding the

@@ -119,7 +119,7 @@ struct DrainageDb {
 // and a bound of its crease's length), so a render builds only the stems its frame can draw.
 // 17: a stem's bound keeps its cells' plan length and vertical travel apart (the crease's length
 // at exaggeration e bounded by plan + e rise, not max(1, e) times the 3-D length).
-inline constexpr std::uint32_t drainage_db_version = 17;
+inline constexpr std::uint32_t drainage_db_version = 18;
 
 // Fingerprint of the DEM file at `dem_path` with the given resample factor: its size, mtime and
 // a hash of its whole content (streamed) and of every side file GDAL may read with it (world

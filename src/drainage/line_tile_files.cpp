@@ -14,7 +14,7 @@ namespace penink {
 namespace {
 
 constexpr std::uint32_t magic = 0x544c4e50u;  // "PNLT"
-constexpr std::uint32_t version = 3;
+constexpr std::uint32_t version = 4;
 // x, y, z, nx, ny, nz, flow: each differenced once along the vertices (neighbours on a line lie
 // about a cell apart, their normals and flows alike)
 constexpr std::array<int, 7> orders{1, 1, 1, 1, 1, 1, 1};
@@ -48,21 +48,26 @@ std::string line_tile_path(const std::string& folder, std::uint32_t tile, int le
         .string();
 }
 
-std::vector<std::uint8_t> encode_line_tile(std::uint64_t key, const DrapedLineSet& lines) {
-    const std::vector<std::uint8_t> coded = encode_float_planes(reinterpret_cast<const float*>(lines.vertices.data()),
-                                                          lines.vertices.size(), orders);
+std::vector<std::uint8_t> encode_line_tile(std::uint64_t key, const DrapedLineSet& lines,
+                                           const std::vector<std::uint32_t>& stems, const std::vector<StemBound>& bounds) {
+    const std::vector<std::uint8_t> ids = encode_stem_ids(stems.data(), stems.size()),
+                                    bound = encode_stem_bounds(bounds.data(), bounds.size()),
+                                    coded = encode_float_planes(reinterpret_cast<const float*>(lines.vertices.data()),
+                                                                lines.vertices.size(), orders);
     std::vector<std::uint8_t> out;
-    out.reserve(40 + 5 * lines.lines.size() + coded.size());
+    out.reserve(64 + 5 * lines.lines.size() + ids.size() + bound.size() + coded.size());
     put(out, magic), put(out, version), put(out, key);
     put(out, std::uint32_t(lines.lines.size())), put(out, std::uint64_t(lines.vertices.size()));
     for (const DrapedLine& l : lines.lines) put(out, l.count), put(out, l.order);
-    put(out, std::uint64_t(coded.size()));
-    out.insert(out.end(), coded.begin(), coded.end());
+    for (const std::vector<std::uint8_t>* part : {&ids, &bound, &coded}) {
+        put(out, std::uint64_t(part->size()));
+        out.insert(out.end(), part->begin(), part->end());
+    }
     put(out, hash64(out.data(), out.size()));
     return out;
 }
 
-bool decode_line_tile(const std::uint8_t* data, std::size_t size, std::uint64_t key, DrapedLineSet& lines) {
+bool decode_line_tile(const std::uint8_t* data, std::size_t size, std::uint64_t key, TileLines& out) {
     if (size < 8) return false;
     std::uint64_t sum;
     std::memcpy(&sum, data + size - 8, 8);
@@ -72,6 +77,7 @@ bool decode_line_tile(const std::uint8_t* data, std::size_t size, std::uint64_t 
     const auto nl = r.get<std::uint32_t>();
     const auto nv = r.get<std::uint64_t>();
     if (!r.ok || (r.size - r.at) / 5 < nl) return false;
+    DrapedLineSet& lines = out.lines;
     lines = DrapedLineSet{};
     lines.lines.resize(nl);
     std::uint64_t first = 0;
@@ -80,25 +86,40 @@ bool decode_line_tile(const std::uint8_t* data, std::size_t size, std::uint64_t 
         l.first = std::uint32_t(first), first += l.count;
         if (l.count == 0 || first > nv) return false;
     }
-    const auto coded = r.get<std::uint64_t>();
+    // a part's coded bytes: its size, then them
+    auto part = [&r](const std::uint8_t*& at, std::uint64_t& n) {
+        n = r.get<std::uint64_t>();
+        if (!r.ok || n > r.size - r.at) return false;
+        at = r.in + r.at, r.at += std::size_t(n);
+        return true;
+    };
+    const std::uint8_t *ids, *bound, *coded;
+    std::uint64_t ids_n, bound_n, coded_n;
+    if (!part(ids, ids_n) || !part(bound, bound_n) || !part(coded, coded_n) || r.at != r.size) return false;
+    std::vector<std::uint32_t>& stems = out.stems;
+    stems.resize(nl), out.bounds.resize(nl);
+    if (!decode_stem_ids(ids, std::size_t(ids_n), stems.data(), nl) ||
+        !decode_stem_bounds(bound, std::size_t(bound_n), out.bounds.data(), nl))
+        return false;
     // deflate packs at most 1032 bytes into one (RFC 1951: a 258-byte match in two bits at best):
     // the vertices' count is bounded by the coded size before anything is allocated
-    if (!r.ok || first != nv || coded != r.size - r.at || nv > (coded * 1032 + 1024) / sizeof(DrapedVertex))
-        return false;
+    if (first != nv || nv > (coded_n * 1032 + 1024) / sizeof(DrapedVertex)) return false;
     lines.vertices.resize(nv);
-    if (!decode_float_planes(data + r.at, coded, reinterpret_cast<float*>(lines.vertices.data()), nv, orders)) return false;
+    if (!decode_float_planes(coded, std::size_t(coded_n), reinterpret_cast<float*>(lines.vertices.data()), nv, orders))
+        return false;
     index_lines(lines);
     return line_set_ok(lines);
 }
 
-bool write_line_tile(const std::string& path, std::uint64_t key, const DrapedLineSet& lines) {
-    const std::vector<std::uint8_t> out = encode_line_tile(key, lines);
+bool write_line_tile(const std::string& path, std::uint64_t key, const DrapedLineSet& lines,
+                     const std::vector<std::uint32_t>& stems, const std::vector<StemBound>& bounds) {
+    const std::vector<std::uint8_t> out = encode_line_tile(key, lines, stems, bounds);
     std::error_code ec;
     std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ec);
     return write_cache_file(path, {out}) == 0;
 }
 
-bool read_line_tile(const std::string& path, std::uint64_t key, DrapedLineSet& lines) {
+bool read_line_tile(const std::string& path, std::uint64_t key, TileLines& out) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) return false;
     const auto size = std::filesystem::file_size(path, ec);
@@ -106,7 +127,7 @@ bool read_line_tile(const std::string& path, std::uint64_t key, DrapedLineSet& l
     if (ec || !f) return false;
     std::vector<std::uint8_t> in(size);
     if (!f.read(reinterpret_cast<char*>(in.data()), std::streamsize(size)) || f.peek() != EOF) return false;
-    return decode_line_tile(in.data(), in.size(), key, lines);
+    return decode_line_tile(in.data(), in.size(), key, out);
 }
 
 }  // namespace penink

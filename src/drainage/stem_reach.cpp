@@ -9,6 +9,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "core/block_codec.hpp"
 #include "core/parallel_chunks.hpp"
 
 namespace penink {
@@ -86,6 +87,7 @@ float bfloat_value(std::uint16_t h) {
     return f;
 }
 
+constexpr int bound_fields = 6;  // x0, y0, x1 - x0, y1 - y0, plan, rise
 }  // namespace
 
 StemBound stem_bound(glm::vec2 reach_lo, glm::vec2 reach_hi, StemTravel t, glm::vec2 lo, glm::vec2 hi) {
@@ -208,6 +210,46 @@ void PlanBoxes::plan_box(const CellBox& b, glm::vec2& lo, glm::vec2& hi) const {
     // outward to floats: the vertices are the doubles rounded to floats
     lo = glm::vec2(std::nextafter(float(l.x), -INFINITY), std::nextafter(float(l.y), -INFINITY));
     hi = glm::vec2(std::nextafter(float(h.x), INFINITY), std::nextafter(float(h.y), INFINITY));
+}
+
+std::vector<std::uint8_t> encode_stem_bounds(const StemBound* b, std::size_t n) {
+    std::vector<std::uint8_t> planes(2 * bound_fields * n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::uint16_t f[bound_fields] = {std::uint16_t(b[i].x0 - (i ? b[i - 1].x0 : 0)),
+                                               std::uint16_t(b[i].y0 - (i ? b[i - 1].y0 : 0)),
+                                               std::uint16_t(b[i].x1 - b[i].x0), std::uint16_t(b[i].y1 - b[i].y0),
+                                               b[i].plan, b[i].rise};
+        for (int k = 0; k < bound_fields; ++k) planes[2 * k * n + i] = std::uint8_t(f[k]), planes[(2 * k + 1) * n + i] = std::uint8_t(f[k] >> 8);
+    }
+    return encode_bytes(planes.data(), planes.size());
+}
+bool decode_stem_bounds(const std::uint8_t* coded, std::size_t size, StemBound* b, std::size_t n) {
+    std::vector<std::uint8_t> planes(2 * bound_fields * n);
+    if (!decode_bytes(coded, size, planes.data(), planes.size())) return false;
+    for (std::size_t i = 0; i < n; ++i) {
+        std::uint16_t f[bound_fields];
+        for (int k = 0; k < bound_fields; ++k) f[k] = std::uint16_t(planes[2 * k * n + i] | planes[(2 * k + 1) * n + i] << 8);
+        b[i].x0 = std::uint16_t(f[0] + (i ? b[i - 1].x0 : 0)), b[i].y0 = std::uint16_t(f[1] + (i ? b[i - 1].y0 : 0));
+        b[i].x1 = std::uint16_t(b[i].x0 + f[2]), b[i].y1 = std::uint16_t(b[i].y0 + f[3]), b[i].plan = f[4],
+        b[i].rise = f[5];
+    }
+    return true;
+}
+
+
+std::vector<std::uint8_t> encode_stem_ids(const std::uint32_t* ids, std::size_t n) {
+    std::vector<std::uint32_t> steps(n);
+    for (std::size_t i = 0; i < n; ++i) steps[i] = ids[i] - (i ? ids[i - 1] : 0u);
+    return encode_bytes(reinterpret_cast<const std::uint8_t*>(steps.data()), 4 * n);
+}
+
+bool decode_stem_ids(const std::uint8_t* coded, std::size_t size, std::uint32_t* ids, std::size_t n) {
+    if (!decode_bytes(coded, size, reinterpret_cast<std::uint8_t*>(ids), 4 * n)) return false;
+    for (std::size_t i = 1; i < n; ++i) {  // every step at least 1, no wrap
+        if (ids[i] == 0 || ids[i - 1] > ~ids[i]) return false;
+        ids[i] += ids[i - 1];
+    }
+    return true;
 }
 
 }  // namespace penink

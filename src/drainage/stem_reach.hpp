@@ -84,6 +84,16 @@ float stem_bound_plan(const StemBound& b);
 float stem_bound_rise(const StemBound& b);
 double stem_bound_length(const StemBound& b, double e);
 
+// n bounds coded losslessly as twelve byte planes (x0 and y0 each minus the bound before's, x1 -
+// x0, y1 - y0, plan, rise; a field's low bytes, then its high ones), deflated; decoding gives
+// them bit for bit (false when the bytes do not decode to n).
+std::vector<std::uint8_t> encode_stem_bounds(const StemBound* b, std::size_t n);
+bool decode_stem_bounds(const std::uint8_t* coded, std::size_t size, StemBound* b, std::size_t n);
+// n ascending stem ids coded as the first and each one's step from the one before (u32 bytes),
+// deflated; decoding refuses ids that are not strictly ascending.
+std::vector<std::uint8_t> encode_stem_ids(const std::uint32_t* ids, std::size_t n);
+bool decode_stem_ids(const std::uint8_t* coded, std::size_t size, std::uint32_t* ids, std::size_t n);
+
 // A height (metres, unexaggerated) no draped vertex of `g`'s creases exceeds: the creases are draped
 // on the PN-triangle surface of the DEM's nodes (dem_surface.hpp: g.z at factor 1, coarse_z at
 // factor > 1), and a PN patch (Vlachos et al. 2001) lies in its control net's hull, whose heights

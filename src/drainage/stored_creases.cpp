@@ -13,8 +13,10 @@ struct StoredCreases::Decoded {
     DrainageGrid g;
     std::vector<std::uint8_t> dir;
     FlowNetwork net;
+    std::vector<SourceUnitBlock> blocks;  // where each unit's stems lie in the source
     std::unique_ptr<CreaseTiles> tiles;
 };
+
 
 std::string crease_tile_folder(const std::string& dv_path) { return dv_path + ".tiles"; }
 
@@ -36,21 +38,41 @@ StoredCreases::~StoredCreases() = default;
 CreaseTiles& StoredCreases::tiles() {
     if (!decoded_) {
         auto d = std::make_unique<Decoded>();
+        const auto decoded = [this](DrainageGrid& g, std::vector<std::uint8_t>& dir, CreaseTileIndex& index, SourcePart part,
+                                    std::vector<SourceUnitBlock>* blocks = nullptr) {
+            if (!decode_crease_source(source_.data(), source_.size(), g, dir, index, part, blocks))
+                throw Error("drainage", "", "stored crease source does not decode", ExitCode::internal);
+        };
+        // the units now (with a folder: a frame whose tiles are all in files needs no more), a
+        // unit's stems where its file fails, the stems' index when a stem is built, with the grid,
+        // directions and network
         CreaseTileIndex index;
-        // the index now; the grid, directions and network only when a stem is built
-        if (!decode_crease_source(source_.data(), source_.size(), d->g, d->dir, index, false))
-            throw Error("drainage", "", "stored crease source does not decode", ExitCode::internal);
+        const bool lazy = !folder_.empty();
+        decoded(d->g, d->dir, index, lazy ? SourcePart::units : SourcePart::index, &d->blocks);
         TileStore store;
         if (!folder_.empty()) {
             const std::uint64_t fields[2] = {std::uint64_t(drainage_db_version), hash64(source_.data(), source_.size())};
             store.folder = folder_, store.key = hash64(fields, sizeof fields);
         }
-        d->tiles = std::make_unique<CreaseTiles>(d->g, d->dir, d->net, std::move(index), std::move(store));
+        CreaseIndexReader reader;
+        if (lazy) {
+            reader.unit = [this, d = d.get()](std::size_t u, std::vector<std::uint32_t>& ids, std::vector<StemBound>& bounds) {
+                if (u >= d->blocks.size() || !decode_crease_unit(source_.data(), source_.size(), d->blocks[u], ids, bounds))
+                    throw Error("drainage", "", "stored crease source does not decode", ExitCode::internal);
+            };
+            reader.whole = [decoded] {
+                DrainageGrid g;
+                std::vector<std::uint8_t> dir;
+                CreaseTileIndex whole;
+                decoded(g, dir, whole, SourcePart::index);
+                return whole;
+            };
+        }
+        d->tiles = std::make_unique<CreaseTiles>(d->g, d->dir, d->net, std::move(index), std::move(store), std::move(reader));
         if (build_progress_) d->tiles->on_build_progress(build_progress_);
-        d->tiles->before_first_build([this, d = d.get()] {
+        d->tiles->before_first_build([decoded, d = d.get()] {
             CreaseTileIndex again;
-            if (!decode_crease_source(source_.data(), source_.size(), d->g, d->dir, again))
-                throw Error("drainage", "", "stored crease source does not decode", ExitCode::internal);
+            decoded(d->g, d->dir, again, SourcePart::all);
             d->net = network_of_directions(d->g, d->dir);
         });
         decoded_ = std::move(d);

@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/error.hpp"
 #include "drainage/crease_source.hpp"
 #include "drainage/drainage_build.hpp"
 #include "input/dem_reader.hpp"
@@ -59,12 +60,20 @@ void expect_round_trip(const Terrain& t, int factor, const std::string& what) {
     EXPECT_EQ(got.hi, index.hi) << what;
     EXPECT_TRUE(got.stems == index.stems) << what;
     EXPECT_EQ(got.z_top, index.z_top) << what;
+    EXPECT_TRUE(got.units == index.units) << what;
+    ASSERT_FALSE(index.units.empty()) << what;
+    {  // the units summarise the stems: counts add up, every stem's bound inside its unit's
+        std::size_t in_units = 0;
+        for (const CreaseUnit& u : index.units) in_units += u.count;
+        EXPECT_EQ(in_units, index.stems.size()) << what;
+        EXPECT_TRUE(crease_units(index, g.cols, g.rows, g.dx) == index.units) << what;
+    }
 
     {  // the index and the grid's scalars alone
         DrainageGrid s;
         std::vector<std::uint8_t> no_dir;
         CreaseTileIndex index_only;
-        ASSERT_TRUE(decode_crease_source(bytes.data(), bytes.size(), s, no_dir, index_only, false)) << what;
+        ASSERT_TRUE(decode_crease_source(bytes.data(), bytes.size(), s, no_dir, index_only, SourcePart::index)) << what;
         EXPECT_EQ(s.cols, g.cols) << what;
         EXPECT_EQ(s.rows, g.rows) << what;
         EXPECT_EQ(s.origin, g.origin) << what;
@@ -72,6 +81,46 @@ void expect_round_trip(const Terrain& t, int factor, const std::string& what) {
         EXPECT_EQ(index_only.lo, index.lo) << what;
         EXPECT_EQ(index_only.parts.sources, index.parts.sources) << what;
         EXPECT_TRUE(index_only.stems == index.stems) << what;
+        CreaseTileIndex units;  // the units alone: no sources, no bounds
+        ASSERT_TRUE(decode_crease_source(bytes.data(), bytes.size(), s, no_dir, units, SourcePart::units)) << what;
+        EXPECT_TRUE(units.units == index.units) << what;
+        EXPECT_TRUE(units.parts.sources.empty() && units.stems.empty()) << what;
+        EXPECT_EQ(units.parts.lo, index.parts.lo) << what;
+        EXPECT_EQ(units.lo, index.lo) << what;
+        EXPECT_EQ(units.z_top, index.z_top) << what;
+    }
+    {  // units whose counts the stems do not fit are a builder's fault; units out of order do not decode
+        CreaseTileIndex miscounted = index, disordered = index;
+        ++miscounted.units[0].count;
+        EXPECT_THROW(encode_crease_source(g, res.dir, miscounted), Error) << what;
+        ASSERT_GT(index.units.size(), 1u) << what;
+        std::swap(disordered.units.front(), disordered.units.back());
+        const std::vector<std::uint8_t> b = encode_crease_source(g, res.dir, disordered);
+        DrainageGrid s;
+        std::vector<std::uint8_t> d;
+        CreaseTileIndex i;
+        EXPECT_FALSE(decode_crease_source(b.data(), b.size(), s, d, i, SourcePart::units)) << what;
+    }
+    {  // each unit's block alone gives its stems and their bounds
+        DrainageGrid s;
+        std::vector<std::uint8_t> d;
+        CreaseTileIndex units;
+        std::vector<SourceUnitBlock> blocks;
+        ASSERT_TRUE(decode_crease_source(bytes.data(), bytes.size(), s, d, units, SourcePart::units, &blocks)) << what;
+        ASSERT_EQ(blocks.size(), index.units.size()) << what;
+        const std::vector<std::vector<std::uint32_t>> members = crease_unit_stems(index, g.cols, g.rows, g.dx);
+        std::size_t bad = 0;
+        for (std::size_t u = 0; u < blocks.size(); ++u) {
+            std::vector<std::uint32_t> ids;
+            std::vector<StemBound> bounds;
+            ASSERT_TRUE(decode_crease_unit(bytes.data(), bytes.size(), blocks[u], ids, bounds)) << what;
+            bad += ids != members[u];
+            for (std::size_t k = 0; k < ids.size() && k < bounds.size(); ++k) bad += !(bounds[k] == index.stems[ids[k]]);
+        }
+        EXPECT_EQ(bad, 0u) << what;
+        std::vector<std::uint32_t> ids;  // a block beyond the bytes given
+        std::vector<StemBound> bounds;
+        EXPECT_FALSE(decode_crease_unit(bytes.data(), blocks[0].at + 2, blocks[0], ids, bounds)) << what;
     }
 
     const FlowNetwork net = network_of_directions(h, dir);
@@ -178,7 +227,7 @@ TEST(CreaseSource, HeightsReadFromTheDemItRefersTo) {
     EXPECT_EQ(got.parts.sources, index.parts.sources);
     fs::remove(dem);
     EXPECT_FALSE(decode_crease_source(referred.data(), referred.size(), h, dir, got));  // gone
-    EXPECT_TRUE(decode_crease_source(referred.data(), referred.size(), h, dir, got, false));  // the index alone
+    EXPECT_TRUE(decode_crease_source(referred.data(), referred.size(), h, dir, got, SourcePart::index));  // the index alone
     EXPECT_EQ(got.lo, index.lo);
     fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.asc", dem);  // another DEM at its path
     EXPECT_FALSE(decode_crease_source(referred.data(), referred.size(), h, dir, got));

@@ -5,6 +5,7 @@
 // of a tenth of the DEM's side builds only some stems, and asking again builds none. With a line
 // test (a camera's screen size), only the stems whose bound passes it are built, once.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -194,8 +195,8 @@ TEST(CreaseTiles, ALineTestBuildsOnlyTheStemsItPassesOnce) {
 // With a tile store, the levels of the tiles a query needs are built whole and written, a file
 // each; the next instance reads them and builds nothing, keeping only the stems the test passes;
 // a file damaged (a byte flipped, cut short) is built again and rewritten, a file of another key
-// is not read; a folder that cannot be written keeps the stems in memory. The lines are the whole
-// build's throughout.
+// is not read; a folder that cannot be written keeps the stems in memory; an index of units alone
+// needs the whole one only where a file fails. The lines are the whole build's throughout.
 TEST(CreaseTiles, StoredTilesAreReadByTheNextInstanceAndDamagedOnesRebuilt) {
     const test::TempDir dir;
     const JacksboroNetwork n;
@@ -255,6 +256,42 @@ TEST(CreaseTiles, StoredTilesAreReadByTheNextInstanceAndDamagedOnesRebuilt) {
     CreaseTiles fourth(g, res.dir, res.net, 64, store);
     EXPECT_EQ(differing(fourth, db, lo, hi, strict), 0u);
     EXPECT_EQ(fourth.tiles_read(), built);
+
+    // an index of its units alone: the files read, their stems tested by the bounds they carry; a
+    // unit without a file (none of its stems passed before) tested by its stems' bounds alone; the
+    // whole index never asked for; a file gone: asked for once, that level built and written
+    CreaseTileIndex units = first.index();
+    const CreaseTileIndex whole = units;
+    const std::vector<std::vector<std::uint32_t>> members = crease_unit_stems(whole, g.cols, g.rows, g.dx);
+    units.parts.sources.clear(), units.stems.clear();
+    std::atomic<int> asked{0}, asked_units{0};
+    CreaseIndexReader reader;
+    reader.unit = [&](std::size_t u, std::vector<std::uint32_t>& ids, std::vector<StemBound>& bounds) {
+        ++asked_units;
+        ids = members.at(u), bounds.clear();
+        for (std::uint32_t s : ids) bounds.push_back(whole.stems[s]);
+    };
+    reader.whole = [&] {
+        ++asked;
+        return whole;
+    };
+    CreaseTiles lazy(g, res.dir, res.net, units, store, reader);
+    EXPECT_EQ(lazy.stem_count(), first.stem_count());
+    EXPECT_EQ(differing(lazy, db, lo, hi, strict), 0u);
+    EXPECT_EQ(asked, 0);
+    EXPECT_FALSE(lazy.index_loaded());
+    EXPECT_EQ(lazy.tiles_read(), built);
+    EXPECT_EQ(lazy.stems_built(), kept);
+    EXPECT_GT(asked_units, 0);  // the strict test's summaries pass some units whose stems all fail
+    std::filesystem::remove(files[2]);
+    CreaseTiles lazy_gone(g, res.dir, res.net, units, store, reader);
+    EXPECT_EQ(differing(lazy_gone, db, lo, hi, strict), 0u);
+    EXPECT_EQ(asked, 1);
+    EXPECT_TRUE(lazy_gone.index_loaded());
+    EXPECT_EQ(lazy_gone.tiles_read(), built - 1);
+    EXPECT_EQ(lazy_gone.tiles_written(), 1u);
+    EXPECT_EQ(differing(lazy_gone, db, lo, hi, strict), 0u);  // again: from the files, the index kept
+    EXPECT_EQ(asked, 1);
 
     // another key (another network): nothing read
     CreaseTiles other(g, res.dir, res.net, 64, TileStore{store.folder, 43});

@@ -1,5 +1,6 @@
-// Tile files of crease lines (src/drainage/line_tile_files.hpp): the lines come back bit for bit,
-// coded in fewer bytes than they take in memory; any damage, another key or a cut reads as absent.
+// Tile files of crease lines (src/drainage/line_tile_files.hpp): the lines, their stems' ids and
+// bounds come back bit for bit, coded in fewer bytes than they take in memory; any damage, another
+// key or a cut reads as absent.
 #include "drainage/line_tile_files.hpp"
 
 #include <cmath>
@@ -39,23 +40,44 @@ DrapedLineSet walk_lines(int lines, std::uint32_t seed) {
     return set;
 }
 
+// Ascending stem ids with gaps (the first not 0, one step of 2^31) and bounds of a tile's stems.
+std::vector<std::uint32_t> stem_ids(std::size_t n) {
+    std::vector<std::uint32_t> ids;
+    for (std::uint32_t i = 0, s = 17; i < n; ++i, s += 1 + 7 * (i % 5)) ids.push_back(i == n - 1 ? s + (1u << 31) : s);
+    return ids;
+}
+std::vector<StemBound> stem_bounds(std::size_t n) {
+    std::vector<StemBound> b(n);
+    for (std::size_t i = 0; i < n; ++i)
+        b[i] = {std::uint16_t(100 + 3 * i), std::uint16_t(65000 - 5 * i), std::uint16_t(120 + 9 * i),
+                std::uint16_t(65010 - 5 * i), std::uint16_t(0x4000 + i), std::uint16_t(0x3f00 + 2 * i)};
+    b[1] = StemBound{};  // an empty box
+    return b;
+}
+
 TEST(LineTileFiles, LinesComeBackBitForBitInFewerBytes) {
     const DrapedLineSet set = walk_lines(200, 3);
-    const std::vector<std::uint8_t> bytes = encode_line_tile(7, set);
-    DrapedLineSet back;
+    const std::vector<std::uint32_t> ids = stem_ids(200);
+    const std::vector<StemBound> bounds = stem_bounds(200);
+    const std::vector<std::uint8_t> bytes = encode_line_tile(7, set, ids, bounds);
+    TileLines back;
     ASSERT_TRUE(decode_line_tile(bytes.data(), bytes.size(), 7, back));
-    ASSERT_EQ(back.vertices.size(), set.vertices.size());
-    EXPECT_EQ(std::memcmp(back.vertices.data(), set.vertices.data(), sizeof(DrapedVertex) * set.vertices.size()), 0);
-    EXPECT_TRUE(back == set);  // records, boxes, lengths and index as index_lines makes them
-    // the 7 floats of a walk coded in under 20 of their 28 bytes
+    ASSERT_EQ(back.lines.vertices.size(), set.vertices.size());
+    EXPECT_EQ(std::memcmp(back.lines.vertices.data(), set.vertices.data(), sizeof(DrapedVertex) * set.vertices.size()), 0);
+    EXPECT_TRUE(back.lines == set);  // records, boxes, lengths and index as index_lines makes them
+    EXPECT_EQ(back.stems, ids);
+    EXPECT_EQ(back.bounds, bounds);
+    // the 7 floats of a walk coded in under 20 of their 28 bytes, ids and bounds included
     EXPECT_LT(double(bytes.size()), 20.0 * double(set.vertices.size()));
     ::testing::Test::RecordProperty("bytes_per_vertex", std::to_string(double(bytes.size()) / set.vertices.size()));
 }
 
 TEST(LineTileFiles, DamageAnotherKeyOrACutReadAsAbsent) {
     const DrapedLineSet set = walk_lines(50, 4);
-    const std::vector<std::uint8_t> bytes = encode_line_tile(7, set);
-    DrapedLineSet back;
+    const std::vector<std::uint32_t> ids = stem_ids(50);
+    const std::vector<StemBound> bounds = stem_bounds(50);
+    const std::vector<std::uint8_t> bytes = encode_line_tile(7, set, ids, bounds);
+    TileLines back;
     EXPECT_FALSE(decode_line_tile(bytes.data(), bytes.size(), 8, back));
     for (std::size_t cut : {std::size_t(0), std::size_t(7), bytes.size() / 2, bytes.size() - 1})
         EXPECT_FALSE(decode_line_tile(bytes.data(), cut, 7, back)) << cut;
@@ -66,15 +88,20 @@ TEST(LineTileFiles, DamageAnotherKeyOrACutReadAsAbsent) {
         read += decode_line_tile(bad.data(), bad.size(), 7, back);
     }
     EXPECT_EQ(read, 0u);
+    std::vector<std::uint32_t> unsorted = ids;  // ids not ascending: damaged however they were hashed
+    std::swap(unsorted[4], unsorted[5]);
+    const std::vector<std::uint8_t> disordered = encode_line_tile(7, set, unsorted, bounds);
+    EXPECT_FALSE(decode_line_tile(disordered.data(), disordered.size(), 7, back));
 
     const test::TempDir dir;
     const std::string path = line_tile_path(dir.file("tiles"), 12, 3);
     EXPECT_FALSE(read_line_tile(path, 7, back));  // absent
-    ASSERT_TRUE(write_line_tile(path, 7, set));   // the folder made
+    ASSERT_TRUE(write_line_tile(path, 7, set, ids, bounds));  // the folder made
     ASSERT_TRUE(read_line_tile(path, 7, back));
-    EXPECT_TRUE(back == set);
+    EXPECT_TRUE(back.lines == set);
+    EXPECT_EQ(back.stems, ids);
     EXPECT_FALSE(read_line_tile(dir.file("tiles"), 7, back));  // a folder, not a file
-    EXPECT_FALSE(write_line_tile("/proc/penink-no-such-folder/tile-0-0.pnlt", 7, set));
+    EXPECT_FALSE(write_line_tile("/proc/penink-no-such-folder/tile-0-0.pnlt", 7, set, ids, bounds));
 }
 
 }  // namespace
