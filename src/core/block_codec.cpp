@@ -104,20 +104,28 @@ std::vector<std::uint8_t> float_planes(const float* data, std::size_t n, std::sp
 // float_planes inverted into `out`.
 void planes_to_floats(const std::uint8_t* planes, float* out, std::size_t n, std::span<const int> orders) {
     const std::size_t comps = orders.size(), count = n * comps;
-    for (std::size_t k = 0; k < comps; ++k) {
-        const std::uint8_t* p0 = planes + k * n;
-        const std::uint8_t *p1 = p0 + count, *p2 = p1 + count, *p3 = p2 + count;
-        // the differences summed back in the same pass (u: the value, d: its first difference)
-        std::uint32_t u = 0, d = 0;
-        const int order = orders[k];
-        for (std::size_t i = 0; i < n; ++i) {
-            const std::uint32_t z = std::uint32_t(p0[i]) | std::uint32_t(p1[i]) << 8 | std::uint32_t(p2[i]) << 16 |
-                                    std::uint32_t(p3[i]) << 24;
-            const std::uint32_t v = unzigzag(z);
-            if (order == 0) u = v;
-            else if (order == 1) u += v;
-            else d += v, u += d;
-            out[i * comps + k] = unordered(u);
+    // the differences summed back in the same pass (u: a component's value, d: its first
+    // difference), a run of elements at a time so that the interleaved output written component by
+    // component stays in cache
+    constexpr std::size_t run = 1024;
+    std::vector<std::uint32_t> u(comps, 0), d(comps, 0);
+    for (std::size_t i0 = 0; i0 < n; i0 += run) {
+        const std::size_t i1 = std::min(n, i0 + run);
+        for (std::size_t k = 0; k < comps; ++k) {
+            const std::uint8_t* p0 = planes + k * n;
+            const std::uint8_t *p1 = p0 + count, *p2 = p1 + count, *p3 = p2 + count;
+            std::uint32_t uk = u[k], dk = d[k];
+            const int order = orders[k];
+            for (std::size_t i = i0; i < i1; ++i) {
+                const std::uint32_t z = std::uint32_t(p0[i]) | std::uint32_t(p1[i]) << 8 | std::uint32_t(p2[i]) << 16 |
+                                        std::uint32_t(p3[i]) << 24;
+                const std::uint32_t v = unzigzag(z);
+                if (order == 0) uk = v;
+                else if (order == 1) uk += v;
+                else dk += v, uk += dk;
+                out[i * comps + k] = unordered(uk);
+            }
+            u[k] = uk, d[k] = dk;
         }
     }
 }
