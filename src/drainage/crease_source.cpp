@@ -24,19 +24,32 @@ template <class T> void put(std::vector<std::uint8_t>& out, T v) {
     std::memcpy(out.data() + at, &v, sizeof v);
 }
 
+// Reads bytes of a source in order; from a file, the pages of what it gets or takes are read
+// (checked) first, those it skips are not.
 struct Reader {
     const std::uint8_t* p;
     std::size_t left;
+    const CreaseSourceBytes* src = nullptr;
     template <class T> bool get(T& v) {
         if (left < sizeof v) return false;
+        touch(sizeof v);
         std::memcpy(&v, p, sizeof v);
         p += sizeof v, left -= sizeof v;
         return true;
     }
     bool take(std::size_t n, const std::uint8_t*& at) {
         if (left < n) return false;
+        touch(n);
         at = p, p += n, left -= n;
         return true;
+    }
+    bool skip(std::size_t n) {
+        if (left < n) return false;
+        p += n, left -= n;
+        return true;
+    }
+    void touch(std::size_t n) const {
+        if (src) src->need(std::uint64_t(p - src->data), n);
     }
 };
 
@@ -67,10 +80,11 @@ void put_blocks(std::vector<std::uint8_t>& out, const CodedSourceArray& a) {
 // At factor 1 the coarse nodes are the fine ones: their mask is g.valid, not stored twice.
 bool coarse_valid_shared(const DrainageGrid& g) { return g.factor == 1 && g.coarse_valid == g.valid; }
 
-// Reads what put_blocks wrote, decoding block by block on all cores. The element count stored
-// must satisfy accept(n); resize(n) sizes the output before the blocks are decoded.
+// Reads what put_blocks wrote, decoding block by block on all cores (read = false: the blocks
+// passed over, not decoded). The element count stored must satisfy accept(n); resize(n) sizes
+// the output before the blocks are decoded.
 template <class Accept, class Resize, class Decode>
-bool get_blocks(Reader& r, Accept accept, Resize resize, Decode decode) {
+bool get_blocks(Reader& r, Accept accept, Resize resize, Decode decode, bool read = true) {
     std::uint64_t n = 0;
     if (!r.get(n) || !accept(n)) return false;
     resize(std::size_t(n));
@@ -79,8 +93,16 @@ bool get_blocks(Reader& r, Accept accept, Resize resize, Decode decode) {
     std::vector<std::uint32_t> sizes(count);
     std::vector<const std::uint8_t*> at(count);
     for (auto& s : sizes) r.get(s);
-    for (std::uint32_t b = 0; b < count; ++b)
-        if (!r.take(sizes[b], at[b])) return false;
+    if (!read) {
+        for (std::uint32_t b = 0; b < count; ++b)
+            if (!r.skip(sizes[b])) return false;
+        return true;
+    }
+    std::size_t all = 0;  // the blocks taken at once: one read of their pages
+    for (std::uint32_t b = 0; b < count; ++b) all += sizes[b];
+    const std::uint8_t* p = nullptr;
+    if (!r.take(all, p)) return false;
+    for (std::uint32_t b = 0; b < count; ++b) at[b] = p, p += sizes[b];
     std::vector<std::uint8_t> ok(count, 0);
     parallel_chunks(count, 1, [&](std::size_t b0, std::size_t b1) {
         for (std::size_t b = b0; b < b1; ++b)
@@ -241,8 +263,8 @@ bool read_referred_arrays(const SourceHead& h, DrainageGrid& g) {
 
 }  // namespace
 
-std::string crease_source_dem(const std::uint8_t* data, std::size_t size) {
-    Reader r{data, size};
+std::string crease_source_dem(const CreaseSourceBytes& src) {
+    Reader r{src.data, src.size, &src};
     DrainageGrid g;
     SourceHead h;
     return get_head(r, g, h) && h.referred ? h.dem.path : std::string();
@@ -250,8 +272,15 @@ std::string crease_source_dem(const std::uint8_t* data, std::size_t size) {
 
 bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGrid& g, std::vector<std::uint8_t>& dir,
                           CreaseTileIndex& index, SourcePart part, std::vector<SourceUnitBlock>* blocks) {
+    return decode_crease_source(CreaseSourceBytes{data, size}, g, dir, index, part, blocks);
+}
+
+bool decode_crease_source(const CreaseSourceBytes& src, DrainageGrid& g, std::vector<std::uint8_t>& dir,
+                          CreaseTileIndex& index, SourcePart part, std::vector<SourceUnitBlock>* blocks) {
     const bool arrays = part == SourcePart::all, stems = part != SourcePart::units;
-    Reader r{data, size};
+    const std::uint8_t* const data = src.data;
+    const std::size_t size = src.size;
+    Reader r{data, size, &src};
     std::uint32_t side = 0, tiles = 0;
     std::int32_t col0 = 0, row0 = 0;
     g = DrainageGrid{};
@@ -292,42 +321,43 @@ bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGr
         at[i].at = unit_bytes, unit_bytes += std::uint64_t(at[i].ids) + at[i].bounds, in_units += u.count;
     }
     const std::size_t n = g.size(), coarse = std::size_t(ccols) * std::size_t(crows);
-    std::vector<std::uint32_t>& src = index.parts.sources;
+    std::vector<std::uint32_t>& cells = index.parts.sources;
     if (!get_blocks(
-            r, [&](std::uint64_t k) { return k == in_units && k <= n; }, [&](std::size_t k) { src.resize(stems ? k : 0); },
+            r, [&](std::uint64_t k) { return k == in_units && k <= n; }, [&](std::size_t k) { cells.resize(stems ? k : 0); },
             [&](const std::uint8_t* c, std::size_t s, std::size_t first, std::size_t k) {
-                return !stems || decode_bytes(c, s, reinterpret_cast<std::uint8_t*>(src.data() + first), 4 * k);
-            }))
+                return decode_bytes(c, s, reinterpret_cast<std::uint8_t*>(cells.data() + first), 4 * k);
+            },
+            stems))
         return false;
     std::uint64_t cell = 0;
-    for (std::size_t s = 0; s < src.size(); ++s) {
-        if (s && src[s] == 0) return false;  // ascending
-        cell += src[s];
+    for (std::size_t s = 0; s < cells.size(); ++s) {
+        if (s && cells[s] == 0) return false;  // ascending
+        cell += cells[s];
         if (cell >= n) return false;
-        src[s] = std::uint32_t(cell);
+        cells[s] = std::uint32_t(cell);
     }
     auto sized = [](std::size_t want, bool may_be_empty) {
         return [=](std::uint64_t k) { return k == want || (may_be_empty && k == 0); };
     };
     // the units' stems: where they lie; with the index, decoded on all cores and each stem's bound
     // put in its place (every stem in one unit exactly)
-    const std::uint8_t* unit_data = nullptr;
-    if (!r.take(std::size_t(unit_bytes), unit_data)) return false;
+    const std::uint8_t* unit_data = r.p;
+    if (!(stems ? r.take(std::size_t(unit_bytes), unit_data) : r.skip(std::size_t(unit_bytes)))) return false;
     for (SourceUnitBlock& b : at) b.at += std::uint64_t(unit_data - data);
     if (stems) {
-        index.stems.resize(src.size());
-        std::vector<std::uint8_t> ok(units, 0), seen(src.size(), 0);
+        index.stems.resize(cells.size());
+        std::vector<std::uint8_t> ok(units, 0), seen(cells.size(), 0);
         std::vector<std::vector<std::uint32_t>> ids(units);
         std::vector<std::vector<StemBound>> bounds(units);
         parallel_chunks(units, 1, [&](std::size_t u0, std::size_t u1) {
             for (std::size_t u = u0; u < u1; ++u)
-                ok[u] = decode_crease_unit(data, size, at[u], ids[u], bounds[u]);
+                ok[u] = decode_crease_unit(CreaseSourceBytes{data, size}, at[u], ids[u], bounds[u]);  // pages read
         });
         for (std::size_t u = 0; u < units; ++u) {
             if (!ok[u]) return false;
             for (std::size_t i = 0; i < ids[u].size(); ++i) {
                 const std::uint32_t s = ids[u][i];
-                if (s >= src.size() || seen[s]) return false;
+                if (s >= cells.size() || seen[s]) return false;
                 seen[s] = 1, index.stems[s] = bounds[u][i];
             }
         }
@@ -337,22 +367,25 @@ bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGr
         return get_blocks(
             r, sized(want, may_be_empty), [&](std::size_t k) { v.resize(arrays ? k : 0); },
             [&](const std::uint8_t* c, std::size_t s, std::size_t first, std::size_t k) {
-                return !arrays || decode_floats(c, s, v.data() + first, k, z_orders);
-            });
+                return decode_floats(c, s, v.data() + first, k, z_orders);
+            },
+            arrays);
     };
     auto bytes = [&](std::vector<std::uint8_t>& v, std::size_t want, bool may_be_empty) {
         return get_blocks(
             r, sized(want, may_be_empty), [&](std::size_t k) { v.resize(arrays ? k : 0); },
             [&](const std::uint8_t* c, std::size_t s, std::size_t first, std::size_t k) {
-                return !arrays || decode_bytes(c, s, v.data() + first, k);
-            });
+                return decode_bytes(c, s, v.data() + first, k);
+            },
+            arrays);
     };
     if (!floats(g.z, head.referred ? 0 : n, false) || !bytes(g.valid, n, false) || !bytes(dir, n, false)) return false;
     if (!get_blocks(
             r, sized(head.referred ? 0 : coarse, true), [&](std::size_t k) { g.coarse_xy.resize(arrays ? k : 0); },
             [&](const std::uint8_t* c, std::size_t s, std::size_t first, std::size_t k) {
-                return !arrays || decode_floats(c, s, &g.coarse_xy[first].x, k, xy_orders);
-            }))
+                return decode_floats(c, s, &g.coarse_xy[first].x, k, xy_orders);
+            },
+            arrays))
         return false;
     if (!bytes(g.coarse_valid, shared ? 0 : coarse, true) || !floats(g.coarse_z, coarse, true)) return false;
     if (shared) g.coarse_valid = g.valid;
@@ -360,12 +393,36 @@ bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGr
     return !(arrays && head.referred) || read_referred_arrays(head, g);
 }
 
-bool decode_crease_unit(const std::uint8_t* data, std::size_t size, const SourceUnitBlock& block,
-                        std::vector<std::uint32_t>& ids, std::vector<StemBound>& bounds) {
-    if (block.at > size || std::uint64_t(block.ids) + block.bounds > size - block.at) return false;
+bool decode_crease_unit(const CreaseSourceBytes& src, const SourceUnitBlock& block, std::vector<std::uint32_t>& ids,
+                        std::vector<StemBound>& bounds) {
+    if (block.at > src.size || std::uint64_t(block.ids) + block.bounds > src.size - block.at) return false;
+    src.need(block.at, std::uint64_t(block.ids) + block.bounds);
     ids.resize(block.count), bounds.resize(block.count);
-    return decode_stem_ids(data + block.at, block.ids, ids.data(), block.count) &&
-           decode_stem_bounds(data + block.at + block.ids, block.bounds, bounds.data(), block.count);
+    return decode_stem_ids(src.data + block.at, block.ids, ids.data(), block.count) &&
+           decode_stem_bounds(src.data + block.at + block.ids, block.bounds, bounds.data(), block.count);
+}
+
+CreaseSourceBytes crease_source_bytes(const std::vector<std::uint8_t>& bytes, const CheckedBlocks* pages,
+                                      std::uint64_t size) {
+    if (pages) return {static_cast<const std::uint8_t*>(pages->data(0)), std::size_t(size), pages};
+    return {bytes.data(), bytes.size(), nullptr};
+}
+
+CreaseSourceBytes crease_source_bytes(const DrainageDb& db) {
+    return crease_source_bytes(db.crease_source, db.crease_source_pages.get(), db.crease_source_size);
+}
+
+void CreaseSourceBytes::need(std::uint64_t at, std::uint64_t n) const {
+    if (pages && n) pages->need(0, at, at + n);
+}
+
+std::vector<std::uint64_t> crease_source_page_sums(const std::uint8_t* data, std::size_t n) {
+    std::vector<std::uint64_t> sums((n + crease_source_page - 1) / crease_source_page);
+    parallel_chunks(sums.size(), 64, [&](std::size_t k0, std::size_t k1) {
+        for (std::size_t k = k0; k < k1; ++k)
+            sums[k] = hash64(data + k * crease_source_page, std::min(crease_source_page, n - k * crease_source_page));
+    });
+    return sums;
 }
 
 FlowNetwork network_of_directions(const DrainageGrid& g, const std::vector<std::uint8_t>& dir) {

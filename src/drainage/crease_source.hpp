@@ -39,7 +39,9 @@
 #include <string>
 #include <vector>
 
+#include "core/checked_blocks.hpp"
 #include "drainage/crease_tiles.hpp"
+#include "drainage/drainage_db.hpp"
 #include "drainage/drainage_grid.hpp"
 #include "drainage/flow_network.hpp"
 
@@ -64,8 +66,32 @@ std::uint64_t dem_arrays_hash(const DrainageGrid& g);
 std::vector<std::uint8_t> encode_crease_source(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
                                                const CreaseTileIndex& index, const DemHeightsRef* dem = nullptr);
 
+// A crease source's bytes as its decoders read them: `size` bytes at `data`, in memory, or (with
+// `pages`) the database file's, where only the pages need() asks for are readable (read and
+// checked by their hash64 the first time: core/checked_blocks.hpp, array 0 of `pages`, pages of
+// crease_source_page bytes; throws DamagedBlockError on a damaged page).
+struct CreaseSourceBytes {
+    const std::uint8_t* data = nullptr;
+    std::size_t size = 0;
+    const CheckedBlocks* pages = nullptr;
+    void need(std::uint64_t at, std::uint64_t n) const;
+};
+// The bytes of a source held as `bytes`, or, with `pages`, the `size` left in the file.
+CreaseSourceBytes crease_source_bytes(const std::vector<std::uint8_t>& bytes, const CheckedBlocks* pages,
+                                      std::uint64_t size);
+// A database's (DrainageDb::crease_source, or its pages).
+CreaseSourceBytes crease_source_bytes(const DrainageDb& db);
+// The page a database file checks its crease source by, and the pages' hash64 (the last one
+// short): stored after the source (drainage_db.cpp), they are also what identifies it (the tile
+// files' key: stored_creases.hpp).
+inline constexpr std::size_t crease_source_page = std::size_t(1) << 16;
+std::vector<std::uint64_t> crease_source_page_sums(const std::uint8_t* data, std::size_t n);
+
 // The DEM path a crease source refers to ("" when it stores its arrays or does not decode).
-std::string crease_source_dem(const std::uint8_t* data, std::size_t size);
+std::string crease_source_dem(const CreaseSourceBytes& src);
+inline std::string crease_source_dem(const std::uint8_t* data, std::size_t size) {
+    return crease_source_dem(CreaseSourceBytes{data, size});
+}
 
 // The arrays of a crease source in the order it stores them.
 enum class SourceArray { z, valid, dir, coarse_xy, coarse_valid, coarse_z };
@@ -103,13 +129,18 @@ struct SourceUnitBlock {
     std::uint32_t count = 0;            // its stems
     std::uint32_t ids = 0, bounds = 0;  // coded bytes of its ids, then of their bounds
 };
+// Only the pages of what is decoded are read from a file (the units alone: the head and the units'
+// table).
+bool decode_crease_source(const CreaseSourceBytes& src, DrainageGrid& g, std::vector<std::uint8_t>& dir,
+                          CreaseTileIndex& index, SourcePart part = SourcePart::all,
+                          std::vector<SourceUnitBlock>* blocks = nullptr);
 bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGrid& g, std::vector<std::uint8_t>& dir,
                           CreaseTileIndex& index, SourcePart part = SourcePart::all,
                           std::vector<SourceUnitBlock>* blocks = nullptr);
 // A unit's stems from its block: their ids (ascending) and bounds; false when they do not decode
-// (`size`: the source's bytes, which the block must lie in).
-bool decode_crease_unit(const std::uint8_t* data, std::size_t size, const SourceUnitBlock& block,
-                        std::vector<std::uint32_t>& ids, std::vector<StemBound>& bounds);
+// (the block must lie in the source; its pages alone are read).
+bool decode_crease_unit(const CreaseSourceBytes& src, const SourceUnitBlock& block, std::vector<std::uint32_t>& ids,
+                        std::vector<StemBound>& bounds);
 
 // The accumulation, orders, in-degrees, basins and outlets of the flow directions `dir` on g's
 // valid nodes (accumulate_flow and label_basins, one beside the other).

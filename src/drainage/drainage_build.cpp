@@ -105,7 +105,7 @@ std::optional<DemHeightsRef> heights_ref(const std::string& dem_path, const Terr
 // Whether a cached database's creases' source refers to the heights of a DEM other than the one
 // at `dem_path` (a cache moved with its DEM or found for another path): built again.
 bool refers_to_other_dem(const DrainageDb& db, const std::string& dem_path) {
-    const std::string dem = crease_source_dem(db.crease_source.data(), db.crease_source.size());
+    const std::string dem = crease_source_dem(crease_source_bytes(db));  // its first page alone
     return !dem.empty() && dem != absolute_dem_path(dem_path);
 }
 

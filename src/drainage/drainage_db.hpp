@@ -19,6 +19,7 @@
 #include "core/big_allocator.hpp"
 #include "core/error.hpp"
 #include "core/hash64.hpp"
+#include "core/checked_blocks.hpp"
 #include "drainage/line_set.hpp"
 #include "input/terrain.hpp"
 
@@ -83,6 +84,14 @@ struct DrainageDb {
     // frame needs them (a cache `penink drainage` writes): `creases` is then empty. Empty where
     // `creases` holds them (a build in memory) or on a DEM without relief.
     std::vector<std::uint8_t> crease_source;
+    // Where a render left the crease source in the file (read_drainage_line_index): crease_source
+    // is then empty and its crease_source_size bytes are array 0 of these pages, each read and
+    // checked the first time it is needed by its checksum in crease_source_sums (as the file stores
+    // them: crease_source_page_sums).
+    std::shared_ptr<const CheckedBlocks> crease_source_pages;
+    std::uint64_t crease_source_size = 0;
+    std::vector<std::uint64_t> crease_source_sums;
+    bool has_crease_source() const { return !crease_source.empty() || crease_source_pages; }
     bool operator==(const DrainageDb&) const = default;
 };
 
@@ -119,6 +128,10 @@ struct DrainageDb {
 // and a bound of its crease's length), so a render builds only the stems its frame can draw.
 // 17: a stem's bound keeps its cells' plan length and vertical travel apart (the crease's length
 // at exaggeration e bounded by plan + e rise, not max(1, e) times the 3-D length).
+// 18: the crease tiles' index stored by unit (a tile's stems of one length level: a table of their
+// summaries, then each unit's stem ids and bounds coded alone), and the crease source followed by a
+// checksum of each of its 64 KiB pages, outside the index checksum: a render leaves it in the file
+// and reads the pages it needs.
 inline constexpr std::uint32_t drainage_db_version = 18;
 
 // Fingerprint of the DEM file at `dem_path` with the given resample factor: its size, mtime and

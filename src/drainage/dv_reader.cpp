@@ -282,7 +282,7 @@ void get_line_set(R& r, DrapedLineSet& set, std::uint64_t* vertices_at = nullptr
 // agree with `db`'s when `header` is set (a whole file), then both line sets.
 template <class R>
 void get_lines(R& r, DrainageDb& db, bool header, std::uint64_t* vertices_at = nullptr,
-               std::vector<std::uint64_t>* block_sums = nullptr) {
+               std::vector<std::uint64_t>* block_sums = nullptr, std::uint64_t* source_at = nullptr) {
     DrainageFingerprint f;
     f.file_size = r.template get<std::uint64_t>(), f.mtime_ns = r.template get<std::int64_t>();
     f.content_hash = r.template get<std::uint64_t>(), f.resample = r.template get<std::uint32_t>();
@@ -299,9 +299,26 @@ void get_lines(R& r, DrainageDb& db, bool header, std::uint64_t* vertices_at = n
     get_line_set(r, db.creases, vertices_at, block_sums);
     get_line_set(r, db.ridges, vertices_at ? vertices_at + 1 : nullptr, block_sums ? block_sums + 1 : nullptr);
     const std::uint64_t source_bytes = r.template get<std::uint64_t>();
-    r.template array<std::uint8_t>(db.crease_source, source_bytes);
+    // the source's bytes, checked by its pages' checksums (not in the index checksum): left in the
+    // file where a render asks for their offset
+    if constexpr (requires { r.skip(0); }) {
+        r.in_vertices = true;
+        if (source_at) {
+            if (source_bytes > r.left()) r.corrupt();
+            *source_at = r.offset();
+            r.skip(source_bytes);
+        } else {
+            r.template array<std::uint8_t>(db.crease_source, source_bytes);
+        }
+        r.in_vertices = false;
+    } else {
+        r.template array<std::uint8_t>(db.crease_source, source_bytes);
+    }
+    std::vector<std::uint64_t> sums;  // kept with a source left in the file (whole: the lines checksum covers it)
+    r.template array<std::uint64_t>(sums, (source_bytes + crease_source_page - 1) / crease_source_page);
+    if (source_at) db.crease_source_size = source_bytes, db.crease_source_sums = std::move(sums);
     // the stored creases, or the source to build them from: never both
-    if (!db.crease_source.empty() && !db.creases.lines.empty()) r.corrupt();
+    if (source_bytes && !db.creases.lines.empty()) r.corrupt();
     // The index checksum: a StreamReader checks it (it may not have read the vertices); a whole
     // file's lines checksum covers it.
     if constexpr (requires { r.index.digest(); }) {
@@ -443,7 +460,8 @@ namespace {
 // The lines part alone: the prefix, then the part read from its offset into the database's
 // arrays and hashed on the way, then its checksum compared.
 DrainageDb read_lines_part(std::FILE* in, std::uint64_t size, const std::string& path,
-                           std::uint64_t* vertices_at = nullptr, std::vector<std::uint64_t>* block_sums = nullptr) {
+                           std::uint64_t* vertices_at = nullptr, std::vector<std::uint64_t>* block_sums = nullptr,
+                           std::uint64_t* source_at = nullptr) {
     std::uint8_t prefix[prefix_bytes];
     const std::size_t got = std::fread(prefix, 1, std::size_t(std::min<std::uint64_t>(size, prefix_bytes)), in);
     std::uint64_t total, lines_at;
@@ -454,7 +472,7 @@ DrainageDb read_lines_part(std::FILE* in, std::uint64_t size, const std::string&
     StreamReader r{in, total - 8 - lines_at, lines_at, path, false, {}, {}, false};
     r.seek_vertices = vertices_at != nullptr;
     DrainageDb db;
-    get_lines(r, db, false, vertices_at, block_sums);
+    get_lines(r, db, false, vertices_at, block_sums, source_at);
     if (r.left() != 0) r.corrupt();
     std::uint64_t stored;
     if (std::fread(&stored, 8, 1, in) != 1) truncated(path);
@@ -507,10 +525,19 @@ DrainageDb read_drainage_line_index(const std::string& path, const DrainageFinge
     std::uint64_t size = 0;
     std::FILE* in = open_dv(path, size);
     std::shared_ptr<std::FILE> file(in, [](std::FILE* f) { std::fclose(f); });
-    std::uint64_t at[2] = {0, 0};
-    DrainageDb db = read_lines_part(in, size, path, at, vertices.block_sums);
+    std::uint64_t at[2] = {0, 0}, source_at = 0;
+    DrainageDb db = read_lines_part(in, size, path, at, vertices.block_sums, &source_at);
     if (expected && !(db.fingerprint == *expected))
         throw Error("drainage", path, "drainage database is stale (DEM changed)");
+    if (db.crease_source_size) {  // left in the file: its pages read where a frame needs them
+        try {
+            db.crease_source_pages = std::make_shared<const CheckedBlocks>(
+                ::fileno(in), path, std::vector<CheckedBlocks::Array>{{source_at, db.crease_source_size}},
+                crease_source_page, db.crease_source_sums);
+        } catch (const std::bad_alloc&) {
+            throw Error("drainage", path, "drainage database too large for memory");
+        }
+    }
     vertices.file = std::move(file), vertices.path = path;
     vertices.at[0] = at[0], vertices.at[1] = at[1];
     vertices.count[0] = db.creases.lines.empty() ? 0 : db.creases.lines.back().first + db.creases.lines.back().count;
@@ -570,7 +597,8 @@ DrainageDb drainage_lines_only(DrainageDb db) {
     out.fingerprint = db.fingerprint;
     out.cols = db.cols, out.rows = db.rows, out.factor = db.factor, out.origin = db.origin;
     out.creases = std::move(db.creases), out.ridges = std::move(db.ridges);
-    out.crease_source = std::move(db.crease_source);
+    out.crease_source = std::move(db.crease_source), out.crease_source_sums = std::move(db.crease_source_sums);
+    out.crease_source_pages = std::move(db.crease_source_pages), out.crease_source_size = db.crease_source_size;
     return out;
 }
 

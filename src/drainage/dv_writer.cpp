@@ -18,6 +18,7 @@
 
 #include "core/error.hpp"
 #include "core/parallel_chunks.hpp"
+#include "drainage/crease_source.hpp"
 #include "drainage/dv_format.hpp"
 
 namespace penink {
@@ -211,8 +212,13 @@ void put_lines(Sink& w, const DrainageDb& db) {
     w.put(db.origin.x), w.put(db.origin.y);
     put_line_set(w, db.creases);
     put_line_set(w, db.ridges);
+    if (db.crease_source_pages)  // a source left in another file is never written
+        throw Error("drainage", "", "a crease source read page by page written again", ExitCode::internal);
     w.put(std::uint64_t(db.crease_source.size()));
+    w.index = nullptr;  // the source's bytes are checked by their pages' checksums
     w.bytes(db.crease_source.data(), db.crease_source.size());
+    w.index = &index;
+    for (const std::uint64_t sum : crease_source_page_sums(db.crease_source.data(), db.crease_source.size())) w.put(sum);
     w.index = nullptr;
     w.put(index.digest());
 }

@@ -286,9 +286,9 @@ struct RefBatches {
 // false where db holds its creases.
 bool select_stored_creases(const DrainageDb& db, StoredCreases* stored, const LineBox& box, const LineCulling& culling,
                            ScoredLineSet& out) {
-    if (!stored && db.crease_source.empty()) return false;
-    std::optional<StoredCreases> local;
-    if (!stored) stored = &local.emplace(db.crease_source);
+    if (!stored && !db.has_crease_source()) return false;
+    std::shared_ptr<StoredCreases> local;
+    if (!stored) stored = (local = StoredCreases::of(db)).get();
     // only the stems whose bound some culling camera can show min_px long (ScreenSize::may_show
     // on the bound: a crease failing it would be culled line by line anyway)
     const ScreenSize size(culling, box.exaggeration);

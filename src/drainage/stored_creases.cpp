@@ -31,7 +31,28 @@ void remove_crease_tiles(const std::string& dv_path) {
 }
 
 StoredCreases::StoredCreases(std::vector<std::uint8_t> source, std::string folder)
-    : source_(std::move(source)), folder_(std::move(folder)) {}
+    : source_(std::move(source)), size_(source_.size()), folder_(std::move(folder)) {}
+
+StoredCreases::StoredCreases(std::shared_ptr<const CheckedBlocks> pages, std::uint64_t size,
+                             std::vector<std::uint64_t> sums, std::string folder)
+    : pages_(std::move(pages)), size_(size), sums_(std::move(sums)), folder_(std::move(folder)) {}
+
+std::shared_ptr<StoredCreases> StoredCreases::of(const DrainageDb& db, std::string folder) {
+    if (db.crease_source_pages)
+        return std::make_shared<StoredCreases>(db.crease_source_pages, db.crease_source_size, db.crease_source_sums,
+                                               std::move(folder));
+    return std::make_shared<StoredCreases>(db.crease_source, std::move(folder));
+}
+
+std::shared_ptr<StoredCreases> StoredCreases::take(DrainageDb& db, std::string folder) {
+    std::shared_ptr<StoredCreases> out = db.crease_source_pages
+                                             ? of(db, std::move(folder))
+                                             : std::make_shared<StoredCreases>(std::move(db.crease_source), std::move(folder));
+    db.crease_source = {}, db.crease_source_pages = nullptr;
+    return out;
+}
+
+CreaseSourceBytes StoredCreases::bytes() const { return crease_source_bytes(source_, pages_.get(), size_); }
 
 StoredCreases::~StoredCreases() = default;
 
@@ -40,7 +61,7 @@ CreaseTiles& StoredCreases::tiles() {
         auto d = std::make_unique<Decoded>();
         const auto decoded = [this](DrainageGrid& g, std::vector<std::uint8_t>& dir, CreaseTileIndex& index, SourcePart part,
                                     std::vector<SourceUnitBlock>* blocks = nullptr) {
-            if (!decode_crease_source(source_.data(), source_.size(), g, dir, index, part, blocks))
+            if (!decode_crease_source(bytes(), g, dir, index, part, blocks))
                 throw Error("drainage", "", "stored crease source does not decode", ExitCode::internal);
         };
         // the units now (with a folder: a frame whose tiles are all in files needs no more), a
@@ -51,13 +72,15 @@ CreaseTiles& StoredCreases::tiles() {
         decoded(d->g, d->dir, index, lazy ? SourcePart::units : SourcePart::index, &d->blocks);
         TileStore store;
         if (!folder_.empty()) {
-            const std::uint64_t fields[2] = {std::uint64_t(drainage_db_version), hash64(source_.data(), source_.size())};
+            // identified by its pages' checksums (not a pass over its bytes)
+            if (sums_.empty()) sums_ = crease_source_page_sums(source_.data(), source_.size());
+            const std::uint64_t fields[2] = {std::uint64_t(drainage_db_version), hash64(sums_.data(), sums_.size() * 8)};
             store.folder = folder_, store.key = hash64(fields, sizeof fields);
         }
         CreaseIndexReader reader;
         if (lazy) {
             reader.unit = [this, d = d.get()](std::size_t u, std::vector<std::uint32_t>& ids, std::vector<StemBound>& bounds) {
-                if (u >= d->blocks.size() || !decode_crease_unit(source_.data(), source_.size(), d->blocks[u], ids, bounds))
+                if (u >= d->blocks.size() || !decode_crease_unit(bytes(), d->blocks[u], ids, bounds))
                     throw Error("drainage", "", "stored crease source does not decode", ExitCode::internal);
             };
             reader.whole = [decoded] {
@@ -80,15 +103,29 @@ CreaseTiles& StoredCreases::tiles() {
     return *decoded_->tiles;
 }
 
+namespace {
+
+// f(), a damaged page of a source left in its file (DamagedBlockError) thrown as the database's
+// damage (DvCorrupt: a render then reads the database whole, or rebuilds it).
+template <class F> auto pages_checked(F&& f) {
+    try {
+        return f();
+    } catch (const DamagedBlockError& e) {
+        throw DvCorrupt("drainage", e.file(), "drainage database checksum mismatch (file corrupt)");
+    }
+}
+
+}  // namespace
+
 DrapedLineSet StoredCreases::lines_for_box(glm::vec2 lo, glm::vec2 hi, const CreaseTiles::LineTest& may_show) {
     const std::lock_guard<std::mutex> lock(mutex_);
-    return tiles().lines_for_box(lo, hi, nullptr, may_show);
+    return pages_checked([&] { return tiles().lines_for_box(lo, hi, nullptr, may_show); });
 }
 
 CreaseTiles::LineRefs StoredCreases::line_refs_for_box(glm::vec2 lo, glm::vec2 hi,
                                                        const CreaseTiles::LineTest& may_show) {
     const std::lock_guard<std::mutex> lock(mutex_);
-    return tiles().line_refs_for_box(lo, hi, may_show);
+    return pages_checked([&] { return tiles().line_refs_for_box(lo, hi, may_show); });
 }
 
 std::size_t StoredCreases::count(std::size_t (CreaseTiles::*of)() const) const {

@@ -21,7 +21,9 @@
 
 #include <glm/vec2.hpp>
 
+#include "drainage/crease_source.hpp"
 #include "drainage/crease_tiles.hpp"
+#include "drainage/drainage_db.hpp"
 #include "drainage/line_set.hpp"
 
 namespace penink {
@@ -38,6 +40,14 @@ public:
     // `source`: DrainageDb::crease_source (not empty); `folder`: where tile files are kept (none:
     // empty, nothing written).
     explicit StoredCreases(std::vector<std::uint8_t> source, std::string folder = {});
+    // A source left in the database file (DrainageDb::crease_source_pages, _size and _sums): only
+    // the pages a query needs are read.
+    StoredCreases(std::shared_ptr<const CheckedBlocks> pages, std::uint64_t size, std::vector<std::uint64_t> sums,
+                  std::string folder = {});
+    // The database's source either way (has_crease_source): its bytes copied, or its pages shared;
+    // take: moved out of db (which is left without one).
+    static std::shared_ptr<StoredCreases> of(const DrainageDb& db, std::string folder = {});
+    static std::shared_ptr<StoredCreases> take(DrainageDb& db, std::string folder = {});
     ~StoredCreases();
 
     // The creases meeting the closed plan box [lo, hi] and passing may_show (CreaseTiles::
@@ -66,7 +76,11 @@ private:
     struct Decoded;
     mutable std::mutex mutex_;
     std::vector<std::uint8_t> source_;
+    std::shared_ptr<const CheckedBlocks> pages_;  // or the source's pages in its file
+    std::uint64_t size_ = 0;
+    std::vector<std::uint64_t> sums_;  // its pages' checksums (made from source_ where not given)
     std::string folder_;
+    CreaseSourceBytes bytes() const;
     std::function<void(double)> build_progress_;
     std::unique_ptr<Decoded> decoded_;
     CreaseTiles& tiles();  // decoded on first use; under mutex_

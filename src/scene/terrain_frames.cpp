@@ -134,10 +134,9 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terra
         &source.vertices, &file);
     // creases built per tile as frames need them, kept where the caches are written (beside the
     // database, or in the user's cache folder for one read beside a DEM in a read-only folder)
-    if (!source.db.crease_source.empty())
-        source.creases = std::make_shared<StoredCreases>(
-            std::move(source.db.crease_source),
-            file.empty() ? std::string() : crease_tile_folder(drainage_cache_path(scene.source.dem, options.cache_dir)));
+    if (source.db.has_crease_source())
+        source.creases = StoredCreases::take(
+            source.db, file.empty() ? std::string() : crease_tile_folder(drainage_cache_path(scene.source.dem, options.cache_dir)));
     if (source.creases) {  // a frame's first tiles can take minutes on a large DEM: shown as they are built
         auto shown = std::make_shared<StageProgress>(std::cerr, log.progress, "crease tiles");
         source.creases->on_build_progress([shown](double f) { shown->update("building", f); });
@@ -149,12 +148,12 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terra
 std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const SceneTerrain& dem, const Log& log) {
     std::optional<DrainageLineSource> source = dem.stored.in_memory ? scene_drainage(scene, *dem.stored.in_memory, log)
                                                                     : scene_drainage(scene, dem.stored.meta, log);
-    if (source && source->vertices.file) {  // vertices found damaged while drawn: the cache read whole, or rebuilt
+    if (source && source->vertices.file) {  // vertices or crease source found damaged while drawn: the cache read whole, or rebuilt
         DrainageOptions options;
         options.routing = *drainage_routing_named(scene.terrain.drainage_routing);
         options.cache_dir = scene.terrain.cache_dir;
         source->read_whole = [dem_path = scene.source.dem, meta = dem.stored.meta, options, log] {
-            log.info("drainage: " + dem_path + ": damaged vertices in the cache; reading it whole");
+            log.info("drainage: " + dem_path + ": damaged drainage cache; reading it whole");
             return load_or_build_drainage(dem_path, meta, options, [&log](const std::string& m) { log.info(m); });
         };
     }

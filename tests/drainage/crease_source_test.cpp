@@ -113,14 +113,14 @@ void expect_round_trip(const Terrain& t, int factor, const std::string& what) {
         for (std::size_t u = 0; u < blocks.size(); ++u) {
             std::vector<std::uint32_t> ids;
             std::vector<StemBound> bounds;
-            ASSERT_TRUE(decode_crease_unit(bytes.data(), bytes.size(), blocks[u], ids, bounds)) << what;
+            ASSERT_TRUE(decode_crease_unit(CreaseSourceBytes{bytes.data(), bytes.size()}, blocks[u], ids, bounds)) << what;
             bad += ids != members[u];
             for (std::size_t k = 0; k < ids.size() && k < bounds.size(); ++k) bad += !(bounds[k] == index.stems[ids[k]]);
         }
         EXPECT_EQ(bad, 0u) << what;
         std::vector<std::uint32_t> ids;  // a block beyond the bytes given
         std::vector<StemBound> bounds;
-        EXPECT_FALSE(decode_crease_unit(bytes.data(), blocks[0].at + 2, blocks[0], ids, bounds)) << what;
+        EXPECT_FALSE(decode_crease_unit(CreaseSourceBytes{bytes.data(), blocks[0].at + 2}, blocks[0], ids, bounds)) << what;
     }
 
     const FlowNetwork net = network_of_directions(h, dir);

@@ -14,6 +14,7 @@
 #include "drainage/drainage_build.hpp"
 #include "drainage/dv_format.hpp"
 #include "drainage/line_selection.hpp"
+#include "drainage/stored_creases.hpp"
 #include "input/dem_reader.hpp"
 
 namespace penink {
@@ -291,19 +292,24 @@ TEST(DvFile, NetworkMadeAgainFromTheCreaseSourceEqualsTheBuilds) {
         // a byte of the crease source's coded arrays changed (its last bytes), the checksums made
         // to match: it does not decode
         b = good;
-        const std::size_t source_at = good.size() - 16 - back.crease_source.size();
-        ASSERT_EQ(std::memcmp(b.data() + source_at, back.crease_source.data(), back.crease_source.size()), 0) << what;
-        b[good.size() - 17] ^= 0x5a;
-        DvLineVertices where;  // the index checksum: the part's bytes before it but the vertex arrays
+        const std::size_t n = back.crease_source.size(), pages = (n + crease_source_page - 1) / crease_source_page;
+        const std::size_t sums_at = good.size() - 16 - 8 * pages, source_at = sums_at - n;
+        ASSERT_EQ(std::memcmp(b.data() + source_at, back.crease_source.data(), n), 0) << what;
+        b[sums_at - 1] ^= 0x5a;
+        const auto* fb = reinterpret_cast<const std::uint8_t*>(b.data());
+        const std::vector<std::uint64_t> sums = crease_source_page_sums(fb + source_at, n);  // its page's checksum too
+        std::memcpy(b.data() + sums_at, sums.data(), 8 * pages);
+        // the index checksum: the part's bytes before it but the vertex arrays and the source
+        DvLineVertices where;
         read_drainage_line_index((d / "again.dv").string(), nullptr, where);
         dv::ConcatHash index;
-        const auto* fb = reinterpret_cast<const std::uint8_t*>(b.data());
         std::uint64_t from = lines_at;
         for (int set = 0; set < 2; ++set) {
             index.feed(fb + from, std::size_t(where.at[set] - from));
             from = where.at[set] + sizeof(DrapedVertex) * where.count[set];
         }
-        index.feed(fb + from, std::size_t(good.size() - 16 - from));
+        index.feed(fb + from, std::size_t(source_at - from));
+        index.feed(fb + sums_at, std::size_t(good.size() - 16 - sums_at));
         const auto* lp = fb + lines_at;
         const std::uint64_t ih = index.digest();
         std::memcpy(b.data() + good.size() - 16, &ih, 8);
@@ -483,6 +489,54 @@ TEST(DvFile, LinesPartReadAloneAndChecked) {
     } catch (const Error& e) {
         EXPECT_EQ(std::string(e.what()), pre + "drainage database is stale (DEM changed)");
     }
+    fs::remove_all(d);
+}
+
+// A render's read leaves the creases' source in the file too, read page by page where decoded,
+// each page checked by its checksum: with a tile folder, a later process reads the units' table
+// and no more when the tile files hold its stems; the creases are the whole read's; the files a
+// source in memory writes are the ones a source in the file reads (the same key). A bit flipped
+// in a page is found when that page is read (DvCorrupt), not before.
+TEST(DvFile, CreaseSourceLeftInTheFileIsReadByThePagesNeeded) {
+    const fs::path d = temp_dir("source_pages");
+    Terrain t = read_dem(PENINK_SOURCE_DIR "/examples/jacksboro.tif");
+    const DrainageFingerprint fp{11, 12, 13, 1, 0, 0};
+    const fs::path p = d / "j.dv";
+    build_and_write_drainage_db(t, DrainageOptions{}, fp, p.string());
+    const DrainageDb whole = read_drainage_db(p.string(), &fp);
+    ASSERT_GT(whole.crease_source.size(), 4 * crease_source_page);
+    DvLineVertices where;
+    const DrainageDb first = read_drainage_line_index(p.string(), &fp, where);
+    ASSERT_TRUE(first.crease_source.empty());
+    ASSERT_TRUE(first.crease_source_pages);
+    EXPECT_EQ(first.crease_source_size, whole.crease_source.size());
+    EXPECT_EQ(first.crease_source_pages->bytes_read(), 0u);  // nothing read yet
+    const glm::vec2 lo(-1e30f), hi(1e30f);
+    const DrapedLineSet want = StoredCreases(whole.crease_source).lines_for_box(lo, hi);
+    ASSERT_GT(want.lines.size(), 1000u);
+    const std::string tiles = (d / "tiles").string();
+    EXPECT_TRUE(StoredCreases::of(first, tiles)->lines_for_box(lo, hi) == want);  // built, written
+    EXPECT_EQ(first.crease_source_pages->bytes_read(), first.crease_source_size);  // the grid and directions
+    const DrainageDb later = read_drainage_line_index(p.string(), &fp, where);
+    const std::shared_ptr<StoredCreases> read = StoredCreases::of(later, tiles);
+    EXPECT_TRUE(read->lines_for_box(lo, hi) == want);
+    EXPECT_EQ(read->tiles_written(), 0u);
+    EXPECT_GT(later.crease_source_pages->bytes_read(), 0u);
+    EXPECT_LT(later.crease_source_pages->bytes_read(), later.crease_source_size / 4);
+    StoredCreases in_memory(whole.crease_source, tiles);
+    EXPECT_TRUE(in_memory.lines_for_box(lo, hi) == want);
+    EXPECT_GT(in_memory.tiles_read(), 0u);
+    EXPECT_EQ(in_memory.tiles_written(), 0u);
+
+    std::vector<char> b = slurp(p);  // the source's last byte (the directions' last block) flipped
+    const std::size_t n = whole.crease_source.size(), pages = (n + crease_source_page - 1) / crease_source_page;
+    const std::size_t source_end = b.size() - 16 - 8 * pages;
+    ASSERT_EQ(std::memcmp(b.data() + source_end - n, whole.crease_source.data(), n), 0);
+    b[source_end - 1] ^= 0x21;
+    spit(p, b);
+    const DrainageDb damaged = read_drainage_line_index(p.string(), &fp, where);  // not read yet: not found
+    EXPECT_TRUE(StoredCreases::of(damaged, tiles)->lines_for_box(lo, hi) == want);  // the files need no more
+    EXPECT_THROW(StoredCreases::of(damaged)->lines_for_box(lo, hi), DvCorrupt);  // a build reads that page
     fs::remove_all(d);
 }
 
@@ -686,6 +740,12 @@ TEST(DvFile, CacheMovedWithItsDemIsRebuilt) {
                                        ": drainage database refers to another DEM path; rebuilding");
     EXPECT_EQ(log.back(), "drainage: wrote " + cache_file_report((d / "b" / "v.asc.dv").string()));
     EXPECT_TRUE(read_drainage_db((d / "b" / "v.asc.dv").string()).branches == whole.branches);
+    fs::rename(d / "b", d / "c");  // again, read as a render reads it (the source left in the file)
+    DvLineVertices in_file;
+    load_or_build_drainage((d / "c" / "v.asc").string(), read_dem((d / "c" / "v.asc").string()), o, say, {}, &in_file);
+    EXPECT_EQ(log[log.size() - 2], "penink: drainage: " + (d / "c" / "v.asc.dv").string() +
+                                       ": drainage database refers to another DEM path; rebuilding");
+    fs::rename(d / "c", d / "b");
     fs::rename(d / "b" / "v.asc", d / "b" / "w.asc");
     EXPECT_EQ(read_error(d / "b" / "v.asc.dv"),
               "penink: drainage: " + (d / "b" / "v.asc.dv").string() + ": drainage database is stale (DEM changed)");

@@ -698,9 +698,10 @@ TEST(CreasesRender, DecimationKeepsVerticesHalfAPixelApart) {
 }
 
 // The render path's cache read (load_or_build_drainage with `in_file`) checks what it reads, the
-// line records, index and the creases' source: one bit flipped in a ridge's record or in the
-// creases' source is found and the cache rebuilt, after which the file is used with its vertices
-// left in it.
+// line records and index: one bit flipped in a ridge's record is found and the cache rebuilt,
+// after which the file is used with its vertices and the creases' source left in it. A bit
+// flipped in the creases' source is found when a frame reads its page: the frame reads the cache
+// whole, which rebuilds it, and draws what a sound cache draws.
 TEST(CreasesRender, StreamedCacheReadRebuildsACorruptRecord) {
     const fs::path dir = volcano_dir("streamed_corrupt");
     const Cleanup cleanup{dir};
@@ -711,44 +712,60 @@ TEST(CreasesRender, StreamedCacheReadRebuildsACorruptRecord) {
     const DrainageDb stored = read_drainage_line_index(cache.string(), nullptr, where);
     ASSERT_EQ(where.count[0], 0u);  // the creases: built by the frames from their source
     ASSERT_GT(where.count[1], 100u);
-    ASSERT_GT(stored.crease_source.size(), 1000u);
+    ASSERT_GT(stored.crease_source_size, 1000u);
+    const std::size_t source_bytes = std::size_t(stored.crease_source_size);
     std::uint64_t lines_at = 0;
     std::memcpy(&lines_at, good.data() + 24, 8);
     // the lines part's header 72 B, the empty crease set 16 B of counts and its index, then the
     // ridges' counts (16 B) and records: where its index ends, measured as the part's size less
     // what follows the ridges' records
-    const std::size_t source_at = good.size() - 16 - stored.crease_source.size();
+    const std::size_t source_at = good.size() - 16 - 8 * stored.crease_source_sums.size() - source_bytes;
     const std::size_t ridges_records_end =
         source_at - 8 - (28 * where.count[1] + 8 * ((where.count[1] + 1023) / 1024) + 16 +
                          8 * stored.ridges.index.level_cols.size() + 4 * stored.ridges.index.start.size() +
                          4 * stored.ridges.index.ids.size());
     ASSERT_GT(ridges_records_end, std::size_t(lines_at) + 88 + 28 * 8);
-    for (const std::size_t at : {ridges_records_end - 28 * 7 + 5, source_at + stored.crease_source.size() / 2}) {
+    {
         std::string bad = good;
+        const std::size_t at = ridges_records_end - 28 * 7 + 5;
         bad[at] = char(bad[at] ^ 0x10);
         std::ofstream(cache, std::ios::binary) << bad;
         std::vector<std::string> log;
         DvLineVertices in_file;
         const DrainageDb built = load_or_build_drainage(dem.string(), read_dem(dem.string()), DrainageOptions{},
                                                         [&](const std::string& m) { log.push_back(m); }, {}, &in_file);
-        ASSERT_EQ(log.size(), 2u) << at;
+        ASSERT_EQ(log.size(), 2u);
         EXPECT_EQ(log[0], "penink: drainage: " + cache.string() +
-                              ": drainage database checksum mismatch (file corrupt); rebuilding")
-            << at;
+                              ": drainage database checksum mismatch (file corrupt); rebuilding");
         EXPECT_FALSE(in_file.file);  // a build hands its lines directly
         EXPECT_FALSE(built.ridges.vertices.empty());
-        EXPECT_EQ(built.crease_source, stored.crease_source);
+        ASSERT_EQ(built.crease_source.size(), source_bytes);
+        EXPECT_EQ(std::memcmp(built.crease_source.data(), good.data() + source_at, source_bytes), 0);
         EXPECT_EQ(read_text(cache), good);
         const DrainageDb cached = load_or_build_drainage(dem.string(), read_dem(dem.string()), DrainageOptions{},
                                                          [&](const std::string& m) { log.push_back(m); }, {}, &in_file);
         EXPECT_EQ(log.back(), "drainage: using cached " + cache_file_report(cache.string()));
         ASSERT_TRUE(in_file.file);
         EXPECT_TRUE(cached.ridges.vertices.empty());
+        EXPECT_TRUE(cached.crease_source.empty() && cached.crease_source_pages);
         EXPECT_TRUE(cached.ridges.lines == built.ridges.lines && cached.ridges.index == built.ridges.index);
         DrapedVertices v(built.ridges.vertices.size());
         in_file.read(1, 0, v.size(), v.data());
         EXPECT_TRUE(v == built.ridges.vertices);
     }
+    ASSERT_EQ(run_penink("render volcano.asc --width 300 --height 225 -o sound.svg -q", dir).code, 0);
+    fs::remove_all(dir / "volcano.asc.dv.tiles");  // the frame builds its creases: it reads every page
+    std::string bad = good;
+    bad[source_at + source_bytes / 2] = char(bad[source_at + source_bytes / 2] ^ 0x10);
+    std::ofstream(cache, std::ios::binary) << bad;
+    const RunResult r = run_penink("render volcano.asc --width 300 --height 225 -o damaged.svg --verbose", dir);
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("drainage: using cached volcano.asc.dv"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("damaged drainage cache; reading it whole"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("drainage database checksum mismatch (file corrupt); rebuilding"), std::string::npos)
+        << r.output;
+    EXPECT_EQ(read_text(dir / "damaged.svg"), read_text(dir / "sound.svg"));
+    EXPECT_EQ(read_text(cache), good);
 }
 
 // The creases paper's Table 5 weights (slope .1, illumination .3, flow .6) with Figure 15's min
