@@ -232,23 +232,65 @@ void check_part(std::size_t lines, std::size_t stems) {
 
 }  // namespace
 
-void CreaseTiles::keep(const std::vector<std::uint32_t>& ids, std::unique_ptr<DrapedLineSet> lines, bool on_disk) {
+void CreaseTiles::keep(const std::vector<std::uint32_t>& ids, std::unique_ptr<DrapedLineSet> lines, bool on_disk,
+                       int detail) {
     check_part(lines->lines.size(), ids.size());
     U32Map& map = on_disk ? query_ : kept_;
     auto& at = on_disk ? query_at_ : at_;
     for (std::uint32_t i = 0; i < ids.size(); ++i)
         map.insert(ids[i], std::uint32_t(at.size())), at.emplace_back(std::uint32_t(sets_.size()), i);
     stems_built_ += ids.size(), vertices_built_ += lines->vertices.size();
-    sets_.push_back(std::move(lines));
+    sets_.push_back(std::move(lines)), set_detail_.push_back(std::uint8_t(detail));
 }
 
-std::uint64_t CreaseTiles::tile_key(std::size_t k, int l) const {
-    const std::uint64_t fields[4] = {store_.key, std::uint64_t(side_), std::uint64_t(k), std::uint64_t(l)};
-    return hash64(fields, sizeof fields);
+std::uint64_t CreaseTiles::tile_key(std::size_t k, int l, int d) const {
+    const std::uint64_t fields[5] = {store_.key, std::uint64_t(side_), std::uint64_t(k), std::uint64_t(l), std::uint64_t(d)};
+    return hash64(fields, d > 0 ? sizeof fields : 4 * sizeof(std::uint64_t));
 }
 
-std::string CreaseTiles::tile_path(std::size_t k, int l) const {
-    return line_tile_path(store_.folder, std::uint32_t(k), l);
+std::string CreaseTiles::tile_path(std::size_t k, int l, int d) const {
+    return line_tile_path(store_.folder, std::uint32_t(k), l, d);
+}
+
+double CreaseTiles::detail_spacing(int d) const { return std::ldexp(g_.dx, d); }
+
+int CreaseTiles::unit_detail(const CreaseUnit& u, const LineDetail& detail) const {
+    if (!detail) return 0;
+    const double allowed = detail(u.lo, u.hi, z_top_);
+    int d = 0;
+    while (d < crease_detail_levels && detail_spacing(d + 1) <= allowed) ++d;
+    return d;
+}
+
+int CreaseTiles::read_unit(std::size_t k, int l, int d, TileLines& out) const {
+    const bool copy = d >= crease_copy_detail;
+    if (copy && read_line_tile(tile_path(k, l, d), tile_key(k, l, d), out)) return 1;
+    if (!read_line_tile(tile_path(k, l), tile_key(k, l), out)) return 0;
+    if (d == 0) return 1;
+    out.lines = thinned_lines(out.lines, detail_spacing(d));  // a copy made, kept for the next query
+    return copy && writable_ && write_line_tile(tile_path(k, l, d), tile_key(k, l, d), out.lines, out.stems, out.bounds) ? 2 : 1;
+}
+
+DrapedLineSet thinned_lines(const DrapedLineSet& from, double spacing) {
+    DrapedLineSet out;
+    out.lines.reserve(from.lines.size());
+    const double s2 = spacing * spacing;
+    for (const DrapedLine& l : from.lines) {
+        DrapedLine t = l;
+        t.first = std::uint32_t(out.vertices.size());
+        const DrapedVertex* v = from.vertices.data() + l.first;
+        std::uint32_t last = 0;  // the last vertex kept
+        out.vertices.push_back(v[0]);
+        for (std::uint32_t i = 1; i + 1 < l.count; ++i) {
+            const double dx = double(v[i].x) - v[last].x, dy = double(v[i].y) - v[last].y, dz = double(v[i].z) - v[last].z;
+            if (dx * dx + dy * dy + dz * dz >= s2) out.vertices.push_back(v[i]), last = i;
+        }
+        if (l.count > 1) out.vertices.push_back(v[l.count - 1]);
+        t.count = std::uint32_t(out.vertices.size()) - t.first;
+        out.lines.push_back(t);
+    }
+    index_lines(out);
+    return out;
 }
 
 int crease_tile_level(const StemBound& b, double cell) {
@@ -258,22 +300,25 @@ int crease_tile_level(const StemBound& b, double cell) {
     return l;
 }
 
-std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show) {
+std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show,
+                                                          const LineDetail& detail) {
     const auto meets = [&](glm::vec2 a, glm::vec2 b) { return !(b.x < lo.x || a.x > hi.x || b.y < lo.y || a.y > hi.y); };
     const auto passes = [&](const StemBound& b, glm::vec2 blo, glm::vec2 bhi) {
         return meets(blo, bhi) && (!may_show || may_show(b, blo, bhi, z_top_));
     };
-    // the units whose summary passes (the others have no stem that does)
+    // the units whose summary passes (the others have no stem that does), and their detail
     std::vector<std::pair<std::size_t, int>> units;
+    std::vector<int> unit_d;
     for (std::size_t k = 0; k < tiles_.size(); ++k) {
         const Tile& t = tiles_[k];
         if (!meets(t.lo, t.hi)) continue;
         for (int l = 0; l < crease_tile_levels; ++l) {
             const CreaseUnit& u = t.unit[std::size_t(l)];
-            if (u.count && passes(u.most, u.lo, u.hi)) units.emplace_back(k, l);
+            if (u.count && passes(u.most, u.lo, u.hi)) units.emplace_back(k, l), unit_d.push_back(unit_detail(u, detail));
         }
     }
-    std::vector<std::uint32_t> wanted;
+    std::vector<std::pair<std::uint32_t, int>> wanted;  // stems and the detail they are given at
+    std::size_t copies = 0;                              // copies written
     // done: read from its file, its stems tested by the bounds there; or without a sound file, no
     // stem of it passing (its stems' bounds read from the index's unit alone)
     std::vector<std::uint8_t> done(units.size(), 0);
@@ -281,12 +326,14 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
     if (!loaded_ && !store_.folder.empty()) {
         std::vector<std::unique_ptr<DrapedLineSet>> got(units.size());
         std::vector<std::vector<std::uint32_t>> ids(units.size());
+        std::atomic<std::size_t> written{0};
         parallel_chunks(units.size(), 1, [&](std::size_t u0, std::size_t u1) {
             for (std::size_t u = u0; u < u1; ++u) {
                 const auto [k, l] = units[u];
                 TileLines whole;
-                const bool read = read_line_tile(tile_path(k, l), tile_key(k, l), whole) &&
-                                  whole.stems.size() == tiles_[k].unit[std::size_t(l)].count;
+                const int how = read_unit(k, l, unit_d[u], whole);
+                written += how == 2;
+                const bool read = how > 0 && whole.stems.size() == tiles_[k].unit[std::size_t(l)].count;
                 if (!read) reader_.unit(tiles_[k].at[std::size_t(l)], whole.stems, whole.bounds);
                 std::vector<std::uint32_t> at;
                 glm::vec2 blo, bhi;
@@ -298,18 +345,19 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
                 else if (at.empty()) done[u] = 1;  // nothing of it needed
             }
         });
+        copies += written;
         for (std::size_t u = 0; u < units.size(); ++u) {
             if (!got[u]) continue;
             done[u] = 1, touched = true, ++tiles_read_;
-            wanted.insert(wanted.end(), ids[u].begin(), ids[u].end());
-            if (!ids[u].empty()) keep(ids[u], std::move(got[u]), true);
+            for (std::uint32_t s : ids[u]) wanted.emplace_back(s, unit_d[u]);
+            if (!ids[u].empty()) keep(ids[u], std::move(got[u]), true, unit_d[u]);
         }
     }
     if (std::find(done.begin(), done.end(), 0) != done.end()) load_index();
     std::vector<std::uint32_t> missing;
     // missing[cuts[k], cuts[k + 1]): level cut_level[k] of tile cut_tile[k]'s, ascending
     std::vector<std::size_t> cuts{0}, cut_tile;
-    std::vector<int> cut_level;
+    std::vector<int> cut_level, cut_d;
     glm::vec2 blo, bhi;  // a stem's bound's box
     for (std::size_t u = 0; u < units.size(); ++u) {
         if (done[u]) continue;
@@ -317,10 +365,11 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
         for (std::uint32_t s : tiles_[k].stems[std::size_t(l)]) {
             stem_bound_box(bounds_[s], parts_.lo, parts_.hi, blo, bhi);
             if (!passes(bounds_[s], blo, bhi)) continue;
-            wanted.push_back(s);
+            wanted.emplace_back(s, unit_d[u]);
             if (!kept_.find(s)) missing.push_back(s);
         }
-        if (missing.size() > cuts.back()) cuts.push_back(missing.size()), cut_tile.push_back(k), cut_level.push_back(l);
+        if (missing.size() > cuts.back())
+            cuts.push_back(missing.size()), cut_tile.push_back(k), cut_level.push_back(l), cut_d.push_back(unit_d[u]);
     }
     std::sort(wanted.begin(), wanted.end());
     if (touched || !missing.empty()) ++builds_;
@@ -331,16 +380,17 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
     // stems needed are copied out)
     std::vector<std::unique_ptr<DrapedLineSet>> read(cut_tile.size());
     if (!store_.folder.empty()) {
-        std::atomic<std::size_t> count{0};
+        std::atomic<std::size_t> count{0}, written{0};
         parallel_chunks(cut_tile.size(), 1, [&](std::size_t k0, std::size_t k1) {
             for (std::size_t k = k0; k < k1; ++k) {
                 TileLines whole;
-                if (read_line_tile(tile_path(cut_tile[k], cut_level[k]), tile_key(cut_tile[k], cut_level[k]), whole) &&
-                    whole.stems == tiles_[cut_tile[k]].stems[cut_level[k]])
+                const int how = read_unit(cut_tile[k], cut_level[k], cut_d[k], whole);
+                written += how == 2;
+                if (how > 0 && whole.stems == tiles_[cut_tile[k]].stems[cut_level[k]])
                     read[k] = lines_of(ids_of(k), whole.stems, whole.lines), ++count;
             }
         });
-        tiles_read_ += count;
+        tiles_read_ += count, copies += written;
     }
     // the others built, a tile at a time: its levels needed in one build on all cores (a part's
     // stems walk their trunks again: one build of a tile's levels costs less than one a level;
@@ -359,7 +409,7 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
     };
     for (std::size_t k0 = 0, k1; k0 < cut_tile.size(); k0 = k1) {
         for (k1 = k0; k1 < cut_tile.size() && cut_tile[k1] == cut_tile[k0]; ++k1)
-            if (read[k1]) keep(ids_of(k1), std::move(read[k1]), true);
+            if (read[k1]) keep(ids_of(k1), std::move(read[k1]), true, cut_d[k1]);
         std::vector<std::size_t> todo;  // cuts of this tile still missing
         for (std::size_t k = k0; k < k1; ++k)
             if (!query_.find(missing[cuts[k]])) todo.push_back(k);
@@ -396,12 +446,31 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
         keep(need, std::make_unique<DrapedLineSet>(crease_part(g_, dir_, net_, surface(), parts_, need)));
         tile_built();
     }
+    tiles_written_ += copies;
     std::vector<Pick> picks;
     picks.reserve(wanted.size());
-    for (std::uint32_t s : wanted) {
+    std::vector<std::size_t> thin;  // picks of lines at detail 0 wanted coarser (built here, kept)
+    for (const auto& [s, d] : wanted) {
         const std::uint32_t* i = kept_.find(s);
         const auto [set, line] = i ? at_[*i] : query_at_[*query_.find(s)];
+        if (set_detail_[set] != d) thin.push_back(picks.size());
         picks.push_back({s, sets_[set], line});
+    }
+    for (int d = 1; d <= crease_detail_levels && !thin.empty(); ++d) {  // thinned as the copies are
+        DrapedLineSet full;
+        std::vector<std::size_t> at;
+        for (const std::size_t p : thin)
+            if (wanted[p].second == d) {
+                const DrapedLine& l = picks[p].set->lines[picks[p].line];
+                DrapedLine c = l;
+                c.first = std::uint32_t(full.vertices.size());
+                full.vertices.insert(full.vertices.end(), picks[p].set->vertices.begin() + l.first,
+                                     picks[p].set->vertices.begin() + l.first + l.count);
+                full.lines.push_back(c), at.push_back(p);
+            }
+        if (at.empty()) continue;
+        const auto coarse = std::make_shared<const DrapedLineSet>(thinned_lines(full, detail_spacing(d)));
+        for (std::size_t j = 0; j < at.size(); ++j) picks[at[j]].set = coarse, picks[at[j]].line = std::uint32_t(j);
     }
     // the sets in files forgotten (the picks hold them while the caller uses them)
     for (const auto& [set, line] : query_at_) sets_[set].reset();
@@ -409,8 +478,9 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
     return picks;
 }
 
-CreaseTiles::LineRefs CreaseTiles::line_refs_for_box(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show) {
-    const std::vector<Pick> picks = picks_for_box(lo, hi, may_show);
+CreaseTiles::LineRefs CreaseTiles::line_refs_for_box(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show,
+                                                     const LineDetail& detail) {
+    const std::vector<Pick> picks = picks_for_box(lo, hi, may_show, detail);
     LineRefs out;
     out.lines.reserve(picks.size()), out.vertices.reserve(picks.size());
     for (const Pick& p : picks) {
@@ -422,8 +492,8 @@ CreaseTiles::LineRefs CreaseTiles::line_refs_for_box(glm::vec2 lo, glm::vec2 hi,
 }
 
 DrapedLineSet CreaseTiles::lines_for_box(glm::vec2 lo, glm::vec2 hi, std::vector<std::uint32_t>* ids,
-                                         const LineTest& may_show) {
-    const std::vector<Pick> picks = picks_for_box(lo, hi, may_show);
+                                         const LineTest& may_show, const LineDetail& detail) {
+    const std::vector<Pick> picks = picks_for_box(lo, hi, may_show, detail);
     DrapedLineSet out;
     std::size_t n = 0;
     for (const Pick& p : picks) n += p.set->lines[p.line].count;

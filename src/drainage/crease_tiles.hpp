@@ -40,6 +40,7 @@
 #include "drainage/dem_surface.hpp"
 #include "drainage/draped_lines.hpp"
 #include "core/u32_map.hpp"
+#include "drainage/line_tile_files.hpp"
 #include "drainage/stem_reach.hpp"
 
 namespace penink {
@@ -97,6 +98,20 @@ struct CreaseIndexReader {
     std::function<CreaseTileIndex()> whole;
 };
 
+// Copies of a unit's lines with fewer vertices, for frames that cannot tell them from the lines:
+// detail d (1 to crease_detail_levels) keeps vertices about 2^d cells apart (thinned_lines with a
+// spacing of 2^d DrainageGrid::dx). A query asks for the coarsest detail whose spacing its
+// LineDetail allows in each unit's box; a copy of detail crease_copy_detail or more is kept in a
+// file of its own beside the unit's (a quarter of its vertices or fewer: on /tmp/j29.tif's whole
+// view the copies at detail 1 would add 36 % to the files they copy, those at 2 add 14 %), one of
+// detail 1 is thinned from the unit's file where read.
+inline constexpr int crease_detail_levels = 6, crease_copy_detail = 2;
+// The lines of `from` with their vertices thinned: a line's first vertex, then each vertex whose
+// 3-D distance (unexaggerated) from the last one kept is `spacing` metres or more, and its last
+// vertex; records and index made again (index_lines). Every line keeps at least one vertex (two
+// where it had two); thinning the result again with the same spacing gives it unchanged.
+DrapedLineSet thinned_lines(const DrapedLineSet& from, double spacing);
+
 // Where built tiles are kept between processes: one file a tile in `folder` (none: empty), each
 // keyed by hash64 of `key` (the caller's: what the network was built from), the tile size, the
 // tile's index and the level.
@@ -127,13 +142,19 @@ public:
     // test growing with the length and the box, as LineCulling's screen size does). Empty: every
     // stem.
     using LineTest = std::function<bool(const StemBound& bound, glm::vec2 lo, glm::vec2 hi, float z_top)>;
+    // The largest spacing (metres, unexaggerated 3-D) of a line's vertices that a frame cannot tell
+    // from the line anywhere in the plan box [lo, hi] below z_top (0: every vertex); a unit's lines
+    // are given at the coarsest detail (crease_detail_levels) whose spacing is at most that in its
+    // summary's box. Empty: every vertex everywhere.
+    using LineDetail = std::function<double(glm::vec2 lo, glm::vec2 hi, float z_top)>;
 
     // The stems whose bound's box meets the closed plan box [lo, hi] and passes `may_show`, built
     // where not yet, in stem order (network_stems' ids in `ids`), indexed: lines_meeting_box on
     // it gives the whole build's lines meeting the box (those passing may_show, which the others
     // fail), in the same order, equal bit for bit.
+    // With `detail`, each line as thinned_lines gives it at its unit's detail.
     DrapedLineSet lines_for_box(glm::vec2 lo, glm::vec2 hi, std::vector<std::uint32_t>* ids = nullptr,
-                                const LineTest& may_show = {});
+                                const LineTest& may_show = {}, const LineDetail& detail = {});
     // The same lines without copying their vertices: each line's record (box, length, count,
     // order; `first` meaningless) and a pointer to its vertices where it was built or read, which
     // stays valid and unchanged as long as this LineRefs lives (it holds the sets pointed into).
@@ -142,7 +163,7 @@ public:
         std::vector<const DrapedVertex*> vertices;
         std::vector<std::shared_ptr<const DrapedLineSet>> hold;
     };
-    LineRefs line_refs_for_box(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show = {});
+    LineRefs line_refs_for_box(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show = {}, const LineDetail& detail = {});
 
     // Called once, before the first stem is built: a caller that made g, dir and net with their
     // sizes only fills them there.
@@ -173,8 +194,14 @@ private:
         std::shared_ptr<const DrapedLineSet> set;
         std::uint32_t line;
     };
-    // built where needed, in stem order
-    std::vector<Pick> picks_for_box(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show);
+    // built where needed, in stem order, each at its unit's detail
+    std::vector<Pick> picks_for_box(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show, const LineDetail& detail);
+    // The detail a query gives unit u's lines, and the file of unit (k, l) at detail d read into
+    // `out` (d > 0: its copy, else its lines read at detail 0, thinned, and the copy written)
+    // (0: no file read; 1: read; 2: read, and the copy written)
+    int unit_detail(const CreaseUnit& u, const LineDetail& detail) const;
+    int read_unit(std::size_t k, int l, int d, TileLines& out) const;
+    double detail_spacing(int d) const;  // metres between a copy's vertices at detail d
     struct Tile {
         std::array<std::vector<std::uint32_t>, crease_tile_levels> stems;  // ids by level, ascending (loaded_)
         std::array<CreaseUnit, crease_tile_levels> unit;                   // count 0: no stem of that level
@@ -198,6 +225,7 @@ private:
     // sets_[at_[i].first], i = its entry in kept_ (the stems kept for later queries: built without
     // a file) or in this query's query_ (those read from or written to a file this query)
     std::vector<std::shared_ptr<const DrapedLineSet>> sets_;
+    std::vector<std::uint8_t> set_detail_;  // each set's detail
     std::vector<std::pair<std::uint32_t, std::uint32_t>> at_, query_at_;
     U32Map kept_, query_;
     std::size_t stems_built_ = 0, vertices_built_ = 0, builds_ = 0;
@@ -206,10 +234,11 @@ private:
     std::size_t tiles_read_ = 0, tiles_built_ = 0, tiles_written_ = 0;
     DemSurface& surface();  // made with the first build (after before_first_build)
     // keeps `lines` (line i: stem ids[i]) as a new set; for this query alone when on_disk
-    void keep(const std::vector<std::uint32_t>& ids, std::unique_ptr<DrapedLineSet> lines, bool on_disk = false);
-    // of the file of level l of tile k, and its path
-    std::uint64_t tile_key(std::size_t k, int l) const;
-    std::string tile_path(std::size_t k, int l) const;
+    void keep(const std::vector<std::uint32_t>& ids, std::unique_ptr<DrapedLineSet> lines, bool on_disk = false,
+              int detail = 0);
+    // of the file of level l of tile k at detail d, and its path
+    std::uint64_t tile_key(std::size_t k, int l, int d = 0) const;
+    std::string tile_path(std::size_t k, int l, int d = 0) const;
     std::unique_ptr<DemSurface> surface_;  // made with the first build
     std::function<void()> before_build_;
     std::function<void(double)> build_progress_;

@@ -102,15 +102,21 @@ public:
     bool may_show(glm::vec2 lo, glm::vec2 hi, double length,
                   double z_top = std::numeric_limits<double>::infinity()) const {
         if (!culls()) return true;
-        for (std::size_t c = 0; c < scale_.size(); ++c) {
-            const glm::dvec3& eye = culling_.cameras[c].eye;
-            const double dx = std::max({double(lo.x) - eye.x, eye.x - double(hi.x), 0.0});
-            const double dy = std::max({double(lo.y) - eye.y, eye.y - double(hi.y), 0.0});
-            const double dz = std::max(0.0, eye.z - e_ * z_top);
-            const double plan = is_orthographic(culling_.cameras[c]) ? 1.0 : std::sqrt(dx * dx + dy * dy + dz * dz);
-            if (length * scale_[c] >= double(culling_.min_px) * plan) return true;
-        }
+        for (std::size_t c = 0; c < scale_.size(); ++c)
+            if (length * scale_[c] >= double(culling_.min_px) * box_distance(c, lo, hi, z_top)) return true;
         return false;
+    }
+
+    // The spacing (metres, unexaggerated 3-D) of a line's vertices that keeps() cannot tell from
+    // every vertex anywhere in the plan box [lo, hi] below e z_top: the decimation step at the
+    // box's nearest point for the finest camera over max(1, e) (an exaggerated step is at most
+    // max(1, e) times the unexaggerated one); 0 without decimation (CreaseTiles::LineDetail).
+    double detail(glm::vec2 lo, glm::vec2 hi, double z_top) const {
+        if (!culls() || culling_.decimate_px <= 0.0f) return 0.0;
+        double step = 1e300;
+        for (std::size_t c = 0; c < scale_.size(); ++c)
+            step = std::min(step, double(culling_.decimate_px) * box_distance(c, lo, hi, z_top) / scale_[c]);
+        return step / std::max(1.0, e_);
     }
 
     // Whether vertex p (i of a piece whose drawable part is [k, end)) is written after `last`:
@@ -128,6 +134,15 @@ private:
     static constexpr double slack = 1.0 + 1e-5;  // float rounding of the lengths
     double distance_to(std::size_t c, const glm::dvec3& p) const {
         return is_orthographic(culling_.cameras[c]) ? 1.0 : glm::length(p - culling_.cameras[c].eye);
+    }
+    // The least distance_to of a point of the plan box [lo, hi] no higher than e z_top.
+    double box_distance(std::size_t c, glm::vec2 lo, glm::vec2 hi, double z_top) const {
+        if (is_orthographic(culling_.cameras[c])) return 1.0;
+        const glm::dvec3& eye = culling_.cameras[c].eye;
+        const double dx = std::max({double(lo.x) - eye.x, eye.x - double(hi.x), 0.0});
+        const double dy = std::max({double(lo.y) - eye.y, eye.y - double(hi.y), 0.0});
+        const double dz = std::max(0.0, eye.z - e_ * z_top);
+        return std::sqrt(dx * dx + dy * dy + dz * dz);
     }
     const LineCulling& culling_;
     double e_;
@@ -297,7 +312,10 @@ bool select_stored_creases(const DrainageDb& db, StoredCreases* stored, const Li
         may_show = [&size](const StemBound& b, glm::vec2 lo, glm::vec2 hi, float z_top) {
             return size.may_show(b, lo, hi, z_top);
         };
-    const CreaseTiles::LineRefs refs = stored->line_refs_for_box(box.lo, box.hi, may_show);
+    CreaseTiles::LineDetail detail;  // each unit's lines as thinned as the pieces' decimation allows there
+    if (size.culls())
+        detail = [&size](glm::vec2 lo, glm::vec2 hi, float z_top) { return size.detail(lo, hi, double(z_top)); };
+    const CreaseTiles::LineRefs refs = stored->line_refs_for_box(box.lo, box.hi, may_show, detail);
     std::vector<std::uint32_t> ids;  // those meeting the box, ascending (what lines_meeting_box gives)
     for (std::uint32_t i = 0; i < refs.lines.size(); ++i) {
         const DrapedLine& l = refs.lines[i];

@@ -1,6 +1,9 @@
 #include "drainage/line_tile_files.hpp"
 
+#include <algorithm>
 #include <array>
+#include <bit>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -14,10 +17,26 @@ namespace penink {
 namespace {
 
 constexpr std::uint32_t magic = 0x544c4e50u;  // "PNLT"
-constexpr std::uint32_t version = 4;
+constexpr std::uint32_t version = 5;
 // x, y, z, nx, ny, nz, flow: each differenced once along the vertices (neighbours on a line lie
 // about a cell apart, their normals and flows alike)
-constexpr std::array<int, 7> orders{1, 1, 1, 1, 1, 1, 1};
+constexpr std::array<int, 7> orders{1, 1, 1, 1, 1, 0, 1};  // nz: its residual (below), not differenced
+
+// A unit normal's z from its x and y (the normals are upward: z >= 0), in double, rounded once.
+float normal_z(float nx, float ny) {
+    return float(std::sqrt(std::max(0.0, 1.0 - double(nx) * nx - double(ny) * ny)));
+}
+// nz stored as the zigzagged step of its bits from normal_z's (0 or a unit in the last place
+// nearly always: a plane of zeros in place of one of noise), and back; lossless either way.
+std::uint32_t float_bits(float f) { return std::bit_cast<std::uint32_t>(f); }
+float nz_residual(const DrapedVertex& v) {
+    const std::int32_t r = std::int32_t(float_bits(v.nz) - float_bits(normal_z(v.nx, v.ny)));
+    return std::bit_cast<float>(std::uint32_t(r) << 1 ^ std::uint32_t(r >> 31));
+}
+float nz_of_residual(const DrapedVertex& v) {
+    const std::uint32_t z = float_bits(v.nz), r = z >> 1 ^ (0u - (z & 1u));
+    return std::bit_cast<float>(float_bits(normal_z(v.nx, v.ny)) + r);
+}
 static_assert(sizeof(DrapedVertex) == 7 * sizeof(float));
 
 template <class T> void put(std::vector<std::uint8_t>& out, const T& v) {
@@ -41,10 +60,18 @@ struct Reader {
     }
 };
 
+// The vertices coded: each one's nz replaced by its residual, then encode_float_planes.
+std::vector<std::uint8_t> encode_vertices(const DrapedVertices& vertices) {
+    DrapedVertices v = vertices;
+    for (DrapedVertex& x : v) x.nz = nz_residual(x);
+    return encode_float_planes(reinterpret_cast<const float*>(v.data()), v.size(), orders);
+}
+
 }  // namespace
 
-std::string line_tile_path(const std::string& folder, std::uint32_t tile, int level) {
-    return (std::filesystem::path(folder) / ("tile-" + std::to_string(tile) + "-" + std::to_string(level) + ".pnlt"))
+std::string line_tile_path(const std::string& folder, std::uint32_t tile, int level, int detail) {
+    const std::string copy = detail > 0 ? "-d" + std::to_string(detail) : std::string();
+    return (std::filesystem::path(folder) / ("tile-" + std::to_string(tile) + "-" + std::to_string(level) + copy + ".pnlt"))
         .string();
 }
 
@@ -52,8 +79,7 @@ std::vector<std::uint8_t> encode_line_tile(std::uint64_t key, const DrapedLineSe
                                            const std::vector<std::uint32_t>& stems, const std::vector<StemBound>& bounds) {
     const std::vector<std::uint8_t> ids = encode_stem_ids(stems.data(), stems.size()),
                                     bound = encode_stem_bounds(bounds.data(), bounds.size()),
-                                    coded = encode_float_planes(reinterpret_cast<const float*>(lines.vertices.data()),
-                                                                lines.vertices.size(), orders);
+                                    coded = encode_vertices(lines.vertices);
     std::vector<std::uint8_t> out;
     out.reserve(64 + 5 * lines.lines.size() + ids.size() + bound.size() + coded.size());
     put(out, magic), put(out, version), put(out, key);
@@ -107,6 +133,7 @@ bool decode_line_tile(const std::uint8_t* data, std::size_t size, std::uint64_t 
     lines.vertices.resize(nv);
     if (!decode_float_planes(coded, std::size_t(coded_n), reinterpret_cast<float*>(lines.vertices.data()), nv, orders))
         return false;
+    for (DrapedVertex& v : lines.vertices) v.nz = nz_of_residual(v);
     index_lines(lines);
     return line_set_ok(lines);
 }

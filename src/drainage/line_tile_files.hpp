@@ -10,8 +10,9 @@
 // coded losslessly (core/block_codec.hpp encode_float_planes: the seven floats of each vertex, x,
 // y, z, the normal and the flow, each differenced once along the tile's vertices, zigzagged, in
 // byte planes, each plane deflated or, where that saves under a tenth, kept as it is, so reading
-// inflates only the planes worth it; on jacksboro refined five times, 28 B a vertex as stored in
-// memory code to about 17), and a hash64 of all that. The lines' boxes, lengths and index are
+// inflates only the planes worth it; the normal's z stored as the step of its bits from the one
+// its x and y give, nearly always 0; on /tmp/j29.tif's long stems 28 B a vertex as stored in
+// memory code to about 13), and a hash64 of all that. The lines' boxes, lengths and index are
 // made again when read (index_lines), as the build makes them. A file of another key or version,
 // cut short, with a wrong checksum, ids not ascending or that does not decode reads as absent:
 // the tile is built again and its file rewritten.
@@ -27,8 +28,9 @@
 
 namespace penink {
 
-// The file of level `level` of tile `tile` in `folder`.
-std::string line_tile_path(const std::string& folder, std::uint32_t tile, int level);
+// The file of level `level` of tile `tile` in `folder` (tile-K-L.pnlt), or of its copy at detail
+// d > 0 (tile-K-L-dD.pnlt: crease_tiles.hpp).
+std::string line_tile_path(const std::string& folder, std::uint32_t tile, int level, int detail = 0);
 
 // A tile file's content: its lines (every one with at least one vertex) and, for line i, its stem
 // id stems[i] (ascending) and bound bounds[i].

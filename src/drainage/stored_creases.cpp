@@ -117,15 +117,16 @@ template <class F> auto pages_checked(F&& f) {
 
 }  // namespace
 
-DrapedLineSet StoredCreases::lines_for_box(glm::vec2 lo, glm::vec2 hi, const CreaseTiles::LineTest& may_show) {
+DrapedLineSet StoredCreases::lines_for_box(glm::vec2 lo, glm::vec2 hi, const CreaseTiles::LineTest& may_show,
+                                           const CreaseTiles::LineDetail& detail) {
     const std::lock_guard<std::mutex> lock(mutex_);
-    return pages_checked([&] { return tiles().lines_for_box(lo, hi, nullptr, may_show); });
+    return pages_checked([&] { return tiles().lines_for_box(lo, hi, nullptr, may_show, detail); });
 }
 
-CreaseTiles::LineRefs StoredCreases::line_refs_for_box(glm::vec2 lo, glm::vec2 hi,
-                                                       const CreaseTiles::LineTest& may_show) {
+CreaseTiles::LineRefs StoredCreases::line_refs_for_box(glm::vec2 lo, glm::vec2 hi, const CreaseTiles::LineTest& may_show,
+                                                       const CreaseTiles::LineDetail& detail) {
     const std::lock_guard<std::mutex> lock(mutex_);
-    return pages_checked([&] { return tiles().line_refs_for_box(lo, hi, may_show); });
+    return pages_checked([&] { return tiles().line_refs_for_box(lo, hi, may_show, detail); });
 }
 
 std::size_t StoredCreases::count(std::size_t (CreaseTiles::*of)() const) const {

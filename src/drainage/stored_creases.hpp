@@ -55,10 +55,12 @@ public:
     // gives exactly the lines passing may_show that a database holding every crease gives for the
     // box. Throws penink::Error("drainage", "", ..., internal) when the source does not decode (it
     // was checked by the database's checksum: a builder's fault).
-    DrapedLineSet lines_for_box(glm::vec2 lo, glm::vec2 hi, const CreaseTiles::LineTest& may_show = {});
+    DrapedLineSet lines_for_box(glm::vec2 lo, glm::vec2 hi, const CreaseTiles::LineTest& may_show = {},
+                                const CreaseTiles::LineDetail& detail = {});
     // The same lines as records and pointers to their vertices in the kept lines (valid while this
     // object lives): what a frame selects from without copying the vertices.
-    CreaseTiles::LineRefs line_refs_for_box(glm::vec2 lo, glm::vec2 hi, const CreaseTiles::LineTest& may_show = {});
+    CreaseTiles::LineRefs line_refs_for_box(glm::vec2 lo, glm::vec2 hi, const CreaseTiles::LineTest& may_show = {},
+                                            const CreaseTiles::LineDetail& detail = {});
 
     // Stems in all, built so far and their vertices, queries that built stems (0 before the first
     // query).

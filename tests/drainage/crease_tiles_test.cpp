@@ -15,6 +15,7 @@
 #include <vector>
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include "drainage/crease_tiles.hpp"
@@ -303,6 +304,80 @@ TEST(CreaseTiles, StoredTilesAreReadByTheNextInstanceAndDamagedOnesRebuilt) {
     EXPECT_EQ(differing(nowhere, db, lo, hi, strict), 0u);
     EXPECT_EQ(nowhere.tiles_written(), 0u);
     EXPECT_EQ(nowhere.stems_built(), kept);
+}
+
+// Thinning keeps each line's ends and the vertices a spacing apart, and gives a thinned line back
+// unchanged.
+TEST(CreaseTiles, ThinnedLinesKeepEndsAndSpacing) {
+    const JacksboroNetwork n;
+    const DrapedLineSet& all = n.db.creases;
+    const double spacing = 4.0 * n.g.dx;
+    const DrapedLineSet thin = thinned_lines(all, spacing);
+    ASSERT_EQ(thin.lines.size(), all.lines.size());
+    ASSERT_TRUE(line_set_ok(thin));
+    EXPECT_LT(thin.vertices.size(), all.vertices.size() * 3 / 4);  // 0.59 measured: short stems keep both ends
+    std::size_t bad = 0;
+    for (std::size_t i = 0; i < all.lines.size(); ++i) {
+        const DrapedLine &a = all.lines[i], &t = thin.lines[i];
+        const DrapedVertex* v = thin.vertices.data() + t.first;
+        bad += !(v[0] == all.vertices[a.first] && v[t.count - 1] == all.vertices[a.first + a.count - 1]);
+        bad += t.order != a.order || t.count > a.count || (a.count >= 2 && t.count < 2);
+        for (std::uint32_t k = 1; k + 1 < t.count; ++k) {  // inner vertices a spacing or more apart
+            const glm::dvec3 p(v[k].x, v[k].y, v[k].z), q(v[k - 1].x, v[k - 1].y, v[k - 1].z);
+            bad += glm::length(p - q) < spacing * (1.0 - 1e-9);
+        }
+    }
+    EXPECT_EQ(bad, 0u);
+    EXPECT_TRUE(thinned_lines(thin, spacing) == thin);
+}
+
+// With a line detail, every line comes at its unit's detail: the whole build's line thinned to
+// that detail's spacing, bit for bit, whether built in memory, built and written, read from the
+// files, or read from the copies of detail 2 the files' first reader wrote.
+TEST(CreaseTiles, LinesComeAtTheirUnitsDetailFromEverySource) {
+    const test::TempDir dir;
+    const JacksboroNetwork n;
+    const DrainageGrid& g = n.g;
+    const DrainageResult& res = n.res;
+    const SizeTest strict{n.lo, 0.05, 2.0};
+    const CreaseTiles::LineDetail detail = [&](glm::vec2, glm::vec2, float) { return 4.5 * g.dx; };  // detail 2
+    const DrapedLineSet want_all = thinned_lines(n.db.creases, 4.0 * g.dx);
+    const auto expect_detail = [&](CreaseTiles& tiles, const std::string& what) {
+        std::vector<std::uint32_t> ids;
+        const DrapedLineSet got = tiles.lines_for_box(n.lo, n.hi, &ids, strict.bound(), detail);
+        EXPECT_GT(ids.size(), 100u) << what;
+        std::size_t bad = 0;
+        for (std::uint32_t i = 0; i < ids.size(); ++i) bad += !same_line(got, i, want_all, ids[i]);
+        EXPECT_EQ(bad, 0u) << what;
+        return ids.size();
+    };
+    CreaseTiles memory(g, res.dir, res.net, 64);
+    const std::size_t stems = expect_detail(memory, "in memory");
+    const TileStore store{dir.file("tiles"), 42};
+    CreaseTiles first(g, res.dir, res.net, 64, store);
+    expect_detail(first, "built");
+    const std::size_t full_files = first.tiles_written();
+    CreaseTiles second(g, res.dir, res.net, 64, store);
+    expect_detail(second, "read, copies written");
+    EXPECT_EQ(second.tiles_written(), full_files);  // a copy of each file read
+    CreaseTiles third(g, res.dir, res.net, 64, store);
+    EXPECT_EQ(expect_detail(third, "copies read"), stems);
+    EXPECT_EQ(third.tiles_written(), 0u);
+    EXPECT_EQ(third.tiles_read(), full_files);
+    std::size_t copies = 0;
+    for (const auto& e : std::filesystem::directory_iterator(store.folder))
+        copies += e.path().filename().string().find("-d2.pnlt") != std::string::npos;
+    EXPECT_EQ(copies, full_files);
+    // a detail too fine for a copy of its own (1): thinned from the files, nothing written
+    const CreaseTiles::LineDetail fine = [&](glm::vec2, glm::vec2, float) { return 2.5 * g.dx; };
+    CreaseTiles fourth(g, res.dir, res.net, 64, store);
+    std::vector<std::uint32_t> ids;
+    const DrapedLineSet got = fourth.lines_for_box(n.lo, n.hi, &ids, strict.bound(), fine);
+    const DrapedLineSet want = thinned_lines(n.db.creases, 2.0 * g.dx);
+    std::size_t bad = 0;
+    for (std::uint32_t i = 0; i < ids.size(); ++i) bad += !same_line(got, i, want, ids[i]);
+    EXPECT_EQ(bad, 0u);
+    EXPECT_EQ(fourth.tiles_written(), 0u);
 }
 
 }  // namespace

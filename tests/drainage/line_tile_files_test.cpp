@@ -16,7 +16,8 @@ namespace penink {
 namespace {
 
 // Lines like draped creases: a walk of about a cell a step over a smooth surface, with its normals
-// and a flow growing downstream; one line of a single vertex, signed zeros and a NaN-free range.
+// and a flow growing downstream; one line of a single vertex, signed zeros, a zero normal, a normal
+// z an ulp off its x and y's, and a NaN-free range.
 DrapedLineSet walk_lines(int lines, std::uint32_t seed) {
     std::mt19937 rng(seed);
     std::normal_distribution<float> step(0.0f, 0.3f);
@@ -36,6 +37,8 @@ DrapedLineSet walk_lines(int lines, std::uint32_t seed) {
         set.lines.push_back(l);
     }
     set.vertices[0].nx = -0.0f;
+    set.vertices[1].nx = set.vertices[1].ny = set.vertices[1].nz = 0.0f;  // off the surface: no normal
+    set.vertices[2].nz = std::nextafter(set.vertices[2].nz, 0.0f);         // not the z its x and y give
     index_lines(set);
     return set;
 }
