@@ -49,8 +49,9 @@ public:
     };
     // An array stored coded (core/block_codec.hpp): block after block from `offset`, each of
     // sizes[b] bytes in the file, decoding to 2^shift elements of elem_bytes bytes (the last block
-    // short: elems in all). decode(coded, size, out, first, n) writes the n elements of a block,
-    // from element `first` of the array on, to out; false when the coded bytes do not decode.
+    // short: elems in all). decode(coded, size, out, first, n) writes the n elements of a block
+    // (their stored part, where the array has a Deriver), from element `first` of the array on, to
+    // out; false when the coded bytes do not decode.
     using Decoder = std::function<bool(const std::uint8_t* coded, std::size_t size, void* out, std::uint64_t first,
                                        std::size_t n)>;
     // derive(out, first, every, n): the derived part of the n elements first, first + every, ...
