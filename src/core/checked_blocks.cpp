@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cerrno>
+#include <cstring>
 #include <new>
 #include <stdexcept>
 
@@ -47,6 +48,7 @@ CheckedBlocks::CheckedBlocks(int fd, std::string path, std::vector<CodedArray> a
             throw std::invalid_argument("checked blocks: one coded size per block of elements");
         Slot s;
         s.elems = a.elems, s.elem_bytes = a.elem_bytes, s.shift = a.shift, s.decode = std::move(a.decode);
+        s.derive = std::move(a.derive);
         s.starts.reserve(a.sizes.size() + 1);
         s.starts.push_back(a.offset);
         for (const std::uint32_t n : a.sizes) s.starts.push_back(s.starts.back() + n);
@@ -83,6 +85,35 @@ CheckedBlocks::~CheckedBlocks() {
     if (fd_ >= 0) ::close(fd_);
 }
 
+DamagedBlockError CheckedBlocks::damage(const Slot& a, std::uint64_t b, const char* what) const {
+    return DamagedBlockError(path_, std::string("damaged cache: ") + what + " in block " + std::to_string(a.first + b) +
+                                        " (bytes " + std::to_string(a.starts[b]) + " to " +
+                                        std::to_string(a.starts[b + 1]) + "); remove it to have it rebuilt");
+}
+
+void CheckedBlocks::read_run(const Slot& a, std::uint64_t block, std::uint64_t end, std::uint8_t* in) const {
+    const std::uint64_t from = a.starts[block], len = a.starts[end] - from;
+    for (std::uint64_t got = 0; got < len;) {
+        const ssize_t r = ::pread(fd_, in + got, std::size_t(len - got), off_t(from + got));
+        if (r < 0 && errno == EINTR) continue;
+        if (r <= 0) {
+            std::uint64_t b = block;  // the block the file ends in (none of the run is checked yet)
+            while (a.starts[b + 1] <= from + got) ++b;
+            throw damage(a, b, "short read");
+        }
+        got += std::uint64_t(r);
+    }
+}
+
+CheckedBlocks::BlockState CheckedBlocks::check_block(const Slot& a, std::uint64_t b, const std::uint8_t* c,
+                                                     std::uint8_t* out) const {
+    const std::size_t size = std::size_t(a.starts[b + 1] - a.starts[b]);
+    if (hash64(c, size) != sums_[a.first + b]) return mismatch;
+    const std::uint64_t per = std::uint64_t(1) << a.shift, n = std::min(per, a.elems - b * per);
+    if (a.decode && !a.decode(c, size, out, b * per, std::size_t(n))) return undecodable;
+    return sound;
+}
+
 void CheckedBlocks::load(int k, std::uint64_t block, std::uint64_t last) const {
     const Slot& a = arrays_[std::size_t(k)];
     const std::lock_guard<std::mutex> lock(mutex_);
@@ -101,47 +132,70 @@ void CheckedBlocks::load(int k, std::uint64_t block, std::uint64_t last) const {
     std::vector<std::uint8_t> coded;
     std::uint8_t* in = dst;  // an array stored as in memory is read into its place
     if (a.decode) coded.resize(std::size_t(len)), in = coded.data();
-    std::uint64_t good = 0;  // blocks of the run found sound
-    const auto damaged = [&](const char* what, std::uint64_t b) {
-        for (std::uint64_t g = block; g < block + good; ++g) loaded_[a.first + g].store(true, std::memory_order_release);
-        bytes_read_.fetch_add(a.starts[block + good] - from, std::memory_order_relaxed);
-        throw DamagedBlockError(path_, std::string("damaged cache: ") + what + " in block " +
-                                           std::to_string(a.first + b) + " (bytes " + std::to_string(a.starts[b]) +
-                                           " to " + std::to_string(a.starts[b + 1]) +
-                                           "); remove it to have it rebuilt");
-    };
-    for (std::uint64_t got = 0; got < len;) {
-        const ssize_t r = ::pread(fd_, in + got, std::size_t(len - got), off_t(from + got));
-        if (r < 0 && errno == EINTR) continue;
-        if (r <= 0) {
-            std::uint64_t b = block;  // the block the file ends in (none of the run is checked yet)
-            while (a.starts[b + 1] <= from + got) ++b;
-            damaged("short read", b);
-        }
-        got += std::uint64_t(r);
-    }
+    read_run(a, block, end, in);
     // each block checked, then decoded: on all cores when the run is long (a window's rows)
-    enum : std::uint8_t { sound, mismatch, undecodable };
-    std::vector<std::uint8_t> state(std::size_t(end - block), sound);
+    std::vector<BlockState> state(std::size_t(end - block), sound);
     parallel_chunks(state.size(), decode_chunk_blocks, [&](std::size_t j0, std::size_t j1) {
         for (std::size_t j = j0; j < j1; ++j) {
             const std::uint64_t b = block + j;
-            const std::uint8_t* c = in + (a.starts[b] - from);
-            const std::size_t size = std::size_t(a.starts[b + 1] - a.starts[b]);
-            if (hash64(c, size) != sums_[a.first + b]) {
-                state[j] = mismatch;
-                continue;
-            }
-            const std::uint64_t n = std::min(elems_per_block, a.elems - b * elems_per_block);
-            if (a.decode && !a.decode(c, size, dst + j * block_bytes, b * elems_per_block, std::size_t(n)))
-                state[j] = undecodable;
+            std::uint8_t* out = dst + j * block_bytes;
+            state[j] = check_block(a, b, in + (a.starts[b] - from), out);
+            if (state[j] == sound && a.derive)
+                a.derive(out, b * elems_per_block, 1, std::size_t(std::min(elems_per_block, a.elems - b * elems_per_block)));
         }
     });
-    for (; good < state.size(); ++good)  // the first damaged block, in order
-        if (state[good] != sound) damaged(state[good] == mismatch ? "checksum mismatch" : "undecodable data", block + good);
-    bytes_read_.fetch_add(len, std::memory_order_relaxed);
+    std::uint64_t good = 0;  // blocks of the run found sound, in order up to the first damaged one
+    while (good < state.size() && state[good] == sound) ++good;
+    for (std::uint64_t b = block; b < block + good; ++b) loaded_[a.first + b].store(true, std::memory_order_release);
+    bytes_read_.fetch_add(a.starts[block + good] - from, std::memory_order_relaxed);
+    if (good < state.size())
+        throw damage(a, block + good, state[good] == mismatch ? "checksum mismatch" : "undecodable data");
     blocks_read_.fetch_add(end - block, std::memory_order_relaxed);
-    for (std::uint64_t b = block; b < end; ++b) loaded_[a.first + b].store(true, std::memory_order_release);
+}
+
+void CheckedBlocks::read_strided(int k, std::uint64_t begin, std::uint64_t end, std::uint64_t every, void* out) const {
+    if (begin >= end) return;
+    every = std::max<std::uint64_t>(every, 1);
+    const Slot& a = arrays_[std::size_t(k)];
+    const std::uint64_t blocks = a.starts.size() - 1, last = (end - 1) >> a.shift;
+    if (last >= blocks) throw std::out_of_range("checked blocks: a block past the array's end");
+    const std::uint64_t per = std::uint64_t(1) << a.shift, eb = a.elem_bytes;
+    // the first wanted element at or after element e
+    const auto wanted_from = [&](std::uint64_t e) { return e <= begin ? begin : begin + (e - begin + every - 1) / every * every; };
+    // whether block b holds a wanted element
+    const auto holds = [&](std::uint64_t b) { return wanted_from(b * per) < std::min(end, (b + 1) * per); };
+    auto* o = static_cast<std::uint8_t*>(out);
+    thread_local std::vector<std::uint8_t> coded, decoded;
+    for (std::uint64_t i = begin; i < end;) {
+        const std::uint64_t block = i >> a.shift;
+        if (loaded_[a.first + block].load(std::memory_order_acquire)) {  // copied from the mapping
+            for (const std::uint64_t stop = std::min(end, (block + 1) * per); i < stop; i += every, o += eb)
+                std::memcpy(o, base_ + a.at + i * eb, std::size_t(eb));
+            continue;
+        }
+        // the run: unread blocks holding wanted elements from `block` on, within max_run_bytes of the file
+        std::uint64_t run_end = block + 1;
+        while (run_end <= last && !loaded_[a.first + run_end].load(std::memory_order_acquire) && holds(run_end) &&
+               a.starts[run_end + 1] - a.starts[block] <= max_run_bytes)
+            ++run_end;
+        const std::uint64_t from = a.starts[block];
+        coded.resize(std::size_t(a.starts[run_end] - from));
+        read_run(a, block, run_end, coded.data());
+        bytes_read_.fetch_add(coded.size(), std::memory_order_relaxed);
+        blocks_read_.fetch_add(run_end - block, std::memory_order_relaxed);
+        decoded.resize(std::size_t(per * eb));
+        for (std::uint64_t b = block; b < run_end; ++b) {
+            const std::uint8_t* c = coded.data() + (a.starts[b] - from);
+            if (const BlockState st = check_block(a, b, c, decoded.data()); st != sound)
+                throw damage(a, b, st == mismatch ? "checksum mismatch" : "undecodable data");
+            const std::uint8_t* elems = a.decode ? decoded.data() : c;  // an Array's bytes are its elements
+            std::uint8_t* const first_out = o;
+            const std::uint64_t first = i;
+            for (const std::uint64_t stop = std::min(end, (b + 1) * per); i < stop; i += every, o += eb)
+                std::memcpy(o, elems + (i - b * per) * eb, std::size_t(eb));
+            if (a.derive && o > first_out) a.derive(first_out, first, every, std::size_t((o - first_out) / eb));
+        }
+    }
 }
 
 }  // namespace penink

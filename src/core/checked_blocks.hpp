@@ -11,7 +11,12 @@
 // blocks asked for together are read in one call. An array may be stored coded
 // (core/block_codec.hpp: fewer bytes in the file): its blocks then hold a power of two of
 // elements each, their checksums are of the coded bytes, and a block is decoded into its place
-// in the mapping once found sound.
+// in the mapping once found sound. Part of a coded element may be derived rather than stored (a
+// node's x, y from its grid): decode writes the stored part, derive the rest.
+// A caller wanting every s-th element of a range (a sampled grid) reads them without loading:
+// read_strided checks and decodes each block it touches into a scratch buffer of its thread and
+// copies out the wanted elements (deriving only theirs), leaving the block unread in the mapping
+// (which then costs no memory); a block already read is copied from the mapping.
 // Thread-safe: blocks are loaded under a mutex, the loaded flags are atomic.
 #pragma once
 #include <atomic>
@@ -44,10 +49,14 @@ public:
     };
     // An array stored coded (core/block_codec.hpp): block after block from `offset`, each of
     // sizes[b] bytes in the file, decoding to 2^shift elements of elem_bytes bytes (the last block
-    // short: elems in all). decode(coded, size, out, first, n) writes the n elements of a block,
-    // from element `first` of the array on, to out; false when the coded bytes do not decode.
+    // short: elems in all). decode(coded, size, out, first, n) writes the n elements of a block
+    // (their stored part, where the array has a Deriver), from element `first` of the array on, to
+    // out; false when the coded bytes do not decode.
     using Decoder = std::function<bool(const std::uint8_t* coded, std::size_t size, void* out, std::uint64_t first,
                                        std::size_t n)>;
+    // derive(out, first, every, n): the derived part of the n elements first, first + every, ...
+    // of the array, out[j] being element first + j * every (their decoded part already there).
+    using Deriver = std::function<void(void* out, std::uint64_t first, std::uint64_t every, std::size_t n)>;
     struct CodedArray {
         std::uint64_t offset = 0;
         std::vector<std::uint32_t> sizes;
@@ -55,6 +64,7 @@ public:
         std::uint32_t elem_bytes = 1;
         unsigned shift = 0;
         Decoder decode;
+        Deriver derive;  // empty: the decoder writes whole elements
     };
     // `fd` is duplicated (the caller keeps its own). `sums`: the blocks' checksums, array after
     // array. `block_bytes`: a power of two, a multiple of the page size. Throws std::bad_alloc
@@ -78,6 +88,12 @@ public:
         for (std::uint64_t b = begin >> a.shift, last = (end - 1) >> a.shift; b <= last; ++b)
             if (!loaded_[a.first + b].load(std::memory_order_acquire)) load(k, b, last);
     }
+    // Elements begin, begin + every, ... (< end) of array k into out, one after the other
+    // ((end - begin + every - 1) / every elements; bytes, for an Array), leaving the blocks not
+    // yet read unread: each is read, checked and decoded into a scratch buffer (its bytes counted
+    // by bytes_read, again at every call), a block already read is copied from the mapping.
+    // Throws DamagedBlockError as need does.
+    void read_strided(int k, std::uint64_t begin, std::uint64_t end, std::uint64_t every, void* out) const;
     // Bytes read from the file so far (blocks checked), and blocks of all arrays.
     std::uint64_t bytes_read() const { return bytes_read_.load(std::memory_order_relaxed); }
     std::uint64_t blocks_read() const { return blocks_read_.load(std::memory_order_relaxed); }
@@ -108,11 +124,21 @@ private:
         unsigned shift = 0;                 // 2^shift elements a block
         std::size_t first = 0;              // index of its first block in sums_ / loaded_
         Decoder decode;  // empty: stored as in memory
+        Deriver derive;  // empty: nothing derived
     };
+    enum BlockState : std::uint8_t { sound, mismatch, undecodable };
     void reserve(int fd);
     // Reads the run of blocks not yet read from `block` on (at most to `last`, and max_run_bytes)
     // in one pread, then checks (and decodes) them one by one.
     void load(int k, std::uint64_t block, std::uint64_t last) const;
+    // Reads blocks [block, end) of `a` (their file bytes, back to back) into `in`; throws
+    // DamagedBlockError on a short read.
+    void read_run(const Slot& a, std::uint64_t block, std::uint64_t end, std::uint8_t* in) const;
+    // Checks block b of `a` (its file bytes at c) and decodes it to out (an Array's bytes are
+    // left where they are): sound, or why not. Nothing derived.
+    BlockState check_block(const Slot& a, std::uint64_t b, const std::uint8_t* c, std::uint8_t* out) const;
+    // The error for block b of `a` found damaged (`what`).
+    DamagedBlockError damage(const Slot& a, std::uint64_t b, const char* what) const;
 
     int fd_ = -1;
     std::string path_;

@@ -19,11 +19,12 @@ bool terrain_geographic(const Terrain& t, GeographicNodes& out) {
     return true;
 }
 
-void GeographicNodeXY::span(int r, int c0, int c1, glm::vec2* out) const {
+void GeographicNodeXY::span(int r, int c0, int c1, int every, glm::vec2* out) const {
+    if (c0 >= c1) return;
     thread_local std::vector<glm::dvec2> world;
-    world.resize(std::size_t(c1 - c0));
-    rows_.row_span(r, c0, c1, world.data());
-    for (int c = c0; c < c1; ++c) out[c - c0] = local_xy(world[std::size_t(c - c0)], origin_);
+    world.resize(std::size_t((c1 - c0 + every - 1) / every));
+    rows_.row_span(r, c0, c1, every, world.data());
+    for (std::size_t j = 0; j < world.size(); ++j) out[j] = local_xy(world[j], origin_);
 }
 
 }  // namespace penink

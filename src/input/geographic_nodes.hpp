@@ -44,7 +44,9 @@ inline glm::vec2 local_xy(glm::dvec2 world, glm::dvec2 origin) { return glm::vec
 class GeographicNodeXY {
 public:
     GeographicNodeXY(const GeographicNodes& g, glm::dvec2 origin) : rows_(geographic_projector(g)), origin_(origin) {}
-    void span(int r, int c0, int c1, glm::vec2* out) const;
+    void span(int r, int c0, int c1, glm::vec2* out) const { span(r, c0, c1, 1, out); }
+    // Every `every`-th node of the span from c0 (UtmRowProjector::row_span); out: (c1 - c0 + every - 1) / every.
+    void span(int r, int c0, int c1, int every, glm::vec2* out) const;
 
 private:
     UtmRowProjector rows_;

@@ -41,6 +41,10 @@ struct GridNodes {
     }
     // The nodes of a window (clamped to the grid), row by row.
     void need(GridWindow w) const;
+    // The stored positions and valid flags of nodes i0, i0 + every, ... (< i1) into pos and valid
+    // ((i1 - i0 + every - 1) / every of each), without keeping the blocks they are read from when
+    // these are not yet read (CheckedBlocks::read_strided). Throws DamagedBlockError as need does.
+    void read_strided(std::size_t i0, std::size_t i1, std::size_t every, glm::vec3* pos, std::uint8_t* valid) const;
     // Whether node i holds data.
     bool has_data(std::size_t i) const {
         need(i, i + 1);
@@ -71,8 +75,10 @@ inline GridNodes grid_nodes(const Terrain& t) {
 
 // Every step-th node of a window (clamped to the grid) in each direction, from its first node:
 // cols x rows of them, row-major, their stored positions (pos, z unscaled, as GridNodes holds
-// them) and valid flags. Only the rows they lie on are read (need), so a step of s reads about
-// 1/s of the window's blocks. step 1: the window's nodes.
+// them) and valid flags. Only the rows they lie on are read (read_strided: the blocks of these
+// rows are not kept, and only the sampled nodes' derived x, y are computed), so a step of s reads
+// about 1/s of the window's blocks and holds none of them; rows in parallel chunks. step 1: the
+// window's nodes.
 struct SampledNodes {
     int cols = 0, rows = 0;
     std::vector<glm::vec3> pos;

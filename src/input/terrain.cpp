@@ -5,6 +5,7 @@
 
 #include <glm/common.hpp>
 
+#include "core/parallel_chunks.hpp"
 #include "input/grid_nodes.hpp"
 
 namespace penink {
@@ -19,6 +20,16 @@ void GridNodes::need(GridWindow w) const {
     for (int r = w.r0; r < w.r1; ++r) need(index(w.c0, r), index(w.c1 - 1, r) + 1);
 }
 
+void GridNodes::read_strided(std::size_t i0, std::size_t i1, std::size_t every, glm::vec3* p, std::uint8_t* v) const {
+    every = std::max<std::size_t>(every, 1);
+    if (blocks) {
+        blocks->read_strided(pos_array, i0, i1, every, p);
+        blocks->read_strided(valid_array, i0, i1, every, v);
+        return;
+    }
+    for (std::size_t i = i0; i < i1; i += every) *p++ = pos[i], *v++ = valid[i];
+}
+
 SampledNodes sample_nodes(const GridNodes& nodes, GridWindow w, int step) {
     step = std::max(step, 1);
     w = w.clamped(nodes.cols, nodes.rows);
@@ -26,14 +37,16 @@ SampledNodes sample_nodes(const GridNodes& nodes, GridWindow w, int step) {
     if (w.c0 == w.c1 || w.r0 == w.r1) return out;
     out.cols = (w.cols() - 1) / step + 1, out.rows = (w.rows() - 1) / step + 1;
     out.pos.resize(std::size_t(out.cols) * out.rows), out.valid.resize(out.pos.size());
-    for (int j = 0; j < out.rows; ++j) {
-        const int r = w.r0 + j * step;
-        nodes.need(nodes.index(w.c0, r), nodes.index(w.c1 - 1, r) + 1);
-        for (int i = 0; i < out.cols; ++i) {
-            const std::size_t from = nodes.index(w.c0 + i * step, r), to = std::size_t(j) * out.cols + i;
-            out.pos[to] = nodes.pos[from], out.valid[to] = nodes.valid[from];
+    // rows of at least ~64 K window nodes a chunk: a small window stays on the calling thread
+    const std::size_t min_rows = std::max<std::size_t>(1, (std::size_t(1) << 16) / std::size_t(w.cols()));
+    parallel_chunks(std::size_t(out.rows), min_rows, [&](std::size_t j0, std::size_t j1) {
+        for (std::size_t j = j0; j < j1; ++j) {
+            const int r = w.r0 + int(j) * step;
+            const std::size_t to = j * std::size_t(out.cols);
+            nodes.read_strided(nodes.index(w.c0, r), nodes.index(w.c1 - 1, r) + 1, std::size_t(step), &out.pos[to],
+                               &out.valid[to]);
         }
-    }
+    });
     return out;
 }
 

@@ -102,18 +102,20 @@ glm::dvec2 UtmRowProjector::from_lattice(std::size_t k, int r) const {
 // Exact at the sample columns (their values from the lattice, the row's two ends always
 // projected), cubic between: each node from the four samples around its interval, so a span
 // computes only the samples its intervals use and its nodes are the whole row's, bit for bit.
-void UtmRowProjector::row_span(int r, int c0, int c1, glm::dvec2* out) const {
+void UtmRowProjector::row_span(int r, int c0, int c1, int every, glm::dvec2* out) const {
+    if (c0 >= c1) return;
+    const int last = c0 + (c1 - 1 - c0) / every * every;  // the span's last node
     if (cols_.empty()) {
-        for (int c = c0; c < c1; ++c) out[c - c0] = exact(c, r);
+        for (int c = c0; c <= last; c += every) out[(c - c0) / every] = exact(c, r);
         return;
     }
-    if (c0 >= c1) return;
     const std::size_t n = cols_.size();
-    // the sample intervals [cols_[i], cols_[i + 1]) holding c0 and c1 - 1 (the last node: the last interval's end)
+    // the sample intervals [cols_[i], cols_[i + 1]) holding c0 and the last node (the row's last
+    // node: the last interval's end)
     const auto interval = [&](int c) {
         return std::min(std::size_t(std::upper_bound(cols_.begin(), cols_.end(), c) - cols_.begin()) - 1, n - 2);
     };
-    const std::size_t i0 = interval(c0), i1 = interval(c1 - 1);
+    const std::size_t i0 = interval(c0), i1 = interval(last);
     const std::size_t k0 = Window(cols_, i0, step_).first, k1 = Window(cols_, i1, step_).first + 4;
     thread_local std::vector<glm::dvec2> v;  // samples k0 .. k1 - 1
     v.resize(k1 - k0);
@@ -122,10 +124,11 @@ void UtmRowProjector::row_span(int r, int c0, int c1, glm::dvec2* out) const {
     for (std::size_t i = i0; i <= i1; ++i) {
         const Window win(cols_, i, step_);
         const glm::dvec2* s = v.data() + (win.first - k0);
-        for (int c = std::max(cols_[i], c0); c < std::min(cols_[i + 1], c1); ++c)
-            out[c - c0] = c == cols_[i] ? v[i - k0] : cubic(win.at(cols_, i, c, weights_), s[0], s[1], s[2], s[3]);
+        const int from = std::max(cols_[i], c0), first = c0 + (from - c0 + every - 1) / every * every;
+        for (int c = first; c < std::min(cols_[i + 1], last + 1); c += every)
+            out[(c - c0) / every] = c == cols_[i] ? v[i - k0] : cubic(win.at(cols_, i, c, weights_), s[0], s[1], s[2], s[3]);
     }
-    if (c1 == w_) out[w_ - 1 - c0] = v[n - 1 - k0];
+    if (last == w_ - 1) out[(w_ - 1 - c0) / every] = v[n - 1 - k0];
 }
 
 void UtmRowProjector::row(int r, glm::dvec2* out) const { row_span(r, 0, w_, out); }

@@ -39,7 +39,10 @@ public:
     void row(int r, glm::dvec2* out) const;  // out: w nodes
     // Nodes c0 .. c1 - 1 of row r (0 <= c0 <= c1 <= w), exactly as row() gives them; out: c1 - c0
     // nodes. Projects or interpolates only the samples around the span.
-    void row_span(int r, int c0, int c1, glm::dvec2* out) const;
+    void row_span(int r, int c0, int c1, glm::dvec2* out) const { row_span(r, c0, c1, 1, out); }
+    // Every `every`-th node of the span from c0 (c0, c0 + every, ... < c1; every >= 1), each as
+    // row() gives it; out: (c1 - c0 + every - 1) / every nodes. The nodes between are not computed.
+    void row_span(int r, int c0, int c1, int every, glm::dvec2* out) const;
     int zone() const { return zone_; }
     bool north() const { return north_; }
 

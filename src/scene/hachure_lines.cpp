@@ -96,21 +96,32 @@ int hachure_node_step(const GridNodes& nodes, GridWindow w, const Camera& camera
     return step;
 }
 
+HachureNodes hachure_nodes(const FrameTerrain& terrain, const Camera& camera) {
+    HachureNodes out;
+    out.step = hachure_node_step(terrain.nodes, terrain.window, camera);
+    if (out.step == 1) terrain.nodes.need(terrain.window);  // read directly by the hachures
+    else out.sampled = sample_nodes(terrain.nodes, terrain.window, out.step);
+    return out;
+}
+
 void add_hachures(const FrameTerrain& terrain, const Camera& camera, const DepthImage& toward,
                   const glm::dvec3& light, const HachureParams& params, Drawing& drawing) {
+    if (!params.enabled) return;
+    add_hachures(terrain, hachure_nodes(terrain, camera), camera, toward, light, params, drawing);
+}
+
+void add_hachures(const FrameTerrain& terrain, const HachureNodes& nodes, const Camera& camera,
+                  const DepthImage& toward, const glm::dvec3& light, const HachureParams& params, Drawing& drawing) {
     if (!params.enabled) return;
     const GridNodes& n = terrain.nodes;
     HachureGrid grid;
     grid.z_scale = n.z_scale;
     if (n.has_sea()) grid.floor_z = n.sea_z();
-    const int step = hachure_node_step(n, terrain.window, camera);
-    SampledNodes sampled;
-    if (step == 1) {
-        n.need(terrain.window);  // read directly below
+    if (nodes.step == 1) {
         grid.cols = n.cols, grid.rows = n.rows, grid.pos = n.pos, grid.valid = n.valid;
         grid.c0 = terrain.window.c0, grid.r0 = terrain.window.r0, grid.c1 = terrain.window.c1, grid.r1 = terrain.window.r1;
     } else {
-        sampled = sample_nodes(n, terrain.window, step);
+        const SampledNodes& sampled = nodes.sampled;
         grid.cols = sampled.cols, grid.rows = sampled.rows, grid.pos = sampled.pos.data(), grid.valid = sampled.valid.data();
         grid.c1 = sampled.cols, grid.r1 = sampled.rows;
     }

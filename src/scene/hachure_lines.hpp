@@ -38,11 +38,24 @@ inline constexpr double hachure_node_px = 0.5;
 inline constexpr int hachure_max_node_step = 64;
 int hachure_node_step(const GridNodes& nodes, GridWindow window, const Camera& camera);
 
-// The frame's hachures into drawing's hachures layer (nothing when disabled), traced on every
-// hachure_node_step-th node of the window in each direction (sample_nodes: only those rows are
-// read), so a frame of a fine DEM reads a share of its nodes that follows the image.
+// The nodes a frame's hachures are traced on: every hachure_node_step-th node of the frame's
+// window in each direction, sampled (sample_nodes: only those rows are read, none kept) when the
+// step exceeds 1; at step 1 the window's nodes, made readable in place (GridNodes::need). Depends
+// on the terrain's nodes and window and the camera alone, so a frame reads them while its other
+// lines are still being prepared.
+struct HachureNodes {
+    int step = 1;
+    SampledNodes sampled;  // step > 1
+};
+HachureNodes hachure_nodes(const FrameTerrain& terrain, const Camera& camera);
+
+// The frame's hachures into drawing's hachures layer (nothing when disabled), traced on
+// hachure_nodes, so a frame of a fine DEM reads a share of its nodes that follows the image.
 // params.width_px is the pen width the spacing is computed for (0: default_hachure_width_px).
 void add_hachures(const FrameTerrain& terrain, const Camera& camera, const DepthImage& toward,
                   const glm::dvec3& light, const HachureParams& params, Drawing& drawing);
+// The same on nodes read beforehand (hachure_nodes of this terrain and camera).
+void add_hachures(const FrameTerrain& terrain, const HachureNodes& nodes, const Camera& camera,
+                  const DepthImage& toward, const glm::dvec3& light, const HachureParams& params, Drawing& drawing);
 
 }  // namespace penink

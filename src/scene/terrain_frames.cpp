@@ -236,6 +236,11 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
         out.times.sil = ms_since(t0);
     }
     out.drawing.width = camera.width, out.drawing.height = camera.height;
+    // the hachures' nodes, read while the drainage lines may still be prepared on another core
+    const auto t_nodes = Clock::now();
+    std::optional<HachureNodes> hachure_grid;
+    if (frame.lines.hachures.enabled) hachure_grid = hachure_nodes(terrain_, camera);
+    const double nodes_ms = ms_since(t_nodes);
     if (pending_lines_.valid()) {
         std::unique_ptr<DrainageLines>& made = gpu_ ? gpu_->lines : own_lines_;
         if (made) made->set_lines(pending_lines_.get());
@@ -259,9 +264,11 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
     add_frame_lines(images, mesh_, camera, out.drawing);
     out.trace_ms = ms_since(t0);
     const auto t_hachures = Clock::now();  // after the lines they yield to
-    add_hachures(terrain_, camera, images.toward, light_vector(Light{frame.view.light.azimuth, frame.view.light.altitude}),
-                 hachure_pen(frame.lines.hachures, frame.style.resolved), out.drawing);
-    out.hachure_ms = ms_since(t_hachures);
+    if (hachure_grid)
+        add_hachures(terrain_, *hachure_grid, camera, images.toward,
+                     light_vector(Light{frame.view.light.azimuth, frame.view.light.altitude}),
+                     hachure_pen(frame.lines.hachures, frame.style.resolved), out.drawing);
+    out.hachure_ms = nodes_ms + ms_since(t_hachures);
     out.silhouette_mask = std::move(images.silhouettes);
     out.toward = std::move(images.toward);
     if (const CheckedBlocks* blocks = terrain_.nodes.blocks)

@@ -100,22 +100,24 @@ struct DerivedXY {
     glm::dvec2 origin{0.0};
     int cols = 0;
 
-    // x, y of nodes c0 .. c1 - 1 of row r.
-    void span(int r, int c0, int c1, glm::vec2* out) const {
-        if (geographic) return geographic->span(r, c0, c1, out);
-        for (int c = c0; c < c1; ++c) out[c - c0] = affine_node_xy(affine, origin, c, r);
+    // x, y of nodes c0, c0 + every, ... (< c1) of row r.
+    void span(int r, int c0, int c1, int every, glm::vec2* out) const {
+        if (geographic) return geographic->span(r, c0, c1, every, out);
+        for (int c = c0; c < c1; c += every) out[(c - c0) / every] = affine_node_xy(affine, origin, c, r);
     }
-    // x, y of `count` row-major nodes from node `first`, into the x, y of out (x, y, z each).
-    void nodes(std::uint64_t first, std::size_t count, glm::vec3* out) const {
+    void span(int r, int c0, int c1, glm::vec2* out) const { span(r, c0, c1, 1, out); }
+    // x, y of `count` row-major nodes first, first + every, ..., into the x, y of out (x, y, z each).
+    void nodes(std::uint64_t first, std::uint64_t every, std::size_t count, glm::vec3* out) const {
         thread_local std::vector<glm::vec2> xy;
-        for (std::uint64_t i = first; i < first + count;) {
-            const int r = int(i / std::uint64_t(cols)), c0 = int(i % std::uint64_t(cols));
-            const int c1 = int(std::min<std::uint64_t>(std::uint64_t(cols), c0 + (first + count - i)));
-            xy.resize(std::size_t(c1 - c0));
-            span(r, c0, c1, xy.data());
-            for (int c = c0; c < c1; ++c) out[i - first + std::uint64_t(c - c0)].x = xy[std::size_t(c - c0)].x,
-                                          out[i - first + std::uint64_t(c - c0)].y = xy[std::size_t(c - c0)].y;
-            i += std::uint64_t(c1 - c0);
+        const std::uint64_t w = std::uint64_t(cols);
+        for (std::size_t j = 0; j < count;) {
+            const std::uint64_t i = first + j * every;
+            const int r = int(i / w), c0 = int(i % w);
+            const std::size_t k = std::min<std::uint64_t>(count - j, (w - 1 - std::uint64_t(c0)) / every + 1);  // in row r
+            xy.resize(k);
+            span(r, c0, int(std::uint64_t(c0) + (k - 1) * every + 1), int(every), xy.data());
+            for (std::size_t m = 0; m < k; ++m) out[j + m].x = xy[m].x, out[j + m].y = xy[m].y;
+            j += k;
         }
     }
 };
@@ -374,15 +376,16 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     if (flags) {
         const std::optional<DerivedXY> derived = derive_xy(m, flags);
         if (!derived) return fail(why, "damaged terrain cache (grid)");
-        arrays[0].decode = [d = *derived](const std::uint8_t* c, std::size_t bytes, void* out, std::uint64_t first,
-                                          std::size_t count) {
+        arrays[0].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::uint64_t, std::size_t count) {
             thread_local std::vector<float> z;
             z.resize(count);
             if (!decode_floats(c, bytes, z.data(), count, z_orders)) return false;
             auto* p = static_cast<glm::vec3*>(out);
             for (std::size_t j = 0; j < count; ++j) p[j].z = z[j];
-            d.nodes(first, count, p);
             return true;
+        };
+        arrays[0].derive = [d = *derived](void* out, std::uint64_t first, std::uint64_t every, std::size_t count) {
+            d.nodes(first, every, count, static_cast<glm::vec3*>(out));
         };
     } else {
         arrays[0].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::uint64_t, std::size_t count) {

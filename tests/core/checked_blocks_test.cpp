@@ -1,7 +1,8 @@
 // Arrays read on demand: a byte range reads exactly the blocks holding it (counted), once; what
 // is read is the file's bytes; a damaged block throws DamagedBlockError naming the file and the
 // block when it is read, the sound blocks read with it stay read, and a block never read is
-// never checked.
+// never checked. A strided read (every k-th element) gives what need and the mapping give, its
+// blocks checked but not kept.
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -152,6 +153,18 @@ struct CodedFile {
     void write(const std::string& path) const { write_file(path, file); }
 };
 
+// CodedFile with block 2 replaced by a sound block of 32 floats, its size and checksum too: the
+// checksum matches, the bytes do not decode to the block's 64 elements.
+CodedFile undecodable_block_2() {
+    CodedFile g;
+    const std::size_t at = 100 + g.sizes[0] + g.sizes[1];
+    const std::vector<std::uint8_t> shorter = encode_floats(g.values.data(), 32, once);
+    g.file.erase(g.file.begin() + std::ptrdiff_t(at), g.file.begin() + std::ptrdiff_t(at + g.sizes[2]));
+    g.file.insert(g.file.begin() + std::ptrdiff_t(at), shorter.begin(), shorter.end());
+    g.sizes[2] = std::uint32_t(shorter.size()), g.sums[2] = hash64(shorter.data(), shorter.size());
+    return g;
+}
+
 }  // namespace
 
 // Elements of a coded array: a range reads (file bytes, counted) and decodes exactly its blocks.
@@ -198,20 +211,142 @@ TEST(CheckedBlocks, DamagedOrUndecodableCodedBlocksAreFound) {
         blocks.need(0, 192, 1000);  // past it: sound
         EXPECT_FALSE(blocks.has_read(0, 128));
     }
-    // block 2 replaced by a sound block of 32 floats, its size and checksum too: the checksum
-    // matches, the bytes do not decode to the block's 64 elements
-    CodedFile g;
-    const std::size_t at = 100 + g.sizes[0] + g.sizes[1];
-    const std::vector<std::uint8_t> shorter = encode_floats(g.values.data(), 32, once);
-    g.file.erase(g.file.begin() + std::ptrdiff_t(at), g.file.begin() + std::ptrdiff_t(at + g.sizes[2]));
-    g.file.insert(g.file.begin() + std::ptrdiff_t(at), shorter.begin(), shorter.end());
-    g.sizes[2] = std::uint32_t(shorter.size()), g.sums[2] = hash64(shorter.data(), shorter.size());
+    // block 2's coded bytes sound but not its 64 elements
+    const CodedFile g = undecodable_block_2();
     g.write(dir.file("u.bin"));
     const Fd fd(dir.file("u.bin"));
     const CheckedBlocks blocks(fd.fd, dir.file("u.bin"), g.arrays(), g.sums);
     blocks.need(0, 192, 1000);  // the blocks after it are where the sizes say
     try {
         blocks.need(0, 128, 129);
+        FAIL() << "no error";
+    } catch (const DamagedBlockError& e) {
+        EXPECT_NE(std::string(e.what()).find("undecodable data in block 2"), std::string::npos) << e.what();
+    }
+}
+
+namespace {
+
+// CodedFile's floats as pairs (value, index): the value decoded from the file, the index derived
+// (CheckedBlocks::Deriver), as a node's x, y are derived from its grid.
+std::vector<CheckedBlocks::CodedArray> derived_pairs(const CodedFile& f) {
+    CheckedBlocks::CodedArray a = f.arrays()[0];
+    a.elem_bytes = 8;
+    a.decode = [](const std::uint8_t* c, std::size_t size, void* out, std::uint64_t, std::size_t n) {
+        std::vector<float> v(n);
+        if (!decode_floats(c, size, v.data(), n, once)) return false;
+        for (std::size_t j = 0; j < n; ++j) static_cast<float*>(out)[2 * j] = v[j];
+        return true;
+    };
+    a.derive = [](void* out, std::uint64_t first, std::uint64_t every, std::size_t n) {
+        for (std::size_t j = 0; j < n; ++j) static_cast<float*>(out)[2 * j + 1] = float(first + j * every);
+    };
+    return {a};
+}
+
+// Elements begin, begin + every, ... (< end) of array k, read into place (need) and then taken
+// from the mapping: what read_strided must give.
+std::vector<std::uint8_t> needed_elements(const CheckedBlocks& blocks, int k, std::uint64_t elem_bytes,
+                                          std::uint64_t begin, std::uint64_t end, std::uint64_t every) {
+    blocks.need(k, begin, end);
+    const auto* d = static_cast<const std::uint8_t*>(blocks.data(k));
+    std::vector<std::uint8_t> out;
+    for (std::uint64_t i = begin; i < end; i += every) out.insert(out.end(), d + i * elem_bytes, d + (i + 1) * elem_bytes);
+    return out;
+}
+
+std::vector<std::uint8_t> strided(const CheckedBlocks& blocks, int k, std::uint64_t elem_bytes, std::uint64_t begin,
+                                  std::uint64_t end, std::uint64_t every) {
+    std::vector<std::uint8_t> out(std::size_t((end - begin + every - 1) / every * elem_bytes), 0xcd);
+    blocks.read_strided(k, begin, end, every, out.data());
+    return out;
+}
+
+}  // namespace
+
+// A strided read gives exactly the elements need and the mapping give (decoded and derived, the
+// last short block's too), reading each block holding one of them (counted) and leaving it
+// unread in the mapping; a block already read is taken from the mapping (not read again); blocks
+// holding none of them (a stride past a block) are not read.
+TEST(CheckedBlocks, StridedReadsGiveTheNeededElementsWithoutKeepingTheirBlocks) {
+    test::TempDir dir;
+    const CodedFile f;
+    f.write(dir.file("s.bin"));
+    const Fd fd(dir.file("s.bin"));
+    const CheckedBlocks reference(fd.fd, dir.file("s.bin"), derived_pairs(f), f.sums);
+    const CheckedBlocks blocks(fd.fd, dir.file("s.bin"), derived_pairs(f), f.sums);
+    blocks.need(0, 64, 65);  // block 1 read into place
+    const std::uint64_t before = blocks.bytes_read();
+    ASSERT_EQ(before, f.sizes[1]);
+    // every 7th from 10: elements in all 16 blocks, the last (960..999) short
+    const std::vector<std::uint8_t> got = strided(blocks, 0, 8, 10, 1000, 7);
+    ASSERT_EQ(got, needed_elements(reference, 0, 8, 10, 1000, 7));
+    for (std::size_t j = 0; j < got.size() / 8; ++j) {
+        float v[2];
+        std::memcpy(v, got.data() + 8 * j, 8);
+        ASSERT_EQ(v[0], f.values[10 + 7 * j]) << j;
+        ASSERT_EQ(v[1], float(10 + 7 * j)) << j;
+    }
+    EXPECT_EQ(blocks.bytes_read(), blocks.bytes()) << "the 15 blocks not in place read, block 1 taken from the mapping";
+    EXPECT_EQ(blocks.blocks_read(), 16u);
+    for (std::uint64_t i = 0; i < 1000; i += 64) EXPECT_EQ(blocks.has_read(0, i), i == 64) << i;
+    // every 150th: elements 0, 150, ..., 900 lie in blocks 0, 2, 4, 7, 9, 11, 14 alone
+    const std::uint64_t read = blocks.bytes_read();
+    ASSERT_EQ(strided(blocks, 0, 8, 0, 1000, 150), needed_elements(reference, 0, 8, 0, 1000, 150));
+    std::uint64_t bytes = 0;
+    for (const int b : {0, 2, 4, 7, 9, 11, 14}) bytes += f.sizes[std::size_t(b)];
+    EXPECT_EQ(blocks.bytes_read() - read, bytes);
+    // single elements, a range within one block, one at the array's end
+    ASSERT_EQ(strided(blocks, 0, 8, 999, 1000, 3), needed_elements(reference, 0, 8, 999, 1000, 3));
+    ASSERT_EQ(strided(blocks, 0, 8, 70, 120, 1), needed_elements(reference, 0, 8, 70, 120, 1));
+    EXPECT_TRUE(strided(blocks, 0, 8, 5, 5, 2).empty());
+    for (std::uint64_t i = 0; i < 1000; i += 64) EXPECT_EQ(blocks.has_read(0, i), i == 64) << i;
+}
+
+// On an array stored as it is (bytes): the file's bytes, none kept.
+TEST(CheckedBlocks, StridedReadsOfAnUncodedArray) {
+    test::TempDir dir;
+    const TwoArrays f;
+    f.write(dir.file("u.bin"));
+    const Fd fd(dir.file("u.bin"));
+    const CheckedBlocks blocks(fd.fd, dir.file("u.bin"), f.arrays, block, f.sums);
+    blocks.need(0, 3 * block, 3 * block + 1);
+    const std::vector<std::uint8_t> got = strided(blocks, 0, 1, 100, 10 * block + 2048, 1000);
+    ASSERT_EQ(got.size(), (10 * block + 2048 - 100 + 999) / 1000);
+    for (std::size_t j = 0; j < got.size(); ++j) ASSERT_EQ(got[j], std::uint8_t((100 + 1000 * j) * 7)) << j;
+    for (std::uint64_t b = 0; b < 11; ++b) EXPECT_EQ(blocks.has_read(0, b * block), b == 3) << b;
+    EXPECT_EQ(blocks.bytes_read(), 10 * block + 2048);
+}
+
+// A damaged or undecodable block met by a strided read throws DamagedBlockError naming it, as
+// need does, at every read; the blocks before it stay unread in the mapping.
+TEST(CheckedBlocks, StridedReadsFindDamage) {
+    test::TempDir dir;
+    CodedFile f;
+    f.file[100 + f.sizes[0] + f.sizes[1] + 2] ^= 4;  // block 2
+    f.write(dir.file("d.bin"));
+    const Fd fd(dir.file("d.bin"));
+    const CheckedBlocks blocks(fd.fd, dir.file("d.bin"), f.arrays(), f.sums);
+    std::vector<float> out(200);
+    for (int attempt = 0; attempt < 2; ++attempt) {
+        try {
+            blocks.read_strided(0, 0, 1000, 5, out.data());
+            FAIL() << "no error";
+        } catch (const DamagedBlockError& e) {
+            EXPECT_EQ(e.file(), dir.file("d.bin"));
+            EXPECT_NE(std::string(e.what()).find("checksum mismatch in block 2"), std::string::npos) << e.what();
+        }
+    }
+    for (std::uint64_t i = 0; i < 1000; i += 64) EXPECT_FALSE(blocks.has_read(0, i)) << i;
+    blocks.read_strided(0, 192, 1000, 5, out.data());  // past it: sound
+    for (std::size_t j = 0; j < (1000 - 192 + 4) / 5; ++j) ASSERT_EQ(out[j], f.values[192 + 5 * j]) << j;
+    // coded bytes whose checksum matches but which do not decode
+    const CodedFile g = undecodable_block_2();
+    g.write(dir.file("u.bin"));
+    const Fd gd(dir.file("u.bin"));
+    const CheckedBlocks undecodable(gd.fd, dir.file("u.bin"), g.arrays(), g.sums);
+    try {
+        undecodable.read_strided(0, 100, 300, 3, out.data());
         FAIL() << "no error";
     } catch (const DamagedBlockError& e) {
         EXPECT_NE(std::string(e.what()).find("undecodable data in block 2"), std::string::npos) << e.what();

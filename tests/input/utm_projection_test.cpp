@@ -4,6 +4,7 @@
 // rotated grid (latitude changing along the row); rows too short to interpolate are exact. The
 // lattice form (exact rows every 16 rows, cubic along the columns between) stays within 1 µm on
 // affine grids too, its rows' ends exact.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -114,9 +115,10 @@ TEST(UtmProjection, LatticeFormOfAShortGridIsTheRowForm) {
     }
 }
 
-// Any span of a row is that row's nodes bit for bit (a cache recomputes a block of nodes so):
-// spans starting and ending inside, on and next to sample columns, at the row's ends, of one node,
-// in the lattice form, the row form and a row too short to interpolate (every node exact).
+// Any span of a row is that row's nodes bit for bit (a cache recomputes a block of nodes so), and
+// every k-th node of a span too (a sampled grid's): spans starting and ending inside, on and next
+// to sample columns, at the row's ends, of one node, strides of 1 to past a sample interval, in
+// the lattice form, the row form and a row too short to interpolate (every node exact).
 TEST(UtmProjection, SpansOfARowAreTheRowBitForBit) {
     const double cell = 1.0 / 3600.0;
     const NodeLonLat ll = [=](int c, int r) { return glm::dvec2(-84.4 + c * cell + r * 0.1 * cell, 36.7 - r * cell); };
@@ -124,16 +126,24 @@ TEST(UtmProjection, SpansOfARowAreTheRowBitForBit) {
         const UtmRowProjector lattice(w, 344, ll, 16, true), rows(w, ll, 16, true);
         for (const UtmRowProjector* p : {&lattice, &rows}) {
             SCOPED_TRACE(testing::Message() << w << (p == &lattice ? " lattice" : " rows"));
-            std::vector<glm::dvec2> whole(static_cast<std::size_t>(w)), span(static_cast<std::size_t>(w));
+            std::vector<glm::dvec2> whole(static_cast<std::size_t>(w)), span(static_cast<std::size_t>(w) + 1);
             for (const int r : {0, 1, 17, 200, 343}) {
                 p->row(r, whole.data());
                 for (const int c0 : {0, 1, 15, 16, 17, 100, w - 20, w - 2, w - 1})
                     for (const int n : {1, 2, 16, 33, 256, w}) {
                         const int c1 = std::min(w, c0 + n);
-                        p->row_span(r, c0, c1, span.data());
-                        for (int c = c0; c < c1; ++c) {
-                            const glm::dvec2 a = span[std::size_t(c - c0)], b = whole[std::size_t(c)];
-                            ASSERT_TRUE(std::memcmp(&a, &b, sizeof a) == 0) << r << " " << c0 << " " << c1 << " " << c;
+                        for (const int every : {1, 2, 3, 4, 16, 37}) {
+                            std::fill(span.begin(), span.end(), glm::dvec2(-1.0));
+                            p->row_span(r, c0, c1, every, span.data());
+                            for (int c = c0; c < c1; c += every) {
+                                const glm::dvec2 a = span[std::size_t((c - c0) / every)], b = whole[std::size_t(c)];
+                                ASSERT_TRUE(std::memcmp(&a, &b, sizeof a) == 0)
+                                    << r << " " << c0 << " " << c1 << " " << every << " " << c;
+                            }
+                            if (c0 < c1) {
+                                EXPECT_EQ(span[std::size_t((c1 - c0 + every - 1) / every)], glm::dvec2(-1.0))
+                                    << "past the nodes asked for";
+                            }
                         }
                     }
             }

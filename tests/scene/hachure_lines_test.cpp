@@ -1,8 +1,10 @@
 // The hachures of a frame (scene/hachure_lines.hpp) on a DEM whose nodes are finer than the
 // image's pixels: they work from every hachure_node_step-th node, so a whole view of a fine DEM
-// read from its terrain cache reads a share of the nodes that follows the image, not the DEM.
+// read from its terrain cache reads a share of the nodes that follows the image, not the DEM;
+// nodes read beforehand (hachure_nodes) draw the same hachures.
 #include <cstdio>
 #include <optional>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -35,6 +37,23 @@ Camera whole_view(const StoredTerrain& t, int width, int height, bool perspectiv
 
 GridWindow whole(const GridNodes& n) { return {0, 0, n.cols, n.rows}; }
 
+// The terrain cache of a 2049^2 DEM (a smooth hill 400 m high, sigma 1200 m, on a 5120 m square)
+// written in `dir`; its path.
+std::string fine_dem_cache(const test::TempDir& dir) {
+    const StoredTerrain mem = store_terrain(terrain_from_function(2049, 2049, 2.5, gaussian_hill(400.0, 1200.0)));
+    const std::string path = dir.file("fine.lod");
+    write_terrain_cache(path, mem, key());
+    return path;
+}
+
+// All of a terrain read from a cache, modelled at exaggeration 1.
+FrameTerrain whole_frame(const StoredTerrain& map) {
+    FrameTerrain terrain;
+    terrain.meta = map.meta, terrain.nodes = map.drawn(1.0), terrain.lod = map.lod, terrain.storage = map.storage;
+    terrain.window = whole(terrain.nodes);
+    return terrain;
+}
+
 // A 1025^2 DEM of 5 m cells (5120 m a side) framed in 75 rows of pixels: a cell spans about
 // 75 / 1025 = 0.073 px, so every 4th node keeps cells under half a pixel (0.29 px) and every 8th
 // would not (0.59 px); at 750 rows a cell spans 0.73 px and every node is used.
@@ -66,19 +85,16 @@ TEST(HachureLines, SampledNodesAreEveryStepthNode) {
 // 1000 x 750 (every node used) the frame reads every block of the nodes; at 200 x 150 (every 4th
 // node) it reads the blocks of every 4th row (a row of 2049 nodes spans about 8 blocks
 // of 256 nodes, the block at its end shared with the next row: about 9/32 of them), well under a
-// third, and leaves the rows between unread; both draw hachures.
+// third, and keeps none of them in place (sample_nodes: their memory is not held), nor the rows
+// between; both draw hachures.
 TEST(HachureLines, WholeViewOfAFineDemReadsWhatTheImageNeeds) {
     test::TempDir dir;
-    const StoredTerrain mem = store_terrain(terrain_from_function(2049, 2049, 2.5, gaussian_hill(400.0, 1200.0)));
-    const std::string path = dir.file("fine.lod");
-    write_terrain_cache(path, mem, key());
+    const std::string path = fine_dem_cache(dir);
     const glm::dvec3 light = glm::normalize(glm::dvec3(-1.0, 1.0, 1.0));
     auto hachures = [&](int width, int height, std::uint64_t& bytes_read, std::vector<bool>* rows_read) {
         const std::optional<StoredTerrain> map = read_terrain_cache(path, key());
         if (!map) throw std::runtime_error("not opened");
-        FrameTerrain terrain;
-        terrain.meta = map->meta, terrain.nodes = map->drawn(1.0), terrain.lod = map->lod, terrain.storage = map->storage;
-        terrain.window = whole(terrain.nodes);
+        const FrameTerrain terrain = whole_frame(*map);
         const Camera cam = whole_view(*map, width, height, true);
         EXPECT_EQ(hachure_node_step(terrain.nodes, terrain.window, cam), width == 200 ? 4 : 1);
         Drawing drawing;
@@ -97,7 +113,40 @@ TEST(HachureLines, WholeViewOfAFineDemReadsWhatTheImageNeeds) {
     std::printf("hachures of a 2049^2 cache: %llu bytes read at 1000x750, %llu at 200x150\n",
                 (unsigned long long)full, (unsigned long long)coarse);
     EXPECT_LT(coarse * 3, full);
-    EXPECT_EQ(rows, (std::vector<bool>{true, false, false, false, true, false, false, false}));
+    EXPECT_EQ(rows, std::vector<bool>(8, false));
+}
+
+// The hachures traced on nodes read beforehand (hachure_nodes, as a frame reads them while its
+// drainage lines are prepared) are the hachures add_hachures reads and traces itself, point for
+// point, on the fine DEM's cache at every 4th node (200 x 150) and at every node (1000 x 750,
+// its window then read into place).
+TEST(HachureLines, NodesReadBeforehandDrawTheSameHachures) {
+    test::TempDir dir;
+    const std::string path = fine_dem_cache(dir);
+    const glm::dvec3 light = glm::normalize(glm::dvec3(-1.0, 1.0, 1.0));
+    for (const auto& [width, height, step] : {std::tuple{200, 150, 4}, std::tuple{1000, 750, 1}}) {
+        SCOPED_TRACE(testing::Message() << width << " x " << height);
+        const std::optional<StoredTerrain> map = read_terrain_cache(path, key());
+        ASSERT_TRUE(map);
+        const FrameTerrain terrain = whole_frame(*map);
+        const Camera cam = whole_view(*map, width, height, true);
+        const HachureNodes nodes = hachure_nodes(terrain, cam);
+        ASSERT_EQ(nodes.step, step);
+        EXPECT_EQ(nodes.sampled.cols, step == 1 ? 0 : 2048 / step + 1);
+        EXPECT_EQ(map->nodes.blocks->has_read(GridNodes::pos_array, map->nodes.index(1024, 1000)), step == 1)
+            << "the window read into place at step 1 alone";
+        Drawing beforehand, itself;
+        add_hachures(terrain, nodes, cam, DepthImage{}, light, hachure_defaults(), beforehand);
+        add_hachures(terrain, cam, DepthImage{}, light, hachure_defaults(), itself);
+        const std::vector<Stroke>& a = beforehand.layer(LayerKind::hachures).strokes;
+        const std::vector<Stroke>& b = itself.layer(LayerKind::hachures).strokes;
+        ASSERT_GT(a.size(), 10u);
+        ASSERT_EQ(a.size(), b.size());
+        for (std::size_t i = 0; i < a.size(); ++i) {
+            ASSERT_EQ(a[i].points, b[i].points) << i;
+            ASSERT_EQ(a[i].weight, b[i].weight) << i;
+        }
+    }
 }
 
 }  // namespace

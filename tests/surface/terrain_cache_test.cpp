@@ -385,8 +385,42 @@ TEST(TerrainCache, CodedFileIsAFractionOfItsFloats) {
     }
 }
 
+// sample_nodes on a cache's nodes gives what it gives on the Terrain's own, bit for bit (x, y
+// derived for the sampled nodes alone, where the cache derives them): the whole grid, windows
+// reaching the last column and row or not, steps within a block (256 nodes) and past it; none of
+// the blocks is read into place (their memory not kept). Then, with rows of the grid read into
+// place (a frame's mesh), the same again, those rows taken from memory.
+void expect_sampled_as_in_memory(const StoredTerrain& map, const Terrain& t) {
+    const GridNodes mem = grid_nodes(t);
+    const CheckedBlocks& blocks = *map.nodes.blocks;
+    const GridWindow windows[] = {{0, 0, t.cols, t.rows}, {3, 5, t.cols - 1, t.rows}, {t.cols / 3, 1, t.cols, t.rows / 2}};
+    for (const bool some_in_place : {false, true}) {
+        SCOPED_TRACE(some_in_place ? "rows read into place" : "nothing read into place");
+        if (some_in_place) map.nodes.need(GridWindow{0, t.rows / 4, t.cols, t.rows / 2});
+        for (const GridWindow& w : windows)
+            for (const int step : {1, 2, 3, 4, 7, 64, 300}) {
+                const SampledNodes want = sample_nodes(mem, w, step), got = sample_nodes(map.nodes, w, step);
+                ASSERT_EQ(got.cols, want.cols);
+                ASSERT_EQ(got.rows, want.rows);
+                ASSERT_EQ(got.pos.size(), want.pos.size());
+                ASSERT_EQ(std::memcmp(got.pos.data(), want.pos.data(), want.pos.size() * sizeof(glm::vec3)), 0)
+                    << w.c0 << " " << w.r0 << " step " << step;
+                ASSERT_EQ(got.valid, want.valid) << w.c0 << " " << w.r0 << " step " << step;
+            }
+        EXPECT_GT(blocks.bytes_read(), 0u);
+        for (int r = 0; r < t.rows; ++r) {
+            // (the blocks at the ends of the rows read hold nodes of the rows beside them)
+            if (some_in_place && r >= t.rows / 4 - 1 && r <= t.rows / 2) continue;
+            for (const int c : {0, t.cols / 2, t.cols - 1})
+                for (const int k : {GridNodes::pos_array, GridNodes::valid_array})
+                    ASSERT_FALSE(blocks.has_read(k, map.nodes.index(c, r))) << c << " " << r;
+        }
+    }
+}
+
 // Writes t's cache to `path` and reads it back whole: every node's position bit for bit and its
 // flag, and an oblique frame's mesh, as in memory; the georeference of a geographic DEM too.
+// Before that, every step-th node of windows, sampled as in memory (expect_sampled_as_in_memory).
 void expect_round_trip(const Terrain& t, const std::string& path) {
     const StoredTerrain mem = store_terrain(t);
     write_terrain_cache(path, mem, key());
@@ -395,6 +429,7 @@ void expect_round_trip(const Terrain& t, const std::string& path) {
     EXPECT_EQ(map->meta.source_geographic, t.source_geographic);
     EXPECT_EQ(map->meta.angular_unit, t.angular_unit);
     EXPECT_EQ(map->meta.prime_meridian, t.prime_meridian);
+    expect_sampled_as_in_memory(*map, t);
     read_whole(*map);
     for (std::size_t i = 0; i < t.size(); ++i) {
         ASSERT_EQ(std::memcmp(&map->nodes.pos[i], &t.pos[i], sizeof(glm::vec3)), 0) << i;  // bit for bit
