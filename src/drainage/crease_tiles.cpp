@@ -124,8 +124,8 @@ std::vector<std::vector<std::uint32_t>> crease_unit_stems(const CreaseTileIndex&
 
 CreaseTiles::CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                          CreaseTileIndex index, TileStore store, CreaseIndexReader reader)
-    : g_(g), dir_(dir), net_(net), side_(std::max(1, index.side)), z_top_(index.z_top), store_(std::move(store)),
-      reader_(std::move(reader)) {
+    : g_(g), dir_(dir), net_(net), side_(std::max(1, index.side)), z_top_(index.z_top), reader_(std::move(reader)),
+      store_(std::move(store)) {
     const auto side = std::uint32_t(side_);
     const std::uint32_t tx = (std::uint32_t(g.cols) + side - 1) / side, ty = (std::uint32_t(g.rows) + side - 1) / side;
     tiles_.resize(std::size_t(tx) * ty);

@@ -129,9 +129,9 @@ CreaseTiles::LineRefs StoredCreases::line_refs_for_box(glm::vec2 lo, glm::vec2 h
     return pages_checked([&] { return tiles().line_refs_for_box(lo, hi, may_show, detail); });
 }
 
-std::size_t StoredCreases::count(std::size_t (CreaseTiles::*of)() const) const {
+std::size_t StoredCreases::count(std::size_t (CreaseTiles::*which)() const) const {
     const std::lock_guard<std::mutex> lock(mutex_);
-    return decoded_ ? (*decoded_->tiles.*of)() : 0;
+    return decoded_ ? (*decoded_->tiles.*which)() : 0;
 }
 
 std::size_t StoredCreases::stem_count() const { return count(&CreaseTiles::stem_count); }

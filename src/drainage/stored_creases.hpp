@@ -86,7 +86,7 @@ private:
     std::function<void(double)> build_progress_;
     std::unique_ptr<Decoded> decoded_;
     CreaseTiles& tiles();  // decoded on first use; under mutex_
-    std::size_t count(std::size_t (CreaseTiles::*of)() const) const;  // of the tiles, 0 before
+    std::size_t count(std::size_t (CreaseTiles::*which)() const) const;  // of the tiles, 0 before
 };
 
 }  // namespace penink

@@ -47,8 +47,9 @@ void expect_round_trip(const Terrain& t, int factor, const std::string& what) {
     EXPECT_EQ(h.coarse_xy, g.coarse_xy) << what;
     EXPECT_EQ(h.coarse_valid, g.coarse_valid) << what;
     ASSERT_EQ(h.coarse_z.size(), g.coarse_z.size()) << what;
-    if (!g.coarse_z.empty())  // bit for bit (NaN heights compare unequal as floats); memcmp of no bytes wants pointers
+    if (!g.coarse_z.empty()) {  // bit for bit (NaN heights compare unequal as floats); memcmp of no bytes wants pointers
         EXPECT_EQ(std::memcmp(h.coarse_z.data(), g.coarse_z.data(), g.coarse_z.size() * sizeof(float)), 0) << what;
+    }
     EXPECT_EQ(h.has_affine, g.has_affine) << what;
     EXPECT_EQ(h.affine, g.affine) << what;
     EXPECT_EQ(dir, res.dir) << what;
