@@ -396,6 +396,9 @@ bool decode_crease_source(const CreaseSourceBytes& src, DrainageGrid& g, std::ve
 bool decode_crease_unit(const CreaseSourceBytes& src, const SourceUnitBlock& block, std::vector<std::uint32_t>& ids,
                         std::vector<StemBound>& bounds) {
     if (block.at > src.size || std::uint64_t(block.ids) + block.bounds > src.size - block.at) return false;
+    // deflate packs at most 1032 bytes into one (RFC 1951): the count is bounded by the coded ids
+    // before anything is allocated
+    if (block.count > (std::uint64_t(block.ids) * 1032 + 1024) / 4) return false;
     src.need(block.at, std::uint64_t(block.ids) + block.bounds);
     ids.resize(block.count), bounds.resize(block.count);
     return decode_stem_ids(src.data + block.at, block.ids, ids.data(), block.count) &&

@@ -472,9 +472,18 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
         const auto coarse = std::make_shared<const DrapedLineSet>(thinned_lines(full, detail_spacing(d)));
         for (std::size_t j = 0; j < at.size(); ++j) picks[at[j]].set = coarse, picks[at[j]].line = std::uint32_t(j);
     }
-    // the sets in files forgotten (the picks hold them while the caller uses them)
+    // the sets in files forgotten (the picks hold them while the caller uses them), and the list
+    // of sets compacted once most of it is forgotten ones (a flight's frames, one after another)
     for (const auto& [set, line] : query_at_) sets_[set].reset();
     query_ = U32Map(), query_at_.clear();
+    if (std::size_t(std::count(sets_.begin(), sets_.end(), nullptr)) * 2 > sets_.size()) {
+        std::vector<std::uint32_t> moved(sets_.size());
+        std::size_t n = 0;
+        for (std::size_t i = 0; i < sets_.size(); ++i)
+            if (sets_[i]) moved[i] = std::uint32_t(n), sets_[n] = std::move(sets_[i]), set_detail_[n++] = set_detail_[i];
+        sets_.resize(n), set_detail_.resize(n);
+        for (auto& [set, line] : at_) set = moved[set];
+    }
     return picks;
 }
 

@@ -187,6 +187,7 @@ public:
     std::size_t tiles_read() const { return tiles_read_; }          // tile files read (each time)
     std::size_t tiles_built() const { return tiles_built_; }        // tiles built whole for their files
     std::size_t tiles_written() const { return tiles_written_; }    // tile files written
+    std::size_t sets_held() const { return sets_.size(); }          // line sets listed (kept ones, forgotten ones)
 
 private:
     struct Pick {

@@ -122,6 +122,10 @@ void expect_round_trip(const Terrain& t, int factor, const std::string& what) {
         std::vector<std::uint32_t> ids;  // a block beyond the bytes given
         std::vector<StemBound> bounds;
         EXPECT_FALSE(decode_crease_unit(CreaseSourceBytes{bytes.data(), blocks[0].at + 2}, blocks[0], ids, bounds)) << what;
+        SourceUnitBlock hostile = blocks[0];  // a count its coded ids cannot hold: refused before allocating
+        hostile.count = 1u << 31;
+        EXPECT_FALSE(decode_crease_unit(CreaseSourceBytes{bytes.data(), bytes.size()}, hostile, ids, bounds)) << what;
+        EXPECT_LT(ids.capacity(), std::size_t(1) << 20) << what;
     }
 
     const FlowNetwork net = network_of_directions(h, dir);

@@ -257,6 +257,9 @@ TEST(CreaseTiles, StoredTilesAreReadByTheNextInstanceAndDamagedOnesRebuilt) {
     CreaseTiles fourth(g, res.dir, res.net, 64, store);
     EXPECT_EQ(differing(fourth, db, lo, hi, strict), 0u);
     EXPECT_EQ(fourth.tiles_read(), built);
+    for (int frame = 0; frame < 20; ++frame) differing(fourth, db, lo, hi, strict);  // a flight's frames
+    EXPECT_EQ(fourth.tiles_read(), 21 * built);
+    EXPECT_LE(fourth.sets_held(), 2 * built);  // the sets each frame read and forgot do not pile up
 
     // an index of its units alone: the files read, their stems tested by the bounds they carry; a
     // unit without a file (none of its stems passed before) tested by its stems' bounds alone; the
