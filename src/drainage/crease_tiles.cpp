@@ -430,11 +430,16 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
                     for (std::size_t i = 0; i < ids.size(); ++i) bounds[i] = bounds_[ids[i]];
                     written[j] = write_line_tile(tile_path(cut_tile[k], cut_level[k]), tile_key(cut_tile[k], cut_level[k]),
                                                  *level, ids, bounds);
+                    const int d = cut_d[k];  // and its copy at the query's detail, where one is kept
+                    if (written[j] && d >= crease_copy_detail &&
+                        write_line_tile(tile_path(cut_tile[k], cut_level[k], d), tile_key(cut_tile[k], cut_level[k], d),
+                                        thinned_lines(*level, detail_spacing(d)), ids, bounds))
+                        written[j] = 2;
                 }
             });
             for (std::size_t j = 0; j < todo.size(); ++j) {
                 ++tiles_built_;
-                if (written[j]) ++tiles_written_;
+                if (written[j]) tiles_written_ += written[j];
                 else writable_ = false;  // the tiles from now on built as needed, in memory only
                 keep(ids_of(todo[j]), lines_of(ids_of(todo[j]), stems, whole), written[j] != 0);
             }
