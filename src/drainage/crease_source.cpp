@@ -277,7 +277,8 @@ bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGr
 
 bool decode_crease_source(const CreaseSourceBytes& src, DrainageGrid& g, std::vector<std::uint8_t>& dir,
                           CreaseTileIndex& index, SourcePart part, std::vector<SourceUnitBlock>* blocks) {
-    const bool arrays = part == SourcePart::all, stems = part != SourcePart::units;
+    const bool arrays = part == SourcePart::all || part == SourcePart::grid,
+               stems = part == SourcePart::index || part == SourcePart::all;
     const std::uint8_t* const data = src.data;
     const std::size_t size = src.size;
     Reader r{data, size, &src};

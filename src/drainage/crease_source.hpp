@@ -121,9 +121,11 @@ std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const Cr
 // What is decoded: with SourcePart::index only g's scalar fields (size, factor, spacing, origin,
 // affine grid) and the index, the arrays checked for their sizes and left empty; with
 // SourcePart::units the index's units, box, tile boxes and z_top alone (no sources, no bounds:
-// what a render whose tiles are all read from their files needs), the rest checked for its sizes.
+// what a render whose tiles are all read from their files needs), the rest checked for its sizes;
+// with SourcePart::grid the grid's arrays and the directions with the units alone (what a render
+// holding the index builds stems from).
 // `blocks` (when given): where each unit's stems lie in `data`, in index.units' order.
-enum class SourcePart { units, index, all };
+enum class SourcePart { units, index, grid, all };
 struct SourceUnitBlock {
     std::uint64_t at = 0;               // offset of its coded ids in the source's bytes
     std::uint32_t count = 0;            // its stems

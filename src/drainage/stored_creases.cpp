@@ -95,7 +95,7 @@ CreaseTiles& StoredCreases::tiles() {
         if (build_progress_) d->tiles->on_build_progress(build_progress_);
         d->tiles->before_first_build([decoded, d = d.get()] {
             CreaseTileIndex again;
-            decoded(d->g, d->dir, again, SourcePart::all);
+            decoded(d->g, d->dir, again, SourcePart::grid);  // the index: the tiles hold it
             d->net = network_of_directions(d->g, d->dir);
         });
         decoded_ = std::move(d);

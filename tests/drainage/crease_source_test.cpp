@@ -89,6 +89,15 @@ void expect_round_trip(const Terrain& t, int factor, const std::string& what) {
         EXPECT_EQ(units.parts.lo, index.parts.lo) << what;
         EXPECT_EQ(units.lo, index.lo) << what;
         EXPECT_EQ(units.z_top, index.z_top) << what;
+        DrainageGrid arrays;  // the grid and directions with the units alone
+        std::vector<std::uint8_t> grid_dir;
+        CreaseTileIndex grid_units;
+        ASSERT_TRUE(decode_crease_source(bytes.data(), bytes.size(), arrays, grid_dir, grid_units, SourcePart::grid)) << what;
+        EXPECT_EQ(grid_dir, res.dir) << what;
+        EXPECT_EQ(arrays.valid, g.valid) << what;
+        EXPECT_EQ(std::memcmp(arrays.z.data(), g.z.data(), g.z.size() * sizeof(float)), 0) << what;
+        EXPECT_TRUE(grid_units.parts.sources.empty() && grid_units.stems.empty()) << what;
+        EXPECT_TRUE(grid_units.units == index.units) << what;
     }
     {  // units whose counts the stems do not fit are a builder's fault; units out of order do not decode
         CreaseTileIndex miscounted = index, disordered = index;
