@@ -48,15 +48,19 @@
 //            cell starts (cells of all levels + 1); u32 line ids (one per line)
 //   u64 n + n bytes: what building the creases reads (crease_source.hpp), coded; n = 0 where the
 //            creases are stored (a database built in memory) or the DEM has no relief
-//   u64      index checksum: hash64 of the part's bytes before it but the two vertex arrays, as
-//            one array (what a render reads: it leaves the vertices in the file, read_lines_part)
+//   u64      per 64 KiB page of those n bytes (the last short): its hash64 (crease_source_page_sums:
+//            a render leaves the source in the file and checks each page it reads against these)
+//   u64      index checksum: hash64 of the part's bytes before it but the two vertex arrays and the
+//            crease source's bytes, as one array (what a render reads: it leaves those in the file,
+//            read_lines_part)
 //   u64      lines checksum: hash64 of the part's bytes before it, then of its offset and of the
 //            total length (dv_format.hpp: lines_hash)
 // Versions 2-4 stored each vertex's flow (16 bytes) and fixed 13-byte branches without head_acc;
 // 4 added the routing; 5 varint records; 6 grid positions; 7 vertices after each record; 8 the
 // lines part and no vertical exaggeration in the fingerprint; 9 3-D line lengths and the index
 // checksum; 11 the vertex block checksums; 14 the crease source in place of the creases; 15 no
-// network beside a crease source (positions 2).
+// network beside a crease source (positions 2); 18 the creases' index by unit and the source's
+// page checksums.
 #include "drainage/drainage_db.hpp"
 
 #include <bit>
