@@ -275,8 +275,9 @@ DrainageDb build_drainage_db(const Terrain& t, const DrainageOptions& options,
 
 DrainageFingerprint drainage_fingerprint(const std::string& dem_path, const Terrain& terrain,
                                          const DrainageOptions& options) {
-    DrainageFingerprint fp = dem_fingerprint(dem_path, drainage_resample_factor(terrain, options));
-    fp.routing = std::uint32_t(options.routing);
+    const int factor = drainage_resample_factor(terrain, options);
+    DrainageFingerprint fp = options.dem ? *options.dem : dem_fingerprint(dem_path, factor);
+    fp.resample = std::uint32_t(factor), fp.routing = std::uint32_t(options.routing);
     return fp;
 }
 

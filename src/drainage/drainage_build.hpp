@@ -55,6 +55,10 @@ struct DrainageOptions {
     std::size_t max_points = 4'000'000;    // automatic factor: largest <= 5 within this budget
     DrainageRouting routing = DrainageRouting::priority_flood;
     std::string cache_dir;  // where the caches go (--cache-dir, [cache] dir); "": drainage_cache_path's default
+    // The DEM's size, mtime and content hash when the caller made them for this run (the terrain
+    // cache's key: dem_fingerprint of the same file), so the file is not read and hashed again;
+    // none: drainage_fingerprint makes them.
+    std::optional<DrainageFingerprint> dem;
 };
 
 // The automatic resample factor: 5 (Mower, "Concurrent Drainage Network Rendering": 10 m from 50 m) lowered until the resampled grid
@@ -103,8 +107,9 @@ DrainageDb build_and_write_drainage_db(Terrain& t, const DrainageOptions& option
                                        const std::string& path, const DrainageProgress& progress = {},
                                        DrainageResult* keep = nullptr);
 
-// Fingerprint of the DEM file plus the build options: the resample factor and the routing (not
-// the vertical exaggeration: the database holds unexaggerated heights; `options` is 0).
+// Fingerprint of the DEM file (options.dem's, when given) plus the build options: the resample
+// factor and the routing (not the vertical exaggeration: the database holds unexaggerated
+// heights; `options` is 0).
 DrainageFingerprint drainage_fingerprint(const std::string& dem_path, const Terrain& terrain,
                                          const DrainageOptions& options);
 

@@ -114,12 +114,22 @@ FrameOptions frame_options(const Scene& scene) {
 }
 }  // namespace
 
-std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terrain& dem, const Log& log) {
-    if (!scene.lines.creases.enabled && !scene.lines.ridges.enabled) return std::nullopt;
-    StageProgress progress(std::cerr, log.progress, "building drainage database");
+namespace {
+// The drainage build's options of a scene (the DEM's identity from `key` where given).
+DrainageOptions scene_drainage_options(const Scene& scene, const TerrainCacheKey* key) {
     DrainageOptions options;
     options.routing = *drainage_routing_named(scene.terrain.drainage_routing);  // validate_scene checked it
     options.cache_dir = scene.terrain.cache_dir;
+    if (key && key->content_hash) options.dem = DrainageFingerprint{key->file_size, key->mtime_ns, key->content_hash};
+    return options;
+}
+}  // namespace
+
+std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terrain& dem, const Log& log,
+                                                 const TerrainCacheKey* key) {
+    if (!scene.lines.creases.enabled && !scene.lines.ridges.enabled) return std::nullopt;
+    StageProgress progress(std::cerr, log.progress, "building drainage database");
+    const DrainageOptions options = scene_drainage_options(scene, key);
     DrainageLineSource source;
     const auto t0 = Clock::now();
     bool building = false;  // the progress callback is called by a build alone
@@ -146,12 +156,11 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terra
 }
 
 std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const SceneTerrain& dem, const Log& log) {
-    std::optional<DrainageLineSource> source = dem.stored.in_memory ? scene_drainage(scene, *dem.stored.in_memory, log)
-                                                                    : scene_drainage(scene, dem.stored.meta, log);
+    const TerrainCacheKey* key = &dem.stored.key;
+    std::optional<DrainageLineSource> source = dem.stored.in_memory ? scene_drainage(scene, *dem.stored.in_memory, log, key)
+                                                                    : scene_drainage(scene, dem.stored.meta, log, key);
     if (source && source->vertices.file) {  // vertices or crease source found damaged while drawn: the cache read whole, or rebuilt
-        DrainageOptions options;
-        options.routing = *drainage_routing_named(scene.terrain.drainage_routing);
-        options.cache_dir = scene.terrain.cache_dir;
+        const DrainageOptions options = scene_drainage_options(scene, key);
         source->read_whole = [dem_path = scene.source.dem, meta = dem.stored.meta, options, log] {
             log.info("drainage: " + dem_path + ": damaged drainage cache; reading it whole");
             return load_or_build_drainage(dem_path, meta, options, [&log](const std::string& m) { log.info(m); });

@@ -217,7 +217,7 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, c
     for (const std::string& p : {dem_path + ".lod", path}) {
         if (p != path && !std::filesystem::exists(p)) continue;
         if (std::optional<StoredTerrain> cached = read_terrain_cache(p, key, &why)) {
-            cached->meta.source = dem_path;
+            cached->meta.source = dem_path, cached->key = key;
             log.info("terrain: using cached " + p + " (" + cache_file_size(p) + ", " + std::to_string(cached->meta.cols) + "x" +
                      std::to_string(cached->meta.rows) + " nodes, " + std::to_string(int(ms_since(t0))) + " ms)");
             return std::move(*cached);
@@ -245,6 +245,7 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, c
              std::to_string(int(lap_ms(t0))) + " ms)");
     progress.update("level-of-detail pyramid", 0.4);
     StoredTerrain stored = store_terrain(std::move(flat));
+    stored.key = key;
     log.info("level-of-detail pyramid: " + std::to_string(stored.lod.side()) + "^2 nodes (" +
              std::to_string(int(lap_ms(t0))) + " ms)");
     progress.update("writing", 0.8);

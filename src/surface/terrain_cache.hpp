@@ -83,6 +83,9 @@ struct StoredTerrain {
     // The whole Terrain when it was read from the DEM in this process (nodes point into it); null
     // when read from a cache file.
     const Terrain* in_memory = nullptr;
+    // The DEM file's identity it was read or built for (open_stored_terrain; zero when made from
+    // a Terrain alone): what other caches of the same run key themselves by too.
+    TerrainCacheKey key;
 
     // The nodes as drawn at a vertical exaggeration, with water at a sea level (unexaggerated;
     // -inf: none, GridNodes::sea_level).

@@ -157,18 +157,18 @@ TEST(CreaseTiles, ALineTestBuildsOnlyTheStemsItPassesOnce) {
     const CreaseTileIndex index = tiles.index();
     // the stems whose bound passes a test, and the whole build's lines that do
     auto bounds_passing = [&](const SizeTest& t) {
-        std::size_t n = 0;
+        std::size_t count = 0;
         for (const StemBound& b : index.stems) {
             glm::vec2 blo, bhi;
             stem_bound_box(b, index.parts.lo, index.parts.hi, blo, bhi);
-            n += t.bound()(b, blo, bhi, index.z_top);
+            count += t.bound()(b, blo, bhi, index.z_top);
         }
-        return n;
+        return count;
     };
     auto lines_passing = [&](const SizeTest& t) {
-        std::size_t n = 0;
-        for (std::uint32_t i = 0; i < db.creases.lines.size(); ++i) n += t.line(db.creases, i);
-        return n;
+        std::size_t count = 0;
+        for (std::uint32_t i = 0; i < db.creases.lines.size(); ++i) count += t.line(db.creases, i);
+        return count;
     };
     const SizeTest strict{lo, 0.05, 2.0}, lax{lo, 0.02, 2.0};
     const std::size_t strict_stems = bounds_passing(strict), lax_stems = bounds_passing(lax);

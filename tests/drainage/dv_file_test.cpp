@@ -719,6 +719,24 @@ TEST(DvFile, CacheNextToDemIsReusedAndRebuilt) {
 // A cache whose creases' source reads its heights from the DEM (factor 1) moved with its DEM to
 // another folder: the render's load builds it again there (it refers to the old path); a whole
 // read of a database whose DEM is gone says it is stale.
+// A fingerprint made by the caller (the terrain cache's key of the same run) is taken as it is:
+// the file is not read again (a path that does not exist fingerprints), the factor and routing
+// are the options'.
+TEST(DvFile, GivenDemFingerprintIsNotMadeAgain) {
+    const Terrain t = small_terrain();
+    DrainageOptions o;
+    o.resample = 2, o.routing = DrainageRouting::least_cost;
+    o.dem = DrainageFingerprint{123, 456, 789};
+    const DrainageFingerprint f = drainage_fingerprint("/nonexistent/penink/dem.asc", t, o);
+    EXPECT_EQ(f.file_size, 123u);
+    EXPECT_EQ(f.mtime_ns, 456);
+    EXPECT_EQ(f.content_hash, 789u);
+    EXPECT_EQ(f.resample, 2u);
+    EXPECT_EQ(f.routing, std::uint32_t(DrainageRouting::least_cost));
+    o.dem.reset();
+    EXPECT_THROW(drainage_fingerprint("/nonexistent/penink/dem.asc", t, o), Error);
+}
+
 TEST(DvFile, CacheMovedWithItsDemIsRebuilt) {
     const fs::path d = temp_dir("moved");
     fs::create_directories(d / "a");
