@@ -24,6 +24,21 @@ std::size_t tile_of(std::uint32_t src, std::uint32_t cols, std::uint32_t side, s
     return std::size_t(src / cols / side) * tx + src % cols / side;
 }
 
+// The units of a cols x rows grid of cells `cell` metres wide in tiles of `side`: `count` slots,
+// tile after tile, each tile's levels in order; a stem's slot from its source cell and bound.
+struct UnitSlots {
+    std::uint32_t cols, side, tx;
+    std::size_t count;
+    double cell;
+    UnitSlots(int tile, int grid_cols, int grid_rows, double cell_metres)
+        : cols(std::uint32_t(grid_cols)), side(std::uint32_t(std::max(1, tile))), tx((cols + side - 1) / side),
+          count(std::size_t(tx) * ((std::uint32_t(grid_rows) + side - 1) / side) * crease_tile_levels),
+          cell(cell_metres) {}
+    std::size_t of(std::uint32_t source, const StemBound& b) const {
+        return tile_of(source, cols, side, tx) * crease_tile_levels + std::size_t(crease_tile_level(b, cell));
+    }
+};
+
 }  // namespace
 
 CreaseTileIndex crease_tile_index(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
@@ -55,9 +70,8 @@ CreaseTileIndex crease_tile_index(const DrainageGrid& g, const std::vector<std::
 }
 
 std::vector<CreaseUnit> crease_units(const CreaseTileIndex& index, int cols, int rows, double cell) {
-    const auto side = std::uint32_t(std::max(1, index.side));
-    const std::uint32_t tx = (std::uint32_t(cols) + side - 1) / side, ty = (std::uint32_t(rows) + side - 1) / side;
-    const std::size_t n = std::min(index.parts.sources.size(), index.stems.size()), slots = std::size_t(tx) * ty * crease_tile_levels;
+    const UnitSlots slot(index.side, cols, rows, cell);
+    const std::size_t n = std::min(index.parts.sources.size(), index.stems.size()), slots = slot.count;
     // each chunk of stems into a table of its own, joined after (min, max and sums: any order gives
     // the same units)
     const std::size_t per = chunk_length(n, 1 << 16);
@@ -68,8 +82,7 @@ std::vector<CreaseUnit> crease_units(const CreaseTileIndex& index, int cols, int
         glm::vec2 blo, bhi;
         for (std::size_t s = s0; s < s1; ++s) {
             const StemBound& b = index.stems[s];
-            CreaseUnit& u = t[tile_of(index.parts.sources[s], std::uint32_t(cols), side, tx) * crease_tile_levels +
-                              std::size_t(crease_tile_level(b, cell))];
+            CreaseUnit& u = t[slot.of(index.parts.sources[s], b)];
             stem_bound_box(b, index.parts.lo, index.parts.hi, blo, bhi);
             ++u.count, u.lo = glm::min(u.lo, blo), u.hi = glm::max(u.hi, bhi);
             u.most.plan = std::max(u.most.plan, b.plan), u.most.rise = std::max(u.most.rise, b.rise);
@@ -95,25 +108,22 @@ CreaseTiles::CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>&
     : CreaseTiles(g, dir, net, crease_tile_index(g, dir, net, tile), std::move(store)) {}
 
 std::vector<std::vector<std::uint32_t>> crease_unit_stems(const CreaseTileIndex& index, int cols, int rows, double cell) {
-    const auto side = std::uint32_t(std::max(1, index.side));
-    const std::uint32_t tx = (std::uint32_t(cols) + side - 1) / side, ty = (std::uint32_t(rows) + side - 1) / side;
+    const UnitSlots slot(index.side, cols, rows, cell);
     const auto fault = [] {
         throw Error("drainage", "", "crease tile index whose stems do not fit its units", ExitCode::internal);
     };
-    std::vector<std::uint32_t> slot_unit(std::size_t(tx) * ty * crease_tile_levels, ~0u);  // tile x level -> unit
+    std::vector<std::uint32_t> slot_unit(slot.count, ~0u);  // tile x level -> unit
     for (std::size_t i = 0; i < index.units.size(); ++i) {
         const CreaseUnit& u = index.units[i];
-        const std::size_t slot = std::size_t(u.tile) * crease_tile_levels + u.level;
-        if (u.tile >= std::size_t(tx) * ty || u.level >= std::uint32_t(crease_tile_levels) || slot_unit[slot] != ~0u)
-            fault();
-        slot_unit[slot] = std::uint32_t(i);
+        const std::size_t at = std::size_t(u.tile) * crease_tile_levels + u.level;
+        if (u.level >= std::uint32_t(crease_tile_levels) || at >= slot.count || slot_unit[at] != ~0u) fault();
+        slot_unit[at] = std::uint32_t(i);
     }
     std::vector<std::vector<std::uint32_t>> out(index.units.size());
     for (std::size_t i = 0; i < out.size(); ++i) out[i].reserve(index.units[i].count);
     if (index.stems.size() != index.parts.sources.size()) fault();
     for (std::uint32_t s = 0; s < index.parts.sources.size(); ++s) {
-        const std::uint32_t u = slot_unit[tile_of(index.parts.sources[s], std::uint32_t(cols), side, tx) * crease_tile_levels +
-                                          std::size_t(crease_tile_level(index.stems[s], cell))];
+        const std::uint32_t u = slot_unit[slot.of(index.parts.sources[s], index.stems[s])];
         if (u == ~0u || out[u].size() == index.units[u].count) fault();
         out[u].push_back(s);
     }
