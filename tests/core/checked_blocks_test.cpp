@@ -44,7 +44,6 @@ struct TwoArrays {
             for (std::uint64_t at = 0; at < a.bytes; at += block)
                 sums.push_back(hash64(file.data() + a.offset + at, std::size_t(std::min(block, a.bytes - at))));
     }
-    void write(const std::string& path) const { write_file(path, file); }
 };
 
 struct Fd {
@@ -53,14 +52,22 @@ struct Fd {
     ~Fd() { ::close(fd); }
 };
 
+// A test file's bytes written in a folder of their own and opened for reading.
+struct OnDisk {
+    test::TempDir dir;
+    std::string path;
+    Fd handle;
+    explicit OnDisk(const std::vector<std::uint8_t>& bytes)
+        : path(dir.file("f.bin")), handle((write_file(path, bytes), path)) {}
+    int fd() const { return handle.fd; }
+};
+
 }  // namespace
 
 TEST(CheckedBlocks, ReadsTheBlocksOfARangeOnce) {
-    test::TempDir dir;
     const TwoArrays f;
-    f.write(dir.file("a.bin"));
-    const Fd fd(dir.file("a.bin"));
-    const CheckedBlocks blocks(fd.fd, dir.file("a.bin"), f.arrays, block, f.sums);
+    const OnDisk disk(f.file);
+    const CheckedBlocks blocks(disk.fd(), disk.path, f.arrays, block, f.sums);
     EXPECT_EQ(blocks.block_count(), 11u + 3u);
     EXPECT_EQ(blocks.bytes(), 10 * block + 2048 + 3 * block);
     EXPECT_EQ(blocks.bytes_read(), 0u);
@@ -86,12 +93,10 @@ TEST(CheckedBlocks, ReadsTheBlocksOfARangeOnce) {
 }
 
 TEST(CheckedBlocks, DamageIsFoundWhenItsBlockIsRead) {
-    test::TempDir dir;
     TwoArrays f;
     f.file[4096 + 5 * block + 17] ^= 1;  // block 5 of the first array
-    f.write(dir.file("d.bin"));
-    const Fd fd(dir.file("d.bin"));
-    const CheckedBlocks blocks(fd.fd, dir.file("d.bin"), f.arrays, block, f.sums);
+    const OnDisk disk(f.file);
+    const CheckedBlocks blocks(disk.fd(), disk.path, f.arrays, block, f.sums);
     blocks.need(0, 0, 5 * block);  // blocks 0-4: sound
     blocks.need(1, 0, 3 * block);
     EXPECT_EQ(blocks.blocks_read(), 8u);
@@ -99,8 +104,8 @@ TEST(CheckedBlocks, DamageIsFoundWhenItsBlockIsRead) {
         blocks.need(0, 3 * block, 8 * block);  // 3, 4 read; 5 damaged; 6, 7 after it
         FAIL() << "no error";
     } catch (const DamagedBlockError& e) {
-        EXPECT_EQ(e.file(), dir.file("d.bin"));
-        EXPECT_EQ(std::string(e.what()), "penink: surface: " + dir.file("d.bin") +
+        EXPECT_EQ(e.file(), disk.path);
+        EXPECT_EQ(std::string(e.what()), "penink: surface: " + disk.path +
                                              ": damaged cache: checksum mismatch in block 5 (bytes 24576 to 28672); "
                                              "remove it to have it rebuilt");
     }
@@ -111,12 +116,10 @@ TEST(CheckedBlocks, DamageIsFoundWhenItsBlockIsRead) {
 }
 
 TEST(CheckedBlocks, AFileCutShortIsDamageWhereItIsCut) {
-    test::TempDir dir;
     TwoArrays f;
     f.file.resize(49152 + block);  // the second array's last two blocks gone
-    f.write(dir.file("c.bin"));
-    const Fd fd(dir.file("c.bin"));
-    const CheckedBlocks blocks(fd.fd, dir.file("c.bin"), f.arrays, block, f.sums);
+    const OnDisk disk(f.file);
+    const CheckedBlocks blocks(disk.fd(), disk.path, f.arrays, block, f.sums);
     blocks.need(0, 0, 10 * block + 2048);
     blocks.need(1, 0, block);
     EXPECT_THROW(blocks.need(1, block, 3 * block), DamagedBlockError);
@@ -150,7 +153,6 @@ struct CodedFile {
         };
         return {a};
     }
-    void write(const std::string& path) const { write_file(path, file); }
 };
 
 // CodedFile with block 2 replaced by a sound block of 32 floats, its size and checksum too: the
@@ -169,11 +171,9 @@ CodedFile undecodable_block_2() {
 
 // Elements of a coded array: a range reads (file bytes, counted) and decodes exactly its blocks.
 TEST(CheckedBlocks, CodedArraysReadAndDecodeTheBlocksOfARange) {
-    test::TempDir dir;
     const CodedFile f;
-    f.write(dir.file("c.bin"));
-    const Fd fd(dir.file("c.bin"));
-    const CheckedBlocks blocks(fd.fd, dir.file("c.bin"), f.arrays(), f.sums);
+    const OnDisk disk(f.file);
+    const CheckedBlocks blocks(disk.fd(), disk.path, f.arrays(), f.sums);
     EXPECT_EQ(blocks.block_count(), 16u);
     EXPECT_EQ(blocks.bytes(), f.file.size() - 100);
     EXPECT_EQ(blocks.file_offset(0, 130), 100u + f.sizes[0] + f.sizes[1]);
@@ -194,13 +194,11 @@ TEST(CheckedBlocks, CodedArraysReadAndDecodeTheBlocksOfARange) {
 // Damage in a coded block is found by its checksum; coded bytes whose checksum matches but which
 // do not decode to the block's elements (a foreign or mislabelled block) are damage as well.
 TEST(CheckedBlocks, DamagedOrUndecodableCodedBlocksAreFound) {
-    test::TempDir dir;
     CodedFile f;
     f.file[100 + f.sizes[0] + f.sizes[1] + 2] ^= 4;  // block 2
-    f.write(dir.file("d.bin"));
+    const OnDisk disk(f.file);
     {
-        const Fd fd(dir.file("d.bin"));
-        const CheckedBlocks blocks(fd.fd, dir.file("d.bin"), f.arrays(), f.sums);
+        const CheckedBlocks blocks(disk.fd(), disk.path, f.arrays(), f.sums);
         blocks.need(0, 0, 128);
         try {
             blocks.need(0, 100, 300);
@@ -213,9 +211,8 @@ TEST(CheckedBlocks, DamagedOrUndecodableCodedBlocksAreFound) {
     }
     // block 2's coded bytes sound but not its 64 elements
     const CodedFile g = undecodable_block_2();
-    g.write(dir.file("u.bin"));
-    const Fd fd(dir.file("u.bin"));
-    const CheckedBlocks blocks(fd.fd, dir.file("u.bin"), g.arrays(), g.sums);
+    const OnDisk other(g.file);
+    const CheckedBlocks blocks(other.fd(), other.path, g.arrays(), g.sums);
     blocks.need(0, 192, 1000);  // the blocks after it are where the sizes say
     try {
         blocks.need(0, 128, 129);
@@ -269,12 +266,10 @@ std::vector<std::uint8_t> strided(const CheckedBlocks& blocks, int k, std::uint6
 // unread in the mapping; a block already read is taken from the mapping (not read again); blocks
 // holding none of them (a stride past a block) are not read.
 TEST(CheckedBlocks, StridedReadsGiveTheNeededElementsWithoutKeepingTheirBlocks) {
-    test::TempDir dir;
     const CodedFile f;
-    f.write(dir.file("s.bin"));
-    const Fd fd(dir.file("s.bin"));
-    const CheckedBlocks reference(fd.fd, dir.file("s.bin"), derived_pairs(f), f.sums);
-    const CheckedBlocks blocks(fd.fd, dir.file("s.bin"), derived_pairs(f), f.sums);
+    const OnDisk disk(f.file);
+    const CheckedBlocks reference(disk.fd(), disk.path, derived_pairs(f), f.sums);
+    const CheckedBlocks blocks(disk.fd(), disk.path, derived_pairs(f), f.sums);
     blocks.need(0, 64, 65);  // block 1 read into place
     const std::uint64_t before = blocks.bytes_read();
     ASSERT_EQ(before, f.sizes[1]);
@@ -305,11 +300,9 @@ TEST(CheckedBlocks, StridedReadsGiveTheNeededElementsWithoutKeepingTheirBlocks) 
 
 // On an array stored as it is (bytes): the file's bytes, none kept.
 TEST(CheckedBlocks, StridedReadsOfAnUncodedArray) {
-    test::TempDir dir;
     const TwoArrays f;
-    f.write(dir.file("u.bin"));
-    const Fd fd(dir.file("u.bin"));
-    const CheckedBlocks blocks(fd.fd, dir.file("u.bin"), f.arrays, block, f.sums);
+    const OnDisk disk(f.file);
+    const CheckedBlocks blocks(disk.fd(), disk.path, f.arrays, block, f.sums);
     blocks.need(0, 3 * block, 3 * block + 1);
     const std::vector<std::uint8_t> got = strided(blocks, 0, 1, 100, 10 * block + 2048, 1000);
     ASSERT_EQ(got.size(), (10 * block + 2048 - 100 + 999) / 1000);
@@ -321,19 +314,17 @@ TEST(CheckedBlocks, StridedReadsOfAnUncodedArray) {
 // A damaged or undecodable block met by a strided read throws DamagedBlockError naming it, as
 // need does, at every read; the blocks before it stay unread in the mapping.
 TEST(CheckedBlocks, StridedReadsFindDamage) {
-    test::TempDir dir;
     CodedFile f;
     f.file[100 + f.sizes[0] + f.sizes[1] + 2] ^= 4;  // block 2
-    f.write(dir.file("d.bin"));
-    const Fd fd(dir.file("d.bin"));
-    const CheckedBlocks blocks(fd.fd, dir.file("d.bin"), f.arrays(), f.sums);
+    const OnDisk disk(f.file);
+    const CheckedBlocks blocks(disk.fd(), disk.path, f.arrays(), f.sums);
     std::vector<float> out(200);
     for (int attempt = 0; attempt < 2; ++attempt) {
         try {
             blocks.read_strided(0, 0, 1000, 5, out.data());
             FAIL() << "no error";
         } catch (const DamagedBlockError& e) {
-            EXPECT_EQ(e.file(), dir.file("d.bin"));
+            EXPECT_EQ(e.file(), disk.path);
             EXPECT_NE(std::string(e.what()).find("checksum mismatch in block 2"), std::string::npos) << e.what();
         }
     }
@@ -342,9 +333,8 @@ TEST(CheckedBlocks, StridedReadsFindDamage) {
     for (std::size_t j = 0; j < (1000 - 192 + 4) / 5; ++j) ASSERT_EQ(out[j], f.values[192 + 5 * j]) << j;
     // coded bytes whose checksum matches but which do not decode
     const CodedFile g = undecodable_block_2();
-    g.write(dir.file("u.bin"));
-    const Fd gd(dir.file("u.bin"));
-    const CheckedBlocks undecodable(gd.fd, dir.file("u.bin"), g.arrays(), g.sums);
+    const OnDisk other(g.file);
+    const CheckedBlocks undecodable(other.fd(), other.path, g.arrays(), g.sums);
     try {
         undecodable.read_strided(0, 100, 300, 3, out.data());
         FAIL() << "no error";
