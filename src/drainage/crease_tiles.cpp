@@ -431,6 +431,9 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
             const DrapedLineSet whole = crease_part(g_, dir_, net_, surface(), parts_, stems);
             check_part(whole.lines.size(), stems.size());
             std::vector<std::uint8_t> written(todo.size(), 0);
+            // the stems the query needs, at its detail where their file is written (forgotten
+            // after the query: never a finer one asked of them), else whole (kept in memory)
+            std::vector<std::unique_ptr<DrapedLineSet>> needed(todo.size());
             parallel_chunks(todo.size(), 1, [&](std::size_t j0, std::size_t j1) {
                 for (std::size_t j = j0; j < j1; ++j) {
                     const std::size_t k = todo[j];
@@ -440,18 +443,27 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
                     for (std::size_t i = 0; i < ids.size(); ++i) bounds[i] = bounds_[ids[i]];
                     written[j] = write_line_tile(tile_path(cut_tile[k], cut_level[k]), tile_key(cut_tile[k], cut_level[k]),
                                                  *level, ids, bounds);
-                    const int d = cut_d[k];  // and its copy at the query's detail, where one is kept
-                    if (written[j] && d >= crease_copy_detail &&
+                    const int d = cut_d[k];
+                    if (!written[j] || d == 0) {
+                        needed[j] = lines_of(ids_of(k), stems, whole);
+                        continue;
+                    }
+                    // thinned now, not once the query's stems are all built (a whole view of a
+                    // large DEM would hold every stem it needs at full detail first), and so its
+                    // copy at the query's detail, where one is kept
+                    const DrapedLineSet thin = thinned_lines(*level, detail_spacing(d));
+                    if (d >= crease_copy_detail &&
                         write_line_tile(tile_path(cut_tile[k], cut_level[k], d), tile_key(cut_tile[k], cut_level[k], d),
-                                        thinned_lines(*level, detail_spacing(d)), ids, bounds))
+                                        thin, ids, bounds))
                         written[j] = 2;
+                    needed[j] = lines_of(ids_of(k), ids, thin);
                 }
             });
             for (std::size_t j = 0; j < todo.size(); ++j) {
                 ++tiles_built_;
                 if (written[j]) tiles_written_ += written[j];
                 else writable_ = false;  // the tiles from now on built as needed, in memory only
-                keep(ids_of(todo[j]), lines_of(ids_of(todo[j]), stems, whole), written[j] != 0);
+                keep(ids_of(todo[j]), std::move(needed[j]), written[j] != 0, written[j] ? cut_d[todo[j]] : 0);
             }
             tile_built();
             continue;
