@@ -278,7 +278,8 @@ bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGr
 bool decode_crease_source(const CreaseSourceBytes& src, DrainageGrid& g, std::vector<std::uint8_t>& dir,
                           CreaseTileIndex& index, SourcePart part, std::vector<SourceUnitBlock>* blocks) {
     const bool arrays = part == SourcePart::all || part == SourcePart::grid,
-               stems = part == SourcePart::index || part == SourcePart::all;
+               stems = part == SourcePart::index || part == SourcePart::all,
+               sources = stems || part == SourcePart::sources;
     const std::uint8_t* const data = src.data;
     const std::size_t size = src.size;
     Reader r{data, size, &src};
@@ -324,11 +325,11 @@ bool decode_crease_source(const CreaseSourceBytes& src, DrainageGrid& g, std::ve
     const std::size_t n = g.size(), coarse = std::size_t(ccols) * std::size_t(crows);
     std::vector<std::uint32_t>& cells = index.parts.sources;
     if (!get_blocks(
-            r, [&](std::uint64_t k) { return k == in_units && k <= n; }, [&](std::size_t k) { cells.resize(stems ? k : 0); },
+            r, [&](std::uint64_t k) { return k == in_units && k <= n; }, [&](std::size_t k) { cells.resize(sources ? k : 0); },
             [&](const std::uint8_t* c, std::size_t s, std::size_t first, std::size_t k) {
                 return decode_bytes(c, s, reinterpret_cast<std::uint8_t*>(cells.data() + first), 4 * k);
             },
-            stems))
+            sources))
         return false;
     std::uint64_t cell = 0;
     for (std::size_t s = 0; s < cells.size(); ++s) {

@@ -123,9 +123,10 @@ std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const Cr
 // SourcePart::units the index's units, box, tile boxes and z_top alone (no sources, no bounds:
 // what a render whose tiles are all read from their files needs), the rest checked for its sizes;
 // with SourcePart::grid the grid's arrays and the directions with the units alone (what a render
-// holding the index builds stems from).
+// holding the index builds stems from); with SourcePart::sources the units and the stems' sources
+// (index.parts.sources; no bounds: what building stems needs besides the units' own blocks).
 // `blocks` (when given): where each unit's stems lie in `data`, in index.units' order.
-enum class SourcePart { units, index, grid, all };
+enum class SourcePart { units, index, grid, all, sources };
 struct SourceUnitBlock {
     std::uint64_t at = 0;               // offset of its coded ids in the source's bytes
     std::uint32_t count = 0;            // its stems

@@ -333,6 +333,10 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
     // stem of it passing (its stems' bounds read from the index's unit alone)
     std::vector<std::uint8_t> done(units.size(), 0);
     bool touched = false;  // stems read or built
+    // the stems of each unit not done and their bounds, as its block in the index gives them
+    // (without the whole index loaded)
+    std::vector<std::vector<std::uint32_t>> unit_ids(units.size());
+    std::vector<std::vector<StemBound>> unit_bounds(units.size());
     if (!loaded_ && !store_.folder.empty()) {
         std::vector<std::unique_ptr<DrapedLineSet>> got(units.size());
         std::vector<std::vector<std::uint32_t>> ids(units.size());
@@ -353,6 +357,7 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
                 }
                 if (read) got[u] = lines_at(at, whole.lines);
                 else if (at.empty()) done[u] = 1;  // nothing of it needed
+                else unit_ids[u] = std::move(whole.stems), unit_bounds[u] = std::move(whole.bounds);
             }
         });
         copies += written;
@@ -363,23 +368,35 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
             if (!ids[u].empty()) keep(ids[u], std::move(got[u]), true, unit_d[u]);
         }
     }
-    if (std::find(done.begin(), done.end(), 0) != done.end()) load_index();
+    // the units not done: their stems from their blocks (above), else from the whole index
+    // (loaded now when there is no reader of the stems' sources: building needs them)
+    const bool not_done = std::find(done.begin(), done.end(), 0) != done.end();
+    if (not_done && !loaded_ && (store_.folder.empty() || !reader_.sources)) load_index();
+    const auto stems_of = [&](std::size_t u) -> const std::vector<std::uint32_t>& {
+        return loaded_ ? tiles_[units[u].first].stems[std::size_t(units[u].second)] : unit_ids[u];
+    };
+    const auto bound_of = [&](std::size_t u, std::size_t i) -> const StemBound& {
+        return loaded_ ? bounds_[stems_of(u)[i]] : unit_bounds[u][i];
+    };
     std::vector<std::uint32_t> missing;
-    // missing[cuts[k], cuts[k + 1]): level cut_level[k] of tile cut_tile[k]'s, ascending
-    std::vector<std::size_t> cuts{0}, cut_tile;
+    // missing[cuts[k], cuts[k + 1]): level cut_level[k] of tile cut_tile[k]'s (unit cut_unit[k]), ascending
+    std::vector<std::size_t> cuts{0}, cut_tile, cut_unit;
     std::vector<int> cut_level, cut_d;
     glm::vec2 blo, bhi;  // a stem's bound's box
     for (std::size_t u = 0; u < units.size(); ++u) {
         if (done[u]) continue;
         const auto [k, l] = units[u];
-        for (std::uint32_t s : tiles_[k].stems[std::size_t(l)]) {
-            stem_bound_box(bounds_[s], parts_.lo, parts_.hi, blo, bhi);
-            if (!passes(bounds_[s], blo, bhi)) continue;
+        const std::vector<std::uint32_t>& ids = stems_of(u);
+        for (std::size_t i = 0; i < ids.size(); ++i) {
+            const std::uint32_t s = ids[i];
+            stem_bound_box(bound_of(u, i), parts_.lo, parts_.hi, blo, bhi);
+            if (!passes(bound_of(u, i), blo, bhi)) continue;
             wanted.emplace_back(s, unit_d[u]);
             if (!kept_.find(s)) missing.push_back(s);
         }
         if (missing.size() > cuts.back())
-            cuts.push_back(missing.size()), cut_tile.push_back(k), cut_level.push_back(l), cut_d.push_back(unit_d[u]);
+            cuts.push_back(missing.size()), cut_tile.push_back(k), cut_level.push_back(l), cut_d.push_back(unit_d[u]),
+                cut_unit.push_back(u);
     }
     std::sort(wanted.begin(), wanted.end());
     if (touched || !missing.empty()) ++builds_;
@@ -396,7 +413,7 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
                 TileLines whole;
                 const int how = read_unit(cut_tile[k], cut_level[k], cut_d[k], whole);
                 written += how == 2;
-                if (how > 0 && whole.stems == tiles_[cut_tile[k]].stems[cut_level[k]])
+                if (how > 0 && whole.stems == stems_of(cut_unit[k]))
                     read[k] = lines_of(ids_of(k), whole.stems, whole.lines), ++count;
             }
         });
@@ -424,10 +441,10 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
         for (std::size_t k = k0; k < k1; ++k)
             if (!query_.find(missing[cuts[k]])) todo.push_back(k);
         if (todo.empty()) continue;
-        const Tile& t = tiles_[cut_tile[k0]];
+        if (!loaded_ && parts_.sources.empty()) parts_.sources = reader_.sources();  // what crease_part reads
         if (!store_.folder.empty() && writable_) {
             std::vector<std::uint32_t> stems;
-            for (std::size_t k : todo) stems = merged(std::move(stems), t.stems[cut_level[k]]);
+            for (std::size_t k : todo) stems = merged(std::move(stems), stems_of(cut_unit[k]));
             const DrapedLineSet whole = crease_part(g_, dir_, net_, surface(), parts_, stems);
             check_part(whole.lines.size(), stems.size());
             std::vector<std::uint8_t> written(todo.size(), 0);
@@ -437,10 +454,10 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
             parallel_chunks(todo.size(), 1, [&](std::size_t j0, std::size_t j1) {
                 for (std::size_t j = j0; j < j1; ++j) {
                     const std::size_t k = todo[j];
-                    const std::vector<std::uint32_t>& ids = t.stems[cut_level[k]];
+                    const std::vector<std::uint32_t>& ids = stems_of(cut_unit[k]);
                     const std::unique_ptr<DrapedLineSet> level = lines_of(ids, stems, whole);
                     std::vector<StemBound> bounds(ids.size());
-                    for (std::size_t i = 0; i < ids.size(); ++i) bounds[i] = bounds_[ids[i]];
+                    for (std::size_t i = 0; i < ids.size(); ++i) bounds[i] = bound_of(cut_unit[k], i);
                     written[j] = write_line_tile(tile_path(cut_tile[k], cut_level[k]), tile_key(cut_tile[k], cut_level[k]),
                                                  *level, ids, bounds);
                     const int d = cut_d[k];

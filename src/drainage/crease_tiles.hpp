@@ -92,10 +92,13 @@ std::vector<std::vector<std::uint32_t>> crease_unit_stems(const CreaseTileIndex&
 
 // Where a CreaseTiles made from an index of units alone finds the rest: one unit's stems (`unit`:
 // its place in CreaseTileIndex::units; ids ascending and their bounds; called from several threads
-// at once) and the whole index. Each throws penink::Error on bytes that do not decode.
+// at once), the whole index, and the stems' sources alone (`sources`: StemParts::sources, what
+// building stems needs besides their units; without it a build loads the whole index). Each
+// throws penink::Error on bytes that do not decode.
 struct CreaseIndexReader {
     std::function<void(std::size_t unit, std::vector<std::uint32_t>& ids, std::vector<StemBound>& bounds)> unit;
     std::function<CreaseTileIndex()> whole;
+    std::function<std::vector<std::uint32_t>()> sources;
 };
 
 // Copies of a unit's lines with fewer vertices, for frames that cannot tell them from the lines:
@@ -213,7 +216,7 @@ private:
     const std::vector<std::uint8_t>& dir_;
     const FlowNetwork& net_;
     int side_ = 256;
-    StemParts parts_;  // its box always, its sources once loaded_
+    StemParts parts_;  // its box always, its sources once loaded_ or a query built stems
     std::vector<StemBound> bounds_;  // once loaded_
     float z_top_;
     std::vector<Tile> tiles_;

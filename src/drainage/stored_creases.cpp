@@ -65,8 +65,8 @@ CreaseTiles& StoredCreases::tiles() {
                 throw Error("drainage", "", "stored crease source does not decode", ExitCode::internal);
         };
         // the units now (with a folder: a frame whose tiles are all in files needs no more), a
-        // unit's stems where its file fails, the stems' index when a stem is built, with the grid,
-        // directions and network
+        // unit's stems where its file fails, the stems' sources when a stem is built, with the
+        // grid, directions and network (the whole index: only when asked for)
         CreaseTileIndex index;
         const bool lazy = !folder_.empty();
         decoded(d->g, d->dir, index, lazy ? SourcePart::units : SourcePart::index, &d->blocks);
@@ -89,6 +89,13 @@ CreaseTiles& StoredCreases::tiles() {
                 CreaseTileIndex whole;
                 decoded(g, dir, whole, SourcePart::index);
                 return whole;
+            };
+            reader.sources = [decoded] {
+                DrainageGrid g;
+                std::vector<std::uint8_t> dir;
+                CreaseTileIndex unit_table;
+                decoded(g, dir, unit_table, SourcePart::sources);
+                return std::move(unit_table.parts.sources);
             };
         }
         d->tiles = std::make_unique<CreaseTiles>(d->g, d->dir, d->net, std::move(index), std::move(store), std::move(reader));

@@ -296,6 +296,24 @@ TEST(CreaseTiles, StoredTilesAreReadByTheNextInstanceAndDamagedOnesRebuilt) {
     EXPECT_EQ(lazy_gone.tiles_written(), 1u);
     EXPECT_EQ(differing(lazy_gone, db, lo, hi, strict), 0u);  // again: from the files, the index kept
     EXPECT_EQ(asked, 1);
+    // with a reader of the stems' sources: a file gone is built from its unit's block and the
+    // sources alone, the whole index never asked for
+    std::atomic<int> asked_sources{0};
+    reader.sources = [&] {
+        ++asked_sources;
+        return whole.parts.sources;
+    };
+    std::filesystem::remove(files[2]);
+    CreaseTiles lazy_sources(g, res.dir, res.net, units, store, reader);
+    EXPECT_EQ(differing(lazy_sources, db, lo, hi, strict), 0u);
+    EXPECT_EQ(asked, 1);
+    EXPECT_EQ(asked_sources, 1);
+    EXPECT_FALSE(lazy_sources.index_loaded());
+    EXPECT_EQ(lazy_sources.tiles_read(), built - 1);
+    EXPECT_EQ(lazy_sources.tiles_written(), 1u);
+    EXPECT_EQ(differing(lazy_sources, db, lo, hi, strict), 0u);  // again: from the files
+    EXPECT_EQ(asked_sources, 1);
+    EXPECT_EQ(lazy_sources.tiles_read(), 2 * built - 1);
 
     // another key (another network): nothing read
     CreaseTiles other(g, res.dir, res.net, 64, TileStore{store.folder, 43});
