@@ -134,7 +134,8 @@ public:
     // An index of units alone (CreaseTileIndex::units, no stems) with a reader of the rest: a
     // query reads the tile files of the units whose summary passes (they carry their stems' ids
     // and bounds), tests the stems of a unit without a sound file by reader.unit, and asks for the
-    // whole index (once) only to build stems. Throws penink::Error(internal) on an index that does
+    // stems' sources (reader.sources, once; without it the whole index) only to build stems, whose
+    // units' ids and bounds reader.unit gave. Throws penink::Error(internal) on an index that does
     // not fit the grid.
     CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                 CreaseTileIndex index, TileStore store = {}, CreaseIndexReader reader = {});
