@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <future>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -434,6 +435,67 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
     const auto tile_built = [&] {
         if (build_progress_) build_progress_(double(++built) / double(std::max<std::size_t>(to_build, 1)));
     };
+    // a tile's files are written beside the next tile's build (one tile's writes at a time, in
+    // tile order), and its stems kept once they are: the same sets kept in the same order
+    struct TileWrites {
+        std::vector<std::size_t> todo;  // its cuts
+        std::vector<std::uint8_t> written;
+        // the stems the query needs, at its detail where their file is written (forgotten after
+        // the query: never a finer one asked of them), else whole (kept in memory)
+        std::vector<std::unique_ptr<DrapedLineSet>> needed;
+    };
+    const auto write_tile = [&](TileWrites& w, const std::vector<std::uint32_t>& stems, const DrapedLineSet& whole) {
+        const std::vector<std::size_t>& todo = w.todo;
+        w.written.assign(todo.size(), 0), w.needed.resize(todo.size());
+        parallel_chunks(todo.size(), 1, [&](std::size_t j0, std::size_t j1) {
+            for (std::size_t j = j0; j < j1; ++j) {
+                const std::size_t k = todo[j];
+                const std::vector<std::uint32_t>& ids = stems_of(cut_unit[k]);
+                const std::unique_ptr<DrapedLineSet> level = lines_of(ids, stems, whole);
+                std::vector<StemBound> bounds(ids.size());
+                for (std::size_t i = 0; i < ids.size(); ++i) bounds[i] = bound_of(cut_unit[k], i);
+                w.written[j] = write_line_tile(tile_path(cut_tile[k], cut_level[k]), tile_key(cut_tile[k], cut_level[k]),
+                                               *level, ids, bounds);
+                const int d = cut_d[k];
+                if (!w.written[j] || d == 0) {
+                    w.needed[j] = lines_of(ids_of(k), stems, whole);
+                    continue;
+                }
+                // thinned now, not once the query's stems are all built (a whole view of a large
+                // DEM would hold every stem it needs at full detail first), and so its copy at the
+                // query's detail, where one is kept
+                const DrapedLineSet thin = thinned_lines(*level, detail_spacing(d));
+                if (d >= crease_copy_detail &&
+                    write_line_tile(tile_path(cut_tile[k], cut_level[k], d), tile_key(cut_tile[k], cut_level[k], d), thin,
+                                    ids, bounds))
+                    w.written[j] = 2;
+                w.needed[j] = lines_of(ids_of(k), ids, thin);
+            }
+        });
+    };
+    const auto keep_written = [&](TileWrites& w) {
+        for (std::size_t j = 0; j < w.todo.size(); ++j) {
+            ++tiles_built_;
+            if (w.written[j]) tiles_written_ += w.written[j];
+            else writable_ = false;  // the tiles from now on built as needed, in memory only
+            const std::size_t k = w.todo[j];
+            keep(ids_of(k), std::move(w.needed[j]), w.written[j] != 0, w.written[j] ? cut_d[k] : 0);
+        }
+        tile_built();
+    };
+    struct Writing {
+        TileWrites w;
+        std::vector<std::uint32_t> stems;
+        DrapedLineSet whole;
+    };
+    std::unique_ptr<Writing> writing;  // the tile whose files are being written
+    std::future<void> written;         // (declared last: waited for before what it reads goes)
+    const auto finish_writing = [&] {
+        if (!writing) return;
+        written.get();
+        keep_written(writing->w);
+        writing.reset();
+    };
     for (std::size_t k0 = 0, k1; k0 < cut_tile.size(); k0 = k1) {
         for (k1 = k0; k1 < cut_tile.size() && cut_tile[k1] == cut_tile[k0]; ++k1)
             if (read[k1]) keep(ids_of(k1), std::move(read[k1]), true, cut_d[k1]);
@@ -443,45 +505,21 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
         if (todo.empty()) continue;
         if (!loaded_ && parts_.sources.empty()) parts_.sources = reader_.sources();  // what crease_part reads
         if (!store_.folder.empty() && writable_) {
-            std::vector<std::uint32_t> stems;
-            for (std::size_t k : todo) stems = merged(std::move(stems), stems_of(cut_unit[k]));
-            const DrapedLineSet whole = crease_part(g_, dir_, net_, surface(), parts_, stems);
-            check_part(whole.lines.size(), stems.size());
-            std::vector<std::uint8_t> written(todo.size(), 0);
-            // the stems the query needs, at its detail where their file is written (forgotten
-            // after the query: never a finer one asked of them), else whole (kept in memory)
-            std::vector<std::unique_ptr<DrapedLineSet>> needed(todo.size());
-            parallel_chunks(todo.size(), 1, [&](std::size_t j0, std::size_t j1) {
-                for (std::size_t j = j0; j < j1; ++j) {
-                    const std::size_t k = todo[j];
-                    const std::vector<std::uint32_t>& ids = stems_of(cut_unit[k]);
-                    const std::unique_ptr<DrapedLineSet> level = lines_of(ids, stems, whole);
-                    std::vector<StemBound> bounds(ids.size());
-                    for (std::size_t i = 0; i < ids.size(); ++i) bounds[i] = bound_of(cut_unit[k], i);
-                    written[j] = write_line_tile(tile_path(cut_tile[k], cut_level[k]), tile_key(cut_tile[k], cut_level[k]),
-                                                 *level, ids, bounds);
-                    const int d = cut_d[k];
-                    if (!written[j] || d == 0) {
-                        needed[j] = lines_of(ids_of(k), stems, whole);
-                        continue;
-                    }
-                    // thinned now, not once the query's stems are all built (a whole view of a
-                    // large DEM would hold every stem it needs at full detail first), and so its
-                    // copy at the query's detail, where one is kept
-                    const DrapedLineSet thin = thinned_lines(*level, detail_spacing(d));
-                    if (d >= crease_copy_detail &&
-                        write_line_tile(tile_path(cut_tile[k], cut_level[k], d), tile_key(cut_tile[k], cut_level[k], d),
-                                        thin, ids, bounds))
-                        written[j] = 2;
-                    needed[j] = lines_of(ids_of(k), ids, thin);
-                }
-            });
-            for (std::size_t j = 0; j < todo.size(); ++j) {
-                ++tiles_built_;
-                if (written[j]) tiles_written_ += written[j];
-                else writable_ = false;  // the tiles from now on built as needed, in memory only
-                keep(ids_of(todo[j]), std::move(needed[j]), written[j] != 0, written[j] ? cut_d[todo[j]] : 0);
+            auto next = std::make_unique<Writing>();
+            next->w.todo = std::move(todo);
+            for (std::size_t k : next->w.todo) next->stems = merged(std::move(next->stems), stems_of(cut_unit[k]));
+            next->whole = crease_part(g_, dir_, net_, surface(), parts_, next->stems);
+            check_part(next->whole.lines.size(), next->stems.size());
+            finish_writing();
+            if (writable_) {
+                writing = std::move(next);
+                written = std::async(std::launch::async, [&write_tile, w = writing.get()] { write_tile(w->w, w->stems, w->whole); });
+                continue;
             }
+            // a file before could not be written: this tile's stems kept whole, in memory
+            std::vector<std::uint32_t> need;
+            for (std::size_t k : next->w.todo) need = merged(std::move(need), ids_of(k));
+            keep(need, lines_of(need, next->stems, next->whole));
             tile_built();
             continue;
         }
@@ -490,6 +528,7 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
         keep(need, std::make_unique<DrapedLineSet>(crease_part(g_, dir_, net_, surface(), parts_, need)));
         tile_built();
     }
+    finish_writing();
     tiles_written_ += copies;
     std::vector<Pick> picks;
     picks.reserve(wanted.size());
