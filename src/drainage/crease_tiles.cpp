@@ -53,19 +53,23 @@ CreaseTileIndex crease_tile_index(const DrainageGrid& g, const std::vector<std::
     out.hi.assign(out.lo.size(), -out.lo[0]);
     const PlanBoxes boxes(g);
     const FallLineOptions options = fall_line_options(g);
-    // each stem's reach on all cores, then joined into its tile's in stem order
+    // each stem's reach on all cores, joined into its tile's box by each chunk of stems (in stem
+    // order), the chunks' boxes then in chunk order: the boxes one pass in stem order gives
     out.z_top = std::isnan(z_top) ? drape_height_top(g) : z_top;
     const StemParts& parts = out.parts;
-    std::vector<glm::vec2> reach_lo(parts.sources.size()), reach_hi(parts.sources.size());
     out.stems.resize(parts.sources.size());
-    for_each_stem_cells(g, dir, net, parts, [&](std::uint32_t s, const std::uint32_t* cells, std::uint32_t n) {
-        boxes.plan_box(stem_cell_reach(cells, n, g, options), reach_lo[s], reach_hi[s]);
-        out.stems[s] = stem_bound(reach_lo[s], reach_hi[s], stem_cell_travel(cells, n, g), parts.lo, parts.hi);
-    });
-    for (std::uint32_t s = 0; s < parts.sources.size(); ++s) {
+    std::vector<std::vector<glm::vec2>> chunk_lo(stem_chunks_most), chunk_hi(stem_chunks_most);
+    for_each_stem_cells(g, dir, net, parts, [&](std::size_t c, std::uint32_t s, const std::uint32_t* cells, std::uint32_t n) {
+        glm::vec2 lo, hi;
+        boxes.plan_box(stem_cell_reach(cells, n, g, options), lo, hi);
+        out.stems[s] = stem_bound(lo, hi, stem_cell_travel(cells, n, g), parts.lo, parts.hi);
+        if (chunk_lo[c].empty()) chunk_lo[c] = out.lo, chunk_hi[c] = out.hi;  // this chunk's thread alone
         const std::size_t k = tile_of(parts.sources[s], std::uint32_t(g.cols), side, tx);
-        out.lo[k] = glm::min(out.lo[k], reach_lo[s]), out.hi[k] = glm::max(out.hi[k], reach_hi[s]);
-    }
+        chunk_lo[c][k] = glm::min(chunk_lo[c][k], lo), chunk_hi[c][k] = glm::max(chunk_hi[c][k], hi);
+    });
+    for (std::size_t c = 0; c < stem_chunks_most; ++c)
+        for (std::size_t k = 0; k < chunk_lo[c].size(); ++k)
+            out.lo[k] = glm::min(out.lo[k], chunk_lo[c][k]), out.hi[k] = glm::max(out.hi[k], chunk_hi[c][k]);
     out.units = crease_units(out, g.cols, g.rows, g.dx);
     return out;
 }

@@ -599,14 +599,15 @@ StemParts stem_parts(const DrainageGrid& g, const std::vector<std::uint8_t>& dir
 
 void for_each_stem_cells(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                          const StemParts& parts,
-                         const std::function<void(std::uint32_t, const std::uint32_t*, std::uint32_t)>& f) {
+                         const std::function<void(std::size_t, std::uint32_t, const std::uint32_t*, std::uint32_t)>& f) {
     const StemWalk walk(g, dir, net);
-    parallel_chunks(parts.sources.size(), 1024, [&](std::size_t s0, std::size_t s1) {
+    const std::size_t n = parts.sources.size(), per = chunk_length(n, 1024);  // at most 16 chunks
+    parallel_chunks(n, 1024, [&](std::size_t s0, std::size_t s1) {
         std::vector<std::uint32_t> cells;
         for (std::size_t s = s0; s < s1; ++s) {
             cells.clear();
             walk.walk(parts.sources[s], [&](const DvVertex&, std::size_t c) { cells.push_back(std::uint32_t(c)); });
-            f(std::uint32_t(s), cells.data(), std::uint32_t(cells.size()));
+            f(s0 / per, std::uint32_t(s), cells.data(), std::uint32_t(cells.size()));
         }
     });
 }

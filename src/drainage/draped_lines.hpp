@@ -101,12 +101,14 @@ struct StemParts {
     glm::vec2 lo{0.0f}, hi{-1.0f};
 };
 StemParts stem_parts(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net);
-// Calls f(s, cells, n) for each stem s of network_stems(g, dir, net) (parts.sources) with its n
-// grid cells in stem order, on all cores (f must be safe to call from several threads at once);
-// no stem's vertices are kept.
+// Calls f(chunk, s, cells, n) for each stem s of network_stems(g, dir, net) (parts.sources) with
+// its n grid cells in stem order, on all cores (f must be safe to call from several threads at
+// once): the stems in consecutive chunks, chunk c (0, 1, ... in stem order, fewer than
+// stem_chunks_most) visited in stem order on one thread. No stem's vertices are kept.
+inline constexpr std::size_t stem_chunks_most = 17;
 void for_each_stem_cells(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                          const StemParts& parts,
-                         const std::function<void(std::uint32_t, const std::uint32_t*, std::uint32_t)>& f);
+                         const std::function<void(std::size_t, std::uint32_t, const std::uint32_t*, std::uint32_t)>& f);
 // Steps 1 to 5 for stems `ids` of network_stems(g, dir, net): the lines build_draped_lines stores
 // for them in db.creases (vertices, order, box, length equal bit for bit), in the order of `ids`,
 // indexed. A stem's join is found on the network: the stem it joins is the one through its end
