@@ -47,6 +47,14 @@
 
 namespace penink {
 
+// The arrays a crease source codes as the build made them (DrainageDb::built_network): what
+// decoding it and network_of_directions give again, bit for bit.
+struct BuiltNetwork {
+    DrainageGrid g;
+    std::vector<std::uint8_t> dir;
+    FlowNetwork net;
+};
+
 // Where a factor-1 grid's heights and node x, y are read again: the DEM file (its absolute
 // path, absolute_dem_path) read with heights_only, this UTM zone (0 for a projected DEM) and
 // hemisphere.

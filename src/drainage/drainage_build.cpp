@@ -416,6 +416,7 @@ DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& te
         crs = flat.crs_wkt;
         g = resample_pn_releasing(flat, factor);
     }
+    DrainageResult res;
     DrainageDb meta = build_streamed(
         g, crs, options, fp,
         [&](const DrainageDb& built, const DvBranchSource& branches) {
@@ -435,7 +436,12 @@ DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& te
                 say(std::string(e.what()) + "; using the drainage database built in memory");
             }
         },
-        progress, nullptr, dem ? &*dem : nullptr);
+        progress, &res, dem ? &*dem : nullptr);
+    // the grid, directions and network kept for the creases' tiles: a render's first frame builds
+    // its stems from them (not from the source decoded, the DEM read again, the network made again)
+    if (meta.has_crease_source())
+        meta.built_network.arrays =
+            std::make_shared<BuiltNetwork>(BuiltNetwork{std::move(g), std::move(res.dir), std::move(res.net)});
     return drainage_lines_only(std::move(meta));
 }
 

@@ -67,6 +67,16 @@ struct DrainageFingerprint {
     bool operator==(const DrainageFingerprint&) const = default;
 };
 
+struct BuiltNetwork;  // crease_source.hpp
+// A build's arrays handed on with its database: not part of the database's value (two databases
+// compare equal whether or not either holds them).
+struct BuiltNetworkHandle {
+    std::shared_ptr<BuiltNetwork> arrays;
+    explicit operator bool() const { return arrays != nullptr; }
+    BuiltNetwork* operator->() const { return arrays.get(); }
+    bool operator==(const BuiltNetworkHandle&) const { return true; }
+};
+
 struct DrainageDb {
     DrainageFingerprint fingerprint;
     std::int32_t cols = 0, rows = 0, factor = 1;  // drainage grid
@@ -91,6 +101,10 @@ struct DrainageDb {
     std::shared_ptr<const CheckedBlocks> crease_source_pages;
     std::uint64_t crease_source_size = 0;
     std::vector<std::uint64_t> crease_source_sums;
+    // After a build in this process (load_or_build_drainage): the grid, directions and network the
+    // crease source codes, handed to the creases' tiles so that they are not made again
+    // (StoredCreases::take); none for a database read from a file.
+    BuiltNetworkHandle built_network;
     bool has_crease_source() const { return !crease_source.empty() || crease_source_pages; }
     bool operator==(const DrainageDb&) const = default;
 };

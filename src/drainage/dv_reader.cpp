@@ -599,6 +599,7 @@ DrainageDb drainage_lines_only(DrainageDb db) {
     out.creases = std::move(db.creases), out.ridges = std::move(db.ridges);
     out.crease_source = std::move(db.crease_source), out.crease_source_sums = std::move(db.crease_source_sums);
     out.crease_source_pages = std::move(db.crease_source_pages), out.crease_source_size = db.crease_source_size;
+    out.built_network = std::move(db.built_network);
     return out;
 }
 

@@ -48,6 +48,7 @@ std::shared_ptr<StoredCreases> StoredCreases::take(DrainageDb& db, std::string f
     std::shared_ptr<StoredCreases> out = db.crease_source_pages
                                              ? of(db, std::move(folder))
                                              : std::make_shared<StoredCreases>(std::move(db.crease_source), std::move(folder));
+    out->built_ = std::move(db.built_network.arrays);
     db.crease_source = {}, db.crease_source_pages = nullptr;
     return out;
 }
@@ -98,13 +99,18 @@ CreaseTiles& StoredCreases::tiles() {
                 return std::move(unit_table.parts.sources);
             };
         }
+        if (built_ && built_->g.cols == d->g.cols && built_->g.rows == d->g.rows) {  // as the build made them
+            d->g = std::move(built_->g), d->dir = std::move(built_->dir), d->net = std::move(built_->net);
+            built_.reset();
+        }
         d->tiles = std::make_unique<CreaseTiles>(d->g, d->dir, d->net, std::move(index), std::move(store), std::move(reader));
         if (build_progress_) d->tiles->on_build_progress(build_progress_);
-        d->tiles->before_first_build([decoded, d = d.get()] {
-            CreaseTileIndex again;
-            decoded(d->g, d->dir, again, SourcePart::grid);  // the index: the tiles hold it
-            d->net = network_of_directions(d->g, d->dir);
-        });
+        if (d->dir.empty())
+            d->tiles->before_first_build([decoded, d = d.get()] {
+                CreaseTileIndex again;
+                decoded(d->g, d->dir, again, SourcePart::grid);  // the index: the tiles hold it
+                d->net = network_of_directions(d->g, d->dir);
+            });
         decoded_ = std::move(d);
     }
     return *decoded_->tiles;

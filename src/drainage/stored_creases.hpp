@@ -45,7 +45,8 @@ public:
     StoredCreases(std::shared_ptr<const CheckedBlocks> pages, std::uint64_t size, std::vector<std::uint64_t> sums,
                   std::string folder = {});
     // The database's source either way (has_crease_source): its bytes copied, or its pages shared;
-    // take: moved out of db (which is left without one).
+    // take: moved out of db (which is left without one), with the grid, directions and network
+    // of a build in this process (DrainageDb::built_network): the first stems built from them.
     static std::shared_ptr<StoredCreases> of(const DrainageDb& db, std::string folder = {});
     static std::shared_ptr<StoredCreases> take(DrainageDb& db, std::string folder = {});
     ~StoredCreases();
@@ -82,6 +83,7 @@ private:
     std::uint64_t size_ = 0;
     std::vector<std::uint64_t> sums_;  // its pages' checksums (made from source_ where not given)
     std::string folder_;
+    std::shared_ptr<BuiltNetwork> built_;  // the build's arrays, where this process built them (take)
     CreaseSourceBytes bytes() const;
     std::function<void(double)> build_progress_;
     std::unique_ptr<Decoded> decoded_;

@@ -770,6 +770,36 @@ TEST(DvFile, CacheMovedWithItsDemIsRebuilt) {
     fs::remove_all(d);
 }
 
+// A render that builds the database keeps the grid, directions and network it made for the first
+// stems (DrainageDb::built_network, taken by StoredCreases): with the DEM gone after the build (a
+// source decoded again would read its heights), the lines are those a later process builds from
+// the file, and the files written the same.
+TEST(DvFile, BuildsNetworkServesTheFirstStems) {
+    const fs::path d = temp_dir("built_network");
+    fs::create_directories(d / "a");
+    fs::copy_file(PENINK_SOURCE_DIR "/examples/jacksboro.tif", d / "a" / "j.tif");
+    const std::string dem = (d / "a" / "j.tif").string();
+    DrainageOptions o;
+    o.resample = 1;
+    DvLineVertices in_file;
+    DrainageDb built = load_or_build_drainage(dem, read_dem(dem), o, {}, {}, &in_file);
+    ASSERT_TRUE(built.built_network);
+    EXPECT_EQ(built.built_network->g.size(), std::size_t(built.cols) * std::size_t(built.rows));
+    const DrainageDb later = load_or_build_drainage(dem, read_dem(dem), o, {}, {}, &in_file);  // read from the file
+    EXPECT_FALSE(later.built_network);
+    const glm::vec2 lo(-1e30f), hi(1e30f);
+    const DrapedLineSet want = StoredCreases::of(later)->lines_for_box(lo, hi);
+    ASSERT_GT(want.lines.size(), 1000u);
+    fs::rename(dem, (d / "a" / "gone.tif").string());
+    EXPECT_THROW(StoredCreases::of(later)->lines_for_box(lo, hi), Error);  // decoding needs the DEM's heights
+    const std::shared_ptr<StoredCreases> first = StoredCreases::take(built, (d / "tiles").string());
+    EXPECT_FALSE(built.built_network);
+    EXPECT_TRUE(first->lines_for_box(lo, hi) == want);
+    EXPECT_GT(first->tiles_written(), 0u);
+    EXPECT_TRUE(StoredCreases::of(later, (d / "tiles").string())->lines_for_box(lo, hi) == want);  // the files read
+    fs::remove_all(d);
+}
+
 TEST(DvFile, UnwritableCacheBuildsInMemory) {
     const fs::path d = temp_dir("ro");
     const fs::path dem = d / "dem.asc";
