@@ -12,7 +12,7 @@
 
 namespace penink {
 
-DemSurface::DemSurface(const DrainageGrid& g) {
+DemSurface::DemSurface(const DrainageGrid& g, Normals normals) {
     if (g.factor == 1) {
         cols_ = g.cols, rows_ = g.rows, valid_ = g.valid.data(), z_ = g.z.data();
         if (!g.has_affine && g.coarse_xy.size() != g.size())
@@ -38,7 +38,7 @@ DemSurface::DemSurface(const DrainageGrid& g) {
             for (int k = 0; k < rows_; ++k) row_y_[std::size_t(k)] = affine_node_xy(nodes_, origin_, 0, k).y;
         }
     }
-    make_normals();
+    if (normals == Normals::all) make_normals();
 }
 
 DemSurface::DemSurface(const Terrain& t) {
@@ -64,21 +64,32 @@ struct FaceRow {
     std::vector<std::uint8_t> present;
 };
 
+// compute_normals' face normal of triangle `which` of cell (c, r), a triangle of the surface
+// (`node`: with_nodes' accessor).
+template <class Node> glm::vec3 face_normal(const DemSurface& s, const Node& node, int c, int r, int which) {
+    const std::size_t i = s.index(c, r), j = s.index(c, r + 1);
+    const glm::vec3 a = node(c, r, i), d = node(c + 1, r + 1, j + 1);
+    const glm::vec3 p1 = which == 0 ? node(c, r + 1, j) : d, p2 = which == 0 ? d : node(c + 1, r, i + 1);
+    const glm::vec3 n = glm::cross(p1 - a, p2 - a);
+    const float len = glm::length(n);
+    return len > 0.0f ? n / len : glm::vec3(0, 0, 1);
+}
+
+// The vertex normal from the sum of its incident faces' normals.
+glm::vec3 unit_sum(const glm::vec3& sum) {
+    const float len = glm::length(sum);
+    return len > 1e-12f ? sum / len : glm::vec3(0, 0, 1);
+}
+
 void face_row(const DemSurface& s, int r, FaceRow& out) {
     const std::size_t cells = std::size_t(s.cols() - 1);
     out.n.resize(2 * cells), out.present.assign(2 * cells, 0);
     if (r < 0 || r > s.rows() - 2) return;
     s.with_nodes([&](const auto& node) {
-        const std::size_t row = s.index(0, r), below = s.index(0, r + 1);
         for (int c = 0; c + 1 < s.cols(); ++c)
             for (int which = 0; which < 2; ++which) {
                 if (!s.triangle_valid(c, r, which)) continue;
-                const std::size_t i = row + std::size_t(c), j = below + std::size_t(c);
-                const glm::vec3 a = node(c, r, i), d = node(c + 1, r + 1, j + 1);
-                const glm::vec3 p1 = which == 0 ? node(c, r + 1, j) : d, p2 = which == 0 ? d : node(c + 1, r, i + 1);
-                const glm::vec3 n = glm::cross(p1 - a, p2 - a);
-                const float len = glm::length(n);
-                out.n[2 * std::size_t(c) + which] = len > 0.0f ? n / len : glm::vec3(0, 0, 1);
+                out.n[2 * std::size_t(c) + which] = face_normal(s, node, c, r, which);
                 out.present[2 * std::size_t(c) + which] = 1;
             }
     });
@@ -106,12 +117,36 @@ void DemSurface::make_normals() {
                 };
                 add(above, c - 1, 0), add(above, c - 1, 1), add(above, c, 0);
                 add(below, c - 1, 1), add(below, c, 0), add(below, c, 1);
-                const float len = glm::length(sum);
-                normals_[index(c, int(r))] = len > 1e-12f ? sum / len : glm::vec3(0, 0, 1);
+                normals_[index(c, int(r))] = unit_sum(sum);
             }
             std::swap(above, below);
         }
     });
+}
+
+// make_normals' sum for node i alone: the same faces in the same order.
+glm::vec3 DemSurface::node_normal(std::size_t i) const {
+    const int c = int(i % std::size_t(cols_)), r = int(i / std::size_t(cols_));
+    return with_nodes([&](const auto& node) {
+        glm::vec3 sum(0.0f);
+        auto add = [&](int cc, int rr, int which) {
+            if (triangle_valid(cc, rr, which)) sum += face_normal(*this, node, cc, rr, which);
+        };
+        add(c - 1, r - 1, 0), add(c - 1, r - 1, 1), add(c, r - 1, 0);
+        add(c - 1, r, 1), add(c, r, 0), add(c, r, 1);
+        return unit_sum(sum);
+    });
+}
+
+DemDraper::DemDraper(const DemSurface& s) : s_(&s) {
+    if (!s.normals_made()) made_.assign(4096, {~0u, glm::vec3(0.0f)});
+}
+
+glm::vec3 DemDraper::normal(std::uint32_t i) const {
+    if (made_.empty()) return s_->normal(std::size_t(i));
+    auto& slot = made_[i % made_.size()];
+    if (slot.first != i) slot = {i, s_->node_normal(i)};
+    return slot.second;
 }
 
 // The cell the inverse of the affine node formula puts (x, y) in (clamped to the grid); false
@@ -242,7 +277,7 @@ bool DemDraper::locate(double x, double y, int& c, int& r, DemHit& hit) const {
 void DemDraper::corners(const DemHit& hit, glm::vec3 p[3], glm::vec3 n[3]) const {
     s_->with_nodes([&](const auto& node) {
         if constexpr (std::decay_t<decltype(node)>::by_index) {
-            for (int k = 0; k < 3; ++k) p[k] = node(hit.node[k]), n[k] = s_->normal(std::size_t(hit.node[k]));
+            for (int k = 0; k < 3; ++k) p[k] = node(hit.node[k]), n[k] = normal(hit.node[k]);
             return;
         }
         const std::uint32_t cols = std::uint32_t(s_->cols()), i0 = hit.node[0];
@@ -255,7 +290,7 @@ void DemDraper::corners(const DemHit& hit, glm::vec3 p[3], glm::vec3 n[3]) const
             else if (d == cols) r = r0 + 1;
             else if (d == cols + 1) c = c0 + 1, r = r0 + 1;
             else c = int(i % cols), r = int(i / cols);
-            p[k] = node(c, r, i), n[k] = s_->normal(i);
+            p[k] = node(c, r, i), n[k] = normal(i);
         }
     });
 }

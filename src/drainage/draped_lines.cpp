@@ -947,8 +947,8 @@ void smoothed_ridges(const DrainageGrid& g, DrainageDb& db) {
 void build_draped_ridges(const DrainageGrid& g, DrainageDb& db, const LineProgress& progress,
                          const DemSurface* surface) {
     smoothed_ridges(g, db);
-    std::optional<DemSurface> own;
-    if (!surface) surface = &own.emplace(g);
+    std::optional<DemSurface> own;  // normals made where the ridges need them: a few of the nodes
+    if (!surface) surface = &own.emplace(g, DemSurface::Normals::on_demand);
     snap_to_crests(db.ridges, *surface, crest_options(g));
     drape_lines(db.ridges, *surface, progress);
 }

@@ -137,8 +137,9 @@ TEST(DrapedLines, NodataAndNonAffineGridDrapeEqualsTheLocator) {
 }
 
 // A DEM on a rotated affine grid (a geotransform with rotation terms): the cell under a point
-// from the inverse of the node formula, on the drainage grid (nodes by the formula) and on the
-// Terrain (stored nodes), against the locator at points all over and around it.
+// from the inverse of the node formula, on the drainage grid (nodes by the formula; normals made
+// for all nodes or where asked for) and on the Terrain (stored nodes), against the locator at
+// points all over and around it.
 TEST(DrapedLines, RotatedAffineGridLocatesAsTheMesh) {
     Terrain t;
     t.cols = 40, t.rows = 30, t.xy_unit = 1.0;
@@ -158,6 +159,9 @@ TEST(DrapedLines, RotatedAffineGridLocatesAsTheMesh) {
     const DrainageGrid g = resample_pn(t, 1);
     ASSERT_TRUE(g.has_affine);
     const DemSurface on_grid(g), on_terrain(t);
+    const DemSurface on_demand(g, DemSurface::Normals::on_demand);  // each node's normal where asked for
+    ASSERT_FALSE(on_demand.normals_made());
+    for (std::size_t i = 0; i < g.size(); ++i) ASSERT_EQ(on_demand.node_normal(i), on_grid.normal(i)) << i;
     glm::dvec3 lo, hi;
     terrain_bounds(t, lo, hi);
     std::uint32_t h = 7;
@@ -171,7 +175,7 @@ TEST(DrapedLines, RotatedAffineGridLocatesAsTheMesh) {
         const bool on = locator.locate(x, y, want);
         glm::vec3 wp, wn;
         if (on) locator.pn_position_normal_at(want, wp, wn);
-        for (const DemSurface* surface : {&on_grid, &on_terrain}) {
+        for (const DemSurface* surface : {&on_grid, &on_terrain, &on_demand}) {
             const DemDraper draper(*surface);
             int c = -1, r = -1;
             DemHit got;
