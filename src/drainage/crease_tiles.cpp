@@ -197,7 +197,7 @@ CreaseTileIndex CreaseTiles::index() {
 DemSurface& CreaseTiles::surface() {
     if (!surface_) {
         if (before_build_) std::exchange(before_build_, {})();
-        surface_ = std::make_unique<DemSurface>(g_);
+        surface_ = std::make_unique<DemSurface>(g_, DemSurface::Normals::on_demand);
     }
     return *surface_;
 }
