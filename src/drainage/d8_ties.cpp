@@ -1,6 +1,7 @@
 #include "drainage/d8_ties.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <bit>
 #include <climits>
@@ -126,63 +127,102 @@ std::size_t settle_in_order(const Ties& t, const std::vector<std::uint32_t>& tie
     return changed;
 }
 
-// Band-tie progress of one thread: the position (in the settling order) of its next band tie
-// not yet settled, on a cache line of its own.
-struct alignas(64) BandProgress {
-    std::atomic<std::uint64_t> next{0};
+// Progress in one slot (a strip's top or bottom band, a run of `segment_cols` columns): the
+// position (in the settling order) of the slot's next tie not yet settled, on a cache line of its
+// own.
+struct alignas(64) SlotProgress {
+    std::atomic<std::uint64_t> next{UINT64_MAX};
 };
 
 // The ties (in settling order) settled on `threads` threads with the same result as one by one:
 // the rows cut into strips of `strip_rows` (> depth) dealt round-robin to the threads, each
 // settling its strips' ties in the settling order. A tie reads directions only within `depth`
 // cells of itself (its neighbours' paths, Chebyshev distance) and writes only its own, so ties of
-// two strips interact only when both lie within `depth` rows of a strip edge (band ties), and
-// only when the strips are next to each other (other threads'). Before a band tie at position p
-// a thread waits until the threads of both neighbouring strips have settled their band ties
-// before p; they wait for it likewise: every tie reads the directions it would one by one. The
-// first band tie not yet settled never waits, so the threads always progress.
+// two strips interact only when both lie within `depth` rows of the strips' common edge (band
+// ties) and within `depth` columns of each other: in the same or the next slot (bands cut into
+// runs of `segment_cols` >= depth columns). Before a band tie at position p a thread waits until
+// the neighbouring strip has settled its ties before p in the three facing slots; that strip's
+// thread waits for it likewise: every tie reads the directions it would one by one. The first
+// band tie not yet settled never waits, so the threads always progress.
 std::size_t settle_in_strips(const Ties& t, const std::vector<std::uint32_t>& ties, unsigned threads,
-                             int strip_rows) {
+                             int strip_rows, int segment_cols) {
     const std::uint64_t cols = std::uint64_t(t.g.cols), span = std::uint64_t(strip_rows) * cols;
-    const std::uint64_t band = std::uint64_t(t.depth) * cols;
-    std::vector<BandProgress> progress(threads);
-    std::vector<std::size_t> changed(threads, 0);
-    // each thread's ties in order: positions, the top bit set on band ties
-    constexpr std::uint32_t band_bit = 0x80000000u;
+    const int depth = t.depth, strips = (t.g.rows + strip_rows - 1) / strip_rows;
+    const int segments = (t.g.cols + segment_cols - 1) / segment_cols;
+    // slot of strip s, edge e (0 top, 1 bottom), segment g
+    auto slot = [&](int s, int e, int g) { return (std::size_t(s) * 2 + std::size_t(e)) * std::size_t(segments) + std::size_t(g); };
+    // Where tie cell i lies: its strip, segment, and whether in the top / bottom band.
+    struct Place {
+        int strip, segment;
+        bool top, bottom;
+    };
+    auto place_of = [&](std::uint64_t i) {
+        const int r = int(i / cols), c = int(i % cols), s = r / strip_rows, local = r - s * strip_rows;
+        return Place{s, c / segment_cols, local < depth, local >= strip_rows - depth};
+    };
+    std::vector<SlotProgress> progress(std::size_t(strips) * 2 * std::size_t(segments));
+    // each thread's ties in order: positions, the top bit set on band ties; for its band ties in
+    // order, the position of the next tie in the same top and bottom slot (UINT32_MAX: none)
+    constexpr std::uint32_t band_bit = 0x80000000u, none = UINT32_MAX;
     const double per_span = 1.0 / double(span);
+    const std::uint64_t band = std::uint64_t(depth) * cols;
     std::vector<std::vector<std::uint32_t>> lists(threads);
+    std::vector<std::vector<std::array<std::uint32_t, 2>>> next_in_slot(threads);
     parallel_chunks(threads, 1, [&](std::size_t m0, std::size_t m1) {
-        for (std::size_t me = m0; me < m1; ++me)
+        for (std::size_t me = m0; me < m1; ++me) {
+            std::vector<std::uint32_t>& mine = lists[me];
             for (std::size_t p = 0; p < ties.size(); ++p) {
                 const std::uint64_t i = ties[p];
                 std::uint64_t strip = std::uint64_t(double(i) * per_span);  // i / span, corrected below
                 strip -= strip * span > i, strip += (strip + 1) * span <= i;
                 const std::uint64_t off = i - strip * span;
-                if (strip % threads == me) lists[me].push_back(std::uint32_t(p) | (off < band || off + band >= span ? band_bit : 0));
+                if (strip % threads == me) mine.push_back(std::uint32_t(p) | (off < band || off + band >= span ? band_bit : 0));
             }
+            std::vector<std::uint32_t> later(progress.size(), none);  // backwards: next position per slot
+            std::vector<std::array<std::uint32_t, 2>>& next = next_in_slot[me];
+            for (std::size_t k = mine.size(); k-- > 0;) {
+                if (!(mine[k] & band_bit)) continue;
+                const std::uint32_t p = mine[k] & ~band_bit;
+                const Place x = place_of(ties[p]);
+                std::array<std::uint32_t, 2> n{none, none};
+                for (int e = 0; e < 2; ++e)
+                    if (e ? x.bottom : x.top) n[std::size_t(e)] = std::exchange(later[slot(x.strip, e, x.segment)], p);
+                next.push_back(n);
+            }
+            std::reverse(next.begin(), next.end());
+            for (std::size_t q = 0; q < later.size(); ++q)  // this thread's slots: their first tie
+                if (later[q] != none) progress[q].next.store(later[q], std::memory_order_relaxed);
+        }
     });
+    std::vector<std::size_t> changed(threads, 0);
     auto run = [&](unsigned me) {  // allocates nothing: the others wait on it
         const std::vector<std::uint32_t>& mine = lists[me];
-        std::size_t next_band = 0;
-        auto publish = [&](std::size_t from) {
-            next_band = from;
-            while (next_band < mine.size() && !(mine[next_band] & band_bit)) ++next_band;
-            progress[me].next.store(next_band < mine.size() ? mine[next_band] & ~band_bit : UINT64_MAX,
-                                    std::memory_order_release);
-        };
-        publish(0);
-        const unsigned before = (me + threads - 1) % threads, after = (me + 1) % threads;
+        const std::vector<std::array<std::uint32_t, 2>>& next = next_in_slot[me];
+        std::size_t band_k = 0;  // band ties settled so far
         changed[me] = settle_in_order(
             t, ties, mine.size(), [&](std::size_t k) { return mine[k] & ~band_bit; },
             [&](std::size_t k) {
                 if (!(mine[k] & band_bit)) return;
                 const std::uint64_t p = mine[k] & ~band_bit;
-                for (int spins = 0; progress[before].next.load(std::memory_order_acquire) < p ||
-                                    progress[after].next.load(std::memory_order_acquire) < p;)
-                    if (++spins > 64) std::this_thread::yield();
+                const Place x = place_of(ties[p]);
+                for (int e = 0; e < 2; ++e) {
+                    const int facing = e ? x.strip + 1 : x.strip - 1;
+                    if (!(e ? x.bottom : x.top) || facing < 0 || facing >= strips) continue;
+                    for (int g = std::max(0, x.segment - 1); g <= std::min(segments - 1, x.segment + 1); ++g)
+                        for (int spins = 0; progress[slot(facing, 1 - e, g)].next.load(std::memory_order_acquire) < p;)
+                            if (++spins > 64) std::this_thread::yield();
+                }
             },
             [&](std::size_t k) {
-                if (mine[k] & band_bit) publish(k + 1);
+                if (!(mine[k] & band_bit)) return;
+                const Place x = place_of(ties[mine[k] & ~band_bit]);
+                for (int e = 0; e < 2; ++e)
+                    if (e ? x.bottom : x.top) {
+                        const std::uint32_t n = next[band_k][std::size_t(e)];
+                        progress[slot(x.strip, e, x.segment)].next.store(n == none ? UINT64_MAX : n,
+                                                                         std::memory_order_release);
+                    }
+                ++band_k;
             });
     };
     std::vector<std::thread> others;
@@ -236,7 +276,7 @@ std::size_t break_d8_ties(const RoutingGrid& grid, RoutingArrays& arrays, const 
     if (threads < 2 || rows <= strip_rows || ties.size() >= (std::size_t(1) << 31) || (!split.threads && ties.size() < (std::size_t(1) << 16)))
         changed = settle_in_order(t, ties, ties.size(), [](std::size_t k) { return k; }, [](std::size_t) {}, [](std::size_t) {});
     else
-        changed = settle_in_strips(t, ties, threads, strip_rows);
+        changed = settle_in_strips(t, ties, threads, strip_rows, std::max(split.segment_cols ? split.segment_cols : 32, t.depth));
     return changed;
 }
 

@@ -182,13 +182,14 @@ TEST(D8Ties, SettlesLikeTheReferenceOnRandomTiedTerrain) {
         for (const int depth : {16, 3}) {
             BeforeTies want = start;
             reference_ties(want, depth);
-            for (const TieThreads split : {TieThreads{1, 0}, TieThreads{2, depth + 1}, TieThreads{3, 20}, TieThreads{0, 0}}) {
+            for (const TieThreads split : {TieThreads{1, 0, 0}, TieThreads{2, depth + 1, depth}, TieThreads{3, 20, 20},
+                                            TieThreads{2, 30, 0}, TieThreads{0, 0, 0}}) {
                 BeforeTies got = start;
                 RoutingArrays a = got.arrays();
                 break_d8_ties(got.grid(), a, got.mask, depth, split);
                 EXPECT_EQ(got.ties, want.ties) << "seed " << seed << " depth " << depth;
                 EXPECT_EQ(got.dir, want.dir) << "seed " << seed << " depth " << depth << " threads " << split.threads
-                                             << " strip rows " << split.strip_rows;
+                                             << " strip rows " << split.strip_rows << " segment columns " << split.segment_cols;
             }
             std::size_t changed = 0;
             for (std::size_t i = 0; i < start.dir.size(); ++i) changed += start.dir[i] != want.dir[i];
