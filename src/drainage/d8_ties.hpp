@@ -24,10 +24,11 @@
 
 namespace penink {
 
-// How break_d8_ties spreads the settling over threads (the result is the same): `threads`
-// (0: the hardware's, up to 16; 1: one by one), the rows of a strip (0: rows / (8 threads),
-// 8 depth to 1024; at least depth + 1) and the columns of a run of a strip's edge that waits
-// apart from the others (0: 32; at least depth). Automatic: one by one below 2^16 ties.
+// How break_d8_ties spreads the settling over threads (the result is the same): `threads` (0:
+// the hardware's, up to 16, where it has 4 or more, else 1; 1: one by one), the rows of a strip
+// (0: rows / (8 threads), 8 depth to 1024; at least depth + 1) and the columns of a run of a
+// strip's edge that waits apart from the others (0: 32; at least depth). Automatic: one by one
+// below 2^16 ties.
 struct TieThreads {
     unsigned threads = 0;
     int strip_rows = 0;
