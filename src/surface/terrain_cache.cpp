@@ -6,11 +6,16 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <filesystem>
+#include <mutex>
+#include <span>
+#include <unordered_map>
 #include <stdexcept>
 #include <vector>
 
 #include <GeographicLib/Constants.hpp>
+#include <glm/common.hpp>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -21,6 +26,7 @@
 #include "core/error.hpp"
 #include "core/hash64.hpp"
 #include "core/parallel_chunks.hpp"
+#include "input/dem_reader.hpp"
 #include "input/geographic_nodes.hpp"
 
 namespace penink {
@@ -182,6 +188,57 @@ template <class F> CodedBlocks code_blocks(std::uint64_t elems, F&& code) {
     return out;
 }
 
+// The coded blocks of an array of `elems` floats whose values come a run at a time, runs in any
+// order, each element once: a block is coded when its last element comes (whole blocks of a run
+// on every core; the pieces of blocks cut by a run's ends wait, copied, for the rest).
+class FloatBlockCoder {
+public:
+    FloatBlockCoder(std::uint64_t elems, std::span<const int> orders)
+        : elems_(elems), orders_(orders), out_(std::size_t(block_count(elems, block_shift))) {}
+
+    void add(std::uint64_t first, const float* v, std::uint64_t count) {
+        const std::uint64_t end = first + count;
+        std::uint64_t at = first;
+        while (at < end && (at & mask) != 0) at = piece(at, end, v + (at - first));  // a block begun before
+        std::uint64_t whole = at;  // whole blocks from `at`
+        while (whole < end && block_end(whole) <= end) whole = block_end(whole);
+        const std::size_t b0 = std::size_t(at >> block_shift), b1 = b0 + std::size_t((whole - at + mask) >> block_shift);
+        parallel_chunks(b1 - b0, 64, [&](std::size_t i0, std::size_t i1) {
+            for (std::size_t b = b0 + i0; b < b0 + i1; ++b) {
+                const std::uint64_t s = std::uint64_t(b) << block_shift;
+                out_[b] = encode_floats(v + (s - first), std::size_t(block_end(s) - s), orders_);
+            }
+        });
+        for (at = whole; at < end;) at = piece(at, end, v + (at - first));  // a block ended after
+    }
+    CodedBlocks take() { return std::move(out_); }
+
+private:
+    static constexpr std::uint64_t mask = (std::uint64_t(1) << block_shift) - 1;
+    struct Partial {
+        std::vector<float> v;
+        std::uint64_t have = 0;
+    };
+    std::uint64_t block_end(std::uint64_t i) const { return std::min((i | mask) + 1, elems_); }
+    // Elements [at, min(end, its block's end)) of a block not whole in the run; returns where they end.
+    std::uint64_t piece(std::uint64_t at, std::uint64_t end, const float* v) {
+        const std::uint64_t s = at & ~mask, e = std::min(block_end(at), end);
+        Partial& p = partial_[s >> block_shift];
+        p.v.resize(std::size_t(block_end(s) - s));
+        std::copy(v, v + (e - at), p.v.begin() + std::ptrdiff_t(at - s));
+        p.have += e - at;
+        if (p.have == p.v.size()) {
+            out_[std::size_t(s >> block_shift)] = encode_floats(p.v.data(), p.v.size(), orders_);
+            partial_.erase(s >> block_shift);
+        }
+        return e;
+    }
+    std::uint64_t elems_;
+    std::span<const int> orders_;
+    CodedBlocks out_;
+    std::unordered_map<std::uint64_t, Partial> partial_;
+};
+
 struct CodedTerrain {
     CodedBlocks pos, valid, error;
     std::uint32_t flags = 0;
@@ -297,6 +354,82 @@ void write_terrain_cache(const std::string& path, const StoredTerrain& t, const 
     for (const CodedBlocks* a : {&coded.pos, &coded.valid, &coded.error})
         for (const auto& b : *a) parts.emplace_back(b);
     if (const int err = write_cache_file(path, parts)) write_failed(path, err);
+}
+
+bool build_terrain_cache(const std::string& dem_path, const std::string& path, const TerrainCacheKey& key,
+                         const std::function<void(int)>& done) {
+    // The heights and flags alone; each row's x, y checked against the formula the cache will
+    // recompute them with (derive_xy) and reduced to the plan bounds and the Lipschitz bound.
+    struct RowSums {
+        glm::vec3 lo{std::numeric_limits<float>::infinity()}, hi{-std::numeric_limits<float>::infinity()};
+        float lipschitz2 = 0.0f;
+    };
+    std::once_flag once;
+    std::optional<DerivedXY> formula;
+    std::vector<RowSums> sums;
+    std::atomic<bool> exact{true};
+    DemOptions read;
+    read.heights_only = true;
+    read.xy_rows = [&](const Terrain& t, int r, const glm::vec2* xy) {
+        std::call_once(once, [&] {
+            formula = derive_xy(t, xy_affine | xy_geographic);
+            sums.resize(std::size_t(t.rows));
+        });
+        if (!formula || !exact.load(std::memory_order_relaxed)) return;
+        thread_local std::vector<glm::vec2> f;
+        f.resize(std::size_t(t.cols));
+        formula->span(r, 0, t.cols, f.data());
+        if (std::memcmp(f.data(), xy, f.size() * sizeof(glm::vec2)) != 0) return exact.store(false);
+        RowSums& row = sums[std::size_t(r)];
+        for (int c = 0; c < t.cols; ++c) {
+            const std::size_t i = t.index(c, r);
+            if (!t.valid[i]) continue;
+            const glm::vec3 p(xy[c].x, xy[c].y, t.z[i]);
+            row.lo = glm::min(row.lo, p), row.hi = glm::max(row.hi, p);
+        }
+        if (r + 1 < t.rows) {
+            formula->span(r + 1, 0, t.cols, f.data());
+            row.lipschitz2 = lod_cells_lipschitz2(&xy[0].x, &f[0].x, t.cols, 2);
+        }
+    };
+    Terrain dem = read_dem(dem_path, read);
+    if (!formula || !exact.load() || dem.vertical_exaggeration != 1.0) return false;
+    if (done) done(0);
+
+    StoredTerrain t;  // the header's fields
+    t.meta = terrain_metadata(dem);
+    t.lod.cols = dem.cols, t.lod.rows = dem.rows;
+    t.lod.levels = lod_padded_levels(dem.cols, dem.rows);
+    RowSums all;
+    for (const RowSums& row : sums)
+        all.lo = glm::min(all.lo, row.lo), all.hi = glm::max(all.hi, row.hi), all.lipschitz2 = std::max(all.lipschitz2, row.lipschitz2);
+    sums = {};
+    t.lod.lipschitz = float(std::sqrt(double(all.lipschitz2)));
+    if (all.lo.z <= all.hi.z) {
+        t.lod.z_min = all.lo.z, t.lod.z_max = all.hi.z;
+        t.plan_lo = glm::dvec2(glm::dvec3(all.lo)), t.plan_hi = glm::dvec2(glm::dvec3(all.hi));
+    }
+    const Counts n = array_counts(dem.cols, dem.rows, t.lod.levels);
+    CodedTerrain coded;
+    coded.flags = formula->flag;
+    coded.pos = code_blocks(n.nodes, [&](std::uint64_t i, std::uint64_t k) {
+        return encode_floats(dem.z.data() + i, std::size_t(k), z_orders);
+    });
+    coded.valid = code_blocks(n.nodes, [&](std::uint64_t i, std::uint64_t k) { return encode_bytes(dem.valid.data() + i, std::size_t(k)); });
+    FloatBlockCoder errors(n.padded, error_orders);
+    const std::uint64_t side = std::uint64_t(t.lod.side());
+    lod_errors(LodHeights{dem.cols, dem.rows, dem.z.data(), dem.valid.data()}, LodStrips{},
+               [&](int r0, int r1, const float* e) { errors.add(std::uint64_t(r0) * side, e, std::uint64_t(r1 - r0) * side); });
+    coded.error = errors.take();
+    dem = {};
+    if (done) done(1);
+    std::uint64_t at[3], total = 0;
+    const std::vector<std::uint8_t> header = encode_header(t, key, coded, at, total);
+    std::vector<std::span<const std::uint8_t>> parts{header};
+    for (const CodedBlocks* a : {&coded.pos, &coded.valid, &coded.error})
+        for (const auto& b : *a) parts.emplace_back(b);
+    if (const int err = write_cache_file(path, parts)) write_failed(path, err);
+    return true;
 }
 
 std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const TerrainCacheKey& key, std::string* why) {
