@@ -60,10 +60,18 @@ void read_band(GDALRasterBand& band, Raster& r, const std::string& path) {
     }();
     raw.resize(std::size_t(r.w) * r.h);
     const GDALDataType as = sizeof(T) == 4 ? GDT_Float32 : GDT_Float64;
-    if (band.RasterIO(GF_Read, 0, 0, r.w, r.h, raw.data(), r.w, r.h, as, 0, 0) != CE_None)
-        fail(path, "not a DEM raster (GDAL cannot read it)");
+    // A band of rows at a time, the blocks GDAL caches for it dropped after it: the read holds the
+    // values and about a band of blocks, not a second copy of the raster in GDAL's cache.
+    int block_w = 0, block_h = 0;
+    band.GetBlockSize(&block_w, &block_h);
+    const int rows = std::max(1, std::max(block_h, 1) * std::max(1, (8 << 20) / std::max(1, r.w * int(sizeof(T)) * std::max(block_h, 1))));
+    for (int y = 0; y < r.h; y += rows) {
+        const int n = std::min(rows, r.h - y);
+        if (band.RasterIO(GF_Read, 0, y, r.w, n, raw.data() + std::size_t(y) * std::size_t(r.w), r.w, n, as, 0, 0) != CE_None)
+            fail(path, "not a DEM raster (GDAL cannot read it)");
+        band.FlushCache();
+    }
     r.mask = read_mask(band, path);
-    band.FlushCache();  // the blocks GDAL kept while reading: the values are all in `raw`
     if (GDALRasterBand* m = band.GetMaskBand(); m && !r.mask.empty()) m->FlushCache();
     int has = 0, has_scale = 0, has_offset = 0;
     r.nodata = band.GetNoDataValue(&has), r.has_nodata = has != 0;
@@ -225,7 +233,7 @@ void take_heights(Raster& r, double s, std::vector<float>& z) {
     z.reserve(w * h);
     // Bands of rows converted on every core into `band`, appended to z (whose pages are touched
     // as it grows), the values' rows behind them given back.
-    const std::size_t band_rows = std::max<std::size_t>(1, (std::size_t(8) << 20) / w);
+    const std::size_t band_rows = std::max<std::size_t>(1, (std::size_t(2) << 20) / w);  // 8 MiB of floats
     std::vector<float> band;
     void* raw = r.raw_f.empty() ? static_cast<void*>(r.raw_d.data()) : static_cast<void*>(r.raw_f.data());
     const std::size_t value_bytes = r.raw_f.empty() ? sizeof(double) : sizeof(float);

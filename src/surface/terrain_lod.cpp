@@ -246,6 +246,15 @@ void load_strip(const LodHeights& dem, LevelGrid& g) {
 
 }  // namespace
 
+double lod_errors_bytes(int cols, int rows, const LodStrips& strips) {
+    const int n = 1 << lod_padded_levels(cols, rows);
+    const double side = double(n) + 1.0, fine = double(strips.fine_side);
+    if (fine > n / 2) return 13.0 * side * side;  // one strip, every level on it
+    const double strip = std::min(double(strips.strip_rows) + 2.0 * double(lod_apron(strips.fine_side)), side);
+    const double top = double(n) / (fine / 2.0) + 1.0;
+    return 13.0 * side * strip + 4.0 * side * (double(n) / fine + 1.0) + 13.0 * top * top;
+}
+
 void lod_errors(const LodHeights& dem, const LodStrips& strips, const std::function<void(int, int, const float*)>& emit) {
     const int levels = lod_padded_levels(dem.cols, dem.rows), n = 1 << levels, side = n + 1;
     if (dem.cols < 2 || dem.rows < 2) {

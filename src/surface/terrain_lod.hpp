@@ -132,6 +132,10 @@ struct LodStrips {
     int fine_side = 32;
 };
 
+// Bytes lod_errors holds for a cols x rows DEM (the strip and its margins, the held rows, the
+// upper levels' grid; the formula in LodStrips' comment).
+double lod_errors_bytes(int cols, int rows, const LodStrips& strips = {});
+
 // The pyramid's errors (TerrainLod::error, padded row-major) of `dem`, a strip at a time:
 // emit(r0, r1, e) receives the final errors of padded rows [r0, r1) ((r1 - r0) * side floats,
 // valid during the call); every row once, in no fixed order (the rows holding nodes of the

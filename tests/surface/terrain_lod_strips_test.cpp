@@ -133,3 +133,14 @@ TEST(TerrainLodStrips, RefusesStripsThatAreNotPowersOfTwo) {
     EXPECT_THROW(lod_errors(g.heights(), {4, 3}, [](int, int, const float*) {}), std::invalid_argument);
     EXPECT_THROW(lod_errors(g.heights(), {0, 4}, [](int, int, const float*) {}), std::invalid_argument);
 }
+
+TEST(TerrainLodStrips, MemoryFollowsTheStripsNotTheSquare) {
+    // 11687 x 9976 nodes, a padded side of 16385: a strip of 512 rows and 49 either side (13 B a
+    // padded node: 130 MB), the 513 rows every 32 (4 B: 33.6 MB) and the 1025^2 nodes every 16
+    // (13 B: 13.7 MB), against 14 B per padded node (3.76 GB) for the whole square.
+    const double side = 16385.0;
+    EXPECT_NEAR(lod_errors_bytes(11687, 9976), 13.0 * side * 610 + 4.0 * side * 513 + 13.0 * 1025 * 1025, 1.0);
+    EXPECT_LT(lod_errors_bytes(11687, 9976), 0.05 * 14.0 * side * side);
+    // a square that fits under two fine levels is settled whole
+    EXPECT_EQ(lod_errors_bytes(30, 20), 13.0 * 33 * 33);
+}
