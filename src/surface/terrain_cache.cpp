@@ -319,6 +319,16 @@ std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCac
     throw Error("surface", path, std::string("cannot write terrain cache: ") + std::strerror(err));
 }
 
+// The file of t's header fields and its coded arrays.
+void write_coded(const std::string& path, const StoredTerrain& t, const TerrainCacheKey& key, const CodedTerrain& coded) {
+    std::uint64_t at[3], total = 0;
+    const std::vector<std::uint8_t> header = encode_header(t, key, coded, at, total);
+    std::vector<std::span<const std::uint8_t>> parts{header};
+    for (const CodedBlocks* a : {&coded.pos, &coded.valid, &coded.error})
+        for (const auto& b : *a) parts.emplace_back(b);
+    if (const int err = write_cache_file(path, parts)) write_failed(path, err);
+}
+
 std::optional<StoredTerrain> fail(std::string* why, const std::string& reason) {
     if (why) *why = reason;
     return std::nullopt;
@@ -348,12 +358,7 @@ void write_terrain_cache(const std::string& path, const StoredTerrain& t, const 
     if (t.lod.error.size() != n.padded || t.nodes.size() != t.meta.size())
         throw std::invalid_argument("terrain cache: pyramid and nodes do not match the grid");
     const CodedTerrain coded = code_terrain(t);
-    std::uint64_t at[3], total = 0;
-    const std::vector<std::uint8_t> header = encode_header(t, key, coded, at, total);
-    std::vector<std::span<const std::uint8_t>> parts{header};
-    for (const CodedBlocks* a : {&coded.pos, &coded.valid, &coded.error})
-        for (const auto& b : *a) parts.emplace_back(b);
-    if (const int err = write_cache_file(path, parts)) write_failed(path, err);
+    write_coded(path, t, key, coded);
 }
 
 bool build_terrain_cache(const std::string& dem_path, const std::string& path, const TerrainCacheKey& key,
@@ -423,12 +428,7 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
     coded.error = errors.take();
     dem = {};
     if (done) done(1);
-    std::uint64_t at[3], total = 0;
-    const std::vector<std::uint8_t> header = encode_header(t, key, coded, at, total);
-    std::vector<std::span<const std::uint8_t>> parts{header};
-    for (const CodedBlocks* a : {&coded.pos, &coded.valid, &coded.error})
-        for (const auto& b : *a) parts.emplace_back(b);
-    if (const int err = write_cache_file(path, parts)) write_failed(path, err);
+    write_coded(path, t, key, coded);
     return true;
 }
 
