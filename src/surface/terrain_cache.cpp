@@ -194,7 +194,10 @@ template <class F> CodedBlocks code_blocks(std::uint64_t elems, F&& code) {
 class FloatBlockCoder {
 public:
     FloatBlockCoder(std::uint64_t elems, std::span<const int> orders)
-        : elems_(elems), orders_(orders), out_(std::size_t(block_count(elems, block_shift))) {}
+        : elems_(elems), orders_(orders), out_(std::size_t(block_count(elems, block_shift))) {
+        const std::vector<float> inf(std::size_t(1) << block_shift, std::numeric_limits<float>::infinity());
+        inf_block_ = encode_floats(inf.data(), inf.size(), orders_);
+    }
 
     void add(std::uint64_t first, const float* v, std::uint64_t count) {
         const std::uint64_t end = first + count;
@@ -206,7 +209,7 @@ public:
         parallel_chunks(b1 - b0, 64, [&](std::size_t i0, std::size_t i1) {
             for (std::size_t b = b0 + i0; b < b0 + i1; ++b) {
                 const std::uint64_t s = std::uint64_t(b) << block_shift;
-                out_[b] = encode_floats(v + (s - first), std::size_t(block_end(s) - s), orders_);
+                out_[b] = code(v + (s - first), std::size_t(block_end(s) - s));
             }
         });
         for (at = whole; at < end;) at = piece(at, end, v + (at - first));  // a block ended after
@@ -220,6 +223,15 @@ private:
         std::uint64_t have = 0;
     };
     std::uint64_t block_end(std::uint64_t i) const { return std::min((i | mask) + 1, elems_); }
+    // A whole block of +inf (the padding, most of a long thin DEM's square) is coded once: the
+    // coding is a function of the values, so its bytes are those coding it again would give.
+    std::vector<std::uint8_t> code(const float* v, std::size_t count) const {
+        const bool inf = count == inf_count && std::all_of(v, v + count, [](float x) {
+            return std::bit_cast<std::uint32_t>(x) == std::bit_cast<std::uint32_t>(std::numeric_limits<float>::infinity());
+        });
+        return inf ? inf_block_ : encode_floats(v, count, orders_);
+    }
+    static constexpr std::size_t inf_count = std::size_t(1) << block_shift;
     // Elements [at, min(end, its block's end)) of a block not whole in the run; returns where they end.
     std::uint64_t piece(std::uint64_t at, std::uint64_t end, const float* v) {
         const std::uint64_t s = at & ~mask, e = std::min(block_end(at), end);
@@ -228,7 +240,7 @@ private:
         std::copy(v, v + (e - at), p.v.begin() + std::ptrdiff_t(at - s));
         p.have += e - at;
         if (p.have == p.v.size()) {
-            out_[std::size_t(s >> block_shift)] = encode_floats(p.v.data(), p.v.size(), orders_);
+            out_[std::size_t(s >> block_shift)] = code(p.v.data(), p.v.size());
             partial_.erase(s >> block_shift);
         }
         return e;
@@ -236,6 +248,7 @@ private:
     std::uint64_t elems_;
     std::span<const int> orders_;
     CodedBlocks out_;
+    std::vector<std::uint8_t> inf_block_;
     std::unordered_map<std::uint64_t, Partial> partial_;
 };
 
