@@ -240,6 +240,7 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, c
     }
     StageProgress progress(std::cerr, log.progress, "building terrain cache");
     progress.update("reading the DEM", 0.0);
+    bool unwritable = false;  // the streamed build could not write the file: the fallback does not try again
     if (!occupied) {  // streamed: the heights and the pyramid's strips, never the positions or the whole pyramid
         bool built = false;
         try {
@@ -257,6 +258,7 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, c
         } catch (const Error& e) {
             if (e.stage() != "surface") throw;  // the DEM's own errors
             log.info(std::string(e.what()) + "; using the terrain built in memory");
+            unwritable = true;
         }
         if (built) {
             log.info("terrain: wrote " + path + " (" + cache_file_size(path) + ", " + std::to_string(int(lap_ms(t0))) + " ms)");
@@ -276,7 +278,7 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, c
     log.info("level-of-detail pyramid: " + std::to_string(stored.lod.side()) + "^2 nodes (" +
              std::to_string(int(lap_ms(t0))) + " ms)");
     progress.update("writing", 0.8);
-    if (occupied) {
+    if (occupied || unwritable) {
         progress.update("done", 1.0);
         return stored;
     }
