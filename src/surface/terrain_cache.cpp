@@ -177,14 +177,25 @@ std::optional<DerivedXY> derived_xy(const Terrain& meta, const GridNodes& nodes)
 
 // The coded blocks of one array.
 using CodedBlocks = std::vector<std::vector<std::uint8_t>>;
+// code(first element, count) of every block of an array of `elems`, on every core a batch of
+// blocks at a time, each batch then handed in order to use(block, its bytes).
+template <class F, class U> void code_batches(std::uint64_t elems, F&& code, U&& use) {
+    const std::size_t blocks = std::size_t(block_count(elems, block_shift)), batch = 1 << 14;
+    CodedBlocks coded;
+    for (std::size_t b0 = 0; b0 < blocks; b0 += batch) {
+        coded.resize(std::min(batch, blocks - b0));
+        parallel_chunks(coded.size(), 64, [&](std::size_t i0, std::size_t i1) {
+            for (std::size_t i = i0; i < i1; ++i) {
+                const std::uint64_t first = std::uint64_t(b0 + i) << block_shift;
+                coded[i] = code(first, std::min<std::uint64_t>(std::uint64_t(1) << block_shift, elems - first));
+            }
+        });
+        for (std::size_t i = 0; i < coded.size(); ++i) use(b0 + i, std::span<const std::uint8_t>(coded[i]));
+    }
+}
 template <class F> CodedBlocks code_blocks(std::uint64_t elems, F&& code) {
     CodedBlocks out(std::size_t(block_count(elems, block_shift)));
-    parallel_chunks(out.size(), 64, [&](std::size_t b0, std::size_t b1) {
-        for (std::size_t b = b0; b < b1; ++b) {
-            const std::uint64_t first = std::uint64_t(b) << block_shift;
-            out[b] = code(first, std::min<std::uint64_t>(std::uint64_t(1) << block_shift, elems - first));
-        }
-    });
+    code_batches(elems, code, [&](std::size_t b, std::span<const std::uint8_t> bytes) { out[b].assign(bytes.begin(), bytes.end()); });
     return out;
 }
 
@@ -214,7 +225,9 @@ public:
         });
         for (at = whole; at < end;) at = piece(at, end, v + (at - first));  // a block ended after
     }
-    CodedBlocks take() { return std::move(out_); }
+    // Block b's bytes (once every element came).
+    std::span<const std::uint8_t> block(std::size_t b) const { return out_[b].empty() ? std::span<const std::uint8_t>(inf_block_) : out_[b]; }
+    std::size_t blocks() const { return out_.size(); }
 
 private:
     static constexpr std::uint64_t mask = (std::uint64_t(1) << block_shift) - 1;
@@ -223,13 +236,14 @@ private:
         std::uint64_t have = 0;
     };
     std::uint64_t block_end(std::uint64_t i) const { return std::min((i | mask) + 1, elems_); }
-    // A whole block of +inf (the padding, most of a long thin DEM's square) is coded once: the
-    // coding is a function of the values, so its bytes are those coding it again would give.
+    // A whole block of +inf (the padding, most of a long thin DEM's square) is coded once and
+    // held once (empty here; block() gives its bytes): the coding is a function of the values,
+    // so its bytes are those coding it again would give.
     std::vector<std::uint8_t> code(const float* v, std::size_t count) const {
         const bool inf = count == inf_count && std::all_of(v, v + count, [](float x) {
             return std::bit_cast<std::uint32_t>(x) == std::bit_cast<std::uint32_t>(std::numeric_limits<float>::infinity());
         });
-        return inf ? inf_block_ : encode_floats(v, count, orders_);
+        return inf ? std::vector<std::uint8_t>() : encode_floats(v, count, orders_);
     }
     static constexpr std::size_t inf_count = std::size_t(1) << block_shift;
     // Elements [at, min(end, its block's end)) of a block not whole in the run; returns where they end.
@@ -278,14 +292,28 @@ CodedTerrain code_terrain(const StoredTerrain& t) {
     return c;
 }
 
-std::uint64_t coded_bytes(const CodedBlocks& blocks) {
-    std::uint64_t n = 0;
-    for (const auto& b : blocks) n += b.size();
-    return n;
+// Each block's coded size and checksum, of the three arrays (what the header lists).
+struct BlockSums {
+    std::vector<std::uint32_t> sizes[3];
+    std::vector<std::uint64_t> sums[3];
+    std::uint32_t flags = 0;
+    void take(int array, std::size_t b, std::span<const std::uint8_t> bytes) {
+        sizes[array][b] = std::uint32_t(bytes.size()), sums[array][b] = hash64(bytes.data(), bytes.size());
+    }
+};
+BlockSums block_sums(const CodedTerrain& coded) {
+    BlockSums s;
+    s.flags = coded.flags;
+    const CodedBlocks* arrays[3] = {&coded.pos, &coded.valid, &coded.error};
+    for (int j = 0; j < 3; ++j) {
+        s.sizes[j].resize(arrays[j]->size()), s.sums[j].resize(arrays[j]->size());
+        for (std::size_t b = 0; b < arrays[j]->size(); ++b) s.take(j, b, (*arrays[j])[b]);
+    }
+    return s;
 }
 
 // The header and the array offsets of `t` (offsets relative to the file's start).
-std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCacheKey& key, const CodedTerrain& coded,
+std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCacheKey& key, const BlockSums& coded,
                                         std::uint64_t at[3], std::uint64_t& total) {
     const Terrain& m = t.meta;
     Writer w;
@@ -310,18 +338,17 @@ std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCac
     while (w.b.size() % 8) w.b.push_back(0);
     // each block's coded size, then its checksum, the three arrays' blocks in turn
     w.put(std::uint32_t(block_shift)), w.put(coded.flags);
-    const CodedBlocks* arrays[3] = {&coded.pos, &coded.valid, &coded.error};
-    for (const CodedBlocks* a : arrays)
-        for (const auto& b : *a) w.put(std::uint32_t(b.size()));
+    for (const auto& sizes : coded.sizes) w.bytes(sizes.data(), sizes.size() * sizeof(std::uint32_t));
     while (w.b.size() % 8) w.b.push_back(0);
-    for (const CodedBlocks* a : arrays)
-        for (const auto& b : *a) w.put(hash64(b.data(), b.size()));
+    for (const auto& sums : coded.sums) w.bytes(sums.data(), sums.size() * sizeof(std::uint64_t));
     const std::uint32_t length = std::uint32_t(w.b.size() + 8);
     std::memcpy(w.b.data() + 12, &length, 4);
     at[0] = length;
-    at[1] = at[0] + coded_bytes(coded.pos);
-    at[2] = at[1] + coded_bytes(coded.valid);
-    total = at[2] + coded_bytes(coded.error);
+    for (int j = 0; j < 3; ++j) {
+        std::uint64_t bytes = 0;
+        for (const std::uint32_t n : coded.sizes[j]) bytes += n;
+        (j < 2 ? at[j + 1] : total) = at[j] + bytes;
+    }
     std::memcpy(w.b.data() + offsets, at, 24);
     std::memcpy(w.b.data() + offsets + 24, &total, 8);
     w.put(hash64(w.b.data(), w.b.size()));
@@ -335,7 +362,7 @@ std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCac
 // The file of t's header fields and its coded arrays.
 void write_coded(const std::string& path, const StoredTerrain& t, const TerrainCacheKey& key, const CodedTerrain& coded) {
     std::uint64_t at[3], total = 0;
-    const std::vector<std::uint8_t> header = encode_header(t, key, coded, at, total);
+    const std::vector<std::uint8_t> header = encode_header(t, key, block_sums(coded), at, total);
     std::vector<std::span<const std::uint8_t>> parts{header};
     for (const CodedBlocks* a : {&coded.pos, &coded.valid, &coded.error})
         for (const auto& b : *a) parts.emplace_back(b);
@@ -384,21 +411,21 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
     };
     std::once_flag once;
     std::optional<DerivedXY> formula;
-    std::vector<RowSums> sums;
+    std::vector<RowSums> rows;
     std::atomic<bool> exact{true};
     DemOptions read;
     read.heights_only = true;
     read.xy_rows = [&](const Terrain& t, int r, const glm::vec2* xy) {
         std::call_once(once, [&] {
             formula = derive_xy(t, xy_affine | xy_geographic);
-            sums.resize(std::size_t(t.rows));
+            rows.resize(std::size_t(t.rows));
         });
         if (!formula || !exact.load(std::memory_order_relaxed)) return;
         thread_local std::vector<glm::vec2> f;
         f.resize(std::size_t(t.cols));
         formula->span(r, 0, t.cols, f.data());
         if (std::memcmp(f.data(), xy, f.size() * sizeof(glm::vec2)) != 0) return exact.store(false);
-        RowSums& row = sums[std::size_t(r)];
+        RowSums& row = rows[std::size_t(r)];
         for (int c = 0; c < t.cols; ++c) {
             const std::size_t i = t.index(c, r);
             if (!t.valid[i]) continue;
@@ -419,29 +446,40 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
     t.lod.cols = dem.cols, t.lod.rows = dem.rows;
     t.lod.levels = lod_padded_levels(dem.cols, dem.rows);
     RowSums all;
-    for (const RowSums& row : sums)
+    for (const RowSums& row : rows)
         all.lo = glm::min(all.lo, row.lo), all.hi = glm::max(all.hi, row.hi), all.lipschitz2 = std::max(all.lipschitz2, row.lipschitz2);
-    sums = {};
+    rows = {};
     t.lod.lipschitz = float(std::sqrt(double(all.lipschitz2)));
     if (all.lo.z <= all.hi.z) {
         t.lod.z_min = all.lo.z, t.lod.z_max = all.hi.z;
         t.plan_lo = glm::dvec2(glm::dvec3(all.lo)), t.plan_hi = glm::dvec2(glm::dvec3(all.hi));
     }
+    // The header's length follows the block counts alone: reserved first, written last, the
+    // nodes' blocks streamed to the file as they are coded, the pyramid's once all are final.
     const Counts n = array_counts(dem.cols, dem.rows, t.lod.levels);
-    CodedTerrain coded;
-    coded.flags = formula->flag;
-    coded.pos = code_blocks(n.nodes, [&](std::uint64_t i, std::uint64_t k) {
-        return encode_floats(dem.z.data() + i, std::size_t(k), z_orders);
-    });
-    coded.valid = code_blocks(n.nodes, [&](std::uint64_t i, std::uint64_t k) { return encode_bytes(dem.valid.data() + i, std::size_t(k)); });
+    BlockSums sums;
+    sums.flags = formula->flag;
+    const std::uint64_t counts[3] = {block_count(n.nodes, block_shift), block_count(n.nodes, block_shift),
+                                     block_count(n.padded, block_shift)};
+    for (int j = 0; j < 3; ++j) sums.sizes[j].assign(std::size_t(counts[j]), 0), sums.sums[j].assign(std::size_t(counts[j]), 0);
+    std::uint64_t at[3], total = 0;
+    const std::size_t head = encode_header(t, key, sums, at, total).size();
+    CacheFileStream out(path);
+    if (const int err = out.append(std::vector<std::uint8_t>(head, 0))) write_failed(path, err);
+    code_batches(n.nodes, [&](std::uint64_t i, std::uint64_t k) { return encode_floats(dem.z.data() + i, std::size_t(k), z_orders); },
+                 [&](std::size_t b, std::span<const std::uint8_t> bytes) { sums.take(0, b, bytes), out.append(bytes); });
+    code_batches(n.nodes, [&](std::uint64_t i, std::uint64_t k) { return encode_bytes(dem.valid.data() + i, std::size_t(k)); },
+                 [&](std::size_t b, std::span<const std::uint8_t> bytes) { sums.take(1, b, bytes), out.append(bytes); });
     FloatBlockCoder errors(n.padded, error_orders);
     const std::uint64_t side = std::uint64_t(t.lod.side());
     lod_errors(LodHeights{dem.cols, dem.rows, dem.z.data(), dem.valid.data()}, LodStrips{},
                [&](int r0, int r1, const float* e) { errors.add(std::uint64_t(r0) * side, e, std::uint64_t(r1 - r0) * side); });
-    coded.error = errors.take();
     dem = {};
     if (done) done(1);
-    write_coded(path, t, key, coded);
+    for (std::size_t b = 0; b < errors.blocks(); ++b) sums.take(2, b, errors.block(b)), out.append(errors.block(b));
+    const std::vector<std::uint8_t> header = encode_header(t, key, sums, at, total);
+    if (header.size() != head) throw std::logic_error("terrain cache: header length changed");
+    if (const int err = out.finish(header)) write_failed(path, err);
     return true;
 }
 
