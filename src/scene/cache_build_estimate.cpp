@@ -20,11 +20,11 @@ namespace {
 // where the fit gave 1.15.
 constexpr double terrain_s_per_node = 0.166e-6;  // 2.3 s at 13.86 M nodes
 // Held while the pyramid is built (terrain_cache.hpp, build_terrain_cache): the heights and flags
-// (5 B a node), the coded arrays with their blocks' own vectors (about 1.3 B a node) and
-// lod_errors' strips (lod_errors_bytes), over the process's own (50 MB): fitted to the build
-// alone (bench/terrain_cache_build_bench.cpp under /usr/bin/time -v) of jacksboro refined 5, 10
-// and 29 times, 90, 168 and 962 MB (2015x1720, 4030x3440, 11687x9976 nodes).
-constexpr double terrain_bytes_per_node = 6.3, terrain_base_bytes = 50e6;
+// (5 B a node), the pyramid's coded blocks (about 0.7 B a node; the nodes' are streamed to the
+// file) and lod_errors' strips (lod_errors_bytes), over the process's own (48.5 MB): fitted to
+// the build alone (bench/terrain_cache_build_bench.cpp under /usr/bin/time -v) of jacksboro
+// refined 5, 10 and 29 times, 88, 160 and 890 MB (2015x1720, 4030x3440, 11687x9976 nodes).
+constexpr double terrain_bytes_per_node = 5.7, terrain_base_bytes = 48.5e6;
 // The drainage database (`penink drainage DEM -o x.dv`: the network, the ridges and the creases'
 // source; the crease tiles come later, built by the renders that need them, with their own
 // progress): 6.07 s at 13.86 M points (jacksboro refined 10 times) and 70.8 s at 116.6 M (29

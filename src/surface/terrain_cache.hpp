@@ -48,7 +48,7 @@
 // draw_scene (scene/frame_source.hpp) then removes the cache and draws again from a rebuilt one.
 // Written to a temporary file and renamed into place. Built from a DEM file by
 // build_terrain_cache in bounded memory: the heights and flags (5 bytes a node), the coded
-// blocks and the pyramid's strips (lod_errors), 962 MB at peak for jacksboro refined 29 times
+// blocks and the pyramid's strips (lod_errors), 890 MB at peak for jacksboro refined 29 times
 // (116.6 M nodes, 109 MiB written) where the whole Terrain and pyramid took 5.19 GB
 // (bench/terrain_cache_build_bench.cpp).
 #pragma once
