@@ -1,5 +1,6 @@
 #include "core/big_allocator.hpp"
 
+#include <algorithm>
 #include <cstdint>
 
 #include <sys/mman.h>
@@ -36,6 +37,13 @@ void* allocate_big(std::size_t bytes) {
 void deallocate_big(void* p, std::size_t bytes) noexcept {
     if (bytes < big_block_bytes) return ::operator delete(p);
     ::munmap(p, mapped_bytes(bytes));
+}
+
+void release_big_pages(void* p, std::size_t bytes, std::size_t from, std::size_t to) noexcept {
+    if (bytes < big_block_bytes) return;
+    constexpr std::size_t page = 4096;
+    const std::size_t a = (std::min(from, bytes) + page - 1) / page * page, b = std::min(to, bytes) / page * page;
+    if (b > a) ::madvise(static_cast<char*>(p) + a, b - a, MADV_DONTNEED);
 }
 
 }  // namespace penink

@@ -17,6 +17,10 @@ inline constexpr std::size_t big_block_bytes = std::size_t(2) << 20;
 // Throws std::bad_alloc when the memory cannot be had.
 void* allocate_big(std::size_t bytes);
 void deallocate_big(void* p, std::size_t bytes) noexcept;
+// Gives the memory of bytes [from, to) of a block of `bytes` from allocate_big back to the
+// system (the whole pages inside; they read as zeros after): an array consumed front to back
+// shrinks as it goes. A block under big_block_bytes (from operator new) keeps its memory.
+void release_big_pages(void* p, std::size_t bytes, std::size_t from, std::size_t to) noexcept;
 
 template <class T> struct BigAllocator {
     using value_type = T;

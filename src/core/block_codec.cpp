@@ -67,6 +67,7 @@ std::vector<std::uint8_t> deflate_raw(const std::uint8_t* data, std::size_t n) {
     const std::size_t size = libdeflate_deflate_compress(c, data, n, out.data(), out.size());
     if (size == 0) throw std::bad_alloc();  // the bound guarantees room: cannot happen
     out.resize(size);
+    out.shrink_to_fit();  // the bound's room (about the input's size) would stay with every block held
     return out;
 }
 

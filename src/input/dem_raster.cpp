@@ -60,9 +60,19 @@ void read_band(GDALRasterBand& band, Raster& r, const std::string& path) {
     }();
     raw.resize(std::size_t(r.w) * r.h);
     const GDALDataType as = sizeof(T) == 4 ? GDT_Float32 : GDT_Float64;
-    if (band.RasterIO(GF_Read, 0, 0, r.w, r.h, raw.data(), r.w, r.h, as, 0, 0) != CE_None)
-        fail(path, "not a DEM raster (GDAL cannot read it)");
+    // A band of rows at a time, the blocks GDAL caches for it dropped after it: the read holds the
+    // values and about a band of blocks, not a second copy of the raster in GDAL's cache.
+    int block_w = 0, block_h = 0;
+    band.GetBlockSize(&block_w, &block_h);
+    const int rows = std::max(1, std::max(block_h, 1) * std::max(1, (8 << 20) / std::max(1, r.w * int(sizeof(T)) * std::max(block_h, 1))));
+    for (int y = 0; y < r.h; y += rows) {
+        const int n = std::min(rows, r.h - y);
+        if (band.RasterIO(GF_Read, 0, y, r.w, n, raw.data() + std::size_t(y) * std::size_t(r.w), r.w, n, as, 0, 0) != CE_None)
+            fail(path, "not a DEM raster (GDAL cannot read it)");
+        band.FlushCache();
+    }
     r.mask = read_mask(band, path);
+    if (GDALRasterBand* m = band.GetMaskBand(); m && !r.mask.empty()) m->FlushCache();
     int has = 0, has_scale = 0, has_offset = 0;
     r.nodata = band.GetNoDataValue(&has), r.has_nodata = has != 0;
     const double scale = band.GetScale(&has_scale), offset = band.GetOffset(&has_offset);
@@ -217,24 +227,38 @@ Raster raster_header(GDALDataset& ds) {
     return r;
 }
 
-void fill_heights(const Raster& r, double unit, double emin, double s, std::vector<float>& z) {
-    z.resize(std::size_t(r.w) * r.h);
-    parallel_chunks(std::size_t(r.h), rows_per_chunk(r), [&](std::size_t r0, std::size_t r1) {
-        for (std::size_t row = r0; row < r1; ++row)
-            for (int c = 0; c < r.w; ++c) z[row * r.w + c] = float(node_elevation(r, row, c, unit, emin) * s);
-    });
-}
-void read_heights(GDALDataset& ds, const std::string& path, double s, Raster& r, std::vector<float>* heights) {
-    read_values(ds, r, path);
-    if (heights && r.emin <= r.emax) fill_heights(r, 1.0, r.emin, s, *heights);  // emin: scaled = metres
+void take_heights(Raster& r, double s, std::vector<float>& z) {
+    const std::size_t w = std::size_t(r.w), h = std::size_t(r.h);
+    z.clear();
+    z.reserve(w * h);
+    // Bands of rows converted on every core into `band`, appended to z (whose pages are touched
+    // as it grows), the values' rows behind them given back.
+    const std::size_t band_rows = std::max<std::size_t>(1, (std::size_t(2) << 20) / w);  // 8 MiB of floats
+    std::vector<float> band;
+    void* raw = r.raw_f.empty() ? static_cast<void*>(r.raw_d.data()) : static_cast<void*>(r.raw_f.data());
+    const std::size_t value_bytes = r.raw_f.empty() ? sizeof(double) : sizeof(float);
+    const std::size_t raw_bytes = (r.raw_f.empty() ? r.raw_d.size() : r.raw_f.size()) * value_bytes;
+    for (std::size_t b0 = 0; b0 < h; b0 += band_rows) {
+        const std::size_t b1 = std::min(h, b0 + band_rows);
+        band.resize((b1 - b0) * w);
+        parallel_chunks(b1 - b0, rows_per_chunk(r), [&](std::size_t r0, std::size_t r1) {
+            for (std::size_t i = r0; i < r1; ++i)
+                for (int c = 0; c < r.w; ++c) band[i * w + std::size_t(c)] = float(node_elevation(r, b0 + i, c, r.unit, r.emin) * s);
+        });
+        z.insert(z.end(), band.begin(), band.end());
+        if (!r.flip_r) release_big_pages(raw, raw_bytes, 0, b1 * w * value_bytes);  // source rows 0 .. b1 - 1
+    }
+    r.raw_f = {}, r.raw_d = {};
 }
 
-void read_heights(const std::string& path, const std::string& driver, double s, Raster& r, std::vector<float>* heights) {
+void read_heights(GDALDataset& ds, const std::string& path, Raster& r) { read_values(ds, r, path); }
+
+void read_heights(const std::string& path, const std::string& driver, Raster& r) {
     const QuietGdal quiet;  // GDAL's error handlers are per thread
     const char* const drivers[] = {driver.c_str(), nullptr};
     GDALDatasetUniquePtr ds = open_with(path, drivers);
     if (!ds) fail(path, "not a DEM raster (GDAL cannot read it)");
-    read_heights(*ds, path, s, r, heights);
+    read_heights(*ds, path, r);
 }
 
 }  // namespace penink::dem

@@ -98,18 +98,18 @@ inline double node_elevation(const Raster& r, std::size_t row, int c, double uni
     return r.valid[row * r.w + c] ? (r.value(r.source(row, c)) * r.scale + r.offset) * unit : emin;
 }
 
-// A heights-only read's z: what fill_positions puts in pos[i].z (s: the vertical exaggeration)
-// when the vertical unit is `unit` and the lowest valid elevation `emin` metres.
-void fill_heights(const Raster& r, double unit, double emin, double s, std::vector<float>& z);
+// A heights-only read's z (s: the vertical exaggeration): what fill_positions puts in pos[i].z,
+// with r's vertical unit and lowest valid elevation in metres (range_to_metres done). r's values
+// are given back as their rows are converted (release_big_pages: the read holds about the
+// heights, the flags and 8 MiB, not the values besides) and are gone after.
+void take_heights(Raster& r, double s, std::vector<float>& z);
 
-// The values of `ds` read into r (values, valid mask, range of scaled values) and, heights not
-// null, turned into heights as if the vertical unit were metres (most DEMs; read_dem redoes them
-// otherwise): none of it needs the spatial reference, which GDAL's GeoTIFF driver takes the
-// unit from.
-void read_heights(GDALDataset& ds, const std::string& path, double s, Raster& r, std::vector<float>* heights);
+// The values of `ds` read into r (values, valid mask, range of scaled values): none of it needs
+// the spatial reference, which GDAL's GeoTIFF driver takes the unit from.
+void read_heights(GDALDataset& ds, const std::string& path, Raster& r);
 
 // read_heights through a handle of its own opened by `driver` (a GDAL dataset serves one thread
 // at a time), to run beside the spatial reference's build.
-void read_heights(const std::string& path, const std::string& driver, double s, Raster& r, std::vector<float>* heights);
+void read_heights(const std::string& path, const std::string& driver, Raster& r);
 
 }  // namespace penink::dem

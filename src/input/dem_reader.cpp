@@ -138,23 +138,30 @@ void check_grid(const Raster& r, const std::string& path) {
         fail(path, "DEM has fewer than 2x2 valid nodes (no cell with data at its four corners)");
 }
 
-// f(node index, row, c, x, y) for every node, x, y its world coordinates relative to the bounds'
-// rounded centre (t.origin) as floats; rows in parallel.
+// f(row, x, y of the row's nodes) for every row, x, y its nodes' world coordinates relative to
+// the bounds' rounded centre (t.origin) as floats; rows in parallel.
 template <class F>
-void each_node_xy(const Raster& r, const WorldXY& xy, const Terrain& t, const std::string& path, F&& f) {
+void each_row_xy(const Raster& r, const WorldXY& xy, const Terrain& t, const std::string& path, F&& f) {
     parallel_chunks(std::size_t(r.h), rows_per_chunk(r), [&](std::size_t r0, std::size_t r1) {
         std::vector<glm::dvec2> line(std::size_t(r.w));
+        std::vector<glm::vec2> local(std::size_t(r.w));
         for (std::size_t row = r0; row < r1; ++row) {
             try {
                 xy.row(r, int(row), line.data());
             } catch (const GeographicLib::GeographicErr& e) {
                 fail_utm(path, t.utm_zone, t.north, e);
             }
-            for (int c = 0; c < r.w; ++c) {
-                const glm::vec2 p = local_xy(line[std::size_t(c)], t.origin);
-                f(row * r.w + c, row, c, p.x, p.y);
-            }
+            for (int c = 0; c < r.w; ++c) local[std::size_t(c)] = local_xy(line[std::size_t(c)], t.origin);
+            f(row, local.data());
         }
+    });
+}
+
+// f(node index, row, c, x, y) for every node (each_row_xy).
+template <class F>
+void each_node_xy(const Raster& r, const WorldXY& xy, const Terrain& t, const std::string& path, F&& f) {
+    each_row_xy(r, xy, t, path, [&](std::size_t row, const glm::vec2* p) {
+        for (int c = 0; c < r.w; ++c) f(row * r.w + c, row, c, p[c].x, p[c].y);
     });
 }
 
@@ -207,15 +214,15 @@ Terrain read_dem(const std::string& path, const DemOptions& options) {
             r.unit = vertical_unit(*ds->GetRasterBand(1));  // from the georeferencing just loaded
             xy.emplace(world_coordinates(r, options, t, path));
             t.origin = glm::round(0.5 * (xy->lo + xy->hi));
-            if (heights && xy->utm) fill_xy(r, *xy, t, path);
+            if (heights && xy->utm && !options.xy_rows) fill_xy(r, *xy, t, path);
         } catch (...) {
             crs_error = std::current_exception();
         }
     };
     if (driver == "GTiff") {
-        run_beside([&] { read_heights(path, driver, ve, r, heights); }, crs);
+        run_beside([&] { read_heights(path, driver, r); }, crs);
     } else {
-        read_heights(*ds, path, ve, r, heights);
+        read_heights(*ds, path, r);
         crs();
     }
     range_to_metres(r);
@@ -224,8 +231,10 @@ Terrain read_dem(const std::string& path, const DemOptions& options) {
     if (!xy->utm) t.xy_unit = xy->unit;  // an affine grid: affine_node_xy gives pos.xy
     t.elevation_min = r.emin, t.elevation_max = r.emax;
     if (!heights) fill_positions(r, *xy, t, path);
-    else if (r.unit != 1.0) fill_heights(r, r.unit, r.emin, ve, t.z);  // not metres after all
+    else take_heights(r, ve, t.z);
     t.valid = std::move(r.valid);
+    if (heights && options.xy_rows)
+        each_row_xy(r, *xy, t, path, [&](std::size_t row, const glm::vec2* p) { options.xy_rows(t, int(row), p); });
     return t;
 }
 

@@ -11,7 +11,10 @@
 // are applied to elevations; otherwise they are taken as metres.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <string>
+
+#include <glm/vec2.hpp>
 
 #include "input/terrain.hpp"
 
@@ -25,6 +28,11 @@ struct DemOptions {
     // x, y apart (Terrain::xy): for the drainage build at factor 1, which needs no positions on
     // an affine grid and takes x, y over as they are on a UTM one.
     bool heights_only = false;
+    // With heights_only: each row's local x, y (what Terrain::pos.xy would hold, float) handed to
+    // this instead of being stored (Terrain::xy stays empty): called once per row, rows in
+    // parallel, when the read is done (t holds its heights, flags and georeference). A caller
+    // that checks or reduces the x, y holds none of them.
+    std::function<void(const Terrain& t, int row, const glm::vec2* xy)> xy_rows = {};
     // Bytes the read may take (memory_budget: 0 = the memory the system has available): a DEM
     // whose nodes need more (dem_read_bytes_per_node each) fails before its values are read.
     std::uint64_t max_memory = 0;

@@ -19,11 +19,12 @@ namespace {
 // over the warm one in the same run (the cache of x10 alone, drainage database present), so 2.3 s
 // where the fit gave 1.15.
 constexpr double terrain_s_per_node = 0.166e-6;  // 2.3 s at 13.86 M nodes
-// Held while the pyramid is built: the DEM read (about 26 B a node: positions, flags, heights)
-// and the build's heights, flags and errors over the padded square (10 B a padded node,
-// terrain_lod.cpp), over what the process holds before it (126 MB: fitted, the image's buffers).
-constexpr double terrain_bytes_per_node = 26.3, terrain_bytes_per_padded_node = 10.0;
-constexpr double terrain_base_bytes = 126e6;
+// Held while the pyramid is built (terrain_cache.hpp, build_terrain_cache): the heights and flags
+// (5 B a node), the pyramid's coded blocks (about 0.7 B a node; the nodes' are streamed to the
+// file) and lod_errors' strips (lod_errors_bytes), over the process's own (48.5 MB): fitted to
+// the build alone (bench/terrain_cache_build_bench.cpp under /usr/bin/time -v) of jacksboro
+// refined 5, 10 and 29 times, 88, 160 and 890 MB (2015x1720, 4030x3440, 11687x9976 nodes).
+constexpr double terrain_bytes_per_node = 5.7, terrain_base_bytes = 48.5e6;
 // The drainage database (`penink drainage DEM -o x.dv`: the network, the ridges and the creases'
 // source; the crease tiles come later, built by the renders that need them, with their own
 // progress): 6.07 s at 13.86 M points (jacksboro refined 10 times) and 70.8 s at 116.6 M (29
@@ -43,10 +44,9 @@ constexpr double drainage_disk_bytes_per_point = 1.65;
 
 CacheBuildEstimate terrain_cache_estimate(int cols, int rows) {
     const double nodes = double(cols) * double(rows);
-    const double side = std::ldexp(1.0, lod_padded_levels(cols, rows)) + 1.0;
     CacheBuildEstimate e;
     e.seconds = terrain_s_per_node * nodes;
-    e.peak_bytes = terrain_base_bytes + terrain_bytes_per_node * nodes + terrain_bytes_per_padded_node * side * side;
+    e.peak_bytes = terrain_base_bytes + terrain_bytes_per_node * nodes + lod_errors_bytes(cols, rows);
     e.disk_bytes = terrain_disk_bytes_per_node * nodes;
     return e;
 }

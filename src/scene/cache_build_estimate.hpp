@@ -2,8 +2,8 @@
 // time, peak resident memory and bytes on disk of the terrain cache (surface/terrain_cache.hpp)
 // and of the drainage database (drainage/drainage_build.hpp), fitted to the cold renders of
 // bench/scale_curve.sh (jacksboro refined to 3.47 M and 13.86 M nodes, 2 cores; docs/timings.md,
-// "Scale"; the constants and their sources in cache_build_estimate.cpp); the terrain cache's
-// disk is its exact array sizes. Printed on stderr before a build of a DEM of more than
+// "Scale"; the constants and their sources in cache_build_estimate.cpp), the terrain cache's
+// memory to its build alone (bench/terrain_cache_build_bench.cpp). Printed on stderr before a build of a DEM of more than
 // estimate_from_cells cells, so a long wait is announced with what it will take.
 #pragma once
 #include <cstdint>
@@ -21,8 +21,8 @@ struct CacheBuildEstimate {
     double disk_bytes = 0.0;  // the cache file written
 };
 
-// The terrain cache of a cols x rows DEM: reading it, building the pyramid over the padded
-// square (2^levels + 1 a side), writing nodes (13 bytes each) and errors (4 per padded node).
+// The terrain cache of a cols x rows DEM: reading its heights, building the pyramid in strips
+// of the padded square (2^levels + 1 a side), coding and writing the file (build_terrain_cache).
 CacheBuildEstimate terrain_cache_estimate(int cols, int rows);
 // The drainage database of a cols x rows DEM built at the automatic resampling factor.
 CacheBuildEstimate drainage_cache_estimate(int cols, int rows);

@@ -229,8 +229,8 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, c
     if (occupied)
         std::cerr << "penink: warning: terrain: " << path
                   << ": not a regular file; the terrain cache is neither read nor written (built in memory)\n";
+    const DemSize size = read_dem_size(dem_path);
     {  // before the read: a long thin DEM's pyramid covers the padded square (terrain_lod.hpp)
-        const DemSize size = read_dem_size(dem_path);
         const double side = std::ldexp(1.0, lod_padded_levels(size.cols, size.rows)) + 1.0;
         check_memory("surface", dem_path,
                      "the level-of-detail pyramid of the DEM's " + std::to_string(size.cols) + "x" +
@@ -240,6 +240,35 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, c
     }
     StageProgress progress(std::cerr, log.progress, "building terrain cache");
     progress.update("reading the DEM", 0.0);
+    bool unwritable = false;  // the streamed build could not write the file: the fallback does not try again
+    if (!occupied) {  // streamed: the heights and the pyramid's strips, never the positions or the whole pyramid
+        bool built = false;
+        try {
+            built = build_terrain_cache(dem_path, path, key, [&](int stage) {
+                if (stage == 0) {
+                    log.info("read " + dem_path + ": " + std::to_string(size.cols) + "x" + std::to_string(size.rows) +
+                             " nodes (" + std::to_string(int(lap_ms(t0))) + " ms)");
+                    progress.update("level-of-detail pyramid", 0.4);
+                    return;
+                }
+                log.info("level-of-detail pyramid: " + std::to_string((1 << lod_padded_levels(size.cols, size.rows)) + 1) +
+                         "^2 nodes (" + std::to_string(int(lap_ms(t0))) + " ms)");
+                progress.update("writing", 0.8);
+            });
+        } catch (const Error& e) {
+            if (e.stage() != "surface") throw;  // the DEM's own errors
+            log.info(std::string(e.what()) + "; using the terrain built in memory");
+            unwritable = true;
+        }
+        if (built) {
+            log.info("terrain: wrote " + path + " (" + cache_file_size(path) + ", " + std::to_string(int(lap_ms(t0))) + " ms)");
+            if (std::optional<StoredTerrain> mapped = read_terrain_cache(path, key)) {
+                progress.update("done", 1.0);
+                mapped->meta.source = dem_path;
+                return std::move(*mapped);
+            }
+        }
+    }
     Terrain flat = read_dem(dem_path);
     log.info("read " + dem_path + ": " + std::to_string(flat.cols) + "x" + std::to_string(flat.rows) + " nodes (" +
              std::to_string(int(lap_ms(t0))) + " ms)");
@@ -249,7 +278,7 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, c
     log.info("level-of-detail pyramid: " + std::to_string(stored.lod.side()) + "^2 nodes (" +
              std::to_string(int(lap_ms(t0))) + " ms)");
     progress.update("writing", 0.8);
-    if (occupied) {
+    if (occupied || unwritable) {
         progress.update("done", 1.0);
         return stored;
     }

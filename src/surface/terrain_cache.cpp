@@ -6,11 +6,16 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <filesystem>
+#include <mutex>
+#include <span>
+#include <unordered_map>
 #include <stdexcept>
 #include <vector>
 
 #include <GeographicLib/Constants.hpp>
+#include <glm/common.hpp>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -21,6 +26,7 @@
 #include "core/error.hpp"
 #include "core/hash64.hpp"
 #include "core/parallel_chunks.hpp"
+#include "input/dem_reader.hpp"
 #include "input/geographic_nodes.hpp"
 
 namespace penink {
@@ -171,16 +177,94 @@ std::optional<DerivedXY> derived_xy(const Terrain& meta, const GridNodes& nodes)
 
 // The coded blocks of one array.
 using CodedBlocks = std::vector<std::vector<std::uint8_t>>;
+// code(first element, count) of every block of an array of `elems`, on every core a batch of
+// blocks at a time, each batch then handed in order to use(block, its bytes).
+template <class F, class U> void code_batches(std::uint64_t elems, F&& code, U&& use) {
+    const std::size_t blocks = std::size_t(block_count(elems, block_shift)), batch = 1 << 14;
+    CodedBlocks coded;
+    for (std::size_t b0 = 0; b0 < blocks; b0 += batch) {
+        coded.resize(std::min(batch, blocks - b0));
+        parallel_chunks(coded.size(), 64, [&](std::size_t i0, std::size_t i1) {
+            for (std::size_t i = i0; i < i1; ++i) {
+                const std::uint64_t first = std::uint64_t(b0 + i) << block_shift;
+                coded[i] = code(first, std::min<std::uint64_t>(std::uint64_t(1) << block_shift, elems - first));
+            }
+        });
+        for (std::size_t i = 0; i < coded.size(); ++i) use(b0 + i, std::span<const std::uint8_t>(coded[i]));
+    }
+}
 template <class F> CodedBlocks code_blocks(std::uint64_t elems, F&& code) {
     CodedBlocks out(std::size_t(block_count(elems, block_shift)));
-    parallel_chunks(out.size(), 64, [&](std::size_t b0, std::size_t b1) {
-        for (std::size_t b = b0; b < b1; ++b) {
-            const std::uint64_t first = std::uint64_t(b) << block_shift;
-            out[b] = code(first, std::min<std::uint64_t>(std::uint64_t(1) << block_shift, elems - first));
-        }
-    });
+    code_batches(elems, code, [&](std::size_t b, std::span<const std::uint8_t> bytes) { out[b].assign(bytes.begin(), bytes.end()); });
     return out;
 }
+
+// The coded blocks of an array of `elems` floats whose values come a run at a time, runs in any
+// order, each element once: a block is coded when its last element comes (whole blocks of a run
+// on every core; the pieces of blocks cut by a run's ends wait, copied, for the rest).
+class FloatBlockCoder {
+public:
+    FloatBlockCoder(std::uint64_t elems, std::span<const int> orders)
+        : elems_(elems), orders_(orders), out_(std::size_t(block_count(elems, block_shift))) {
+        const std::vector<float> inf(std::size_t(1) << block_shift, std::numeric_limits<float>::infinity());
+        inf_block_ = encode_floats(inf.data(), inf.size(), orders_);
+    }
+
+    void add(std::uint64_t first, const float* v, std::uint64_t count) {
+        const std::uint64_t end = first + count;
+        std::uint64_t at = first;
+        while (at < end && (at & mask) != 0) at = piece(at, end, v + (at - first));  // a block begun before
+        std::uint64_t whole = at;  // whole blocks from `at`
+        while (whole < end && block_end(whole) <= end) whole = block_end(whole);
+        const std::size_t b0 = std::size_t(at >> block_shift), b1 = b0 + std::size_t((whole - at + mask) >> block_shift);
+        parallel_chunks(b1 - b0, 64, [&](std::size_t i0, std::size_t i1) {
+            for (std::size_t b = b0 + i0; b < b0 + i1; ++b) {
+                const std::uint64_t s = std::uint64_t(b) << block_shift;
+                out_[b] = code(v + (s - first), std::size_t(block_end(s) - s));
+            }
+        });
+        for (at = whole; at < end;) at = piece(at, end, v + (at - first));  // a block ended after
+    }
+    // Block b's bytes (once every element came).
+    std::span<const std::uint8_t> block(std::size_t b) const { return out_[b].empty() ? std::span<const std::uint8_t>(inf_block_) : out_[b]; }
+    std::size_t blocks() const { return out_.size(); }
+
+private:
+    static constexpr std::uint64_t mask = (std::uint64_t(1) << block_shift) - 1;
+    struct Partial {
+        std::vector<float> v;
+        std::uint64_t have = 0;
+    };
+    std::uint64_t block_end(std::uint64_t i) const { return std::min((i | mask) + 1, elems_); }
+    // A whole block of +inf (the padding, most of a long thin DEM's square) is coded once and
+    // held once (empty here; block() gives its bytes): the coding is a function of the values,
+    // so its bytes are those coding it again would give.
+    std::vector<std::uint8_t> code(const float* v, std::size_t count) const {
+        const bool inf = count == inf_count && std::all_of(v, v + count, [](float x) {
+            return std::bit_cast<std::uint32_t>(x) == std::bit_cast<std::uint32_t>(std::numeric_limits<float>::infinity());
+        });
+        return inf ? std::vector<std::uint8_t>() : encode_floats(v, count, orders_);
+    }
+    static constexpr std::size_t inf_count = std::size_t(1) << block_shift;
+    // Elements [at, min(end, its block's end)) of a block not whole in the run; returns where they end.
+    std::uint64_t piece(std::uint64_t at, std::uint64_t end, const float* v) {
+        const std::uint64_t s = at & ~mask, e = std::min(block_end(at), end);
+        Partial& p = partial_[s >> block_shift];
+        p.v.resize(std::size_t(block_end(s) - s));
+        std::copy(v, v + (e - at), p.v.begin() + std::ptrdiff_t(at - s));
+        p.have += e - at;
+        if (p.have == p.v.size()) {
+            out_[std::size_t(s >> block_shift)] = code(p.v.data(), p.v.size());
+            partial_.erase(s >> block_shift);
+        }
+        return e;
+    }
+    std::uint64_t elems_;
+    std::span<const int> orders_;
+    CodedBlocks out_;
+    std::vector<std::uint8_t> inf_block_;
+    std::unordered_map<std::uint64_t, Partial> partial_;
+};
 
 struct CodedTerrain {
     CodedBlocks pos, valid, error;
@@ -208,14 +292,28 @@ CodedTerrain code_terrain(const StoredTerrain& t) {
     return c;
 }
 
-std::uint64_t coded_bytes(const CodedBlocks& blocks) {
-    std::uint64_t n = 0;
-    for (const auto& b : blocks) n += b.size();
-    return n;
+// Each block's coded size and checksum, of the three arrays (what the header lists).
+struct BlockSums {
+    std::vector<std::uint32_t> sizes[3];
+    std::vector<std::uint64_t> sums[3];
+    std::uint32_t flags = 0;
+    void take(int array, std::size_t b, std::span<const std::uint8_t> bytes) {
+        sizes[array][b] = std::uint32_t(bytes.size()), sums[array][b] = hash64(bytes.data(), bytes.size());
+    }
+};
+BlockSums block_sums(const CodedTerrain& coded) {
+    BlockSums s;
+    s.flags = coded.flags;
+    const CodedBlocks* arrays[3] = {&coded.pos, &coded.valid, &coded.error};
+    for (int j = 0; j < 3; ++j) {
+        s.sizes[j].resize(arrays[j]->size()), s.sums[j].resize(arrays[j]->size());
+        for (std::size_t b = 0; b < arrays[j]->size(); ++b) s.take(j, b, (*arrays[j])[b]);
+    }
+    return s;
 }
 
 // The header and the array offsets of `t` (offsets relative to the file's start).
-std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCacheKey& key, const CodedTerrain& coded,
+std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCacheKey& key, const BlockSums& coded,
                                         std::uint64_t at[3], std::uint64_t& total) {
     const Terrain& m = t.meta;
     Writer w;
@@ -240,18 +338,17 @@ std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCac
     while (w.b.size() % 8) w.b.push_back(0);
     // each block's coded size, then its checksum, the three arrays' blocks in turn
     w.put(std::uint32_t(block_shift)), w.put(coded.flags);
-    const CodedBlocks* arrays[3] = {&coded.pos, &coded.valid, &coded.error};
-    for (const CodedBlocks* a : arrays)
-        for (const auto& b : *a) w.put(std::uint32_t(b.size()));
+    for (const auto& sizes : coded.sizes) w.bytes(sizes.data(), sizes.size() * sizeof(std::uint32_t));
     while (w.b.size() % 8) w.b.push_back(0);
-    for (const CodedBlocks* a : arrays)
-        for (const auto& b : *a) w.put(hash64(b.data(), b.size()));
+    for (const auto& sums : coded.sums) w.bytes(sums.data(), sums.size() * sizeof(std::uint64_t));
     const std::uint32_t length = std::uint32_t(w.b.size() + 8);
     std::memcpy(w.b.data() + 12, &length, 4);
     at[0] = length;
-    at[1] = at[0] + coded_bytes(coded.pos);
-    at[2] = at[1] + coded_bytes(coded.valid);
-    total = at[2] + coded_bytes(coded.error);
+    for (int j = 0; j < 3; ++j) {
+        std::uint64_t bytes = 0;
+        for (const std::uint32_t n : coded.sizes[j]) bytes += n;
+        (j < 2 ? at[j + 1] : total) = at[j] + bytes;
+    }
     std::memcpy(w.b.data() + offsets, at, 24);
     std::memcpy(w.b.data() + offsets + 24, &total, 8);
     w.put(hash64(w.b.data(), w.b.size()));
@@ -260,6 +357,16 @@ std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCac
 
 [[noreturn]] void write_failed(const std::string& path, int err) {
     throw Error("surface", path, std::string("cannot write terrain cache: ") + std::strerror(err));
+}
+
+// The file of t's header fields and its coded arrays.
+void write_coded(const std::string& path, const StoredTerrain& t, const TerrainCacheKey& key, const CodedTerrain& coded) {
+    std::uint64_t at[3], total = 0;
+    const std::vector<std::uint8_t> header = encode_header(t, key, block_sums(coded), at, total);
+    std::vector<std::span<const std::uint8_t>> parts{header};
+    for (const CodedBlocks* a : {&coded.pos, &coded.valid, &coded.error})
+        for (const auto& b : *a) parts.emplace_back(b);
+    if (const int err = write_cache_file(path, parts)) write_failed(path, err);
 }
 
 std::optional<StoredTerrain> fail(std::string* why, const std::string& reason) {
@@ -291,12 +398,89 @@ void write_terrain_cache(const std::string& path, const StoredTerrain& t, const 
     if (t.lod.error.size() != n.padded || t.nodes.size() != t.meta.size())
         throw std::invalid_argument("terrain cache: pyramid and nodes do not match the grid");
     const CodedTerrain coded = code_terrain(t);
+    write_coded(path, t, key, coded);
+}
+
+bool build_terrain_cache(const std::string& dem_path, const std::string& path, const TerrainCacheKey& key,
+                         const std::function<void(int)>& done) {
+    // The heights and flags alone; each row's x, y checked against the formula the cache will
+    // recompute them with (derive_xy) and reduced to the plan bounds and the Lipschitz bound.
+    struct RowSums {
+        glm::vec3 lo{std::numeric_limits<float>::infinity()}, hi{-std::numeric_limits<float>::infinity()};
+        float lipschitz2 = 0.0f;
+    };
+    std::once_flag once;
+    std::optional<DerivedXY> formula;
+    std::vector<RowSums> rows;
+    std::atomic<bool> exact{true};
+    DemOptions read;
+    read.heights_only = true;
+    read.xy_rows = [&](const Terrain& t, int r, const glm::vec2* xy) {
+        std::call_once(once, [&] {
+            formula = derive_xy(t, xy_affine | xy_geographic);
+            rows.resize(std::size_t(t.rows));
+        });
+        if (!formula || !exact.load(std::memory_order_relaxed)) return;
+        thread_local std::vector<glm::vec2> f;
+        f.resize(std::size_t(t.cols));
+        formula->span(r, 0, t.cols, f.data());
+        if (std::memcmp(f.data(), xy, f.size() * sizeof(glm::vec2)) != 0) return exact.store(false);
+        RowSums& row = rows[std::size_t(r)];
+        for (int c = 0; c < t.cols; ++c) {
+            const std::size_t i = t.index(c, r);
+            if (!t.valid[i]) continue;
+            const glm::vec3 p(xy[c].x, xy[c].y, t.z[i]);
+            row.lo = glm::min(row.lo, p), row.hi = glm::max(row.hi, p);
+        }
+        if (r + 1 < t.rows) {
+            formula->span(r + 1, 0, t.cols, f.data());
+            row.lipschitz2 = lod_cells_lipschitz2(&xy[0].x, &f[0].x, t.cols, 2);
+        }
+    };
+    Terrain dem = read_dem(dem_path, read);
+    if (!formula || !exact.load() || dem.vertical_exaggeration != 1.0) return false;
+    if (done) done(0);
+
+    StoredTerrain t;  // the header's fields
+    t.meta = terrain_metadata(dem);
+    t.lod.cols = dem.cols, t.lod.rows = dem.rows;
+    t.lod.levels = lod_padded_levels(dem.cols, dem.rows);
+    RowSums all;
+    for (const RowSums& row : rows)
+        all.lo = glm::min(all.lo, row.lo), all.hi = glm::max(all.hi, row.hi), all.lipschitz2 = std::max(all.lipschitz2, row.lipschitz2);
+    rows = {};
+    t.lod.lipschitz = float(std::sqrt(double(all.lipschitz2)));
+    if (all.lo.z <= all.hi.z) {
+        t.lod.z_min = all.lo.z, t.lod.z_max = all.hi.z;
+        t.plan_lo = glm::dvec2(glm::dvec3(all.lo)), t.plan_hi = glm::dvec2(glm::dvec3(all.hi));
+    }
+    // The header's length follows the block counts alone: reserved first, written last, the
+    // nodes' blocks streamed to the file as they are coded, the pyramid's once all are final.
+    const Counts n = array_counts(dem.cols, dem.rows, t.lod.levels);
+    BlockSums sums;
+    sums.flags = formula->flag;
+    const std::uint64_t counts[3] = {block_count(n.nodes, block_shift), block_count(n.nodes, block_shift),
+                                     block_count(n.padded, block_shift)};
+    for (int j = 0; j < 3; ++j) sums.sizes[j].assign(std::size_t(counts[j]), 0), sums.sums[j].assign(std::size_t(counts[j]), 0);
     std::uint64_t at[3], total = 0;
-    const std::vector<std::uint8_t> header = encode_header(t, key, coded, at, total);
-    std::vector<std::span<const std::uint8_t>> parts{header};
-    for (const CodedBlocks* a : {&coded.pos, &coded.valid, &coded.error})
-        for (const auto& b : *a) parts.emplace_back(b);
-    if (const int err = write_cache_file(path, parts)) write_failed(path, err);
+    const std::size_t head = encode_header(t, key, sums, at, total).size();
+    CacheFileStream out(path);
+    if (const int err = out.append(std::vector<std::uint8_t>(head, 0))) write_failed(path, err);
+    code_batches(n.nodes, [&](std::uint64_t i, std::uint64_t k) { return encode_floats(dem.z.data() + i, std::size_t(k), z_orders); },
+                 [&](std::size_t b, std::span<const std::uint8_t> bytes) { sums.take(0, b, bytes), out.append(bytes); });
+    code_batches(n.nodes, [&](std::uint64_t i, std::uint64_t k) { return encode_bytes(dem.valid.data() + i, std::size_t(k)); },
+                 [&](std::size_t b, std::span<const std::uint8_t> bytes) { sums.take(1, b, bytes), out.append(bytes); });
+    FloatBlockCoder errors(n.padded, error_orders);
+    const std::uint64_t side = std::uint64_t(t.lod.side());
+    lod_errors(LodHeights{dem.cols, dem.rows, dem.z.data(), dem.valid.data()}, LodStrips{},
+               [&](int r0, int r1, const float* e) { errors.add(std::uint64_t(r0) * side, e, std::uint64_t(r1 - r0) * side); });
+    dem = {};
+    if (done) done(1);
+    for (std::size_t b = 0; b < errors.blocks(); ++b) sums.take(2, b, errors.block(b)), out.append(errors.block(b));
+    const std::vector<std::uint8_t> header = encode_header(t, key, sums, at, total);
+    if (header.size() != head) throw std::logic_error("terrain cache: header length changed");
+    if (const int err = out.finish(header)) write_failed(path, err);
+    return true;
 }
 
 std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const TerrainCacheKey& key, std::string* why) {

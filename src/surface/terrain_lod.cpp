@@ -43,28 +43,16 @@ template <class F> void each_row(int first, int last, int step, std::size_t work
 }
 
 // An upper bound on the largest singular value, over the full-resolution triangles, of the plan
-// positions' piecewise-linear map from grid units (column, row) to metres: for a triangle's
-// Jacobian [u v], sigma^2 = the largest eigenvalue of [[u.u, u.v], [u.v, v.v]] <=
-// max(u.u, v.v) + |u.v| (Gershgorin; equal on a grid with perpendicular axes).
+// positions' piecewise-linear map from grid units (column, row) to metres (lod_cells_lipschitz2).
 double plan_lipschitz(const GridNodes& t) {
-    auto bound2 = [](float ux, float uy, float vx, float vy) {
-        return std::max(ux * ux + uy * uy, vx * vx + vy * vy) + std::abs(ux * vx + uy * vy);
-    };
     const std::size_t rows = std::size_t(std::max(t.rows - 1, 0));
     const std::size_t per = chunk_length(rows, 64);
     std::vector<float> part((rows + per - 1) / per + 1, 0.0f);
     parallel_chunks(rows, 64, [&](std::size_t r0, std::size_t r1) {
         float best = 0.0f;
-        for (std::size_t r = r0; r < r1; ++r) {
-            const glm::vec3* p = t.pos + t.index(0, int(r));
-            const glm::vec3* q = t.pos + t.index(0, int(r) + 1);
-            for (int c = 0; c + 1 < t.cols; ++c) {
-                // Triangles {a, s, d}: columns d - s, rows s - a; {a, d, b}: columns b - a, rows d - b.
-                const glm::vec3 a = p[c], b = p[c + 1], sw = q[c], d = q[c + 1];
-                best = std::max(best, bound2(d.x - sw.x, d.y - sw.y, sw.x - a.x, sw.y - a.y));
-                best = std::max(best, bound2(b.x - a.x, b.y - a.y, d.x - b.x, d.y - b.y));
-            }
-        }
+        for (std::size_t r = r0; r < r1; ++r)
+            best = std::max(best, lod_cells_lipschitz2(&t.pos[t.index(0, int(r))].x, &t.pos[t.index(0, int(r) + 1)].x,
+                                                       t.cols, 3));
         part[r0 / per] = best;
     });
     return std::sqrt(double(*std::max_element(part.begin(), part.end())));
@@ -112,6 +100,25 @@ float TerrainLod::radius(int c, int r) const {
     return centre ? radii.centre[k] : radii.edge[k];
 }
 
+// For a triangle's Jacobian [u v], sigma^2 = the largest eigenvalue of [[u.u, u.v], [u.v, v.v]]
+// <= max(u.u, v.v) + |u.v| (Gershgorin; equal on a grid with perpendicular axes).
+float lod_cells_lipschitz2(const float* p, const float* q, int cols, int stride) {
+    auto bound2 = [](float ux, float uy, float vx, float vy) {
+        return std::max(ux * ux + uy * uy, vx * vx + vy * vy) + std::abs(ux * vx + uy * vy);
+    };
+    float best = 0.0f;
+    for (int c = 0; c + 1 < cols; ++c) {
+        // Triangles {a, s, d}: columns d - s, rows s - a; {a, d, b}: columns b - a, rows d - b.
+        const float* a = p + std::ptrdiff_t(c) * stride;
+        const float* b = a + stride;
+        const float* sw = q + std::ptrdiff_t(c) * stride;
+        const float* d = sw + stride;
+        best = std::max(best, bound2(d[0] - sw[0], d[1] - sw[1], sw[0] - a[0], sw[1] - a[1]));
+        best = std::max(best, bound2(b[0] - a[0], b[1] - a[1], d[0] - b[0], d[1] - b[1]));
+    }
+    return best;
+}
+
 TerrainLod build_terrain_lod(const Terrain& t) {
     check_terrain(t);
     return build_terrain_lod(grid_nodes(t), t.vertical_exaggeration);
@@ -123,57 +130,36 @@ int lod_padded_levels(int cols, int rows) {
     return k;
 }
 
-TerrainLod build_terrain_lod(const GridNodes& t, double ex) {
-    check_nodes(t);
-    t.need(GridWindow{0, 0, t.cols, t.rows});  // every node, read directly below (and by other threads)
-    if (!(ex > 0.0) || !std::isfinite(ex)) throw std::invalid_argument("terrain lod: vertical exaggeration must be > 0");
-    TerrainLod lod;
-    lod.cols = t.cols, lod.rows = t.rows;
-    lod.levels = lod_padded_levels(t.cols, t.rows);
-    const int n = 1 << lod.levels, side = n + 1;
-    const std::size_t N = std::size_t(side) * side;
-    auto error = std::make_shared<std::vector<float>>(N, 0.0f);
-    lod.error = *error;
-    lod.storage = error;
-    if (t.cols < 2 || t.rows < 2) return lod;
+namespace {
 
-    // Unexaggerated heights (0 where invalid: such nodes only ever feed forced, +inf, nodes) and
-    // the invalid mask of the padded square.
-    std::vector<float> h(N, 0.0f);
-    std::vector<std::uint8_t> bad(N, 1), wide(N, 0);
-    float zmin = kInf, zmax = -kInf;
-    for (int r = 0; r < t.rows; ++r) {
-        for (int c = 0; c < t.cols; ++c) {
-            const std::size_t i = t.index(c, r), p = std::size_t(r) * side + c;
-            if (!t.valid[i]) continue;
-            const float z = float(double(t.at(i).z) / ex);
-            h[p] = z, bad[p] = 0;
-            zmin = std::min(zmin, z), zmax = std::max(zmax, z);
-        }
-    }
-    lod.z_min = zmin <= zmax ? zmin : 0.0f, lod.z_max = zmin <= zmax ? zmax : 0.0f;
-    lod.sea_level = t.sea_level;  // at() drew the nodes clamped to it
-    // forced = bad dilated by the 3x3 square (rows, then columns).
-    for (int r = 0; r < side; ++r) {
-        const std::uint8_t* b = &bad[std::size_t(r) * side];
-        std::uint8_t* w = &wide[std::size_t(r) * side];
-        for (int c = 0; c < side; ++c) w[c] = std::uint8_t(b[c] | (c > 0 ? b[c - 1] : 0) | (c < n ? b[c + 1] : 0));
-    }
-    std::vector<std::uint8_t>& forced = bad;
-    for (int r = 0; r < side; ++r) {
-        const std::uint8_t* up = &wide[std::size_t(r > 0 ? r - 1 : r) * side];
-        const std::uint8_t* mid = &wide[std::size_t(r) * side];
-        const std::uint8_t* dn = &wide[std::size_t(r < n ? r + 1 : r) * side];
-        std::uint8_t* f = &forced[std::size_t(r) * side];
-        for (int c = 0; c < side; ++c) f[c] = std::uint8_t(up[c] | mid[c] | dn[c]);
-    }
-    wide = {};
+// Heights, signed deviation bounds and forced flags of the padded nodes (c, r) with c, r multiples
+// of g and rows b0..b1 (a strip of the padded square, or all of it at a coarser spacing).
+struct LevelGrid {
+    int n = 0, g = 1, b0 = 0, b1 = 0, w = 0;
+    std::vector<float> h, up, lo;
+    std::vector<std::uint8_t> forced;
 
-    // Signed deviation bounds, bottom-up: up in the error array, lo beside it.
-    float* up = error->data();
-    std::vector<float> lower(N, 0.0f);
-    float* lo = lower.data();
-    auto at = [side](int c, int r) { return std::size_t(r) * side + c; };
+    void shape(int n_, int g_, int b0_, int b1_) {
+        n = n_, g = g_, b0 = b0_, b1 = b1_, w = n / g + 1;
+        const std::size_t count = std::size_t((b1 - b0) / g + 1) * std::size_t(w);
+        h.resize(count), up.assign(count, 0.0f), lo.assign(count, 0.0f), forced.resize(count);
+    }
+    std::size_t at(int c, int r) const { return std::size_t((r - b0) / g) * std::size_t(w) + std::size_t(c / g); }
+};
+
+// Settles the nodes of the levels s_first..s_last (square sides, powers of two) that lie in g's
+// rows, bottom-up: up(m) = max over its children of up, plus max(0, delta), lo likewise with
+// min, up = +inf where forced (terrain_lod.hpp). A node whose hypotenuse ends or children lie
+// outside the rows is left out or takes the children it has: its value is then wrong, and so
+// are the values depending on it; a node whose rows of dependence (rows within 3/2 s + 1 of
+// its own, lod_apron) all lie in g is settled as on the whole square.
+void settle_levels(LevelGrid& g, int s_first, int s_last) {
+    const int n = g.n;
+    const float* h = g.h.data();
+    const std::uint8_t* forced = g.forced.data();
+    float* up = g.up.data();
+    float* lo = g.lo.data();
+    auto at = [&g](int c, int r) { return g.at(c, r); };
     // Node m split of hypotenuse a-b, children k[0..cnt).
     auto settle = [&](std::size_t m, std::size_t a, std::size_t b, const std::size_t* k, int cnt) {
         const float d = h[m] - 0.5f * (h[a] + h[b]);
@@ -182,18 +168,19 @@ TerrainLod build_terrain_lod(const GridNodes& t, double ex) {
         up[m] = forced[m] ? kInf : cu + std::max(0.0f, d);
         lo[m] = cl + std::min(0.0f, d);
     };
-    for (int s = 2; s <= n; s *= 2) {
+    for (int s = s_first; s <= s_last; s *= 2) {
         const int half = s / 2, q = s / 4;
         // Edge nodes: midpoints of the sides of the s-squares; children the centres of the
         // s/2-squares around them (none at s = 2).
-        each_row(0, n, half, std::size_t(n / s) + 1, [&](int r) {
+        each_row((g.b0 + half - 1) / half * half, g.b1 / half * half, half, std::size_t(n / s) + 1, [&](int r) {
             const bool horizontal = r % s == 0;  // on a row of square sides: hypotenuse along the row
+            if (!horizontal && (r - half < g.b0 || r + half > g.b1)) return;
             for (int c = horizontal ? half : 0; c <= n; c += s) {
                 std::size_t k[4];
                 int cnt = 0;
                 if (q > 0) {
                     for (const int dr : {-q, q}) {
-                        if (r + dr < 0 || r + dr > n) continue;
+                        if (r + dr < g.b0 || r + dr > g.b1) continue;
                         for (const int dc : {-q, q})
                             if (c + dc >= 0 && c + dc <= n) k[cnt++] = at(c + dc, r + dr);
                     }
@@ -204,22 +191,161 @@ TerrainLod build_terrain_lod(const GridNodes& t, double ex) {
         });
         // Centre nodes of the s-squares: the square's diagonal passes through the centre of its
         // 2s-square (the root square's: NW-SE); children the midpoints of its 4 sides.
-        each_row(half, n - half, s, std::size_t(n / s), [&](int r) {
-            for (int c = half; c < n; c += s) {
-                const bool nwse = ((c / s) & 1) == ((r / s) & 1);
-                const std::size_t k[4] = {at(c - half, r), at(c + half, r), at(c, r - half), at(c, r + half)};
-                if (nwse) settle(at(c, r), at(c - half, r - half), at(c + half, r + half), k, 4);
-                else settle(at(c, r), at(c + half, r - half), at(c - half, r + half), k, 4);
-            }
-        });
+        const int first = std::max(g.b0 + half, half), last = std::min(g.b1, n) - half;
+        each_row(first + ((half - first) % s + s) % s, last - ((last - half) % s + s) % s, s, std::size_t(n / s),
+                 [&](int r) {
+                     for (int c = half; c < n; c += s) {
+                         const bool nwse = ((c / s) & 1) == ((r / s) & 1);
+                         const std::size_t k[4] = {at(c - half, r), at(c + half, r), at(c, r - half), at(c, r + half)};
+                         if (nwse) settle(at(c, r), at(c - half, r - half), at(c + half, r + half), k, 4);
+                         else settle(at(c, r), at(c + half, r - half), at(c - half, r + half), k, 4);
+                     }
+                 });
     }
-    h = {};
-    forced = {};
-    parallel_chunks(N, 1 << 18, [&](std::size_t b, std::size_t e) {
-        for (std::size_t i = b; i < e; ++i) up[i] = std::max(up[i], -lo[i]);
-    });
+}
 
-    lower = {};
+// Rows a node of level s (squares of side s) depends on, either side of its own: its hypotenuse
+// ends and children reach s - 1 rows from an edge node and 3/2 s - 1 from a centre node, and
+// the forced flags one row further.
+std::int64_t lod_apron(int s) { return 3 * std::int64_t(s) / 2 + 1; }
+
+// g's rows b0..b1 (g = 1) from the DEM: heights (0 where invalid: such nodes only ever feed
+// forced, +inf, nodes) and forced = invalid (nodata, padding) dilated by the 3x3 square.
+void load_strip(const LodHeights& dem, LevelGrid& g) {
+    const int n = g.n, side = n + 1;
+    auto bad_row = [&](int r, std::uint8_t* out) {
+        if (r >= dem.rows) return void(std::fill(out, out + side, std::uint8_t(1)));
+        const std::uint8_t* v = dem.valid + std::size_t(r) * std::size_t(dem.cols);
+        for (int c = 0; c < dem.cols; ++c) out[c] = std::uint8_t(v[c] == 0);
+        std::fill(out + dem.cols, out + side, std::uint8_t(1));
+    };
+    parallel_chunks(std::size_t(g.b1 - g.b0 + 1), 16, [&](std::size_t i0, std::size_t i1) {
+        std::vector<std::uint8_t> bad(3 * std::size_t(side)), wide(side);
+        for (std::size_t i = i0; i < i1; ++i) {
+            const int r = g.b0 + int(i);
+            float* h = &g.h[g.at(0, r)];
+            std::fill(h, h + side, 0.0f);
+            if (r < dem.rows) {
+                const float* z = dem.z + std::size_t(r) * std::size_t(dem.cols);
+                const std::uint8_t* v = dem.valid + std::size_t(r) * std::size_t(dem.cols);
+                for (int c = 0; c < dem.cols; ++c)
+                    if (v[c]) h[c] = z[c];
+            }
+            std::fill(wide.begin(), wide.end(), std::uint8_t(0));
+            for (int dr = -1; dr <= 1; ++dr) {
+                if (r + dr < 0 || r + dr > n) continue;
+                bad_row(r + dr, bad.data());
+                for (int c = 0; c < side; ++c) wide[c] |= bad[c];
+            }
+            std::uint8_t* f = &g.forced[g.at(0, r)];
+            for (int c = 0; c < side; ++c)
+                f[c] = std::uint8_t(wide[c] | (c > 0 ? wide[c - 1] : 0) | (c < n ? wide[c + 1] : 0));
+        }
+    });
+}
+
+}  // namespace
+
+double lod_errors_bytes(int cols, int rows, const LodStrips& strips) {
+    const int n = 1 << lod_padded_levels(cols, rows);
+    const double side = double(n) + 1.0, fine = double(strips.fine_side);
+    if (fine > n / 2) return 13.0 * side * side;  // one strip, every level on it
+    const double strip = std::min(double(strips.strip_rows) + 2.0 * double(lod_apron(strips.fine_side)), side);
+    const double top = double(n) / (fine / 2.0) + 1.0;
+    return 13.0 * side * strip + 4.0 * side * (double(n) / fine + 1.0) + 13.0 * top * top;
+}
+
+void lod_errors(const LodHeights& dem, const LodStrips& strips, const std::function<void(int, int, const float*)>& emit) {
+    const int levels = lod_padded_levels(dem.cols, dem.rows), n = 1 << levels, side = n + 1;
+    if (dem.cols < 2 || dem.rows < 2) {
+        const std::vector<float> zeros(side, 0.0f);
+        for (int r = 0; r <= n; ++r) emit(r, r + 1, zeros.data());
+        return;
+    }
+    if (strips.strip_rows < 1 || strips.fine_side < 2 || !std::has_single_bit(unsigned(strips.fine_side)))
+        throw std::invalid_argument("terrain lod: strips of at least a row, fine squares a power of two >= 2");
+    // The levels above fine_side, on the nodes every fine_side / 2 (their children at the
+    // lowest of them are the centres of the fine_side squares): rows every fine_side, which
+    // hold those nodes, wait for them.
+    const int fine = strips.fine_side;
+    const bool coarse = fine <= n / 2;
+    const int fine_last = coarse ? fine : n;
+    const std::int64_t apron = lod_apron(fine_last);
+    LevelGrid top;
+    if (coarse) top.shape(n, fine / 2, 0, n);
+    std::vector<std::vector<float>> held(coarse ? std::size_t(n / fine + 1) : 0);
+    LevelGrid g;
+    for (int y0 = 0; y0 <= n; y0 = int(std::min<std::int64_t>(std::int64_t(y0) + strips.strip_rows, n + 1))) {
+        const int y1 = int(std::min<std::int64_t>(std::int64_t(y0) + strips.strip_rows, n + 1));  // the strip's rows y0..y1 - 1
+        g.shape(n, 1, int(std::max<std::int64_t>(0, y0 - apron)), int(std::min<std::int64_t>(n, y1 - 1 + apron)));
+        load_strip(dem, g);
+        settle_levels(g, 2, fine_last);
+        if (coarse) {
+            for (int r = (y0 + top.g - 1) / top.g * top.g; r < y1; r += top.g)
+                for (int c = 0; c <= n; c += top.g) {
+                    const std::size_t i = g.at(c, r), j = top.at(c, r);
+                    top.h[j] = g.h[i], top.forced[j] = g.forced[i], top.up[j] = g.up[i], top.lo[j] = g.lo[i];
+                }
+        }
+        float* e = &g.up[g.at(0, y0)];
+        const float* lo = &g.lo[g.at(0, y0)];
+        parallel_chunks(std::size_t(y1 - y0) * std::size_t(side), 1 << 18, [&](std::size_t b, std::size_t end) {
+            for (std::size_t i = b; i < end; ++i) e[i] = std::max(e[i], -lo[i]);
+        });
+        for (int r = y0; r < y1;) {
+            if (coarse && r % fine == 0) {
+                const float* row = &g.up[g.at(0, r)];
+                held[std::size_t(r / fine)].assign(row, row + side);
+                ++r;
+                continue;
+            }
+            const int end = coarse ? std::min(y1, (r / fine + 1) * fine) : y1;
+            emit(r, end, &g.up[g.at(0, r)]);
+            r = end;
+        }
+    }
+    g = {};
+    if (!coarse) return;
+    settle_levels(top, 2 * fine, n);
+    for (std::size_t k = 0; k < held.size(); ++k) {
+        const int r = int(k) * fine;
+        for (int c = 0; c <= n; c += fine) {
+            const std::size_t j = top.at(c, r);
+            held[k][std::size_t(c)] = std::max(top.up[j], -top.lo[j]);
+        }
+        emit(r, r + 1, held[k].data());
+        held[k] = {};
+    }
+}
+
+TerrainLod build_terrain_lod(const GridNodes& t, double ex) {
+    check_nodes(t);
+    t.need(GridWindow{0, 0, t.cols, t.rows});  // every node, read directly below (and by other threads)
+    if (!(ex > 0.0) || !std::isfinite(ex)) throw std::invalid_argument("terrain lod: vertical exaggeration must be > 0");
+    TerrainLod lod;
+    lod.cols = t.cols, lod.rows = t.rows;
+    lod.levels = lod_padded_levels(t.cols, t.rows);
+    const int side = lod.side();
+    auto error = std::make_shared<std::vector<float>>(std::size_t(side) * std::size_t(side), 0.0f);
+    lod.error = *error;
+    lod.storage = error;
+    if (t.cols < 2 || t.rows < 2) return lod;
+
+    // Unexaggerated heights of the valid nodes and their range.
+    std::vector<float> h(t.size(), 0.0f);
+    float zmin = kInf, zmax = -kInf;
+    for (std::size_t i = 0; i < t.size(); ++i) {
+        if (!t.valid[i]) continue;
+        const float z = float(double(t.at(i).z) / ex);
+        h[i] = z;
+        zmin = std::min(zmin, z), zmax = std::max(zmax, z);
+    }
+    lod.z_min = zmin <= zmax ? zmin : 0.0f, lod.z_max = zmin <= zmax ? zmax : 0.0f;
+    lod.sea_level = t.sea_level;  // at() drew the nodes clamped to it
+    lod_errors(LodHeights{t.cols, t.rows, h.data(), t.valid}, LodStrips{},
+               [&](int r0, int r1, const float* e) {
+                   std::copy(e, e + std::size_t(r1 - r0) * std::size_t(side), error->data() + std::size_t(r0) * side);
+               });
     // L: a Lipschitz constant of the nodes' plan positions over the grid (plan_lipschitz:
     // |xy(p) - xy(q)| <= L |p - q|, grid units, for any nodes p, q; the cell side on a square
     // grid); the radii follow from it and the level (level_radii).

@@ -61,10 +61,12 @@
 // Frames and units: grid node (c, r) is Terrain node (c, r) (row 0 north); positions are the
 // Terrain's local metres, z exaggerated as in Terrain::pos (or as GridNodes::at draws them);
 // error unexaggerated metres; radius plan metres. Memory: 4 bytes per padded node (error), held
-// in memory or read on demand from the terrain cache (terrain_cache.hpp).
+// in memory or read on demand from the terrain cache (terrain_cache.hpp); built in strips
+// (lod_errors), the build holds 4 bytes per node (heights) and the strips besides.
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <span>
@@ -108,6 +110,44 @@ struct TerrainLod {
 
 // The levels of the padded square of a cols x rows grid: the least k with 2^k + 1 >= max(cols, rows).
 int lod_padded_levels(int cols, int rows);
+
+// A DEM's heights as the pyramid is built from them: cols x rows nodes, row-major, unexaggerated
+// metres (read only where valid), and their valid flags.
+struct LodHeights {
+    int cols = 0, rows = 0;
+    const float* z = nullptr;
+    const std::uint8_t* valid = nullptr;
+};
+
+// How lod_errors cuts the work (powers of two). The levels up to squares of fine_side grid units
+// are settled in strips of strip_rows padded rows, each loaded with the rows its nodes depend on
+// either side (3/2 fine_side + 1: a strip_rows of 512 settles 1.19 times the nodes); the levels
+// above on the nodes every fine_side / 2, a grid of (2^levels / (fine_side / 2) + 1)^2 nodes.
+// Memory: 13 bytes per padded node of a strip and its margins (side x (strip_rows + 3 fine_side +
+// 2)), 4 per padded node of the rows every fine_side (held until the upper levels are settled),
+// and 13 per node of the upper levels' grid: 177 MB at a padded side of 16385, where the whole
+// square took 14 bytes per padded node (3.8 GB).
+struct LodStrips {
+    int strip_rows = 512;
+    int fine_side = 32;
+};
+
+// Bytes lod_errors holds for a cols x rows DEM (the strip and its margins, the held rows, the
+// upper levels' grid; the formula in LodStrips' comment).
+double lod_errors_bytes(int cols, int rows, const LodStrips& strips = {});
+
+// The pyramid's errors (TerrainLod::error, padded row-major) of `dem`, a strip at a time:
+// emit(r0, r1, e) receives the final errors of padded rows [r0, r1) ((r1 - r0) * side floats,
+// valid during the call); every row once, in no fixed order (the rows holding nodes of the
+// levels above fine_side come last). Bit for bit the errors of the whole square settled at once,
+// for any strips (tests: TerrainLodStrips.*). Throws std::invalid_argument on strips that are not
+// powers of two.
+void lod_errors(const LodHeights& dem, const LodStrips& strips, const std::function<void(int, int, const float*)>& emit);
+
+// The square of the plan Lipschitz bound (TerrainLod::lipschitz) over the full-resolution
+// triangles of the cells between two adjacent rows of `cols` nodes: p, q point at the x of the
+// rows' first nodes (row r, row r + 1), y following it, a node every `stride` floats.
+float lod_cells_lipschitz2(const float* p, const float* q, int cols, int stride);
 
 // From a Terrain whose pos.z is elevation * t.vertical_exaggeration (divided out: errors are
 // unexaggerated). O(N); throws std::invalid_argument on an inconsistent Terrain.

@@ -1,4 +1,5 @@
-// write_cache_file: the parts' bytes in order, no temporary left, the old file kept on failure.
+// write_cache_file and CacheFileStream: the parts' bytes in order (a stream's head written
+// last), no temporary left, the old file kept on failure or when a stream is dropped.
 #include <unistd.h>
 
 #include <filesystem>
@@ -43,5 +44,29 @@ TEST(CacheFileWrite, AFailedWriteKeepsTheOldFileAndSaysWhy) {
     EXPECT_EQ(read_all(path), "old");
     // a path in a missing folder
     EXPECT_NE(write_cache_file(dir.file("missing/c.bin"), {old}), 0);
+    EXPECT_FALSE(fs::exists(dir.file("missing")));
+}
+
+TEST(CacheFileWrite, AStreamWritesItsHeadLastAndNothingWhenDropped) {
+    test::TempDir dir;
+    const std::string path = dir.file("s.bin");
+    {
+        CacheFileStream out(path);
+        const std::vector<std::uint8_t> zeros(3, 0), body{'d', 'a', 't', 'a'}, head{'H', 'D', 'R'};
+        EXPECT_EQ(out.append(zeros), 0);
+        EXPECT_EQ(out.append(body), 0);
+        EXPECT_FALSE(fs::exists(path));  // nothing in place before finish
+        EXPECT_EQ(out.finish(head), 0);
+    }
+    EXPECT_EQ(read_all(path), "HDRdata");
+    {
+        CacheFileStream out(path);  // dropped unfinished (an exception on the way): the old file stays
+        out.append(std::vector<std::uint8_t>{'n', 'e', 'w'});
+    }
+    EXPECT_EQ(read_all(path), "HDRdata");
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir.path), fs::directory_iterator()), 1);
+    CacheFileStream bad(dir.file("missing/s.bin"));  // cannot open: every call says why
+    EXPECT_NE(bad.append(std::vector<std::uint8_t>{'x'}), 0);
+    EXPECT_NE(bad.finish(), 0);
     EXPECT_FALSE(fs::exists(dir.file("missing")));
 }

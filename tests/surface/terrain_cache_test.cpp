@@ -491,3 +491,38 @@ TEST(TerrainCache, XYOfAGeographicDemAreDerivedBitForBit) {
     std::printf("jacksboro: x, y derived: %.0f bytes; stored: %.0f\n", derived, stored);
     EXPECT_LT(derived + 0.4 * double(dem.size()), stored);
 }
+
+// build_terrain_cache (heights alone, the pyramid in strips, blocks coded as they are final)
+// writes the file the whole Terrain writes, byte for byte: on a projected DEM (the volcano: x, y
+// affine; a padded side of 129, under a block, so blocks cross the rows the upper levels hold
+// back) and on a geographic one (jacksboro: x, y projected to UTM; side 513, two strips). The
+// file it writes opens and reads whole.
+TEST(TerrainCache, StreamedBuildWritesTheFileOfTheWholeTerrain) {
+    test::TempDir dir;
+    for (const char* dem : {PENINK_SOURCE_DIR "/examples/volcano.asc", PENINK_SOURCE_DIR "/examples/jacksboro.tif"}) {
+        const std::string whole = dir.file("whole.lod"), streamed = dir.file("streamed.lod");
+        write_terrain_cache(whole, store_terrain(read_dem(dem)), key());
+        int stages = 0;
+        ASSERT_TRUE(build_terrain_cache(dem, streamed, key(), [&](int s) { EXPECT_EQ(s, stages++); }));
+        EXPECT_EQ(stages, 2);
+        const std::vector<char> a = file_bytes(whole), b = file_bytes(streamed);
+        EXPECT_GT(a.size(), 1000u) << dem;
+        EXPECT_TRUE(a == b) << dem << ": " << a.size() << " vs " << b.size() << " bytes";
+        const std::optional<StoredTerrain> t = read_terrain_cache(streamed, key());
+        ASSERT_TRUE(t) << dem;
+        EXPECT_NO_THROW(read_whole(*t));
+    }
+}
+
+TEST(TerrainCache, StreamedBuildReportsTheDemsErrorsAndUnwritablePlaces) {
+    test::TempDir dir;
+    EXPECT_THROW(build_terrain_cache(dir.file("none.tif"), dir.file("x.lod"), key()), Error);
+    const std::string path = dir.file("missing/v.lod");
+    try {
+        build_terrain_cache(PENINK_SOURCE_DIR "/examples/volcano.asc", path, key());
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()), "penink: surface: " + path + ": cannot write terrain cache: No such file or directory");
+    }
+    EXPECT_TRUE(std::filesystem::is_empty(dir.path));
+}
