@@ -278,7 +278,7 @@ int CreaseTiles::read_unit(std::size_t k, int l, int d, TileLines& out) const {
     if (!read_line_tile(tile_path(k, l), tile_key(k, l), out)) return 0;
     if (d == 0) return 1;
     out.lines = thinned_lines(out.lines, detail_spacing(d));  // a copy made, kept for the next query
-    return copy && writable_ && write_line_tile(tile_path(k, l, d), tile_key(k, l, d), out.lines, out.stems, out.bounds) ? 2 : 1;
+    return copy && writable_ && write_line_tile(tile_path(k, l, d), tile_key(k, l, d), crease_lattice(g_), out.lines, out.stems, out.bounds) ? 2 : 1;
 }
 
 DrapedLineSet thinned_lines(const DrapedLineSet& from, double spacing) {
@@ -439,11 +439,11 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
                     std::vector<StemBound> bounds(ids.size());
                     for (std::size_t i = 0; i < ids.size(); ++i) bounds[i] = bounds_[ids[i]];
                     written[j] = write_line_tile(tile_path(cut_tile[k], cut_level[k]), tile_key(cut_tile[k], cut_level[k]),
-                                                 *level, ids, bounds);
+                                                 crease_lattice(g_), *level, ids, bounds);
                     const int d = cut_d[k];  // and its copy at the query's detail, where one is kept
                     if (written[j] && d >= crease_copy_detail &&
                         write_line_tile(tile_path(cut_tile[k], cut_level[k], d), tile_key(cut_tile[k], cut_level[k], d),
-                                        thinned_lines(*level, detail_spacing(d)), ids, bounds))
+                                        crease_lattice(g_), thinned_lines(*level, detail_spacing(d)), ids, bounds))
                         written[j] = 2;
                 }
             });

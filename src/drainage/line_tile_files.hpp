@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <string>
 
+#include "drainage/line_lattice.hpp"
 #include "drainage/line_set.hpp"
 #include "drainage/stem_reach.hpp"
 
@@ -40,16 +41,17 @@ struct TileLines {
     std::vector<StemBound> bounds;
 };
 
-// The bytes of a tile file holding `lines`, of stems `stems` with bounds `bounds` (one each a line).
-std::vector<std::uint8_t> encode_line_tile(std::uint64_t key, const DrapedLineSet& lines,
+// The bytes of a tile file holding `lines`, of stems `stems` with bounds `bounds` (one each a line),
+// their vertices on `lattice`; none when a vertex is not on it (vertex_code).
+std::vector<std::uint8_t> encode_line_tile(std::uint64_t key, const LineLattice& lattice, const DrapedLineSet& lines,
                                            const std::vector<std::uint32_t>& stems, const std::vector<StemBound>& bounds);
 // Decodes a tile file's bytes written with `key`: true with its lines (indexed: index_lines),
 // false when they are of another key or version, or damaged (short, checksum, sizes, coding).
 bool decode_line_tile(const std::uint8_t* data, std::size_t size, std::uint64_t key, TileLines& out);
 
 // Writes the tile atomically (creating the folder); false when it cannot be written (a
-// read-only folder, a full disk): the tile then stays in memory only.
-bool write_line_tile(const std::string& path, std::uint64_t key, const DrapedLineSet& lines,
+// read-only folder, a full disk, a vertex not on the lattice): the tile then stays in memory only.
+bool write_line_tile(const std::string& path, std::uint64_t key, const LineLattice& lattice, const DrapedLineSet& lines,
                      const std::vector<std::uint32_t>& stems, const std::vector<StemBound>& bounds);
 // Reads the tile written with `key` (decode_line_tile); false also when the file is absent or
 // not a regular file.

@@ -1,0 +1,84 @@
+#include "drainage/line_lattice.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+
+namespace penink {
+
+namespace {
+
+constexpr std::uint32_t zero_normal = normal_levels + 1;
+constexpr int flow_shift = 23 - flow_bits;  // float32 mantissa bits dropped
+
+// The integer nearest x / 2^e (exact: a power of two's scaling), false beyond int32 or not finite.
+bool steps(float x, int e, std::int32_t& q) {
+    const double s = std::nearbyint(std::ldexp(double(x), -e));
+    if (!(std::fabs(s) < 2147483648.0)) return false;
+    q = std::int32_t(s);
+    return true;
+}
+float of_steps(std::int32_t q, int e) { return float(std::ldexp(double(q), e)); }
+
+// A component of [-1, 1] in normal_levels steps (nearest), and back.
+std::uint32_t normal_step(double a) {
+    return std::uint32_t(std::nearbyint(std::clamp((a + 1.0) * 0.5, 0.0, 1.0) * normal_levels));
+}
+double of_normal_step(std::uint32_t q) { return 2.0 * double(q) / normal_levels - 1.0; }
+
+// The normal's code (zero_normal for a zero normal).
+void normal_code(float nx, float ny, float nz, std::uint32_t& a, std::uint32_t& b) {
+    const double l1 = std::fabs(double(nx)) + std::fabs(double(ny)) + std::fabs(double(nz));
+    if (!(l1 > 0.0)) {
+        a = zero_normal, b = 0;
+        return;
+    }
+    const double u = nx / l1, v = ny / l1;
+    a = normal_step(u + v), b = normal_step(u - v);
+}
+
+}  // namespace
+
+LineLattice line_lattice(double cell) {
+    LineLattice out;
+    out.plan_exp = int(std::floor(std::log2(cell / 64.0)));
+    out.z_exp = out.plan_exp - 1;
+    return out;
+}
+
+DrapedVertex lattice_vertex(const VertexCode& c, const LineLattice& lattice) {
+    DrapedVertex v{};
+    v.x = of_steps(c.x, lattice.plan_exp), v.y = of_steps(c.y, lattice.plan_exp), v.z = of_steps(c.z, lattice.z_exp);
+    if (c.a <= normal_levels && c.b <= normal_levels) {
+        const double a = of_normal_step(c.a), b = of_normal_step(c.b);
+        const double u = 0.5 * (a + b), w = 0.5 * (a - b), h = 1.0 - std::fabs(u) - std::fabs(w);
+        const double len = std::sqrt(u * u + w * w + h * h);
+        v.nx = float(u / len), v.ny = float(w / len), v.nz = float(h / len);
+    }
+    v.flow = std::bit_cast<float>(c.flow << flow_shift);
+    return v;
+}
+
+bool vertex_code(const DrapedVertex& v, const LineLattice& lattice, VertexCode& c) {
+    if (!steps(v.x, lattice.plan_exp, c.x) || !steps(v.y, lattice.plan_exp, c.y) || !steps(v.z, lattice.z_exp, c.z))
+        return false;
+    normal_code(v.nx, v.ny, v.nz, c.a, c.b);
+    c.flow = std::bit_cast<std::uint32_t>(v.flow) >> flow_shift;
+    const DrapedVertex back = lattice_vertex(c, lattice);
+    return std::memcmp(&back, &v, sizeof v) == 0;
+}
+
+DrapedVertex snapped_vertex(const DrapedVertex& v, const LineLattice& lattice) {
+    VertexCode c;
+    if (!steps(v.x, lattice.plan_exp, c.x) || !steps(v.y, lattice.plan_exp, c.y) || !steps(v.z, lattice.z_exp, c.z))
+        return v;
+    normal_code(v.nx, v.ny, v.nz, c.a, c.b);
+    // the flow's bits rounded half up to flow_bits of mantissa (monotone in the float's bits; an
+    // infinity or NaN cut, as it is kept)
+    const std::uint32_t f = std::bit_cast<std::uint32_t>(v.flow);
+    c.flow = (std::isfinite(v.flow) ? f + (1u << (flow_shift - 1)) : f) >> flow_shift;
+    return lattice_vertex(c, lattice);
+}
+
+}  // namespace penink
