@@ -12,14 +12,16 @@ namespace {
 constexpr std::uint32_t zero_normal = normal_levels + 1;
 constexpr int flow_shift = 23 - flow_bits;  // float32 mantissa bits dropped
 
+// 2^e for |e| < 1023 (its bits: no call, exact)
+double power_of_two(int e) { return std::bit_cast<double>(std::uint64_t(1023 + e) << 52); }
 // The integer nearest x / 2^e (exact: a power of two's scaling), false beyond int32 or not finite.
 bool steps(float x, int e, std::int32_t& q) {
-    const double s = std::nearbyint(std::ldexp(double(x), -e));
+    const double s = std::nearbyint(double(x) * power_of_two(-e));
     if (!(std::fabs(s) < 2147483648.0)) return false;
     q = std::int32_t(s);
     return true;
 }
-float of_steps(std::int32_t q, int e) { return float(std::ldexp(double(q), e)); }
+float of_steps(std::int32_t q, double step) { return float(double(q) * step); }  // exact before the rounding
 
 // A component of [-1, 1] in normal_levels steps (nearest), and back.
 std::uint32_t normal_step(double a) {
@@ -47,16 +49,26 @@ LineLattice line_lattice(double cell) {
     return out;
 }
 
-DrapedVertex lattice_vertex(const VertexCode& c, const LineLattice& lattice) {
-    DrapedVertex v{};
-    v.x = of_steps(c.x, lattice.plan_exp), v.y = of_steps(c.y, lattice.plan_exp), v.z = of_steps(c.z, lattice.z_exp);
-    if (c.a <= normal_levels && c.b <= normal_levels) {
-        const double a = of_normal_step(c.a), b = of_normal_step(c.b);
-        const double u = 0.5 * (a + b), w = 0.5 * (a - b), h = 1.0 - std::fabs(u) - std::fabs(w);
-        const double len = std::sqrt(u * u + w * w + h * h);
-        v.nx = float(u / len), v.ny = float(w / len), v.nz = float(h / len);
+void lattice_vertices(const VertexCode* codes, std::size_t n, const LineLattice& lattice, DrapedVertex* out) {
+    const double plan = power_of_two(lattice.plan_exp), zs = power_of_two(lattice.z_exp);
+    for (std::size_t i = 0; i < n; ++i) {
+        const VertexCode& c = codes[i];
+        DrapedVertex& v = out[i];
+        v.x = of_steps(c.x, plan), v.y = of_steps(c.y, plan), v.z = of_steps(c.z, zs);
+        v.nx = v.ny = v.nz = 0.0f;
+        if (c.a <= normal_levels && c.b <= normal_levels) {
+            const double a = of_normal_step(c.a), b = of_normal_step(c.b);
+            const double u = 0.5 * (a + b), w = 0.5 * (a - b), h = 1.0 - std::fabs(u) - std::fabs(w);
+            const double inv = 1.0 / std::sqrt(u * u + w * w + h * h);
+            v.nx = float(u * inv), v.ny = float(w * inv), v.nz = float(h * inv);
+        }
+        v.flow = std::bit_cast<float>(c.flow << flow_shift);
     }
-    v.flow = std::bit_cast<float>(c.flow << flow_shift);
+}
+
+DrapedVertex lattice_vertex(const VertexCode& c, const LineLattice& lattice) {
+    DrapedVertex v;
+    lattice_vertices(&c, 1, lattice, &v);
     return v;
 }
 

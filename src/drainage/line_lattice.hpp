@@ -50,6 +50,8 @@ struct VertexCode {
 
 // The vertex of a code (the code's floats, rounded once from double).
 DrapedVertex lattice_vertex(const VertexCode& code, const LineLattice& lattice);
+// The same for n codes (lattice_vertex of each, in one loop).
+void lattice_vertices(const VertexCode* codes, std::size_t n, const LineLattice& lattice, DrapedVertex* out);
 // The code of a vertex on the lattice; false when v is not one lattice_vertex gives (bit for bit:
 // a vertex not snapped, or beyond the codes' range).
 bool vertex_code(const DrapedVertex& v, const LineLattice& lattice, VertexCode& code);

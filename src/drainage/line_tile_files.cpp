@@ -25,20 +25,18 @@ constexpr std::uint32_t version = 6;
 constexpr int components = 6;
 constexpr std::array<int, components> orders{2, 2, 2, 1, 1, 1};
 
-std::array<std::uint32_t, components> codes_of(const VertexCode& c) {
+using Codes = std::array<std::uint32_t, components>;
+Codes codes_of(const VertexCode& c) {
     return {std::uint32_t(c.x), std::uint32_t(c.y), std::uint32_t(c.z), c.a, c.b, c.flow};
 }
-VertexCode code_of(const std::array<std::uint32_t, components>& q) {
+VertexCode code_of(const Codes& q) {
     return {std::int32_t(q[0]), std::int32_t(q[1]), std::int32_t(q[2]), q[3], q[4], q[5]};
 }
-// The prediction of component k of vertex `at` (the i-th of its line) from the codes q before it
-// (the tile's, in vertex order, components interleaved; `before`: the line before's first vertex,
-// or size_t(-1) for none), in 32-bit wrapping arithmetic.
-std::uint32_t predicted(const std::vector<std::uint32_t>& q, std::size_t at, std::size_t i, std::size_t before, int k) {
-    if (i == 0) return before == std::size_t(-1) ? 0u : q[before * components + std::size_t(k)];
-    const std::uint32_t p1 = q[(at - 1) * components + std::size_t(k)];
-    if (i == 1 || orders[std::size_t(k)] == 1) return p1;
-    return 2u * p1 - q[(at - 2) * components + std::size_t(k)];
+// The prediction of component k of a line's vertex i >= 1 from its vertices i - 1 (p1) and i - 2
+// (p2, read for i > 1 only), in 32-bit wrapping arithmetic; a line's first vertex is predicted by
+// the first of the line before (0 for the tile's first line).
+std::uint32_t predicted(const Codes& p1, const Codes& p2, std::uint32_t i, std::size_t k) {
+    return i > 1 && orders[k] == 2 ? 2u * p1[k] - p2[k] : p1[k];
 }
 std::uint32_t zigzag(std::uint32_t r) { return r << 1 ^ (0u - (r >> 31)); }
 std::uint32_t unzigzag(std::uint32_t z) { return z >> 1 ^ (0u - (z & 1u)); }
@@ -95,30 +93,27 @@ struct Reader {
 // zigzagged, in Planes, deflated (encode_bytes); empty when a vertex is not on the lattice.
 std::vector<std::uint8_t> encode_lines(const DrapedLineSet& lines, const LineLattice& lattice) {
     const std::size_t n = lines.vertices.size();
-    std::vector<std::uint32_t> q(n * components);
+    std::vector<Codes> q(n);
     for (std::size_t i = 0; i < n; ++i) {
         VertexCode c;
         if (!vertex_code(lines.vertices[i], lattice, c)) return {};
-        const std::array<std::uint32_t, components> v = codes_of(c);
-        std::copy(v.begin(), v.end(), q.begin() + std::ptrdiff_t(i * components));
+        q[i] = codes_of(c);
     }
     const Planes layout{lines.lines.size(), n - lines.lines.size()};
     std::vector<std::uint8_t> planes(layout.size());
-    std::size_t before = std::size_t(-1), row = 0;
-    for (std::size_t j = 0; j < lines.lines.size(); ++j) {
+    Codes before{};
+    for (std::size_t j = 0, row = 0; j < lines.lines.size(); ++j) {
         const DrapedLine& l = lines.lines[j];
         layout.put(planes, false, 0, j, l.count);
         planes[layout.at(false, order_plane, j)] = l.order;
-        for (std::size_t i = 0; i < l.count; ++i) {
+        for (std::size_t k = 0; k < components; ++k)
+            layout.put(planes, false, start_planes + 4 * k, j, zigzag(q[l.first][k] - before[k]));
+        for (std::uint32_t i = 1; i < l.count; ++i, ++row) {
             const std::size_t at = l.first + i;
-            for (int k = 0; k < components; ++k) {
-                const std::uint32_t z = zigzag(q[at * components + std::size_t(k)] - predicted(q, at, i, before, k));
-                if (i == 0) layout.put(planes, false, start_planes + 4 * std::size_t(k), j, z);
-                else layout.put(planes, true, 4 * std::size_t(k), row, z);
-            }
-            row += i > 0;
+            for (std::size_t k = 0; k < components; ++k)
+                layout.put(planes, true, 4 * k, row, zigzag(q[at][k] - predicted(q[at - 1], q[at - (i > 1 ? 2 : 1)], i, k)));
         }
-        before = l.first;
+        before = q[l.first];
     }
     std::vector<std::uint8_t> out = encode_bytes(planes.data(), planes.size());
     return out.empty() ? std::vector<std::uint8_t>{0} : out;  // never empty: empty says "not coded"
@@ -146,23 +141,34 @@ bool decode_lines(const std::uint8_t* coded, std::size_t size, std::size_t nl, s
     }
     if (first != nv) return false;
     lines.vertices.resize(nv);
-    std::vector<std::uint32_t> q(nv * components);
-    std::size_t before = std::size_t(-1), row = 0;
-    std::array<std::uint32_t, components> v;
-    for (std::size_t j = 0; j < nl; ++j) {
-        const DrapedLine& l = lines.lines[j];
-        for (std::size_t i = 0; i < l.count; ++i) {
-            const std::size_t at = l.first + i;
-            for (int k = 0; k < components; ++k) {
-                const std::uint32_t z = i == 0 ? layout.get(planes, false, start_planes + 4 * std::size_t(k), j)
-                                               : layout.get(planes, true, 4 * std::size_t(k), row);
-                v[std::size_t(k)] = q[at * components + std::size_t(k)] = predicted(q, at, i, before, k) + unzigzag(z);
-            }
-            lines.vertices[at] = lattice_vertex(code_of(v), lattice);
-            row += i > 0;
-        }
-        before = l.first;
+    // each component's residuals out of their four planes, then the codes line by line
+    std::vector<std::uint32_t> starts(nl * components), others(layout.others * components);
+    for (std::size_t k = 0; k < components; ++k) {
+        const auto gather = [&](bool vertex, std::size_t rows, std::uint32_t* out) {
+            const std::uint8_t* p[4];
+            for (std::size_t b = 0; b < 4; ++b) p[b] = planes.data() + layout.at(vertex, (vertex ? 0 : start_planes) + 4 * k + b, 0);
+            for (std::size_t j = 0; j < rows; ++j)
+                out[j] = unzigzag(std::uint32_t(p[0][j]) | std::uint32_t(p[1][j]) << 8 | std::uint32_t(p[2][j]) << 16 |
+                                  std::uint32_t(p[3][j]) << 24);
+        };
+        gather(false, nl, starts.data() + k * nl);
+        gather(true, layout.others, others.data() + k * layout.others);
     }
+    std::vector<Codes> q(nv);
+    Codes before{};
+    for (std::size_t j = 0, row = 0; j < nl; ++j) {
+        const DrapedLine& l = lines.lines[j];
+        for (std::size_t k = 0; k < components; ++k) q[l.first][k] = before[k] + starts[k * nl + j];
+        for (std::uint32_t i = 1; i < l.count; ++i, ++row) {
+            const std::size_t at = l.first + i;
+            for (std::size_t k = 0; k < components; ++k)
+                q[at][k] = predicted(q[at - 1], q[at - (i > 1 ? 2 : 1)], i, k) + others[k * layout.others + row];
+        }
+        before = q[l.first];
+    }
+    std::vector<VertexCode> codes(nv);
+    for (std::size_t i = 0; i < nv; ++i) codes[i] = code_of(q[i]);
+    lattice_vertices(codes.data(), nv, lattice, lines.vertices.data());
     return true;
 }
 
