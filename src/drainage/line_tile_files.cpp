@@ -115,6 +115,7 @@ std::vector<std::uint8_t> encode_lines(const DrapedLineSet& lines, const LineLat
         }
         before = q[l.first];
     }
+    q = {};  // freed before deflating: the planes and their deflate at once at most
     std::vector<std::uint8_t> out = encode_bytes(planes.data(), planes.size());
     return out.empty() ? std::vector<std::uint8_t>{0} : out;  // never empty: empty says "not coded"
 }
@@ -140,7 +141,6 @@ bool decode_lines(const std::uint8_t* coded, std::size_t size, std::size_t nl, s
         if (l.count == 0 || first > nv) return false;
     }
     if (first != nv) return false;
-    lines.vertices.resize(nv);
     // each component's residuals out of their four planes, then the codes line by line
     std::vector<std::uint32_t> starts(nl * components), others(layout.others * components);
     for (std::size_t k = 0; k < components; ++k) {
@@ -154,6 +154,7 @@ bool decode_lines(const std::uint8_t* coded, std::size_t size, std::size_t nl, s
         gather(false, nl, starts.data() + k * nl);
         gather(true, layout.others, others.data() + k * layout.others);
     }
+    planes = {};  // each step's input freed once read: two of them at once at most
     std::vector<Codes> q(nv);
     Codes before{};
     for (std::size_t j = 0, row = 0; j < nl; ++j) {
@@ -166,8 +167,11 @@ bool decode_lines(const std::uint8_t* coded, std::size_t size, std::size_t nl, s
         }
         before = q[l.first];
     }
+    starts = {}, others = {};
     std::vector<VertexCode> codes(nv);
     for (std::size_t i = 0; i < nv; ++i) codes[i] = code_of(q[i]);
+    q = {};
+    lines.vertices.resize(nv);
     lattice_vertices(codes.data(), nv, lattice, lines.vertices.data());
     return true;
 }
