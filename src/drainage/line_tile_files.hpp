@@ -17,10 +17,13 @@
 // 1000x750 (323 files, 231 743 stems, 3.12 M vertices) that is 4.2 B a vertex for the lines and
 // vertices and 4.9 B with the ids and bounds (version 5, which kept the floats as they were: 15.3;
 // the 28 B a vertex takes in memory); the caches beside the DEM then take 1.93 times its float32
-// size (26.7 MB: .dv 6.2, .lod 5.3, tiles 15.2; version 5: 59.2 MB, 4.3 times). The lines'
-// boxes, lengths and index are made again when read (index_lines), as the build makes them. A
-// file of another key or version, cut short, with a wrong checksum, ids not ascending or that
-// does not decode reads as absent: the tile is built again and its file rewritten.
+// size (26.7 MB: .dv 6.2, .lod 5.3, tiles 15.2; version 5: 59.2 MB, 4.3 times), on
+// /tmp/j29.tif's 1.12 times (522 MB: .dv 194, .lod 114, tiles 214; version 5: 977 MB, 2.1 times);
+// `penink render DEM --width 1000 --height 750 -o x.svg`, then `du -cb DEM.dv DEM.lod
+// DEM.dv.tiles`. The lines' boxes, lengths and index are made again when read (index_lines), as
+// the build makes them. A file of another key or version, cut short, with a wrong checksum, ids
+// not ascending or that does not decode reads as absent: the tile is built again and its file
+// rewritten.
 // Layout (little-endian): u32 magic "PNLT", u32 version, u64 key, i32 plan and z exponents of
 // the lattice, u32 lines, u64 vertices, u64 coded size, the coded ids, u64 coded size, the coded
 // bounds, u64 coded size, the coded lines and vertices, u64 hash64 of every byte before it.
