@@ -61,10 +61,16 @@ void smooth_lines(DrapedLineSet& set, double sigma = 2.0);
 // its last 4 options.corridor vertices), else where its trace ends.
 void smooth_stems(DrapedLineSet& set, const std::vector<std::uint32_t>& cells, const DrainageGrid& g,
                   const FallLineOptions& options);
-// Steps 4 and 5 on a smoothed set; with a lattice, each vertex snapped to it (snapped_vertex)
-// before it is located (draped at the x, y it keeps) and again once draped.
+// A lattice to drape on and the box the set was clamped to while smoothed (its vertices' box
+// before smoothing), which its snapped vertices keep to.
+struct DrapeLattice {
+    LineLattice lattice;
+    glm::vec2 lo, hi;
+};
+// Steps 4 and 5 on a smoothed set; with a lattice, each vertex snapped to it (snapped_vertex, in
+// the box) before it is located (draped at the x, y it keeps) and again once draped.
 void drape_lines(DrapedLineSet& set, const DemSurface& surface, const LineProgress& progress = {},
-                 const LineLattice* lattice = nullptr);
+                 const DrapeLattice* lattice = nullptr);
 // smooth_lines, then steps 4 and 5, on a set made by step 1.
 void smooth_and_drape(DrapedLineSet& set, const DemSurface& surface, const LineProgress& progress = {});
 

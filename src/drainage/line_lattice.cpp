@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <tuple>
 
 namespace penink {
 
@@ -81,10 +82,15 @@ bool vertex_code(const DrapedVertex& v, const LineLattice& lattice, VertexCode& 
     return std::memcmp(&back, &v, sizeof v) == 0;
 }
 
-DrapedVertex snapped_vertex(const DrapedVertex& v, const LineLattice& lattice) {
+DrapedVertex snapped_vertex(const DrapedVertex& v, const LineLattice& lattice, glm::vec2 lo, glm::vec2 hi) {
     VertexCode c;
     if (!steps(v.x, lattice.plan_exp, c.x) || !steps(v.y, lattice.plan_exp, c.y) || !steps(v.z, lattice.z_exp, c.z))
         return v;
+    const double plan = power_of_two(lattice.plan_exp);
+    for (auto [q, l, h] : {std::tuple(&c.x, lo.x, hi.x), std::tuple(&c.y, lo.y, hi.y)}) {
+        if (of_steps(*q, plan) > h) --*q;
+        else if (of_steps(*q, plan) < l) ++*q;
+    }
     normal_code(v.nx, v.ny, v.nz, c.a, c.b);
     // the flow's bits rounded half up to flow_bits of mantissa (monotone in the float's bits; an
     // infinity or NaN cut, as it is kept)

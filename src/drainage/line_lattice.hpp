@@ -23,6 +23,9 @@
 // are the same whichever side made them (no fused multiply-adds: the build targets plain x86-64).
 #pragma once
 #include <cstdint>
+#include <limits>
+
+#include <glm/vec2.hpp>
 
 #include "drainage/line_set.hpp"
 
@@ -55,7 +58,11 @@ void lattice_vertices(const VertexCode* codes, std::size_t n, const LineLattice&
 // The code of a vertex on the lattice; false when v is not one lattice_vertex gives (bit for bit:
 // a vertex not snapped, or beyond the codes' range).
 bool vertex_code(const DrapedVertex& v, const LineLattice& lattice, VertexCode& code);
-// The lattice vertex nearest v (x, y, z, flow rounded to nearest, the normal's a and b too); v as
-// it is when it has no code (a coordinate beyond 2^31 steps or not finite).
-DrapedVertex snapped_vertex(const DrapedVertex& v, const LineLattice& lattice);
+// The lattice vertex nearest v (x, y, z, flow rounded to nearest, the normal's a and b too), its
+// x and y a step back inside [lo, hi] where rounding took them out (the box the build clamps the
+// creases to: a snapped crease stays in it; [lo, hi] wider than a step); v as it is when it has
+// no code (a coordinate beyond 2^31 steps or not finite).
+DrapedVertex snapped_vertex(const DrapedVertex& v, const LineLattice& lattice,
+                            glm::vec2 lo = glm::vec2(-std::numeric_limits<float>::infinity()),
+                            glm::vec2 hi = glm::vec2(std::numeric_limits<float>::infinity()));
 }  // namespace penink

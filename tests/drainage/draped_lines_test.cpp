@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
@@ -71,9 +72,9 @@ struct Agreement {
 };
 
 // The stored set against the locator's lines (with a lattice, each of their vertices snapped to
-// it: the creases'): the same runs, x, y and flow exactly; z and the normal within 1e-4 relative
+// it in its box: the creases'): the same runs, x, y and flow exactly; z and the normal within 1e-4 relative
 // (counted); off the surface on both sides together.
-Agreement compare(const DrapedLineSet& set, const LocatorLines& ref, const LineLattice* lattice = nullptr) {
+Agreement compare(const DrapedLineSet& set, const LocatorLines& ref, const DrapeLattice* lattice = nullptr) {
     Agreement a;
     EXPECT_EQ(set.lines.size(), ref.runs.size());
     EXPECT_EQ(set.vertices.size(), ref.positions.size());
@@ -86,7 +87,7 @@ Agreement compare(const DrapedLineSet& set, const LocatorLines& ref, const LineL
         const DrapedVertex& v = set.vertices[i];
         DrapedVertex r{ref.positions[i].x, ref.positions[i].y, ref.positions[i].z,
                        ref.normals[i].x,   ref.normals[i].y,   ref.normals[i].z, ref.flow[i]};
-        if (lattice) r = snapped_vertex(r, *lattice);
+        if (lattice) r = snapped_vertex(r, lattice->lattice, lattice->lo, lattice->hi);
         const glm::vec3 n(v.nx, v.ny, v.nz), p(r.x, r.y, r.z), m(r.nx, r.ny, r.nz);
         ++a.vertices;
         EXPECT_EQ(v.x, p.x) << i;
@@ -107,7 +108,10 @@ void expect_locator_drape(const Terrain& t, int factor, const std::string& what)
     o.resample = factor;
     const DrainageDb db = build_drainage_db(t, o);
     const SurfaceMesh mesh = mesh_from_terrain(t);
-    const LineLattice lattice = crease_lattice(resample_pn(t, drainage_resample_factor(t, o)));
+    // the creases' lattice and clamp box: every drainage vertex's
+    DrapeLattice lattice{crease_lattice(resample_pn(t, drainage_resample_factor(t, o))), glm::vec2(1e30f), glm::vec2(-1e30f)};
+    for (const DvVertex& v : db.vertices)
+        lattice.lo = glm::min(lattice.lo, glm::vec2(v.x, v.y)), lattice.hi = glm::max(lattice.hi, glm::vec2(v.x, v.y));
     const Agreement creases =
         compare(db.creases, locator_lines(db.vertices, drainage_stems(db), mesh, db.creases), &lattice);
     const Agreement ridges = compare(db.ridges, locator_lines(db.divide_vertices, divide_polylines(db), mesh, db.ridges));

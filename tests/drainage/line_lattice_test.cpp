@@ -83,6 +83,14 @@ TEST(LineLattice, ZeroNormalsAndVerticesWithoutACode) {
         EXPECT_TRUE(same_bits(snapped_vertex(v, l), v));
         EXPECT_FALSE(vertex_code(v, l, code));
     }
+    // in a box: rounded back inside where rounding took x or y out (steps of 1/4 m at 30 m cells)
+    const DrapedVertex edge{10.13f, -3.38f, 250.0f, 0.0f, 0.0f, 1.0f, 0.25f};
+    const DrapedVertex in = snapped_vertex(edge, l, glm::vec2(9.0f, -3.38f), glm::vec2(10.13f, 0.0f));
+    EXPECT_EQ(in.x, 10.0f);   // 10.25 nearest, beyond 10.13
+    EXPECT_EQ(in.y, -3.25f);  // -3.5 nearest, below -3.38
+    EXPECT_EQ(snapped_vertex(edge, l).x, 10.25f);
+    EXPECT_EQ(snapped_vertex(edge, l).y, -3.5f);
+    EXPECT_TRUE(vertex_code(in, l, code));
     // a NaN flow is kept (its payload's high bits): the vertex has a code
     const DrapedVertex nan{1.0f, 1.0f, 1.0f, 0.0f, 0.0f, 1.0f, std::numeric_limits<float>::quiet_NaN()};
     EXPECT_TRUE(same_bits(snapped_vertex(nan, l), nan));
