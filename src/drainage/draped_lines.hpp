@@ -16,7 +16,8 @@
 // 4. draping: each vertex's z and unit normal from the PN surface of the full-resolution DEM
 //    (dem_surface.hpp, no mesh of it; TerrainLocator's lookup on mesh_from_terrain bit for bit);
 //    a vertex off the surface keeps its z and gets a zero normal; the creases on their lattice
-//    (crease_lattice: each vertex's x, y snapped before it is draped, the rest once draped), so
+//    (crease_lattice: each vertex's x, y snapped before it is draped, within the box step 2
+//    clamps to, the rest once draped), so
 //    their tile files code them in a few bytes a vertex and read back the same floats;
 // 5. each line's plan box and length, and the set's spatial index (index_lines).
 // Memory beyond the result (28 B a vertex, 28 B a line): while smoothing, the ends of the lines in

@@ -1,10 +1,12 @@
 // The lattice the crease lines' vertices are made on (draped_lines.hpp: crease_part and
-// build_draped_lines drape each vertex at its x, y snapped to it, then snap the rest), so that a tile file codes each vertex
-// as a few small integers (line_tile_files.hpp) and a line read from a file is bit for bit the
-// line the building process drew from memory.
+// build_draped_lines drape each vertex at its x, y snapped to it, kept in the box the creases are
+// clamped to, then snap the rest), so that a tile file codes each vertex as a few small integers
+// (line_tile_files.hpp) and a line read from a file is bit for bit the line the building process
+// drew from memory.
 // - x, y: integer multiples of 2^plan_exp metres, the largest power of two at most 1/64 of the
-//   drainage grid's smaller cell side (a vertex moves by at most 1/128 of a cell in each of x, y:
-//   0.008 px where a cell is drawn a pixel wide, half a pixel only where a cell spans 64);
+//   drainage grid's smaller cell side (a vertex moves by at most 1/128 of a cell in each of x, y,
+//   1/64 where the box's edge turns it back: 0.016 px where a cell is drawn a pixel wide, half a
+//   pixel only where a cell spans 32 or more);
 // - z: integer multiples of 2^z_exp = 2^plan_exp / 2 metres (at most 1/256 of a cell, so at the
 //   exaggeration 2 it moves as little as x and y);
 // - the unit normal (upward: nz >= 0): the hemisphere's octahedral map (Cigolle et al., "A Survey
