@@ -283,7 +283,7 @@ int CreaseTiles::read_unit(std::size_t k, int l, int d, TileLines& out) const {
     if (!read_line_tile(tile_path(k, l), tile_key(k, l), out)) return 0;
     if (d == 0) return 1;
     out.lines = thinned_lines(out.lines, detail_spacing(d));  // a copy made, kept for the next query
-    return copy && writable_ && write_line_tile(tile_path(k, l, d), tile_key(k, l, d), out.lines, out.stems, out.bounds) ? 2 : 1;
+    return copy && writable_ && write_line_tile(tile_path(k, l, d), tile_key(k, l, d), crease_lattice(g_), out.lines, out.stems, out.bounds) ? 2 : 1;
 }
 
 DrapedLineSet thinned_lines(const DrapedLineSet& from, double spacing) {
@@ -459,7 +459,7 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
                 std::vector<StemBound> bounds(ids.size());
                 for (std::size_t i = 0; i < ids.size(); ++i) bounds[i] = bound_of(cut_unit[k], i);
                 w.written[j] = write_line_tile(tile_path(cut_tile[k], cut_level[k]), tile_key(cut_tile[k], cut_level[k]),
-                                               *level, ids, bounds);
+                                               crease_lattice(g_), *level, ids, bounds);
                 const int d = cut_d[k];
                 if (!w.written[j] || d == 0) {
                     w.needed[j] = lines_of(ids_of(k), stems, whole);
@@ -470,8 +470,8 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
                 // query's detail, where one is kept
                 const DrapedLineSet thin = thinned_lines(*level, detail_spacing(d));
                 if (d >= crease_copy_detail &&
-                    write_line_tile(tile_path(cut_tile[k], cut_level[k], d), tile_key(cut_tile[k], cut_level[k], d), thin,
-                                    ids, bounds))
+                    write_line_tile(tile_path(cut_tile[k], cut_level[k], d), tile_key(cut_tile[k], cut_level[k], d),
+                                    crease_lattice(g_), thin, ids, bounds))
                     w.written[j] = 2;
                 w.needed[j] = lines_of(ids_of(k), ids, thin);
             }

@@ -737,6 +737,8 @@ std::vector<std::uint32_t> join_closure(const LineJoins& joins, const std::vecto
     return out;
 }
 
+LineLattice crease_lattice(const DrainageGrid& g) { return line_lattice(std::min(g.dx, g.dy)); }
+
 DrapedLineSet crease_part(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                           const DemSurface& surface, const StemParts& parts, const std::vector<std::uint32_t>& ids) {
     const StemWalk walk(g, dir, net);
@@ -825,7 +827,8 @@ DrapedLineSet crease_part(const DrainageGrid& g, const std::vector<std::uint8_t>
     }
     smooth_stems_joined(set, cells, g, fall_line_options(g), follow, parts.lo, parts.hi);
     keep_first_lines(set, ids.size());
-    drape_lines(set, surface);
+    const DrapeLattice lattice{crease_lattice(g), parts.lo, parts.hi};
+    drape_lines(set, surface, {}, &lattice);
     return set;
 }
 
@@ -853,7 +856,8 @@ DrapedLineSet ridge_part(const DrainageGrid& g, const DemSurface& surface, const
     return set;
 }
 
-void drape_lines(DrapedLineSet& set, const DemSurface& surface, const LineProgress& progress) {
+void drape_lines(DrapedLineSet& set, const DemSurface& surface, const LineProgress& progress,
+                 const DrapeLattice* lattice) {
     // In batches of lines so the progress moves, batches and the threads' chunks of equal shares
     // of the vertices (line_chunks.hpp); each thread walks its lines with the cell of the vertex
     // before as the next one's start.
@@ -873,7 +877,10 @@ void drape_lines(DrapedLineSet& set, const DemSurface& surface, const LineProgre
                 if (pending == 4) draper.height_normal4(hits, z, n);
                 else
                     for (int j = 0; j < pending; ++j) z[j] = draper.height_normal(hits[j], n[j]);
-                for (int j = 0; j < pending; ++j) at[j]->z = z[j], at[j]->nx = n[j].x, at[j]->ny = n[j].y, at[j]->nz = n[j].z;
+                for (int j = 0; j < pending; ++j) {
+                    at[j]->z = z[j], at[j]->nx = n[j].x, at[j]->ny = n[j].y, at[j]->nz = n[j].z;
+                    if (lattice) *at[j] = snapped_vertex(*at[j], lattice->lattice, lattice->lo, lattice->hi);
+                }
                 pending = 0;
             };
             for (std::size_t i = i0; i < i1; ++i) {
@@ -881,6 +888,7 @@ void drape_lines(DrapedLineSet& set, const DemSurface& surface, const LineProgre
                 int c = -1, r = -1;
                 for (std::uint32_t k = 0; k < l.count; ++k) {
                     DrapedVertex& v = set.vertices[l.first + k];
+                    if (lattice) v = snapped_vertex(v, lattice->lattice, lattice->lo, lattice->hi);  // draped where it lies
                     if (!draper.locate(v.x, v.y, c, r, hits[pending])) {
                         v.nx = v.ny = v.nz = 0.0f;
                         continue;
@@ -959,9 +967,11 @@ void build_draped_lines(const DrainageGrid& g, const std::vector<std::uint8_t>& 
         if (progress) progress(f);
     };
     // smoothing (its table of line ends) before the surface's normals: never both in memory
+    DrapeLattice lattice{crease_lattice(g), {}, {}};
     {
         std::vector<std::uint32_t> cells;
         db.creases = network_stems(g, dir, net, &cells);
+        vertex_box(db.creases, lattice.lo, lattice.hi);  // what smooth_stems clamps to
         report(0.05);
         smooth_stems(db.creases, cells, g, fall_line_options(g));
     }
@@ -975,7 +985,7 @@ void build_draped_lines(const DrainageGrid& g, const std::vector<std::uint8_t>& 
     report(0.2);
     const double nc = double(db.creases.vertices.size()), nr = double(db.divide_vertices.size());
     const double share = nc + nr > 0.0 ? nc / (nc + nr) : 1.0;
-    drape_lines(db.creases, surface, [&](double f) { report(0.2 + 0.8 * share * f); });
+    drape_lines(db.creases, surface, [&](double f) { report(0.2 + 0.8 * share * f); }, &lattice);
     drape_lines(db.ridges, surface, [&](double f) { report(0.2 + 0.8 * (share + (1.0 - share) * f)); });
 }
 

@@ -15,7 +15,10 @@
 //    below is made, their ends fixed;
 // 4. draping: each vertex's z and unit normal from the PN surface of the full-resolution DEM
 //    (dem_surface.hpp, no mesh of it; TerrainLocator's lookup on mesh_from_terrain bit for bit);
-//    a vertex off the surface keeps its z and gets a zero normal;
+//    a vertex off the surface keeps its z and gets a zero normal; the creases on their lattice
+//    (crease_lattice: each vertex's x, y snapped before it is draped, within the box step 2
+//    clamps to, the rest once draped), so
+//    their tile files code them in a few bytes a vertex and read back the same floats;
 // 5. each line's plan box and length, and the set's spatial index (index_lines).
 // Memory beyond the result (28 B a vertex, 28 B a line): while smoothing, the ends of the lines in
 // a hash table with a bitmap of their hashes (19 B an end), and for the stems each vertex's grid
@@ -32,6 +35,7 @@
 #include "drainage/drainage_grid.hpp"
 #include "drainage/fall_line_stems.hpp"
 #include "drainage/flow_network.hpp"
+#include "drainage/line_lattice.hpp"
 
 namespace penink {
 
@@ -58,8 +62,16 @@ void smooth_lines(DrapedLineSet& set, double sigma = 2.0);
 // its last 4 options.corridor vertices), else where its trace ends.
 void smooth_stems(DrapedLineSet& set, const std::vector<std::uint32_t>& cells, const DrainageGrid& g,
                   const FallLineOptions& options);
-// Steps 4 and 5 on a smoothed set.
-void drape_lines(DrapedLineSet& set, const DemSurface& surface, const LineProgress& progress = {});
+// A lattice to drape on and the box the set was clamped to while smoothed (its vertices' box
+// before smoothing), which its snapped vertices keep to.
+struct DrapeLattice {
+    LineLattice lattice;
+    glm::vec2 lo, hi;
+};
+// Steps 4 and 5 on a smoothed set; with a lattice, each vertex snapped to it (snapped_vertex, in
+// the box) before it is located (draped at the x, y it keeps) and again once draped.
+void drape_lines(DrapedLineSet& set, const DemSurface& surface, const LineProgress& progress = {},
+                 const DrapeLattice* lattice = nullptr);
 // smooth_lines, then steps 4 and 5, on a set made by step 1.
 void smooth_and_drape(DrapedLineSet& set, const DemSurface& surface, const LineProgress& progress = {});
 
@@ -109,12 +121,15 @@ inline constexpr std::size_t stem_chunks_most = 17;
 void for_each_stem_cells(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                          const StemParts& parts,
                          const std::function<void(std::size_t, std::uint32_t, const std::uint32_t*, std::uint32_t)>& f);
+// The lattice the creases' vertices are draped on (line_lattice.hpp), by g's smaller cell side.
+LineLattice crease_lattice(const DrainageGrid& g);
 // Steps 1 to 5 for stems `ids` of network_stems(g, dir, net): the lines build_draped_lines stores
 // for them in db.creases (vertices, order, box, length equal bit for bit), in the order of `ids`,
 // indexed. A stem's join is found on the network: the stem it joins is the one through its end
 // junction (up the junction's main upstream cells to their source), its vertex the junction's
 // (end_matches' x, y match, where every cell has its own x, y). On a DEM without relief
-// (has_relief) the whole build keeps no lines: ask for none there.
+// (has_relief) the whole build keeps no lines: ask for none there. Draped on crease_lattice(g),
+// as build_draped_lines drapes db.creases.
 DrapedLineSet crease_part(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                           const DemSurface& surface, const StemParts& parts, const std::vector<std::uint32_t>& ids);
 // The same for divides `ids` of `listed` (listed_lines of the database's divides, unsmoothed;

@@ -17,26 +17,55 @@ namespace penink {
 namespace {
 
 constexpr std::uint32_t magic = 0x544c4e50u;  // "PNLT"
-constexpr std::uint32_t version = 5;
-// x, y, z, nx, ny, nz, flow: each differenced once along the vertices (neighbours on a line lie
-// about a cell apart, their normals and flows alike)
-constexpr std::array<int, 7> orders{1, 1, 1, 1, 1, 0, 1};  // nz: its residual (below), not differenced
+constexpr std::uint32_t version = 6;
+// A vertex's six codes (line_lattice.hpp: x, y, z, the normal's a and b, the flow), each
+// predicted from the vertices before it on its line: x, y, z from the two before (a line's steps
+// turn slowly: the step repeated), the others from the one before; a line's first vertex from the
+// first of the line before (the tile's lines lie close), the second from the first.
+constexpr int components = 6;
+constexpr std::array<int, components> orders{2, 2, 2, 1, 1, 1};
 
-// A unit normal's z from its x and y (the normals are upward: z >= 0), in double, rounded once.
-float normal_z(float nx, float ny) {
-    return float(std::sqrt(std::max(0.0, 1.0 - double(nx) * nx - double(ny) * ny)));
+using Codes = std::array<std::uint32_t, components>;
+Codes codes_of(const VertexCode& c) {
+    return {std::uint32_t(c.x), std::uint32_t(c.y), std::uint32_t(c.z), c.a, c.b, c.flow};
 }
-// nz stored as the zigzagged step of its bits from normal_z's (0 or a unit in the last place
-// nearly always: a plane of zeros in place of one of noise), and back; lossless either way.
-std::uint32_t float_bits(float f) { return std::bit_cast<std::uint32_t>(f); }
-float nz_residual(const DrapedVertex& v) {
-    const std::int32_t r = std::int32_t(float_bits(v.nz) - float_bits(normal_z(v.nx, v.ny)));
-    return std::bit_cast<float>(std::uint32_t(r) << 1 ^ std::uint32_t(r >> 31));
+VertexCode code_of(const Codes& q) {
+    return {std::int32_t(q[0]), std::int32_t(q[1]), std::int32_t(q[2]), q[3], q[4], q[5]};
 }
-float nz_of_residual(const DrapedVertex& v) {
-    const std::uint32_t z = float_bits(v.nz), r = z >> 1 ^ (0u - (z & 1u));
-    return std::bit_cast<float>(float_bits(normal_z(v.nx, v.ny)) + r);
+// The prediction of component k of a line's vertex i >= 1 from its vertices i - 1 (p1) and i - 2
+// (p2, read for i > 1 only), in 32-bit wrapping arithmetic; a line's first vertex is predicted by
+// the first of the line before (0 for the tile's first line).
+std::uint32_t predicted(const Codes& p1, const Codes& p2, std::uint32_t i, std::size_t k) {
+    return i > 1 && orders[k] == 2 ? 2u * p1[k] - p2[k] : p1[k];
 }
+std::uint32_t zigzag(std::uint32_t r) { return r << 1 ^ (0u - (r >> 31)); }
+std::uint32_t unzigzag(std::uint32_t z) { return z >> 1 ^ (0u - (z & 1u)); }
+
+// The coded lines' bytes before deflating, in byte planes (a field's low bytes, then its next,
+// ...: the high planes of small values are runs of zeros): first a row a line (its vertex count,
+// u32; its order, u8; its first vertex's six residuals, u32 each), then a row for each other
+// vertex (its six residuals), lines and vertices in order; plane p of a part of `rows` rows at
+// part + p * rows.
+struct Planes {
+    static constexpr std::size_t line_planes = 4 + 1 + 4 * components, vertex_planes = 4 * components;
+    std::size_t lines, others;  // rows of each part
+    std::size_t size() const { return line_planes * lines + vertex_planes * others; }
+    // the byte of field plane p (of a line's row or, `vertex`, another vertex's) in row `row`
+    std::size_t at(bool vertex, std::size_t p, std::size_t row) const {
+        return vertex ? line_planes * lines + p * others + row : p * lines + row;
+    }
+    void put(std::vector<std::uint8_t>& b, bool vertex, std::size_t p0, std::size_t row, std::uint32_t v) const {
+        for (std::size_t k = 0; k < 4; ++k) b[at(vertex, p0 + k, row)] = std::uint8_t(v >> (8 * k));
+    }
+    std::uint32_t get(const std::vector<std::uint8_t>& b, bool vertex, std::size_t p0, std::size_t row) const {
+        std::uint32_t v = 0;
+        for (std::size_t k = 0; k < 4; ++k) v |= std::uint32_t(b[at(vertex, p0 + k, row)]) << (8 * k);
+        return v;
+    }
+};
+// a line row's planes: count 0-3, order 4, residual k at 5 + 4 k
+constexpr std::size_t order_plane = 4, start_planes = 5;
+
 static_assert(sizeof(DrapedVertex) == 7 * sizeof(float));
 
 template <class T> void put(std::vector<std::uint8_t>& out, const T& v) {
@@ -60,11 +89,91 @@ struct Reader {
     }
 };
 
-// The vertices coded: each one's nz replaced by its residual, then encode_float_planes.
-std::vector<std::uint8_t> encode_vertices(const DrapedVertices& vertices) {
-    DrapedVertices v = vertices;
-    for (DrapedVertex& x : v) x.nz = nz_residual(x);
-    return encode_float_planes(reinterpret_cast<const float*>(v.data()), v.size(), orders);
+// The lines and their vertices coded: each vertex's codes (vertex_code) less their predictions,
+// zigzagged, in Planes, deflated (encode_bytes); empty when a vertex is not on the lattice.
+std::vector<std::uint8_t> encode_lines(const DrapedLineSet& lines, const LineLattice& lattice) {
+    const std::size_t n = lines.vertices.size();
+    std::vector<Codes> q(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        VertexCode c;
+        if (!vertex_code(lines.vertices[i], lattice, c)) return {};
+        q[i] = codes_of(c);
+    }
+    const Planes layout{lines.lines.size(), n - lines.lines.size()};
+    std::vector<std::uint8_t> planes(layout.size());
+    Codes before{};
+    for (std::size_t j = 0, row = 0; j < lines.lines.size(); ++j) {
+        const DrapedLine& l = lines.lines[j];
+        layout.put(planes, false, 0, j, l.count);
+        planes[layout.at(false, order_plane, j)] = l.order;
+        for (std::size_t k = 0; k < components; ++k)
+            layout.put(planes, false, start_planes + 4 * k, j, zigzag(q[l.first][k] - before[k]));
+        for (std::uint32_t i = 1; i < l.count; ++i, ++row) {
+            const std::size_t at = l.first + i;
+            for (std::size_t k = 0; k < components; ++k)
+                layout.put(planes, true, 4 * k, row, zigzag(q[at][k] - predicted(q[at - 1], q[at - (i > 1 ? 2 : 1)], i, k)));
+        }
+        before = q[l.first];
+    }
+    q = {};  // freed before deflating: the planes and their deflate at once at most
+    std::vector<std::uint8_t> out = encode_bytes(planes.data(), planes.size());
+    return out.empty() ? std::vector<std::uint8_t>{0} : out;  // never empty: empty says "not coded"
+}
+
+// `nl` lines of `nv` vertices in all from their coded bytes (encode_lines) into `lines` (counts,
+// firsts, orders and vertices; boxes and index not made); false when they do not decode.
+bool decode_lines(const std::uint8_t* coded, std::size_t size, std::size_t nl, std::size_t nv, const LineLattice& lattice,
+                  DrapedLineSet& lines) {
+    // deflate packs at most 1032 bytes into one (RFC 1951: a 258-byte match in two bits at best):
+    // the planes' size (24 bytes a vertex or more) is bounded by the coded size before anything
+    // is allocated
+    if (nl > nv || nv > (size + 1) * (1032 / Planes::vertex_planes)) return false;
+    const Planes layout{nl, nv - nl};
+    if (layout.size() > (size + 1) * 1032) return false;
+    std::vector<std::uint8_t> planes(layout.size());
+    if (!decode_bytes(coded, size, planes.data(), planes.size())) return false;
+    lines.lines.resize(nl);
+    std::uint64_t first = 0;
+    for (std::size_t j = 0; j < nl; ++j) {
+        DrapedLine& l = lines.lines[j];
+        l.count = layout.get(planes, false, 0, j), l.order = planes[layout.at(false, order_plane, j)];
+        l.first = std::uint32_t(first), first += l.count;
+        if (l.count == 0 || first > nv) return false;
+    }
+    if (first != nv) return false;
+    // each component's residuals out of their four planes, then the codes line by line
+    std::vector<std::uint32_t> starts(nl * components), others(layout.others * components);
+    for (std::size_t k = 0; k < components; ++k) {
+        const auto gather = [&](bool vertex, std::size_t rows, std::uint32_t* out) {
+            const std::uint8_t* p[4];
+            for (std::size_t b = 0; b < 4; ++b) p[b] = planes.data() + layout.at(vertex, (vertex ? 0 : start_planes) + 4 * k + b, 0);
+            for (std::size_t j = 0; j < rows; ++j)
+                out[j] = unzigzag(std::uint32_t(p[0][j]) | std::uint32_t(p[1][j]) << 8 | std::uint32_t(p[2][j]) << 16 |
+                                  std::uint32_t(p[3][j]) << 24);
+        };
+        gather(false, nl, starts.data() + k * nl);
+        gather(true, layout.others, others.data() + k * layout.others);
+    }
+    planes = {};  // each step's input freed once read: two of them at once at most
+    std::vector<Codes> q(nv);
+    Codes before{};
+    for (std::size_t j = 0, row = 0; j < nl; ++j) {
+        const DrapedLine& l = lines.lines[j];
+        for (std::size_t k = 0; k < components; ++k) q[l.first][k] = before[k] + starts[k * nl + j];
+        for (std::uint32_t i = 1; i < l.count; ++i, ++row) {
+            const std::size_t at = l.first + i;
+            for (std::size_t k = 0; k < components; ++k)
+                q[at][k] = predicted(q[at - 1], q[at - (i > 1 ? 2 : 1)], i, k) + others[k * layout.others + row];
+        }
+        before = q[l.first];
+    }
+    starts = {}, others = {};
+    std::vector<VertexCode> codes(nv);
+    for (std::size_t i = 0; i < nv; ++i) codes[i] = code_of(q[i]);
+    q = {};
+    lines.vertices.resize(nv);
+    lattice_vertices(codes.data(), nv, lattice, lines.vertices.data());
+    return true;
 }
 
 }  // namespace
@@ -75,16 +184,17 @@ std::string line_tile_path(const std::string& folder, std::uint32_t tile, int le
         .string();
 }
 
-std::vector<std::uint8_t> encode_line_tile(std::uint64_t key, const DrapedLineSet& lines,
+std::vector<std::uint8_t> encode_line_tile(std::uint64_t key, const LineLattice& lattice, const DrapedLineSet& lines,
                                            const std::vector<std::uint32_t>& stems, const std::vector<StemBound>& bounds) {
+    const std::vector<std::uint8_t> coded = encode_lines(lines, lattice);
+    if (coded.empty()) return {};
     const std::vector<std::uint8_t> ids = encode_stem_ids(stems.data(), stems.size()),
-                                    bound = encode_stem_bounds(bounds.data(), bounds.size()),
-                                    coded = encode_vertices(lines.vertices);
+                                    bound = encode_stem_bounds(bounds.data(), bounds.size());
     std::vector<std::uint8_t> out;
-    out.reserve(64 + 5 * lines.lines.size() + ids.size() + bound.size() + coded.size());
+    out.reserve(80 + ids.size() + bound.size() + coded.size());
     put(out, magic), put(out, version), put(out, key);
+    put(out, std::int32_t(lattice.plan_exp)), put(out, std::int32_t(lattice.z_exp));
     put(out, std::uint32_t(lines.lines.size())), put(out, std::uint64_t(lines.vertices.size()));
-    for (const DrapedLine& l : lines.lines) put(out, l.count), put(out, l.order);
     for (const std::vector<std::uint8_t>* part : {&ids, &bound, &coded}) {
         put(out, std::uint64_t(part->size()));
         out.insert(out.end(), part->begin(), part->end());
@@ -100,18 +210,12 @@ bool decode_line_tile(const std::uint8_t* data, std::size_t size, std::uint64_t 
     if (hash64(data, size - 8) != sum) return false;
     Reader r{data, size - 8};
     if (r.get<std::uint32_t>() != magic || r.get<std::uint32_t>() != version || r.get<std::uint64_t>() != key) return false;
+    LineLattice lattice;
+    lattice.plan_exp = r.get<std::int32_t>(), lattice.z_exp = r.get<std::int32_t>();
+    if (std::abs(lattice.plan_exp) > 126 || std::abs(lattice.z_exp) > 126) return false;
     const auto nl = r.get<std::uint32_t>();
     const auto nv = r.get<std::uint64_t>();
-    if (!r.ok || (r.size - r.at) / 5 < nl) return false;
-    DrapedLineSet& lines = out.lines;
-    lines = DrapedLineSet{};
-    lines.lines.resize(nl);
-    std::uint64_t first = 0;
-    for (DrapedLine& l : lines.lines) {
-        l.count = r.get<std::uint32_t>(), l.order = r.get<std::uint8_t>();
-        l.first = std::uint32_t(first), first += l.count;
-        if (l.count == 0 || first > nv) return false;
-    }
+    if (!r.ok) return false;
     // a part's coded bytes: its size, then them
     auto part = [&r](const std::uint8_t*& at, std::uint64_t& n) {
         n = r.get<std::uint64_t>();
@@ -122,25 +226,22 @@ bool decode_line_tile(const std::uint8_t* data, std::size_t size, std::uint64_t 
     const std::uint8_t *ids, *bound, *coded;
     std::uint64_t ids_n, bound_n, coded_n;
     if (!part(ids, ids_n) || !part(bound, bound_n) || !part(coded, coded_n) || r.at != r.size) return false;
+    DrapedLineSet& lines = out.lines;
+    lines = DrapedLineSet{};
+    if (!decode_lines(coded, std::size_t(coded_n), nl, std::size_t(nv), lattice, lines)) return false;
     std::vector<std::uint32_t>& stems = out.stems;
     stems.resize(nl), out.bounds.resize(nl);
     if (!decode_stem_ids(ids, std::size_t(ids_n), stems.data(), nl) ||
         !decode_stem_bounds(bound, std::size_t(bound_n), out.bounds.data(), nl))
         return false;
-    // deflate packs at most 1032 bytes into one (RFC 1951: a 258-byte match in two bits at best):
-    // the vertices' count is bounded by the coded size before anything is allocated
-    if (first != nv || nv > (coded_n * 1032 + 1024) / sizeof(DrapedVertex)) return false;
-    lines.vertices.resize(nv);
-    if (!decode_float_planes(coded, std::size_t(coded_n), reinterpret_cast<float*>(lines.vertices.data()), nv, orders))
-        return false;
-    for (DrapedVertex& v : lines.vertices) v.nz = nz_of_residual(v);
     index_lines(lines);
     return line_set_ok(lines);
 }
 
-bool write_line_tile(const std::string& path, std::uint64_t key, const DrapedLineSet& lines,
+bool write_line_tile(const std::string& path, std::uint64_t key, const LineLattice& lattice, const DrapedLineSet& lines,
                      const std::vector<std::uint32_t>& stems, const std::vector<StemBound>& bounds) {
-    const std::vector<std::uint8_t> out = encode_line_tile(key, lines, stems, bounds);
+    const std::vector<std::uint8_t> out = encode_line_tile(key, lattice, lines, stems, bounds);
+    if (out.empty()) return false;
     std::error_code ec;
     std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ec);
     return write_cache_file(path, {out}) == 0;

@@ -4,25 +4,34 @@
 // one), and read only when a query needs a stem of the tile that is not kept in memory. A file
 // holds every stem of its tile and level (crease_tiles.hpp), in stem order: its key (what the tile
 // was built from: the caller's hash of the database's identity, the tile size and the tile's
-// index), each line's vertex count and Strahler order, the stems' ids (the first, then each
-// one's step from the one before, as u32 bytes, deflated) and bounds (stem_reach.hpp
-// encode_stem_bounds), so that a query tests them without the database's index, the vertices
-// coded losslessly (core/block_codec.hpp encode_float_planes: the seven floats of each vertex, x,
-// y, z, the normal and the flow, each differenced once along the tile's vertices, zigzagged, in
-// byte planes, each plane deflated or, where that saves under a tenth, kept as it is, so reading
-// inflates only the planes worth it; the normal's z stored as the step of its bits from the one
-// its x and y give, nearly always 0; on /tmp/j29.tif's long stems 28 B a vertex as stored in
-// memory code to about 13), and a hash64 of all that. The lines' boxes, lengths and index are
-// made again when read (index_lines), as the build makes them. A file of another key or version,
-// cut short, with a wrong checksum, ids not ascending or that does not decode reads as absent:
-// the tile is built again and its file rewritten.
-// Layout (little-endian): u32 magic "PNLT", u32 version, u64 key, u32 lines, u64 vertices,
-// lines x (u32 count, u8 order), u64 coded size, the coded ids, u64 coded size, the coded bounds,
-// u64 coded size, the coded vertices, u64 hash64 of every byte before it.
+// index), the lattice its vertices lie on (line_lattice.hpp: the build drapes every crease vertex
+// on it, so the file codes them without loss), the stems' ids (the first, then each one's step
+// from the one before, as u32 bytes, deflated) and bounds (stem_reach.hpp encode_stem_bounds), so
+// that a query tests them without the database's index, the lines and their vertices, and a
+// hash64 of all that. The lines and vertices are coded as integers: each vertex's six lattice
+// codes (x, y, z, the normal's two, the flow: vertex_code) less their prediction (along its line,
+// x, y and z from the two vertices before it, the step repeated, the others from the one before;
+// a line's first vertex from the first of the line before), zigzagged, in byte planes (a row a
+// line: its vertex count, Strahler order and first vertex's residuals; then a row for each other
+// vertex), deflated (core/block_codec.hpp encode_bytes). On /tmp/j5.tif's whole view at
+// 1000x750 (323 files, 231 743 stems, 3.12 M vertices) that is 4.2 B a vertex for the lines and
+// vertices and 4.9 B with the ids and bounds (version 5, which kept the floats as they were: 15.3;
+// the 28 B a vertex takes in memory); the caches beside the DEM then take 1.93 times its float32
+// size (26.7 MB: .dv 6.2, .lod 5.3, tiles 15.2; version 5: 59.2 MB, 4.3 times), on
+// /tmp/j29.tif's 1.12 times (522 MB: .dv 194, .lod 114, tiles 214; version 5: 977 MB, 2.1 times);
+// `penink render DEM --width 1000 --height 750 -o x.svg`, then `du -cb DEM.dv DEM.lod
+// DEM.dv.tiles`. The lines' boxes, lengths and index are made again when read (index_lines), as
+// the build makes them. A file of another key or version, cut short, with a wrong checksum, ids
+// not ascending or that does not decode reads as absent: the tile is built again and its file
+// rewritten.
+// Layout (little-endian): u32 magic "PNLT", u32 version, u64 key, i32 plan and z exponents of
+// the lattice, u32 lines, u64 vertices, u64 coded size, the coded ids, u64 coded size, the coded
+// bounds, u64 coded size, the coded lines and vertices, u64 hash64 of every byte before it.
 #pragma once
 #include <cstdint>
 #include <string>
 
+#include "drainage/line_lattice.hpp"
 #include "drainage/line_set.hpp"
 #include "drainage/stem_reach.hpp"
 
@@ -40,16 +49,17 @@ struct TileLines {
     std::vector<StemBound> bounds;
 };
 
-// The bytes of a tile file holding `lines`, of stems `stems` with bounds `bounds` (one each a line).
-std::vector<std::uint8_t> encode_line_tile(std::uint64_t key, const DrapedLineSet& lines,
+// The bytes of a tile file holding `lines`, of stems `stems` with bounds `bounds` (one each a line),
+// their vertices on `lattice`; none when a vertex is not on it (vertex_code).
+std::vector<std::uint8_t> encode_line_tile(std::uint64_t key, const LineLattice& lattice, const DrapedLineSet& lines,
                                            const std::vector<std::uint32_t>& stems, const std::vector<StemBound>& bounds);
 // Decodes a tile file's bytes written with `key`: true with its lines (indexed: index_lines),
 // false when they are of another key or version, or damaged (short, checksum, sizes, coding).
 bool decode_line_tile(const std::uint8_t* data, std::size_t size, std::uint64_t key, TileLines& out);
 
 // Writes the tile atomically (creating the folder); false when it cannot be written (a
-// read-only folder, a full disk): the tile then stays in memory only.
-bool write_line_tile(const std::string& path, std::uint64_t key, const DrapedLineSet& lines,
+// read-only folder, a full disk, a vertex not on the lattice): the tile then stays in memory only.
+bool write_line_tile(const std::string& path, std::uint64_t key, const LineLattice& lattice, const DrapedLineSet& lines,
                      const std::vector<std::uint32_t>& stems, const std::vector<StemBound>& bounds);
 // Reads the tile written with `key` (decode_line_tile); false also when the file is absent or
 // not a regular file.

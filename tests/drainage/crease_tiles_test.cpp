@@ -353,9 +353,10 @@ TEST(CreaseTiles, ThinnedLinesKeepEndsAndSpacing) {
 }
 
 // With a line detail, every line comes at its unit's detail: the whole build's line thinned to
-// that detail's spacing, bit for bit, whether built in memory, built and written (with their
-// copies of detail 2), read from the copies, or read from the files (the copies gone: written
-// again by that reader).
+// that detail's spacing, bit for bit, its vertices on the creases' lattice (what the files code
+// without loss), whether built in memory, built and written (with their copies of detail 2), read
+// from the copies, or read from the files (the copies gone: written again by that reader); and at
+// full detail, read from the files, the whole build's lines bit for bit.
 TEST(CreaseTiles, LinesComeAtTheirUnitsDetailFromEverySource) {
     const test::TempDir dir;
     const JacksboroNetwork n;
@@ -371,6 +372,10 @@ TEST(CreaseTiles, LinesComeAtTheirUnitsDetailFromEverySource) {
         std::size_t bad = 0;
         for (std::uint32_t i = 0; i < ids.size(); ++i) bad += !same_line(got, i, want_all, ids[i]);
         EXPECT_EQ(bad, 0u) << what;
+        std::size_t off = 0;  // every vertex on the creases' lattice, which the files code
+        VertexCode code;
+        for (const DrapedVertex& v : got.vertices) off += !vertex_code(v, crease_lattice(g), code);
+        EXPECT_EQ(off, 0u) << what;
         return ids.size();
     };
     CreaseTiles memory(g, res.dir, res.net, 64);
@@ -406,6 +411,14 @@ TEST(CreaseTiles, LinesComeAtTheirUnitsDetailFromEverySource) {
     for (std::uint32_t i = 0; i < ids.size(); ++i) bad += !same_line(got, i, want, ids[i]);
     EXPECT_EQ(bad, 0u);
     EXPECT_EQ(fourth.tiles_written(), 0u);
+    CreaseTiles fifth(g, res.dir, res.net, 64, store);  // full detail: the files as they are
+    const DrapedLineSet full = fifth.lines_for_box(n.lo, n.hi, &ids, strict.bound());
+    EXPECT_EQ(fifth.tiles_read(), full_files);
+    EXPECT_EQ(fifth.tiles_built(), 0u);
+    bad = 0;
+    for (std::uint32_t i = 0; i < ids.size(); ++i) bad += !same_line(full, i, n.db.creases, ids[i]);
+    EXPECT_EQ(bad, 0u);
+    EXPECT_EQ(ids.size(), stems);
 }
 
 }  // namespace

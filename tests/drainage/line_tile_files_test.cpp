@@ -1,6 +1,6 @@
-// Tile files of crease lines (src/drainage/line_tile_files.hpp): the lines, their stems' ids and
-// bounds come back bit for bit, coded in fewer bytes than they take in memory; any damage, another
-// key or a cut reads as absent.
+// Tile files of crease lines (src/drainage/line_tile_files.hpp): lines on the lattice, their
+// stems' ids and bounds come back bit for bit, coded in a few bytes a vertex; lines off the lattice
+// are not written; any damage, another key or a cut reads as absent.
 #include "drainage/line_tile_files.hpp"
 
 #include <cmath>
@@ -15,10 +15,12 @@
 namespace penink {
 namespace {
 
-// Lines like draped creases: a walk of about a cell a step over a smooth surface, with its normals
-// and a flow growing downstream; one line of a single vertex, signed zeros, a zero normal, a normal
-// z an ulp off its x and y's, and a NaN-free range.
-DrapedLineSet walk_lines(int lines, std::uint32_t seed) {
+// Lines like draped creases, of cells 14.9 m wide: a walk of about a cell a step over a smooth
+// surface, with its normals and a flow growing downstream; one line of a single vertex, signed
+// zeros, a zero normal, a normal z an ulp off its x and y's, and a NaN-free range; snapped to the
+// lattice of its cells (as crease_part makes them) unless `snap` is false.
+const LineLattice lattice = line_lattice(14.9);
+DrapedLineSet walk_lines(int lines, std::uint32_t seed, bool snap = true) {
     std::mt19937 rng(seed);
     std::normal_distribution<float> step(0.0f, 0.3f);
     DrapedLineSet set;
@@ -39,6 +41,8 @@ DrapedLineSet walk_lines(int lines, std::uint32_t seed) {
     set.vertices[0].nx = -0.0f;
     set.vertices[1].nx = set.vertices[1].ny = set.vertices[1].nz = 0.0f;  // off the surface: no normal
     set.vertices[2].nz = std::nextafter(set.vertices[2].nz, 0.0f);         // not the z its x and y give
+    if (snap)
+        for (DrapedVertex& v : set.vertices) v = snapped_vertex(v, lattice);
     index_lines(set);
     return set;
 }
@@ -62,7 +66,7 @@ TEST(LineTileFiles, LinesComeBackBitForBitInFewerBytes) {
     const DrapedLineSet set = walk_lines(200, 3);
     const std::vector<std::uint32_t> ids = stem_ids(200);
     const std::vector<StemBound> bounds = stem_bounds(200);
-    const std::vector<std::uint8_t> bytes = encode_line_tile(7, set, ids, bounds);
+    const std::vector<std::uint8_t> bytes = encode_line_tile(7, lattice, set, ids, bounds);
     TileLines back;
     ASSERT_TRUE(decode_line_tile(bytes.data(), bytes.size(), 7, back));
     ASSERT_EQ(back.lines.vertices.size(), set.vertices.size());
@@ -70,8 +74,9 @@ TEST(LineTileFiles, LinesComeBackBitForBitInFewerBytes) {
     EXPECT_TRUE(back.lines == set);  // records, boxes, lengths and index as index_lines makes them
     EXPECT_EQ(back.stems, ids);
     EXPECT_EQ(back.bounds, bounds);
-    // the 7 floats of a walk coded in under 20 of their 28 bytes, ids and bounds included
-    EXPECT_LT(double(bytes.size()), 20.0 * double(set.vertices.size()));
+    // the 7 floats of a walk coded in under 6 of their 28 bytes, ids and bounds included (its
+    // random turns of a third of a cell a step cost more than a crease's smooth ones)
+    EXPECT_LT(double(bytes.size()), 6.0 * double(set.vertices.size()));
     ::testing::Test::RecordProperty("bytes_per_vertex", std::to_string(double(bytes.size()) / set.vertices.size()));
 }
 
@@ -79,7 +84,7 @@ TEST(LineTileFiles, DamageAnotherKeyOrACutReadAsAbsent) {
     const DrapedLineSet set = walk_lines(50, 4);
     const std::vector<std::uint32_t> ids = stem_ids(50);
     const std::vector<StemBound> bounds = stem_bounds(50);
-    const std::vector<std::uint8_t> bytes = encode_line_tile(7, set, ids, bounds);
+    const std::vector<std::uint8_t> bytes = encode_line_tile(7, lattice, set, ids, bounds);
     TileLines back;
     EXPECT_FALSE(decode_line_tile(bytes.data(), bytes.size(), 8, back));
     for (std::size_t cut : {std::size_t(0), std::size_t(7), bytes.size() / 2, bytes.size() - 1})
@@ -93,18 +98,44 @@ TEST(LineTileFiles, DamageAnotherKeyOrACutReadAsAbsent) {
     EXPECT_EQ(read, 0u);
     std::vector<std::uint32_t> unsorted = ids;  // ids not ascending: damaged however they were hashed
     std::swap(unsorted[4], unsorted[5]);
-    const std::vector<std::uint8_t> disordered = encode_line_tile(7, set, unsorted, bounds);
+    const std::vector<std::uint8_t> disordered = encode_line_tile(7, lattice, set, unsorted, bounds);
     EXPECT_FALSE(decode_line_tile(disordered.data(), disordered.size(), 7, back));
 
     const test::TempDir dir;
     const std::string path = line_tile_path(dir.file("tiles"), 12, 3);
     EXPECT_FALSE(read_line_tile(path, 7, back));  // absent
-    ASSERT_TRUE(write_line_tile(path, 7, set, ids, bounds));  // the folder made
+    ASSERT_TRUE(write_line_tile(path, 7, lattice, set, ids, bounds));  // the folder made
     ASSERT_TRUE(read_line_tile(path, 7, back));
     EXPECT_TRUE(back.lines == set);
     EXPECT_EQ(back.stems, ids);
     EXPECT_FALSE(read_line_tile(dir.file("tiles"), 7, back));  // a folder, not a file
-    EXPECT_FALSE(write_line_tile("/proc/penink-no-such-folder/tile-0-0.pnlt", 7, set, ids, bounds));
+    EXPECT_FALSE(write_line_tile("/proc/penink-no-such-folder/tile-0-0.pnlt", 7, lattice, set, ids, bounds));
+}
+
+TEST(LineTileFiles, LinesOffTheLatticeAreNotWritten) {
+    const DrapedLineSet off = walk_lines(20, 5, false), on = walk_lines(20, 5);
+    ASSERT_FALSE(off == on);  // the walk's floats are not on the lattice
+    const std::vector<std::uint32_t> ids = stem_ids(20);
+    const std::vector<StemBound> bounds = stem_bounds(20);
+    EXPECT_TRUE(encode_line_tile(7, lattice, off, ids, bounds).empty());
+    // one vertex off it is enough; and lines on a lattice are off a finer one's neighbour
+    DrapedLineSet one = on;
+    one.vertices[30].x = std::nextafter(one.vertices[30].x, 1e9f);
+    EXPECT_TRUE(encode_line_tile(7, lattice, one, ids, bounds).empty());
+    LineLattice coarser = lattice;
+    ++coarser.plan_exp;
+    EXPECT_TRUE(encode_line_tile(7, coarser, on, ids, bounds).empty());
+    const test::TempDir dir;
+    const std::string path = line_tile_path(dir.file("tiles"), 1, 0);
+    EXPECT_FALSE(write_line_tile(path, 7, lattice, off, ids, bounds));
+    EXPECT_FALSE(std::filesystem::exists(path));
+    // a finer lattice holds every vertex of a coarser one: the same lines back
+    LineLattice finer = lattice;
+    --finer.plan_exp, --finer.z_exp;
+    const std::vector<std::uint8_t> bytes = encode_line_tile(7, finer, on, ids, bounds);
+    TileLines back;
+    ASSERT_TRUE(decode_line_tile(bytes.data(), bytes.size(), 7, back));
+    EXPECT_TRUE(back.lines == on);
 }
 
 }  // namespace
