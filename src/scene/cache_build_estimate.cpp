@@ -27,18 +27,18 @@ constexpr double terrain_s_per_node = 0.166e-6;  // 2.3 s at 13.86 M nodes
 constexpr double terrain_bytes_per_node = 5.7, terrain_base_bytes = 48.5e6;
 // The drainage database (`penink drainage DEM -o x.dv`: the network, the ridges and the creases'
 // source; the crease tiles come later, built by the renders that need them, with their own
-// progress): 6.07 s at 13.86 M points (jacksboro refined 10 times) and 70.8 s at 116.6 M (29
-// times): a power law, exponent ln(70.8/6.07)/ln(116.6/13.86) = 1.153.
-constexpr double drainage_s_at_reference = 6.07, drainage_reference_points = 13.86e6, drainage_exponent = 1.153;
-// Peak resident memory 800 MB at 13.86 M points and 6063 MB at 116.6 M: a line.
-constexpr double drainage_peak_bytes_per_point = 51.2, drainage_base_bytes = 90.1e6;
+// progress): 3.25 s at 13.86 M points (jacksboro refined 10 times) and 42.6 s at 116.6 M (29
+// times), 2 cores at a load under 2: a power law, exponent ln(42.6/3.25)/ln(116.6/13.86) = 1.209.
+constexpr double drainage_s_at_reference = 3.25, drainage_reference_points = 13.86e6, drainage_exponent = 1.209;
+// Peak resident memory 581 MB at 13.86 M points and 4450 MB at 116.6 M: a line.
+constexpr double drainage_peak_bytes_per_point = 37.66, drainage_base_bytes = 58.7e6;
 // The terrain cache written (terrain_cache.hpp, coded: its size follows the DEM's smoothness; x, y
 // derived on projected and geographic DEMs): 1.17 B a node on jacksboro refined 10 times, header
 // included (1.52 refined 5 times, 2.2 on the volcano, 2.95 on jacksboro itself, up to 6.5 on a
 // synthetic DEM of noise; 17.8 B as floats).
 constexpr double terrain_disk_bytes_per_node = 1.17;
-// The file written: 1.65 and 1.64 B a point (22.9 and 191.6 MB).
-constexpr double drainage_disk_bytes_per_point = 1.65;
+// The file written: 1.69 and 1.67 B a point (23.4 and 194.2 MB).
+constexpr double drainage_disk_bytes_per_point = 1.67;
 
 }  // namespace
 

@@ -264,7 +264,7 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, c
             log.info("terrain: wrote " + path + " (" + cache_file_size(path) + ", " + std::to_string(int(lap_ms(t0))) + " ms)");
             if (std::optional<StoredTerrain> mapped = read_terrain_cache(path, key)) {
                 progress.update("done", 1.0);
-                mapped->meta.source = dem_path;
+                mapped->meta.source = dem_path, mapped->key = key;  // the drainage fingerprint's too
                 return std::move(*mapped);
             }
         }
@@ -294,7 +294,7 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, c
     // Drawn from the file as a warm render would (the same values), so the memory held is the
     // nodes and pyramid, not the whole DEM read, while a drainage build that follows holds its own copy.
     if (std::optional<StoredTerrain> mapped = read_terrain_cache(path, key)) {
-        mapped->meta.source = dem_path;
+        mapped->meta.source = dem_path, mapped->key = key;
         return std::move(*mapped);
     }
     return stored;

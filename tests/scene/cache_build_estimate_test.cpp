@@ -28,12 +28,12 @@ TEST(CacheBuildEstimate, ReproducesTheMeasurementsItWasFittedTo) {
     // penink drainage DEM -o x.dv on jacksboro refined 10 and 29 times (/usr/bin/time: wall,
     // maximum resident KiB as bytes)
     const CacheBuildEstimate d10 = drainage_cache_estimate(4030, 3440), d29 = drainage_cache_estimate(11687, 9976);
-    EXPECT_NEAR(d10.seconds, 6.07, 0.05);
-    EXPECT_NEAR(d29.seconds, 70.8, 0.5);
-    EXPECT_NEAR(d10.peak_bytes, 799.9e6, 5e6);
-    EXPECT_NEAR(d29.peak_bytes, 6063e6, 20e6);
-    EXPECT_NEAR(d10.disk_bytes, 22.9e6, 0.3e6);  // the .dv written
-    EXPECT_NEAR(d29.disk_bytes, 191.6e6, 2e6);
+    EXPECT_NEAR(d10.seconds, 3.25, 0.05);
+    EXPECT_NEAR(d29.seconds, 42.6, 0.5);
+    EXPECT_NEAR(d10.peak_bytes, 580.7e6, 5e6);
+    EXPECT_NEAR(d29.peak_bytes, 4449.5e6, 20e6);
+    EXPECT_NEAR(d10.disk_bytes, 23.4e6, 0.3e6);  // the .dv written
+    EXPECT_NEAR(d29.disk_bytes, 194.2e6, 2e6);
     const CacheBuildEstimate t5 = terrain_cache_estimate(2015, 1720), t10 = terrain_cache_estimate(4030, 3440);
     EXPECT_NEAR(t10.seconds, 2.3, 0.01);
     // the build alone: PENINK_BENCH_DEM=DEM /usr/bin/time -v build/terrain_cache_build_bench

@@ -55,6 +55,10 @@ TEST(StoredTerrainBuild, StreamedToTheCacheFolderAndOpenedFromIt) {
     for (const auto& f : std::filesystem::directory_iterator(cache.path)) files += f.path().extension() == ".lod";
     EXPECT_EQ(files, 1);
     expect_same_terrain(built, store_terrain(read_dem(volcano)));
+    // keyed as a warm open is: the drainage fingerprint takes the key instead of hashing the DEM again
+    EXPECT_TRUE(built.key == terrain_cache_key(volcano));
+    EXPECT_NE(built.key.content_hash, 0u);
+    EXPECT_TRUE(open_stored_terrain(volcano, Log{}, cache.path.string()).key == built.key);
 }
 
 TEST(StoredTerrainBuild, WhereNothingCanBeWrittenTheTerrainIsBuiltInMemory) {
