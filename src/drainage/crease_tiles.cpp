@@ -143,7 +143,7 @@ CreaseTiles::CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>&
       store_(std::move(store)) {
     const auto side = std::uint32_t(side_);
     const std::uint32_t tx = (std::uint32_t(g.cols) + side - 1) / side, ty = (std::uint32_t(g.rows) + side - 1) / side;
-    tiles_.resize(std::size_t(tx) * ty);
+    tiles_.resize(std::size_t(tx) * ty), tiles_across_ = std::max<std::size_t>(tx, 1);
     const auto fault = [](const std::string& what) { throw Error("drainage", "", "crease tile index " + what, ExitCode::internal); };
     if (index.lo.size() != tiles_.size() || index.hi.size() != tiles_.size())
         fault("of " + std::to_string(index.lo.size()) + " tiles for a grid of " + std::to_string(tiles_.size()));
@@ -316,7 +316,7 @@ int crease_tile_level(const StemBound& b, double cell) {
 }
 
 std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show,
-                                                          const LineDetail& detail) {
+                                                          const LineDetail& detail, std::size_t row) {
     const auto meets = [&](glm::vec2 a, glm::vec2 b) { return !(b.x < lo.x || a.x > hi.x || b.y < lo.y || a.y > hi.y); };
     const auto passes = [&](const StemBound& b, glm::vec2 blo, glm::vec2 bhi) {
         return meets(blo, bhi) && (!may_show || may_show(b, blo, bhi, z_top_));
@@ -326,7 +326,7 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
     std::vector<int> unit_d;
     for (std::size_t k = 0; k < tiles_.size(); ++k) {
         const Tile& t = tiles_[k];
-        if (!meets(t.lo, t.hi)) continue;
+        if (!meets(t.lo, t.hi) || (row != all_rows && k / tiles_across_ != row)) continue;
         for (int l = 0; l < crease_tile_levels; ++l) {
             const CreaseUnit& u = t.unit[std::size_t(l)];
             if (u.count && passes(u.most, u.lo, u.hi)) units.emplace_back(k, l), unit_d.push_back(unit_detail(u, detail));
@@ -404,7 +404,7 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
                 cut_unit.push_back(u);
     }
     std::sort(wanted.begin(), wanted.end());
-    if (touched || !missing.empty()) ++builds_;
+    built_in_query_ = built_in_query_ || touched || !missing.empty();
     const auto ids_of = [&](std::size_t k) {
         return std::vector<std::uint32_t>(missing.begin() + std::ptrdiff_t(cuts[k]), missing.begin() + std::ptrdiff_t(cuts[k + 1]));
     };
@@ -576,7 +576,20 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
 
 CreaseTiles::LineRefs CreaseTiles::line_refs_for_box(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show,
                                                      const LineDetail& detail) {
-    const std::vector<Pick> picks = picks_for_box(lo, hi, may_show, detail);
+    built_in_query_ = false;
+    LineRefs out = refs_of(picks_for_box(lo, hi, may_show, detail));
+    builds_ += built_in_query_;
+    return out;
+}
+
+void CreaseTiles::line_refs_by_row(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show, const LineDetail& detail,
+                                   const std::function<void(LineRefs)>& f) {
+    built_in_query_ = false;
+    for (std::size_t row = 0; row * tiles_across_ < tiles_.size(); ++row) f(refs_of(picks_for_box(lo, hi, may_show, detail, row)));
+    builds_ += built_in_query_;
+}
+
+CreaseTiles::LineRefs CreaseTiles::refs_of(const std::vector<Pick>& picks) {
     LineRefs out;
     out.lines.reserve(picks.size()), out.vertices.reserve(picks.size());
     for (const Pick& p : picks) {
@@ -589,7 +602,9 @@ CreaseTiles::LineRefs CreaseTiles::line_refs_for_box(glm::vec2 lo, glm::vec2 hi,
 
 DrapedLineSet CreaseTiles::lines_for_box(glm::vec2 lo, glm::vec2 hi, std::vector<std::uint32_t>* ids,
                                          const LineTest& may_show, const LineDetail& detail) {
+    built_in_query_ = false;
     const std::vector<Pick> picks = picks_for_box(lo, hi, may_show, detail);
+    builds_ += built_in_query_;
     DrapedLineSet out;
     std::size_t n = 0;
     for (const Pick& p : picks) n += p.set->lines[p.line].count;

@@ -168,6 +168,13 @@ public:
         std::vector<std::shared_ptr<const DrapedLineSet>> hold;
     };
     LineRefs line_refs_for_box(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show = {}, const LineDetail& detail = {});
+    // The same query a row of tiles at a time, north to south: f(refs) with the lines of the stems
+    // whose source lies in that row (stems are numbered by source cell, row-major, so the rows'
+    // lines one after another are line_refs_for_box's, in its order), each row's sets let go once
+    // f returns: the lines held follow one row of the DEM, not the whole frame. One query for
+    // builds().
+    void line_refs_by_row(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show, const LineDetail& detail,
+                          const std::function<void(LineRefs)>& f);
 
     // Called once, before the first stem is built: a caller that made g, dir and net with their
     // sizes only fills them there.
@@ -199,8 +206,12 @@ private:
         std::shared_ptr<const DrapedLineSet> set;
         std::uint32_t line;
     };
-    // built where needed, in stem order, each at its unit's detail
-    std::vector<Pick> picks_for_box(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show, const LineDetail& detail);
+    // built where needed, in stem order, each at its unit's detail; those of row `row` of tiles
+    // alone unless all_rows (built_in_query_ set when it read or built stems)
+    static constexpr std::size_t all_rows = std::size_t(-1);
+    std::vector<Pick> picks_for_box(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show, const LineDetail& detail,
+                                    std::size_t row = all_rows);
+    static LineRefs refs_of(const std::vector<Pick>& picks);
     // The detail a query gives unit u's lines, and the file of unit (k, l) at detail d read into
     // `out` (d > 0: its copy, else its lines read at detail 0, thinned, and the copy written)
     // (0: no file read; 1: read; 2: read, and the copy written)
@@ -223,6 +234,8 @@ private:
     std::vector<Tile> tiles_;
     std::size_t stem_count_ = 0;
     bool loaded_ = false;
+    std::size_t tiles_across_ = 1;   // tiles in a row
+    bool built_in_query_ = false;
     CreaseIndexReader reader_;
     void take_index(CreaseTileIndex index);  // the whole index's stems into tiles_ (checked against the units)
     void load_index();                       // reader_.whole's, once

@@ -286,6 +286,20 @@ LineBox line_box(const Terrain& model) {
 
 namespace {
 
+// `part`'s runs and vertices after `out`'s.
+void append_lines(ScoredLineSet& out, ScoredLineSet part) {
+    if (out.positions.empty() && out.runs.empty()) {
+        out = std::move(part);
+        return;
+    }
+    const auto base = std::uint32_t(out.positions.size());
+    for (VertexRun r : part.runs) r.first += base, out.runs.push_back(r);
+    out.positions.insert(out.positions.end(), part.positions.begin(), part.positions.end());
+    out.normals.insert(out.normals.end(), part.normals.begin(), part.normals.end());
+    out.upload.insert(out.upload.end(), part.upload.begin(), part.upload.end());
+    out.flow.insert(out.flow.end(), part.flow.begin(), part.flow.end());
+}
+
 // Lines kept in crease tiles (StoredCreases::line_refs_for_box): records and a pointer to each
 // line's vertices.
 struct RefBatches {
@@ -315,14 +329,18 @@ bool select_stored_creases(const DrainageDb& db, StoredCreases* stored, const Li
     CreaseTiles::LineDetail detail;  // each unit's lines as thinned as the pieces' decimation allows there
     if (size.culls())
         detail = [&size](glm::vec2 lo, glm::vec2 hi, float z_top) { return size.detail(lo, hi, double(z_top)); };
-    const CreaseTiles::LineRefs refs = stored->line_refs_for_box(box.lo, box.hi, may_show, detail);
-    std::vector<std::uint32_t> ids;  // those meeting the box, ascending (what lines_meeting_box gives)
-    for (std::uint32_t i = 0; i < refs.lines.size(); ++i) {
-        const DrapedLine& l = refs.lines[i];
-        if (l.lo.x <= box.hi.x && l.hi.x >= box.lo.x && l.lo.y <= box.hi.y && l.hi.y >= box.lo.y) ids.push_back(i);
-    }
-    RefBatches batches{refs, ids};
-    out = select_lines(refs.lines, ids, batches, box, culling);
+    // a row of tiles at a time, each row's pieces appended after the row before's (the stems in
+    // the order one query gives them): the lines held are a row's, the pieces the frame's
+    out = ScoredLineSet{};
+    stored->line_refs_by_row(box.lo, box.hi, may_show, detail, [&](CreaseTiles::LineRefs refs) {
+        std::vector<std::uint32_t> ids;  // those meeting the box, ascending (what lines_meeting_box gives)
+        for (std::uint32_t i = 0; i < refs.lines.size(); ++i) {
+            const DrapedLine& l = refs.lines[i];
+            if (l.lo.x <= box.hi.x && l.hi.x >= box.lo.x && l.lo.y <= box.hi.y && l.hi.y >= box.lo.y) ids.push_back(i);
+        }
+        RefBatches batches{refs, ids};
+        append_lines(out, select_lines(refs.lines, ids, batches, box, culling));
+    });
     return true;
 }
 

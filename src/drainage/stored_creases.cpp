@@ -142,6 +142,13 @@ CreaseTiles::LineRefs StoredCreases::line_refs_for_box(glm::vec2 lo, glm::vec2 h
     return pages_checked([&] { return tiles().line_refs_for_box(lo, hi, may_show, detail); });
 }
 
+void StoredCreases::line_refs_by_row(glm::vec2 lo, glm::vec2 hi, const CreaseTiles::LineTest& may_show,
+                                     const CreaseTiles::LineDetail& detail,
+                                     const std::function<void(CreaseTiles::LineRefs)>& f) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    pages_checked([&] { tiles().line_refs_by_row(lo, hi, may_show, detail, f); });
+}
+
 std::size_t StoredCreases::count(std::size_t (CreaseTiles::*which)() const) const {
     const std::lock_guard<std::mutex> lock(mutex_);
     return decoded_ ? (*decoded_->tiles.*which)() : 0;

@@ -62,6 +62,9 @@ public:
     // object lives): what a frame selects from without copying the vertices.
     CreaseTiles::LineRefs line_refs_for_box(glm::vec2 lo, glm::vec2 hi, const CreaseTiles::LineTest& may_show = {},
                                             const CreaseTiles::LineDetail& detail = {});
+    // The same a row of tiles at a time (CreaseTiles::line_refs_by_row).
+    void line_refs_by_row(glm::vec2 lo, glm::vec2 hi, const CreaseTiles::LineTest& may_show,
+                          const CreaseTiles::LineDetail& detail, const std::function<void(CreaseTiles::LineRefs)>& f);
 
     // Stems in all, built so far and their vertices, queries that built stems (0 before the first
     // query).

@@ -352,6 +352,42 @@ TEST(CreaseTiles, ThinnedLinesKeepEndsAndSpacing) {
     EXPECT_TRUE(thinned_lines(thin, spacing) == thin);
 }
 
+// A query a row of tiles at a time gives, row after row, the lines of one query in its order
+// (stems numbered by source cell), built or read from the files, at their units' detail; one
+// query for builds().
+TEST(CreaseTiles, RowsOfTilesGiveTheQuerysLinesInItsOrder) {
+    const test::TempDir dir;
+    const JacksboroNetwork n;
+    const SizeTest loose{n.lo, 0.05, 0.5};
+    const CreaseTiles::LineDetail detail = [&](glm::vec2, glm::vec2, float) { return 2.5 * n.g.dx; };
+    const TileStore store{dir.file("tiles"), 7};
+    for (int pass = 0; pass < 2; ++pass) {  // built and written, then read from the files
+        CreaseTiles one(n.g, n.res.dir, n.res.net, 64, store), by_row(n.g, n.res.dir, n.res.net, 64, store);
+        const CreaseTiles::LineRefs want = one.line_refs_for_box(n.lo, n.hi, loose.bound(), detail);
+        ASSERT_GT(want.lines.size(), 100u);
+        std::size_t at = 0, rows = 0, rows_with_lines = 0;
+        by_row.line_refs_by_row(n.lo, n.hi, loose.bound(), detail, [&](CreaseTiles::LineRefs got) {
+            ++rows, rows_with_lines += !got.lines.empty();
+            for (std::size_t i = 0; i < got.lines.size(); ++i, ++at) {
+                ASSERT_LT(at, want.lines.size());
+                const DrapedLine &a = got.lines[i], &b = want.lines[at];
+                ASSERT_EQ(a.count, b.count) << at;
+                EXPECT_EQ(std::memcmp(&a.lo, &b.lo, sizeof a.lo), 0) << at;
+                EXPECT_EQ(std::memcmp(&a.length, &b.length, sizeof a.length), 0) << at;
+                EXPECT_EQ(std::memcmp(got.vertices[i], want.vertices[at], sizeof(DrapedVertex) * a.count), 0) << at;
+            }
+        });
+        EXPECT_EQ(at, want.lines.size());
+        EXPECT_EQ(rows, std::size_t((n.g.rows + 63) / 64));
+        EXPECT_GT(rows_with_lines, 3u);
+        EXPECT_EQ(by_row.builds(), 1u);
+        EXPECT_EQ(by_row.stems_built(), one.stems_built());
+        if (pass == 1) {
+            EXPECT_EQ(by_row.tiles_written(), 0u);
+        }
+    }
+}
+
 // With a line detail, every line comes at its unit's detail: the whole build's line thinned to
 // that detail's spacing, bit for bit, its vertices on the creases' lattice (what the files code
 // without loss), whether built in memory, built and written (with their copies of detail 2), read
