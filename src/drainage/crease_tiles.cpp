@@ -436,8 +436,9 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
     std::size_t to_build = 0, built = 0;  // tiles with cuts not read, for build_progress_
     for (std::size_t k = 0, last = std::size_t(-1); k < cut_tile.size(); ++k)
         if (!read[k] && cut_tile[k] != last) ++to_build, last = cut_tile[k];
-    const auto tile_built = [&] {
-        if (build_progress_) build_progress_(double(++built) / double(std::max<std::size_t>(to_build, 1)));
+    const auto tile_built = [&] {  // (a row of a query by rows: its share of the whole)
+        const double f = double(++built) / double(std::max<std::size_t>(to_build, 1));
+        if (build_progress_) build_progress_(progress_shown_ = progress_from_ + progress_share_ * f);
     };
     // a tile's files are written beside the next tile's build (one tile's writes at a time, in
     // tile order), and its stems kept once they are: the same sets kept in the same order
@@ -584,8 +585,14 @@ CreaseTiles::LineRefs CreaseTiles::line_refs_for_box(glm::vec2 lo, glm::vec2 hi,
 
 void CreaseTiles::line_refs_by_row(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show, const LineDetail& detail,
                                    const std::function<void(LineRefs)>& f) {
-    built_in_query_ = false;
-    for (std::size_t row = 0; row * tiles_across_ < tiles_.size(); ++row) f(refs_of(picks_for_box(lo, hi, may_show, detail, row)));
+    built_in_query_ = false, progress_shown_ = 0.0;
+    const std::size_t rows = (tiles_.size() + tiles_across_ - 1) / tiles_across_;
+    for (std::size_t row = 0; row < rows; ++row) {
+        progress_from_ = double(row) / double(rows), progress_share_ = 1.0 / double(rows);
+        f(refs_of(picks_for_box(lo, hi, may_show, detail, row)));
+    }
+    progress_from_ = 0.0, progress_share_ = 1.0;
+    if (build_progress_ && progress_shown_ > 0.0 && progress_shown_ < 1.0) build_progress_(1.0);  // the rows after built none
     builds_ += built_in_query_;
 }
 

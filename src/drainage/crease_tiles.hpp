@@ -180,7 +180,8 @@ public:
     // sizes only fills them there.
     void before_first_build(std::function<void()> f) { before_build_ = std::move(f); }
     // Called while a query builds tiles: the fraction of the tiles it builds done so far (after
-    // each tile, 1 after the last; not called for a query that builds none).
+    // each tile, 1 after the last; not called for a query that builds none; a query by rows: each
+    // row's tiles within its share of the rows, rising from 0 to 1 over the whole query).
     void on_build_progress(std::function<void(double)> f) { build_progress_ = std::move(f); }
 
     std::size_t tile_count() const { return tiles_.size(); }
@@ -236,6 +237,7 @@ private:
     bool loaded_ = false;
     std::size_t tiles_across_ = 1;   // tiles in a row
     bool built_in_query_ = false;
+    double progress_from_ = 0.0, progress_share_ = 1.0, progress_shown_ = 0.0;  // build_progress_'s span
     CreaseIndexReader reader_;
     void take_index(CreaseTileIndex index);  // the whole index's stems into tiles_ (checked against the units)
     void load_index();                       // reader_.whole's, once

@@ -363,10 +363,15 @@ TEST(CreaseTiles, RowsOfTilesGiveTheQuerysLinesInItsOrder) {
     const TileStore store{dir.file("tiles"), 7};
     for (int pass = 0; pass < 2; ++pass) {  // built and written, then read from the files
         CreaseTiles one(n.g, n.res.dir, n.res.net, 64, store), by_row(n.g, n.res.dir, n.res.net, 64, store);
+        std::vector<double> shown;  // the build's progress over the whole query: rising to 1
+        by_row.on_build_progress([&](double f) { shown.push_back(f); });
+        std::vector<CreaseTiles::LineRefs> got_rows;  // (by rows first: the first pass builds them)
+        by_row.line_refs_by_row(n.lo, n.hi, loose.bound(), detail,
+                                [&](CreaseTiles::LineRefs got) { got_rows.push_back(std::move(got)); });
         const CreaseTiles::LineRefs want = one.line_refs_for_box(n.lo, n.hi, loose.bound(), detail);
         ASSERT_GT(want.lines.size(), 100u);
         std::size_t at = 0, rows = 0, rows_with_lines = 0;
-        by_row.line_refs_by_row(n.lo, n.hi, loose.bound(), detail, [&](CreaseTiles::LineRefs got) {
+        for (const CreaseTiles::LineRefs& got : got_rows) {
             ++rows, rows_with_lines += !got.lines.empty();
             for (std::size_t i = 0; i < got.lines.size(); ++i, ++at) {
                 ASSERT_LT(at, want.lines.size());
@@ -376,7 +381,7 @@ TEST(CreaseTiles, RowsOfTilesGiveTheQuerysLinesInItsOrder) {
                 EXPECT_EQ(std::memcmp(&a.length, &b.length, sizeof a.length), 0) << at;
                 EXPECT_EQ(std::memcmp(got.vertices[i], want.vertices[at], sizeof(DrapedVertex) * a.count), 0) << at;
             }
-        });
+        }
         EXPECT_EQ(at, want.lines.size());
         EXPECT_EQ(rows, std::size_t((n.g.rows + 63) / 64));
         EXPECT_GT(rows_with_lines, 3u);
@@ -384,6 +389,15 @@ TEST(CreaseTiles, RowsOfTilesGiveTheQuerysLinesInItsOrder) {
         EXPECT_EQ(by_row.stems_built(), one.stems_built());
         if (pass == 1) {
             EXPECT_EQ(by_row.tiles_written(), 0u);
+            EXPECT_TRUE(shown.empty());  // nothing built
+            EXPECT_EQ(one.tiles_written(), 0u);
+        } else {
+            ASSERT_GT(shown.size(), 4u);
+            EXPECT_TRUE(std::is_sorted(shown.begin(), shown.end()));
+            EXPECT_GT(shown.front(), 0.0);
+            EXPECT_LT(shown.front(), 0.5);
+            EXPECT_EQ(shown.back(), 1.0);
+            EXPECT_EQ(std::count(shown.begin(), shown.end(), 1.0), 1);
         }
     }
 }
