@@ -433,6 +433,11 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
         out.erase(std::merge(a.begin(), a.end(), b.begin(), b.end(), out.begin()), out.end());
         return out;
     };
+    const auto missing_in = [&](const std::vector<std::size_t>& todo) {  // the stems missing from these cuts
+        std::vector<std::uint32_t> need;
+        for (std::size_t k : todo) need = merged(std::move(need), ids_of(k));
+        return need;
+    };
     std::size_t to_build = 0, built = 0;  // tiles with cuts not read, for build_progress_
     for (std::size_t k = 0, last = std::size_t(-1); k < cut_tile.size(); ++k)
         if (!read[k] && cut_tile[k] != last) ++to_build, last = cut_tile[k];
@@ -522,14 +527,12 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
                 continue;
             }
             // a file before could not be written: this tile's stems kept whole, in memory
-            std::vector<std::uint32_t> need;
-            for (std::size_t k : next->w.todo) need = merged(std::move(need), ids_of(k));
+            const std::vector<std::uint32_t> need = missing_in(next->w.todo);
             keep(need, lines_of(need, next->stems, next->whole));
             tile_built();
             continue;
         }
-        std::vector<std::uint32_t> need;
-        for (std::size_t k : todo) need = merged(std::move(need), ids_of(k));
+        const std::vector<std::uint32_t> need = missing_in(todo);
         keep(need, std::make_unique<DrapedLineSet>(crease_part(g_, dir_, net_, surface(), parts_, need)));
         tile_built();
     }
@@ -573,14 +576,6 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
         for (auto& [set, line] : at_) set = moved[set];
     }
     return picks;
-}
-
-CreaseTiles::LineRefs CreaseTiles::line_refs_for_box(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show,
-                                                     const LineDetail& detail) {
-    built_in_query_ = false;
-    LineRefs out = refs_of(picks_for_box(lo, hi, may_show, detail));
-    builds_ += built_in_query_;
-    return out;
 }
 
 void CreaseTiles::line_refs_by_row(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show, const LineDetail& detail,

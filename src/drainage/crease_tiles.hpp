@@ -167,10 +167,9 @@ public:
         std::vector<const DrapedVertex*> vertices;
         std::vector<std::shared_ptr<const DrapedLineSet>> hold;
     };
-    LineRefs line_refs_for_box(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show = {}, const LineDetail& detail = {});
-    // The same query a row of tiles at a time, north to south: f(refs) with the lines of the stems
+    // They come a row of tiles at a time, north to south: f(refs) with the lines of the stems
     // whose source lies in that row (stems are numbered by source cell, row-major, so the rows'
-    // lines one after another are line_refs_for_box's, in its order), each row's sets let go once
+    // lines one after another are lines_for_box's, in its order), each row's sets let go once
     // f returns: the lines held follow one row of the DEM, not the whole frame. One query for
     // builds().
     void line_refs_by_row(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show, const LineDetail& detail,

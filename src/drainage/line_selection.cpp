@@ -300,7 +300,7 @@ void append_lines(ScoredLineSet& out, ScoredLineSet part) {
     out.flow.insert(out.flow.end(), part.flow.begin(), part.flow.end());
 }
 
-// Lines kept in crease tiles (StoredCreases::line_refs_for_box): records and a pointer to each
+// Lines kept in crease tiles (StoredCreases::line_refs_by_row): records and a pointer to each
 // line's vertices.
 struct RefBatches {
     const CreaseTiles::LineRefs& refs;

@@ -136,12 +136,6 @@ DrapedLineSet StoredCreases::lines_for_box(glm::vec2 lo, glm::vec2 hi, const Cre
     return pages_checked([&] { return tiles().lines_for_box(lo, hi, nullptr, may_show, detail); });
 }
 
-CreaseTiles::LineRefs StoredCreases::line_refs_for_box(glm::vec2 lo, glm::vec2 hi, const CreaseTiles::LineTest& may_show,
-                                                       const CreaseTiles::LineDetail& detail) {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    return pages_checked([&] { return tiles().line_refs_for_box(lo, hi, may_show, detail); });
-}
-
 void StoredCreases::line_refs_by_row(glm::vec2 lo, glm::vec2 hi, const CreaseTiles::LineTest& may_show,
                                      const CreaseTiles::LineDetail& detail,
                                      const std::function<void(CreaseTiles::LineRefs)>& f) {

@@ -58,11 +58,8 @@ public:
     // was checked by the database's checksum: a builder's fault).
     DrapedLineSet lines_for_box(glm::vec2 lo, glm::vec2 hi, const CreaseTiles::LineTest& may_show = {},
                                 const CreaseTiles::LineDetail& detail = {});
-    // The same lines as records and pointers to their vertices in the kept lines (valid while this
-    // object lives): what a frame selects from without copying the vertices.
-    CreaseTiles::LineRefs line_refs_for_box(glm::vec2 lo, glm::vec2 hi, const CreaseTiles::LineTest& may_show = {},
-                                            const CreaseTiles::LineDetail& detail = {});
-    // The same a row of tiles at a time (CreaseTiles::line_refs_by_row).
+    // The same lines as records and pointers to their vertices in the kept lines, a row of tiles at
+    // a time (CreaseTiles::line_refs_by_row): what a frame selects from without copying the vertices.
     void line_refs_by_row(glm::vec2 lo, glm::vec2 hi, const CreaseTiles::LineTest& may_show,
                           const CreaseTiles::LineDetail& detail, const std::function<void(CreaseTiles::LineRefs)>& f);
 
