@@ -198,4 +198,35 @@ void CheckedBlocks::read_strided(int k, std::uint64_t begin, std::uint64_t end, 
     }
 }
 
+CheckedBlocks::Cached::Cached(const CheckedBlocks& blocks, int k, std::size_t slots) : blocks_(&blocks), k_(k) {
+    const Slot& a = blocks.arrays_[std::size_t(k)];
+    slots = std::max<std::size_t>(slots, 1);
+    tag_.assign(slots, 0);
+    data_.resize(slots * (std::size_t(1) << a.shift) * std::size_t(a.elem_bytes));
+}
+
+const std::uint8_t* CheckedBlocks::Cached::element(std::uint64_t i) {
+    const CheckedBlocks& cb = *blocks_;
+    const Slot& a = cb.arrays_[std::size_t(k_)];
+    const std::uint64_t block = i >> a.shift, per = std::uint64_t(1) << a.shift, eb = a.elem_bytes;
+    if (block + 1 >= a.starts.size()) throw std::out_of_range("checked blocks: a block past the array's end");
+    if (cb.loaded_[a.first + block].load(std::memory_order_acquire)) return cb.base_ + a.at + i * eb;
+    const std::size_t slot = std::size_t(block % tag_.size());
+    std::uint8_t* out = data_.data() + slot * std::size_t(per * eb);
+    if (tag_[slot] != block + 1) {
+        tag_[slot] = 0;
+        coded_.resize(std::size_t(a.starts[block + 1] - a.starts[block]));
+        cb.read_run(a, block, block + 1, coded_.data());
+        cb.bytes_read_.fetch_add(coded_.size(), std::memory_order_relaxed);
+        cb.blocks_read_.fetch_add(1, std::memory_order_relaxed);
+        if (const BlockState st = cb.check_block(a, block, coded_.data(), out); st != sound)
+            throw cb.damage(a, block, st == mismatch ? "checksum mismatch" : "undecodable data");
+        const std::uint64_t n = std::min(per, a.elems - block * per);
+        if (!a.decode) std::memcpy(out, coded_.data(), std::size_t(n * eb));  // an Array's bytes are its elements
+        if (a.derive) a.derive(out, block * per, 1, std::size_t(n));
+        tag_[slot] = block + 1;
+    }
+    return out + (i - block * per) * eb;
+}
+
 }  // namespace penink

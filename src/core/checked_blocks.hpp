@@ -117,6 +117,27 @@ public:
     }
     const std::string& path() const { return path_; }
 
+    // Elements of array k read one at a time without loading their blocks into the mapping: a
+    // block not yet read is read, checked and decoded (its elements derived) into a small cache of
+    // `slots` blocks, direct-mapped by block index (a later block in the same slot replaces it), so
+    // scattered reads over a whole grid (the nodes of a coarse mesh, a few in each block) hold the
+    // cache, not every block they touch; a block already in the mapping is read there. Its bytes
+    // count in bytes_read each time it is read into the cache. Throws DamagedBlockError as need
+    // does. One reader per thread (the CheckedBlocks it reads may be shared).
+    class Cached {
+    public:
+        Cached(const CheckedBlocks& blocks, int k, std::size_t slots);
+        // The bytes of element i (elem_bytes of them; a byte for an Array), valid until the next call.
+        const std::uint8_t* element(std::uint64_t i);
+
+    private:
+        const CheckedBlocks* blocks_;
+        int k_;
+        std::vector<std::uint64_t> tag_;   // block held by each slot, plus 1; 0: empty
+        std::vector<std::uint8_t> data_;   // slots x block bytes, decoded
+        std::vector<std::uint8_t> coded_;  // scratch: a block's file bytes
+    };
+
 private:
     struct Slot {
         std::vector<std::uint64_t> starts;  // file offset of each block, then the array's end

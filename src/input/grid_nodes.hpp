@@ -13,7 +13,9 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -59,12 +61,41 @@ struct GridNodes {
     // Position of node i as drawn.
     glm::vec3 at(std::size_t i) const {
         need(i, i + 1);
-        glm::vec3 p = pos[i];
+        return drawn(pos[i]);
+    }
+    // A stored position as drawn: z times z_scale, raised to the sea.
+    glm::vec3 drawn(glm::vec3 p) const {
         if (z_scale != 1.0) p.z = float(double(p.z) * z_scale);
         if (has_sea() && p.z < sea_z()) p.z = sea_z();
         return p;
     }
     glm::vec3 at(int c, int r) const { return at(index(c, r)); }
+};
+
+// Nodes read one at a time (at, has_data: the values GridNodes gives) for scattered reads over a
+// whole grid: from a terrain cache, through small caches of decoded blocks
+// (CheckedBlocks::Cached, `slots` blocks of positions and as many of valid flags) rather than
+// by loading every block touched (a coarse mesh of a large DEM touches a few nodes in most
+// blocks); nodes in memory, or in blocks already read, are read in place. One reader per thread.
+class NodeReader {
+public:
+    explicit NodeReader(const GridNodes& nodes, std::size_t slots = 4096) : n_(nodes) {
+        if (nodes.blocks)
+            pos_.emplace(*nodes.blocks, GridNodes::pos_array, slots), valid_.emplace(*nodes.blocks, GridNodes::valid_array, slots);
+    }
+    glm::vec3 at(std::size_t i) {
+        if (!pos_) return n_.at(i);
+        glm::vec3 p;
+        std::memcpy(&p, pos_->element(i), sizeof p);
+        return n_.drawn(p);
+    }
+    glm::vec3 at(int c, int r) { return at(n_.index(c, r)); }
+    bool has_data(std::size_t i) { return valid_ ? *valid_->element(i) != 0 : n_.has_data(i); }
+    const GridNodes& nodes() const { return n_; }
+
+private:
+    const GridNodes& n_;
+    std::optional<CheckedBlocks::Cached> pos_, valid_;
 };
 
 // The nodes of a Terrain as it holds them (z_scale 1). Empty when its arrays do not match its grid.

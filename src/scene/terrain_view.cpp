@@ -139,23 +139,40 @@ void stored_bounds(const SceneTerrain& terrain, glm::dvec3& lo, glm::dvec3& hi) 
 
 std::vector<glm::dvec3> frame_samples(const GridNodes& t) {
     std::vector<glm::dvec3> pts;
+    if (t.cols <= 0 || t.rows <= 0) return pts;
+    // nodes i0, i0 + every, ... (< i1) as drawn, read without keeping their blocks (a terrain
+    // cache's nodes: the frame of a large DEM touches a node or two in most blocks)
+    const auto read = [&t](std::size_t i0, std::size_t i1, std::size_t every, std::vector<glm::vec3>& pos,
+                           std::vector<std::uint8_t>& valid) {
+        const std::size_t n = i1 > i0 ? (i1 - i0 + every - 1) / every : 0;
+        pos.resize(n), valid.resize(n);
+        t.read_strided(i0, i1, every, pos.data(), valid.data());
+    };
+    std::vector<glm::vec3> pa, pb;
+    std::vector<std::uint8_t> va, vb;
+    const auto add = [&](std::size_t j, const std::vector<glm::vec3>& pos, const std::vector<std::uint8_t>& valid) {
+        if (valid[j]) pts.emplace_back(t.drawn(pos[j]));
+    };
     constexpr std::size_t enough = 20000;  // enough to frame by
     if (t.size() <= enough) {
-        for (std::size_t i = 0; i < t.size(); ++i)
-            if (t.has_data(i)) pts.emplace_back(t.at(i));
+        read(0, t.size(), 1, pa, va);
+        for (std::size_t j = 0; j < pa.size(); ++j) add(j, pa, va);
     } else {
-        // every k-th node of every k-th row: a frame touches 1/k of the rows, not every page
+        // every k-th node of every k-th row: a frame reads 1/k of the rows
         const int k = int(std::ceil(std::sqrt(double(t.size()) / double(enough))));
-        for (int r = 0; r < t.rows; r += k)
-            for (int c = 0; c < t.cols; c += k)
-                if (t.has_data(t.index(c, r))) pts.emplace_back(t.at(c, r));
+        for (int r = 0; r < t.rows; r += k) {
+            read(t.index(0, r), t.index(0, r) + std::size_t(t.cols), std::size_t(k), pa, va);
+            for (std::size_t j = 0; j < pa.size(); ++j) add(j, pa, va);
+        }
     }
-    for (int c = 0; c < t.cols; ++c)  // the edges decide the frame: keep all of them
-        for (int r : {0, t.rows - 1})
-            if (t.has_data(t.index(c, r))) pts.emplace_back(t.at(c, r));
-    for (int r = 0; r < t.rows; ++r)
-        for (int c : {0, t.cols - 1})
-            if (t.has_data(t.index(c, r))) pts.emplace_back(t.at(c, r));
+    // the edges decide the frame: keep all of them (the first and last row node by node, then
+    // the first and last column)
+    read(t.index(0, 0), t.index(0, 0) + std::size_t(t.cols), 1, pa, va);
+    read(t.index(0, t.rows - 1), t.index(0, t.rows - 1) + std::size_t(t.cols), 1, pb, vb);
+    for (std::size_t c = 0; c < pa.size(); ++c) add(c, pa, va), add(c, pb, vb);
+    read(t.index(0, 0), t.size(), std::size_t(t.cols), pa, va);
+    read(t.index(t.cols - 1, 0), t.size(), std::size_t(t.cols), pb, vb);
+    for (std::size_t r = 0; r < pa.size(); ++r) add(r, pa, va), add(r, pb, vb);
     return pts;
 }
 

@@ -86,7 +86,8 @@ Camera scene_camera(const Scene& scene, const SceneTerrain& terrain);
 Camera scene_camera(const Scene& scene, const Terrain& terrain);
 
 // Points the automatic camera frames: every edge node and a subsample of the rest (all nodes up
-// to 20000; beyond, every k-th node of every k-th row, about 20000 of them).
+// to 20000; beyond, every k-th node of every k-th row, about 20000 of them), as drawn; nodes of a
+// terrain cache are read without keeping their blocks (GridNodes::read_strided).
 std::vector<glm::dvec3> frame_samples(const GridNodes& nodes);
 std::vector<glm::dvec3> frame_samples(const Terrain& terrain);
 

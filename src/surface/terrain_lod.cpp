@@ -462,7 +462,7 @@ class Selector {
 public:
     Selector(const TerrainLod& lod, const GridNodes& t, double ex, const Camera& cam, const LodOptions& o,
              std::vector<std::uint32_t>* nodes)
-        : lod_(lod), t_(t), side_(lod.side()), cols_(t.cols), rows_(t.rows), nodes_(nodes),
+        : lod_(lod), t_(t), reader_(t), side_(lod.side()), cols_(t.cols), rows_(t.rows), nodes_(nodes),
           radii_(level_radii(lod.lipschitz, lod.levels)) {
         ex_ = ex;
         // Orthographic: a metre is the same number of pixels at any depth, so the test's distance
@@ -482,6 +482,7 @@ public:
         const double vz = std::max({0.0, eye_.z - zhi_, zlo_ - eye_.z});
         vz2_ = vz * vz;
         frustum_ = frustum_of(cam);
+        if (lod.blocks) errors_.emplace(*lod.blocks, TerrainLod::error_array, 4096);
     }
 
     SurfaceMesh run(LodSelection* stats) {
@@ -557,6 +558,10 @@ public:
 private:
     const TerrainLod& lod_;
     const GridNodes& t_;
+    // The nodes and errors read one at a time through small block caches (NodeReader): the
+    // selection of a whole view touches a few nodes in most blocks of a large DEM.
+    mutable NodeReader reader_;
+    mutable std::optional<CheckedBlocks::Cached> errors_;
     int side_, cols_, rows_;
     std::vector<std::uint32_t>* nodes_;
     LevelRadii radii_;
@@ -570,9 +575,14 @@ private:
     std::size_t active_count_ = 0;
 
     // The error bound of padded node k for the nodes as drawn (water included).
-    float error(std::size_t k) const { return water_ > 0.0f ? lod_.error_at(k) + water_ : lod_.error_at(k); }
+    float error(std::size_t k) const {
+        float e;
+        if (errors_) std::memcpy(&e, errors_->element(k), sizeof e);
+        else e = lod_.error[k];
+        return water_ > 0.0f ? e + water_ : e;
+    }
     bool in_dem(int c, int r) const { return c < cols_ && r < rows_; }
-    bool ok(int c, int r) const { return in_dem(c, r) && t_.has_data(t_.index(c, r)); }
+    bool ok(int c, int r) const { return in_dem(c, r) && reader_.has_data(t_.index(c, r)); }
 
     // Lindstrom & Pascucci's test: error projected at the distance from the eye to the node's
     // bounding region exceeds the tolerance. Monotone from a node to its parents.
@@ -581,7 +591,7 @@ private:
         if (!(err < kInf)) return true;  // forced (or NaN)
         if (!(err > 0.0f)) return false;
         if (!in_dem(c, r)) return true;  // cannot happen: padding nodes are forced
-        const glm::vec3 p = t_.at(c, r);  // plan position: z unused
+        const glm::vec3 p = reader_.at(c, r);  // plan position: z unused
         const double dx = double(p.x) - eye_.x, dy = double(p.y) - eye_.y;
         int level = 0;
         bool centre = false;
@@ -607,7 +617,7 @@ private:
         if (out_.pos.size() >= kIndexMask) throw std::length_error("terrain lod: too many vertices");
         const std::uint32_t v = std::uint32_t(out_.pos.size());
         e |= v + 1;
-        out_.pos.push_back(t_.at(id));
+        out_.pos.push_back(reader_.at(id));
         out_.normal.push_back(full_res_normal(c, r));
         if (nodes_) nodes_->push_back(std::uint32_t(id));
         return v;
@@ -622,11 +632,10 @@ private:
     // compute_normals(mesh_from_terrain(t)) at node (c, r): its up-to-6 full-resolution triangles
     // in the order that mesh lists them (cells row by row; {NW, SW, SE} before {NW, SE, NE}).
     glm::vec3 full_res_normal(int c, int r) const {
-        t_.need(GridWindow{c - 1, r - 1, c + 2, r + 2});  // the valid flags are read directly
-        const std::uint8_t* v = t_.valid;
         glm::vec3 sum(0.0f);
         auto tri = [&](std::size_t a, std::size_t b, std::size_t d) {
-            if (v[a] && v[b] && v[d]) sum += face_normal(t_.at(a), t_.at(b), t_.at(d));
+            if (reader_.has_data(a) && reader_.has_data(b) && reader_.has_data(d))
+                sum += face_normal(reader_.at(a), reader_.at(b), reader_.at(d));
         };
         auto id = [&](int cc, int rr) { return t_.index(cc, rr); };
         if (c > 0 && r > 0) {  // node is the SE corner of cell (c-1, r-1)
@@ -659,7 +668,7 @@ private:
         if (err < kInf && ok(it.ac, it.ar) && ok(it.bc, it.br) && ok(it.cc, it.cr)) {
             // Every node inside lies within err (times e) of the triangle's plane, and (on an
             // affine grid) inside the plan triangle of its corners.
-            const glm::dvec3 a(t_.at(it.ac, it.ar)), b(t_.at(it.bc, it.br)), c(t_.at(it.cc, it.cr));
+            const glm::dvec3 a(reader_.at(it.ac, it.ar)), b(reader_.at(it.bc, it.br)), c(reader_.at(it.cc, it.cr));
             lo = glm::min(glm::min(a, b), c), hi = glm::max(glm::max(a, b), c);
             const double dz = double(err) * ex_;
             lo.z -= dz, hi.z += dz;
@@ -671,7 +680,7 @@ private:
             lo = glm::dvec3(1e300), hi = glm::dvec3(-1e300);
             for (const int c : {c0, c1})
                 for (const int r : {r0, r1}) {
-                    const glm::dvec3 p(t_.at(c, r));
+                    const glm::dvec3 p(reader_.at(c, r));
                     lo = glm::min(lo, p), hi = glm::max(hi, p);
                 }
             lo.z = zlo_, hi.z = zhi_;
@@ -686,7 +695,7 @@ private:
     bool visible(std::initializer_list<std::size_t> ids) const {
         glm::dvec3 lo(1e300), hi(-1e300);
         for (const std::size_t i : ids) {
-            const glm::dvec3 p(t_.at(i));
+            const glm::dvec3 p(reader_.at(i));
             lo = glm::min(lo, p), hi = glm::max(hi, p);
         }
         const glm::dvec3 m(1e-3);
@@ -724,7 +733,7 @@ private:
         glm::dvec3 lo(1e300), hi(-1e300);
         auto add = [&](bool v, int cc, int rr) {
             if (!v) return;
-            const glm::dvec3 p(t_.at(cc, rr));
+            const glm::dvec3 p(reader_.at(cc, rr));
             lo = glm::min(lo, p), hi = glm::max(hi, p);
         };
         add(vnw, c, r), add(vne, c + 1, r), add(vsw, c, r + 1), add(vse, c + 1, r + 1);

@@ -2,7 +2,8 @@
 // is read is the file's bytes; a damaged block throws DamagedBlockError naming the file and the
 // block when it is read, the sound blocks read with it stay read, and a block never read is
 // never checked. A strided read (every k-th element) gives what need and the mapping give, its
-// blocks checked but not kept.
+// blocks checked but not kept; so does a read one element at a time through a small cache of
+// blocks (CheckedBlocks::Cached).
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -341,4 +342,71 @@ TEST(CheckedBlocks, StridedReadsFindDamage) {
     } catch (const DamagedBlockError& e) {
         EXPECT_NE(std::string(e.what()).find("undecodable data in block 2"), std::string::npos) << e.what();
     }
+}
+
+// Elements read one at a time through a cache of blocks give what need and the mapping give
+// (decoded and derived, the last short block's too), leaving every block unread in the mapping;
+// a block is read again only when another took its slot (one slot: every change of block reads;
+// 16 slots: each of the 16 blocks once); a block already in the mapping is read there, not again.
+TEST(CheckedBlocks, CachedElementReadsGiveTheNeededElementsWithoutKeepingTheirBlocks) {
+    const CodedFile f;
+    const OnDisk disk(f.file);
+    const CheckedBlocks reference(disk.fd(), disk.path, derived_pairs(f), f.sums);
+    const std::vector<std::uint8_t> all = needed_elements(reference, 0, 8, 0, 1000, 1);
+    const auto element_is = [&](CheckedBlocks::Cached& c, std::uint64_t i) {
+        return std::memcmp(c.element(i), all.data() + 8 * i, 8) == 0;
+    };
+    {
+        const CheckedBlocks blocks(disk.fd(), disk.path, derived_pairs(f), f.sums);
+        CheckedBlocks::Cached one(blocks, 0, 1);
+        for (const std::uint64_t i : {5u, 6u, 63u}) ASSERT_TRUE(element_is(one, i)) << i;
+        EXPECT_EQ(blocks.blocks_read(), 1u);
+        ASSERT_TRUE(element_is(one, 999));  // the short last block
+        ASSERT_TRUE(element_is(one, 7));    // block 0 again: its slot was taken
+        EXPECT_EQ(blocks.blocks_read(), 3u);
+        EXPECT_EQ(blocks.bytes_read(), std::uint64_t(2 * f.sizes[0] + f.sizes[15]));
+        for (std::uint64_t i = 0; i < 1000; i += 64) EXPECT_FALSE(blocks.has_read(0, i)) << i;
+    }
+    const CheckedBlocks blocks(disk.fd(), disk.path, derived_pairs(f), f.sums);
+    blocks.need(0, 64, 65);  // block 1 in place
+    CheckedBlocks::Cached many(blocks, 0, 16);
+    for (int pass = 0; pass < 2; ++pass)
+        for (std::uint64_t i = 0; i < 1000; i += 3) ASSERT_TRUE(element_is(many, i)) << i;
+    EXPECT_EQ(blocks.blocks_read(), 16u) << "block 1 read by need, the other 15 once each";
+    EXPECT_EQ(blocks.bytes_read(), blocks.bytes());
+    EXPECT_EQ(many.element(70), static_cast<const std::uint8_t*>(blocks.data(0)) + 70 * 8) << "read in place";
+    for (std::uint64_t i = 0; i < 1000; i += 64) EXPECT_EQ(blocks.has_read(0, i), i == 64) << i;
+}
+
+// A damaged block met by a cached read throws DamagedBlockError naming it, at every read (it is
+// never kept), and an uncoded array's bytes are read as the file holds them.
+TEST(CheckedBlocks, CachedElementReadsFindDamageAndReadUncodedArrays) {
+    CodedFile f;
+    f.file[100 + f.sizes[0] + f.sizes[1] + 2] ^= 4;  // block 2
+    const OnDisk disk(f.file);
+    const CheckedBlocks blocks(disk.fd(), disk.path, f.arrays(), f.sums);
+    CheckedBlocks::Cached c(blocks, 0, 4);
+    float v;
+    std::memcpy(&v, c.element(65), 4);
+    EXPECT_EQ(v, f.values[65]);
+    for (int attempt = 0; attempt < 2; ++attempt) {
+        try {
+            c.element(130);
+            FAIL() << "no error";
+        } catch (const DamagedBlockError& e) {
+            EXPECT_EQ(e.file(), disk.path);
+            EXPECT_NE(std::string(e.what()).find("checksum mismatch in block 2"), std::string::npos) << e.what();
+        }
+    }
+    std::memcpy(&v, c.element(200), 4);  // past it: sound
+    EXPECT_EQ(v, f.values[200]);
+
+    const TwoArrays t;
+    const OnDisk other(t.file);
+    const CheckedBlocks bytes(other.fd(), other.path, t.arrays, block, t.sums);
+    CheckedBlocks::Cached b(bytes, 1, 2);
+    for (const std::uint64_t i : {0u, 4095u, 4096u, 3 * 4096u - 1u, 17u})
+        EXPECT_EQ(*b.element(i), std::uint8_t(i * 7 + 1)) << i;
+    EXPECT_EQ(bytes.blocks_read(), 4u) << "blocks 0, 1, 2, then 0 again (its slot taken by block 2)";
+    EXPECT_FALSE(bytes.has_read(1, 0));
 }
