@@ -203,6 +203,7 @@ CheckedBlocks::Cached::Cached(const CheckedBlocks& blocks, int k, std::size_t sl
     slots = std::max<std::size_t>(slots, 1);
     tag_.assign(slots, 0);
     data_.resize(slots * (std::size_t(1) << a.shift) * std::size_t(a.elem_bytes));
+    if (a.derive) words_ = ((std::size_t(1) << a.shift) + 63) / 64, derived_.assign(slots * words_, 0);
 }
 
 const std::uint8_t* CheckedBlocks::Cached::element(std::uint64_t i) {
@@ -221,12 +222,17 @@ const std::uint8_t* CheckedBlocks::Cached::element(std::uint64_t i) {
         cb.blocks_read_.fetch_add(1, std::memory_order_relaxed);
         if (const BlockState st = cb.check_block(a, block, coded_.data(), out); st != sound)
             throw cb.damage(a, block, st == mismatch ? "checksum mismatch" : "undecodable data");
-        const std::uint64_t n = std::min(per, a.elems - block * per);
-        if (!a.decode) std::memcpy(out, coded_.data(), std::size_t(n * eb));  // an Array's bytes are its elements
-        if (a.derive) a.derive(out, block * per, 1, std::size_t(n));
+        if (!a.decode)  // an Array's bytes are its elements
+            std::memcpy(out, coded_.data(), std::size_t(std::min(per, a.elems - block * per) * eb));
+        std::fill_n(derived_.begin() + std::ptrdiff_t(slot * words_), words_, 0);
         tag_[slot] = block + 1;
     }
-    return out + (i - block * per) * eb;
+    const std::uint64_t j = i - block * per;
+    if (a.derive) {
+        std::uint64_t& bits = derived_[slot * words_ + std::size_t(j / 64)];
+        if (!(bits >> (j % 64) & 1)) a.derive(out + j * eb, i, 1, 1), bits |= std::uint64_t(1) << (j % 64);
+    }
+    return out + j * eb;
 }
 
 }  // namespace penink

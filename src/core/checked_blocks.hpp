@@ -121,7 +121,8 @@ public:
     // block not yet read is read, checked and decoded (its elements derived) into a small cache of
     // `slots` blocks, direct-mapped by block index (a later block in the same slot replaces it), so
     // scattered reads over a whole grid (the nodes of a coarse mesh, a few in each block) hold the
-    // cache, not every block they touch; a block already in the mapping is read there. Its bytes
+    // cache, not every block they touch; a block already in the mapping is read there. A cached
+    // block's derived part (a node's x, y) is derived element by element as they are asked for. Its bytes
     // count in bytes_read each time it is read into the cache. Throws DamagedBlockError as need
     // does. One reader per thread (the CheckedBlocks it reads may be shared).
     class Cached {
@@ -135,6 +136,8 @@ public:
         int k_;
         std::vector<std::uint64_t> tag_;   // block held by each slot, plus 1; 0: empty
         std::vector<std::uint8_t> data_;   // slots x block bytes, decoded
+        std::vector<std::uint64_t> derived_;  // slots x words: a bit per element derived (arrays with a Deriver)
+        std::size_t words_ = 0;
         std::vector<std::uint8_t> coded_;  // scratch: a block's file bytes
     };
 

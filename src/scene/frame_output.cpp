@@ -1,5 +1,6 @@
 #include "scene/frame_output.hpp"
 
+#include <cmath>
 #include <sstream>
 
 #include "core/stopwatch.hpp"
@@ -77,7 +78,8 @@ void log_frame_timings(const SceneDrawing& r, const Log& log) {
     s.precision(3);
     s << "GPU ms: TFT " << r.times.tft << ", AFT " << r.times.aft << ", SIL " << r.times.sil << ", DM " << r.times.dm << ", RIDGES " << r.times.ridges
       << ", read-back " << r.times.readback << "; trace " << r.trace_ms << " ms; "
-      << r.triangles << " triangles";
+      << r.triangles << " triangles selected in " << std::lround(r.times.select) << " ms; hachures "
+      << std::lround(r.hachure_ms) << " ms";
     log.info(s.str());
     if (r.cache_bytes > 0) {
         std::ostringstream c;
