@@ -227,7 +227,7 @@ PieceLayout find_pieces(const std::vector<DrapedLine>& lines, const std::vector<
 // the lines that have pieces (normal' = normalize(e nx, e ny, nz); zero beyond the box).
 template <class Batches>
 void write_pieces(const PieceLayout& layout, Batches& batches, double e, ScoredLineSet& out) {
-    out.positions.resize(layout.total), out.normals.resize(layout.total), out.upload.resize(layout.total);
+    out.positions.resize(layout.total), out.normals.resize(layout.total);
     out.flow.resize(layout.total);
     std::size_t p_begin = 0;
     for (std::size_t i0 = 0; i0 < layout.kept.size();) {
@@ -249,10 +249,7 @@ void write_pieces(const PieceLayout& layout, Batches& batches, double e, ScoredL
                             n = glm::normalize(glm::vec3(float(e * v.nx), float(e * v.ny), v.nz));
                     }
                     const glm::vec3 pos(v.x, v.y, e == 1.0 ? v.z : float(e * double(v.z)));
-                    out.positions[at] = pos, out.normals[at] = n;
-                    DmVertex& dm = out.upload[at];
-                    dm.position = pos, dm.flow = v.flow, dm.normal = n, dm.unused = 0.0f;
-                    out.flow[at] = v.flow;
+                    out.positions[at] = pos, out.normals[at] = n, out.flow[at] = v.flow;
                     ++at;
                 }
             }
@@ -296,7 +293,6 @@ void append_lines(ScoredLineSet& out, ScoredLineSet part) {
     for (VertexRun r : part.runs) r.first += base, out.runs.push_back(r);
     out.positions.insert(out.positions.end(), part.positions.begin(), part.positions.end());
     out.normals.insert(out.normals.end(), part.normals.begin(), part.normals.end());
-    out.upload.insert(out.upload.end(), part.upload.begin(), part.upload.end());
     out.flow.insert(out.flow.end(), part.flow.begin(), part.flow.end());
 }
 

@@ -20,9 +20,10 @@
 namespace penink {
 
 // One vertex set (branches or divides) ready for the DM pass.
+// The DM pass reads positions, normals and flow (DmInput, render/dm.hpp, laid out on the GPU a
+// chunk at a time: no DmVertex array held).
 struct ScoredLineSet : VertexLines {
-    std::vector<DmVertex> upload;  // prepared vertices, moved to the GPU by scene/drainage_lines.hpp
-    std::vector<float> flow;       // normalised flow per vertex (the creases' weight by flow)
+    std::vector<float> flow;  // normalised flow per vertex (the creases' weight by flow)
 };
 
 // The creases and ridges of a frame; needs no GL context, so it can be made on another thread

@@ -1,20 +1,35 @@
 #include "render/dm.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include <glm/gtc/type_ptr.hpp>
 
 namespace penink {
 
-DmPass::DmPass(const GlApi& gl, const std::vector<DmVertex>& vertices)
+DmPass::DmPass(const GlApi& gl, DmInput vertices)
     : gl_(&gl), count_(0), program_(build_program(gl, {"dm.comp.glsl"})), timer_(gl) {
     set_vertices(vertices);
 }
 
-void DmPass::set_vertices(const std::vector<DmVertex>& vertices) {
-    count_ = vertices.size();
-    vertices_ = make_buffer(*gl_, vertices.data(), std::max<std::size_t>(1, vertices.size()) * sizeof(DmVertex));
-    terms_ = make_buffer(*gl_, nullptr, std::max<std::size_t>(1, vertices.size()) * sizeof(CreaseTerms), GL_DYNAMIC_READ);
+void DmPass::set_vertices(DmInput v) {
+    if (v.normals.size() != v.positions.size() || (!v.flow.empty() && v.flow.size() != v.positions.size()))
+        throw std::invalid_argument("DM pass: positions, normals and flow differ in count");
+    count_ = v.positions.size();
+    vertices_ = make_buffer(*gl_, nullptr, std::max<std::size_t>(1, count_) * sizeof(DmVertex));
+    constexpr std::size_t chunk = std::size_t(1) << 16;  // vertices laid out at a time (2 MiB)
+    std::vector<DmVertex> out(std::min(chunk, count_));
+    for (std::size_t i0 = 0; i0 < count_; i0 += chunk) {
+        const std::size_t n = std::min(chunk, count_ - i0);
+        for (std::size_t j = 0; j < n; ++j) {
+            DmVertex& d = out[j];
+            d.position = v.positions[i0 + j], d.normal = v.normals[i0 + j];
+            d.flow = v.flow.empty() ? 0.0f : v.flow[i0 + j], d.unused = 0.0f;
+        }
+        gl_->NamedBufferSubData(vertices_.id(), GLintptr(i0 * sizeof(DmVertex)), GLsizeiptr(n * sizeof(DmVertex)), out.data());
+    }
+    terms_ = make_buffer(*gl_, nullptr, std::max<std::size_t>(1, count_) * sizeof(CreaseTerms), GL_DYNAMIC_READ);
 }
 
 double DmPass::run(const DmFrame& f, std::vector<CreaseTerms>& terms) {

@@ -9,6 +9,7 @@
 // dm_hidden for vertices not visible (outside the frustum, or farther than the TFT surface at
 // their pixel; a pixel with no surface counts as visible: silhouette vertices).
 #pragma once
+#include <span>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -27,11 +28,19 @@ struct DmFrame {
     float lift_px = 1.0f, tolerance_px = 1.5f;
 };
 
+// The vertices a DM pass scores: positions and normals (one each a vertex) and flow (one a vertex,
+// or none: 0), laid out as DmVertex on the GPU a chunk at a time (no DmVertex array held beside
+// the caller's).
+struct DmInput {
+    std::span<const glm::vec3> positions, normals;
+    std::span<const float> flow;
+};
+
 class DmPass {
 public:
-    DmPass(const GlApi& gl, const std::vector<DmVertex>& vertices);
+    DmPass(const GlApi& gl, DmInput vertices);
     // Replaces the vertices (new buffers; the program, compiled once, stays).
-    void set_vertices(const std::vector<DmVertex>& vertices);
+    void set_vertices(DmInput vertices);
     // Returns GPU milliseconds; fills `terms` (one per vertex).
     double run(const DmFrame& frame, std::vector<CreaseTerms>& terms);
     std::size_t size() const { return count_; }

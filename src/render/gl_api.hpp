@@ -61,6 +61,7 @@ namespace penink {
     X(PFNGLCREATEBUFFERSPROC, CreateBuffers)                                                    \
     X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                                                    \
     X(PFNGLNAMEDBUFFERDATAPROC, NamedBufferData)                                                \
+    X(PFNGLNAMEDBUFFERSUBDATAPROC, NamedBufferSubData)                                          \
     X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                                                  \
     X(PFNGLGETNAMEDBUFFERSUBDATAPROC, GetNamedBufferSubData)                                    \
     X(PFNGLDRAWELEMENTSPROC, DrawElements)                                                      \

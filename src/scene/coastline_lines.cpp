@@ -6,28 +6,25 @@
 
 namespace penink {
 
-ScoredLineSet coastline_vertices(const std::vector<ShoreLine>& lines) {
+ScoredLineSet coastline_vertices(const std::vector<ShoreLine>& lines, std::vector<glm::vec3>& ground) {
     ScoredLineSet set;
+    ground.clear();
     const glm::vec3 up(0.0f, 0.0f, 1.0f);  // the water's normal
     for (const ShoreLine& line : lines) {
         set.runs.push_back({std::uint32_t(set.positions.size()), std::uint32_t(line.points.size())});
         for (std::size_t i = 0; i < line.points.size(); ++i) {
             set.positions.push_back(line.points[i]);
             set.normals.push_back(up);
-            DmVertex v;
-            v.position = glm::vec3(line.points[i].x, line.points[i].y, line.ground[i]);
-            v.normal = up;
-            set.upload.push_back(v);
+            ground.emplace_back(line.points[i].x, line.points[i].y, line.ground[i]);
         }
     }
     return set;
 }
 
 CoastlineLines::CoastlineLines(const GlApi& gl, const GridNodes& nodes, GridWindow window)
-    : set_{coastline_vertices(sea_level_contour(nodes, window)), nullptr} {
-    if (set_.lines.upload.empty()) return;
-    set_.pass = std::make_unique<DmPass>(gl, set_.lines.upload);
-    set_.lines.upload = {};
+    : set_{coastline_vertices(sea_level_contour(nodes, window), ground_), nullptr} {
+    if (ground_.empty()) return;
+    set_.pass = std::make_unique<DmPass>(gl, DmInput{ground_, set_.lines.normals, {}});
 }
 
 void CoastlineLines::draw(const Camera& camera, GLuint toward_texture, Drawing& drawing) {

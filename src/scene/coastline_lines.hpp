@@ -18,9 +18,10 @@
 
 namespace penink {
 
-// The shore lines as one vertex set for the DM pass: positions at the water surface, normals
-// straight up, one run per line, uploads at the ground height. Empty without water.
-ScoredLineSet coastline_vertices(const std::vector<ShoreLine>& lines);
+// The shore lines as one vertex set: positions at the water surface, normals straight up, one run
+// per line; `ground`: each vertex at the ground height, where the DM pass tests it. Empty without
+// water.
+ScoredLineSet coastline_vertices(const std::vector<ShoreLine>& lines, std::vector<glm::vec3>& ground);
 
 class CoastlineLines {
 public:
@@ -31,6 +32,7 @@ public:
     std::size_t vertices() const { return set_.lines.positions.size(); }
 
 private:
+    std::vector<glm::vec3> ground_;  // the DM pass's positions (made before set_, which fills it)
     UploadedLines set_;
 };
 

@@ -21,18 +21,12 @@ float line_culling_px(const Scene& scene) {
 
 DrainageLines::DrainageLines(const GlApi& gl, DrainageLineData data)
     : creases_{std::move(data.creases), nullptr}, ridges_{std::move(data.ridges), nullptr} {
-    for (UploadedLines* set : {&creases_, &ridges_}) {
-        set->pass = std::make_unique<DmPass>(gl, set->lines.upload);
-        set->lines.upload = {};
-    }
+    for (UploadedLines* set : {&creases_, &ridges_}) set->pass = std::make_unique<DmPass>(gl, dm_input(set->lines));
 }
 
 void DrainageLines::set_lines(DrainageLineData data) {
     creases_.lines = std::move(data.creases), ridges_.lines = std::move(data.ridges);
-    for (UploadedLines* set : {&creases_, &ridges_}) {
-        set->pass->set_vertices(set->lines.upload);
-        set->lines.upload = {};
-    }
+    for (UploadedLines* set : {&creases_, &ridges_}) set->pass->set_vertices(dm_input(set->lines));
 }
 
 DrainageLines::DrainageLines(const GlApi& gl, const DrainageDb& db, const Terrain& model)

@@ -21,6 +21,8 @@ struct UploadedLines {
     ScoredLineSet lines;
     std::unique_ptr<DmPass> pass;
 };
+// What the DM pass of a vertex set reads: its positions, normals and flow.
+inline DmInput dm_input(const ScoredLineSet& s) { return {s.positions, s.normals, s.flow}; }
 
 // Three spacings (the thinning's shortest stroke) of the closer-spaced layer, less what
 // object-space sketchiness adds to a stroke's ends (twice the sketch amount) and a pixel of

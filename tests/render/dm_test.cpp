@@ -84,8 +84,19 @@ struct PlaneScene {
     }
 };
 
+// A DmVertex list as the pass reads it (DmInput: positions, normals and flow), kept alive here.
+struct DmArrays {
+    std::vector<glm::vec3> positions, normals;
+    std::vector<float> flow;
+    explicit DmArrays(const std::vector<DmVertex>& v) {
+        for (const DmVertex& d : v) positions.push_back(d.position), normals.push_back(d.normal), flow.push_back(d.flow);
+    }
+    DmInput input() const { return {positions, normals, flow}; }
+};
+
 std::vector<CreaseTerms> run_terms(const PlaneScene& s, TerrainRenderer& r) {
-    DmPass pass(test::test_context().gl(), s.vertices);
+    const DmArrays arrays(s.vertices);
+    DmPass pass(test::test_context().gl(), arrays.input());
     DmFrame f;
     f.camera = &s.cam, f.light = glm::vec3(s.light);
     f.toward_texture = r.surface_pass().toward_texture();
@@ -184,7 +195,8 @@ TEST(DmPass, VerticesBehindARidgeAreHidden) {
             v.normal = ridge_normal(y), v.flow = 0.5f;
             vertices.push_back(v);
         }
-    DmPass pass(ctx.gl(), vertices);
+    const DmArrays arrays(vertices);
+    DmPass pass(ctx.gl(), arrays.input());
     DmFrame f;
     f.camera = &cam;
     f.toward_texture = renderer.surface_pass().toward_texture();
@@ -249,11 +261,53 @@ TEST(DmPass, EmptyVertexSetReturnsNoScores) {
     const PlaneScene s;
     TerrainRenderer renderer(test::test_context().gl(), s.mesh, s.cam.width, s.cam.height);
     renderer.render(s.cam, {});
-    DmPass pass(test::test_context().gl(), {});
+    DmPass pass(test::test_context().gl(), DmInput{});
     DmFrame f;
     f.camera = &s.cam, f.toward_texture = renderer.surface_pass().toward_texture();
     std::vector<CreaseTerms> terms(5);
     pass.run(f, terms);
     EXPECT_TRUE(terms.empty());
     EXPECT_EQ(pass.size(), 0u);
+}
+
+// The vertices are laid out on the GPU a chunk at a time: 2.3 chunks of the plane's vertices
+// repeated score as the plane's own, each at its place (a chunk written at a wrong offset, or
+// short, would move or zero the terms after it); flow left out counts as 0.
+TEST(DmPass, VerticesLaidOutAChunkAtATimeKeepTheirPlaces) {
+    const PlaneScene s;
+    TerrainRenderer renderer(test::test_context().gl(), s.mesh, s.cam.width, s.cam.height);
+    renderer.render(s.cam, {});
+    const std::vector<CreaseTerms> one = run_terms(s, renderer);
+    const DmArrays arrays(s.vertices);
+    DmArrays many(std::vector<DmVertex>{});
+    while (many.positions.size() < 150000)
+        for (std::size_t i = 0; i < arrays.positions.size(); ++i)
+            many.positions.push_back(arrays.positions[i]), many.normals.push_back(arrays.normals[i]),
+                many.flow.push_back(arrays.flow[i]);
+    DmFrame f;
+    f.camera = &s.cam, f.light = glm::vec3(s.light);
+    f.toward_texture = renderer.surface_pass().toward_texture();
+    DmPass pass(test::test_context().gl(), many.input());
+    std::vector<CreaseTerms> terms;
+    pass.run(f, terms);
+    ASSERT_EQ(terms.size(), many.positions.size());
+    std::size_t visible = 0;
+    for (std::size_t i = 0; i < terms.size(); ++i) {
+        const CreaseTerms& a = terms[i], &b = one[i % one.size()];
+        ASSERT_EQ(a.distance, b.distance) << i;
+        ASSERT_EQ(a.slope, b.slope) << i;
+        ASSERT_EQ(a.illumination, b.illumination) << i;
+        ASSERT_EQ(a.flow, b.flow) << i;
+        visible += a.distance != dm_hidden;
+    }
+    EXPECT_GT(visible, terms.size() / 2);
+    pass.set_vertices(DmInput{many.positions, many.normals, {}});
+    pass.run(f, terms);
+    ASSERT_EQ(terms.size(), many.positions.size());
+    for (std::size_t i = 0; i < terms.size(); ++i) {
+        if (terms[i].distance == dm_hidden) continue;
+        ASSERT_EQ(terms[i].flow, 0.0f) << i;
+        ASSERT_EQ(terms[i].slope, one[i % one.size()].slope) << i;
+    }
+    EXPECT_THROW(pass.set_vertices(DmInput{many.positions, arrays.normals, {}}), std::invalid_argument);
 }
