@@ -98,9 +98,8 @@ int hachure_node_step(const GridNodes& nodes, GridWindow w, const Camera& camera
 
 HachureNodes hachure_nodes(const FrameTerrain& terrain, const Camera& camera) {
     HachureNodes out;
-    out.step = hachure_node_step(terrain.nodes, terrain.window, camera);
-    if (out.step == 1) terrain.nodes.need(terrain.window);  // read directly by the hachures
-    else out.sampled = sample_nodes(terrain.nodes, terrain.window, out.step);
+    out.sampled = sampled_window(terrain.nodes, terrain.window, hachure_node_step(terrain.nodes, terrain.window, camera));
+    if (out.sampled.step == 1) terrain.nodes.need(terrain.window);  // read directly by the hachures
     return out;
 }
 
@@ -117,12 +116,15 @@ void add_hachures(const FrameTerrain& terrain, const HachureNodes& nodes, const 
     HachureGrid grid;
     grid.z_scale = n.z_scale;
     if (n.has_sea()) grid.floor_z = n.sea_z();
-    if (nodes.step == 1) {
+    const SampledWindow& sampled = nodes.sampled;
+    if (sampled.step == 1) {
         grid.cols = n.cols, grid.rows = n.rows, grid.pos = n.pos, grid.valid = n.valid;
         grid.c0 = terrain.window.c0, grid.r0 = terrain.window.r0, grid.c1 = terrain.window.c1, grid.r1 = terrain.window.r1;
     } else {
-        const SampledNodes& sampled = nodes.sampled;
-        grid.cols = sampled.cols, grid.rows = sampled.rows, grid.pos = sampled.pos.data(), grid.valid = sampled.valid.data();
+        grid.cols = sampled.cols, grid.rows = sampled.rows;
+        grid.read = [&n, &sampled](GridWindow part, glm::vec3* pos, std::uint8_t* valid) {
+            read_sampled(n, sampled, part, pos, valid);
+        };
         grid.c1 = sampled.cols, grid.r1 = sampled.rows;
     }
     HachureFrame frame;

@@ -245,7 +245,8 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
         out.times.sil = ms_since(t0);
     }
     out.drawing.width = camera.width, out.drawing.height = camera.height;
-    // the hachures' nodes, read while the drainage lines may still be prepared on another core
+    // the hachures' nodes (their step; at step 1 the window read into place), found while the
+    // drainage lines may still be prepared on another core
     const auto t_nodes = Clock::now();
     std::optional<HachureNodes> hachure_grid;
     if (frame.lines.hachures.enabled) hachure_grid = hachure_nodes(terrain_, camera);
