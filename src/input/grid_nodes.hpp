@@ -88,7 +88,7 @@ SampledWindow sampled_window(const GridNodes& nodes, GridWindow w, int step);
 // part.rows() of each). Only the grid rows they lie on are read, and of those only the span they
 // cover (read_strided: blocks not yet read are not kept, and only the sampled nodes' derived x, y
 // are computed), so a step of s reads about 1/s of the part's blocks and holds none of them; rows
-// in parallel chunks of at least ~64 K grid nodes. A part read alone gives the values it has in
+// in parallel chunks of at least ~8 K grid nodes. A part read alone gives the values it has in
 // the whole (the hachures read their nodes a tile at a time: lines/node_tiles.hpp).
 void read_sampled(const GridNodes& nodes, const SampledWindow& s, GridWindow part, glm::vec3* pos, std::uint8_t* valid);
 

@@ -43,8 +43,9 @@ void read_sampled(const GridNodes& nodes, const SampledWindow& s, GridWindow par
     if (part.c0 >= part.c1 || part.r0 >= part.r1) return;
     const std::size_t step = std::size_t(s.step), cols = std::size_t(part.cols());
     const int c0 = s.window.c0 + part.c0 * s.step, c_last = s.window.c0 + (part.c1 - 1) * s.step;
-    // rows of at least ~64 K grid nodes a chunk: a small part stays on the calling thread
-    const std::size_t min_rows = std::max<std::size_t>(1, (std::size_t(1) << 16) / (cols * step));
+    // rows of at least ~8 K grid nodes a chunk: a tile of the hachures' (64 rows of 256 sampled
+    // nodes) on up to 4 threads, a few nodes on the calling one
+    const std::size_t min_rows = std::max<std::size_t>(1, (std::size_t(1) << 13) / (cols * step));
     parallel_chunks(std::size_t(part.rows()), min_rows, [&](std::size_t j0, std::size_t j1) {
         for (std::size_t j = j0; j < j1; ++j) {
             const int r = s.window.r0 + (part.r0 + int(j)) * s.step;

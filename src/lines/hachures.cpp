@@ -134,6 +134,8 @@ public:
     int tile_cols() const { return tiles_.tile_cols(); }
     int tile_rows() const { return tiles_.tile_rows(); }
     const NodeTileCounts& node_counts() const { return tiles_.counts(); }
+    // The row the seed lattice's sweep has reached (< 0: none): the nodes north of it go first.
+    void sweep(int r) { tiles_.sweep(r); }
 
     struct Point {
         glm::dvec3 p{0.0};    // world
@@ -624,7 +626,8 @@ public:
         const double cells = double(std::max(grid.c1 - grid.c0 - 1, 0)) * std::max(grid.r1 - grid.r0 - 1, 0);
         const double target = double(cam_.width) * cam_.height / std::pow(2.0 * std::max(p_.spacing_min_px, 0.5), 2.0);
         const int stride = std::max(1, int(std::sqrt(cells / std::max(target, 1.0))));
-        for (int r = grid.r0; r + 1 < grid.r1; r += stride)
+        for (int r = grid.r0; r + 1 < grid.r1; r += stride) {
+            field_.sweep(r);
             for (int c = grid.c0; c + 1 < grid.c1; c += stride) {
                 // a block of cells larger than kSeedBlockPx on the image (the near ground of a perspective
                 // view) gets a sub-lattice, so every region between creases has seeds of its own
@@ -651,6 +654,8 @@ public:
                         if (seed_free(s) && line_from(s)) drain_queue();
                     }
             }
+        }
+        field_.sweep(-1);
     }
 
     // The pen's weight at each point of line id: the width that makes the ink between its

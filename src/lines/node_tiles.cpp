@@ -40,10 +40,8 @@ void NodeTiles::enter(int c, int r) {
             slots_.back().pos.reserve(full), slots_.back().valid.reserve(full);
             held_bytes_ += full * node_bytes;
             counts_.most_bytes = std::max(counts_.most_bytes, held_bytes_);
-        } else {  // the least recently used tile dropped
-            s = int(std::min_element(slots_.begin(), slots_.end(),
-                                     [](const Tile& a, const Tile& b) { return a.used < b.used; }) -
-                    slots_.begin());
+        } else {
+            s = dropped_slot();
             slot_of_[std::size_t(slots_[std::size_t(s)].index)] = -1;
         }
         Tile& tile = slots_[std::size_t(s)];
@@ -58,6 +56,13 @@ void NodeTiles::enter(int c, int r) {
     Tile& tile = slots_[std::size_t(s)];
     tile.used = ++clock_;
     cur_ = tile.part, cur_pos_ = tile.pos.data(), cur_valid_ = tile.valid.data();
+}
+
+int NodeTiles::dropped_slot() const {
+    // (0 north of the sweep, 1 elsewhere; when last used), least first
+    const auto key = [&](const Tile& t) { return std::pair(t.index / tiles_across_ < sweep_ ? 0 : 1, t.used); };
+    return int(std::min_element(slots_.begin(), slots_.end(), [&](const Tile& a, const Tile& b) { return key(a) < key(b); }) -
+               slots_.begin());
 }
 
 glm::vec3 NodeTiles::probe_pos(int c, int r) {

@@ -96,3 +96,20 @@ TEST(NodeTiles, ProbesReadTwoByTwoNodes) {
     EXPECT_EQ(tiles.counts().probes, 2u);
     EXPECT_EQ(tiles.counts().reads, 1u);
 }
+
+// With 3 tiles held (of tile rows 2, 3 and 0, the last the most recently used), a fourth drops
+// the least recently used (tile row 2); once the sweep has reached row 9 (tile row 2) it drops the
+// one north of it (tile row 0) instead, and tile row 2 is still held.
+TEST(NodeTiles, TilesNorthOfTheSweepAreDroppedFirst) {
+    Grid g;
+    for (const bool swept : {false, true}) {
+        SCOPED_TRACE(swept ? "swept" : "no sweep");
+        NodeTiles tiles(g.cols, g.rows, g.reader(), 3 * 8 * 4 * NodeTiles::node_bytes, 8, 4);
+        tiles.pos(0, 0), tiles.pos(0, 8), tiles.pos(0, 12), tiles.pos(0, 1);  // tile rows 0, 2, 3, 0
+        if (swept) tiles.sweep(9);
+        tiles.pos(0, 16);  // tile row 4
+        EXPECT_EQ(tiles.counts().reads, 4u);
+        EXPECT_EQ(tiles.pos(0, 9), g.pos[std::size_t(9) * g.cols]);
+        EXPECT_EQ(tiles.counts().reads, swept ? 4u : 5u) << "tile row 2 held when swept";
+    }
+}
