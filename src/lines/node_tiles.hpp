@@ -44,7 +44,8 @@ public:
     // 256-node blocks, the two at its ends shared with the tiles beside it) and 64 MiB (315 tiles).
     // On the whole view of jacksboro refined 29 times (11687 x 9976 nodes, sampled at every 2nd:
     // 5844 x 4988, 1794 tiles) the hachures read 2136 tiles (1.19 a tile), 1.33 and 1.36 a tile
-    // on two closer views (docs/timings.md); least recently used alone, 1.37, 1.57 and 1.61.
+    // on two closer views (docs/timings.md; `penink render -v` prints the counts); least recently
+    // used alone, 1.37, 1.57 and 1.61.
     static constexpr int default_tile_cols = 256, default_tile_rows = 64;
     static constexpr std::size_t default_budget = std::size_t(64) << 20;
     static constexpr std::size_t node_bytes = sizeof(glm::vec3) + sizeof(std::uint8_t);

@@ -110,7 +110,8 @@ void add_hachures(const FrameTerrain& terrain, const Camera& camera, const Depth
 }
 
 void add_hachures(const FrameTerrain& terrain, const HachureNodes& nodes, const Camera& camera,
-                  const DepthImage& toward, const glm::dvec3& light, const HachureParams& params, Drawing& drawing) {
+                  const DepthImage& toward, const glm::dvec3& light, const HachureParams& params, Drawing& drawing,
+                  NodeTileCounts* tiles) {
     if (!params.enabled) return;
     const GridNodes& n = terrain.nodes;
     HachureGrid grid;
@@ -126,6 +127,7 @@ void add_hachures(const FrameTerrain& terrain, const HachureNodes& nodes, const 
             read_sampled(n, sampled, part, pos, valid);
         };
         grid.c1 = sampled.cols, grid.r1 = sampled.rows;
+        grid.counts = tiles;
     }
     HachureFrame frame;
     frame.camera = &camera;
@@ -138,6 +140,14 @@ void add_hachures(const FrameTerrain& terrain, const HachureNodes& nodes, const 
         frame.obstacle_pens.push_back(params.obstacle_pens[i]);
     }
     drawing.layer(LayerKind::hachures).strokes = trace_hachures(grid, frame, params);
+}
+
+std::string hachure_tiles_line(const SampledWindow& sampled, const NodeTileCounts& tiles) {
+    char line[256];
+    std::snprintf(line, sizeof line, "hachures: every %d nodes (%d x %d sampled), %zu reads of %zu tiles of %d x %d, %.3g MiB held at most",
+                  sampled.step, sampled.cols, sampled.rows, tiles.reads, tiles.distinct, NodeTiles::default_tile_cols,
+                  NodeTiles::default_tile_rows, double(tiles.most_bytes) / double(1 << 20));
+    return line;
 }
 
 }  // namespace penink

@@ -124,10 +124,10 @@ TEST(HachureLines, WholeViewOfAFineDemReadsWhatTheImageNeeds) {
     EXPECT_EQ(rows, std::vector<bool>(8, false));
 }
 
-// The hachures traced on nodes read beforehand (hachure_nodes, as a frame reads them while its
-// drainage lines are prepared) are the hachures add_hachures reads and traces itself, point for
-// point, on the fine DEM's cache at every 4th node (200 x 150) and at every node (1000 x 750,
-// its window then read into place).
+// The hachures traced on nodes found beforehand (hachure_nodes, as a frame finds them while its
+// drainage lines are prepared) are the hachures add_hachures finds and traces itself, point for
+// point, on the fine DEM's cache at every 4th node (200 x 150: read by tiles as the lines reach
+// them) and at every node (1000 x 750, its window then read into place).
 TEST(HachureLines, NodesReadBeforehandDrawTheSameHachures) {
     test::TempDir dir;
     const std::string path = fine_dem_cache(dir);
@@ -144,7 +144,16 @@ TEST(HachureLines, NodesReadBeforehandDrawTheSameHachures) {
         EXPECT_EQ(map->nodes.blocks->has_read(GridNodes::pos_array, map->nodes.index(1024, 1000)), step == 1)
             << "the window read into place at step 1 alone";
         Drawing beforehand, itself;
-        add_hachures(terrain, nodes, cam, DepthImage{}, light, hachure_defaults(), beforehand);
+        NodeTileCounts tiles;
+        add_hachures(terrain, nodes, cam, DepthImage{}, light, hachure_defaults(), beforehand, &tiles);
+        // at every 4th node 513 x 513 sampled nodes (3.4 MB) in 3 x 9 tiles of 256 x 64, all held
+        // at once: each read once
+        EXPECT_EQ(tiles.distinct, step == 1 ? 0u : 27u);
+        EXPECT_EQ(tiles.reads, tiles.distinct);
+        if (step > 1) {
+            EXPECT_EQ(hachure_tiles_line(nodes.sampled, tiles),
+                      "hachures: every 4 nodes (513 x 513 sampled), 27 reads of 27 tiles of 256 x 64, 5.48 MiB held at most");
+        }
         add_hachures(terrain, cam, DepthImage{}, light, hachure_defaults(), itself);
         const std::vector<Stroke>& a = beforehand.layer(LayerKind::hachures).strokes;
         const std::vector<Stroke>& b = itself.layer(LayerKind::hachures).strokes;
