@@ -77,9 +77,9 @@ struct GridNodes {
 // (CheckedBlocks::Cached, `slots` blocks of positions and as many of valid flags) rather than
 // by loading every block touched (a coarse mesh of a large DEM touches a few nodes in most
 // blocks); nodes in memory, or in blocks already read, are read in place. One reader per thread.
-class NodeReader {
+class NodePointReader {
 public:
-    explicit NodeReader(const GridNodes& nodes, std::size_t slots = 4096) : n_(nodes) {
+    explicit NodePointReader(const GridNodes& nodes, std::size_t slots = 4096) : n_(nodes) {
         if (nodes.blocks)
             pos_.emplace(*nodes.blocks, GridNodes::pos_array, slots), valid_.emplace(*nodes.blocks, GridNodes::valid_array, slots);
     }
@@ -104,18 +104,24 @@ inline GridNodes grid_nodes(const Terrain& t) {
     return {t.cols, t.rows, t.pos.data(), t.valid.data(), 1.0, -std::numeric_limits<double>::infinity()};
 }
 
-// Every step-th node of a window (clamped to the grid) in each direction, from its first node:
-// cols x rows of them, row-major, their stored positions (pos, z unscaled, as GridNodes holds
-// them) and valid flags. Only the rows they lie on are read (read_strided: the blocks of these
-// rows are not kept, and only the sampled nodes' derived x, y are computed), so a step of s reads
-// about 1/s of the window's blocks and holds none of them; rows in parallel chunks. step 1: the
-// window's nodes.
-struct SampledNodes {
+// The grid of every step-th node of a window (clamped to the grid) in each direction, from its
+// first node: cols x rows nodes, node (i, j) of it node (window.c0 + i step, window.r0 + j step)
+// of the grid. step 1: the window's nodes.
+struct SampledWindow {
+    GridWindow window;
+    int step = 1;
     int cols = 0, rows = 0;
-    std::vector<glm::vec3> pos;
-    std::vector<std::uint8_t> valid;
 };
-SampledNodes sample_nodes(const GridNodes& nodes, GridWindow w, int step);
+SampledWindow sampled_window(const GridNodes& nodes, GridWindow w, int step);
+
+// The stored positions (z unscaled, as GridNodes holds them) and valid flags of the sampled nodes
+// `part` (in the sampled grid's nodes, inside it), row-major into pos and valid (part.cols() x
+// part.rows() of each). Only the grid rows they lie on are read, and of those only the span they
+// cover (read_strided: blocks not yet read are not kept, and only the sampled nodes' derived x, y
+// are computed), so a step of s reads about 1/s of the part's blocks and holds none of them; rows
+// in parallel chunks of at least ~8 K grid nodes. A part read alone gives the values it has in
+// the whole (the hachures read their nodes a tile at a time: lines/node_tiles.hpp).
+void read_sampled(const GridNodes& nodes, const SampledWindow& s, GridWindow part, glm::vec3* pos, std::uint8_t* valid);
 
 // A Terrain of the nodes inside `w` (clamped to the grid) as `nodes` draws them, with `grid`'s
 // georeference and exaggeration (its own node arrays are not kept); the source offsets moved to w.

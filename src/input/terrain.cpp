@@ -30,24 +30,28 @@ void GridNodes::read_strided(std::size_t i0, std::size_t i1, std::size_t every, 
     for (std::size_t i = i0; i < i1; i += every) *p++ = pos[i], *v++ = valid[i];
 }
 
-SampledNodes sample_nodes(const GridNodes& nodes, GridWindow w, int step) {
-    step = std::max(step, 1);
-    w = w.clamped(nodes.cols, nodes.rows);
-    SampledNodes out;
-    if (w.c0 == w.c1 || w.r0 == w.r1) return out;
-    out.cols = (w.cols() - 1) / step + 1, out.rows = (w.rows() - 1) / step + 1;
-    out.pos.resize(std::size_t(out.cols) * out.rows), out.valid.resize(out.pos.size());
-    // rows of at least ~64 K window nodes a chunk: a small window stays on the calling thread
-    const std::size_t min_rows = std::max<std::size_t>(1, (std::size_t(1) << 16) / std::size_t(w.cols()));
-    parallel_chunks(std::size_t(out.rows), min_rows, [&](std::size_t j0, std::size_t j1) {
+SampledWindow sampled_window(const GridNodes& nodes, GridWindow w, int step) {
+    SampledWindow s;
+    s.step = std::max(step, 1);
+    s.window = w.clamped(nodes.cols, nodes.rows);
+    if (s.window.c0 == s.window.c1 || s.window.r0 == s.window.r1) return s;
+    s.cols = (s.window.cols() - 1) / s.step + 1, s.rows = (s.window.rows() - 1) / s.step + 1;
+    return s;
+}
+
+void read_sampled(const GridNodes& nodes, const SampledWindow& s, GridWindow part, glm::vec3* pos, std::uint8_t* valid) {
+    if (part.c0 >= part.c1 || part.r0 >= part.r1) return;
+    const std::size_t step = std::size_t(s.step), cols = std::size_t(part.cols());
+    const int c0 = s.window.c0 + part.c0 * s.step, c_last = s.window.c0 + (part.c1 - 1) * s.step;
+    // rows of at least ~8 K grid nodes a chunk: a tile of the hachures' (64 rows of 256 sampled
+    // nodes) on up to 4 threads, a few nodes on the calling one
+    const std::size_t min_rows = std::max<std::size_t>(1, (std::size_t(1) << 13) / (cols * step));
+    parallel_chunks(std::size_t(part.rows()), min_rows, [&](std::size_t j0, std::size_t j1) {
         for (std::size_t j = j0; j < j1; ++j) {
-            const int r = w.r0 + int(j) * step;
-            const std::size_t to = j * std::size_t(out.cols);
-            nodes.read_strided(nodes.index(w.c0, r), nodes.index(w.c1 - 1, r) + 1, std::size_t(step), &out.pos[to],
-                               &out.valid[to]);
+            const int r = s.window.r0 + (part.r0 + int(j)) * s.step;
+            nodes.read_strided(nodes.index(c0, r), nodes.index(c_last, r) + 1, step, pos + j * cols, valid + j * cols);
         }
     });
-    return out;
 }
 
 Terrain crop_nodes(const Terrain& grid, const GridNodes& nodes, GridWindow w) {

@@ -107,16 +107,35 @@ void tapered_segments(std::size_t n, const At& at, double taper_px, double taper
     }
 }
 
+// The nodes of a grid, in memory or read on demand through its cache of tiles.
+NodeTiles grid_tiles(const HachureGrid& g) {
+    if (g.pos && g.valid) return NodeTiles(g.cols, g.rows, g.pos, g.valid);
+    return NodeTiles(g.cols, g.rows, g.read, g.cache_bytes, g.tile_cols, g.tile_rows);
+}
+
 // The grid as a continuous surface: bilinear positions, bilinearly interpolated node gradients.
 class SlopeField {
 public:
-    explicit SlopeField(const HachureGrid& g) : g_(g), cache_(std::size_t(kCacheSide) * kCacheSide) {}
+    explicit SlopeField(const HachureGrid& g)
+        : g_(g), tiles_(grid_tiles(g)), cache_(std::size_t(kCacheSide) * kCacheSide) {}
     // Node gradients from differences over +-k nodes (the slope at the scale of the drawing).
     void set_stencil(int k) {
         k_ = std::max(1, k), cells_[0] = cells_[1] = Cell{};
         std::fill(cache_.begin(), cache_.end(), CachedGradient{});
     }
-    glm::dvec3 node_position(int c, int r) const { return node(c, r); }
+    glm::dvec3 node_position(int c, int r) { return node(c, r); }
+    // The same, its tile not read when not held (a lattice of a few nodes over the whole grid).
+    glm::dvec3 probe_position(int c, int r) { return drawn(tiles_.probe_pos(c, r)); }
+    // Whether node (c, r) is one the lines may use and holds data.
+    bool valid(int c, int r) {
+        return c >= g_.c0 && c < g_.c1 && r >= g_.r0 && r < g_.r1 && tiles_.valid(c, r);
+    }
+    // The tiles the nodes are read in (the whole grid when in memory), and what their cache did.
+    int tile_cols() const { return tiles_.tile_cols(); }
+    int tile_rows() const { return tiles_.tile_rows(); }
+    const NodeTileCounts& node_counts() const { return tiles_.counts(); }
+    // The row the seed lattice's sweep has reached (< 0: none): the nodes north of it go first.
+    void sweep(int r) { tiles_.sweep(r); }
 
     struct Point {
         glm::dvec3 p{0.0};    // world
@@ -149,16 +168,15 @@ public:
     }
 
 private:
-    bool valid(int c, int r) const {
-        return c >= g_.c0 && c < g_.c1 && r >= g_.r0 && r < g_.r1 && g_.valid[std::size_t(r) * g_.cols + c];
-    }
-    glm::dvec3 node(int c, int r) const {
-        glm::dvec3 p(g_.pos[std::size_t(r) * g_.cols + c]);
+    glm::dvec3 node(int c, int r) { return drawn(tiles_.pos(c, r)); }
+    // A stored position as drawn: z exaggerated, no lower than the floor.
+    glm::dvec3 drawn(glm::vec3 stored) const {
+        glm::dvec3 p(stored);
         p.z = std::max(double(float(p.z * g_.z_scale)), double(g_.floor_z));
         return p;
     }
     // Central differences (one-sided beside the edge or nodata) solved for the world gradient.
-    glm::dvec2 node_gradient(int c, int r) const {
+    glm::dvec2 node_gradient(int c, int r) {
         int cm = c, cp = c, rm = r, rp = r;
         for (int k = k_; k >= 1 && cm == c; --k) cm = valid(c - k, r) ? c - k : c;
         for (int k = k_; k >= 1 && cp == c; --k) cp = valid(c + k, r) ? c + k : c;
@@ -201,6 +219,7 @@ private:
     }
 
     const HachureGrid& g_;
+    NodeTiles tiles_;
     int k_ = 1;
     Cell cells_[2];  // the cell eval() used last, and the one before
     static constexpr int kCacheSide = 128;  // 16 Ki nodes, 384 KiB
@@ -550,24 +569,30 @@ public:
     // With a sea, in perspective: the aerial fade starts at the nearest land node in the image
     // (the water in front of a coast is not toned), not at the nearest water. A node no nearer
     // to the eye than the nearest so far is not projected (its depth is that distance).
+    // The nodes are visited a tile of the field's at a time (each read once; the nearest does
+    // not depend on the order).
     void near_land(const HachureGrid& grid) {
         double nearest = std::numeric_limits<double>::infinity();
-        for (int r = grid.r0; r < grid.r1; ++r)
-            for (int c = grid.c0; c < grid.c1; ++c) {
-                if (!grid.valid[std::size_t(r) * grid.cols + c]) continue;
-                const glm::dvec3 p = field_.node_position(c, r);
-                if (!(p.z > double(grid.floor_z))) continue;
-                if (glm::length(p - cam_.eye) > nearest * (1.0 + 1e-9)) continue;  // a margin for rounding
-                glm::dvec2 px;
-                double d;
-                if (project_(p, px, d) && px.x >= 0.0 && px.y >= 0.0 && px.x < cam_.width && px.y < cam_.height)
-                    nearest = std::min(nearest, d);
-            }
+        const int tc = field_.tile_cols(), tr = field_.tile_rows();
+        for (int r0 = grid.r0; r0 < grid.r1; r0 = (r0 / tr + 1) * tr)
+            for (int c0 = grid.c0; c0 < grid.c1; c0 = (c0 / tc + 1) * tc)
+                for (int r = r0; r < std::min(grid.r1, (r0 / tr + 1) * tr); ++r)
+                    for (int c = c0; c < std::min(grid.c1, (c0 / tc + 1) * tc); ++c) {
+                        if (!field_.valid(c, r)) continue;
+                        const glm::dvec3 p = field_.node_position(c, r);
+                        if (!(p.z > double(grid.floor_z))) continue;
+                        if (glm::length(p - cam_.eye) > nearest * (1.0 + 1e-9)) continue;  // a margin for rounding
+                        glm::dvec2 px;
+                        double d;
+                        if (project_(p, px, d) && px.x >= 0.0 && px.y >= 0.0 && px.x < cam_.width && px.y < cam_.height)
+                            nearest = std::min(nearest, d);
+                    }
         if (nearest < frame_.max_distance) near_ = std::max(near_, nearest);
     }
 
     // The stencil: about 1.5 px of ground, from the median image size of a cell over a lattice
-    // of 16 x 16 nodes that project into the image (and the median cell size, metres).
+    // of 16 x 16 nodes that project into the image (and the median cell size, metres); the
+    // lattice's nodes read alone where their tiles are not held.
     int stencil(const HachureGrid& grid) {
         std::vector<double> px_per_cell, cell_m;
         for (int i = 0; i < 16; ++i)
@@ -575,13 +600,13 @@ public:
                 const int c = grid.c0 + (grid.c1 - grid.c0 - 2) * i / 15, r = grid.r0 + (grid.r1 - grid.r0 - 2) * j / 15;
                 glm::dvec2 a, b, e;
                 double da, db, de;
-                if (!project_(field_.node_position(c, r), a, da) ||
-                    !project_(field_.node_position(c + 1, r), b, db) ||
-                    !project_(field_.node_position(c, r + 1), e, de))
+                if (!project_(field_.probe_position(c, r), a, da) ||
+                    !project_(field_.probe_position(c + 1, r), b, db) ||
+                    !project_(field_.probe_position(c, r + 1), e, de))
                     continue;
                 if (a.x < 0 || a.y < 0 || a.x >= cam_.width || a.y >= cam_.height) continue;
                 px_per_cell.push_back(std::max(glm::length(b - a), glm::length(e - a)));
-                cell_m.push_back(glm::length(glm::dvec2(field_.node_position(c + 1, r) - field_.node_position(c, r))));
+                cell_m.push_back(glm::length(glm::dvec2(field_.probe_position(c + 1, r) - field_.probe_position(c, r))));
             }
         if (!cell_m.empty()) {
             std::nth_element(cell_m.begin(), cell_m.begin() + cell_m.size() / 2, cell_m.end());
@@ -601,7 +626,8 @@ public:
         const double cells = double(std::max(grid.c1 - grid.c0 - 1, 0)) * std::max(grid.r1 - grid.r0 - 1, 0);
         const double target = double(cam_.width) * cam_.height / std::pow(2.0 * std::max(p_.spacing_min_px, 0.5), 2.0);
         const int stride = std::max(1, int(std::sqrt(cells / std::max(target, 1.0))));
-        for (int r = grid.r0; r + 1 < grid.r1; r += stride)
+        for (int r = grid.r0; r + 1 < grid.r1; r += stride) {
+            field_.sweep(r);
             for (int c = grid.c0; c + 1 < grid.c1; c += stride) {
                 // a block of cells larger than kSeedBlockPx on the image (the near ground of a perspective
                 // view) gets a sub-lattice, so every region between creases has seeds of its own
@@ -628,6 +654,8 @@ public:
                         if (seed_free(s) && line_from(s)) drain_queue();
                     }
             }
+        }
+        field_.sweep(-1);
     }
 
     // The pen's weight at each point of line id: the width that makes the ink between its
@@ -791,6 +819,8 @@ public:
         lines_ = std::move(kept_lines), w = std::move(kept_w), gap = std::move(kept_gap);
     }
 
+    const NodeTileCounts& node_counts() const { return field_.node_counts(); }
+
     std::vector<Stroke> strokes() const {
         std::vector<Stroke> out;
         out.reserve(lines_.size());
@@ -841,12 +871,14 @@ private:
 }  // namespace
 
 std::vector<Stroke> trace_hachures(const HachureGrid& grid, const HachureFrame& frame, const HachureParams& params) {
-    if (!params.enabled || !frame.camera || !grid.pos || !grid.valid || grid.c1 - grid.c0 < 2 || grid.r1 - grid.r0 < 2)
+    if (!params.enabled || !frame.camera || (!(grid.pos && grid.valid) && !grid.read) || grid.c1 - grid.c0 < 2 ||
+        grid.r1 - grid.r0 < 2)
         return {};
     Tracer tracer(grid, frame, params);
     tracer.run(grid);
     tracer.reseed();
     tracer.balance();
+    if (grid.counts) *grid.counts = tracer.node_counts();
     return tracer.strokes();
 }
 

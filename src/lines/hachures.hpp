@@ -63,7 +63,9 @@
 // lattice of the grid's cells (north to south, west to east) about one per (2 spacing_min_px)^2 of
 // image, a block wider than 9 px on the image split into up to 16 x 16 seeds. Node gradients use
 // differences over +-k nodes, k about 1.5 px of ground at the median cell size. No random numbers and no hash or thread order: the same input gives the same strokes.
-// Cost: O(drawn length + lattice seeds + image cells).
+// Cost: O(drawn length + lattice seeds + image cells). Nodes read on demand (HachureGrid::read)
+// hold at most the cache's bytes; the lines then read the tiles they walk, again where they come
+// back to a tile dropped meanwhile (lines/node_tiles.hpp).
 #pragma once
 #include <cstdint>
 #include <limits>
@@ -76,6 +78,7 @@
 #include "core/drawing.hpp"
 #include "core/pixel_mask.hpp"
 #include "lines/hachure_params.hpp"
+#include "lines/node_tiles.hpp"
 
 namespace penink {
 
@@ -85,11 +88,18 @@ inline constexpr double default_hachure_width_px = 1.0;
 // A read-only grid of nodes (the hachures' view of a DEM's nodes; the scene fills it from its
 // GridNodes): cols x rows, row-major, row 0 north; z drawn as max(z * z_scale, floor_z) (the
 // vertical exaggeration and a sea level, as GridNodes::at draws it); [c0, c1) x [r0, r1) the nodes
-// the lines may use.
+// the lines may use. The nodes are in memory (pos, valid), or, with pos null, read through `read`
+// on demand in tiles of tile_cols x tile_rows nodes, at most cache_bytes of them held (NodeTiles,
+// lines/node_tiles.hpp: the same nodes, so the same lines; `counts`, when given, gets what the
+// cache did).
 struct HachureGrid {
     int cols = 0, rows = 0;
     const glm::vec3* pos = nullptr;
     const std::uint8_t* valid = nullptr;
+    NodeReader read;
+    std::size_t cache_bytes = NodeTiles::default_budget;
+    int tile_cols = NodeTiles::default_tile_cols, tile_rows = NodeTiles::default_tile_rows;
+    NodeTileCounts* counts = nullptr;
     double z_scale = 1.0;
     float floor_z = -std::numeric_limits<float>::infinity();
     int c0 = 0, r0 = 0, c1 = 0, r1 = 0;

@@ -98,9 +98,8 @@ int hachure_node_step(const GridNodes& nodes, GridWindow w, const Camera& camera
 
 HachureNodes hachure_nodes(const FrameTerrain& terrain, const Camera& camera) {
     HachureNodes out;
-    out.step = hachure_node_step(terrain.nodes, terrain.window, camera);
-    if (out.step == 1) terrain.nodes.need(terrain.window);  // read directly by the hachures
-    else out.sampled = sample_nodes(terrain.nodes, terrain.window, out.step);
+    out.sampled = sampled_window(terrain.nodes, terrain.window, hachure_node_step(terrain.nodes, terrain.window, camera));
+    if (out.sampled.step == 1) terrain.nodes.need(terrain.window);  // read directly by the hachures
     return out;
 }
 
@@ -111,19 +110,24 @@ void add_hachures(const FrameTerrain& terrain, const Camera& camera, const Depth
 }
 
 void add_hachures(const FrameTerrain& terrain, const HachureNodes& nodes, const Camera& camera,
-                  const DepthImage& toward, const glm::dvec3& light, const HachureParams& params, Drawing& drawing) {
+                  const DepthImage& toward, const glm::dvec3& light, const HachureParams& params, Drawing& drawing,
+                  NodeTileCounts* tiles) {
     if (!params.enabled) return;
     const GridNodes& n = terrain.nodes;
     HachureGrid grid;
     grid.z_scale = n.z_scale;
     if (n.has_sea()) grid.floor_z = n.sea_z();
-    if (nodes.step == 1) {
+    const SampledWindow& sampled = nodes.sampled;
+    if (sampled.step == 1) {
         grid.cols = n.cols, grid.rows = n.rows, grid.pos = n.pos, grid.valid = n.valid;
         grid.c0 = terrain.window.c0, grid.r0 = terrain.window.r0, grid.c1 = terrain.window.c1, grid.r1 = terrain.window.r1;
     } else {
-        const SampledNodes& sampled = nodes.sampled;
-        grid.cols = sampled.cols, grid.rows = sampled.rows, grid.pos = sampled.pos.data(), grid.valid = sampled.valid.data();
+        grid.cols = sampled.cols, grid.rows = sampled.rows;
+        grid.read = [&n, &sampled](GridWindow part, glm::vec3* pos, std::uint8_t* valid) {
+            read_sampled(n, sampled, part, pos, valid);
+        };
         grid.c1 = sampled.cols, grid.r1 = sampled.rows;
+        grid.counts = tiles;
     }
     HachureFrame frame;
     frame.camera = &camera;
@@ -136,6 +140,14 @@ void add_hachures(const FrameTerrain& terrain, const HachureNodes& nodes, const 
         frame.obstacle_pens.push_back(params.obstacle_pens[i]);
     }
     drawing.layer(LayerKind::hachures).strokes = trace_hachures(grid, frame, params);
+}
+
+std::string hachure_tiles_line(const SampledWindow& sampled, const NodeTileCounts& tiles) {
+    char line[256];
+    std::snprintf(line, sizeof line, "hachures: every %d nodes (%d x %d sampled), %zu reads of %zu tiles of %d x %d, %.3g MiB held at most",
+                  sampled.step, sampled.cols, sampled.rows, tiles.reads, tiles.distinct, NodeTiles::default_tile_cols,
+                  NodeTiles::default_tile_rows, double(tiles.most_bytes) / double(1 << 20));
+    return line;
 }
 
 }  // namespace penink

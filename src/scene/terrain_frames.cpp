@@ -245,7 +245,8 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
         out.times.sil = ms_since(t0);
     }
     out.drawing.width = camera.width, out.drawing.height = camera.height;
-    // the hachures' nodes, read while the drainage lines may still be prepared on another core
+    // the hachures' nodes (their step; at step 1 the window read into place), found while the
+    // drainage lines may still be prepared on another core
     const auto t_nodes = Clock::now();
     std::optional<HachureNodes> hachure_grid;
     if (frame.lines.hachures.enabled) hachure_grid = hachure_nodes(terrain_, camera);
@@ -273,10 +274,13 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
     add_frame_lines(images, mesh_, camera, out.drawing);
     out.trace_ms = ms_since(t0);
     const auto t_hachures = Clock::now();  // after the lines they yield to
-    if (hachure_grid)
+    if (hachure_grid) {
+        NodeTileCounts tiles;
         add_hachures(terrain_, *hachure_grid, camera, images.toward,
                      light_vector(Light{frame.view.light.azimuth, frame.view.light.altitude}),
-                     hachure_pen(frame.lines.hachures, frame.style.resolved), out.drawing);
+                     hachure_pen(frame.lines.hachures, frame.style.resolved), out.drawing, &tiles);
+        if (hachure_grid->sampled.step > 1) log_.info(hachure_tiles_line(hachure_grid->sampled, tiles));
+    }
     out.hachure_ms = nodes_ms + ms_since(t_hachures);
     out.silhouette_mask = std::move(images.silhouettes);
     out.toward = std::move(images.toward);

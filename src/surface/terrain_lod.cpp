@@ -558,9 +558,9 @@ public:
 private:
     const TerrainLod& lod_;
     const GridNodes& t_;
-    // The nodes and errors read one at a time through small block caches (NodeReader): the
+    // The nodes and errors read one at a time through small block caches (NodePointReader): the
     // selection of a whole view touches a few nodes in most blocks of a large DEM.
-    mutable NodeReader reader_;
+    mutable NodePointReader reader_;
     mutable std::optional<CheckedBlocks::Cached> errors_;
     int side_, cols_, rows_;
     std::vector<std::uint32_t>* nodes_;

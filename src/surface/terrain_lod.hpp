@@ -192,7 +192,7 @@ SurfaceMesh select_lod_mesh(const TerrainLod& lod, const Terrain& t, const Camer
                             LodSelection* stats = nullptr, std::vector<std::uint32_t>* vertex_nodes = nullptr);
 // The same on nodes drawn as GridNodes::at draws them, at `exaggeration` (which scales the errors).
 // Nodes and errors of a terrain cache are read one at a time through small caches of blocks
-// (NodeReader, CheckedBlocks::Cached: about 17 MB), none kept in the cache's mapping: a whole
+// (NodePointReader, CheckedBlocks::Cached: about 17 MB), none kept in the cache's mapping: a whole
 // view of a large DEM touches a few nodes in most blocks (j29's 11687 x 9976 nodes: 420 MB of
 // blocks kept before).
 SurfaceMesh select_lod_mesh(const TerrainLod& lod, const GridNodes& nodes, double exaggeration, const Camera& camera,

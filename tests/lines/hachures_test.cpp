@@ -207,6 +207,45 @@ TEST(Hachures, SameInputSameStrokes) {
     }
 }
 
+// The grid read on demand through a cache of tiles (HachureGrid::read) draws the very strokes of
+// the grid in memory, point for point, even through a cache of 4 tiles of 32 x 16 nodes (26.6 KB
+// of the 181 x 181 grid's 426 KB) that drops tiles and reads them again as the lines come back
+// to them; it holds 4 tiles at most, and the stencil's lattice reads its nodes alone.
+TEST(Hachures, NodesReadInTilesDrawTheSameStrokes) {
+    const Terrain hill = analytic_grid(AnalyticTerrain{AnalyticShape::gaussian_hill, 250.0, 150.0, 450.0}, 5.0);
+    ASSERT_EQ(hill.cols, 181);
+    const Camera cam = plan_view(hill, 300);
+    const std::vector<Stroke> want = hachures(hill, cam, DepthImage{});
+    HachureGrid tiled = grid_of(hill);
+    tiled.pos = nullptr, tiled.valid = nullptr;
+    tiled.read = [&hill](GridWindow part, glm::vec3* pos, std::uint8_t* valid) {
+        for (int r = part.r0; r < part.r1; ++r)
+            for (int c = part.c0; c < part.c1; ++c) *pos++ = hill.pos[hill.index(c, r)], *valid++ = hill.valid[hill.index(c, r)];
+    };
+    tiled.tile_cols = 32, tiled.tile_rows = 16;
+    tiled.cache_bytes = 4 * 32 * 16 * NodeTiles::node_bytes;
+    NodeTileCounts counts;
+    tiled.counts = &counts;
+    HachureFrame f;
+    f.camera = &cam;
+    f.light = kLight;
+    f.width_px = 1.0;
+    const std::vector<Stroke> got = trace_hachures(tiled, f, styled_defaults());
+    ASSERT_GT(want.size(), 10u);
+    ASSERT_EQ(got.size(), want.size());
+    for (std::size_t i = 0; i < want.size(); ++i) {
+        ASSERT_EQ(got[i].points, want[i].points) << i;
+        ASSERT_EQ(got[i].depth, want[i].depth) << i;
+        ASSERT_EQ(got[i].weight, want[i].weight) << i;
+    }
+    std::printf("181^2 grid in tiles of 32 x 16 through 4 of them: %zu tiles read, %zu distinct, %zu nodes read alone\n",
+                counts.reads, counts.distinct, counts.probes);
+    EXPECT_EQ(counts.distinct, 6u * 12u) << "every tile of the grid";
+    EXPECT_GT(counts.reads, 2 * counts.distinct) << "tiles dropped and read again";
+    EXPECT_EQ(counts.most_bytes, tiled.cache_bytes);
+    EXPECT_EQ(counts.probes, 16u * 16u) << "the stencil's lattice, read before any tile: a node and its neighbours each";
+}
+
 // Two hills seen from the south: the near one hides the far one's foot. Every hachure point lies
 // in front of the CPU z-buffer of the same surface within a pixel (the farthest depth of its 3 x 3
 // pixels, as the outline's test: a line may touch the silhouette it ends at; 1 % of depth: the

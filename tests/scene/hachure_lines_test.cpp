@@ -69,23 +69,31 @@ TEST(HachureLines, NodeStepFollowsThePixelsACellSpans) {
 TEST(HachureLines, SampledNodesAreEveryStepthNode) {
     const StoredTerrain t = store_terrain(terrain_from_function(11, 9, 5.0, rough_hills));
     const GridNodes n = t.drawn(1.0);
-    const SampledNodes s = sample_nodes(n, GridWindow{1, 2, 11, 9}, 4);  // columns 1, 5, 9; rows 2, 6
+    const SampledWindow s = sampled_window(n, GridWindow{1, 2, 11, 9}, 4);  // columns 1, 5, 9; rows 2, 6
     ASSERT_EQ(s.cols, 3);
     ASSERT_EQ(s.rows, 2);
+    std::vector<glm::vec3> pos(6);
+    std::vector<std::uint8_t> valid(6);
+    read_sampled(n, s, GridWindow{0, 0, 3, 2}, pos.data(), valid.data());
     for (int j = 0; j < s.rows; ++j)
         for (int i = 0; i < s.cols; ++i) {
             const std::size_t from = n.index(1 + 4 * i, 2 + 4 * j), to = std::size_t(j) * s.cols + i;
-            EXPECT_EQ(s.pos[to], n.pos[from]);
-            EXPECT_EQ(s.valid[to], n.valid[from]);
+            EXPECT_EQ(pos[to], n.pos[from]);
+            EXPECT_EQ(valid[to], n.valid[from]);
         }
+    // a part alone: sampled columns 1..2 of row 1, nodes (5, 6) and (9, 6)
+    read_sampled(n, s, GridWindow{1, 1, 3, 2}, pos.data(), valid.data());
+    EXPECT_EQ(pos[0], n.pos[n.index(5, 6)]);
+    EXPECT_EQ(pos[1], n.pos[n.index(9, 6)]);
 }
 
 // The hachures of a whole view (in perspective from the south-west, 40 deg down) from the terrain
 // cache of a 2049^2 DEM (a smooth hill 400 m high, sigma 1200 m, on a 5120 m square): at
 // 1000 x 750 (every node used) the frame reads every block of the nodes; at 200 x 150 (every 4th
-// node) it reads the blocks of every 4th row (a row of 2049 nodes spans about 8 blocks
-// of 256 nodes, the block at its end shared with the next row: about 9/32 of them), well under a
-// third, and keeps none of them in place (sample_nodes: their memory is not held), nor the rows
+// node) it reads the blocks of every 4th row, a tile of 256 sampled nodes at a time (a row of 2049
+// nodes spans about 8 blocks of 256 nodes, read in 3 tiles whose edges' blocks both tiles read:
+// about 10/32 of them, and the 2 x 2 nodes of the stencil's lattice of 16 x 16), under 0.4 of
+// them, and keeps none of them in place (read_sampled: their memory is not held), nor the rows
 // between; both draw hachures.
 TEST(HachureLines, WholeViewOfAFineDemReadsWhatTheImageNeeds) {
     test::TempDir dir;
@@ -112,14 +120,14 @@ TEST(HachureLines, WholeViewOfAFineDemReadsWhatTheImageNeeds) {
     EXPECT_GT(hachures(200, 150, coarse, &rows), 10u);
     std::printf("hachures of a 2049^2 cache: %llu bytes read at 1000x750, %llu at 200x150\n",
                 (unsigned long long)full, (unsigned long long)coarse);
-    EXPECT_LT(coarse * 3, full);
+    EXPECT_LT(double(coarse), 0.4 * double(full));
     EXPECT_EQ(rows, std::vector<bool>(8, false));
 }
 
-// The hachures traced on nodes read beforehand (hachure_nodes, as a frame reads them while its
-// drainage lines are prepared) are the hachures add_hachures reads and traces itself, point for
-// point, on the fine DEM's cache at every 4th node (200 x 150) and at every node (1000 x 750,
-// its window then read into place).
+// The hachures traced on nodes found beforehand (hachure_nodes, as a frame finds them while its
+// drainage lines are prepared) are the hachures add_hachures finds and traces itself, point for
+// point, on the fine DEM's cache at every 4th node (200 x 150: read by tiles as the lines reach
+// them) and at every node (1000 x 750, its window then read into place).
 TEST(HachureLines, NodesReadBeforehandDrawTheSameHachures) {
     test::TempDir dir;
     const std::string path = fine_dem_cache(dir);
@@ -131,12 +139,21 @@ TEST(HachureLines, NodesReadBeforehandDrawTheSameHachures) {
         const FrameTerrain terrain = whole_frame(*map);
         const Camera cam = whole_view(*map, width, height, true);
         const HachureNodes nodes = hachure_nodes(terrain, cam);
-        ASSERT_EQ(nodes.step, step);
-        EXPECT_EQ(nodes.sampled.cols, step == 1 ? 0 : 2048 / step + 1);
+        ASSERT_EQ(nodes.sampled.step, step);
+        EXPECT_EQ(nodes.sampled.cols, 2048 / step + 1);
         EXPECT_EQ(map->nodes.blocks->has_read(GridNodes::pos_array, map->nodes.index(1024, 1000)), step == 1)
             << "the window read into place at step 1 alone";
         Drawing beforehand, itself;
-        add_hachures(terrain, nodes, cam, DepthImage{}, light, hachure_defaults(), beforehand);
+        NodeTileCounts tiles;
+        add_hachures(terrain, nodes, cam, DepthImage{}, light, hachure_defaults(), beforehand, &tiles);
+        // at every 4th node 513 x 513 sampled nodes (3.4 MB) in 3 x 9 tiles of 256 x 64, all held
+        // at once: each read once
+        EXPECT_EQ(tiles.distinct, step == 1 ? 0u : 27u);
+        EXPECT_EQ(tiles.reads, tiles.distinct);
+        if (step > 1) {
+            EXPECT_EQ(hachure_tiles_line(nodes.sampled, tiles),
+                      "hachures: every 4 nodes (513 x 513 sampled), 27 reads of 27 tiles of 256 x 64, 5.48 MiB held at most");
+        }
         add_hachures(terrain, cam, DepthImage{}, light, hachure_defaults(), itself);
         const std::vector<Stroke>& a = beforehand.layer(LayerKind::hachures).strokes;
         const std::vector<Stroke>& b = itself.layer(LayerKind::hachures).strokes;

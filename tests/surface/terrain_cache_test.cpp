@@ -340,7 +340,7 @@ TEST(TerrainCache, SmallViewReadsASmallPartAndOnlyItsDamageCounts) {
     EXPECT_LT(blocks.bytes_read() * 8, file_bytes);
     EXPECT_LT(blocks.blocks_read() * 8, blocks.block_count());
     // a block of node positions the frame did not read (the DEM's south-east) and one it read;
-    // the selection reads its nodes through a small cache of blocks (NodeReader), keeping none
+    // the selection reads its nodes through a small cache of blocks (NodePointReader), keeping none
     const std::uint64_t unread = map->nodes.index(900, 900), read = map->nodes.index(200, 200);
     ASSERT_FALSE(blocks.has_read(GridNodes::pos_array, unread));
     ASSERT_FALSE(blocks.has_read(GridNodes::pos_array, read));
@@ -386,11 +386,44 @@ TEST(TerrainCache, CodedFileIsAFractionOfItsFloats) {
     }
 }
 
-// sample_nodes on a cache's nodes gives what it gives on the Terrain's own, bit for bit (x, y
-// derived for the sampled nodes alone, where the cache derives them): the whole grid, windows
-// reaching the last column and row or not, steps within a block (256 nodes) and past it; none of
-// the blocks is read into place (their memory not kept). Then, with rows of the grid read into
-// place (a frame's mesh), the same again, those rows taken from memory.
+// The sampled nodes of window w at `step` (sampled_window), read whole, or (tile > 0) a tile of
+// tile x tile of them at a time (read_sampled of each, as the hachures read them).
+struct Sampled {
+    SampledWindow s;
+    std::vector<glm::vec3> pos;
+    std::vector<std::uint8_t> valid;
+};
+Sampled sample(const GridNodes& nodes, GridWindow w, int step, int tile = 0) {
+    Sampled out;
+    out.s = sampled_window(nodes, w, step);
+    out.pos.resize(std::size_t(out.s.cols) * std::size_t(out.s.rows)), out.valid.resize(out.pos.size());
+    if (tile <= 0) {
+        read_sampled(nodes, out.s, GridWindow{0, 0, out.s.cols, out.s.rows}, out.pos.data(), out.valid.data());
+        return out;
+    }
+    std::vector<glm::vec3> pos;
+    std::vector<std::uint8_t> valid;
+    for (int r0 = 0; r0 < out.s.rows; r0 += tile)
+        for (int c0 = 0; c0 < out.s.cols; c0 += tile) {
+            const GridWindow part = GridWindow{c0, r0, c0 + tile, r0 + tile}.clamped(out.s.cols, out.s.rows);
+            pos.resize(std::size_t(part.cols()) * std::size_t(part.rows())), valid.resize(pos.size());
+            read_sampled(nodes, out.s, part, pos.data(), valid.data());
+            for (int r = part.r0; r < part.r1; ++r)
+                for (int c = part.c0; c < part.c1; ++c) {
+                    const std::size_t from = std::size_t(r - r0) * std::size_t(part.cols()) + std::size_t(c - c0);
+                    out.pos[std::size_t(r) * std::size_t(out.s.cols) + std::size_t(c)] = pos[from];
+                    out.valid[std::size_t(r) * std::size_t(out.s.cols) + std::size_t(c)] = valid[from];
+                }
+        }
+    return out;
+}
+
+// The sampled nodes of a cache's nodes are what they are on the Terrain's own, bit for bit (x, y
+// derived for the sampled nodes alone, where the cache derives them), read whole or in tiles of
+// 5 x 5: the whole grid, windows reaching the last column and row or not, steps within a block
+// (256 nodes) and past it; none of the blocks is read into place (their memory not kept). Then,
+// with rows of the grid read into place (a frame's mesh), the same again, those rows taken from
+// memory.
 void expect_sampled_as_in_memory(const StoredTerrain& map, const Terrain& t) {
     const GridNodes mem = grid_nodes(t);
     const CheckedBlocks& blocks = *map.nodes.blocks;
@@ -399,15 +432,16 @@ void expect_sampled_as_in_memory(const StoredTerrain& map, const Terrain& t) {
         SCOPED_TRACE(some_in_place ? "rows read into place" : "nothing read into place");
         if (some_in_place) map.nodes.need(GridWindow{0, t.rows / 4, t.cols, t.rows / 2});
         for (const GridWindow& w : windows)
-            for (const int step : {1, 2, 3, 4, 7, 64, 300}) {
-                const SampledNodes want = sample_nodes(mem, w, step), got = sample_nodes(map.nodes, w, step);
-                ASSERT_EQ(got.cols, want.cols);
-                ASSERT_EQ(got.rows, want.rows);
-                ASSERT_EQ(got.pos.size(), want.pos.size());
-                ASSERT_EQ(std::memcmp(got.pos.data(), want.pos.data(), want.pos.size() * sizeof(glm::vec3)), 0)
-                    << w.c0 << " " << w.r0 << " step " << step;
-                ASSERT_EQ(got.valid, want.valid) << w.c0 << " " << w.r0 << " step " << step;
-            }
+            for (const int step : {1, 2, 3, 4, 7, 64, 300})
+                for (const int tile : {0, 5}) {
+                    const Sampled want = sample(mem, w, step), got = sample(map.nodes, w, step, tile);
+                    ASSERT_EQ(got.s.cols, want.s.cols);
+                    ASSERT_EQ(got.s.rows, want.s.rows);
+                    ASSERT_EQ(got.pos.size(), want.pos.size());
+                    ASSERT_EQ(std::memcmp(got.pos.data(), want.pos.data(), want.pos.size() * sizeof(glm::vec3)), 0)
+                        << w.c0 << " " << w.r0 << " step " << step << " tile " << tile;
+                    ASSERT_EQ(got.valid, want.valid) << w.c0 << " " << w.r0 << " step " << step << " tile " << tile;
+                }
         EXPECT_GT(blocks.bytes_read(), 0u);
         for (int r = 0; r < t.rows; ++r) {
             // (the blocks at the ends of the rows read hold nodes of the rows beside them)
