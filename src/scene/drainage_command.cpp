@@ -20,10 +20,12 @@
 #include "export/atomic_file.hpp"
 #include "scene/scene_inputs.hpp"
 #include <fstream>
+#include <future>
 #include "scene/terrain_view.hpp"
 #include "core/memory_budget.hpp"
 #include "core/progress_bar.hpp"
 #include "drainage/drainage_memory.hpp"
+#include "scene/cache_build_estimate.hpp"
 #include "drainage/drainage_rasters.hpp"
 #include "input/dem_reader.hpp"
 
@@ -111,6 +113,39 @@ std::vector<std::string> raster_paths(const std::string& dir) {
     return paths;
 }
 
+// The terrain cache of the render's caches built on another thread (open_stored_terrain: kept
+// when valid, else built and written) while the drainage database is built. Destroyed before
+// finish() (the drainage build failed), it waits for the build and removes the terrain cache when
+// there was none before.
+class TerrainBeside {
+public:
+    void start(const std::string& dem, const std::string& cache_dir, const std::string& path) {
+        std::error_code ec;
+        path_ = path, existed_ = std::filesystem::exists(path, ec);
+        build_ = std::async(std::launch::async, [dem, cache_dir] { open_stored_terrain(dem, Log{}, cache_dir); });
+    }
+    // Waits for the build (its error thrown here); false when none was started.
+    bool finish() {
+        if (!build_.valid()) return false;
+        build_.get();
+        return true;
+    }
+    ~TerrainBeside() {
+        if (!build_.valid()) return;
+        try {
+            build_.get();
+        } catch (...) {  // the drainage build's error is the one reported
+        }
+        std::error_code ec;
+        if (!existed_) std::filesystem::remove(path_, ec);
+    }
+
+private:
+    std::future<void> build_;
+    std::string path_;
+    bool existed_ = true;
+};
+
 int run(const DrainageCommand& cmd, std::ostream& log) {
     const auto t0 = Clock::now();
     StageTimer timer{log};
@@ -134,6 +169,18 @@ int run(const DrainageCommand& cmd, std::ostream& log) {
         for (const std::string& r : rasters)
             if (std::filesystem::exists(std::filesystem::symlink_status(r, ec)) && !is_drainage_raster(r))
                 throw Error("drainage", r, "exists and was not written by penink drainage (--rasters replaces only its own rasters)");
+    }
+    // The render's caches: the terrain cache too, built beside the drainage database on another
+    // thread where the budget holds both builds' peaks (most drainage stages keep one core:
+    // filling, flats, ties, accumulation), else after it. If the drainage build fails, a terrain
+    // cache this command wrote is removed with it (the outputs of one command, together or not).
+    const bool render_caches = out == drainage_cache_path(cmd.dem, cmd.cache_dir);
+    const std::string terrain_cache = render_caches ? terrain_cache_path(cmd.dem, cmd.cache_dir) : std::string();
+    TerrainBeside terrain;
+    if (render_caches) {
+        const double both = drainage_points(size.cols, size.rows, factor) * drainage_bytes_per_point +
+                            terrain_cache_estimate(size.cols, size.rows).peak_bytes;
+        if (budget == 0 || both <= double(budget)) terrain.start(cmd.dem, cmd.cache_dir, terrain_cache);
     }
     DemOptions read;
     read.heights_only = cmd.resample == 1;  // factor 1 needs no positions on an affine grid
@@ -183,11 +230,9 @@ int run(const DrainageCommand& cmd, std::ostream& log) {
         throw;
     }
     remove_crease_tiles(out);  // the tiles of the database replaced: all of another key
-    std::string terrain_cache;
-    if (out == drainage_cache_path(cmd.dem, cmd.cache_dir)) {  // render's caches: the terrain cache beside the drainage database too
+    if (render_caches) {  // the terrain cache's build, or what is left of it
         timer.next("terrain cache");
-        terrain_cache = terrain_cache_path(cmd.dem, cmd.cache_dir);
-        open_stored_terrain(cmd.dem, Log{}, cmd.cache_dir);  // kept when valid, else built and written
+        if (!terrain.finish()) open_stored_terrain(cmd.dem, Log{}, cmd.cache_dir);  // kept when valid, else built and written
     }
     timer.next("");
     const double secs = std::chrono::duration<double>(Clock::now() - t0).count();

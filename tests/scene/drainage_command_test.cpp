@@ -3,6 +3,7 @@
 // with the default options the file is the cache the render path reads (same file, not
 // rewritten) at any vertical exaggeration.
 #include <filesystem>
+#include <fstream>
 #include <set>
 #include <sstream>
 
@@ -18,6 +19,8 @@
 #include "input/dem_reader.hpp"
 #include "drainage/drainage_db.hpp"
 #include "drainage/stored_creases.hpp"
+#include "drainage/drainage_memory.hpp"
+#include "scene/cache_build_estimate.hpp"
 
 namespace penink {
 namespace {
@@ -173,4 +176,86 @@ TEST(DrainageCommand, RoutingReachesTheFingerprint) {
 }
 
 }  // namespace
+}  // namespace penink
+
+namespace penink {
+namespace {
+
+// The bytes of a file ("" when it cannot be read).
+std::string file_bytes(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// A folder of its own holding volcano.asc and its .prj.
+fs::path volcano_folder(const std::string& name) {
+    const fs::path d = fs::temp_directory_path() / ("penink_" + name + "_" + std::to_string(::getpid()));
+    fs::remove_all(d);
+    fs::create_directories(d);
+    fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.asc", d / "volcano.asc");
+    fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.prj", d / "volcano.prj");
+    return d;
+}
+
+}  // namespace
+
+// The render's caches: the terrain cache is built beside the drainage database where the memory
+// budget holds both builds, after it where it holds the drainage build alone (a budget of the
+// drainage estimate plus a megabyte, under the two: the terrain cache's estimate is more); the
+// same two files either way.
+TEST(DrainageCommand, TerrainCacheBesideOrAfterTheDrainageIsTheSameFile) {
+    std::string dv[2], lod[2];
+    const fs::path d = volcano_folder("dbeside");  // one DEM path: the caches name it
+    for (const bool after : {false, true}) {
+        fs::remove(d / "volcano.asc.dv"), fs::remove(d / "volcano.asc.lod");
+        DrainageCommand cmd;
+        cmd.dem = (d / "volcano.asc").string();
+        cmd.quiet = true;
+        if (after) {
+            const DemSize size = read_dem_size(cmd.dem);
+            const int factor = drainage_factor_for(size.cols, size.rows, 0);
+            cmd.max_memory = std::uint64_t(drainage_points(size.cols, size.rows, factor) * drainage_bytes_per_point) + (1u << 20);
+            ASSERT_LT(double(cmd.max_memory), drainage_points(size.cols, size.rows, factor) * drainage_bytes_per_point +
+                                                  terrain_cache_estimate(size.cols, size.rows).peak_bytes);
+        }
+        std::ostringstream log;
+        ASSERT_EQ(run_drainage_command(cmd, log), 0) << log.str();
+        dv[after] = file_bytes(cmd.dem + ".dv"), lod[after] = file_bytes(cmd.dem + ".lod");
+        EXPECT_GT(dv[after].size(), 1000u);
+        EXPECT_GT(lod[after].size(), 1000u);
+    }
+    fs::remove_all(d);
+    EXPECT_TRUE(dv[0] == dv[1]);
+    EXPECT_TRUE(lod[0] == lod[1]);
+}
+
+// A drainage command that fails once both builds have started (its rasters' folder is a file)
+// leaves neither cache: the terrain cache built beside it is removed; one there before is kept.
+TEST(DrainageCommand, AFailedBuildLeavesNoTerrainCacheOfItsOwn) {
+    const fs::path d = volcano_folder("dfail");
+    DrainageCommand cmd;
+    cmd.dem = (d / "volcano.asc").string();
+    cmd.quiet = true;
+    cmd.rasters_dir = (d / "rasters").string();
+    std::ofstream(cmd.rasters_dir) << "not a folder";
+    std::ostringstream log;
+    EXPECT_EQ(run_drainage_command(cmd, log), 2);
+    EXPECT_NE(log.str().find("rasters"), std::string::npos) << log.str();
+    EXPECT_FALSE(fs::exists(cmd.dem + ".dv"));
+    EXPECT_FALSE(fs::exists(cmd.dem + ".lod"));
+    // a terrain cache there before the command stays
+    DrainageCommand ok;
+    ok.dem = cmd.dem, ok.quiet = true;
+    ASSERT_EQ(run_drainage_command(ok, log), 0) << log.str();
+    fs::remove(cmd.dem + ".dv");
+    const std::string before = file_bytes(cmd.dem + ".lod");
+    ASSERT_GT(before.size(), 1000u);
+    EXPECT_EQ(run_drainage_command(cmd, log), 2);
+    EXPECT_EQ(file_bytes(cmd.dem + ".lod"), before);
+    EXPECT_FALSE(fs::exists(cmd.dem + ".dv"));
+    fs::remove_all(d);
+}
+
 }  // namespace penink
