@@ -174,6 +174,9 @@ int run(const DrainageCommand& cmd, std::ostream& log) {
     // thread where the budget holds both builds' peaks (most drainage stages keep one core:
     // filling, flats, ties, accumulation), else after it. If the drainage build fails, a terrain
     // cache this command wrote is removed with it (the outputs of one command, together or not).
+    // a long build announced with its estimate (the automatic factor's: DEMs over 10 M cells)
+    if (!cmd.quiet && factor == drainage_factor_for(size.cols, size.rows, 0))
+        announce_cache_build(log, CacheKind::drainage, size.cols, size.rows);
     const bool render_caches = out == drainage_cache_path(cmd.dem, cmd.cache_dir);
     const std::string terrain_cache = render_caches ? terrain_cache_path(cmd.dem, cmd.cache_dir) : std::string();
     TerrainBeside terrain;
