@@ -14,6 +14,10 @@ double drainage_points(int cols, int rows, int factor) {
     return (std::max(cols - 1, 0) * f + 1.0) * (std::max(rows - 1, 0) * f + 1.0);
 }
 
+double drainage_build_bytes(int cols, int rows, int factor) {
+    return drainage_points(cols, rows, factor) * drainage_bytes_per_point;
+}
+
 int drainage_factor_for(int cols, int rows, int resample) {
     if (resample > 0) return resample;
     Terrain size_only;  // drainage_resample_factor reads the size alone
@@ -27,7 +31,7 @@ void check_drainage_memory(const std::string& stage, const std::string& file, in
     char grid[96];
     std::snprintf(grid, sizeof grid, "%.0fx%.0f", std::max(cols - 1, 0) * f + 1.0, std::max(rows - 1, 0) * f + 1.0);
     check_memory(stage, file, "the drainage grid at factor " + std::to_string(factor) + " (" + grid + " points)",
-                 drainage_points(cols, rows, factor) * drainage_bytes_per_point, budget);
+                 drainage_build_bytes(cols, rows, factor), budget);
 }
 
 }  // namespace penink

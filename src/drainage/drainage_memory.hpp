@@ -20,6 +20,10 @@ constexpr double dv_file_bytes_per_point = 0.5;
 // as a double (no wrap for any factor).
 double drainage_points(int cols, int rows, int factor);
 
+// Bytes a build of a cols x rows DEM at `factor` is counted to need: drainage_points times
+// drainage_bytes_per_point (what check_drainage_memory checks against the budget).
+double drainage_build_bytes(int cols, int rows, int factor);
+
 // The factor a build of a cols x rows DEM uses: `resample` when > 0, else the automatic one
 // (drainage_resample_factor with the default point budget).
 int drainage_factor_for(int cols, int rows, int resample);

@@ -91,7 +91,6 @@ public:
     }
     glm::vec3 at(int c, int r) { return at(n_.index(c, r)); }
     bool has_data(std::size_t i) { return valid_ ? *valid_->element(i) != 0 : n_.has_data(i); }
-    const GridNodes& nodes() const { return n_; }
 
 private:
     const GridNodes& n_;

@@ -170,19 +170,19 @@ int run(const DrainageCommand& cmd, std::ostream& log) {
             if (std::filesystem::exists(std::filesystem::symlink_status(r, ec)) && !is_drainage_raster(r))
                 throw Error("drainage", r, "exists and was not written by penink drainage (--rasters replaces only its own rasters)");
     }
+    // a long build announced with its estimate (the automatic factor's: DEMs over 10 M cells)
+    if (!cmd.quiet && factor == drainage_factor_for(size.cols, size.rows, 0))
+        announce_cache_build(log, CacheKind::drainage, size.cols, size.rows);
     // The render's caches: the terrain cache too, built beside the drainage database on another
     // thread where the budget holds both builds' peaks (most drainage stages keep one core:
     // filling, flats, ties, accumulation), else after it. If the drainage build fails, a terrain
     // cache this command wrote is removed with it (the outputs of one command, together or not).
-    // a long build announced with its estimate (the automatic factor's: DEMs over 10 M cells)
-    if (!cmd.quiet && factor == drainage_factor_for(size.cols, size.rows, 0))
-        announce_cache_build(log, CacheKind::drainage, size.cols, size.rows);
     const bool render_caches = out == drainage_cache_path(cmd.dem, cmd.cache_dir);
     const std::string terrain_cache = render_caches ? terrain_cache_path(cmd.dem, cmd.cache_dir) : std::string();
     TerrainBeside terrain;
     if (render_caches) {
-        const double both = drainage_points(size.cols, size.rows, factor) * drainage_bytes_per_point +
-                            terrain_cache_estimate(size.cols, size.rows).peak_bytes;
+        const double both =
+            drainage_build_bytes(size.cols, size.rows, factor) + terrain_cache_estimate(size.cols, size.rows).peak_bytes;
         if (budget == 0 || both <= double(budget)) terrain.start(cmd.dem, cmd.cache_dir, terrain_cache);
     }
     DemOptions read;

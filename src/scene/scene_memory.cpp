@@ -28,8 +28,7 @@ void check_scene_memory(const Scene& scene, std::uint64_t max_memory) {
     }
     const std::uint64_t budget = memory_budget(max_memory);
     const DemSize size = read_dem_size(scene.source.dem);
-    const double drainage = drainage_points(size.cols, size.rows, drainage_factor_for(size.cols, size.rows, 0)) *
-                            drainage_bytes_per_point;
+    const double drainage = drainage_build_bytes(size.cols, size.rows, drainage_factor_for(size.cols, size.rows, 0));
     // the level-of-detail pyramid's errors over the padded square (a long thin DEM's square is
     // far larger than its nodes), and the pyramid rebuilt for a sea level
     const double side = std::ldexp(1.0, lod_padded_levels(size.cols, size.rows)) + 1.0;

@@ -43,7 +43,8 @@
 // (core/checked_blocks.hpp: pread, never mapped, so a file cut short meanwhile cannot fault the
 // process), each block checked against its checksum and then decoded into place: a frame reads,
 // checks and decodes only the blocks its level-of-detail selection and its view
-// window touch (GridNodes::need, TerrainLod::error_at), so its time and memory follow the image,
+// window touch (GridNodes::need; the selection through CheckedBlocks::Cached, keeping none), so
+// its time and memory follow the image,
 // not the DEM. A damaged block is found when it is first needed and throws DamagedBlockError;
 // draw_scene (scene/frame_source.hpp) then removes the cache and draws again from a rebuilt one.
 // Written to a temporary file and renamed into place. Built from a DEM file by

@@ -87,8 +87,8 @@ struct TerrainLod {
     // into `storage` (an array in memory, or a cache file read on demand).
     std::span<const float> error;
     std::shared_ptr<const void> storage;
-    // The cache file `error` is read from on demand (array 2, core/checked_blocks.hpp); null: in
-    // memory. error_at reads its node's block first.
+    // The cache file `error` is read from on demand (array 2, core/checked_blocks.hpp: the
+    // selection reads it through a CheckedBlocks::Cached); null: in memory.
     const CheckedBlocks* blocks = nullptr;
     static constexpr int error_array = 2;
     float lipschitz = 0.0f;      // L: the plan positions' Lipschitz constant over the grid, metres per grid unit
@@ -98,10 +98,6 @@ struct TerrainLod {
     double sea_level = -std::numeric_limits<double>::infinity();
 
     int side() const { return (1 << levels) + 1; }
-    float error_at(std::size_t k) const {
-        if (blocks) blocks->need(error_array, k, k + 1);
-        return error[k];
-    }
     std::size_t index(int c, int r) const { return std::size_t(r) * std::size_t(side()) + std::size_t(c); }
     // The nested plan radius of node (c, r), metres: L times the grid-unit radius of its level;
     // 0 at the padded square's corners (never split).
@@ -193,8 +189,7 @@ SurfaceMesh select_lod_mesh(const TerrainLod& lod, const Terrain& t, const Camer
 // The same on nodes drawn as GridNodes::at draws them, at `exaggeration` (which scales the errors).
 // Nodes and errors of a terrain cache are read one at a time through small caches of blocks
 // (NodePointReader, CheckedBlocks::Cached: about 17 MB), none kept in the cache's mapping: a whole
-// view of a large DEM touches a few nodes in most blocks (j29's 11687 x 9976 nodes: 420 MB of
-// blocks kept before).
+// view of a large DEM touches a few nodes in most blocks, which kept would hold hundreds of MB.
 SurfaceMesh select_lod_mesh(const TerrainLod& lod, const GridNodes& nodes, double exaggeration, const Camera& camera,
                             const LodOptions& options, LodSelection* stats = nullptr,
                             std::vector<std::uint32_t>* vertex_nodes = nullptr);

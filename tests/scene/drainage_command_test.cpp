@@ -216,9 +216,9 @@ TEST(DrainageCommand, TerrainCacheBesideOrAfterTheDrainageIsTheSameFile) {
         if (after) {
             const DemSize size = read_dem_size(cmd.dem);
             const int factor = drainage_factor_for(size.cols, size.rows, 0);
-            cmd.max_memory = std::uint64_t(drainage_points(size.cols, size.rows, factor) * drainage_bytes_per_point) + (1u << 20);
-            ASSERT_LT(double(cmd.max_memory), drainage_points(size.cols, size.rows, factor) * drainage_bytes_per_point +
-                                                  terrain_cache_estimate(size.cols, size.rows).peak_bytes);
+            cmd.max_memory = std::uint64_t(drainage_build_bytes(size.cols, size.rows, factor)) + (1u << 20);
+            ASSERT_LT(double(cmd.max_memory),
+                      drainage_build_bytes(size.cols, size.rows, factor) + terrain_cache_estimate(size.cols, size.rows).peak_bytes);
         }
         std::ostringstream log;
         ASSERT_EQ(run_drainage_command(cmd, log), 0) << log.str();
