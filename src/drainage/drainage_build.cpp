@@ -399,12 +399,13 @@ DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& te
         say(std::string(e.what()) + "; rebuilding");
     }
     const int factor = drainage_resample_factor(terrain, options);
-    const std::optional<DemHeightsRef> dem = heights_ref(dem_path, terrain, factor);
+    std::optional<DemHeightsRef> dem;  // of the Terrain the grid is made from (its UTM zone: the one read)
     report(progress, "resampling the PN surface", 0.0);
     DrainageGrid g;
     std::string crs = terrain.crs_wkt;
     if (terrain.vertical_exaggeration == 1.0 && terrain.pos.size() == terrain.size() &&
         terrain.valid.size() == terrain.size()) {
+        dem = heights_ref(dem_path, terrain, factor);
         g = resample_pn(terrain, factor);
     } else {  // the heights unexaggerated, as `penink drainage` reads them (or only the grid's size was given)
         DemOptions read;
@@ -414,6 +415,7 @@ DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& te
         if (flat.cols != terrain.cols || flat.rows != terrain.rows)
             throw Error("drainage", dem_path, "DEM changed while it was read");
         crs = flat.crs_wkt;
+        dem = heights_ref(dem_path, flat, factor);
         g = resample_pn_releasing(flat, factor);
     }
     DrainageResult res;

@@ -147,8 +147,10 @@ bool occupied_by_other_than_file(const std::string& path);
 // and the database built in memory.
 // Returns what a lines-only read gives (drainage_lines_only) either way. `terrain` is the DEM
 // read with any vertical exaggeration, or only its grid and georeference (no node arrays, as the
-// terrain cache gives them): unless it holds the heights unexaggerated, a build reads the DEM
-// again at 1 (heights only at factor 1). Every decision is reported through `log`.
+// terrain cache gives them), or only its size (cols, rows: all a build that reads the DEM needs):
+// unless it holds the heights unexaggerated, a build reads the DEM again at 1 (heights only at
+// factor 1, in the standard UTM zone of a geographic DEM's centre unless `terrain` names another)
+// and takes its georeference from that read. Every decision is reported through `log`.
 // With `in_file`, a valid cache is read without its lines' vertices (read_drainage_line_index:
 // its records and index checked, the same errors and rebuild) and *in_file says
 // where they are; after a build in_file->file stays empty and the database holds them.

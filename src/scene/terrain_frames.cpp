@@ -155,17 +155,20 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terra
     return source;
 }
 
+void read_whole_when_damaged(DrainageLineSource& source, const Scene& scene, const StoredTerrain& dem, const Log& log) {
+    if (!source.vertices.file) return;
+    const DrainageOptions options = scene_drainage_options(scene, &dem.key);
+    source.read_whole = [dem_path = scene.source.dem, meta = dem.meta, options, log] {
+        log.info("drainage: " + dem_path + ": damaged drainage cache; reading it whole");
+        return load_or_build_drainage(dem_path, meta, options, [&log](const std::string& m) { log.info(m); });
+    };
+}
+
 std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const SceneTerrain& dem, const Log& log) {
     const TerrainCacheKey* key = &dem.stored.key;
     std::optional<DrainageLineSource> source = dem.stored.in_memory ? scene_drainage(scene, *dem.stored.in_memory, log, key)
                                                                     : scene_drainage(scene, dem.stored.meta, log, key);
-    if (source && source->vertices.file) {  // vertices or crease source found damaged while drawn: the cache read whole, or rebuilt
-        const DrainageOptions options = scene_drainage_options(scene, key);
-        source->read_whole = [dem_path = scene.source.dem, meta = dem.stored.meta, options, log] {
-            log.info("drainage: " + dem_path + ": damaged drainage cache; reading it whole");
-            return load_or_build_drainage(dem_path, meta, options, [&log](const std::string& m) { log.info(m); });
-        };
-    }
+    if (source) read_whole_when_damaged(*source, scene, dem.stored, log);
     return source;
 }
 
@@ -296,6 +299,7 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
 SceneView open_terrain_view(Scene& scene, GlContext& context, const Log& log, TerrainKeep* keep) {
     TerrainKeep once;  // without a keep: what this view reads and builds, for it alone
     TerrainKeep& k = keep ? *keep : once;
+    k.build_side_by_side(scene, log);  // a large DEM's first drawing: both caches at once
     const SceneTerrain dem = k.terrain(scene, log);
     SceneView view;
     view.camera = scene_camera(scene, dem);

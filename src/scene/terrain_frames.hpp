@@ -43,7 +43,12 @@ SceneView open_terrain_view(Scene& scene, GlContext& context, const Log& log, Te
 // cell DEM: 466 MB, about 0.2 s).
 std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terrain& dem, const Log& log,
                                                  const TerrainCacheKey* key = nullptr);
+// The same from the DEM's stored terrain (its node arrays when in memory, else its grid; its key),
+// with read_whole_when_damaged.
 std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const SceneTerrain& dem, const Log& log);
+// Sets source.read_whole (when its vertices are read from the file): the cache read whole, or
+// rebuilt, from the DEM's stored terrain `dem` (its grid and key), once found damaged while drawn.
+void read_whole_when_damaged(DrainageLineSource& source, const Scene& scene, const StoredTerrain& dem, const Log& log);
 
 // A terrain set up once and drawn in many frames (render, batch, bench): its level-of-detail
 // pyramid (surface/terrain_lod.hpp), from which each frame selects the mesh its camera needs

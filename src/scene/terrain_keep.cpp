@@ -1,6 +1,15 @@
 #include "scene/terrain_keep.hpp"
 
+#include <chrono>
 #include <filesystem>
+#include <future>
+#include <iostream>
+
+#include "core/error.hpp"
+#include "core/memory_budget.hpp"
+#include "drainage/drainage_build.hpp"
+#include "drainage/drainage_memory.hpp"
+#include "input/dem_reader.hpp"
 
 #include "scene/terrain_frames.hpp"
 
@@ -13,6 +22,53 @@ TerrainKeep::DemKey TerrainKeep::key_of(const Scene& scene) {
     const auto t = std::filesystem::last_write_time(scene.source.dem, ec);
     if (!ec) k.mtime_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count();
     return k;
+}
+
+bool TerrainKeep::build_side_by_side(const Scene& scene, const Log& log, double from_cells) {
+    if (!scene.lines.creases.enabled && !scene.lines.ridges.enabled) return false;
+    const DemKey key = key_of(scene);
+    if ((stored_ && key == stored_key_) || (drainage_ && key == drainage_key_)) return false;
+    const std::string& dem = scene.source.dem;
+    const std::string& dir = scene.terrain.cache_dir;
+    std::error_code ec;
+    for (const std::string& p : {dem + ".lod", terrain_cache_path(dem, dir), dem + ".dv", drainage_cache_path(dem, dir)})
+        if (std::filesystem::exists(std::filesystem::symlink_status(p, ec))) return false;
+    DemSize size;
+    try {
+        size = read_dem_size(dem);
+    } catch (const Error&) {  // named by the terrain cache's build, one after the other
+        return false;
+    }
+    if (double(size.cols) * double(size.rows) <= from_cells) return false;
+    const double both = drainage_build_bytes(size.cols, size.rows, drainage_factor_for(size.cols, size.rows, 0)) +
+                        terrain_cache_estimate(size.cols, size.rows).peak_bytes;
+    if (const std::uint64_t budget = memory_budget(0); budget != 0 && both > double(budget)) return false;
+    const TerrainCacheKey dem_key = terrain_cache_key(dem);  // the drainage fingerprint's content hash
+    announce_cache_build(std::cerr, CacheKind::terrain, size.cols, size.rows);
+    const auto t0 = std::chrono::steady_clock::now();
+    std::future<StoredTerrain> terrain =  // silent: its log lines would cut the drainage build's
+        std::async(std::launch::async, [dem, dir] { return open_stored_terrain(dem, Log{}, dir, false); });
+    Terrain grid;  // all a drainage build that reads the DEM needs before it does
+    grid.cols = size.cols, grid.rows = size.rows, grid.source = dem;
+    std::optional<DrainageLineSource> source;
+    try {
+        source = scene_drainage(scene, grid, log, &dem_key);
+    } catch (...) {
+        terrain.get();  // the terrain cache's error first, as one after the other
+        throw;
+    }
+    StoredTerrain built = terrain.get();
+    log.info("terrain: built " + terrain_cache_path(dem, dir) + " beside the drainage database (" +
+             std::to_string(int(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count())) +
+             " ms for both)");
+    stored_ = std::move(built), stored_key_ = key, sea_pyramid_.reset();
+    drainage_.reset();
+    if (source) {
+        read_whole_when_damaged(*source, scene, *stored_, log);
+        drainage_ = std::make_shared<const DrainageLineSource>(std::move(*source));
+    }
+    drainage_key_ = key, drainage_routing_ = scene.terrain.drainage_routing;
+    return true;
 }
 
 const StoredTerrain& TerrainKeep::stored(const Scene& scene, const Log& log) {

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "drainage/line_selection.hpp"
+#include "scene/cache_build_estimate.hpp"
 #include "scene/terrain_frames.hpp"
 #include "scene/terrain_view.hpp"
 
@@ -23,6 +24,16 @@ namespace penink {
 
 class TerrainKeep {
 public:
+    // A DEM's first drawing: where the scene draws creases or ridges, the DEM has more than
+    // `from_cells` cells, neither its terrain cache nor its drainage database is on disk (beside it or
+    // in the cache folder) and the memory available holds both builds' estimated peaks, the
+    // drainage database is built on this thread (with its progress) while the terrain cache is
+    // built on another (most drainage stages keep one core: filling, flats, ties, accumulation),
+    // and both are kept, as stored() and drainage() would keep them (the same files and values).
+    // Returns whether it built them; otherwise nothing is done and stored() and drainage() build
+    // them one after the other. A DEM that cannot be read fails in the terrain cache's build, as
+    // it would one after the other (its error is the one thrown when both fail).
+    bool build_side_by_side(const Scene& scene, const Log& log, double from_cells = estimate_from_cells);
     // open_stored_terrain of the scene's DEM and cache folder, read when not kept.
     const StoredTerrain& stored(const Scene& scene, const Log& log);
     // open_scene_terrain(scene, log), from what is kept.

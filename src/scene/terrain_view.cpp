@@ -218,7 +218,7 @@ TerrainCacheKey terrain_cache_key(const std::string& dem_path) {
     return {f.file_size, f.mtime_ns, f.content_hash, 0, true};
 }
 
-StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, const std::string& cache_dir) {
+StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, const std::string& cache_dir, bool announce) {
     auto t0 = Clock::now();
     const std::string path = terrain_cache_path(dem_path, cache_dir);
     TerrainCacheKey key;
@@ -253,7 +253,7 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, c
                      "the level-of-detail pyramid of the DEM's " + std::to_string(size.cols) + "x" +
                          std::to_string(size.rows) + " nodes (" + std::to_string(std::int64_t(side)) + "^2 padded nodes)",
                      size.nodes() * render_bytes_per_node + side * side * lod_bytes_per_padded_node, memory_budget(0));
-        announce_cache_build(std::cerr, CacheKind::terrain, size.cols, size.rows);
+        if (announce) announce_cache_build(std::cerr, CacheKind::terrain, size.cols, size.rows);
     }
     StageProgress progress(std::cerr, log.progress, "building terrain cache");
     progress.update("reading the DEM", 0.0);
