@@ -212,7 +212,10 @@ const std::uint8_t* CheckedBlocks::Cached::element(std::uint64_t i) {
     const std::uint64_t block = i >> a.shift, per = std::uint64_t(1) << a.shift, eb = a.elem_bytes;
     if (block + 1 >= a.starts.size()) throw std::out_of_range("checked blocks: a block past the array's end");
     if (cb.loaded_[a.first + block].load(std::memory_order_acquire)) return cb.base_ + a.at + i * eb;
-    const std::size_t slot = std::size_t(block % tag_.size());
+    // hashed (Fibonacci hashing): blocks a power of two apart, as the rows of the pyramid's padded
+    // square that a coarse level's nodes lie on, would share one slot if mapped by index
+    const std::uint64_t hash = ((block + 1) * 0x9E3779B97F4A7C15ull) >> 32;  // its top 32 bits, then scaled
+    const std::size_t slot = std::size_t((hash * tag_.size()) >> 32);
     std::uint8_t* out = data_.data() + slot * std::size_t(per * eb);
     if (tag_[slot] != block + 1) {
         tag_[slot] = 0;

@@ -119,7 +119,10 @@ public:
 
     // Elements of array k read one at a time without loading their blocks into the mapping: a
     // block not yet read is read, checked and decoded (its elements derived) into a small cache of
-    // `slots` blocks, direct-mapped by block index (a later block in the same slot replaces it), so
+    // `slots` blocks, each block in one slot given by a hash of its index (a later block in the same
+    // slot replaces it; the hash spreads blocks a power of two apart, which indexing would put in
+    // one slot: on a whole view of a 117 M-node DEM the pyramid's errors were decoded 150 k times
+    // from 38 k blocks, 42 k hashed), so
     // scattered reads over a whole grid (the nodes of a coarse mesh, a few in each block) hold the
     // cache, not every block they touch; a block already in the mapping is read there. A cached
     // block's derived part (a node's x, y) is derived element by element as they are asked for. Its bytes

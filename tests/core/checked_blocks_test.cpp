@@ -367,6 +367,14 @@ TEST(CheckedBlocks, CachedElementReadsGiveTheNeededElementsWithoutKeepingTheirBl
         EXPECT_EQ(blocks.bytes_read(), std::uint64_t(2 * f.sizes[0] + f.sizes[15]));
         for (std::uint64_t i = 0; i < 1000; i += 64) EXPECT_FALSE(blocks.has_read(0, i)) << i;
     }
+    {  // blocks a power of two apart (as rows of a padded square are) kept side by side: in
+       // 4 slots indexed by block, blocks 0 and 4 would share one and be read at every turn
+        const CheckedBlocks blocks(disk.fd(), disk.path, derived_pairs(f), f.sums);
+        CheckedBlocks::Cached four(blocks, 0, 4);
+        for (int turn = 0; turn < 3; ++turn)
+            for (const std::uint64_t i : {10u, 4 * 64 + 10u}) ASSERT_TRUE(element_is(four, i)) << i;
+        EXPECT_EQ(blocks.blocks_read(), 2u);
+    }
     const CheckedBlocks blocks(disk.fd(), disk.path, derived_pairs(f), f.sums);
     blocks.need(0, 64, 65);  // block 1 in place
     CheckedBlocks::Cached many(blocks, 0, 16);
