@@ -49,6 +49,7 @@ CheckedBlocks::CheckedBlocks(int fd, std::string path, std::vector<CodedArray> a
         Slot s;
         s.elems = a.elems, s.elem_bytes = a.elem_bytes, s.shift = a.shift, s.decode = std::move(a.decode);
         s.derive = std::move(a.derive);
+        if (!s.derive) s.fill_size = a.fill_size, s.fill_sum = a.fill_sum, s.fill_byte = a.fill_byte;
         s.starts.reserve(a.sizes.size() + 1);
         s.starts.push_back(a.offset);
         for (const std::uint32_t n : a.sizes) s.starts.push_back(s.starts.back() + n);
@@ -120,15 +121,20 @@ void CheckedBlocks::load(int k, std::uint64_t block, std::uint64_t last) const {
     if (loaded_[a.first + block].load(std::memory_order_relaxed)) return;  // another thread read it meanwhile
     const std::uint64_t blocks = a.starts.size() - 1;
     if (block >= blocks) throw std::out_of_range("checked blocks: a block past the array's end");
+    const std::uint64_t elems_per_block = std::uint64_t(1) << a.shift, block_bytes = elems_per_block * a.elem_bytes;
+    std::uint8_t* dst = base_ + a.at + block * block_bytes;
+    if (filled(a, block)) {  // known by its checksum: nothing read
+        std::memset(dst, a.fill_byte, std::size_t(block_bytes));
+        loaded_[a.first + block].store(true, std::memory_order_release);
+        return;
+    }
     // the run: unread blocks from `block` on, within [block, last] and max_run_bytes of the file
     std::uint64_t end = block + 1;
     const std::uint64_t stop = std::min(last + 1, blocks);
-    while (end < stop && !loaded_[a.first + end].load(std::memory_order_relaxed) &&
+    while (end < stop && !loaded_[a.first + end].load(std::memory_order_relaxed) && !filled(a, end) &&
            a.starts[end + 1] - a.starts[block] <= max_run_bytes)
         ++end;
     const std::uint64_t from = a.starts[block], len = a.starts[end] - from;
-    const std::uint64_t elems_per_block = std::uint64_t(1) << a.shift, block_bytes = elems_per_block * a.elem_bytes;
-    std::uint8_t* dst = base_ + a.at + block * block_bytes;
     std::vector<std::uint8_t> coded;
     std::uint8_t* in = dst;  // an array stored as in memory is read into its place
     if (a.decode) coded.resize(std::size_t(len)), in = coded.data();
@@ -173,10 +179,15 @@ void CheckedBlocks::read_strided(int k, std::uint64_t begin, std::uint64_t end, 
                 std::memcpy(o, base_ + a.at + i * eb, std::size_t(eb));
             continue;
         }
+        if (filled(a, block)) {  // known by its checksum: nothing read
+            for (const std::uint64_t stop = std::min(end, (block + 1) * per); i < stop; i += every, o += eb)
+                std::memset(o, a.fill_byte, std::size_t(eb));
+            continue;
+        }
         // the run: unread blocks holding wanted elements from `block` on, within max_run_bytes of the file
         std::uint64_t run_end = block + 1;
         while (run_end <= last && !loaded_[a.first + run_end].load(std::memory_order_acquire) && holds(run_end) &&
-               a.starts[run_end + 1] - a.starts[block] <= max_run_bytes)
+               !filled(a, run_end) && a.starts[run_end + 1] - a.starts[block] <= max_run_bytes)
             ++run_end;
         const std::uint64_t from = a.starts[block];
         coded.resize(std::size_t(a.starts[run_end] - from));
@@ -212,6 +223,10 @@ const std::uint8_t* CheckedBlocks::Cached::element(std::uint64_t i) {
     const std::uint64_t block = i >> a.shift, per = std::uint64_t(1) << a.shift, eb = a.elem_bytes;
     if (block + 1 >= a.starts.size()) throw std::out_of_range("checked blocks: a block past the array's end");
     if (cb.loaded_[a.first + block].load(std::memory_order_acquire)) return cb.base_ + a.at + i * eb;
+    if (cb.filled(a, block)) {  // known by its checksum: nothing read
+        fill_.assign(std::size_t(eb), a.fill_byte);
+        return fill_.data();
+    }
     // hashed (Fibonacci hashing): blocks a power of two apart, as the rows of the pyramid's padded
     // square that a coarse level's nodes lie on, would share one slot if mapped by index
     const std::uint64_t hash = ((block + 1) * 0x9E3779B97F4A7C15ull) >> 32;  // its top 32 bits, then scaled

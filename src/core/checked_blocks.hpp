@@ -65,6 +65,13 @@ public:
         unsigned shift = 0;
         Decoder decode;
         Deriver derive;  // empty: the decoder writes whole elements
+        // A whole block of elements whose every byte is fill_byte codes to fill_size bytes of
+        // checksum fill_sum (0: none given; an array without a Deriver): a block of that size and
+        // checksum (both known before any block is read) is taken to hold that without being read,
+        // checked or decoded. A terrain cache's valid flags: most blocks of most DEMs are all valid.
+        std::uint32_t fill_size = 0;
+        std::uint64_t fill_sum = 0;
+        std::uint8_t fill_byte = 0;
     };
     // `fd` is duplicated (the caller keeps its own). `sums`: the blocks' checksums, array after
     // array. `block_bytes`: a power of two, a multiple of the page size. Throws std::bad_alloc
@@ -142,6 +149,7 @@ public:
         std::vector<std::uint64_t> derived_;  // slots x words: a bit per element derived (arrays with a Deriver)
         std::size_t words_ = 0;
         std::vector<std::uint8_t> coded_;  // scratch: a block's file bytes
+        std::vector<std::uint8_t> fill_;   // an element of a block known by its checksum (CodedArray::fill_sum)
     };
 
 private:
@@ -152,7 +160,15 @@ private:
         std::size_t first = 0;              // index of its first block in sums_ / loaded_
         Decoder decode;  // empty: stored as in memory
         Deriver derive;  // empty: nothing derived
+        std::uint32_t fill_size = 0;        // CodedArray's
+        std::uint64_t fill_sum = 0;
+        std::uint8_t fill_byte = 0;
     };
+    // Whether block b of `a` is a whole block of fill_byte by its size and checksum (CodedArray).
+    bool filled(const Slot& a, std::uint64_t b) const {
+        return a.fill_sum != 0 && sums_[a.first + b] == a.fill_sum && a.starts[b + 1] - a.starts[b] == a.fill_size &&
+               ((b + 1) << a.shift) <= a.elems;
+    }
     enum BlockState : std::uint8_t { sound, mismatch, undecodable };
     void reserve(int fd);
     // Reads the run of blocks not yet read from `block` on (at most to `last`, and max_run_bytes)

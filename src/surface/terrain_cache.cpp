@@ -580,6 +580,12 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     arrays[1].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::uint64_t, std::size_t count) {
         return decode_bytes(c, bytes, static_cast<std::uint8_t*>(out), count);
     };
+    {  // a block of valid nodes alone as the writer codes it (code_terrain): known without reading it
+        const std::vector<std::uint8_t> ones(std::size_t(1) << shift, 1);
+        const std::vector<std::uint8_t> coded = encode_bytes(ones.data(), ones.size());
+        arrays[1].fill_size = std::uint32_t(coded.size()), arrays[1].fill_sum = hash64(coded.data(), coded.size());
+        arrays[1].fill_byte = 1;
+    }
     arrays[2].elems = n.padded, arrays[2].elem_bytes = sizeof(float);
     arrays[2].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::uint64_t, std::size_t count) {
         return decode_floats(c, bytes, static_cast<float*>(out), count, error_orders);

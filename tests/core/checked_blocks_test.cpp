@@ -418,3 +418,52 @@ TEST(CheckedBlocks, CachedElementReadsFindDamageAndReadUncodedArrays) {
     EXPECT_EQ(bytes.blocks_read(), 4u) << "blocks 0, 1, 2, then 0 again (its slot taken by block 2)";
     EXPECT_FALSE(bytes.has_read(1, 0));
 }
+
+// A coded array declaring the coded bytes of a whole block of one byte (CodedArray::fill_*):
+// whole blocks of that size and checksum are taken as that byte without being read, by need, a
+// strided read and a cached read alike (nothing read, nothing counted); the others, the short last
+// block of that byte included, are read and checked. Their content is the same either way.
+TEST(CheckedBlocks, BlocksKnownByTheirChecksumAreNotRead) {
+    constexpr std::uint64_t per = 64, elems = 4 * per + 10;
+    std::vector<std::uint8_t> values(elems, 1);
+    for (std::uint64_t i = per; i < 2 * per; ++i) values[i] = std::uint8_t(i % 3);  // block 1 mixed
+    std::vector<std::uint8_t> file(16, 0xee);
+    CheckedBlocks::CodedArray a;
+    a.offset = 16, a.elems = elems, a.elem_bytes = 1, a.shift = 6;
+    a.decode = [](const std::uint8_t* c, std::size_t size, void* out, std::uint64_t, std::size_t n) {
+        return decode_bytes(c, size, static_cast<std::uint8_t*>(out), n);
+    };
+    std::vector<std::uint64_t> sums;
+    for (std::uint64_t i = 0; i < elems; i += per) {
+        const std::vector<std::uint8_t> c = encode_bytes(values.data() + i, std::size_t(std::min(per, elems - i)));
+        a.sizes.push_back(std::uint32_t(c.size())), sums.push_back(hash64(c.data(), c.size()));
+        file.insert(file.end(), c.begin(), c.end());
+    }
+    const std::vector<std::uint8_t> ones(per, 1), coded = encode_bytes(ones.data(), ones.size());
+    a.fill_size = std::uint32_t(coded.size()), a.fill_sum = hash64(coded.data(), coded.size()), a.fill_byte = 1;
+    ASSERT_EQ(sums[0], a.fill_sum);
+    const OnDisk disk(file);
+    {
+        const CheckedBlocks blocks(disk.fd(), disk.path, {a}, sums);
+        blocks.need(0, 0, elems);
+        EXPECT_EQ(std::memcmp(blocks.data(0), values.data(), elems), 0);
+        EXPECT_EQ(blocks.blocks_read(), 2u) << "block 1 and the short last block";
+        EXPECT_EQ(blocks.bytes_read(), std::uint64_t(a.sizes[1] + a.sizes[4]));
+    }
+    {
+        const CheckedBlocks blocks(disk.fd(), disk.path, {a}, sums);
+        std::vector<std::uint8_t> every3((elems + 2) / 3);
+        blocks.read_strided(0, 0, elems, 3, every3.data());
+        for (std::size_t j = 0; j < every3.size(); ++j) ASSERT_EQ(every3[j], values[3 * j]) << j;
+        EXPECT_EQ(blocks.blocks_read(), 2u);
+        CheckedBlocks::Cached cached(blocks, 0, 8);
+        for (std::uint64_t i = 0; i < elems; ++i) ASSERT_EQ(*cached.element(i), values[i]) << i;
+        EXPECT_EQ(blocks.blocks_read(), 4u) << "blocks 1 and 4 again, into the cache";
+    }
+    // the same blocks without the declaration: every one read
+    a.fill_sum = 0;
+    const CheckedBlocks blocks(disk.fd(), disk.path, {a}, sums);
+    blocks.need(0, 0, elems);
+    EXPECT_EQ(std::memcmp(blocks.data(0), values.data(), elems), 0);
+    EXPECT_EQ(blocks.blocks_read(), 5u);
+}
