@@ -25,14 +25,14 @@ namespace {
 struct Ties {
     const std::vector<float>& filled;
     const std::vector<std::uint8_t>& flags;
-    const CellWords& orig;
+    const CellWords& orig;  // every cell's original elevation (float bits: complete_originals)
     const GridShape& g;
     D8Steps st;
     std::vector<std::uint8_t>& dir;  // written only by settle
     const CellWords& flat_mask;  // flat gradients as int32 (flat_resolution.hpp)
     int depth;
 
-    float original(std::size_t n) const { return original_z(filled, flags, orig, n); }
+    float original(std::size_t n) const { return std::bit_cast<float>(orig[n]); }
     std::int32_t gradient(std::size_t i) const { return std::int32_t(flat_mask[i]); }
     bool flat_cell(std::size_t i) const {
         return (flags[i] & flat_seen_low) && !(flags[i] & fill_raised) && gradient(i) != INT32_MIN;
@@ -47,13 +47,12 @@ struct Ties {
         return flat_cell(i) ? std::uint32_t(gradient(i)) ^ 0x80000000u : 0;  // gradient > INT32_MIN
     }
 
-    // Asks the cache for the rows around cell i that the first steps of choose read (a hint:
-    // settling follows elevation, not memory order).
+    // Asks the cache for the rows around cell i that the first steps of choose read (original
+    // elevations, directions; a hint: settling follows elevation, not memory order).
     void prefetch(std::size_t i) const {
         const std::size_t cols = std::size_t(g.cols), n = filled.size();
         for (const std::size_t r : {i >= cols ? i - cols : i, i, i + cols < n ? i + cols : i}) {
-            __builtin_prefetch(&filled[r]);
-            __builtin_prefetch(&flags[r]);
+            __builtin_prefetch(&orig[r]);
             __builtin_prefetch(&dir[r]);
         }
     }
@@ -359,11 +358,22 @@ SortedTies sort_ties(const Ties& t, std::size_t cells, std::vector<std::uint32_t
     return sorted;
 }
 
+// The original elevations of the cells the fill did not raise (their filled ones) written into
+// orig_bits beside those of the raised cells, so that a path step reads one array, not flags
+// and then one of two (parallel chunks of cells).
+void complete_originals(const std::vector<float>& filled, const std::vector<std::uint8_t>& flags, CellWords& orig_bits) {
+    parallel_chunks(filled.size(), std::size_t(1) << 16, [&](std::size_t i0, std::size_t i1) {
+        for (std::size_t i = i0; i < i1; ++i)
+            if (!(flags[i] & fill_raised)) orig_bits[i] = std::bit_cast<std::uint32_t>(filled[i]);
+    });
+}
+
 }  // namespace
 
 std::size_t break_d8_ties(const RoutingGrid& grid, RoutingArrays& arrays, const CellWords& flat_mask, int depth,
                           TieThreads split) {
     std::vector<std::uint32_t>& ties = arrays.ties;
+    complete_originals(arrays.z, arrays.flags, arrays.orig_bits);
     Ties t{arrays.z, arrays.flags, arrays.orig_bits, grid.shape, d8_steps(grid.shape, grid.dx, grid.dy), arrays.dir, flat_mask,
            std::clamp(depth, 1, 64)};
     const SortedTies sorted = sort_ties(t, grid.shape.size(), ties);
