@@ -379,7 +379,8 @@ std::size_t break_d8_ties(const RoutingGrid& grid, RoutingArrays& arrays, const 
     const SortedTies sorted = sort_ties(t, grid.shape.size(), ties);
     const int rows = grid.shape.rows;
     // automatic: all cores from four up; on two the threads mostly wait for each other whenever
-    // other work shares the cores (j29m crop, load 6: 1.0-2.5 s on two threads, 1.0-1.7 s on one)
+    // other work shares the cores (j29m crop, load 6: 1.0-2.5 s on two threads, 1.0-1.7 s on one;
+    // j29, 18.5 M ties, load 4-5: 6.6-9.5 s on one, 7.4-14.2 s on two in 16 or in 2 strips)
     const unsigned hardware = std::thread::hardware_concurrency();
     const unsigned threads = split.threads ? split.threads : hardware >= 4 ? std::min(hardware, 16u) : 1u;
     const int strip_rows = std::max(split.strip_rows ? split.strip_rows : std::clamp(rows / int(8 * threads), 8 * t.depth, 1024), t.depth + 1);
