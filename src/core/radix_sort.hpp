@@ -1,14 +1,20 @@
-// Sort of (key, value) pairs by (key, value), both unsigned, in place: most-significant-digit
-// radix sort with the in-place permutation of American flag sort (McIlroy, Bostic & McIlroy
-// 1993, "Engineering radix sort"), 8-bit digits; a run of equal keys sorted by value, a short
-// range by insertion. No copy of the arrays: O(1) memory beyond a count per digit value per
+// Sorts of unsigned integers.
+// radix_sort_pairs: (key, value) pairs by (key, value), both unsigned, in place: most-significant-
+// digit radix sort with the in-place permutation of American flag sort (McIlroy, Bostic &
+// McIlroy 1993, "Engineering radix sort"), 8-bit digits; a run of equal keys sorted by value, a
+// short range by insertion. No copy of the arrays: O(1) memory beyond a count per digit value per
 // level, O(n * key bytes) time.
+// radix_sort_bits: 64-bit words by a range of their bits, stable: least-significant-digit radix
+// sort (Knuth, TAOCP vol. 3, 5.2.5) through a scratch array of the same length, digits of up to
+// 11 bits (as few passes as the range needs; every pass's counts taken in one read first),
+// O(n * passes) time.
 #pragma once
 #include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <utility>
+#include <vector>
 
 namespace penink {
 
@@ -57,6 +63,33 @@ template <class V> void flag_sort(std::uint64_t* keys, V* values, std::size_t n,
 // keys[i] and values[i] (n pairs) reordered together, ascending by key, equal keys by value.
 template <class V> void radix_sort_pairs(std::uint64_t* keys, V* values, std::size_t n) {
     radix_detail::flag_sort(keys, values, n, 56);
+}
+
+// words reordered ascending by their bits [lo, hi) (0 <= lo <= hi <= 64), words equal in those bits
+// in their order before; `scratch` resized to words.size() and left holding no meaning.
+template <class A> void radix_sort_bits(std::vector<std::uint64_t, A>& words, std::vector<std::uint64_t, A>& scratch,
+                                        int lo, int hi) {
+    const int bits = hi - lo;
+    if (bits <= 0 || words.size() < 2) return;
+    const int passes = (bits + 10) / 11, width = (bits + passes - 1) / passes;
+    const std::size_t buckets = std::size_t(1) << width, n = words.size();
+    // pass p: the digit of bits [lo + p * width, min(hi, lo + (p + 1) * width))
+    auto digit = [&](std::uint64_t w, int p) {
+        const int shift = lo + p * width, used = std::min(width, hi - shift);
+        return std::size_t(w >> shift & ((std::uint64_t(1) << used) - 1));
+    };
+    std::vector<std::size_t> count(std::size_t(passes) * buckets, 0);
+    for (const std::uint64_t w : words)
+        for (int p = 0; p < passes; ++p) ++count[std::size_t(p) * buckets + digit(w, p)];
+    scratch.resize(n);
+    for (int p = 0; p < passes; ++p) {
+        std::size_t* start = count.data() + std::size_t(p) * buckets;
+        if (start[digit(words[0], p)] == n) continue;  // one digit value: already in order
+        std::size_t at = 0;
+        for (std::size_t b = 0; b < buckets; ++b) at += std::exchange(start[b], at);
+        for (const std::uint64_t w : words) scratch[start[digit(w, p)]++] = w;
+        words.swap(scratch);
+    }
 }
 
 }  // namespace penink

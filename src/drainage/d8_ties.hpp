@@ -37,9 +37,12 @@ struct TieThreads {
 
 // arrays.ties: cells reported tied by the direction stages (duplicates allowed; left
 // deduplicated and sorted in the order settled); arrays.z (filled), arrays.flags,
-// arrays.orig_bits: the fill's state (priority_flood.hpp); `flat_mask`: the flat gradients
-// resolve_flats left; arrays.dir re-aimed in place, lower cells first (on one level: flat cells
-// nearer their exit first). Returns the number of cells whose direction changed.
+// arrays.orig_bits: the fill's state (priority_flood.hpp), orig_bits then completed with the
+// filled elevations of the cells not raised (every cell's original elevation, one array to read
+// per path step); `flat_mask`: the flat gradients resolve_flats left; arrays.dir re-aimed in
+// place, lower cells first (on one level: flat cells nearer their exit first). Each tie's
+// candidates are found in a pass over the ties in cell order (parallel), then the ties sorted
+// into the settling order. Returns the number of cells whose direction changed.
 std::size_t break_d8_ties(const RoutingGrid& g, RoutingArrays& arrays, const CellWords& flat_mask, int depth = 16,
                           TieThreads split = {});
 

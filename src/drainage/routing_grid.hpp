@@ -20,7 +20,7 @@ struct RoutingGrid {
 struct RoutingArrays {
     std::vector<float>& z;             // elevations; the filled surface once fill_with_directions ran
     std::vector<std::uint8_t>& flags;  // per-cell fill state (priority_flood.hpp) and the later stages' bits
-    CellWords& orig_bits;              // the original elevations of the raised cells (float bits)
+    CellWords& orig_bits;              // the original elevations of the raised cells (float bits; of every cell after break_d8_ties)
     std::vector<std::uint8_t>& dir;    // ESRI D8 codes
     std::vector<std::uint32_t>& ties;  // cells whose steepest neighbours tie (break_d8_ties settles them)
 };
