@@ -276,7 +276,7 @@ bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGr
 }
 
 bool decode_crease_source(const CreaseSourceBytes& src, DrainageGrid& g, std::vector<std::uint8_t>& dir,
-                          CreaseTileIndex& index, SourcePart part, std::vector<SourceUnitBlock>* blocks) {
+                          CreaseTileIndex& index, SourcePart part, std::vector<SourceUnitBlock>* blocks, FlowNetwork* net) {
     const bool arrays = part == SourcePart::all || part == SourcePart::grid,
                stems = part == SourcePart::index || part == SourcePart::all,
                sources = stems || part == SourcePart::sources;
@@ -392,7 +392,16 @@ bool decode_crease_source(const CreaseSourceBytes& src, DrainageGrid& g, std::ve
     if (!bytes(g.coarse_valid, shared ? 0 : coarse, true) || !floats(g.coarse_z, coarse, true)) return false;
     if (shared) g.coarse_valid = g.valid;
     if (r.left != 0) return false;
-    return !(arrays && head.referred) || read_referred_arrays(head, g);
+    if (!(arrays && head.referred)) {
+        if (net && arrays) *net = network_of_directions(g, dir);
+        return true;
+    }
+    if (!net) return read_referred_arrays(head, g);
+    // the network from the directions and the mask beside the heights and positions read again
+    // (which neither reads)
+    bool read = false;
+    run_beside([&] { *net = network_of_directions(g, dir); }, [&] { read = read_referred_arrays(head, g); });
+    return read;
 }
 
 bool decode_crease_unit(const CreaseSourceBytes& src, const SourceUnitBlock& block, std::vector<std::uint32_t>& ids,
