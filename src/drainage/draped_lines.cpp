@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <optional>
+#include <type_traits>
 #include <atomic>
 #include <bit>
 #include <cmath>
@@ -163,20 +164,24 @@ struct StemWalk {
 
     // Emits the cells of the stem starting at `source` (emit(vertex, cell)), dropping a vertex at
     // the x, y of the one before it (drainage_stems' shared junction rule); returns the stem's order.
+    // An emit returning bool ends the walk where it returns false (the order then of the cells
+    // walked so far).
     template <class Emit> std::uint8_t walk(std::size_t source, Emit&& emit) const {
         std::uint8_t order = 0;
         DvVertex last{};
-        bool any = false;
+        bool any = false, more = true;
         auto put = [&](std::size_t c) {
             const DvVertex v = vertex(c);
             if (any && last.x == v.x && last.y == v.y) return;
-            emit(v, c), last = v, any = true;
+            if constexpr (std::is_same_v<decltype(emit(v, c)), bool>) more = emit(v, c);
+            else emit(v, c);
+            last = v, any = true;
         };
         std::size_t c = source;
         for (std::size_t steps = 0; steps <= g.size(); ++steps) {
             put(c);
             order = std::max(order, net.order[c]);
-            if (!dir[c]) return order;
+            if (!more || !dir[c]) return order;
             const std::size_t d = d8_target(shape, c, dir[c]);
             if (indeg[d] != 1 && !main_into(c, d)) {
                 put(d);
@@ -533,10 +538,20 @@ void end_stems_where_they_meet(DrapedLineSet& set, const std::vector<std::uint32
 
 namespace {
 
+// Where the walks of stems may end before their ends: stem s (its place in the sources walked)
+// ends `after` vertices past the last of the left[s] cells mapped to s in `cells` (cell -> s; each
+// passed once), or at its end when it passes fewer (left[s] 0: at its end).
+struct WalkReach {
+    U32Map cells;
+    std::vector<std::uint32_t> left;
+    std::uint32_t after = 0;
+};
+
 // The stems starting at `sources` (cells), in that order, each walked by `walk` (network_stems'
-// layout); `cells`, when given, gets each vertex's grid cell.
+// layout), to their ends or where `reach` ends them; `cells`, when given, gets each vertex's grid
+// cell.
 DrapedLineSet walk_stems(const StemWalk& walk, const DrainageGrid& g, const std::vector<std::uint32_t>& sources,
-                         std::vector<std::uint32_t>* cells) {
+                         std::vector<std::uint32_t>* cells, const WalkReach* reach = nullptr) {
     DrapedLineSet set;
     set.lines.resize(sources.size());
     // Every cell is walked by one stem, whose end junction is its last vertex and may be another
@@ -567,9 +582,15 @@ DrapedLineSet walk_stems(const StemWalk& walk, const DrainageGrid& g, const std:
             out.v.clear(), out.c.clear();
             for (std::size_t s = b0 + s0; s < b0 + s1; ++s) {
                 const std::size_t before = out.v.size();
+                std::uint32_t left = reach ? reach->left[s] : 0, past = 0;
                 set.lines[s].order = walk.walk(sources[s], [&](const DvVertex& v, std::size_t c) {
                     out.v.push_back(draped(v));
                     if (cells) out.c.push_back(std::uint32_t(c));
+                    if (past) return --past > 0;
+                    if (left)
+                        if (const std::uint32_t* at = reach->cells.find(std::uint32_t(c)); at && *at == s && --left == 0)
+                            past = reach->after;
+                    return true;
                 });
                 set.lines[s].count = std::uint32_t(out.v.size() - before);
             }
@@ -672,12 +693,15 @@ void smooth_lines_joined(DrapedLineSet& set, double sigma, const std::vector<std
     join_ends(set, follow, int(std::ceil(3.0 * sigma)));
     clamp_to_box(set, lo, hi);
 }
+// The vertices before and after a junction's that a stem ending there is measured against, and of
+// its own last ones those it may end at (end_stems_where_they_meet's `reach`): 4 corridors.
+int stem_end_reach(const FallLineOptions& options) { return int(std::ceil(4.0 * options.corridor)); }
+
 // Step 2 for stems once traced (trace_fall_lines): their ends (`follow`: end_matches' triples)
 // where they meet the lines they join, then the box [lo, hi].
 void end_traced_stems(DrapedLineSet& set, const DrainageGrid& g, const FallLineOptions& options,
                       const std::vector<std::uint32_t>& follow, glm::vec2 lo, glm::vec2 hi) {
-    end_stems_where_they_meet(set, follow, int(std::ceil(4.0 * options.corridor)), options.meet * grid_cell_length(g),
-                              line_ids(set));
+    end_stems_where_they_meet(set, follow, stem_end_reach(options), options.meet * grid_cell_length(g), line_ids(set));
     clamp_to_box(set, lo, hi);
 }
 
@@ -833,7 +857,22 @@ DrapedLineSet crease_part(const DrainageGrid& g, const std::vector<std::uint8_t>
             added.erase(std::unique(added.begin(), added.end()), added.end());
             closure.insert(closure.end(), added.begin(), added.end());
         }
-        trunks = walk_stems(walk, g, added, &trunk_cells);  // walked after the part's own stems
+        // the trunks walked after the part's own stems, each as far as its trace is read: past the
+        // last junction its tributaries here end at by end_stems_where_they_meet's reach and the
+        // smoothing's radius (a trace's vertex reads the smoothed path up to it, which reads the
+        // cells a radius on), two more spare
+        WalkReach reach;
+        reach.left.assign(added.size(), 0);
+        reach.after = std::uint32_t(stem_end_reach(options) + GaussianKernel(options.sigma).radius() + 2);
+        for (std::size_t i = 0; i < ids.size(); ++i) {
+            if (trunk[i] == own[i]) continue;
+            const auto a = std::lower_bound(added.begin(), added.end(), trunk[i]);
+            if (a == added.end() || *a != trunk[i]) continue;  // one of the part's own stems: walked whole
+            const DrapedLine& l = set.lines[i];
+            if (reach.cells.insert(cells[l.first + l.count - 1], std::uint32_t(a - added.begin())))
+                ++reach.left[std::size_t(a - added.begin())];
+        }
+        trunks = walk_stems(walk, g, added, &trunk_cells, &reach);
         trace_fall_lines(trunks, trunk_cells, g, options);
     });
     {
