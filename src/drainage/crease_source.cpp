@@ -252,9 +252,8 @@ bool read_referred_arrays(const SourceHead& h, DrainageGrid& g) {
         DemOptions read;
         read.heights_only = true, read.utm_zone = h.dem.utm_zone, read.north = h.dem.north;
         Terrain t = read_dem(h.dem.path, read);
-        DrainageGrid again = resample_pn_releasing(t, 1);
-        if (again.cols != g.cols || again.rows != g.rows) return false;
-        g.z = std::move(again.z), g.coarse_xy = std::move(again.coarse_xy);
+        if (t.cols != g.cols || t.rows != g.rows) return false;
+        take_node_arrays(t, g.z, g.coarse_xy);  // resample_pn_releasing(t, 1)'s, without its masks and spacing
     } catch (const Error&) {
         return false;
     }
