@@ -82,53 +82,9 @@ struct StemWalk {
         return m;
     }
 
-    // Whether the branch arriving at junction d through cell n is d's main upstream branch
-    // (stems.cpp main_upstream: highest order, then larger flow just above the junction, then
-    // the lower branch id).
-    bool main_into(std::size_t n, std::size_t d) const {
-        struct Candidate {
-            std::size_t cell;
-            std::uint8_t order;
-            float flow;
-        };
-        Candidate c[8];
-        int k = 0, best = -1;
-        each_upstream(d, [&](std::size_t m) {
-            c[k] = {m, net.order[m], vertex_flow(m)};
-            if (best < 0 || c[k].order > c[best].order || (c[k].order == c[best].order && c[k].flow > c[best].flow))
-                best = k;
-            ++k;
-        });
-        bool tied_with_n = false;
-        int others = 0;
-        for (int i = 0; i < k; ++i) {
-            const bool tied = c[i].order == c[best].order && c[i].flow == c[best].flow;
-            if (!tied) continue;
-            if (c[i].cell == n) tied_with_n = true;
-            else ++others;
-        }
-        if (!tied_with_n) return false;
-        if (others == 0) return true;
-        const std::size_t own = head(n);
-        for (int i = 0; i < k; ++i)
-            if (c[i].cell != n && c[i].order == c[best].order && c[i].flow == c[best].flow && head(c[i].cell) < own)
-                return false;
-        return true;
-    }
-
-    // The cell one step up the stem walking through cell m: the one cell draining into a
-    // single-inflow cell, the main upstream one (main_into) at a junction; m itself at a cell
-    // nothing valid drains into (a source).
-    std::size_t main_up(std::size_t m) const {
-        std::size_t up = m;
-        if (indeg[m] == 1) each_upstream(m, [&](std::size_t u) { up = u; });
-        else if (indeg[m] > 1) up = main_upstream(m);
-        return up;
-    }
-
-    // The upstream cell of junction d that main_into(n, d) holds for (the best of order and flow,
-    // of those tied the one whose branch has the least head), its candidates read once; d when
-    // none drains into it.
+    // The upstream cell of junction d whose branch is d's main upstream branch (stems.cpp
+    // main_upstream: highest order, then larger flow just above the junction, then the lower
+    // branch id: of those tied, the one whose branch has the least head); d when none drains into it.
     std::size_t main_upstream(std::size_t d) const {
         struct Candidate {
             std::size_t cell;
@@ -149,11 +105,25 @@ struct StemWalk {
         for (int i = 0; i < k; ++i)
             if (i != best && c[i].order == c[best].order && c[i].flow == c[best].flow) tied = true;
         if (!tied) return main;
-        std::size_t main_head = head(main);
+        std::size_t main_head = head(main);  // (distinct cells' branches have distinct heads)
         for (int i = 0; i < k; ++i)
             if (i != best && c[i].order == c[best].order && c[i].flow == c[best].flow)
                 if (const std::size_t h = head(c[i].cell); h < main_head) main = c[i].cell, main_head = h;
         return main;
+    }
+
+    // Whether the branch arriving at junction d through cell n (draining into it) is d's main
+    // upstream branch.
+    bool main_into(std::size_t n, std::size_t d) const { return main_upstream(d) == n; }
+
+    // The cell one step up the stem walking through cell m: the one cell draining into a
+    // single-inflow cell, the main upstream one at a junction; m itself at a cell nothing valid
+    // drains into (a source).
+    std::size_t main_up(std::size_t m) const {
+        std::size_t up = m;
+        if (indeg[m] == 1) each_upstream(m, [&](std::size_t u) { up = u; });
+        else if (indeg[m] > 1) up = main_upstream(m);
+        return up;
     }
 
     float vertex_flow(std::size_t i) const { return float(double(net.acc[i]) / total[net.basin[i] - 1]); }
