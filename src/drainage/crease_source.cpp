@@ -252,9 +252,8 @@ bool read_referred_arrays(const SourceHead& h, DrainageGrid& g) {
         DemOptions read;
         read.heights_only = true, read.utm_zone = h.dem.utm_zone, read.north = h.dem.north;
         Terrain t = read_dem(h.dem.path, read);
-        DrainageGrid again = resample_pn_releasing(t, 1);
-        if (again.cols != g.cols || again.rows != g.rows) return false;
-        g.z = std::move(again.z), g.coarse_xy = std::move(again.coarse_xy);
+        if (t.cols != g.cols || t.rows != g.rows) return false;
+        take_node_arrays(t, g.z, g.coarse_xy);  // resample_pn_releasing(t, 1)'s, without its masks and spacing
     } catch (const Error&) {
         return false;
     }
@@ -276,7 +275,7 @@ bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGr
 }
 
 bool decode_crease_source(const CreaseSourceBytes& src, DrainageGrid& g, std::vector<std::uint8_t>& dir,
-                          CreaseTileIndex& index, SourcePart part, std::vector<SourceUnitBlock>* blocks) {
+                          CreaseTileIndex& index, SourcePart part, std::vector<SourceUnitBlock>* blocks, FlowNetwork* net) {
     const bool arrays = part == SourcePart::all || part == SourcePart::grid,
                stems = part == SourcePart::index || part == SourcePart::all,
                sources = stems || part == SourcePart::sources;
@@ -392,7 +391,16 @@ bool decode_crease_source(const CreaseSourceBytes& src, DrainageGrid& g, std::ve
     if (!bytes(g.coarse_valid, shared ? 0 : coarse, true) || !floats(g.coarse_z, coarse, true)) return false;
     if (shared) g.coarse_valid = g.valid;
     if (r.left != 0) return false;
-    return !(arrays && head.referred) || read_referred_arrays(head, g);
+    if (!(arrays && head.referred)) {
+        if (net && arrays) *net = network_of_directions(g, dir);
+        return true;
+    }
+    if (!net) return read_referred_arrays(head, g);
+    // the network from the directions and the mask beside the heights and positions read again
+    // (which neither reads)
+    bool read = false;
+    run_beside([&] { *net = network_of_directions(g, dir); }, [&] { read = read_referred_arrays(head, g); });
+    return read;
 }
 
 bool decode_crease_unit(const CreaseSourceBytes& src, const SourceUnitBlock& block, std::vector<std::uint32_t>& ids,

@@ -506,19 +506,54 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
         keep_written(writing->w);
         writing.reset();
     };
-    for (std::size_t k0 = 0, k1; k0 < cut_tile.size(); k0 = k1) {
-        for (k1 = k0; k1 < cut_tile.size() && cut_tile[k1] == cut_tile[k0]; ++k1)
-            if (read[k1]) keep(ids_of(k1), std::move(read[k1]), true, cut_d[k1]);
+    // with a store, each tile's build (every stem of its levels needed) runs beside the next
+    // one's, which starts before this one's is waited for: what one runs on one core (its
+    // trunks' climb, its copies, the joins) overlaps the other's, and the builds and the writes
+    // keep both cores busy
+    std::vector<std::size_t> group{0};  // cuts [group[j], group[j + 1]): the j-th tile's with cuts
+    for (std::size_t k = 1; k <= cut_tile.size(); ++k)
+        if (k == cut_tile.size() || cut_tile[k] != cut_tile[k - 1]) group.push_back(k);
+    std::vector<std::uint8_t> was_read(cut_tile.size());
+    for (std::size_t k = 0; k < cut_tile.size(); ++k) was_read[k] = read[k] != nullptr;
+    const auto planned = [&](std::size_t j) {  // the cuts of group j not read, and their units' stems
+        auto b = std::make_unique<Writing>();
+        for (std::size_t k = group[j]; k < group[j + 1]; ++k)
+            if (!was_read[k]) b->w.todo.push_back(k), b->stems = merged(std::move(b->stems), stems_of(cut_unit[k]));
+        return b;
+    };
+    std::vector<std::unique_ptr<Writing>> builds(group.size() - 1);  // the groups' builds started
+    std::vector<std::future<void>> building(builds.size());  // (declared last: waited for before the builds go)
+    std::size_t launched = 0;  // the groups before this one have been looked at for a build
+    const auto launch = [&](std::size_t until) {  // the builds of groups up to `until` (exclusive) started
+        for (; launched < std::min(until, builds.size()); ++launched) {
+            std::unique_ptr<Writing> b = planned(launched);
+            if (b->w.todo.empty()) continue;
+            builds[launched] = std::move(b);
+            building[launched] = std::async(std::launch::async, [this, w = builds[launched].get()] {
+                w->whole = crease_part(g_, dir_, net_, *surface_, parts_, w->stems);
+            });
+        }
+    };
+    for (std::size_t j = 0; j + 1 < group.size(); ++j) {
+        const std::size_t k0 = group[j], k1 = group[j + 1];
+        for (std::size_t k = k0; k < k1; ++k)
+            if (read[k]) keep(ids_of(k), std::move(read[k]), true, cut_d[k]);
         std::vector<std::size_t> todo;  // cuts of this tile still missing
         for (std::size_t k = k0; k < k1; ++k)
             if (!query_.find(missing[cuts[k]])) todo.push_back(k);
         if (todo.empty()) continue;
         if (!loaded_ && parts_.sources.empty()) parts_.sources = reader_.sources();  // what crease_part reads
         if (!store_.folder.empty() && writable_) {
-            auto next = std::make_unique<Writing>();
-            next->w.todo = std::move(todo);
-            for (std::size_t k : next->w.todo) next->stems = merged(std::move(next->stems), stems_of(cut_unit[k]));
-            next->whole = crease_part(g_, dir_, net_, surface(), parts_, next->stems);
+            surface();      // made here, before a build reads it on a thread
+            launch(j + 2);  // this tile's build and the next one's
+            std::unique_ptr<Writing> next = std::move(builds[j]);
+            if (next) building[j].get();
+            if (!next || next->w.todo != todo) {  // (the cuts not read are the cuts missing: never)
+                next = std::make_unique<Writing>();
+                next->w.todo = std::move(todo);
+                for (std::size_t k : next->w.todo) next->stems = merged(std::move(next->stems), stems_of(cut_unit[k]));
+                next->whole = crease_part(g_, dir_, net_, surface(), parts_, next->stems);
+            }
             check_part(next->whole.lines.size(), next->stems.size());
             finish_writing();
             if (writable_) {
@@ -533,7 +568,13 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
             continue;
         }
         const std::vector<std::uint32_t> need = missing_in(todo);
-        keep(need, std::make_unique<DrapedLineSet>(crease_part(g_, dir_, net_, surface(), parts_, need)));
+        if (j < launched && builds[j] && builds[j]->w.todo == todo) {  // built ahead before a file could not be written
+            building[j].get();
+            const std::unique_ptr<Writing> b = std::move(builds[j]);
+            keep(need, lines_of(need, b->stems, b->whole));
+        } else {
+            keep(need, std::make_unique<DrapedLineSet>(crease_part(g_, dir_, net_, surface(), parts_, need)));
+        }
         tile_built();
     }
     finish_writing();

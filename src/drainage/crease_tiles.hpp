@@ -9,7 +9,8 @@
 // The stems a query needs that are not built yet are built a tile's (256 x 256 cells) at a time,
 // crease_part on all cores: one part of every stem costs more than the tiles one by one (on
 // jacksboro refined to 0.6", 2015 x 1720 cells, all stems 3.1 s in one part, 1.8 s in 56 tiles:
-// bench/line_parts_bench.cpp, a loaded machine), a tile's alone about 0.03 s.
+// bench/line_parts_bench.cpp, a loaded machine), a tile's alone about 0.03 s. With a store, a
+// tile's build runs beside the next tile's (what one runs on one core overlaps the other's).
 // With a tile store (a folder and a key), a tile's stems are kept on disk by length: each level
 // (crease_tile_level: the stems' plan bound under 4, 8, ..., 256 cells, or longer) of each tile in a
 // file of its own (line_tile_files.hpp). A level of a tile with stems a query needs that are not

@@ -172,6 +172,13 @@ std::size_t resampled_size(const Terrain& t, int factor) {
 
 namespace {
 
+// A heights-only read (DemOptions: no positions) resamples at factor 1 only, and only with its
+// nodes' x, y (UTM) or an affine grid.
+void check_node_xy(const Terrain& t, int factor, bool affine) {
+    if (t.pos.empty() && (factor > 1 || (!affine && t.xy.empty())))
+        throw Error("drainage", t.source, "DEM read without positions resamples at factor 1 only", ExitCode::internal);
+}
+
 // The grid of t at `factor`, everything but z: size, origin, affine grid, masks, spacing, and the
 // coarse x, y where grid_xy needs them (not at factor 1 on an affine grid).
 DrainageGrid grid_frame(const Terrain& t, int factor) {
@@ -183,8 +190,7 @@ DrainageGrid grid_frame(const Terrain& t, int factor) {
     g.cols = (t.cols - 1) * factor + 1, g.rows = (t.rows - 1) * factor + 1;
     g.origin = t.origin;
     g.has_affine = terrain_affine(t, g.affine);
-    if (t.pos.empty() && (factor > 1 || (!g.has_affine && t.xy.empty())))  // a heights-only read (DemOptions)
-        throw Error("drainage", t.source, "DEM read without positions resamples at factor 1 only", ExitCode::internal);
+    check_node_xy(t, factor, g.has_affine);
     g.coarse_cols = t.cols, g.coarse_rows = t.rows, g.coarse_valid = t.valid;
     g.valid = factor == 1 ? t.valid : std::vector<std::uint8_t>(g.size(), 0);
     mean_spacing(t, g.dx, g.dy);
@@ -222,12 +228,7 @@ DrainageGrid resample_pn_releasing(Terrain& t, int factor) {
     DrainageGrid g;
     if (factor == 1 && !t.z.empty()) {  // heights-only: z taken over, 0 at nodata
         g = grid_frame(t, factor);
-        g.z = std::move(t.z);
-        if (!t.xy.empty()) g.coarse_xy = std::move(t.xy);  // a geographic DEM's nodes in UTM
-        parallel_chunks(g.size(), std::size_t(1) << 18, [&](std::size_t i0, std::size_t i1) {
-            for (std::size_t i = i0; i < i1; ++i)
-                if (!g.valid[i]) g.z[i] = 0.0f;
-        });
+        take_node_arrays(t, g.z, g.coarse_xy);
     } else {
         g = resample_pn(t, factor);
     }
@@ -235,6 +236,17 @@ DrainageGrid resample_pn_releasing(Terrain& t, int factor) {
     std::vector<float>().swap(t.z);
     std::vector<glm::vec2>().swap(t.xy);
     return g;
+}
+
+void take_node_arrays(Terrain& t, std::vector<float>& z, std::vector<glm::vec2>& xy) {
+    AffineNodes affine;
+    check_node_xy(t, 1, terrain_affine(t, affine));
+    z = std::move(t.z);
+    xy = std::move(t.xy);  // a geographic DEM's nodes in UTM
+    parallel_chunks(z.size(), std::size_t(1) << 18, [&](std::size_t i0, std::size_t i1) {
+        for (std::size_t i = i0; i < i1; ++i)
+            if (!t.valid[i]) z[i] = 0.0f;
+    });
 }
 
 DrainageGrid make_regular_grid(int cols, int rows, double spacing, std::vector<float> z,

@@ -52,6 +52,11 @@ DrainageGrid resample_pn(const Terrain& t, int factor);
 // resample_pn, then t's positions and heights released (a heights-only t's z becomes the grid's,
 // and its xy, where it has them, the grid's coarse_xy).
 DrainageGrid resample_pn_releasing(Terrain& t, int factor);
+// The z and coarse_xy that resample_pn_releasing(t, 1) gives a heights-only Terrain (its heights,
+// 0 at nodata; its nodes' UTM x, y, empty where the affine formula gives them), taken over from
+// t without the rest of the grid (masks, spacing); throws as resample_pn does for a heights-only
+// Terrain without x, y or an affine grid.
+void take_node_arrays(Terrain& t, std::vector<float>& z, std::vector<glm::vec2>& xy);
 
 // A grid of hand-given elevations at regular spacing (x = c*spacing, y = -r*spacing), factor 1;
 // `valid` empty means all valid. Used by tests and benchmarks.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <optional>
+#include <type_traits>
 #include <atomic>
 #include <bit>
 #include <cmath>
@@ -81,10 +82,10 @@ struct StemWalk {
         return m;
     }
 
-    // Whether the branch arriving at junction d through cell n is d's main upstream branch
-    // (stems.cpp main_upstream: highest order, then larger flow just above the junction, then
-    // the lower branch id).
-    bool main_into(std::size_t n, std::size_t d) const {
+    // The upstream cell of junction d whose branch is d's main upstream branch (stems.cpp
+    // main_upstream: highest order, then larger flow just above the junction, then the lower
+    // branch id: of those tied, the one whose branch has the least head); d when none drains into it.
+    std::size_t main_upstream(std::size_t d) const {
         struct Candidate {
             std::size_t cell;
             std::uint8_t order;
@@ -98,32 +99,30 @@ struct StemWalk {
                 best = k;
             ++k;
         });
-        bool tied_with_n = false;
-        int others = 0;
-        for (int i = 0; i < k; ++i) {
-            const bool tied = c[i].order == c[best].order && c[i].flow == c[best].flow;
-            if (!tied) continue;
-            if (c[i].cell == n) tied_with_n = true;
-            else ++others;
-        }
-        if (!tied_with_n) return false;
-        if (others == 0) return true;
-        const std::size_t own = head(n);
+        if (best < 0) return d;
+        std::size_t main = c[best].cell;
+        bool tied = false;
         for (int i = 0; i < k; ++i)
-            if (c[i].cell != n && c[i].order == c[best].order && c[i].flow == c[best].flow && head(c[i].cell) < own)
-                return false;
-        return true;
+            if (i != best && c[i].order == c[best].order && c[i].flow == c[best].flow) tied = true;
+        if (!tied) return main;
+        std::size_t main_head = head(main);  // (distinct cells' branches have distinct heads)
+        for (int i = 0; i < k; ++i)
+            if (i != best && c[i].order == c[best].order && c[i].flow == c[best].flow)
+                if (const std::size_t h = head(c[i].cell); h < main_head) main = c[i].cell, main_head = h;
+        return main;
     }
 
+    // Whether the branch arriving at junction d through cell n (draining into it) is d's main
+    // upstream branch.
+    bool main_into(std::size_t n, std::size_t d) const { return main_upstream(d) == n; }
+
     // The cell one step up the stem walking through cell m: the one cell draining into a
-    // single-inflow cell, the main upstream one (main_into) at a junction; m itself at a cell
-    // nothing valid drains into (a source).
+    // single-inflow cell, the main upstream one at a junction; m itself at a cell nothing valid
+    // drains into (a source).
     std::size_t main_up(std::size_t m) const {
         std::size_t up = m;
         if (indeg[m] == 1) each_upstream(m, [&](std::size_t u) { up = u; });
-        else if (indeg[m] > 1) each_upstream(m, [&](std::size_t u) {
-            if (main_into(u, m)) up = u;
-        });
+        else if (indeg[m] > 1) up = main_upstream(m);
         return up;
     }
 
@@ -135,20 +134,24 @@ struct StemWalk {
 
     // Emits the cells of the stem starting at `source` (emit(vertex, cell)), dropping a vertex at
     // the x, y of the one before it (drainage_stems' shared junction rule); returns the stem's order.
+    // An emit returning bool ends the walk where it returns false (the order then of the cells
+    // walked so far).
     template <class Emit> std::uint8_t walk(std::size_t source, Emit&& emit) const {
         std::uint8_t order = 0;
         DvVertex last{};
-        bool any = false;
+        bool any = false, more = true;
         auto put = [&](std::size_t c) {
             const DvVertex v = vertex(c);
             if (any && last.x == v.x && last.y == v.y) return;
-            emit(v, c), last = v, any = true;
+            if constexpr (std::is_same_v<decltype(emit(v, c)), bool>) more = emit(v, c);
+            else emit(v, c);
+            last = v, any = true;
         };
         std::size_t c = source;
         for (std::size_t steps = 0; steps <= g.size(); ++steps) {
             put(c);
             order = std::max(order, net.order[c]);
-            if (!dir[c]) return order;
+            if (!more || !dir[c]) return order;
             const std::size_t d = d8_target(shape, c, dir[c]);
             if (indeg[d] != 1 && !main_into(c, d)) {
                 put(d);
@@ -431,7 +434,7 @@ void end_stems_where_they_meet(DrapedLineSet& set, const std::vector<std::uint32
                                const LineOf& line_of) {
     const std::size_t nf = follow.size() / 3;
     std::vector<std::uint32_t> stop(nf, 0xffffffffu);  // the vertex the stem ends at, none: it keeps its trace
-    parallel_chunks(nf, 4096, [&](std::size_t k0, std::size_t k1) {
+    parallel_chunks(nf, 256, [&](std::size_t k0, std::size_t k1) {
         for (std::size_t k = k0; k < k1; ++k) {
             const DrapedLine& l = set.lines[follow[3 * k]];
             const std::uint32_t e = follow[3 * k + 1], t = follow[3 * k + 2];
@@ -505,10 +508,20 @@ void end_stems_where_they_meet(DrapedLineSet& set, const std::vector<std::uint32
 
 namespace {
 
+// Where the walks of stems may end before their ends: stem s (its place in the sources walked)
+// ends `after` vertices past the last of the left[s] cells mapped to s in `cells` (cell -> s; each
+// passed once), or at its end when it passes fewer (left[s] 0: at its end).
+struct WalkReach {
+    U32Map cells;
+    std::vector<std::uint32_t> left;
+    std::uint32_t after = 0;
+};
+
 // The stems starting at `sources` (cells), in that order, each walked by `walk` (network_stems'
-// layout); `cells`, when given, gets each vertex's grid cell.
+// layout), to their ends or where `reach` ends them; `cells`, when given, gets each vertex's grid
+// cell.
 DrapedLineSet walk_stems(const StemWalk& walk, const DrainageGrid& g, const std::vector<std::uint32_t>& sources,
-                         std::vector<std::uint32_t>* cells) {
+                         std::vector<std::uint32_t>* cells, const WalkReach* reach = nullptr) {
     DrapedLineSet set;
     set.lines.resize(sources.size());
     // Every cell is walked by one stem, whose end junction is its last vertex and may be another
@@ -522,7 +535,9 @@ DrapedLineSet walk_stems(const StemWalk& walk, const DrainageGrid& g, const std:
     const bool whole = sources.size() * 8 >= g.size();
     set.vertices.resize(whole ? bound : 0);
     if (cells) cells->resize(whole ? bound : 0);
-    constexpr std::size_t block = std::size_t(1) << 16, min_chunk = 1024;
+    // (a part's stems, a tile's few thousand at most, in chunks of 64 or more: on all cores too)
+    constexpr std::size_t block = std::size_t(1) << 16;
+    const std::size_t min_chunk = whole ? 1024 : 64;
     struct Buffer {
         std::vector<DrapedVertex> v;
         std::vector<std::uint32_t> c;
@@ -537,9 +552,15 @@ DrapedLineSet walk_stems(const StemWalk& walk, const DrainageGrid& g, const std:
             out.v.clear(), out.c.clear();
             for (std::size_t s = b0 + s0; s < b0 + s1; ++s) {
                 const std::size_t before = out.v.size();
+                std::uint32_t left = reach ? reach->left[s] : 0, past = 0;
                 set.lines[s].order = walk.walk(sources[s], [&](const DvVertex& v, std::size_t c) {
                     out.v.push_back(draped(v));
                     if (cells) out.c.push_back(std::uint32_t(c));
+                    if (past) return --past > 0;
+                    if (left)
+                        if (const std::uint32_t* at = reach->cells.find(std::uint32_t(c)); at && *at == s && --left == 0)
+                            past = reach->after;
+                    return true;
                 });
                 set.lines[s].count = std::uint32_t(out.v.size() - before);
             }
@@ -642,13 +663,23 @@ void smooth_lines_joined(DrapedLineSet& set, double sigma, const std::vector<std
     join_ends(set, follow, int(std::ceil(3.0 * sigma)));
     clamp_to_box(set, lo, hi);
 }
+// The vertices before and after a junction's that a stem ending there is measured against, and of
+// its own last ones those it may end at (end_stems_where_they_meet's `reach`): 4 corridors.
+int stem_end_reach(const FallLineOptions& options) { return int(std::ceil(4.0 * options.corridor)); }
+
+// Step 2 for stems once traced (trace_fall_lines): their ends (`follow`: end_matches' triples)
+// where they meet the lines they join, then the box [lo, hi].
+void end_traced_stems(DrapedLineSet& set, const DrainageGrid& g, const FallLineOptions& options,
+                      const std::vector<std::uint32_t>& follow, glm::vec2 lo, glm::vec2 hi) {
+    end_stems_where_they_meet(set, follow, stem_end_reach(options), options.meet * grid_cell_length(g), line_ids(set));
+    clamp_to_box(set, lo, hi);
+}
+
 void smooth_stems_joined(DrapedLineSet& set, const std::vector<std::uint32_t>& cells, const DrainageGrid& g,
                          const FallLineOptions& options, const std::vector<std::uint32_t>& follow, glm::vec2 lo,
                          glm::vec2 hi) {
     trace_fall_lines(set, cells, g, options);
-    end_stems_where_they_meet(set, follow, int(std::ceil(4.0 * options.corridor)), options.meet * grid_cell_length(g),
-                              line_ids(set));
-    clamp_to_box(set, lo, hi);
+    end_traced_stems(set, g, options, follow, lo, hi);
 }
 
 // The end matches among `set`'s lines, which are the whole set's lines `ids` (in that order), as
@@ -747,51 +778,74 @@ DrapedLineSet crease_part(const DrainageGrid& g, const std::vector<std::uint8_t>
     // a stem's end reads its trunk's trace, which reads nothing of other stems: one level
     std::vector<std::uint32_t> cells;
     DrapedLineSet set = walk_stems(walk, g, own, &cells);
-    const DrapedLineSet& walked = set;
-    // the source of the stem each joins (its own: none), up from its end junction; the cells
-    // climbed remembered with their source (the tributaries of one trunk climb it once)
-    std::vector<std::uint32_t> trunk(ids.size());
-    U32Map climbed;
-    std::vector<std::uint32_t> path;
-    for (std::size_t i = 0; i < ids.size(); ++i) {
-        const DrapedLine& l = walked.lines[i];
-        if (l.count < 2) {
-            trunk[i] = own[i];
-            continue;
-        }
-        std::size_t m = cells[l.first + l.count - 1];
-        path.clear();
-        std::uint32_t source;
-        for (;;) {
-            if (const std::uint32_t* at = climbed.find(std::uint32_t(m))) {
-                source = *at;
-                break;
+    const FallLineOptions options = fall_line_options(g);
+    // the part's own stems traced beside finding, walking and tracing their trunks (a stem's
+    // trace reads its own vertices alone: the same as in one set)
+    std::vector<std::uint32_t> trunk(ids.size()), closure = own, added;
+    DrapedLineSet trunks;
+    std::vector<std::uint32_t> trunk_cells;
+    run_beside([&] { trace_fall_lines(set, cells, g, options); }, [&] {
+        // the source of the stem each joins (its own: none), up from its end junction; the
+        // junctions climbed remembered with their source (the tributaries of one trunk climb it
+        // once; a climb meets a climbed stem at a junction, where another stem joins it)
+        U32Map climbed;
+        std::vector<std::uint32_t> path;
+        for (std::size_t i = 0; i < ids.size(); ++i) {
+            const DrapedLine& l = set.lines[i];
+            if (l.count < 2) {
+                trunk[i] = own[i];
+                continue;
             }
-            const std::size_t up = walk.main_up(m);
-            if (up == m) {
-                source = std::uint32_t(m);
-                break;
+            std::size_t m = cells[l.first + l.count - 1];
+            path.clear();
+            std::uint32_t source;
+            for (std::size_t steps = 0;; ++steps) {
+                const bool junction = walk.indeg[m] > 1;
+                if (const std::uint32_t* at = junction ? climbed.find(std::uint32_t(m)) : nullptr) {
+                    source = *at;
+                    break;
+                }
+                const std::size_t up = walk.main_up(m);
+                if (up == m) {
+                    source = std::uint32_t(m);
+                    break;
+                }
+                if (steps > g.size()) StemWalk::cycle();
+                if (junction) path.push_back(std::uint32_t(m));
+                m = up;
             }
-            if (path.size() > g.size()) StemWalk::cycle();
-            path.push_back(std::uint32_t(m)), m = up;
+            for (std::uint32_t c : path) climbed.insert(c, source);
+            trunk[i] = source;
         }
-        for (std::uint32_t c : path) climbed.insert(c, source);
-        trunk[i] = source;
-    }
-    std::vector<std::uint32_t> closure = own, added;
+        {
+            std::vector<std::uint32_t> sorted_own = own;
+            std::sort(sorted_own.begin(), sorted_own.end());
+            for (std::size_t i = 0; i < ids.size(); ++i)
+                if (trunk[i] != own[i] && !std::binary_search(sorted_own.begin(), sorted_own.end(), trunk[i]))
+                    added.push_back(trunk[i]);
+            std::sort(added.begin(), added.end());
+            added.erase(std::unique(added.begin(), added.end()), added.end());
+            closure.insert(closure.end(), added.begin(), added.end());
+        }
+        // the trunks walked after the part's own stems, each as far as its trace is read: past the
+        // last junction its tributaries here end at by end_stems_where_they_meet's reach and the
+        // smoothing's radius (a trace's vertex reads the smoothed path up to it, which reads the
+        // cells a radius on), two more spare
+        WalkReach reach;
+        reach.left.assign(added.size(), 0);
+        reach.after = std::uint32_t(stem_end_reach(options) + GaussianKernel(options.sigma).radius() + 2);
+        for (std::size_t i = 0; i < ids.size(); ++i) {
+            if (trunk[i] == own[i]) continue;
+            const auto a = std::lower_bound(added.begin(), added.end(), trunk[i]);
+            if (a == added.end() || *a != trunk[i]) continue;  // one of the part's own stems: walked whole
+            const DrapedLine& l = set.lines[i];
+            if (reach.cells.insert(cells[l.first + l.count - 1], std::uint32_t(a - added.begin())))
+                ++reach.left[std::size_t(a - added.begin())];
+        }
+        trunks = walk_stems(walk, g, added, &trunk_cells, &reach);
+        trace_fall_lines(trunks, trunk_cells, g, options);
+    });
     {
-        std::vector<std::uint32_t> sorted_own = own;
-        std::sort(sorted_own.begin(), sorted_own.end());
-        for (std::size_t i = 0; i < ids.size(); ++i)
-            if (trunk[i] != own[i] && !std::binary_search(sorted_own.begin(), sorted_own.end(), trunk[i]))
-                added.push_back(trunk[i]);
-        std::sort(added.begin(), added.end());
-        added.erase(std::unique(added.begin(), added.end()), added.end());
-        closure.insert(closure.end(), added.begin(), added.end());
-    }
-    {  // the trunks walked after the part's own stems
-        std::vector<std::uint32_t> trunk_cells;
-        const DrapedLineSet trunks = walk_stems(walk, g, added, &trunk_cells);
         const auto at = std::uint32_t(set.vertices.size());
         set.vertices.insert(set.vertices.end(), trunks.vertices.begin(), trunks.vertices.end());
         cells.insert(cells.end(), trunk_cells.begin(), trunk_cells.end());
@@ -801,31 +855,35 @@ DrapedLineSet crease_part(const DrainageGrid& g, const std::vector<std::uint8_t>
     std::vector<std::pair<std::uint32_t, std::uint32_t>> local(closure.size());  // (source, line)
     for (std::size_t i = 0; i < closure.size(); ++i) local[i] = {closure[i], std::uint32_t(i)};
     std::sort(local.begin(), local.end());
-    // the trunks' interior vertices by cell (the first of a cell: a stem walks a cell once)
     std::vector<std::uint32_t> into_line(ids.size(), EndMatches::none);
     std::vector<std::uint8_t> is_trunk(closure.size(), 0);
+    U32Map junction;  // the junction cells the stems end at -> their slot in `interior`
     for (std::size_t i = 0; i < ids.size(); ++i)
         if (trunk[i] != own[i]) {
             into_line[i] = std::lower_bound(local.begin(), local.end(), std::pair<std::uint32_t, std::uint32_t>(trunk[i], 0))->second;
             is_trunk[into_line[i]] = 1;
+            const DrapedLine& l = set.lines[i];
+            junction.insert(cells[l.first + l.count - 1], std::uint32_t(junction.size()));
         }
-    U32Map interior;  // cell -> vertex
+    // the trunks' first interior vertex at each of those cells (a stem walks a cell once)
+    std::vector<std::uint32_t> interior(junction.size(), EndMatches::none);
     for (std::size_t t = 0; t < closure.size(); ++t)
         if (is_trunk[t])
             for (std::uint32_t k = 1; k + 1 < set.lines[t].count; ++k)
-                interior.insert(cells[set.lines[t].first + k], set.lines[t].first + k);
+                if (const std::uint32_t* j = junction.find(cells[set.lines[t].first + k]); j && interior[*j] == EndMatches::none)
+                    interior[*j] = set.lines[t].first + k;
     std::vector<std::uint32_t> follow;
     for (std::size_t i = 0; i < ids.size(); ++i) {
         if (into_line[i] == EndMatches::none) continue;
         const DrapedLine& l = set.lines[i];
         const std::uint32_t end = l.first + l.count - 1;
-        const std::uint32_t* at = interior.find(cells[end]);
-        if (!at) continue;  // the trunk ends there too (an outlet): no interior to follow
+        const std::uint32_t at = interior[*junction.find(cells[end])];
+        if (at == EndMatches::none) continue;  // the trunk ends there too (an outlet): no interior to follow
         const DrapedLine& into = set.lines[into_line[i]];
-        if (*at < into.first || *at >= into.first + into.count) continue;
-        follow.push_back(std::uint32_t(i)), follow.push_back(end), follow.push_back(*at);
+        if (at < into.first || at >= into.first + into.count) continue;
+        follow.push_back(std::uint32_t(i)), follow.push_back(end), follow.push_back(at);
     }
-    smooth_stems_joined(set, cells, g, fall_line_options(g), follow, parts.lo, parts.hi);
+    end_traced_stems(set, g, options, follow, parts.lo, parts.hi);
     keep_first_lines(set, ids.size());
     const DrapeLattice lattice{crease_lattice(g), parts.lo, parts.hi};
     drape_lines(set, surface, {}, &lattice);
@@ -858,10 +916,11 @@ DrapedLineSet ridge_part(const DrainageGrid& g, const DemSurface& surface, const
 
 void drape_lines(DrapedLineSet& set, const DemSurface& surface, const LineProgress& progress,
                  const DrapeLattice* lattice) {
-    // In batches of lines so the progress moves, batches and the threads' chunks of equal shares
-    // of the vertices (line_chunks.hpp); each thread walks its lines with the cell of the vertex
-    // before as the next one's start.
-    constexpr std::size_t batches = 16;
+    // In batches of lines so the progress moves (one batch without progress: a crease part's few
+    // vertices in 16 batches would leave each below a chunk, on one core), batches and the
+    // threads' chunks of equal shares of the vertices (line_chunks.hpp); each thread walks its
+    // lines with the cell of the vertex before as the next one's start.
+    const std::size_t batches = progress ? 16 : 1;
     const std::size_t nl = set.lines.size(), nv = set.vertices.size();
     for (std::size_t b = 0, l0 = 0; b < batches && l0 < nl; ++b) {
         const std::size_t l1 = b + 1 == batches ? nl : std::max(l0 + 1, line_at(set.lines, (b + 1) * nv / batches));

@@ -18,6 +18,9 @@ class GaussianKernel {
 public:
     explicit GaussianKernel(double sigma);
     void smooth(const std::vector<glm::dvec2>& in, std::vector<glm::dvec2>& out) const;
+    // The offsets it weights on each side (ceil(3 sigma); 0 without smoothing): out[k] reads in[k
+    // - radius] to in[k + radius], and the ends' reflections where those pass an end.
+    int radius() const { return w_.empty() ? 0 : int(w_.size()) - 1; }
 
 private:
     bool smooths_ = false;  // sigma > 0

@@ -61,8 +61,8 @@ CreaseTiles& StoredCreases::tiles() {
     if (!decoded_) {
         auto d = std::make_unique<Decoded>();
         const auto decoded = [this](DrainageGrid& g, std::vector<std::uint8_t>& dir, CreaseTileIndex& index, SourcePart part,
-                                    std::vector<SourceUnitBlock>* blocks = nullptr) {
-            if (!decode_crease_source(bytes(), g, dir, index, part, blocks))
+                                    std::vector<SourceUnitBlock>* blocks = nullptr, FlowNetwork* net = nullptr) {
+            if (!decode_crease_source(bytes(), g, dir, index, part, blocks, net))
                 throw Error("drainage", "", "stored crease source does not decode", ExitCode::internal);
         };
         // the units now (with a folder: a frame whose tiles are all in files needs no more), a
@@ -108,8 +108,8 @@ CreaseTiles& StoredCreases::tiles() {
         if (d->dir.empty())
             d->tiles->before_first_build([decoded, d = d.get()] {
                 CreaseTileIndex again;
-                decoded(d->g, d->dir, again, SourcePart::grid);  // the index: the tiles hold it
-                d->net = network_of_directions(d->g, d->dir);
+                // the index: the tiles hold it; the network made as the DEM is read again
+                decoded(d->g, d->dir, again, SourcePart::grid, nullptr, &d->net);
             });
         decoded_ = std::move(d);
     }

@@ -3,6 +3,7 @@
 // build's; tiles made from the decoded parts give the whole build's creases bit for bit (volcano
 // at its automatic factor and geographic jacksboro, 64-cell tiles); bytes cut short, with a byte
 // more, or of another grid width do not decode.
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -239,6 +240,15 @@ TEST(CreaseSource, HeightsReadFromTheDemItRefersTo) {
     EXPECT_EQ(h.valid, g.valid);
     EXPECT_EQ(dir, res.dir);
     EXPECT_EQ(got.parts.sources, index.parts.sources);
+    // the grid with the network made beside the DEM read again: the build's network
+    FlowNetwork net;
+    ASSERT_TRUE(decode_crease_source(CreaseSourceBytes{referred.data(), referred.size()}, h, dir, got, SourcePart::grid, nullptr, &net));
+    EXPECT_EQ(h.coarse_xy, g.coarse_xy);
+    EXPECT_TRUE(std::equal(net.acc.begin(), net.acc.end(), res.net.acc.begin(), res.net.acc.end()));
+    EXPECT_EQ(net.order, res.net.order);
+    EXPECT_TRUE(std::equal(net.basin.begin(), net.basin.end(), res.net.basin.begin(), res.net.basin.end()));
+    EXPECT_EQ(net.outlet, res.net.outlet);
+    EXPECT_EQ(net.indeg, inflow_counts(res.dir, GridShape{g.cols, g.rows, g.valid.data()}));
     fs::remove(dem);
     EXPECT_FALSE(decode_crease_source(referred.data(), referred.size(), h, dir, got));  // gone
     EXPECT_TRUE(decode_crease_source(referred.data(), referred.size(), h, dir, got, SourcePart::index));  // the index alone
