@@ -73,6 +73,11 @@ std::string describe_cache_estimate(const std::string& what, const std::string& 
     return line;
 }
 
+bool cache_builds_fit_together(int cols, int rows, int factor, std::uint64_t budget) {
+    return budget == 0 ||
+           drainage_build_bytes(cols, rows, factor) + terrain_cache_estimate(cols, rows).peak_bytes <= double(budget);
+}
+
 void announce_cache_build(std::ostream& out, CacheKind kind, int cols, int rows) {
     if (!(double(cols - 1) * double(rows - 1) > estimate_from_cells)) return;
     if (kind == CacheKind::terrain)

@@ -32,6 +32,12 @@ CacheBuildEstimate drainage_cache_estimate(int cols, int rows);
 std::string describe_cache_estimate(const std::string& what, const std::string& cache, int cols, int rows,
                                     const CacheBuildEstimate& e);
 
+// Whether `budget` bytes (0: unknown, no limit) hold both caches' builds at once: the drainage
+// build at `factor` as check_drainage_memory counts it (drainage_build_bytes) and the terrain
+// cache's estimated peak. Where they do, the drainage database and the terrain cache are built
+// side by side (penink drainage; a render's first drawing, scene/terrain_keep.hpp).
+bool cache_builds_fit_together(int cols, int rows, int factor, std::uint64_t budget);
+
 enum class CacheKind { terrain, drainage };
 // Writes the estimate line of the `kind` cache of a cols x rows DEM (its estimate and
 // describe_cache_estimate) to `out`, when the DEM has more than estimate_from_cells cells.

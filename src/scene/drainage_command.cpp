@@ -180,11 +180,8 @@ int run(const DrainageCommand& cmd, std::ostream& log) {
     const bool render_caches = out == drainage_cache_path(cmd.dem, cmd.cache_dir);
     const std::string terrain_cache = render_caches ? terrain_cache_path(cmd.dem, cmd.cache_dir) : std::string();
     TerrainBeside terrain;
-    if (render_caches) {
-        const double both =
-            drainage_build_bytes(size.cols, size.rows, factor) + terrain_cache_estimate(size.cols, size.rows).peak_bytes;
-        if (budget == 0 || both <= double(budget)) terrain.start(cmd.dem, cmd.cache_dir, terrain_cache);
-    }
+    if (render_caches && cache_builds_fit_together(size.cols, size.rows, factor, budget))
+        terrain.start(cmd.dem, cmd.cache_dir, terrain_cache);
     DemOptions read;
     read.heights_only = cmd.resample == 1;  // factor 1 needs no positions on an affine grid
     read.max_memory = budget;

@@ -40,14 +40,13 @@ bool TerrainKeep::build_side_by_side(const Scene& scene, const Log& log, double 
         return false;
     }
     if (double(size.cols) * double(size.rows) <= from_cells) return false;
-    const double both = drainage_build_bytes(size.cols, size.rows, drainage_factor_for(size.cols, size.rows, 0)) +
-                        terrain_cache_estimate(size.cols, size.rows).peak_bytes;
-    if (const std::uint64_t budget = memory_budget(0); budget != 0 && both > double(budget)) return false;
-    const TerrainCacheKey dem_key = terrain_cache_key(dem);  // the drainage fingerprint's content hash
+    if (!cache_builds_fit_together(size.cols, size.rows, drainage_factor_for(size.cols, size.rows, 0), memory_budget(0)))
+        return false;
+    const TerrainCacheKey dem_key = terrain_cache_key(dem);  // both caches' key: the DEM hashed once
     announce_cache_build(std::cerr, CacheKind::terrain, size.cols, size.rows);
     const auto t0 = std::chrono::steady_clock::now();
     std::future<StoredTerrain> terrain =  // silent: its log lines would cut the drainage build's
-        std::async(std::launch::async, [dem, dir] { return open_stored_terrain(dem, Log{}, dir, false); });
+        std::async(std::launch::async, [dem, dir, dem_key] { return open_stored_terrain(dem, Log{}, dir, false, &dem_key); });
     Terrain grid;  // all a drainage build that reads the DEM needs before it does
     grid.cols = size.cols, grid.rows = size.rows, grid.source = dem;
     std::optional<DrainageLineSource> source;

@@ -218,11 +218,13 @@ TerrainCacheKey terrain_cache_key(const std::string& dem_path) {
     return {f.file_size, f.mtime_ns, f.content_hash, 0, true};
 }
 
-StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, const std::string& cache_dir, bool announce) {
+StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, const std::string& cache_dir, bool announce,
+                                  const TerrainCacheKey* known) {
     auto t0 = Clock::now();
     const std::string path = terrain_cache_path(dem_path, cache_dir);
     TerrainCacheKey key;
-    try {
+    if (known) key = *known;
+    else try {
         key = terrain_cache_key(dem_path);
     } catch (const Error&) {  // the reader names what is wrong with the file
         read_dem(dem_path);

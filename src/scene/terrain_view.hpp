@@ -76,9 +76,10 @@ struct SceneTerrain {
 // padded square) and (stage "scene") for a vertical exaggeration that is not a finite number > 0.
 // open_scene_terrain resolves the scene's "auto" vertical exaggeration first. A build of a large
 // DEM writes its estimate line (announce_cache_build) to stderr first, unless `announce` is false
-// (the caller wrote it: a build on another thread, scene/terrain_keep.hpp).
+// (the caller wrote it: a build on another thread, scene/terrain_keep.hpp). `key`: the DEM's
+// terrain_cache_key when the caller made it this run (the file is not hashed again); null: made here.
 StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, const std::string& cache_dir = "",
-                                  bool announce = true);
+                                  bool announce = true, const TerrainCacheKey* key = nullptr);
 SceneTerrain open_scene_terrain(Scene& scene, const Log& log);
 // The same from the DEM's stored terrain opened before (open_stored_terrain, no sea level in its
 // pyramid); `sea_pyramid`, when its sea level is the scene's, is the pyramid built for it before
