@@ -30,14 +30,14 @@ bool is_nodata(double v, bool has_nodata, double nodata, GDALDataType type) {
     return v == nodata;
 }
 
-// The per-dataset or alpha mask of the band (source order), empty when it has none beyond the
-// nodata value.
-std::vector<std::uint8_t> read_mask(GDALRasterBand& band, const std::string& path) {
+// The per-dataset or alpha mask of the band's source rows [y, y + n) (source order), empty when
+// it has none beyond the nodata value.
+std::vector<std::uint8_t> read_mask(GDALRasterBand& band, const std::string& path, int y, int n) {
     const int flags = band.GetMaskFlags();
     if (flags & (GMF_ALL_VALID | GMF_NODATA)) return {};
-    std::vector<std::uint8_t> mask(std::size_t(band.GetXSize()) * band.GetYSize());
-    if (band.GetMaskBand()->RasterIO(GF_Read, 0, 0, band.GetXSize(), band.GetYSize(), mask.data(),
-                                     band.GetXSize(), band.GetYSize(), GDT_Byte, 0, 0) != CE_None)
+    std::vector<std::uint8_t> mask(std::size_t(band.GetXSize()) * std::size_t(n));
+    if (band.GetMaskBand()->RasterIO(GF_Read, 0, y, band.GetXSize(), n, mask.data(), band.GetXSize(), n, GDT_Byte, 0,
+                                     0) != CE_None)
         fail(path, "not a DEM raster (GDAL cannot read it)");
     return mask;
 }
@@ -50,8 +50,7 @@ void orient(std::array<double, 6>& gt, int w, int h, bool& flip_c, bool& flip_r)
     if (flip_r) gt = {gt[0] + h * gt[2], gt[1], -gt[2], gt[3] + h * gt[5], gt[4], -gt[5]};
 }
 
-// Reads the band as T into r.raw_f / r.raw_d, with its mask, nodata value, scale and offset (not
-// its unit: GDAL's GeoTIFF driver builds the spatial reference for that).
+// Reads the band as T into r.raw_f / r.raw_d, with its mask (band_info first).
 template <class T>
 void read_band(GDALRasterBand& band, Raster& r, const std::string& path) {
     auto& raw = [&]() -> auto& {
@@ -71,12 +70,8 @@ void read_band(GDALRasterBand& band, Raster& r, const std::string& path) {
             fail(path, "not a DEM raster (GDAL cannot read it)");
         band.FlushCache();
     }
-    r.mask = read_mask(band, path);
+    r.mask = read_mask(band, path, 0, r.h);
     if (GDALRasterBand* m = band.GetMaskBand(); m && !r.mask.empty()) m->FlushCache();
-    int has = 0, has_scale = 0, has_offset = 0;
-    r.nodata = band.GetNoDataValue(&has), r.has_nodata = has != 0;
-    const double scale = band.GetScale(&has_scale), offset = band.GetOffset(&has_offset);
-    r.scale = has_scale ? scale : 1.0, r.offset = has_offset ? offset : 0.0;
 }
 
 // r.valid (from NaN, the nodata value and the mask; a non-finite elevation is invalid too) and
@@ -124,7 +119,7 @@ bool float_exact(GDALDataType t) {
 void read_values(GDALDataset& ds, Raster& r, const std::string& path) {
     if (ds.GetRasterCount() < 1) fail(path, "not a DEM raster (GDAL cannot read it)");
     GDALRasterBand& band = *ds.GetRasterBand(1);
-    r.type = band.GetRasterDataType();
+    band_info(band, r);
     if (float_exact(r.type)) read_band<float>(band, r, path);
     else read_band<double>(band, r, path);
     classify_values(r);
@@ -252,6 +247,34 @@ void take_heights(Raster& r, double s, std::vector<float>& z) {
 }
 
 void read_heights(GDALDataset& ds, const std::string& path, Raster& r) { read_values(ds, r, path); }
+
+void band_info(GDALRasterBand& band, Raster& r) {
+    r.type = band.GetRasterDataType();
+    int has = 0, has_scale = 0, has_offset = 0;
+    r.nodata = band.GetNoDataValue(&has), r.has_nodata = has != 0;
+    const double scale = band.GetScale(&has_scale), offset = band.GetOffset(&has_offset);
+    r.scale = has_scale ? scale : 1.0, r.offset = has_offset ? offset : 0.0;
+}
+
+void read_rows(GDALRasterBand& band, const Raster& r, int y0, int y1, Raster& rows, const std::string& path) {
+    rows.w = r.w, rows.h = y1 - y0;
+    rows.type = r.type, rows.scale = r.scale, rows.offset = r.offset, rows.unit = r.unit;
+    rows.has_nodata = r.has_nodata, rows.nodata = r.nodata, rows.flip_c = r.flip_c, rows.flip_r = r.flip_r;
+    rows.emin = std::numeric_limits<double>::max(), rows.emax = -rows.emin;
+    rows.out_of_range = Raster::npos;
+    const int sy = r.flip_r ? r.h - y1 : y0;  // the rows' first in source order
+    const std::size_t n = std::size_t(rows.w) * std::size_t(rows.h);
+    auto read = [&](auto& raw, GDALDataType as) {
+        raw.resize(n);
+        if (band.RasterIO(GF_Read, 0, sy, rows.w, rows.h, raw.data(), rows.w, rows.h, as, 0, 0) != CE_None)
+            fail(path, "not a DEM raster (GDAL cannot read it)");
+    };
+    if (float_exact(r.type)) rows.raw_d = {}, read(rows.raw_f, GDT_Float32);
+    else rows.raw_f = {}, read(rows.raw_d, GDT_Float64);
+    rows.mask = read_mask(band, path, sy, rows.h);
+    classify_values(rows);
+    if (rows.out_of_range != Raster::npos) rows.out_of_range += std::size_t(sy) * std::size_t(rows.w);
+}
 
 void read_heights(const std::string& path, const std::string& driver, Raster& r) {
     const QuietGdal quiet;  // GDAL's error handlers are per thread

@@ -104,6 +104,16 @@ inline double node_elevation(const Raster& r, std::size_t row, int c, double uni
 // heights, the flags and 8 MiB, not the values besides) and are gone after.
 void take_heights(Raster& r, double s, std::vector<float>& z);
 
+// The band's type, nodata value, scale and offset into r (what a read of its values needs besides
+// them; read_heights sets them too).
+void band_info(GDALRasterBand& band, Raster& r);
+
+// Rows [y0, y1) of `band` in our orientation (row 0 north) into `rows`, a Raster of those rows
+// alone (r's width, type, scale, offset, unit, nodata and flips, band_info's; h = y1 - y0): their
+// values, mask, valid flags and range of scaled values as read_heights leaves a whole band's,
+// out_of_range an index in the whole band's source order.
+void read_rows(GDALRasterBand& band, const Raster& r, int y0, int y1, Raster& rows, const std::string& path);
+
 // The values of `ds` read into r (values, valid mask, range of scaled values): none of it needs
 // the spatial reference, which GDAL's GeoTIFF driver takes the unit from.
 void read_heights(GDALDataset& ds, const std::string& path, Raster& r);

@@ -107,19 +107,24 @@ WorldXY world_coordinates(const Raster& r, const DemOptions& options, Terrain& t
     return w;
 }
 
-// Some cell has valid nodes at its four corners (usually the first few rows show one).
-bool has_valid_cell(const Raster& r) {
-    const std::size_t w = std::size_t(r.w);
-    for (std::size_t row = 0; row + 1 < std::size_t(r.h); ++row) {
-        const std::uint8_t* a = &r.valid[row * w];
-        const std::uint8_t* b = a + w;
-        for (std::size_t c = 0; c + 1 < w; ++c)
-            if (a[c] && a[c + 1] && b[c] && b[c + 1]) return true;
-    }
+// Some cell between two adjacent rows of w flags has valid nodes at its four corners.
+bool valid_cell_between(const std::uint8_t* a, const std::uint8_t* b, std::size_t w) {
+    for (std::size_t c = 0; c + 1 < w; ++c)
+        if (a[c] && a[c + 1] && b[c] && b[c + 1]) return true;
     return false;
 }
 
-void check_grid(const Raster& r, const std::string& path) {
+// Some cell has valid nodes at its four corners (usually the first few rows show one).
+bool has_valid_cell(const Raster& r) {
+    const std::size_t w = std::size_t(r.w);
+    for (std::size_t row = 0; row + 1 < std::size_t(r.h); ++row)
+        if (valid_cell_between(&r.valid[row * w], &r.valid[(row + 1) * w], w)) return true;
+    return false;
+}
+
+// r: the grid's size and what classifying every value found (range in metres, out_of_range);
+// valid_cell: has_valid_cell of its flags.
+void check_grid(const Raster& r, bool valid_cell, const std::string& path) {
     if (r.w < 2 || r.h < 2)
         fail(path, "DEM is too small (" + std::to_string(r.w) + "x" + std::to_string(r.h) +
                        " nodes; at least 2x2 needed)");
@@ -134,8 +139,31 @@ void check_grid(const Raster& r, const std::string& path) {
     }
     if (r.emin > r.emax)  // the band pass widened the range at every valid node: none was
         fail(path, "DEM has no valid elevation (all nodata)");
-    if (!has_valid_cell(r))
+    if (!valid_cell)
         fail(path, "DEM has fewer than 2x2 valid nodes (no cell with data at its four corners)");
+}
+
+void check_options(const std::string& path, const DemOptions& options) {
+    const double ve = options.vertical_exaggeration;
+    if (!std::isfinite(ve) || ve <= 0.0) fail(path, "vertical exaggeration must be > 0");
+    if (options.utm_zone < 0 || options.utm_zone > 60)
+        fail(path, "UTM zone must be 1..60 (0 = standard zone), got " + std::to_string(options.utm_zone));
+}
+
+// What read_dem's Terrain holds before its values: size, exaggeration, source, geotransform.
+Terrain terrain_of(const Raster& r, const std::string& path, double ve) {
+    Terrain t;
+    t.cols = r.w, t.rows = r.h;
+    t.vertical_exaggeration = ve;
+    t.source = path;
+    t.geotransform = r.gt;
+    return t;
+}
+
+// And after them: the x, y unit of an affine grid and the elevation range (metres).
+void finish_terrain(const Raster& r, const WorldXY& xy, Terrain& t) {
+    if (!xy.utm) t.xy_unit = xy.unit;  // an affine grid: affine_node_xy gives pos.xy
+    t.elevation_min = r.emin, t.elevation_max = r.emax;
 }
 
 // f(row, x, y of the row's nodes) for every row, x, y its nodes' world coordinates relative to
@@ -186,19 +214,13 @@ void fill_xy(const Raster& r, const WorldXY& xy, Terrain& t, const std::string& 
 
 Terrain read_dem(const std::string& path, const DemOptions& options) {
     const QuietGdal quiet;
+    check_options(path, options);
     const double ve = options.vertical_exaggeration;
-    if (!std::isfinite(ve) || ve <= 0.0) fail(path, "vertical exaggeration must be > 0");
-    if (options.utm_zone < 0 || options.utm_zone > 60)
-        fail(path, "UTM zone must be 1..60 (0 = standard zone), got " + std::to_string(options.utm_zone));
     GDALDatasetUniquePtr ds = open_raster(path);
     Raster r = raster_header(*ds);
     check_memory("input", path, "reading the DEM's " + std::to_string(r.w) + "x" + std::to_string(r.h) + " nodes",
                  double(r.w) * double(r.h) * dem_read_bytes_per_node, memory_budget(options.max_memory));
-    Terrain t;
-    t.cols = r.w, t.rows = r.h;
-    t.vertical_exaggeration = ve;
-    t.source = path;
-    t.geotransform = r.gt;
+    Terrain t = terrain_of(r, path, ve);
     // The spatial reference (PROJ's database: ~15 ms), the nodes' bounds and a geographic DEM's
     // UTM x, y here while another thread reads the values, for a GeoTIFF: GDAL's GTiff driver
     // builds the spatial reference when first asked, other drivers (an ASCII grid's .prj) as
@@ -226,16 +248,108 @@ Terrain read_dem(const std::string& path, const DemOptions& options) {
         crs();
     }
     range_to_metres(r);
-    check_grid(r, path);
+    check_grid(r, has_valid_cell(r), path);
     if (crs_error) std::rethrow_exception(crs_error);
-    if (!xy->utm) t.xy_unit = xy->unit;  // an affine grid: affine_node_xy gives pos.xy
-    t.elevation_min = r.emin, t.elevation_max = r.emax;
+    finish_terrain(r, *xy, t);
     if (!heights) fill_positions(r, *xy, t, path);
     else take_heights(r, ve, t.z);
     t.valid = std::move(r.valid);
     if (heights && options.xy_rows)
         each_row_xy(r, *xy, t, path, [&](std::size_t row, const glm::vec2* p) { options.xy_rows(t, int(row), p); });
     return t;
+}
+
+struct DemRows::State {
+    std::string path;
+    GDALDatasetUniquePtr ds;
+    Raster r;  // header, band_info, unit; range in metres
+    std::optional<WorldXY> xy;
+    Terrain meta;
+    Raster rows;  // the last rows read (scratch)
+};
+
+DemRows::~DemRows() = default;
+DemRows::DemRows(DemRows&&) noexcept = default;
+
+DemRows::DemRows(const std::string& path, const DemOptions& options, int band_rows) : s_(std::make_unique<State>()) {
+    const QuietGdal quiet;
+    check_options(path, options);
+    State& s = *s_;
+    s.path = path;
+    s.ds = open_raster(path);
+    Raster& r = s.r;
+    r = raster_header(*s.ds);
+    GDALRasterBand& band = *s.ds->GetRasterBand(1);
+    band_info(band, r);
+    if (band_rows <= 0) band_rows = default_band_rows(r.w);
+    check_memory("input", path,
+                 "reading the DEM's " + std::to_string(r.w) + "x" + std::to_string(r.h) + " nodes by bands of " +
+                     std::to_string(band_rows) + " rows",
+                 double(r.w) * double(band_rows) * dem_read_bytes_per_node, memory_budget(options.max_memory));
+    s.meta = terrain_of(r, path, options.vertical_exaggeration);
+    std::exception_ptr crs_error;  // reported after the values' errors, as read_dem does
+    try {
+        if (const OGRSpatialReference* srs = s.ds->GetSpatialRef(); srs && !srs->IsEmpty()) r.srs.reset(srs->Clone());
+        r.unit = vertical_unit(band);
+        s.xy.emplace(world_coordinates(r, options, s.meta, path));
+        s.meta.origin = glm::round(0.5 * (s.xy->lo + s.xy->hi));
+    } catch (...) {
+        crs_error = std::current_exception();
+    }
+    // Every value once: the range, the first value out of range (source order), a valid cell.
+    bool valid_cell = false;
+    std::vector<std::uint8_t> last;  // the previous band's last row of flags
+    for (int y0 = 0; y0 < r.h; y0 += band_rows) {
+        const int y1 = std::min(r.h, y0 + band_rows);
+        read_rows(band, r, y0, y1, s.rows, path);
+        band.FlushCache();
+        r.emin = std::min(r.emin, s.rows.emin), r.emax = std::max(r.emax, s.rows.emax);
+        if (s.rows.out_of_range < r.out_of_range)
+            r.out_of_range = s.rows.out_of_range, r.out_of_range_value = s.rows.out_of_range_value;
+        const std::size_t w = std::size_t(r.w);
+        if (!valid_cell && !last.empty()) valid_cell = valid_cell_between(last.data(), s.rows.valid.data(), w);
+        if (!valid_cell) valid_cell = has_valid_cell(s.rows);
+        last.assign(s.rows.valid.end() - std::ptrdiff_t(w), s.rows.valid.end());
+    }
+    s.rows = {};
+    range_to_metres(r);
+    check_grid(r, valid_cell, path);
+    if (crs_error) std::rethrow_exception(crs_error);
+    finish_terrain(r, *s.xy, s.meta);
+}
+
+int DemRows::default_band_rows(int cols) { return std::max(1, (8 << 20) / (8 * std::max(1, cols))); }
+
+const Terrain& DemRows::meta() const { return s_->meta; }
+
+void DemRows::rows(int y0, int y1, float* z, std::uint8_t* valid) {
+    const QuietGdal quiet;
+    State& s = *s_;
+    const Raster& r = s.r;
+    if (y0 < 0 || y1 > r.h || y0 > y1) throw std::out_of_range("DemRows::rows: rows outside the DEM");
+    if (y0 == y1) return;
+    GDALRasterBand& band = *s.ds->GetRasterBand(1);
+    read_rows(band, r, y0, y1, s.rows, s.path);
+    band.FlushCache();
+    const double ve = s.meta.vertical_exaggeration;
+    const std::size_t w = std::size_t(r.w);
+    parallel_chunks(std::size_t(y1 - y0), rows_per_chunk(r), [&](std::size_t i0, std::size_t i1) {
+        for (std::size_t i = i0; i < i1; ++i)
+            for (int c = 0; c < r.w; ++c) z[i * w + std::size_t(c)] = float(node_elevation(s.rows, i, c, r.unit, r.emin) * ve);
+    });
+    std::copy(s.rows.valid.begin(), s.rows.valid.end(), valid);
+}
+
+void DemRows::xy(int y, glm::vec2* out) const {
+    const State& s = *s_;
+    thread_local std::vector<glm::dvec2> line;
+    line.resize(std::size_t(s.r.w));
+    try {
+        s.xy->row(s.r, y, line.data());
+    } catch (const GeographicLib::GeographicErr& e) {
+        fail_utm(s.path, s.meta.utm_zone, s.meta.north, e);
+    }
+    for (int c = 0; c < s.r.w; ++c) out[c] = local_xy(line[std::size_t(c)], s.meta.origin);
 }
 
 DemSize read_dem_size(const std::string& path) {

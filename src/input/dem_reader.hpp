@@ -12,6 +12,7 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 
 #include <glm/vec2.hpp>
@@ -41,6 +42,33 @@ struct DemOptions {
 // Bytes a read holds per node at its peak: the value as read (up to 8), the valid flag (1) and
 // the position (12).
 constexpr double dem_read_bytes_per_node = 21.0;
+
+// A DEM read a band of rows at a time, for builds that hold a band of it, not the whole (the
+// terrain cache's, surface/terrain_cache.hpp): opening it reads every value once, a band at a
+// time, for what read_dem finds over the whole DEM (its errors, the same lines in the same order;
+// the range of valid elevations, whose lowest the nodata nodes take); rows() then reads any rows
+// again. Heights, flags, x, y and georeference are read_dem's with heights_only, bit for bit.
+// Memory: a band of rows (values, flags) and GDAL's blocks of it. One thread at a time.
+class DemRows {
+public:
+    // band_rows: rows of a band of the opening pass (0: default_band_rows, about 8 MiB of values).
+    explicit DemRows(const std::string& path, const DemOptions& options = {}, int band_rows = 0);
+    ~DemRows();
+    DemRows(DemRows&&) noexcept;
+    static int default_band_rows(int cols);
+    // read_dem's Terrain (heights_only) without its arrays: grid, georeference, elevation range,
+    // origin, xy_unit; z, valid, pos and xy empty.
+    const Terrain& meta() const;
+    // Heights (what a heights-only read puts in Terrain::z) and flags of rows [y0, y1), row-major
+    // into z and valid ((y1 - y0) * cols each).
+    void rows(int y0, int y1, float* z, std::uint8_t* valid);
+    // The local x, y of row y's nodes (what DemOptions::xy_rows receives for it), cols of them.
+    void xy(int y, glm::vec2* out) const;
+
+private:
+    struct State;
+    std::unique_ptr<State> s_;
+};
 
 // A DEM's size from its header alone (no value read): the nodes' columns and rows.
 struct DemSize {

@@ -6,6 +6,7 @@
 #include "core/memory_budget.hpp"
 #include "drainage/drainage_memory.hpp"
 #include "input/dem_reader.hpp"
+#include "scene/cache_build_estimate.hpp"
 #include "scene/frame_source.hpp"
 #include "surface/terrain_lod.hpp"
 
@@ -28,13 +29,15 @@ void check_scene_memory(const Scene& scene, std::uint64_t max_memory) {
     }
     const std::uint64_t budget = memory_budget(max_memory);
     const DemSize size = read_dem_size(scene.source.dem);
-    const double drainage = drainage_build_bytes(size.cols, size.rows, drainage_factor_for(size.cols, size.rows, 0));
-    // the level-of-detail pyramid's errors over the padded square (a long thin DEM's square is
-    // far larger than its nodes), and the pyramid rebuilt for a sea level
+    // the caches' builds when the DEM has none (built side by side: cache_build_estimate.hpp): the
+    // terrain cache's, and the drainage database's where the scene draws creases or ridges; with
+    // a sea level, the pyramid rebuilt for it over the padded square (a long thin DEM's square is
+    // far larger than its nodes). A frame from the caches holds less than their builds.
+    const bool lines = scene.lines.creases.enabled || scene.lines.ridges.enabled;
+    const double drainage = lines ? drainage_build_bytes(size.cols, size.rows, drainage_factor_for(size.cols, size.rows, 0)) : 0.0;
     const double side = std::ldexp(1.0, lod_padded_levels(size.cols, size.rows)) + 1.0;
-    double water = side * side * lod_bytes_per_padded_node;
-    if (scene.terrain.sea_level) water += side * side * water_lod_bytes_per_padded_node;
-    const double dem = size.nodes() * render_bytes_per_node + drainage + water;
+    const double water = scene.terrain.sea_level ? side * side * water_lod_bytes_per_padded_node : 0.0;
+    const double dem = terrain_cache_estimate(size.cols, size.rows).peak_bytes + drainage + water;
     check_memory("input", scene.source.dem,
                  "drawing the DEM's " + std::to_string(size.cols) + "x" + std::to_string(size.rows) + " nodes", dem, budget);
     check_memory("scene", file, image_what + " of the DEM's " + std::to_string(size.cols) + "x" + std::to_string(size.rows) + " nodes",

@@ -1,8 +1,8 @@
-// Memory a terrain drawing needs, estimated from the DEM's header before anything is read: its
-// nodes at render_bytes_per_node (DEM read, level-of-detail mesh, GPU upload; about 80 B a cell
-// measured on 14 M cells, warm) plus the drainage build a render makes when it has no cache
-// (drainage/drainage_memory.hpp, at the automatic factor) and, with a sea level, the pyramid
-// rebuilt for it, against a budget.
+// Memory a terrain drawing needs, estimated from the DEM's header before anything is read: what
+// building its caches holds (the terrain cache's build, streamed: cache_build_estimate.hpp; the
+// drainage build at the automatic factor where the scene draws creases or ridges,
+// drainage/drainage_memory.hpp) and, with a sea level, the pyramid rebuilt for it, against a
+// budget. A frame drawn from the caches reads what its image needs and holds less.
 #pragma once
 #include <cstdint>
 
@@ -10,6 +10,8 @@
 
 namespace penink {
 
+// A terrain held whole in memory (DEM read, pyramid, level-of-detail mesh): the terrain cache's
+// fallback where it cannot be streamed (terrain_view.cpp).
 constexpr double render_bytes_per_node = 64.0;
 // The image's buffers (GPU targets, read-back, line masks, raster output): 31.5 B a pixel
 // measured (peak RSS of `render volcano.asc -o m.png` at 1024² and 3072²: 250 MB and 508 MB).
@@ -17,7 +19,7 @@ constexpr double render_bytes_per_pixel = 32.0;
 // A scene with a sea level rebuilds the pyramid for it (terrain_view.hpp): heights, flags and
 // errors over the padded square while it builds.
 constexpr double water_lod_bytes_per_padded_node = 10.0;
-// Every terrain's pyramid holds a float error per padded node ((2^levels + 1)^2, terrain_lod.hpp).
+// A pyramid held in memory holds a float error per padded node ((2^levels + 1)^2, terrain_lod.hpp).
 constexpr double lod_bytes_per_padded_node = 4.0;
 
 // Throws Error("input", DEM, "drawing the DEM's WxH nodes would need about N of memory, B

@@ -249,14 +249,16 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, c
         std::cerr << "penink: warning: terrain: " << path
                   << ": not a regular file; the terrain cache is neither read nor written (built in memory)\n";
     const DemSize size = read_dem_size(dem_path);
-    {  // before the read: a long thin DEM's pyramid covers the padded square (terrain_lod.hpp)
-        const double side = std::ldexp(1.0, lod_padded_levels(size.cols, size.rows)) + 1.0;
+    const double side = std::ldexp(1.0, lod_padded_levels(size.cols, size.rows)) + 1.0;
+    // Before a read: a long thin DEM's pyramid covers the padded square (terrain_lod.hpp).
+    auto check = [&](const char* how, double need) {
         check_memory("surface", dem_path,
-                     "the level-of-detail pyramid of the DEM's " + std::to_string(size.cols) + "x" +
+                     std::string(how) + " of the DEM's " + std::to_string(size.cols) + "x" +
                          std::to_string(size.rows) + " nodes (" + std::to_string(std::int64_t(side)) + "^2 padded nodes)",
-                     size.nodes() * render_bytes_per_node + side * side * lod_bytes_per_padded_node, memory_budget(0));
-        if (announce) announce_cache_build(std::cerr, CacheKind::terrain, size.cols, size.rows);
-    }
+                     need, memory_budget(0));
+    };
+    if (!occupied) check("building the terrain cache", terrain_cache_estimate(size.cols, size.rows).peak_bytes);
+    if (announce) announce_cache_build(std::cerr, CacheKind::terrain, size.cols, size.rows);
     StageProgress progress(std::cerr, log.progress, "building terrain cache");
     progress.update("reading the DEM", 0.0);
     bool unwritable = false;  // the streamed build could not write the file: the fallback does not try again
@@ -288,6 +290,7 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, c
             }
         }
     }
+    check("the level-of-detail pyramid", size.nodes() * render_bytes_per_node + side * side * lod_bytes_per_padded_node);
     Terrain flat = read_dem(dem_path);
     log.info("read " + dem_path + ": " + std::to_string(flat.cols) + "x" + std::to_string(flat.rows) + " nodes (" +
              std::to_string(int(lap_ms(t0))) + " ms)");

@@ -179,19 +179,23 @@ std::optional<DerivedXY> derived_xy(const Terrain& meta, const GridNodes& nodes)
 using CodedBlocks = std::vector<std::vector<std::uint8_t>>;
 // code(first element, count) of every block of an array of `elems`, on every core a batch of
 // blocks at a time, each batch then handed in order to use(block, its bytes).
+// code(b) of blocks [b0, b0 + count) on every core, then use(b, its bytes) of each in order.
+template <class F, class U> void code_batch(std::size_t b0, std::size_t count, F&& code, U&& use) {
+    CodedBlocks coded(count);
+    parallel_chunks(count, 64, [&](std::size_t i0, std::size_t i1) {
+        for (std::size_t i = i0; i < i1; ++i) coded[i] = code(b0 + i);
+    });
+    for (std::size_t i = 0; i < count; ++i) use(b0 + i, std::span<const std::uint8_t>(coded[i]));
+}
+// code(first element, count) of every block of an array of `elems`, on every core a batch of
+// blocks at a time, each batch then handed in order to use(block, its bytes).
 template <class F, class U> void code_batches(std::uint64_t elems, F&& code, U&& use) {
     const std::size_t blocks = std::size_t(block_count(elems, block_shift)), batch = 1 << 14;
-    CodedBlocks coded;
-    for (std::size_t b0 = 0; b0 < blocks; b0 += batch) {
-        coded.resize(std::min(batch, blocks - b0));
-        parallel_chunks(coded.size(), 64, [&](std::size_t i0, std::size_t i1) {
-            for (std::size_t i = i0; i < i1; ++i) {
-                const std::uint64_t first = std::uint64_t(b0 + i) << block_shift;
-                coded[i] = code(first, std::min<std::uint64_t>(std::uint64_t(1) << block_shift, elems - first));
-            }
-        });
-        for (std::size_t i = 0; i < coded.size(); ++i) use(b0 + i, std::span<const std::uint8_t>(coded[i]));
-    }
+    for (std::size_t b0 = 0; b0 < blocks; b0 += batch)
+        code_batch(b0, std::min(batch, blocks - b0), [&](std::size_t b) {
+            const std::uint64_t first = std::uint64_t(b) << block_shift;
+            return code(first, std::min<std::uint64_t>(std::uint64_t(1) << block_shift, elems - first));
+        }, use);
 }
 template <class F> CodedBlocks code_blocks(std::uint64_t elems, F&& code) {
     CodedBlocks out(std::size_t(block_count(elems, block_shift)));
@@ -401,62 +405,67 @@ void write_terrain_cache(const std::string& path, const StoredTerrain& t, const 
     write_coded(path, t, key, coded);
 }
 
+namespace {
+
+// The blocks of an array whose elements come in order, a run at a time: coded on every core a
+// batch of whole blocks at a time (code_batch), each then handed in order to use(block, bytes);
+// finish() codes the last, short block.
+template <class T, class Code, class Use> class InOrderBlocks {
+public:
+    InOrderBlocks(std::uint64_t elems, Code code, Use use) : elems_(elems), code_(std::move(code)), use_(std::move(use)) {}
+
+    void add(const T* v, std::size_t count) {
+        pending_.insert(pending_.end(), v, v + count);
+        const std::size_t block = std::size_t(1) << block_shift, batch = std::size_t(1) << 14;
+        if (pending_.size() < batch * block) return;
+        const std::size_t whole = pending_.size() / block;
+        flush(whole);
+    }
+    void finish() {
+        const std::size_t block = std::size_t(1) << block_shift;
+        flush((pending_.size() + block - 1) / block);
+        if (done_ != block_count(elems_, block_shift)) throw std::logic_error("terrain cache: array not whole");
+    }
+
+private:
+    // Codes the first `blocks` blocks of pending_ (the last may be short) and drops their elements.
+    void flush(std::size_t blocks) {
+        const std::size_t block = std::size_t(1) << block_shift;
+        code_batch(done_, blocks, [&](std::size_t b) {
+            const std::size_t at = (b - done_) * block;
+            return code_(pending_.data() + at, std::min(block, pending_.size() - at));
+        }, use_);
+        pending_.erase(pending_.begin(), pending_.begin() + std::ptrdiff_t(std::min(pending_.size(), blocks * block)));
+        done_ += blocks;
+    }
+    std::uint64_t elems_;
+    Code code_;
+    Use use_;
+    std::vector<T> pending_;
+    std::size_t done_ = 0;
+};
+
+// Thrown out of the pyramid's row loads when a row's x, y are not the formula's.
+struct NotFormulaXY {};
+
+}  // namespace
+
 bool build_terrain_cache(const std::string& dem_path, const std::string& path, const TerrainCacheKey& key,
-                         const std::function<void(int)>& done) {
-    // The heights and flags alone; each row's x, y checked against the formula the cache will
-    // recompute them with (derive_xy) and reduced to the plan bounds and the Lipschitz bound.
-    struct RowSums {
-        glm::vec3 lo{std::numeric_limits<float>::infinity()}, hi{-std::numeric_limits<float>::infinity()};
-        float lipschitz2 = 0.0f;
-    };
-    std::once_flag once;
-    std::optional<DerivedXY> formula;
-    std::vector<RowSums> rows;
-    std::atomic<bool> exact{true};
-    DemOptions read;
-    read.heights_only = true;
-    read.xy_rows = [&](const Terrain& t, int r, const glm::vec2* xy) {
-        std::call_once(once, [&] {
-            formula = derive_xy(t, xy_affine | xy_geographic);
-            rows.resize(std::size_t(t.rows));
-        });
-        if (!formula || !exact.load(std::memory_order_relaxed)) return;
-        thread_local std::vector<glm::vec2> f;
-        f.resize(std::size_t(t.cols));
-        formula->span(r, 0, t.cols, f.data());
-        if (std::memcmp(f.data(), xy, f.size() * sizeof(glm::vec2)) != 0) return exact.store(false);
-        RowSums& row = rows[std::size_t(r)];
-        for (int c = 0; c < t.cols; ++c) {
-            const std::size_t i = t.index(c, r);
-            if (!t.valid[i]) continue;
-            const glm::vec3 p(xy[c].x, xy[c].y, t.z[i]);
-            row.lo = glm::min(row.lo, p), row.hi = glm::max(row.hi, p);
-        }
-        if (r + 1 < t.rows) {
-            formula->span(r + 1, 0, t.cols, f.data());
-            row.lipschitz2 = lod_cells_lipschitz2(&xy[0].x, &f[0].x, t.cols, 2);
-        }
-    };
-    Terrain dem = read_dem(dem_path, read);
-    if (!formula || !exact.load() || dem.vertical_exaggeration != 1.0) return false;
+                         const std::function<void(int)>& done, int band_rows) {
+    DemRows dem(dem_path, DemOptions{}, band_rows);  // every value checked once: the DEM's errors first
+    const Terrain& m = dem.meta();
+    const std::optional<DerivedXY> formula = derive_xy(m, xy_affine | xy_geographic);
+    if (!formula || m.vertical_exaggeration != 1.0) return false;
     if (done) done(0);
 
     StoredTerrain t;  // the header's fields
-    t.meta = terrain_metadata(dem);
-    t.lod.cols = dem.cols, t.lod.rows = dem.rows;
-    t.lod.levels = lod_padded_levels(dem.cols, dem.rows);
-    RowSums all;
-    for (const RowSums& row : rows)
-        all.lo = glm::min(all.lo, row.lo), all.hi = glm::max(all.hi, row.hi), all.lipschitz2 = std::max(all.lipschitz2, row.lipschitz2);
-    rows = {};
-    t.lod.lipschitz = float(std::sqrt(double(all.lipschitz2)));
-    if (all.lo.z <= all.hi.z) {
-        t.lod.z_min = all.lo.z, t.lod.z_max = all.hi.z;
-        t.plan_lo = glm::dvec2(glm::dvec3(all.lo)), t.plan_hi = glm::dvec2(glm::dvec3(all.hi));
-    }
+    t.meta = m;  // no arrays
+    t.lod.cols = m.cols, t.lod.rows = m.rows;
+    t.lod.levels = lod_padded_levels(m.cols, m.rows);
     // The header's length follows the block counts alone: reserved first, written last, the
-    // nodes' blocks streamed to the file as they are coded, the pyramid's once all are final.
-    const Counts n = array_counts(dem.cols, dem.rows, t.lod.levels);
+    // nodes' blocks streamed to the file as they are coded, the flags' held (coded) until the
+    // nodes' are written, the pyramid's once all are final.
+    const Counts n = array_counts(m.cols, m.rows, t.lod.levels);
     BlockSums sums;
     sums.flags = formula->flag;
     const std::uint64_t counts[3] = {block_count(n.nodes, block_shift), block_count(n.nodes, block_shift),
@@ -466,17 +475,100 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
     const std::size_t head = encode_header(t, key, sums, at, total).size();
     CacheFileStream out(path);
     if (const int err = out.append(std::vector<std::uint8_t>(head, 0))) write_failed(path, err);
-    code_batches(n.nodes, [&](std::uint64_t i, std::uint64_t k) { return encode_floats(dem.z.data() + i, std::size_t(k), z_orders); },
-                 [&](std::size_t b, std::span<const std::uint8_t> bytes) { sums.take(0, b, bytes), out.append(bytes); });
-    code_batches(n.nodes, [&](std::uint64_t i, std::uint64_t k) { return encode_bytes(dem.valid.data() + i, std::size_t(k)); },
-                 [&](std::size_t b, std::span<const std::uint8_t> bytes) { sums.take(1, b, bytes), out.append(bytes); });
+    auto code_z = [](const float* v, std::size_t k) { return encode_floats(v, k, z_orders); };
+    auto write_z = [&](std::size_t b, std::span<const std::uint8_t> bytes) {
+        sums.take(0, b, bytes);
+        if (const int err = out.append(bytes)) write_failed(path, err);
+    };
+    InOrderBlocks<float, decltype(code_z), decltype(write_z)> z_blocks(n.nodes, code_z, write_z);
+    std::vector<std::uint8_t> flags_coded;  // the flags' blocks, back to back
+    auto code_valid = [](const std::uint8_t* v, std::size_t k) { return encode_bytes(v, k); };
+    auto keep_valid = [&](std::size_t b, std::span<const std::uint8_t> bytes) {
+        sums.take(1, b, bytes);
+        flags_coded.insert(flags_coded.end(), bytes.begin(), bytes.end());
+    };
+    InOrderBlocks<std::uint8_t, decltype(code_valid), decltype(keep_valid)> valid_blocks(n.nodes, code_valid, keep_valid);
+
+    // Rows come once each, in order, as the pyramid's strips ask for them (a window of the rows a
+    // strip reads): each row's x, y checked against the formula the cache recomputes them with
+    // and reduced to the plan bounds and the Lipschitz bound, its heights and flags coded.
+    struct RowSums {
+        glm::vec3 lo{std::numeric_limits<float>::infinity()}, hi{-std::numeric_limits<float>::infinity()};
+        float lipschitz2 = 0.0f;
+    };
+    RowSums all;
+    std::mutex merge;
+    const std::size_t w = std::size_t(m.cols);
+    std::vector<float> win_z;
+    std::vector<std::uint8_t> win_valid;
+    int win_first = 0, win_end = 0;  // the window holds rows [win_first, win_end)
+    auto load = [&](int r0, int r1) {
+        if (r0 > win_first) {  // rows before r0 are not read again
+            const std::size_t drop = std::size_t(std::min(r0, win_end) - win_first) * w;
+            win_z.erase(win_z.begin(), win_z.begin() + std::ptrdiff_t(drop));
+            win_valid.erase(win_valid.begin(), win_valid.begin() + std::ptrdiff_t(drop));
+            win_first = std::min(r0, win_end);
+        }
+        if (r1 > win_end) {
+            if (win_end < r0) throw std::logic_error("terrain cache: rows skipped");
+            const std::size_t old = win_z.size(), k = std::size_t(r1 - win_end);
+            win_z.resize(old + k * w), win_valid.resize(old + k * w);
+            dem.rows(win_end, r1, win_z.data() + old, win_valid.data() + old);
+            std::atomic<bool> exact{true};
+            parallel_chunks(k, 4, [&](std::size_t i0, std::size_t i1) {
+                std::vector<glm::vec2> xy(w), f(w);
+                RowSums sum;
+                for (std::size_t i = i0; i < i1 && exact.load(std::memory_order_relaxed); ++i) {
+                    const int r = win_end + int(i);
+                    dem.xy(r, xy.data());
+                    formula->span(r, 0, m.cols, f.data());
+                    if (std::memcmp(f.data(), xy.data(), w * sizeof(glm::vec2)) != 0) return exact.store(false);
+                    const float* z = win_z.data() + old + i * w;
+                    const std::uint8_t* v = win_valid.data() + old + i * w;
+                    for (std::size_t c = 0; c < w; ++c) {
+                        if (!v[c]) continue;
+                        const glm::vec3 p(xy[c].x, xy[c].y, z[c]);
+                        sum.lo = glm::min(sum.lo, p), sum.hi = glm::max(sum.hi, p);
+                    }
+                    if (r + 1 < m.rows) {
+                        formula->span(r + 1, 0, m.cols, f.data());
+                        sum.lipschitz2 = std::max(sum.lipschitz2, lod_cells_lipschitz2(&xy[0].x, &f[0].x, m.cols, 2));
+                    }
+                }
+                const std::lock_guard<std::mutex> lock(merge);  // min / max: the same in any order
+                all.lo = glm::min(all.lo, sum.lo), all.hi = glm::max(all.hi, sum.hi);
+                all.lipschitz2 = std::max(all.lipschitz2, sum.lipschitz2);
+            });
+            if (!exact.load()) throw NotFormulaXY{};
+            z_blocks.add(win_z.data() + old, k * w);
+            valid_blocks.add(win_valid.data() + old, k * w);
+            win_end = r1;
+        }
+        return LodRows{win_z.data() + std::size_t(r0 - win_first) * w, win_valid.data() + std::size_t(r0 - win_first) * w, r0};
+    };
     FloatBlockCoder errors(n.padded, error_orders);
     const std::uint64_t side = std::uint64_t(t.lod.side());
-    lod_errors(LodHeights{dem.cols, dem.rows, dem.z.data(), dem.valid.data()}, LodStrips{},
-               [&](int r0, int r1, const float* e) { errors.add(std::uint64_t(r0) * side, e, std::uint64_t(r1 - r0) * side); });
-    dem = {};
+    try {
+        lod_errors(LodHeights{m.cols, m.rows, nullptr, nullptr, load}, LodStrips{},
+                   [&](int r0, int r1, const float* e) { errors.add(std::uint64_t(r0) * side, e, std::uint64_t(r1 - r0) * side); });
+    } catch (const NotFormulaXY&) {
+        return false;  // the temporary file removed
+    }
+    if (win_end != m.rows) throw std::logic_error("terrain cache: rows not read");
+    win_z = {}, win_valid = {};
+    z_blocks.finish(), valid_blocks.finish();
+    if (const int err = out.append(flags_coded)) write_failed(path, err);
+    flags_coded = {};
+    t.lod.lipschitz = float(std::sqrt(double(all.lipschitz2)));
+    if (all.lo.z <= all.hi.z) {
+        t.lod.z_min = all.lo.z, t.lod.z_max = all.hi.z;
+        t.plan_lo = glm::dvec2(glm::dvec3(all.lo)), t.plan_hi = glm::dvec2(glm::dvec3(all.hi));
+    }
     if (done) done(1);
-    for (std::size_t b = 0; b < errors.blocks(); ++b) sums.take(2, b, errors.block(b)), out.append(errors.block(b));
+    for (std::size_t b = 0; b < errors.blocks(); ++b) {
+        sums.take(2, b, errors.block(b));
+        if (const int err = out.append(errors.block(b))) write_failed(path, err);
+    }
     const std::vector<std::uint8_t> header = encode_header(t, key, sums, at, total);
     if (header.size() != head) throw std::logic_error("terrain cache: header length changed");
     if (const int err = out.finish(header)) write_failed(path, err);

@@ -48,10 +48,10 @@
 // not the DEM. A damaged block is found when it is first needed and throws DamagedBlockError;
 // draw_scene (scene/frame_source.hpp) then removes the cache and draws again from a rebuilt one.
 // Written to a temporary file and renamed into place. Built from a DEM file by
-// build_terrain_cache in bounded memory: the heights and flags (5 bytes a node), the coded
-// blocks and the pyramid's strips (lod_errors), 890 MB at peak for jacksboro refined 29 times
-// (116.6 M nodes, 109 MiB written) where the whole Terrain and pyramid took 5.19 GB
-// (bench/terrain_cache_build_bench.cpp).
+// build_terrain_cache in bounded memory: a window of the DEM's rows, the pyramid's strips
+// (lod_errors) and the coded blocks, 437 MB at peak for jacksboro refined 29 times (116.6 M
+// nodes, 109 MiB written) where the whole Terrain and pyramid took 5.19 GB, 2.75 GB for 1.0 G
+// nodes (bench/terrain_cache_build_bench.cpp; docs/timings.md, "Scale").
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -111,17 +111,22 @@ StoredTerrain store_terrain(Terrain flat);
 // (stage "surface", file path) with the system's reason when it cannot be written.
 void write_terrain_cache(const std::string& path, const StoredTerrain& terrain, const TerrainCacheKey& key);
 
-// Builds the cache of the DEM at `dem_path` (read_dem, unexaggerated) into `path` without
-// holding the DEM's positions or the whole pyramid: the heights and flags alone are read (5 bytes
-// a node), each row's x, y checked against the formula the cache recomputes them with and
-// reduced to the plan bounds and the Lipschitz bound, the pyramid's errors settled in strips
-// (lod_errors) and coded as each block is final; the file is write_terrain_cache's, byte for byte.
-// done(0) after the read, done(1) after the pyramid and the coding (may be empty). False, nothing
-// written, when the x, y follow no formula bit for bit (a DEM reader's change): the caller then
-// builds it from the whole Terrain (store_terrain, write_terrain_cache). Throws read_dem's errors,
-// and penink::Error (stage "surface", file path) when the file cannot be written.
+// Builds the cache of the DEM at `dem_path` (read_dem, unexaggerated) into `path` holding a band
+// of its rows at a time, never the whole DEM, its positions or the whole pyramid: the DEM is read
+// by bands twice (input/dem_reader.hpp, DemRows: once for its errors and lowest elevation, then
+// as the pyramid's strips need its rows, lod_errors), each row's x, y checked against the formula
+// the cache recomputes them with and reduced to the plan bounds and the Lipschitz bound, the
+// nodes' blocks coded and written as their rows come, the flags' coded and held until then, the
+// pyramid's coded as each is final and written last; the file is write_terrain_cache's, byte for
+// byte. Memory: the window of rows a strip reads (about 600 rows of 5 bytes a node), the strips
+// (lod_errors_bytes) and the coded flags and pyramid, with an entry for each block of the pyramid.
+// done(0) after the first pass over the DEM, done(1) after the pyramid and the nodes' coding (may
+// be empty). band_rows: the first pass's band (0: DemRows' default). False, nothing written,
+// when the x, y follow no formula bit for bit (a DEM reader's change): the caller then builds it
+// from the whole Terrain (store_terrain, write_terrain_cache). Throws read_dem's errors, and
+// penink::Error (stage "surface", file path) when the file cannot be written.
 bool build_terrain_cache(const std::string& dem_path, const std::string& path, const TerrainCacheKey& key,
-                         const std::function<void(int)>& done = {});
+                         const std::function<void(int)>& done = {}, int band_rows = 0);
 
 // Opens a cache file: reads and checks its header only (the arrays are read as they are needed).
 // nullopt, with the reason in *why, when it is missing, not a regular file (a FIFO, a folder:

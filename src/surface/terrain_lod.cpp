@@ -213,9 +213,14 @@ std::int64_t lod_apron(int s) { return 3 * std::int64_t(s) / 2 + 1; }
 // forced, +inf, nodes) and forced = invalid (nodata, padding) dilated by the 3x3 square.
 void load_strip(const LodHeights& dem, LevelGrid& g) {
     const int n = g.n, side = n + 1;
+    // rows g.b0 - 1 .. g.b1 + 1 (the forced flags' dilation) that the DEM has
+    const int r0 = std::clamp(g.b0 - 1, 0, dem.rows), r1 = std::clamp(g.b1 + 2, r0, dem.rows);
+    const LodRows rows = dem.load ? dem.load(r0, r1) : LodRows{dem.z, dem.valid, 0};
+    auto z_row = [&](int r) { return rows.z + std::size_t(r - rows.first) * std::size_t(dem.cols); };
+    auto valid_row = [&](int r) { return rows.valid + std::size_t(r - rows.first) * std::size_t(dem.cols); };
     auto bad_row = [&](int r, std::uint8_t* out) {
         if (r >= dem.rows) return void(std::fill(out, out + side, std::uint8_t(1)));
-        const std::uint8_t* v = dem.valid + std::size_t(r) * std::size_t(dem.cols);
+        const std::uint8_t* v = valid_row(r);
         for (int c = 0; c < dem.cols; ++c) out[c] = std::uint8_t(v[c] == 0);
         std::fill(out + dem.cols, out + side, std::uint8_t(1));
     };
@@ -226,8 +231,8 @@ void load_strip(const LodHeights& dem, LevelGrid& g) {
             float* h = &g.h[g.at(0, r)];
             std::fill(h, h + side, 0.0f);
             if (r < dem.rows) {
-                const float* z = dem.z + std::size_t(r) * std::size_t(dem.cols);
-                const std::uint8_t* v = dem.valid + std::size_t(r) * std::size_t(dem.cols);
+                const float* z = z_row(r);
+                const std::uint8_t* v = valid_row(r);
                 for (int c = 0; c < dem.cols; ++c)
                     if (v[c]) h[c] = z[c];
             }

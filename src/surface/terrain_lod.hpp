@@ -107,12 +107,22 @@ struct TerrainLod {
 // The levels of the padded square of a cols x rows grid: the least k with 2^k + 1 >= max(cols, rows).
 int lod_padded_levels(int cols, int rows);
 
+// Rows [first, ...) of a DEM's heights and flags, row-major from row `first`.
+struct LodRows {
+    const float* z = nullptr;
+    const std::uint8_t* valid = nullptr;
+    int first = 0;
+};
+
 // A DEM's heights as the pyramid is built from them: cols x rows nodes, row-major, unexaggerated
-// metres (read only where valid), and their valid flags.
+// metres (read only where valid), and their valid flags: the whole DEM (z, valid), or rows on
+// demand: load(r0, r1) makes rows [r0, r1) readable and says where they are, valid until its
+// next call (lod_errors asks for each strip's rows in turn, r0 and r1 never decreasing).
 struct LodHeights {
     int cols = 0, rows = 0;
     const float* z = nullptr;
     const std::uint8_t* valid = nullptr;
+    std::function<LodRows(int r0, int r1)> load = {};
 };
 
 // How lod_errors cuts the work (powers of two). The levels up to squares of fine_side grid units

@@ -68,7 +68,7 @@ TEST(HostileInputs, GridDeclaringHugeSizeWithFewValues) {
 TEST(HostileInputs, DemBeyondMaxMemory) {
     const auto dir = fresh_dir("hostile_budget");
     expect_refused(dir, "render " + volcano + " -o out.svg --max-memory 1M",
-                   "penink: input: " + volcano + ": drawing the DEM's 61x87 nodes would need about 8 MiB of memory, "
+                   "penink: input: " + volcano + ": drawing the DEM's 61x87 nodes would need about 112 MiB of memory, "
                    "1 MiB available (--max-memory)");
     expect_refused(dir, "render " + volcano + " -o out.svg --max-memory lots",
                    "penink: cli: --max-memory: expected a size such as 2G or 512M (got \"lots\")");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -9,6 +10,8 @@
 #include <GeographicLib/UTMUPS.hpp>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <gdal_priv.h>
+#include <ogr_spatialref.h>
 
 #include "core/error.hpp"
 #include "support/test_grids.hpp"
@@ -470,6 +473,127 @@ TEST(DemReader, ReadBeyondTheMemoryBudgetFailsNamingWhatItNeeds) {
               "penink: input: " + p + ": reading the DEM's 61x87 nodes would need about 109 KiB of memory, "
               "98 KiB available (--max-memory)");
     EXPECT_NO_THROW(read_dem(p, {.max_memory = 200000}));
+}
+
+}  // namespace
+}  // namespace penink
+
+namespace penink {
+namespace {
+
+// Everything a heights-only read gives, x, y included (xy_rows), against DemRows' meta, rows and
+// xy, read in bands of `band_rows` for the opening pass and in pieces of `piece` rows after.
+void expect_rows_as_read(const std::string& p, int band_rows, int piece) {
+    DemOptions heights;
+    heights.heights_only = true;
+    std::vector<glm::vec2> xy;
+    heights.xy_rows = [&](const Terrain& t, int r, const glm::vec2* row) {
+        if (xy.empty()) xy.resize(t.size());
+        std::copy(row, row + t.cols, xy.begin() + std::ptrdiff_t(t.index(0, r)));
+    };
+    const Terrain want = read_dem(p, heights);
+    DemRows rows(p, {}, band_rows);
+    const Terrain& m = rows.meta();
+    const std::string at = p + " bands of " + std::to_string(band_rows);
+    EXPECT_EQ(m.cols, want.cols) << at;
+    ASSERT_EQ(m.rows, want.rows) << at;
+    EXPECT_EQ(m.origin, want.origin) << at;
+    EXPECT_EQ(m.xy_unit, want.xy_unit) << at;
+    EXPECT_EQ(m.elevation_min, want.elevation_min) << at;
+    EXPECT_EQ(m.elevation_max, want.elevation_max) << at;
+    EXPECT_EQ(m.crs_wkt, want.crs_wkt) << at;
+    EXPECT_EQ(m.utm_zone, want.utm_zone) << at;
+    EXPECT_EQ(m.north, want.north) << at;
+    EXPECT_EQ(m.source_geographic, want.source_geographic) << at;
+    EXPECT_EQ(m.geotransform, want.geotransform) << at;
+    EXPECT_TRUE(m.z.empty() && m.valid.empty() && m.pos.empty() && m.xy.empty()) << at;
+    const std::size_t w = std::size_t(m.cols);
+    std::vector<float> z(w * std::size_t(piece));
+    std::vector<std::uint8_t> valid(z.size());
+    std::vector<glm::vec2> line(w);
+    for (int y0 = 0; y0 < m.rows; y0 += piece) {
+        const int y1 = std::min(m.rows, y0 + piece);
+        rows.rows(y0, y1, z.data(), valid.data());
+        for (std::size_t i = 0; i < std::size_t(y1 - y0) * w; ++i) {
+            const std::size_t j = std::size_t(y0) * w + i;
+            ASSERT_EQ(std::bit_cast<std::uint32_t>(z[i]), std::bit_cast<std::uint32_t>(want.z[j])) << at << " node " << j;
+            ASSERT_EQ(valid[i], want.valid[j]) << at << " node " << j;
+        }
+        for (int y = y0; y < y1; ++y) {
+            rows.xy(y, line.data());
+            for (std::size_t c = 0; c < w; ++c) ASSERT_EQ(line[c], xy[std::size_t(y) * w + c]) << at << " row " << y;
+        }
+    }
+}
+
+// A south-up Int32 GeoTIFF (values read as doubles) with a nodata value, NaN-free, scale, offset
+// and heights in feet: every conversion a read makes.
+std::string int_feet_tif(const std::string& path) {
+    GDALAllRegister();
+    GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
+    const int w = 5, h = 7;
+    GDALDatasetUniquePtr ds(drv->Create(path.c_str(), w, h, 1, GDT_Int32, nullptr));
+    double gt[6] = {1000, 10, 0, 5000, 0, 10};  // south up
+    ds->SetGeoTransform(gt);
+    OGRSpatialReference srs;
+    srs.importFromEPSG(2193);
+    ds->SetSpatialRef(&srs);
+    GDALRasterBand* b = ds->GetRasterBand(1);
+    b->SetNoDataValue(-32768);
+    b->SetScale(0.5), b->SetOffset(10.0), b->SetUnitType("ft");
+    std::vector<std::int32_t> v(std::size_t(w) * h);
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = std::int32_t((i * 7919) % 1000) - 300;
+    v[3] = v[17] = v[34] = -32768;
+    EXPECT_EQ(b->RasterIO(GF_Write, 0, 0, w, h, v.data(), w, h, GDT_Int32, 0, 0), CE_None);
+    return path;
+}
+
+TEST(DemRows, RowsMetaAndXYAreAHeightsOnlyReadsBitForBit) {
+    TempDir dir;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const double nodata = -9999;
+    std::vector<float> v(6 * 9);
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = float(std::sin(double(i)) * 40.0 + 100.0);
+    v[0] = nan, v[10] = -9999, v[53] = -9999;
+    const std::string south = test::write_tif(dir.file("s.tif"), 6, 9, v, {500, 10, 0, 100, 0, 10}, 2193, &nodata);
+    const std::string ints = int_feet_tif(dir.file("i.tif"));
+    for (const std::string& p : {std::string(PENINK_SOURCE_DIR "/examples/volcano.asc"),
+                                 std::string(PENINK_SOURCE_DIR "/examples/jacksboro.tif"), south, ints})
+        for (const auto [band, piece] : {std::pair{0, 1000}, std::pair{1, 1}, std::pair{3, 2}, std::pair{7, 5}})
+            expect_rows_as_read(p, band, piece);
+}
+
+TEST(DemRows, ErrorsAreReadDemsWhateverTheBands) {
+    TempDir dir;
+    std::vector<std::string> files;
+    // a value out of range in the last row (the last band), and two in different bands: the first
+    // in the file's order is named
+    files.push_back(test::write_text(dir.file("far.asc"), "ncols 3\nnrows 4\nxllcorner 0\nyllcorner 0\ncellsize 1\n"
+                                                          "1 2 3\n4 5 6\n7 8 9\n1 2e7 3\n"));
+    files.push_back(test::write_text(dir.file("two.asc"), "ncols 3\nnrows 4\nxllcorner 0\nyllcorner 0\ncellsize 1\n"
+                                                          "1 2 3\n4 5 -3e6\n7 8 9\n1 2e7 3\n"));
+    files.push_back(test::write_asc(dir.file("none.asc"), 2, {{-1, -1}, {-1, -1}, {-1, -1}}, 0, 0, 1, "NODATA_value -1\n"));
+    files.push_back(test::write_asc(dir.file("diag.asc"), 3, {{1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}}, 0, 0, 1,
+                                    "NODATA_value -1\n"));
+    files.push_back(dir.file("missing.tif"));
+    for (const std::string& p : files) {
+        const std::string want = error_of(p);
+        EXPECT_NE(want, "no error") << p;
+        for (int band : {0, 1, 2}) {
+            std::string got = "no error";
+            try {
+                DemRows rows(p, {}, band);
+            } catch (const Error& e) {
+                got = e.what();
+            }
+            EXPECT_EQ(got, want) << p << " bands of " << band;
+        }
+    }
+    // the grid's one cell with data at its four corners straddles two bands of one row
+    const std::string straddle = test::write_asc(dir.file("straddle.asc"), 3, {{-1, -1, -1}, {-1, 4, 5}, {-1, 6, 7}}, 0,
+                                                 0, 1, "NODATA_value -1\n");
+    EXPECT_EQ(error_of(straddle), "no error");
+    for (int band : {1, 2}) EXPECT_NO_THROW(DemRows(straddle, {}, band)) << band;
 }
 
 }  // namespace

@@ -26,6 +26,7 @@
 #include "surface/terrain_cache.hpp"
 #include "support/synthetic_terrain.hpp"
 #include "support/temp_dir.hpp"
+#include "support/test_grids.hpp"
 
 using namespace penink;
 
@@ -554,14 +555,22 @@ TEST(TerrainCache, XYOfAGeographicDemAreDerivedBitForBit) {
 // writes the file the whole Terrain writes, byte for byte: on a projected DEM (the volcano: x, y
 // affine; a padded side of 129, under a block, so blocks cross the rows the upper levels hold
 // back) and on a geographic one (jacksboro: x, y projected to UTM; side 513, two strips). The
-// file it writes opens and reads whole.
+// file it writes opens and reads whole. Whatever the bands of its first pass over the DEM
+// (DemRows), and on a south-up DEM with nodata nodes.
 TEST(TerrainCache, StreamedBuildWritesTheFileOfTheWholeTerrain) {
     test::TempDir dir;
-    for (const char* dem : {PENINK_SOURCE_DIR "/examples/volcano.asc", PENINK_SOURCE_DIR "/examples/jacksboro.tif"}) {
+    std::vector<float> v(37 * 23);
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = float(std::sin(double(i) * 0.1) * 40.0 + double(i % 37));
+    v[5] = v[300] = v[301] = v[338] = -9999.0f;
+    const double nodata = -9999;
+    const std::string south = test::write_tif(dir.file("s.tif"), 37, 23, v, {500, 10, 0, 100, 0, 10}, 2193, &nodata);
+    for (const std::string& dem : {std::string(PENINK_SOURCE_DIR "/examples/volcano.asc"),
+                                   std::string(PENINK_SOURCE_DIR "/examples/jacksboro.tif"), south})
+    for (int band_rows : {0, 1, 5}) {
         const std::string whole = dir.file("whole.lod"), streamed = dir.file("streamed.lod");
         write_terrain_cache(whole, store_terrain(read_dem(dem)), key());
         int stages = 0;
-        ASSERT_TRUE(build_terrain_cache(dem, streamed, key(), [&](int s) { EXPECT_EQ(s, stages++); }));
+        ASSERT_TRUE(build_terrain_cache(dem, streamed, key(), [&](int s) { EXPECT_EQ(s, stages++); }, band_rows));
         EXPECT_EQ(stages, 2);
         const std::vector<char> a = file_bytes(whole), b = file_bytes(streamed);
         EXPECT_GT(a.size(), 1000u) << dem;
