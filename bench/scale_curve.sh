@@ -12,12 +12,16 @@
 # system; steadier than the wall on a shared machine) of one cold run and the best of N warm
 # runs, peak resident memory (/usr/bin/time's maximum RSS, MiB) cold and warm, the caches' size on
 # disk (MiB: .lod, .dv and the crease tiles the renders wrote, .dv.tiles/), and the warm wall and CPU time as multiples of the volcano's.
-# Usage: bench/scale_curve.sh [path/to/penink] (N=3, SIZES="200 500 1000" by default)
+# LINES=0: creases and ridges off (a scene file per DEM with `[creases] enabled = false` and
+# `[ridges] enabled = false`, the volcano's too): no drainage database is built, so DEMs whose
+# drainage build does not fit the memory (a billion cells: SIZES=8500, a 4 GB DEM) are drawn.
+# Usage: bench/scale_curve.sh [path/to/penink] (N=3, SIZES="200 500 1000", LINES=1 by default)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=$(realpath "${1:-build/penink}")
 N=${N:-3}
 SIZES=${SIZES:-200 500 1000}
+LINES=${LINES:-1}
 DATA=$(realpath examples)
 SRC=$(pwd)
 TMP=$(mktemp -d)
@@ -39,9 +43,16 @@ for f in $SIZES; do
   DEMS="$DEMS jacksboro_$f.tif"
 done
 
+# What is rendered for DEM $1: the DEM, or with LINES=0 a scene of it without creases and ridges.
+input() {
+  if [ "$LINES" = 1 ]; then echo "$1"; return; fi
+  printf '[terrain]\ndem = "%s"\n[creases]\nenabled = false\n[ridges]\nenabled = false\n' "$1" >"$1.toml"
+  echo "$1.toml"
+}
+
 # "wall_s cpu_s max_rss_MiB" of one run of DEM $1 with its caches in $TMP/cache-<name>
 run() {
-  /usr/bin/time -f "%e %U %S %M" -o "$TMP/time" "$BIN" render "$1" --width 1000 --height 750 \
+  /usr/bin/time -f "%e %U %S %M" -o "$TMP/time" "$BIN" render "$(input "$1")" --width 1000 --height 750 \
     --cache-dir "$TMP/cache-$(basename "$1")" -v -o "$TMP/out.svg" >"$TMP/log" 2>&1
   awk '{printf "%.2f %.2f %.0f\n", $1, $2 + $3, $4 / 1024}' "$TMP/time"
 }

@@ -27,11 +27,16 @@ int drainage_factor_for(int cols, int rows, int resample) {
 
 void check_drainage_memory(const std::string& stage, const std::string& file, int cols, int rows, int factor,
                            std::uint64_t budget) {
+    check_memory(stage, file, "the drainage grid at factor " + std::to_string(factor) + " (" +
+                                  drainage_grid_size(cols, rows, factor) + " points)",
+                 drainage_build_bytes(cols, rows, factor), budget);
+}
+
+std::string drainage_grid_size(int cols, int rows, int factor) {
     const double f = factor;
     char grid[96];
     std::snprintf(grid, sizeof grid, "%.0fx%.0f", std::max(cols - 1, 0) * f + 1.0, std::max(rows - 1, 0) * f + 1.0);
-    check_memory(stage, file, "the drainage grid at factor " + std::to_string(factor) + " (" + grid + " points)",
-                 drainage_build_bytes(cols, rows, factor), budget);
+    return grid;
 }
 
 }  // namespace penink

@@ -28,6 +28,9 @@ double drainage_build_bytes(int cols, int rows, int factor);
 // (drainage_resample_factor with the default point budget).
 int drainage_factor_for(int cols, int rows, int resample);
 
+// "CxR": the points of a cols x rows node grid resampled `factor` times finer along each side.
+std::string drainage_grid_size(int cols, int rows, int factor);
+
 // Throws Error(stage, file, "the drainage grid at factor F (CxR points) would need about N of
 // memory, B available (--max-memory)") when the build would not fit `budget` (0: no limit).
 void check_drainage_memory(const std::string& stage, const std::string& file, int cols, int rows, int factor,

@@ -22,8 +22,11 @@ constexpr double water_lod_bytes_per_padded_node = 10.0;
 // A pyramid held in memory holds a float error per padded node ((2^levels + 1)^2, terrain_lod.hpp).
 constexpr double lod_bytes_per_padded_node = 4.0;
 
-// Throws Error("input", DEM, "drawing the DEM's WxH nodes would need about N of memory, B
-// available (--max-memory)") when a terrain scene would not fit memory_budget(max_memory), and
+// Throws Error("drainage", DEM, "the drainage grid of the creases and ridges at factor F (CxR
+// points) would need about N of memory, B available (--max-memory); without creases and ridges
+// ([creases] and [ridges] enabled = false) the drawing needs about M") when the scene would fit
+// without the drainage build, Error("input", DEM, "drawing the DEM's WxH nodes would need about N
+// of memory, B available (--max-memory)") when a terrain scene would not fit memory_budget(max_memory) otherwise, and
 // Error("scene", file, "drawing a WxH image [of the DEM's CxR nodes] would need ...") when the
 // image's buffers (render_bytes_per_pixel) with the DEM's would not (any scene, a mesh's too); also
 // the DEM reader's opening errors (read_dem_size). A mesh scene is not checked, nor, without
