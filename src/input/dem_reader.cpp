@@ -266,6 +266,9 @@ struct DemRows::State {
     std::optional<WorldXY> xy;
     Terrain meta;
     Raster rows;  // the last rows read (scratch)
+    // rows() reads units of `unit` source rows (whole rows of the file's blocks, so each block is
+    // decoded once in a pass down the DEM); `rows` holds our rows [held0, held1) of one
+    int unit = 256, held0 = 0, held1 = 0;
 };
 
 DemRows::~DemRows() = default;
@@ -281,7 +284,17 @@ DemRows::DemRows(const std::string& path, const DemOptions& options, int band_ro
     r = raster_header(*s.ds);
     GDALRasterBand& band = *s.ds->GetRasterBand(1);
     band_info(band, r);
-    if (band_rows <= 0) band_rows = default_band_rows(r.w);
+    if (band_rows <= 0) {  // whole blocks of a tiled or striped file: each decoded once
+        int block_w = 0, block_h = 0;
+        band.GetBlockSize(&block_w, &block_h);
+        band_rows = default_band_rows(r.w);
+        if (block_h > 1) band_rows = std::max(block_h, band_rows / block_h * block_h);
+    }
+    {
+        int block_w = 0, block_h = 0;
+        band.GetBlockSize(&block_w, &block_h);
+        s.unit = block_h > 1 ? block_h * std::max(1, 256 / block_h) : 256;
+    }
     check_memory("input", path,
                  "reading the DEM's " + std::to_string(r.w) + "x" + std::to_string(r.h) + " nodes by bands of " +
                      std::to_string(band_rows) + " rows",
@@ -311,7 +324,7 @@ DemRows::DemRows(const std::string& path, const DemOptions& options, int band_ro
         if (!valid_cell) valid_cell = has_valid_cell(s.rows);
         last.assign(s.rows.valid.end() - std::ptrdiff_t(w), s.rows.valid.end());
     }
-    s.rows = {};
+    s.rows = {}, s.held0 = s.held1 = 0;
     range_to_metres(r);
     check_grid(r, valid_cell, path);
     if (crs_error) std::rethrow_exception(crs_error);
@@ -329,15 +342,28 @@ void DemRows::rows(int y0, int y1, float* z, std::uint8_t* valid) {
     if (y0 < 0 || y1 > r.h || y0 > y1) throw std::out_of_range("DemRows::rows: rows outside the DEM");
     if (y0 == y1) return;
     GDALRasterBand& band = *s.ds->GetRasterBand(1);
-    read_rows(band, r, y0, y1, s.rows, s.path);
-    band.FlushCache();
     const double ve = s.meta.vertical_exaggeration;
     const std::size_t w = std::size_t(r.w);
-    parallel_chunks(std::size_t(y1 - y0), rows_per_chunk(r), [&](std::size_t i0, std::size_t i1) {
-        for (std::size_t i = i0; i < i1; ++i)
-            for (int c = 0; c < r.w; ++c) z[i * w + std::size_t(c)] = float(node_elevation(s.rows, i, c, r.unit, r.emin) * ve);
-    });
-    std::copy(s.rows.valid.begin(), s.rows.valid.end(), valid);
+    for (int y = y0; y < y1;) {
+        if (y < s.held0 || y >= s.held1) {  // the unit of source rows holding our row y
+            const int k = (r.flip_r ? r.h - 1 - y : y) / s.unit;
+            const int a = k * s.unit, b = std::min(r.h, a + s.unit);
+            const int o0 = r.flip_r ? r.h - b : a, o1 = r.flip_r ? r.h - a : b;
+            s.held0 = s.held1 = 0;  // nothing held should the read fail
+            read_rows(band, r, o0, o1, s.rows, s.path);
+            band.FlushCache();
+            s.held0 = o0, s.held1 = o1;
+        }
+        const int e = std::min(y1, s.held1);
+        const std::size_t from = std::size_t(y - s.held0), to = std::size_t(y - y0);
+        parallel_chunks(std::size_t(e - y), rows_per_chunk(r), [&](std::size_t i0, std::size_t i1) {
+            for (std::size_t i = i0; i < i1; ++i)
+                for (int c = 0; c < r.w; ++c)
+                    z[(to + i) * w + std::size_t(c)] = float(node_elevation(s.rows, from + i, c, r.unit, r.emin) * ve);
+        });
+        std::copy_n(s.rows.valid.begin() + std::ptrdiff_t(from * w), std::size_t(e - y) * w, valid + to * w);
+        y = e;
+    }
 }
 
 void DemRows::xy(int y, glm::vec2* out) const {

@@ -557,9 +557,14 @@ TEST(DemRows, RowsMetaAndXYAreAHeightsOnlyReadsBitForBit) {
     v[0] = nan, v[10] = -9999, v[53] = -9999;
     const std::string south = test::write_tif(dir.file("s.tif"), 6, 9, v, {500, 10, 0, 100, 0, 10}, 2193, &nodata);
     const std::string ints = int_feet_tif(dir.file("i.tif"));
+    // south up, more rows than rows() reads at once (256): a piece crosses two of its reads
+    std::vector<float> tall(4 * 300);
+    for (std::size_t i = 0; i < tall.size(); ++i) tall[i] = float(std::cos(double(i) * 0.01) * 30.0 + double(i / 4));
+    tall[1001] = -9999;
+    const std::string south_tall = test::write_tif(dir.file("t.tif"), 4, 300, tall, {500, 10, 0, 100, 0, 10}, 2193, &nodata);
     for (const std::string& p : {std::string(PENINK_SOURCE_DIR "/examples/volcano.asc"),
-                                 std::string(PENINK_SOURCE_DIR "/examples/jacksboro.tif"), south, ints})
-        for (const auto [band, piece] : {std::pair{0, 1000}, std::pair{1, 1}, std::pair{3, 2}, std::pair{7, 5}})
+                                 std::string(PENINK_SOURCE_DIR "/examples/jacksboro.tif"), south, ints, south_tall})
+        for (const auto& [band, piece] : {std::pair{0, 1000}, std::pair{1, 1}, std::pair{3, 2}, std::pair{7, 5}})
             expect_rows_as_read(p, band, piece);
 }
 
