@@ -113,8 +113,31 @@ struct StemWalk {
     }
 
     // Whether the branch arriving at junction d through cell n (draining into it) is d's main
-    // upstream branch.
-    bool main_into(std::size_t n, std::size_t d) const { return main_upstream(d) == n; }
+    // upstream branch: main_bits' bit of n once found (find_mains), else found here.
+    bool main_into(std::size_t n, std::size_t d) const {
+        if (!main_bits.empty()) return (main_bits[n >> 6] >> (n & 63)) & 1u;
+        return main_upstream(d) == n;
+    }
+
+    // One bit a cell: set where the cell is the main upstream cell of the junction it drains
+    // into (main_upstream of every cell with two or more inflows). A walk over all stems asks
+    // each junction once for every stem arriving there, by random reads of its neighbours'
+    // arrays; found once a junction here, rows in order on all cores (a main cell may lie in
+    // another chunk's row: its word set atomically).
+    std::vector<std::uint64_t> main_bits;
+    void find_mains() {
+        std::vector<std::uint64_t> bits((g.size() + 63) / 64, 0);
+        parallel_chunks(std::size_t(g.rows), 16, [&](std::size_t r0, std::size_t r1) {
+            for (std::size_t d = r0 * std::size_t(g.cols); d < r1 * std::size_t(g.cols); ++d) {
+                if (indeg[d] < 2) continue;  // no junction: main_into is not asked
+                const std::size_t m = main_upstream(d);
+                if (m != d)
+                    std::atomic_ref<std::uint64_t>(bits[m >> 6]).fetch_or(std::uint64_t(1) << (m & 63),
+                                                                          std::memory_order_relaxed);
+            }
+        });
+        main_bits = std::move(bits);
+    }
 
     // The cell one step up the stem walking through cell m: the one cell draining into a
     // single-inflow cell, the main upstream one at a junction; m itself at a cell nothing valid
@@ -621,7 +644,8 @@ StemParts stem_parts(const DrainageGrid& g, const std::vector<std::uint8_t>& dir
 void for_each_stem_cells(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                          const StemParts& parts,
                          const std::function<void(std::size_t, std::uint32_t, const std::uint32_t*, std::uint32_t)>& f) {
-    const StemWalk walk(g, dir, net);
+    StemWalk walk(g, dir, net);
+    walk.find_mains();  // every stem walked: each junction's main found once
     const std::size_t n = parts.sources.size(), per = chunk_length(n, 1024);  // at most 16 chunks
     parallel_chunks(n, 1024, [&](std::size_t s0, std::size_t s1) {
         std::vector<std::uint32_t> cells;
