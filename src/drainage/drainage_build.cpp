@@ -186,10 +186,15 @@ DrainageDb build_streamed(DrainageGrid& g, const std::string& crs_wkt, const Dra
     const NetworkBranches branches(g, res.dir, res.net);
     res.stats.branches = branches.branch_count(), res.stats.divides = meta.divides.size();
     // The creases' index on another thread while the ridges are draped here (each reads the
-    // network and the grid only; "indexing creases" is then what is left of it).
+    // network and the grid only; "indexing creases" is then what is left of it). The index's walk
+    // over every stem first finds the junctions' mains into the network (which nothing else reads
+    // meanwhile), kept with it for the crease tiles a render builds next.
     std::future<CreaseTileIndex> indexing;
     if (relief)
-        indexing = std::async(std::launch::async, [&] { return crease_tile_index(g, res.dir, res.net, 256, made.z_top); });
+        indexing = std::async(std::launch::async, [&] {
+            res.net.mains = main_upstream_bits(g, res.dir, res.net);
+            return crease_tile_index(g, res.dir, res.net, 256, made.z_top);
+        });
     report(progress, "draping ridges", draping_from);
     build_draped_ridges(
         g, meta,

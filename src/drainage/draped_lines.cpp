@@ -113,8 +113,30 @@ struct StemWalk {
     }
 
     // Whether the branch arriving at junction d through cell n (draining into it) is d's main
-    // upstream branch.
-    bool main_into(std::size_t n, std::size_t d) const { return main_upstream(d) == n; }
+    // upstream branch: its bit in `mains` where the junctions' mains were found, else found here.
+    bool main_into(std::size_t n, std::size_t d) const { return mains ? is_main(n) : main_upstream(d) == n; }
+    bool is_main(std::size_t n) const { return (mains[n >> 6] >> (n & 63)) & 1u; }
+
+    // main_upstream(d) of a junction d (two or more cells drain into it): the one cell draining
+    // into it whose bit is set, where the mains were found.
+    std::size_t junction_main(std::size_t d) const {
+        if (!mains) return main_upstream(d);
+        std::size_t main = d;
+        each_upstream(d, [&](std::size_t u) {
+            if (is_main(u)) main = u;
+        });
+        return main;
+    }
+
+    // The mains found (main_upstream_bits): net.mains where the network has them, else found
+    // here when `find` (a walk over every stem asks each junction once for every stem arriving
+    // there, by random reads of its neighbours' arrays).
+    std::vector<std::uint64_t> own_mains;
+    const std::uint64_t* mains = nullptr;
+    void use_mains(bool find) {
+        if (net.mains.size() == mains_words(g.size())) mains = net.mains.data();
+        else if (find) own_mains = main_upstream_bits(g, dir, net), mains = own_mains.data();
+    }
 
     // The cell one step up the stem walking through cell m: the one cell draining into a
     // single-inflow cell, the main upstream one at a junction; m itself at a cell nothing valid
@@ -122,7 +144,7 @@ struct StemWalk {
     std::size_t main_up(std::size_t m) const {
         std::size_t up = m;
         if (indeg[m] == 1) each_upstream(m, [&](std::size_t u) { up = u; });
-        else if (indeg[m] > 1) up = main_upstream(m);
+        else if (indeg[m] > 1) up = junction_main(m);
         return up;
     }
 
@@ -596,6 +618,23 @@ std::vector<std::uint32_t> sources_of(const StemWalk& walk, const DrainageGrid& 
 
 }  // namespace
 
+std::vector<std::uint64_t> main_upstream_bits(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
+                                              const FlowNetwork& net) {
+    const StemWalk walk(g, dir, net);
+    std::vector<std::uint64_t> bits(mains_words(g.size()), 0);
+    // rows in order on all cores (a main cell may lie in another chunk's row: its word set
+    // atomically)
+    parallel_chunks(std::size_t(g.rows), 16, [&](std::size_t r0, std::size_t r1) {
+        for (std::size_t d = r0 * std::size_t(g.cols); d < r1 * std::size_t(g.cols); ++d) {
+            if (walk.indeg[d] < 2) continue;  // no junction
+            const std::size_t m = walk.main_upstream(d);
+            if (m != d)
+                std::atomic_ref<std::uint64_t>(bits[m >> 6]).fetch_or(std::uint64_t(1) << (m & 63), std::memory_order_relaxed);
+        }
+    });
+    return bits;
+}
+
 StemParts stem_parts(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net) {
     const StemWalk walk(g, dir, net);
     StemParts out;
@@ -621,7 +660,8 @@ StemParts stem_parts(const DrainageGrid& g, const std::vector<std::uint8_t>& dir
 void for_each_stem_cells(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                          const StemParts& parts,
                          const std::function<void(std::size_t, std::uint32_t, const std::uint32_t*, std::uint32_t)>& f) {
-    const StemWalk walk(g, dir, net);
+    StemWalk walk(g, dir, net);
+    walk.use_mains(true);  // every stem walked: each junction's main found once
     const std::size_t n = parts.sources.size(), per = chunk_length(n, 1024);  // at most 16 chunks
     parallel_chunks(n, 1024, [&](std::size_t s0, std::size_t s1) {
         std::vector<std::uint32_t> cells;
@@ -772,7 +812,8 @@ LineLattice crease_lattice(const DrainageGrid& g) { return line_lattice(std::min
 
 DrapedLineSet crease_part(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                           const DemSurface& surface, const StemParts& parts, const std::vector<std::uint32_t>& ids) {
-    const StemWalk walk(g, dir, net);
+    StemWalk walk(g, dir, net);
+    walk.use_mains(false);  // the network's, where it has them (a part's stems alone: not found here)
     std::vector<std::uint32_t> own(ids.size());
     for (std::size_t i = 0; i < ids.size(); ++i) own[i] = parts.sources.at(ids[i]);
     // a stem's end reads its trunk's trace, which reads nothing of other stems: one level

@@ -113,6 +113,14 @@ struct StemParts {
     glm::vec2 lo{0.0f}, hi{-1.0f};
 };
 StemParts stem_parts(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net);
+// FlowNetwork::mains of the network: for every junction (a cell two or more valid cells drain
+// into), the bit of its main upstream cell (network_stems' rule: highest order, then larger flow
+// just above the junction, then the branch with the least head), in mains_words(g.size()) words.
+// The walks of for_each_stem_cells and crease_part read it instead of comparing the junction's
+// inflows at every arrival.
+std::vector<std::uint64_t> main_upstream_bits(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
+                                              const FlowNetwork& net);
+inline std::size_t mains_words(std::size_t cells) { return (cells + 63) / 64; }
 // Calls f(chunk, s, cells, n) for each stem s of network_stems(g, dir, net) (parts.sources) with
 // its n grid cells in stem order, on all cores (f must be safe to call from several threads at
 // once): the stems in consecutive chunks, chunk c (0, 1, ... in stem order, fewer than

@@ -17,6 +17,10 @@ struct FlowNetwork {
     CellWords basin;   // basin id 1..B; 0 invalid
     std::vector<std::uint32_t> outlet;  // outlet cell of basin b at outlet[b - 1], in index order
     std::vector<std::uint8_t> indeg;    // inflow_counts of the directions (kept for the branches)
+    // One bit a cell (bit i % 64 of word i / 64): set where the cell is the main upstream cell of
+    // the junction it drains into (main_upstream_bits, draped_lines.hpp); empty until found, when
+    // the stems' walks find it at each junction they reach.
+    std::vector<std::uint64_t> mains;
 };
 
 // In-degree (number of valid neighbours draining into the cell) of every cell.

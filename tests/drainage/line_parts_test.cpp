@@ -3,9 +3,11 @@
 // source cell) and the divides in runs of 97 ids, the parts in shuffled order, and the divides'
 // smoothing on the stems as walked (which join: chains across parts), on volcano at its
 // automatic factor and at factor 1, on a DEM with nodata holes at factor 2 and on geographic
-// jacksboro's curvilinear grid. Many joins cross a part's edge (the closure is what makes them
-// equal), and the closure of joins adds each joined line once.
+// jacksboro's curvilinear grid; the stems the same again with the junctions' mains found first
+// (main_upstream_bits: one bit a junction). Many joins cross a part's edge (the closure is what
+// makes them equal), and the closure of joins adds each joined line once.
 #include <algorithm>
+#include <bit>
 #include <cstring>
 #include <random>
 #include <string>
@@ -19,6 +21,7 @@
 #include "drainage/draped_lines.hpp"
 #include "drainage/drainage_build.hpp"
 #include "drainage/fall_line_stems.hpp"
+#include "drainage/flow_network.hpp"
 #include "drainage/ridge_crests.hpp"
 #include "drainage/stems.hpp"
 
@@ -95,6 +98,21 @@ void expect_parts_equal_whole(const Terrain& t, int factor, const std::string& w
     }
     EXPECT_EQ(stems, db.creases.lines.size()) << what;
     EXPECT_EQ(bad_stems, 0u) << what;
+
+    // with the junctions' mains found first (main_upstream_bits, as the streamed build keeps them
+    // in the network): one bit for each junction, and the same stems bit for bit
+    FlowNetwork with_mains = res.net;
+    with_mains.mains = main_upstream_bits(g, res.dir, res.net);
+    ASSERT_EQ(with_mains.mains.size(), mains_words(g.size())) << what;
+    std::size_t junctions = 0, bits = 0;
+    for (std::uint8_t n : inflow_counts(res.dir, GridShape{g.cols, g.rows, g.valid.data()})) junctions += n >= 2;
+    for (std::uint64_t w : with_mains.mains) bits += std::size_t(std::popcount(w));
+    EXPECT_EQ(bits, junctions) << what;
+    EXPECT_GT(junctions, sources.size() / 4) << what;
+    std::size_t bad_with_mains = 0;
+    for (const auto& ids : stem_parts)
+        bad_with_mains += mismatches(db.creases, crease_part(g, res.dir, with_mains, surface, stems_of, ids), ids);
+    EXPECT_EQ(bad_with_mains, 0u) << what;
 
     // divides: runs of 97 ids
     const DrapedLineSet listed = listed_lines(db.divide_vertices, divide_polylines(db));
