@@ -284,17 +284,14 @@ DemRows::DemRows(const std::string& path, const DemOptions& options, int band_ro
     r = raster_header(*s.ds);
     GDALRasterBand& band = *s.ds->GetRasterBand(1);
     band_info(band, r);
-    if (band_rows <= 0) {  // whole blocks of a tiled or striped file: each decoded once
-        int block_w = 0, block_h = 0;
-        band.GetBlockSize(&block_w, &block_h);
+    // Whole rows of a tiled or striped file's blocks, each decoded once a pass.
+    int block_w = 0, block_h = 0;
+    band.GetBlockSize(&block_w, &block_h);
+    if (band_rows <= 0) {
         band_rows = default_band_rows(r.w);
         if (block_h > 1) band_rows = std::max(block_h, band_rows / block_h * block_h);
     }
-    {
-        int block_w = 0, block_h = 0;
-        band.GetBlockSize(&block_w, &block_h);
-        s.unit = block_h > 1 ? block_h * std::max(1, 256 / block_h) : 256;
-    }
+    s.unit = block_h > 1 ? block_h * std::max(1, 256 / block_h) : 256;
     check_memory("input", path,
                  "reading the DEM's " + std::to_string(r.w) + "x" + std::to_string(r.h) + " nodes by bands of " +
                      std::to_string(band_rows) + " rows",
