@@ -486,9 +486,10 @@ namespace {
 void expect_rows_as_read(const std::string& p, int band_rows, int piece) {
     DemOptions heights;
     heights.heights_only = true;
-    std::vector<glm::vec2> xy;
+    const DemSize size = read_dem_size(p);
+    std::vector<glm::vec2> xy(std::size_t(size.cols) * std::size_t(size.rows));
+    // rows in parallel, each into its own part of xy
     heights.xy_rows = [&](const Terrain& t, int r, const glm::vec2* row) {
-        if (xy.empty()) xy.resize(t.size());
         std::copy(row, row + t.cols, xy.begin() + std::ptrdiff_t(t.index(0, r)));
     };
     const Terrain want = read_dem(p, heights);
