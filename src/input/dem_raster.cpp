@@ -61,9 +61,7 @@ void read_band(GDALRasterBand& band, Raster& r, const std::string& path) {
     const GDALDataType as = sizeof(T) == 4 ? GDT_Float32 : GDT_Float64;
     // A band of rows at a time, the blocks GDAL caches for it dropped after it: the read holds the
     // values and about a band of blocks, not a second copy of the raster in GDAL's cache.
-    int block_w = 0, block_h = 0;
-    band.GetBlockSize(&block_w, &block_h);
-    const int rows = std::max(1, std::max(block_h, 1) * std::max(1, (8 << 20) / std::max(1, r.w * int(sizeof(T)) * std::max(block_h, 1))));
+    const int rows = band_rows(band, r.w, sizeof(T));
     for (int y = 0; y < r.h; y += rows) {
         const int n = std::min(rows, r.h - y);
         if (band.RasterIO(GF_Read, 0, y, r.w, n, raw.data() + std::size_t(y) * std::size_t(r.w), r.w, n, as, 0, 0) != CE_None)
@@ -247,6 +245,14 @@ void take_heights(Raster& r, double s, std::vector<float>& z) {
 }
 
 void read_heights(GDALDataset& ds, const std::string& path, Raster& r) { read_values(ds, r, path); }
+
+int band_rows(GDALRasterBand& band, int width, std::size_t value_bytes) {
+    int block_w = 0, block_h = 0;
+    band.GetBlockSize(&block_w, &block_h);
+    const std::int64_t block = std::max(block_h, 1);
+    const std::int64_t per = (std::int64_t(8) << 20) / (std::max<std::int64_t>(width, 1) * std::int64_t(value_bytes) * block);
+    return int(std::min<std::int64_t>(block * std::max<std::int64_t>(per, 1), std::numeric_limits<int>::max()));
+}
 
 void band_info(GDALRasterBand& band, Raster& r) {
     r.type = band.GetRasterDataType();

@@ -104,6 +104,11 @@ inline double node_elevation(const Raster& r, std::size_t row, int c, double uni
 // heights, the flags and 8 MiB, not the values besides) and are gone after.
 void take_heights(Raster& r, double s, std::vector<float>& z);
 
+// Rows a read holds at a time: about 8 MiB of values of `value_bytes` each in a row of `width`, in
+// whole rows of the band's blocks (each block decoded once when bands are read in turn), at least
+// one row of blocks.
+int band_rows(GDALRasterBand& band, int width, std::size_t value_bytes);
+
 // The band's type, nodata value, scale and offset into r (what a read of its values needs besides
 // them; read_heights sets them too).
 void band_info(GDALRasterBand& band, Raster& r);

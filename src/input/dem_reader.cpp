@@ -166,20 +166,26 @@ void finish_terrain(const Raster& r, const WorldXY& xy, Terrain& t) {
     t.elevation_min = r.emin, t.elevation_max = r.emax;
 }
 
-// f(row, x, y of the row's nodes) for every row, x, y its nodes' world coordinates relative to
-// the bounds' rounded centre (t.origin) as floats; rows in parallel.
+// Row `row`'s nodes' world coordinates relative to the bounds' rounded centre (t.origin), as
+// floats, into `local` (r.w of them); `line` is scratch (r.w).
+void row_local_xy(const Raster& r, const WorldXY& xy, const Terrain& t, const std::string& path, int row,
+                  glm::dvec2* line, glm::vec2* local) {
+    try {
+        xy.row(r, row, line);
+    } catch (const GeographicLib::GeographicErr& e) {
+        fail_utm(path, t.utm_zone, t.north, e);
+    }
+    for (int c = 0; c < r.w; ++c) local[c] = local_xy(line[c], t.origin);
+}
+
+// f(row, x, y of the row's nodes) for every row (row_local_xy); rows in parallel.
 template <class F>
 void each_row_xy(const Raster& r, const WorldXY& xy, const Terrain& t, const std::string& path, F&& f) {
     parallel_chunks(std::size_t(r.h), rows_per_chunk(r), [&](std::size_t r0, std::size_t r1) {
         std::vector<glm::dvec2> line(std::size_t(r.w));
         std::vector<glm::vec2> local(std::size_t(r.w));
         for (std::size_t row = r0; row < r1; ++row) {
-            try {
-                xy.row(r, int(row), line.data());
-            } catch (const GeographicLib::GeographicErr& e) {
-                fail_utm(path, t.utm_zone, t.north, e);
-            }
-            for (int c = 0; c < r.w; ++c) local[std::size_t(c)] = local_xy(line[std::size_t(c)], t.origin);
+            row_local_xy(r, xy, t, path, int(row), line.data(), local.data());
             f(row, local.data());
         }
     });
@@ -285,12 +291,9 @@ DemRows::DemRows(const std::string& path, const DemOptions& options, int band_ro
     GDALRasterBand& band = *s.ds->GetRasterBand(1);
     band_info(band, r);
     // Whole rows of a tiled or striped file's blocks, each decoded once a pass.
+    if (band_rows <= 0) band_rows = dem::band_rows(band, r.w, sizeof(double));
     int block_w = 0, block_h = 0;
     band.GetBlockSize(&block_w, &block_h);
-    if (band_rows <= 0) {
-        band_rows = default_band_rows(r.w);
-        if (block_h > 1) band_rows = std::max(block_h, band_rows / block_h * block_h);
-    }
     s.unit = block_h > 1 ? block_h * std::max(1, 256 / block_h) : 256;
     check_memory("input", path,
                  "reading the DEM's " + std::to_string(r.w) + "x" + std::to_string(r.h) + " nodes by bands of " +
@@ -327,8 +330,6 @@ DemRows::DemRows(const std::string& path, const DemOptions& options, int band_ro
     if (crs_error) std::rethrow_exception(crs_error);
     finish_terrain(r, *s.xy, s.meta);
 }
-
-int DemRows::default_band_rows(int cols) { return std::max(1, (8 << 20) / (8 * std::max(1, cols))); }
 
 const Terrain& DemRows::meta() const { return s_->meta; }
 
@@ -367,12 +368,7 @@ void DemRows::xy(int y, glm::vec2* out) const {
     const State& s = *s_;
     thread_local std::vector<glm::dvec2> line;
     line.resize(std::size_t(s.r.w));
-    try {
-        s.xy->row(s.r, y, line.data());
-    } catch (const GeographicLib::GeographicErr& e) {
-        fail_utm(s.path, s.meta.utm_zone, s.meta.north, e);
-    }
-    for (int c = 0; c < s.r.w; ++c) out[c] = local_xy(line[std::size_t(c)], s.meta.origin);
+    row_local_xy(s.r, *s.xy, s.meta, s.path, y, line.data(), out);
 }
 
 DemSize read_dem_size(const std::string& path) {

@@ -51,12 +51,11 @@ constexpr double dem_read_bytes_per_node = 21.0;
 // Memory: a band of rows (values, flags) and GDAL's blocks of it. One thread at a time.
 class DemRows {
 public:
-    // band_rows: rows of a band of the opening pass (0: default_band_rows, about 8 MiB of values,
-    // in whole rows of the file's blocks).
+    // band_rows: rows of a band of the opening pass (0: about 8 MiB of values, in whole rows of
+    // the file's blocks).
     explicit DemRows(const std::string& path, const DemOptions& options = {}, int band_rows = 0);
     ~DemRows();
     DemRows(DemRows&&) noexcept;
-    static int default_band_rows(int cols);
     // read_dem's Terrain (heights_only) without its arrays: grid, georeference, elevation range,
     // origin, xy_unit; z, valid, pos and xy empty.
     const Terrain& meta() const;

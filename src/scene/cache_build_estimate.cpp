@@ -21,7 +21,7 @@ namespace {
 constexpr double terrain_s_per_node = 0.166e-6;  // 2.3 s at 13.86 M nodes
 // Held while the cache is built (terrain_cache.hpp, build_terrain_cache), over the process's own
 // (terrain_base_bytes): the window of DEM rows a strip of the pyramid reads (5 B a node of its
-// rows and margins, terrain_window_rows), lod_errors' strips (lod_errors_bytes), the pyramid's
+// rows and margins, lod_strip_rows), lod_errors' strips (lod_errors_bytes), the pyramid's
 // blocks held coded until written (a 24 B entry and 2 x 12 B of header lists each block of 256
 // padded nodes: terrain_bytes_per_padded_block) and their bytes with the flags' (about
 // terrain_bytes_per_node): fitted to the build alone (bench/terrain_cache_build_bench.cpp under
@@ -29,7 +29,6 @@ constexpr double terrain_s_per_node = 0.166e-6;  // 2.3 s at 13.86 M nodes
 // nodes), 106, 169 and 448 MB: the base and the bytes a node fitted to the last two (the first is
 // then 29 MB over; its own DEM's roughness codes to more bytes a node than the others').
 constexpr double terrain_bytes_per_node = 0.65, terrain_base_bytes = 109.3e6, terrain_bytes_per_padded_block = 48.0;
-const double terrain_window_rows = double(LodStrips{}.strip_rows + 3 * LodStrips{}.fine_side + 3);
 // The drainage database (`penink drainage DEM -o x.dv`: the network, the ridges and the creases'
 // source; the crease tiles come later, built by the renders that need them, with their own
 // progress): 3.25 s at 13.86 M points (jacksboro refined 10 times) and 42.6 s at 116.6 M (29
@@ -52,7 +51,8 @@ CacheBuildEstimate terrain_cache_estimate(int cols, int rows) {
     CacheBuildEstimate e;
     e.seconds = terrain_s_per_node * nodes;
     const double side = std::ldexp(1.0, lod_padded_levels(cols, rows)) + 1.0;
-    e.peak_bytes = terrain_base_bytes + 5.0 * double(cols) * std::min(terrain_window_rows, double(rows)) +
+    const double window_rows = double(lod_strip_rows() + 2);  // the strip's rows and the flags' dilation
+    e.peak_bytes = terrain_base_bytes + 5.0 * double(cols) * std::min(window_rows, double(rows)) +
                    lod_errors_bytes(cols, rows) + terrain_bytes_per_node * nodes +
                    terrain_bytes_per_padded_block * side * side / 256.0;
     e.disk_bytes = terrain_disk_bytes_per_node * nodes;

@@ -35,19 +35,18 @@ void check_scene_memory(const Scene& scene, std::uint64_t max_memory) {
     // a sea level, the pyramid rebuilt for it over the padded square (a long thin DEM's square is
     // far larger than its nodes). A frame from the caches holds less than their builds.
     const bool lines = scene.lines.creases.enabled || scene.lines.ridges.enabled;
-    const double drainage = lines ? drainage_build_bytes(size.cols, size.rows, drainage_factor_for(size.cols, size.rows, 0)) : 0.0;
+    const int factor = drainage_factor_for(size.cols, size.rows, 0);
+    const double drainage = lines ? drainage_build_bytes(size.cols, size.rows, factor) : 0.0;
     const double side = std::ldexp(1.0, lod_padded_levels(size.cols, size.rows)) + 1.0;
     const double water = scene.terrain.sea_level ? side * side * water_lod_bytes_per_padded_node : 0.0;
     const double dem = terrain_cache_estimate(size.cols, size.rows).peak_bytes + drainage + water;
-    if (budget > 0 && dem > double(budget) && dem - drainage <= double(budget)) {  // the creases' build alone does not fit
-        const int factor = drainage_factor_for(size.cols, size.rows, 0);
+    if (budget > 0 && dem > double(budget) && dem - drainage <= double(budget))  // the creases' build alone does not fit
         throw Error("drainage", scene.source.dem,
                     "the drainage grid of the creases and ridges at factor " + std::to_string(factor) + " (" +
                         drainage_grid_size(size.cols, size.rows, factor) + " points) would need about " +
                         format_bytes(dem) + " of memory, " + format_bytes(double(budget)) +
                         " available (--max-memory); without creases and ridges ([creases] and [ridges] enabled = "
                         "false) the drawing needs about " + format_bytes(dem - drainage));
-    }
     check_memory("input", scene.source.dem,
                  "drawing the DEM's " + std::to_string(size.cols) + "x" + std::to_string(size.rows) + " nodes", dem, budget);
     check_memory("scene", file, image_what + " of the DEM's " + std::to_string(size.cols) + "x" + std::to_string(size.rows) + " nodes",

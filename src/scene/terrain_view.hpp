@@ -68,12 +68,12 @@ struct SceneTerrain {
 };
 
 // The DEM's stored terrain: read from the cache when a valid one lies beside the DEM (`<dem>.lod`, even in a
-// folder render cannot write) or at terrain_cache_path, else the DEM
-// read unexaggerated, its pyramid built and the cache written (a cache that cannot be written is
-// logged and the terrain kept in memory). Throws penink::Error (stage "input") for a DEM that
-// cannot be read, (stage "surface") for one whose nodes and pyramid would not fit the memory
-// available (checked from its header before it is read: a long thin DEM's pyramid covers the
-// padded square) and (stage "scene") for a vertical exaggeration that is not a finite number > 0.
+// folder render cannot write) or at terrain_cache_path, else built there from the DEM read by
+// bands (build_terrain_cache), or where that cannot be (a cache that cannot be written, logged;
+// x, y that follow no formula) from the DEM read whole and kept in memory. Throws penink::Error
+// (stage "input") for a DEM that cannot be read, (stage "surface") for one whose cache build, or
+// whose nodes and pyramid held whole, would not fit the memory available (checked from its header
+// before it is read: a long thin DEM's pyramid covers the padded square) and (stage "scene") for a vertical exaggeration that is not a finite number > 0.
 // open_scene_terrain resolves the scene's "auto" vertical exaggeration first. A build of a large
 // DEM writes its estimate line (announce_cache_build) to stderr first, unless `announce` is false
 // (the caller wrote it: a build on another thread, scene/terrain_keep.hpp). `key`: the DEM's

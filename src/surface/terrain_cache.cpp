@@ -177,8 +177,6 @@ std::optional<DerivedXY> derived_xy(const Terrain& meta, const GridNodes& nodes)
 
 // The coded blocks of one array.
 using CodedBlocks = std::vector<std::vector<std::uint8_t>>;
-// code(first element, count) of every block of an array of `elems`, on every core a batch of
-// blocks at a time, each batch then handed in order to use(block, its bytes).
 // code(b) of blocks [b0, b0 + count) on every core, then use(b, its bytes) of each in order.
 template <class F, class U> void code_batch(std::size_t b0, std::size_t count, F&& code, U&& use) {
     CodedBlocks coded(count);
@@ -417,9 +415,7 @@ public:
     void add(const T* v, std::size_t count) {
         pending_.insert(pending_.end(), v, v + count);
         const std::size_t block = std::size_t(1) << block_shift, batch = std::size_t(1) << 14;
-        if (pending_.size() < batch * block) return;
-        const std::size_t whole = pending_.size() / block;
-        flush(whole);
+        if (pending_.size() >= batch * block) flush(pending_.size() / block);  // the whole blocks
     }
     void finish() {
         const std::size_t block = std::size_t(1) << block_shift;

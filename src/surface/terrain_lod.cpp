@@ -251,11 +251,13 @@ void load_strip(const LodHeights& dem, LevelGrid& g) {
 
 }  // namespace
 
+std::int64_t lod_strip_rows(const LodStrips& strips) { return strips.strip_rows + 2 * lod_apron(strips.fine_side); }
+
 double lod_errors_bytes(int cols, int rows, const LodStrips& strips) {
     const int n = 1 << lod_padded_levels(cols, rows);
     const double side = double(n) + 1.0, fine = double(strips.fine_side);
     if (fine > n / 2) return 13.0 * side * side;  // one strip, every level on it
-    const double strip = std::min(double(strips.strip_rows) + 2.0 * double(lod_apron(strips.fine_side)), side);
+    const double strip = std::min(double(lod_strip_rows(strips)), side);
     const double top = double(n) / (fine / 2.0) + 1.0;
     return 13.0 * side * strip + 4.0 * side * (double(n) / fine + 1.0) + 13.0 * top * top;
 }

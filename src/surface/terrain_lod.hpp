@@ -138,6 +138,10 @@ struct LodStrips {
     int fine_side = 32;
 };
 
+// Padded rows a strip of lod_errors holds (its own and its margins either side); it reads the DEM
+// rows among them and one more either side (LodHeights::load).
+std::int64_t lod_strip_rows(const LodStrips& strips = {});
+
 // Bytes lod_errors holds for a cols x rows DEM (the strip and its margins, the held rows, the
 // upper levels' grid; the formula in LodStrips' comment).
 double lod_errors_bytes(int cols, int rows, const LodStrips& strips = {});
