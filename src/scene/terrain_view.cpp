@@ -12,6 +12,7 @@
 #include "core/stopwatch.hpp"
 #include "drainage/drainage_build.hpp"
 #include "input/dem_reader.hpp"
+#include "input/dem_file_identity.hpp"
 #include "input/scene_position.hpp"
 #include "input/terrain_window.hpp"
 #include "core/georeference.hpp"
@@ -214,8 +215,17 @@ std::string terrain_cache_path(const std::string& dem_path, const std::string& c
 }
 
 TerrainCacheKey terrain_cache_key(const std::string& dem_path) {
+    const std::uint64_t identity = dem_file_identity(dem_path);  // before the read: a write meanwhile changes it
     const DrainageFingerprint f = dem_fingerprint(dem_path, 1);
-    return {f.file_size, f.mtime_ns, f.content_hash, 0, true};
+    return {f.file_size, f.mtime_ns, f.content_hash, 0, true, identity};
+}
+
+std::optional<TerrainCacheKey> known_terrain_key(const std::string& dem_path, const std::string& cache_dir) {
+    const std::uint64_t identity = dem_file_identity(dem_path);
+    if (identity == 0) return std::nullopt;
+    for (const std::string& p : {dem_path + ".lod", terrain_cache_path(dem_path, cache_dir)})
+        if (std::optional<TerrainCacheKey> k = recorded_terrain_key(p); k && k->identity == identity) return k;
+    return std::nullopt;
 }
 
 StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, const std::string& cache_dir, bool announce,
@@ -224,6 +234,7 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, c
     const std::string path = terrain_cache_path(dem_path, cache_dir);
     TerrainCacheKey key;
     if (known) key = *known;
+    else if (std::optional<TerrainCacheKey> unchanged = known_terrain_key(dem_path, cache_dir)) key = *unchanged;
     else try {
         key = terrain_cache_key(dem_path);
     } catch (const Error&) {  // the reader names what is wrong with the file

@@ -15,6 +15,7 @@
 #pragma once
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -45,7 +46,12 @@ void resolve_vertical_exaggeration(Scene& scene, double z_min, double z_max, con
 std::string terrain_cache_path(const std::string& dem_path, const std::string& cache_dir = "");
 // What a DEM's terrain cache is keyed by: the DEM file (as the drainage database's fingerprint)
 // and the UTM zone forced on a geographic DEM (none: 0).
+// Its identity (input/dem_file_identity.hpp) taken before the DEM is hashed.
 TerrainCacheKey terrain_cache_key(const std::string& dem_path);
+// The key a terrain cache of the DEM (beside it, then in cache_dir's place: terrain_cache_path)
+// recorded with the DEM's identity as it is now: the DEM unchanged since that cache was written,
+// its key known without reading the DEM. nullopt when no cache recorded this identity.
+std::optional<TerrainCacheKey> known_terrain_key(const std::string& dem_path, const std::string& cache_dir = "");
 
 // The scene's DEM: nodes and pyramid, stored (read from the cache, or from the DEM and cached), drawn
 // at the scene's vertical exaggeration, with water below its sea level (GridNodes::sea_level).
@@ -77,7 +83,8 @@ struct SceneTerrain {
 // open_scene_terrain resolves the scene's "auto" vertical exaggeration first. A build of a large
 // DEM writes its estimate line (announce_cache_build) to stderr first, unless `announce` is false
 // (the caller wrote it: a build on another thread, scene/terrain_keep.hpp). `key`: the DEM's
-// terrain_cache_key when the caller made it this run (the file is not hashed again); null: made here.
+// terrain_cache_key when the caller made it this run (the file is not hashed again); null: made
+// here, known_terrain_key's where a cache recorded the DEM as it is (not read), else hashed.
 StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, const std::string& cache_dir = "",
                                   bool announce = true, const TerrainCacheKey* key = nullptr);
 SceneTerrain open_scene_terrain(Scene& scene, const Log& log);

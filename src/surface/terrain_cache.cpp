@@ -323,7 +323,7 @@ std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCac
     w.put(terrain_cache_version);
     w.put(std::uint32_t(0));  // header length, set below
     w.put(key.file_size), w.put(key.mtime_ns), w.put(key.content_hash), w.put(key.utm_zone);
-    w.put(std::uint32_t(key.north));
+    w.put(std::uint32_t(key.north)), w.put(key.identity);
     w.put(std::int32_t(m.cols)), w.put(std::int32_t(m.rows)), w.put(std::int32_t(t.lod.levels));
     w.put(std::uint32_t(m.source_geographic));
     w.put(m.origin.x), w.put(m.origin.y);
@@ -571,35 +571,95 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
     return true;
 }
 
-std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const TerrainCacheKey& key, std::string* why) {
-    // O_NONBLOCK: a FIFO in the cache's place does not block the open (fstat refuses it below)
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-    if (fd < 0) return fail(why, "no terrain cache");
-    struct Closer {
-        int fd;
-        ~Closer() { ::close(fd); }
-    } closer{fd};
-    struct stat st {};
-    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) return fail(why, "terrain cache is not a regular file");
-    // Read, not mapped: a file that shrinks while it is used cannot fault the process.
-    const std::uint64_t size = std::uint64_t(st.st_size);
+namespace {
+
+// An open cache file (closed with this object).
+struct CacheFile {
+    int fd = -1;
+    explicit CacheFile(int f) : fd(f) {}
+    CacheFile(CacheFile&& o) noexcept : fd(o.fd) { o.fd = -1; }
+    CacheFile(const CacheFile&) = delete;
+    CacheFile& operator=(const CacheFile&) = delete;
+    ~CacheFile() {
+        if (fd >= 0) ::close(fd);
+    }
+};
+
+// The header of the cache file open as fd (`size` bytes), checked: magic, version, length,
+// checksum; empty, with the reason in *why, when any fails.
+std::vector<std::uint8_t> checked_header(int fd, std::uint64_t size, std::string* why) {
+    auto failed = [why](const char* reason) {
+        if (why) *why = reason;
+        return std::vector<std::uint8_t>{};
+    };
     std::uint8_t prefix[16];
-    if (size < 32 || ::pread(fd, prefix, 16, 0) != 16) return fail(why, "truncated terrain cache");
-    if (std::memcmp(prefix, magic, 8) != 0) return fail(why, "not a terrain cache (bad magic)");
+    if (size < 32 || ::pread(fd, prefix, 16, 0) != 16) return failed("truncated terrain cache");
+    if (std::memcmp(prefix, magic, 8) != 0) return failed("not a terrain cache (bad magic)");
     std::uint32_t version, length;
     std::memcpy(&version, prefix + 8, 4), std::memcpy(&length, prefix + 12, 4);
-    if (version != terrain_cache_version) return fail(why, "terrain cache of another version");
-    if (length < 24 || length % 8 || length > size) return fail(why, "damaged terrain cache (header length)");
+    if (version != terrain_cache_version) return failed("terrain cache of another version");
+    if (length < 24 || length % 8 || length > size) return failed("damaged terrain cache (header length)");
     std::vector<std::uint8_t> header(length);
-    if (::pread(fd, header.data(), length, 0) != ssize_t(length)) return fail(why, "truncated terrain cache");
-    const std::uint8_t* b = header.data();
+    if (::pread(fd, header.data(), length, 0) != ssize_t(length)) return failed("truncated terrain cache");
     std::uint64_t stored = 0;
-    std::memcpy(&stored, b + length - 8, 8);
-    if (hash64(b, length - 8) != stored) return fail(why, "damaged terrain cache (header checksum)");
-    Reader r{b, std::size_t(length) - 8, 16};
+    std::memcpy(&stored, header.data() + length - 8, 8);
+    if (hash64(header.data(), length - 8) != stored) return failed("damaged terrain cache (header checksum)");
+    return header;
+}
+
+TerrainCacheKey read_key(Reader& r) {
     TerrainCacheKey k;
     k.file_size = r.get<std::uint64_t>(), k.mtime_ns = r.get<std::int64_t>(), k.content_hash = r.get<std::uint64_t>();
     k.utm_zone = r.get<std::int32_t>(), k.north = r.get<std::uint32_t>() != 0;
+    k.identity = r.get<std::uint64_t>();
+    return k;
+}
+
+// The cache file at `path` opened for reading (a regular file), its size; fd < 0 with the reason
+// in *why when it is missing or something else.
+CacheFile open_cache(const std::string& path, std::uint64_t& size, std::string* why) {
+    // O_NONBLOCK: a FIFO in the cache's place does not block the open (fstat refuses it below)
+    CacheFile f(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK));
+    if (f.fd < 0) {
+        if (why) *why = "no terrain cache";
+        return f;
+    }
+    struct stat st {};
+    if (::fstat(f.fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        if (why) *why = "terrain cache is not a regular file";
+        ::close(f.fd), f.fd = -1;
+        return f;
+    }
+    size = std::uint64_t(st.st_size);
+    return f;
+}
+
+}  // namespace
+
+std::optional<TerrainCacheKey> recorded_terrain_key(const std::string& path) {
+    std::uint64_t size = 0;
+    const CacheFile f = open_cache(path, size, nullptr);
+    if (f.fd < 0) return std::nullopt;
+    const std::vector<std::uint8_t> header = checked_header(f.fd, size, nullptr);
+    if (header.empty()) return std::nullopt;
+    Reader r{header.data(), header.size() - 8, 16};
+    const TerrainCacheKey k = read_key(r);
+    if (!r.ok) return std::nullopt;
+    return k;
+}
+
+std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const TerrainCacheKey& key, std::string* why) {
+    std::uint64_t size = 0;
+    const CacheFile file = open_cache(path, size, why);
+    if (file.fd < 0) return std::nullopt;
+    const int fd = file.fd;
+    // Read, not mapped: a file that shrinks while it is used cannot fault the process.
+    const std::vector<std::uint8_t> header = checked_header(fd, size, why);
+    if (header.empty()) return std::nullopt;
+    const std::uint32_t length = std::uint32_t(header.size());
+    const std::uint8_t* b = header.data();
+    Reader r{b, std::size_t(length) - 8, 16};
+    const TerrainCacheKey k = read_key(r);
     if (!(k == key)) return fail(why, "terrain cache is stale (DEM changed)");
     StoredTerrain t;
     Terrain& m = t.meta;

@@ -10,7 +10,8 @@
 //
 // File layout, little-endian, version 4 (one header, then three coded arrays):
 //   "PENINKTC", u32 version, u32 header length (bytes, up to and including its checksum)
-//   key: u64 DEM file size, i64 mtime (ns), u64 content hash, i32 forced UTM zone, u32 north
+//   key: u64 DEM file size, i64 mtime (ns), u64 content hash, i32 forced UTM zone, u32 north,
+//        u64 the DEM file's identity when the hash was made (TerrainCacheKey::identity)
 //   grid: i32 cols, rows, levels, u32 source_geographic; f64 origin x, y; f64 geotransform[6];
 //         f64 xy_unit, elevation_min, elevation_max; i32 utm_zone, u32 north;
 //         f64 angular_unit, prime_meridian
@@ -68,15 +69,23 @@
 
 namespace penink {
 
-inline constexpr std::uint32_t terrain_cache_version = 4;
+inline constexpr std::uint32_t terrain_cache_version = 5;
 
+// identity: the DEM file's identity when the key was made (input/dem_file_identity.hpp), stored
+// with it but not compared (a copy of the DEM has another identity and the same key): a cache
+// whose recorded identity is the DEM's now gives its key without the DEM being read
+// (recorded_terrain_key). 0: none recorded.
 struct TerrainCacheKey {
     std::uint64_t file_size = 0;
     std::int64_t mtime_ns = 0;
     std::uint64_t content_hash = 0;
     std::int32_t utm_zone = 0;  // the zone forced on a geographic DEM (DemOptions::utm_zone), 0 none
     bool north = true;
-    bool operator==(const TerrainCacheKey&) const = default;
+    std::uint64_t identity = 0;
+    bool operator==(const TerrainCacheKey& o) const {
+        return file_size == o.file_size && mtime_ns == o.mtime_ns && content_hash == o.content_hash &&
+               utm_zone == o.utm_zone && north == o.north;
+    }
 };
 
 // A DEM's nodes and pyramid, held in memory (built, or read from a cache file).
@@ -134,6 +143,11 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
 // header is damaged (header checksum, lengths, offsets, block checksums' count).
 std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const TerrainCacheKey& key,
                                                 std::string* why = nullptr);
+
+// The key recorded in the cache file at `path` (its header checked: magic, version, length,
+// checksum), identity included; nullopt when there is no such file or its header is not sound.
+// Reads the header alone.
+std::optional<TerrainCacheKey> recorded_terrain_key(const std::string& path);
 
 // Reads and checks every block of a terrain opened from a cache file (a no-op for one in memory).
 // Throws DamagedBlockError at the first damaged block.

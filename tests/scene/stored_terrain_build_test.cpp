@@ -6,6 +6,11 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <thread>
+
+#include <fcntl.h>
+#include <sys/stat.h>
 
 #include <gtest/gtest.h>
 
@@ -70,4 +75,58 @@ TEST(StoredTerrainBuild, WhereNothingCanBeWrittenTheTerrainIsBuiltInMemory) {
     EXPECT_NE(built.in_memory, nullptr);
     EXPECT_EQ(std::filesystem::file_size(blocker), 1u);
     expect_same_terrain(built, store_terrain(read_dem(volcano)));
+}
+
+// A warm open takes the key the cache recorded with the DEM's identity instead of hashing the DEM
+// (known_terrain_key); once the DEM is written (its bytes changed, its mtime put back) the identity
+// differs, the DEM is hashed, the cache found stale and built again; a copy of the DEM with its
+// cache beside it is hashed once (another inode) and still finds the cache sound.
+TEST(StoredTerrainBuild, AnUnchangedDemIsNotHashedAgain) {
+    test::TempDir dir, cache("stored_terrain_identity_cache");
+    const std::string volcano = copy_volcano(dir);
+    EXPECT_FALSE(known_terrain_key(volcano, cache.path.string()));  // no cache yet
+    const StoredTerrain built = open_stored_terrain(volcano, Log{}, cache.path.string());
+    const std::optional<TerrainCacheKey> known = known_terrain_key(volcano, cache.path.string());
+    ASSERT_TRUE(known);
+    EXPECT_TRUE(*known == built.key);
+    EXPECT_EQ(known->identity, built.key.identity);
+    EXPECT_NE(known->identity, 0u);
+    EXPECT_TRUE(open_stored_terrain(volcano, Log{}, cache.path.string()).key == built.key);
+
+    // one height changed in place, same size, mtime put back
+    struct stat st {};
+    ASSERT_EQ(::stat(volcano.c_str(), &st), 0);
+    std::string text;
+    {
+        std::ifstream in(volcano, std::ios::binary);
+        text.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    const std::size_t at = text.rfind("100");
+    ASSERT_NE(at, std::string::npos);
+    text[at] = '2';  // 100 m -> 200 m
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    std::ofstream(volcano, std::ios::binary | std::ios::trunc) << text;
+    const timespec times[2] = {st.st_atim, st.st_mtim};
+    ASSERT_EQ(::utimensat(AT_FDCWD, volcano.c_str(), times, 0), 0);
+    EXPECT_FALSE(known_terrain_key(volcano, cache.path.string()));
+    const StoredTerrain rebuilt = open_stored_terrain(volcano, Log{}, cache.path.string());
+    EXPECT_NE(rebuilt.key.content_hash, built.key.content_hash);
+    EXPECT_EQ(rebuilt.key.mtime_ns, built.key.mtime_ns);
+    expect_same_terrain(rebuilt, store_terrain(read_dem(volcano)));
+    ASSERT_TRUE(known_terrain_key(volcano, cache.path.string()));
+
+    // the DEM (its mtime kept) and its cache copied elsewhere: not known by identity, hashed, the cache sound
+    test::TempDir other("stored_terrain_identity_other");
+    for (const char* ext : {".asc", ".prj"})
+        std::filesystem::copy_file(dir.file(std::string("volcano") + ext), other.file(std::string("volcano") + ext));
+    const std::string moved = other.file("volcano.asc");
+    std::filesystem::last_write_time(moved, std::filesystem::last_write_time(volcano));  // as cp -p copies
+    std::filesystem::copy_file(terrain_cache_path(volcano, cache.path.string()), moved + ".lod");
+    EXPECT_FALSE(known_terrain_key(moved));
+    Log log;
+    log.verbose = true;
+    testing::internal::CaptureStderr();
+    open_stored_terrain(moved, log);
+    const std::string said = testing::internal::GetCapturedStderr();
+    EXPECT_EQ(said.rfind("penink: terrain: using cached " + moved + ".lod", 0), 0u) << said;
 }

@@ -240,8 +240,8 @@ TEST(TerrainCache, DamageInAnyBlockOfTheArraysIsFoundWhenRead) {
     ASSERT_TRUE(read_terrain_cache(path, key()));
     // array offsets: the coded arrays follow the header: pos, then valid, then error
     std::uint64_t at[3];
-    // prefix 16, key 32, grid 16 + 16 + 48 + 24 + 8 + 16, pyramid 16 + 32 bytes (terrain_cache.hpp)
-    std::memcpy(at, bytes.data() + 16 + 32 + 16 + 16 + 48 + 24 + 8 + 16 + 16 + 32, 24);
+    // prefix 16, key 40, grid 16 + 16 + 48 + 24 + 8 + 16, pyramid 16 + 32 bytes (terrain_cache.hpp)
+    std::memcpy(at, bytes.data() + 16 + 40 + 16 + 16 + 48 + 24 + 8 + 16 + 16 + 32, 24);
     std::uint32_t header = 0;
     std::memcpy(&header, bytes.data() + 12, 4);
     ASSERT_EQ(at[0], header);  // the offsets were read right
