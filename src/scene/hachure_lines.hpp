@@ -34,7 +34,11 @@ void validate_hachures(const HachureParams& p, const std::string& file);
 // (pixels) over a 16 x 16 lattice of the window's nodes (its edges included) that project into the
 // image. 1 (every node) wherever the nodes are not finer than that, as on every DEM a frame shows
 // at a few pixels or more a cell; a whole view of a DEM of many nodes to the pixel gets 2, 4, ...
-inline constexpr double hachure_node_px = 0.5;
+// A pixel: the gradients' stencil spans about 1.5 px of ground whatever the step (hachures.hpp),
+// so the field has no detail finer than the sampled cells (jacksboro refined 29 times, whole view:
+// the same tone as with every node, docs/timings.md "Scale"; the hachures 3x faster than at
+// half a pixel, whose 4x the nodes overflowed the tiles held).
+inline constexpr double hachure_node_px = 1.0;
 inline constexpr int hachure_max_node_step = 64;
 int hachure_node_step(const GridNodes& nodes, GridWindow window, const Camera& camera);
 
@@ -61,8 +65,8 @@ void add_hachures(const FrameTerrain& terrain, const HachureNodes& nodes, const 
                   const DepthImage& toward, const glm::dvec3& light, const HachureParams& params, Drawing& drawing,
                   NodeTileCounts* tiles = nullptr);
 
-// The -v line of the sampled nodes' tiles: "hachures: every 2 nodes (5844 x 4988 sampled), 2136
-// reads of 1794 tiles of 256 x 64, 64 MiB held at most".
+// The -v line of the sampled nodes' tiles: "hachures: every 4 nodes (2922 x 2494 sampled), 468
+// reads of 468 tiles of 256 x 64, 64 MiB held at most".
 std::string hachure_tiles_line(const SampledWindow& sampled, const NodeTileCounts& tiles);
 
 }  // namespace penink

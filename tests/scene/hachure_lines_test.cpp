@@ -55,13 +55,14 @@ FrameTerrain whole_frame(const StoredTerrain& map) {
 }
 
 // A 1025^2 DEM of 5 m cells (5120 m a side) framed in 75 rows of pixels: a cell spans about
-// 75 / 1025 = 0.073 px, so every 4th node keeps cells under half a pixel (0.29 px) and every 8th
-// would not (0.59 px); at 750 rows a cell spans 0.73 px and every node is used.
+// 75 / 1025 = 0.073 px, so every 8th node keeps cells within a pixel (0.59 px) and every 16th
+// would not (1.17 px); at 150 rows every 4th (0.59 px; every 8th: 1.17 px); at 750 rows a cell
+// spans 0.73 px and every node is used.
 TEST(HachureLines, NodeStepFollowsThePixelsACellSpans) {
     const StoredTerrain t = store_terrain(terrain_from_function(1025, 1025, 5.0, rough_hills));
     const GridNodes n = t.drawn(1.0);
-    EXPECT_EQ(hachure_node_step(n, whole(n), whole_view(t, 100, 75)), 4);
-    EXPECT_EQ(hachure_node_step(n, whole(n), whole_view(t, 200, 150)), 2);
+    EXPECT_EQ(hachure_node_step(n, whole(n), whole_view(t, 100, 75)), 8);
+    EXPECT_EQ(hachure_node_step(n, whole(n), whole_view(t, 200, 150)), 4);
     EXPECT_EQ(hachure_node_step(n, whole(n), whole_view(t, 1000, 750)), 1);
     EXPECT_EQ(hachure_node_step(n, GridWindow{0, 0, 1, 1}, whole_view(t, 100, 75)), 1) << "no cell: every node";
 }
@@ -89,10 +90,10 @@ TEST(HachureLines, SampledNodesAreEveryStepthNode) {
 
 // The hachures of a whole view (in perspective from the south-west, 40 deg down) from the terrain
 // cache of a 2049^2 DEM (a smooth hill 400 m high, sigma 1200 m, on a 5120 m square): at
-// 1000 x 750 (every node used) the frame reads every block of the nodes; at 200 x 150 (every 4th
-// node) it reads the blocks of every 4th row, a tile of 256 sampled nodes at a time (a row of 2049
-// nodes spans about 8 blocks of 256 nodes, read in 3 tiles whose edges' blocks both tiles read:
-// about 10/32 of them, and the 2 x 2 nodes of the stencil's lattice of 16 x 16), under 0.4 of
+// 2000 x 1500 (every node used) the frame reads every block of the nodes; at 200 x 150 (every 8th
+// node) it reads the blocks of every 8th row, a tile of 256 sampled nodes at a time (a row of 2049
+// nodes spans about 8 blocks of 256 nodes, read in 2 tiles whose edge's blocks both tiles read:
+// about 10/64 of them, and the 2 x 2 nodes of the stencil's lattice of 16 x 16), under 0.4 of
 // them, and keeps none of them in place (read_sampled: their memory is not held), nor the rows
 // between; both draw hachures.
 TEST(HachureLines, WholeViewOfAFineDemReadsWhatTheImageNeeds) {
@@ -104,7 +105,7 @@ TEST(HachureLines, WholeViewOfAFineDemReadsWhatTheImageNeeds) {
         if (!map) throw std::runtime_error("not opened");
         const FrameTerrain terrain = whole_frame(*map);
         const Camera cam = whole_view(*map, width, height, true);
-        EXPECT_EQ(hachure_node_step(terrain.nodes, terrain.window, cam), width == 200 ? 4 : 1);
+        EXPECT_EQ(hachure_node_step(terrain.nodes, terrain.window, cam), width == 200 ? 8 : 1);
         Drawing drawing;
         add_hachures(terrain, cam, DepthImage{}, light, hachure_defaults(), drawing);
         const CheckedBlocks& blocks = *map->nodes.blocks;
@@ -116,9 +117,9 @@ TEST(HachureLines, WholeViewOfAFineDemReadsWhatTheImageNeeds) {
     };
     std::uint64_t full = 0, coarse = 0;
     std::vector<bool> rows;
-    EXPECT_GT(hachures(1000, 750, full, nullptr), 100u);
+    EXPECT_GT(hachures(2000, 1500, full, nullptr), 100u);
     EXPECT_GT(hachures(200, 150, coarse, &rows), 10u);
-    std::printf("hachures of a 2049^2 cache: %llu bytes read at 1000x750, %llu at 200x150\n",
+    std::printf("hachures of a 2049^2 cache: %llu bytes read at 2000x1500, %llu at 200x150\n",
                 (unsigned long long)full, (unsigned long long)coarse);
     EXPECT_LT(double(coarse), 0.4 * double(full));
     EXPECT_EQ(rows, std::vector<bool>(8, false));
@@ -126,13 +127,13 @@ TEST(HachureLines, WholeViewOfAFineDemReadsWhatTheImageNeeds) {
 
 // The hachures traced on nodes found beforehand (hachure_nodes, as a frame finds them while its
 // drainage lines are prepared) are the hachures add_hachures finds and traces itself, point for
-// point, on the fine DEM's cache at every 4th node (200 x 150: read by tiles as the lines reach
-// them) and at every node (1000 x 750, its window then read into place).
+// point, on the fine DEM's cache at every 8th node (200 x 150: read by tiles as the lines reach
+// them) and at every node (2000 x 1500, its window then read into place).
 TEST(HachureLines, NodesReadBeforehandDrawTheSameHachures) {
     test::TempDir dir;
     const std::string path = fine_dem_cache(dir);
     const glm::dvec3 light = glm::normalize(glm::dvec3(-1.0, 1.0, 1.0));
-    for (const auto& [width, height, step] : {std::tuple{200, 150, 4}, std::tuple{1000, 750, 1}}) {
+    for (const auto& [width, height, step] : {std::tuple{200, 150, 8}, std::tuple{2000, 1500, 1}}) {
         SCOPED_TRACE(testing::Message() << width << " x " << height);
         const std::optional<StoredTerrain> map = read_terrain_cache(path, key());
         ASSERT_TRUE(map);
@@ -146,13 +147,13 @@ TEST(HachureLines, NodesReadBeforehandDrawTheSameHachures) {
         Drawing beforehand, itself;
         NodeTileCounts tiles;
         add_hachures(terrain, nodes, cam, DepthImage{}, light, hachure_defaults(), beforehand, &tiles);
-        // at every 4th node 513 x 513 sampled nodes (3.4 MB) in 3 x 9 tiles of 256 x 64, all held
+        // at every 8th node 257 x 257 sampled nodes (0.86 MB) in 2 x 5 tiles of 256 x 64, all held
         // at once: each read once
-        EXPECT_EQ(tiles.distinct, step == 1 ? 0u : 27u);
+        EXPECT_EQ(tiles.distinct, step == 1 ? 0u : 10u);
         EXPECT_EQ(tiles.reads, tiles.distinct);
         if (step > 1) {
             EXPECT_EQ(hachure_tiles_line(nodes.sampled, tiles),
-                      "hachures: every 4 nodes (513 x 513 sampled), 27 reads of 27 tiles of 256 x 64, 5.48 MiB held at most");
+                      "hachures: every 8 nodes (257 x 257 sampled), 10 reads of 10 tiles of 256 x 64, 2.03 MiB held at most");
         }
         add_hachures(terrain, cam, DepthImage{}, light, hachure_defaults(), itself);
         const std::vector<Stroke>& a = beforehand.layer(LayerKind::hachures).strokes;
