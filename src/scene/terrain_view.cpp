@@ -232,15 +232,16 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, c
                                   const TerrainCacheKey* known) {
     auto t0 = Clock::now();
     const std::string path = terrain_cache_path(dem_path, cache_dir);
-    TerrainCacheKey key;
-    if (known) key = *known;
-    else if (std::optional<TerrainCacheKey> unchanged = known_terrain_key(dem_path, cache_dir)) key = *unchanged;
-    else try {
-        key = terrain_cache_key(dem_path);
-    } catch (const Error&) {  // the reader names what is wrong with the file
-        read_dem(dem_path);
-        throw;
-    }
+    auto hashed_key = [&] {
+        try {
+            return terrain_cache_key(dem_path);
+        } catch (const Error&) {  // the reader names what is wrong with the file
+            read_dem(dem_path);
+            throw;
+        }
+    };
+    const std::optional<TerrainCacheKey> unchanged = known ? std::nullopt : known_terrain_key(dem_path, cache_dir);
+    TerrainCacheKey key = known ? *known : unchanged ? *unchanged : hashed_key();
     std::string why;
     // Beside the DEM first (where `penink drainage` left it, in a folder render may not write),
     // then where render keeps it.
@@ -255,6 +256,7 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, c
         if (p == path) break;
     }
     log.info("terrain: " + path + ": " + why + "; building");
+    if (unchanged) key = hashed_key();  // a build is keyed by the DEM's bytes, never by a recorded key
     const bool occupied = occupied_by_other_than_file(path);  // a FIFO, a folder: neither read nor replaced
     if (occupied)
         std::cerr << "penink: warning: terrain: " << path

@@ -640,12 +640,14 @@ std::optional<TerrainCacheKey> recorded_terrain_key(const std::string& path) {
     std::uint64_t size = 0;
     const CacheFile f = open_cache(path, size, nullptr);
     if (f.fd < 0) return std::nullopt;
-    const std::vector<std::uint8_t> header = checked_header(f.fd, size, nullptr);
-    if (header.empty()) return std::nullopt;
-    Reader r{header.data(), header.size() - 8, 16};
-    const TerrainCacheKey k = read_key(r);
-    if (!r.ok) return std::nullopt;
-    return k;
+    std::uint8_t head[16 + 40];
+    if (size < 32 + sizeof head || ::pread(f.fd, head, sizeof head, 0) != ssize_t(sizeof head)) return std::nullopt;
+    std::uint32_t version, length;
+    std::memcpy(&version, head + 8, 4), std::memcpy(&length, head + 12, 4);
+    if (std::memcmp(head, magic, 8) != 0 || version != terrain_cache_version || length < sizeof head + 8 || length > size)
+        return std::nullopt;
+    Reader r{head, sizeof head, 16};
+    return read_key(r);
 }
 
 std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const TerrainCacheKey& key, std::string* why) {

@@ -144,9 +144,11 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
 std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const TerrainCacheKey& key,
                                                 std::string* why = nullptr);
 
-// The key recorded in the cache file at `path` (its header checked: magic, version, length,
-// checksum), identity included; nullopt when there is no such file or its header is not sound.
-// Reads the header alone.
+// The key recorded in the cache file at `path`, identity included: its first 56 bytes alone
+// (magic, version and header length checked, not the header's checksum, which read_terrain_cache
+// checks with the rest of it: a key read from a damaged header only names the cache to try, and a
+// cache that then does not open is built again under the DEM's hashed key); nullopt when there is
+// no such file or its start is not a terrain cache's of this version.
 std::optional<TerrainCacheKey> recorded_terrain_key(const std::string& path);
 
 // Reads and checks every block of a terrain opened from a cache file (a no-op for one in memory).

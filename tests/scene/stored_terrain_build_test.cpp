@@ -130,3 +130,27 @@ TEST(StoredTerrainBuild, AnUnchangedDemIsNotHashedAgain) {
     const std::string said = testing::internal::GetCapturedStderr();
     EXPECT_EQ(said.rfind("penink: terrain: using cached " + moved + ".lod", 0), 0u) << said;
 }
+
+// The recorded key is read from the cache's first bytes alone (not its header's checksum): a
+// damaged content hash there, with the DEM's identity intact, names the cache, which then fails
+// its header's checksum and is built again under the DEM's hashed key, never the damaged one.
+TEST(StoredTerrainBuild, ADamagedRecordedKeyIsNeverBuiltUnder) {
+    test::TempDir dir, cache("stored_terrain_damaged_key_cache");
+    const std::string volcano = copy_volcano(dir);
+    const TerrainCacheKey real = open_stored_terrain(volcano, Log{}, cache.path.string()).key;
+    const std::string lod = terrain_cache_path(volcano, cache.path.string());
+    {
+        std::fstream f(lod, std::ios::in | std::ios::out | std::ios::binary);
+        f.seekp(16 + 16);  // the key's content hash (terrain_cache.hpp)
+        f.put('\x5a');
+    }
+    const std::optional<TerrainCacheKey> damaged = known_terrain_key(volcano, cache.path.string());
+    ASSERT_TRUE(damaged);  // the identity still matches
+    EXPECT_NE(damaged->content_hash, real.content_hash);
+    const StoredTerrain rebuilt = open_stored_terrain(volcano, Log{}, cache.path.string());
+    EXPECT_TRUE(rebuilt.key == real);
+    const std::optional<TerrainCacheKey> now = recorded_terrain_key(lod);
+    ASSERT_TRUE(now);
+    EXPECT_EQ(now->content_hash, real.content_hash);
+    EXPECT_EQ(now->identity, real.identity);
+}
