@@ -25,6 +25,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -59,7 +60,7 @@ public:
     using Deriver = std::function<void(void* out, std::uint64_t first, std::uint64_t every, std::size_t n)>;
     struct CodedArray {
         std::uint64_t offset = 0;
-        std::vector<std::uint32_t> sizes;
+        std::span<const std::uint32_t> sizes;  // read by the constructor alone (a header's bytes)
         std::uint64_t elems = 0;
         std::uint32_t elem_bytes = 1;
         unsigned shift = 0;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <memory>
 #include <filesystem>
 #include <mutex>
 #include <span>
@@ -585,12 +586,19 @@ struct CacheFile {
     }
 };
 
+// A header's bytes, not zeroed before they are read (a billion-node DEM's header holds its 25 M
+// blocks' sizes and checksums: 295 MB).
+struct HeaderBytes {
+    std::unique_ptr<std::uint8_t[]> bytes;
+    std::size_t size = 0;
+};
+
 // The header of the cache file open as fd (`size` bytes), checked: magic, version, length,
 // checksum; empty, with the reason in *why, when any fails.
-std::vector<std::uint8_t> checked_header(int fd, std::uint64_t size, std::string* why) {
+HeaderBytes checked_header(int fd, std::uint64_t size, std::string* why) {
     auto failed = [why](const char* reason) {
         if (why) *why = reason;
-        return std::vector<std::uint8_t>{};
+        return HeaderBytes{};
     };
     std::uint8_t prefix[16];
     if (size < 32 || ::pread(fd, prefix, 16, 0) != 16) return failed("truncated terrain cache");
@@ -599,12 +607,17 @@ std::vector<std::uint8_t> checked_header(int fd, std::uint64_t size, std::string
     std::memcpy(&version, prefix + 8, 4), std::memcpy(&length, prefix + 12, 4);
     if (version != terrain_cache_version) return failed("terrain cache of another version");
     if (length < 24 || length % 8 || length > size) return failed("damaged terrain cache (header length)");
-    std::vector<std::uint8_t> header(length);
-    if (::pread(fd, header.data(), length, 0) != ssize_t(length)) return failed("truncated terrain cache");
+    HeaderBytes h{std::unique_ptr<std::uint8_t[]>(new std::uint8_t[length]), length};
+    for (std::size_t got = 0; got < length;) {  // a long header may come in several reads
+        const ssize_t r = ::pread(fd, h.bytes.get() + got, length - got, off_t(got));
+        if (r < 0 && errno == EINTR) continue;
+        if (r <= 0) return failed("truncated terrain cache");
+        got += std::size_t(r);
+    }
     std::uint64_t stored = 0;
-    std::memcpy(&stored, header.data() + length - 8, 8);
-    if (hash64(header.data(), length - 8) != stored) return failed("damaged terrain cache (header checksum)");
-    return header;
+    std::memcpy(&stored, h.bytes.get() + length - 8, 8);
+    if (hash64(h.bytes.get(), length - 8) != stored) return failed("damaged terrain cache (header checksum)");
+    return h;
 }
 
 TerrainCacheKey read_key(Reader& r) {
@@ -656,10 +669,10 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     if (file.fd < 0) return std::nullopt;
     const int fd = file.fd;
     // Read, not mapped: a file that shrinks while it is used cannot fault the process.
-    const std::vector<std::uint8_t> header = checked_header(fd, size, why);
-    if (header.empty()) return std::nullopt;
-    const std::uint32_t length = std::uint32_t(header.size());
-    const std::uint8_t* b = header.data();
+    const HeaderBytes header = checked_header(fd, size, why);
+    if (!header.bytes) return std::nullopt;
+    const std::uint32_t length = std::uint32_t(header.size);
+    const std::uint8_t* b = header.bytes.get();
     Reader r{b, std::size_t(length) - 8, 16};
     const TerrainCacheKey k = read_key(r);
     if (!(k == key)) return fail(why, "terrain cache is stale (DEM changed)");
@@ -699,8 +712,8 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     for (int j = 0; j < 3; ++j) {
         CheckedBlocks::CodedArray& a = arrays[std::size_t(j)];
         a.offset = at[j], a.shift = shift;
-        a.sizes.resize(std::size_t(counts[j]));
-        std::memcpy(a.sizes.data(), sizes, std::size_t(counts[j]) * 4);
+        // 4-byte aligned: the header is allocated aligned and its tables start at a multiple of 8
+        a.sizes = std::span<const std::uint32_t>(reinterpret_cast<const std::uint32_t*>(sizes), std::size_t(counts[j]));
         sizes += counts[j] * 4;
         std::uint64_t coded = 0;
         for (const std::uint32_t c : a.sizes) coded += c;
@@ -740,8 +753,8 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     arrays[2].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::uint64_t, std::size_t count) {
         return decode_floats(c, bytes, static_cast<float*>(out), count, error_orders);
     };
-    std::vector<std::uint64_t> sums(static_cast<std::size_t>(blocks));
-    std::memcpy(sums.data(), b + r.at + align_up(blocks * 4, 8), std::size_t(blocks) * 8);
+    const auto* stored_sums = reinterpret_cast<const std::uint64_t*>(b + r.at + align_up(blocks * 4, 8));  // 8-aligned
+    std::vector<std::uint64_t> sums(stored_sums, stored_sums + blocks);
     std::shared_ptr<CheckedBlocks> coded;
     try {
         coded = std::make_shared<CheckedBlocks>(fd, path, std::move(arrays), std::move(sums));

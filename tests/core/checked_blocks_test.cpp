@@ -434,11 +434,13 @@ TEST(CheckedBlocks, BlocksKnownByTheirChecksumAreNotRead) {
         return decode_bytes(c, size, static_cast<std::uint8_t*>(out), n);
     };
     std::vector<std::uint64_t> sums;
+    std::vector<std::uint32_t> sizes;
     for (std::uint64_t i = 0; i < elems; i += per) {
         const std::vector<std::uint8_t> c = encode_bytes(values.data() + i, std::size_t(std::min(per, elems - i)));
-        a.sizes.push_back(std::uint32_t(c.size())), sums.push_back(hash64(c.data(), c.size()));
+        sizes.push_back(std::uint32_t(c.size())), sums.push_back(hash64(c.data(), c.size()));
         file.insert(file.end(), c.begin(), c.end());
     }
+    a.sizes = sizes;
     const std::vector<std::uint8_t> ones(per, 1), coded = encode_bytes(ones.data(), ones.size());
     a.fill_size = std::uint32_t(coded.size()), a.fill_sum = hash64(coded.data(), coded.size()), a.fill_byte = 1;
     ASSERT_EQ(sums[0], a.fill_sum);
