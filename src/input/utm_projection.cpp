@@ -81,21 +81,46 @@ UtmRowProjector::UtmRowProjector(int w, int h, NodeLonLat lonlat, int zone, bool
     : UtmRowProjector(w, std::move(lonlat), zone, north, step) {
     if (cols_.empty() || !interpolated(h, step)) return;
     rows_ = samples(h, step);
-    lattice_.resize(rows_.size() * cols_.size());
-    parallel_chunks(rows_.size(), 4, [&](std::size_t t0, std::size_t t1) {
-        for (std::size_t t = t0; t < t1; ++t)
-            for (std::size_t k = 0; k < cols_.size(); ++k) lattice_[t * cols_.size() + k] = exact(cols_[k], rows_[t]);
-    });
+    lattice_ = std::make_shared<Lattice>();
+    lattice_->nodes.reset(new glm::dvec2[rows_.size() * cols_.size()]);  // not zeroed: written before read
+    lattice_->done = std::make_unique<std::atomic<bool>[]>((rows_.size() + lattice_band - 1) / lattice_band);
 }
 
 glm::dvec2 UtmRowProjector::exact(int c, int r) const { return project_to_utm(lonlat_(c, r), zone_, north_); }
 
+void UtmRowProjector::project_rows(std::size_t t0, std::size_t t1) const {
+    Lattice& l = *lattice_;
+    for (std::size_t b = t0 / lattice_band, last = (t1 - 1) / lattice_band; b <= last; ++b) {
+        if (l.done[b].load(std::memory_order_acquire)) continue;
+        const std::lock_guard<std::mutex> lock(l.mutex);
+        if (l.done[b].load(std::memory_order_relaxed)) continue;  // projected meanwhile
+        const std::size_t r0 = b * lattice_band, r1 = std::min(r0 + lattice_band, rows_.size()), n = cols_.size();
+        parallel_chunks((r1 - r0) * n, 256, [&](std::size_t i0, std::size_t i1) {
+            for (std::size_t i = i0; i < i1; ++i)
+                l.nodes[r0 * n + i] = exact(cols_[i % n], rows_[r0 + i / n]);
+        });
+        l.projected += r1 - r0;
+        l.done[b].store(true, std::memory_order_release);
+    }
+}
+
+std::size_t UtmRowProjector::lattice_rows_projected() const {
+    if (!lattice_) return 0;
+    const std::lock_guard<std::mutex> lock(lattice_->mutex);
+    return lattice_->projected;
+}
+
 glm::dvec2 UtmRowProjector::from_lattice(std::size_t k, int r) const {
     const std::size_t t = std::size_t(std::upper_bound(rows_.begin(), rows_.end(), r) - rows_.begin()) - 1;
     const std::size_t n = cols_.size();
-    if (rows_[t] == r) return lattice_[t * n + k];
+    const glm::dvec2* nodes = lattice_->nodes.get();
+    if (rows_[t] == r) {
+        project_rows(t, t + 1);
+        return nodes[t * n + k];
+    }
     const Window win(rows_, t, step_);
-    auto at = [&](std::size_t j) { return lattice_[(win.first + j) * n + k]; };
+    project_rows(win.first, win.first + 4);
+    auto at = [&](std::size_t j) { return nodes[(win.first + j) * n + k]; };
     return cubic(win.at(rows_, t, r, weights_), at(0), at(1), at(2), at(3));
 }
 
@@ -120,7 +145,7 @@ void UtmRowProjector::row_span(int r, int c0, int c1, int every, glm::dvec2* out
     thread_local std::vector<glm::dvec2> v;  // samples k0 .. k1 - 1
     v.resize(k1 - k0);
     for (std::size_t k = k0; k < k1; ++k)
-        v[k - k0] = lattice_.empty() || k == 0 || k + 1 == n ? exact(cols_[k], r) : from_lattice(k, r);
+        v[k - k0] = !lattice_ || k == 0 || k + 1 == n ? exact(cols_[k], r) : from_lattice(k, r);
     for (std::size_t i = i0; i <= i1; ++i) {
         const Window win(cols_, i, step_);
         const glm::dvec2* s = v.data() + (win.first - k0);

@@ -8,10 +8,16 @@
 // grid's height as well (a grid affine in both directions, as a DEM's is), the exact nodes of a
 // row between every `step`-th row are themselves the cubic along the column through the four
 // nearest such rows' (a lattice projected once), all but the row's two ends: again < 1 µm, at
-// about a hundredth of the cost of projecting every node.
+// about a hundredth of the cost of projecting every node. The lattice's rows are projected when
+// a row first needs them, a band of lattice_band of them at a time (in parallel chunks), so a
+// view of part of a large DEM projects the part it reads (the values do not depend on the
+// order: each is one exact projection). Copies share the lattice; thread-safe.
 #pragma once
 #include <array>
+#include <atomic>
 #include <functional>
+#include <memory>
+#include <mutex>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -45,17 +51,29 @@ public:
     void row_span(int r, int c0, int c1, int every, glm::dvec2* out) const;
     int zone() const { return zone_; }
     bool north() const { return north_; }
+    // Lattice rows projected so far (0 without a lattice).
+    std::size_t lattice_rows_projected() const;
+
+    static constexpr std::size_t lattice_band = 8;
 
 private:
+    // rows_ x cols_ exact nodes, projected a band of rows at a time (done: each band's flag).
+    struct Lattice {
+        std::unique_ptr<glm::dvec2[]> nodes;
+        std::unique_ptr<std::atomic<bool>[]> done;
+        std::mutex mutex;
+        std::size_t projected = 0;  // rows, under mutex
+    };
     int w_, zone_, step_;
     bool north_;
     NodeLonLat lonlat_;
     std::vector<std::array<double, 4>> weights_;  // cubic weights of equally spaced samples
     std::vector<int> cols_, rows_;                // sample columns; lattice rows (lattice form)
-    std::vector<glm::dvec2> lattice_;             // rows_ x cols_ exact nodes (lattice form)
+    std::shared_ptr<Lattice> lattice_;            // lattice form only
 
     glm::dvec2 exact(int c, int r) const;
     glm::dvec2 from_lattice(std::size_t k, int r) const;  // sample column k of row r
+    void project_rows(std::size_t t0, std::size_t t1) const;  // lattice rows [t0, t1) projected
 };
 
 using UtmNodes = std::vector<glm::dvec2, BigAllocator<glm::dvec2>>;

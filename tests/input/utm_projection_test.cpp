@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <thread>
 #include <vector>
 
 #include <GeographicLib/Constants.hpp>
@@ -149,6 +150,37 @@ TEST(UtmProjection, SpansOfARowAreTheRowBitForBit) {
             }
         }
     }
+}
+
+// The lattice's rows are projected as rows need them, a band at a time: rows near the top of a
+// 3000-row grid project the few bands around them, not the 188 lattice rows; the nodes are the
+// same bits whatever order the rows are asked in, and from several threads at once.
+TEST(UtmProjection, LatticeRowsAreProjectedWhereRowsNeedThem) {
+    const double cell = 1.0 / 3600.0;
+    const NodeLonLat ll = [=](int c, int r) { return glm::dvec2(-84.4 + c * cell + r * 0.1 * cell, 36.7 - r * cell); };
+    const int w = 400, h = 3000;
+    const UtmRowProjector ahead(w, h, ll, 16, true);
+    std::vector<glm::dvec2> row(static_cast<std::size_t>(w));
+    ahead.row(40, row.data());
+    // lattice rows 1..4 hold row 40's window: the first band of 8
+    EXPECT_EQ(ahead.lattice_rows_projected(), UtmRowProjector::lattice_band);
+    const std::vector<int> asked = {2999, 40, 1500, 0, 17, 2990, 777};
+    std::vector<std::vector<glm::dvec2>> forward, backward(asked.size());
+    for (const int r : asked) {
+        ahead.row(r, row.data());
+        forward.push_back(row);
+    }
+    EXPECT_LT(ahead.lattice_rows_projected(), 188u / 2);
+    const UtmRowProjector behind(w, h, ll, 16, true);
+    std::vector<std::thread> threads;
+    for (std::size_t i = asked.size(); i-- > 0;)
+        threads.emplace_back([&, i] {
+            backward[i].resize(static_cast<std::size_t>(w));
+            behind.row(asked[i], backward[i].data());
+        });
+    for (std::thread& t : threads) t.join();
+    for (std::size_t i = 0; i < asked.size(); ++i)
+        ASSERT_TRUE(std::memcmp(forward[i].data(), backward[i].data(), sizeof(glm::dvec2) * std::size_t(w)) == 0) << asked[i];
 }
 
 }  // namespace
