@@ -23,12 +23,13 @@ constexpr double terrain_s_per_node = 0.166e-6;  // 2.3 s at 13.86 M nodes
 // (terrain_base_bytes): the window of DEM rows a strip of the pyramid reads (5 B a node of its
 // rows and margins, lod_strip_rows), lod_errors' strips (lod_errors_bytes), the pyramid's
 // blocks held coded until written (a 24 B entry and 2 x 12 B of header lists each block of 256
-// padded nodes: terrain_bytes_per_padded_block) and their bytes with the flags' (about
+// nodes' errors: terrain_bytes_per_error_block) and their bytes with the flags' (about
 // terrain_bytes_per_node): fitted to the build alone (bench/terrain_cache_build_bench.cpp under
 // /usr/bin/time -v) of jacksboro refined 5, 10 and 29 times (2015x1720, 4030x3440, 11687x9976
-// nodes), 106, 169 and 448 MB: the base and the bytes a node fitted to the last two (the first is
-// then 29 MB over; its own DEM's roughness codes to more bytes a node than the others').
-constexpr double terrain_bytes_per_node = 0.65, terrain_base_bytes = 109.3e6, terrain_bytes_per_padded_block = 48.0;
+// nodes), 98.9, 157.2 and 402.2 MB: the base and the bytes a node fitted to the last two (the
+// first is then about 27 MB over; its own DEM's roughness codes to more bytes a node than the
+// others').
+constexpr double terrain_bytes_per_node = 0.589, terrain_base_bytes = 98.7e6, terrain_bytes_per_error_block = 48.0;
 // The drainage database (`penink drainage DEM -o x.dv`: the network, the ridges and the creases'
 // source; the crease tiles come later, built by the renders that need them, with their own
 // progress): 3.25 s at 13.86 M points (jacksboro refined 10 times) and 42.6 s at 116.6 M (29
@@ -37,10 +38,10 @@ constexpr double drainage_s_at_reference = 3.25, drainage_reference_points = 13.
 // Peak resident memory 581 MB at 13.86 M points and 4450 MB at 116.6 M: a line.
 constexpr double drainage_peak_bytes_per_point = 37.66, drainage_base_bytes = 58.7e6;
 // The terrain cache written (terrain_cache.hpp, coded: its size follows the DEM's smoothness; x, y
-// derived on projected and geographic DEMs): 1.17 B a node on jacksboro refined 10 times, header
-// included (1.52 refined 5 times, 2.2 on the volcano, 2.95 on jacksboro itself, up to 6.5 on a
-// synthetic DEM of noise; 17.8 B as floats).
-constexpr double terrain_disk_bytes_per_node = 1.17;
+// derived on projected and geographic DEMs): 1.15 B a node on jacksboro refined 10 times, header
+// included (0.85 refined 29 times, 1.43 refined 5 times, about 2 on the volcano, 2.8 on jacksboro
+// itself, up to 6 on a synthetic DEM of noise; 17 B as floats).
+constexpr double terrain_disk_bytes_per_node = 1.15;
 // The file written: 1.69 and 1.67 B a point (23.4 and 194.2 MB).
 constexpr double drainage_disk_bytes_per_point = 1.67;
 
@@ -50,11 +51,10 @@ CacheBuildEstimate terrain_cache_estimate(int cols, int rows) {
     const double nodes = double(cols) * double(rows);
     CacheBuildEstimate e;
     e.seconds = terrain_s_per_node * nodes;
-    const double side = std::ldexp(1.0, lod_padded_levels(cols, rows)) + 1.0;
     const double window_rows = double(lod_strip_rows() + 2);  // the strip's rows and the flags' dilation
     e.peak_bytes = terrain_base_bytes + 5.0 * double(cols) * std::min(window_rows, double(rows)) +
                    lod_errors_bytes(cols, rows) + terrain_bytes_per_node * nodes +
-                   terrain_bytes_per_padded_block * side * side / 256.0;
+                   terrain_bytes_per_error_block * nodes / 256.0;
     e.disk_bytes = terrain_disk_bytes_per_node * nodes;
     return e;
 }

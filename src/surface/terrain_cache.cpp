@@ -77,14 +77,11 @@ struct Reader {
     }
 };
 
-// The three arrays' elements: nodes (positions, valid flags), padded nodes (errors).
+// The three arrays' elements: nodes (positions, valid flags, errors: the padding's are not stored).
 struct Counts {
-    std::uint64_t nodes, padded;
+    std::uint64_t nodes;
 };
-Counts array_counts(int cols, int rows, int levels) {
-    const std::uint64_t side = (std::uint64_t(1) << levels) + 1;
-    return {std::uint64_t(cols) * std::uint64_t(rows), side * side};
-}
+Counts array_counts(int cols, int rows) { return {std::uint64_t(cols) * std::uint64_t(rows)}; }
 std::uint64_t block_count(std::uint64_t elems, unsigned shift) {
     return (elems + (std::uint64_t(1) << shift) - 1) >> shift;
 }
@@ -274,7 +271,7 @@ struct CodedTerrain {
     std::uint32_t flags = 0;
 };
 CodedTerrain code_terrain(const StoredTerrain& t) {
-    const Counts n = array_counts(t.meta.cols, t.meta.rows, t.lod.levels);
+    const Counts n = array_counts(t.meta.cols, t.meta.rows);
     CodedTerrain c;
     if (const std::optional<DerivedXY> d = derived_xy(t.meta, t.nodes)) {
         c.flags |= d->flag;
@@ -289,7 +286,7 @@ CodedTerrain code_terrain(const StoredTerrain& t) {
         });
     }
     c.valid = code_blocks(n.nodes, [&](std::uint64_t i, std::uint64_t k) { return encode_bytes(t.nodes.valid + i, std::size_t(k)); });
-    c.error = code_blocks(n.padded, [&](std::uint64_t i, std::uint64_t k) {
+    c.error = code_blocks(n.nodes, [&](std::uint64_t i, std::uint64_t k) {
         return encode_floats(t.lod.error.data() + i, std::size_t(k), error_orders);
     });
     return c;
@@ -397,8 +394,8 @@ StoredTerrain store_terrain(Terrain flat) {
 }
 
 void write_terrain_cache(const std::string& path, const StoredTerrain& t, const TerrainCacheKey& key) {
-    const Counts n = array_counts(t.meta.cols, t.meta.rows, t.lod.levels);
-    if (t.lod.error.size() != n.padded || t.nodes.size() != t.meta.size())
+    const Counts n = array_counts(t.meta.cols, t.meta.rows);
+    if (t.lod.error.size() != n.nodes || t.nodes.size() != t.meta.size())
         throw std::invalid_argument("terrain cache: pyramid and nodes do not match the grid");
     const CodedTerrain coded = code_terrain(t);
     write_coded(path, t, key, coded);
@@ -462,11 +459,11 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
     // The header's length follows the block counts alone: reserved first, written last, the
     // nodes' blocks streamed to the file as they are coded, the flags' held (coded) until the
     // nodes' are written, the pyramid's once all are final.
-    const Counts n = array_counts(m.cols, m.rows, t.lod.levels);
+    const Counts n = array_counts(m.cols, m.rows);
     BlockSums sums;
     sums.flags = formula->flag;
     const std::uint64_t counts[3] = {block_count(n.nodes, block_shift), block_count(n.nodes, block_shift),
-                                     block_count(n.padded, block_shift)};
+                                     block_count(n.nodes, block_shift)};
     for (int j = 0; j < 3; ++j) sums.sizes[j].assign(std::size_t(counts[j]), 0), sums.sums[j].assign(std::size_t(counts[j]), 0);
     std::uint64_t at[3], total = 0;
     const std::size_t head = encode_header(t, key, sums, at, total).size();
@@ -543,11 +540,18 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
         }
         return LodRows{win_z.data() + std::size_t(r0 - win_first) * w, win_valid.data() + std::size_t(r0 - win_first) * w, r0};
     };
-    FloatBlockCoder errors(n.padded, error_orders);
-    const std::uint64_t side = std::uint64_t(t.lod.side());
+    FloatBlockCoder errors(n.nodes, error_orders);
+    const int side = t.lod.side();
+    std::vector<float> dem_rows;  // a strip's rows of the DEM, one after the other
     try {
-        lod_errors(LodHeights{m.cols, m.rows, nullptr, nullptr, load}, LodStrips{},
-                   [&](int r0, int r1, const float* e) { errors.add(std::uint64_t(r0) * side, e, std::uint64_t(r1 - r0) * side); });
+        lod_errors(LodHeights{m.cols, m.rows, nullptr, nullptr, load}, LodStrips{}, [&](int r0, int r1, const float* e) {
+            if (r0 >= m.rows) return;  // padding alone
+            dem_rows.resize(std::size_t(std::min(r1, m.rows) - r0) * std::size_t(m.cols));
+            lod_dem_rows(m.cols, m.rows, side, r0, r1, e, [&](int r, const float* row) {
+                std::copy(row, row + m.cols, dem_rows.data() + std::size_t(r - r0) * std::size_t(m.cols));
+            });
+            errors.add(std::uint64_t(r0) * std::uint64_t(m.cols), dem_rows.data(), dem_rows.size());
+        });
     } catch (const NotFormulaXY&) {
         return false;  // the temporary file removed
     }
@@ -697,14 +701,14 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     r.at = std::size_t(align_up(r.at + crs, 8));
     if (m.cols < 2 || m.rows < 2 || std::max(m.cols, m.rows) > (1 << 30) || levels != lod_padded_levels(m.cols, m.rows))
         return fail(why, "damaged terrain cache (grid)");
-    const Counts n = array_counts(m.cols, m.rows, levels);
+    const Counts n = array_counts(m.cols, m.rows);
     if (total != size || at[0] < length || at[1] < at[0] || at[2] < at[1] || total < at[2])
         return fail(why, "damaged terrain cache (lengths)");
     const std::uint32_t shift = r.get<std::uint32_t>(), flags = r.get<std::uint32_t>();
     if (!r.ok || shift < min_block_shift || shift > max_block_shift || (flags & ~(xy_affine | xy_geographic)) != 0 ||
         flags == (xy_affine | xy_geographic))
         return fail(why, "damaged terrain cache (block checksums)");
-    const std::uint64_t counts[3] = {block_count(n.nodes, shift), block_count(n.nodes, shift), block_count(n.padded, shift)};
+    const std::uint64_t counts[3] = {block_count(n.nodes, shift), block_count(n.nodes, shift), block_count(n.nodes, shift)};
     const std::uint64_t blocks = counts[0] + counts[1] + counts[2];
     if (align_up(blocks * 4, 8) + blocks * 8 != r.n - r.at) return fail(why, "damaged terrain cache (block checksums)");
     std::vector<CheckedBlocks::CodedArray> arrays(3);
@@ -749,7 +753,7 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
         arrays[1].fill_size = std::uint32_t(coded.size()), arrays[1].fill_sum = hash64(coded.data(), coded.size());
         arrays[1].fill_byte = 1;
     }
-    arrays[2].elems = n.padded, arrays[2].elem_bytes = sizeof(float);
+    arrays[2].elems = n.nodes, arrays[2].elem_bytes = sizeof(float);
     arrays[2].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::uint64_t, std::size_t count) {
         return decode_floats(c, bytes, static_cast<float*>(out), count, error_orders);
     };
@@ -768,7 +772,7 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     t.nodes.blocks = coded.get();
     t.lod.cols = m.cols, t.lod.rows = m.rows, t.lod.levels = levels;
     t.lod.error = std::span<const float>(static_cast<const float*>(coded->data(TerrainLod::error_array)),
-                                         std::size_t(n.padded));
+                                         std::size_t(n.nodes));
     t.lod.blocks = coded.get();
     t.lod.storage = coded;
     t.storage = std::move(coded);

@@ -8,7 +8,7 @@
 // Frames and units: the Terrain's local metres (x east, y north, z elevation unexaggerated),
 // row 0 north (conventions.md); GridNodes::z_scale draws them at any exaggeration.
 //
-// File layout, little-endian, version 4 (one header, then three coded arrays):
+// File layout, little-endian, version 6 (one header, then three coded arrays):
 //   "PENINKTC", u32 version, u32 header length (bytes, up to and including its checksum)
 //   key: u64 DEM file size, i64 mtime (ns), u64 content hash, i32 forced UTM zone, u32 north,
 //        u64 the DEM file's identity when the hash was made (TerrainCacheKey::identity)
@@ -28,16 +28,15 @@
 //   affine_node_xy on the grid's geotransform and xy_unit (a projected DEM); flag 2, the UTM
 //   projection of the node's longitude, latitude (input/geographic_nodes.hpp: a geographic DEM
 //   read whole); written so only when the formula gives every node's x, y bit for bit),
-//   valid (u8 per node: encode_bytes), error (f32 per padded node, (2^levels + 1)^2:
-//   encode_floats as they are).
+//   valid (u8 per node: encode_bytes), error (f32 per node, cols * rows: encode_floats as they
+//   are; the padded square's other nodes are all +inf, not stored: TerrainLod::error).
 // The coding is lossless: a frame drawn from the file is the frame drawn from memory, bit for bit.
-// Its size follows the DEM's smoothness: 1.17 bytes a node (0.29 of the DEM's float32 heights) on
-// jacksboro refined 10 times (13.9 M nodes, geographic: x, y derived; 0.48 of heights, 0.02 of
-// flags, 0.51 of errors, 0.15 of header; 1.93 with x, y stored and zlib's deflate), 1.52 refined
-// 5 times, 2.18 on examples/volcano.asc (projected), 2.95 on examples/jacksboro.tif (1" heights
-// in whole metres, rough at the cell scale: 0.74 of its float32 heights; 4.36 with x, y stored
-// and zlib); stored as floats it took 17.8 to 20.7. (`penink render DEM --cache-dir D`, then the
-// size of D/*.lod; bench/terrain_cache_bench.cpp.)
+// Its size follows the DEM's smoothness: 1.15 bytes a node (0.29 of the DEM's float32 heights) on
+// jacksboro refined 10 times (13.9 M nodes, geographic: x, y derived), 0.85 refined 29 times,
+// 1.43 refined 5 times, about 2 on examples/volcano.asc (projected), 2.8 on
+// examples/jacksboro.tif (1" heights in whole metres, rough at the cell scale); stored as floats
+// it took 17 and more. (`penink render DEM --cache-dir D`, then the size of D/*.lod;
+// bench/terrain_cache_bench.cpp.)
 // The header is checksummed and every length and offset is checked against the grid and the
 // file's size when the file is opened: a flipped header byte, a cut or a foreign file is refused
 // with its reason, and the caller rebuilds the cache. The arrays are read on demand
@@ -50,8 +49,8 @@
 // draw_scene (scene/frame_source.hpp) then removes the cache and draws again from a rebuilt one.
 // Written to a temporary file and renamed into place. Built from a DEM file by
 // build_terrain_cache in bounded memory: a window of the DEM's rows, the pyramid's strips
-// (lod_errors) and the coded blocks, 437 MB at peak for jacksboro refined 29 times (116.6 M
-// nodes, 109 MiB written) where the whole Terrain and pyramid took 5.19 GB, 2.75 GB for 1.0 G
+// (lod_errors) and the coded blocks, 402 MB at peak for jacksboro refined 29 times (116.6 M
+// nodes, 95 MiB written) where the whole Terrain and pyramid took 5.19 GB, 2.31 GB for 1.0 G
 // nodes (bench/terrain_cache_build_bench.cpp; docs/timings.md, "Scale").
 #pragma once
 #include <cstdint>
@@ -69,7 +68,7 @@
 
 namespace penink {
 
-inline constexpr std::uint32_t terrain_cache_version = 5;
+inline constexpr std::uint32_t terrain_cache_version = 6;
 
 // identity: the DEM file's identity when the key was made (input/dem_file_identity.hpp), stored
 // with it but not compared (a copy of the DEM has another identity and the same key): a cache

@@ -325,6 +325,17 @@ void lod_errors(const LodHeights& dem, const LodStrips& strips, const std::funct
     }
 }
 
+void lod_dem_rows(int cols, int rows, int side, int r0, int r1, const float* e,
+                  const std::function<void(int r, const float* row)>& take) {
+    (void)cols;
+    for (int r = r0; r < std::min(r1, rows); ++r) take(r, e + std::size_t(r - r0) * std::size_t(side));
+}
+
+void lod_dem_rows(int cols, int rows, int side, int r0, int r1, const float* e, float* out) {
+    lod_dem_rows(cols, rows, side, r0, r1, e,
+                 [&](int r, const float* row) { std::copy(row, row + cols, out + std::size_t(r) * std::size_t(cols)); });
+}
+
 TerrainLod build_terrain_lod(const GridNodes& t, double ex) {
     check_nodes(t);
     t.need(GridWindow{0, 0, t.cols, t.rows});  // every node, read directly below (and by other threads)
@@ -333,7 +344,7 @@ TerrainLod build_terrain_lod(const GridNodes& t, double ex) {
     lod.cols = t.cols, lod.rows = t.rows;
     lod.levels = lod_padded_levels(t.cols, t.rows);
     const int side = lod.side();
-    auto error = std::make_shared<std::vector<float>>(std::size_t(side) * std::size_t(side), 0.0f);
+    auto error = std::make_shared<std::vector<float>>(std::size_t(t.cols) * std::size_t(t.rows), 0.0f);
     lod.error = *error;
     lod.storage = error;
     if (t.cols < 2 || t.rows < 2) return lod;
@@ -350,9 +361,7 @@ TerrainLod build_terrain_lod(const GridNodes& t, double ex) {
     lod.z_min = zmin <= zmax ? zmin : 0.0f, lod.z_max = zmin <= zmax ? zmax : 0.0f;
     lod.sea_level = t.sea_level;  // at() drew the nodes clamped to it
     lod_errors(LodHeights{t.cols, t.rows, h.data(), t.valid}, LodStrips{},
-               [&](int r0, int r1, const float* e) {
-                   std::copy(e, e + std::size_t(r1 - r0) * std::size_t(side), error->data() + std::size_t(r0) * side);
-               });
+               [&](int r0, int r1, const float* e) { lod_dem_rows(t.cols, t.rows, side, r0, r1, e, error->data()); });
     // L: a Lipschitz constant of the nodes' plan positions over the grid (plan_lipschitz:
     // |xy(p) - xy(q)| <= L |p - q|, grid units, for any nodes p, q; the cell side on a square
     // grid); the radii follow from it and the level (level_radii).
@@ -509,7 +518,7 @@ public:
                 continue;
             }
             const int mc = (it.ac + it.bc) / 2, mr = (it.ar + it.br) / 2;
-            const float err = error(lod_.index(mc, mr));
+            const float err = error(mc, mr);
             if (!it.inside) {
                 const int cls = classify_triangle(it, err);
                 if (cls == 0) continue;
@@ -542,7 +551,7 @@ public:
             const int c0 = std::min({it.ac, it.bc, it.cc}), r0 = std::min({it.ar, it.br, it.cr});
             if (c0 >= cols_ - 1 || r0 >= rows_ - 1) continue;  // only padding cells
             const int mc = (it.ac + it.bc) / 2, mr = (it.ar + it.br) / 2;
-            const float err = error(lod_.index(mc, mr));
+            const float err = error(mc, mr);
             glm::dvec3 lo, hi;
             const int cls = classify_triangle(it, err, lo, hi);
             if (cls == 0) continue;
@@ -581,8 +590,10 @@ private:
     NodeMap map_;
     std::size_t active_count_ = 0;
 
-    // The error bound of padded node k for the nodes as drawn (water included).
-    float error(std::size_t k) const {
+    // The error bound of node (c, r) of the padded square for the nodes as drawn (water included).
+    float error(int c, int r) const {
+        if (lod_.padding(c, r)) return kInf;
+        const std::size_t k = lod_.index(c, r);
         float e;
         if (errors_) std::memcpy(&e, errors_->element(k), sizeof e);
         else e = lod_.error[k];
@@ -594,7 +605,7 @@ private:
     // Lindstrom & Pascucci's test: error projected at the distance from the eye to the node's
     // bounding region exceeds the tolerance. Monotone from a node to its parents.
     bool active(int c, int r) const {
-        const float err = error(lod_.index(c, r));
+        const float err = error(c, r);
         if (!(err < kInf)) return true;  // forced (or NaN)
         if (!(err > 0.0f)) return false;
         if (!in_dem(c, r)) return true;  // cannot happen: padding nodes are forced
@@ -754,7 +765,7 @@ private:
 SurfaceMesh select_lod_mesh(const TerrainLod& lod, const GridNodes& t, double exaggeration, const Camera& camera,
                             const LodOptions& options, LodSelection* stats, std::vector<std::uint32_t>* vertex_nodes) {
     check_nodes(t);
-    if (lod.cols != t.cols || lod.rows != t.rows || lod.error.size() != std::size_t(lod.side()) * lod.side())
+    if (lod.cols != t.cols || lod.rows != t.rows || lod.error.size() != std::size_t(lod.cols) * std::size_t(lod.rows))
         throw std::invalid_argument("terrain lod: the lod was built for another grid");
     if (vertex_nodes) vertex_nodes->clear();
     if (t.cols < 2 || t.rows < 2) {
@@ -768,7 +779,7 @@ SurfaceMesh select_lod_mesh(const TerrainLod& lod, const GridNodes& t, double ex
 LodView lod_visible_window(const TerrainLod& lod, const GridNodes& t, double exaggeration, const Camera& camera,
                            int min_side) {
     check_nodes(t);
-    if (lod.cols != t.cols || lod.rows != t.rows || lod.error.size() != std::size_t(lod.side()) * lod.side())
+    if (lod.cols != t.cols || lod.rows != t.rows || lod.error.size() != std::size_t(lod.cols) * std::size_t(lod.rows))
         throw std::invalid_argument("terrain lod: the lod was built for another grid");
     if (t.cols < 2 || t.rows < 2) return {};
     return Selector(lod, t, exaggeration, camera, LodOptions{}, nullptr).window(min_side);

@@ -60,7 +60,7 @@
 //
 // Frames and units: grid node (c, r) is Terrain node (c, r) (row 0 north); positions are the
 // Terrain's local metres, z exaggerated as in Terrain::pos (or as GridNodes::at draws them);
-// error unexaggerated metres; radius plan metres. Memory: 4 bytes per padded node (error), held
+// error unexaggerated metres; radius plan metres. Memory: 4 bytes per DEM node (error), held
 // in memory or read on demand from the terrain cache (terrain_cache.hpp); built in strips
 // (lod_errors), the build holds 4 bytes per node (heights) and the strips besides.
 #pragma once
@@ -83,8 +83,11 @@ namespace penink {
 struct TerrainLod {
     int cols = 0, rows = 0;      // the DEM grid
     int levels = 0;              // padded side = 2^levels + 1
-    // Per padded node (index(c, r)), metres of elevation, unexaggerated; +inf: must split. Points
-    // into `storage` (an array in memory, or a cache file read on demand).
+    // Per DEM node (index(c, r): row-major over cols x rows), metres of elevation, unexaggerated;
+    // +inf: must split. The padding nodes of the square (c >= cols or r >= rows) are all +inf
+    // (each has padding in its 3x3; the square's corners, no triangle's split vertex, are never
+    // asked) and not stored (error_at, padding). Points into `storage` (an
+    // array in memory, or a cache file read on demand).
     std::span<const float> error;
     std::shared_ptr<const void> storage;
     // The cache file `error` is read from on demand (array 2, core/checked_blocks.hpp: the
@@ -98,7 +101,13 @@ struct TerrainLod {
     double sea_level = -std::numeric_limits<double>::infinity();
 
     int side() const { return (1 << levels) + 1; }
-    std::size_t index(int c, int r) const { return std::size_t(r) * std::size_t(side()) + std::size_t(c); }
+    // Where DEM node (c, r) (c < cols, r < rows) keeps its error.
+    std::size_t index(int c, int r) const { return std::size_t(r) * std::size_t(cols) + std::size_t(c); }
+    bool padding(int c, int r) const { return c >= cols || r >= rows; }
+    // The error of node (c, r) of the padded square (an error held in memory).
+    float error_at(int c, int r) const {
+        return padding(c, r) ? std::numeric_limits<float>::infinity() : error[index(c, r)];
+    }
     // The nested plan radius of node (c, r), metres: L times the grid-unit radius of its level;
     // 0 at the padded square's corners (never split).
     float radius(int c, int r) const;
@@ -153,6 +162,15 @@ double lod_errors_bytes(int cols, int rows, const LodStrips& strips = {});
 // for any strips (tests: TerrainLodStrips.*). Throws std::invalid_argument on strips that are not
 // powers of two.
 void lod_errors(const LodHeights& dem, const LodStrips& strips, const std::function<void(int, int, const float*)>& emit);
+
+// The DEM's part of padded rows [r0, r1) of errors `e` (side floats a row, as lod_errors emits
+// them): take(r, row) for each row r < rows (its first cols floats are the DEM's; the padding's
+// are all +inf, which TerrainLod does not store: test
+// TerrainLodStrips.BuildTerrainLodKeepsTheWholeSquaresErrors). The
+// second form copies them to out (TerrainLod::error's layout).
+void lod_dem_rows(int cols, int rows, int side, int r0, int r1, const float* e,
+                  const std::function<void(int r, const float* row)>& take);
+void lod_dem_rows(int cols, int rows, int side, int r0, int r1, const float* e, float* out);
 
 // The square of the plan Lipschitz bound (TerrainLod::lipschitz) over the full-resolution
 // triangles of the cells between two adjacent rows of `cols` nodes: p, q point at the x of the

@@ -29,7 +29,7 @@ void expect_refused(const fs::path& dir, const std::string& args, const std::str
 
 TEST(BoundedInputs, AnImageBeyondMaxMemoryIsRefusedUpFront) {
     const auto dir = fresh_dir("bounded_image");
-    // 16384² pixels at 32 B (render_bytes_per_pixel) = 8 GiB, with the DEM's caches' builds (112 MiB)
+    // 16384² pixels at 32 B (render_bytes_per_pixel) = 8 GiB, with the DEM's caches' builds (102 MiB)
     expect_refused(dir, "render " + volcano_asc + " --width 16384 --height 16384 --max-memory 2G -o big.png",
                    "penink: scene: " + volcano_asc + ": drawing a 16384x16384 image of the DEM's 61x87 nodes would need "
                    "about 8.1 GiB of memory, 2.0 GiB available (--max-memory)");
@@ -102,12 +102,12 @@ TEST(BoundedInputs, AFlightPathLineIsBounded) {
 TEST(BoundedInputs, ALongThinDemIsRefusedByItsPyramid) {
     const auto dir = fresh_dir("bounded_thin");
     // 2 x 100 000 nodes: few nodes, but the level-of-detail pyramid's padded square is
-    // (2^17 + 1)^2 errors, whose build holds strips of it and an entry a block of them: 7.1 GiB
-    // (std::bad_alloc before the estimate counted it)
+    // (2^17 + 1)^2 errors, whose build holds strips of it (lod_errors_bytes; the cache stores the
+    // DEM's 200 000 alone): 4.1 GiB (std::bad_alloc before the estimate counted it)
     std::string grid = "ncols 2\nnrows 100000\nxllcorner 0\nyllcorner 0\ncellsize 10\nNODATA_value -9999\n";
     for (int r = 0; r < 100000; ++r) grid += std::to_string(r % 7) + " " + std::to_string(r % 5) + "\n";
     write_text(dir / "thin.asc", grid);
     expect_refused(dir, "render thin.asc -o thin.svg --max-memory 1G",
-                   "penink: input: thin.asc: drawing the DEM's 2x100000 nodes would need about 7.1 GiB of memory, 1.0 GiB "
+                   "penink: input: thin.asc: drawing the DEM's 2x100000 nodes would need about 4.1 GiB of memory, 1.0 GiB "
                    "available (--max-memory)");
 }

@@ -68,14 +68,14 @@ TEST(HostileInputs, GridDeclaringHugeSizeWithFewValues) {
 TEST(HostileInputs, DemBeyondMaxMemory) {
     const auto dir = fresh_dir("hostile_budget");
     expect_refused(dir, "render " + volcano + " -o out.svg --max-memory 1M",
-                   "penink: input: " + volcano + ": drawing the DEM's 61x87 nodes would need about 112 MiB of memory, "
+                   "penink: input: " + volcano + ": drawing the DEM's 61x87 nodes would need about 102 MiB of memory, "
                    "1 MiB available (--max-memory)");
-    // between the drawing's need without the drainage build (104 MiB) and with it (112 MiB): the
+    // between the drawing's need without the drainage build (94 MiB) and with it (102 MiB): the
     // creases' build named, and how to draw the DEM without it
-    expect_refused(dir, "render " + volcano + " -o out.svg --max-memory 108M",
+    expect_refused(dir, "render " + volcano + " -o out.svg --max-memory 98M",
                    "penink: drainage: " + volcano + ": the drainage grid of the creases and ridges at factor 5 (301x431 "
-                   "points) would need about 112 MiB of memory, 108 MiB available (--max-memory); without creases and "
-                   "ridges ([creases] and [ridges] enabled = false) the drawing needs about 104 MiB");
+                   "points) would need about 102 MiB of memory, 98 MiB available (--max-memory); without creases and "
+                   "ridges ([creases] and [ridges] enabled = false) the drawing needs about 94 MiB");
     expect_refused(dir, "render " + volcano + " -o out.svg --max-memory lots",
                    "penink: cli: --max-memory: expected a size such as 2G or 512M (got \"lots\")");
 }

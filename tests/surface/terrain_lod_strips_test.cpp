@@ -115,7 +115,9 @@ TEST(TerrainLodStrips, ErrorsAreFiniteInsideAndInfiniteAtPadding) {
 
 TEST(TerrainLodStrips, BuildTerrainLodKeepsTheWholeSquaresErrors) {
     // build_terrain_lod (default strips) on a grid large enough for several strips and upper
-    // levels: the same errors as the whole square settled at once.
+    // levels: the same errors as the whole square settled at once on the DEM's nodes, and every
+    // padding node's +inf there but the square's corners' (no triangle's split vertex: their
+    // errors are never asked for), which TerrainLod does not store.
     Grid g = random_grid(1100, 700, 0.002, 99);
     Terrain t;
     t.cols = g.cols, t.rows = g.rows, t.xy_unit = 1.0;
@@ -125,7 +127,25 @@ TEST(TerrainLodStrips, BuildTerrainLodKeepsTheWholeSquaresErrors) {
             t.pos[t.index(c, r)] = glm::vec3(float(c), float(-r), g.valid[t.index(c, r)] ? g.z[t.index(c, r)] : 0.0f);
     const TerrainLod lod = build_terrain_lod(t);
     const std::vector<float> ref = errors(g, whole);
-    expect_same_bits(std::vector<float>(lod.error.begin(), lod.error.end()), ref, "build_terrain_lod");
+    const std::size_t side = std::size_t(lod.side());
+    std::vector<float> dem;
+    std::size_t padding = 0, finite = 0;
+    for (std::size_t r = 0; r < side; ++r)
+        for (std::size_t c = 0; c < side; ++c) {
+            const float e = ref[r * side + c];
+            if (c < std::size_t(t.cols) && r < std::size_t(t.rows)) {
+                dem.push_back(e);
+                continue;
+            }
+            ++padding;
+            const bool corner = (c == 0 || c == side - 1) && (r == 0 || r == side - 1);  // never split: never asked
+            finite += !corner && !(std::isinf(e) && e > 0.0f);
+        }
+    EXPECT_EQ(padding, side * side - t.size());
+    EXPECT_EQ(finite, 0u) << "padding nodes whose error is not +inf";
+    expect_same_bits(std::vector<float>(lod.error.begin(), lod.error.end()), dem, "build_terrain_lod");
+    EXPECT_EQ(lod.error_at(1100, 3), std::numeric_limits<float>::infinity());
+    EXPECT_EQ(lod.error_at(5, 700), std::numeric_limits<float>::infinity());
 }
 
 TEST(TerrainLodStrips, RefusesStripsThatAreNotPowersOfTwo) {
