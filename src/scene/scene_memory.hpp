@@ -19,8 +19,9 @@ constexpr double render_bytes_per_pixel = 32.0;
 // A scene with a sea level rebuilds the pyramid for it (terrain_view.hpp): heights, flags and
 // errors over the padded square while it builds.
 constexpr double water_lod_bytes_per_padded_node = 10.0;
-// A pyramid held in memory holds a float error per padded node ((2^levels + 1)^2, terrain_lod.hpp).
-constexpr double lod_bytes_per_padded_node = 4.0;
+// A pyramid held in memory holds a float error per node (terrain_lod.hpp; its build holds the
+// strips of lod_errors_bytes besides).
+constexpr double lod_bytes_per_node = 4.0;
 
 // Throws Error("drainage", DEM, "the drainage grid of the creases and ridges at factor F (CxR
 // points) would need about N of memory, B available (--max-memory); without creases and ridges

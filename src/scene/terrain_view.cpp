@@ -303,7 +303,8 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, c
             }
         }
     }
-    check("the level-of-detail pyramid", size.nodes() * render_bytes_per_node + side * side * lod_bytes_per_padded_node);
+    check("the level-of-detail pyramid",
+          size.nodes() * (render_bytes_per_node + lod_bytes_per_node) + lod_errors_bytes(size.cols, size.rows));
     Terrain flat = read_dem(dem_path);
     log.info("read " + dem_path + ": " + std::to_string(flat.cols) + "x" + std::to_string(flat.rows) + " nodes (" +
              std::to_string(int(lap_ms(t0))) + " ms)");
