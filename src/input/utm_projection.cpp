@@ -110,18 +110,27 @@ std::size_t UtmRowProjector::lattice_rows_projected() const {
     return lattice_->projected;
 }
 
-glm::dvec2 UtmRowProjector::from_lattice(std::size_t k, int r) const {
+UtmRowProjector::LatticeRow UtmRowProjector::lattice_row(int r) const {
     const std::size_t t = std::size_t(std::upper_bound(rows_.begin(), rows_.end(), r) - rows_.begin()) - 1;
-    const std::size_t n = cols_.size();
-    const glm::dvec2* nodes = lattice_->nodes.get();
-    if (rows_[t] == r) {
+    LatticeRow l;
+    l.on = rows_[t] == r;
+    if (l.on) {
+        l.first = t;
         project_rows(t, t + 1);
-        return nodes[t * n + k];
+        return l;
     }
     const Window win(rows_, t, step_);
+    l.first = win.first, l.weights = win.at(rows_, t, r, weights_);
     project_rows(win.first, win.first + 4);
-    auto at = [&](std::size_t j) { return nodes[(win.first + j) * n + k]; };
-    return cubic(win.at(rows_, t, r, weights_), at(0), at(1), at(2), at(3));
+    return l;
+}
+
+glm::dvec2 UtmRowProjector::from_lattice(const LatticeRow& l, std::size_t k) const {
+    const std::size_t n = cols_.size();
+    const glm::dvec2* nodes = lattice_->nodes.get();
+    if (l.on) return nodes[l.first * n + k];
+    auto at = [&](std::size_t j) { return nodes[(l.first + j) * n + k]; };
+    return cubic(l.weights, at(0), at(1), at(2), at(3));
 }
 
 // Exact at the sample columns (their values from the lattice, the row's two ends always
@@ -144,8 +153,9 @@ void UtmRowProjector::row_span(int r, int c0, int c1, int every, glm::dvec2* out
     const std::size_t k0 = Window(cols_, i0, step_).first, k1 = Window(cols_, i1, step_).first + 4;
     thread_local std::vector<glm::dvec2> v;  // samples k0 .. k1 - 1
     v.resize(k1 - k0);
+    const LatticeRow l = lattice_ ? lattice_row(r) : LatticeRow{};  // found (and projected) once a row
     for (std::size_t k = k0; k < k1; ++k)
-        v[k - k0] = !lattice_ || k == 0 || k + 1 == n ? exact(cols_[k], r) : from_lattice(k, r);
+        v[k - k0] = !lattice_ || k == 0 || k + 1 == n ? exact(cols_[k], r) : from_lattice(l, k);
     for (std::size_t i = i0; i <= i1; ++i) {
         const Window win(cols_, i, step_);
         const glm::dvec2* s = v.data() + (win.first - k0);

@@ -71,8 +71,16 @@ private:
     std::vector<int> cols_, rows_;                // sample columns; lattice rows (lattice form)
     std::shared_ptr<Lattice> lattice_;            // lattice form only
 
+    // Where row r lies in the lattice: on lattice row `first`, or the cubic through the four from
+    // `first` with `weights`; those rows projected (lattice_row).
+    struct LatticeRow {
+        std::size_t first = 0;
+        std::array<double, 4> weights{};
+        bool on = false;
+    };
     glm::dvec2 exact(int c, int r) const;
-    glm::dvec2 from_lattice(std::size_t k, int r) const;  // sample column k of row r
+    LatticeRow lattice_row(int r) const;
+    glm::dvec2 from_lattice(const LatticeRow& l, std::size_t k) const;  // sample column k of that row
     void project_rows(std::size_t t0, std::size_t t1) const;  // lattice rows [t0, t1) projected
 };
 

@@ -16,8 +16,9 @@ constexpr double render_bytes_per_node = 64.0;
 // The image's buffers (GPU targets, read-back, line masks, raster output): 31.5 B a pixel
 // measured (peak RSS of `render volcano.asc -o m.png` at 1024² and 3072²: 250 MB and 508 MB).
 constexpr double render_bytes_per_pixel = 32.0;
-// A scene with a sea level rebuilds the pyramid for it (terrain_view.hpp): heights, flags and
-// errors over the padded square while it builds.
+// A scene with a sea level rebuilds the pyramid for it (terrain_view.hpp): heights, flags,
+// errors and lod_errors' strips while it builds, counted over the padded square (an upper bound:
+// the errors are kept for the DEM's nodes alone).
 constexpr double water_lod_bytes_per_padded_node = 10.0;
 // A pyramid held in memory holds a float error per node (terrain_lod.hpp; its build holds the
 // strips of lod_errors_bytes besides).

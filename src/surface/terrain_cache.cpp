@@ -547,9 +547,7 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
         lod_errors(LodHeights{m.cols, m.rows, nullptr, nullptr, load}, LodStrips{}, [&](int r0, int r1, const float* e) {
             if (r0 >= m.rows) return;  // padding alone
             dem_rows.resize(std::size_t(std::min(r1, m.rows) - r0) * std::size_t(m.cols));
-            lod_dem_rows(m.cols, m.rows, side, r0, r1, e, [&](int r, const float* row) {
-                std::copy(row, row + m.cols, dem_rows.data() + std::size_t(r - r0) * std::size_t(m.cols));
-            });
+            lod_dem_rows(m.cols, m.rows, side, r0, r1, e, dem_rows.data());
             errors.add(std::uint64_t(r0) * std::uint64_t(m.cols), dem_rows.data(), dem_rows.size());
         });
     } catch (const NotFormulaXY&) {
@@ -597,6 +595,24 @@ struct HeaderBytes {
     std::size_t size = 0;
 };
 
+// The header's length from the first `n` (>= 16) bytes of a cache file of `size` bytes, read
+// into `prefix`, checked: the file's size (at least `least_size`), magic, version, length (under
+// `least` is damage too); 0 with the reason in *why when any fails.
+std::uint32_t header_length(int fd, std::uint64_t size, std::uint8_t* prefix, std::size_t n, std::uint64_t least_size,
+                            std::uint32_t least, std::string* why) {
+    auto failed = [why](const char* reason) {
+        if (why) *why = reason;
+        return std::uint32_t(0);
+    };
+    if (size < least_size || ::pread(fd, prefix, n, 0) != ssize_t(n)) return failed("truncated terrain cache");
+    if (std::memcmp(prefix, magic, 8) != 0) return failed("not a terrain cache (bad magic)");
+    std::uint32_t version, length;
+    std::memcpy(&version, prefix + 8, 4), std::memcpy(&length, prefix + 12, 4);
+    if (version != terrain_cache_version) return failed("terrain cache of another version");
+    if (length < least || length % 8 || length > size) return failed("damaged terrain cache (header length)");
+    return length;
+}
+
 // The header of the cache file open as fd (`size` bytes), checked: magic, version, length,
 // checksum; empty, with the reason in *why, when any fails.
 HeaderBytes checked_header(int fd, std::uint64_t size, std::string* why) {
@@ -605,12 +621,8 @@ HeaderBytes checked_header(int fd, std::uint64_t size, std::string* why) {
         return HeaderBytes{};
     };
     std::uint8_t prefix[16];
-    if (size < 32 || ::pread(fd, prefix, 16, 0) != 16) return failed("truncated terrain cache");
-    if (std::memcmp(prefix, magic, 8) != 0) return failed("not a terrain cache (bad magic)");
-    std::uint32_t version, length;
-    std::memcpy(&version, prefix + 8, 4), std::memcpy(&length, prefix + 12, 4);
-    if (version != terrain_cache_version) return failed("terrain cache of another version");
-    if (length < 24 || length % 8 || length > size) return failed("damaged terrain cache (header length)");
+    const std::uint32_t length = header_length(fd, size, prefix, sizeof prefix, 32, 24, why);
+    if (length == 0) return {};
     HeaderBytes h{std::unique_ptr<std::uint8_t[]>(new std::uint8_t[length]), length};
     for (std::size_t got = 0; got < length;) {  // a long header may come in several reads
         const ssize_t r = ::pread(fd, h.bytes.get() + got, length - got, off_t(got));
@@ -657,12 +669,8 @@ std::optional<TerrainCacheKey> recorded_terrain_key(const std::string& path) {
     std::uint64_t size = 0;
     const CacheFile f = open_cache(path, size, nullptr);
     if (f.fd < 0) return std::nullopt;
-    std::uint8_t head[16 + 40];
-    if (size < 32 + sizeof head || ::pread(f.fd, head, sizeof head, 0) != ssize_t(sizeof head)) return std::nullopt;
-    std::uint32_t version, length;
-    std::memcpy(&version, head + 8, 4), std::memcpy(&length, head + 12, 4);
-    if (std::memcmp(head, magic, 8) != 0 || version != terrain_cache_version || length < sizeof head + 8 || length > size)
-        return std::nullopt;
+    std::uint8_t head[16 + 40];  // the prefix and the key
+    if (header_length(f.fd, size, head, sizeof head, 32 + sizeof head, sizeof head + 8, nullptr) == 0) return std::nullopt;
     Reader r{head, sizeof head, 16};
     return read_key(r);
 }

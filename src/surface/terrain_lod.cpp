@@ -325,15 +325,11 @@ void lod_errors(const LodHeights& dem, const LodStrips& strips, const std::funct
     }
 }
 
-void lod_dem_rows(int cols, int rows, int side, int r0, int r1, const float* e,
-                  const std::function<void(int r, const float* row)>& take) {
-    (void)cols;
-    for (int r = r0; r < std::min(r1, rows); ++r) take(r, e + std::size_t(r - r0) * std::size_t(side));
-}
-
-void lod_dem_rows(int cols, int rows, int side, int r0, int r1, const float* e, float* out) {
-    lod_dem_rows(cols, rows, side, r0, r1, e,
-                 [&](int r, const float* row) { std::copy(row, row + cols, out + std::size_t(r) * std::size_t(cols)); });
+int lod_dem_rows(int cols, int rows, int side, int r0, int r1, const float* e, float* out) {
+    const int n = std::max(0, std::min(r1, rows) - r0);
+    for (int j = 0; j < n; ++j)
+        std::copy_n(e + std::size_t(j) * std::size_t(side), cols, out + std::size_t(j) * std::size_t(cols));
+    return n;
 }
 
 TerrainLod build_terrain_lod(const GridNodes& t, double ex) {
@@ -361,7 +357,9 @@ TerrainLod build_terrain_lod(const GridNodes& t, double ex) {
     lod.z_min = zmin <= zmax ? zmin : 0.0f, lod.z_max = zmin <= zmax ? zmax : 0.0f;
     lod.sea_level = t.sea_level;  // at() drew the nodes clamped to it
     lod_errors(LodHeights{t.cols, t.rows, h.data(), t.valid}, LodStrips{},
-               [&](int r0, int r1, const float* e) { lod_dem_rows(t.cols, t.rows, side, r0, r1, e, error->data()); });
+               [&](int r0, int r1, const float* e) {
+                   if (r0 < t.rows) lod_dem_rows(t.cols, t.rows, side, r0, r1, e, error->data() + std::size_t(r0) * t.cols);
+               });
     // L: a Lipschitz constant of the nodes' plan positions over the grid (plan_lipschitz:
     // |xy(p) - xy(q)| <= L |p - q|, grid units, for any nodes p, q; the cell side on a square
     // grid); the radii follow from it and the level (level_radii).

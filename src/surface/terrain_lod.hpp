@@ -164,13 +164,10 @@ double lod_errors_bytes(int cols, int rows, const LodStrips& strips = {});
 void lod_errors(const LodHeights& dem, const LodStrips& strips, const std::function<void(int, int, const float*)>& emit);
 
 // The DEM's part of padded rows [r0, r1) of errors `e` (side floats a row, as lod_errors emits
-// them): take(r, row) for each row r < rows (its first cols floats are the DEM's; the padding's
-// are all +inf, which TerrainLod does not store: test
-// TerrainLodStrips.BuildTerrainLodKeepsTheWholeSquaresErrors). The
-// second form copies them to out (TerrainLod::error's layout).
-void lod_dem_rows(int cols, int rows, int side, int r0, int r1, const float* e,
-                  const std::function<void(int r, const float* row)>& take);
-void lod_dem_rows(int cols, int rows, int side, int r0, int r1, const float* e, float* out);
+// them): the first cols floats of each row r < rows, one row after the other into out
+// (TerrainLod::error's layout from row r0); returns how many rows. The padding's are all +inf,
+// which TerrainLod does not store (test TerrainLodStrips.BuildTerrainLodKeepsTheWholeSquaresErrors).
+int lod_dem_rows(int cols, int rows, int side, int r0, int r1, const float* e, float* out);
 
 // The square of the plan Lipschitz bound (TerrainLod::lipschitz) over the full-resolution
 // triangles of the cells between two adjacent rows of `cols` nodes: p, q point at the x of the
