@@ -78,7 +78,9 @@ void put_blocks(std::vector<std::uint8_t>& out, const CodedSourceArray& a) {
 }
 
 // At factor 1 the coarse nodes are the fine ones: their mask is g.valid, not stored twice.
-bool coarse_valid_shared(const DrainageGrid& g) { return g.factor == 1 && g.coarse_valid == g.valid; }
+bool coarse_valid_shared(const DrainageGrid& g) {
+    return g.factor == 1 && (g.coarse_valid.empty() || g.coarse_valid == g.valid);  // (empty: left out, the same)
+}
 
 // Reads what put_blocks wrote, decoding block by block on all cores (read = false: the blocks
 // passed over, not decoded). The element count stored must satisfy accept(n); resize(n) sizes

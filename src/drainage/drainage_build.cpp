@@ -171,6 +171,12 @@ DrainageDb build_streamed(DrainageGrid& g, const std::string& crs_wkt, const Dra
         std::unique_ptr<DemSurface> surface;
         float z_top = std::numeric_limits<float>::quiet_NaN();
     };
+    // A geographic DEM's node x, y (8 B a point, made again bit for bit: drainage_grid.hpp) let go
+    // while the Priority-Flood directions are found, which read none of them (compute_drainage
+    // makes them again for the divides), and while the creases' source is assembled (again for the
+    // branches written); not where they are coded (no `dem`) or the least-cost search's surface
+    // reads them beside it.
+    const bool xy_released = dem && options.routing == DrainageRouting::priority_flood && release_node_xy(g);
     std::future<OfGrid> of_grid;
     if (options.routing == DrainageRouting::least_cost)
         of_grid = std::async(std::launch::async, [&g, relief] {
@@ -203,13 +209,17 @@ DrainageDb build_streamed(DrainageGrid& g, const std::string& crs_wkt, const Dra
     report(progress, "indexing creases", draping_from + (writing_at - draping_from) * 0.5);
     if (relief) {
         const CreaseTileIndex index = indexing.get();
+        if (xy_released) release_node_xy(g);
         report(progress, "coding the creases' source", draping_from + (writing_at - draping_from) * 0.75);
         std::vector<CodedSourceArray> arrays;
         for (auto& a : coded) arrays.push_back(a.get());
         meta.crease_source = assemble_crease_source(g, index, arrays, dem, arrays_hash);
     }
     report(progress, "writing the database", writing_at);
+    restore_node_xy(g);  // the branches' vertices
     write(meta, branches);
+    // kept (BuiltNetwork) for the crease tiles, which make them again when they first build a stem
+    if (xy_released) release_node_xy(g);
     report(progress, "done", 1.0);
     if (keep) *keep = std::move(res);
     return meta;
@@ -234,6 +244,7 @@ DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progres
     }
     FlowNetwork& net = res.net;
     report(progress, "accumulating flow and basins", 0.55);
+    if (divides) restore_node_xy(g);  // the divides' vertices read the x, y (release_node_xy)
     accumulate_and_label(g, res.dir, shape, net, divides);
     res.stats.basins = net.outlet.size();
     // accumulation holds dir, in-degree, acc, order and (allocated) basin at once

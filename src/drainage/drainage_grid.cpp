@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include <GeographicLib/Constants.hpp>
+
 #include <glm/geometric.hpp>
 
 #include "core/error.hpp"
@@ -229,16 +231,25 @@ DrainageGrid resample_pn_releasing(Terrain& t, int factor) {
     if (factor == 1 && !t.z.empty()) {  // heights-only: z taken over, 0 at nodata
         g = grid_frame(t, factor);
         take_node_arrays(t, g.z, g.coarse_xy);
+        // the mask taken over too: the coarse one is the same at factor 1 (coarse_valid_shared)
+        g.valid = std::move(t.valid), std::vector<std::uint8_t>().swap(g.coarse_valid);
+        GeographicNodes geo;
+        if (!g.coarse_xy.empty() && terrain_geographic(t, geo)) {
+            try {
+                g.node_xy = std::make_shared<const GeographicNodeXY>(geo, t.origin);
+            } catch (const GeographicLib::GeographicErr&) {  // the read projected it: cannot happen
+            }
+        }
     } else {
         g = resample_pn(t, factor);
     }
     std::vector<glm::vec3>().swap(t.pos);
     std::vector<float>().swap(t.z);
-    std::vector<glm::vec2>().swap(t.xy);
+    NodeXY().swap(t.xy);
     return g;
 }
 
-void take_node_arrays(Terrain& t, std::vector<float>& z, std::vector<glm::vec2>& xy) {
+void take_node_arrays(Terrain& t, std::vector<float>& z, NodeXY& xy) {
     AffineNodes affine;
     check_node_xy(t, 1, terrain_affine(t, affine));
     z = std::move(t.z);
@@ -246,6 +257,20 @@ void take_node_arrays(Terrain& t, std::vector<float>& z, std::vector<glm::vec2>&
     parallel_chunks(z.size(), std::size_t(1) << 18, [&](std::size_t i0, std::size_t i1) {
         for (std::size_t i = i0; i < i1; ++i)
             if (!t.valid[i]) z[i] = 0.0f;
+    });
+}
+
+bool release_node_xy(DrainageGrid& g) {
+    if (!g.node_xy || g.factor != 1 || g.coarse_xy.size() != g.size()) return false;
+    NodeXY().swap(g.coarse_xy);
+    return true;
+}
+
+void restore_node_xy(DrainageGrid& g) {
+    if (!g.node_xy || g.factor != 1 || g.coarse_xy.size() == g.size()) return;
+    g.coarse_xy.resize(g.size());
+    parallel_chunks(std::size_t(g.rows), 64, [&](std::size_t r0, std::size_t r1) {
+        for (std::size_t r = r0; r < r1; ++r) g.node_xy->span(int(r), 0, g.cols, g.coarse_xy.data() + r * std::size_t(g.cols));
     });
 }
 
@@ -267,6 +292,11 @@ glm::dvec2 grid_xy(const DrainageGrid& g, int c, int r) {
     if (g.factor == 1) {  // the node itself (the interpolation puts weight 1 on it)
         if (g.has_affine) return glm::dvec2(affine_node_xy(g.affine, g.origin, c, r));
         if (g.coarse_xy.size() == g.size()) return glm::dvec2(g.coarse_xy[g.index(c, r)]);
+        if (g.node_xy) {  // released (release_node_xy): the node's alone, made again
+            glm::vec2 p;
+            g.node_xy->span(r, c, c + 1, &p);
+            return glm::dvec2(p);
+        }
     }
     if (g.coarse_cols < 2 || g.coarse_rows < 2)
         return glm::dvec2(c * g.dx, -r * g.dy);

@@ -4,10 +4,12 @@
 // (Mower, "Concurrent Drainage Network Rendering" resamples a 50 m DEM at 10 m); node (fc, fr) lies at coarse index (fc/f, fr/f).
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/vec2.hpp>
 
+#include "input/geographic_nodes.hpp"
 #include "input/terrain.hpp"
 
 namespace penink {
@@ -20,18 +22,25 @@ struct DrainageGrid {
     double dx = 1.0, dy = 1.0;        // mean fine spacing east (column step) / south (row step), m
     glm::dvec2 origin{0.0};           // projected easting/northing of local (0, 0)
     // Coarse nodes the x, y positions are interpolated from (the Terrain's node x, y and mask);
-    // coarse_xy is left empty at factor 1 on an affine grid, where grid_xy computes them.
+    // coarse_xy is left empty at factor 1 on an affine grid, where grid_xy computes them, and
+    // coarse_valid may be (resample_pn_releasing), where valid is the same mask.
     // coarse_z: the Terrain's node elevations at factor > 1 (empty at factor 1, where z is
     // theirs): with coarse_xy and coarse_valid the full-resolution DEM the creases and ridges are
     // draped on (dem_surface.hpp).
     int coarse_cols = 0, coarse_rows = 0;
-    std::vector<glm::vec2> coarse_xy;
+    NodeXY coarse_xy;
     std::vector<std::uint8_t> coarse_valid;
     std::vector<float> coarse_z;
     // The coarse nodes lie on an affine grid (Terrain::xy_unit > 0): node (c, r)'s x, y is
     // affine_node_xy(affine, origin, c, r), exactly the Terrain's pos.xy.
     bool has_affine = false;
     AffineNodes affine;
+    // Where coarse_xy is made again bit for bit: a geographic DEM read whole at factor 1, whose
+    // nodes' UTM x, y GeographicNodeXY computes as the DEM reader does (geographic_nodes.hpp).
+    // A build lets coarse_xy go while stages that read none of it run (release_node_xy: 8 B a
+    // point) and makes it again for those that do (restore_node_xy). Null: coarse_xy is all
+    // there is.
+    std::shared_ptr<const GeographicNodeXY> node_xy;
 
     std::size_t index(int c, int r) const { return std::size_t(r) * cols + c; }
     std::size_t size() const { return std::size_t(cols) * rows; }
@@ -56,7 +65,13 @@ DrainageGrid resample_pn_releasing(Terrain& t, int factor);
 // 0 at nodata; its nodes' UTM x, y, empty where the affine formula gives them), taken over from
 // t without the rest of the grid (masks, spacing); throws as resample_pn does for a heights-only
 // Terrain without x, y or an affine grid.
-void take_node_arrays(Terrain& t, std::vector<float>& z, std::vector<glm::vec2>& xy);
+void take_node_arrays(Terrain& t, std::vector<float>& z, NodeXY& xy);
+
+// Frees g.coarse_xy where g.node_xy makes it again (true); else leaves it (false).
+bool release_node_xy(DrainageGrid& g);
+// Makes g.coarse_xy again from g.node_xy after release_node_xy (rows in parallel chunks): the
+// same floats. Nothing where it is there or cannot be made.
+void restore_node_xy(DrainageGrid& g);
 
 // A grid of hand-given elevations at regular spacing (x = c*spacing, y = -r*spacing), factor 1;
 // `valid` empty means all valid. Used by tests and benchmarks.

@@ -111,6 +111,8 @@ CreaseTiles& StoredCreases::tiles() {
                 // the index: the tiles hold it; the network made as the DEM is read again
                 decoded(d->g, d->dir, again, SourcePart::grid, nullptr, &d->net);
             });
+        else if (d->g.node_xy)  // the build's grid, its node x, y let go (drainage_grid.hpp)
+            d->tiles->before_first_build([d = d.get()] { restore_node_xy(d->g); });
         decoded_ = std::move(d);
     }
     return *decoded_->tiles;

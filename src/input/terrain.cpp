@@ -74,7 +74,7 @@ Terrain terrain_metadata(Terrain& t) {
     std::vector<glm::vec3> pos = std::move(t.pos);
     std::vector<std::uint8_t> valid = std::move(t.valid);
     std::vector<float> z = std::move(t.z);
-    std::vector<glm::vec2> xy = std::move(t.xy);
+    NodeXY xy = std::move(t.xy);
     Terrain meta = t;
     t.pos = std::move(pos), t.valid = std::move(valid), t.z = std::move(z), t.xy = std::move(xy);
     return meta;

@@ -12,7 +12,13 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "core/big_allocator.hpp"
+
 namespace penink {
+
+// Nodes' local x, y (a geographic DEM's UTM ones), one per node: grown without zero-filling
+// (UninitAllocator), so the threads that compute them touch their pages first, in parallel.
+using NodeXY = std::vector<glm::vec2, UninitAllocator<glm::vec2>>;
 
 struct Terrain {
     int cols = 0, rows = 0;
@@ -25,7 +31,7 @@ struct Terrain {
     // A heights-only read (DemOptions::heights_only): pos is empty and z holds what pos[i].z would;
     // x, y are affine_node_xy's on an affine grid, else (a geographic DEM) in xy. Empty otherwise.
     std::vector<float> z;
-    std::vector<glm::vec2> xy;
+    NodeXY xy;
     std::vector<std::uint8_t> valid;  // 1 where the node has data (not nodata)
     std::string source;       // file it came from (for messages)
     int source_col0 = 0, source_row0 = 0;  // where this grid starts in the source DEM (after cropping)

@@ -183,7 +183,7 @@ int run(const DrainageCommand& cmd, std::ostream& log) {
     if (render_caches && cache_builds_fit_together(size.cols, size.rows, factor, budget))
         terrain.start(cmd.dem, cmd.cache_dir, terrain_cache);
     DemOptions read;
-    read.heights_only = cmd.resample == 1;  // factor 1 needs no positions on an affine grid
+    read.heights_only = factor == 1;  // factor 1 needs no positions: heights (and a geographic grid's x, y)
     read.max_memory = budget;
     Terrain t = read_dem(cmd.dem, read);  // its positions (or heights) are released once resampled
     if (const std::string w = missing_crs_warning(t); !w.empty()) log << w << "\n";

@@ -103,6 +103,44 @@ TEST(PnResample, HeightsOnlyTerrainGivesTheSameGridAtFactorOne) {
     }
 }
 
+// A geographic DEM's node x, y let go and made again: the same floats, and grid_xy the same
+// meanwhile (from the formula); the mask taken over (the coarse one left out at factor 1). An
+// affine grid's (no coarse_xy to let go) and a grid read with positions (no formula) keep theirs.
+TEST(PnResample, GeographicNodeXyIsReleasedAndMadeAgainBitForBit) {
+    DemOptions heights;
+    heights.heights_only = true;
+    Terrain h = read_dem(PENINK_SOURCE_DIR "/examples/jacksboro.tif", heights);
+    const std::vector<std::uint8_t> mask = h.valid;
+    DrainageGrid g = resample_pn_releasing(h, 1);
+    ASSERT_TRUE(g.node_xy);
+    EXPECT_TRUE(h.valid.empty());
+    EXPECT_EQ(g.valid, mask);
+    EXPECT_TRUE(g.coarse_valid.empty());
+    const NodeXY xy = g.coarse_xy;
+    ASSERT_EQ(xy.size(), g.size());
+    ASSERT_TRUE(release_node_xy(g));
+    EXPECT_EQ(g.coarse_xy.capacity(), 0u);
+    for (int r = 0; r < g.rows; r += 7)
+        for (int c = 0; c < g.cols; c += 5) ASSERT_EQ(grid_xy(g, c, r), glm::dvec2(xy[g.index(c, r)])) << c << " " << r;
+    EXPECT_EQ(grid_xy_at(g, 10.25, 20.5), [&] {
+        DrainageGrid kept = g;
+        kept.coarse_xy = xy;
+        return grid_xy_at(kept, 10.25, 20.5);
+    }());
+    restore_node_xy(g);
+    EXPECT_EQ(g.coarse_xy, xy);
+    restore_node_xy(g);  // there: nothing
+    EXPECT_EQ(g.coarse_xy, xy);
+
+    DrainageGrid affine = resample_pn_releasing(h = read_dem(PENINK_SOURCE_DIR "/examples/volcano.asc", heights), 1);
+    EXPECT_FALSE(affine.node_xy);
+    EXPECT_FALSE(release_node_xy(affine));
+    DrainageGrid full = resample_pn(read_dem(PENINK_SOURCE_DIR "/examples/jacksboro.tif"), 1);
+    EXPECT_FALSE(full.node_xy);
+    EXPECT_FALSE(release_node_xy(full));
+    EXPECT_EQ(full.coarse_xy, xy);
+}
+
 TEST(PnResample, RejectsBadFactor) {
     Terrain t = hand_terrain(3, 3, 10.0, plane);
     t.source = "dem.tif";
