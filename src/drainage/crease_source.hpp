@@ -48,7 +48,8 @@
 namespace penink {
 
 // The arrays a crease source codes as the build made them (DrainageDb::built_network): what
-// decoding it and network_of_directions give again, bit for bit.
+// decoding it and network_of_directions give again, bit for bit (the network as
+// keep_normalised_flow leaves it where load_or_build_drainage keeps it for a render).
 struct BuiltNetwork {
     DrainageGrid g;
     std::vector<std::uint8_t> dir;

@@ -457,9 +457,11 @@ DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& te
         progress, &res, dem ? &*dem : nullptr);
     // the grid, directions and network kept for the creases' tiles: a render's first frame builds
     // its stems from them (not from the source decoded, the DEM read again, the network made again)
-    if (meta.has_crease_source())
+    if (meta.has_crease_source()) {
+        keep_normalised_flow(res.net);  // what the stems' walks read: 4 B a point less held
         meta.built_network.arrays =
             std::make_shared<BuiltNetwork>(BuiltNetwork{std::move(g), std::move(res.dir), std::move(res.net)});
+    }
     return drainage_lines_only(std::move(meta));
 }
 

@@ -42,8 +42,10 @@ struct StemWalk {
         : g(grid), dir(d), net(n),
           own_indeg(n.indeg.size() == grid.size() ? std::vector<std::uint8_t>() : inflow_counts(d, shape)),
           indeg(own_indeg.empty() ? n.indeg : own_indeg) {
-        total.resize(net.outlet.size());
-        for (std::size_t b = 0; b < total.size(); ++b) total[b] = net.acc[net.outlet[b]];
+        if (net.flow.empty()) {  // (keep_normalised_flow: each cell's flow, no accumulation)
+            total.resize(net.outlet.size());
+            for (std::size_t b = 0; b < total.size(); ++b) total[b] = net.acc[net.outlet[b]];
+        }
     }
     StemWalk(const StemWalk&) = delete;
 
@@ -57,7 +59,7 @@ struct StemWalk {
     }
     DvVertex vertex(std::size_t i) const {
         const glm::vec2 p = xy(i);
-        return {p.x, p.y, g.z[i], float(double(net.acc[i]) / total[net.basin[i] - 1])};
+        return {p.x, p.y, g.z[i], vertex_flow(i)};
     }
 
     // Calls f(m) for each valid cell draining into cell d.
@@ -148,7 +150,9 @@ struct StemWalk {
         return up;
     }
 
-    float vertex_flow(std::size_t i) const { return float(double(net.acc[i]) / total[net.basin[i] - 1]); }
+    float vertex_flow(std::size_t i) const {
+        return net.flow.empty() ? float(double(net.acc[i]) / total[net.basin[i] - 1]) : std::bit_cast<float>(net.flow[i]);
+    }
 
     [[noreturn]] static void cycle() {
         throw Error("drainage", "", "flow directions contain a cycle (stem without an end)", ExitCode::internal);

@@ -1,8 +1,10 @@
 #include "drainage/flow_network.hpp"
 
 #include <array>
+#include <bit>
 
 #include "core/error.hpp"
+#include "core/parallel_chunks.hpp"
 
 namespace penink {
 
@@ -92,6 +94,21 @@ void label_basins(const std::vector<std::uint8_t>& dir, const GridShape& g, Flow
         const std::uint32_t label = basin[c];
         for (c = i; !basin[c]; c = next(c)) basin[c] = label;
     }
+}
+
+void keep_normalised_flow(FlowNetwork& net) {
+    if (!net.flow.empty() || net.acc.empty()) return;
+    std::vector<double> total(net.outlet.size());  // each basin's outlet accumulation, as normalised_flow divides
+    for (std::size_t b = 0; b < total.size(); ++b) total[b] = net.acc[net.outlet[b]];
+    parallel_chunks(net.acc.size(), std::size_t(1) << 16, [&](std::size_t i0, std::size_t i1) {
+        for (std::size_t i = i0; i < i1; ++i) {
+            const std::uint32_t b = net.basin[i];
+            net.acc[i] = std::bit_cast<std::uint32_t>(b ? float(double(net.acc[i]) / total[b - 1]) : 0.0f);
+        }
+    });
+    net.flow = std::move(net.acc);
+    CellWords().swap(net.acc), CellWords().swap(net.basin);
+    std::vector<std::uint32_t>().swap(net.outlet);
 }
 
 }  // namespace penink

@@ -4,6 +4,7 @@
 // labelled by outlet (a valid cell with code 0: it drains off the grid or is a kept pit), basin
 // total = accumulation at its outlet, normalised flow = accumulation / basin total.
 #pragma once
+#include <bit>
 #include <cstdint>
 #include <vector>
 
@@ -21,7 +22,15 @@ struct FlowNetwork {
     // the junction it drains into (main_upstream_bits, draped_lines.hpp); empty until found, when
     // the stems' walks find it at each junction they reach.
     std::vector<std::uint64_t> mains;
+    // Once keep_normalised_flow ran: each cell's normalised_flow as float bits (0 invalid), in
+    // acc's storage; acc, basin and outlet then empty.
+    CellWords flow;
 };
+
+// The network as the creases' walks read it (draped_lines.cpp: orders, in-degrees, mains and each
+// cell's flow normalised by its basin's): acc and basin (8 B a cell) replaced by `flow` (4 B, the
+// same floats as normalised_flow gives), computed in acc's place. Nothing when already done.
+void keep_normalised_flow(FlowNetwork& net);
 
 // In-degree (number of valid neighbours draining into the cell) of every cell.
 std::vector<std::uint8_t> inflow_counts(const std::vector<std::uint8_t>& dir, const GridShape& g);
@@ -37,6 +46,7 @@ void label_basins(const std::vector<std::uint8_t>& dir, const GridShape& g, Flow
 
 // acc / basin total at cell i (0 for invalid cells); 1 at every outlet.
 inline float normalised_flow(const FlowNetwork& net, std::size_t i) {
+    if (!net.flow.empty()) return std::bit_cast<float>(net.flow[i]);
     const std::uint32_t b = net.basin[i];
     return b ? float(double(net.acc[i]) / net.acc[net.outlet[b - 1]]) : 0.0f;
 }

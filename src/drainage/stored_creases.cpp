@@ -102,6 +102,7 @@ CreaseTiles& StoredCreases::tiles() {
         if (built_ && built_->g.cols == d->g.cols && built_->g.rows == d->g.rows) {  // as the build made them
             d->g = std::move(built_->g), d->dir = std::move(built_->dir), d->net = std::move(built_->net);
             built_.reset();
+            keep_normalised_flow(d->net);  // (done where the build kept it)
         }
         d->tiles = std::make_unique<CreaseTiles>(d->g, d->dir, d->net, std::move(index), std::move(store), std::move(reader));
         if (build_progress_) d->tiles->on_build_progress(build_progress_);
@@ -110,6 +111,7 @@ CreaseTiles& StoredCreases::tiles() {
                 CreaseTileIndex again;
                 // the index: the tiles hold it; the network made as the DEM is read again
                 decoded(d->g, d->dir, again, SourcePart::grid, nullptr, &d->net);
+                keep_normalised_flow(d->net);  // what the stems' walks read
             });
         else if (d->g.node_xy)  // the build's grid, its node x, y let go (drainage_grid.hpp)
             d->tiles->before_first_build([d = d.get()] { restore_node_xy(d->g); });

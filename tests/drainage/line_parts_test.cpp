@@ -114,6 +114,27 @@ void expect_parts_equal_whole(const Terrain& t, int factor, const std::string& w
         bad_with_mains += mismatches(db.creases, crease_part(g, res.dir, with_mains, surface, stems_of, ids), ids);
     EXPECT_EQ(bad_with_mains, 0u) << what;
 
+    // the network as a render keeps it for the crease tiles (keep_normalised_flow: each cell's
+    // normalised flow instead of its accumulation and basin): the same floats, the same stems
+    FlowNetwork flow_only = with_mains;
+    keep_normalised_flow(flow_only);
+    EXPECT_TRUE(flow_only.acc.empty() && flow_only.basin.empty() && flow_only.outlet.empty()) << what;
+    ASSERT_EQ(flow_only.flow.size(), g.size()) << what;
+    std::size_t flow_differs = 0;
+    for (std::size_t i = 0; i < g.size(); ++i)
+        flow_differs += std::bit_cast<std::uint32_t>(normalised_flow(flow_only, i)) !=
+                        std::bit_cast<std::uint32_t>(normalised_flow(res.net, i));
+    EXPECT_EQ(flow_differs, 0u) << what;
+    std::size_t bad_flow_only = 0;
+    for (const auto& ids : stem_parts)
+        bad_flow_only += mismatches(db.creases, crease_part(g, res.dir, flow_only, surface, stems_of, ids), ids);
+    EXPECT_EQ(bad_flow_only, 0u) << what;
+    flow_only.mains.clear();  // the junctions' mains found from the flow (a network decoded for a render)
+    std::size_t bad_no_mains = 0;
+    for (const auto& ids : stem_parts)
+        bad_no_mains += mismatches(db.creases, crease_part(g, res.dir, flow_only, surface, stems_of, ids), ids);
+    EXPECT_EQ(bad_no_mains, 0u) << what;
+
     // divides: runs of 97 ids
     const DrapedLineSet listed = listed_lines(db.divide_vertices, divide_polylines(db));
     ASSERT_EQ(listed.lines.size(), db.ridges.lines.size()) << what;
