@@ -21,6 +21,7 @@
 #include "drainage/d8_ties.hpp"
 #include "drainage/dem_surface.hpp"
 #include "drainage/depression_drainage.hpp"
+#include "drainage/drainage_memory.hpp"
 #include "drainage/draped_lines.hpp"
 #include "drainage/fill_directions.hpp"
 #include "drainage/flat_resolution.hpp"
@@ -415,6 +416,11 @@ DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& te
         say(std::string(e.what()) + "; rebuilding");
     }
     const int factor = drainage_resample_factor(terrain, options);
+    // A database there that did not read: the render's memory check counted none to build
+    // (scene_drainage_cached), so the build is checked here, against the memory available.
+    std::error_code ec;
+    if (std::filesystem::exists(dem_path + ".dv", ec) || std::filesystem::exists(cache, ec))
+        check_drainage_memory("drainage", dem_path, terrain.cols, terrain.rows, factor, memory_budget(0));
     std::optional<DemHeightsRef> dem;  // of the Terrain the grid is made from (its UTM zone: the one read)
     report(progress, "resampling the PN surface", 0.0);
     DrainageGrid g;

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <string>
 #include <vector>
@@ -216,6 +217,11 @@ enum class DvParts { all, lines };
 // "drainage database is stale (DEM changed)" (when expected is given and differs; on a whole
 // read also when the crease source's heights are its DEM's and the DEM at its path changed or
 // is gone: crease_source.hpp).
+// The fingerprint in the header of the database at `path` (its first bytes alone: magic and
+// version checked, nothing else); nullopt when there is none, it is not a database of this
+// version or it is shorter than its header.
+std::optional<DrainageFingerprint> peek_drainage_fingerprint(const std::string& path);
+
 DrainageDb read_drainage_db(const std::string& path, const DrainageFingerprint* expected = nullptr,
                             DvParts parts = DvParts::all);
 DrainageDb decode_drainage_db(const std::vector<std::uint8_t>& bytes, const std::string& path);

@@ -15,7 +15,9 @@ double drainage_points(int cols, int rows, int factor) {
 }
 
 double drainage_build_bytes(int cols, int rows, int factor) {
-    return drainage_points(cols, rows, factor) * drainage_bytes_per_point;
+    const double points = drainage_points(cols, rows, factor);
+    if (factor == 1) return drainage_peak_base_bytes + drainage_check_margin * drainage_peak_bytes_per_point * points;
+    return drainage_resampled_bytes_per_point * points;
 }
 
 int drainage_factor_for(int cols, int rows, int resample) {

@@ -1,14 +1,22 @@
 // Memory (and disk) of a drainage build, estimated before anything is allocated: the points of a DEM
-// resampled by a factor and the bytes each takes at the build's peak (the grid, the working
-// arrays, the creases and ridges: measured about 60 B a point on jacksboro at factor 5), checked
-// against a budget (core/memory_budget.hpp).
+// resampled by a factor and the bytes a build takes at its peak (the grid, the working arrays, the
+// network, the creases' index and source), checked against a budget (core/memory_budget.hpp).
 #pragma once
 #include <cstdint>
 #include <string>
 
 namespace penink {
 
-constexpr double drainage_bytes_per_point = 64.0;
+// Peak resident memory of a build at factor 1 (`penink drainage DEM` under /usr/bin/time on
+// jacksboro refined 10 and 29 times, the terrain cache built beside it: 644 MB at 13.86 M points,
+// 3970 MB at 116.6 M; the peak is the creases' index beside the grid, directions and network): a
+// line, which cache_build_estimate.hpp announces.
+constexpr double drainage_peak_bytes_per_point = 32.385, drainage_peak_base_bytes = 194.6e6;
+// What check_drainage_memory counts beyond that: at factor 1 the line with a quarter more a point
+// (a rougher DEM has more stems than jacksboro, and the index holds 16 B a stem); at factor > 1,
+// 64 B a point (measured about 60 on jacksboro at factor 5, the coarse nodes and the resampling's
+// arrays besides the fine grid's; the automatic factor keeps such a grid under 4 M points).
+constexpr double drainage_check_margin = 1.25, drainage_resampled_bytes_per_point = 64.0;
 
 // Bytes a drainage database file takes a point at least (it stores the ridges and the creases'
 // source, not the network, and at factor 1 not the heights: measured 0.53 B on jacksboro refined
@@ -20,8 +28,9 @@ constexpr double dv_file_bytes_per_point = 0.5;
 // as a double (no wrap for any factor).
 double drainage_points(int cols, int rows, int factor);
 
-// Bytes a build of a cols x rows DEM at `factor` is counted to need: drainage_points times
-// drainage_bytes_per_point (what check_drainage_memory checks against the budget).
+// Bytes a build of a cols x rows DEM at `factor` is counted to need (what check_drainage_memory
+// checks against the budget): at factor 1 drainage_peak_base_bytes and drainage_check_margin
+// times drainage_peak_bytes_per_point a point, else drainage_resampled_bytes_per_point a point.
 double drainage_build_bytes(int cols, int rows, int factor);
 
 // The factor a build of a cols x rows DEM uses: `resample` when > 0, else the automatic one

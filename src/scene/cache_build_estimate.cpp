@@ -35,10 +35,7 @@ constexpr double terrain_bytes_per_node = 0.589, terrain_base_bytes = 98.7e6, te
 // progress): 3.25 s at 13.86 M points (jacksboro refined 10 times) and 42.6 s at 116.6 M (29
 // times), 2 cores at a load under 2: a power law, exponent ln(42.6/3.25)/ln(116.6/13.86) = 1.209.
 constexpr double drainage_s_at_reference = 3.25, drainage_reference_points = 13.86e6, drainage_exponent = 1.209;
-// Peak resident memory 644 MB at 13.86 M points (636.7 and 650.6 MB, the terrain cache's build
-// beside it) and 3970 MB at 116.6 M (at the creases' index, a geographic DEM's node x, y let go
-// while the directions are found and the creases' source coded: drainage_grid.hpp): a line.
-constexpr double drainage_peak_bytes_per_point = 32.385, drainage_base_bytes = 194.6e6;
+// Peak resident memory: drainage_memory.hpp's line (drainage_peak_bytes_per_point).
 // The terrain cache written (terrain_cache.hpp, coded: its size follows the DEM's smoothness; x, y
 // derived on projected and geographic DEMs): 1.15 B a node on jacksboro refined 10 times, header
 // included (0.85 refined 29 times, 1.43 refined 5 times, about 2 on the volcano, 2.8 on jacksboro
@@ -65,7 +62,7 @@ CacheBuildEstimate drainage_cache_estimate(int cols, int rows) {
     const double points = drainage_points(cols, rows, drainage_factor_for(cols, rows, 0));
     CacheBuildEstimate e;
     e.seconds = drainage_s_at_reference * std::pow(points / drainage_reference_points, drainage_exponent);
-    e.peak_bytes = drainage_base_bytes + drainage_peak_bytes_per_point * points;
+    e.peak_bytes = drainage_peak_base_bytes + drainage_peak_bytes_per_point * points;
     e.disk_bytes = drainage_disk_bytes_per_point * points;
     return e;
 }

@@ -9,6 +9,8 @@
 #include "input/dem_reader.hpp"
 #include "scene/cache_build_estimate.hpp"
 #include "scene/frame_source.hpp"
+#include "scene/terrain_frames.hpp"
+#include "scene/terrain_view.hpp"
 #include "surface/terrain_lod.hpp"
 
 namespace penink {
@@ -34,9 +36,15 @@ void check_scene_memory(const Scene& scene, std::uint64_t max_memory) {
     // terrain cache's, and the drainage database's where the scene draws creases or ridges; with
     // a sea level, the pyramid rebuilt for it over the padded square (a long thin DEM's square is
     // far larger than its nodes). A frame from the caches holds less than their builds.
+    // The drainage database's build is counted unless the render will read one (the DEM as the
+    // terrain cache recorded it, a database of that DEM's fingerprint: scene_drainage_cached); the
+    // terrain cache's build always, for what a frame from the caches holds (0.4 GB for 117 M
+    // cells, whose frame holds 0.53 GB).
     const bool lines = scene.lines.creases.enabled || scene.lines.ridges.enabled;
     const int factor = drainage_factor_for(size.cols, size.rows, 0);
-    const double drainage = lines ? drainage_build_bytes(size.cols, size.rows, factor) : 0.0;
+    const std::optional<TerrainCacheKey> known = lines ? known_terrain_key(scene.source.dem, scene.terrain.cache_dir) : std::nullopt;
+    const bool drainage_cached = known && scene_drainage_cached(scene, *known, size.cols, size.rows);
+    const double drainage = lines && !drainage_cached ? drainage_build_bytes(size.cols, size.rows, factor) : 0.0;
     const double side = std::ldexp(1.0, lod_padded_levels(size.cols, size.rows)) + 1.0;
     const double water = scene.terrain.sea_level ? side * side * water_lod_bytes_per_padded_node : 0.0;
     const double dem = terrain_cache_estimate(size.cols, size.rows).peak_bytes + drainage + water;

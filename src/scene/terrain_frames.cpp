@@ -125,6 +125,16 @@ DrainageOptions scene_drainage_options(const Scene& scene, const TerrainCacheKey
 }
 }  // namespace
 
+bool scene_drainage_cached(const Scene& scene, const TerrainCacheKey& key, int cols, int rows) {
+    const DrainageOptions options = scene_drainage_options(scene, &key);
+    Terrain size_only;  // drainage_fingerprint reads its size alone, the DEM's identity being given
+    size_only.cols = cols, size_only.rows = rows;
+    const DrainageFingerprint fp = drainage_fingerprint(scene.source.dem, size_only, options);
+    for (const std::string& p : {scene.source.dem + ".dv", drainage_cache_path(scene.source.dem, options.cache_dir)})
+        if (const std::optional<DrainageFingerprint> f = peek_drainage_fingerprint(p); f && *f == fp) return true;
+    return false;
+}
+
 std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terrain& dem, const Log& log,
                                                  const TerrainCacheKey* key) {
     if (!scene.lines.creases.enabled && !scene.lines.ridges.enabled) return std::nullopt;

@@ -43,6 +43,11 @@ SceneView open_terrain_view(Scene& scene, GlContext& context, const Log& log, Te
 // cell DEM: 466 MB, about 0.2 s).
 std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terrain& dem, const Log& log,
                                                  const TerrainCacheKey* key = nullptr);
+// Whether a drainage database that scene_drainage would read for a cols x rows DEM whose terrain
+// cache key is `key` is there (beside the DEM, or where the render keeps it): its header's
+// fingerprint alone read (peek_drainage_fingerprint), so a database that then fails to read is
+// built after all (load_or_build_drainage checks its memory then).
+bool scene_drainage_cached(const Scene& scene, const TerrainCacheKey& key, int cols, int rows);
 // The same from the DEM's stored terrain (its node arrays when in memory, else its grid; its key),
 // with read_whole_when_damaged.
 std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const SceneTerrain& dem, const Log& log);

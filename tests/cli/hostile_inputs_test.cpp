@@ -67,17 +67,44 @@ TEST(HostileInputs, GridDeclaringHugeSizeWithFewValues) {
 
 TEST(HostileInputs, DemBeyondMaxMemory) {
     const auto dir = fresh_dir("hostile_budget");
-    expect_refused(dir, "render " + volcano + " -o out.svg --max-memory 1M",
-                   "penink: input: " + volcano + ": drawing the DEM's 61x87 nodes would need about 102 MiB of memory, "
+    fs::create_directories(dir / "dem");  // a copy without caches: their builds are counted
+    fs::copy_file(volcano, dir / "dem" / "volcano.asc");
+    expect_refused(dir, "render dem/volcano.asc -o out.svg --max-memory 1M",
+                   "penink: input: dem/volcano.asc: drawing the DEM's 61x87 nodes would need about 102 MiB of memory, "
                    "1 MiB available (--max-memory)");
     // between the drawing's need without the drainage build (94 MiB) and with it (102 MiB): the
     // creases' build named, and how to draw the DEM without it
-    expect_refused(dir, "render " + volcano + " -o out.svg --max-memory 98M",
-                   "penink: drainage: " + volcano + ": the drainage grid of the creases and ridges at factor 5 (301x431 "
+    expect_refused(dir, "render dem/volcano.asc -o out.svg --max-memory 98M",
+                   "penink: drainage: dem/volcano.asc: the drainage grid of the creases and ridges at factor 5 (301x431 "
                    "points) would need about 102 MiB of memory, 98 MiB available (--max-memory); without creases and "
                    "ridges ([creases] and [ridges] enabled = false) the drawing needs about 94 MiB");
-    expect_refused(dir, "render " + volcano + " -o out.svg --max-memory lots",
+    expect_refused(dir, "render dem/volcano.asc -o out.svg --max-memory lots",
                    "penink: cli: --max-memory: expected a size such as 2G or 512M (got \"lots\")");
+}
+
+// The drainage database's build is counted only where a render would build it: with the DEM's
+// caches there (`penink drainage` wrote them beside it), a budget that holds the drawing and the
+// terrain cache's estimate but not the drainage build draws; once the DEM changes (its caches
+// then of another DEM), the same budget refuses the render again.
+TEST(HostileInputs, MaxMemoryCountsTheDrainageBuildOnlyWithoutItsCache) {
+    const auto dir = fresh_dir("hostile_budget_cached");
+    fs::create_directories(dir / "dem");
+    fs::copy_file(volcano, dir / "dem" / "volcano.asc");
+    const std::string refused = "penink: scene: dem/volcano.asc: drawing a 1000x750 image of the DEM's 61x87 nodes would "
+                                "need about 125 MiB of memory, 120 MiB available (--max-memory)";
+    expect_refused(dir, "render dem/volcano.asc -o out.svg --max-memory 120M", refused);
+    ASSERT_EQ(run_penink("drainage dem/volcano.asc -q", dir).code, 0);
+    ASSERT_TRUE(fs::exists(dir / "dem" / "volcano.asc.dv"));
+    const RunResult r = run_penink("render dem/volcano.asc -o out.svg --max-memory 120M", dir);
+    EXPECT_EQ(r.code, 0) << r.output;
+    EXPECT_TRUE(fs::exists(dir / "out.svg"));
+    fs::remove(dir / "out.svg");
+    {  // the DEM rewritten (another file with the same heights): its caches no longer its own
+        const fs::path dem = dir / "dem" / "volcano.asc";
+        fs::copy_file(dem, dir / "dem" / "copy.asc");
+        fs::rename(dir / "dem" / "copy.asc", dem);
+    }
+    expect_refused(dir, "render dem/volcano.asc -o out.svg --max-memory 120M", refused);
 }
 
 TEST(HostileInputs, DrainageResampleBoundedByTheBudget) {
