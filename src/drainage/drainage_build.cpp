@@ -348,10 +348,10 @@ std::vector<std::string> install_prefixes() {
 
 }  // namespace
 
-std::string drainage_cache_path(const std::string& dem_path, const std::string& cache_dir) {
+std::string drainage_cache_path(const std::string& dem_path, const std::string& cache_dir, bool make_folders) {
     std::error_code ec;  // a folder that cannot be made shows up as a failed write, logged
     if (!cache_dir.empty()) {
-        std::filesystem::create_directories(cache_dir, ec);
+        if (make_folders) std::filesystem::create_directories(cache_dir, ec);
         return cache_file_in(cache_dir, dem_path);
     }
     std::filesystem::path folder = std::filesystem::path(dem_path).parent_path();
@@ -362,7 +362,7 @@ std::string drainage_cache_path(const std::string& dem_path, const std::string& 
     if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) user_cache = xdg;
     else if (const char* home = std::getenv("HOME"); home && *home) user_cache = std::string(home) + "/.cache";
     const std::string path = drainage_cache_path(dem_path, usable, user_cache);
-    if (!usable && !user_cache.empty())
+    if (make_folders && !usable && !user_cache.empty())
         std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ec);
     return path;
 }

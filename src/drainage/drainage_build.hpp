@@ -122,7 +122,8 @@ DrainageFingerprint drainage_fingerprint(const std::string& dem_path, const Terr
 // - else in the user's cache folder `<user_cache>/penink/<file name>-<16 hex>.dv`, user_cache =
 //   $XDG_CACHE_HOME, else $HOME/.cache ("" when neither is set: beside the DEM after all, and a
 //   write that fails is logged).
-std::string drainage_cache_path(const std::string& dem_path, const std::string& cache_dir = "");
+// make_folders false: the path alone, no folder made (where a check looks for a cache).
+std::string drainage_cache_path(const std::string& dem_path, const std::string& cache_dir = "", bool make_folders = true);
 std::string drainage_cache_path(const std::string& dem_path, bool folder_usable, const std::string& user_cache);
 // `<folder>/<file name>-<16 hex>.dv` for the DEM at dem_path.
 std::string cache_file_in(const std::string& folder, const std::string& dem_path);

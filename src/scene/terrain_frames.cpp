@@ -130,7 +130,7 @@ bool scene_drainage_cached(const Scene& scene, const TerrainCacheKey& key, int c
     Terrain size_only;  // drainage_fingerprint reads its size alone, the DEM's identity being given
     size_only.cols = cols, size_only.rows = rows;
     const DrainageFingerprint fp = drainage_fingerprint(scene.source.dem, size_only, options);
-    for (const std::string& p : {scene.source.dem + ".dv", drainage_cache_path(scene.source.dem, options.cache_dir)})
+    for (const std::string& p : {scene.source.dem + ".dv", drainage_cache_path(scene.source.dem, options.cache_dir, false)})
         if (const std::optional<DrainageFingerprint> f = peek_drainage_fingerprint(p); f && *f == fp) return true;
     return false;
 }
