@@ -30,7 +30,7 @@ DvVertex point_xyz(const DrainageGrid& g, std::size_t i) {
 // `total` is the accumulation at the outlet of the point's basin (as normalised_flow divides).
 DvVertex point_vertex(const DrainageGrid& g, const FlowNetwork& net, std::size_t i, double total) {
     DvVertex v = point_xyz(g, i);
-    v.flow = float(double(net.acc[i]) / total);
+    v.flow = flow_of(net.acc[i], total);
     return v;
 }
 

@@ -210,6 +210,11 @@ void write_drainage_db(const std::string& path, const DrainageDb& meta, const Dv
 // cols, rows, factor, origin, creases and ridges; the rest empty), read and checked alone.
 enum class DvParts { all, lines };
 
+// The fingerprint in the header of the database at `path` (its first bytes alone: the prefix
+// checked as a read checks it, nothing else); nullopt when there is none, it is not a database of
+// this version or it ends before its fingerprint.
+std::optional<DrainageFingerprint> peek_drainage_fingerprint(const std::string& path);
+
 // Reads and checks a database (the parts it reads): errors penink::Error("drainage", path, what)
 // with what = "cannot open drainage database", "not a drainage database (bad magic)",
 // "unsupported drainage database version N (expected M)", "truncated drainage database",
@@ -217,11 +222,6 @@ enum class DvParts { all, lines };
 // "drainage database is stale (DEM changed)" (when expected is given and differs; on a whole
 // read also when the crease source's heights are its DEM's and the DEM at its path changed or
 // is gone: crease_source.hpp).
-// The fingerprint in the header of the database at `path` (its first bytes alone: magic and
-// version checked, nothing else); nullopt when there is none, it is not a database of this
-// version or it is shorter than its header.
-std::optional<DrainageFingerprint> peek_drainage_fingerprint(const std::string& path);
-
 DrainageDb read_drainage_db(const std::string& path, const DrainageFingerprint* expected = nullptr,
                             DvParts parts = DvParts::all);
 DrainageDb decode_drainage_db(const std::vector<std::uint8_t>& bytes, const std::string& path);

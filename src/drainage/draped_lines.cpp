@@ -151,7 +151,7 @@ struct StemWalk {
     }
 
     float vertex_flow(std::size_t i) const {
-        return net.flow.empty() ? float(double(net.acc[i]) / total[net.basin[i] - 1]) : std::bit_cast<float>(net.flow[i]);
+        return net.flow.empty() ? flow_of(net.acc[i], total[net.basin[i] - 1]) : std::bit_cast<float>(net.flow[i]);
     }
 
     [[noreturn]] static void cycle() {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "drainage/drainage_db.hpp"
+#include "drainage/flow_network.hpp"
 
 namespace penink::dv {
 
@@ -130,7 +131,7 @@ bool basin_totals(const DrainageDb& db, std::vector<double>& total);
 
 // Normalised flow at vertex k of branch b (as the builder's normalised_flow gives it).
 inline float branch_flow(const DvBranch& b, std::uint32_t k, const std::vector<double>& total) {
-    return float(double(std::uint64_t(b.head_acc) + k) / total[b.basin - 1]);
+    return flow_of(std::uint64_t(b.head_acc) + k, total[b.basin - 1]);
 }
 
 // What the layout relies on and the encoder checks (drainage_db.cpp): vertex ranges of branches

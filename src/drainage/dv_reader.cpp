@@ -499,21 +499,18 @@ std::FILE* open_dv(const std::string& path, std::uint64_t& size) {
 }  // namespace
 
 std::optional<DrainageFingerprint> peek_drainage_fingerprint(const std::string& path) {
-    std::uint64_t size = 0;
-    std::FILE* in = nullptr;
+    std::vector<std::uint8_t> head(prefix_bytes + 40);  // the prefix and the fingerprint
     try {
-        in = open_dv(path, size);
+        std::uint64_t size = 0, total = 0, lines_at = 0;
+        std::FILE* in = open_dv(path, size);
+        head.resize(std::fread(head.data(), 1, head.size(), in));
+        std::fclose(in);
+        check_prefix(head.data(), head.size(), path, total, lines_at);
+        Reader r{Bytes{head.data(), head.size()}, prefix_bytes, path};
+        return get_fingerprint(r);  // (throws when the file ends before it)
     } catch (const Error&) {
         return std::nullopt;
     }
-    std::vector<std::uint8_t> head(prefix_bytes + 40);
-    const bool got = std::fread(head.data(), 1, head.size(), in) == head.size();
-    std::fclose(in);
-    std::uint32_t version = 0;
-    if (got) std::memcpy(&version, head.data() + 8, 4);
-    if (!got || std::memcmp(head.data(), magic, 8) != 0 || version != drainage_db_version) return std::nullopt;
-    Reader r{Bytes{head.data(), head.size()}, prefix_bytes, path};
-    return get_fingerprint(r);
 }
 
 DrainageDb read_drainage_db(const std::string& path, const DrainageFingerprint* expected, DvParts parts) {

@@ -103,7 +103,7 @@ void keep_normalised_flow(FlowNetwork& net) {
     parallel_chunks(net.acc.size(), std::size_t(1) << 16, [&](std::size_t i0, std::size_t i1) {
         for (std::size_t i = i0; i < i1; ++i) {
             const std::uint32_t b = net.basin[i];
-            net.acc[i] = std::bit_cast<std::uint32_t>(b ? float(double(net.acc[i]) / total[b - 1]) : 0.0f);
+            net.acc[i] = std::bit_cast<std::uint32_t>(b ? flow_of(net.acc[i], total[b - 1]) : 0.0f);
         }
     });
     net.flow = std::move(net.acc);

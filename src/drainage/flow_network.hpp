@@ -44,11 +44,15 @@ void accumulate_flow(const std::vector<std::uint8_t>& dir, const GridShape& g, F
 // like accumulate_flow when the directions contain a cycle (it may run beside it on a thread).
 void label_basins(const std::vector<std::uint8_t>& dir, const GridShape& g, FlowNetwork& net);
 
+// A point's normalised flow: its accumulation over its basin's total (the accumulation at the
+// basin's outlet), in double, rounded to float (the builder's and the reader's alike).
+inline float flow_of(std::uint64_t acc, double basin_total) { return float(double(acc) / basin_total); }
+
 // acc / basin total at cell i (0 for invalid cells); 1 at every outlet.
 inline float normalised_flow(const FlowNetwork& net, std::size_t i) {
     if (!net.flow.empty()) return std::bit_cast<float>(net.flow[i]);
     const std::uint32_t b = net.basin[i];
-    return b ? float(double(net.acc[i]) / net.acc[net.outlet[b - 1]]) : 0.0f;
+    return b ? flow_of(net.acc[i], net.acc[net.outlet[b - 1]]) : 0.0f;
 }
 
 }  // namespace penink

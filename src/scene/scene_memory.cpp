@@ -32,14 +32,12 @@ void check_scene_memory(const Scene& scene, std::uint64_t max_memory) {
     }
     const std::uint64_t budget = memory_budget(max_memory);
     const DemSize size = read_dem_size(scene.source.dem);
-    // the caches' builds when the DEM has none (built side by side: cache_build_estimate.hpp): the
-    // terrain cache's, and the drainage database's where the scene draws creases or ridges; with
-    // a sea level, the pyramid rebuilt for it over the padded square (a long thin DEM's square is
-    // far larger than its nodes). A frame from the caches holds less than their builds.
-    // The drainage database's build is counted unless the render will read one (the DEM as the
-    // terrain cache recorded it, a database of that DEM's fingerprint: scene_drainage_cached); the
-    // terrain cache's build always, for what a frame from the caches holds (0.4 GB for 117 M
-    // cells, whose frame holds 0.53 GB).
+    // the caches' builds (built side by side: cache_build_estimate.hpp): the terrain cache's
+    // always, for what a frame from the caches holds too (0.4 GB for 117 M cells, whose frame holds
+    // 0.53 GB); the drainage database's where the scene draws creases or ridges and the render
+    // will not read one (the DEM as the terrain cache recorded it, a database of that DEM's
+    // fingerprint: scene_drainage_cached); with a sea level, the pyramid rebuilt for it over the
+    // padded square (a long thin DEM's square is far larger than its nodes).
     const bool lines = scene.lines.creases.enabled || scene.lines.ridges.enabled;
     const int factor = drainage_factor_for(size.cols, size.rows, 0);
     const std::optional<TerrainCacheKey> known = lines ? known_terrain_key(scene.source.dem, scene.terrain.cache_dir) : std::nullopt;
