@@ -77,11 +77,9 @@ struct Reader {
     }
 };
 
-// The three arrays' elements: nodes (positions, valid flags, errors: the padding's are not stored).
-struct Counts {
-    std::uint64_t nodes;
-};
-Counts array_counts(int cols, int rows) { return {std::uint64_t(cols) * std::uint64_t(rows)}; }
+// The elements of each of the three arrays (positions, valid flags, errors): one a node (the
+// padding's errors are not stored).
+std::uint64_t node_count(int cols, int rows) { return std::uint64_t(cols) * std::uint64_t(rows); }
 std::uint64_t block_count(std::uint64_t elems, unsigned shift) {
     return (elems + (std::uint64_t(1) << shift) - 1) >> shift;
 }
@@ -271,22 +269,22 @@ struct CodedTerrain {
     std::uint32_t flags = 0;
 };
 CodedTerrain code_terrain(const StoredTerrain& t) {
-    const Counts n = array_counts(t.meta.cols, t.meta.rows);
+    const std::uint64_t nodes = node_count(t.meta.cols, t.meta.rows);
     CodedTerrain c;
     if (const std::optional<DerivedXY> d = derived_xy(t.meta, t.nodes)) {
         c.flags |= d->flag;
-        c.pos = code_blocks(n.nodes, [&](std::uint64_t i, std::uint64_t k) {
+        c.pos = code_blocks(nodes, [&](std::uint64_t i, std::uint64_t k) {
             std::vector<float> z(static_cast<std::size_t>(k));
             for (std::size_t j = 0; j < z.size(); ++j) z[j] = t.nodes.pos[i + j].z;
             return encode_floats(z.data(), z.size(), z_orders);
         });
     } else {
-        c.pos = code_blocks(n.nodes, [&](std::uint64_t i, std::uint64_t k) {
+        c.pos = code_blocks(nodes, [&](std::uint64_t i, std::uint64_t k) {
             return encode_floats(&t.nodes.pos[i].x, std::size_t(k), pos_orders);
         });
     }
-    c.valid = code_blocks(n.nodes, [&](std::uint64_t i, std::uint64_t k) { return encode_bytes(t.nodes.valid + i, std::size_t(k)); });
-    c.error = code_blocks(n.nodes, [&](std::uint64_t i, std::uint64_t k) {
+    c.valid = code_blocks(nodes, [&](std::uint64_t i, std::uint64_t k) { return encode_bytes(t.nodes.valid + i, std::size_t(k)); });
+    c.error = code_blocks(nodes, [&](std::uint64_t i, std::uint64_t k) {
         return encode_floats(t.lod.error.data() + i, std::size_t(k), error_orders);
     });
     return c;
@@ -394,8 +392,8 @@ StoredTerrain store_terrain(Terrain flat) {
 }
 
 void write_terrain_cache(const std::string& path, const StoredTerrain& t, const TerrainCacheKey& key) {
-    const Counts n = array_counts(t.meta.cols, t.meta.rows);
-    if (t.lod.error.size() != n.nodes || t.nodes.size() != t.meta.size())
+    const std::uint64_t nodes = node_count(t.meta.cols, t.meta.rows);
+    if (t.lod.error.size() != nodes || t.nodes.size() != t.meta.size())
         throw std::invalid_argument("terrain cache: pyramid and nodes do not match the grid");
     const CodedTerrain coded = code_terrain(t);
     write_coded(path, t, key, coded);
@@ -459,11 +457,11 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
     // The header's length follows the block counts alone: reserved first, written last, the
     // nodes' blocks streamed to the file as they are coded, the flags' held (coded) until the
     // nodes' are written, the pyramid's once all are final.
-    const Counts n = array_counts(m.cols, m.rows);
+    const std::uint64_t nodes = node_count(m.cols, m.rows);
     BlockSums sums;
     sums.flags = formula->flag;
-    const std::uint64_t counts[3] = {block_count(n.nodes, block_shift), block_count(n.nodes, block_shift),
-                                     block_count(n.nodes, block_shift)};
+    const std::uint64_t counts[3] = {block_count(nodes, block_shift), block_count(nodes, block_shift),
+                                     block_count(nodes, block_shift)};
     for (int j = 0; j < 3; ++j) sums.sizes[j].assign(std::size_t(counts[j]), 0), sums.sums[j].assign(std::size_t(counts[j]), 0);
     std::uint64_t at[3], total = 0;
     const std::size_t head = encode_header(t, key, sums, at, total).size();
@@ -474,14 +472,14 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
         sums.take(0, b, bytes);
         if (const int err = out.append(bytes)) write_failed(path, err);
     };
-    InOrderBlocks<float, decltype(code_z), decltype(write_z)> z_blocks(n.nodes, code_z, write_z);
+    InOrderBlocks<float, decltype(code_z), decltype(write_z)> z_blocks(nodes, code_z, write_z);
     std::vector<std::uint8_t> flags_coded;  // the flags' blocks, back to back
     auto code_valid = [](const std::uint8_t* v, std::size_t k) { return encode_bytes(v, k); };
     auto keep_valid = [&](std::size_t b, std::span<const std::uint8_t> bytes) {
         sums.take(1, b, bytes);
         flags_coded.insert(flags_coded.end(), bytes.begin(), bytes.end());
     };
-    InOrderBlocks<std::uint8_t, decltype(code_valid), decltype(keep_valid)> valid_blocks(n.nodes, code_valid, keep_valid);
+    InOrderBlocks<std::uint8_t, decltype(code_valid), decltype(keep_valid)> valid_blocks(nodes, code_valid, keep_valid);
 
     // Rows come once each, in order, as the pyramid's strips ask for them (a window of the rows a
     // strip reads): each row's x, y checked against the formula the cache recomputes them with
@@ -540,7 +538,7 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
         }
         return LodRows{win_z.data() + std::size_t(r0 - win_first) * w, win_valid.data() + std::size_t(r0 - win_first) * w, r0};
     };
-    FloatBlockCoder errors(n.nodes, error_orders);
+    FloatBlockCoder errors(nodes, error_orders);
     const int side = t.lod.side();
     std::vector<float> dem_rows;  // a strip's rows of the DEM, one after the other
     try {
@@ -709,14 +707,14 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     r.at = std::size_t(align_up(r.at + crs, 8));
     if (m.cols < 2 || m.rows < 2 || std::max(m.cols, m.rows) > (1 << 30) || levels != lod_padded_levels(m.cols, m.rows))
         return fail(why, "damaged terrain cache (grid)");
-    const Counts n = array_counts(m.cols, m.rows);
+    const std::uint64_t nodes = node_count(m.cols, m.rows);
     if (total != size || at[0] < length || at[1] < at[0] || at[2] < at[1] || total < at[2])
         return fail(why, "damaged terrain cache (lengths)");
     const std::uint32_t shift = r.get<std::uint32_t>(), flags = r.get<std::uint32_t>();
     if (!r.ok || shift < min_block_shift || shift > max_block_shift || (flags & ~(xy_affine | xy_geographic)) != 0 ||
         flags == (xy_affine | xy_geographic))
         return fail(why, "damaged terrain cache (block checksums)");
-    const std::uint64_t counts[3] = {block_count(n.nodes, shift), block_count(n.nodes, shift), block_count(n.nodes, shift)};
+    const std::uint64_t counts[3] = {block_count(nodes, shift), block_count(nodes, shift), block_count(nodes, shift)};
     const std::uint64_t blocks = counts[0] + counts[1] + counts[2];
     if (align_up(blocks * 4, 8) + blocks * 8 != r.n - r.at) return fail(why, "damaged terrain cache (block checksums)");
     std::vector<CheckedBlocks::CodedArray> arrays(3);
@@ -731,7 +729,7 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
         for (const std::uint32_t c : a.sizes) coded += c;
         if (at[j] + coded != (j < 2 ? at[j + 1] : total)) return fail(why, "damaged terrain cache (lengths)");
     }
-    arrays[0].elems = n.nodes, arrays[0].elem_bytes = sizeof(glm::vec3);
+    arrays[0].elems = nodes, arrays[0].elem_bytes = sizeof(glm::vec3);
     if (flags) {
         const std::optional<DerivedXY> derived = derive_xy(m, flags);
         if (!derived) return fail(why, "damaged terrain cache (grid)");
@@ -751,7 +749,7 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
             return decode_floats(c, bytes, static_cast<float*>(out), count, pos_orders);
         };
     }
-    arrays[1].elems = n.nodes, arrays[1].elem_bytes = 1;
+    arrays[1].elems = nodes, arrays[1].elem_bytes = 1;
     arrays[1].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::uint64_t, std::size_t count) {
         return decode_bytes(c, bytes, static_cast<std::uint8_t*>(out), count);
     };
@@ -761,7 +759,7 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
         arrays[1].fill_size = std::uint32_t(coded.size()), arrays[1].fill_sum = hash64(coded.data(), coded.size());
         arrays[1].fill_byte = 1;
     }
-    arrays[2].elems = n.nodes, arrays[2].elem_bytes = sizeof(float);
+    arrays[2].elems = nodes, arrays[2].elem_bytes = sizeof(float);
     arrays[2].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::uint64_t, std::size_t count) {
         return decode_floats(c, bytes, static_cast<float*>(out), count, error_orders);
     };
@@ -780,7 +778,7 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     t.nodes.blocks = coded.get();
     t.lod.cols = m.cols, t.lod.rows = m.rows, t.lod.levels = levels;
     t.lod.error = std::span<const float>(static_cast<const float*>(coded->data(TerrainLod::error_array)),
-                                         std::size_t(n.nodes));
+                                         std::size_t(nodes));
     t.lod.blocks = coded.get();
     t.lod.storage = coded;
     t.storage = std::move(coded);
