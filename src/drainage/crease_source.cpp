@@ -1,14 +1,20 @@
 #include "drainage/crease_source.hpp"
 
+#include <algorithm>
 #include <array>
+#include <atomic>
+#include <bit>
 #include <cstring>
 #include <filesystem>
+
+#include <GeographicLib/Constants.hpp>
 
 #include "core/block_codec.hpp"
 #include "core/error.hpp"
 #include "core/hash64.hpp"
 #include "core/parallel_chunks.hpp"
 #include "input/dem_reader.hpp"
+#include "input/geographic_nodes.hpp"
 
 namespace penink {
 namespace {
@@ -115,6 +121,44 @@ bool get_blocks(Reader& r, Accept accept, Resize resize, Decode decode, bool rea
     return true;
 }
 
+constexpr std::array<int, 3> network_orders{0, 0, 0};  // a cell's accumulation, basin, order residuals
+constexpr std::array<int, 1> totals_orders{0};
+
+// The flow inside block b of `grid`: each cell's downstream cell where that lies in the block (its
+// place in the block's order; -1 where it drains out of it, or is an outlet or invalid).
+void block_downstream(const BlockGrid& grid, std::size_t b, const GridShape& shape, const std::uint8_t* dir,
+                      std::vector<std::int32_t>& down) {
+    std::size_t c0, c1, r0, r1;
+    grid.span(b, c0, c1, r0, r1);
+    down.assign(grid.cells(b), -1);
+    grid.each_cell(b, [&](std::size_t i, std::size_t k) {
+        if (!shape.valid[i] || !dir[i]) return;
+        const std::size_t d = d8_target(shape, i, dir[i]), dc = d % grid.cols, dr = d / grid.cols;
+        if (dc >= c0 && dc < c1 && dr >= r0 && dr < r1) down[k] = std::int32_t((dr - r0) * (c1 - c0) + (dc - c0));
+    });
+}
+
+// A block's cells' network as predicted from the flow inside it (the stored residuals are the
+// differences, which vanish but where flow enters from outside or leaves it): a valid cell's
+// accumulation 1 + the accumulations of the cells draining into it in the block, its Strahler
+// order from theirs (push_order, final_order), its basin its downstream cell's in the block
+// (else 0); 0, 0, 0 for an invalid cell.
+struct BlockPrediction {
+    std::vector<std::uint32_t> acc;
+    std::vector<std::uint8_t> pending;
+    void start(const BlockGrid& grid, std::size_t b, const GridShape& shape) {
+        acc.assign(grid.cells(b), 0), pending.assign(grid.cells(b), 0);
+        grid.each_cell(b, [&](std::size_t i, std::size_t k) { acc[k] = shape.valid[i] ? 1u : 0u; });
+    }
+    // cell k's true accumulation and order are known: passed on to its downstream cell
+    void pass(std::int32_t down, std::uint32_t a, std::uint8_t o) {
+        if (down < 0) return;
+        acc[std::size_t(down)] += a;
+        push_order(pending[std::size_t(down)], o);
+    }
+    std::uint8_t order(std::size_t k, bool valid) const { return valid ? final_order(pending[k]) : 0; }
+};
+
 void put_box(std::vector<std::uint8_t>& out, glm::vec2 lo, glm::vec2 hi) {
     put(out, lo.x), put(out, lo.y), put(out, hi.x), put(out, hi.y);
 }
@@ -144,26 +188,97 @@ CodedSourceArray code_source_array(const DrainageGrid& g, const std::vector<std:
     return {};
 }
 
+CodedSourceNetwork code_source_network(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
+                                       const FlowNetwork& net, int side) {
+    const std::size_t n = g.size();
+    if (side < 1 || side > (1 << 15)) throw Error("drainage", "", "network block side out of range", ExitCode::internal);
+    if (dir.size() != n || net.acc.size() != n || net.basin.size() != n || net.order.size() != n ||
+        net.mains.size() != mains_words(n))
+        throw Error("drainage", "", "network stored without its directions, accumulation, basins, orders or mains",
+                    ExitCode::internal);
+    CodedSourceNetwork out;
+    out.side = side, out.basins = net.outlet.size();
+    std::vector<float> totals(net.outlet.size());
+    for (std::size_t b = 0; b < totals.size(); ++b) totals[b] = std::bit_cast<float>(net.acc[net.outlet[b]]);
+    out.totals = encode_floats(totals.data(), totals.size(), totals_orders);
+    const auto* words = reinterpret_cast<const std::uint8_t*>(net.mains.data());
+    out.mains = code_blocks(8 * net.mains.size(), [&](std::size_t first, std::size_t k) { return encode_bytes(words + first, k); });
+    const BlockGrid grid(std::size_t(g.cols), std::size_t(g.rows), std::size_t(side));
+    const GridShape shape{g.cols, g.rows, g.valid.data()};
+    out.blocks.resize(grid.count());
+    parallel_chunks(grid.count(), 1, [&](std::size_t b0, std::size_t b1) {
+        std::vector<float> cells;
+        std::vector<std::int32_t> down;
+        std::vector<std::uint32_t> at;  // the block's cells
+        BlockPrediction p;
+        for (std::size_t b = b0; b < b1; ++b) {
+            block_downstream(grid, b, shape, dir.data(), down);
+            p.start(grid, b, shape);
+            at.resize(grid.cells(b));
+            grid.each_cell(b, [&](std::size_t i, std::size_t k) {
+                at[k] = std::uint32_t(i);
+                p.pass(down[k], net.acc[i], net.order[i]);
+            });
+            cells.resize(3 * at.size());
+            for (std::size_t k = 0; k < at.size(); ++k) {
+                const std::size_t i = at[k];
+                const std::uint32_t basin_below = down[k] < 0 ? 0u : net.basin[at[std::size_t(down[k])]];
+                cells[3 * k] = std::bit_cast<float>(net.acc[i] - p.acc[k]);
+                cells[3 * k + 1] = std::bit_cast<float>(net.basin[i] - basin_below);
+                cells[3 * k + 2] = std::bit_cast<float>(std::uint32_t(net.order[i]) - p.order(k, g.valid[i] != 0));
+            }
+            out.blocks[b] = encode_floats(cells.data(), at.size(), network_orders);
+            out.blocks[b].shrink_to_fit();
+        }
+    });
+    return out;
+}
+
 std::string absolute_dem_path(const std::string& path) {
     return std::filesystem::absolute(path).lexically_normal().string();
 }
 
-std::uint64_t dem_arrays_hash(const DrainageGrid& g) {
-    const std::uint64_t z = hash64(g.z.data(), g.z.size() * sizeof(float));
-    return hash64(g.coarse_xy.data(), g.coarse_xy.size() * sizeof(glm::vec2), z ^ 0x9e3779b97f4a7c15ull);
+namespace {
+
+// hash64 of block b's x, y of `xy` (the grid's nodes, `grid`'s cells), row by row.
+std::uint64_t xy_block_hash(const glm::vec2* xy, const BlockGrid& grid, std::size_t b) {
+    std::size_t c0, c1, r0, r1;
+    grid.span(b, c0, c1, r0, r1);
+    std::uint64_t h = 0x9e3779b97f4a7c15ull;
+    for (std::size_t r = r0; r < r1; ++r) h = hash64(xy + r * grid.cols + c0, (c1 - c0) * sizeof(glm::vec2), h);
+    return h;
+}
+
+}  // namespace
+
+DemArraysHash dem_arrays_hash(const DrainageGrid& g) {
+    DemArraysHash out;
+    out.z = hash64(g.z.data(), g.z.size() * sizeof(float));
+    if (g.coarse_xy.size() != g.size() || g.size() == 0) return out;
+    const BlockGrid grid(std::size_t(g.cols), std::size_t(g.rows), network_block_side);
+    out.xy.resize(grid.count());
+    parallel_chunks(grid.count(), 16, [&](std::size_t b0, std::size_t b1) {
+        for (std::size_t b = b0; b < b1; ++b) out.xy[b] = xy_block_hash(g.coarse_xy.data(), grid, b);
+    });
+    return out;
 }
 
 std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const CreaseTileIndex& index,
                                                  const std::vector<CodedSourceArray>& arrays, const DemHeightsRef* dem,
-                                                 std::uint64_t arrays_hash) {
+                                                 const DemArraysHash& hashes, const CodedSourceNetwork* network) {
     if (dem && g.factor != 1)
         throw Error("drainage", "", "a crease source refers to the DEM at factor 1 only", ExitCode::internal);
     std::vector<std::uint8_t> out;
-    std::size_t size = 260 + (dem ? dem->path.size() : 0) + 16 * index.lo.size() + 40 * index.units.size() + 4 * index.parts.sources.size() +
+    std::size_t size = 260 + (dem ? dem->path.size() + 8 * hashes.xy.size() : 0) + 16 * index.lo.size() + 40 * index.units.size() + 4 * index.parts.sources.size() +
                        12 * index.stems.size();
     for (const CodedSourceArray& a : arrays) {
         size += 12 + 4 * a.blocks.size();
         for (const auto& b : a.blocks) size += b.size();
+    }
+    if (network) {
+        size += 32 + network->totals.size() + 4 * network->mains.blocks.size() + 4 * network->blocks.size();
+        for (const auto& b : network->mains.blocks) size += b.size();
+        for (const auto& b : network->blocks) size += b.size();
     }
     out.reserve(size);
     put(out, std::uint32_t(g.cols)), put(out, std::uint32_t(g.rows)), put(out, std::int32_t(g.factor));
@@ -174,7 +289,9 @@ std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const Cr
     if (dem) {
         put(out, std::uint32_t(dem->path.size()));
         out.insert(out.end(), dem->path.begin(), dem->path.end());
-        put(out, std::int32_t(dem->utm_zone)), put(out, std::uint32_t(dem->north)), put(out, arrays_hash);
+        put(out, std::int32_t(dem->utm_zone)), put(out, std::uint32_t(dem->north)), put(out, hashes.z);
+        put(out, std::uint32_t(hashes.xy.size()));
+        for (std::uint64_t h : hashes.xy) put(out, h);
     }
     for (double v : g.affine.gt) put(out, v);
     put(out, g.affine.unit), put(out, std::int32_t(g.affine.col0)), put(out, std::int32_t(g.affine.row0));
@@ -209,17 +326,30 @@ std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const Cr
     for (std::size_t u = 0; u < members.size(); ++u)
         out.insert(out.end(), ids[u].begin(), ids[u].end()), out.insert(out.end(), bounds[u].begin(), bounds[u].end());
     for (const CodedSourceArray& a : arrays) put_blocks(out, a);
+    put(out, std::uint32_t(network != nullptr));
+    if (network) {
+        put(out, std::uint32_t(network->side)), put(out, network->basins);
+        put(out, std::uint32_t(network->totals.size()));
+        out.insert(out.end(), network->totals.begin(), network->totals.end());
+        put_blocks(out, network->mains);
+        put(out, std::uint32_t(network->blocks.size()));
+        for (const auto& b : network->blocks) put(out, std::uint32_t(b.size()));
+        for (const auto& b : network->blocks) out.insert(out.end(), b.begin(), b.end());
+    }
     return out;
 }
 
 std::vector<std::uint8_t> encode_crease_source(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
-                                               const CreaseTileIndex& index, const DemHeightsRef* dem) {
+                                               const CreaseTileIndex& index, const DemHeightsRef* dem,
+                                               const FlowNetwork* network, int network_side) {
     std::vector<CodedSourceArray> arrays;
     for (std::size_t a = 0; a < source_array_count; ++a) {
         const bool referred = dem && (SourceArray(a) == SourceArray::z || SourceArray(a) == SourceArray::coarse_xy);
         arrays.push_back(referred ? CodedSourceArray{} : code_source_array(g, dir, SourceArray(a)));
     }
-    return assemble_crease_source(g, index, arrays, dem, dem ? dem_arrays_hash(g) : 0);
+    const CodedSourceNetwork coded = network ? code_source_network(g, dir, *network, network_side) : CodedSourceNetwork{};
+    return assemble_crease_source(g, index, arrays, dem, dem ? dem_arrays_hash(g) : DemArraysHash{},
+                                  network ? &coded : nullptr);
 }
 
 namespace {
@@ -229,7 +359,7 @@ struct SourceHead {
     std::uint32_t cols = 0, rows = 0, affine = 0, shared = 0, referred = 0;
     std::int32_t factor = 0, ccols = 0, crows = 0;
     DemHeightsRef dem;
-    std::uint64_t arrays_hash = 0;
+    DemArraysHash hashes;
 };
 
 bool get_head(Reader& r, DrainageGrid& g, SourceHead& h) {
@@ -240,26 +370,188 @@ bool get_head(Reader& r, DrainageGrid& g, SourceHead& h) {
     if (!h.referred) return true;
     std::uint32_t n = 0, north = 0;
     const std::uint8_t* at = nullptr;
-    if (!r.get(n) || !r.take(n, at) || !r.get(h.dem.utm_zone) || !r.get(north) || north > 1 || !r.get(h.arrays_hash))
+    std::uint32_t blocks = 0;
+    if (!r.get(n) || !r.take(n, at) || !r.get(h.dem.utm_zone) || !r.get(north) || north > 1 || !r.get(h.hashes.z) ||
+        !r.get(blocks) || blocks > r.left / 8)
         return false;
     h.dem.path.assign(reinterpret_cast<const char*>(at), n), h.dem.north = north == 1;
+    h.hashes.xy.resize(blocks);
+    for (std::uint64_t& v : h.hashes.xy) r.get(v);
     return true;
 }
 
 // g.z and g.coarse_xy read again from the DEM `h` refers to (heights only, its zone and
 // hemisphere; the grid of a factor-1 build), checked by their hash; false when the DEM cannot be
 // read or gives other arrays.
-bool read_referred_arrays(const SourceHead& h, DrainageGrid& g) {
+// With `by_blocks`, the heights alone, and a geographic DEM's x, y made by blocks where read
+// (DrainageGrid::xy_blocks), each block checked as it is made.
+bool read_referred_arrays(const SourceHead& h, DrainageGrid& g, bool by_blocks = false) {
+    const std::size_t n = g.size();
     try {
         DemOptions read;
-        read.heights_only = true, read.utm_zone = h.dem.utm_zone, read.north = h.dem.north;
+        read.heights_only = true, read.utm_zone = h.dem.utm_zone, read.north = h.dem.north, read.no_xy = by_blocks;
         Terrain t = read_dem(h.dem.path, read);
         if (t.cols != g.cols || t.rows != g.rows) return false;
-        take_node_arrays(t, g.z, g.coarse_xy);  // resample_pn_releasing(t, 1)'s, without its masks and spacing
+        if (!by_blocks) {
+            take_node_arrays(t, g.z, g.coarse_xy);  // resample_pn_releasing(t, 1)'s, without its masks and spacing
+            return dem_arrays_hash(g) == h.hashes;
+        }
+        GeographicNodes geo;
+        const bool formula = terrain_geographic(t, geo);
+        if (!formula && !h.hashes.xy.empty()) return read_referred_arrays(h, g);  // x, y read with the heights
+        take_node_heights(t, g.z);
+        if (hash64(g.z.data(), g.z.size() * sizeof(float)) != h.hashes.z) return false;
+        if (!formula) return true;  // an affine grid's (no x, y stored)
+        const BlockGrid grid(std::size_t(g.cols), std::size_t(g.rows), network_block_side);
+        if (h.hashes.xy.size() != grid.count()) return false;
+        g.node_xy = std::make_shared<const GeographicNodeXY>(geo, t.origin);
+        g.coarse_xy.resize(n);  // (not written: the pages of the blocks never made are never touched)
+        g.xy_blocks = std::make_shared<CellBlocks>(
+            grid, [grid, sums = h.hashes.xy, nodes = g.node_xy, xy = g.coarse_xy.data(), path = h.dem.path](std::size_t b) {
+                std::size_t c0, c1, r0, r1;
+                grid.span(b, c0, c1, r0, r1);
+                for (std::size_t r = r0; r < r1; ++r) nodes->span(int(r), int(c0), int(c1), xy + r * grid.cols + c0);
+                if (xy_block_hash(xy, grid, b) != sums[b])
+                    throw Error("drainage", path, "the DEM's node positions differ from its drainage database's",
+                                ExitCode::internal);
+            });
     } catch (const Error&) {
         return false;
+    } catch (const GeographicLib::GeographicErr&) {  // the build projected it: cannot happen
+        return false;
     }
-    return dem_arrays_hash(g) == h.arrays_hash;
+    return true;
+}
+
+// Where a source stores its network (code_source_network), read up to its blocks.
+struct StoredNetworkAt {
+    std::uint32_t side = 0;
+    std::uint64_t basins = 0;
+    const std::uint8_t* totals = nullptr;
+    std::uint32_t totals_size = 0;
+    std::vector<std::uint64_t> mains;
+    std::vector<std::uint64_t> at;  // each block's offset in the source's bytes
+    std::vector<std::uint32_t> sizes;
+};
+
+// Reads what assemble_crease_source wrote of a network on a grid of cols x rows (n cells):
+// `stored` set when there is one; its totals and mains taken and its blocks found when `want`,
+// else passed over. False when the bytes do not read so.
+bool get_network(Reader& r, const std::uint8_t* data, std::size_t cols, std::size_t rows, bool want, bool& stored,
+                 StoredNetworkAt& out) {
+    std::uint32_t has = 0;
+    if (!r.get(has) || has > 1) return false;
+    stored = has == 1;
+    if (!stored) return true;
+    const std::size_t n = cols * rows;
+    if (!r.get(out.side) || out.side == 0 || out.side > (1u << 15) || !r.get(out.basins) || out.basins > n ||
+        !r.get(out.totals_size) || !(want ? r.take(out.totals_size, out.totals) : r.skip(out.totals_size)))
+        return false;
+    const std::size_t words = mains_words(n);
+    if (!get_blocks(
+            r, [&](std::uint64_t k) { return k == 8 * words; }, [&](std::size_t) { out.mains.resize(want ? words : 0); },
+            [&](const std::uint8_t* c, std::size_t s, std::size_t first, std::size_t k) {
+                return decode_bytes(c, s, reinterpret_cast<std::uint8_t*>(out.mains.data()) + first, k);
+            },
+            want))
+        return false;
+    const BlockGrid grid(cols, rows, out.side);
+    std::uint32_t count = 0;
+    if (!r.get(count) || count != grid.count() || r.left / 4 < count) return false;
+    out.sizes.resize(count), out.at.resize(count);
+    for (auto& v : out.sizes) r.get(v);
+    for (std::uint32_t b = 0; b < count; ++b) {
+        out.at[b] = std::uint64_t(r.p - data);
+        if (!r.skip(out.sizes[b])) return false;
+    }
+    return true;
+}
+
+// Block b of a stored network decoded: its cells' accumulation, basin and order (`acc`, `basin`,
+// `order`, in the block's order), the residuals added to the predictions from the flow inside it
+// in its cells' topological order (upstream first; the basins downstream first). False when it does
+// not decode, its flow inside holds a cycle or a basin exceeds the basins stored.
+struct DecodedBlock {
+    std::vector<float> cells;
+    std::vector<std::int32_t> down;
+    std::vector<std::uint32_t> acc, basin, topo;
+    std::vector<std::uint8_t> order, inflows;
+    BlockPrediction p;
+};
+bool decode_network_block(const CreaseSourceBytes& src, const BlockGrid& grid, const StoredNetworkAt& at,
+                          const GridShape& shape, const std::uint8_t* dir, std::size_t b, DecodedBlock& d) {
+    const std::size_t n = grid.cells(b);
+    src.need(at.at[b], at.sizes[b]);
+    d.cells.resize(3 * n);
+    if (!decode_floats(src.data + at.at[b], at.sizes[b], d.cells.data(), n, network_orders)) return false;
+    block_downstream(grid, b, shape, dir, d.down);
+    d.p.start(grid, b, shape);
+    d.inflows.assign(n, 0), d.topo.clear(), d.acc.resize(n), d.basin.resize(n), d.order.resize(n);
+    for (std::size_t k = 0; k < n; ++k)
+        if (d.down[k] >= 0) ++d.inflows[std::size_t(d.down[k])];  // at most 8
+    std::vector<std::uint8_t> valid(n);
+    grid.each_cell(b, [&](std::size_t i, std::size_t k) { valid[k] = shape.valid[i] != 0; });
+    for (std::size_t k = 0; k < n; ++k)
+        if (d.inflows[k] == 0) d.topo.push_back(std::uint32_t(k));
+    for (std::size_t t = 0; t < d.topo.size(); ++t) {
+        const std::size_t k = d.topo[t];
+        d.acc[k] = std::bit_cast<std::uint32_t>(d.cells[3 * k]) + d.p.acc[k];
+        d.order[k] = std::uint8_t(std::bit_cast<std::uint32_t>(d.cells[3 * k + 2]) + d.p.order(k, valid[k]));
+        d.p.pass(d.down[k], d.acc[k], d.order[k]);
+        if (d.down[k] >= 0 && --d.inflows[std::size_t(d.down[k])] == 0) d.topo.push_back(std::uint32_t(d.down[k]));
+    }
+    if (d.topo.size() != n) return false;
+    for (std::size_t t = n; t-- > 0;) {
+        const std::size_t k = d.topo[t];
+        d.basin[k] = std::bit_cast<std::uint32_t>(d.cells[3 * k + 1]) + (d.down[k] < 0 ? 0u : d.basin[std::size_t(d.down[k])]);
+        if (d.basin[k] > at.basins) return false;
+    }
+    return true;
+}
+
+// Whether every block and the totals of a stored network decode (a source decoded whole), on all
+// cores.
+bool stored_network_decodes(const CreaseSourceBytes& src, const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
+                            const StoredNetworkAt& at) {
+    std::vector<float> bits(at.basins);
+    if (!decode_floats(at.totals, at.totals_size, bits.data(), bits.size(), totals_orders)) return false;
+    const BlockGrid grid(std::size_t(g.cols), std::size_t(g.rows), at.side);
+    const GridShape shape{g.cols, g.rows, g.valid.data()};
+    std::vector<std::uint8_t> ok(grid.count(), 0);
+    parallel_chunks(grid.count(), 1, [&](std::size_t b0, std::size_t b1) {
+        DecodedBlock d;
+        for (std::size_t b = b0; b < b1; ++b) ok[b] = decode_network_block(src, grid, at, shape, dir.data(), b, d);
+    });
+    return std::all_of(ok.begin(), ok.end(), [](std::uint8_t v) { return v != 0; });
+}
+
+// The network a stored one gives (decode_crease_source's `net`): mains, in-degrees, and orders and
+// flows filled by blocks from `src`. False when its totals do not decode.
+bool stored_network(const CreaseSourceBytes& src, const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
+                    StoredNetworkAt&& at, FlowNetwork& net) {
+    std::vector<float> bits(at.basins);
+    if (!decode_floats(at.totals, at.totals_size, bits.data(), bits.size(), totals_orders)) return false;
+    std::vector<double> totals(bits.size());  // each basin's outlet accumulation, as normalised_flow divides
+    for (std::size_t b = 0; b < bits.size(); ++b) totals[b] = double(std::bit_cast<std::uint32_t>(bits[b]));
+    net = FlowNetwork{};
+    net.mains = std::move(at.mains);
+    net.indeg = inflow_counts(dir, GridShape{g.cols, g.rows, g.valid.data()});
+    net.order.assign(g.size(), 0);
+    net.flow.resize(g.size());  // (not written: the pages of the blocks never filled are never touched)
+    const BlockGrid grid(std::size_t(g.cols), std::size_t(g.rows), at.side);
+    // (the grid's mask and the directions: the caller's, which outlive the network)
+    net.blocks = std::make_shared<CellBlocks>(
+        grid, [src, grid, shape = GridShape{g.cols, g.rows, g.valid.data()}, dir = dir.data(), totals = std::move(totals),
+               at = std::move(at), order = net.order.data(), flow = net.flow.data()](std::size_t b) {
+            DecodedBlock d;
+            if (!decode_network_block(src, grid, at, shape, dir, b, d))
+                throw Error("drainage", "", "stored crease source does not decode", ExitCode::internal);
+            grid.each_cell(b, [&](std::size_t i, std::size_t k) {
+                order[i] = d.order[k];
+                flow[i] = std::bit_cast<std::uint32_t>(d.basin[k] ? flow_of(d.acc[k], totals[d.basin[k] - 1]) : 0.0f);
+            });
+        });
+    return true;
 }
 
 }  // namespace
@@ -392,17 +684,26 @@ bool decode_crease_source(const CreaseSourceBytes& src, DrainageGrid& g, std::ve
         return false;
     if (!bytes(g.coarse_valid, shared ? 0 : coarse, true) || !floats(g.coarse_z, coarse, true)) return false;
     if (shared) g.coarse_valid = g.valid;
+    bool stored = false;
+    StoredNetworkAt network;
+    if (!get_network(r, data, cols, rows, arrays, stored, network)) return false;
     if (r.left != 0) return false;
+    if (stored && arrays && !net && !stored_network_decodes(src, g, dir, network)) return false;
+    // the network stored, or made from the directions and the mask
+    bool made = true;
+    const auto make_network = [&] {
+        if (stored) made = stored_network(src, g, dir, std::move(network), *net);
+        else *net = network_of_directions(g, dir);
+    };
     if (!(arrays && head.referred)) {
-        if (net && arrays) *net = network_of_directions(g, dir);
-        return true;
+        if (net && arrays) make_network();
+        return made;
     }
     if (!net) return read_referred_arrays(head, g);
-    // the network from the directions and the mask beside the heights and positions read again
-    // (which neither reads)
+    // beside the heights read again and the positions made by blocks (which it does not read)
     bool read = false;
-    run_beside([&] { *net = network_of_directions(g, dir); }, [&] { read = read_referred_arrays(head, g); });
-    return read;
+    run_beside(make_network, [&] { read = read_referred_arrays(head, g, true); });
+    return read && made;
 }
 
 bool decode_crease_unit(const CreaseSourceBytes& src, const SourceUnitBlock& block, std::vector<std::uint32_t>& ids,

@@ -1,9 +1,12 @@
 // What building crease tiles (crease_tiles.hpp) reads of a drainage build, stored so that a render
 // builds the creases a frame needs without computing the network again: the drainage grid's fine
 // nodes' elevations and valid mask, the resolved flow directions, and the tiles' index (tile
-// side, the stems' sources, box and bounds, each tile's reach box, the units' summaries). The accumulation, Strahler orders
-// and basins follow from the directions in one pass each (network_of_directions: accumulate_flow
-// and label_basins, the build's own functions, so the same arrays); the grid's other fields
+// side, the stems' sources, box and bounds, each tile's reach box, the units' summaries), and the
+// network the stems' walks read (code_source_network: the accumulation, basins and Strahler
+// orders by square blocks, each basin's total, the junctions' mains), so that a render decodes
+// only the blocks its walks reach instead of computing the network from the directions (which a
+// source without it still does: network_of_directions, the build's own accumulate_flow and
+// label_basins, so the same arrays); the grid's other fields
 // (size, factor, spacing, origin, the coarse nodes' x, y, mask and heights, the affine grid) are
 // stored too, so the creases are built from these bytes alone, on the unexaggerated DEM.
 // Coding (encode_crease_source): the three arrays cut in blocks of 2^16 nodes, each block coded
@@ -22,14 +25,17 @@
 // Layout (little-endian): u32 cols, rows, i32 factor, f64 dx, dy, origin x, y, i32 coarse cols,
 // rows, u32 has_affine, u32 coarse mask shared (1: coarse_valid is valid, stored with 0
 // elements), u32 DEM reference (1: then u32 n + n bytes of the DEM's path, i32 UTM zone, u32
-// north, u64 dem_arrays_hash; z and coarse_xy stored with 0 elements), f64 gt[6], f64 unit, i32 col0, row0, u32 side, u32 tiles, f32 x 4 stems'
+// north, u64 z's hash, u32 x, y blocks, their u64 hashes (DemArraysHash); z and coarse_xy stored
+// with 0 elements), f64 gt[6], f64 unit, i32 col0, row0, u32 side, u32 tiles, f32 x 4 stems'
 // box (lo, hi), tiles x f32 x 4 reach boxes, f32 z_top, u32 units, units x (u32 tile, level,
 // count, f32 x 4 box, u16 plan, rise: CreaseUnit; u32 coded sizes of its ids and of its bounds),
 // for the source cells' deltas (u32): u64 elements, u32 blocks, blocks x u32 coded sizes, the
 // coded blocks; each unit's stems (ids, stem_reach.hpp encode_stem_ids, then their bounds,
 // encode_stem_bounds: a unit decodes alone); then for z, valid, dir, coarse_xy, coarse_valid,
 // coarse_z: u64 elements (the coarse ones may be 0), u32 blocks, blocks x u32 coded sizes, the
-// coded blocks.
+// coded blocks; then u32 network stored (0 or 1), and when stored: u32 block side, u64 basins, u32
+// coded size and the coded totals, the mains' bytes as the arrays above (u64 elements, u32
+// blocks, sizes, blocks), u32 blocks, blocks x u32 coded sizes, the coded blocks.
 // The arrays may be coded one by one as each becomes final (code_source_array; a build codes
 // the grid's while the directions are found, and z and the directions while the ridges are
 // draped and the index made) and put together with the index after (assemble_crease_source).
@@ -66,14 +72,26 @@ struct DemHeightsRef {
 };
 std::string absolute_dem_path(const std::string& path);
 
-// hash64 of g.z, then of g.coarse_xy: what a DEM reference checks the arrays read again by.
-std::uint64_t dem_arrays_hash(const DrainageGrid& g);
+// The side (cells) of the square blocks a crease source stores its network by (code_source_network).
+inline constexpr int network_block_side = 128;
+
+// What a DEM reference checks the arrays read again by: hash64 of g.z, and of each block of
+// network_block_side nodes of g.coarse_xy (BlockGrid order, a block's nodes in its order; none
+// where coarse_xy is empty: an affine grid), so that the x, y made where a render's walks reach
+// are checked block by block.
+struct DemArraysHash {
+    std::uint64_t z = 0;
+    std::vector<std::uint64_t> xy;
+    bool operator==(const DemArraysHash&) const = default;
+};
+DemArraysHash dem_arrays_hash(const DrainageGrid& g);
 
 // g.z, g.valid (g.cols x g.rows), dir and the index, coded (blocks coded on all cores):
 // assemble_crease_source of every code_source_array. With `dem` (factor 1 only), z and
 // coarse_xy are referred to, not stored.
 std::vector<std::uint8_t> encode_crease_source(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
-                                               const CreaseTileIndex& index, const DemHeightsRef* dem = nullptr);
+                                               const CreaseTileIndex& index, const DemHeightsRef* dem = nullptr,
+                                               const FlowNetwork* network = nullptr, int network_side = network_block_side);
 
 // A crease source's bytes as its decoders read them: `size` bytes at `data`, in memory, or (with
 // `pages`) the database file's, where only the pages need() asks for are readable (read and
@@ -116,12 +134,41 @@ struct CodedSourceArray {
 // array (and, for coarse_valid, g.valid and g.factor).
 CodedSourceArray code_source_array(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, SourceArray a);
 
+// The network the stems' walks read (draped_lines.cpp), stored beside the directions so that a
+// render builds stems without computing it again, and reads of it only the blocks its walks reach
+// (FlowNetwork::blocks, cell_blocks.hpp): each basin's total (the accumulation at its outlet, u32 as
+// float bits, encode_floats unchanged), the junctions' mains (FlowNetwork::mains' words as bytes,
+// blocks of 2^16 bytes, deflated), and square blocks of network_block_side cells (row-major
+// blocks, cells row-major within a block; the last ones cut by the grid: BlockGrid), each coded on
+// its own: the cells' (accumulation, basin, order) less what the flow inside the block predicts
+// (a valid cell's accumulation 1 + its in-block upstream cells', its Strahler order from theirs,
+// its basin its in-block downstream cell's; 0 for an invalid cell), as u32 differences (wrapping)
+// in float bits (encode_floats, orders 0): zero but where flow enters the block from outside or
+// leaves it, so the network takes 0.16 B a cell (jacksboro refined 29 times, 117 M cells) where the
+// values coded as they are took 1.0. Decoding adds them
+// back in the block's topological order of its flow (upstream first; basins downstream first),
+// from the directions and the mask; a cell's flow is then flow_of(accumulation, its basin's
+// total), the floats normalised_flow gives.
+struct CodedSourceNetwork {
+    int side = network_block_side;
+    std::uint64_t basins = 0;
+    std::vector<std::uint8_t> totals;
+    CodedSourceArray mains;
+    std::vector<std::vector<std::uint8_t>> blocks;
+};
+// net: accumulate_flow and label_basins of the directions `dir` on g's mask, with its mains
+// (main_upstream_bits); blocks of `side` cells (1 to 2^15) coded on all cores.
+CodedSourceNetwork code_source_network(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
+                                       const FlowNetwork& net, int side = network_block_side);
+
 // The crease source of g's scalars, the index and the coded arrays (code_source_array of each
 // SourceArray, in order): the bytes encode_crease_source gives. With `dem`, z and coarse_xy are
-// empty CodedSourceArrays and `arrays_hash` is dem_arrays_hash(g).
+// empty CodedSourceArrays and `hashes` is dem_arrays_hash(g).
+// With `network`, it is stored after the arrays (else a source without it: a render computes it).
 std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const CreaseTileIndex& index,
                                                  const std::vector<CodedSourceArray>& arrays,
-                                                 const DemHeightsRef* dem = nullptr, std::uint64_t arrays_hash = 0);
+                                                 const DemHeightsRef* dem = nullptr, const DemArraysHash& hashes = {},
+                                                 const CodedSourceNetwork* network = nullptr);
 
 // Decodes `size` bytes written by encode_crease_source into g (every field encode_crease_source
 // reads), dir and index; false (nothing promised of the outputs) when they are not such bytes:
@@ -135,7 +182,13 @@ std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const Cr
 // holding the index builds stems from); with SourcePart::sources the units and the stems' sources
 // (index.parts.sources; no bounds: what building stems needs besides the units' own blocks).
 // `blocks` (when given): where each unit's stems lie in `data`, in index.units' order.
-// `net` (when given, with the grid's arrays): network_of_directions of the decoded grid and
+// With `net` (the grid a render builds stems on) the x, y of a geographic DEM the source refers
+// to are made where read, by blocks (DrainageGrid::xy_blocks: GeographicNodeXY, each block checked
+// by its hash; throws penink::Error(internal) where one differs), and its heights read alone.
+// `net` (when given, with the grid's arrays): where the source stores the network, its mains, its
+// in-degrees (inflow_counts) and its orders and flows filled by blocks (FlowNetwork::blocks: each block
+// decoded from these bytes the first time a walk reaches it; the bytes must outlive net), and no
+// accumulation, basins or outlets; else network_of_directions of the decoded grid and
 // directions, made beside the DEM's heights read again where the source refers to its DEM (on
 // /tmp/j10.tif 0.5 s of network beside 0.7 s of reading); it may throw as that does.
 enum class SourcePart { units, index, grid, all, sources };

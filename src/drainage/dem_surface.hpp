@@ -54,7 +54,10 @@ public:
     glm::vec2 node_xy(int c, int r) const {
         const std::size_t i = index(c, r);
         if (pos_) return glm::vec2(pos_[i]);
-        if (xy_) return xy_[i];
+        if (xy_) {
+            if (xy_blocks_) xy_blocks_->need(i);
+            return xy_[i];
+        }
         if (!col_x_.empty()) return {col_x_[std::size_t(c)], row_y_[std::size_t(r)]};
         return affine_node_xy(nodes_, origin_, c, r);
     }
@@ -86,7 +89,7 @@ public:
     // loop over many nodes does not choose it at every node; returns what f returns.
     template <class F> decltype(auto) with_node_xy(F&& f) const {
         if (pos_) return f(PosXY{pos_, std::size_t(cols_)});
-        if (xy_) return f(StoredXY{xy_, std::size_t(cols_)});
+        if (xy_) return f(StoredXY{xy_, std::size_t(cols_), xy_blocks_});
         if (!col_x_.empty()) return f(AxisXY{col_x_.data(), row_y_.data()});
         return f(FormulaXY{&nodes_, origin_});
     }
@@ -104,7 +107,12 @@ public:
     struct StoredXY {
         const glm::vec2* xy;
         std::size_t cols;
-        glm::vec2 operator()(int c, int r) const { return xy[std::size_t(r) * cols + std::size_t(c)]; }
+        CellBlocks* blocks;  // where xy holds only the blocks filled (DrainageGrid::xy_blocks)
+        glm::vec2 at(std::size_t i) const {
+            if (blocks) blocks->need(i);
+            return xy[i];
+        }
+        glm::vec2 operator()(int c, int r) const { return at(std::size_t(r) * cols + std::size_t(c)); }
     };
     struct AxisXY {
         const float *x, *y;
@@ -123,7 +131,10 @@ public:
         static constexpr bool by_index = std::is_same_v<XY, PosXY> || std::is_same_v<XY, StoredXY>;
         glm::vec3 operator()(std::size_t i) const {
             if constexpr (std::is_same_v<XY, PosXY>) return pos[i];
-            else return {xy.xy[i].x, xy.xy[i].y, z[i]};
+            else {
+                const glm::vec2 p = xy.at(i);
+                return {p.x, p.y, z[i]};
+            }
         }
         glm::vec3 operator()(int c, int r, std::size_t i) const {
             if constexpr (std::is_same_v<XY, PosXY>) return pos[i];
@@ -140,6 +151,7 @@ private:
     const float* z_ = nullptr;           // with x, y from xy_ or the affine formula
     const glm::vec3* pos_ = nullptr;     // or x, y, z per node
     const glm::vec2* xy_ = nullptr;
+    CellBlocks* xy_blocks_ = nullptr;  // the grid's, where xy_ holds only the blocks filled
     bool affine_ = false;
     AffineNodes nodes_;
     glm::dvec2 origin_{0.0};

@@ -147,7 +147,10 @@ struct DrainageDb {
 // summaries, then each unit's stem ids and bounds coded alone), and the crease source followed by a
 // checksum of each of its 64 KiB pages, outside the index checksum: a render leaves it in the file
 // and reads the pages it needs.
-inline constexpr std::uint32_t drainage_db_version = 18;
+// 19: the crease source stores the network its stems' walks read (each basin's total, the
+// junctions' mains, and the cells' accumulation, basin and order by square blocks): a render
+// decodes the blocks its walks reach instead of computing the network from the directions.
+inline constexpr std::uint32_t drainage_db_version = 19;
 
 // Fingerprint of the DEM file at `dem_path` with the given resample factor: its size, mtime and
 // a hash of its whole content (streamed) and of every side file GDAL may read with it (world

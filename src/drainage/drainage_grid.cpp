@@ -249,19 +249,24 @@ DrainageGrid resample_pn_releasing(Terrain& t, int factor) {
     return g;
 }
 
-void take_node_arrays(Terrain& t, std::vector<float>& z, NodeXY& xy) {
-    AffineNodes affine;
-    check_node_xy(t, 1, terrain_affine(t, affine));
+void take_node_heights(Terrain& t, std::vector<float>& z) {
     z = std::move(t.z);
-    xy = std::move(t.xy);  // a geographic DEM's nodes in UTM
     parallel_chunks(z.size(), std::size_t(1) << 18, [&](std::size_t i0, std::size_t i1) {
         for (std::size_t i = i0; i < i1; ++i)
             if (!t.valid[i]) z[i] = 0.0f;
     });
 }
 
+void take_node_arrays(Terrain& t, std::vector<float>& z, NodeXY& xy) {
+    AffineNodes affine;
+    check_node_xy(t, 1, terrain_affine(t, affine));
+    xy = std::move(t.xy);  // a geographic DEM's nodes in UTM
+    take_node_heights(t, z);
+}
+
 bool release_node_xy(DrainageGrid& g) {
-    if (!g.node_xy || g.factor != 1 || g.coarse_xy.size() != g.size()) return false;
+    // (not where it is made by blocks: their filling writes into it)
+    if (!g.node_xy || g.xy_blocks || g.factor != 1 || g.coarse_xy.size() != g.size()) return false;
     NodeXY().swap(g.coarse_xy);
     return true;
 }
@@ -291,7 +296,10 @@ DrainageGrid make_regular_grid(int cols, int rows, double spacing, std::vector<f
 glm::dvec2 grid_xy(const DrainageGrid& g, int c, int r) {
     if (g.factor == 1) {  // the node itself (the interpolation puts weight 1 on it)
         if (g.has_affine) return glm::dvec2(affine_node_xy(g.affine, g.origin, c, r));
-        if (g.coarse_xy.size() == g.size()) return glm::dvec2(g.coarse_xy[g.index(c, r)]);
+        if (g.coarse_xy.size() == g.size()) {
+            need_xy(g, g.index(c, r));
+            return glm::dvec2(g.coarse_xy[g.index(c, r)]);
+        }
         if (g.node_xy) {  // released (release_node_xy): the node's alone, made again
             glm::vec2 p;
             g.node_xy->span(r, c, c + 1, &p);
@@ -317,8 +325,10 @@ glm::dvec2 grid_xy_at(const DrainageGrid& g, double c, double r) {
         const int r0 = floor_index(r, g.rows - 2);
         const double u = std::clamp(c - c0, 0.0, 1.0), v = std::clamp(r - r0, 0.0, 1.0);
         if (g.factor == 1 && !g.has_affine && g.coarse_xy.size() == g.size()) {  // grid_xy's nodes, read here
-            const glm::vec2* n = g.coarse_xy.data() + g.index(c0, r0);
-            const std::size_t row = std::size_t(g.cols);
+            const std::size_t at = g.index(c0, r0), row = std::size_t(g.cols);
+            if (g.xy_blocks)
+                for (std::size_t i : {at, at + 1, at + row, at + row + 1}) g.xy_blocks->need(i);
+            const glm::vec2* n = g.coarse_xy.data() + at;
             return (1 - v) * ((1 - u) * glm::dvec2(n[0]) + u * glm::dvec2(n[1])) +
                    v * ((1 - u) * glm::dvec2(n[row]) + u * glm::dvec2(n[row + 1]));
         }

@@ -9,6 +9,7 @@
 
 #include <glm/vec2.hpp>
 
+#include "drainage/cell_blocks.hpp"
 #include "input/geographic_nodes.hpp"
 #include "input/terrain.hpp"
 
@@ -41,10 +42,19 @@ struct DrainageGrid {
     // point) and makes it again for those that do (restore_node_xy). Null: coarse_xy is all
     // there is.
     std::shared_ptr<const GeographicNodeXY> node_xy;
+    // Where coarse_xy (at factor 1, sized) holds only the blocks of nodes filled so far (made from
+    // node_xy where a render's walks reach: crease_source.hpp): its readers (grid_xy, grid_xy_at,
+    // DemSurface, the stems' walks) ask for each node first (need_xy). Null: all there.
+    std::shared_ptr<CellBlocks> xy_blocks;
 
     std::size_t index(int c, int r) const { return std::size_t(r) * cols + c; }
     std::size_t size() const { return std::size_t(cols) * rows; }
 };
+
+// Node i's coarse_xy made to hold its value where it is filled by blocks (DrainageGrid::xy_blocks).
+inline void need_xy(const DrainageGrid& g, std::size_t i) {
+    if (g.xy_blocks) g.xy_blocks->need(i);
+}
 
 // Fine grid size for a Terrain and factor: (cols-1)*f+1 by (rows-1)*f+1.
 std::size_t resampled_size(const Terrain& t, int factor);
@@ -66,6 +76,8 @@ DrainageGrid resample_pn_releasing(Terrain& t, int factor);
 // t without the rest of the grid (masks, spacing); throws as resample_pn does for a heights-only
 // Terrain without x, y or an affine grid.
 void take_node_arrays(Terrain& t, std::vector<float>& z, NodeXY& xy);
+// Its heights alone (z; t.z taken over), 0 at nodata, as take_node_arrays gives them.
+void take_node_heights(Terrain& t, std::vector<float>& z);
 
 // Frees g.coarse_xy where g.node_xy makes it again (true); else leaves it (false).
 bool release_node_xy(DrainageGrid& g);

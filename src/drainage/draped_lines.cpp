@@ -53,6 +53,7 @@ struct StemWalk {
     // where it would read them from coarse_xy).
     const bool node_xy = g.factor == 1 && !g.has_affine && g.coarse_xy.size() == g.size();
     glm::vec2 xy(std::size_t i) const {
+        if (node_xy) need_xy(g, i);
         const glm::dvec2 p = node_xy ? glm::dvec2(g.coarse_xy[i])
                                      : grid_xy(g, int(i % std::size_t(g.cols)), int(i / std::size_t(g.cols)));
         return {float(p.x), float(p.y)};
@@ -96,6 +97,7 @@ struct StemWalk {
         Candidate c[8];
         int k = 0, best = -1;
         each_upstream(d, [&](std::size_t m) {
+            need(m);
             c[k] = {m, net.order[m], vertex_flow(m)};
             if (best < 0 || c[k].order > c[best].order || (c[k].order == c[best].order && c[k].flow > c[best].flow))
                 best = k;
@@ -150,6 +152,11 @@ struct StemWalk {
         return up;
     }
 
+    // Cell i's order and flow made to hold their values (a network filled by blocks: CellBlocks).
+    void need(std::size_t i) const {
+        if (net.blocks) net.blocks->need(i);
+    }
+
     float vertex_flow(std::size_t i) const {
         return net.flow.empty() ? flow_of(net.acc[i], total[net.basin[i] - 1]) : std::bit_cast<float>(net.flow[i]);
     }
@@ -167,6 +174,7 @@ struct StemWalk {
         DvVertex last{};
         bool any = false, more = true;
         auto put = [&](std::size_t c) {
+            need(c);
             const DvVertex v = vertex(c);
             if (any && last.x == v.x && last.y == v.y) return;
             if constexpr (std::is_same_v<decltype(emit(v, c)), bool>) more = emit(v, c);

@@ -15,22 +15,6 @@ std::vector<std::uint8_t> inflow_counts(const std::vector<std::uint8_t>& dir, co
     return indeg;
 }
 
-namespace {
-
-// While pending, order[] holds (max upstream order << 1) | (two or more at that max).
-void push_order(std::uint8_t& pending, std::uint8_t upstream) {
-    const int m = pending >> 1;
-    if (upstream > m) pending = std::uint8_t(upstream << 1);
-    else if (upstream == m) pending |= 1;
-}
-
-std::uint8_t final_order(std::uint8_t pending) {
-    const int m = pending >> 1;
-    return std::uint8_t(m == 0 ? 1 : m + (pending & 1));
-}
-
-}  // namespace
-
 void accumulate_flow(const std::vector<std::uint8_t>& dir, const GridShape& g, FlowNetwork& net) {
     // the in-degree (at most 8) in the low 4 bits, a copy counted down as upstream cells are
     // done in the high 4 bits: all zero again once the walk is through

@@ -6,8 +6,10 @@
 #pragma once
 #include <bit>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
+#include "drainage/cell_blocks.hpp"
 #include "drainage/d8.hpp"
 
 namespace penink {
@@ -25,12 +27,29 @@ struct FlowNetwork {
     // Once keep_normalised_flow ran: each cell's normalised_flow as float bits (0 invalid), in
     // acc's storage; acc, basin and outlet then empty.
     CellWords flow;
+    // Where order and flow hold only the blocks filled so far (a network decoded from a crease
+    // source, crease_source.hpp: a walk asks for each cell it reaches, need(i), before it reads
+    // the cell's order or flow); none: they hold every cell's.
+    std::shared_ptr<CellBlocks> blocks;
 };
 
 // The network as the creases' walks read it (draped_lines.cpp: orders, in-degrees, mains and each
 // cell's flow normalised by its basin's): acc and basin (8 B a cell) replaced by `flow` (4 B, the
 // same floats as normalised_flow gives), computed in acc's place. Nothing when already done.
 void keep_normalised_flow(FlowNetwork& net);
+
+// A cell's Strahler order from its upstream cells' orders, folded one by one into a pending byte
+// (0 at first; it holds (max upstream order << 1) | (two or more at that max)): final_order gives
+// 1 without any, the max where one has it, the max + 1 where two or more do.
+inline void push_order(std::uint8_t& pending, std::uint8_t upstream) {
+    const int m = pending >> 1;
+    if (upstream > m) pending = std::uint8_t(upstream << 1);
+    else if (upstream == m) pending |= 1;
+}
+inline std::uint8_t final_order(std::uint8_t pending) {
+    const int m = pending >> 1;
+    return std::uint8_t(m == 0 ? 1 : m + (pending & 1));
+}
 
 // In-degree (number of valid neighbours draining into the cell) of every cell.
 std::vector<std::uint8_t> inflow_counts(const std::vector<std::uint8_t>& dir, const GridShape& g);

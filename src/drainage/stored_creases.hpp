@@ -1,7 +1,8 @@
 // The creases of a drainage database that stores what building them reads (DrainageDb::
 // crease_source, crease_source.hpp) instead of the creases: the tile index (with each stem's
 // bound) decoded on the first query, the grid and directions when a stem is first built here (the
-// accumulation, orders and basins then made again from the directions), and the creases built
+// network's orders and flows then decoded by blocks where the stems' walks reach, from the
+// network the source stores: cell_blocks.hpp), and the creases built
 // stem by stem where a query's plan box and line test need them (crease_tiles.hpp: the whole
 // build's lines bit for bit), each kept for the next query of this object (the frames of one
 // process). Given a folder, every tile whose stems a query needs is kept there whole, in a file of

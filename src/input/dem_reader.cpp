@@ -242,7 +242,7 @@ Terrain read_dem(const std::string& path, const DemOptions& options) {
             r.unit = vertical_unit(*ds->GetRasterBand(1));  // from the georeferencing just loaded
             xy.emplace(world_coordinates(r, options, t, path));
             t.origin = glm::round(0.5 * (xy->lo + xy->hi));
-            if (heights && xy->utm && !options.xy_rows) fill_xy(r, *xy, t, path);
+            if (heights && xy->utm && !options.xy_rows && !options.no_xy) fill_xy(r, *xy, t, path);
         } catch (...) {
             crs_error = std::current_exception();
         }
@@ -260,7 +260,7 @@ Terrain read_dem(const std::string& path, const DemOptions& options) {
     if (!heights) fill_positions(r, *xy, t, path);
     else take_heights(r, ve, t.z);
     t.valid = std::move(r.valid);
-    if (heights && options.xy_rows)
+    if (heights && options.xy_rows && !options.no_xy)
         each_row_xy(r, *xy, t, path, [&](std::size_t row, const glm::vec2* p) { options.xy_rows(t, int(row), p); });
     return t;
 }

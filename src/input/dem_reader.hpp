@@ -34,6 +34,9 @@ struct DemOptions {
     // parallel, when the read is done (t holds its heights, flags and georeference). A caller
     // that checks or reduces the x, y holds none of them.
     std::function<void(const Terrain& t, int row, const glm::vec2* xy)> xy_rows = {};
+    // With heights_only: no x, y at all (Terrain::xy empty, xy_rows not called; a geographic
+    // DEM's GeographicNodeXY makes any node's, geographic_nodes.hpp).
+    bool no_xy = false;
     // Bytes the read may take (memory_budget: 0 = the memory the system has available): a DEM
     // whose nodes need more (dem_read_bytes_per_node each) fails before its values are read.
     std::uint64_t max_memory = 0;

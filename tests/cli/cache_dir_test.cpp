@@ -114,11 +114,12 @@ TEST(CacheDir, DamagedCachesAreRebuiltNeverDrawn) {
     ASSERT_LT(lines_at, dv.size());
     int k = 0;
     // the terrain cache's middle, three quarters and end; the lines part's vertices (middle,
-    // three quarters: read or not, as the view needs them) and its index at the end
+    // three quarters: read or not, as the view needs them) and its index's checksum at the end
+    // (the part's last 16 bytes: the index's, then the part's)
     for (const double where : {0.5, 0.75, 0.999}) {
         std::string l = lod, d = dv;
         l[std::size_t(where * double(l.size()))] ^= 0x40;
-        d[std::size_t(double(lines_at) + where * double(d.size() - lines_at))] ^= 0x40;
+        d[where > 0.99 ? d.size() - 12 : std::size_t(double(lines_at) + where * double(d.size() - lines_at))] ^= 0x40;
         write_text(dir / "volcano.asc.lod", l);
         write_text(dir / "volcano.asc.dv", d);
         const std::string out = std::string("d").append(std::to_string(k++)).append(".svg");

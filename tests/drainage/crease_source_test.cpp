@@ -2,8 +2,10 @@
 // directions and tile index (the stems' bounds too) bit for bit; the network made again from the directions equals the
 // build's; tiles made from the decoded parts give the whole build's creases bit for bit (volcano
 // at its automatic factor and geographic jacksboro, 64-cell tiles); bytes cut short, with a byte
-// more, or of another grid width do not decode.
+// more, or of another grid width do not decode. A network stored with them is filled by blocks
+// where the stems' walks reach, to the build's values.
 #include <algorithm>
+#include <bit>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -177,6 +179,83 @@ TEST(CreaseSource, DecodesToTheBuildsPartsAndTheSameCreases) {
     expect_round_trip(read_dem(PENINK_SOURCE_DIR "/examples/jacksboro.tif"), 1, "jacksboro_factor1");
 }
 
+// A source storing its network (code_source_network) decodes to a network whose mains and
+// in-degrees are the build's and whose orders and flows are filled by blocks where walks reach:
+// each filled cell's order and flow the build's (normalised_flow's floats); crease tiles built on
+// it give the whole build's creases bit for bit, a small box's filling a fraction of the blocks.
+// `few`: the box fills under three quarters of the blocks (a grid of many blocks).
+void expect_stored_network(const Terrain& t, int factor, const std::string& what, bool few) {
+    DrainageGrid g = resample_pn(t, factor);
+    DrainageResult res;
+    const DrainageDb db = drainage_db_from_grid(g, {}, &res);
+    ASSERT_FALSE(db.creases.lines.empty()) << what;
+    res.net.mains = main_upstream_bits(g, res.dir, res.net);
+    const CreaseTileIndex index = crease_tile_index(g, res.dir, res.net, 64);
+    const std::vector<std::uint8_t> without = encode_crease_source(g, res.dir, index);
+    // blocks of 32 cells: jacksboro (403 x 344) in 13 x 11
+    constexpr int side = 32;
+    const std::vector<std::uint8_t> bytes = encode_crease_source(g, res.dir, index, nullptr, &res.net, side);
+    ::testing::Test::RecordProperty(what + "_network_bytes", int(bytes.size() - without.size()));
+    EXPECT_GT(bytes.size(), without.size()) << what;
+    // the residuals vanish but at the blocks' edges: 0.24 (volcano) and 0.29 (jacksboro) B a node
+    // in blocks of 32 cells, where the values coded as they are took 1.0 and 1.1
+    EXPECT_LT(bytes.size() - without.size(), g.size() * 2 / 5) << what;
+
+    DrainageGrid h;
+    std::vector<std::uint8_t> dir;
+    CreaseTileIndex got;
+    FlowNetwork net;
+    ASSERT_TRUE(decode_crease_source(CreaseSourceBytes{bytes.data(), bytes.size()}, h, dir, got, SourcePart::all,
+                                     nullptr, &net)) << what;
+    ASSERT_TRUE(net.blocks) << what;
+    EXPECT_TRUE(net.acc.empty() && net.basin.empty() && net.outlet.empty()) << what;
+    EXPECT_EQ(net.mains, res.net.mains) << what;
+    EXPECT_EQ(net.indeg, inflow_counts(res.dir, GridShape{g.cols, g.rows, g.valid.data()})) << what;
+    const std::size_t blocks = std::size_t((g.cols + side - 1) / side) * std::size_t((g.rows + side - 1) / side);
+    ASSERT_GT(blocks, 1u) << what;
+    EXPECT_EQ(net.blocks->filled(), 0u) << what;
+
+    // the creases of a box an eighth of the grid's side: the whole build's lines meeting it, the
+    // blocks of the cells walked filled
+    CreaseTiles tiles(h, dir, net, got);
+    const glm::vec2 mid = (index.parts.lo + index.parts.hi) * 0.5f, half = (index.parts.hi - index.parts.lo) / 16.0f;
+    std::vector<std::uint32_t> ids;
+    const DrapedLineSet part = tiles.lines_for_box(mid - half, mid + half, &ids);
+    ASSERT_FALSE(part.lines.empty()) << what;
+    EXPECT_GT(net.blocks->filled(), 0u) << what;
+    if (few) EXPECT_LT(net.blocks->filled(), blocks * 3 / 4) << what;  // 68 of 143 on jacksboro
+    ::testing::Test::RecordProperty(what + "_blocks_filled_for_box", int(net.blocks->filled()));
+    auto same = [&](const DrapedLineSet& set, const std::vector<std::uint32_t>& at) {
+        std::size_t bad = 0;
+        for (std::size_t i = 0; i < set.lines.size(); ++i) {
+            const DrapedLine &a = set.lines[i], &b = db.creases.lines[at[i]];
+            bad += !(a.count == b.count && a.order == b.order && std::memcmp(&a.length, &b.length, sizeof a.length) == 0 &&
+                     std::memcmp(set.vertices.data() + a.first, db.creases.vertices.data() + b.first,
+                                 sizeof(DrapedVertex) * a.count) == 0);
+        }
+        return bad;
+    };
+    EXPECT_EQ(same(part, ids), 0u) << what;
+    const DrapedLineSet all = tiles.lines_for_box(glm::vec2(-1e30f), glm::vec2(1e30f), &ids);
+    ASSERT_EQ(all.lines.size(), db.creases.lines.size()) << what;
+    EXPECT_EQ(same(all, ids), 0u) << what;
+
+    // every cell filled: the build's orders and flows
+    for (std::size_t i = 0; i < g.size(); ++i) net.blocks->need(i);
+    EXPECT_EQ(net.blocks->filled(), blocks) << what;
+    EXPECT_EQ(net.order, res.net.order) << what;
+    std::size_t bad = 0;
+    for (std::size_t i = 0; i < g.size(); ++i)
+        bad += std::bit_cast<float>(net.flow[i]) != normalised_flow(res.net, i) || normalised_flow(net, i) != normalised_flow(res.net, i);
+    EXPECT_EQ(bad, 0u) << what;
+}
+
+TEST(CreaseSource, StoredNetworkFilledByBlocksGivesTheSameCreases) {
+    const Terrain volcano = read_dem(PENINK_SOURCE_DIR "/examples/volcano.asc");
+    expect_stored_network(volcano, drainage_resample_factor(volcano, DrainageOptions{}), "volcano_auto", false);
+    expect_stored_network(read_dem(PENINK_SOURCE_DIR "/examples/jacksboro.tif"), 1, "jacksboro_factor1", true);
+}
+
 // At factor 1 the coarse mask is the fine one and is stored once; a grid whose coarse mask
 // differs (one node) stores it and decodes to it. The arrays coded one by one and assembled give
 // encode_crease_source's bytes.
@@ -240,9 +319,17 @@ TEST(CreaseSource, HeightsReadFromTheDemItRefersTo) {
     EXPECT_EQ(h.valid, g.valid);
     EXPECT_EQ(dir, res.dir);
     EXPECT_EQ(got.parts.sources, index.parts.sources);
-    // the grid with the network made beside the DEM read again: the build's network
+    // the grid with the network made beside the DEM read again: the build's network, the heights
+    // read and the x, y made by blocks where asked for, checked by their hashes
     FlowNetwork net;
     ASSERT_TRUE(decode_crease_source(CreaseSourceBytes{referred.data(), referred.size()}, h, dir, got, SourcePart::grid, nullptr, &net));
+    EXPECT_EQ(std::memcmp(h.z.data(), g.z.data(), g.z.size() * sizeof(float)), 0);
+    ASSERT_TRUE(h.xy_blocks);
+    EXPECT_EQ(h.xy_blocks->filled(), 0u);
+    EXPECT_EQ(grid_xy(h, 7, 5), grid_xy(g, 7, 5));
+    EXPECT_EQ(h.xy_blocks->filled(), 1u);
+    for (std::size_t i = 0; i < h.size(); ++i) need_xy(h, i);
+    EXPECT_EQ(h.xy_blocks->filled(), h.xy_blocks->grid().count());
     EXPECT_EQ(h.coarse_xy, g.coarse_xy);
     EXPECT_TRUE(std::equal(net.acc.begin(), net.acc.end(), res.net.acc.begin(), res.net.acc.end()));
     EXPECT_EQ(net.order, res.net.order);

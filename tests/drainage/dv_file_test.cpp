@@ -289,13 +289,14 @@ TEST(DvFile, NetworkMadeAgainFromTheCreaseSourceEqualsTheBuilds) {
         std::memcpy(b.data() + lines_at - 8, &h, 8);
         spit(p, b);
         EXPECT_EQ(read_error(p), corrupt) << what;
-        // a byte of the crease source's coded arrays changed (its last bytes), the checksums made
-        // to match: it does not decode
+        // the crease source's coded arrays damaged (its last bytes, the network's last block's: the
+        // last of its deflate stream may be padding alone), the checksums made to match: it does
+        // not decode
         b = good;
         const std::size_t n = back.crease_source.size(), pages = (n + crease_source_page - 1) / crease_source_page;
         const std::size_t sums_at = good.size() - 16 - 8 * pages, source_at = sums_at - n;
         ASSERT_EQ(std::memcmp(b.data() + source_at, back.crease_source.data(), n), 0) << what;
-        b[sums_at - 1] ^= 0x5a;
+        for (std::size_t k = 1; k <= 4; ++k) b[sums_at - k] ^= 0x5a;
         const auto* fb = reinterpret_cast<const std::uint8_t*>(b.data());
         const std::vector<std::uint64_t> sums = crease_source_page_sums(fb + source_at, n);  // its page's checksum too
         std::memcpy(b.data() + sums_at, sums.data(), 8 * pages);

@@ -1,0 +1,77 @@
+// Arrays over a grid's cells that hold their values only in the square blocks of cells filled so
+// far: what a render reads of a large DEM's drainage to build the crease tiles of one view (the
+// network's orders and flows decoded, the nodes' UTM x, y computed), where the stems' walks reach
+// and not over the grid (crease_source.hpp). Cells row-major, cols x rows; blocks of side x side
+// cells, row-major, the last ones of a row or column cut by the grid; a block's cells row-major
+// within it.
+#pragma once
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+
+namespace penink {
+
+struct BlockGrid {
+    std::size_t cols = 0, rows = 0, side = 1, across = 0, down = 0;
+    BlockGrid() = default;
+    BlockGrid(std::size_t c, std::size_t r, std::size_t s)
+        : cols(c), rows(r), side(s), across((c + s - 1) / s), down((r + s - 1) / s) {}
+    std::size_t count() const { return across * down; }
+    std::size_t block_of(std::size_t cell) const {
+        return (cell / cols / side) * across + (cell % cols) / side;
+    }
+    // Block b's columns [c0, c1) and rows [r0, r1).
+    void span(std::size_t b, std::size_t& c0, std::size_t& c1, std::size_t& r0, std::size_t& r1) const {
+        c0 = (b % across) * side, r0 = (b / across) * side;
+        c1 = std::min(cols, c0 + side), r1 = std::min(rows, r0 + side);
+    }
+    std::size_t cells(std::size_t b) const {
+        std::size_t c0, c1, r0, r1;
+        span(b, c0, c1, r0, r1);
+        return (c1 - c0) * (r1 - r0);
+    }
+    // f(cell, k) for block b's cells in its order (k = 0, 1, ...).
+    template <class F> void each_cell(std::size_t b, F&& f) const {
+        std::size_t c0, c1, r0, r1, k = 0;
+        span(b, c0, c1, r0, r1);
+        for (std::size_t r = r0; r < r1; ++r)
+            for (std::size_t c = c0; c < c1; ++c) f(r * cols + c, k++);
+    }
+};
+
+// need(i) fills the block holding cell i the first time it is asked for (fill(block): one block at
+// a time, under a lock; it throws penink::Error when it cannot, the block then left unfilled), so
+// a reader calls it before it reads cell i; a block once filled is read by any thread without a
+// lock.
+class CellBlocks {
+public:
+    CellBlocks(BlockGrid grid, std::function<void(std::size_t block)> fill)
+        : grid_(grid), ready_(std::make_unique<std::atomic<std::uint8_t>[]>(grid.count())), fill_(std::move(fill)) {}
+    void need(std::size_t i) {
+        const std::size_t b = grid_.block_of(i);
+        if (ready_[b].load(std::memory_order_acquire)) return;
+        const std::lock_guard<std::mutex> lock(mutex_);
+        if (ready_[b].load(std::memory_order_relaxed)) return;
+        fill_(b);
+        ++filled_;
+        ready_[b].store(1, std::memory_order_release);
+    }
+    const BlockGrid& grid() const { return grid_; }
+    std::size_t filled() const {  // blocks filled so far
+        const std::lock_guard<std::mutex> lock(mutex_);
+        return filled_;
+    }
+
+private:
+    BlockGrid grid_;
+    std::unique_ptr<std::atomic<std::uint8_t>[]> ready_;  // one a block: 1 once filled
+    std::function<void(std::size_t)> fill_;
+    std::size_t filled_ = 0;
+    mutable std::mutex mutex_;
+};
+
+}  // namespace penink
