@@ -182,7 +182,9 @@ TEST(CreaseSource, DecodesToTheBuildsPartsAndTheSameCreases) {
 // A source storing its network (code_source_network) decodes to a network whose mains and
 // in-degrees are the build's and whose orders and flows are filled by blocks where walks reach:
 // each filled cell's order and flow the build's (normalised_flow's floats); crease tiles built on
-// it give the whole build's creases bit for bit, a small box's filling a fraction of the blocks.
+// it give the whole build's creases bit for bit, a small box's filling a fraction of the blocks;
+// a network section with a block side of 0, more basins than cells or cut short does not decode,
+// and a block of garbage throws when first reached (and again: it is not marked filled).
 // `few`: the box fills under three quarters of the blocks (a grid of many blocks).
 void expect_stored_network(const Terrain& t, int factor, const std::string& what, bool few) {
     DrainageGrid g = resample_pn(t, factor);
@@ -239,6 +241,41 @@ void expect_stored_network(const Terrain& t, int factor, const std::string& what
     const DrapedLineSet all = tiles.lines_for_box(glm::vec2(-1e30f), glm::vec2(1e30f), &ids);
     ASSERT_EQ(all.lines.size(), db.creases.lines.size()) << what;
     EXPECT_EQ(same(all, ids), 0u) << what;
+
+    // hostile network sections: a block side of 0, more basins than cells, bytes cut short in the
+    // blocks do not decode; a block whose bytes are garbage throws when a walk first reaches it
+    {
+        const std::size_t at = without.size() - 4;  // the network's flag, then its side and basins
+        auto refused = [&](std::vector<std::uint8_t> b) {
+            DrainageGrid hh;
+            std::vector<std::uint8_t> dd;
+            CreaseTileIndex ii;
+            FlowNetwork nn;
+            return !decode_crease_source(CreaseSourceBytes{b.data(), b.size()}, hh, dd, ii, SourcePart::grid, nullptr, &nn);
+        };
+        std::vector<std::uint8_t> b = bytes;
+        std::memset(b.data() + at + 4, 0, 4);
+        EXPECT_TRUE(refused(b)) << what << ": side 0";
+        b = bytes;
+        const std::uint64_t basins = g.size() + 1;
+        std::memcpy(b.data() + at + 8, &basins, 8);
+        EXPECT_TRUE(refused(b)) << what << ": basins";
+        b = bytes;
+        b.pop_back();
+        EXPECT_TRUE(refused(b)) << what << ": cut";
+        b = bytes;
+        std::memset(b.data() + b.size() - 8, 0xff, 8);  // the last block's last bytes
+        DrainageGrid hh;
+        std::vector<std::uint8_t> dd;
+        CreaseTileIndex ii;
+        FlowNetwork nn;
+        ASSERT_TRUE(decode_crease_source(CreaseSourceBytes{b.data(), b.size()}, hh, dd, ii, SourcePart::grid, nullptr, &nn))
+            << what;
+        nn.blocks->need(0);  // the first block: whole
+        EXPECT_THROW(nn.blocks->need(g.size() - 1), Error) << what;
+        EXPECT_THROW(nn.blocks->need(g.size() - 1), Error) << what << ": again, not marked filled";
+        EXPECT_FALSE(decode_crease_source(b.data(), b.size(), hh, dd, ii)) << what << ": a whole decode checks every block";
+    }
 
     // every cell filled: the build's orders and flows
     for (std::size_t i = 0; i < g.size(); ++i) net.blocks->need(i);
