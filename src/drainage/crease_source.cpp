@@ -145,10 +145,13 @@ void block_downstream(const BlockGrid& grid, std::size_t b, const GridShape& sha
 // (else 0); 0, 0, 0 for an invalid cell.
 struct BlockPrediction {
     std::vector<std::uint32_t> acc;
-    std::vector<std::uint8_t> pending;
+    std::vector<std::uint8_t> pending, valid;
     void start(const BlockGrid& grid, std::size_t b, const GridShape& shape) {
-        acc.assign(grid.cells(b), 0), pending.assign(grid.cells(b), 0);
-        grid.each_cell(b, [&](std::size_t i, std::size_t k) { acc[k] = shape.valid[i] ? 1u : 0u; });
+        acc.resize(grid.cells(b)), pending.assign(grid.cells(b), 0), valid.resize(grid.cells(b));
+        grid.each_cell(b, [&](std::size_t i, std::size_t k) {
+            valid[k] = shape.valid[i] != 0;
+            acc[k] = valid[k];
+        });
     }
     // cell k's true accumulation and order are known: passed on to its downstream cell
     void pass(std::int32_t down, std::uint32_t a, std::uint8_t o) {
@@ -156,7 +159,7 @@ struct BlockPrediction {
         acc[std::size_t(down)] += a;
         push_order(pending[std::size_t(down)], o);
     }
-    std::uint8_t order(std::size_t k, bool valid) const { return valid ? final_order(pending[k]) : 0; }
+    std::uint8_t order(std::size_t k) const { return valid[k] ? final_order(pending[k]) : 0; }
 };
 
 void put_box(std::vector<std::uint8_t>& out, glm::vec2 lo, glm::vec2 hi) {
@@ -225,7 +228,7 @@ CodedSourceNetwork code_source_network(const DrainageGrid& g, const std::vector<
                 const std::uint32_t basin_below = down[k] < 0 ? 0u : net.basin[at[std::size_t(down[k])]];
                 cells[3 * k] = std::bit_cast<float>(net.acc[i] - p.acc[k]);
                 cells[3 * k + 1] = std::bit_cast<float>(net.basin[i] - basin_below);
-                cells[3 * k + 2] = std::bit_cast<float>(std::uint32_t(net.order[i]) - p.order(k, g.valid[i] != 0));
+                cells[3 * k + 2] = std::bit_cast<float>(std::uint32_t(net.order[i]) - p.order(k));
             }
             out.blocks[b] = encode_floats(cells.data(), at.size(), network_orders);
             out.blocks[b].shrink_to_fit();
@@ -489,14 +492,12 @@ bool decode_network_block(const CreaseSourceBytes& src, const BlockGrid& grid, c
     d.inflows.assign(n, 0), d.topo.clear(), d.acc.resize(n), d.basin.resize(n), d.order.resize(n);
     for (std::size_t k = 0; k < n; ++k)
         if (d.down[k] >= 0) ++d.inflows[std::size_t(d.down[k])];  // at most 8
-    std::vector<std::uint8_t> valid(n);
-    grid.each_cell(b, [&](std::size_t i, std::size_t k) { valid[k] = shape.valid[i] != 0; });
     for (std::size_t k = 0; k < n; ++k)
         if (d.inflows[k] == 0) d.topo.push_back(std::uint32_t(k));
     for (std::size_t t = 0; t < d.topo.size(); ++t) {
         const std::size_t k = d.topo[t];
         d.acc[k] = std::bit_cast<std::uint32_t>(d.cells[3 * k]) + d.p.acc[k];
-        d.order[k] = std::uint8_t(std::bit_cast<std::uint32_t>(d.cells[3 * k + 2]) + d.p.order(k, valid[k]));
+        d.order[k] = std::uint8_t(std::bit_cast<std::uint32_t>(d.cells[3 * k + 2]) + d.p.order(k));
         d.p.pass(d.down[k], d.acc[k], d.order[k]);
         if (d.down[k] >= 0 && --d.inflows[std::size_t(d.down[k])] == 0) d.topo.push_back(std::uint32_t(d.down[k]));
     }
@@ -509,12 +510,22 @@ bool decode_network_block(const CreaseSourceBytes& src, const BlockGrid& grid, c
     return true;
 }
 
+// Each basin's total of a stored network (its outlet's accumulation, as normalised_flow divides);
+// false when they do not decode.
+bool decode_totals(const StoredNetworkAt& at, std::vector<double>& totals) {
+    std::vector<float> bits(at.basins);
+    if (!decode_floats(at.totals, at.totals_size, bits.data(), bits.size(), totals_orders)) return false;
+    totals.resize(bits.size());
+    for (std::size_t b = 0; b < bits.size(); ++b) totals[b] = double(std::bit_cast<std::uint32_t>(bits[b]));
+    return true;
+}
+
 // Whether every block and the totals of a stored network decode (a source decoded whole), on all
 // cores.
 bool stored_network_decodes(const CreaseSourceBytes& src, const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
                             const StoredNetworkAt& at) {
-    std::vector<float> bits(at.basins);
-    if (!decode_floats(at.totals, at.totals_size, bits.data(), bits.size(), totals_orders)) return false;
+    std::vector<double> totals;
+    if (!decode_totals(at, totals)) return false;
     const BlockGrid grid(std::size_t(g.cols), std::size_t(g.rows), at.side);
     const GridShape shape{g.cols, g.rows, g.valid.data()};
     std::vector<std::uint8_t> ok(grid.count(), 0);
@@ -529,10 +540,8 @@ bool stored_network_decodes(const CreaseSourceBytes& src, const DrainageGrid& g,
 // flows filled by blocks from `src`. False when its totals do not decode.
 bool stored_network(const CreaseSourceBytes& src, const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
                     StoredNetworkAt&& at, FlowNetwork& net) {
-    std::vector<float> bits(at.basins);
-    if (!decode_floats(at.totals, at.totals_size, bits.data(), bits.size(), totals_orders)) return false;
-    std::vector<double> totals(bits.size());  // each basin's outlet accumulation, as normalised_flow divides
-    for (std::size_t b = 0; b < bits.size(); ++b) totals[b] = double(std::bit_cast<std::uint32_t>(bits[b]));
+    std::vector<double> totals;
+    if (!decode_totals(at, totals)) return false;
     net = FlowNetwork{};
     net.mains = std::move(at.mains);
     net.indeg = inflow_counts(dir, GridShape{g.cols, g.rows, g.valid.data()});
