@@ -46,4 +46,11 @@ void release_big_pages(void* p, std::size_t bytes, std::size_t from, std::size_t
     if (b > a) ::madvise(static_cast<char*>(p) + a, b - a, MADV_DONTNEED);
 }
 
+void give_back_zero_pages(void* p, std::size_t bytes) noexcept {
+    constexpr std::uintptr_t page = 4096;
+    const auto at = reinterpret_cast<std::uintptr_t>(p);
+    const std::uintptr_t a = (at + page - 1) / page * page, b = (at + bytes) / page * page;
+    if (b > a) ::madvise(reinterpret_cast<void*>(a), b - a, MADV_DONTNEED);
+}
+
 }  // namespace penink

@@ -21,6 +21,10 @@ void deallocate_big(void* p, std::size_t bytes) noexcept;
 // system (the whole pages inside; they read as zeros after): an array consumed front to back
 // shrinks as it goes. A block under big_block_bytes (from operator new) keeps its memory.
 void release_big_pages(void* p, std::size_t bytes, std::size_t from, std::size_t to) noexcept;
+// Gives back the whole pages inside [p, p + bytes) of any heap memory that holds zeros (a
+// std::vector just sized, of which a caller then fills a few parts): they read as zeros after and
+// take memory again only where written.
+void give_back_zero_pages(void* p, std::size_t bytes) noexcept;
 
 template <class T> struct BigAllocator {
     using value_type = T;

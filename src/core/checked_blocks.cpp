@@ -159,7 +159,8 @@ void CheckedBlocks::load(int k, std::uint64_t block, std::uint64_t last) const {
     blocks_read_.fetch_add(end - block, std::memory_order_relaxed);
 }
 
-void CheckedBlocks::read_strided(int k, std::uint64_t begin, std::uint64_t end, std::uint64_t every, void* out) const {
+void CheckedBlocks::read_strided(int k, std::uint64_t begin, std::uint64_t end, std::uint64_t every, void* out,
+                                 bool derive) const {
     if (begin >= end) return;
     every = std::max<std::uint64_t>(every, 1);
     const Slot& a = arrays_[std::size_t(k)];
@@ -204,7 +205,7 @@ void CheckedBlocks::read_strided(int k, std::uint64_t begin, std::uint64_t end, 
             const std::uint64_t first = i;
             for (const std::uint64_t stop = std::min(end, (b + 1) * per); i < stop; i += every, o += eb)
                 std::memcpy(o, elems + (i - b * per) * eb, std::size_t(eb));
-            if (a.derive && o > first_out) a.derive(first_out, first, every, std::size_t((o - first_out) / eb));
+            if (derive && a.derive && o > first_out) a.derive(first_out, first, every, std::size_t((o - first_out) / eb));
         }
     }
 }

@@ -100,8 +100,11 @@ public:
     // ((end - begin + every - 1) / every elements; bytes, for an Array), leaving the blocks not
     // yet read unread: each is read, checked and decoded into a scratch buffer (its bytes counted
     // by bytes_read, again at every call), a block already read is copied from the mapping.
+    // Without `derive`, the derived part of the elements of blocks not yet read is left as the
+    // decoder left it (for a caller reading the stored part alone: a node's height).
     // Throws DamagedBlockError as need does.
-    void read_strided(int k, std::uint64_t begin, std::uint64_t end, std::uint64_t every, void* out) const;
+    void read_strided(int k, std::uint64_t begin, std::uint64_t end, std::uint64_t every, void* out,
+                      bool derive = true) const;
     // Bytes read from the file so far (blocks checked), and blocks of all arrays.
     std::uint64_t bytes_read() const { return bytes_read_.load(std::memory_order_relaxed); }
     std::uint64_t blocks_read() const { return blocks_read_.load(std::memory_order_relaxed); }

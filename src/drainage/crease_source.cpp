@@ -9,6 +9,7 @@
 
 #include <GeographicLib/Constants.hpp>
 
+#include "core/big_allocator.hpp"
 #include "core/block_codec.hpp"
 #include "core/error.hpp"
 #include "core/hash64.hpp"
@@ -243,26 +244,32 @@ std::string absolute_dem_path(const std::string& path) {
 
 namespace {
 
-// hash64 of block b's x, y of `xy` (the grid's nodes, `grid`'s cells), row by row.
-std::uint64_t xy_block_hash(const glm::vec2* xy, const BlockGrid& grid, std::size_t b) {
+// hash64 of block b of an array over `grid`'s cells (its values at v), row by row.
+template <class T> std::uint64_t block_hash(const T* v, const BlockGrid& grid, std::size_t b) {
     std::size_t c0, c1, r0, r1;
     grid.span(b, c0, c1, r0, r1);
     std::uint64_t h = 0x9e3779b97f4a7c15ull;
-    for (std::size_t r = r0; r < r1; ++r) h = hash64(xy + r * grid.cols + c0, (c1 - c0) * sizeof(glm::vec2), h);
+    for (std::size_t r = r0; r < r1; ++r) h = hash64(v + r * grid.cols + c0, (c1 - c0) * sizeof(T), h);
     return h;
+}
+
+// block_hash of every block of `v` (over `grid`'s cells), on all cores.
+template <class T> std::vector<std::uint64_t> block_hashes(const T* v, const BlockGrid& grid) {
+    std::vector<std::uint64_t> out(grid.count());
+    parallel_chunks(grid.count(), 16, [&](std::size_t b0, std::size_t b1) {
+        for (std::size_t b = b0; b < b1; ++b) out[b] = block_hash(v, grid, b);
+    });
+    return out;
 }
 
 }  // namespace
 
 DemArraysHash dem_arrays_hash(const DrainageGrid& g) {
     DemArraysHash out;
-    out.z = hash64(g.z.data(), g.z.size() * sizeof(float));
-    if (g.coarse_xy.size() != g.size() || g.size() == 0) return out;
+    if (g.z.size() != g.size() || g.size() == 0) return out;
     const BlockGrid grid(std::size_t(g.cols), std::size_t(g.rows), network_block_side);
-    out.xy.resize(grid.count());
-    parallel_chunks(grid.count(), 16, [&](std::size_t b0, std::size_t b1) {
-        for (std::size_t b = b0; b < b1; ++b) out.xy[b] = xy_block_hash(g.coarse_xy.data(), grid, b);
-    });
+    out.z = block_hashes(g.z.data(), grid);
+    if (g.coarse_xy.size() == g.size()) out.xy = block_hashes(g.coarse_xy.data(), grid);
     return out;
 }
 
@@ -272,7 +279,7 @@ std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const Cr
     if (dem && g.factor != 1)
         throw Error("drainage", "", "a crease source refers to the DEM at factor 1 only", ExitCode::internal);
     std::vector<std::uint8_t> out;
-    std::size_t size = 260 + (dem ? dem->path.size() + 8 * hashes.xy.size() : 0) + 16 * index.lo.size() + 40 * index.units.size() + 4 * index.parts.sources.size() +
+    std::size_t size = 260 + (dem ? dem->path.size() + 8 * (hashes.z.size() + hashes.xy.size()) : 0) + 16 * index.lo.size() + 40 * index.units.size() + 4 * index.parts.sources.size() +
                        12 * index.stems.size();
     for (const CodedSourceArray& a : arrays) {
         size += 12 + 4 * a.blocks.size();
@@ -292,9 +299,11 @@ std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const Cr
     if (dem) {
         put(out, std::uint32_t(dem->path.size()));
         out.insert(out.end(), dem->path.begin(), dem->path.end());
-        put(out, std::int32_t(dem->utm_zone)), put(out, std::uint32_t(dem->north)), put(out, hashes.z);
-        put(out, std::uint32_t(hashes.xy.size()));
-        for (std::uint64_t h : hashes.xy) put(out, h);
+        put(out, std::int32_t(dem->utm_zone)), put(out, std::uint32_t(dem->north));
+        for (const auto* v : {&hashes.z, &hashes.xy}) {
+            put(out, std::uint32_t(v->size()));
+            for (std::uint64_t h : *v) put(out, h);
+        }
     }
     for (double v : g.affine.gt) put(out, v);
     put(out, g.affine.unit), put(out, std::int32_t(g.affine.col0)), put(out, std::int32_t(g.affine.row0));
@@ -373,49 +382,72 @@ bool get_head(Reader& r, DrainageGrid& g, SourceHead& h) {
     if (!h.referred) return true;
     std::uint32_t n = 0, north = 0;
     const std::uint8_t* at = nullptr;
-    std::uint32_t blocks = 0;
-    if (!r.get(n) || !r.take(n, at) || !r.get(h.dem.utm_zone) || !r.get(north) || north > 1 || !r.get(h.hashes.z) ||
-        !r.get(blocks) || blocks > r.left / 8)
-        return false;
+    if (!r.get(n) || !r.take(n, at) || !r.get(h.dem.utm_zone) || !r.get(north) || north > 1) return false;
     h.dem.path.assign(reinterpret_cast<const char*>(at), n), h.dem.north = north == 1;
-    h.hashes.xy.resize(blocks);
-    for (std::uint64_t& v : h.hashes.xy) r.get(v);
+    for (auto* v : {&h.hashes.z, &h.hashes.xy}) {
+        std::uint32_t blocks = 0;
+        if (!r.get(blocks) || blocks > r.left / 8) return false;
+        v->resize(blocks);
+        for (std::uint64_t& x : *v) r.get(x);
+    }
     return true;
 }
 
 // g.z and g.coarse_xy read again from the DEM `h` refers to (heights only, its zone and
-// hemisphere; the grid of a factor-1 build), checked by their hash; false when the DEM cannot be
+// hemisphere; the grid of a factor-1 build), checked by their hashes; false when the DEM cannot be
 // read or gives other arrays.
-// With `by_blocks`, the heights alone, and a geographic DEM's x, y made by blocks where read
-// (DrainageGrid::xy_blocks), each block checked as it is made.
-bool read_referred_arrays(const SourceHead& h, DrainageGrid& g, bool by_blocks = false) {
+// With `by_blocks`, a geographic DEM's x, y made by blocks where read (DrainageGrid::node_blocks,
+// GeographicNodeXY), and the heights read by blocks through `heights` where given (the DEM opened
+// for its georeference alone), else read whole; each block checked by its hashes as it is made
+// (throwing penink::Error(internal) where one differs). A geographic DEM whose x, y the formula
+// does not make is read whole.
+bool read_referred_arrays(const SourceHead& h, DrainageGrid& g, bool by_blocks = false,
+                          const NodeHeights* heights = nullptr) {
     const std::size_t n = g.size();
+    const BlockGrid grid(std::size_t(g.cols), std::size_t(g.rows), network_block_side);
+    if (h.hashes.z.size() != grid.count()) return false;
     try {
         DemOptions read;
-        read.heights_only = true, read.utm_zone = h.dem.utm_zone, read.north = h.dem.north, read.no_xy = by_blocks;
-        Terrain t = read_dem(h.dem.path, read);
-        if (t.cols != g.cols || t.rows != g.rows) return false;
-        if (!by_blocks) {
+        read.heights_only = true, read.utm_zone = h.dem.utm_zone, read.north = h.dem.north;
+        const auto whole = [&] {
+            Terrain t = read_dem(h.dem.path, read);
+            if (t.cols != g.cols || t.rows != g.rows) return false;
             take_node_arrays(t, g.z, g.coarse_xy);  // resample_pn_releasing(t, 1)'s, without its masks and spacing
             return dem_arrays_hash(g) == h.hashes;
-        }
+        };
+        if (!by_blocks) return whole();
+        const bool z_blocks = heights && heights->span && heights->cols == g.cols && heights->rows == g.rows;
+        Terrain t;
+        if (z_blocks) t = DemRows(h.dem.path, read, 0, false).meta();
+        else read.no_xy = true, t = read_dem(h.dem.path, read);
         GeographicNodes geo;
         const bool formula = terrain_geographic(t, geo);
-        if (!formula && !h.hashes.xy.empty()) return read_referred_arrays(h, g);  // x, y read with the heights
-        take_node_heights(t, g.z);
-        if (hash64(g.z.data(), g.z.size() * sizeof(float)) != h.hashes.z) return false;
-        if (!formula) return true;  // an affine grid's (no x, y stored)
-        const BlockGrid grid(std::size_t(g.cols), std::size_t(g.rows), network_block_side);
-        if (h.hashes.xy.size() != grid.count()) return false;
-        g.node_xy = std::make_shared<const GeographicNodeXY>(geo, t.origin);
-        g.coarse_xy.resize(n);  // (not written: the pages of the blocks never made are never touched)
-        g.xy_blocks = std::make_shared<CellBlocks>(
-            grid, [grid, sums = h.hashes.xy, nodes = g.node_xy, xy = g.coarse_xy.data(), path = h.dem.path](std::size_t b) {
+        if (!formula && !h.hashes.xy.empty()) return read.no_xy = false, whole();  // x, y read with the heights
+        if (t.cols != g.cols || t.rows != g.rows || (formula && h.hashes.xy.size() != grid.count())) return false;
+        if (z_blocks) {
+            g.z.clear();
+            g.block_z.reset(new float[n]);  // (not written: the pages of the blocks never read are never touched)
+        } else {
+            take_node_heights(t, g.z);
+            if (block_hashes(g.z.data(), grid) != h.hashes.z) return false;
+        }
+        if (formula) {
+            g.node_xy = std::make_shared<const GeographicNodeXY>(geo, t.origin);
+            g.coarse_xy.resize(n);  // (not written: the pages of the blocks never made are never touched)
+        }
+        if (!z_blocks && !formula) return true;  // an affine grid's heights read whole (no x, y stored)
+        g.node_blocks = std::make_shared<CellBlocks>(
+            grid, [grid, sums = h.hashes, span = z_blocks ? heights->span : nullptr, nodes = g.node_xy, heights_kept = g.block_z,
+                   xy = formula ? g.coarse_xy.data() : nullptr, path = h.dem.path](std::size_t b) {
                 std::size_t c0, c1, r0, r1;
                 grid.span(b, c0, c1, r0, r1);
-                for (std::size_t r = r0; r < r1; ++r) nodes->span(int(r), int(c0), int(c1), xy + r * grid.cols + c0);
-                if (xy_block_hash(xy, grid, b) != sums[b])
-                    throw Error("drainage", path, "the DEM's node positions differ from its drainage database's",
+                float* const z = heights_kept.get();
+                for (std::size_t r = r0; r < r1; ++r) {
+                    if (span) span(int(r), int(c0), int(c1), z + r * grid.cols + c0);
+                    if (xy) nodes->span(int(r), int(c0), int(c1), xy + r * grid.cols + c0);
+                }
+                if ((span && block_hash(z, grid, b) != sums.z[b]) || (xy && block_hash(xy, grid, b) != sums.xy[b]))
+                    throw Error("drainage", path, "the DEM's heights or node positions differ from its drainage database's",
                                 ExitCode::internal);
             });
     } catch (const Error&) {
@@ -546,6 +578,7 @@ bool stored_network(const CreaseSourceBytes& src, const DrainageGrid& g, const s
     net.mains = std::move(at.mains);
     net.indeg = inflow_counts(dir, GridShape{g.cols, g.rows, g.valid.data()});
     net.order.assign(g.size(), 0);
+    give_back_zero_pages(net.order.data(), net.order.size());  // (zeros until their blocks are filled)
     net.flow.resize(g.size());  // (not written: the pages of the blocks never filled are never touched)
     const BlockGrid grid(std::size_t(g.cols), std::size_t(g.rows), at.side);
     // (the grid's mask and the directions: the caller's, which outlive the network)
@@ -578,7 +611,8 @@ bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGr
 }
 
 bool decode_crease_source(const CreaseSourceBytes& src, DrainageGrid& g, std::vector<std::uint8_t>& dir,
-                          CreaseTileIndex& index, SourcePart part, std::vector<SourceUnitBlock>* blocks, FlowNetwork* net) {
+                          CreaseTileIndex& index, SourcePart part, std::vector<SourceUnitBlock>* blocks, FlowNetwork* net,
+                          const NodeHeights* heights) {
     const bool arrays = part == SourcePart::all || part == SourcePart::grid,
                stems = part == SourcePart::index || part == SourcePart::all,
                sources = stems || part == SourcePart::sources;
@@ -692,7 +726,7 @@ bool decode_crease_source(const CreaseSourceBytes& src, DrainageGrid& g, std::ve
             arrays))
         return false;
     if (!bytes(g.coarse_valid, shared ? 0 : coarse, true) || !floats(g.coarse_z, coarse, true)) return false;
-    if (shared) g.coarse_valid = g.valid;
+    // (shared: left empty, the fine mask being the same at factor 1: drainage_grid.hpp)
     bool stored = false;
     StoredNetworkAt network;
     if (!get_network(r, data, cols, rows, arrays, stored, network)) return false;
@@ -711,7 +745,7 @@ bool decode_crease_source(const CreaseSourceBytes& src, DrainageGrid& g, std::ve
     if (!net) return read_referred_arrays(head, g);
     // beside the heights read again and the positions made by blocks (which it does not read)
     bool read = false;
-    run_beside(make_network, [&] { read = read_referred_arrays(head, g, true); });
+    run_beside(make_network, [&] { read = read_referred_arrays(head, g, true, heights); });
     return read && made;
 }
 

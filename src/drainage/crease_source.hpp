@@ -25,8 +25,8 @@
 // Layout (little-endian): u32 cols, rows, i32 factor, f64 dx, dy, origin x, y, i32 coarse cols,
 // rows, u32 has_affine, u32 coarse mask shared (1: coarse_valid is valid, stored with 0
 // elements), u32 DEM reference (1: then u32 n + n bytes of the DEM's path, i32 UTM zone, u32
-// north, u64 z's hash, u32 x, y blocks, their u64 hashes (DemArraysHash); z and coarse_xy stored
-// with 0 elements), f64 gt[6], f64 unit, i32 col0, row0, u32 side, u32 tiles, f32 x 4 stems'
+// north, u32 blocks of z and their u64 hashes, the same for x, y (DemArraysHash); z and coarse_xy
+// stored with 0 elements), f64 gt[6], f64 unit, i32 col0, row0, u32 side, u32 tiles, f32 x 4 stems'
 // box (lo, hi), tiles x f32 x 4 reach boxes, f32 z_top, u32 units, units x (u32 tile, level,
 // count, f32 x 4 box, u16 plan, rise: CreaseUnit; u32 coded sizes of its ids and of its bounds),
 // for the source cells' deltas (u32): u64 elements, u32 blocks, blocks x u32 coded sizes, the
@@ -75,13 +75,12 @@ std::string absolute_dem_path(const std::string& path);
 // The side (cells) of the square blocks a crease source stores its network by (code_source_network).
 inline constexpr int network_block_side = 128;
 
-// What a DEM reference checks the arrays read again by: hash64 of g.z, and of each block of
-// network_block_side nodes of g.coarse_xy (BlockGrid order, a block's nodes in its order; none
-// where coarse_xy is empty: an affine grid), so that the x, y made where a render's walks reach
-// are checked block by block.
+// What a DEM reference checks the arrays read again by: hash64 of each block of
+// network_block_side nodes (BlockGrid order, a block's nodes in its order) of g.z and of
+// g.coarse_xy (none where it is empty: an affine grid), so that the heights and x, y a render
+// reads and makes where its walks reach are checked block by block.
 struct DemArraysHash {
-    std::uint64_t z = 0;
-    std::vector<std::uint64_t> xy;
+    std::vector<std::uint64_t> z, xy;
     bool operator==(const DemArraysHash&) const = default;
 };
 DemArraysHash dem_arrays_hash(const DrainageGrid& g);
@@ -182,9 +181,11 @@ std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const Cr
 // holding the index builds stems from); with SourcePart::sources the units and the stems' sources
 // (index.parts.sources; no bounds: what building stems needs besides the units' own blocks).
 // `blocks` (when given): where each unit's stems lie in `data`, in index.units' order.
-// With `net` (the grid a render builds stems on) the x, y of a geographic DEM the source refers
-// to are made where read, by blocks (DrainageGrid::xy_blocks: GeographicNodeXY, each block checked
-// by its hash; throws penink::Error(internal) where one differs), and its heights read alone.
+// With `net` (the grid a render builds stems on) the x, y of a geographic DEM the source refers to
+// are made where read, by blocks (DrainageGrid::node_blocks: GeographicNodeXY), and its heights
+// read by blocks through `heights` where given (a render's terrain cache; the DEM opened for its
+// georeference alone), else read whole; each block checked by its hashes as it is made, throwing
+// penink::Error(internal) where one differs.
 // `net` (when given, with the grid's arrays): where the source stores the network, its mains, its
 // in-degrees (inflow_counts) and its orders and flows filled by blocks (FlowNetwork::blocks: each block
 // decoded from these bytes the first time a walk reaches it; the bytes must outlive net), and no
@@ -201,7 +202,8 @@ struct SourceUnitBlock {
 // table).
 bool decode_crease_source(const CreaseSourceBytes& src, DrainageGrid& g, std::vector<std::uint8_t>& dir,
                           CreaseTileIndex& index, SourcePart part = SourcePart::all,
-                          std::vector<SourceUnitBlock>* blocks = nullptr, FlowNetwork* net = nullptr);
+                          std::vector<SourceUnitBlock>* blocks = nullptr, FlowNetwork* net = nullptr,
+                          const NodeHeights* heights = nullptr);
 bool decode_crease_source(const std::uint8_t* data, std::size_t size, DrainageGrid& g, std::vector<std::uint8_t>& dir,
                           CreaseTileIndex& index, SourcePart part = SourcePart::all,
                           std::vector<SourceUnitBlock>* blocks = nullptr);

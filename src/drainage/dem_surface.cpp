@@ -14,10 +14,11 @@ namespace penink {
 
 DemSurface::DemSurface(const DrainageGrid& g, Normals normals) {
     if (g.factor == 1) {
-        cols_ = g.cols, rows_ = g.rows, valid_ = g.valid.data(), z_ = g.z.data();
+        cols_ = g.cols, rows_ = g.rows, valid_ = g.valid.data(), z_ = node_heights(g);
         if (!g.has_affine && g.coarse_xy.size() != g.size())
             throw Error("drainage", "", "drainage grid without node positions", ExitCode::internal);
-        if (!g.has_affine) xy_ = g.coarse_xy.data(), xy_blocks_ = g.xy_blocks.get();
+        if (!g.has_affine) xy_ = g.coarse_xy.data();
+        node_blocks_ = g.node_blocks.get();
     } else {
         cols_ = g.coarse_cols, rows_ = g.coarse_rows, valid_ = g.coarse_valid.data(), z_ = g.coarse_z.data();
         const std::size_t n = std::size_t(cols_) * std::size_t(rows_);

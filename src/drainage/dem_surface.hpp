@@ -49,13 +49,14 @@ public:
         const std::size_t i = index(c, r);
         if (pos_) return pos_[i];
         const glm::vec2 p = node_xy(c, r);
+        if (node_blocks_) node_blocks_->need(i);
         return {p.x, p.y, z_[i]};
     }
     glm::vec2 node_xy(int c, int r) const {
         const std::size_t i = index(c, r);
         if (pos_) return glm::vec2(pos_[i]);
         if (xy_) {
-            if (xy_blocks_) xy_blocks_->need(i);
+            if (node_blocks_) node_blocks_->need(i);
             return xy_[i];
         }
         if (!col_x_.empty()) return {col_x_[std::size_t(c)], row_y_[std::size_t(r)]};
@@ -89,13 +90,13 @@ public:
     // loop over many nodes does not choose it at every node; returns what f returns.
     template <class F> decltype(auto) with_node_xy(F&& f) const {
         if (pos_) return f(PosXY{pos_, std::size_t(cols_)});
-        if (xy_) return f(StoredXY{xy_, std::size_t(cols_), xy_blocks_});
+        if (xy_) return f(StoredXY{xy_, std::size_t(cols_), node_blocks_});
         if (!col_x_.empty()) return f(AxisXY{col_x_.data(), row_y_.data()});
         return f(FormulaXY{&nodes_, origin_});
     }
     // The same for node(c, r) given its index i = index(c, r) too.
     template <class F> decltype(auto) with_nodes(F&& f) const {
-        return with_node_xy([&](const auto& xy) { return f(Nodes<std::decay_t<decltype(xy)>>{xy, z_, pos_}); });
+        return with_node_xy([&](const auto& xy) { return f(Nodes<std::decay_t<decltype(xy)>>{xy, z_, pos_, node_blocks_}); });
     }
 
     // node_xy's ways (with_node_xy).
@@ -107,7 +108,7 @@ public:
     struct StoredXY {
         const glm::vec2* xy;
         std::size_t cols;
-        CellBlocks* blocks;  // where xy holds only the blocks filled (DrainageGrid::xy_blocks)
+        CellBlocks* blocks;  // where xy and z hold only the blocks filled (DrainageGrid::node_blocks)
         glm::vec2 at(std::size_t i) const {
             if (blocks) blocks->need(i);
             return xy[i];
@@ -127,12 +128,14 @@ public:
         XY xy;
         const float* z;
         const glm::vec3* pos;
+        CellBlocks* blocks;  // where z holds only the blocks filled (DrainageGrid::node_blocks)
         // node i read without its column and row (per-node x, y)
         static constexpr bool by_index = std::is_same_v<XY, PosXY> || std::is_same_v<XY, StoredXY>;
         glm::vec3 operator()(std::size_t i) const {
             if constexpr (std::is_same_v<XY, PosXY>) return pos[i];
             else {
                 const glm::vec2 p = xy.at(i);
+                if (blocks) blocks->need(i);
                 return {p.x, p.y, z[i]};
             }
         }
@@ -140,6 +143,7 @@ public:
             if constexpr (std::is_same_v<XY, PosXY>) return pos[i];
             else {
                 const glm::vec2 p = xy(c, r);
+                if (blocks) blocks->need(i);
                 return {p.x, p.y, z[i]};
             }
         }
@@ -151,7 +155,7 @@ private:
     const float* z_ = nullptr;           // with x, y from xy_ or the affine formula
     const glm::vec3* pos_ = nullptr;     // or x, y, z per node
     const glm::vec2* xy_ = nullptr;
-    CellBlocks* xy_blocks_ = nullptr;  // the grid's, where xy_ holds only the blocks filled
+    CellBlocks* node_blocks_ = nullptr;  // the grid's, where xy_ and z_ hold only the blocks filled
     bool affine_ = false;
     AffineNodes nodes_;
     glm::dvec2 origin_{0.0};

@@ -150,7 +150,9 @@ struct DrainageDb {
 // 19: the crease source stores the network its stems' walks read (each basin's total, the
 // junctions' mains, and the cells' accumulation, basin and order by square blocks): a render
 // decodes the blocks its walks reach instead of computing the network from the directions.
-inline constexpr std::uint32_t drainage_db_version = 19;
+// 20: a DEM reference holds a hash of each block of heights (DemArraysHash::z), which a render
+// reads by blocks from its terrain cache.
+inline constexpr std::uint32_t drainage_db_version = 20;
 
 // Fingerprint of the DEM file at `dem_path` with the given resample factor: its size, mtime and
 // a hash of its whole content (streamed) and of every side file GDAL may read with it (world

@@ -266,7 +266,7 @@ void take_node_arrays(Terrain& t, std::vector<float>& z, NodeXY& xy) {
 
 bool release_node_xy(DrainageGrid& g) {
     // (not where it is made by blocks: their filling writes into it)
-    if (!g.node_xy || g.xy_blocks || g.factor != 1 || g.coarse_xy.size() != g.size()) return false;
+    if (!g.node_xy || g.node_blocks || g.factor != 1 || g.coarse_xy.size() != g.size()) return false;
     NodeXY().swap(g.coarse_xy);
     return true;
 }
@@ -293,11 +293,20 @@ DrainageGrid make_regular_grid(int cols, int rows, double spacing, std::vector<f
     return g;
 }
 
+namespace {
+
+// The coarse nodes' mask: the fine one where it is left empty at factor 1 (the same mask).
+const std::vector<std::uint8_t>& coarse_mask(const DrainageGrid& g) {
+    return g.factor == 1 && g.coarse_valid.empty() ? g.valid : g.coarse_valid;
+}
+
+}  // namespace
+
 glm::dvec2 grid_xy(const DrainageGrid& g, int c, int r) {
     if (g.factor == 1) {  // the node itself (the interpolation puts weight 1 on it)
         if (g.has_affine) return glm::dvec2(affine_node_xy(g.affine, g.origin, c, r));
         if (g.coarse_xy.size() == g.size()) {
-            need_xy(g, g.index(c, r));
+            need_node(g, g.index(c, r));
             return glm::dvec2(g.coarse_xy[g.index(c, r)]);
         }
         if (g.node_xy) {  // released (release_node_xy): the node's alone, made again
@@ -313,7 +322,7 @@ glm::dvec2 grid_xy(const DrainageGrid& g, int c, int r) {
     locate(c, g.factor, g.coarse_cols, C, u);
     locate(r, g.factor, g.coarse_rows, R, v);
     const CellTriangle tri = cell_triangle(g.coarse_cols, C, R, u, v);
-    const auto n = substitute(tri.node, g.coarse_valid);
+    const auto n = substitute(tri.node, coarse_mask(g));
     glm::dvec2 p(0.0);
     for (int k = 0; k < 3; ++k) p += double(tri.w[k]) * glm::dvec2(g.coarse_xy[n[k]]);
     return p;
@@ -326,8 +335,8 @@ glm::dvec2 grid_xy_at(const DrainageGrid& g, double c, double r) {
         const double u = std::clamp(c - c0, 0.0, 1.0), v = std::clamp(r - r0, 0.0, 1.0);
         if (g.factor == 1 && !g.has_affine && g.coarse_xy.size() == g.size()) {  // grid_xy's nodes, read here
             const std::size_t at = g.index(c0, r0), row = std::size_t(g.cols);
-            if (g.xy_blocks)
-                for (std::size_t i : {at, at + 1, at + row, at + row + 1}) g.xy_blocks->need(i);
+            if (g.node_blocks)
+                for (std::size_t i : {at, at + 1, at + row, at + row + 1}) g.node_blocks->need(i);
             const glm::vec2* n = g.coarse_xy.data() + at;
             return (1 - v) * ((1 - u) * glm::dvec2(n[0]) + u * glm::dvec2(n[1])) +
                    v * ((1 - u) * glm::dvec2(n[row]) + u * glm::dvec2(n[row + 1]));
@@ -340,7 +349,7 @@ glm::dvec2 grid_xy_at(const DrainageGrid& g, double c, double r) {
     const int R = floor_index(r / f, g.coarse_rows - 2);
     const double u = std::clamp(c / f - C, 0.0, 1.0), v = std::clamp(r / f - R, 0.0, 1.0);
     const CellTriangle tri = cell_triangle(g.coarse_cols, C, R, u, v);
-    const auto n = substitute(tri.node, g.coarse_valid);
+    const auto n = substitute(tri.node, coarse_mask(g));
     glm::dvec2 p(0.0);
     for (int k = 0; k < 3; ++k) p += double(tri.w[k]) * glm::dvec2(g.coarse_xy[n[k]]);
     return p;

@@ -4,6 +4,7 @@
 // (Mower, "Concurrent Drainage Network Rendering" resamples a 50 m DEM at 10 m); node (fc, fr) lies at coarse index (fc/f, fr/f).
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -24,7 +25,7 @@ struct DrainageGrid {
     glm::dvec2 origin{0.0};           // projected easting/northing of local (0, 0)
     // Coarse nodes the x, y positions are interpolated from (the Terrain's node x, y and mask);
     // coarse_xy is left empty at factor 1 on an affine grid, where grid_xy computes them, and
-    // coarse_valid may be (resample_pn_releasing), where valid is the same mask.
+    // coarse_valid may be (resample_pn_releasing, decode_crease_source), where valid is the same mask.
     // coarse_z: the Terrain's node elevations at factor > 1 (empty at factor 1, where z is
     // theirs): with coarse_xy and coarse_valid the full-resolution DEM the creases and ridges are
     // draped on (dem_surface.hpp).
@@ -42,18 +43,36 @@ struct DrainageGrid {
     // point) and makes it again for those that do (restore_node_xy). Null: coarse_xy is all
     // there is.
     std::shared_ptr<const GeographicNodeXY> node_xy;
-    // Where coarse_xy (at factor 1, sized) holds only the blocks of nodes filled so far (made from
-    // node_xy where a render's walks reach: crease_source.hpp): its readers (grid_xy, grid_xy_at,
-    // DemSurface, the stems' walks) ask for each node first (need_xy). Null: all there.
-    std::shared_ptr<CellBlocks> xy_blocks;
+    // Where z or coarse_xy (at factor 1, sized) hold only the blocks of nodes filled so far (z
+    // read through NodeHeights, a geographic DEM's x, y made from node_xy, where a render's walks
+    // reach: crease_source.hpp): their readers (grid_xy, grid_xy_at, DemSurface, the fall lines'
+    // slope field, the stems' walks) ask for each node first (need_node). Null: all there.
+    std::shared_ptr<CellBlocks> node_blocks;
+    // Where the heights are filled by blocks: their array (cols*rows, not zero-filled first, so
+    // its pages are taken only where blocks are filled), z being left empty. Read through
+    // node_heights.
+    std::shared_ptr<float[]> block_z;
 
     std::size_t index(int c, int r) const { return std::size_t(r) * cols + c; }
     std::size_t size() const { return std::size_t(cols) * rows; }
 };
 
-// Node i's coarse_xy made to hold its value where it is filled by blocks (DrainageGrid::xy_blocks).
-inline void need_xy(const DrainageGrid& g, std::size_t i) {
-    if (g.xy_blocks) g.xy_blocks->need(i);
+// A DEM's node heights read where asked for (a render's terrain cache, read by blocks:
+// scene/terrain_frames.cpp): span(r, c0, c1, z) writes the heights of nodes c0 .. c1 - 1 of row r
+// (unexaggerated, local metres, 0 at nodata: take_node_heights' values) to z. Called from one
+// thread at a time.
+struct NodeHeights {
+    int cols = 0, rows = 0;
+    std::function<void(int r, int c0, int c1, float* z)> span;
+};
+
+// The fine nodes' heights (cols*rows): z, or block_z where they are filled by blocks.
+inline const float* node_heights(const DrainageGrid& g) { return g.block_z ? g.block_z.get() : g.z.data(); }
+
+// Node i's height and x, y made to hold their values where they are filled by blocks
+// (DrainageGrid::node_blocks).
+inline void need_node(const DrainageGrid& g, std::size_t i) {
+    if (g.node_blocks) g.node_blocks->need(i);
 }
 
 // Fine grid size for a Terrain and factor: (cols-1)*f+1 by (rows-1)*f+1.

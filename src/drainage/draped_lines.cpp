@@ -37,6 +37,7 @@ struct StemWalk {
     std::vector<std::uint8_t> own_indeg;
     const std::vector<std::uint8_t>& indeg;
     std::vector<double> total;  // accumulation at each basin's outlet
+    const float* z = node_heights(g);
 
     StemWalk(const DrainageGrid& grid, const std::vector<std::uint8_t>& d, const FlowNetwork& n)
         : g(grid), dir(d), net(n),
@@ -53,14 +54,15 @@ struct StemWalk {
     // where it would read them from coarse_xy).
     const bool node_xy = g.factor == 1 && !g.has_affine && g.coarse_xy.size() == g.size();
     glm::vec2 xy(std::size_t i) const {
-        if (node_xy) need_xy(g, i);
+        if (node_xy) need_node(g, i);
         const glm::dvec2 p = node_xy ? glm::dvec2(g.coarse_xy[i])
                                      : grid_xy(g, int(i % std::size_t(g.cols)), int(i / std::size_t(g.cols)));
         return {float(p.x), float(p.y)};
     }
     DvVertex vertex(std::size_t i) const {
         const glm::vec2 p = xy(i);
-        return {p.x, p.y, g.z[i], vertex_flow(i)};
+        need_node(g, i);  // (its height: by blocks too, also on an affine grid)
+        return {p.x, p.y, z[i], vertex_flow(i)};
     }
 
     // Calls f(m) for each valid cell draining into cell d.

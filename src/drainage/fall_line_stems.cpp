@@ -32,7 +32,8 @@ public:
             z_ = g.coarse_z.data(), valid_ = g.coarse_valid.data();
             cols_ = g.coarse_cols, rows_ = g.coarse_rows, scale_ = double(g.factor);
         } else {
-            z_ = g.z.data(), valid_ = g.valid.data(), cols_ = g.cols, rows_ = g.rows, scale_ = 1.0;
+            z_ = node_heights(g), valid_ = g.valid.data(), cols_ = g.cols, rows_ = g.rows, scale_ = 1.0;
+            blocks_ = g.node_blocks.get();
         }
     }
 
@@ -62,7 +63,11 @@ public:
         const double w[4] = {(1 - fu) * (1 - fv), fu * (1 - fv), (1 - fu) * fv, fu * fv};
         if (c != last.c || r != last.r) {
             if (c >= 1 && r >= 1 && c + 2 < cols_ && r + 2 < rows_ && block_valid(c, r)) {
-                // the 4 x 4 nodes around all hold data: central differences throughout
+                // the 4 x 4 nodes around all hold data: central differences throughout (their
+                // corners' blocks hold every one of them)
+                if (blocks_)
+                    for (std::size_t i : {index(c - 1, r - 1), index(c + 2, r - 1), index(c - 1, r + 2), index(c + 2, r + 2)})
+                        blocks_->need(i);
                 const float* z = z_ + index(c, r);
                 const std::ptrdiff_t row = cols_;
                 for (int k = 0; k < 4; ++k) {
@@ -96,6 +101,7 @@ public:
 private:
     const DrainageGrid& g_;
     const float* z_ = nullptr;  // the nodes the gradient comes from
+    CellBlocks* blocks_ = nullptr;  // where z_ holds only the blocks filled (DrainageGrid::node_blocks)
     const std::uint8_t* valid_ = nullptr;
     int cols_ = 0, rows_ = 0;
     double scale_ = 1.0;  // fine cells a cell of theirs
@@ -118,8 +124,9 @@ private:
         auto diff = [&](int dc, int dr, double& d) {
             const bool f = ok(c + dc, r + dr), b = ok(c - dc, r - dr);
             if (!f && !b) return false;
-            const double zf = z_[index(f ? c + dc : c, f ? r + dr : r)];
-            const double zb = z_[index(b ? c - dc : c, b ? r - dr : r)];
+            const std::size_t nf = index(f ? c + dc : c, f ? r + dr : r), nb = index(b ? c - dc : c, b ? r - dr : r);
+            if (blocks_) blocks_->need(nf), blocks_->need(nb);
+            const double zf = z_[nf], zb = z_[nb];
             d = (zf - zb) / ((f ? 1 : 0) + (b ? 1 : 0));
             return true;
         };

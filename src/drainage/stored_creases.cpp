@@ -62,7 +62,7 @@ CreaseTiles& StoredCreases::tiles() {
         auto d = std::make_unique<Decoded>();
         const auto decoded = [this](DrainageGrid& g, std::vector<std::uint8_t>& dir, CreaseTileIndex& index, SourcePart part,
                                     std::vector<SourceUnitBlock>* blocks = nullptr, FlowNetwork* net = nullptr) {
-            if (!decode_crease_source(bytes(), g, dir, index, part, blocks, net))
+            if (!decode_crease_source(bytes(), g, dir, index, part, blocks, net, &heights_))
                 throw Error("drainage", "", "stored crease source does not decode", ExitCode::internal);
         };
         // the units now (with a folder: a frame whose tiles are all in files needs no more), a

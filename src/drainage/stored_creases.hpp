@@ -73,6 +73,10 @@ public:
     // Called while a query builds tiles (CreaseTiles::on_build_progress); set before the first
     // query.
     void on_build_progress(std::function<void(double)> f) { build_progress_ = std::move(f); }
+    // Where the first build reads the DEM's heights from by blocks when the source refers to its
+    // DEM (decode_crease_source's `heights`: a render's terrain cache) instead of reading the DEM
+    // whole; set before the first query.
+    void use_node_heights(NodeHeights h) { heights_ = std::move(h); }
     std::size_t tiles_read() const;     // tile files read
     std::size_t tiles_written() const;  // tile files written
 
@@ -87,6 +91,7 @@ private:
     std::shared_ptr<BuiltNetwork> built_;  // the build's arrays, where this process built them (take)
     CreaseSourceBytes bytes() const;
     std::function<void(double)> build_progress_;
+    NodeHeights heights_;
     std::unique_ptr<Decoded> decoded_;
     CreaseTiles& tiles();  // decoded on first use; under mutex_
     std::size_t count(std::size_t (CreaseTiles::*which)() const) const;  // of the tiles, 0 before

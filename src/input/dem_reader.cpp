@@ -280,7 +280,8 @@ struct DemRows::State {
 DemRows::~DemRows() = default;
 DemRows::DemRows(DemRows&&) noexcept = default;
 
-DemRows::DemRows(const std::string& path, const DemOptions& options, int band_rows) : s_(std::make_unique<State>()) {
+DemRows::DemRows(const std::string& path, const DemOptions& options, int band_rows, bool scan)
+    : s_(std::make_unique<State>()) {
     const QuietGdal quiet;
     check_options(path, options);
     State& s = *s_;
@@ -308,6 +309,11 @@ DemRows::DemRows(const std::string& path, const DemOptions& options, int band_ro
         s.meta.origin = glm::round(0.5 * (s.xy->lo + s.xy->hi));
     } catch (...) {
         crs_error = std::current_exception();
+    }
+    if (!scan) {
+        if (crs_error) std::rethrow_exception(crs_error);
+        finish_terrain(r, *s.xy, s.meta);
+        return;
     }
     // Every value once: the range, the first value out of range (source order), a valid cell.
     bool valid_cell = false;

@@ -55,8 +55,10 @@ constexpr double dem_read_bytes_per_node = 21.0;
 class DemRows {
 public:
     // band_rows: rows of a band of the opening pass (0: about 8 MiB of values, in whole rows of
-    // the file's blocks).
-    explicit DemRows(const std::string& path, const DemOptions& options = {}, int band_rows = 0);
+    // the file's blocks). Without `scan`, no opening pass: for a caller that checks the heights it
+    // reads against its own record of them (crease_source.hpp) and zeroes the nodata nodes' (the
+    // range, which they take, and the values' errors are not known: meta()'s range is empty).
+    explicit DemRows(const std::string& path, const DemOptions& options = {}, int band_rows = 0, bool scan = true);
     ~DemRows();
     DemRows(DemRows&&) noexcept;
     // read_dem's Terrain (heights_only) without its arrays: grid, georeference, elevation range,

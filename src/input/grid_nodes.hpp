@@ -47,6 +47,10 @@ struct GridNodes {
     // ((i1 - i0 + every - 1) / every of each), without keeping the blocks they are read from when
     // these are not yet read (CheckedBlocks::read_strided). Throws DamagedBlockError as need does.
     void read_strided(std::size_t i0, std::size_t i1, std::size_t every, glm::vec3* pos, std::uint8_t* valid) const;
+    // The stored heights (z unscaled) of nodes [i0, i1) into z, 0 where a node holds no data, read
+    // as read_strided reads (no block kept) without making any derived x, y. `scratch` is the
+    // caller's (resized).
+    void read_heights(std::size_t i0, std::size_t i1, float* z, std::vector<glm::vec3>& scratch) const;
     // Whether node i holds data.
     bool has_data(std::size_t i) const {
         need(i, i + 1);

@@ -30,6 +30,20 @@ void GridNodes::read_strided(std::size_t i0, std::size_t i1, std::size_t every, 
     for (std::size_t i = i0; i < i1; i += every) *p++ = pos[i], *v++ = valid[i];
 }
 
+void GridNodes::read_heights(std::size_t i0, std::size_t i1, float* z, std::vector<glm::vec3>& scratch) const {
+    if (i0 >= i1) return;
+    const std::size_t n = i1 - i0;
+    if (!blocks) {
+        for (std::size_t i = i0; i < i1; ++i) *z++ = valid[i] ? pos[i].z : 0.0f;
+        return;
+    }
+    scratch.resize(n + (n + sizeof(glm::vec3) - 1) / sizeof(glm::vec3));  // the positions, then the flags
+    auto* flags = reinterpret_cast<std::uint8_t*>(scratch.data() + n);
+    blocks->read_strided(pos_array, i0, i1, 1, scratch.data(), false);
+    blocks->read_strided(valid_array, i0, i1, 1, flags);
+    for (std::size_t k = 0; k < n; ++k) z[k] = flags[k] ? scratch[k].z : 0.0f;
+}
+
 SampledWindow sampled_window(const GridNodes& nodes, GridWindow w, int step) {
     SampledWindow s;
     s.step = std::max(step, 1);

@@ -165,6 +165,14 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terra
     return source;
 }
 
+NodeHeights terrain_node_heights(const StoredTerrain& t) {
+    NodeHeights h;
+    h.cols = t.nodes.cols, h.rows = t.nodes.rows;
+    h.span = [nodes = t.nodes, keep = t.storage, scratch = std::make_shared<std::vector<glm::vec3>>()](
+                 int r, int c0, int c1, float* z) { nodes.read_heights(nodes.index(c0, r), nodes.index(c1, r), z, *scratch); };
+    return h;
+}
+
 void read_whole_when_damaged(DrainageLineSource& source, const Scene& scene, const StoredTerrain& dem, const Log& log) {
     if (!source.vertices.file) return;
     const DrainageOptions options = scene_drainage_options(scene, &dem.key);
@@ -179,6 +187,8 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Scene
     std::optional<DrainageLineSource> source = dem.stored.in_memory ? scene_drainage(scene, *dem.stored.in_memory, log, key)
                                                                     : scene_drainage(scene, dem.stored.meta, log, key);
     if (source) read_whole_when_damaged(*source, scene, dem.stored, log);
+    if (source && source->creases && !dem.stored.in_memory && dem.stored.nodes.blocks)
+        source->creases->use_node_heights(terrain_node_heights(dem.stored));
     return source;
 }
 

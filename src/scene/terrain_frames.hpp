@@ -49,8 +49,14 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terra
 // built after all (load_or_build_drainage checks its memory then).
 bool scene_drainage_cached(const Scene& scene, const TerrainCacheKey& key, int cols, int rows);
 // The same from the DEM's stored terrain (its node arrays when in memory, else its grid; its key),
-// with read_whole_when_damaged.
+// with read_whole_when_damaged; a terrain read from its cache file gives the crease tiles' first
+// build the DEM's heights by blocks (terrain_node_heights).
 std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const SceneTerrain& dem, const Log& log);
+// The heights of a terrain read from its cache file, a row's span at a time (GridNodes::read_heights:
+// blocks read, checked and decoded without being kept, no node's x, y made; the storage kept
+// alive): what building crease tiles reads of a DEM the drainage cache refers to, where the
+// stems' walks reach (StoredCreases::use_node_heights), instead of reading the whole DEM again.
+NodeHeights terrain_node_heights(const StoredTerrain& t);
 // Sets source.read_whole (when its vertices are read from the file): the cache read whole, or
 // rebuilt, from the DEM's stored terrain `dem` (its grid and key), once found damaged while drawn.
 void read_whole_when_damaged(DrainageLineSource& source, const Scene& scene, const StoredTerrain& dem, const Log& log);

@@ -48,7 +48,9 @@ void expect_round_trip(const Terrain& t, int factor, const std::string& what) {
     EXPECT_EQ(h.coarse_cols, g.coarse_cols) << what;
     EXPECT_EQ(h.coarse_rows, g.coarse_rows) << what;
     EXPECT_EQ(h.coarse_xy, g.coarse_xy) << what;
-    EXPECT_EQ(h.coarse_valid, g.coarse_valid) << what;
+    // (left empty where it is the fine mask: at factor 1, drainage_grid.hpp)
+    if (h.factor == 1 && h.coarse_valid.empty()) EXPECT_TRUE(g.coarse_valid.empty() || g.coarse_valid == g.valid) << what;
+    else EXPECT_EQ(h.coarse_valid, g.coarse_valid) << what;
     ASSERT_EQ(h.coarse_z.size(), g.coarse_z.size()) << what;
     if (!g.coarse_z.empty()) {  // bit for bit (NaN heights compare unequal as floats); memcmp of no bytes wants pointers
         EXPECT_EQ(std::memcmp(h.coarse_z.data(), g.coarse_z.data(), g.coarse_z.size() * sizeof(float)), 0) << what;
@@ -317,7 +319,8 @@ TEST(CreaseSource, CoarseMaskAtFactorOneStoredOnce) {
         std::vector<std::uint8_t> dir;
         CreaseTileIndex got;
         ASSERT_TRUE(decode_crease_source(bytes.data(), bytes.size(), h, dir, got));
-        EXPECT_EQ(h.coarse_valid, grid->coarse_valid);
+        // the shared mask decoded as none (the fine one), the other as stored
+        EXPECT_EQ(h.coarse_valid, grid == &g ? std::vector<std::uint8_t>() : grid->coarse_valid);
         EXPECT_EQ(h.valid, g.valid);
     }
 }
@@ -356,23 +359,52 @@ TEST(CreaseSource, HeightsReadFromTheDemItRefersTo) {
     EXPECT_EQ(h.valid, g.valid);
     EXPECT_EQ(dir, res.dir);
     EXPECT_EQ(got.parts.sources, index.parts.sources);
-    // the grid with the network made beside the DEM read again: the build's network, the heights
-    // read and the x, y made by blocks where asked for, checked by their hashes
+    // the grid with the network made beside the DEM opened again: the build's network, the
+    // heights read and the x, y made by blocks where asked for, checked by their hashes
     FlowNetwork net;
     ASSERT_TRUE(decode_crease_source(CreaseSourceBytes{referred.data(), referred.size()}, h, dir, got, SourcePart::grid, nullptr, &net));
-    EXPECT_EQ(std::memcmp(h.z.data(), g.z.data(), g.z.size() * sizeof(float)), 0);
-    ASSERT_TRUE(h.xy_blocks);
-    EXPECT_EQ(h.xy_blocks->filled(), 0u);
+    ASSERT_TRUE(h.node_blocks);
+    EXPECT_EQ(h.node_blocks->filled(), 0u);
     EXPECT_EQ(grid_xy(h, 7, 5), grid_xy(g, 7, 5));
-    EXPECT_EQ(h.xy_blocks->filled(), 1u);
-    for (std::size_t i = 0; i < h.size(); ++i) need_xy(h, i);
-    EXPECT_EQ(h.xy_blocks->filled(), h.xy_blocks->grid().count());
+    EXPECT_EQ(h.node_blocks->filled(), 1u);
+    EXPECT_EQ(h.z[h.index(7, 5)], g.z[g.index(7, 5)]);
+    for (std::size_t i = 0; i < h.size(); ++i) need_node(h, i);
+    EXPECT_EQ(h.node_blocks->filled(), h.node_blocks->grid().count());
+    EXPECT_EQ(std::memcmp(h.z.data(), g.z.data(), g.z.size() * sizeof(float)), 0);
     EXPECT_EQ(h.coarse_xy, g.coarse_xy);
     EXPECT_TRUE(std::equal(net.acc.begin(), net.acc.end(), res.net.acc.begin(), res.net.acc.end()));
     EXPECT_EQ(net.order, res.net.order);
     EXPECT_TRUE(std::equal(net.basin.begin(), net.basin.end(), res.net.basin.begin(), res.net.basin.end()));
     EXPECT_EQ(net.outlet, res.net.outlet);
     EXPECT_EQ(net.indeg, inflow_counts(res.dir, GridShape{g.cols, g.rows, g.valid.data()}));
+    // the heights by blocks too, through NodeHeights (a render's terrain cache; here the build's
+    // own), each block's rows read when a node of it is first asked for, checked by its hash
+    std::size_t spans = 0;
+    const NodeHeights own{g.cols, g.rows, [&](int r, int c0, int c1, float* z) {
+                              ++spans;
+                              std::memcpy(z, g.z.data() + g.index(c0, r), std::size_t(c1 - c0) * sizeof(float));
+                          }};
+    DrainageGrid k;
+    ASSERT_TRUE(decode_crease_source(CreaseSourceBytes{referred.data(), referred.size()}, k, dir, got, SourcePart::grid,
+                                     nullptr, &net, &own));
+    ASSERT_TRUE(k.node_blocks);
+    EXPECT_EQ(spans, 0u);
+    EXPECT_EQ(grid_xy(k, 7, 5), grid_xy(g, 7, 5));
+    EXPECT_EQ(spans, 128u);  // the first block's rows
+    EXPECT_TRUE(k.z.empty());
+    EXPECT_EQ(node_heights(k)[k.index(7, 5)], g.z[g.index(7, 5)]);
+    for (std::size_t i = 0; i < k.size(); ++i) need_node(k, i);
+    EXPECT_EQ(spans, std::size_t(4 * 344));  // 403 x 344 nodes: 4 blocks a row of blocks, each row once
+    EXPECT_EQ(std::memcmp(node_heights(k), g.z.data(), g.z.size() * sizeof(float)), 0);
+    EXPECT_EQ(k.coarse_xy, g.coarse_xy);
+    // other heights than the build's: refused where first read
+    const NodeHeights raised{g.cols, g.rows, [&](int r, int c0, int c1, float* z) {
+                                 own.span(r, c0, c1, z);
+                                 z[0] += 1.0f;
+                             }};
+    ASSERT_TRUE(decode_crease_source(CreaseSourceBytes{referred.data(), referred.size()}, k, dir, got, SourcePart::grid,
+                                     nullptr, &net, &raised));
+    EXPECT_THROW(need_node(k, k.index(7, 5)), Error);
     fs::remove(dem);
     EXPECT_FALSE(decode_crease_source(referred.data(), referred.size(), h, dir, got));  // gone
     EXPECT_TRUE(decode_crease_source(referred.data(), referred.size(), h, dir, got, SourcePart::index));  // the index alone

@@ -27,6 +27,7 @@
 #include "scene/terrain_view.hpp"
 #include "scene/terrain_frames.hpp"
 #include "support/temp_dir.hpp"
+#include "surface/terrain_cache.hpp"
 
 namespace penink {
 namespace {
@@ -168,6 +169,54 @@ TEST(StoredCreasesRender, WithoutTileFilesTheStemsBuiltAreKept) {
     EXPECT_EQ(built.stems_built(), for_all);
     EXPECT_EQ(built.tiles_written(), 0u);
     EXPECT_EQ(built.tiles_read(), 0u);
+}
+
+// A source that refers to its DEM (a build at factor 1) builds a frame's stems on the heights its
+// walks reach, read by blocks from the terrain cache (terrain_node_heights) instead of the DEM
+// read whole: the same lines, bit for bit, from the rows of fewer than all the blocks.
+TEST(StoredCreasesRender, HeightsReadByBlocksFromTheTerrainCache) {
+    const test::TempDir dir("stored_creases_heights");
+    const fs::path dem = dir.path / "jacksboro.tif";
+    fs::copy_file(PENINK_SOURCE_DIR "/examples/jacksboro.tif", dem);
+    const Terrain t = read_dem(dem.string());
+    DrainageOptions o;
+    o.resample = 1;
+    DvLineVertices in_file;
+    const auto load = [&] { return load_or_build_drainage(dem.string(), t, o, {}, {}, &in_file); };
+    DrainageDb db = load();
+    ASSERT_EQ(crease_source_dem(crease_source_bytes(db)), absolute_dem_path(dem.string()));
+    const TerrainCacheKey key{1, 2, 3, 0, true};
+    write_terrain_cache(dir.file("j.lod"), store_terrain(read_dem(dem.string())), key);
+    const std::optional<StoredTerrain> cached = read_terrain_cache(dir.file("j.lod"), key);
+    ASSERT_TRUE(cached && cached->nodes.blocks);
+    NodeHeights heights = terrain_node_heights(*cached);
+    std::size_t spans = 0;
+    heights.span = [&spans, span = heights.span](int r, int c0, int c1, float* z) { ++spans, span(r, c0, c1, z); };
+
+    Scene scene;
+    scene.source.dem = dem.string();
+    scene.view.camera.width = 400, scene.view.camera.height = 300;
+    LineBox all = line_box(t), view = all;
+    const glm::vec2 size = all.hi - all.lo;  // a fifth of the side, near a corner
+    view.lo = all.lo + 0.1f * size, view.hi = all.lo + 0.3f * size;
+    const LineCulling culling{{scene_camera(scene, t)}, line_culling_px(scene)};
+    DrainageLineSource whole, by_blocks;
+    whole.creases = StoredCreases::of(db), whole.db = std::move(db), whole.vertices = in_file;
+    db = load();
+    by_blocks.creases = StoredCreases::of(db), by_blocks.db = std::move(db), by_blocks.vertices = in_file;
+    by_blocks.creases->use_node_heights(heights);
+    const DrainageLineData a = prepare_drainage_lines(whole, view, culling);
+    const DrainageLineData b = prepare_drainage_lines(by_blocks, view, culling);
+    ASSERT_GT(a.creases.positions.size(), 100u);
+    EXPECT_TRUE(same_lines(a.creases, b.creases));
+    EXPECT_EQ(whole.creases->stems_built(), by_blocks.creases->stems_built());
+    // jacksboro's 403 x 344 nodes: 12 blocks of 128 x 128, 4 spans a row for all
+    EXPECT_GT(spans, 0u);
+    EXPECT_LT(spans, std::size_t(4 * 344));
+    ::testing::Test::RecordProperty("height_spans_read", int(spans));
+    // the whole DEM: the same again
+    EXPECT_TRUE(same_lines(prepare_drainage_lines(whole, all, culling).creases,
+                           prepare_drainage_lines(by_blocks, all, culling).creases));
 }
 
 // Without a line test, the stored creases of the whole DEM are the whole build's, and asking again
