@@ -20,6 +20,8 @@ double drainage_build_bytes(int cols, int rows, int factor) {
     return drainage_resampled_bytes_per_point * points;
 }
 
+double crease_tiles_build_bytes(double points) { return crease_tiles_bytes_per_point * points; }
+
 int drainage_factor_for(int cols, int rows, int resample) {
     if (resample > 0) return resample;
     Terrain size_only;  // drainage_resample_factor reads the size alone

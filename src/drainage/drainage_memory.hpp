@@ -18,6 +18,15 @@ constexpr double drainage_peak_bytes_per_point = 32.385, drainage_peak_base_byte
 // arrays besides the fine grid's; the automatic factor keeps such a grid under 4 M points).
 constexpr double drainage_check_margin = 1.25, drainage_resampled_bytes_per_point = 64.0;
 
+// What the first crease tiles a process builds from a stored creases' source take beyond the
+// frame's own memory (StoredCreases: the grid's mask, directions, in-degrees and stems' sources
+// decoded whole; the blocks of heights, positions, orders and flows its walks fill; the stems
+// built): 16.2 B a point measured, a new close view of jacksboro refined 29 times peaking at 3.05
+// GB where the same view drawn from its built tiles peaks at 1.16 GB (116.6 M points; docs/
+// timings.md), counted with a tenth more.
+constexpr double crease_tiles_bytes_per_point = 18.0;
+double crease_tiles_build_bytes(double points);
+
 // Bytes a drainage database file takes a point at least (it stores the ridges and the creases'
 // source, not the network, and at factor 1 not the heights: measured 0.53 B on jacksboro refined
 // to 0.6", 1.84 MB for 3.47 M points, 0.76 B on /tmp/j5.tif, 2.66 MB for 3.5 M, 4.6 B on volcano

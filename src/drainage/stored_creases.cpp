@@ -107,7 +107,8 @@ CreaseTiles& StoredCreases::tiles() {
         d->tiles = std::make_unique<CreaseTiles>(d->g, d->dir, d->net, std::move(index), std::move(store), std::move(reader));
         if (build_progress_) d->tiles->on_build_progress(build_progress_);
         if (d->dir.empty())
-            d->tiles->before_first_build([decoded, d = d.get()] {
+            d->tiles->before_first_build([this, decoded, d = d.get()] {
+                if (before_decode_) before_decode_(d->g.cols, d->g.rows);
                 CreaseTileIndex again;
                 // the index: the tiles hold it; the network made as the DEM is read again
                 decoded(d->g, d->dir, again, SourcePart::grid, nullptr, &d->net);

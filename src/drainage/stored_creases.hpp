@@ -77,6 +77,11 @@ public:
     // DEM (decode_crease_source's `heights`: a render's terrain cache) instead of reading the DEM
     // whole; set before the first query.
     void use_node_heights(NodeHeights h) { heights_ = std::move(h); }
+    // Called once with the drainage grid's size (its points: cols x rows), before the first query
+    // that builds stems decodes the grid, directions and network (not where they are a build's of
+    // this process, nor for queries whose tiles are all in files): a render checks there that the
+    // build fits its memory (it may throw, and the query throws that). Set before the first query.
+    void before_first_decode(std::function<void(int cols, int rows)> f) { before_decode_ = std::move(f); }
     std::size_t tiles_read() const;     // tile files read
     std::size_t tiles_written() const;  // tile files written
 
@@ -92,6 +97,7 @@ private:
     CreaseSourceBytes bytes() const;
     std::function<void(double)> build_progress_;
     NodeHeights heights_;
+    std::function<void(int, int)> before_decode_;
     std::unique_ptr<Decoded> decoded_;
     CreaseTiles& tiles();  // decoded on first use; under mutex_
     std::size_t count(std::size_t (CreaseTiles::*which)() const) const;  // of the tiles, 0 before

@@ -88,6 +88,9 @@ struct TerrainSettings {
     bool cull_patches = true;           // [tessellation] cull: leave out patches outside the view
     std::string drainage_routing = "priority-flood";  // [drainage] routing (drainage_build.hpp)
     std::string cache_dir;  // [cache] dir or --cache-dir (resolved); "": the default (drainage_cache_path)
+    // --max-memory (0: the memory available): what the render's later builds (crease tiles) are
+    // checked against, besides check_scene_memory's check before it starts.
+    std::uint64_t max_memory = 0;
 };
 
 // What is seen and how it is lit: the camera, a plan view's scale and furniture, the sun.

@@ -54,6 +54,7 @@ Scene load_scene_with_overrides(const SceneOverrides& o) {
     if (o.grid) scene.view.furniture.grid = map_grid_named(*o.grid);  // CLI11 checked the name
     if (o.title) scene.view.furniture.title = *o.title;
     if (!o.cache_dir.empty()) scene.terrain.cache_dir = o.cache_dir;
+    scene.terrain.max_memory = o.max_memory;
     validate_scene(scene);
     check_scene_memory(scene, o.max_memory);
     return scene;

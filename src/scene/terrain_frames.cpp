@@ -4,10 +4,12 @@
 #include <iostream>
 #include <sstream>
 
+#include "core/memory_budget.hpp"
 #include "core/version.hpp"
 #include "core/progress_bar.hpp"
 #include "core/stopwatch.hpp"
 #include "drainage/drainage_build.hpp"
+#include "drainage/drainage_memory.hpp"
 #include "input/crs_util.hpp"
 #include "lines/object_silhouettes.hpp"
 #include "lines/simplify.hpp"
@@ -165,6 +167,15 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terra
     return source;
 }
 
+std::function<void(int cols, int rows)> crease_tiles_memory_check(const Scene& scene) {
+    return [dem = scene.source.dem, max_memory = scene.terrain.max_memory](int cols, int rows) {
+        check_memory("drainage", dem,
+                     "building the crease tiles of a view not drawn before (the drainage grid's " + std::to_string(cols) +
+                         "x" + std::to_string(rows) + " points)",
+                     crease_tiles_build_bytes(double(cols) * double(rows)), memory_budget_left(max_memory));
+    };
+}
+
 NodeHeights terrain_node_heights(const StoredTerrain& t) {
     NodeHeights h;
     h.cols = t.nodes.cols, h.rows = t.nodes.rows;
@@ -189,6 +200,8 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Scene
     if (source) read_whole_when_damaged(*source, scene, dem.stored, log);
     if (source && source->creases && !dem.stored.in_memory && dem.stored.nodes.blocks)
         source->creases->use_node_heights(terrain_node_heights(dem.stored));
+    if (source && source->creases)
+        source->creases->before_first_decode(crease_tiles_memory_check(scene));
     return source;
 }
 

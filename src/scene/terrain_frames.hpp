@@ -57,6 +57,12 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Scene
 // alive): what building crease tiles reads of a DEM the drainage cache refers to, where the
 // stems' walks reach (StoredCreases::use_node_heights), instead of reading the whole DEM again.
 NodeHeights terrain_node_heights(const StoredTerrain& t);
+// What a first build of crease tiles from the drainage cache checks before it decodes anything
+// (StoredCreases::before_first_decode, given the drainage grid's cols x rows points): throws
+// Error("drainage", DEM, "building the crease tiles of a view not drawn before (the drainage
+// grid's CxR points) would need about N of memory, B available (--max-memory)") when
+// crease_tiles_build_bytes exceeds memory_budget_left(scene.terrain.max_memory).
+std::function<void(int cols, int rows)> crease_tiles_memory_check(const Scene& scene);
 // Sets source.read_whole (when its vertices are read from the file): the cache read whole, or
 // rebuilt, from the DEM's stored terrain `dem` (its grid and key), once found damaged while drawn.
 void read_whole_when_damaged(DrainageLineSource& source, const Scene& scene, const StoredTerrain& dem, const Log& log);

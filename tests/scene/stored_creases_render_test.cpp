@@ -17,7 +17,9 @@
 
 #include <gtest/gtest.h>
 
+#include "core/error.hpp"
 #include "core/log.hpp"
+#include "core/memory_budget.hpp"
 #include "drainage/drainage_build.hpp"
 #include "drainage/line_selection.hpp"
 #include "drainage/stored_creases.hpp"
@@ -205,6 +207,12 @@ TEST(StoredCreasesRender, HeightsReadByBlocksFromTheTerrainCache) {
     db = load();
     by_blocks.creases = StoredCreases::of(db), by_blocks.db = std::move(db), by_blocks.vertices = in_file;
     by_blocks.creases->use_node_heights(heights);
+    int checks = 0;
+    by_blocks.creases->before_first_decode([&checks, &t](int cols, int rows) {
+        EXPECT_EQ(cols, t.cols);  // the grid at factor 1
+        EXPECT_EQ(rows, t.rows);
+        ++checks;
+    });
     const DrainageLineData a = prepare_drainage_lines(whole, view, culling);
     const DrainageLineData b = prepare_drainage_lines(by_blocks, view, culling);
     ASSERT_GT(a.creases.positions.size(), 100u);
@@ -217,6 +225,30 @@ TEST(StoredCreasesRender, HeightsReadByBlocksFromTheTerrainCache) {
     // the whole DEM: the same again
     EXPECT_TRUE(same_lines(prepare_drainage_lines(whole, all, culling).creases,
                            prepare_drainage_lines(by_blocks, all, culling).creases));
+    EXPECT_EQ(checks, 1);  // before the first build alone
+
+    // a render's memory check before the first build: the build refused where its estimate
+    // (crease_tiles_build_bytes: 18 B a point, 2.5 MB for jacksboro's 403 x 344) does not fit
+    // what is left of --max-memory, the query throwing that
+    scene.terrain.max_memory = resident_memory_bytes() + (std::uint64_t(1) << 20);
+    db = load();
+    DrainageLineSource refused;
+    refused.creases = StoredCreases::of(db), refused.db = std::move(db), refused.vertices = in_file;
+    refused.creases->before_first_decode(crease_tiles_memory_check(scene));
+    try {
+        prepare_drainage_lines(refused, view, culling);
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::bad_input);
+        EXPECT_NE(std::string(e.what()).find("penink: drainage: " + dem.string() +
+                                             ": building the crease tiles of a view not drawn before (the drainage "
+                                             "grid's 403x344 points) would need about 2 MiB of memory, "),
+                  std::string::npos)
+            << e.what();
+    }
+    EXPECT_EQ(refused.creases->stems_built(), 0u);
+    scene.terrain.max_memory = std::uint64_t(1) << 40;  // room: built
+    EXPECT_NO_THROW(crease_tiles_memory_check(scene)(t.cols, t.rows));
 }
 
 // Without a line test, the stored creases of the whole DEM are the whole build's, and asking again
