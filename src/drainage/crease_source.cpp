@@ -576,19 +576,22 @@ bool stored_network(const CreaseSourceBytes& src, const DrainageGrid& g, const s
     if (!decode_totals(at, totals)) return false;
     net = FlowNetwork{};
     net.mains = std::move(at.mains);
-    net.indeg = inflow_counts(dir, GridShape{g.cols, g.rows, g.valid.data()});
+    // the in-degrees, orders and flows: zeros until their blocks are filled (pages given back)
+    net.indeg.assign(g.size(), 0);
+    give_back_zero_pages(net.indeg.data(), net.indeg.size());
     net.order.assign(g.size(), 0);
-    give_back_zero_pages(net.order.data(), net.order.size());  // (zeros until their blocks are filled)
+    give_back_zero_pages(net.order.data(), net.order.size());
     net.flow.resize(g.size());  // (not written: the pages of the blocks never filled are never touched)
     const BlockGrid grid(std::size_t(g.cols), std::size_t(g.rows), at.side);
     // (the grid's mask and the directions: the caller's, which outlive the network)
     net.blocks = std::make_shared<CellBlocks>(
         grid, [src, grid, shape = GridShape{g.cols, g.rows, g.valid.data()}, dir = dir.data(), totals = std::move(totals),
-               at = std::move(at), order = net.order.data(), flow = net.flow.data()](std::size_t b) {
+               at = std::move(at), order = net.order.data(), flow = net.flow.data(), indeg = net.indeg.data()](std::size_t b) {
             DecodedBlock d;
             if (!decode_network_block(src, grid, at, shape, dir, b, d))
                 throw Error("drainage", "", "stored crease source does not decode", ExitCode::internal);
             grid.each_cell(b, [&](std::size_t i, std::size_t k) {
+                indeg[i] = inflow_count(shape, dir, i);
                 order[i] = d.order[k];
                 flow[i] = std::bit_cast<std::uint32_t>(d.basin[k] ? flow_of(d.acc[k], totals[d.basin[k] - 1]) : 0.0f);
             });

@@ -186,8 +186,8 @@ std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const Cr
 // read by blocks through `heights` where given (a render's terrain cache; the DEM opened for its
 // georeference alone), else read whole; each block checked by its hashes as it is made, throwing
 // penink::Error(internal) where one differs.
-// `net` (when given, with the grid's arrays): where the source stores the network, its mains, its
-// in-degrees (inflow_counts) and its orders and flows filled by blocks (FlowNetwork::blocks: each block
+// `net` (when given, with the grid's arrays): where the source stores the network, its mains, and
+// its in-degrees (inflow_counts' values), orders and flows filled by blocks (FlowNetwork::blocks: each block
 // decoded from these bytes the first time a walk reaches it; the bytes must outlive net), and no
 // accumulation, basins or outlets; else network_of_directions of the decoded grid and
 // directions, made beside the DEM's heights read again where the source refers to its DEM (on

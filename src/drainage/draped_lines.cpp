@@ -78,7 +78,7 @@ struct StemWalk {
 
     // Head of the branch holding cell m (= its branch id's rank): up through single-inflow cells.
     std::size_t head(std::size_t m) const {
-        for (std::size_t steps = 0; indeg[m] == 1; ++steps) {
+        for (std::size_t steps = 0; need(m), indeg[m] == 1; ++steps) {
             if (steps > g.size()) cycle();
             std::size_t up = m;
             each_upstream(m, [&](std::size_t u) { up = u; });
@@ -149,12 +149,14 @@ struct StemWalk {
     // drains into (a source).
     std::size_t main_up(std::size_t m) const {
         std::size_t up = m;
+        need(m);
         if (indeg[m] == 1) each_upstream(m, [&](std::size_t u) { up = u; });
         else if (indeg[m] > 1) up = junction_main(m);
         return up;
     }
 
-    // Cell i's order and flow made to hold their values (a network filled by blocks: CellBlocks).
+    // Cell i's in-degree, order and flow made to hold their values (a network filled by blocks:
+    // CellBlocks).
     void need(std::size_t i) const {
         if (net.blocks) net.blocks->need(i);
     }
@@ -189,6 +191,7 @@ struct StemWalk {
             order = std::max(order, net.order[c]);
             if (!more || !dir[c]) return order;
             const std::size_t d = d8_target(shape, c, dir[c]);
+            need(d);
             if (indeg[d] != 1 && !main_into(c, d)) {
                 put(d);
                 return order;
@@ -855,6 +858,7 @@ DrapedLineSet crease_part(const DrainageGrid& g, const std::vector<std::uint8_t>
             path.clear();
             std::uint32_t source;
             for (std::size_t steps = 0;; ++steps) {
+                walk.need(m);
                 const bool junction = walk.indeg[m] > 1;
                 if (const std::uint32_t* at = junction ? climbed.find(std::uint32_t(m)) : nullptr) {
                     source = *at;

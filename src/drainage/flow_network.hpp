@@ -27,9 +27,9 @@ struct FlowNetwork {
     // Once keep_normalised_flow ran: each cell's normalised_flow as float bits (0 invalid), in
     // acc's storage; acc, basin and outlet then empty.
     CellWords flow;
-    // Where order and flow hold only the blocks filled so far (a network decoded from a crease
-    // source, crease_source.hpp: a walk asks for each cell it reaches, need(i), before it reads
-    // the cell's order or flow); none: they hold every cell's.
+    // Where indeg, order and flow hold only the blocks filled so far (a network decoded from a
+    // crease source, crease_source.hpp: a walk asks for each cell it reaches, need(i), before it
+    // reads the cell's in-degree, order or flow); none: they hold every cell's.
     std::shared_ptr<CellBlocks> blocks;
 };
 
@@ -53,6 +53,16 @@ inline std::uint8_t final_order(std::uint8_t pending) {
 
 // In-degree (number of valid neighbours draining into the cell) of every cell.
 std::vector<std::uint8_t> inflow_counts(const std::vector<std::uint8_t>& dir, const GridShape& g);
+// inflow_counts' value at cell i alone: its neighbours whose direction points at it.
+inline std::uint8_t inflow_count(const GridShape& g, const std::uint8_t* dir, std::size_t i) {
+    const int c = int(i % std::size_t(g.cols)), r = int(i / std::size_t(g.cols));
+    std::uint8_t n = 0;
+    for (int k = 0; k < 8; ++k) {
+        const int mc = c - d8_dc[k], mr = r - d8_dr[k];
+        if (mc >= 0 && mr >= 0 && mc < g.cols && mr < g.rows && dir[std::size_t(mr) * std::size_t(g.cols) + std::size_t(mc)] == std::uint8_t(1u << k)) ++n;
+    }
+    return n;
+}
 
 // Fills net.acc, net.order (reusing their storage) and net.indeg. Throws penink::Error("drainage", "",
 // "flow directions contain a cycle", internal) when some cell never reaches an outlet.
