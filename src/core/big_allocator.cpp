@@ -46,6 +46,17 @@ void release_big_pages(void* p, std::size_t bytes, std::size_t from, std::size_t
     if (b > a) ::madvise(static_cast<char*>(p) + a, b - a, MADV_DONTNEED);
 }
 
+void advise_huge_pages(void* p, std::size_t bytes) noexcept {
+#ifdef MADV_HUGEPAGE
+    const auto at = reinterpret_cast<std::uintptr_t>(p);
+    const std::uintptr_t a = (at + big_block_bytes - 1) / big_block_bytes * big_block_bytes,
+                         b = (at + bytes) / big_block_bytes * big_block_bytes;
+    if (b > a) ::madvise(reinterpret_cast<void*>(a), b - a, MADV_HUGEPAGE);
+#else
+    (void)p, (void)bytes;
+#endif
+}
+
 void give_back_zero_pages(void* p, std::size_t bytes) noexcept {
     constexpr std::uintptr_t page = 4096;
     const auto at = reinterpret_cast<std::uintptr_t>(p);

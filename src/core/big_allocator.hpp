@@ -26,6 +26,23 @@ void release_big_pages(void* p, std::size_t bytes, std::size_t from, std::size_t
 // take memory again only where written.
 void give_back_zero_pages(void* p, std::size_t bytes) noexcept;
 
+// v (a std::vector of a trivial type, empty or not) sized to n elements, its new storage advised
+// for transparent huge pages before it is first touched (reserve, madvise MADV_HUGEPAGE over the
+// whole 2 MiB pages inside, then resize): an array then filled whole faults once per 2 MiB
+// instead of once per 4 KiB. Not for an array whose parts are filled sparsely (its pages are
+// taken 2 MiB at a time).
+void advise_huge_pages(void* p, std::size_t bytes) noexcept;
+template <class V> void resize_in_huge_pages(V& v, std::size_t n) {
+    if (n > v.capacity()) {
+        V fresh;
+        fresh.reserve(n);
+        advise_huge_pages(fresh.data(), n * sizeof(typename V::value_type));
+        fresh.assign(v.begin(), v.end());
+        v.swap(fresh);
+    }
+    v.resize(n);
+}
+
 template <class T> struct BigAllocator {
     using value_type = T;
     BigAllocator() = default;

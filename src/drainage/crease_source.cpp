@@ -664,7 +664,7 @@ bool decode_crease_source(const CreaseSourceBytes& src, DrainageGrid& g, std::ve
     const std::size_t n = g.size(), coarse = std::size_t(ccols) * std::size_t(crows);
     std::vector<std::uint32_t>& cells = index.parts.sources;
     if (!get_blocks(
-            r, [&](std::uint64_t k) { return k == in_units && k <= n; }, [&](std::size_t k) { cells.resize(sources ? k : 0); },
+            r, [&](std::uint64_t k) { return k == in_units && k <= n; }, [&](std::size_t k) { resize_in_huge_pages(cells, sources ? k : 0); },
             [&](const std::uint8_t* c, std::size_t s, std::size_t first, std::size_t k) {
                 return decode_bytes(c, s, reinterpret_cast<std::uint8_t*>(cells.data() + first), 4 * k);
             },
@@ -706,7 +706,7 @@ bool decode_crease_source(const CreaseSourceBytes& src, DrainageGrid& g, std::ve
     if (blocks) *blocks = std::move(at);
     auto floats = [&](std::vector<float>& v, std::size_t want, bool may_be_empty) {
         return get_blocks(
-            r, sized(want, may_be_empty), [&](std::size_t k) { v.resize(arrays ? k : 0); },
+            r, sized(want, may_be_empty), [&](std::size_t k) { resize_in_huge_pages(v, arrays ? k : 0); },
             [&](const std::uint8_t* c, std::size_t s, std::size_t first, std::size_t k) {
                 return decode_floats(c, s, v.data() + first, k, z_orders);
             },
@@ -714,7 +714,7 @@ bool decode_crease_source(const CreaseSourceBytes& src, DrainageGrid& g, std::ve
     };
     auto bytes = [&](std::vector<std::uint8_t>& v, std::size_t want, bool may_be_empty) {
         return get_blocks(
-            r, sized(want, may_be_empty), [&](std::size_t k) { v.resize(arrays ? k : 0); },
+            r, sized(want, may_be_empty), [&](std::size_t k) { resize_in_huge_pages(v, arrays ? k : 0); },
             [&](const std::uint8_t* c, std::size_t s, std::size_t first, std::size_t k) {
                 return decode_bytes(c, s, v.data() + first, k);
             },
