@@ -57,11 +57,15 @@ void advise_huge_pages(void* p, std::size_t bytes) noexcept {
 #endif
 }
 
-void give_back_zero_pages(void* p, std::size_t bytes) noexcept {
+void advise_small_pages(void* p, std::size_t bytes) noexcept {
+#ifdef MADV_NOHUGEPAGE
     constexpr std::uintptr_t page = 4096;
     const auto at = reinterpret_cast<std::uintptr_t>(p);
-    const std::uintptr_t a = (at + page - 1) / page * page, b = (at + bytes) / page * page;
-    if (b > a) ::madvise(reinterpret_cast<void*>(a), b - a, MADV_DONTNEED);
+    const std::uintptr_t a = at / page * page, b = (at + bytes + page - 1) / page * page;
+    if (bytes >= big_block_bytes) ::madvise(reinterpret_cast<void*>(a), b - a, MADV_NOHUGEPAGE);
+#else
+    (void)p, (void)bytes;
+#endif
 }
 
 }  // namespace penink

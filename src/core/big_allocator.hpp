@@ -21,10 +21,6 @@ void deallocate_big(void* p, std::size_t bytes) noexcept;
 // system (the whole pages inside; they read as zeros after): an array consumed front to back
 // shrinks as it goes. A block under big_block_bytes (from operator new) keeps its memory.
 void release_big_pages(void* p, std::size_t bytes, std::size_t from, std::size_t to) noexcept;
-// Gives back the whole pages inside [p, p + bytes) of any heap memory that holds zeros (a
-// std::vector just sized, of which a caller then fills a few parts): they read as zeros after and
-// take memory again only where written.
-void give_back_zero_pages(void* p, std::size_t bytes) noexcept;
 
 // v (a std::vector of a trivial type, empty or not) sized to n elements, its new storage advised
 // for transparent huge pages before it is first touched (reserve, madvise MADV_HUGEPAGE over the
@@ -32,6 +28,10 @@ void give_back_zero_pages(void* p, std::size_t bytes) noexcept;
 // instead of once per 4 KiB. Not for an array whose parts are filled sparsely (its pages are
 // taken 2 MiB at a time).
 void advise_huge_pages(void* p, std::size_t bytes) noexcept;
+// The opposite, for a block from allocate_big (UninitAllocator) that is filled sparsely, by
+// blocks of cells where they are read: its pages not advised for huge pages (MADV_NOHUGEPAGE),
+// so a part written takes 4 KiB pages, not the 2 MiB around it. Call before first touch.
+void advise_small_pages(void* p, std::size_t bytes) noexcept;
 template <class V> void resize_in_huge_pages(V& v, std::size_t n) {
     if (n > v.capacity()) {
         V fresh;

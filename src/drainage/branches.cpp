@@ -62,7 +62,7 @@ struct HeadRank {
 };
 
 // Also counts the valid cells (`valid`). Words of bits in parallel chunks, then the running sum.
-HeadRank head_rank(const DrainageGrid& g, const std::vector<std::uint8_t>& indeg, std::size_t& valid) {
+HeadRank head_rank(const DrainageGrid& g, const CellBytes& indeg, std::size_t& valid) {
     HeadRank h{std::vector<std::uint64_t>((g.size() + 63) / 64, 0), std::vector<std::uint32_t>((g.size() + 63) / 64)};
     std::atomic<std::size_t> total{0};
     parallel_chunks(h.bits.size(), 4096, [&](std::size_t w0, std::size_t w1) {
@@ -90,13 +90,13 @@ HeadRank head_rank(const DrainageGrid& g, const std::vector<std::uint8_t>& indeg
 // the repeated end junction of each branch that does not end at an outlet (one per basin does).
 // Not movable: `indeg` may refer to own_indeg.
 struct Heads {
-    const std::vector<std::uint8_t> own_indeg;
-    const std::vector<std::uint8_t>& indeg;
+    const CellBytes own_indeg;
+    const CellBytes& indeg;
     HeadRank rank;
     std::size_t count = 0, vertices = 0;
 
     Heads(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net)
-        : own_indeg(net.indeg.size() == g.size() ? std::vector<std::uint8_t>()
+        : own_indeg(net.indeg.size() == g.size() ? CellBytes()
                                                  : inflow_counts(dir, GridShape{g.cols, g.rows, g.valid.data()})),
           indeg(own_indeg.empty() ? net.indeg : own_indeg) {
         std::size_t valid = 0;
@@ -111,7 +111,7 @@ struct Tracer {
     const DrainageGrid& g;
     const std::vector<std::uint8_t>& dir;
     const FlowNetwork& net;
-    const std::vector<std::uint8_t>& indeg;
+    const CellBytes& indeg;
     const HeadRank& rank;
     GridShape shape{g.cols, g.rows, g.valid.data()};
 

@@ -434,6 +434,7 @@ bool read_referred_arrays(const SourceHead& h, DrainageGrid& g, bool by_blocks =
         if (formula) {
             g.node_xy = std::make_shared<const GeographicNodeXY>(geo, t.origin);
             g.coarse_xy.resize(n);  // (not written: the pages of the blocks never made are never touched)
+            advise_small_pages(g.coarse_xy.data(), n * sizeof(glm::vec2));
         }
         if (!z_blocks && !formula) return true;  // an affine grid's heights read whole (no x, y stored)
         g.node_blocks = std::make_shared<CellBlocks>(
@@ -576,12 +577,12 @@ bool stored_network(const CreaseSourceBytes& src, const DrainageGrid& g, const s
     if (!decode_totals(at, totals)) return false;
     net = FlowNetwork{};
     net.mains = std::move(at.mains);
-    // the in-degrees, orders and flows: zeros until their blocks are filled (pages given back)
-    net.indeg.assign(g.size(), 0);
-    give_back_zero_pages(net.indeg.data(), net.indeg.size());
-    net.order.assign(g.size(), 0);
-    give_back_zero_pages(net.order.data(), net.order.size());
-    net.flow.resize(g.size());  // (not written: the pages of the blocks never filled are never touched)
+    // the in-degrees, orders and flows: not written, their pages taken (4 KiB ones) only where
+    // their blocks are filled
+    net.indeg.resize(g.size()), net.order.resize(g.size()), net.flow.resize(g.size());
+    advise_small_pages(net.indeg.data(), net.indeg.size());
+    advise_small_pages(net.order.data(), net.order.size());
+    advise_small_pages(net.flow.data(), net.flow.size() * sizeof(std::uint32_t));
     const BlockGrid grid(std::size_t(g.cols), std::size_t(g.rows), at.side);
     // (the grid's mask and the directions: the caller's, which outlive the network)
     net.blocks = std::make_shared<CellBlocks>(

@@ -16,6 +16,7 @@ namespace penink {
 // huge pages, first touched where they are written, on the threads that write them); every
 // reader reads only what a stage wrote.
 using CellWords = std::vector<std::uint32_t, UninitAllocator<std::uint32_t>>;
+using CellBytes = std::vector<std::uint8_t, UninitAllocator<std::uint8_t>>;
 
 // Neighbour k = 0..7 in ESRI code order E, SE, S, SW, W, NW, N, NE; code = 1 << k.
 inline constexpr int d8_dc[8] = {1, 1, 0, -1, -1, -1, 0, 1};

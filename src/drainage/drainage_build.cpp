@@ -69,12 +69,13 @@ void accumulate_and_label(const DrainageGrid& g, const std::vector<std::uint8_t>
 }
 
 // Priority-flood routing: fill, D8, rims, flats, depressions, ties; g.z restored afterwards.
-// The fill state, raised cells' original z and the fill's labels then the flat gradient borrow
-// net.order, net.acc and net.basin, which get their own content later.
+// The raised cells' original z and the fill's labels then the flat gradient borrow net.acc and
+// net.basin, which get their own content later; the fill state is let go on return, before the
+// accumulation allocates the orders.
 void priority_flood_directions(DrainageGrid& g, const GridShape& shape, const DrainageProgress& progress,
                                DrainageResult& res) {
     FlowNetwork& net = res.net;
-    std::vector<std::uint8_t>& flags = net.order;
+    std::vector<std::uint8_t> flags;
     CellWords& orig = net.acc;
     report(progress, "filling depressions, flow directions", 0.0);
     std::vector<std::uint32_t> ties;

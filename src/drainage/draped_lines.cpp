@@ -34,14 +34,14 @@ struct StemWalk {
     const std::vector<std::uint8_t>& dir;
     const FlowNetwork& net;
     GridShape shape{g.cols, g.rows, g.valid.data()};
-    std::vector<std::uint8_t> own_indeg;
-    const std::vector<std::uint8_t>& indeg;
+    CellBytes own_indeg;
+    const CellBytes& indeg;
     std::vector<double> total;  // accumulation at each basin's outlet
     const float* z = node_heights(g);
 
     StemWalk(const DrainageGrid& grid, const std::vector<std::uint8_t>& d, const FlowNetwork& n)
         : g(grid), dir(d), net(n),
-          own_indeg(n.indeg.size() == grid.size() ? std::vector<std::uint8_t>() : inflow_counts(d, shape)),
+          own_indeg(n.indeg.size() == grid.size() ? CellBytes() : inflow_counts(d, shape)),
           indeg(own_indeg.empty() ? n.indeg : own_indeg) {
         if (net.flow.empty()) {  // (keep_normalised_flow: each cell's flow, no accumulation)
             total.resize(net.outlet.size());

@@ -8,8 +8,8 @@
 
 namespace penink {
 
-std::vector<std::uint8_t> inflow_counts(const std::vector<std::uint8_t>& dir, const GridShape& g) {
-    std::vector<std::uint8_t> indeg(g.size(), 0);
+CellBytes inflow_counts(const std::vector<std::uint8_t>& dir, const GridShape& g) {
+    CellBytes indeg(g.size(), 0);
     for (std::size_t i = 0; i < g.size(); ++i)
         if (dir[i]) ++indeg[d8_target(g, i, dir[i])];
     return indeg;
@@ -19,7 +19,7 @@ void accumulate_flow(const std::vector<std::uint8_t>& dir, const GridShape& g, F
     // the in-degree (at most 8) in the low 4 bits, a copy counted down as upstream cells are
     // done in the high 4 bits: all zero again once the walk is through
     net.indeg = inflow_counts(dir, g);
-    std::vector<std::uint8_t>& in = net.indeg;
+    CellBytes& in = net.indeg;
     for (std::uint8_t& b : in) b = std::uint8_t(b | b << 4);
     net.acc.assign(g.size(), 0);
     net.order.assign(g.size(), 0);

@@ -16,10 +16,10 @@ namespace penink {
 
 struct FlowNetwork {
     CellWords acc;     // points draining through each cell (incl. itself); 0 invalid
-    std::vector<std::uint8_t> order;    // Strahler order (1 at sources); 0 invalid
+    CellBytes order;   // Strahler order (1 at sources); 0 invalid
     CellWords basin;   // basin id 1..B; 0 invalid
     std::vector<std::uint32_t> outlet;  // outlet cell of basin b at outlet[b - 1], in index order
-    std::vector<std::uint8_t> indeg;    // inflow_counts of the directions (kept for the branches)
+    CellBytes indeg;   // inflow_counts of the directions (kept for the branches)
     // One bit a cell (bit i % 64 of word i / 64): set where the cell is the main upstream cell of
     // the junction it drains into (main_upstream_bits, draped_lines.hpp); empty until found, when
     // the stems' walks find it at each junction they reach.
@@ -52,7 +52,7 @@ inline std::uint8_t final_order(std::uint8_t pending) {
 }
 
 // In-degree (number of valid neighbours draining into the cell) of every cell.
-std::vector<std::uint8_t> inflow_counts(const std::vector<std::uint8_t>& dir, const GridShape& g);
+CellBytes inflow_counts(const std::vector<std::uint8_t>& dir, const GridShape& g);
 // inflow_counts' value at cell i alone: its neighbours whose direction points at it.
 inline std::uint8_t inflow_count(const GridShape& g, const std::uint8_t* dir, std::size_t i) {
     const int c = int(i % std::size_t(g.cols)), r = int(i / std::size_t(g.cols));

@@ -59,7 +59,7 @@ TEST(Branches, TwoThreadsGiveTheSequentialWalk) {
     DrainageResult res;
     const DrainageDb db = drainage_db_from_grid(g, {}, &res);
     const GridShape s{cols, rows, g.valid.data()};
-    const std::vector<std::uint8_t> indeg = inflow_counts(res.dir, s);
+    const CellBytes indeg = inflow_counts(res.dir, s);
     std::vector<std::int64_t> branch_of(z.size(), -1);
     std::int64_t next = 0;
     for (std::size_t h = 0; h < z.size(); ++h)

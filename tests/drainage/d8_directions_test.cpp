@@ -15,7 +15,7 @@ GridShape shape_of(const DrainageGrid& g) { return {g.cols, g.rows, g.valid.data
 enum class PointClass : std::uint8_t { pit, ridge, channel, junction, none };
 
 std::vector<PointClass> classify_points(const std::vector<std::uint8_t>& dir, const GridShape& g) {
-    const std::vector<std::uint8_t> in = inflow_counts(dir, g);
+    const CellBytes in = inflow_counts(dir, g);
     std::vector<PointClass> cls(g.size(), PointClass::none);
     for (std::size_t i = 0; i < g.size(); ++i)
         if (g.valid[i])
@@ -69,9 +69,9 @@ TEST(Flow, SlopeAccumulationAndOrder) {
     FlowNetwork net;
     accumulate_flow(dir, shape_of(g), net);
     EXPECT_EQ(net.acc, (CellWords{1, 1, 1, 2, 2, 2, 3, 6, 9}));
-    EXPECT_EQ(net.order, (std::vector<std::uint8_t>{1, 1, 1, 1, 1, 1, 1, 2, 2}));
+    EXPECT_EQ(net.order, (CellBytes{1, 1, 1, 1, 1, 1, 1, 2, 2}));
     EXPECT_EQ(net.indeg, inflow_counts(dir, shape_of(g)));  // kept whole for the branches
-    EXPECT_EQ(net.indeg, (std::vector<std::uint8_t>{0, 0, 0, 1, 1, 1, 1, 2, 2}));
+    EXPECT_EQ(net.indeg, (CellBytes{0, 0, 0, 1, 1, 1, 1, 2, 2}));
 }
 
 TEST(Flow, RidgeBasinsAndNormalisedFlow) {
@@ -101,7 +101,7 @@ TEST(Flow, StrahlerOnTree) {
     DrainageGrid g = make_regular_grid(5, 3, 1.0, std::vector<float>(15, 0.0f));
     FlowNetwork net;
     accumulate_flow(tree_dirs(), shape_of(g), net);
-    EXPECT_EQ(net.order, (std::vector<std::uint8_t>{1, 1, 1, 1, 1, 1, 2, 1, 1, 2, 1, 2, 2, 2, 3}));
+    EXPECT_EQ(net.order, (CellBytes{1, 1, 1, 1, 1, 1, 2, 1, 1, 2, 1, 2, 2, 2, 3}));
     EXPECT_EQ(net.acc[14], 15u);
     EXPECT_EQ(net.acc[6], 5u);
     EXPECT_EQ(net.acc[11], 8u);
