@@ -61,19 +61,6 @@ std::string format_bytes(double bytes) {
 
 std::uint64_t memory_budget(std::uint64_t max_memory) { return max_memory > 0 ? max_memory : available_memory_bytes(); }
 
-std::uint64_t resident_memory_bytes() {
-    std::ifstream in("/proc/self/statm");
-    std::uint64_t size = 0, resident = 0;
-    const long page = ::sysconf(_SC_PAGESIZE);
-    return in >> size >> resident && page > 0 ? resident * std::uint64_t(page) : 0;
-}
-
-std::uint64_t memory_budget_left(std::uint64_t max_memory) {
-    if (max_memory == 0) return available_memory_bytes();
-    const std::uint64_t held = resident_memory_bytes();
-    return held < max_memory ? max_memory - held : 1;
-}
-
 void check_memory(const std::string& stage, const std::string& file, const std::string& what, double need,
                   std::uint64_t budget) {
     if (budget == 0 || !(need > double(budget))) return;

@@ -24,14 +24,6 @@ std::string format_bytes(double bytes);
 // unknown, no limit).
 std::uint64_t memory_budget(std::uint64_t max_memory);
 
-// Bytes this process holds resident now (/proc/self/statm); 0 when it cannot be told.
-std::uint64_t resident_memory_bytes();
-
-// What a process that already runs may still take: `max_memory` less what it holds
-// (resident_memory_bytes; at least 1 byte, so a spent budget refuses everything) when > 0, else
-// the memory the system has available (which does not count what the process holds).
-std::uint64_t memory_budget_left(std::uint64_t max_memory);
-
 // Throws Error(stage, file, "<what> would need about <need> of memory, <budget> available
 // (--max-memory)") when budget > 0 and need > budget; `what` names the input, e.g. "the DEM's
 // 50000x50000 nodes".

@@ -15,6 +15,13 @@
 
 namespace penink {
 
+double scene_frame_bytes(const Scene& scene, int cols, int rows) {
+    const double side = std::ldexp(1.0, lod_padded_levels(cols, rows)) + 1.0;
+    const double water = scene.terrain.sea_level ? side * side * water_lod_bytes_per_padded_node : 0.0;
+    const double image = double(scene.view.camera.width) * double(scene.view.camera.height) * render_bytes_per_pixel;
+    return terrain_cache_estimate(cols, rows).peak_bytes + water + image;
+}
+
 void check_scene_memory(const Scene& scene, std::uint64_t max_memory) {
     const double image = double(scene.view.camera.width) * double(scene.view.camera.height) * render_bytes_per_pixel;
     const std::string& file = scene.source.file.empty() ? (scene.source.mesh.empty() ? scene.source.dem : scene.source.mesh) : scene.source.file;
@@ -43,9 +50,7 @@ void check_scene_memory(const Scene& scene, std::uint64_t max_memory) {
     const std::optional<TerrainCacheKey> known = lines ? known_terrain_key(scene.source.dem, scene.terrain.cache_dir) : std::nullopt;
     const bool drainage_cached = known && scene_drainage_cached(scene, *known, size.cols, size.rows);
     const double drainage = lines && !drainage_cached ? drainage_build_bytes(size.cols, size.rows, factor) : 0.0;
-    const double side = std::ldexp(1.0, lod_padded_levels(size.cols, size.rows)) + 1.0;
-    const double water = scene.terrain.sea_level ? side * side * water_lod_bytes_per_padded_node : 0.0;
-    const double dem = terrain_cache_estimate(size.cols, size.rows).peak_bytes + drainage + water;
+    const double dem = scene_frame_bytes(scene, size.cols, size.rows) - image + drainage;
     if (budget > 0 && dem > double(budget) && dem - drainage <= double(budget))  // the creases' build alone does not fit
         throw Error("drainage", scene.source.dem,
                     "the drainage grid of the creases and ridges at factor " + std::to_string(factor) + " (" +

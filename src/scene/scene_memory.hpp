@@ -38,4 +38,9 @@ constexpr double lod_bytes_per_node = 4.0;
 constexpr std::uint64_t check_memory_from_bytes = std::uint64_t(8) << 20;
 void check_scene_memory(const Scene& scene, std::uint64_t max_memory);
 
+// What check_scene_memory counts for drawing a cols x rows DEM from its caches: the terrain
+// cache's build, with a sea level the pyramid rebuilt for it, and the image's buffers (no drainage
+// build). A render's later builds (crease tiles) are checked on top of it.
+double scene_frame_bytes(const Scene& scene, int cols, int rows);
+
 }  // namespace penink

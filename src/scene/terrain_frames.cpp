@@ -22,6 +22,7 @@
 #include "scene/cache_build_estimate.hpp"
 #include "scene/hachure_lines.hpp"
 #include "scene/map_scale.hpp"
+#include "scene/scene_memory.hpp"
 #include "scene/terrain_keep.hpp"
 #include "scene/terrain_view.hpp"
 #include "surface/boundary_curves.hpp"
@@ -167,12 +168,14 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Terra
     return source;
 }
 
-std::function<void(int cols, int rows)> crease_tiles_memory_check(const Scene& scene) {
-    return [dem = scene.source.dem, max_memory = scene.terrain.max_memory](int cols, int rows) {
+std::function<void(int cols, int rows)> crease_tiles_memory_check(const Scene& scene, int dem_cols, int dem_rows) {
+    const std::uint64_t max_memory = scene.terrain.max_memory;
+    const double frame = max_memory > 0 ? scene_frame_bytes(scene, dem_cols, dem_rows) : 0.0;
+    return [dem = scene.source.dem, max_memory, frame](int cols, int rows) {
         check_memory("drainage", dem,
                      "building the crease tiles of a view not drawn before (the drainage grid's " + std::to_string(cols) +
                          "x" + std::to_string(rows) + " points)",
-                     crease_tiles_build_bytes(double(cols) * double(rows)), memory_budget_left(max_memory));
+                     frame + crease_tiles_build_bytes(double(cols) * double(rows)), memory_budget(max_memory));
     };
 }
 
@@ -201,7 +204,7 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Scene
     if (source && source->creases && !dem.stored.in_memory && dem.stored.nodes.blocks)
         source->creases->use_node_heights(terrain_node_heights(dem.stored));
     if (source && source->creases)
-        source->creases->before_first_decode(crease_tiles_memory_check(scene));
+        source->creases->before_first_decode(crease_tiles_memory_check(scene, dem.stored.meta.cols, dem.stored.meta.rows));
     return source;
 }
 

@@ -58,11 +58,13 @@ std::optional<DrainageLineSource> scene_drainage(const Scene& scene, const Scene
 // stems' walks reach (StoredCreases::use_node_heights), instead of reading the whole DEM again.
 NodeHeights terrain_node_heights(const StoredTerrain& t);
 // What a first build of crease tiles from the drainage cache checks before it decodes anything
-// (StoredCreases::before_first_decode, given the drainage grid's cols x rows points): throws
-// Error("drainage", DEM, "building the crease tiles of a view not drawn before (the drainage
-// grid's CxR points) would need about N of memory, B available (--max-memory)") when
-// crease_tiles_build_bytes exceeds memory_budget_left(scene.terrain.max_memory).
-std::function<void(int cols, int rows)> crease_tiles_memory_check(const Scene& scene);
+// (StoredCreases::before_first_decode, given the drainage grid's cols x rows points) for a
+// dem_cols x dem_rows DEM: throws Error("drainage", DEM, "building the crease tiles of a view not
+// drawn before (the drainage grid's CxR points) would need about N of memory, B available
+// (--max-memory)") where N, crease_tiles_build_bytes with, under --max-memory
+// (scene.terrain.max_memory), what check_scene_memory counted for the frame (scene_frame_bytes),
+// exceeds --max-memory, else the memory the system has available then.
+std::function<void(int cols, int rows)> crease_tiles_memory_check(const Scene& scene, int dem_cols, int dem_rows);
 // Sets source.read_whole (when its vertices are read from the file): the cache read whole, or
 // rebuilt, from the DEM's stored terrain `dem` (its grid and key), once found damaged while drawn.
 void read_whole_when_damaged(DrainageLineSource& source, const Scene& scene, const StoredTerrain& dem, const Log& log);

@@ -34,20 +34,6 @@ TEST(MemoryBudget, BudgetIsTheLimitGivenElseWhatIsAvailable) {
     EXPECT_GT(memory_budget(0), 0u);
 }
 
-// What a running process may still take: the limit less what it holds (a test binary holds a few
-// MiB and under a GiB), at least a byte; without a limit, what the system has available.
-TEST(MemoryBudget, BudgetLeftIsTheLimitLessWhatTheProcessHolds) {
-    const std::uint64_t held = resident_memory_bytes();
-    EXPECT_GT(held, std::uint64_t(1) << 20);
-    EXPECT_LT(held, std::uint64_t(1) << 30);
-    const std::uint64_t limit = std::uint64_t(64) << 30, left = memory_budget_left(limit);
-    EXPECT_LT(left, limit);
-    EXPECT_GT(left, limit - (std::uint64_t(1) << 30));
-    EXPECT_EQ(memory_budget_left(1), 1u);  // spent: nothing more fits
-    EXPECT_EQ(memory_budget_left(held / 2), 1u);
-    EXPECT_GT(memory_budget_left(0), 0u);
-}
-
 TEST(MemoryBudget, CheckNamesWhatTheInputWouldNeed) {
     EXPECT_NO_THROW(check_memory("input", "a.asc", "x", 1000.0, 1000));
     EXPECT_NO_THROW(check_memory("input", "a.asc", "x", 1e30, 0));  // unknown budget: no limit

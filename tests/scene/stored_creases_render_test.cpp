@@ -26,6 +26,7 @@
 #include "input/dem_reader.hpp"
 #include "scene/drainage_lines.hpp"
 #include "scene/scene.hpp"
+#include "scene/scene_memory.hpp"
 #include "scene/terrain_view.hpp"
 #include "scene/terrain_frames.hpp"
 #include "support/temp_dir.hpp"
@@ -229,12 +230,13 @@ TEST(StoredCreasesRender, HeightsReadByBlocksFromTheTerrainCache) {
 
     // a render's memory check before the first build: the build refused where its estimate
     // (crease_tiles_build_bytes: 18 B a point, 2.5 MB for jacksboro's 403 x 344) does not fit
-    // what is left of --max-memory, the query throwing that
-    scene.terrain.max_memory = resident_memory_bytes() + (std::uint64_t(1) << 20);
+    // what --max-memory leaves beside the frame check_scene_memory counted, the query throwing that
+    const double frame = scene_frame_bytes(scene, t.cols, t.rows);
+    scene.terrain.max_memory = std::uint64_t(frame) + (std::uint64_t(1) << 20);
     db = load();
     DrainageLineSource refused;
     refused.creases = StoredCreases::of(db), refused.db = std::move(db), refused.vertices = in_file;
-    refused.creases->before_first_decode(crease_tiles_memory_check(scene));
+    refused.creases->before_first_decode(crease_tiles_memory_check(scene, t.cols, t.rows));
     try {
         prepare_drainage_lines(refused, view, culling);
         FAIL() << "no error";
@@ -242,13 +244,15 @@ TEST(StoredCreasesRender, HeightsReadByBlocksFromTheTerrainCache) {
         EXPECT_EQ(e.code(), ExitCode::bad_input);
         EXPECT_NE(std::string(e.what()).find("penink: drainage: " + dem.string() +
                                              ": building the crease tiles of a view not drawn before (the drainage "
-                                             "grid's 403x344 points) would need about 2 MiB of memory, "),
+                                             "grid's 403x344 points) would need about " +
+                                             format_bytes(frame + 18.0 * 403 * 344) + " of memory, " +
+                                             format_bytes(double(scene.terrain.max_memory)) + " available"),
                   std::string::npos)
             << e.what();
     }
     EXPECT_EQ(refused.creases->stems_built(), 0u);
-    scene.terrain.max_memory = std::uint64_t(1) << 40;  // room: built
-    EXPECT_NO_THROW(crease_tiles_memory_check(scene)(t.cols, t.rows));
+    scene.terrain.max_memory = std::uint64_t(frame) + (std::uint64_t(3) << 20);  // room: built
+    EXPECT_NO_THROW(crease_tiles_memory_check(scene, t.cols, t.rows)(t.cols, t.rows));
 }
 
 // Without a line test, the stored creases of the whole DEM are the whole build's, and asking again
