@@ -22,16 +22,17 @@ void deallocate_big(void* p, std::size_t bytes) noexcept;
 // shrinks as it goes. A block under big_block_bytes (from operator new) keeps its memory.
 void release_big_pages(void* p, std::size_t bytes, std::size_t from, std::size_t to) noexcept;
 
-// v (a std::vector of a trivial type, empty or not) sized to n elements, its new storage advised
-// for transparent huge pages before it is first touched (reserve, madvise MADV_HUGEPAGE over the
-// whole 2 MiB pages inside, then resize): an array then filled whole faults once per 2 MiB
-// instead of once per 4 KiB. Not for an array whose parts are filled sparsely (its pages are
-// taken 2 MiB at a time).
+// Advises the whole 2 MiB pages inside [p, p + bytes) of any memory for transparent huge pages
+// (MADV_HUGEPAGE); takes effect for pages not yet touched.
 void advise_huge_pages(void* p, std::size_t bytes) noexcept;
 // The opposite, for a block from allocate_big (UninitAllocator) that is filled sparsely, by
 // blocks of cells where they are read: its pages not advised for huge pages (MADV_NOHUGEPAGE),
 // so a part written takes 4 KiB pages, not the 2 MiB around it. Call before first touch.
 void advise_small_pages(void* p, std::size_t bytes) noexcept;
+// v (a std::vector of a trivial type, empty or not) sized to n elements, its new storage advised
+// for transparent huge pages before it is first touched (reserve, advise_huge_pages, then
+// resize): an array then filled whole faults once per 2 MiB instead of once per 4 KiB. Not for
+// an array whose parts are filled sparsely (its pages are taken 2 MiB at a time).
 template <class V> void resize_in_huge_pages(V& v, std::size_t n) {
     if (n > v.capacity()) {
         V fresh;

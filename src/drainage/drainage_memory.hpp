@@ -19,12 +19,12 @@ constexpr double drainage_peak_bytes_per_point = 32.385, drainage_peak_base_byte
 constexpr double drainage_check_margin = 1.25, drainage_resampled_bytes_per_point = 64.0;
 
 // What a render whose first crease tiles are built from a stored creases' source takes beyond
-// what it holds when that build starts (counted on top of the frame's own estimate:
-// scene/scene_memory.hpp) (StoredCreases: the grid's mask, directions and stems'
-// sources decoded whole; the blocks of heights, positions, in-degrees, orders and flows its walks
-// fill; the stems built; the rest of the frame): 17.5 B a point measured, the largest of three
-// new close views of jacksboro refined 29 times peaking at 2.37 GB with 0.33 GB held when the
-// build started (116.6 M points; docs/timings.md).
+// what it holds when that build starts, which a render counts on top of its frame's own estimate
+// (StoredCreases: the grid's mask, directions and stems' sources decoded whole; the blocks of
+// heights, positions, in-degrees, orders and flows its walks fill; the stems built; the rest of
+// the frame): 17.5 B a point measured, the largest of three new close views of jacksboro refined
+// 29 times peaking at 2.37 GB with 0.33 GB held when the build started (116.6 M points;
+// docs/timings.md).
 constexpr double crease_tiles_bytes_per_point = 18.0;
 double crease_tiles_build_bytes(double points);
 

@@ -15,15 +15,28 @@
 
 namespace penink {
 
-double scene_frame_bytes(const Scene& scene, int cols, int rows) {
-    const double side = std::ldexp(1.0, lod_padded_levels(cols, rows)) + 1.0;
-    const double water = scene.terrain.sea_level ? side * side * water_lod_bytes_per_padded_node : 0.0;
-    const double image = double(scene.view.camera.width) * double(scene.view.camera.height) * render_bytes_per_pixel;
-    return terrain_cache_estimate(cols, rows).peak_bytes + water + image;
+namespace {
+
+// The image's buffers.
+double image_bytes(const Scene& scene) {
+    return double(scene.view.camera.width) * double(scene.view.camera.height) * render_bytes_per_pixel;
 }
 
+// A cols x rows DEM's drawing from its caches, the image aside: the terrain cache's build and,
+// with a sea level, the pyramid rebuilt for it over the padded square (a long thin DEM's square is
+// far larger than its nodes).
+double dem_bytes(const Scene& scene, int cols, int rows) {
+    const double side = std::ldexp(1.0, lod_padded_levels(cols, rows)) + 1.0;
+    const double water = scene.terrain.sea_level ? side * side * water_lod_bytes_per_padded_node : 0.0;
+    return terrain_cache_estimate(cols, rows).peak_bytes + water;
+}
+
+}  // namespace
+
+double scene_frame_bytes(const Scene& scene, int cols, int rows) { return dem_bytes(scene, cols, rows) + image_bytes(scene); }
+
 void check_scene_memory(const Scene& scene, std::uint64_t max_memory) {
-    const double image = double(scene.view.camera.width) * double(scene.view.camera.height) * render_bytes_per_pixel;
+    const double image = image_bytes(scene);
     const std::string& file = scene.source.file.empty() ? (scene.source.mesh.empty() ? scene.source.dem : scene.source.mesh) : scene.source.file;
     const std::string image_what = "drawing a " + std::to_string(scene.view.camera.width) + "x" +
                                    std::to_string(scene.view.camera.height) + " image";
@@ -50,7 +63,7 @@ void check_scene_memory(const Scene& scene, std::uint64_t max_memory) {
     const std::optional<TerrainCacheKey> known = lines ? known_terrain_key(scene.source.dem, scene.terrain.cache_dir) : std::nullopt;
     const bool drainage_cached = known && scene_drainage_cached(scene, *known, size.cols, size.rows);
     const double drainage = lines && !drainage_cached ? drainage_build_bytes(size.cols, size.rows, factor) : 0.0;
-    const double dem = scene_frame_bytes(scene, size.cols, size.rows) - image + drainage;
+    const double dem = dem_bytes(scene, size.cols, size.rows) + drainage;
     if (budget > 0 && dem > double(budget) && dem - drainage <= double(budget))  // the creases' build alone does not fit
         throw Error("drainage", scene.source.dem,
                     "the drainage grid of the creases and ridges at factor " + std::to_string(factor) + " (" +

@@ -49,8 +49,11 @@ void expect_round_trip(const Terrain& t, int factor, const std::string& what) {
     EXPECT_EQ(h.coarse_rows, g.coarse_rows) << what;
     EXPECT_EQ(h.coarse_xy, g.coarse_xy) << what;
     // (left empty where it is the fine mask: at factor 1, drainage_grid.hpp)
-    if (h.factor == 1 && h.coarse_valid.empty()) EXPECT_TRUE(g.coarse_valid.empty() || g.coarse_valid == g.valid) << what;
-    else EXPECT_EQ(h.coarse_valid, g.coarse_valid) << what;
+    if (h.factor == 1 && h.coarse_valid.empty()) {
+        EXPECT_TRUE(g.coarse_valid.empty() || g.coarse_valid == g.valid) << what;
+    } else {
+        EXPECT_EQ(h.coarse_valid, g.coarse_valid) << what;
+    }
     ASSERT_EQ(h.coarse_z.size(), g.coarse_z.size()) << what;
     if (!g.coarse_z.empty()) {  // bit for bit (NaN heights compare unequal as floats); memcmp of no bytes wants pointers
         EXPECT_EQ(std::memcmp(h.coarse_z.data(), g.coarse_z.data(), g.coarse_z.size() * sizeof(float)), 0) << what;
@@ -227,7 +230,9 @@ void expect_stored_network(const Terrain& t, int factor, const std::string& what
     const DrapedLineSet part = tiles.lines_for_box(mid - half, mid + half, &ids);
     ASSERT_FALSE(part.lines.empty()) << what;
     EXPECT_GT(net.blocks->filled(), 0u) << what;
-    if (few) EXPECT_LT(net.blocks->filled(), blocks * 3 / 4) << what;  // 68 of 143 on jacksboro
+    if (few) {
+        EXPECT_LT(net.blocks->filled(), blocks * 3 / 4) << what;  // 68 of 143 on jacksboro
+    }
     ::testing::Test::RecordProperty(what + "_blocks_filled_for_box", int(net.blocks->filled()));
     auto same = [&](const DrapedLineSet& set, const std::vector<std::uint32_t>& at) {
         std::size_t bad = 0;

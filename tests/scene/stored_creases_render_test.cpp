@@ -44,14 +44,20 @@ bool same_lines(const ScoredLineSet& a, const ScoredLineSet& b) {
            a.flow == b.flow;
 }
 
+// examples/<name> copied into `dir`: its path there.
+fs::path example_copy(const fs::path& dir, const std::string& name) {
+    const fs::path to = dir / name;
+    fs::copy_file(fs::path(PENINK_SOURCE_DIR "/examples") / name, to);
+    return to;
+}
+
 struct VolcanoCache {
     test::TempDir dir{"stored_creases"};
     Scene scene;
     Terrain t;
     VolcanoCache() {
-        const fs::path dem = dir.path / "volcano.asc";
-        fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.asc", dem);
-        fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.prj", dir.path / "volcano.prj");
+        const fs::path dem = example_copy(dir.path, "volcano.asc");
+        example_copy(dir.path, "volcano.prj");
         scene.source.dem = dem.string();
         scene.view.camera.width = 400, scene.view.camera.height = 300;
         t = read_dem(dem.string());
@@ -179,15 +185,19 @@ TEST(StoredCreasesRender, WithoutTileFilesTheStemsBuiltAreKept) {
 // read whole: the same lines, bit for bit, from the rows of fewer than all the blocks.
 TEST(StoredCreasesRender, HeightsReadByBlocksFromTheTerrainCache) {
     const test::TempDir dir("stored_creases_heights");
-    const fs::path dem = dir.path / "jacksboro.tif";
-    fs::copy_file(PENINK_SOURCE_DIR "/examples/jacksboro.tif", dem);
+    const fs::path dem = example_copy(dir.path, "jacksboro.tif");
     const Terrain t = read_dem(dem.string());
     DrainageOptions o;
     o.resample = 1;
-    DvLineVertices in_file;
-    const auto load = [&] { return load_or_build_drainage(dem.string(), t, o, {}, {}, &in_file); };
-    DrainageDb db = load();
-    ASSERT_EQ(crease_source_dem(crease_source_bytes(db)), absolute_dem_path(dem.string()));
+    // a render's source: the cache read (built the first time), its creases' source undecoded
+    const auto source = [&] {
+        DrainageLineSource s;
+        s.db = load_or_build_drainage(dem.string(), t, o, {}, {}, &s.vertices);
+        s.creases = StoredCreases::of(s.db);
+        return s;
+    };
+    DrainageLineSource whole = source();
+    ASSERT_EQ(crease_source_dem(crease_source_bytes(whole.db)), absolute_dem_path(dem.string()));
     const TerrainCacheKey key{1, 2, 3, 0, true};
     write_terrain_cache(dir.file("j.lod"), store_terrain(read_dem(dem.string())), key);
     const std::optional<StoredTerrain> cached = read_terrain_cache(dir.file("j.lod"), key);
@@ -203,10 +213,7 @@ TEST(StoredCreasesRender, HeightsReadByBlocksFromTheTerrainCache) {
     const glm::vec2 size = all.hi - all.lo;  // a fifth of the side, near a corner
     view.lo = all.lo + 0.1f * size, view.hi = all.lo + 0.3f * size;
     const LineCulling culling{{scene_camera(scene, t)}, line_culling_px(scene)};
-    DrainageLineSource whole, by_blocks;
-    whole.creases = StoredCreases::of(db), whole.db = std::move(db), whole.vertices = in_file;
-    db = load();
-    by_blocks.creases = StoredCreases::of(db), by_blocks.db = std::move(db), by_blocks.vertices = in_file;
+    DrainageLineSource by_blocks = source();
     by_blocks.creases->use_node_heights(heights);
     int checks = 0;
     by_blocks.creases->before_first_decode([&checks, &t](int cols, int rows) {
@@ -233,9 +240,7 @@ TEST(StoredCreasesRender, HeightsReadByBlocksFromTheTerrainCache) {
     // what --max-memory leaves beside the frame check_scene_memory counted, the query throwing that
     const double frame = scene_frame_bytes(scene, t.cols, t.rows);
     scene.terrain.max_memory = std::uint64_t(frame) + (std::uint64_t(1) << 20);
-    db = load();
-    DrainageLineSource refused;
-    refused.creases = StoredCreases::of(db), refused.db = std::move(db), refused.vertices = in_file;
+    DrainageLineSource refused = source();
     refused.creases->before_first_decode(crease_tiles_memory_check(scene, t.cols, t.rows));
     try {
         prepare_drainage_lines(refused, view, culling);
@@ -259,8 +264,7 @@ TEST(StoredCreasesRender, HeightsReadByBlocksFromTheTerrainCache) {
 // builds nothing.
 TEST(StoredCreasesRender, AllStemsGiveTheWholeBuild) {
     const test::TempDir dir("stored_creases_all");
-    const fs::path dem = dir.path / "volcano.asc";
-    fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.asc", dem);
+    const fs::path dem = example_copy(dir.path, "volcano.asc");
     const Terrain t = read_dem(dem.string());
     DvLineVertices in_file;
     const DrainageDb db = load_or_build_drainage(dem.string(), t, DrainageOptions{}, {}, {}, &in_file);
