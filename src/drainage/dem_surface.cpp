@@ -139,14 +139,37 @@ glm::vec3 DemSurface::node_normal(std::size_t i) const {
     });
 }
 
-DemDraper::DemDraper(const DemSurface& s) : s_(&s) {
-    if (!s.normals_made()) made_.assign(4096, {~0u, glm::vec3(0.0f)});
+glm::vec3 DemSurface::node_normal(int c, int r, FaceNormals& faces) const {
+    constexpr std::size_t side = 64;
+    if (faces.slots.empty()) faces.slots.assign(2 * side * side, {0, glm::vec3(0.0f)});
+    return with_nodes([&](const auto& node) {
+        glm::vec3 sum(0.0f);
+        auto add = [&](int cc, int rr, int which) {
+            if (!triangle_valid(cc, rr, which)) return;
+            auto& slot = faces.slots[(std::size_t(cc) % side + std::size_t(rr) % side * side) * 2 + std::size_t(which)];
+            const std::uint64_t key = (std::uint64_t(index(cc, rr)) << 1 | std::uint64_t(which)) + 1;
+            if (slot.first != key) slot = {key, face_normal(*this, node, cc, rr, which)};
+            sum += slot.second;
+        };
+        add(c - 1, r - 1, 0), add(c - 1, r - 1, 1), add(c, r - 1, 0);
+        add(c - 1, r, 1), add(c, r, 0), add(c, r, 1);
+        return unit_sum(sum);
+    });
 }
 
+DemDraper::DemDraper(const DemSurface& s) : s_(&s) {
+    if (!s.normals_made()) made_.assign(64 * 64, {~0u, glm::vec3(0.0f)});
+}
+
+// On jacksboro refined 10 times (13.9 M nodes), the first whole view's crease tiles asked for
+// 33 M normals of 14 M nodes: most nodes are made once whatever the slots, and the faces kept
+// make each of their 6 faces a third as often (a face serves 3 nodes).
 glm::vec3 DemDraper::normal(std::uint32_t i) const {
     if (made_.empty()) return s_->normal(std::size_t(i));
-    auto& slot = made_[i % made_.size()];
-    if (slot.first != i) slot = {i, s_->node_normal(i)};
+    const auto cols = std::uint32_t(s_->cols());
+    const std::uint32_t c = i % cols, r = i / cols;
+    auto& slot = made_[c % 64 + r % 64 * 64];
+    if (slot.first != i) slot = {i, s_->node_normal(int(c), int(r), faces_)};
     return slot.second;
 }
 

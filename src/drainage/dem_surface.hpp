@@ -28,8 +28,9 @@ namespace penink {
 // A view of a DEM grid's nodes (row 0 north): elevations and validity, and x, y either from the
 // affine node formula (affine_node_xy, exactly what the DEM reader stores) or per node, plus the
 // vertex normal of every node (12 B a node, made on all cores; or, with Normals::on_demand, each
-// made where a draper needs it, the last 4096 kept by each DemDraper: the ridges of /tmp/j10.tif
-// draped in 0.5-0.9 s instead of 1.8-2.7 s, and `penink drainage`'s peak 781 -> 615 MB). Holds
+// made where a draper needs it, each DemDraper keeping those of a 64 x 64 window of nodes and the
+// faces they were summed from: the ridges of /tmp/j10.tif draped in 0.5-0.9 s instead of 1.8-2.7 s,
+// and `penink drainage`'s peak 781 -> 615 MB). Holds
 // pointers into the grid or Terrain it was made from, which must outlive it.
 class DemSurface {
 public:
@@ -70,6 +71,15 @@ public:
     glm::vec3 normal(std::size_t i) const { return normals_.empty() ? node_normal(i) : normals_[i]; }  // i = index(c, r)
     bool normals_made() const { return !normals_.empty() || cols_ * rows_ == 0; }
     glm::vec3 node_normal(std::size_t i) const;
+    // Face normals kept by a caller (a DemDraper's): one slot per triangle of a 64 x 64 window of
+    // cells (by column and row mod 64), holding the last face made there and its key.
+    struct FaceNormals {
+        std::vector<std::pair<std::uint64_t, glm::vec3>> slots;  // key: 2 cell index + which + 1; 0: none
+    };
+    // node_normal of node (c, r), the faces taken from `faces` where kept there and kept there
+    // where made: the same floats (each face is made by face_normal alone, and the sum is of the
+    // same faces in the same order), with a face shared by a node's neighbours made once.
+    glm::vec3 node_normal(int c, int r, FaceNormals& faces) const;
     // Triangle `which` of cell (c, r) (0: NW, SW, SE; 1: NW, SE, NE) is part of the surface: the
     // cell lies on the grid and the triangle's three nodes hold data.
     bool triangle_valid(int c, int r, int which) const {
@@ -194,8 +204,10 @@ public:
 
 private:
     const DemSurface* s_;
-    // the normals node_normal made last, by node (a surface with Normals::on_demand): slot i % size
+    // the normals node_normal made last, by node (a surface with Normals::on_demand): one slot a
+    // node of a 64 x 64 window (column and row mod 64), and the faces they were summed from
     mutable std::vector<std::pair<std::uint32_t, glm::vec3>> made_;
+    mutable DemSurface::FaceNormals faces_;
     glm::vec3 normal(std::uint32_t i) const;
     bool triangle_hit(double x, double y, int c, int r, int which, double eps, DemHit& hit) const;
     void corners(const DemHit& hit, glm::vec3 p[3], glm::vec3 n[3]) const;

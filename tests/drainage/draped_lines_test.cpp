@@ -8,6 +8,7 @@
 // lines).
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -202,6 +203,30 @@ TEST(DrapedLines, RotatedAffineGridLocatesAsTheMesh) {
         hits += on;
     }
     EXPECT_GT(hits, 10000);
+}
+
+// Normals made where asked for with the faces kept between nodes (a DemDraper's): the same floats as
+// those made for every node, on a grid wider and taller than the 64 x 64 cells the faces are kept
+// for (slots reused) with holes, the nodes asked for in a scattered order and then row by row.
+TEST(DrapedLines, NormalsFromKeptFacesAreTheNormalsOfEveryNode) {
+    Terrain t = terrain_from_function(150, 131, 10.0, [](double x, double y) { return rough_hills(4 * x, 4 * y) * 0.2; });
+    cut_hole(t, 60.0, -40.0, 55.0);
+    cut_hole(t, -700.0, 600.0, 80.0);  // on the north-west edge
+    const DrainageGrid g = resample_pn(t, 1);
+    const DemSurface all(g), on_demand(g, DemSurface::Normals::on_demand);
+    ASSERT_FALSE(on_demand.normals_made());
+    DemSurface::FaceNormals faces;
+    const auto n = std::uint32_t(g.size());
+    ASSERT_EQ(std::gcd(std::uint32_t(7919), n), 1u);
+    std::size_t differ = 0, holes = 0;
+    for (std::uint32_t k = 0; k < 2 * n; ++k) {
+        const std::uint32_t i = k < n ? std::uint32_t((std::uint64_t(k) * 7919u) % n) : k - n;  // 7919 prime to n
+        const glm::vec3 got = on_demand.node_normal(int(i % std::uint32_t(g.cols)), int(i / std::uint32_t(g.cols)), faces);
+        differ += got != all.normal(std::size_t(i));
+        holes += !g.valid[i];
+    }
+    EXPECT_EQ(differ, 0u);
+    EXPECT_GT(holes, 100u);  // the holes' edges, where faces are missing, were asked for
 }
 
 TEST(DrapedLines, StemsFromTheNetworkAreDrainageStems) {
