@@ -43,10 +43,15 @@ struct BlockGrid {
     }
 };
 
-// need(i) fills the block holding cell i the first time it is asked for (fill(block): one block at
-// a time, under a lock; it throws penink::Error when it cannot, the block then left unfilled), so
-// a reader calls it before it reads cell i; a block once filled is read by any thread without a
-// lock.
+// need(i) fills the block holding cell i the first time it is asked for (fill(block), under the
+// lock of the block's stripe: blocks of different stripes are filled at once by the threads that
+// ask for them, so fill must be safe to call concurrently for different blocks; it throws
+// penink::Error when it cannot, the block then left unfilled), so a reader calls it before it
+// reads cell i; a block once filled is read by any thread without a lock. With one lock for all
+// blocks, the two tiles built side by side (crease_tiles.hpp) waited on each other's fills: the
+// heights and x, y of a node block read from the terrain cache and projected, a network block
+// decoded (jacksboro x29's whole view, its crease tiles built from the drainage cache: 46-48 s
+// with one lock, measured in docs/timings.md).
 class CellBlocks {
 public:
     CellBlocks(BlockGrid grid, std::function<void(std::size_t block)> fill)
@@ -54,24 +59,22 @@ public:
     void need(std::size_t i) {
         const std::size_t b = grid_.block_of(i);
         if (ready_[b].load(std::memory_order_acquire)) return;
-        const std::lock_guard<std::mutex> lock(mutex_);
+        const std::lock_guard<std::mutex> lock(stripes_[b % stripes]);
         if (ready_[b].load(std::memory_order_relaxed)) return;
         fill_(b);
-        ++filled_;
+        filled_.fetch_add(1, std::memory_order_relaxed);
         ready_[b].store(1, std::memory_order_release);
     }
     const BlockGrid& grid() const { return grid_; }
-    std::size_t filled() const {  // blocks filled so far
-        const std::lock_guard<std::mutex> lock(mutex_);
-        return filled_;
-    }
+    std::size_t filled() const { return filled_.load(std::memory_order_relaxed); }  // blocks filled so far
 
 private:
+    static constexpr std::size_t stripes = 64;
     BlockGrid grid_;
     std::unique_ptr<std::atomic<std::uint8_t>[]> ready_;  // one a block: 1 once filled
     std::function<void(std::size_t)> fill_;
-    std::size_t filled_ = 0;
-    mutable std::mutex mutex_;
+    std::atomic<std::size_t> filled_{0};
+    std::mutex stripes_[stripes];
 };
 
 }  // namespace penink

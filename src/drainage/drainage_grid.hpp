@@ -59,8 +59,8 @@ struct DrainageGrid {
 
 // A DEM's node heights read where asked for (a render's terrain cache, read by blocks:
 // scene/terrain_frames.cpp): span(r, c0, c1, z) writes the heights of nodes c0 .. c1 - 1 of row r
-// (unexaggerated, local metres, 0 at nodata: take_node_heights' values) to z. Called from one
-// thread at a time.
+// (unexaggerated, local metres, 0 at nodata: take_node_heights' values) to z. Called from
+// several threads at once (CellBlocks fills blocks concurrently).
 struct NodeHeights {
     int cols = 0, rows = 0;
     std::function<void(int r, int c0, int c1, float* z)> span;

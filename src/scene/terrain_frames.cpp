@@ -182,8 +182,10 @@ std::function<void(int cols, int rows)> crease_tiles_memory_check(const Scene& s
 NodeHeights terrain_node_heights(const StoredTerrain& t) {
     NodeHeights h;
     h.cols = t.nodes.cols, h.rows = t.nodes.rows;
-    h.span = [nodes = t.nodes, keep = t.storage, scratch = std::make_shared<std::vector<glm::vec3>>()](
-                 int r, int c0, int c1, float* z) { nodes.read_heights(nodes.index(c0, r), nodes.index(c1, r), z, *scratch); };
+    h.span = [nodes = t.nodes, keep = t.storage](int r, int c0, int c1, float* z) {
+        thread_local std::vector<glm::vec3> scratch;  // (blocks are filled on several threads at once)
+        nodes.read_heights(nodes.index(c0, r), nodes.index(c1, r), z, scratch);
+    };
     return h;
 }
 
