@@ -418,8 +418,15 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
                 TileLines whole;
                 const int how = read_unit(cut_tile[k], cut_level[k], cut_d[k], whole);
                 written += how == 2;
-                if (how > 0 && whole.stems == stems_of(cut_unit[k]))
-                    read[k] = lines_of(ids_of(k), whole.stems, whole.lines), ++count;
+                if (how > 0 && whole.stems == stems_of(cut_unit[k])) {
+                    if (cuts[k + 1] - cuts[k] == whole.stems.size()) {  // every stem needed: the lines as read
+                        read[k] = std::make_unique<DrapedLineSet>(std::move(whole.lines));
+                        read[k]->index = {};  // (as lines_of leaves it)
+                    } else {
+                        read[k] = lines_of(ids_of(k), whole.stems, whole.lines);
+                    }
+                    ++count;
+                }
             }
         });
         tiles_read_ += count, copies += written;
