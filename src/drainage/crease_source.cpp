@@ -273,14 +273,19 @@ DemArraysHash dem_arrays_hash(const DrainageGrid& g) {
     return out;
 }
 
-std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const CreaseTileIndex& index,
+std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const CodedCreaseIndex& coded,
                                                  const std::vector<CodedSourceArray>& arrays, const DemHeightsRef* dem,
                                                  const DemArraysHash& hashes, const CodedSourceNetwork* network) {
+    const CreaseTileIndex& index = coded.index;
+    const std::vector<std::vector<std::uint8_t>>&ids = coded.ids, &bounds = coded.bounds;
+    if (ids.size() != index.units.size() || bounds.size() != index.units.size())
+        throw Error("drainage", "", "crease index coded for other units", ExitCode::internal);
     if (dem && g.factor != 1)
         throw Error("drainage", "", "a crease source refers to the DEM at factor 1 only", ExitCode::internal);
     std::vector<std::uint8_t> out;
-    std::size_t size = 260 + (dem ? dem->path.size() + 8 * (hashes.z.size() + hashes.xy.size()) : 0) + 16 * index.lo.size() + 40 * index.units.size() + 4 * index.parts.sources.size() +
-                       12 * index.stems.size();
+    std::size_t size = 260 + (dem ? dem->path.size() + 8 * (hashes.z.size() + hashes.xy.size()) : 0) + 16 * index.lo.size() +
+                       40 * index.units.size() + 4 * index.parts.sources.size();
+    for (std::size_t u = 0; u < ids.size(); ++u) size += ids[u].size() + bounds[u].size();
     for (const CodedSourceArray& a : arrays) {
         size += 12 + 4 * a.blocks.size();
         for (const auto& b : a.blocks) size += b.size();
@@ -312,17 +317,6 @@ std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const Cr
     put_box(out, index.parts.lo, index.parts.hi);
     for (std::size_t k = 0; k < index.lo.size(); ++k) put_box(out, index.lo[k], index.hi[k]);
     put(out, index.z_top);
-    // each unit's stems coded on its own, on all cores
-    const std::vector<std::vector<std::uint32_t>> members = crease_unit_stems(index, g.cols, g.rows, g.dx);
-    std::vector<std::vector<std::uint8_t>> ids(members.size()), bounds(members.size());
-    parallel_chunks(members.size(), 1, [&](std::size_t u0, std::size_t u1) {
-        std::vector<StemBound> b;
-        for (std::size_t u = u0; u < u1; ++u) {
-            b.clear();
-            for (std::uint32_t s : members[u]) b.push_back(index.stems[s]);
-            ids[u] = encode_stem_ids(members[u].data(), members[u].size()), bounds[u] = encode_stem_bounds(b.data(), b.size());
-        }
-    });
     put(out, std::uint32_t(index.units.size()));
     for (std::size_t i = 0; i < index.units.size(); ++i) {
         const CreaseUnit& u = index.units[i];
@@ -335,7 +329,7 @@ std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const Cr
     put_blocks(out, code_blocks(deltas.size(), [&](std::size_t first, std::size_t k) {
                    return encode_bytes(reinterpret_cast<const std::uint8_t*>(deltas.data() + first), 4 * k);
                }));
-    for (std::size_t u = 0; u < members.size(); ++u)
+    for (std::size_t u = 0; u < ids.size(); ++u)
         out.insert(out.end(), ids[u].begin(), ids[u].end()), out.insert(out.end(), bounds[u].begin(), bounds[u].end());
     for (const CodedSourceArray& a : arrays) put_blocks(out, a);
     put(out, std::uint32_t(network != nullptr));
@@ -360,8 +354,8 @@ std::vector<std::uint8_t> encode_crease_source(const DrainageGrid& g, const std:
         arrays.push_back(referred ? CodedSourceArray{} : code_source_array(g, dir, SourceArray(a)));
     }
     const CodedSourceNetwork coded = network ? code_source_network(g, dir, *network, network_side) : CodedSourceNetwork{};
-    return assemble_crease_source(g, index, arrays, dem, dem ? dem_arrays_hash(g) : DemArraysHash{},
-                                  network ? &coded : nullptr);
+    return assemble_crease_source(g, code_crease_index(index, g.cols, g.rows, g.dx), arrays, dem,
+                                  dem ? dem_arrays_hash(g) : DemArraysHash{}, network ? &coded : nullptr);
 }
 
 namespace {

@@ -160,11 +160,12 @@ struct CodedSourceNetwork {
 CodedSourceNetwork code_source_network(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
                                        const FlowNetwork& net, int side = network_block_side);
 
-// The crease source of g's scalars, the index and the coded arrays (code_source_array of each
-// SourceArray, in order): the bytes encode_crease_source gives. With `dem`, z and coarse_xy are
-// empty CodedSourceArrays and `hashes` is dem_arrays_hash(g).
+// The crease source of g's scalars, the coded index (code_crease_index, or coded_crease_tile_index
+// a row of tiles at a time) and the coded arrays (code_source_array of each SourceArray, in order):
+// the bytes encode_crease_source gives. With `dem`, z and coarse_xy are empty CodedSourceArrays
+// and `hashes` is dem_arrays_hash(g).
 // With `network`, it is stored after the arrays (else a source without it: a render computes it).
-std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const CreaseTileIndex& index,
+std::vector<std::uint8_t> assemble_crease_source(const DrainageGrid& g, const CodedCreaseIndex& index,
                                                  const std::vector<CodedSourceArray>& arrays,
                                                  const DemHeightsRef* dem = nullptr, const DemArraysHash& hashes = {},
                                                  const CodedSourceNetwork* network = nullptr);

@@ -108,6 +108,109 @@ std::vector<CreaseUnit> crease_units(const CreaseTileIndex& index, int cols, int
     return out;
 }
 
+CodedCreaseIndex code_crease_index(CreaseTileIndex index, int cols, int rows, double cell) {
+    CodedCreaseIndex out;
+    const std::vector<std::vector<std::uint32_t>> members = crease_unit_stems(index, cols, rows, cell);
+    out.ids.resize(members.size()), out.bounds.resize(members.size());
+    parallel_chunks(members.size(), 1, [&](std::size_t u0, std::size_t u1) {
+        std::vector<StemBound> b;
+        for (std::size_t u = u0; u < u1; ++u) {
+            b.clear();
+            for (std::uint32_t s : members[u]) b.push_back(index.stems[s]);
+            out.ids[u] = encode_stem_ids(members[u].data(), members[u].size());
+            out.bounds[u] = encode_stem_bounds(b.data(), b.size());
+        }
+    });
+    index.stems = {};
+    out.index = std::move(index);
+    return out;
+}
+
+CodedCreaseIndex coded_crease_tile_index(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
+                                         const FlowNetwork& net, int tile, float z_top) {
+    CodedCreaseIndex out;
+    CreaseTileIndex& ix = out.index;
+    ix.side = std::max(1, tile);
+    ix.parts = stem_parts(g, dir, net);
+    const auto side = std::uint32_t(ix.side), cols = std::uint32_t(g.cols);
+    const std::uint32_t tx = (cols + side - 1) / side, ty = (std::uint32_t(g.rows) + side - 1) / side;
+    ix.lo.assign(std::size_t(tx) * ty, glm::vec2(std::numeric_limits<float>::infinity()));
+    ix.hi.assign(ix.lo.size(), -ix.lo[0]);
+    const PlanBoxes boxes(g);
+    const FallLineOptions options = fall_line_options(g);
+    ix.z_top = std::isnan(z_top) ? drape_height_top(g) : z_top;
+    const StemParts& parts = ix.parts;
+    const UnitSlots slot(ix.side, g.cols, g.rows, g.dx);
+    const std::size_t row_slots = std::size_t(tx) * crease_tile_levels;
+    std::vector<StemBound> bounds;  // the row's stems'
+    std::vector<std::vector<glm::vec2>> chunk_lo(stem_chunks_most), chunk_hi(stem_chunks_most);  // the row's tiles'
+    std::vector<std::vector<std::uint32_t>> members(row_slots);  // the row's units' stems
+    std::vector<std::uint32_t> used;                              // their slots with stems, ascending
+    std::size_t s0 = 0;
+    for (std::uint32_t row = 0; row < ty; ++row) {
+        const std::uint64_t end_cell = std::uint64_t(std::min(std::uint32_t(g.rows), (row + 1) * side)) * cols;
+        const std::size_t s1 = std::size_t(
+            std::lower_bound(parts.sources.begin() + std::ptrdiff_t(s0), parts.sources.end(), end_cell) - parts.sources.begin());
+        if (s1 == s0) continue;
+        const std::size_t first_tile = std::size_t(row) * tx, first_slot = first_tile * crease_tile_levels;
+        // each stem's reach and bound (crease_tile_index's), joined into its tile's box by each
+        // chunk, the chunks' boxes then joined (min and max: any order gives the same boxes)
+        bounds.assign(s1 - s0, StemBound{});
+        for (std::size_t c = 0; c < stem_chunks_most; ++c) chunk_lo[c].clear(), chunk_hi[c].clear();
+        for_each_stem_cells(
+            g, dir, net, parts,
+            [&](std::size_t c, std::uint32_t s, const std::uint32_t* cells, std::uint32_t n) {
+                glm::vec2 lo, hi;
+                boxes.plan_box(stem_cell_reach(cells, n, g, options), lo, hi);
+                bounds[s - s0] = stem_bound(lo, hi, stem_cell_travel(cells, n, g), parts.lo, parts.hi);
+                if (chunk_lo[c].empty())  // this chunk's thread alone
+                    chunk_lo[c].assign(tx, glm::vec2(std::numeric_limits<float>::infinity())), chunk_hi[c].assign(tx, -chunk_lo[c][0]);
+                const std::size_t k = tile_of(parts.sources[s], cols, side, tx) - first_tile;
+                chunk_lo[c][k] = glm::min(chunk_lo[c][k], lo), chunk_hi[c][k] = glm::max(chunk_hi[c][k], hi);
+            },
+            s0, s1);
+        for (std::size_t c = 0; c < stem_chunks_most; ++c)
+            for (std::size_t k = 0; k < chunk_lo[c].size(); ++k)
+                ix.lo[first_tile + k] = glm::min(ix.lo[first_tile + k], chunk_lo[c][k]),
+                                   ix.hi[first_tile + k] = glm::max(ix.hi[first_tile + k], chunk_hi[c][k]);
+        // the row's units (crease_units' summaries) and their stems, in stem order
+        used.clear();
+        for (std::size_t s = s0; s < s1; ++s) {
+            const std::size_t k = slot.of(parts.sources[s], bounds[s - s0]) - first_slot;
+            if (members[k].empty()) used.push_back(std::uint32_t(k));
+            members[k].push_back(std::uint32_t(s));
+        }
+        std::sort(used.begin(), used.end());
+        const std::size_t u_first = ix.units.size();
+        for (const std::uint32_t k : used) {
+            CreaseUnit u;
+            u.tile = std::uint32_t((first_slot + k) / crease_tile_levels), u.level = std::uint32_t((first_slot + k) % crease_tile_levels);
+            glm::vec2 blo, bhi;
+            for (const std::uint32_t s : members[k]) {
+                const StemBound& b = bounds[s - s0];
+                stem_bound_box(b, parts.lo, parts.hi, blo, bhi);
+                ++u.count, u.lo = glm::min(u.lo, blo), u.hi = glm::max(u.hi, bhi);
+                u.most.plan = std::max(u.most.plan, b.plan), u.most.rise = std::max(u.most.rise, b.rise);
+            }
+            ix.units.push_back(u);
+        }
+        out.ids.resize(ix.units.size()), out.bounds.resize(ix.units.size());
+        parallel_chunks(used.size(), 1, [&](std::size_t j0, std::size_t j1) {
+            std::vector<StemBound> b;
+            for (std::size_t j = j0; j < j1; ++j) {
+                const std::vector<std::uint32_t>& m = members[used[j]];
+                b.clear();
+                for (const std::uint32_t s : m) b.push_back(bounds[s - s0]);
+                out.ids[u_first + j] = encode_stem_ids(m.data(), m.size());
+                out.bounds[u_first + j] = encode_stem_bounds(b.data(), b.size());
+            }
+        });
+        for (const std::uint32_t k : used) members[k] = {};
+        s0 = s1;
+    }
+    return out;
+}
+
 CreaseTiles::CreaseTiles(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net, int tile,
                          TileStore store)
     : CreaseTiles(g, dir, net, crease_tile_index(g, dir, net, tile), std::move(store)) {}

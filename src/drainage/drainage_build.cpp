@@ -199,13 +199,13 @@ DrainageDb build_streamed(DrainageGrid& g, const std::string& crs_wkt, const Dra
     // meanwhile), kept with it for the crease tiles a render builds next.
     // The network, with the mains, coded for the source beside the index (both only read it): on
     // jacksboro refined 10 times 0.6-0.8 s beside the index's walk.
-    std::future<CreaseTileIndex> indexing;
+    std::future<CodedCreaseIndex> indexing;
     std::future<CodedSourceNetwork> network_coded;
     if (relief)
         indexing = std::async(std::launch::async, [&] {
             res.net.mains = main_upstream_bits(g, res.dir, res.net);
             network_coded = std::async(std::launch::async, [&] { return code_source_network(g, res.dir, res.net); });
-            return crease_tile_index(g, res.dir, res.net, 256, made.z_top);
+            return coded_crease_tile_index(g, res.dir, res.net, 256, made.z_top);
         });
     report(progress, "draping ridges", draping_from);
     build_draped_ridges(
@@ -214,7 +214,7 @@ DrainageDb build_streamed(DrainageGrid& g, const std::string& crs_wkt, const Dra
         made.surface.get());
     report(progress, "indexing creases", draping_from + (writing_at - draping_from) * 0.5);
     if (relief) {
-        const CreaseTileIndex index = indexing.get();
+        const CodedCreaseIndex index = indexing.get();
         if (xy_released) release_node_xy(g);
         report(progress, "coding the creases' source", draping_from + (writing_at - draping_from) * 0.75);
         std::vector<CodedSourceArray> arrays;

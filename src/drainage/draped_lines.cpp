@@ -676,13 +676,16 @@ StemParts stem_parts(const DrainageGrid& g, const std::vector<std::uint8_t>& dir
 
 void for_each_stem_cells(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                          const StemParts& parts,
-                         const std::function<void(std::size_t, std::uint32_t, const std::uint32_t*, std::uint32_t)>& f) {
+                         const std::function<void(std::size_t, std::uint32_t, const std::uint32_t*, std::uint32_t)>& f,
+                         std::size_t first, std::size_t last) {
     StemWalk walk(g, dir, net);
     walk.use_mains(true);  // every stem walked: each junction's main found once
-    const std::size_t n = parts.sources.size(), per = chunk_length(n, 1024);  // at most 16 chunks
+    last = std::min(last, parts.sources.size());
+    if (first >= last) return;
+    const std::size_t n = last - first, per = chunk_length(n, 1024);  // at most 16 chunks
     parallel_chunks(n, 1024, [&](std::size_t s0, std::size_t s1) {
         std::vector<std::uint32_t> cells;
-        for (std::size_t s = s0; s < s1; ++s) {
+        for (std::size_t s = first + s0; s < first + s1; ++s) {
             cells.clear();
             walk.walk(parts.sources[s], [&](const DvVertex&, std::size_t c) { cells.push_back(std::uint32_t(c)); });
             f(s0 / per, std::uint32_t(s), cells.data(), std::uint32_t(cells.size()));

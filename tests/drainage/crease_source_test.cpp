@@ -314,7 +314,9 @@ TEST(CreaseSource, CoarseMaskAtFactorOneStoredOnce) {
     std::vector<CodedSourceArray> arrays;
     for (std::size_t a = 0; a < source_array_count; ++a) arrays.push_back(code_source_array(g, res.dir, SourceArray(a)));
     EXPECT_EQ(arrays[std::size_t(SourceArray::coarse_valid)].elements, 0u);
-    EXPECT_EQ(assemble_crease_source(g, index, arrays), shared);
+    EXPECT_EQ(assemble_crease_source(g, code_crease_index(index, g.cols, g.rows, g.dx), arrays), shared);
+    // the index made and coded a row of tiles at a time: the same bytes
+    EXPECT_EQ(assemble_crease_source(g, coded_crease_tile_index(g, res.dir, res.net, 64), arrays), shared);
     DrainageGrid other = g;
     other.coarse_valid[other.coarse_valid.size() / 2] ^= 1;
     const std::vector<std::uint8_t> own = encode_crease_source(other, res.dir, index);

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <glm/common.hpp>
@@ -82,6 +83,37 @@ TEST(CreaseTiles, BoxesGetTheWholeBuildsLines) {
     expect_boxes_as_whole(volcano, drainage_resample_factor(volcano, DrainageOptions{}), 64, "volcano_auto");
     const Terrain jacksboro = read_dem(PENINK_SOURCE_DIR "/examples/jacksboro.tif");
     expect_boxes_as_whole(jacksboro, 1, 64, "jacksboro_factor1");
+}
+
+// The index made and coded a row of tiles at a time is the whole index coded, unit for unit and
+// byte for byte: tile boxes, units (their order, counts, boxes and largest bounds) and each unit's
+// coded ids and bounds; on jacksboro at factor 1 (rows of tiles of 16, 64 and 100 cells, the last
+// row cut) and the volcano at factor 5 (a grid of 301 x 431 points).
+TEST(CreaseTiles, IndexCodedByRowsIsTheWholeIndexCoded) {
+    const Terrain jacksboro = read_dem(PENINK_SOURCE_DIR "/examples/jacksboro.tif");
+    const Terrain volcano = read_dem(PENINK_SOURCE_DIR "/examples/volcano.asc");
+    for (const auto& [t, factor, tile] : {std::tuple(&jacksboro, 1, 16), std::tuple(&jacksboro, 1, 64),
+                                          std::tuple(&jacksboro, 1, 100), std::tuple(&volcano, 5, 64)}) {
+        const std::string what = std::to_string(factor) + "/" + std::to_string(tile);
+        DrainageGrid g = resample_pn(*t, factor);
+        DrainageResult res;
+        drainage_db_from_grid(g, {}, &res);
+        const CodedCreaseIndex whole = code_crease_index(crease_tile_index(g, res.dir, res.net, tile), g.cols, g.rows, g.dx);
+        const CodedCreaseIndex rows = coded_crease_tile_index(g, res.dir, res.net, tile);
+        ASSERT_GT(whole.index.lo.size() / std::size_t((g.cols + tile - 1) / tile), 2u) << what;  // rows of tiles
+        EXPECT_TRUE(whole.index.stems.empty() && rows.index.stems.empty()) << what;
+        EXPECT_EQ(rows.index.side, tile) << what;
+        EXPECT_EQ(rows.index.parts.sources, whole.index.parts.sources) << what;
+        EXPECT_EQ(rows.index.parts.lo, whole.index.parts.lo) << what;
+        EXPECT_EQ(rows.index.parts.hi, whole.index.parts.hi) << what;
+        EXPECT_EQ(rows.index.lo, whole.index.lo) << what;
+        EXPECT_EQ(rows.index.hi, whole.index.hi) << what;
+        EXPECT_EQ(rows.index.z_top, whole.index.z_top) << what;
+        ASSERT_GT(whole.index.units.size(), 20u) << what;
+        EXPECT_TRUE(rows.index.units == whole.index.units) << what;
+        EXPECT_TRUE(rows.ids == whole.ids) << what;
+        EXPECT_TRUE(rows.bounds == whole.bounds) << what;
+    }
 }
 
 // A line test as a perspective camera's screen size makes it, at exaggeration e: a line passes
