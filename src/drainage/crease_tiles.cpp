@@ -42,34 +42,69 @@ struct UnitSlots {
 
 }  // namespace
 
+namespace {
+
+// The index's parts, tile boxes and z_top into `ix` (side `tile`), and each row of tiles' stems'
+// bounds: on_row(s0, s1, bounds, first_tile) for the stems [s0, s1) of each row with stems, in row
+// order (stem s's bound bounds[s - s0]; first_tile: the row's first tile). The stems are in the
+// order of their source cells, so a row's are consecutive: each row's are walked on all cores,
+// each stem's reach joined into its tile's box by each chunk of stems, the chunks' boxes then
+// joined (min and max: the boxes one pass in stem order gives).
+template <class OnRow>
+void index_rows(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net, int tile, float z_top,
+                CreaseTileIndex& ix, OnRow&& on_row) {
+    ix.side = std::max(1, tile);
+    ix.parts = stem_parts(g, dir, net);
+    const auto side = std::uint32_t(ix.side), cols = std::uint32_t(g.cols);
+    const std::uint32_t tx = (cols + side - 1) / side, ty = (std::uint32_t(g.rows) + side - 1) / side;
+    ix.lo.assign(std::size_t(tx) * ty, glm::vec2(std::numeric_limits<float>::infinity()));
+    ix.hi.assign(ix.lo.size(), -ix.lo[0]);
+    const PlanBoxes boxes(g);
+    const FallLineOptions options = fall_line_options(g);
+    ix.z_top = std::isnan(z_top) ? drape_height_top(g) : z_top;
+    const StemParts& parts = ix.parts;
+    std::vector<StemBound> bounds;  // the row's stems'
+    std::vector<std::vector<glm::vec2>> chunk_lo(stem_chunks_most), chunk_hi(stem_chunks_most);  // the row's tiles'
+    std::size_t s0 = 0;
+    for (std::uint32_t row = 0; row < ty; ++row) {
+        const std::uint64_t end_cell = std::uint64_t(std::min(std::uint32_t(g.rows), (row + 1) * side)) * cols;
+        const std::size_t s1 = std::size_t(
+            std::lower_bound(parts.sources.begin() + std::ptrdiff_t(s0), parts.sources.end(), end_cell) - parts.sources.begin());
+        if (s1 == s0) continue;
+        const std::size_t first_tile = std::size_t(row) * tx;
+        bounds.assign(s1 - s0, StemBound{});
+        for (std::size_t c = 0; c < stem_chunks_most; ++c) chunk_lo[c].clear(), chunk_hi[c].clear();
+        for_each_stem_cells(
+            g, dir, net, parts,
+            [&](std::size_t c, std::uint32_t s, const std::uint32_t* cells, std::uint32_t n) {
+                glm::vec2 lo, hi;
+                boxes.plan_box(stem_cell_reach(cells, n, g, options), lo, hi);
+                bounds[s - s0] = stem_bound(lo, hi, stem_cell_travel(cells, n, g), parts.lo, parts.hi);
+                if (chunk_lo[c].empty())  // this chunk's thread alone
+                    chunk_lo[c].assign(tx, glm::vec2(std::numeric_limits<float>::infinity())), chunk_hi[c].assign(tx, -chunk_lo[c][0]);
+                const std::size_t k = tile_of(parts.sources[s], cols, side, tx) - first_tile;
+                chunk_lo[c][k] = glm::min(chunk_lo[c][k], lo), chunk_hi[c][k] = glm::max(chunk_hi[c][k], hi);
+            },
+            s0, s1);
+        for (std::size_t c = 0; c < stem_chunks_most; ++c)
+            for (std::size_t k = 0; k < chunk_lo[c].size(); ++k)
+                ix.lo[first_tile + k] = glm::min(ix.lo[first_tile + k], chunk_lo[c][k]),
+                                   ix.hi[first_tile + k] = glm::max(ix.hi[first_tile + k], chunk_hi[c][k]);
+        on_row(s0, s1, bounds, first_tile);
+        s0 = s1;
+    }
+}
+
+}  // namespace
+
 CreaseTileIndex crease_tile_index(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                                   int tile, float z_top) {
     CreaseTileIndex out;
-    out.side = std::max(1, tile);
-    out.parts = stem_parts(g, dir, net);
-    const auto side = std::uint32_t(out.side);
-    const std::uint32_t tx = (std::uint32_t(g.cols) + side - 1) / side, ty = (std::uint32_t(g.rows) + side - 1) / side;
-    out.lo.assign(std::size_t(tx) * ty, glm::vec2(std::numeric_limits<float>::infinity()));
-    out.hi.assign(out.lo.size(), -out.lo[0]);
-    const PlanBoxes boxes(g);
-    const FallLineOptions options = fall_line_options(g);
-    // each stem's reach on all cores, joined into its tile's box by each chunk of stems (in stem
-    // order), the chunks' boxes then in chunk order: the boxes one pass in stem order gives
-    out.z_top = std::isnan(z_top) ? drape_height_top(g) : z_top;
-    const StemParts& parts = out.parts;
-    out.stems.resize(parts.sources.size());
-    std::vector<std::vector<glm::vec2>> chunk_lo(stem_chunks_most), chunk_hi(stem_chunks_most);
-    for_each_stem_cells(g, dir, net, parts, [&](std::size_t c, std::uint32_t s, const std::uint32_t* cells, std::uint32_t n) {
-        glm::vec2 lo, hi;
-        boxes.plan_box(stem_cell_reach(cells, n, g, options), lo, hi);
-        out.stems[s] = stem_bound(lo, hi, stem_cell_travel(cells, n, g), parts.lo, parts.hi);
-        if (chunk_lo[c].empty()) chunk_lo[c] = out.lo, chunk_hi[c] = out.hi;  // this chunk's thread alone
-        const std::size_t k = tile_of(parts.sources[s], std::uint32_t(g.cols), side, tx);
-        chunk_lo[c][k] = glm::min(chunk_lo[c][k], lo), chunk_hi[c][k] = glm::max(chunk_hi[c][k], hi);
-    });
-    for (std::size_t c = 0; c < stem_chunks_most; ++c)
-        for (std::size_t k = 0; k < chunk_lo[c].size(); ++k)
-            out.lo[k] = glm::min(out.lo[k], chunk_lo[c][k]), out.hi[k] = glm::max(out.hi[k], chunk_hi[c][k]);
+    index_rows(g, dir, net, tile, z_top, out,
+               [&](std::size_t s0, std::size_t s1, const std::vector<StemBound>& bounds, std::size_t) {
+                   if (out.stems.empty()) out.stems.resize(out.parts.sources.size());
+                   std::copy(bounds.begin(), bounds.begin() + std::ptrdiff_t(s1 - s0), out.stems.begin() + std::ptrdiff_t(s0));
+               });
     out.units = crease_units(out, g.cols, g.rows, g.dx);
     return out;
 }
@@ -130,53 +165,16 @@ CodedCreaseIndex coded_crease_tile_index(const DrainageGrid& g, const std::vecto
                                          const FlowNetwork& net, int tile, float z_top) {
     CodedCreaseIndex out;
     CreaseTileIndex& ix = out.index;
-    ix.side = std::max(1, tile);
-    ix.parts = stem_parts(g, dir, net);
-    const auto side = std::uint32_t(ix.side), cols = std::uint32_t(g.cols);
-    const std::uint32_t tx = (cols + side - 1) / side, ty = (std::uint32_t(g.rows) + side - 1) / side;
-    ix.lo.assign(std::size_t(tx) * ty, glm::vec2(std::numeric_limits<float>::infinity()));
-    ix.hi.assign(ix.lo.size(), -ix.lo[0]);
-    const PlanBoxes boxes(g);
-    const FallLineOptions options = fall_line_options(g);
-    ix.z_top = std::isnan(z_top) ? drape_height_top(g) : z_top;
-    const StemParts& parts = ix.parts;
-    const UnitSlots slot(ix.side, g.cols, g.rows, g.dx);
-    const std::size_t row_slots = std::size_t(tx) * crease_tile_levels;
-    std::vector<StemBound> bounds;  // the row's stems'
-    std::vector<std::vector<glm::vec2>> chunk_lo(stem_chunks_most), chunk_hi(stem_chunks_most);  // the row's tiles'
-    std::vector<std::vector<std::uint32_t>> members(row_slots);  // the row's units' stems
-    std::vector<std::uint32_t> used;                              // their slots with stems, ascending
-    std::size_t s0 = 0;
-    for (std::uint32_t row = 0; row < ty; ++row) {
-        const std::uint64_t end_cell = std::uint64_t(std::min(std::uint32_t(g.rows), (row + 1) * side)) * cols;
-        const std::size_t s1 = std::size_t(
-            std::lower_bound(parts.sources.begin() + std::ptrdiff_t(s0), parts.sources.end(), end_cell) - parts.sources.begin());
-        if (s1 == s0) continue;
-        const std::size_t first_tile = std::size_t(row) * tx, first_slot = first_tile * crease_tile_levels;
-        // each stem's reach and bound (crease_tile_index's), joined into its tile's box by each
-        // chunk, the chunks' boxes then joined (min and max: any order gives the same boxes)
-        bounds.assign(s1 - s0, StemBound{});
-        for (std::size_t c = 0; c < stem_chunks_most; ++c) chunk_lo[c].clear(), chunk_hi[c].clear();
-        for_each_stem_cells(
-            g, dir, net, parts,
-            [&](std::size_t c, std::uint32_t s, const std::uint32_t* cells, std::uint32_t n) {
-                glm::vec2 lo, hi;
-                boxes.plan_box(stem_cell_reach(cells, n, g, options), lo, hi);
-                bounds[s - s0] = stem_bound(lo, hi, stem_cell_travel(cells, n, g), parts.lo, parts.hi);
-                if (chunk_lo[c].empty())  // this chunk's thread alone
-                    chunk_lo[c].assign(tx, glm::vec2(std::numeric_limits<float>::infinity())), chunk_hi[c].assign(tx, -chunk_lo[c][0]);
-                const std::size_t k = tile_of(parts.sources[s], cols, side, tx) - first_tile;
-                chunk_lo[c][k] = glm::min(chunk_lo[c][k], lo), chunk_hi[c][k] = glm::max(chunk_hi[c][k], hi);
-            },
-            s0, s1);
-        for (std::size_t c = 0; c < stem_chunks_most; ++c)
-            for (std::size_t k = 0; k < chunk_lo[c].size(); ++k)
-                ix.lo[first_tile + k] = glm::min(ix.lo[first_tile + k], chunk_lo[c][k]),
-                                   ix.hi[first_tile + k] = glm::max(ix.hi[first_tile + k], chunk_hi[c][k]);
-        // the row's units (crease_units' summaries) and their stems, in stem order
+    const UnitSlots slot(std::max(1, tile), g.cols, g.rows, g.dx);
+    std::vector<std::vector<std::uint32_t>> members(std::size_t(slot.tx) * crease_tile_levels);  // a row's units' stems
+    std::vector<std::uint32_t> used;  // their slots with stems, ascending
+    index_rows(g, dir, net, tile, z_top, ix, [&](std::size_t s0, std::size_t s1, const std::vector<StemBound>& bounds,
+                                                 std::size_t first_tile) {
+        // the row's units (crease_units' summaries, in tile then level order) and their stems, in stem order
+        const std::size_t first_slot = first_tile * crease_tile_levels;
         used.clear();
         for (std::size_t s = s0; s < s1; ++s) {
-            const std::size_t k = slot.of(parts.sources[s], bounds[s - s0]) - first_slot;
+            const std::size_t k = slot.of(ix.parts.sources[s], bounds[s - s0]) - first_slot;
             if (members[k].empty()) used.push_back(std::uint32_t(k));
             members[k].push_back(std::uint32_t(s));
         }
@@ -188,7 +186,7 @@ CodedCreaseIndex coded_crease_tile_index(const DrainageGrid& g, const std::vecto
             glm::vec2 blo, bhi;
             for (const std::uint32_t s : members[k]) {
                 const StemBound& b = bounds[s - s0];
-                stem_bound_box(b, parts.lo, parts.hi, blo, bhi);
+                stem_bound_box(b, ix.parts.lo, ix.parts.hi, blo, bhi);
                 ++u.count, u.lo = glm::min(u.lo, blo), u.hi = glm::max(u.hi, bhi);
                 u.most.plan = std::max(u.most.plan, b.plan), u.most.rise = std::max(u.most.rise, b.rise);
             }
@@ -206,8 +204,7 @@ CodedCreaseIndex coded_crease_tile_index(const DrainageGrid& g, const std::vecto
             }
         });
         for (const std::uint32_t k : used) members[k] = {};
-        s0 = s1;
-    }
+    });
     return out;
 }
 
