@@ -296,7 +296,7 @@ CreaseTileIndex CreaseTiles::index() {
 
 DemSurface& CreaseTiles::surface() {
     if (!surface_) {
-        if (before_build_) std::exchange(before_build_, {})(query_share_);
+        if (before_build_) std::exchange(before_build_, {})();
         surface_ = std::make_unique<DemSurface>(g_, DemSurface::Normals::on_demand);
     }
     return *surface_;
@@ -726,16 +726,9 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
     return picks;
 }
 
-void CreaseTiles::set_query_box(glm::vec2 lo, glm::vec2 hi) {
-    const glm::vec2 size = parts_.hi - parts_.lo, l = glm::max(lo, parts_.lo), h = glm::min(hi, parts_.hi);
-    const double area = double(size.x) * double(size.y);
-    query_share_ = !(area > 0.0) ? 1.0 : !(h.x > l.x && h.y > l.y) ? 0.0 : double(h.x - l.x) * double(h.y - l.y) / area;
-}
-
 void CreaseTiles::line_refs_by_row(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show, const LineDetail& detail,
                                    const std::function<void(LineRefs)>& f) {
     built_in_query_ = false, progress_shown_ = 0.0;
-    set_query_box(lo, hi);
     const std::size_t rows = (tiles_.size() + tiles_across_ - 1) / tiles_across_;
     for (std::size_t row = 0; row < rows; ++row) {
         progress_from_ = double(row) / double(rows), progress_share_ = 1.0 / double(rows);
@@ -760,7 +753,6 @@ CreaseTiles::LineRefs CreaseTiles::refs_of(const std::vector<Pick>& picks) {
 DrapedLineSet CreaseTiles::lines_for_box(glm::vec2 lo, glm::vec2 hi, std::vector<std::uint32_t>* ids,
                                          const LineTest& may_show, const LineDetail& detail) {
     built_in_query_ = false;
-    set_query_box(lo, hi);
     const std::vector<Pick> picks = picks_for_box(lo, hi, may_show, detail);
     builds_ += built_in_query_;
     DrapedLineSet out;

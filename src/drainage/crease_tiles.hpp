@@ -198,10 +198,9 @@ public:
     void line_refs_by_row(glm::vec2 lo, glm::vec2 hi, const LineTest& may_show, const LineDetail& detail,
                           const std::function<void(LineRefs)>& f);
 
-    // Called once, before the first stem is built, with the share of the stems' plan box that the
-    // building query's box covers (0 to 1): a caller that made g, dir and net with their sizes only
-    // fills them there (reading what a query of most of the grid will read whole).
-    void before_first_build(std::function<void(double share)> f) { before_build_ = std::move(f); }
+    // Called once, before the first stem is built: a caller that made g, dir and net with their
+    // sizes only fills them there.
+    void before_first_build(std::function<void()> f) { before_build_ = std::move(f); }
     // Called while a query builds tiles: the fraction of the tiles it builds done so far (after
     // each tile, 1 after the last; not called for a query that builds none; a query by rows: each
     // row's tiles within its share of the rows, rising from 0 to 1 over the whole query).
@@ -283,9 +282,7 @@ private:
     std::uint64_t tile_key(std::size_t k, int l, int d = 0) const;
     std::string tile_path(std::size_t k, int l, int d = 0) const;
     std::unique_ptr<DemSurface> surface_;  // made with the first build
-    std::function<void(double)> before_build_;
-    double query_share_ = 1.0;  // the running query's box's share of the stems' box (before_first_build)
-    void set_query_box(glm::vec2 lo, glm::vec2 hi);
+    std::function<void()> before_build_;
     std::function<void(double)> build_progress_;
 };
 

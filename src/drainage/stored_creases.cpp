@@ -61,9 +61,8 @@ CreaseTiles& StoredCreases::tiles() {
     if (!decoded_) {
         auto d = std::make_unique<Decoded>();
         const auto decoded = [this](DrainageGrid& g, std::vector<std::uint8_t>& dir, CreaseTileIndex& index, SourcePart part,
-                                    std::vector<SourceUnitBlock>* blocks = nullptr, FlowNetwork* net = nullptr,
-                                    bool heights_by_blocks = true) {
-            if (!decode_crease_source(bytes(), g, dir, index, part, blocks, net, heights_by_blocks ? &heights_ : nullptr))
+                                    std::vector<SourceUnitBlock>* blocks = nullptr, FlowNetwork* net = nullptr) {
+            if (!decode_crease_source(bytes(), g, dir, index, part, blocks, net, &heights_))
                 throw Error("drainage", "", "stored crease source does not decode", ExitCode::internal);
         };
         // the units now (with a folder: a frame whose tiles are all in files needs no more), a
@@ -108,17 +107,15 @@ CreaseTiles& StoredCreases::tiles() {
         d->tiles = std::make_unique<CreaseTiles>(d->g, d->dir, d->net, std::move(index), std::move(store), std::move(reader));
         if (build_progress_) d->tiles->on_build_progress(build_progress_);
         if (d->dir.empty())
-            d->tiles->before_first_build([this, decoded, d = d.get()](double share) {
+            d->tiles->before_first_build([this, decoded, d = d.get()] {
                 if (before_decode_) before_decode_(d->g.cols, d->g.rows);
                 CreaseTileIndex again;
-                // the index: the tiles hold it; the network made as the DEM is read again; the
-                // heights by blocks where the walks reach, unless the query covers most of the
-                // grid (every block then read: the DEM's heights read whole cost less)
-                decoded(d->g, d->dir, again, SourcePart::grid, nullptr, &d->net, share < whole_heights_share);
+                // the index: the tiles hold it; the network made as the DEM is read again
+                decoded(d->g, d->dir, again, SourcePart::grid, nullptr, &d->net);
                 keep_normalised_flow(d->net);  // what the stems' walks read
             });
         else if (d->g.node_xy)  // the build's grid, its node x, y let go (drainage_grid.hpp)
-            d->tiles->before_first_build([d = d.get()](double) { restore_node_xy(d->g); });
+            d->tiles->before_first_build([d = d.get()] { restore_node_xy(d->g); });
         decoded_ = std::move(d);
     }
     return *decoded_->tiles;

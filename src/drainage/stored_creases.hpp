@@ -75,12 +75,7 @@ public:
     void on_build_progress(std::function<void(double)> f) { build_progress_ = std::move(f); }
     // Where the first build reads the DEM's heights from by blocks when the source refers to its
     // DEM (decode_crease_source's `heights`: a render's terrain cache) instead of reading the DEM
-    // whole; set before the first query. A first building query whose box covers
-    // whole_heights_share or more of the stems' box reads them whole all the same: its walks
-    // reach every block, and the DEM read whole costs less than the terrain cache's blocks read a
-    // row of 128 nodes at a time (jacksboro refined 29 times, whole view: 2.5 s on one core
-    // against 13.7 s of CPU in the blocks' fills).
-    static constexpr double whole_heights_share = 0.5;
+    // whole; set before the first query.
     void use_node_heights(NodeHeights h) { heights_ = std::move(h); }
     // Called once with the drainage grid's size (its points: cols x rows), before the first query
     // that builds stems decodes the grid, directions and network (not where they are a build's of

@@ -234,15 +234,6 @@ TEST(StoredCreasesRender, HeightsReadByBlocksFromTheTerrainCache) {
     EXPECT_TRUE(same_lines(prepare_drainage_lines(whole, all, culling).creases,
                            prepare_drainage_lines(by_blocks, all, culling).creases));
     EXPECT_EQ(checks, 1);  // before the first build alone
-    // a first building query of the whole DEM reads its heights whole (its walks would reach
-    // every block: StoredCreases::whole_heights_share), the same lines
-    const std::size_t spans_before = spans;
-    DrainageLineSource whole_first = source();
-    whole_first.creases->use_node_heights(heights);
-    EXPECT_TRUE(same_lines(prepare_drainage_lines(whole, all, culling).creases,
-                           prepare_drainage_lines(whole_first, all, culling).creases));
-    EXPECT_GT(whole_first.creases->stems_built(), 0u);
-    EXPECT_EQ(spans, spans_before);
 
     // a render's memory check before the first build: the build refused where its estimate
     // (crease_tiles_build_bytes: 18 B a point, 2.5 MB for jacksboro's 403 x 344) does not fit
