@@ -40,9 +40,23 @@ struct UnitSlots {
     }
 };
 
-}  // namespace
+// Stem bound b (on the stems' box [lo, hi]) counted into unit u's summary.
+void add_to_unit(CreaseUnit& u, const StemBound& b, glm::vec2 lo, glm::vec2 hi) {
+    glm::vec2 blo, bhi;
+    stem_bound_box(b, lo, hi, blo, bhi);
+    ++u.count, u.lo = glm::min(u.lo, blo), u.hi = glm::max(u.hi, bhi);
+    u.most.plan = std::max(u.most.plan, b.plan), u.most.rise = std::max(u.most.rise, b.rise);
+}
 
-namespace {
+// A unit's stems `m` (ascending) coded into ids and bounds (bound_of(s): stem s's bound; `b`
+// scratch).
+template <class BoundOf>
+void code_unit(const std::vector<std::uint32_t>& m, BoundOf&& bound_of, std::vector<StemBound>& b,
+               std::vector<std::uint8_t>& ids, std::vector<std::uint8_t>& bounds) {
+    b.clear();
+    for (const std::uint32_t s : m) b.push_back(bound_of(s));
+    ids = encode_stem_ids(m.data(), m.size()), bounds = encode_stem_bounds(b.data(), b.size());
+}
 
 // The index's parts, tile boxes and z_top into `ix` (side `tile`), and each row of tiles' stems'
 // bounds: on_row(s0, s1, bounds, first_tile) for the stems [s0, s1) of each row with stems, in row
@@ -63,36 +77,44 @@ void index_rows(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, con
     const FallLineOptions options = fall_line_options(g);
     ix.z_top = std::isnan(z_top) ? drape_height_top(g) : z_top;
     const StemParts& parts = ix.parts;
-    std::vector<StemBound> bounds;  // the row's stems'
-    std::vector<std::vector<glm::vec2>> chunk_lo(stem_chunks_most), chunk_hi(stem_chunks_most);  // the row's tiles'
-    std::size_t s0 = 0;
+    // the rows with stems: their first stems (and the end), their first tiles
+    std::vector<std::size_t> cuts{0}, first_tiles;
     for (std::uint32_t row = 0; row < ty; ++row) {
         const std::uint64_t end_cell = std::uint64_t(std::min(std::uint32_t(g.rows), (row + 1) * side)) * cols;
-        const std::size_t s1 = std::size_t(
-            std::lower_bound(parts.sources.begin() + std::ptrdiff_t(s0), parts.sources.end(), end_cell) - parts.sources.begin());
-        if (s1 == s0) continue;
-        const std::size_t first_tile = std::size_t(row) * tx;
-        bounds.assign(s1 - s0, StemBound{});
-        for (std::size_t c = 0; c < stem_chunks_most; ++c) chunk_lo[c].clear(), chunk_hi[c].clear();
-        for_each_stem_cells(
-            g, dir, net, parts,
-            [&](std::size_t c, std::uint32_t s, const std::uint32_t* cells, std::uint32_t n) {
-                glm::vec2 lo, hi;
-                boxes.plan_box(stem_cell_reach(cells, n, g, options), lo, hi);
-                bounds[s - s0] = stem_bound(lo, hi, stem_cell_travel(cells, n, g), parts.lo, parts.hi);
-                if (chunk_lo[c].empty())  // this chunk's thread alone
-                    chunk_lo[c].assign(tx, glm::vec2(std::numeric_limits<float>::infinity())), chunk_hi[c].assign(tx, -chunk_lo[c][0]);
-                const std::size_t k = tile_of(parts.sources[s], cols, side, tx) - first_tile;
-                chunk_lo[c][k] = glm::min(chunk_lo[c][k], lo), chunk_hi[c][k] = glm::max(chunk_hi[c][k], hi);
-            },
-            s0, s1);
-        for (std::size_t c = 0; c < stem_chunks_most; ++c)
-            for (std::size_t k = 0; k < chunk_lo[c].size(); ++k)
-                ix.lo[first_tile + k] = glm::min(ix.lo[first_tile + k], chunk_lo[c][k]),
-                                   ix.hi[first_tile + k] = glm::max(ix.hi[first_tile + k], chunk_hi[c][k]);
-        on_row(s0, s1, bounds, first_tile);
-        s0 = s1;
+        const auto s1 = std::size_t(std::lower_bound(parts.sources.begin() + std::ptrdiff_t(cuts.back()), parts.sources.end(), end_cell) -
+                                    parts.sources.begin());
+        if (s1 > cuts.back()) cuts.push_back(s1), first_tiles.push_back(std::size_t(row) * tx);
     }
+    std::vector<StemBound> bounds;  // the row's stems'
+    std::vector<std::vector<glm::vec2>> chunk_lo(stem_chunks_most), chunk_hi(stem_chunks_most);  // the row's tiles'
+    std::size_t s0 = 0, first_tile = 0;
+    const auto start = [&](std::size_t k) {
+        s0 = cuts[k], first_tile = first_tiles[k];
+        bounds.assign(cuts[k + 1] - s0, StemBound{});
+        for (std::size_t c = 0; c < stem_chunks_most; ++c) chunk_lo[c].clear(), chunk_hi[c].clear();
+    };
+    if (cuts.size() < 2) return;
+    start(0);
+    for_each_stem_cells(
+        g, dir, net, parts,
+        [&](std::size_t c, std::uint32_t s, const std::uint32_t* cells, std::uint32_t n) {
+            glm::vec2 lo, hi;
+            boxes.plan_box(stem_cell_reach(cells, n, g, options), lo, hi);
+            bounds[s - s0] = stem_bound(lo, hi, stem_cell_travel(cells, n, g), parts.lo, parts.hi);
+            if (chunk_lo[c].empty())  // this chunk's thread alone
+                chunk_lo[c].assign(tx, glm::vec2(std::numeric_limits<float>::infinity())), chunk_hi[c].assign(tx, -chunk_lo[c][0]);
+            const std::size_t k = tile_of(parts.sources[s], cols, side, tx) - first_tile;
+            chunk_lo[c][k] = glm::min(chunk_lo[c][k], lo), chunk_hi[c][k] = glm::max(chunk_hi[c][k], hi);
+        },
+        cuts,
+        [&](std::size_t k) {
+            for (std::size_t c = 0; c < stem_chunks_most; ++c)
+                for (std::size_t j = 0; j < chunk_lo[c].size(); ++j)
+                    ix.lo[first_tile + j] = glm::min(ix.lo[first_tile + j], chunk_lo[c][j]),
+                                       ix.hi[first_tile + j] = glm::max(ix.hi[first_tile + j], chunk_hi[c][j]);
+            on_row(s0, cuts[k + 1], bounds, first_tile);
+            if (k + 2 < cuts.size()) start(k + 1);
+        });
 }
 
 }  // namespace
@@ -119,13 +141,9 @@ std::vector<CreaseUnit> crease_units(const CreaseTileIndex& index, int cols, int
     parallel_chunks(n, 1 << 16, [&](std::size_t s0, std::size_t s1) {
         std::vector<CreaseUnit>& t = parts[s0 / per];
         t.resize(slots);
-        glm::vec2 blo, bhi;
         for (std::size_t s = s0; s < s1; ++s) {
             const StemBound& b = index.stems[s];
-            CreaseUnit& u = t[slot.of(index.parts.sources[s], b)];
-            stem_bound_box(b, index.parts.lo, index.parts.hi, blo, bhi);
-            ++u.count, u.lo = glm::min(u.lo, blo), u.hi = glm::max(u.hi, bhi);
-            u.most.plan = std::max(u.most.plan, b.plan), u.most.rise = std::max(u.most.rise, b.rise);
+            add_to_unit(t[slot.of(index.parts.sources[s], b)], b, index.parts.lo, index.parts.hi);
         }
     });
     std::vector<CreaseUnit> out;
@@ -149,12 +167,8 @@ CodedCreaseIndex code_crease_index(CreaseTileIndex index, int cols, int rows, do
     out.ids.resize(members.size()), out.bounds.resize(members.size());
     parallel_chunks(members.size(), 1, [&](std::size_t u0, std::size_t u1) {
         std::vector<StemBound> b;
-        for (std::size_t u = u0; u < u1; ++u) {
-            b.clear();
-            for (std::uint32_t s : members[u]) b.push_back(index.stems[s]);
-            out.ids[u] = encode_stem_ids(members[u].data(), members[u].size());
-            out.bounds[u] = encode_stem_bounds(b.data(), b.size());
-        }
+        for (std::size_t u = u0; u < u1; ++u)
+            code_unit(members[u], [&](std::uint32_t s) { return index.stems[s]; }, b, out.ids[u], out.bounds[u]);
     });
     index.stems = {};
     out.index = std::move(index);
@@ -183,25 +197,15 @@ CodedCreaseIndex coded_crease_tile_index(const DrainageGrid& g, const std::vecto
         for (const std::uint32_t k : used) {
             CreaseUnit u;
             u.tile = std::uint32_t((first_slot + k) / crease_tile_levels), u.level = std::uint32_t((first_slot + k) % crease_tile_levels);
-            glm::vec2 blo, bhi;
-            for (const std::uint32_t s : members[k]) {
-                const StemBound& b = bounds[s - s0];
-                stem_bound_box(b, ix.parts.lo, ix.parts.hi, blo, bhi);
-                ++u.count, u.lo = glm::min(u.lo, blo), u.hi = glm::max(u.hi, bhi);
-                u.most.plan = std::max(u.most.plan, b.plan), u.most.rise = std::max(u.most.rise, b.rise);
-            }
+            for (const std::uint32_t s : members[k]) add_to_unit(u, bounds[s - s0], ix.parts.lo, ix.parts.hi);
             ix.units.push_back(u);
         }
         out.ids.resize(ix.units.size()), out.bounds.resize(ix.units.size());
         parallel_chunks(used.size(), 1, [&](std::size_t j0, std::size_t j1) {
             std::vector<StemBound> b;
-            for (std::size_t j = j0; j < j1; ++j) {
-                const std::vector<std::uint32_t>& m = members[used[j]];
-                b.clear();
-                for (const std::uint32_t s : m) b.push_back(bounds[s - s0]);
-                out.ids[u_first + j] = encode_stem_ids(m.data(), m.size());
-                out.bounds[u_first + j] = encode_stem_bounds(b.data(), b.size());
-            }
+            for (std::size_t j = j0; j < j1; ++j)
+                code_unit(members[used[j]], [&](std::uint32_t s) { return bounds[s - s0]; }, b, out.ids[u_first + j],
+                          out.bounds[u_first + j]);
         });
         for (const std::uint32_t k : used) members[k] = {};
     });

@@ -125,17 +125,26 @@ void DemSurface::make_normals() {
     });
 }
 
-// make_normals' sum for node i alone: the same faces in the same order.
+namespace {
+
+// make_normals' sum for node (c, r) alone: the unit normals of its incident triangles of the
+// surface, face(cc, rr, which) each, in the same order.
+template <class Face> glm::vec3 node_face_sum(const DemSurface& s, int c, int r, Face&& face) {
+    glm::vec3 sum(0.0f);
+    auto add = [&](int cc, int rr, int which) {
+        if (s.triangle_valid(cc, rr, which)) sum += face(cc, rr, which);
+    };
+    add(c - 1, r - 1, 0), add(c - 1, r - 1, 1), add(c, r - 1, 0);
+    add(c - 1, r, 1), add(c, r, 0), add(c, r, 1);
+    return unit_sum(sum);
+}
+
+}  // namespace
+
 glm::vec3 DemSurface::node_normal(std::size_t i) const {
     const int c = int(i % std::size_t(cols_)), r = int(i / std::size_t(cols_));
     return with_nodes([&](const auto& node) {
-        glm::vec3 sum(0.0f);
-        auto add = [&](int cc, int rr, int which) {
-            if (triangle_valid(cc, rr, which)) sum += face_normal(*this, node, cc, rr, which);
-        };
-        add(c - 1, r - 1, 0), add(c - 1, r - 1, 1), add(c, r - 1, 0);
-        add(c - 1, r, 1), add(c, r, 0), add(c, r, 1);
-        return unit_sum(sum);
+        return node_face_sum(*this, c, r, [&](int cc, int rr, int which) { return face_normal(*this, node, cc, rr, which); });
     });
 }
 
@@ -143,17 +152,12 @@ glm::vec3 DemSurface::node_normal(int c, int r, FaceNormals& faces) const {
     constexpr std::size_t side = 64;
     if (faces.slots.empty()) faces.slots.assign(2 * side * side, {0, glm::vec3(0.0f)});
     return with_nodes([&](const auto& node) {
-        glm::vec3 sum(0.0f);
-        auto add = [&](int cc, int rr, int which) {
-            if (!triangle_valid(cc, rr, which)) return;
+        return node_face_sum(*this, c, r, [&](int cc, int rr, int which) {
             auto& slot = faces.slots[(std::size_t(cc) % side + std::size_t(rr) % side * side) * 2 + std::size_t(which)];
             const std::uint64_t key = (std::uint64_t(index(cc, rr)) << 1 | std::uint64_t(which)) + 1;
             if (slot.first != key) slot = {key, face_normal(*this, node, cc, rr, which)};
-            sum += slot.second;
-        };
-        add(c - 1, r - 1, 0), add(c - 1, r - 1, 1), add(c, r - 1, 0);
-        add(c - 1, r, 1), add(c, r, 0), add(c, r, 1);
-        return unit_sum(sum);
+            return slot.second;
+        });
     });
 }
 

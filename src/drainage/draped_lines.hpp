@@ -126,11 +126,13 @@ inline std::size_t mains_words(std::size_t cells) { return (cells + 63) / 64; }
 // once): the stems in consecutive chunks, chunk c (0, 1, ... in stem order, fewer than
 // stem_chunks_most) visited in stem order on one thread. No stem's vertices are kept.
 inline constexpr std::size_t stem_chunks_most = 17;
-// Stems [first, last) alone where given (last = -1: to the end), their chunks counted from first.
+// With `cuts` (ascending stem ids), the stems [cuts[k], cuts[k + 1]) alone, range after range on
+// one set-up walk (the junctions' mains found once), each range's chunks counted from its first
+// stem and done(k) called once its stems are all visited.
 void for_each_stem_cells(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                          const StemParts& parts,
                          const std::function<void(std::size_t, std::uint32_t, const std::uint32_t*, std::uint32_t)>& f,
-                         std::size_t first = 0, std::size_t last = std::size_t(-1));
+                         const std::vector<std::size_t>& cuts = {}, const std::function<void(std::size_t)>& done = {});
 // The lattice the creases' vertices are draped on (line_lattice.hpp), by g's smaller cell side.
 LineLattice crease_lattice(const DrainageGrid& g);
 // Steps 1 to 5 for stems `ids` of network_stems(g, dir, net): the lines build_draped_lines stores
