@@ -13,6 +13,7 @@
 #include "drainage/drainage_build.hpp"
 #include "drainage/fill_directions.hpp"
 #include "drainage/priority_flood.hpp"
+#include "drainage/tiled_fill.hpp"
 
 namespace penink {
 namespace {
@@ -217,6 +218,93 @@ TEST(BandedFill, EqualsTheOneThreadFill) {
         }
         EXPECT_GT(st_a.raised, 10u);
     }
+}
+
+// A grid's rows read from memory, as a DEM's bands are read from its file.
+FillRowReader rows_of(const DrainageGrid& a) {
+    return [&a](int y0, int y1, float* z, std::uint8_t* valid) {
+        const std::size_t b = std::size_t(y0) * a.cols, e = std::size_t(y1) * a.cols;
+        std::copy(a.z.begin() + std::ptrdiff_t(b), a.z.begin() + std::ptrdiff_t(e), z);
+        std::copy(a.valid.begin() + std::ptrdiff_t(b), a.valid.begin() + std::ptrdiff_t(e), valid);
+    };
+}
+
+// Random grids like BandedFill's, plus one where every level is -0 or +0 and one with a
+// flat-floored basin straddling several bands' edges.
+DrainageGrid tiled_fill_grid(std::uint64_t seed) {
+    const int cols = (seed % 2 ? 40 : 150) + int(seed % 7);
+    DrainageGrid a = random_grid(cols, 30 + int(seed % 5), seed, seed % 3 ? 80 : 0);
+    if (seed % 4 == 0)
+        for (int r = 8; r < 22; ++r)
+            for (int c = 5; c < 30; ++c) a.z[a.index(c, r)] = r == 8 || r == 21 || c == 5 || c == 29 ? 9.0f : 1.0f;
+    if (seed % 5 == 0)
+        for (float& v : a.z) v = v < 2.0f ? -0.0f : v - 2.0f;
+    return a;
+}
+
+// The fill a band at a time gives the one-thread fill's filled surface bit for bit (signed zeros
+// included; nodata cells as read), whatever the band height (1 row to the whole grid) and the
+// threads, and hands every row over once, in order, with its valid flags.
+TEST(TiledFill, EqualsTheOneThreadFill) {
+    for (std::uint64_t seed = 51; seed <= 62; ++seed) {
+        const DrainageGrid a = tiled_fill_grid(seed);
+        std::vector<float> expected = a.z;
+        std::vector<std::uint8_t> flags;
+        CellWords orig;
+        const FillStats one = priority_flood_fill(expected, {a.cols, a.rows, a.valid.data()}, flags, orig);
+        ASSERT_GT(one.raised, 10u);
+        for (const int band_rows : {1, 2, 3, 7, 16, a.rows}) {
+            for (const int threads : {1, 3}) {
+                std::vector<float> got;
+                std::vector<std::uint8_t> valid;
+                int next_row = 0;
+                const TiledFillStats st = tiled_priority_flood(
+                    {a.cols, a.rows, band_rows}, rows_of(a),
+                    [&](int y0, int y1, const float* z, const std::uint8_t* v) {
+                        ASSERT_EQ(y0, next_row);
+                        next_row = y1;
+                        got.insert(got.end(), z, z + std::size_t(y1 - y0) * a.cols);
+                        valid.insert(valid.end(), v, v + std::size_t(y1 - y0) * a.cols);
+                    },
+                    threads);
+                ASSERT_EQ(next_row, a.rows);
+                ASSERT_EQ(valid, a.valid);
+                EXPECT_EQ(st.bands, (a.rows + band_rows - 1) / band_rows);
+                EXPECT_EQ(st.raised, one.raised) << seed << " " << band_rows;
+                for (std::size_t i = 0; i < a.size(); ++i)
+                    ASSERT_EQ(std::bit_cast<std::uint32_t>(got[i]), std::bit_cast<std::uint32_t>(expected[i]))
+                        << "seed " << seed << " band rows " << band_rows << " cell " << i;
+            }
+        }
+    }
+}
+
+// A distributed fill's contract: bands surveyed in any order (as other processes would, each
+// survey sent on its own), the water levels from the surveys in any order, and each band
+// finished on its own give the one-thread fill.
+TEST(TiledFill, BandsSurveyedAndFinishedApartInAnyOrder) {
+    const DrainageGrid a = tiled_fill_grid(60);
+    std::vector<float> expected = a.z;
+    std::vector<std::uint8_t> flags;
+    CellWords orig;
+    priority_flood_fill(expected, {a.cols, a.rows, a.valid.data()}, flags, orig);
+    const FillBands bands{a.cols, a.rows, 4};
+    std::vector<BandSurvey> surveys;
+    for (int b = bands.count(); b-- > 0;) surveys.push_back(survey_fill_band(bands, b, rows_of(a)));
+    std::swap(surveys[1], surveys[3]);
+    const std::vector<float> water = fill_water_levels(bands, surveys);
+    for (int b = bands.count(); b-- > 0;) {
+        std::vector<float> filled;
+        std::vector<std::uint8_t> valid;
+        finish_fill_band(bands, b, rows_of(a), water, filled, valid);
+        ASSERT_EQ(filled.size(), std::size_t(bands.end_row(b) - bands.first_row(b)) * a.cols);
+        for (std::size_t k = 0; k < filled.size(); ++k)
+            ASSERT_EQ(std::bit_cast<std::uint32_t>(filled[k]),
+                      std::bit_cast<std::uint32_t>(expected[std::size_t(bands.first_row(b)) * a.cols + k]))
+                << "band " << b << " cell " << k;
+    }
+    surveys.pop_back();  // a band missing: refused, not a wrong surface
+    EXPECT_THROW(fill_water_levels(bands, surveys), std::invalid_argument);
 }
 
 TEST(PriorityFlood, NearRaisedRowIsTheThreeByThreeBlock) {
