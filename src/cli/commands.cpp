@@ -10,6 +10,7 @@
 #include "cli/batch_command.hpp"
 #include "cli/bench_command.hpp"
 #include "cli/drainage_subcommand.hpp"
+#include "cli/fill_subcommand.hpp"
 #include "cli/preview_command.hpp"
 #include "cli/render_command.hpp"
 #include "core/error.hpp"
@@ -23,10 +24,11 @@ std::vector<Subcommand> register_subcommands(CLI::App& app) {
     std::vector<Subcommand> subs;
     subs.push_back(add_render_command(app));
     subs.push_back(add_drainage_command(app));
+    subs.push_back(add_fill_command(app));
     subs.push_back(add_bench_command(app));
     subs.push_back(add_batch_command(app));
     subs.push_back(add_preview_command(app));
-    // One line per subcommand (keep this list in this order): render, drainage, bench, batch, preview.
+    // One line per subcommand (keep this list in this order): render, drainage, fill, bench, batch, preview.
     return subs;
 }
 

@@ -13,7 +13,7 @@ FillStats flood_labelled_band(const float* z, const GridShape& g, std::uint8_t* 
                               std::uint32_t* labels, int row0, int row1, bool top_shared, bool bottom_shared, int b) {
     Flood f{z, g, flags, level, d8_offsets(g), {}, {}, {}, {}, row0, row1, labels};
     seed_band(f);
-    std::uint32_t next = band_first_label(b, g.cols);
+    f.next_label = band_first_label(b, g.cols);
     const int first = row0, last = row1 - 1;
     for (const int r : {first, last}) {
         if (!(r == first ? top_shared : bottom_shared)) continue;  // the grid's border: seeds already
@@ -21,11 +21,12 @@ FillStats flood_labelled_band(const float* z, const GridShape& g, std::uint8_t* 
             const std::size_t i = std::size_t(r) * g.cols + c;
             if (!g.valid[i] || flags[i]) continue;
             flags[i] = fill_closed | band_edge;
-            labels[i] = next++;
+            labels[i] = Flood::unlabelled;  // labelled as it leaves the queue (label_edge)
             f.push_open(std::uint32_t(i));
         }
     }
     run(f);
+    f.stats.labels = f.next_label - band_first_label(b, g.cols);
     return f.stats;
 }
 

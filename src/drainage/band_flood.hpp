@@ -6,7 +6,9 @@
 //
 // A band is flooded from the grid's boundary cells in it (label 0, the "ocean") and from every
 // valid cell of its first and last rows that is not one already, unless that row is the grid's
-// border (labels band_first_label(b, cols) on, in cell order, first row then last). Watersheds of
+// border: such an edge seed takes the label of a neighbour already flooded no higher than itself
+// when it leaves the queue, else a new one (labels band_first_label(b, cols) on, in the order they
+// leave it; flood.hpp's label_edge: only the edges' local minima start watersheds). Watersheds of
 // two labels meet at spills: the higher local level of two 8-adjacent valid cells of different
 // labels. Over paths of spills to the ocean, the least highest spill of a label is its water
 // level W; a cell's filled level is max(local level, W(label)), the one-thread fill bit for bit.

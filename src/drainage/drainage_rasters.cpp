@@ -1,6 +1,8 @@
 #include "drainage/drainage_rasters.hpp"
 
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <memory>
 
 #include <gdal_priv.h>
@@ -129,6 +131,58 @@ void write_drainage_raster(std::size_t which, const std::string& path, const std
     } else {
         write_raster(file, GDT_Byte, res.net.order, 0.0);
     }
+}
+
+struct HeightRasterWriter::State {
+    std::string shown, stage;
+    Error failed(const std::string& why) const { return Error(stage, shown, "cannot write raster (" + why + ")"); }
+    int cols = 0, rows = 0;
+    Dataset ds;
+    std::vector<float> row;  // a strip's values with NaN at nodata
+};
+
+HeightRasterWriter::HeightRasterWriter(const std::string& path, const std::string& shown, const DrainageGeoref& geo,
+                                       int cols, int rows, const std::string& stage)
+    : s_(std::make_unique<State>()) {
+    GDALAllRegister();
+    s_->shown = shown, s_->stage = stage, s_->cols = cols, s_->rows = rows;
+    const QuietErrors errors;
+    GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
+    char** opts = nullptr;
+    opts = CSLSetNameValue(opts, "COMPRESS", "DEFLATE");
+    opts = CSLSetNameValue(opts, "PREDICTOR", "3");
+    opts = CSLSetNameValue(opts, "BLOCKYSIZE", std::to_string(height_raster_strip_rows).c_str());
+    opts = CSLSetNameValue(opts, "BIGTIFF", "IF_SAFER");
+    opts = CSLSetNameValue(opts, "NUM_THREADS", "ALL_CPUS");
+    s_->ds.reset(drv ? drv->Create(path.c_str(), cols, rows, 1, GDT_Float32, opts) : nullptr);
+    CSLDestroy(opts);
+    if (!s_->ds) throw s_->failed(errors.what());
+    std::array<double, 6> gt = geo.gt;
+    s_->ds->SetGeoTransform(gt.data());
+    if (!geo.wkt.empty()) s_->ds->SetProjection(geo.wkt.c_str());
+    s_->ds->GetRasterBand(1)->SetNoDataValue(std::numeric_limits<double>::quiet_NaN());
+    if (errors.failed()) throw s_->failed(errors.what());
+}
+
+HeightRasterWriter::~HeightRasterWriter() = default;
+
+void HeightRasterWriter::write_rows(int y0, int y1, const float* z, const std::uint8_t* valid) {
+    if (!s_->ds || y0 < 0 || y1 > s_->rows || y0 >= y1) return;
+    const QuietErrors errors;
+    const std::size_t n = std::size_t(y1 - y0) * std::size_t(s_->cols);
+    s_->row.resize(n);
+    for (std::size_t i = 0; i < n; ++i) s_->row[i] = valid[i] ? z[i] : std::numeric_limits<float>::quiet_NaN();
+    if (s_->ds->GetRasterBand(1)->RasterIO(GF_Write, 0, y0, s_->cols, y1 - y0, s_->row.data(), s_->cols, y1 - y0,
+                                           GDT_Float32, 0, 0) != CE_None ||
+        errors.failed())
+        throw s_->failed(errors.what());
+}
+
+void HeightRasterWriter::close() {
+    const QuietErrors errors;
+    if (s_->ds) s_->ds->FlushCache();
+    s_->ds.reset();  // the last strips are written here: a full disk shows now
+    if (errors.failed()) throw s_->failed(errors.what());
 }
 
 }  // namespace penink

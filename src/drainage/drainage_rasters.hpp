@@ -6,6 +6,8 @@
 // stream_order.tif (Byte Strahler order, nodata 0).
 #pragma once
 #include <array>
+#include <cstdint>
+#include <memory>
 #include <string>
 
 #include "drainage/drainage_build.hpp"
@@ -35,5 +37,28 @@ bool is_drainage_raster(const std::string& path);
 void write_drainage_raster(std::size_t which, const std::string& path, const std::string& shown,
                            const DrainageGeoref& geo, int cols, int rows, const std::vector<std::uint8_t>& valid,
                            const DrainageResult& res);
+
+// A GeoTIFF of heights (Float32, metres, nodata NaN, georeferenced like the DEM at factor 1: the
+// filled DEM of `penink fill`) written a band of rows at a time in row order, so that a grid of
+// any size passes through in bounded memory: strips of height_raster_strip_rows rows, DEFLATE
+// with the floating-point predictor, compressed on all cores, BigTIFF where the file may pass
+// 4 GiB. Errors: Error("drainage", shown, "cannot write raster (GDAL's reason)"), the disk full
+// included (found at the latest by close()); `stage` names the command's stage instead.
+inline constexpr int height_raster_strip_rows = 16;
+class HeightRasterWriter {
+public:
+    HeightRasterWriter(const std::string& path, const std::string& shown, const DrainageGeoref& geo, int cols, int rows,
+                       const std::string& stage = "drainage");
+    ~HeightRasterWriter();
+    // Rows [y0, y1) (row-major, cols a row): z where valid, NaN elsewhere. y0 a multiple of the
+    // strip rows, or the rows before it all written.
+    void write_rows(int y0, int y1, const float* z, const std::uint8_t* valid);
+    // Flushes and closes the file.
+    void close();
+
+private:
+    struct State;
+    std::unique_ptr<State> s_;
+};
 
 }  // namespace penink

@@ -54,6 +54,32 @@ struct Flood {
     // in the plain fill.
     int row0 = 0, row1 = 0;
     std::uint32_t* label = nullptr;
+    // The banded fill's edge seeds are labelled when they leave the queue (label_edge), from
+    // next_label on where they start a watershed of their own.
+    std::uint32_t next_label = 0;
+    static constexpr std::uint32_t unlabelled = ~std::uint32_t(0);
+
+    float local(std::uint32_t n) const { return flags[n] & fill_raised ? std::bit_cast<float>(level[n]) : z[n]; }
+    // Edge seed i leaving the queue at its own level h: a valid neighbour in the band already
+    // labelled at a local level <= h gives it its label (the first in code order), else it takes a
+    // new one. Exact, after Barnes 2016's distributed fill, where only the edges' local minima
+    // start watersheds: every cell of i's own label would lie at h or higher, so every spill from
+    // it would too, and the spill to that neighbour's label is h; the two labels' water levels
+    // are then equal, or both below the local levels of i's cells. Fewer labels, a smaller graph.
+    void label_edge(std::uint32_t i, float h) {
+        if (label[i] != unlabelled) return;
+        const int c = int(i % std::uint32_t(g.cols)), r = int(i / std::uint32_t(g.cols));
+        for (int k = 0; k < 8; ++k) {
+            const int nc = c + d8_dc[k], nr = r + d8_dr[k];
+            if (nc < 0 || nr < row0 || nc >= g.cols || nr >= row1) continue;
+            const std::uint32_t n = std::uint32_t(nr) * std::uint32_t(g.cols) + std::uint32_t(nc);
+            if (g.valid[n] && flags[n] && label[n] != unlabelled && !(local(n) > h)) {
+                label[i] = label[n];
+                return;
+            }
+        }
+        label[i] = next_label++;
+    }
 
     void push_open(std::uint32_t i) { open.push(float_order_key(z[i]), i), ++stats.queued; }
     void seed(std::uint32_t i) {
@@ -149,7 +175,9 @@ inline void run(Flood& f) {
             // the level from the key (no load of z[i], a cache miss in elevation order); only
             // seeds lie on the grid's (or the band's) border: only they need checked neighbours
             const auto e = f.open.pop();
-            f.spill(e.cell, float_of_order_key(e.key), f.flags[e.cell] & (fill_boundary | band_edge));
+            const float h = float_of_order_key(e.key);
+            if (f.flags[e.cell] & band_edge) f.label_edge(e.cell, h);
+            f.spill(e.cell, h, f.flags[e.cell] & (fill_boundary | band_edge));
         } else {
             break;
         }

@@ -26,6 +26,7 @@ inline constexpr std::uint8_t fill_boundary = 16;  // a seed: valid boundary cel
 struct FillStats {
     std::size_t raised = 0;  // cells raised into depressions
     std::size_t queued = 0;  // cells that went through the priority queue (seeds included)
+    std::size_t labels = 0;  // a band's fill: watersheds its edge seeds started (band_flood.hpp)
 };
 
 // Fills `z` (cols*rows, row-major, local metres) in place. `flags` is resized to cols*rows and

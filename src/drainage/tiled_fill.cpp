@@ -171,8 +171,7 @@ TiledFillStats tiled_priority_flood(const FillBands& bands, const FillRowReader&
     }
     TiledFillStats st;
     st.bands = n, st.band_bytes = fill_band_bytes(bands.cols, bands.band_rows);
-    st.labels = flood::band_label_count(n, bands.cols);
-    for (const BandSurvey& s : surveys) st.spills += s.spills.size();
+    for (const BandSurvey& s : surveys) st.spills += s.spills.size(), st.labels += s.stats.labels;
     const std::vector<float> water = fill_water_levels(bands, surveys);
     surveys.clear(), surveys.shrink_to_fit();
     struct Finished {

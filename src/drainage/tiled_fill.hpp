@@ -72,8 +72,8 @@ std::size_t finish_fill_band(const FillBands& bands, int b, const FillRowReader&
 struct TiledFillStats {
     int bands = 0;
     std::size_t raised = 0;   // cells the fill raised
-    std::size_t labels = 0;   // label ids (the ocean's included)
-    std::size_t spills = 0;   // spills between labels
+    std::size_t labels = 0;   // watersheds the bands' edge seeds started
+    std::size_t spills = 0;   // spills between labels within the bands
     std::uint64_t band_bytes = 0;  // fill_band_bytes of one band
 };
 

@@ -377,6 +377,10 @@ void DemRows::xy(int y, glm::vec2* out) const {
     row_local_xy(s.r, *s.xy, s.meta, s.path, y, line.data(), out);
 }
 
+void limit_gdal_block_cache(std::uint64_t bytes) {
+    if (!CPLGetConfigOption("GDAL_CACHEMAX", nullptr)) GDALSetCacheMax64(GIntBig(bytes));
+}
+
 DemSize read_dem_size(const std::string& path) {
     const QuietGdal quiet;
     GDALDatasetUniquePtr ds = open_raster(path);
