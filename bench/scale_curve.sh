@@ -11,7 +11,9 @@
 # Prints the machine's load (uptime) and a Markdown table: wall seconds and CPU seconds (user +
 # system; steadier than the wall on a shared machine) of one cold run and the best of N warm
 # runs, peak resident memory (/usr/bin/time's maximum RSS, MiB) cold and warm, the caches' size on
-# disk (MiB: .lod, .dv and the crease tiles the renders wrote, .dv.tiles/), and the warm wall and CPU time as multiples of the volcano's.
+# disk (MiB: .lod, .dv and the crease tiles the renders wrote, .dv.tiles/), the warm wall and CPU time as multiples of the volcano's,
+# and the wall seconds and peak MiB of `penink fill DEM -o filled.tif` (the depression fill read,
+# filled and written a band of rows at a time: bounded memory at any size).
 # LINES=0: creases and ridges off (a scene file per DEM with `[creases] enabled = false` and
 # `[ridges] enabled = false`, the volcano's too): no drainage database is built, so DEMs whose
 # drainage build does not fit the memory (a billion cells: SIZES=8500, a 4 GB DEM) are drawn.
@@ -75,8 +77,8 @@ warm() {
 echo "machine: $(nproc) cores, $(uptime | sed 's/.*load/load/'); $("$BIN" render "$TMP/volcano.asc" -o "$TMP/v.svg" \
   --cache-dir "$TMP/cache-v" --verbose 2>&1 | grep -m1 -o 'OSMesa.*\|EGL.*')"
 echo
-echo "| DEM | cells | cold s | cold CPU s | cold peak MiB | warm s | warm CPU s | warm peak MiB | caches MiB | warm / volcano (wall, CPU) |"
-echo "|---|---|---|---|---|---|---|---|---|---|"
+echo "| DEM | cells | cold s | cold CPU s | cold peak MiB | warm s | warm CPU s | warm peak MiB | caches MiB | warm / volcano (wall, CPU) | fill s | fill peak MiB |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
 for dem in $DEMS; do
   path="$TMP/$dem"
   rm -rf "$TMP/cache-$dem"
@@ -84,8 +86,11 @@ for dem in $DEMS; do
   cells=$(grep -o -m1 'of [0-9]* DEM cells' "$TMP/log" | awk '{print $2}')
   read -r ws wc wm vs vc < <(warm "$path")
   caches=$(du -sb "$TMP/cache-$dem" | awk '{printf "%.0f", $1 / 1048576}')
+  /usr/bin/time -f "%e %M" -o "$TMP/time" "$BIN" fill "$path" -o "$TMP/filled.tif" -q
+  read -r fs fm < <(awk '{printf "%.2f %.0f\n", $1, $2 / 1024}' "$TMP/time")
+  rm -f "$TMP/filled.tif"
   echo "| $dem | $cells | $cs | $cc | $cm | $ws | $wc | $wm | $caches |" \
-    "$(awk -v a="$ws" -v b="$vs" -v c="$wc" -v d="$vc" 'BEGIN {printf "%.1f, %.1f", a / b, c / d}') |"
+    "$(awk -v a="$ws" -v b="$vs" -v c="$wc" -v d="$vc" 'BEGIN {printf "%.1f, %.1f", a / b, c / d}') | $fs | $fm |"
 done
 echo
 echo "after: $(uptime | sed 's/.*load/load/')"

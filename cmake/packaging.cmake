@@ -22,6 +22,7 @@ add_custom_target(penink_man ALL DEPENDS ${man_page}.gz)
 
 install(TARGETS penink RUNTIME DESTINATION bin)
 install(TARGETS penink_oiio LIBRARY DESTINATION lib/penink)
+install(TARGETS penink_mpi LIBRARY DESTINATION lib/penink)
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/styles/ DESTINATION share/penink/styles)
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/examples/ DESTINATION share/penink/examples
         PATTERN "*.dv" EXCLUDE PATTERN "*.lod" EXCLUDE PATTERN "*.tmp-*" EXCLUDE)  # caches: built on first use

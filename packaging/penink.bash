@@ -11,7 +11,7 @@ _penink() {
     local cmd=${COMP_WORDS[0]} sub="" i
     for ((i = 1; i < COMP_CWORD; i++)); do
         case ${COMP_WORDS[i]} in
-            render | drainage | batch | bench | preview) sub=${COMP_WORDS[i]}; break ;;
+            render | drainage | fill | batch | bench | preview) sub=${COMP_WORDS[i]}; break ;;
         esac
     done
     COMPREPLY=()

@@ -19,6 +19,7 @@ pkgs=(
   libopenimageio-dev                   # raster output (PNG, TIFF, JPEG, WebP, EXR): the penink_oiio module
   libcli11-dev libtoml11-dev nlohmann-json3-dev  # CLI, scene/style files
   libcpp-httplib-dev                   # penink preview: the local web server
+  libopenmpi-dev openmpi-bin           # distributed runs (mpirun -n N penink fill): the penink_mpi module
   libgtest-dev libbenchmark-dev        # tests, benchmarks
   librsvg2-bin ghostscript poppler-utils         # output checks in tests
   dpkg-dev groff-base                  # package test: cpack -G DEB runs dpkg-shlibdeps; groff checks the man page

@@ -1,6 +1,8 @@
 #include "drainage/tiled_fill.hpp"
 
 #include <algorithm>
+#include <cstring>
+#include <future>
 #include <atomic>
 #include <bit>
 #include <mutex>
@@ -129,17 +131,168 @@ std::size_t finish_fill_band(const FillBands& bands, int b, const FillRowReader&
     return raised;
 }
 
-TiledFillStats tiled_priority_flood(const FillBands& bands, const FillRowReader& read, const FillRowWriter& write,
-                                    int threads, const std::function<void(int, int)>& progress) {
-    if (bands.cols < 1 || bands.rows < 1 || bands.band_rows < 1) throw std::invalid_argument("tiled fill: empty grid");
-    const int n = bands.count();
-    if (threads <= 0) threads = int(std::clamp<unsigned>(std::thread::hardware_concurrency(), 1, 16));
-    threads = std::min(threads, n);
-    std::mutex reading;  // the reader is called one band at a time
+namespace {
+
+// Bytes of plain values, appended and read back in order (a message between ranks).
+struct Writer {
+    std::vector<std::uint8_t> out;
+    template <class T> void put(const T& v) {
+        const auto* p = reinterpret_cast<const std::uint8_t*>(&v);
+        out.insert(out.end(), p, p + sizeof v);
+    }
+    template <class T> void put_all(const std::vector<T>& v) {
+        put(std::uint64_t(v.size()));
+        const auto* p = reinterpret_cast<const std::uint8_t*>(v.data());
+        out.insert(out.end(), p, p + v.size() * sizeof(T));
+    }
+};
+struct Reader {
+    std::span<const std::uint8_t> in;
+    std::size_t at = 0;
+    template <class T> T get() {
+        if (in.size() - at < sizeof(T)) throw std::runtime_error("tiled fill: a message cut short");
+        T v;
+        std::memcpy(&v, in.data() + at, sizeof v);
+        at += sizeof v;
+        return v;
+    }
+    template <class T> std::vector<T> get_all(std::size_t expected = ~std::size_t(0)) {
+        const auto n = get<std::uint64_t>();
+        if ((expected != ~std::size_t(0) && n != expected) || n > (in.size() - at) / sizeof(T))
+            throw std::runtime_error("tiled fill: a message of another grid");
+        std::vector<T> v(static_cast<std::size_t>(n));
+        std::memcpy(v.data(), in.data() + at, std::size_t(n) * sizeof(T));
+        at += std::size_t(n) * sizeof(T);
+        return v;
+    }
+};
+
+// Rows of a band sent to the rank that writes: band, raised, filled heights and valid flags.
+struct FinishedBand {
+    int band = 0;
+    std::size_t raised = 0;
+    std::vector<float> filled;
+    std::vector<std::uint8_t> valid;
+};
+
+std::vector<std::uint8_t> encode_finished(const FinishedBand& f) {
+    Writer w;
+    w.put(std::int32_t(f.band)), w.put(std::uint64_t(f.raised)), w.put_all(f.filled), w.put_all(f.valid);
+    return std::move(w.out);
+}
+
+FinishedBand decode_finished(const FillBands& bands, int band, std::span<const std::uint8_t> bytes) {
+    Reader r{bytes};
+    FinishedBand f;
+    f.band = r.get<std::int32_t>();
+    if (f.band != band) throw std::runtime_error("tiled fill: a band out of order");
+    f.raised = std::size_t(r.get<std::uint64_t>());
+    const std::size_t cells = std::size_t(bands.end_row(band) - bands.first_row(band)) * std::size_t(bands.cols);
+    f.filled = r.get_all<float>(cells), f.valid = r.get_all<std::uint8_t>(cells);
+    return f;
+}
+
+// Surveys of the bands `which` on up to `threads` threads, the reads through `read` one at a time;
+// tell() after each.
+std::vector<BandSurvey> survey_bands(const FillBands& bands, const std::vector<int>& which, const FillRowReader& read,
+                                     int threads, const std::function<void()>& tell) {
+    std::mutex reading;
     const FillRowReader serial = [&](int y0, int y1, float* z, std::uint8_t* valid) {
         const std::lock_guard<std::mutex> lock(reading);
         read(y0, y1, z, valid);
     };
+    std::vector<BandSurvey> surveys(which.size());
+    std::atomic<std::size_t> next{0};
+    auto work = [&] {
+        for (std::size_t k; (k = next++) < which.size();) surveys[k] = survey_fill_band(bands, which[k], serial), tell();
+    };
+    std::vector<std::future<void>> others;
+    for (int t = 1; t < std::min<int>(threads, int(which.size())); ++t) others.push_back(std::async(std::launch::async, work));
+    std::exception_ptr first;
+    try {
+        work();
+    } catch (...) {
+        first = std::current_exception(), next = which.size();
+    }
+    for (auto& o : others) try {
+            o.get();
+        } catch (...) {
+            if (!first) first = std::current_exception();
+        }
+    if (first) std::rethrow_exception(first);
+    return surveys;
+}
+
+// Finishes the bands `which` on up to `threads` threads (reads one at a time), handing each to
+// use() in the order of `which`.
+void finish_bands(const FillBands& bands, const std::vector<int>& which, const FillRowReader& read,
+                  const std::vector<float>& water, int threads, const std::function<void(FinishedBand&)>& use) {
+    std::mutex reading;
+    const FillRowReader serial = [&](int y0, int y1, float* z, std::uint8_t* valid) {
+        const std::lock_guard<std::mutex> lock(reading);
+        read(y0, y1, z, valid);
+    };
+    ordered_parts<FinishedBand>(
+        which.size(), std::size_t(std::max(threads, 1)),
+        [&](std::size_t k, FinishedBand& out) {
+            out.band = which[k];
+            out.raised = finish_fill_band(bands, out.band, serial, water, out.filled, out.valid);
+        },
+        [&](const FinishedBand& f) { use(const_cast<FinishedBand&>(f)); });
+}
+
+int default_threads() { return int(std::clamp<unsigned>(std::thread::hardware_concurrency(), 1, 16)); }
+
+constexpr int survey_tag = 1, band_tag = 2;
+
+}  // namespace
+
+std::vector<std::uint8_t> encode_band_survey(const BandSurvey& s) {
+    Writer w;
+    w.put(std::int32_t(s.band));
+    w.put(std::uint64_t(s.stats.raised)), w.put(std::uint64_t(s.stats.queued)), w.put(std::uint64_t(s.stats.labels));
+    std::vector<std::uint64_t> keys(s.spills.size());
+    std::vector<float> levels(s.spills.size());
+    for (std::size_t k = 0; k < s.spills.size(); ++k) keys[k] = s.spills[k].first, levels[k] = s.spills[k].second;
+    w.put_all(keys), w.put_all(levels);
+    w.put_all(s.first_labels), w.put_all(s.last_labels), w.put_all(s.first_levels), w.put_all(s.last_levels);
+    w.put_all(s.first_valid), w.put_all(s.last_valid);
+    return std::move(w.out);
+}
+
+BandSurvey decode_band_survey(const FillBands& bands, std::span<const std::uint8_t> bytes) {
+    Reader r{bytes};
+    BandSurvey s;
+    s.band = r.get<std::int32_t>();
+    if (s.band < 0 || s.band >= bands.count()) throw std::runtime_error("tiled fill: a survey of another grid");
+    s.stats.raised = std::size_t(r.get<std::uint64_t>()), s.stats.queued = std::size_t(r.get<std::uint64_t>());
+    s.stats.labels = std::size_t(r.get<std::uint64_t>());
+    const auto keys = r.get_all<std::uint64_t>();
+    const auto levels = r.get_all<float>(keys.size());
+    const std::uint64_t labels = flood::band_label_count(bands.count(), bands.cols);
+    s.spills.resize(keys.size());
+    for (std::size_t k = 0; k < keys.size(); ++k) {
+        if ((keys[k] >> 32) >= labels || (keys[k] & 0xffffffffu) >= labels)
+            throw std::runtime_error("tiled fill: a survey of another grid");
+        s.spills[k] = {keys[k], levels[k]};
+    }
+    const std::size_t cols = std::size_t(bands.cols);
+    s.first_labels = r.get_all<std::uint32_t>(cols), s.last_labels = r.get_all<std::uint32_t>(cols);
+    s.first_levels = r.get_all<float>(cols), s.last_levels = r.get_all<float>(cols);
+    s.first_valid = r.get_all<std::uint8_t>(cols), s.last_valid = r.get_all<std::uint8_t>(cols);
+    for (const auto* l : {&s.first_labels, &s.last_labels})
+        for (const std::uint32_t v : *l)
+            if (v >= labels) throw std::runtime_error("tiled fill: a survey of another grid");
+    if (r.at != bytes.size()) throw std::runtime_error("tiled fill: a survey with bytes after it");
+    return s;
+}
+
+TiledFillStats tiled_priority_flood(const FillBands& bands, const FillRowReader& read, const FillRowWriter& write,
+                                    int threads, const std::function<void(int, int)>& progress) {
+    if (bands.cols < 1 || bands.rows < 1 || bands.band_rows < 1) throw std::invalid_argument("tiled fill: empty grid");
+    const int n = bands.count();
+    if (threads <= 0) threads = default_threads();
+    threads = std::min(threads, n);
     std::atomic<int> done{0};
     std::mutex told;
     auto tell = [&] {
@@ -148,49 +301,86 @@ TiledFillStats tiled_priority_flood(const FillBands& bands, const FillRowReader&
         const std::lock_guard<std::mutex> lock(told);
         progress(d, 2 * n);
     };
-    std::vector<BandSurvey> surveys(static_cast<std::size_t>(n));
-    {
-        std::atomic<int> next{0};
-        std::vector<std::future<void>> others;
-        std::exception_ptr first;
-        auto work = [&] {
-            for (int b; (b = next++) < n;) surveys[std::size_t(b)] = survey_fill_band(bands, b, serial), tell();
-        };
-        for (int t = 1; t < threads; ++t) others.push_back(std::async(std::launch::async, work));
-        try {
-            work();
-        } catch (...) {
-            first = std::current_exception(), next = n;
-        }
-        for (auto& o : others) try {
-                o.get();
-            } catch (...) {
-                if (!first) first = std::current_exception();
-            }
-        if (first) std::rethrow_exception(first);
-    }
+    std::vector<int> all(static_cast<std::size_t>(n));
+    for (int b = 0; b < n; ++b) all[std::size_t(b)] = b;
+    std::vector<BandSurvey> surveys = survey_bands(bands, all, read, threads, tell);
     TiledFillStats st;
     st.bands = n, st.band_bytes = fill_band_bytes(bands.cols, bands.band_rows);
     for (const BandSurvey& s : surveys) st.spills += s.spills.size(), st.labels += s.stats.labels;
     const std::vector<float> water = fill_water_levels(bands, surveys);
     surveys.clear(), surveys.shrink_to_fit();
-    struct Finished {
-        int band = 0;
-        std::size_t raised = 0;
-        std::vector<float> filled;
-        std::vector<std::uint8_t> valid;
+    finish_bands(bands, all, read, water, threads, [&](FinishedBand& f) {
+        write(bands.first_row(f.band), bands.end_row(f.band), f.filled.data(), f.valid.data());
+        st.raised += f.raised;
+        tell();
+    });
+    return st;
+}
+
+TiledFillStats distributed_priority_flood(const FillBands& bands, const FillRowReader& read, const FillRowWriter& write,
+                                          Ranks& ranks, int threads, const std::function<void(int, int)>& progress) {
+    if (bands.cols < 1 || bands.rows < 1 || bands.band_rows < 1) throw std::invalid_argument("tiled fill: empty grid");
+    const int n = bands.count(), size = ranks.size(), me = ranks.rank();
+    const bool root = me == 0;
+    threads = std::max(threads, 1);
+    int done = 0;
+    auto tell = [&] {
+        ++done;
+        if (root && progress) progress(done, 2 * n);
     };
-    ordered_parts<Finished>(
-        std::size_t(n), std::size_t(threads),
-        [&](std::size_t b, Finished& out) {
-            out.band = int(b);
-            out.raised = finish_fill_band(bands, int(b), serial, water, out.filled, out.valid);
-        },
-        [&](const Finished& f) {
-            write(bands.first_row(f.band), bands.end_row(f.band), f.filled.data(), f.valid.data());
+    std::vector<int> mine;
+    for (int b = me; b < n; b += size) mine.push_back(b);
+    std::mutex told;
+    std::vector<BandSurvey> surveys = survey_bands(bands, mine, read, threads, [&] {
+        const std::lock_guard<std::mutex> lock(told);
+        tell();
+    });
+    TiledFillStats st;
+    st.bands = n, st.band_bytes = fill_band_bytes(bands.cols, bands.band_rows);
+    std::vector<std::uint8_t> water_bytes;
+    if (root) {
+        for (int r = 1; r < size; ++r)
+            for (int b = r; b < n; b += size) {
+                const std::vector<std::uint8_t> m = ranks.receive(r, survey_tag);
+                surveys.push_back(decode_band_survey(bands, m));
+                tell();
+            }
+        for (const BandSurvey& s : surveys) st.spills += s.spills.size(), st.labels += s.stats.labels;
+        const std::vector<float> water = fill_water_levels(bands, surveys);
+        water_bytes.resize(water.size() * sizeof(float));
+        std::memcpy(water_bytes.data(), water.data(), water_bytes.size());
+    } else {
+        for (const BandSurvey& s : surveys) ranks.send(0, survey_tag, encode_band_survey(s));
+    }
+    surveys.clear(), surveys.shrink_to_fit();
+    ranks.broadcast(0, water_bytes);
+    const std::size_t labels = flood::band_label_count(n, bands.cols);
+    if (water_bytes.size() != labels * sizeof(float)) throw std::runtime_error("tiled fill: water levels of another grid");
+    std::vector<float> water(labels);
+    std::memcpy(water.data(), water_bytes.data(), water_bytes.size());
+    water_bytes.clear(), water_bytes.shrink_to_fit();
+    if (!root) {
+        finish_bands(bands, mine, read, water, threads, [&](FinishedBand& f) {
             st.raised += f.raised;
-            tell();
+            ranks.send(0, band_tag, encode_finished(f));
         });
+        return st;
+    }
+    // rank 0: its own bands made in order meanwhile; the others' received in row order between them
+    int next = 0;
+    auto put = [&](const FinishedBand& f) {
+        write(bands.first_row(f.band), bands.end_row(f.band), f.filled.data(), f.valid.data());
+        st.raised += f.raised, ++next;
+        tell();
+    };
+    auto others_before = [&](int band) {
+        for (; next < band; ) put(decode_finished(bands, next, ranks.receive(next % size, band_tag)));
+    };
+    finish_bands(bands, mine, read, water, threads, [&](FinishedBand& f) {
+        others_before(f.band);
+        put(f);
+    });
+    others_before(n);
     return st;
 }
 

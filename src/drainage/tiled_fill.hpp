@@ -20,8 +20,10 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <vector>
 
+#include "core/ranks.hpp"
 #include "drainage/band_flood.hpp"
 #include "drainage/priority_flood.hpp"
 
@@ -82,5 +84,20 @@ struct TiledFillStats {
 // row order. `progress(done, total)` after each band of either pass (total: twice the bands).
 TiledFillStats tiled_priority_flood(const FillBands& bands, const FillRowReader& read, const FillRowWriter& write,
                                     int threads = 0, const std::function<void(int, int)>& progress = {});
+
+// The same fill over the ranks of a distributed run (core/ranks.hpp): band b surveyed and finished
+// by rank b % size on up to `threads` threads, the surveys sent to rank 0, which solves the water
+// levels and broadcasts them, and the finished bands sent to rank 0, which alone calls `write`,
+// in row order (its own bands made meanwhile). Every rank reads its own bands through `read`.
+// Rank 0's stats are the whole fill's; progress(done, total) on rank 0 alone. The surveys and
+// bands travel as bytes (encode_band_survey; a message of another grid is refused).
+TiledFillStats distributed_priority_flood(const FillBands& bands, const FillRowReader& read, const FillRowWriter& write,
+                                          Ranks& ranks, int threads = 1,
+                                          const std::function<void(int, int)>& progress = {});
+
+// A survey as bytes and back (decode throws std::runtime_error on a message that is not a survey
+// of a band of `bands`).
+std::vector<std::uint8_t> encode_band_survey(const BandSurvey& s);
+BandSurvey decode_band_survey(const FillBands& bands, std::span<const std::uint8_t> bytes);
 
 }  // namespace penink

@@ -247,15 +247,7 @@ int run(const DrainageCommand& cmd, std::ostream& log) {
 }  // namespace
 
 int run_drainage_command(const DrainageCommand& cmd, std::ostream& log) {
-    try {
-        return run(cmd, log);
-    } catch (const Error& e) {
-        log << e.what() << "\n";
-        return int(e.code());
-    } catch (const std::exception& e) {
-        log << format_error("drainage", cmd.dem, e.what()) << "\n";
-        return int(ExitCode::internal);
-    }
+    return run_reporting_errors(log, "drainage", cmd.dem, [&] { return run(cmd, log); });
 }
 
 }  // namespace penink

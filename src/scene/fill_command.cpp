@@ -1,6 +1,8 @@
 #include "scene/fill_command.hpp"
 
 #include <algorithm>
+#include <cstring>
+#include <optional>
 #include <chrono>
 #include <cstdio>
 #include <ostream>
@@ -9,6 +11,7 @@
 #include "core/error.hpp"
 #include "core/memory_budget.hpp"
 #include "core/progress_bar.hpp"
+#include "core/ranks.hpp"
 #include "drainage/drainage_rasters.hpp"
 #include "drainage/tiled_fill.hpp"
 #include "export/atomic_file.hpp"
@@ -28,16 +31,9 @@ std::uint64_t fill_fixed_bytes(int cols, int bands) {
     return std::uint64_t(bands) * std::uint64_t(cols) * (2 * 9 + 2 * 6 * 12 + 2 * 4);
 }
 
-int run(const FillCommand& cmd, std::ostream& log) {
-    const auto t0 = Clock::now();
-    if (cmd.output.empty()) throw Error("fill", cmd.dem, "no output: name the filled DEM with -o FILLED.tif");
-    if (cmd.band_rows < 0) throw Error("fill", cmd.dem, "band rows must be >= 1 (0 = automatic)");
-    check_outputs_not_inputs("fill", {cmd.output}, dem_inputs(cmd.dem));
-    const std::uint64_t budget = memory_budget(cmd.max_memory);
-    const int threads = int(std::clamp<unsigned>(std::thread::hardware_concurrency(), 1, 16));
-    DemOptions o;
-    o.heights_only = true, o.no_xy = true, o.max_memory = budget;
-    const DemSize size = read_dem_size(cmd.dem);
+// The band rows to use on a budget: --band-rows, checked, or fill_command_band_rows; Error when
+// not one band fits.
+int choose_band_rows(const FillCommand& cmd, const DemSize& size, int threads, std::uint64_t budget) {
     int band_rows = cmd.band_rows ? cmd.band_rows : fill_command_band_rows(size.cols, size.rows, threads, budget);
     if (band_rows > 0 && cmd.band_rows) {
         const int bands = (size.rows + band_rows - 1) / band_rows;
@@ -51,24 +47,107 @@ int run(const FillCommand& cmd, std::ostream& log) {
                         " nodes would need about " +
                         format_bytes(double(fill_band_bytes(size.cols, cmd.band_rows ? cmd.band_rows : height_raster_strip_rows))) +
                         " a band, " + format_bytes(double(budget)) + " available (--max-memory; fewer --band-rows)");
-    // read band by band: the opening pass checks every value (read_dem's errors) and finds the
-    // lowest valid one, which the nodata nodes take (written as NaN)
-    limit_gdal_block_cache(std::uint64_t(64) << 20);
-    DemRows dem(cmd.dem, o);
+    return std::min(band_rows, size.rows);
+}
+
+// Under an MPI launcher: rank 0's outcome of the opening (its exit code, 0 when it went well, and
+// the band rows it chose) to every rank. A rank whose own opening failed where rank 0's did not
+// says why and ends the run.
+struct Opening {
+    std::int32_t code = 0;
+    std::int32_t band_rows = 0;
+};
+Opening agree_on_opening(Ranks& ranks, Opening mine, const std::string& why, std::ostream& log) {
+    std::vector<std::uint8_t> bytes(sizeof mine);
+    std::memcpy(bytes.data(), &mine, sizeof mine);
+    ranks.broadcast(0, bytes);
+    Opening root;
+    if (bytes.size() != sizeof root) throw std::runtime_error("fill: rank 0's opening not understood");
+    std::memcpy(&root, bytes.data(), sizeof root);
+    if (ranks.rank() != 0 && root.code == 0 && mine.code != 0) {
+        log << why << "\n" << std::flush;
+        ranks.abort(mine.code);
+    }
+    return root;
+}
+
+int fill_bands(const FillCommand& cmd, std::ostream& log, Ranks* ranks, DemRows& dem, int band_rows, int threads,
+               Clock::time_point t0);
+
+int run(const FillCommand& cmd, std::ostream& log) {
+    const auto t0 = Clock::now();
+    if (cmd.output.empty()) throw Error("fill", cmd.dem, "no output: name the filled DEM with -o FILLED.tif");
+    if (cmd.band_rows < 0) throw Error("fill", cmd.dem, "band rows must be >= 1 (0 = automatic)");
+    check_outputs_not_inputs("fill", {cmd.output}, dem_inputs(cmd.dem));
+    // started by mpirun (or srun): this process is one rank of the run; rank 0 checks every value,
+    // chooses the bands and writes, the others fill their bands
+    const std::unique_ptr<Ranks> ranks = launched_ranks();
+    const bool root = !ranks || ranks->rank() == 0;
+    const int hardware = int(std::clamp<unsigned>(std::thread::hardware_concurrency(), 1, 16));
+    const int threads = ranks ? std::max(1, hardware / std::max(1, ranks->local_size())) : hardware;
+    const std::uint64_t budget = memory_budget(cmd.max_memory);
+    DemOptions o;
+    o.heights_only = true, o.no_xy = true, o.max_memory = budget;
+    std::optional<DemRows> dem;
+    int band_rows = 0;
+    Opening mine;
+    std::string why;
+    try {
+        band_rows = choose_band_rows(cmd, read_dem_size(cmd.dem), threads, budget);
+        // read band by band: the opening pass (rank 0's) checks every value (read_dem's errors) and
+        // finds the lowest valid one, which the nodata nodes take (written as NaN)
+        limit_gdal_block_cache(std::uint64_t(64) << 20);
+        dem.emplace(cmd.dem, o, 0, root);
+        mine.band_rows = band_rows;
+    } catch (const Error& e) {
+        if (!ranks) throw;
+        mine.code = std::int32_t(e.code()), why = e.what();
+    }
+    if (ranks) {  // every rank ends as rank 0 does, it alone saying why
+        const Opening agreed = agree_on_opening(*ranks, mine, why, log);
+        if (agreed.code != 0) {
+            if (root) log << why << "\n";
+            return agreed.code;
+        }
+        band_rows = agreed.band_rows;
+    }
+    try {
+        return fill_bands(cmd, log, ranks.get(), *dem, band_rows, threads, t0);
+    } catch (const std::exception& e) {
+        // under an MPI launcher a failure here (a write, a read, a message) leaves the other ranks
+        // waiting: it is reported, then every rank ends (MPI_Abort)
+        if (!ranks) throw;
+        const Error* err = dynamic_cast<const Error*>(&e);
+        log << (err ? std::string(e.what()) : format_error("fill", cmd.dem, e.what())) << "\n" << std::flush;
+        ranks->abort(err ? int(err->code()) : int(ExitCode::internal));
+    }
+    return int(ExitCode::internal);  // not reached: abort ends the process
+}
+
+// The fill itself once the DEM is open (`ranks`: this process's place in a distributed run, or null).
+int fill_bands(const FillCommand& cmd, std::ostream& log, Ranks* ranks, DemRows& dem, int band_rows, int threads,
+               Clock::time_point t0) {
+    const bool root = !ranks || ranks->rank() == 0;
     const Terrain& meta = dem.meta();
-    band_rows = std::min(band_rows, meta.rows);
     const FillBands bands{meta.cols, meta.rows, band_rows};
-    const DrainageGeoref geo = drainage_georef(cmd.dem, meta, 1);
-    StageProgress progress(log, progress_mode(cmd.quiet, cmd.progress), "fill");
+    const FillRowReader read = [&](int y0, int y1, float* z, std::uint8_t* valid) { dem.rows(y0, y1, z, valid); };
+    StageProgress progress(log, progress_mode(cmd.quiet || !root, cmd.progress), "fill");
+    const auto tell = [&](int done, int total) {
+        progress.update(done * 2 <= total ? "surveying bands" : "filling bands", double(done) / double(total));
+    };
     TiledFillStats st;
+    if (!root) {
+        distributed_priority_flood(bands, read, {}, *ranks, threads, tell);
+        return 0;
+    }
+    const DrainageGeoref geo = drainage_georef(cmd.dem, meta, 1);
     write_atomically_together({cmd.output}, [&](std::size_t, const std::string& temp) {
         HeightRasterWriter out(temp, cmd.output, geo, meta.cols, meta.rows, "fill");
-        st = tiled_priority_flood(
-            bands, [&](int y0, int y1, float* z, std::uint8_t* valid) { dem.rows(y0, y1, z, valid); },
-            [&](int y0, int y1, const float* z, const std::uint8_t* valid) { out.write_rows(y0, y1, z, valid); }, threads,
-            [&](int done, int total) {
-                progress.update(done * 2 <= total ? "surveying bands" : "filling bands", double(done) / double(total));
-            });
+        const FillRowWriter write = [&](int y0, int y1, const float* z, const std::uint8_t* valid) {
+            out.write_rows(y0, y1, z, valid);
+        };
+        st = ranks ? distributed_priority_flood(bands, read, write, *ranks, threads, tell)
+                   : tiled_priority_flood(bands, read, write, threads, tell);
         out.close();
     });
     const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
@@ -79,9 +158,10 @@ int run(const FillCommand& cmd, std::ostream& log) {
                       meta.cols, meta.rows, st.raised, st.bands, band_rows, st.labels, st.spills, secs,
                       double(meta.size()) / secs / 1e6);
         log << line;
+        if (ranks) log << "fill: " << ranks->size() << " ranks of " << threads << " threads\n";
         if (cmd.verbose)
             log << "fill: a band in flight holds at most " << format_bytes(double(st.band_bytes)) << ", " << threads
-                << " at once\n";
+                << " at once" << (ranks ? " a rank" : "") << "\n";
         log << "fill: wrote " << cmd.output << "\n";
     }
     return 0;
@@ -103,15 +183,7 @@ int fill_command_band_rows(int cols, int rows, int threads, std::uint64_t budget
 }
 
 int run_fill_command(const FillCommand& cmd, std::ostream& log) {
-    try {
-        return run(cmd, log);
-    } catch (const Error& e) {
-        log << e.what() << "\n";
-        return int(e.code());
-    } catch (const std::exception& e) {
-        log << format_error("fill", cmd.dem, e.what()) << "\n";
-        return int(ExitCode::internal);
-    }
+    return run_reporting_errors(log, "fill", cmd.dem, [&] { return run(cmd, log); });
 }
 
 }  // namespace penink

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <bit>
 #include <cstdint>
+#include <mutex>
 #include <queue>
 
 #include <gtest/gtest.h>
@@ -305,6 +306,66 @@ TEST(TiledFill, BandsSurveyedAndFinishedApartInAnyOrder) {
     }
     surveys.pop_back();  // a band missing: refused, not a wrong surface
     EXPECT_THROW(fill_water_levels(bands, surveys), std::invalid_argument);
+}
+
+// The fill over the ranks of a distributed run (run as threads with the same messages): rank 0
+// alone writes, every row once and in order, the one-thread fill's surface; with 1 to 4 ranks
+// of 1 or 2 threads, more ranks than bands included.
+TEST(TiledFill, DistributedOverRanksIsTheOneThreadFill) {
+    for (const std::uint64_t seed : {52u, 55u, 60u}) {
+        const DrainageGrid a = tiled_fill_grid(seed);
+        std::vector<float> expected = a.z;
+        std::vector<std::uint8_t> flags;
+        CellWords orig;
+        const FillStats one = priority_flood_fill(expected, {a.cols, a.rows, a.valid.data()}, flags, orig);
+        for (const int ranks : {1, 2, 3, 4})
+            for (const int band_rows : {3, 8, 40}) {
+                const FillBands bands{a.cols, a.rows, band_rows};
+                std::vector<float> got;
+                int next_row = 0, writers = 0;
+                std::size_t raised = 0;
+                std::mutex m;
+                run_thread_ranks(ranks, [&](Ranks& r) {
+                    const TiledFillStats st = distributed_priority_flood(
+                        bands, rows_of(a),
+                        [&](int y0, int y1, const float* z, const std::uint8_t*) {
+                            ASSERT_EQ(r.rank(), 0);
+                            ASSERT_EQ(y0, next_row);
+                            next_row = y1;
+                            got.insert(got.end(), z, z + std::size_t(y1 - y0) * a.cols);
+                        },
+                        r, 1 + r.rank() % 2);
+                    const std::lock_guard<std::mutex> lock(m);
+                    if (r.rank() == 0) raised = st.raised, ++writers;
+                });
+                ASSERT_EQ(writers, 1);
+                ASSERT_EQ(next_row, a.rows) << ranks << " ranks, bands of " << band_rows;
+                EXPECT_EQ(raised, one.raised);
+                for (std::size_t i = 0; i < a.size(); ++i)
+                    ASSERT_EQ(std::bit_cast<std::uint32_t>(got[i]), std::bit_cast<std::uint32_t>(expected[i]))
+                        << "seed " << seed << ", " << ranks << " ranks, bands of " << band_rows << ", cell " << i;
+            }
+    }
+}
+
+// A survey travels as bytes and comes back the same; a message of another grid or cut short is
+// refused, not taken.
+TEST(TiledFill, SurveyBytesRoundTripAndForeignOnesAreRefused) {
+    const DrainageGrid a = tiled_fill_grid(56);
+    const FillBands bands{a.cols, a.rows, 7};
+    const BandSurvey s = survey_fill_band(bands, 2, rows_of(a));
+    ASSERT_FALSE(s.spills.empty());
+    const std::vector<std::uint8_t> bytes = encode_band_survey(s);
+    const BandSurvey t = decode_band_survey(bands, bytes);
+    EXPECT_EQ(t.band, 2);
+    EXPECT_EQ(t.spills, s.spills);
+    EXPECT_EQ(t.first_labels, s.first_labels);
+    EXPECT_EQ(t.last_levels, s.last_levels);
+    EXPECT_EQ(t.last_valid, s.last_valid);
+    EXPECT_EQ(t.stats.labels, s.stats.labels);
+    EXPECT_THROW(decode_band_survey({a.cols + 1, a.rows, 7}, bytes), std::runtime_error);  // another width
+    EXPECT_THROW(decode_band_survey({a.cols, a.rows, 40}, bytes), std::runtime_error);     // band 2 of 1
+    EXPECT_THROW(decode_band_survey(bands, std::span(bytes).first(bytes.size() - 1)), std::runtime_error);
 }
 
 TEST(PriorityFlood, NearRaisedRowIsTheThreeByThreeBlock) {

@@ -24,7 +24,7 @@ for d in libopenimageio2.4 libgdal32 libosmesa6 libdeflate0 libc6 libstdc++6; do
 done
 
 dpkg-deb -c "$deb" | awk '{ print $NF }' | sed 's|^\./|/|' >"$tmp/files"
-for f in /usr/bin/penink /usr/lib/penink/penink_oiio.so /usr/share/man/man1/penink.1.gz \
+for f in /usr/bin/penink /usr/lib/penink/penink_oiio.so /usr/lib/penink/penink_mpi.so /usr/share/man/man1/penink.1.gz \
          /usr/share/bash-completion/completions/penink /usr/share/penink/styles/technical.toml \
          /usr/share/penink/styles/field-sketch.toml /usr/share/penink/examples/volcano.toml \
          /usr/share/penink/examples/volcano.asc; do
@@ -36,7 +36,7 @@ root=$tmp/root
 dpkg-deb -x "$deb" "$root"
 penink=$root/usr/bin/penink
 help=$("$penink" --help)
-for s in render drainage batch bench; do grep -qE "^  $s( |$)" <<<"$help" || fail "--help lacks $s"; done
+for s in render drainage fill batch bench; do grep -qE "^  $s( |$)" <<<"$help" || fail "--help lacks $s"; done
 
 # The manual page: every subcommand has a section, the render options are in it, no troff warning.
 man=$(zcat "$root/usr/share/man/man1/penink.1.gz")
@@ -69,7 +69,7 @@ complete_words() {  # complete_words WORD... : the completions of the last word
         _ "$root/usr/share/bash-completion/completions/penink" "$@" | sort | tr '\n' ' '
 }
 [[ $(complete_words penink r) == "render " ]] || fail "completion of 'penink r': $(complete_words penink r)"
-[[ $(complete_words penink '') == "batch bench drainage preview render " ]] || fail "subcommands: $(complete_words penink '')"
+[[ $(complete_words penink '') == "batch bench drainage fill preview render " ]] || fail "subcommands: $(complete_words penink '')"
 [[ $(complete_words penink render --ou) == "--output " ]] || fail "render --ou: $(complete_words penink render --ou)"
 [[ $(complete_words penink drainage --rou) == "--routing " ]] || fail "drainage --rou: $(complete_words penink drainage --rou)"
 [[ $(complete_words penink render x.toml --gl '') == "egl osmesa " ]] || fail "--gl: $(complete_words penink render x.toml --gl '')"

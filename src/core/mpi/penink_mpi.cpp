@@ -1,0 +1,82 @@
+// penink_mpi.so: src/core/mpi_module.hpp over Open MPI's MPI_COMM_WORLD.
+#include <mpi.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+
+#include "core/mpi_module.hpp"
+
+namespace {
+
+constexpr std::uint64_t piece = std::uint64_t(1) << 30;
+
+int fail(int code, const char* what, char* error, std::size_t error_size) {
+    char reason[MPI_MAX_ERROR_STRING] = {};
+    int len = 0;
+    MPI_Error_string(code, reason, &len);
+    std::snprintf(error, error_size, "%s: %s", what, reason);
+    return code;
+}
+
+int init(int* rank, int* size, char* error, std::size_t error_size) {
+    int code = MPI_Init(nullptr, nullptr);
+    if (code != MPI_SUCCESS) return fail(code, "MPI_Init", error, error_size);
+    MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+    if ((code = MPI_Comm_rank(MPI_COMM_WORLD, rank)) != MPI_SUCCESS) return fail(code, "MPI_Comm_rank", error, error_size);
+    if ((code = MPI_Comm_size(MPI_COMM_WORLD, size)) != MPI_SUCCESS) return fail(code, "MPI_Comm_size", error, error_size);
+    return 0;
+}
+
+int send(int to, int tag, const void* bytes, std::uint64_t n, char* error, std::size_t error_size) {
+    int code = MPI_Send(&n, 1, MPI_UINT64_T, to, tag, MPI_COMM_WORLD);
+    if (code != MPI_SUCCESS) return fail(code, "MPI_Send", error, error_size);
+    const auto* p = static_cast<const char*>(bytes);
+    for (std::uint64_t at = 0; at < n; at += piece)
+        if ((code = MPI_Send(p + at, int(std::min(piece, n - at)), MPI_BYTE, to, tag, MPI_COMM_WORLD)) != MPI_SUCCESS)
+            return fail(code, "MPI_Send", error, error_size);
+    return 0;
+}
+
+int receive(int from, int tag, PeninkMpiAlloc alloc, void* ctx, char* error, std::size_t error_size) {
+    std::uint64_t n = 0;
+    int code = MPI_Recv(&n, 1, MPI_UINT64_T, from, tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    if (code != MPI_SUCCESS) return fail(code, "MPI_Recv", error, error_size);
+    auto* p = static_cast<char*>(alloc(ctx, n));
+    if (!p && n) {
+        std::snprintf(error, error_size, "no room for a message of %llu bytes", static_cast<unsigned long long>(n));
+        return MPI_ERR_NO_MEM;
+    }
+    for (std::uint64_t at = 0; at < n; at += piece)
+        if ((code = MPI_Recv(p + at, int(std::min(piece, n - at)), MPI_BYTE, from, tag, MPI_COMM_WORLD,
+                             MPI_STATUS_IGNORE)) != MPI_SUCCESS)
+            return fail(code, "MPI_Recv", error, error_size);
+    return 0;
+}
+
+int broadcast(int root, const void* bytes, std::uint64_t n, PeninkMpiAlloc alloc, void* ctx, char* error,
+              std::size_t error_size) {
+    int rank = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    int code = MPI_Bcast(&n, 1, MPI_UINT64_T, root, MPI_COMM_WORLD);
+    if (code != MPI_SUCCESS) return fail(code, "MPI_Bcast", error, error_size);
+    char* p = rank == root ? const_cast<char*>(static_cast<const char*>(bytes)) : static_cast<char*>(alloc(ctx, n));
+    if (!p && n) {
+        std::snprintf(error, error_size, "no room for a message of %llu bytes", static_cast<unsigned long long>(n));
+        return MPI_ERR_NO_MEM;
+    }
+    for (std::uint64_t at = 0; at < n; at += piece)
+        if ((code = MPI_Bcast(p + at, int(std::min(piece, n - at)), MPI_BYTE, root, MPI_COMM_WORLD)) != MPI_SUCCESS)
+            return fail(code, "MPI_Bcast", error, error_size);
+    return 0;
+}
+
+void abort_all(int code) { MPI_Abort(MPI_COMM_WORLD, code); }
+
+void finalize() { MPI_Finalize(); }
+
+}  // namespace
+
+extern "C" __attribute__((visibility("default"))) void penink_mpi_open(PeninkMpiApi* api) {
+    *api = {init, send, receive, broadcast, abort_all, finalize};
+}
