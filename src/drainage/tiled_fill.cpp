@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "core/parallel_chunks.hpp"
+#include "drainage/band_passes.hpp"
 
 namespace penink {
 
@@ -133,39 +134,8 @@ std::size_t finish_fill_band(const FillBands& bands, int b, const FillRowReader&
 
 namespace {
 
-// Bytes of plain values, appended and read back in order (a message between ranks).
-struct Writer {
-    std::vector<std::uint8_t> out;
-    template <class T> void put(const T& v) {
-        const auto* p = reinterpret_cast<const std::uint8_t*>(&v);
-        out.insert(out.end(), p, p + sizeof v);
-    }
-    template <class T> void put_all(const std::vector<T>& v) {
-        put(std::uint64_t(v.size()));
-        const auto* p = reinterpret_cast<const std::uint8_t*>(v.data());
-        out.insert(out.end(), p, p + v.size() * sizeof(T));
-    }
-};
-struct Reader {
-    std::span<const std::uint8_t> in;
-    std::size_t at = 0;
-    template <class T> T get() {
-        if (in.size() - at < sizeof(T)) throw std::runtime_error("tiled fill: a message cut short");
-        T v;
-        std::memcpy(&v, in.data() + at, sizeof v);
-        at += sizeof v;
-        return v;
-    }
-    template <class T> std::vector<T> get_all(std::size_t expected = ~std::size_t(0)) {
-        const auto n = get<std::uint64_t>();
-        if ((expected != ~std::size_t(0) && n != expected) || n > (in.size() - at) / sizeof(T))
-            throw std::runtime_error("tiled fill: a message of another grid");
-        std::vector<T> v(static_cast<std::size_t>(n));
-        std::memcpy(v.data(), in.data() + at, std::size_t(n) * sizeof(T));
-        at += std::size_t(n) * sizeof(T);
-        return v;
-    }
-};
+using bands::Reader;
+using bands::Writer;
 
 // Rows of a band sent to the rank that writes: band, raised, filled heights and valid flags.
 struct FinishedBand {
@@ -197,30 +167,8 @@ FinishedBand decode_finished(const FillBands& bands, int band, std::span<const s
 std::vector<BandSurvey> survey_bands(const FillBands& bands, const std::vector<int>& which, const FillRowReader& read,
                                      int threads, const std::function<void()>& tell) {
     std::mutex reading;
-    const FillRowReader serial = [&](int y0, int y1, float* z, std::uint8_t* valid) {
-        const std::lock_guard<std::mutex> lock(reading);
-        read(y0, y1, z, valid);
-    };
-    std::vector<BandSurvey> surveys(which.size());
-    std::atomic<std::size_t> next{0};
-    auto work = [&] {
-        for (std::size_t k; (k = next++) < which.size();) surveys[k] = survey_fill_band(bands, which[k], serial), tell();
-    };
-    std::vector<std::future<void>> others;
-    for (int t = 1; t < std::min<int>(threads, int(which.size())); ++t) others.push_back(std::async(std::launch::async, work));
-    std::exception_ptr first;
-    try {
-        work();
-    } catch (...) {
-        first = std::current_exception(), next = which.size();
-    }
-    for (auto& o : others) try {
-            o.get();
-        } catch (...) {
-            if (!first) first = std::current_exception();
-        }
-    if (first) std::rethrow_exception(first);
-    return surveys;
+    const FillRowReader serial = bands::one_at_a_time(read, reading);
+    return bands::each_band<BandSurvey>(which, threads, [&](int b) { return survey_fill_band(bands, b, serial); }, tell);
 }
 
 // Finishes the bands `which` on up to `threads` threads (reads one at a time), handing each to
@@ -228,10 +176,7 @@ std::vector<BandSurvey> survey_bands(const FillBands& bands, const std::vector<i
 void finish_bands(const FillBands& bands, const std::vector<int>& which, const FillRowReader& read,
                   const std::vector<float>& water, int threads, const std::function<void(FinishedBand&)>& use) {
     std::mutex reading;
-    const FillRowReader serial = [&](int y0, int y1, float* z, std::uint8_t* valid) {
-        const std::lock_guard<std::mutex> lock(reading);
-        read(y0, y1, z, valid);
-    };
+    const FillRowReader serial = bands::one_at_a_time(read, reading);
     ordered_parts<FinishedBand>(
         which.size(), std::size_t(std::max(threads, 1)),
         [&](std::size_t k, FinishedBand& out) {
@@ -243,7 +188,8 @@ void finish_bands(const FillBands& bands, const std::vector<int>& which, const F
 
 int default_threads() { return int(std::clamp<unsigned>(std::thread::hardware_concurrency(), 1, 16)); }
 
-constexpr int survey_tag = 1, band_tag = 2;
+using bands::band_tag;
+using bands::survey_tag;
 
 }  // namespace
 
@@ -283,7 +229,7 @@ BandSurvey decode_band_survey(const FillBands& bands, std::span<const std::uint8
     for (const auto* l : {&s.first_labels, &s.last_labels})
         for (const std::uint32_t v : *l)
             if (v >= labels) throw std::runtime_error("tiled fill: a survey of another grid");
-    if (r.at != bytes.size()) throw std::runtime_error("tiled fill: a survey with bytes after it");
+    r.end();
     return s;
 }
 

@@ -1,0 +1,96 @@
+// What the fills and accumulations by bands share (tiled_fill.hpp, tiled_accumulation.hpp):
+// messages of plain values between ranks, a reader called one band at a time, and a pass over
+// a list of bands on several threads. Internal to src/drainage.
+#pragma once
+#include <algorithm>
+#include <atomic>
+#include <cstdint>
+#include <cstring>
+#include <exception>
+#include <future>
+#include <mutex>
+#include <span>
+#include <stdexcept>
+#include <vector>
+
+namespace penink::bands {
+
+// Plain values appended in order: a message between ranks.
+struct Writer {
+    std::vector<std::uint8_t> out;
+    template <class T> void put(const T& v) {
+        const auto* p = reinterpret_cast<const std::uint8_t*>(&v);
+        out.insert(out.end(), p, p + sizeof v);
+    }
+    template <class T> void put_all(const std::vector<T>& v) {
+        put(std::uint64_t(v.size()));
+        const auto* p = reinterpret_cast<const std::uint8_t*>(v.data());
+        out.insert(out.end(), p, p + v.size() * sizeof(T));
+    }
+};
+
+// A Writer's values read back; a message cut short, or whose vector is not of the length
+// expected (any, with the default), throws std::runtime_error.
+struct Reader {
+    std::span<const std::uint8_t> in;
+    std::size_t at = 0;
+    template <class T> T get() {
+        if (in.size() - at < sizeof(T)) throw std::runtime_error("bands: a message cut short");
+        T v;
+        std::memcpy(&v, in.data() + at, sizeof v);
+        at += sizeof v;
+        return v;
+    }
+    template <class T> std::vector<T> get_all(std::size_t expected = ~std::size_t(0)) {
+        const auto n = get<std::uint64_t>();
+        if ((expected != ~std::size_t(0) && n != expected) || n > (in.size() - at) / sizeof(T))
+            throw std::runtime_error("bands: a message of another grid");
+        std::vector<T> v(static_cast<std::size_t>(n));
+        std::memcpy(v.data(), in.data() + at, std::size_t(n) * sizeof(T));
+        at += std::size_t(n) * sizeof(T);
+        return v;
+    }
+    void end() const {
+        if (at != in.size()) throw std::runtime_error("bands: a message with bytes after it");
+    }
+};
+
+// A reader's calls made one at a time (GDAL's handle is one thread's).
+template <class Read> auto one_at_a_time(const Read& read, std::mutex& m) {
+    return [&read, &m](auto... args) {
+        const std::lock_guard<std::mutex> lock(m);
+        read(args...);
+    };
+}
+
+// make(band) for every band of `which` on up to `threads` threads, the results in the order of
+// `which`; tell() after each (from the thread that made it). The first exception stops the bands
+// not started and is rethrown.
+template <class Result, class Make, class Tell>
+std::vector<Result> each_band(const std::vector<int>& which, int threads, Make&& make, Tell&& tell) {
+    std::vector<Result> out(which.size());
+    std::atomic<std::size_t> next{0};
+    auto work = [&] {
+        for (std::size_t k; (k = next++) < which.size();) out[k] = make(which[k]), tell();
+    };
+    std::vector<std::future<void>> others;
+    for (int t = 1; t < std::min<int>(threads, int(which.size())); ++t) others.push_back(std::async(std::launch::async, work));
+    std::exception_ptr first;
+    try {
+        work();
+    } catch (...) {
+        first = std::current_exception(), next = which.size();
+    }
+    for (auto& o : others) try {
+            o.get();
+        } catch (...) {
+            if (!first) first = std::current_exception();
+        }
+    if (first) std::rethrow_exception(first);
+    return out;
+}
+
+// Tags of the messages of a distributed pass over bands.
+inline constexpr int survey_tag = 1, band_tag = 2;
+
+}  // namespace penink::bands

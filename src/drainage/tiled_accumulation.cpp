@@ -1,0 +1,334 @@
+#include "drainage/tiled_accumulation.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+
+#include "core/error.hpp"
+#include "core/parallel_chunks.hpp"
+#include "drainage/band_passes.hpp"
+#include "drainage/d8.hpp"
+
+namespace penink {
+
+namespace {
+
+[[noreturn]] void cycle() { throw Error("drainage", "", "flow directions contain a cycle", ExitCode::internal); }
+
+// One band's directions and valid flags (its rows alone).
+struct BandDirs {
+    int cols = 0, r0 = 0, r1 = 0;
+    std::vector<std::uint8_t> dir, valid;
+    std::size_t size() const { return dir.size(); }
+    // The cell of the band cell i points at, or -1 when it points out of the band (or is an outlet:
+    // `out` tells which).
+    std::int64_t target(std::size_t i, bool& out) const {
+        out = false;
+        if (!dir[i]) return -1;
+        const int k = d8_index(dir[i]);
+        const int c = int(i % std::size_t(cols)) + d8_dc[k], r = r0 + int(i / std::size_t(cols)) + d8_dr[k];
+        if (r < r0 || r >= r1) {
+            out = true;
+            return -1;
+        }
+        if (c < 0 || c >= cols) cycle();  // off the grid's side: not a direction a valid grid has
+        return std::int64_t(r - r0) * cols + c;
+    }
+};
+
+BandDirs read_band(const FillBands& bands, int b, const DirRowReader& read) {
+    if (b < 0 || b >= bands.count()) throw std::out_of_range("tiled accumulation: no such band");
+    BandDirs d;
+    d.cols = bands.cols, d.r0 = bands.first_row(b), d.r1 = bands.end_row(b);
+    const std::size_t n = std::size_t(d.r1 - d.r0) * std::size_t(bands.cols);
+    d.dir.resize(n), d.valid.resize(n);
+    read(d.r0, d.r1, d.dir.data(), d.valid.data());
+    return d;
+}
+
+// The band's accumulation counting its own cells upstream, each cell itself, and seed(i) more at
+// cell i (an in-degree walk, as accumulate_flow's).
+template <class Seed> std::vector<std::uint64_t> accumulate_band(const BandDirs& d, Seed&& seed) {
+    const std::size_t n = d.size();
+    std::vector<std::uint8_t> count(n, 0);
+    std::vector<std::int64_t> next(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        bool out;
+        next[i] = d.valid[i] ? d.target(i, out) : -1;
+        if (next[i] >= 0) ++count[std::size_t(next[i])];
+    }
+    std::vector<std::uint64_t> acc(n, 0);
+    std::size_t done = 0, valid = 0;
+    std::vector<std::uint8_t> walked(n, 0);
+    for (std::size_t s = 0; s < n; ++s) {
+        if (!d.valid[s]) continue;
+        ++valid;
+        if (count[s] != 0 || walked[s]) continue;
+        for (std::size_t c = s;;) {
+            acc[c] += 1 + seed(c);
+            walked[c] = 1, ++done;
+            if (next[c] < 0) break;
+            const auto t = std::size_t(next[c]);
+            acc[t] += acc[c];
+            if (--count[t] != 0) break;
+            c = t;
+        }
+    }
+    if (done != valid) cycle();
+    return acc;
+}
+
+// The band cells holding perimeter rows: the first row, then the last where it is another.
+std::vector<int> perimeter_rows_of(const BandDirs& d) {
+    std::vector<int> rows{d.r0};
+    if (d.r1 - 1 != d.r0) rows.push_back(d.r1 - 1);
+    return rows;
+}
+
+}  // namespace
+
+AccPerimeter::AccPerimeter(const FillBands& bands) : cols(bands.cols), row_index(std::size_t(bands.rows), -1) {
+    for (int b = 0; b < bands.count(); ++b)
+        for (const int r : {bands.first_row(b), bands.end_row(b) - 1})
+            if (row_index[std::size_t(r)] < 0) row_index[std::size_t(r)] = 0, rows.push_back(r);
+    std::sort(rows.begin(), rows.end());
+    for (std::size_t k = 0; k < rows.size(); ++k) row_index[std::size_t(rows[k])] = int(k);
+}
+
+std::int64_t AccPerimeter::node(int c, int r) const {
+    if (r < 0 || r >= int(row_index.size()) || c < 0 || c >= cols || row_index[std::size_t(r)] < 0) return -1;
+    return std::int64_t(row_index[std::size_t(r)]) * cols + c;
+}
+
+AccSurvey survey_accumulation_band(const FillBands& bands, int b, const DirRowReader& read) {
+    const BandDirs d = read_band(bands, b, read);
+    const std::vector<std::uint64_t> acc = accumulate_band(d, [](std::size_t) { return std::uint64_t(0); });
+    const AccPerimeter per(bands);
+    const std::size_t n = d.size(), cols = std::size_t(d.cols);
+    // each perimeter cell's link: the last cell of its path in the band where the path leaves it
+    constexpr std::int64_t unknown = -2, none = -1;
+    std::vector<std::int64_t> exit(n, unknown);
+    std::vector<std::size_t> path;
+    AccSurvey s;
+    s.band = b;
+    for (const int r : perimeter_rows_of(d))
+        for (std::size_t c = 0; c < cols; ++c) {
+            const std::size_t p = std::size_t(r - d.r0) * cols + c;
+            s.acc.push_back(std::uint32_t(acc[p])), s.dir.push_back(d.dir[p]), s.valid.push_back(d.valid[p]);
+            if (!d.valid[p]) {
+                s.link.push_back(none);
+                continue;
+            }
+            path.clear();
+            std::size_t at = p;
+            std::int64_t found = unknown;
+            for (std::size_t steps = 0; (found = exit[at]) == unknown; ++steps) {
+                if (steps > n) cycle();
+                path.push_back(at);
+                bool out;
+                const std::int64_t t = d.target(at, out);
+                if (out) {
+                    found = per.node(int(at % cols), d.r0 + int(at / cols));
+                    break;
+                }
+                if (t < 0) {
+                    found = none;
+                    break;
+                }
+                at = std::size_t(t);
+            }
+            for (const std::size_t q : path) exit[q] = found;
+            s.link.push_back(found);
+        }
+    return s;
+}
+
+std::vector<std::uint64_t> accumulation_inflows(const FillBands& bands, const std::vector<AccSurvey>& surveys) {
+    const AccPerimeter per(bands);
+    const std::size_t nodes = per.nodes(), cols = std::size_t(bands.cols);
+    std::vector<std::uint64_t> local(nodes, 0), total(nodes, 0), inflow(nodes, 0);
+    std::vector<std::int64_t> link(nodes, -1), out(nodes, -1);
+    std::vector<std::uint8_t> seen(std::size_t(bands.count()), 0), valid(nodes, 0);
+    for (const AccSurvey& s : surveys) {
+        if (s.band < 0 || s.band >= bands.count() || seen[std::size_t(s.band)])
+            throw std::invalid_argument("tiled accumulation: surveys must cover each band once");
+        seen[std::size_t(s.band)] = 1;
+        const int r0 = bands.first_row(s.band), r1 = bands.end_row(s.band);
+        const std::vector<int> rows = r1 - 1 != r0 ? std::vector<int>{r0, r1 - 1} : std::vector<int>{r0};
+        if (s.acc.size() != rows.size() * cols || s.dir.size() != s.acc.size() || s.valid.size() != s.acc.size() ||
+            s.link.size() != s.acc.size())
+            throw std::invalid_argument("tiled accumulation: a survey of another grid");
+        for (std::size_t k = 0; k < s.acc.size(); ++k) {
+            const int r = rows[k / cols], c = int(k % cols);
+            const auto p = std::size_t(per.node(c, r));
+            local[p] = s.acc[k], link[p] = s.link[k], valid[p] = s.valid[k];
+            if (link[p] >= std::int64_t(nodes)) throw std::invalid_argument("tiled accumulation: a survey of another grid");
+            if (!s.valid[k] || !s.dir[k]) continue;
+            const int d = d8_index(s.dir[k]);
+            const int tr = r + d8_dr[d], tc = c + d8_dc[d];
+            if (tr < r0 || tr >= r1) {  // into the next band up or down: one of its perimeter cells
+                out[p] = per.node(tc, tr);
+                if (out[p] < 0) cycle();
+            }
+        }
+    }
+    if (std::find(seen.begin(), seen.end(), 0) != seen.end())
+        throw std::invalid_argument("tiled accumulation: a band's survey is missing");
+    // a node's total waits for the inflow of every node linked to it, a node's inflow for the
+    // total of every node of another band pointing at it
+    std::vector<std::uint32_t> wait_total(nodes, 0), wait_inflow(nodes, 0);
+    for (std::size_t p = 0; p < nodes; ++p) {
+        if (!valid[p]) continue;
+        if (link[p] >= 0) ++wait_total[std::size_t(link[p])];
+        if (out[p] >= 0) ++wait_inflow[std::size_t(out[p])];
+    }
+    std::vector<std::size_t> ready;  // nodes whose inflow is known
+    for (std::size_t p = 0; p < nodes; ++p)
+        if (valid[p] && wait_inflow[p] == 0) ready.push_back(p);
+    std::size_t done = 0, count = std::size_t(std::count(valid.begin(), valid.end(), 1));
+    while (!ready.empty()) {
+        const std::size_t q = ready.back();
+        ready.pop_back();
+        ++done;
+        if (link[q] < 0) continue;  // its inflow ends at an outlet in its band
+        const auto e = std::size_t(link[q]);
+        total[e] += inflow[q];
+        if (--wait_total[e] != 0) continue;
+        total[e] += local[e];  // every inflow linked to it known: its total
+        if (out[e] < 0) continue;
+        const auto t = std::size_t(out[e]);
+        inflow[t] += total[e];
+        if (--wait_inflow[t] == 0) ready.push_back(t);
+    }
+    if (done != count) cycle();
+    return inflow;
+}
+
+void finish_accumulation_band(const FillBands& bands, int b, const DirRowReader& read,
+                              const std::vector<std::uint64_t>& inflow, std::vector<std::uint32_t>& acc) {
+    const AccPerimeter per(bands);
+    if (inflow.size() != per.nodes()) throw std::invalid_argument("tiled accumulation: inflows of another grid");
+    const BandDirs d = read_band(bands, b, read);
+    const std::size_t cols = std::size_t(d.cols);
+    const std::vector<std::uint64_t> a = accumulate_band(d, [&](std::size_t i) {
+        const std::int64_t p = per.node(int(i % cols), d.r0 + int(i / cols));
+        return p < 0 ? std::uint64_t(0) : inflow[std::size_t(p)];
+    });
+    acc.resize(a.size());
+    for (std::size_t i = 0; i < a.size(); ++i) acc[i] = std::uint32_t(a[i]);
+}
+
+namespace {
+
+std::vector<std::uint8_t> encode_acc_survey(const AccSurvey& s) {
+    bands::Writer w;
+    w.put(std::int32_t(s.band)), w.put_all(s.acc), w.put_all(s.dir), w.put_all(s.valid), w.put_all(s.link);
+    return std::move(w.out);
+}
+
+AccSurvey decode_acc_survey(std::span<const std::uint8_t> bytes) {
+    bands::Reader r{bytes};
+    AccSurvey s;
+    s.band = r.get<std::int32_t>();
+    s.acc = r.get_all<std::uint32_t>();
+    s.dir = r.get_all<std::uint8_t>(s.acc.size()), s.valid = r.get_all<std::uint8_t>(s.acc.size());
+    s.link = r.get_all<std::int64_t>(s.acc.size());
+    r.end();
+    return s;  // its size and links checked against the grid by accumulation_inflows
+}
+
+struct FinishedAcc {
+    int band = 0;
+    std::vector<std::uint32_t> acc;
+};
+
+void finish_bands(const FillBands& bands, const std::vector<int>& which, const DirRowReader& read,
+                  const std::vector<std::uint64_t>& inflow, int threads, const std::function<void(const FinishedAcc&)>& use) {
+    std::mutex reading;
+    const DirRowReader serial = bands::one_at_a_time(read, reading);
+    ordered_parts<FinishedAcc>(
+        which.size(), std::size_t(std::max(threads, 1)),
+        [&](std::size_t k, FinishedAcc& out) {
+            out.band = which[k];
+            finish_accumulation_band(bands, out.band, serial, inflow, out.acc);
+        },
+        use);
+}
+
+std::vector<AccSurvey> survey_bands(const FillBands& bands, const std::vector<int>& which, const DirRowReader& read,
+                                    int threads) {
+    std::mutex reading;
+    const DirRowReader serial = bands::one_at_a_time(read, reading);
+    return bands::each_band<AccSurvey>(which, threads, [&](int b) { return survey_accumulation_band(bands, b, serial); },
+                                       [] {});
+}
+
+}  // namespace
+
+void tiled_accumulation(const FillBands& bands, const DirRowReader& read, const AccRowWriter& write, int threads) {
+    if (bands.cols < 1 || bands.rows < 1 || bands.band_rows < 1) throw std::invalid_argument("tiled accumulation: empty grid");
+    if (threads <= 0) threads = int(std::clamp<unsigned>(std::thread::hardware_concurrency(), 1, 16));
+    std::vector<int> all(static_cast<std::size_t>(bands.count()));
+    for (int b = 0; b < bands.count(); ++b) all[std::size_t(b)] = b;
+    const std::vector<std::uint64_t> inflow = accumulation_inflows(bands, survey_bands(bands, all, read, threads));
+    finish_bands(bands, all, read, inflow, threads,
+                 [&](const FinishedAcc& f) { write(bands.first_row(f.band), bands.end_row(f.band), f.acc.data()); });
+}
+
+void distributed_accumulation(const FillBands& bands, const DirRowReader& read, const AccRowWriter& write, Ranks& ranks,
+                              int threads) {
+    if (bands.cols < 1 || bands.rows < 1 || bands.band_rows < 1) throw std::invalid_argument("tiled accumulation: empty grid");
+    const int n = bands.count(), size = ranks.size(), me = ranks.rank();
+    std::vector<int> mine;
+    for (int b = me; b < n; b += size) mine.push_back(b);
+    std::vector<AccSurvey> surveys = survey_bands(bands, mine, read, std::max(threads, 1));
+    std::vector<std::uint8_t> inflow_bytes;
+    if (me == 0) {
+        for (int r = 1; r < size; ++r)
+            for (int b = r; b < n; b += size) surveys.push_back(decode_acc_survey(ranks.receive(r, bands::survey_tag)));
+        const std::vector<std::uint64_t> inflow = accumulation_inflows(bands, surveys);
+        inflow_bytes.resize(inflow.size() * sizeof(std::uint64_t));
+        std::memcpy(inflow_bytes.data(), inflow.data(), inflow_bytes.size());
+    } else {
+        for (const AccSurvey& s : surveys) ranks.send(0, bands::survey_tag, encode_acc_survey(s));
+    }
+    surveys.clear();
+    ranks.broadcast(0, inflow_bytes);
+    const std::size_t nodes = AccPerimeter(bands).nodes();
+    if (inflow_bytes.size() != nodes * sizeof(std::uint64_t)) throw std::runtime_error("tiled accumulation: inflows of another grid");
+    std::vector<std::uint64_t> inflow(nodes);
+    std::memcpy(inflow.data(), inflow_bytes.data(), inflow_bytes.size());
+    if (me != 0) {
+        finish_bands(bands, mine, read, inflow, std::max(threads, 1), [&](const FinishedAcc& f) {
+            bands::Writer w;
+            w.put(std::int32_t(f.band)), w.put_all(f.acc);
+            ranks.send(0, bands::band_tag, w.out);
+        });
+        return;
+    }
+    int next = 0;
+    auto put = [&](int band, const std::vector<std::uint32_t>& acc) {
+        write(bands.first_row(band), bands.end_row(band), acc.data());
+        ++next;
+    };
+    auto others_before = [&](int band) {
+        for (; next < band;) {
+            const std::vector<std::uint8_t> m = ranks.receive(next % size, bands::band_tag);
+            bands::Reader r{m};
+            if (r.get<std::int32_t>() != next) throw std::runtime_error("tiled accumulation: a band out of order");
+            const std::size_t cells = std::size_t(bands.end_row(next) - bands.first_row(next)) * std::size_t(bands.cols);
+            const std::vector<std::uint32_t> acc = r.get_all<std::uint32_t>(cells);
+            r.end();
+            put(next, acc);
+        }
+    };
+    finish_bands(bands, mine, read, inflow, std::max(threads, 1), [&](const FinishedAcc& f) {
+        others_before(f.band);
+        put(f.band, f.acc);
+    });
+    others_before(n);
+}
+
+}  // namespace penink
