@@ -151,6 +151,7 @@ HeightRasterWriter::HeightRasterWriter(const std::string& path, const std::strin
     char** opts = nullptr;
     opts = CSLSetNameValue(opts, "COMPRESS", "DEFLATE");
     opts = CSLSetNameValue(opts, "PREDICTOR", "3");
+    opts = CSLSetNameValue(opts, "ZLEVEL", "1");  // the header says why
     opts = CSLSetNameValue(opts, "BLOCKYSIZE", std::to_string(height_raster_strip_rows).c_str());
     opts = CSLSetNameValue(opts, "BIGTIFF", "IF_SAFER");
     opts = CSLSetNameValue(opts, "NUM_THREADS", "ALL_CPUS");

@@ -41,8 +41,9 @@ void write_drainage_raster(std::size_t which, const std::string& path, const std
 // A GeoTIFF of heights (Float32, metres, nodata NaN, georeferenced like the DEM at factor 1: the
 // filled DEM of `penink fill`) written a band of rows at a time in row order, so that a grid of
 // any size passes through in bounded memory: strips of height_raster_strip_rows rows, DEFLATE
-// with the floating-point predictor, compressed on all cores, BigTIFF where the file may pass
-// 4 GiB. Errors: Error("drainage", shown, "cannot write raster (GDAL's reason)"), the disk full
+// at level 1 with the floating-point predictor, compressed on all cores, BigTIFF where the file
+// may pass 4 GiB. (Level 6, the default, took 42 % of `penink fill`'s CPU on jacksboro x29 for a
+// file 10 % smaller: 26.2 MB against 29.2.) Errors: Error("drainage", shown, "cannot write raster (GDAL's reason)"), the disk full
 // included (found at the latest by close()); `stage` names the command's stage instead.
 inline constexpr int height_raster_strip_rows = 16;
 class HeightRasterWriter {

@@ -113,34 +113,43 @@ AccSurvey survey_accumulation_band(const FillBands& bands, int b, const DirRowRe
     std::vector<std::size_t> path;
     AccSurvey s;
     s.band = b;
+    // each outlet's rank among the band's, row-major
+    std::vector<std::int64_t> rank(n, -1);
+    for (std::size_t i = 0; i < n; ++i)
+        if (d.valid[i] && !d.dir[i]) rank[i] = std::int64_t(s.outlets++);
+    std::vector<std::int64_t> end(n, unknown);  // the outlet rank each path ends at, -1 leaving
     for (const int r : perimeter_rows_of(d))
         for (std::size_t c = 0; c < cols; ++c) {
             const std::size_t p = std::size_t(r - d.r0) * cols + c;
             s.acc.push_back(std::uint32_t(acc[p])), s.dir.push_back(d.dir[p]), s.valid.push_back(d.valid[p]);
             if (!d.valid[p]) {
-                s.link.push_back(none);
+                s.link.push_back(none), s.outlet.push_back(none);
                 continue;
             }
             path.clear();
             std::size_t at = p;
-            std::int64_t found = unknown;
-            for (std::size_t steps = 0; (found = exit[at]) == unknown; ++steps) {
+            std::int64_t found = none, ends = none;
+            for (std::size_t steps = 0;; ++steps) {
+                if (exit[at] != unknown) {  // a path walked before: its end
+                    found = exit[at], ends = end[at];
+                    break;
+                }
                 if (steps > n) cycle();
                 path.push_back(at);
                 bool out;
                 const std::int64_t t = d.target(at, out);
-                if (out) {
+                if (out) {  // leaves the band here
                     found = per.node(int(at % cols), d.r0 + int(at / cols));
                     break;
                 }
-                if (t < 0) {
-                    found = none;
+                if (t < 0) {  // an outlet of the band
+                    ends = rank[at];
                     break;
                 }
                 at = std::size_t(t);
             }
-            for (const std::size_t q : path) exit[q] = found;
-            s.link.push_back(found);
+            for (const std::size_t q : path) exit[q] = found, end[q] = ends;
+            s.link.push_back(found), s.outlet.push_back(ends);
         }
     return s;
 }
@@ -158,7 +167,7 @@ std::vector<std::uint64_t> accumulation_inflows(const FillBands& bands, const st
         const int r0 = bands.first_row(s.band), r1 = bands.end_row(s.band);
         const std::vector<int> rows = r1 - 1 != r0 ? std::vector<int>{r0, r1 - 1} : std::vector<int>{r0};
         if (s.acc.size() != rows.size() * cols || s.dir.size() != s.acc.size() || s.valid.size() != s.acc.size() ||
-            s.link.size() != s.acc.size())
+            s.link.size() != s.acc.size() || s.outlet.size() != s.acc.size())
             throw std::invalid_argument("tiled accumulation: a survey of another grid");
         for (std::size_t k = 0; k < s.acc.size(); ++k) {
             const int r = rows[k / cols], c = int(k % cols);
@@ -220,11 +229,107 @@ void finish_accumulation_band(const FillBands& bands, int b, const DirRowReader&
     for (std::size_t i = 0; i < a.size(); ++i) acc[i] = std::uint32_t(a[i]);
 }
 
+PerimeterBasins perimeter_basins(const FillBands& bands, const std::vector<AccSurvey>& surveys) {
+    const AccPerimeter per(bands);
+    const std::size_t nodes = per.nodes(), cols = std::size_t(bands.cols);
+    const int n = bands.count();
+    PerimeterBasins out;
+    out.first_outlet.assign(std::size_t(n), 0);
+    out.label.assign(nodes, 0);
+    std::vector<const AccSurvey*> by_band(std::size_t(n), nullptr);
+    for (const AccSurvey& s : surveys) {
+        if (s.band < 0 || s.band >= n || by_band[std::size_t(s.band)] || s.link.size() != s.valid.size() ||
+            s.outlet.size() != s.valid.size() || s.dir.size() != s.valid.size())
+            throw std::invalid_argument("tiled basins: surveys must cover each band once");
+        by_band[std::size_t(s.band)] = &s;
+    }
+    std::uint64_t above = 0;
+    for (int b = 0; b < n; ++b) {
+        if (!by_band[std::size_t(b)]) throw std::invalid_argument("tiled basins: a band's survey is missing");
+        out.first_outlet[std::size_t(b)] = above, above += by_band[std::size_t(b)]->outlets;
+    }
+    // each node: its label where its path ends at an outlet of its band, else the node of another
+    // band its exit points at
+    std::vector<std::int64_t> then(nodes, -1);
+    std::vector<std::uint8_t> valid(nodes, 0);
+    for (const AccSurvey* s : by_band) {
+        const int r0 = bands.first_row(s->band), r1 = bands.end_row(s->band);
+        const std::vector<int> rows = r1 - 1 != r0 ? std::vector<int>{r0, r1 - 1} : std::vector<int>{r0};
+        if (s->valid.size() != rows.size() * cols) throw std::invalid_argument("tiled basins: a survey of another grid");
+        for (std::size_t k = 0; k < s->valid.size(); ++k) {
+            if (!s->valid[k]) continue;
+            const auto p = std::size_t(per.node(int(k % cols), rows[k / cols]));
+            valid[p] = 1;
+            if (s->outlet[k] >= 0) {
+                out.label[p] = std::uint32_t(1 + out.first_outlet[std::size_t(s->band)] + std::uint64_t(s->outlet[k]));
+                continue;
+            }
+            if (s->link[k] < 0 || s->link[k] >= std::int64_t(nodes)) cycle();
+            const auto e = std::size_t(s->link[k]);  // its exit: a perimeter cell of this band
+            const int er = per.rows[e / cols], ec = int(e % cols);
+            // the exit's own direction, from its survey row
+            const std::size_t ek = std::size_t(er == r0 ? 0 : 1) * cols + std::size_t(ec);
+            if (ek >= s->dir.size() || !s->dir[ek]) cycle();
+            const int d = d8_index(s->dir[ek]);
+            then[p] = per.node(ec + d8_dc[d], er + d8_dr[d]);
+            if (then[p] < 0) cycle();
+        }
+    }
+    std::vector<std::size_t> path;
+    for (std::size_t p = 0; p < nodes; ++p) {
+        if (!valid[p] || out.label[p]) continue;
+        path.clear();
+        std::size_t at = p;
+        while (!out.label[at]) {
+            if (path.size() > nodes || then[at] < 0) cycle();
+            path.push_back(at);
+            at = std::size_t(then[at]);
+        }
+        for (const std::size_t q : path) out.label[q] = out.label[at];
+    }
+    return out;
+}
+
+void finish_basin_band(const FillBands& bands, int b, const DirRowReader& read, const PerimeterBasins& basins,
+                       std::vector<std::uint32_t>& labels) {
+    const AccPerimeter per(bands);
+    if (basins.label.size() != per.nodes() || basins.first_outlet.size() != std::size_t(bands.count()))
+        throw std::invalid_argument("tiled basins: labels of another grid");
+    const BandDirs d = read_band(bands, b, read);
+    const std::size_t n = d.size(), cols = std::size_t(d.cols);
+    labels.assign(n, 0);
+    std::uint64_t outlets = basins.first_outlet[std::size_t(b)];
+    for (std::size_t i = 0; i < n; ++i)
+        if (d.valid[i] && !d.dir[i]) labels[i] = std::uint32_t(++outlets);
+    std::vector<std::size_t> path;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (!d.valid[i] || labels[i]) continue;
+        path.clear();
+        std::size_t at = i;
+        while (!labels[at]) {
+            if (path.size() > n) cycle();
+            path.push_back(at);
+            bool out;
+            const std::int64_t t = d.target(at, out);
+            if (out) {  // a perimeter cell whose path leaves the band: its label from the solve
+                const std::int64_t p = per.node(int(at % cols), d.r0 + int(at / cols));
+                if (p < 0 || !basins.label[std::size_t(p)]) cycle();
+                labels[at] = basins.label[std::size_t(p)];
+                break;
+            }
+            if (t < 0) cycle();  // not an outlet (labelled above), not leaving: cannot be
+            at = std::size_t(t);
+        }
+        for (const std::size_t q : path) labels[q] = labels[at];
+    }
+}
+
 namespace {
 
 std::vector<std::uint8_t> encode_acc_survey(const AccSurvey& s) {
     bands::Writer w;
-    w.put(std::int32_t(s.band)), w.put_all(s.acc), w.put_all(s.dir), w.put_all(s.valid), w.put_all(s.link);
+    w.put(std::int32_t(s.band)), w.put(s.outlets), w.put_all(s.acc), w.put_all(s.dir), w.put_all(s.valid);
+    w.put_all(s.link), w.put_all(s.outlet);
     return std::move(w.out);
 }
 
@@ -232,9 +337,10 @@ AccSurvey decode_acc_survey(std::span<const std::uint8_t> bytes) {
     bands::Reader r{bytes};
     AccSurvey s;
     s.band = r.get<std::int32_t>();
+    s.outlets = r.get<std::uint64_t>();
     s.acc = r.get_all<std::uint32_t>();
     s.dir = r.get_all<std::uint8_t>(s.acc.size()), s.valid = r.get_all<std::uint8_t>(s.acc.size());
-    s.link = r.get_all<std::int64_t>(s.acc.size());
+    s.link = r.get_all<std::int64_t>(s.acc.size()), s.outlet = r.get_all<std::int64_t>(s.acc.size());
     r.end();
     return s;  // its size and links checked against the grid by accumulation_inflows
 }
@@ -275,6 +381,23 @@ void tiled_accumulation(const FillBands& bands, const DirRowReader& read, const 
     const std::vector<std::uint64_t> inflow = accumulation_inflows(bands, survey_bands(bands, all, read, threads));
     finish_bands(bands, all, read, inflow, threads,
                  [&](const FinishedAcc& f) { write(bands.first_row(f.band), bands.end_row(f.band), f.acc.data()); });
+}
+
+void tiled_basins(const FillBands& bands, const DirRowReader& read, const AccRowWriter& write, int threads) {
+    if (bands.cols < 1 || bands.rows < 1 || bands.band_rows < 1) throw std::invalid_argument("tiled basins: empty grid");
+    if (threads <= 0) threads = int(std::clamp<unsigned>(std::thread::hardware_concurrency(), 1, 16));
+    std::vector<int> all(static_cast<std::size_t>(bands.count()));
+    for (int b = 0; b < bands.count(); ++b) all[std::size_t(b)] = b;
+    const PerimeterBasins basins = perimeter_basins(bands, survey_bands(bands, all, read, threads));
+    std::mutex reading;
+    const DirRowReader serial = bands::one_at_a_time(read, reading);
+    ordered_parts<FinishedAcc>(
+        all.size(), std::size_t(threads),
+        [&](std::size_t k, FinishedAcc& out) {
+            out.band = int(k);
+            finish_basin_band(bands, out.band, serial, basins, out.acc);
+        },
+        [&](const FinishedAcc& f) { write(bands.first_row(f.band), bands.end_row(f.band), f.acc.data()); });
 }
 
 void distributed_accumulation(const FillBands& bands, const DirRowReader& read, const AccRowWriter& write, Ranks& ranks,

@@ -12,6 +12,10 @@
 // accumulation plus the inflow of the perimeter cells linked to it, and each one's inflow the
 // totals of the cells of other bands pointing at it. Finish: each band accumulated again with
 // every perimeter cell's inflow added where the cell is, written in row order.
+// Basins the same way (tiled_basins): each band counts its outlets and tells, for each perimeter
+// cell, the outlet of the band its path ends at, if any; the solve numbers the outlets across
+// the bands in row-major order and labels each perimeter cell by following exits from band to
+// band; the finish labels each band's cells by their paths.
 // Directions: ESRI D8 codes (d8.hpp), 0 at outlets and invalid cells; a valid cell points at a
 // valid cell of the grid. Accumulation: u32, 0 at invalid cells.
 #pragma once
@@ -32,12 +36,15 @@ using AccRowWriter = std::function<void(int y0, int y1, const std::uint32_t* acc
 
 // What the survey of one band keeps of its first and last rows (one row where the band has one):
 // each perimeter cell's local accumulation, direction and link (perimeter_node of the cell, or
-// -1: its path ends inside the band).
+// -1: its path ends inside the band), and where the path ends inside the band, that outlet's rank
+// among the band's outlets in row-major order (-1 elsewhere); and the band's outlets (valid cells
+// of code 0).
 struct AccSurvey {
     int band = 0;
+    std::uint64_t outlets = 0;
     std::vector<std::uint32_t> acc;  // first row, then the last row where it is another
     std::vector<std::uint8_t> dir, valid;
-    std::vector<std::int64_t> link;
+    std::vector<std::int64_t> link, outlet;
 };
 
 // The perimeter cells of `bands`: the first and last rows of every band, numbered row by row.
@@ -59,6 +66,20 @@ std::vector<std::uint64_t> accumulation_inflows(const FillBands& bands, const st
 // Band b's accumulation with the inflows (rows of the band, cols each).
 void finish_accumulation_band(const FillBands& bands, int b, const DirRowReader& read,
                               const std::vector<std::uint64_t>& inflow, std::vector<std::uint32_t>& acc);
+
+// Basins by bands (label_basins' labels, flow_network.hpp: outlets numbered 1, 2, ... in
+// row-major order, every cell labelled with its path's outlet): from the surveys, each band's
+// first outlet number less one and each perimeter node's label (0 for invalid cells); then band b's
+// labels (rows of the band, cols each).
+struct PerimeterBasins {
+    std::vector<std::uint64_t> first_outlet;  // per band: outlets of the bands above it
+    std::vector<std::uint32_t> label;         // per perimeter node
+};
+PerimeterBasins perimeter_basins(const FillBands& bands, const std::vector<AccSurvey>& surveys);
+void finish_basin_band(const FillBands& bands, int b, const DirRowReader& read, const PerimeterBasins& basins,
+                       std::vector<std::uint32_t>& labels);
+// The whole labelling, on up to `threads` threads, written in row order.
+void tiled_basins(const FillBands& bands, const DirRowReader& read, const AccRowWriter& write, int threads = 0);
 
 // The whole accumulation, surveys and finishes on up to `threads` threads (0: the hardware's; the
 // reads one at a time), written in row order.

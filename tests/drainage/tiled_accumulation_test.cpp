@@ -1,5 +1,5 @@
 // Flow accumulation a band of rows at a time (Barnes 2017 on row bands) is accumulate_flow's on
-// the whole grid, cell for cell: D8 directions of random surfaces with pits (outlets inside), long
+// the whole grid, cell for cell, and the basins by bands label_basins': D8 directions of random surfaces with pits (outlets inside), long
 // paths that cross band edges up and down, and nodata; band heights of 1 row to the whole grid,
 // 1 and 3 threads, and over 1 to 4 ranks (threads with the same messages); a cycle is refused.
 #include <cmath>
@@ -101,6 +101,30 @@ TEST(TiledAccumulation, DistributedOverRanksIsTheWholeGridsAccumulation) {
         }
 }
 
+// Basins by bands are label_basins' labels: outlets numbered in row-major order across the bands,
+// every cell labelled with the outlet its path ends at, paths crossing band edges either way.
+TEST(TiledAccumulation, BasinsAreTheWholeGridsLabels) {
+    for (std::uint32_t seed = 11; seed <= 14; ++seed) {
+        const Dirs d = random_dirs(50 + int(seed) * 7, 45, seed, seed % 2 == 1);
+        FlowNetwork net;
+        label_basins(d.dir, {d.cols, d.rows, d.valid.data()}, net);
+        ASSERT_GT(net.outlet.size(), 20u);
+        for (const int band_rows : {1, 2, 5, 9, d.rows})
+            for (const int threads : {1, 2}) {
+                std::vector<std::uint32_t> got;
+                tiled_basins(
+                    {d.cols, d.rows, band_rows}, rows_of(d),
+                    [&](int, int y1, const std::uint32_t* labels) {
+                        got.insert(got.end(), labels, labels + (std::size_t(y1) * d.cols - got.size()));
+                    },
+                    threads);
+                ASSERT_EQ(got.size(), net.basin.size());
+                for (std::size_t i = 0; i < got.size(); ++i)
+                    ASSERT_EQ(got[i], net.basin[i]) << "seed " << seed << ", bands of " << band_rows << ", cell " << i;
+            }
+    }
+}
+
 TEST(TiledAccumulation, ACycleAcrossBandsIsRefused) {
     // four cells turning round a square that straddles the edge of two bands of 2 rows
     Dirs d{4, 4, std::vector<std::uint8_t>(16, 0), std::vector<std::uint8_t>(16, 1)};
@@ -108,6 +132,7 @@ TEST(TiledAccumulation, ACycleAcrossBandsIsRefused) {
     at(1, 1) = 1, at(2, 1) = 4, at(2, 2) = 16, at(1, 2) = 64;  // E, S, W, N
     EXPECT_THROW(tiled_accumulation({4, 4, 2}, rows_of(d), [](int, int, const std::uint32_t*) {}, 1), Error);
     EXPECT_THROW(tiled_accumulation({4, 4, 4}, rows_of(d), [](int, int, const std::uint32_t*) {}, 1), Error);
+    EXPECT_THROW(tiled_basins({4, 4, 2}, rows_of(d), [](int, int, const std::uint32_t*) {}, 1), Error);
 }
 
 }  // namespace
