@@ -10,6 +10,7 @@
 #include "core/parallel_chunks.hpp"
 #include "drainage/band_passes.hpp"
 #include "drainage/d8.hpp"
+#include "drainage/flow_network.hpp"
 
 namespace penink {
 
@@ -326,6 +327,222 @@ void finish_basin_band(const FillBands& bands, int b, const DirRowReader& read, 
 
 namespace {
 
+// x folded into a pending byte (push_order) as many times as pending byte p holds its maximum:
+// p's cells pushed one by one give the same byte.
+void push_pending(std::uint8_t& into, std::uint8_t p) {
+    if (!p) return;
+    push_order(into, std::uint8_t(p >> 1));
+    if (p & 1) push_order(into, std::uint8_t(p >> 1));
+}
+
+// The order of a cell of local fold `pending` whose one other upstream cell has order x.
+std::uint8_t order_with(std::uint8_t pending, std::uint8_t x) {
+    push_order(pending, x);
+    return final_order(pending);
+}
+
+// Orders of the band's cells by an in-degree walk, each cell's fold starting from start[i]; the
+// walk goes on only through cells `through` allows (the others keep their fold in `pending`).
+template <class Through>
+void order_walk(const BandDirs& d, const std::vector<std::int64_t>& next, std::vector<std::uint8_t>& pending,
+                std::vector<std::uint8_t>& order, Through&& through) {
+    const std::size_t n = d.size();
+    std::vector<std::uint8_t> count(n, 0);
+    for (std::size_t i = 0; i < n; ++i)
+        if (d.valid[i] && through(i) && next[i] >= 0) ++count[std::size_t(next[i])];
+    order.assign(n, 0);
+    for (std::size_t s = 0; s < n; ++s) {
+        if (!d.valid[s] || !through(s) || count[s] != 0 || order[s]) continue;
+        for (std::size_t c = s;;) {
+            order[c] = final_order(pending[c]);
+            if (next[c] < 0) break;
+            const auto t = std::size_t(next[c]);
+            push_order(pending[t], order[c]);
+            if (!through(t) || --count[t] != 0) break;
+            c = t;
+        }
+    }
+}
+
+std::vector<std::int64_t> next_cells(const BandDirs& d) {
+    std::vector<std::int64_t> next(d.size(), -1);
+    for (std::size_t i = 0; i < d.size(); ++i) {
+        bool out;
+        if (d.valid[i]) next[i] = d.target(i, out);
+    }
+    return next;
+}
+
+}  // namespace
+
+OrderSurvey survey_order_band(const FillBands& bands, int b, const DirRowReader& read) {
+    const BandDirs d = read_band(bands, b, read);
+    const std::size_t n = d.size(), cols = std::size_t(d.cols);
+    const std::vector<std::int64_t> next = next_cells(d);
+    // cells downstream of an edge cell (in the band)
+    std::vector<std::uint8_t> reached(n, 0), edge(n, 0);
+    for (const int r : perimeter_rows_of(d))
+        for (std::size_t c = 0; c < cols; ++c) {
+            const std::size_t p = std::size_t(r - d.r0) * cols + c;
+            if (!d.valid[p]) continue;
+            edge[p] = 1;
+            for (std::size_t at = p, steps = 0; !reached[at]; ++steps) {
+                if (steps > n) cycle();
+                reached[at] = 1;
+                if (next[at] < 0) break;
+                at = std::size_t(next[at]);
+            }
+        }
+    // the others' orders are final; a reached cell keeps the fold of its other upstream cells
+    std::vector<std::uint8_t> pending(n, 0), order;
+    order_walk(d, next, pending, order, [&](std::size_t i) { return !reached[i]; });
+    std::vector<std::uint8_t> from_reached(n, 0);  // reached upstream cells of each cell
+    for (std::size_t i = 0; i < n; ++i)
+        if (reached[i] && next[i] >= 0) ++from_reached[std::size_t(next[i])];
+    OrderSurvey s;
+    s.band = b;
+    std::vector<std::int32_t> node_of(n, -1);
+    for (std::size_t i = 0; i < n; ++i)
+        if (d.valid[i] && reached[i] && (edge[i] || from_reached[i] >= 2)) {
+            node_of[i] = std::int32_t(s.cell.size());
+            s.cell.push_back(std::int64_t(i)), s.pending.push_back(pending[i]), s.dir.push_back(d.dir[i]);
+        }
+    s.down.assign(s.cell.size(), -1);
+    s.table_at.push_back(0);
+    for (std::size_t k = 0; k < s.cell.size(); ++k) {
+        // the order reaching the next node for this node's order x: the cells between apply
+        // order_with in turn; above every fold's maximum x passes unchanged
+        std::vector<std::size_t> between;
+        std::int64_t at = next[std::size_t(s.cell[k])];
+        for (; at >= 0 && node_of[std::size_t(at)] < 0; at = next[std::size_t(at)]) {
+            if (between.size() > n) cycle();
+            between.push_back(std::size_t(at));
+        }
+        if (at >= 0) {
+            s.down[k] = node_of[std::size_t(at)];
+            int top = 0;
+            for (const std::size_t c : between) top = std::max(top, pending[c] >> 1);
+            for (int x = 0; x <= top + 1; ++x) {
+                std::uint8_t o = std::uint8_t(x);
+                for (const std::size_t c : between) o = order_with(pending[c], o);
+                s.tables.push_back(o);
+            }
+        }
+        s.table_at.push_back(std::uint32_t(s.tables.size()));
+    }
+    return s;
+}
+
+std::vector<std::uint8_t> perimeter_order_inflows(const FillBands& bands, const std::vector<OrderSurvey>& surveys) {
+    const AccPerimeter per(bands);
+    const std::size_t cols = std::size_t(bands.cols), pnodes = per.nodes();
+    const int nb = bands.count();
+    std::vector<const OrderSurvey*> by_band(std::size_t(nb), nullptr);
+    for (const OrderSurvey& s : surveys) {
+        if (s.band < 0 || s.band >= nb || by_band[std::size_t(s.band)] || s.pending.size() != s.cell.size() ||
+            s.dir.size() != s.cell.size() || s.down.size() != s.cell.size() || s.table_at.size() != s.cell.size() + 1 ||
+            s.table_at.back() != s.tables.size())
+            throw std::invalid_argument("tiled order: surveys must cover each band once");
+        by_band[std::size_t(s.band)] = &s;
+    }
+    // every band's nodes numbered one after the other
+    std::vector<std::size_t> first(std::size_t(nb) + 1, 0);
+    for (int b = 0; b < nb; ++b) {
+        if (!by_band[std::size_t(b)]) throw std::invalid_argument("tiled order: a band's survey is missing");
+        first[std::size_t(b) + 1] = first[std::size_t(b)] + by_band[std::size_t(b)]->cell.size();
+    }
+    const std::size_t total = first.back();
+    std::vector<std::int64_t> perimeter(total, -1);  // a node's perimeter node, -1 for a meeting of paths
+    std::vector<std::int64_t> of_perimeter(pnodes, -1);
+    std::vector<std::int64_t> out(total, -1);        // the node of another band it points at
+    for (int b = 0; b < nb; ++b) {
+        const OrderSurvey& s = *by_band[std::size_t(b)];
+        const int r0 = bands.first_row(b), r1 = bands.end_row(b);
+        for (std::size_t k = 0; k < s.cell.size(); ++k) {
+            const std::size_t v = first[std::size_t(b)] + k;
+            if (s.cell[k] < 0 || s.cell[k] >= std::int64_t(std::size_t(r1 - r0) * cols) ||
+                s.down[k] >= std::int32_t(s.cell.size()))
+                throw std::invalid_argument("tiled order: a survey of another grid");
+            const int r = r0 + int(std::size_t(s.cell[k]) / cols), c = int(std::size_t(s.cell[k]) % cols);
+            perimeter[v] = per.node(c, r);
+            if (perimeter[v] >= 0) of_perimeter[std::size_t(perimeter[v])] = std::int64_t(v);
+        }
+    }
+    for (int b = 0; b < nb; ++b) {
+        const OrderSurvey& s = *by_band[std::size_t(b)];
+        const int r0 = bands.first_row(b), r1 = bands.end_row(b);
+        for (std::size_t k = 0; k < s.cell.size(); ++k) {
+            if (!s.dir[k]) continue;
+            const int d = d8_index(s.dir[k]);
+            const int r = r0 + int(std::size_t(s.cell[k]) / cols) + d8_dr[d], c = int(std::size_t(s.cell[k]) % cols) + d8_dc[d];
+            if (r >= r0 && r < r1) continue;
+            const std::int64_t p = per.node(c, r);
+            if (p < 0 || of_perimeter[std::size_t(p)] < 0) cycle();
+            out[first[std::size_t(b)] + k] = of_perimeter[std::size_t(p)];
+        }
+    }
+    // in flow order: a node's order once every node upstream of it has given its share
+    std::vector<std::uint8_t> fold(total, 0), ext(total, 0), order(total, 0);
+    std::vector<std::uint32_t> wait(total, 0);
+    std::vector<int> band_of(total);
+    for (int b = 0; b < nb; ++b)
+        for (std::size_t v = first[std::size_t(b)]; v < first[std::size_t(b) + 1]; ++v) {
+            band_of[v] = b;
+            const OrderSurvey& s = *by_band[std::size_t(b)];
+            const std::size_t k = v - first[std::size_t(b)];
+            fold[v] = s.pending[k];
+            if (s.down[k] >= 0) ++wait[first[std::size_t(b)] + std::size_t(s.down[k])];
+            if (out[v] >= 0) ++wait[std::size_t(out[v])];
+        }
+    std::vector<std::size_t> ready;
+    for (std::size_t v = 0; v < total; ++v)
+        if (!wait[v]) ready.push_back(v);
+    std::size_t done = 0;
+    while (!ready.empty()) {
+        const std::size_t v = ready.back();
+        ready.pop_back();
+        ++done;
+        order[v] = final_order(fold[v]);
+        const int b = band_of[v];
+        const OrderSurvey& s = *by_band[std::size_t(b)];
+        const std::size_t k = v - first[std::size_t(b)];
+        std::size_t to = total;
+        if (s.down[k] >= 0) {
+            to = first[std::size_t(b)] + std::size_t(s.down[k]);
+            const std::uint32_t t0 = s.table_at[k], t1 = s.table_at[k + 1];
+            push_order(fold[to], order[v] < t1 - t0 ? s.tables[t0 + order[v]] : order[v]);
+        } else if (out[v] >= 0) {
+            to = std::size_t(out[v]);
+            push_order(fold[to], order[v]), push_order(ext[to], order[v]);
+        }
+        if (to < total && --wait[to] == 0) ready.push_back(to);
+    }
+    if (done != total) cycle();
+    std::vector<std::uint8_t> inflow(pnodes, 0);
+    for (std::size_t v = 0; v < total; ++v)
+        if (perimeter[v] >= 0) inflow[std::size_t(perimeter[v])] = ext[v];
+    return inflow;
+}
+
+void finish_order_band(const FillBands& bands, int b, const DirRowReader& read, const std::vector<std::uint8_t>& inflow,
+                       std::vector<std::uint8_t>& order) {
+    const AccPerimeter per(bands);
+    if (inflow.size() != per.nodes()) throw std::invalid_argument("tiled order: inflows of another grid");
+    const BandDirs d = read_band(bands, b, read);
+    const std::size_t cols = std::size_t(d.cols);
+    std::vector<std::uint8_t> pending(d.size(), 0);
+    for (const int r : perimeter_rows_of(d))
+        for (std::size_t c = 0; c < cols; ++c) {
+            const std::size_t i = std::size_t(r - d.r0) * cols + c;
+            push_pending(pending[i], inflow[std::size_t(per.node(int(c), r))]);
+        }
+    order_walk(d, next_cells(d), pending, order, [](std::size_t) { return true; });
+    for (std::size_t i = 0; i < d.size(); ++i)
+        if (d.valid[i] && !order[i]) cycle();
+}
+
+namespace {
+
 std::vector<std::uint8_t> encode_acc_survey(const AccSurvey& s) {
     bands::Writer w;
     w.put(std::int32_t(s.band)), w.put(s.outlets), w.put_all(s.acc), w.put_all(s.dir), w.put_all(s.valid);
@@ -396,6 +613,26 @@ void tiled_basins(const FillBands& bands, const DirRowReader& read, const AccRow
         [&](std::size_t k, FinishedAcc& out) {
             out.band = int(k);
             finish_basin_band(bands, out.band, serial, basins, out.acc);
+        },
+        [&](const FinishedAcc& f) { write(bands.first_row(f.band), bands.end_row(f.band), f.acc.data()); });
+}
+
+void tiled_strahler(const FillBands& bands, const DirRowReader& read, const AccRowWriter& write, int threads) {
+    if (bands.cols < 1 || bands.rows < 1 || bands.band_rows < 1) throw std::invalid_argument("tiled order: empty grid");
+    if (threads <= 0) threads = int(std::clamp<unsigned>(std::thread::hardware_concurrency(), 1, 16));
+    std::vector<int> all(static_cast<std::size_t>(bands.count()));
+    for (int b = 0; b < bands.count(); ++b) all[std::size_t(b)] = b;
+    std::mutex reading;
+    const DirRowReader serial = bands::one_at_a_time(read, reading);
+    const std::vector<std::uint8_t> inflow = perimeter_order_inflows(
+        bands, bands::each_band<OrderSurvey>(all, threads, [&](int b) { return survey_order_band(bands, b, serial); }, [] {}));
+    ordered_parts<FinishedAcc>(
+        all.size(), std::size_t(threads),
+        [&](std::size_t k, FinishedAcc& out) {
+            out.band = int(k);
+            std::vector<std::uint8_t> order;
+            finish_order_band(bands, out.band, serial, inflow, order);
+            out.acc.assign(order.begin(), order.end());
         },
         [&](const FinishedAcc& f) { write(bands.first_row(f.band), bands.end_row(f.band), f.acc.data()); });
 }

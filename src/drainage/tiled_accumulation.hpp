@@ -81,6 +81,30 @@ void finish_basin_band(const FillBands& bands, int b, const DirRowReader& read, 
 // The whole labelling, on up to `threads` threads, written in row order.
 void tiled_basins(const FillBands& bands, const DirRowReader& read, const AccRowWriter& write, int threads = 0);
 
+// Strahler order by bands (accumulate_flow's net.order): a band's order at a cell depends on the
+// orders entering its edge cells, so its survey keeps the band's paths from its edge cells
+// contracted: the edge cells and the cells where two such paths meet (OrderSurvey's nodes), each
+// with the fold (push_order) of its upstream cells that no edge cell drains through, and the
+// order that reaches its next node as a function of its own (a table; above the table the order
+// passes unchanged). The solve walks those nodes of all bands in flow order; each band's finish
+// folds into each edge cell the orders of the cells of other bands pointing at it.
+struct OrderSurvey {
+    int band = 0;
+    std::vector<std::int64_t> cell;     // band cells of the nodes (row-major in the band)
+    std::vector<std::uint8_t> pending;  // fold of their upstream orders no edge cell reaches
+    std::vector<std::uint8_t> dir;      // their directions
+    std::vector<std::int32_t> down;     // the next node on the path, -1: none
+    std::vector<std::uint32_t> table_at;   // each node's table in `tables`: [table_at[k], table_at[k + 1])
+    std::vector<std::uint8_t> tables;      // order reaching `down` for this node's order 0, 1, ...
+};
+OrderSurvey survey_order_band(const FillBands& bands, int b, const DirRowReader& read);
+// Per perimeter node, the fold of the orders of the cells of other bands pointing at it.
+std::vector<std::uint8_t> perimeter_order_inflows(const FillBands& bands, const std::vector<OrderSurvey>& surveys);
+void finish_order_band(const FillBands& bands, int b, const DirRowReader& read, const std::vector<std::uint8_t>& inflow,
+                       std::vector<std::uint8_t>& order);
+// The whole order, written as u32 in row order.
+void tiled_strahler(const FillBands& bands, const DirRowReader& read, const AccRowWriter& write, int threads = 0);
+
 // The whole accumulation, surveys and finishes on up to `threads` threads (0: the hardware's; the
 // reads one at a time), written in row order.
 void tiled_accumulation(const FillBands& bands, const DirRowReader& read, const AccRowWriter& write, int threads = 0);

@@ -2,6 +2,7 @@
 // the whole grid, cell for cell, and the basins by bands label_basins': D8 directions of random surfaces with pits (outlets inside), long
 // paths that cross band edges up and down, and nodata; band heights of 1 row to the whole grid,
 // 1 and 3 threads, and over 1 to 4 ranks (threads with the same messages); a cycle is refused.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <mutex>
@@ -125,6 +126,30 @@ TEST(TiledAccumulation, BasinsAreTheWholeGridsLabels) {
     }
 }
 
+// Strahler order by bands is accumulate_flow's: orders of 3 and more, whose junctions lie in other
+// bands than their sources.
+TEST(TiledAccumulation, StrahlerOrderIsTheWholeGridsOrder) {
+    for (std::uint32_t seed = 21; seed <= 26; ++seed) {
+        const Dirs d = random_dirs(60 + int(seed) * 5, 50 + int(seed) % 3 * 9, seed, seed % 2 == 1);
+        FlowNetwork net;
+        accumulate_flow(d.dir, {d.cols, d.rows, d.valid.data()}, net);
+        EXPECT_GE(*std::max_element(net.order.begin(), net.order.end()), 3) << seed;
+        for (const int band_rows : {1, 2, 3, 8, d.rows})
+            for (const int threads : {1, 2}) {
+                std::vector<std::uint32_t> got;
+                tiled_strahler(
+                    {d.cols, d.rows, band_rows}, rows_of(d),
+                    [&](int, int y1, const std::uint32_t* order) {
+                        got.insert(got.end(), order, order + (std::size_t(y1) * d.cols - got.size()));
+                    },
+                    threads);
+                ASSERT_EQ(got.size(), net.order.size());
+                for (std::size_t i = 0; i < got.size(); ++i)
+                    ASSERT_EQ(got[i], net.order[i]) << "seed " << seed << ", bands of " << band_rows << ", cell " << i;
+            }
+    }
+}
+
 TEST(TiledAccumulation, ACycleAcrossBandsIsRefused) {
     // four cells turning round a square that straddles the edge of two bands of 2 rows
     Dirs d{4, 4, std::vector<std::uint8_t>(16, 0), std::vector<std::uint8_t>(16, 1)};
@@ -133,6 +158,7 @@ TEST(TiledAccumulation, ACycleAcrossBandsIsRefused) {
     EXPECT_THROW(tiled_accumulation({4, 4, 2}, rows_of(d), [](int, int, const std::uint32_t*) {}, 1), Error);
     EXPECT_THROW(tiled_accumulation({4, 4, 4}, rows_of(d), [](int, int, const std::uint32_t*) {}, 1), Error);
     EXPECT_THROW(tiled_basins({4, 4, 2}, rows_of(d), [](int, int, const std::uint32_t*) {}, 1), Error);
+    EXPECT_THROW(tiled_strahler({4, 4, 2}, rows_of(d), [](int, int, const std::uint32_t*) {}, 1), Error);
 }
 
 }  // namespace
