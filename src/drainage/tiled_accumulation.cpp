@@ -567,74 +567,76 @@ struct FinishedAcc {
     std::vector<std::uint32_t> acc;
 };
 
-void finish_bands(const FillBands& bands, const std::vector<int>& which, const DirRowReader& read,
-                  const std::vector<std::uint64_t>& inflow, int threads, const std::function<void(const FinishedAcc&)>& use) {
+// survey(b, read) for the bands `which` on up to `threads` threads, the reads one at a time.
+template <class Survey, class SurveyFn>
+std::vector<Survey> survey_list(const std::vector<int>& which, const DirRowReader& read, int threads, SurveyFn&& survey) {
+    std::mutex reading;
+    const DirRowReader serial = bands::one_at_a_time(read, reading);
+    return bands::each_band<Survey>(which, std::max(threads, 1), [&](int b) { return survey(b, serial); }, [] {});
+}
+
+// finish(b, read, out) for the bands `which` on up to `threads` threads (the reads one at a time),
+// each handed to use() in the order of `which`.
+template <class FinishFn>
+void finish_list(const std::vector<int>& which, const DirRowReader& read, int threads, FinishFn&& finish,
+                 const std::function<void(const FinishedAcc&)>& use) {
     std::mutex reading;
     const DirRowReader serial = bands::one_at_a_time(read, reading);
     ordered_parts<FinishedAcc>(
         which.size(), std::size_t(std::max(threads, 1)),
         [&](std::size_t k, FinishedAcc& out) {
             out.band = which[k];
-            finish_accumulation_band(bands, out.band, serial, inflow, out.acc);
+            finish(out.band, serial, out.acc);
         },
         use);
 }
 
-std::vector<AccSurvey> survey_bands(const FillBands& bands, const std::vector<int>& which, const DirRowReader& read,
-                                    int threads) {
-    std::mutex reading;
-    const DirRowReader serial = bands::one_at_a_time(read, reading);
-    return bands::each_band<AccSurvey>(which, threads, [&](int b) { return survey_accumulation_band(bands, b, serial); },
-                                       [] {});
+// A pass over every band on this process: surveys, solve(surveys), finishes written in row order.
+template <class Survey, class SurveyFn, class SolveFn, class FinishFn>
+void banded_pass(const char* what, const FillBands& bands, const DirRowReader& read, const AccRowWriter& write, int threads,
+                 SurveyFn&& survey, SolveFn&& solve, FinishFn&& finish) {
+    if (bands.cols < 1 || bands.rows < 1 || bands.band_rows < 1) throw std::invalid_argument(std::string(what) + ": empty grid");
+    if (threads <= 0) threads = int(std::clamp<unsigned>(std::thread::hardware_concurrency(), 1, 16));
+    std::vector<int> all(static_cast<std::size_t>(bands.count()));
+    for (int b = 0; b < bands.count(); ++b) all[std::size_t(b)] = b;
+    const auto solved = solve(survey_list<Survey>(all, read, threads, survey));
+    finish_list(
+        all, read, threads, [&](int b, const DirRowReader& r, std::vector<std::uint32_t>& out) { finish(b, r, solved, out); },
+        [&](const FinishedAcc& f) { write(bands.first_row(f.band), bands.end_row(f.band), f.acc.data()); });
 }
 
 }  // namespace
 
 void tiled_accumulation(const FillBands& bands, const DirRowReader& read, const AccRowWriter& write, int threads) {
-    if (bands.cols < 1 || bands.rows < 1 || bands.band_rows < 1) throw std::invalid_argument("tiled accumulation: empty grid");
-    if (threads <= 0) threads = int(std::clamp<unsigned>(std::thread::hardware_concurrency(), 1, 16));
-    std::vector<int> all(static_cast<std::size_t>(bands.count()));
-    for (int b = 0; b < bands.count(); ++b) all[std::size_t(b)] = b;
-    const std::vector<std::uint64_t> inflow = accumulation_inflows(bands, survey_bands(bands, all, read, threads));
-    finish_bands(bands, all, read, inflow, threads,
-                 [&](const FinishedAcc& f) { write(bands.first_row(f.band), bands.end_row(f.band), f.acc.data()); });
+    banded_pass<AccSurvey>(
+        "tiled accumulation", bands, read, write, threads,
+        [&](int b, const DirRowReader& r) { return survey_accumulation_band(bands, b, r); },
+        [&](const std::vector<AccSurvey>& s) { return accumulation_inflows(bands, s); },
+        [&](int b, const DirRowReader& r, const std::vector<std::uint64_t>& inflow, std::vector<std::uint32_t>& out) {
+            finish_accumulation_band(bands, b, r, inflow, out);
+        });
 }
 
 void tiled_basins(const FillBands& bands, const DirRowReader& read, const AccRowWriter& write, int threads) {
-    if (bands.cols < 1 || bands.rows < 1 || bands.band_rows < 1) throw std::invalid_argument("tiled basins: empty grid");
-    if (threads <= 0) threads = int(std::clamp<unsigned>(std::thread::hardware_concurrency(), 1, 16));
-    std::vector<int> all(static_cast<std::size_t>(bands.count()));
-    for (int b = 0; b < bands.count(); ++b) all[std::size_t(b)] = b;
-    const PerimeterBasins basins = perimeter_basins(bands, survey_bands(bands, all, read, threads));
-    std::mutex reading;
-    const DirRowReader serial = bands::one_at_a_time(read, reading);
-    ordered_parts<FinishedAcc>(
-        all.size(), std::size_t(threads),
-        [&](std::size_t k, FinishedAcc& out) {
-            out.band = int(k);
-            finish_basin_band(bands, out.band, serial, basins, out.acc);
-        },
-        [&](const FinishedAcc& f) { write(bands.first_row(f.band), bands.end_row(f.band), f.acc.data()); });
+    banded_pass<AccSurvey>(
+        "tiled basins", bands, read, write, threads,
+        [&](int b, const DirRowReader& r) { return survey_accumulation_band(bands, b, r); },
+        [&](const std::vector<AccSurvey>& s) { return perimeter_basins(bands, s); },
+        [&](int b, const DirRowReader& r, const PerimeterBasins& basins, std::vector<std::uint32_t>& out) {
+            finish_basin_band(bands, b, r, basins, out);
+        });
 }
 
 void tiled_strahler(const FillBands& bands, const DirRowReader& read, const AccRowWriter& write, int threads) {
-    if (bands.cols < 1 || bands.rows < 1 || bands.band_rows < 1) throw std::invalid_argument("tiled order: empty grid");
-    if (threads <= 0) threads = int(std::clamp<unsigned>(std::thread::hardware_concurrency(), 1, 16));
-    std::vector<int> all(static_cast<std::size_t>(bands.count()));
-    for (int b = 0; b < bands.count(); ++b) all[std::size_t(b)] = b;
-    std::mutex reading;
-    const DirRowReader serial = bands::one_at_a_time(read, reading);
-    const std::vector<std::uint8_t> inflow = perimeter_order_inflows(
-        bands, bands::each_band<OrderSurvey>(all, threads, [&](int b) { return survey_order_band(bands, b, serial); }, [] {}));
-    ordered_parts<FinishedAcc>(
-        all.size(), std::size_t(threads),
-        [&](std::size_t k, FinishedAcc& out) {
-            out.band = int(k);
+    banded_pass<OrderSurvey>(
+        "tiled order", bands, read, write, threads,
+        [&](int b, const DirRowReader& r) { return survey_order_band(bands, b, r); },
+        [&](const std::vector<OrderSurvey>& s) { return perimeter_order_inflows(bands, s); },
+        [&](int b, const DirRowReader& r, const std::vector<std::uint8_t>& inflow, std::vector<std::uint32_t>& out) {
             std::vector<std::uint8_t> order;
-            finish_order_band(bands, out.band, serial, inflow, order);
-            out.acc.assign(order.begin(), order.end());
-        },
-        [&](const FinishedAcc& f) { write(bands.first_row(f.band), bands.end_row(f.band), f.acc.data()); });
+            finish_order_band(bands, b, r, inflow, order);
+            out.assign(order.begin(), order.end());
+        });
 }
 
 void distributed_accumulation(const FillBands& bands, const DirRowReader& read, const AccRowWriter& write, Ranks& ranks,
@@ -643,7 +645,8 @@ void distributed_accumulation(const FillBands& bands, const DirRowReader& read, 
     const int n = bands.count(), size = ranks.size(), me = ranks.rank();
     std::vector<int> mine;
     for (int b = me; b < n; b += size) mine.push_back(b);
-    std::vector<AccSurvey> surveys = survey_bands(bands, mine, read, std::max(threads, 1));
+    const auto survey = [&](int b, const DirRowReader& r) { return survey_accumulation_band(bands, b, r); };
+    std::vector<AccSurvey> surveys = survey_list<AccSurvey>(mine, read, threads, survey);
     std::vector<std::uint8_t> inflow_bytes;
     if (me == 0) {
         for (int r = 1; r < size; ++r)
@@ -660,8 +663,11 @@ void distributed_accumulation(const FillBands& bands, const DirRowReader& read, 
     if (inflow_bytes.size() != nodes * sizeof(std::uint64_t)) throw std::runtime_error("tiled accumulation: inflows of another grid");
     std::vector<std::uint64_t> inflow(nodes);
     std::memcpy(inflow.data(), inflow_bytes.data(), inflow_bytes.size());
+    const auto finish = [&](int b, const DirRowReader& r, std::vector<std::uint32_t>& out) {
+        finish_accumulation_band(bands, b, r, inflow, out);
+    };
     if (me != 0) {
-        finish_bands(bands, mine, read, inflow, std::max(threads, 1), [&](const FinishedAcc& f) {
+        finish_list(mine, read, threads, finish, [&](const FinishedAcc& f) {
             bands::Writer w;
             w.put(std::int32_t(f.band)), w.put_all(f.acc);
             ranks.send(0, bands::band_tag, w.out);
@@ -684,7 +690,7 @@ void distributed_accumulation(const FillBands& bands, const DirRowReader& read, 
             put(next, acc);
         }
     };
-    finish_bands(bands, mine, read, inflow, std::max(threads, 1), [&](const FinishedAcc& f) {
+    finish_list(mine, read, threads, finish, [&](const FinishedAcc& f) {
         others_before(f.band);
         put(f.band, f.acc);
     });
