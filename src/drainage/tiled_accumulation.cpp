@@ -639,35 +639,69 @@ void tiled_strahler(const FillBands& bands, const DirRowReader& read, const AccR
         });
 }
 
-void distributed_accumulation(const FillBands& bands, const DirRowReader& read, const AccRowWriter& write, Ranks& ranks,
-                              int threads) {
-    if (bands.cols < 1 || bands.rows < 1 || bands.band_rows < 1) throw std::invalid_argument("tiled accumulation: empty grid");
+namespace {
+
+std::vector<std::uint8_t> encode_order_survey(const OrderSurvey& s) {
+    bands::Writer w;
+    w.put(std::int32_t(s.band)), w.put_all(s.cell), w.put_all(s.pending), w.put_all(s.dir), w.put_all(s.down);
+    w.put_all(s.table_at), w.put_all(s.tables);
+    return std::move(w.out);
+}
+
+OrderSurvey decode_order_survey(std::span<const std::uint8_t> bytes) {
+    bands::Reader r{bytes};
+    OrderSurvey s;
+    s.band = r.get<std::int32_t>();
+    s.cell = r.get_all<std::int64_t>();
+    s.pending = r.get_all<std::uint8_t>(s.cell.size()), s.dir = r.get_all<std::uint8_t>(s.cell.size());
+    s.down = r.get_all<std::int32_t>(s.cell.size()), s.table_at = r.get_all<std::uint32_t>(s.cell.size() + 1);
+    s.tables = r.get_all<std::uint8_t>();
+    r.end();
+    return s;  // checked against the grid by perimeter_order_inflows
+}
+
+template <class T> std::vector<std::uint8_t> vector_bytes(const std::vector<T>& v) {
+    bands::Writer w;
+    w.put_all(v);
+    return std::move(w.out);
+}
+template <class T> std::vector<T> bytes_vector(std::span<const std::uint8_t> bytes, std::size_t n) {
+    bands::Reader r{bytes};
+    std::vector<T> v = r.get_all<T>(n);
+    r.end();
+    return v;
+}
+
+// A pass over the bands spread over the ranks of a distributed run: band b surveyed and finished
+// by rank b % size; rank 0 gathers the surveys (decode_survey), solves, and broadcasts what it
+// solved (encode_solved, decode_solved on every rank); the finished bands go to rank 0, which
+// writes them in row order between its own.
+template <class Survey, class SurveyFn, class EncodeSurvey, class DecodeSurvey, class SolveFn, class EncodeSolved,
+          class DecodeSolved, class FinishFn>
+void distributed_pass(const char* what, const FillBands& bands, const DirRowReader& read, const AccRowWriter& write,
+                      Ranks& ranks, int threads, SurveyFn&& survey, EncodeSurvey&& encode_survey,
+                      DecodeSurvey&& decode_survey, SolveFn&& solve, EncodeSolved&& encode_solved,
+                      DecodeSolved&& decode_solved, FinishFn&& finish) {
+    if (bands.cols < 1 || bands.rows < 1 || bands.band_rows < 1) throw std::invalid_argument(std::string(what) + ": empty grid");
     const int n = bands.count(), size = ranks.size(), me = ranks.rank();
     std::vector<int> mine;
     for (int b = me; b < n; b += size) mine.push_back(b);
-    const auto survey = [&](int b, const DirRowReader& r) { return survey_accumulation_band(bands, b, r); };
-    std::vector<AccSurvey> surveys = survey_list<AccSurvey>(mine, read, threads, survey);
-    std::vector<std::uint8_t> inflow_bytes;
+    std::vector<Survey> surveys = survey_list<Survey>(mine, read, threads, survey);
+    std::vector<std::uint8_t> solved_bytes;
     if (me == 0) {
         for (int r = 1; r < size; ++r)
-            for (int b = r; b < n; b += size) surveys.push_back(decode_acc_survey(ranks.receive(r, bands::survey_tag)));
-        const std::vector<std::uint64_t> inflow = accumulation_inflows(bands, surveys);
-        inflow_bytes.resize(inflow.size() * sizeof(std::uint64_t));
-        std::memcpy(inflow_bytes.data(), inflow.data(), inflow_bytes.size());
+            for (int b = r; b < n; b += size) surveys.push_back(decode_survey(ranks.receive(r, bands::survey_tag)));
+        solved_bytes = encode_solved(solve(surveys));
     } else {
-        for (const AccSurvey& s : surveys) ranks.send(0, bands::survey_tag, encode_acc_survey(s));
+        for (const Survey& s : surveys) ranks.send(0, bands::survey_tag, encode_survey(s));
     }
     surveys.clear();
-    ranks.broadcast(0, inflow_bytes);
-    const std::size_t nodes = AccPerimeter(bands).nodes();
-    if (inflow_bytes.size() != nodes * sizeof(std::uint64_t)) throw std::runtime_error("tiled accumulation: inflows of another grid");
-    std::vector<std::uint64_t> inflow(nodes);
-    std::memcpy(inflow.data(), inflow_bytes.data(), inflow_bytes.size());
-    const auto finish = [&](int b, const DirRowReader& r, std::vector<std::uint32_t>& out) {
-        finish_accumulation_band(bands, b, r, inflow, out);
-    };
+    ranks.broadcast(0, solved_bytes);
+    const auto solved = decode_solved(solved_bytes);
+    solved_bytes.clear(), solved_bytes.shrink_to_fit();
+    const auto finish_band = [&](int b, const DirRowReader& r, std::vector<std::uint32_t>& out) { finish(b, r, solved, out); };
     if (me != 0) {
-        finish_list(mine, read, threads, finish, [&](const FinishedAcc& f) {
+        finish_list(mine, read, threads, finish_band, [&](const FinishedAcc& f) {
             bands::Writer w;
             w.put(std::int32_t(f.band)), w.put_all(f.acc);
             ranks.send(0, bands::band_tag, w.out);
@@ -675,26 +709,81 @@ void distributed_accumulation(const FillBands& bands, const DirRowReader& read, 
         return;
     }
     int next = 0;
-    auto put = [&](int band, const std::vector<std::uint32_t>& acc) {
-        write(bands.first_row(band), bands.end_row(band), acc.data());
+    auto put = [&](int band, const std::vector<std::uint32_t>& values) {
+        write(bands.first_row(band), bands.end_row(band), values.data());
         ++next;
     };
     auto others_before = [&](int band) {
         for (; next < band;) {
             const std::vector<std::uint8_t> m = ranks.receive(next % size, bands::band_tag);
             bands::Reader r{m};
-            if (r.get<std::int32_t>() != next) throw std::runtime_error("tiled accumulation: a band out of order");
+            if (r.get<std::int32_t>() != next) throw std::runtime_error(std::string(what) + ": a band out of order");
             const std::size_t cells = std::size_t(bands.end_row(next) - bands.first_row(next)) * std::size_t(bands.cols);
-            const std::vector<std::uint32_t> acc = r.get_all<std::uint32_t>(cells);
+            const std::vector<std::uint32_t> values = r.get_all<std::uint32_t>(cells);
             r.end();
-            put(next, acc);
+            put(next, values);
         }
     };
-    finish_list(mine, read, threads, finish, [&](const FinishedAcc& f) {
+    finish_list(mine, read, threads, finish_band, [&](const FinishedAcc& f) {
         others_before(f.band);
         put(f.band, f.acc);
     });
     others_before(n);
+}
+
+}  // namespace
+
+void distributed_accumulation(const FillBands& bands, const DirRowReader& read, const AccRowWriter& write, Ranks& ranks,
+                              int threads) {
+    const std::size_t nodes = AccPerimeter(bands).nodes();
+    distributed_pass<AccSurvey>(
+        "tiled accumulation", bands, read, write, ranks, threads,
+        [&](int b, const DirRowReader& r) { return survey_accumulation_band(bands, b, r); }, encode_acc_survey,
+        decode_acc_survey, [&](const std::vector<AccSurvey>& s) { return accumulation_inflows(bands, s); },
+        vector_bytes<std::uint64_t>, [&](std::span<const std::uint8_t> m) { return bytes_vector<std::uint64_t>(m, nodes); },
+        [&](int b, const DirRowReader& r, const std::vector<std::uint64_t>& inflow, std::vector<std::uint32_t>& out) {
+            finish_accumulation_band(bands, b, r, inflow, out);
+        });
+}
+
+void distributed_basins(const FillBands& bands, const DirRowReader& read, const AccRowWriter& write, Ranks& ranks,
+                        int threads) {
+    const std::size_t nodes = AccPerimeter(bands).nodes();
+    distributed_pass<AccSurvey>(
+        "tiled basins", bands, read, write, ranks, threads,
+        [&](int b, const DirRowReader& r) { return survey_accumulation_band(bands, b, r); }, encode_acc_survey,
+        decode_acc_survey, [&](const std::vector<AccSurvey>& s) { return perimeter_basins(bands, s); },
+        [](const PerimeterBasins& p) {
+            bands::Writer w;
+            w.put_all(p.first_outlet), w.put_all(p.label);
+            return std::move(w.out);
+        },
+        [&](std::span<const std::uint8_t> m) {
+            bands::Reader r{m};
+            PerimeterBasins p;
+            p.first_outlet = r.get_all<std::uint64_t>(std::size_t(bands.count()));
+            p.label = r.get_all<std::uint32_t>(nodes);
+            r.end();
+            return p;
+        },
+        [&](int b, const DirRowReader& r, const PerimeterBasins& basins, std::vector<std::uint32_t>& out) {
+            finish_basin_band(bands, b, r, basins, out);
+        });
+}
+
+void distributed_strahler(const FillBands& bands, const DirRowReader& read, const AccRowWriter& write, Ranks& ranks,
+                          int threads) {
+    const std::size_t nodes = AccPerimeter(bands).nodes();
+    distributed_pass<OrderSurvey>(
+        "tiled order", bands, read, write, ranks, threads,
+        [&](int b, const DirRowReader& r) { return survey_order_band(bands, b, r); }, encode_order_survey,
+        decode_order_survey, [&](const std::vector<OrderSurvey>& s) { return perimeter_order_inflows(bands, s); },
+        vector_bytes<std::uint8_t>, [&](std::span<const std::uint8_t> m) { return bytes_vector<std::uint8_t>(m, nodes); },
+        [&](int b, const DirRowReader& r, const std::vector<std::uint8_t>& inflow, std::vector<std::uint32_t>& out) {
+            std::vector<std::uint8_t> order;
+            finish_order_band(bands, b, r, inflow, order);
+            out.assign(order.begin(), order.end());
+        });
 }
 
 }  // namespace penink

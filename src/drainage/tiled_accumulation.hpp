@@ -113,5 +113,10 @@ void tiled_accumulation(const FillBands& bands, const DirRowReader& read, const 
 // pattern: band b on rank b % size, rank 0 solves, broadcasts the inflows and writes).
 void distributed_accumulation(const FillBands& bands, const DirRowReader& read, const AccRowWriter& write, Ranks& ranks,
                               int threads = 1);
+// Basins and Strahler order over ranks alike.
+void distributed_basins(const FillBands& bands, const DirRowReader& read, const AccRowWriter& write, Ranks& ranks,
+                        int threads = 1);
+void distributed_strahler(const FillBands& bands, const DirRowReader& read, const AccRowWriter& write, Ranks& ranks,
+                          int threads = 1);
 
 }  // namespace penink

@@ -80,26 +80,34 @@ TEST(TiledAccumulation, EqualsTheWholeGridsAccumulation) {
     }
 }
 
-TEST(TiledAccumulation, DistributedOverRanksIsTheWholeGridsAccumulation) {
+// Over 1 to 4 ranks (threads with the same messages), rank 0 alone writing, the accumulation,
+// the basins and the Strahler order are the whole grid's.
+TEST(TiledAccumulation, DistributedOverRanksIsTheWholeGrids) {
     const Dirs d = random_dirs(90, 61, 9, true);
-    const CellWords expected = whole(d);
-    for (const int ranks : {1, 2, 3, 4})
-        for (const int band_rows : {4, 13}) {
-            std::vector<std::uint32_t> got;
-            std::mutex m;
-            run_thread_ranks(ranks, [&](Ranks& r) {
-                distributed_accumulation({d.cols, d.rows, band_rows}, rows_of(d),
-                                         [&](int, int y1, const std::uint32_t* acc) {
-                                             const std::lock_guard<std::mutex> lock(m);
-                                             ASSERT_EQ(r.rank(), 0);
-                                             got.insert(got.end(), acc, acc + (std::size_t(y1) * d.cols - got.size()));
-                                         },
-                                         r, 1 + r.rank() % 2);
-            });
-            ASSERT_EQ(got.size(), expected.size());
-            for (std::size_t i = 0; i < got.size(); ++i)
-                ASSERT_EQ(got[i], expected[i]) << ranks << " ranks, bands of " << band_rows << ", cell " << i;
-        }
+    FlowNetwork net;
+    accumulate_flow(d.dir, {d.cols, d.rows, d.valid.data()}, net);
+    label_basins(d.dir, {d.cols, d.rows, d.valid.data()}, net);
+    using Pass = void (*)(const FillBands&, const DirRowReader&, const AccRowWriter&, Ranks&, int);
+    const std::vector<std::pair<Pass, std::vector<std::uint32_t>>> passes = {
+        {distributed_accumulation, {net.acc.begin(), net.acc.end()}},
+        {distributed_basins, {net.basin.begin(), net.basin.end()}},
+        {distributed_strahler, {net.order.begin(), net.order.end()}}};
+    for (std::size_t k = 0; k < passes.size(); ++k)
+        for (const int ranks : {1, 2, 3, 4})
+            for (const int band_rows : {4, 13}) {
+                std::vector<std::uint32_t> got;
+                std::mutex m;
+                run_thread_ranks(ranks, [&](Ranks& r) {
+                    passes[k].first({d.cols, d.rows, band_rows}, rows_of(d),
+                                    [&](int, int y1, const std::uint32_t* v) {
+                                        const std::lock_guard<std::mutex> lock(m);
+                                        ASSERT_EQ(r.rank(), 0);
+                                        got.insert(got.end(), v, v + (std::size_t(y1) * d.cols - got.size()));
+                                    },
+                                    r, 1 + r.rank() % 2);
+                });
+                ASSERT_EQ(got, passes[k].second) << "pass " << k << ", " << ranks << " ranks, bands of " << band_rows;
+            }
 }
 
 // Basins by bands are label_basins' labels: outlets numbered in row-major order across the bands,
