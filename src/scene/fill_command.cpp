@@ -31,16 +31,18 @@ std::uint64_t fill_fixed_bytes(int cols, int bands) {
     return std::uint64_t(bands) * std::uint64_t(cols) * (2 * 9 + 2 * 6 * 12 + 2 * 4);
 }
 
+// Bytes the fill of a grid of cols x rows holds at most with bands of band_rows rows, `threads` in
+// flight at once.
+std::uint64_t fill_need_bytes(int cols, int rows, int band_rows, int threads) {
+    const int bands = (rows + band_rows - 1) / band_rows;
+    return std::uint64_t(std::min(threads, bands)) * fill_band_bytes(cols, band_rows) + fill_fixed_bytes(cols, bands);
+}
+
 // The band rows to use on a budget: --band-rows, checked, or fill_command_band_rows; Error when
 // not one band fits.
 int choose_band_rows(const FillCommand& cmd, const DemSize& size, int threads, std::uint64_t budget) {
     int band_rows = cmd.band_rows ? cmd.band_rows : fill_command_band_rows(size.cols, size.rows, threads, budget);
-    if (band_rows > 0 && cmd.band_rows) {
-        const int bands = (size.rows + band_rows - 1) / band_rows;
-        const std::uint64_t need = std::uint64_t(std::min(threads, bands)) * fill_band_bytes(size.cols, band_rows) +
-                                   fill_fixed_bytes(size.cols, bands);
-        if (need > budget) band_rows = 0;
-    }
+    if (band_rows > 0 && cmd.band_rows && fill_need_bytes(size.cols, size.rows, band_rows, threads) > budget) band_rows = 0;
     if (band_rows <= 0)
         throw Error("fill", cmd.dem,
                     "filling the DEM's " + std::to_string(size.cols) + "x" + std::to_string(size.rows) +
@@ -173,12 +175,8 @@ int fill_command_band_rows(int cols, int rows, int threads, std::uint64_t budget
     const int strip = height_raster_strip_rows;
     int band_rows = std::max(strip, int(std::uint64_t(4) << 20) / std::max(cols, 1) / strip * strip);
     band_rows = std::min(band_rows, (rows + strip - 1) / strip * strip);
-    for (; band_rows >= strip; band_rows -= strip) {
-        const int bands = (rows + band_rows - 1) / band_rows;
-        const std::uint64_t need = std::uint64_t(std::min(threads, bands)) * fill_band_bytes(cols, band_rows) +
-                                   fill_fixed_bytes(cols, bands);
-        if (need <= budget) return band_rows;
-    }
+    for (; band_rows >= strip; band_rows -= strip)
+        if (fill_need_bytes(cols, rows, band_rows, threads) <= budget) return band_rows;
     return 0;
 }
 
