@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/parallel_chunks.hpp"
+
 namespace penink::bands {
 
 // Plain values appended in order: a message between ranks.
@@ -88,6 +90,30 @@ std::vector<Result> each_band(const std::vector<int>& which, int threads, Make&&
         }
     if (first) std::rethrow_exception(first);
     return out;
+}
+
+// survey(b, read) for the bands `which` on up to `threads` threads, the calls of `read` (a
+// std::function) one at a time; tell() after each.
+template <class Survey, class Read, class SurveyFn, class Tell>
+std::vector<Survey> survey_list(const std::vector<int>& which, const Read& read, int threads, SurveyFn&& survey, Tell&& tell) {
+    std::mutex reading;
+    const Read serial = one_at_a_time(read, reading);
+    return each_band<Survey>(which, std::max(threads, 1), [&](int b) { return survey(b, serial); }, tell);
+}
+
+// finish(b, read, out) for the bands `which` on up to `threads` threads (the reads one at a time),
+// out.band set first; each handed to use() in the order of `which`.
+template <class Finished, class Read, class FinishFn, class Use>
+void finish_in_order(const std::vector<int>& which, const Read& read, int threads, FinishFn&& finish, Use&& use) {
+    std::mutex reading;
+    const Read serial = one_at_a_time(read, reading);
+    ordered_parts<Finished>(
+        which.size(), std::size_t(std::max(threads, 1)),
+        [&](std::size_t k, Finished& out) {
+            out.band = which[k];
+            finish(out.band, serial, out);
+        },
+        use);
 }
 
 // Tags of the messages of a distributed pass over bands.

@@ -567,28 +567,16 @@ struct FinishedAcc {
     std::vector<std::uint32_t> acc;
 };
 
-// survey(b, read) for the bands `which` on up to `threads` threads, the reads one at a time.
 template <class Survey, class SurveyFn>
 std::vector<Survey> survey_list(const std::vector<int>& which, const DirRowReader& read, int threads, SurveyFn&& survey) {
-    std::mutex reading;
-    const DirRowReader serial = bands::one_at_a_time(read, reading);
-    return bands::each_band<Survey>(which, std::max(threads, 1), [&](int b) { return survey(b, serial); }, [] {});
+    return bands::survey_list<Survey>(which, read, threads, survey, [] {});
 }
 
-// finish(b, read, out) for the bands `which` on up to `threads` threads (the reads one at a time),
-// each handed to use() in the order of `which`.
 template <class FinishFn>
 void finish_list(const std::vector<int>& which, const DirRowReader& read, int threads, FinishFn&& finish,
                  const std::function<void(const FinishedAcc&)>& use) {
-    std::mutex reading;
-    const DirRowReader serial = bands::one_at_a_time(read, reading);
-    ordered_parts<FinishedAcc>(
-        which.size(), std::size_t(std::max(threads, 1)),
-        [&](std::size_t k, FinishedAcc& out) {
-            out.band = which[k];
-            finish(out.band, serial, out.acc);
-        },
-        use);
+    bands::finish_in_order<FinishedAcc>(
+        which, read, threads, [&](int b, const DirRowReader& r, FinishedAcc& out) { finish(b, r, out.acc); }, use);
 }
 
 // A pass over every band on this process: surveys, solve(surveys), finishes written in row order.

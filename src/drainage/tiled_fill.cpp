@@ -159,31 +159,27 @@ FinishedBand decode_finished(const FillBands& bands, int band, std::span<const s
     f.raised = std::size_t(r.get<std::uint64_t>());
     const std::size_t cells = std::size_t(bands.end_row(band) - bands.first_row(band)) * std::size_t(bands.cols);
     f.filled = r.get_all<float>(cells), f.valid = r.get_all<std::uint8_t>(cells);
+    r.end();
     return f;
 }
 
-// Surveys of the bands `which` on up to `threads` threads, the reads through `read` one at a time;
-// tell() after each.
+// Surveys of the bands `which` on up to `threads` threads, the reads one at a time; tell() after each.
 std::vector<BandSurvey> survey_bands(const FillBands& bands, const std::vector<int>& which, const FillRowReader& read,
                                      int threads, const std::function<void()>& tell) {
-    std::mutex reading;
-    const FillRowReader serial = bands::one_at_a_time(read, reading);
-    return bands::each_band<BandSurvey>(which, threads, [&](int b) { return survey_fill_band(bands, b, serial); }, tell);
+    return bands::survey_list<BandSurvey>(
+        which, read, threads, [&](int b, const FillRowReader& r) { return survey_fill_band(bands, b, r); }, tell);
 }
 
 // Finishes the bands `which` on up to `threads` threads (reads one at a time), handing each to
 // use() in the order of `which`.
 void finish_bands(const FillBands& bands, const std::vector<int>& which, const FillRowReader& read,
-                  const std::vector<float>& water, int threads, const std::function<void(FinishedBand&)>& use) {
-    std::mutex reading;
-    const FillRowReader serial = bands::one_at_a_time(read, reading);
-    ordered_parts<FinishedBand>(
-        which.size(), std::size_t(std::max(threads, 1)),
-        [&](std::size_t k, FinishedBand& out) {
-            out.band = which[k];
-            out.raised = finish_fill_band(bands, out.band, serial, water, out.filled, out.valid);
+                  const std::vector<float>& water, int threads, const std::function<void(const FinishedBand&)>& use) {
+    bands::finish_in_order<FinishedBand>(
+        which, read, threads,
+        [&](int b, const FillRowReader& r, FinishedBand& out) {
+            out.raised = finish_fill_band(bands, b, r, water, out.filled, out.valid);
         },
-        [&](const FinishedBand& f) { use(const_cast<FinishedBand&>(f)); });
+        use);
 }
 
 int default_threads() { return int(std::clamp<unsigned>(std::thread::hardware_concurrency(), 1, 16)); }
@@ -255,7 +251,7 @@ TiledFillStats tiled_priority_flood(const FillBands& bands, const FillRowReader&
     for (const BandSurvey& s : surveys) st.spills += s.spills.size(), st.labels += s.stats.labels;
     const std::vector<float> water = fill_water_levels(bands, surveys);
     surveys.clear(), surveys.shrink_to_fit();
-    finish_bands(bands, all, read, water, threads, [&](FinishedBand& f) {
+    finish_bands(bands, all, read, water, threads, [&](const FinishedBand& f) {
         write(bands.first_row(f.band), bands.end_row(f.band), f.filled.data(), f.valid.data());
         st.raised += f.raised;
         tell();
@@ -306,7 +302,7 @@ TiledFillStats distributed_priority_flood(const FillBands& bands, const FillRowR
     std::memcpy(water.data(), water_bytes.data(), water_bytes.size());
     water_bytes.clear(), water_bytes.shrink_to_fit();
     if (!root) {
-        finish_bands(bands, mine, read, water, threads, [&](FinishedBand& f) {
+        finish_bands(bands, mine, read, water, threads, [&](const FinishedBand& f) {
             st.raised += f.raised;
             ranks.send(0, band_tag, encode_finished(f));
         });
@@ -322,7 +318,7 @@ TiledFillStats distributed_priority_flood(const FillBands& bands, const FillRowR
     auto others_before = [&](int band) {
         for (; next < band; ) put(decode_finished(bands, next, ranks.receive(next % size, band_tag)));
     };
-    finish_bands(bands, mine, read, water, threads, [&](FinishedBand& f) {
+    finish_bands(bands, mine, read, water, threads, [&](const FinishedBand& f) {
         others_before(f.band);
         put(f);
     });
