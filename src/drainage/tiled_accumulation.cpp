@@ -81,11 +81,21 @@ template <class Seed> std::vector<std::uint64_t> accumulate_band(const BandDirs&
     return acc;
 }
 
-// The band cells holding perimeter rows: the first row, then the last where it is another.
-std::vector<int> perimeter_rows_of(const BandDirs& d) {
-    std::vector<int> rows{d.r0};
-    if (d.r1 - 1 != d.r0) rows.push_back(d.r1 - 1);
-    return rows;
+// The perimeter rows of the band of rows [r0, r1): its first, then its last where it is another.
+std::vector<int> edge_rows(int r0, int r1) { return r1 - 1 != r0 ? std::vector<int>{r0, r1 - 1} : std::vector<int>{r0}; }
+std::vector<int> perimeter_rows_of(const BandDirs& d) { return edge_rows(d.r0, d.r1); }
+
+// The perimeter node (of another band) that cell (c, r) of the band of rows [r0, r1) points at
+// with code `dir` where the direction leaves the band; -1 where it stays in the band or dir is
+// 0. A direction leaving towards no cell of the grid is refused (cycle).
+std::int64_t leaving(const AccPerimeter& per, int c, int r, std::uint8_t dir, int r0, int r1) {
+    if (!dir) return -1;
+    const int d = d8_index(dir);
+    const int tr = r + d8_dr[d], tc = c + d8_dc[d];
+    if (tr >= r0 && tr < r1) return -1;
+    const std::int64_t p = per.node(tc, tr);
+    if (p < 0) cycle();
+    return p;
 }
 
 }  // namespace
@@ -166,7 +176,7 @@ std::vector<std::uint64_t> accumulation_inflows(const FillBands& bands, const st
             throw std::invalid_argument("tiled accumulation: surveys must cover each band once");
         seen[std::size_t(s.band)] = 1;
         const int r0 = bands.first_row(s.band), r1 = bands.end_row(s.band);
-        const std::vector<int> rows = r1 - 1 != r0 ? std::vector<int>{r0, r1 - 1} : std::vector<int>{r0};
+        const std::vector<int> rows = edge_rows(r0, r1);
         if (s.acc.size() != rows.size() * cols || s.dir.size() != s.acc.size() || s.valid.size() != s.acc.size() ||
             s.link.size() != s.acc.size() || s.outlet.size() != s.acc.size())
             throw std::invalid_argument("tiled accumulation: a survey of another grid");
@@ -175,13 +185,7 @@ std::vector<std::uint64_t> accumulation_inflows(const FillBands& bands, const st
             const auto p = std::size_t(per.node(c, r));
             local[p] = s.acc[k], link[p] = s.link[k], valid[p] = s.valid[k];
             if (link[p] >= std::int64_t(nodes)) throw std::invalid_argument("tiled accumulation: a survey of another grid");
-            if (!s.valid[k] || !s.dir[k]) continue;
-            const int d = d8_index(s.dir[k]);
-            const int tr = r + d8_dr[d], tc = c + d8_dc[d];
-            if (tr < r0 || tr >= r1) {  // into the next band up or down: one of its perimeter cells
-                out[p] = per.node(tc, tr);
-                if (out[p] < 0) cycle();
-            }
+            if (s.valid[k]) out[p] = leaving(per, c, r, s.dir[k], r0, r1);
         }
     }
     if (std::find(seen.begin(), seen.end(), 0) != seen.end())
@@ -255,7 +259,7 @@ PerimeterBasins perimeter_basins(const FillBands& bands, const std::vector<AccSu
     std::vector<std::uint8_t> valid(nodes, 0);
     for (const AccSurvey* s : by_band) {
         const int r0 = bands.first_row(s->band), r1 = bands.end_row(s->band);
-        const std::vector<int> rows = r1 - 1 != r0 ? std::vector<int>{r0, r1 - 1} : std::vector<int>{r0};
+        const std::vector<int> rows = edge_rows(r0, r1);
         if (s->valid.size() != rows.size() * cols) throw std::invalid_argument("tiled basins: a survey of another grid");
         for (std::size_t k = 0; k < s->valid.size(); ++k) {
             if (!s->valid[k]) continue;
@@ -270,10 +274,9 @@ PerimeterBasins perimeter_basins(const FillBands& bands, const std::vector<AccSu
             const int er = per.rows[e / cols], ec = int(e % cols);
             // the exit's own direction, from its survey row
             const std::size_t ek = std::size_t(er == r0 ? 0 : 1) * cols + std::size_t(ec);
-            if (ek >= s->dir.size() || !s->dir[ek]) cycle();
-            const int d = d8_index(s->dir[ek]);
-            then[p] = per.node(ec + d8_dc[d], er + d8_dr[d]);
-            if (then[p] < 0) cycle();
+            if (ek >= s->dir.size()) cycle();
+            then[p] = leaving(per, ec, er, s->dir[ek], r0, r1);
+            if (then[p] < 0) cycle();  // an exit that does not leave: not a survey of these directions
         }
     }
     std::vector<std::size_t> path;
@@ -472,12 +475,10 @@ std::vector<std::uint8_t> perimeter_order_inflows(const FillBands& bands, const 
         const OrderSurvey& s = *by_band[std::size_t(b)];
         const int r0 = bands.first_row(b), r1 = bands.end_row(b);
         for (std::size_t k = 0; k < s.cell.size(); ++k) {
-            if (!s.dir[k]) continue;
-            const int d = d8_index(s.dir[k]);
-            const int r = r0 + int(std::size_t(s.cell[k]) / cols) + d8_dr[d], c = int(std::size_t(s.cell[k]) % cols) + d8_dc[d];
-            if (r >= r0 && r < r1) continue;
-            const std::int64_t p = per.node(c, r);
-            if (p < 0 || of_perimeter[std::size_t(p)] < 0) cycle();
+            const std::int64_t p = leaving(per, int(std::size_t(s.cell[k]) % cols), r0 + int(std::size_t(s.cell[k]) / cols),
+                                           s.dir[k], r0, r1);
+            if (p < 0) continue;
+            if (of_perimeter[std::size_t(p)] < 0) cycle();
             out[first[std::size_t(b)] + k] = of_perimeter[std::size_t(p)];
         }
     }
