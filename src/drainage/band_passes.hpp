@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/parallel_chunks.hpp"
+#include "core/ranks.hpp"
 
 namespace penink::bands {
 
@@ -118,5 +119,47 @@ void finish_in_order(const std::vector<int>& which, const Read& read, int thread
 
 // Tags of the messages of a distributed pass over bands.
 inline constexpr int survey_tag = 1, band_tag = 2;
+
+// The messages of a pass over n bands spread over the ranks of a distributed run, band b on rank
+// b % size (`mine`: this rank's, ascending). Every rank surveys its bands (survey(mine): a vector
+// of surveys); the other ranks send theirs to rank 0 (encode_survey), which decodes them
+// (decode_survey(bytes), rank after rank, band after band), solves them all (solve(surveys):
+// bytes) and broadcasts what it solved. Every rank then finishes its bands (finish(mine, solved
+// bytes, use): use(finished) for each in row order, finished.band its number); the other ranks
+// send each to rank 0 (encode_finished), which hands every band, its own made meanwhile and the
+// others' received between them (decode_finished(band, bytes)), to put() in row order.
+template <class Survey, class SurveyFn, class EncodeSurvey, class DecodeSurvey, class Solve, class FinishFn,
+          class EncodeFinished, class DecodeFinished, class Put>
+void over_ranks(Ranks& ranks, int n, SurveyFn&& survey, EncodeSurvey&& encode_survey, DecodeSurvey&& decode_survey,
+                Solve&& solve, FinishFn&& finish, EncodeFinished&& encode_finished, DecodeFinished&& decode_finished,
+                Put&& put) {
+    const int size = ranks.size(), me = ranks.rank();
+    std::vector<int> mine;
+    for (int b = me; b < n; b += size) mine.push_back(b);
+    std::vector<Survey> surveys = survey(mine);
+    std::vector<std::uint8_t> solved;
+    if (me == 0) {
+        for (int r = 1; r < size; ++r)
+            for (int b = r; b < n; b += size) surveys.push_back(decode_survey(ranks.receive(r, survey_tag)));
+        solved = solve(surveys);
+    } else {
+        for (const Survey& s : surveys) ranks.send(0, survey_tag, encode_survey(s));
+    }
+    surveys.clear(), surveys.shrink_to_fit();
+    ranks.broadcast(0, solved);
+    if (me != 0) {
+        finish(mine, std::move(solved), [&](const auto& f) { ranks.send(0, band_tag, encode_finished(f)); });
+        return;
+    }
+    int next = 0;
+    const auto others_before = [&](int band) {
+        for (; next < band; ++next) put(decode_finished(next, ranks.receive(next % size, band_tag)));
+    };
+    finish(mine, std::move(solved), [&](const auto& f) {
+        others_before(f.band);
+        put(f), ++next;
+    });
+    others_before(n);
+}
 
 }  // namespace penink::bands

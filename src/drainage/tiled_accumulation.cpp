@@ -661,10 +661,9 @@ template <class T> std::vector<T> bytes_vector(std::span<const std::uint8_t> byt
     return v;
 }
 
-// A pass over the bands spread over the ranks of a distributed run: band b surveyed and finished
-// by rank b % size; rank 0 gathers the surveys (decode_survey), solves, and broadcasts what it
-// solved (encode_solved, decode_solved on every rank); the finished bands go to rank 0, which
-// writes them in row order between its own.
+// A pass over the bands spread over the ranks of a distributed run (bands::over_ranks): band b
+// surveyed and finished by rank b % size; rank 0 solves the surveys and broadcasts what it solved
+// (encode_solved, decode_solved on every rank), and writes the finished bands in row order.
 template <class Survey, class SurveyFn, class EncodeSurvey, class DecodeSurvey, class SolveFn, class EncodeSolved,
           class DecodeSolved, class FinishFn>
 void distributed_pass(const char* what, const FillBands& bands, const DirRowReader& read, const AccRowWriter& write,
@@ -672,52 +671,31 @@ void distributed_pass(const char* what, const FillBands& bands, const DirRowRead
                       DecodeSurvey&& decode_survey, SolveFn&& solve, EncodeSolved&& encode_solved,
                       DecodeSolved&& decode_solved, FinishFn&& finish) {
     if (bands.cols < 1 || bands.rows < 1 || bands.band_rows < 1) throw std::invalid_argument(std::string(what) + ": empty grid");
-    const int n = bands.count(), size = ranks.size(), me = ranks.rank();
-    std::vector<int> mine;
-    for (int b = me; b < n; b += size) mine.push_back(b);
-    std::vector<Survey> surveys = survey_list<Survey>(mine, read, threads, survey);
-    std::vector<std::uint8_t> solved_bytes;
-    if (me == 0) {
-        for (int r = 1; r < size; ++r)
-            for (int b = r; b < n; b += size) surveys.push_back(decode_survey(ranks.receive(r, bands::survey_tag)));
-        solved_bytes = encode_solved(solve(surveys));
-    } else {
-        for (const Survey& s : surveys) ranks.send(0, bands::survey_tag, encode_survey(s));
-    }
-    surveys.clear();
-    ranks.broadcast(0, solved_bytes);
-    const auto solved = decode_solved(solved_bytes);
-    solved_bytes.clear(), solved_bytes.shrink_to_fit();
-    const auto finish_band = [&](int b, const DirRowReader& r, std::vector<std::uint32_t>& out) { finish(b, r, solved, out); };
-    if (me != 0) {
-        finish_list(mine, read, threads, finish_band, [&](const FinishedAcc& f) {
+    bands::over_ranks<Survey>(
+        ranks, bands.count(), [&](const std::vector<int>& mine) { return survey_list<Survey>(mine, read, threads, survey); },
+        encode_survey, decode_survey, [&](const std::vector<Survey>& s) { return encode_solved(solve(s)); },
+        [&](const std::vector<int>& mine, std::vector<std::uint8_t> bytes, const auto& use) {
+            const auto solved = decode_solved(bytes);
+            bytes = {};
+            finish_list(
+                mine, read, threads, [&](int b, const DirRowReader& r, std::vector<std::uint32_t>& out) { finish(b, r, solved, out); },
+                use);
+        },
+        [](const FinishedAcc& f) {
             bands::Writer w;
             w.put(std::int32_t(f.band)), w.put_all(f.acc);
-            ranks.send(0, bands::band_tag, w.out);
-        });
-        return;
-    }
-    int next = 0;
-    auto put = [&](int band, const std::vector<std::uint32_t>& values) {
-        write(bands.first_row(band), bands.end_row(band), values.data());
-        ++next;
-    };
-    auto others_before = [&](int band) {
-        for (; next < band;) {
-            const std::vector<std::uint8_t> m = ranks.receive(next % size, bands::band_tag);
+            return std::move(w.out);
+        },
+        [&](int band, std::span<const std::uint8_t> m) {
             bands::Reader r{m};
-            if (r.get<std::int32_t>() != next) throw std::runtime_error(std::string(what) + ": a band out of order");
-            const std::size_t cells = std::size_t(bands.end_row(next) - bands.first_row(next)) * std::size_t(bands.cols);
-            const std::vector<std::uint32_t> values = r.get_all<std::uint32_t>(cells);
+            FinishedAcc f;
+            f.band = r.get<std::int32_t>();
+            if (f.band != band) throw std::runtime_error(std::string(what) + ": a band out of order");
+            f.acc = r.get_all<std::uint32_t>(std::size_t(bands.end_row(band) - bands.first_row(band)) * std::size_t(bands.cols));
             r.end();
-            put(next, values);
-        }
-    };
-    finish_list(mine, read, threads, finish_band, [&](const FinishedAcc& f) {
-        others_before(f.band);
-        put(f.band, f.acc);
-    });
-    others_before(n);
+            return f;
+        },
+        [&](const FinishedAcc& f) { write(bands.first_row(f.band), bands.end_row(f.band), f.acc.data()); });
 }
 
 }  // namespace

@@ -184,9 +184,6 @@ void finish_bands(const FillBands& bands, const std::vector<int>& which, const F
 
 int default_threads() { return int(std::clamp<unsigned>(std::thread::hardware_concurrency(), 1, 16)); }
 
-using bands::band_tag;
-using bands::survey_tag;
-
 }  // namespace
 
 std::vector<std::uint8_t> encode_band_survey(const BandSurvey& s) {
@@ -262,67 +259,46 @@ TiledFillStats tiled_priority_flood(const FillBands& bands, const FillRowReader&
 TiledFillStats distributed_priority_flood(const FillBands& bands, const FillRowReader& read, const FillRowWriter& write,
                                           Ranks& ranks, int threads, const std::function<void(int, int)>& progress) {
     if (bands.cols < 1 || bands.rows < 1 || bands.band_rows < 1) throw std::invalid_argument("tiled fill: empty grid");
-    const int n = bands.count(), size = ranks.size(), me = ranks.rank();
-    const bool root = me == 0;
+    const int n = bands.count();
+    const bool root = ranks.rank() == 0;
     threads = std::max(threads, 1);
     int done = 0;
+    std::mutex told;
     auto tell = [&] {
+        const std::lock_guard<std::mutex> lock(told);
         ++done;
         if (root && progress) progress(done, 2 * n);
     };
-    std::vector<int> mine;
-    for (int b = me; b < n; b += size) mine.push_back(b);
-    std::mutex told;
-    std::vector<BandSurvey> surveys = survey_bands(bands, mine, read, threads, [&] {
-        const std::lock_guard<std::mutex> lock(told);
-        tell();
-    });
     TiledFillStats st;
     st.bands = n, st.band_bytes = fill_band_bytes(bands.cols, bands.band_rows);
-    std::vector<std::uint8_t> water_bytes;
-    if (root) {
-        for (int r = 1; r < size; ++r)
-            for (int b = r; b < n; b += size) {
-                const std::vector<std::uint8_t> m = ranks.receive(r, survey_tag);
-                surveys.push_back(decode_band_survey(bands, m));
-                tell();
-            }
-        for (const BandSurvey& s : surveys) st.spills += s.spills.size(), st.labels += s.stats.labels;
-        const std::vector<float> water = fill_water_levels(bands, surveys);
-        water_bytes.resize(water.size() * sizeof(float));
-        std::memcpy(water_bytes.data(), water.data(), water_bytes.size());
-    } else {
-        for (const BandSurvey& s : surveys) ranks.send(0, survey_tag, encode_band_survey(s));
-    }
-    surveys.clear(), surveys.shrink_to_fit();
-    ranks.broadcast(0, water_bytes);
     const std::size_t labels = flood::band_label_count(n, bands.cols);
-    if (water_bytes.size() != labels * sizeof(float)) throw std::runtime_error("tiled fill: water levels of another grid");
-    std::vector<float> water(labels);
-    std::memcpy(water.data(), water_bytes.data(), water_bytes.size());
-    water_bytes.clear(), water_bytes.shrink_to_fit();
-    if (!root) {
-        finish_bands(bands, mine, read, water, threads, [&](const FinishedBand& f) {
+    bands::over_ranks<BandSurvey>(
+        ranks, n, [&](const std::vector<int>& mine) { return survey_bands(bands, mine, read, threads, tell); },
+        encode_band_survey,
+        [&](std::span<const std::uint8_t> m) {
+            BandSurvey s = decode_band_survey(bands, m);
+            tell();
+            return s;
+        },
+        [&](const std::vector<BandSurvey>& surveys) {
+            for (const BandSurvey& s : surveys) st.spills += s.spills.size(), st.labels += s.stats.labels;
+            bands::Writer w;
+            w.put_all(fill_water_levels(bands, surveys));
+            return std::move(w.out);
+        },
+        [&](const std::vector<int>& mine, std::vector<std::uint8_t> solved, const auto& use) {
+            bands::Reader r{solved};
+            const std::vector<float> water = r.get_all<float>(labels);
+            r.end();
+            solved = {};
+            finish_bands(bands, mine, read, water, threads, use);
+        },
+        encode_finished, [&](int band, std::span<const std::uint8_t> m) { return decode_finished(bands, band, m); },
+        [&](const FinishedBand& f) {
+            write(bands.first_row(f.band), bands.end_row(f.band), f.filled.data(), f.valid.data());
             st.raised += f.raised;
-            ranks.send(0, band_tag, encode_finished(f));
+            tell();
         });
-        return st;
-    }
-    // rank 0: its own bands made in order meanwhile; the others' received in row order between them
-    int next = 0;
-    auto put = [&](const FinishedBand& f) {
-        write(bands.first_row(f.band), bands.end_row(f.band), f.filled.data(), f.valid.data());
-        st.raised += f.raised, ++next;
-        tell();
-    };
-    auto others_before = [&](int band) {
-        for (; next < band; ) put(decode_finished(bands, next, ranks.receive(next % size, band_tag)));
-    };
-    finish_bands(bands, mine, read, water, threads, [&](const FinishedBand& f) {
-        others_before(f.band);
-        put(f);
-    });
-    others_before(n);
     return st;
 }
 
