@@ -1,5 +1,9 @@
 #include "core/ranks.hpp"
 
+#include <ostream>
+
+#include "core/error.hpp"
+
 #include <dlfcn.h>
 
 #include <condition_variable>
@@ -173,6 +177,19 @@ void run_thread_ranks(int n, const std::function<void(Ranks&)>& f) {
         });
     for (std::thread& t : threads) t.join();
     if (first) std::rethrow_exception(first);
+}
+
+void abort_reporting(Ranks& ranks, const char* stage, const std::string& file, const std::exception& e,
+                     std::ostream& log) {
+    const Error* err = dynamic_cast<const Error*>(&e);
+    log << (err ? std::string(e.what()) : format_error(stage, file, e.what())) << "\n" << std::flush;
+    ranks.abort(err ? int(err->code()) : int(ExitCode::internal));
+    std::abort();  // not reached (GCC does not take a virtual function's [[noreturn]] as the call's)
+}
+
+int rank_threads(const Ranks* ranks) {
+    const int hardware = int(std::clamp<unsigned>(std::thread::hardware_concurrency(), 1, 16));
+    return ranks ? std::max(1, hardware / std::max(1, ranks->local_size())) : hardware;
 }
 
 }  // namespace penink

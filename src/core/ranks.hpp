@@ -7,6 +7,8 @@
 // Errors: std::runtime_error with MPI's reason.
 #pragma once
 #include <cstdint>
+#include <exception>
+#include <iosfwd>
 #include <functional>
 #include <memory>
 #include <span>
@@ -38,6 +40,17 @@ bool mpi_launched();
 // otherwise. Throws std::runtime_error when the module cannot be found or loaded (looked for
 // beside the executable, then in ../lib/penink/) or MPI cannot start.
 std::unique_ptr<Ranks> launched_ranks();
+
+// A failure on one rank of a run whose other ranks wait on it: `e` reported on `log` in one line
+// (a penink::Error as it is, anything else as format_error(stage, file, what)), then every rank
+// ended (Ranks::abort) with its exit code (ExitCode::internal for anything but an Error).
+[[noreturn]] void abort_reporting(Ranks& ranks, const char* stage, const std::string& file, const std::exception& e,
+                                  std::ostream& log);
+
+// The threads a process takes for its work: the hardware's (at most 16), shared among the ranks
+// of this machine when `ranks` is given.
+int rank_threads(const Ranks* ranks);
+inline int rank_threads(const Ranks& ranks) { return rank_threads(&ranks); }
 
 // Runs f on n threads, each with a Ranks of its own (rank k of n, local_size n) whose messages go
 // to the others through memory. abort() throws std::runtime_error("aborted") on the thread that

@@ -73,7 +73,7 @@ void accumulate_and_label(const DrainageGrid& g, const std::vector<std::uint8_t>
 // net.basin, which get their own content later; the fill state is let go on return, before the
 // accumulation allocates the orders.
 void priority_flood_directions(DrainageGrid& g, const GridShape& shape, const DrainageProgress& progress,
-                               DrainageResult& res) {
+                               DrainageResult& res, const ExternalFill& fill) {
     FlowNetwork& net = res.net;
     std::vector<std::uint8_t> flags;
     CellWords& orig = net.acc;
@@ -81,7 +81,7 @@ void priority_flood_directions(DrainageGrid& g, const GridShape& shape, const Dr
     std::vector<std::uint32_t> ties;
     const RoutingGrid grid{shape, g.dx, g.dy};
     RoutingArrays arrays{g.z, flags, orig, res.dir, ties};
-    res.stats.filled = fill_with_directions(grid, arrays, net.basin).raised;
+    res.stats.filled = (fill ? fill_with_directions(grid, arrays, fill) : fill_with_directions(grid, arrays, net.basin)).raised;
     report(progress, "draining into depressions", 0.35);
     drain_rims_into_depressions(grid, arrays);
     report(progress, "resolving flats", 0.45);
@@ -187,7 +187,7 @@ DrainageDb build_streamed(DrainageGrid& g, const std::string& crs_wkt, const Dra
             if (relief) o.z_top = drape_height_top(g);
             return o;
         });
-    DrainageResult res = compute_drainage(g, progress, options.routing, &meta);
+    DrainageResult res = compute_drainage(g, progress, options.routing, &meta, options.fill);
     const OfGrid made = of_grid.valid() ? of_grid.get() : OfGrid{};
     if (relief) code(SourceArray::dir, {}, res.dir);
     report(progress, "tracing branches and divides", tracing_at);
@@ -235,7 +235,7 @@ DrainageDb build_streamed(DrainageGrid& g, const std::string& crs_wkt, const Dra
 }  // namespace
 
 DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progress, DrainageRouting routing,
-                                DrainageDb* divides) {
+                                DrainageDb* divides, const ExternalFill& fill) {
     DrainageResult res;
     const GridShape shape{g.cols, g.rows, g.valid.data()};
     res.stats.points = g.size();
@@ -247,7 +247,7 @@ DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progres
         // (least_cost_routing.hpp; the queue aside)
         res.stats.working_bytes = 6 * res.dir.size();
     } else {
-        priority_flood_directions(g, shape, progress, res);
+        priority_flood_directions(g, shape, progress, res, fill);
     }
     FlowNetwork& net = res.net;
     report(progress, "accumulating flow and basins", 0.55);

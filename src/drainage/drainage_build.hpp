@@ -32,6 +32,7 @@
 
 #include "drainage/drainage_db.hpp"
 #include "drainage/drainage_grid.hpp"
+#include "drainage/fill_directions.hpp"
 #include "drainage/flow_network.hpp"
 #include "input/terrain.hpp"
 
@@ -59,6 +60,10 @@ struct DrainageOptions {
     // cache's key: dem_fingerprint of the same file), so the file is not read and hashed again;
     // none: drainage_fingerprint makes them.
     std::optional<DrainageFingerprint> dem;
+    // The depression filling made elsewhere (fill_directions.hpp: over the ranks of a distributed
+    // run, `penink drainage` under mpirun) where the build fills with priority-flood routing;
+    // empty: made here. The same database either way.
+    ExternalFill fill;
 };
 
 // The automatic resample factor: 5 (Mower, "Concurrent Drainage Network Rendering": 10 m from 50 m) lowered until the resampled grid
@@ -83,10 +88,11 @@ struct DrainageResult {
 // Runs directions (priority_flood: fill, D8, flats, depressions, ties; least_cost: the search
 // alone, the stats it does not use stay 0), accumulation and basins on `g` (g.z is filled during
 // a priority_flood run and restored before returning). With `divides`, the basin divides are
-// traced into it (build_divides) on the basins' thread while the accumulation finishes.
+// traced into it (build_divides) on the basins' thread while the accumulation finishes. With
+// `fill` (not empty), the priority-flood fill is the one it makes (DrainageOptions::fill).
 DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progress = {},
                                 DrainageRouting routing = DrainageRouting::priority_flood,
-                                DrainageDb* divides = nullptr);
+                                DrainageDb* divides = nullptr, const ExternalFill& fill = {});
 
 // Everything from an already resampled grid: network, branches and divides.
 DrainageDb drainage_db_from_grid(DrainageGrid& g, const DrainageProgress& progress = {},

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <exception>
+#include <stdexcept>
 #include <thread>
 
 #include "core/parallel_chunks.hpp"
@@ -56,6 +57,42 @@ FillStats fill_with_directions(const RoutingGrid& grid, RoutingArrays& arrays, C
                [&] { st = priority_flood_levels(arrays.z, g, arrays.flags, arrays.orig_bits); });
     swap_raised(arrays.z, arrays.flags, arrays.orig_bits);
     redo_near_raised(grid, arrays);
+    return st;
+}
+
+std::size_t fill_state_of_rows(const std::vector<float>& z, const GridShape& g, int y0, int y1, const float* levels,
+                               std::vector<std::uint8_t>& flags, CellWords& level_bits) {
+    std::size_t raised = 0;
+    const std::size_t cols = std::size_t(g.cols);
+    for (int r = y0; r < y1; ++r)
+        for (int c = 0; c < g.cols; ++c) {
+            const std::size_t i = std::size_t(r) * cols + std::size_t(c);
+            std::uint8_t f = fill_closed;
+            if (g.valid[i]) {
+                const float level = levels[std::size_t(r - y0) * cols + std::size_t(c)];
+                if (level > z[i]) f |= fill_raised, level_bits[i] = std::bit_cast<std::uint32_t>(level), ++raised;
+                if (is_boundary_cell(g, c, r)) f |= fill_boundary;
+            }
+            flags[i] = f;
+        }
+    return raised;
+}
+
+FillStats fill_with_directions(const RoutingGrid& grid, RoutingArrays& arrays, const ExternalFill& fill) {
+    const GridShape& g = grid.shape;
+    const std::size_t n = std::size_t(g.cols) * std::size_t(g.rows);
+    arrays.flags.resize(n);
+    arrays.orig_bits.resize(n);
+    FillStats st;
+    int next = 0;
+    fill(g, arrays.z, [&](int y0, int y1, const float* levels, const std::uint8_t*) {
+        if (y0 != next || y1 <= y0 || y1 > g.rows) throw std::runtime_error("fill: rows handed over out of order");
+        st.raised += fill_state_of_rows(arrays.z, g, y0, y1, levels, arrays.flags, arrays.orig_bits);
+        next = y1;
+    });
+    if (next != g.rows) throw std::runtime_error("fill: rows missing from the fill handed over");
+    swap_raised(arrays.z, arrays.flags, arrays.orig_bits);
+    arrays.dir = d8_directions(arrays.z, g, grid.dx, grid.dy, &arrays.ties);
     return st;
 }
 

@@ -6,11 +6,13 @@
 // Grid: row-major, row 0 north, dx / dy metres, z local metres.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "drainage/d8.hpp"
 #include "drainage/priority_flood.hpp"
 #include "drainage/routing_grid.hpp"
+#include "drainage/tiled_fill.hpp"
 
 namespace penink {
 
@@ -22,5 +24,23 @@ namespace penink {
 // anew), then D8 on the filled surface; with one band the fill runs beside D8 on the original
 // surface, the cells near raised ones redone after.
 FillStats fill_with_directions(const RoutingGrid& g, RoutingArrays& arrays, CellWords& scratch, int bands = 0);
+
+// A fill made elsewhere (by other processes too: tiled_fill.hpp's distributed_priority_flood):
+// given the grid and its heights z, hands the filled levels (priority_flood_fill's surface: each
+// valid cell's bit for bit; a nodata cell's any value) of every row to `rows`, bands of rows in
+// row order.
+using ExternalFill = std::function<void(const GridShape& g, const std::vector<float>& z, const FillRowWriter& rows)>;
+
+// The fill state priority_flood_levels leaves, from filled levels made elsewhere: for rows
+// [y0, y1) (levels: their (y1 - y0) x cols levels), flags set to fill_closed, | fill_raised where
+// the level is above z, | fill_boundary on valid boundary cells (is_boundary_cell), and
+// level_bits[i] = the level's bits at every raised cell i (flags and level_bits cols x rows;
+// others left as they are). Returns the cells raised.
+std::size_t fill_state_of_rows(const std::vector<float>& z, const GridShape& g, int y0, int y1, const float* levels,
+                               std::vector<std::uint8_t>& flags, CellWords& level_bits);
+
+// fill_with_directions with the fill made by `fill` (its levels through fill_state_of_rows), then
+// D8 on the filled surface on all cores: the same arrays (stats: the cells raised).
+FillStats fill_with_directions(const RoutingGrid& g, RoutingArrays& arrays, const ExternalFill& fill);
 
 }  // namespace penink

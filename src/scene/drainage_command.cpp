@@ -28,6 +28,10 @@
 #include "scene/cache_build_estimate.hpp"
 #include "drainage/drainage_rasters.hpp"
 #include "input/dem_reader.hpp"
+#include "core/ranks.hpp"
+#include "drainage/tiled_fill.hpp"
+#include <optional>
+#include <thread>
 
 namespace penink {
 
@@ -146,7 +150,126 @@ private:
     bool existed_ = true;
 };
 
+// Under an MPI launcher (mpirun, srun) the depressions are filled over every rank and the rest is
+// built on rank 0: at factor 1 with priority-flood routing, the fill by row bands spread over the
+// ranks (distributed_priority_flood, the same levels bit for bit), its levels handed to rank 0's
+// build (DrainageOptions::fill); rank 0 alone reads the whole DEM, builds every other stage and
+// writes. The other ranks open the DEM a band at a time while rank 0 reads it, then wait for rank
+// 0's word: fill with bands of `band_rows` rows, or end with exit code `code` (0 where there is
+// nothing to fill: another factor or routing; rank 0's where it failed, which it alone reports).
+struct RankWord {
+    std::int32_t code = 0, band_rows = 0, cols = 0, rows = 0;
+};
+constexpr int word_tag = 3;
+
+// Rank 0's side: the word sent to every other rank once, and whether the ranks are filling.
+class FillRanks {
+public:
+    explicit FillRanks(Ranks* ranks) : ranks_(ranks && ranks->size() > 1 ? ranks : nullptr) {}
+    bool spread() const { return ranks_ != nullptr; }
+    // The summary line of a fill over the ranks ("" when there was none).
+    std::string line() const {
+        if (!band_rows_) return {};
+        return "drainage: depressions filled over " + std::to_string(ranks_->size()) + " ranks of " +
+               std::to_string(rank_threads(*ranks_)) + " threads, in bands of " + std::to_string(band_rows_) + " rows\n";
+    }
+    bool filling() const { return filling_; }
+    // Ends the other ranks with `code` (nothing once told).
+    void stop(int code) { tell({code, 0, 0, 0}); }
+    // The fill of grid g (heights z) over every rank, its rows handed to `rows` in order.
+    void fill(const GridShape& g, const std::vector<float>& z, const FillRowWriter& rows) {
+        const int threads = rank_threads(*ranks_);
+        // bands of at most about 4 M cells (fill_command_band_rows' first choice), at least two a
+        // rank where the grid has the rows, in whole strips of 16 rows
+        const int strip = 16, size = ranks_->size();
+        const int most = std::max(strip, int(std::uint64_t(4) << 20) / std::max(g.cols, 1) / strip * strip);
+        const int spread = ((g.rows + 2 * size - 1) / (2 * size) + strip - 1) / strip * strip;
+        const int band_rows = std::min(std::max(std::min(most, spread), strip), g.rows);
+        const FillRowReader read = [&](int y0, int y1, float* out, std::uint8_t* valid) {
+            const std::size_t a = std::size_t(y0) * std::size_t(g.cols), b = std::size_t(y1) * std::size_t(g.cols);
+            std::copy(z.begin() + std::ptrdiff_t(a), z.begin() + std::ptrdiff_t(b), out);
+            std::copy(g.valid + a, g.valid + b, valid);
+        };
+        if (told_) {  // the other ranks sent away (not expected: the build fills at factor 1 alone)
+            tiled_priority_flood({g.cols, g.rows, band_rows}, read, rows, threads);
+            return;
+        }
+        tell({0, band_rows, g.cols, g.rows});
+        filling_ = true, band_rows_ = band_rows;
+        distributed_priority_flood({g.cols, g.rows, band_rows}, read, rows, *ranks_, threads);
+        filling_ = false;
+    }
+
+private:
+    void tell(RankWord w) {
+        if (!ranks_ || told_) return;
+        told_ = true;
+        std::vector<std::uint8_t> bytes(sizeof w);
+        std::memcpy(bytes.data(), &w, sizeof w);
+        for (int r = 1; r < ranks_->size(); ++r) ranks_->send(r, word_tag, bytes);
+    }
+    Ranks* ranks_;
+    bool told_ = false, filling_ = false;
+    int band_rows_ = 0;
+};
+
+// A rank other than 0: the DEM opened (every value checked, as rank 0's read does), rank 0's word
+// awaited, then its bands filled and sent to rank 0. Writes nothing; says nothing but its own
+// failure during the fill.
+int fill_for_rank_0(const DrainageCommand& cmd, Ranks& ranks, std::ostream& log) {
+    std::optional<DemRows> dem;
+    std::string why;
+    int code = 0;
+    try {
+        DemOptions o;
+        o.heights_only = true, o.no_xy = true, o.max_memory = memory_budget(cmd.max_memory);
+        limit_gdal_block_cache(std::uint64_t(64) << 20);
+        dem.emplace(cmd.dem, o, 0, true);
+    } catch (const Error& e) {
+        why = e.what(), code = int(e.code());
+    }
+    const std::vector<std::uint8_t> bytes = ranks.receive(0, word_tag);
+    RankWord w;
+    if (bytes.size() != sizeof w) throw std::runtime_error("rank 0's word not understood");
+    std::memcpy(&w, bytes.data(), sizeof w);
+    if (w.code != 0 || w.band_rows <= 0) return w.code;
+    if (!dem) {
+        log << why << "\n" << std::flush;
+        ranks.abort(code);
+    }
+    try {
+        const Terrain& meta = dem->meta();
+        if (meta.cols != w.cols || meta.rows != w.rows)
+            throw Error("drainage", cmd.dem, "the DEM differs on rank " + std::to_string(ranks.rank()) + " (" +
+                                                 std::to_string(meta.cols) + "x" + std::to_string(meta.rows) + ", rank 0 " +
+                                                 std::to_string(w.cols) + "x" + std::to_string(w.rows) + ")",
+                        ExitCode::internal);
+        distributed_priority_flood({w.cols, w.rows, w.band_rows},
+                                   [&](int y0, int y1, float* z, std::uint8_t* valid) { dem->rows(y0, y1, z, valid); }, {},
+                                   ranks, rank_threads(ranks));
+    } catch (const std::exception& e) {
+        abort_reporting(ranks, "drainage", cmd.dem, e, log);
+    }
+    return 0;
+}
+
+int build(const DrainageCommand& cmd, std::ostream& log, FillRanks& ranks);
+
 int run(const DrainageCommand& cmd, std::ostream& log) {
+    const std::unique_ptr<Ranks> world = launched_ranks();
+    if (world && world->rank() != 0) return fill_for_rank_0(cmd, *world, log);
+    FillRanks ranks(world.get());
+    try {
+        return build(cmd, log, ranks);
+    } catch (const std::exception& e) {
+        if (ranks.filling()) abort_reporting(*world, "drainage", cmd.dem, e, log);  // the others wait on it
+        const Error* err = dynamic_cast<const Error*>(&e);
+        ranks.stop(err ? int(err->code()) : int(ExitCode::internal));
+        throw;
+    }
+}
+
+int build(const DrainageCommand& cmd, std::ostream& log, FillRanks& ranks) {
     const auto t0 = Clock::now();
     StageTimer timer{log};
     timer.on = timer.on || cmd.verbose;
@@ -155,6 +278,8 @@ int run(const DrainageCommand& cmd, std::ostream& log) {
     const std::uint64_t budget = memory_budget(cmd.max_memory);
     const DemSize size = read_dem_size(cmd.dem);  // the header alone: the build's memory before the read
     const int factor = drainage_factor_for(size.cols, size.rows, cmd.resample);
+    // the other ranks fill at factor 1 with priority-flood routing, else have nothing to do
+    if (factor != 1 || cmd.routing != DrainageRouting::priority_flood) ranks.stop(0);
     check_drainage_memory("drainage", cmd.dem, size.cols, size.rows, factor, budget);
     const std::string out = cmd.output.empty() ? drainage_cache_path(cmd.dem, cmd.cache_dir) : cmd.output;  // render's cache
     const double file_bytes = drainage_points(size.cols, size.rows, factor) * dv_file_bytes_per_point;
@@ -191,6 +316,8 @@ int run(const DrainageCommand& cmd, std::ostream& log) {
     o.resample = cmd.resample;
     o.routing = cmd.routing;
     o.cache_dir = cmd.cache_dir;
+    if (ranks.spread() && factor == 1 && cmd.routing == DrainageRouting::priority_flood)
+        o.fill = [&ranks](const GridShape& g, const std::vector<float>& z, const FillRowWriter& rows) { ranks.fill(g, z, rows); };
     DrainageResult res;
     DrainageDb db;
     const DrainageFingerprint fp = drainage_fingerprint(cmd.dem, t, o);
@@ -238,7 +365,7 @@ int run(const DrainageCommand& cmd, std::ostream& log) {
     const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
     // with -v, each file's size too
     const auto named = [&](const std::string& p) { return cmd.verbose ? cache_file_report(p) : p; };
-    if (!cmd.quiet) print_summary(log, res.stats, db, secs), log << "drainage: wrote " << named(out) << "\n";
+    if (!cmd.quiet) print_summary(log, res.stats, db, secs), log << ranks.line() << "drainage: wrote " << named(out) << "\n";
     if (!cmd.quiet && !terrain_cache.empty() && std::filesystem::exists(terrain_cache))
         log << "drainage: terrain cache " << named(terrain_cache) << "\n";
     return 0;

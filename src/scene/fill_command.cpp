@@ -85,8 +85,7 @@ int run(const FillCommand& cmd, std::ostream& log) {
     // chooses the bands and writes, the others fill their bands
     const std::unique_ptr<Ranks> ranks = launched_ranks();
     const bool root = !ranks || ranks->rank() == 0;
-    const int hardware = int(std::clamp<unsigned>(std::thread::hardware_concurrency(), 1, 16));
-    const int threads = ranks ? std::max(1, hardware / std::max(1, ranks->local_size())) : hardware;
+    const int threads = rank_threads(ranks.get());
     const std::uint64_t budget = memory_budget(cmd.max_memory);
     DemOptions o;
     o.heights_only = true, o.no_xy = true, o.max_memory = budget;
@@ -119,11 +118,8 @@ int run(const FillCommand& cmd, std::ostream& log) {
         // under an MPI launcher a failure here (a write, a read, a message) leaves the other ranks
         // waiting: it is reported, then every rank ends (MPI_Abort)
         if (!ranks) throw;
-        const Error* err = dynamic_cast<const Error*>(&e);
-        log << (err ? std::string(e.what()) : format_error("fill", cmd.dem, e.what())) << "\n" << std::flush;
-        ranks->abort(err ? int(err->code()) : int(ExitCode::internal));
+        abort_reporting(*ranks, "fill", cmd.dem, e, log);
     }
-    return int(ExitCode::internal);  // not reached: abort ends the process
 }
 
 // The fill itself once the DEM is open (`ranks`: this process's place in a distributed run, or null).

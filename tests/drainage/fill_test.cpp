@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/ranks.hpp"
 #include "drainage/banded_fill.hpp"
 #include "drainage/drainage_build.hpp"
 #include "drainage/fill_directions.hpp"
@@ -187,6 +188,45 @@ TEST(FillWithDirections, EqualsFillThenDirections) {
             }
         std::sort(ties_a.begin(), ties_a.end()), std::sort(ties_b.begin(), ties_b.end());
         EXPECT_GT(ties_a.size(), 50u);
+        EXPECT_EQ(ties_b, ties_a);
+    }
+}
+
+// A fill made elsewhere (the distributed fill over 1-3 ranks, its rows handed over) gives the
+// arrays of the fill made here: the filled z, the fill state (raised, closed, boundary seeds),
+// the raised cells' original heights, the directions and the ties, on grids with nodata.
+TEST(FillWithDirections, AFillMadeElsewhereGivesTheSameArrays) {
+    for (std::uint64_t seed = 31; seed <= 36; ++seed) {
+        DrainageGrid a = random_grid(45 + int(seed), 33, seed, seed % 2 ? 60 : 0);
+        DrainageGrid b = a;
+        const GridShape s{a.cols, a.rows, a.valid.data()};
+        std::vector<std::uint8_t> flags_a, flags_b, dir_a, dir_b;
+        CellWords orig_a, orig_b, labels;
+        std::vector<std::uint32_t> ties_a, ties_b;
+        RoutingArrays arrays_a{a.z, flags_a, orig_a, dir_a, ties_a};
+        const FillStats st_a = fill_with_directions({s, a.dx, a.dy}, arrays_a, labels, 2);
+        const int ranks = int(seed % 3) + 1, band_rows = int(seed % 4) * 4 + 3;
+        const ExternalFill elsewhere = [&](const GridShape& g, const std::vector<float>& z, const FillRowWriter& rows) {
+            const FillRowReader read = [&](int y0, int y1, float* out, std::uint8_t* valid) {
+                std::copy(z.begin() + std::ptrdiff_t(y0) * g.cols, z.begin() + std::ptrdiff_t(y1) * g.cols, out);
+                std::copy(g.valid + std::ptrdiff_t(y0) * g.cols, g.valid + std::ptrdiff_t(y1) * g.cols, valid);
+            };
+            run_thread_ranks(ranks, [&](Ranks& r) {
+                distributed_priority_flood({g.cols, g.rows, band_rows}, read, r.rank() == 0 ? rows : FillRowWriter{}, r);
+            });
+        };
+        RoutingArrays arrays_b{b.z, flags_b, orig_b, dir_b, ties_b};
+        const FillStats st_b = fill_with_directions({s, b.dx, b.dy}, arrays_b, elsewhere);
+        EXPECT_GT(st_a.raised, 20u);
+        EXPECT_EQ(st_b.raised, st_a.raised);
+        EXPECT_EQ(b.z, a.z);
+        EXPECT_EQ(flags_b, flags_a) << "seed " << seed;
+        EXPECT_EQ(dir_b, dir_a) << "seed " << seed;
+        for (std::size_t i = 0; i < a.size(); ++i)
+            if (flags_a[i] & fill_raised) {
+                ASSERT_EQ(orig_b[i], orig_a[i]);
+            }
+        std::sort(ties_a.begin(), ties_a.end()), std::sort(ties_b.begin(), ties_b.end());
         EXPECT_EQ(ties_b, ties_a);
     }
 }

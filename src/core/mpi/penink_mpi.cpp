@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 
 #include "core/mpi_module.hpp"
 
@@ -38,9 +39,28 @@ int send(int to, int tag, const void* bytes, std::uint64_t n, char* error, std::
     return 0;
 }
 
+// Waits until a message from `from` with `tag` has arrived, polling without holding a core: MPI_Recv
+// spins, and a rank waiting on rank 0 for seconds (penink drainage's ranks while rank 0 reads the
+// DEM) would take a core from the rank it waits on. A thousand polls first, then a sleep of
+// 0.1 ms growing to 1 ms between polls.
+int wait_for(int from, int tag) {
+    long sleep_ns = 100'000;
+    for (int polls = 0;; ++polls) {
+        int arrived = 0;
+        const int code = MPI_Iprobe(from, tag, MPI_COMM_WORLD, &arrived, MPI_STATUS_IGNORE);
+        if (code != MPI_SUCCESS || arrived) return code;
+        if (polls < 1000) continue;
+        const timespec ts{0, sleep_ns};
+        nanosleep(&ts, nullptr);
+        sleep_ns = std::min(sleep_ns * 2, 1'000'000L);
+    }
+}
+
 int receive(int from, int tag, PeninkMpiAlloc alloc, void* ctx, char* error, std::size_t error_size) {
     std::uint64_t n = 0;
-    int code = MPI_Recv(&n, 1, MPI_UINT64_T, from, tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    int code = wait_for(from, tag);
+    if (code != MPI_SUCCESS) return fail(code, "MPI_Iprobe", error, error_size);
+    code = MPI_Recv(&n, 1, MPI_UINT64_T, from, tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
     if (code != MPI_SUCCESS) return fail(code, "MPI_Recv", error, error_size);
     auto* p = static_cast<char*>(alloc(ctx, n));
     if (!p && n) {
