@@ -29,31 +29,43 @@ int init(int* rank, int* size, char* error, std::size_t error_size) {
     return 0;
 }
 
-int send(int to, int tag, const void* bytes, std::uint64_t n, char* error, std::size_t error_size) {
-    int code = MPI_Send(&n, 1, MPI_UINT64_T, to, tag, MPI_COMM_WORLD);
-    if (code != MPI_SUCCESS) return fail(code, "MPI_Send", error, error_size);
-    const auto* p = static_cast<const char*>(bytes);
-    for (std::uint64_t at = 0; at < n; at += piece)
-        if ((code = MPI_Send(p + at, int(std::min(piece, n - at)), MPI_BYTE, to, tag, MPI_COMM_WORLD)) != MPI_SUCCESS)
-            return fail(code, "MPI_Send", error, error_size);
-    return 0;
-}
-
-// Waits until a message from `from` with `tag` has arrived, polling without holding a core: MPI_Recv
-// spins, and a rank waiting on rank 0 for seconds (penink drainage's ranks while rank 0 reads the
-// DEM) would take a core from the rank it waits on. A thousand polls first, then a sleep of
-// 0.1 ms growing to 1 ms between polls.
-int wait_for(int from, int tag) {
+// Polls done(flag) until it sets the flag, without holding a core: MPI_Recv and MPI_Send spin, and
+// a rank waiting on rank 0 for seconds (penink drainage's ranks while rank 0 reads the DEM; a rank
+// whose finished bands rank 0 takes after another's) would take a core from the rank it waits on.
+// A thousand polls first, then a sleep of 0.1 ms growing to 1 ms between polls.
+template <class Done> int poll_sleeping(Done&& done) {
     long sleep_ns = 100'000;
     for (int polls = 0;; ++polls) {
-        int arrived = 0;
-        const int code = MPI_Iprobe(from, tag, MPI_COMM_WORLD, &arrived, MPI_STATUS_IGNORE);
-        if (code != MPI_SUCCESS || arrived) return code;
+        int yes = 0;
+        const int code = done(yes);
+        if (code != MPI_SUCCESS || yes) return code;
         if (polls < 1000) continue;
         const timespec ts{0, sleep_ns};
         nanosleep(&ts, nullptr);
         sleep_ns = std::min(sleep_ns * 2, 1'000'000L);
     }
+}
+// Waits until a message from `from` with `tag` has arrived.
+int wait_for(int from, int tag) {
+    return poll_sleeping([&](int& arrived) { return MPI_Iprobe(from, tag, MPI_COMM_WORLD, &arrived, MPI_STATUS_IGNORE); });
+}
+// A send that waits for its receiver the same way (a large message waits until the receiver
+// takes it: rank 0 takes the finished bands in row order, after those of the other ranks).
+int send_sleeping(const void* p, int n, MPI_Datatype type, int to, int tag) {
+    MPI_Request request;
+    const int code = MPI_Isend(p, n, type, to, tag, MPI_COMM_WORLD, &request);
+    if (code != MPI_SUCCESS) return code;
+    return poll_sleeping([&](int& sent) { return MPI_Test(&request, &sent, MPI_STATUS_IGNORE); });
+}
+
+int send(int to, int tag, const void* bytes, std::uint64_t n, char* error, std::size_t error_size) {
+    int code = send_sleeping(&n, 1, MPI_UINT64_T, to, tag);
+    if (code != MPI_SUCCESS) return fail(code, "MPI_Isend", error, error_size);
+    const auto* p = static_cast<const char*>(bytes);
+    for (std::uint64_t at = 0; at < n; at += piece)
+        if ((code = send_sleeping(p + at, int(std::min(piece, n - at)), MPI_BYTE, to, tag)) != MPI_SUCCESS)
+            return fail(code, "MPI_Isend", error, error_size);
+    return 0;
 }
 
 int receive(int from, int tag, PeninkMpiAlloc alloc, void* ctx, char* error, std::size_t error_size) {
@@ -93,7 +105,24 @@ int broadcast(int root, const void* bytes, std::uint64_t n, PeninkMpiAlloc alloc
 
 void abort_all(int code) { MPI_Abort(MPI_COMM_WORLD, code); }
 
-void finalize() { MPI_Finalize(); }
+// Ranks that end before the others wait for them here, sleeping (wait_for), not in MPI_Finalize,
+// whose wait spins: the ranks that fill their bands and end would otherwise take cores from rank
+// 0 for the rest of its build. Every rank tells rank 0 it has ended, and leaves once rank 0 has
+// heard from all; errors are left to MPI_Finalize.
+constexpr int ended_tag = 32000;
+void finalize() {
+    int rank = 0, size = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank), MPI_Comm_size(MPI_COMM_WORLD, &size);
+    char byte = 0;
+    if (rank == 0) {
+        for (int r = 1; r < size; ++r)
+            if (wait_for(r, ended_tag) == MPI_SUCCESS) MPI_Recv(&byte, 1, MPI_BYTE, r, ended_tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        for (int r = 1; r < size; ++r) MPI_Send(&byte, 1, MPI_BYTE, r, ended_tag, MPI_COMM_WORLD);
+    } else if (send_sleeping(&byte, 1, MPI_BYTE, 0, ended_tag) == MPI_SUCCESS && wait_for(0, ended_tag) == MPI_SUCCESS) {
+        MPI_Recv(&byte, 1, MPI_BYTE, 0, ended_tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    }
+    MPI_Finalize();
+}
 
 }  // namespace
 
