@@ -9,7 +9,6 @@
 
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
-#include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
 #include "core/parallel_chunks.hpp"
@@ -648,35 +647,22 @@ private:
 
     // compute_normals(mesh_from_terrain(t)) at node (c, r): its up-to-6 full-resolution triangles
     // in the order that mesh lists them (cells row by row; {NW, SW, SE} before {NW, SE, NE}).
-    // The 7 nodes of the 3 x 3 block those triangles use are read once each (a read goes through
-    // the block caches: NodePointReader).
     glm::vec3 full_res_normal(int c, int r) const {
-        // node (c + dc, r + dr) at [dr + 1][dc + 1]; has[][] false off the grid or without data
-        glm::vec3 p[3][3];
-        bool has[3][3] = {};
-        for (int dr = -1; dr <= 1; ++dr)
-            for (int dc = -1; dc <= 1; ++dc) {
-                if (dr == -dc && dr != 0) continue;  // NE and SW corners: in no triangle of the node
-                const int cc = c + dc, rr = r + dr;
-                if (cc < 0 || rr < 0 || cc >= cols_ || rr >= rows_) continue;
-                const std::size_t i = t_.index(cc, rr);
-                if ((has[dr + 1][dc + 1] = reader_.has_data(i))) p[dr + 1][dc + 1] = reader_.at(i);
-            }
         glm::vec3 sum(0.0f);
-        // triangle of nodes (c + a.x, r + a.y), (c + b.x, r + b.y), (c + d.x, r + d.y)
-        auto tri = [&](glm::ivec2 a, glm::ivec2 b, glm::ivec2 d) {
-            if (has[a.y + 1][a.x + 1] && has[b.y + 1][b.x + 1] && has[d.y + 1][d.x + 1])
-                sum += face_normal(p[a.y + 1][a.x + 1], p[b.y + 1][b.x + 1], p[d.y + 1][d.x + 1]);
+        auto tri = [&](std::size_t a, std::size_t b, std::size_t d) {
+            if (reader_.has_data(a) && reader_.has_data(b) && reader_.has_data(d))
+                sum += face_normal(reader_.at(a), reader_.at(b), reader_.at(d));
         };
+        auto id = [&](int cc, int rr) { return t_.index(cc, rr); };
         if (c > 0 && r > 0) {  // node is the SE corner of cell (c-1, r-1)
-            tri({-1, -1}, {-1, 0}, {0, 0});
-            tri({-1, -1}, {0, 0}, {0, -1});
+            tri(id(c - 1, r - 1), id(c - 1, r), id(c, r));
+            tri(id(c - 1, r - 1), id(c, r), id(c, r - 1));
         }
-        if (c + 1 < cols_ && r > 0) tri({0, -1}, {0, 0}, {1, 0});    // SW of cell (c, r-1)
-        if (c > 0 && r + 1 < rows_) tri({-1, 0}, {0, 1}, {0, 0});    // NE of cell (c-1, r)
-        if (c + 1 < cols_ && r + 1 < rows_) {                        // NW of cell (c, r)
-            tri({0, 0}, {0, 1}, {1, 1});
-            tri({0, 0}, {1, 1}, {1, 0});
+        if (c + 1 < cols_ && r > 0) tri(id(c, r - 1), id(c, r), id(c + 1, r));      // SW of cell (c, r-1)
+        if (c > 0 && r + 1 < rows_) tri(id(c - 1, r), id(c, r + 1), id(c, r));      // NE of cell (c-1, r)
+        if (c + 1 < cols_ && r + 1 < rows_) {                                        // NW of cell (c, r)
+            tri(id(c, r), id(c, r + 1), id(c + 1, r + 1));
+            tri(id(c, r), id(c + 1, r + 1), id(c + 1, r));
         }
         const float len = glm::length(sum);
         return len > 1e-12f ? sum / len : glm::vec3(0, 0, 1);
