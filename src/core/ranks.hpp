@@ -24,9 +24,12 @@ public:
     virtual int size() const = 0;
     // Ranks of this run on this machine (their threads share its cores).
     virtual int local_size() const = 0;
+    // A send may wait until the receiver takes the message; a receive waits for it. Over MPI
+    // both wait polling with sleeps, leaving the core to the rank waited on (penink_mpi.so).
     virtual void send(int to, int tag, std::span<const std::uint8_t> bytes) = 0;
     virtual std::vector<std::uint8_t> receive(int from, int tag) = 0;
-    // root's bytes into every rank's `bytes`.
+    // root's bytes into every rank's `bytes` (over MPI a broadcast, whose wait spins: for short
+    // waits).
     virtual void broadcast(int root, std::vector<std::uint8_t>& bytes) = 0;
     // Ends the run on every rank with exit code `code` (a failure on one rank the others wait on).
     [[noreturn]] virtual void abort(int code) = 0;

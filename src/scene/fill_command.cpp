@@ -59,10 +59,16 @@ struct Opening {
     std::int32_t code = 0;
     std::int32_t band_rows = 0;
 };
+// Sent rank by rank rather than broadcast: a rank waiting for a message sleeps (Ranks::receive), while
+// one in a broadcast spins a core through rank 0's check of the whole DEM.
+constexpr int opening_tag = 3;
 Opening agree_on_opening(Ranks& ranks, Opening mine, const std::string& why, std::ostream& log) {
     std::vector<std::uint8_t> bytes(sizeof mine);
     std::memcpy(bytes.data(), &mine, sizeof mine);
-    ranks.broadcast(0, bytes);
+    if (ranks.rank() == 0)
+        for (int r = 1; r < ranks.size(); ++r) ranks.send(r, opening_tag, bytes);
+    else
+        bytes = ranks.receive(0, opening_tag);
     Opening root;
     if (bytes.size() != sizeof root) throw std::runtime_error("fill: rank 0's opening not understood");
     std::memcpy(&root, bytes.data(), sizeof root);
