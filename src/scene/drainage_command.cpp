@@ -213,9 +213,10 @@ private:
     int band_rows_ = 0;
 };
 
-// A rank other than 0: the DEM opened (every value checked, as rank 0's read does), rank 0's word
-// awaited, then its bands filled and sent to rank 0. Writes nothing; says nothing but its own
-// failure during the fill.
+// A rank other than 0: the DEM opened (its header: rank 0's read checks every value, so this rank
+// reads only its bands, whose valid heights are rank 0's bit for bit: a nodata node's, which the
+// fill never reads, is 0 here), rank 0's word awaited, then its bands filled and sent to rank 0.
+// Writes nothing; says nothing but its own failure during the fill.
 int fill_for_rank_0(const DrainageCommand& cmd, Ranks& ranks, std::ostream& log) {
     std::optional<DemRows> dem;
     std::string why;
@@ -224,7 +225,7 @@ int fill_for_rank_0(const DrainageCommand& cmd, Ranks& ranks, std::ostream& log)
         DemOptions o;
         o.heights_only = true, o.no_xy = true, o.max_memory = memory_budget(cmd.max_memory);
         limit_gdal_block_cache(std::uint64_t(64) << 20);
-        dem.emplace(cmd.dem, o, 0, true);
+        dem.emplace(cmd.dem, o, 0, false);
     } catch (const Error& e) {
         why = e.what(), code = int(e.code());
     }

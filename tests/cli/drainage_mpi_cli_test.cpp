@@ -1,7 +1,7 @@
 // `mpirun -n N penink drainage` (the ranks as processes of this machine, through the MPI module):
 // the very bytes of the one-process database with 2 and 4 ranks, the depressions filled over the
-// ranks at factor 1 (rank 0 says so) and by rank 0 alone at another factor; a bad DEM is one
-// penink line from rank 0 and exit code 2 for the run, no file.
+// ranks at factor 1 (rank 0 says so) and by rank 0 alone at another factor, on a DEM with nodata
+// too; a bad DEM is one penink line from rank 0 and exit code 2 for the run, no file.
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -55,6 +55,24 @@ TEST(DrainageMpiCli, RanksWriteTheSameDatabase) {
             EXPECT_TRUE(file_bytes(dir / out) == one) << n << " ranks, factor " << factor;
         }
     }
+    // nodata inside the grid (a hole across band edges, scattered cells) and pits: the ranks read
+    // their bands without the opening pass that gives nodata nodes the lowest height
+    std::string asc = "ncols 90\nnrows 77\nxllcorner 500000\nyllcorner 4000000\ncellsize 10\nNODATA_value -9999\n";
+    for (int r = 0; r < 77; ++r) {
+        for (int c = 0; c < 90; ++c) {
+            const bool hole = (r > 30 && r < 44 && c > 20 && c < 35) || (r * 7 + c * 13) % 97 == 0;
+            const int z = 300 - 2 * r + (c * 37 + r * 11) % 23 - ((r % 19 == 9 && c % 17 == 8) ? 40 : 0);
+            asc += hole ? "-9999 " : std::to_string(z) + " ";
+        }
+        asc += "\n";
+    }
+    write_text(dir / "holes.asc", asc);
+    RunResult one = run_penink("drainage holes.asc --resample 1 -o holes-one.dv -q", dir);
+    ASSERT_EQ(one.code, 0) << one.output;
+    one = run_penink("", dir, mpirun + "-n 3 '" PENINK_BINARY_PATH "' drainage holes.asc --resample 1 -o holes-ranks.dv");
+    ASSERT_EQ(one.code, 0) << one.output;
+    EXPECT_NE(one.output.find("depressions filled over 3 ranks of "), std::string::npos) << one.output;
+    EXPECT_TRUE(file_bytes(dir / "holes-ranks.dv") == file_bytes(dir / "holes-one.dv"));
     write_text(dir / "bad.asc", "ncols 3\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2 3\n4 1e9 6\n7 8 9\n");
     const RunResult r = run_penink("", dir, mpirun + "-n 2 '" PENINK_BINARY_PATH "' drainage bad.asc -o bad.dv");
     EXPECT_EQ(r.code, 2) << r.output;
