@@ -54,6 +54,11 @@ BandWindow flood_band(const FillBands& bands, int b, const FillRowReader& read) 
 
 }  // namespace
 
+int fill_band_rows_of_cells(int cols, int strip) {
+    strip = std::max(strip, 1);
+    return std::max(strip, int(std::uint64_t(4) << 20) / std::max(cols, 1) / strip * strip);
+}
+
 std::uint64_t fill_band_bytes(int cols, int band_rows) {
     // z 4, valid 1, flags 1, level 4, label 4; the flood's queue (8 a cell queued), pit stack (8 a
     // cell raised) and trace (4 a cell) at their worst, every cell

@@ -56,6 +56,10 @@ struct BandSurvey {
     std::vector<std::uint8_t> first_valid, last_valid;
 };
 
+// The rows of a band of about 4 M cells of a grid `cols` wide, in whole strips of `strip` rows (at
+// least one strip): the band height a fill by bands starts from (a few hundred MiB in flight).
+int fill_band_rows_of_cells(int cols, int strip);
+
 // Bytes one band in flight holds at most (its window's heights, flags, levels, labels and the
 // flood's queues for every cell), for choosing band_rows against a memory budget.
 std::uint64_t fill_band_bytes(int cols, int band_rows);

@@ -154,7 +154,7 @@ private:
 // built on rank 0: at factor 1 with priority-flood routing, the fill by row bands spread over the
 // ranks (distributed_priority_flood, the same levels bit for bit), its levels handed to rank 0's
 // build (DrainageOptions::fill); rank 0 alone reads the whole DEM, builds every other stage and
-// writes. The other ranks open the DEM a band at a time while rank 0 reads it, then wait for rank
+// writes. The other ranks open the DEM (its header alone) while rank 0 reads it, then wait for rank
 // 0's word: fill with bands of `band_rows` rows, or end with exit code `code` (0 where there is
 // nothing to fill: another factor or routing; rank 0's where it failed, which it alone reports).
 struct RankWord {
@@ -179,10 +179,10 @@ public:
     // The fill of grid g (heights z) over every rank, its rows handed to `rows` in order.
     void fill(const GridShape& g, const std::vector<float>& z, const FillRowWriter& rows) {
         const int threads = rank_threads(*ranks_);
-        // bands of at most about 4 M cells (fill_command_band_rows' first choice), at least two a
-        // rank where the grid has the rows, in whole strips of 16 rows
-        const int strip = 16, size = ranks_->size();
-        const int most = std::max(strip, int(std::uint64_t(4) << 20) / std::max(g.cols, 1) / strip * strip);
+        // bands of at most about 4 M cells, at least two a rank where the grid has the rows, in
+        // whole strips of 16 rows
+        const int strip = height_raster_strip_rows, size = ranks_->size();
+        const int most = fill_band_rows_of_cells(g.cols, strip);
         const int spread = ((g.rows + 2 * size - 1) / (2 * size) + strip - 1) / strip * strip;
         const int band_rows = std::min(std::max(std::min(most, spread), strip), g.rows);
         const FillRowReader read = [&](int y0, int y1, float* out, std::uint8_t* valid) {

@@ -175,7 +175,7 @@ int fill_bands(const FillCommand& cmd, std::ostream& log, Ranks* ranks, DemRows&
 
 int fill_command_band_rows(int cols, int rows, int threads, std::uint64_t budget) {
     const int strip = height_raster_strip_rows;
-    int band_rows = std::max(strip, int(std::uint64_t(4) << 20) / std::max(cols, 1) / strip * strip);
+    int band_rows = fill_band_rows_of_cells(cols, strip);
     band_rows = std::min(band_rows, (rows + strip - 1) / strip * strip);
     for (; band_rows >= strip; band_rows -= strip)
         if (fill_need_bytes(cols, rows, band_rows, threads) <= budget) return band_rows;
