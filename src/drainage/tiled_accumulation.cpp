@@ -4,7 +4,6 @@
 #include <cstring>
 #include <mutex>
 #include <stdexcept>
-#include <thread>
 
 #include "core/error.hpp"
 #include "core/parallel_chunks.hpp"
@@ -585,7 +584,7 @@ template <class Survey, class SurveyFn, class SolveFn, class FinishFn>
 void banded_pass(const char* what, const FillBands& bands, const DirRowReader& read, const AccRowWriter& write, int threads,
                  SurveyFn&& survey, SolveFn&& solve, FinishFn&& finish) {
     if (bands.cols < 1 || bands.rows < 1 || bands.band_rows < 1) throw std::invalid_argument(std::string(what) + ": empty grid");
-    if (threads <= 0) threads = int(std::clamp<unsigned>(std::thread::hardware_concurrency(), 1, 16));
+    if (threads <= 0) threads = rank_threads(nullptr);
     std::vector<int> all(static_cast<std::size_t>(bands.count()));
     for (int b = 0; b < bands.count(); ++b) all[std::size_t(b)] = b;
     const auto solved = solve(survey_list<Survey>(all, read, threads, survey));

@@ -7,7 +7,6 @@
 #include <bit>
 #include <mutex>
 #include <stdexcept>
-#include <thread>
 
 #include "core/parallel_chunks.hpp"
 #include "drainage/band_passes.hpp"
@@ -187,8 +186,6 @@ void finish_bands(const FillBands& bands, const std::vector<int>& which, const F
         use);
 }
 
-int default_threads() { return int(std::clamp<unsigned>(std::thread::hardware_concurrency(), 1, 16)); }
-
 }  // namespace
 
 std::vector<std::uint8_t> encode_band_survey(const BandSurvey& s) {
@@ -235,7 +232,7 @@ TiledFillStats tiled_priority_flood(const FillBands& bands, const FillRowReader&
                                     int threads, const std::function<void(int, int)>& progress) {
     if (bands.cols < 1 || bands.rows < 1 || bands.band_rows < 1) throw std::invalid_argument("tiled fill: empty grid");
     const int n = bands.count();
-    if (threads <= 0) threads = default_threads();
+    if (threads <= 0) threads = rank_threads(nullptr);
     threads = std::min(threads, n);
     std::atomic<int> done{0};
     std::mutex told;

@@ -31,7 +31,6 @@
 #include "core/ranks.hpp"
 #include "drainage/tiled_fill.hpp"
 #include <optional>
-#include <thread>
 
 namespace penink {
 

@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cstdio>
 #include <ostream>
-#include <thread>
 
 #include "core/error.hpp"
 #include "core/memory_budget.hpp"
