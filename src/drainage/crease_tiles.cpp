@@ -354,6 +354,7 @@ void check_part(std::size_t lines, std::size_t stems) {
 void CreaseTiles::keep(const std::vector<std::uint32_t>& ids, std::unique_ptr<DrapedLineSet> lines, bool on_disk,
                        int detail) {
     check_part(lines->lines.size(), ids.size());
+    if (ids.empty()) return;  // (a set of no stem would never be let go)
     U32Map& map = on_disk ? query_ : kept_;
     auto& at = on_disk ? query_at_ : at_;
     for (std::uint32_t i = 0; i < ids.size(); ++i)
@@ -381,11 +382,11 @@ int CreaseTiles::unit_detail(const CreaseUnit& u, const LineDetail& detail) cons
     return d;
 }
 
-int CreaseTiles::read_unit(std::size_t k, int l, int d, TileLines& out) const {
+int CreaseTiles::read_unit(std::size_t k, int l, int d, TileLines& out, const TileNeed& need) const {
     const bool copy = d >= crease_copy_detail;
-    if (copy && read_line_tile(tile_path(k, l, d), tile_key(k, l, d), out)) return 1;
-    if (!read_line_tile(tile_path(k, l), tile_key(k, l), out)) return 0;
-    if (d == 0) return 1;
+    if (copy && read_line_tile(tile_path(k, l, d), tile_key(k, l, d), out, need)) return 1;
+    if (!read_line_tile(tile_path(k, l), tile_key(k, l), out, need)) return 0;
+    if (d == 0 || out.lines.lines.size() != out.stems.size()) return 1;  // (no line needed: none decoded)
     out.lines = thinned_lines(out.lines, detail_spacing(d));  // a copy made, kept for the next query
     return copy && writable_ && write_line_tile(tile_path(k, l, d), tile_key(k, l, d), crease_lattice(g_), out.lines, out.stems, out.bounds) ? 2 : 1;
 }
@@ -412,6 +413,20 @@ DrapedLineSet thinned_lines(const DrapedLineSet& from, double spacing) {
     return out;
 }
 
+StemBound crease_line_bound(const DrapedLineSet& lines, std::size_t i, const StemBound& reach, glm::vec2 lo, glm::vec2 hi) {
+    const DrapedLine& l = lines.lines[i];
+    const DrapedVertex* v = lines.vertices.data() + l.first;
+    glm::vec2 box_lo(std::numeric_limits<float>::infinity()), box_hi(-std::numeric_limits<float>::infinity());
+    StemTravel t;
+    for (std::uint32_t k = 0; k < l.count; ++k) {
+        box_lo = glm::min(box_lo, glm::vec2(v[k].x, v[k].y)), box_hi = glm::max(box_hi, glm::vec2(v[k].x, v[k].y));
+        if (k > 0)
+            t.plan += std::hypot(double(v[k].x) - double(v[k - 1].x), double(v[k].y) - double(v[k - 1].y)),
+                t.rise += std::abs(double(v[k].z) - double(v[k - 1].z));
+    }
+    return stem_line_bound(box_lo, box_hi, t, reach, lo, hi);
+}
+
 int crease_tile_level(const StemBound& b, double cell) {
     const double cells = double(stem_bound_plan(b)) / cell;
     int l = 0;
@@ -425,6 +440,11 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
     const auto passes = [&](const StemBound& b, glm::vec2 blo, glm::vec2 bhi) {
         return meets(blo, bhi) && (!may_show || may_show(b, blo, bhi, z_top_));
     };
+    const auto bound_passes = [&](const StemBound& b) {  // (the box its own)
+        glm::vec2 box_lo, box_hi;
+        stem_bound_box(b, parts_.lo, parts_.hi, box_lo, box_hi);
+        return passes(b, box_lo, box_hi);
+    };
     // the units whose summary passes (the others have no stem that does), and their detail
     std::vector<std::pair<std::size_t, int>> units;
     std::vector<int> unit_d;
@@ -436,7 +456,17 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
             if (u.count && passes(u.most, u.lo, u.hi)) units.emplace_back(k, l), unit_d.push_back(unit_detail(u, detail));
         }
     }
-    std::vector<std::pair<std::uint32_t, int>> wanted;  // stems and the detail they are given at
+    // stems, the detail they are given at, and the bound they passed by: the index's where they
+    // were not read from a file (their line's, crease_line_bound, then tested too), else the file's
+    // (already their line's)
+    struct Wanted {
+        std::uint32_t stem;
+        int d;
+        StemBound bound;
+        bool operator<(const Wanted& o) const { return stem < o.stem || (stem == o.stem && d < o.d); }
+    };
+    std::vector<Wanted> wanted;
+    std::vector<std::uint32_t> dropped;  // stems built and written whose line's bound fails
     std::size_t copies = 0;                              // copies written
     // done: read from its file, its stems tested by the bounds there; or without a sound file, no
     // stem of it passing (its stems' bounds read from the index's unit alone)
@@ -454,16 +484,17 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
             for (std::size_t u = u0; u < u1; ++u) {
                 const auto [k, l] = units[u];
                 TileLines whole;
-                const int how = read_unit(k, l, unit_d[u], whole);
+                std::vector<std::uint32_t> at;  // the lines whose bounds pass
+                const auto passing = [&](const TileLines& t) {
+                    at.clear(), ids[u].clear();
+                    for (std::uint32_t i = 0; i < t.stems.size(); ++i)
+                        if (bound_passes(t.bounds[i])) at.push_back(i), ids[u].push_back(t.stems[i]);
+                    return !at.empty();
+                };
+                const int how = read_unit(k, l, unit_d[u], whole, passing);
                 written += how == 2;
                 const bool read = how > 0 && whole.stems.size() == tiles_[k].unit[std::size_t(l)].count;
-                if (!read) reader_.unit(tiles_[k].at[std::size_t(l)], whole.stems, whole.bounds);
-                std::vector<std::uint32_t> at;
-                glm::vec2 blo, bhi;
-                for (std::uint32_t i = 0; i < whole.stems.size(); ++i) {
-                    stem_bound_box(whole.bounds[i], parts_.lo, parts_.hi, blo, bhi);
-                    if (passes(whole.bounds[i], blo, bhi)) at.push_back(i), ids[u].push_back(whole.stems[i]);
-                }
+                if (!read) reader_.unit(tiles_[k].at[std::size_t(l)], whole.stems, whole.bounds), passing(whole);
                 if (read) got[u] = lines_at(at, whole.lines);
                 else if (at.empty()) done[u] = 1;  // nothing of it needed
                 else unit_ids[u] = std::move(whole.stems), unit_bounds[u] = std::move(whole.bounds);
@@ -473,7 +504,7 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
         for (std::size_t u = 0; u < units.size(); ++u) {
             if (!got[u]) continue;
             done[u] = 1, touched = true, ++tiles_read_;
-            for (std::uint32_t s : ids[u]) wanted.emplace_back(s, unit_d[u]);
+            for (std::uint32_t s : ids[u]) wanted.push_back({s, unit_d[u], {}});
             if (!ids[u].empty()) keep(ids[u], std::move(got[u]), true, unit_d[u]);
         }
     }
@@ -500,7 +531,7 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
             const std::uint32_t s = ids[i];
             stem_bound_box(bound_of(u, i), parts_.lo, parts_.hi, blo, bhi);
             if (!passes(bound_of(u, i), blo, bhi)) continue;
-            wanted.emplace_back(s, unit_d[u]);
+            wanted.push_back({s, unit_d[u], bound_of(u, i)});
             if (!kept_.find(s)) missing.push_back(s);
         }
         if (missing.size() > cuts.back())
@@ -514,7 +545,9 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
     };
     // the tiles' files first, read and decoded on all cores (a tile's lines whole while its
     // stems needed are copied out)
+    // (the stems needed whose line's bound, in the file, passes; those failing in read_dropped)
     std::vector<std::unique_ptr<DrapedLineSet>> read(cut_tile.size());
+    std::vector<std::vector<std::uint32_t>> read_ids(cut_tile.size()), read_dropped(cut_tile.size());
     if (!store_.folder.empty()) {
         std::atomic<std::size_t> count{0}, written{0};
         parallel_chunks(cut_tile.size(), 1, [&](std::size_t k0, std::size_t k1) {
@@ -523,17 +556,22 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
                 const int how = read_unit(cut_tile[k], cut_level[k], cut_d[k], whole);
                 written += how == 2;
                 if (how > 0 && whole.stems == stems_of(cut_unit[k])) {
-                    if (cuts[k + 1] - cuts[k] == whole.stems.size()) {  // every stem needed: the lines as read
+                    for (std::size_t i = 0, n = cuts[k]; i < whole.stems.size() && n < cuts[k + 1]; ++i) {
+                        if (whole.stems[i] != missing[n]) continue;
+                        (bound_passes(whole.bounds[i]) ? read_ids[k] : read_dropped[k]).push_back(missing[n++]);
+                    }
+                    if (read_ids[k].size() == whole.stems.size()) {  // every stem needed: the lines as read
                         read[k] = std::make_unique<DrapedLineSet>(std::move(whole.lines));
                         read[k]->index = {};  // (as lines_of leaves it)
                     } else {
-                        read[k] = lines_of(ids_of(k), whole.stems, whole.lines);
+                        read[k] = lines_of(read_ids[k], whole.stems, whole.lines);
                     }
                     ++count;
                 }
             }
         });
         tiles_read_ += count, copies += written;
+        for (const std::vector<std::uint32_t>& d : read_dropped) dropped.insert(dropped.end(), d.begin(), d.end());
     }
     // the others built, a tile at a time: its levels needed in one build on all cores (a part's
     // stems walk their trunks again: one build of a tile's levels costs less than one a level;
@@ -562,24 +600,39 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
         std::vector<std::size_t> todo;  // its cuts
         std::vector<std::uint8_t> written;
         // the stems the query needs, at its detail where their file is written (forgotten after
-        // the query: never a finer one asked of them), else whole (kept in memory)
+        // the query: never a finer one asked of them; those whose line's bound fails left out,
+        // in dropped), else whole (kept in memory)
         std::vector<std::unique_ptr<DrapedLineSet>> needed;
+        std::vector<std::vector<std::uint32_t>> needed_ids, dropped;
     };
     const auto write_tile = [&](TileWrites& w, const std::vector<std::uint32_t>& stems, const DrapedLineSet& whole) {
         const std::vector<std::size_t>& todo = w.todo;
         w.written.assign(todo.size(), 0), w.needed.resize(todo.size());
+        w.needed_ids.assign(todo.size(), {}), w.dropped.assign(todo.size(), {});
         parallel_chunks(todo.size(), 1, [&](std::size_t j0, std::size_t j1) {
             for (std::size_t j = j0; j < j1; ++j) {
                 const std::size_t k = todo[j];
                 const std::vector<std::uint32_t>& ids = stems_of(cut_unit[k]);
                 const std::unique_ptr<DrapedLineSet> level = lines_of(ids, stems, whole);
-                std::vector<StemBound> bounds(ids.size());
-                for (std::size_t i = 0; i < ids.size(); ++i) bounds[i] = bound_of(cut_unit[k], i);
+                std::vector<StemBound> bounds(ids.size());  // their lines' (crease_line_bound)
+                for (std::size_t i = 0; i < ids.size(); ++i)
+                    bounds[i] = crease_line_bound(*level, i, bound_of(cut_unit[k], i), parts_.lo, parts_.hi);
                 w.written[j] = write_line_tile(tile_path(cut_tile[k], cut_level[k]), tile_key(cut_tile[k], cut_level[k]),
                                                crease_lattice(g_), *level, ids, bounds);
+                if (!w.written[j]) {
+                    w.needed_ids[j] = ids_of(k), w.needed[j] = lines_of(w.needed_ids[j], stems, whole);
+                    continue;
+                }
+                // the stems needed whose line's bound passes, as a later query reading the file keeps
+                for (std::size_t i = 0, n = 0; i < ids.size(); ++i) {
+                    const std::uint32_t s = ids[i];
+                    while (n < cuts[k + 1] - cuts[k] && missing[cuts[k] + n] < s) ++n;
+                    if (n == cuts[k + 1] - cuts[k] || missing[cuts[k] + n] != s) continue;
+                    (bound_passes(bounds[i]) ? w.needed_ids[j] : w.dropped[j]).push_back(s);
+                }
                 const int d = cut_d[k];
-                if (!w.written[j] || d == 0) {
-                    w.needed[j] = lines_of(ids_of(k), stems, whole);
+                if (d == 0) {
+                    w.needed[j] = lines_of(w.needed_ids[j], stems, whole);
                     continue;
                 }
                 // thinned now, not once the query's stems are all built (a whole view of a large
@@ -590,7 +643,7 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
                     write_line_tile(tile_path(cut_tile[k], cut_level[k], d), tile_key(cut_tile[k], cut_level[k], d),
                                     crease_lattice(g_), thin, ids, bounds))
                     w.written[j] = 2;
-                w.needed[j] = lines_of(ids_of(k), ids, thin);
+                w.needed[j] = lines_of(w.needed_ids[j], ids, thin);
             }
         });
     };
@@ -600,7 +653,8 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
             if (w.written[j]) tiles_written_ += w.written[j];
             else writable_ = false;  // the tiles from now on built as needed, in memory only
             const std::size_t k = w.todo[j];
-            keep(ids_of(k), std::move(w.needed[j]), w.written[j] != 0, w.written[j] ? cut_d[k] : 0);
+            dropped.insert(dropped.end(), w.dropped[j].begin(), w.dropped[j].end());
+            keep(w.needed_ids[j], std::move(w.needed[j]), w.written[j] != 0, w.written[j] ? cut_d[k] : 0);
         }
         tile_built();
     };
@@ -648,10 +702,10 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
     for (std::size_t j = 0; j + 1 < group.size(); ++j) {
         const std::size_t k0 = group[j], k1 = group[j + 1];
         for (std::size_t k = k0; k < k1; ++k)
-            if (read[k]) keep(ids_of(k), std::move(read[k]), true, cut_d[k]);
+            if (read[k]) keep(read_ids[k], std::move(read[k]), true, cut_d[k]);
         std::vector<std::size_t> todo;  // cuts of this tile still missing
         for (std::size_t k = k0; k < k1; ++k)
-            if (!query_.find(missing[cuts[k]])) todo.push_back(k);
+            if (!was_read[k]) todo.push_back(k);
         if (todo.empty()) continue;
         if (!loaded_ && parts_.sources.empty()) parts_.sources = reader_.sources();  // what crease_part reads
         if (!store_.folder.empty() && writable_) {
@@ -690,20 +744,30 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
     }
     finish_writing();
     tiles_written_ += copies;
+    std::sort(dropped.begin(), dropped.end());
     std::vector<Pick> picks;
     picks.reserve(wanted.size());
     std::vector<std::size_t> thin;  // picks of lines at detail 0 wanted coarser (built here, kept)
-    for (const auto& [s, d] : wanted) {
-        const std::uint32_t* i = kept_.find(s);
-        const auto [set, line] = i ? at_[*i] : query_at_[*query_.find(s)];
-        if (set_detail_[set] != d) thin.push_back(picks.size());
-        picks.push_back({s, sets_[set], line});
+    std::vector<int> pick_d;        // each pick's detail
+    for (const Wanted& w : wanted) {
+        const std::uint32_t* i = kept_.find(w.stem);
+        const std::uint32_t* q = i ? nullptr : query_.find(w.stem);
+        if (!i && !q) {
+            if (std::binary_search(dropped.begin(), dropped.end(), w.stem)) continue;
+            throw Error("drainage", "", "crease tiles lost stem " + std::to_string(w.stem), ExitCode::internal);
+        }
+        const auto [set, line] = i ? at_[*i] : query_at_[*q];
+        if (i) {  // kept in memory, whole: its line's bound tested as a file's would be
+            if (!bound_passes(crease_line_bound(*sets_[set], line, w.bound, parts_.lo, parts_.hi))) continue;
+        }
+        if (set_detail_[set] != w.d) thin.push_back(picks.size());
+        picks.push_back({w.stem, sets_[set], line}), pick_d.push_back(w.d);
     }
     for (int d = 1; d <= crease_detail_levels && !thin.empty(); ++d) {  // thinned as the copies are
         DrapedLineSet full;
         std::vector<std::size_t> at;
         for (const std::size_t p : thin)
-            if (wanted[p].second == d) {
+            if (pick_d[p] == d) {
                 const DrapedLine& l = picks[p].set->lines[picks[p].line];
                 DrapedLine c = l;
                 c.first = std::uint32_t(full.vertices.size());

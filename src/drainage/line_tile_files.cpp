@@ -17,7 +17,7 @@ namespace penink {
 namespace {
 
 constexpr std::uint32_t magic = 0x544c4e50u;  // "PNLT"
-constexpr std::uint32_t version = 6;
+constexpr std::uint32_t version = 7;
 // A vertex's six codes (line_lattice.hpp: x, y, z, the normal's a and b, the flow), each
 // predicted from the vertices before it on its line: x, y, z from the two before (a line's steps
 // turn slowly: the step repeated), the others from the one before; a line's first vertex from the
@@ -203,7 +203,8 @@ std::vector<std::uint8_t> encode_line_tile(std::uint64_t key, const LineLattice&
     return out;
 }
 
-bool decode_line_tile(const std::uint8_t* data, std::size_t size, std::uint64_t key, TileLines& out) {
+bool decode_line_tile(const std::uint8_t* data, std::size_t size, std::uint64_t key, TileLines& out,
+                      const TileNeed& need) {
     if (size < 8) return false;
     std::uint64_t sum;
     std::memcpy(&sum, data + size - 8, 8);
@@ -228,12 +229,13 @@ bool decode_line_tile(const std::uint8_t* data, std::size_t size, std::uint64_t 
     if (!part(ids, ids_n) || !part(bound, bound_n) || !part(coded, coded_n) || r.at != r.size) return false;
     DrapedLineSet& lines = out.lines;
     lines = DrapedLineSet{};
-    if (!decode_lines(coded, std::size_t(coded_n), nl, std::size_t(nv), lattice, lines)) return false;
     std::vector<std::uint32_t>& stems = out.stems;
     stems.resize(nl), out.bounds.resize(nl);
     if (!decode_stem_ids(ids, std::size_t(ids_n), stems.data(), nl) ||
         !decode_stem_bounds(bound, std::size_t(bound_n), out.bounds.data(), nl))
         return false;
+    if (need && !need(out)) return true;
+    if (!decode_lines(coded, std::size_t(coded_n), nl, std::size_t(nv), lattice, lines)) return false;
     index_lines(lines);
     return line_set_ok(lines);
 }
@@ -247,7 +249,7 @@ bool write_line_tile(const std::string& path, std::uint64_t key, const LineLatti
     return write_cache_file(path, {out}) == 0;
 }
 
-bool read_line_tile(const std::string& path, std::uint64_t key, TileLines& out) {
+bool read_line_tile(const std::string& path, std::uint64_t key, TileLines& out, const TileNeed& need) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) return false;
     const auto size = std::filesystem::file_size(path, ec);
@@ -255,7 +257,7 @@ bool read_line_tile(const std::string& path, std::uint64_t key, TileLines& out) 
     if (ec || !f) return false;
     std::vector<std::uint8_t> in(size);
     if (!f.read(reinterpret_cast<char*>(in.data()), std::streamsize(size)) || f.peek() != EOF) return false;
-    return decode_line_tile(in.data(), in.size(), key, out);
+    return decode_line_tile(in.data(), in.size(), key, out, need);
 }
 
 }  // namespace penink

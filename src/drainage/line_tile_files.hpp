@@ -6,7 +6,8 @@
 // was built from: the caller's hash of the database's identity, the tile size and the tile's
 // index), the lattice its vertices lie on (line_lattice.hpp: the build drapes every crease vertex
 // on it, so the file codes them without loss), the stems' ids (the first, then each one's step
-// from the one before, as u32 bytes, deflated) and bounds (stem_reach.hpp encode_stem_bounds), so
+// from the one before, as u32 bytes, deflated) and their lines' bounds (crease_tiles.hpp
+// crease_line_bound; coded by stem_reach.hpp encode_stem_bounds), so
 // that a query tests them without the database's index, the lines and their vertices, and a
 // hash64 of all that. The lines and vertices are coded as integers: each vertex's six lattice
 // codes (x, y, z, the normal's two, the flow: vertex_code) less their prediction (along its line,
@@ -29,6 +30,7 @@
 // bounds, u64 coded size, the coded lines and vertices, u64 hash64 of every byte before it.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "drainage/line_lattice.hpp"
@@ -49,13 +51,19 @@ struct TileLines {
     std::vector<StemBound> bounds;
 };
 
+// Whether a tile file's lines are needed, from its stems and bounds (decoded first: `lines` still
+// empty); where not, the lines are not decoded (a query whose test passes none of its stems).
+using TileNeed = std::function<bool(const TileLines&)>;
+
 // The bytes of a tile file holding `lines`, of stems `stems` with bounds `bounds` (one each a line),
 // their vertices on `lattice`; none when a vertex is not on it (vertex_code).
 std::vector<std::uint8_t> encode_line_tile(std::uint64_t key, const LineLattice& lattice, const DrapedLineSet& lines,
                                            const std::vector<std::uint32_t>& stems, const std::vector<StemBound>& bounds);
 // Decodes a tile file's bytes written with `key`: true with its lines (indexed: index_lines),
 // false when they are of another key or version, or damaged (short, checksum, sizes, coding).
-bool decode_line_tile(const std::uint8_t* data, std::size_t size, std::uint64_t key, TileLines& out);
+// With `need`: its stems and bounds alone (lines empty) where need says no line is needed.
+bool decode_line_tile(const std::uint8_t* data, std::size_t size, std::uint64_t key, TileLines& out,
+                      const TileNeed& need = {});
 
 // Writes the tile atomically (creating the folder); false when it cannot be written (a
 // read-only folder, a full disk, a vertex not on the lattice): the tile then stays in memory only.
@@ -63,6 +71,6 @@ bool write_line_tile(const std::string& path, std::uint64_t key, const LineLatti
                      const std::vector<std::uint32_t>& stems, const std::vector<StemBound>& bounds);
 // Reads the tile written with `key` (decode_line_tile); false also when the file is absent or
 // not a regular file.
-bool read_line_tile(const std::string& path, std::uint64_t key, TileLines& out);
+bool read_line_tile(const std::string& path, std::uint64_t key, TileLines& out, const TileNeed& need = {});
 
 }  // namespace penink

@@ -112,6 +112,19 @@ StemBound stem_bound(glm::vec2 reach_lo, glm::vec2 reach_hi, StemTravel t, glm::
     return b;
 }
 
+StemBound stem_line_bound(glm::vec2 box_lo, glm::vec2 box_hi, StemTravel t, const StemBound& reach, glm::vec2 lo,
+                          glm::vec2 hi) {
+    StemBound b;
+    if (box_lo.x <= box_hi.x && box_lo.y <= box_hi.y)
+        b.x0 = std::max(reach.x0, step_of(box_lo.x, lo.x, hi.x, false)),
+        b.y0 = std::max(reach.y0, step_of(box_lo.y, lo.y, hi.y, false)),
+        b.x1 = std::min(reach.x1, step_of(box_hi.x, lo.x, hi.x, true)),
+        b.y1 = std::min(reach.y1, step_of(box_hi.y, lo.y, hi.y, true));
+    // (bfloat16 bits order as their values: non-negative)
+    b.plan = std::min(reach.plan, bfloat_up(t.plan)), b.rise = std::min(reach.rise, bfloat_up(t.rise));
+    return b;
+}
+
 void stem_bound_box(const StemBound& b, glm::vec2 lo, glm::vec2 hi, glm::vec2& box_lo, glm::vec2& box_hi) {
     if (b.x1 < b.x0 || b.y1 < b.y0) {
         box_lo = glm::vec2(std::numeric_limits<float>::infinity()), box_hi = -box_lo;

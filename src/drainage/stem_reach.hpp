@@ -76,6 +76,14 @@ struct StemBound {
 };
 // The bound of a stem whose reach's plan box is [reach_lo, reach_hi] and cells' travel `t`.
 StemBound stem_bound(glm::vec2 reach_lo, glm::vec2 reach_hi, StemTravel t, glm::vec2 lo, glm::vec2 hi);
+// The bound of a stem's built crease line, no looser than its stem's bound `reach` (on the same
+// box [lo, hi]): the plan box of its vertices rounded outward, its plan length and its rise (the
+// sums of |dxy| and |dz| along it: `t`, unscaled) rounded up, each field the tighter of the two (the
+// boxes intersected). Its length bound at any exaggeration holds the line's 3-D length and its box
+// every vertex, so a test growing with both (CreaseTiles::LineTest) passes it whenever it passes
+// the line, and fails it whenever it fails `reach`.
+StemBound stem_line_bound(glm::vec2 box_lo, glm::vec2 box_hi, StemTravel t, const StemBound& reach, glm::vec2 lo,
+                          glm::vec2 hi);
 // The plan box the bound stands for (holding reach ∩ [lo, hi]; empty, hi < lo, for an empty
 // reach), its plan and rise bounds (at least the factors' products above) and its length bound at
 // vertical exaggeration e >= 0: plan + e rise.

@@ -352,11 +352,52 @@ TEST(CreaseTiles, StoredTilesAreReadByTheNextInstanceAndDamagedOnesRebuilt) {
     EXPECT_EQ(differing(other, db, lo, hi, strict), 0u);
     EXPECT_EQ(other.tiles_read(), 0u);
     EXPECT_EQ(other.tiles_written(), built);
-    // a folder that cannot be written: the stems stay in memory, the lines the same
+    // a folder that cannot be written: the stems stay in memory, the lines the same; every stem
+    // whose index bound passes is kept (a later query may pass others by their lines' bounds),
+    // where the files keep only those whose line's bound passes too
     CreaseTiles nowhere(g, res.dir, res.net, 64, TileStore{"/proc/penink-no-such-folder", 42});
     EXPECT_EQ(differing(nowhere, db, lo, hi, strict), 0u);
     EXPECT_EQ(nowhere.tiles_written(), 0u);
-    EXPECT_EQ(nowhere.stems_built(), kept);
+    CreaseTiles in_memory(g, res.dir, res.net, 64);
+    EXPECT_EQ(differing(in_memory, db, lo, hi, strict), 0u);
+    EXPECT_EQ(nowhere.stems_built(), in_memory.stems_built());
+    EXPECT_LT(kept, in_memory.stems_built());
+}
+
+// A stem's line bound (crease_line_bound) passes a screen-size test wherever its line does, is
+// never looser than its index bound, and passes far fewer stems on a distant view: the lines a
+// query gives are those whose line bound passes, whether read, built or kept from before.
+TEST(CreaseTiles, LineBoundsHoldTheirLinesAndPassFewerStems) {
+    const JacksboroNetwork n;
+    const DrainageDb& db = n.db;
+    CreaseTiles tiles(n.g, n.res.dir, n.res.net, 64);
+    const CreaseTileIndex index = tiles.index();
+    ASSERT_EQ(index.stems.size(), db.creases.lines.size());
+    std::size_t line_pass = 0, index_pass = 0, tight_pass = 0;
+    for (const SizeTest& t : {SizeTest{n.lo, 0.05, 2.0}, SizeTest{n.lo, 0.02, 0.5}}) {
+        for (std::uint32_t i = 0; i < index.stems.size(); ++i) {
+            const StemBound& reach = index.stems[i];
+            const StemBound b = crease_line_bound(db.creases, i, reach, index.parts.lo, index.parts.hi);
+            ASSERT_LE(b.plan, reach.plan);
+            ASSERT_LE(b.rise, reach.rise);
+            glm::vec2 blo, bhi, rlo, rhi;
+            stem_bound_box(b, index.parts.lo, index.parts.hi, blo, bhi);
+            stem_bound_box(reach, index.parts.lo, index.parts.hi, rlo, rhi);
+            ASSERT_TRUE(blo.x >= rlo.x && blo.y >= rlo.y && bhi.x <= rhi.x && bhi.y <= rhi.y) << i;
+            const DrapedLine& l = db.creases.lines[i];
+            ASSERT_TRUE(blo.x <= l.lo.x && blo.y <= l.lo.y && bhi.x >= l.hi.x && bhi.y >= l.hi.y) << i;
+            const bool line = t.line(db.creases, i), tight = t.bound()(b, blo, bhi, index.z_top),
+                       loose = t.bound()(reach, rlo, rhi, index.z_top);
+            ASSERT_TRUE(!line || tight) << i;
+            ASSERT_TRUE(!tight || loose) << i;
+            line_pass += line, tight_pass += tight, index_pass += loose;
+        }
+    }
+    ASSERT_GT(line_pass, 100u);
+    EXPECT_LT(double(tight_pass), 0.8 * double(index_pass));
+    ::testing::Test::RecordProperty("lines_passing", int(line_pass));
+    ::testing::Test::RecordProperty("line_bounds_passing", int(tight_pass));
+    ::testing::Test::RecordProperty("index_bounds_passing", int(index_pass));
 }
 
 // Thinning keeps each line's ends and the vertices a spacing apart, and gives a thinned line back
