@@ -14,6 +14,7 @@
 
 #include "cli/commands.hpp"
 #include "core/error.hpp"
+#include "core/huge_page_malloc.hpp"
 
 namespace {
 
@@ -36,6 +37,11 @@ bool threads_can_start() {
 // Every file is closed by the time run_cli returns: the process then ends without the libraries'
 // teardown at exit (GDAL's drivers, PROJ's database: a few milliseconds of every command).
 int main(int argc, char** argv) {
+    // The commands that draw frames run with their heap in huge pages (core/huge_page_malloc.hpp):
+    // the restart costs one more start of the program (about 0.1 s), their frames' page faults far more.
+    if (argc > 1 && (std::strcmp(argv[1], "render") == 0 || std::strcmp(argv[1], "batch") == 0 ||
+                     std::strcmp(argv[1], "preview") == 0))
+        penink::restart_with_huge_page_malloc(argv);
 #ifdef __GLIBC__
     // Per-cell arrays up to 32 MiB come from the heap and stay there once freed, so the next
     // stage's arrays reuse pages already faulted in instead of glibc unmapping them (a TLB

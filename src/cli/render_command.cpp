@@ -11,6 +11,7 @@
 #include "scene/map_scale.hpp"
 #include "scene/scene_inputs.hpp"
 #include "core/error.hpp"
+#include "core/huge_page_malloc.hpp"
 #include "scene/frame_output.hpp"
 
 namespace penink {
@@ -75,6 +76,7 @@ int run_render(const RenderOptions& o) {
     const auto start = std::chrono::steady_clock::now();
     const Log log{o.log.verbose, progress_mode(o.log.quiet, o.log.progress || o.log.verbose)};  // -v: the builds' progress too
     check_outputs(o, o.width > 0 ? o.width : 1, o.height > 0 ? o.height : 1);
+    if (heap_in_huge_pages()) log.info("heap in transparent huge pages (GLIBC_TUNABLES glibc.malloc.hugetlb)");
     Scene scene = load_scene_with_overrides(o);
     apply_map_scale(scene, page_options(o));
     check_outputs(o, scene.view.camera.width, scene.view.camera.height);
