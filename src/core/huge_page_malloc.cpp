@@ -13,14 +13,13 @@ namespace {
 
 constexpr const char* tunable = "glibc.malloc.hugetlb";
 
-// Whether the kernel can give huge pages to memory advised for them ("always" or "madvise").
-bool kernel_has_huge_pages() {
+}  // namespace
+
+bool kernel_gives_huge_pages() {
     std::ifstream f("/sys/kernel/mm/transparent_hugepage/enabled");
     std::string modes;
     return std::getline(f, modes) && modes.find("[never]") == std::string::npos;
 }
-
-}  // namespace
 
 std::string huge_page_tunables(const char* current) {
     if (current && std::strstr(current, tunable)) return {};
@@ -39,7 +38,7 @@ void restart_with_huge_page_malloc(char** argv) noexcept {
         if (with.empty()) return;
         if (const char* off = std::getenv("PENINK_HUGE_PAGES"); off && std::strcmp(off, "0") == 0) return;
         if (const char* preload = std::getenv("LD_PRELOAD"); preload && std::strstr(preload, "vgpreload")) return;
-        if (!kernel_has_huge_pages()) return;
+        if (!kernel_gives_huge_pages()) return;
         char exe[4096];
         const ssize_t n = ::readlink("/proc/self/exe", exe, sizeof exe - 1);
         if (n <= 0) return;

@@ -24,6 +24,9 @@ void restart_with_huge_page_malloc(char** argv) noexcept;
 // GLIBC_TUNABLES for the restart from its value now (`current`, null when unset): it with
 // glibc.malloc.hugetlb=1 appended (':' between tunables); empty when it already names that tunable.
 std::string huge_page_tunables(const char* current);
+// Whether the kernel gives transparent huge pages to memory advised for them (its mode "always" or
+// "madvise", not "never"; false where it does not say).
+bool kernel_gives_huge_pages();
 // Whether this process's GLIBC_TUNABLES names glibc.malloc.hugetlb (it was restarted so, or set by hand).
 bool heap_in_huge_pages();
 

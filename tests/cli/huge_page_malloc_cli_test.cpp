@@ -3,10 +3,10 @@
 // runs it as it is; the SVG is byte for byte the same either way.
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <string>
 
 #include "cli_support.hpp"
+#include "core/huge_page_malloc.hpp"
 
 using namespace penink::test;
 
@@ -14,12 +14,6 @@ namespace {
 
 const std::string volcano = PENINK_SOURCE_DIR "/examples/volcano.asc";
 const std::string said = "heap in transparent huge pages";
-
-bool kernel_has_huge_pages() {
-    std::ifstream f("/sys/kernel/mm/transparent_hugepage/enabled");
-    std::string modes;
-    return std::getline(f, modes) && modes.find("[never]") == std::string::npos;
-}
 
 }  // namespace
 
@@ -34,10 +28,10 @@ TEST(HugePageMalloc, RenderRestartsInHugePagesWithTheSameDrawing) {
     EXPECT_EQ(plain.output.find(said), std::string::npos) << plain.output;
     const RunResult huge = with("", "huge.svg");
     ASSERT_EQ(huge.code, 0) << huge.output;
-    EXPECT_EQ(huge.output.find(said) != std::string::npos, kernel_has_huge_pages()) << huge.output;
+    EXPECT_EQ(huge.output.find(said) != std::string::npos, penink::kernel_gives_huge_pages()) << huge.output;
     const RunResult kept = with("GLIBC_TUNABLES=glibc.malloc.check=0", "kept.svg");
     ASSERT_EQ(kept.code, 0) << kept.output;
-    EXPECT_EQ(kept.output.find(said) != std::string::npos, kernel_has_huge_pages()) << kept.output;
+    EXPECT_EQ(kept.output.find(said) != std::string::npos, penink::kernel_gives_huge_pages()) << kept.output;
     const RunResult by_hand = with("GLIBC_TUNABLES=glibc.malloc.hugetlb=1 PENINK_HUGE_PAGES=0", "by_hand.svg");
     ASSERT_EQ(by_hand.code, 0) << by_hand.output;
     EXPECT_NE(by_hand.output.find(said), std::string::npos) << by_hand.output;
