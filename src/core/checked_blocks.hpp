@@ -105,6 +105,15 @@ public:
     // Throws DamagedBlockError as need does.
     void read_strided(int k, std::uint64_t begin, std::uint64_t end, std::uint64_t every, void* out,
                       bool derive = true) const;
+    // The derived part of elements first, first + every, ... (n of them) of array k into out
+    // (out[j]: element first + j * every; their stored part left as it is), read from no block;
+    // false (nothing written) for an array without a Deriver.
+    bool derive(int k, std::uint64_t first, std::uint64_t every, std::size_t n, void* out) const {
+        const Slot& a = arrays_[std::size_t(k)];
+        if (!a.derive) return false;
+        if (n > 0) a.derive(out, first, every, n);
+        return true;
+    }
     // Bytes read from the file so far (blocks checked), and blocks of all arrays.
     std::uint64_t bytes_read() const { return bytes_read_.load(std::memory_order_relaxed); }
     std::uint64_t blocks_read() const { return blocks_read_.load(std::memory_order_relaxed); }

@@ -51,6 +51,12 @@ struct GridNodes {
     // as read_strided reads (no block kept) without making any derived x, y. `scratch` is the
     // caller's (resized).
     void read_heights(std::size_t i0, std::size_t i1, float* z, std::vector<glm::vec3>& scratch) const;
+    // The x, y of nodes first, first + every, ... (count of them) into out[j].x, .y (z left as it
+    // is), from the grid's formula without reading a block, where a terrain cache derives them
+    // (stores z alone); false, nothing written, where x, y are stored or the nodes are in memory.
+    bool derive_xy(std::uint64_t first, std::uint64_t every, std::size_t count, glm::vec3* out) const {
+        return blocks && blocks->derive(pos_array, first, every, count, out);
+    }
     // Whether node i holds data.
     bool has_data(std::size_t i) const {
         need(i, i + 1);

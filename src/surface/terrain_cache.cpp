@@ -90,6 +90,14 @@ std::uint64_t block_count(std::uint64_t elems, unsigned shift) {
 // they are, errors as they are (neighbouring entries belong to different levels of the pyramid,
 // so differences do not shrink them).
 constexpr int pos_orders[3] = {2, 2, 1}, z_orders[1] = {1}, error_orders[1] = {0};
+// The node lattice (terrain_lod.hpp, LatticeNode): its seven heights differenced once along a
+// block (a lattice row's nodes lod_lattice_step apart), the flags and the error as they are.
+constexpr int lattice_orders[9] = {1, 1, 1, 1, 1, 1, 1, 0, 0};
+static_assert(sizeof(LatticeNode) == 9 * sizeof(float));
+// Elements of the node lattice of a cols x rows grid whose x, y are derived (none otherwise).
+std::uint64_t lattice_count(int cols, int rows, bool derived) {
+    return derived ? std::uint64_t(lattice_size(cols)) * std::uint64_t(lattice_size(rows)) : 0;
+}
 // Header flags: x, y not stored, the node's x, y given by a formula of the grid: the affine grid
 // (a projected DEM), or the projection of the node's longitude, latitude (a geographic DEM).
 constexpr std::uint32_t xy_affine = 1, xy_geographic = 2;
@@ -265,9 +273,27 @@ private:
 };
 
 struct CodedTerrain {
-    CodedBlocks pos, valid, error;
+    CodedBlocks pos, valid, error, lattice;
     std::uint32_t flags = 0;
 };
+// The node lattice of nodes z (stored, row by row), flags v and errors e (cols x rows each).
+std::vector<LatticeNode> node_lattice(int cols, int rows, const glm::vec3* pos, const std::uint8_t* v, const float* e) {
+    std::vector<LatticeNode> lattice(std::size_t(lattice_count(cols, rows, true)));
+    std::vector<float> z(static_cast<std::size_t>(cols));
+    for (int r = 0; r < rows; ++r) {
+        const std::size_t at = std::size_t(r) * std::size_t(cols);
+        if (r % lod_lattice_step > 1 && r % lod_lattice_step < lod_lattice_step - 1) continue;  // read by no lattice node
+        for (int c = 0; c < cols; ++c) z[std::size_t(c)] = pos[at + std::size_t(c)].z;
+        lattice_add_row(cols, rows, r, z.data(), v + at, lattice.data());
+        lattice_add_errors(cols, r, e + at, lattice.data());
+    }
+    return lattice;
+}
+CodedBlocks code_lattice(const std::vector<LatticeNode>& lattice) {
+    return code_blocks(lattice.size(), [&](std::uint64_t i, std::uint64_t k) {
+        return encode_floats(lattice[std::size_t(i)].z, std::size_t(k), lattice_orders);
+    });
+}
 CodedTerrain code_terrain(const StoredTerrain& t) {
     const std::uint64_t nodes = node_count(t.meta.cols, t.meta.rows);
     CodedTerrain c;
@@ -278,6 +304,7 @@ CodedTerrain code_terrain(const StoredTerrain& t) {
             for (std::size_t j = 0; j < z.size(); ++j) z[j] = t.nodes.pos[i + j].z;
             return encode_floats(z.data(), z.size(), z_orders);
         });
+        c.lattice = code_lattice(node_lattice(t.meta.cols, t.meta.rows, t.nodes.pos, t.nodes.valid, t.lod.error.data()));
     } else {
         c.pos = code_blocks(nodes, [&](std::uint64_t i, std::uint64_t k) {
             return encode_floats(&t.nodes.pos[i].x, std::size_t(k), pos_orders);
@@ -292,8 +319,8 @@ CodedTerrain code_terrain(const StoredTerrain& t) {
 
 // Each block's coded size and checksum, of the three arrays (what the header lists).
 struct BlockSums {
-    std::vector<std::uint32_t> sizes[3];
-    std::vector<std::uint64_t> sums[3];
+    std::vector<std::uint32_t> sizes[4];
+    std::vector<std::uint64_t> sums[4];
     std::uint32_t flags = 0;
     void take(int array, std::size_t b, std::span<const std::uint8_t> bytes) {
         sizes[array][b] = std::uint32_t(bytes.size()), sums[array][b] = hash64(bytes.data(), bytes.size());
@@ -302,8 +329,8 @@ struct BlockSums {
 BlockSums block_sums(const CodedTerrain& coded) {
     BlockSums s;
     s.flags = coded.flags;
-    const CodedBlocks* arrays[3] = {&coded.pos, &coded.valid, &coded.error};
-    for (int j = 0; j < 3; ++j) {
+    const CodedBlocks* arrays[4] = {&coded.pos, &coded.valid, &coded.error, &coded.lattice};
+    for (int j = 0; j < 4; ++j) {
         s.sizes[j].resize(arrays[j]->size()), s.sums[j].resize(arrays[j]->size());
         for (std::size_t b = 0; b < arrays[j]->size(); ++b) s.take(j, b, (*arrays[j])[b]);
     }
@@ -312,7 +339,7 @@ BlockSums block_sums(const CodedTerrain& coded) {
 
 // The header and the array offsets of `t` (offsets relative to the file's start).
 std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCacheKey& key, const BlockSums& coded,
-                                        std::uint64_t at[3], std::uint64_t& total) {
+                                        std::uint64_t at[4], std::uint64_t& total) {
     const Terrain& m = t.meta;
     Writer w;
     w.bytes(magic, 8);
@@ -330,25 +357,26 @@ std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCac
     w.put(t.lod.lipschitz), w.put(t.lod.z_min), w.put(t.lod.z_max), w.put(0.0f);
     w.put(t.plan_lo.x), w.put(t.plan_lo.y), w.put(t.plan_hi.x), w.put(t.plan_hi.y);
     const std::size_t offsets = w.b.size();
-    for (int i = 0; i < 4; ++i) w.put(std::uint64_t(0));
+    for (int i = 0; i < 5; ++i) w.put(std::uint64_t(0));
     w.put(std::uint64_t(m.crs_wkt.size()));
     w.bytes(m.crs_wkt.data(), m.crs_wkt.size());
     while (w.b.size() % 8) w.b.push_back(0);
     // each block's coded size, then its checksum, the three arrays' blocks in turn
     w.put(std::uint32_t(block_shift)), w.put(coded.flags);
+    w.put(std::uint32_t(coded.sizes[3].empty() ? 0 : lod_lattice_step)), w.put(std::uint32_t(0));
     for (const auto& sizes : coded.sizes) w.bytes(sizes.data(), sizes.size() * sizeof(std::uint32_t));
     while (w.b.size() % 8) w.b.push_back(0);
     for (const auto& sums : coded.sums) w.bytes(sums.data(), sums.size() * sizeof(std::uint64_t));
     const std::uint32_t length = std::uint32_t(w.b.size() + 8);
     std::memcpy(w.b.data() + 12, &length, 4);
     at[0] = length;
-    for (int j = 0; j < 3; ++j) {
+    for (int j = 0; j < 4; ++j) {
         std::uint64_t bytes = 0;
         for (const std::uint32_t n : coded.sizes[j]) bytes += n;
-        (j < 2 ? at[j + 1] : total) = at[j] + bytes;
+        (j < 3 ? at[j + 1] : total) = at[j] + bytes;
     }
-    std::memcpy(w.b.data() + offsets, at, 24);
-    std::memcpy(w.b.data() + offsets + 24, &total, 8);
+    std::memcpy(w.b.data() + offsets, at, 32);
+    std::memcpy(w.b.data() + offsets + 32, &total, 8);
     w.put(hash64(w.b.data(), w.b.size()));
     return w.b;
 }
@@ -359,10 +387,10 @@ std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCac
 
 // The file of t's header fields and its coded arrays.
 void write_coded(const std::string& path, const StoredTerrain& t, const TerrainCacheKey& key, const CodedTerrain& coded) {
-    std::uint64_t at[3], total = 0;
+    std::uint64_t at[4], total = 0;
     const std::vector<std::uint8_t> header = encode_header(t, key, block_sums(coded), at, total);
     std::vector<std::span<const std::uint8_t>> parts{header};
-    for (const CodedBlocks* a : {&coded.pos, &coded.valid, &coded.error})
+    for (const CodedBlocks* a : {&coded.pos, &coded.valid, &coded.error, &coded.lattice})
         for (const auto& b : *a) parts.emplace_back(b);
     if (const int err = write_cache_file(path, parts)) write_failed(path, err);
 }
@@ -460,10 +488,11 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
     const std::uint64_t nodes = node_count(m.cols, m.rows);
     BlockSums sums;
     sums.flags = formula->flag;
-    const std::uint64_t counts[3] = {block_count(nodes, block_shift), block_count(nodes, block_shift),
-                                     block_count(nodes, block_shift)};
-    for (int j = 0; j < 3; ++j) sums.sizes[j].assign(std::size_t(counts[j]), 0), sums.sums[j].assign(std::size_t(counts[j]), 0);
-    std::uint64_t at[3], total = 0;
+    std::vector<LatticeNode> lattice(std::size_t(lattice_count(m.cols, m.rows, true)));  // filled as rows and errors come
+    const std::uint64_t counts[4] = {block_count(nodes, block_shift), block_count(nodes, block_shift),
+                                     block_count(nodes, block_shift), block_count(lattice.size(), block_shift)};
+    for (int j = 0; j < 4; ++j) sums.sizes[j].assign(std::size_t(counts[j]), 0), sums.sums[j].assign(std::size_t(counts[j]), 0);
+    std::uint64_t at[4], total = 0;
     const std::size_t head = encode_header(t, key, sums, at, total).size();
     CacheFileStream out(path);
     if (const int err = out.append(std::vector<std::uint8_t>(head, 0))) write_failed(path, err);
@@ -532,6 +561,9 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
                 all.lipschitz2 = std::max(all.lipschitz2, sum.lipschitz2);
             });
             if (!exact.load()) throw NotFormulaXY{};
+            for (std::size_t i = 0; i < k; ++i)
+                lattice_add_row(m.cols, m.rows, win_end + int(i), win_z.data() + old + i * w,
+                                win_valid.data() + old + i * w, lattice.data());
             z_blocks.add(win_z.data() + old, k * w);
             valid_blocks.add(win_valid.data() + old, k * w);
             win_end = r1;
@@ -545,7 +577,8 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
         lod_errors(LodHeights{m.cols, m.rows, nullptr, nullptr, load}, LodStrips{}, [&](int r0, int r1, const float* e) {
             if (r0 >= m.rows) return;  // padding alone
             dem_rows.resize(std::size_t(std::min(r1, m.rows) - r0) * std::size_t(m.cols));
-            lod_dem_rows(m.cols, m.rows, side, r0, r1, e, dem_rows.data());
+            const int n = lod_dem_rows(m.cols, m.rows, side, r0, r1, e, dem_rows.data());
+            for (int i = 0; i < n; ++i) lattice_add_errors(m.cols, r0 + i, dem_rows.data() + std::size_t(i) * w, lattice.data());
             errors.add(std::uint64_t(r0) * std::uint64_t(m.cols), dem_rows.data(), dem_rows.size());
         });
     } catch (const NotFormulaXY&) {
@@ -566,6 +599,12 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
         sums.take(2, b, errors.block(b));
         if (const int err = out.append(errors.block(b))) write_failed(path, err);
     }
+    code_batches(lattice.size(), [&](std::uint64_t i, std::uint64_t k) {
+        return encode_floats(lattice[std::size_t(i)].z, std::size_t(k), lattice_orders);
+    }, [&](std::size_t b, std::span<const std::uint8_t> bytes) {
+        sums.take(3, b, bytes);
+        if (const int err = out.append(bytes)) write_failed(path, err);
+    });
     const std::vector<std::uint8_t> header = encode_header(t, key, sums, at, total);
     if (header.size() != head) throw std::logic_error("terrain cache: header length changed");
     if (const int err = out.finish(header)) write_failed(path, err);
@@ -699,7 +738,7 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     t.lod.lipschitz = r.get<float>(), t.lod.z_min = r.get<float>(), t.lod.z_max = r.get<float>();
     r.get<float>();
     t.plan_lo.x = r.get<double>(), t.plan_lo.y = r.get<double>(), t.plan_hi.x = r.get<double>(), t.plan_hi.y = r.get<double>();
-    std::uint64_t at[3];
+    std::uint64_t at[4];
     for (std::uint64_t& a : at) a = r.get<std::uint64_t>();
     const std::uint64_t total = r.get<std::uint64_t>(), crs = r.get<std::uint64_t>();
     if (!r.ok || crs > max_crs_bytes || crs > r.n - r.at) return fail(why, "damaged terrain cache (header)");
@@ -708,18 +747,22 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     if (m.cols < 2 || m.rows < 2 || std::max(m.cols, m.rows) > (1 << 30) || levels != lod_padded_levels(m.cols, m.rows))
         return fail(why, "damaged terrain cache (grid)");
     const std::uint64_t nodes = node_count(m.cols, m.rows);
-    if (total != size || at[0] < length || at[1] < at[0] || at[2] < at[1] || total < at[2])
+    if (total != size || at[0] < length || at[1] < at[0] || at[2] < at[1] || at[3] < at[2] || total < at[3])
         return fail(why, "damaged terrain cache (lengths)");
     const std::uint32_t shift = r.get<std::uint32_t>(), flags = r.get<std::uint32_t>();
+    const std::uint32_t step = r.get<std::uint32_t>(), reserved = r.get<std::uint32_t>();
     if (!r.ok || shift < min_block_shift || shift > max_block_shift || (flags & ~(xy_affine | xy_geographic)) != 0 ||
-        flags == (xy_affine | xy_geographic))
+        flags == (xy_affine | xy_geographic) || (step != 0 && (step != std::uint32_t(lod_lattice_step) || !flags)) ||
+        reserved != 0)
         return fail(why, "damaged terrain cache (block checksums)");
-    const std::uint64_t counts[3] = {block_count(nodes, shift), block_count(nodes, shift), block_count(nodes, shift)};
-    const std::uint64_t blocks = counts[0] + counts[1] + counts[2];
+    const std::uint64_t lattice = lattice_count(m.cols, m.rows, step != 0);
+    const std::uint64_t counts[4] = {block_count(nodes, shift), block_count(nodes, shift), block_count(nodes, shift),
+                                     block_count(lattice, shift)};
+    const std::uint64_t blocks = counts[0] + counts[1] + counts[2] + counts[3];
     if (align_up(blocks * 4, 8) + blocks * 8 != r.n - r.at) return fail(why, "damaged terrain cache (block checksums)");
-    std::vector<CheckedBlocks::CodedArray> arrays(3);
+    std::vector<CheckedBlocks::CodedArray> arrays(4);
     const std::uint8_t* sizes = b + r.at;
-    for (int j = 0; j < 3; ++j) {
+    for (int j = 0; j < 4; ++j) {
         CheckedBlocks::CodedArray& a = arrays[std::size_t(j)];
         a.offset = at[j], a.shift = shift;
         // 4-byte aligned: the header is allocated aligned and its tables start at a multiple of 8
@@ -727,7 +770,7 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
         sizes += counts[j] * 4;
         std::uint64_t coded = 0;
         for (const std::uint32_t c : a.sizes) coded += c;
-        if (at[j] + coded != (j < 2 ? at[j + 1] : total)) return fail(why, "damaged terrain cache (lengths)");
+        if (at[j] + coded != (j < 3 ? at[j + 1] : total)) return fail(why, "damaged terrain cache (lengths)");
     }
     arrays[0].elems = nodes, arrays[0].elem_bytes = sizeof(glm::vec3);
     if (flags) {
@@ -763,6 +806,10 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     arrays[2].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::uint64_t, std::size_t count) {
         return decode_floats(c, bytes, static_cast<float*>(out), count, error_orders);
     };
+    arrays[3].elems = lattice, arrays[3].elem_bytes = sizeof(LatticeNode);
+    arrays[3].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::uint64_t, std::size_t count) {
+        return decode_floats(c, bytes, static_cast<float*>(out), count, lattice_orders);
+    };
     const auto* stored_sums = reinterpret_cast<const std::uint64_t*>(b + r.at + align_up(blocks * 4, 8));  // 8-aligned
     std::vector<std::uint64_t> sums(stored_sums, stored_sums + blocks);
     std::shared_ptr<CheckedBlocks> coded;
@@ -771,7 +818,8 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     } catch (const std::bad_alloc&) {
         return fail(why, "terrain cache too large for memory");
     }
-    static_assert(GridNodes::pos_array == 0 && GridNodes::valid_array == 1 && TerrainLod::error_array == 2);
+    static_assert(GridNodes::pos_array == 0 && GridNodes::valid_array == 1 && TerrainLod::error_array == 2 &&
+                  TerrainLod::lattice_array == 3);
     t.nodes.cols = m.cols, t.nodes.rows = m.rows;
     t.nodes.pos = static_cast<const glm::vec3*>(coded->data(GridNodes::pos_array));
     t.nodes.valid = static_cast<const std::uint8_t*>(coded->data(GridNodes::valid_array));
@@ -780,6 +828,7 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     t.lod.error = std::span<const float>(static_cast<const float*>(coded->data(TerrainLod::error_array)),
                                          std::size_t(nodes));
     t.lod.blocks = coded.get();
+    t.lod.lattice_step = int(step);
     t.lod.storage = coded;
     t.storage = std::move(coded);
     return t;
@@ -788,6 +837,8 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
 void read_whole(const StoredTerrain& t) {
     t.nodes.need(GridWindow{0, 0, t.nodes.cols, t.nodes.rows});
     if (t.lod.blocks) t.lod.blocks->need(TerrainLod::error_array, 0, t.lod.error.size());
+    if (t.lod.blocks && t.lod.lattice_step)
+        t.lod.blocks->need(TerrainLod::lattice_array, 0, lattice_count(t.lod.cols, t.lod.rows, true));
 }
 
 }  // namespace penink

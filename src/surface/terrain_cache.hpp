@@ -8,7 +8,7 @@
 // Frames and units: the Terrain's local metres (x east, y north, z elevation unexaggerated),
 // row 0 north (conventions.md); GridNodes::z_scale draws them at any exaggeration.
 //
-// File layout, little-endian, version 6 (one header, then three coded arrays):
+// File layout, little-endian, version 7 (one header, then four coded arrays):
 //   "PENINKTC", u32 version, u32 header length (bytes, up to and including its checksum)
 //   key: u64 DEM file size, i64 mtime (ns), u64 content hash, i32 forced UTM zone, u32 north,
 //        u64 the DEM file's identity when the hash was made (TerrainCacheKey::identity)
@@ -16,11 +16,13 @@
 //         f64 xy_unit, elevation_min, elevation_max; i32 utm_zone, u32 north;
 //         f64 angular_unit, prime_meridian
 //   pyramid: f32 lipschitz, z_min, z_max, 0; f64 plan bounds lo.x, lo.y, hi.x, hi.y
-//   u64 offsets of pos, valid, error; u64 file length; u64 CRS length, CRS WKT bytes (padded to 8)
+//   u64 offsets of pos, valid, error, lattice; u64 file length; u64 CRS length, CRS WKT bytes
+//     (padded to 8)
 //   u32 block shift s (blocks of 2^s elements: 256), u32 flags (1 or 2: x, y not stored, see
-//     below); u32 coded size of each block of pos,
-//     then of valid, then of error (each array cut into blocks of elements from its start, the
-//     last one short; padded to 8); u64 hash64 of each block's coded bytes, in the same order
+//     below); u32 lattice step (lod_lattice_step, or 0: no lattice), u32 0; u32 coded size of
+//     each block of pos, then of valid, then of error, then of the lattice (each array cut into
+//     blocks of elements from its start, the last one short; padded to 8); u64 hash64 of each
+//     block's coded bytes, in the same order
 //   u64 checksum: hash64 of every header byte before it
 //   then each array's blocks, coded (core/block_codec.hpp), back to back: pos (f32 x, y, z per
 //   node, cols * rows: encode_floats, x, y differenced twice, z once; with flag 1 or 2, z alone,
@@ -29,7 +31,11 @@
 //   projection of the node's longitude, latitude (input/geographic_nodes.hpp: a geographic DEM
 //   read whole); written so only when the formula gives every node's x, y bit for bit),
 //   valid (u8 per node: encode_bytes), error (f32 per node, cols * rows: encode_floats as they
-//   are; the padded square's other nodes are all +inf, not stored: TerrainLod::error).
+//   are; the padded square's other nodes are all +inf, not stored: TerrainLod::error), and
+//   with flag 1 or 2 the node lattice (terrain_lod.hpp's LatticeNode, nine f32 per node of every
+//   8th row and column, lattice_size(cols) x lattice_size(rows): encode_floats, the heights
+//   differenced once, flags and error as they are; what a coarse mesh's selection reads, 9 MiB
+//   more on jacksboro refined 29 times, 104 MiB in all).
 // The coding is lossless: a frame drawn from the file is the frame drawn from memory, bit for bit.
 // Its size follows the DEM's smoothness: 1.15 bytes a node (0.29 of the DEM's float32 heights) on
 // jacksboro refined 10 times (13.9 M nodes, geographic: x, y derived), 0.85 refined 29 times,
@@ -50,8 +56,9 @@
 // Written to a temporary file and renamed into place. Built from a DEM file by
 // build_terrain_cache in bounded memory: a window of the DEM's rows, the pyramid's strips
 // (lod_errors) and the coded blocks, 402 MB at peak for jacksboro refined 29 times (116.6 M
-// nodes, 95 MiB written) where the whole Terrain and pyramid took 5.19 GB, 2.31 GB for 1.0 G
-// nodes (bench/terrain_cache_build_bench.cpp; docs/timings.md, "Scale").
+// nodes, 95 MiB written before the lattice) where the whole Terrain and pyramid took 5.19 GB,
+// 2.31 GB for 1.0 G nodes (bench/terrain_cache_build_bench.cpp; docs/timings.md, "Scale"); the
+// node lattice is held whole until written (36 bytes every 64 nodes: 0.56 bytes a node).
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -68,7 +75,7 @@
 
 namespace penink {
 
-inline constexpr std::uint32_t terrain_cache_version = 6;
+inline constexpr std::uint32_t terrain_cache_version = 7;
 
 // identity: the DEM file's identity when the key was made (input/dem_file_identity.hpp), stored
 // with it but not compared (a copy of the DEM has another identity and the same key): a cache

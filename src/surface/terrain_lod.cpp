@@ -325,6 +325,32 @@ void lod_errors(const LodHeights& dem, const LodStrips& strips, const std::funct
     }
 }
 
+void lattice_add_row(int cols, int rows, int r, const float* z, const std::uint8_t* v, LatticeNode* lattice) {
+    const int lc = lattice_size(cols), lr = lattice_size(rows);
+    for (int dr = -1; dr <= 1; ++dr) {  // the lattice row at r - dr reads this row as its neighbours' row dr
+        const int at = r - dr;
+        if (at < 0 || at % lod_lattice_step != 0 || at / lod_lattice_step >= lr) continue;
+        LatticeNode* row = lattice + std::size_t(at / lod_lattice_step) * std::size_t(lc);
+        for (int k = 0; k < 7; ++k) {
+            if (lattice_neighbours[k][1] != dr) continue;
+            for (int j = 0; j < lc; ++j) {
+                const int c = j * lod_lattice_step + lattice_neighbours[k][0];
+                if (c < 0 || c >= cols) continue;
+                LatticeNode& n = row[j];
+                n.z[k] = z[c];
+                if (v[c]) n.valid = float(int(n.valid) | (1 << k));
+            }
+        }
+    }
+}
+
+void lattice_add_errors(int cols, int r, const float* e, LatticeNode* lattice) {
+    if (r % lod_lattice_step != 0) return;
+    const int lc = lattice_size(cols);
+    LatticeNode* row = lattice + std::size_t(r / lod_lattice_step) * std::size_t(lc);
+    for (int j = 0; j < lc; ++j) row[j].error = e[j * lod_lattice_step];
+}
+
 int lod_dem_rows(int cols, int rows, int side, int r0, int r1, const float* e, float* out) {
     const int n = std::max(0, std::min(r1, rows) - r0);
     for (int j = 0; j < n; ++j)
@@ -497,6 +523,10 @@ public:
         vz2_ = vz * vz;
         frustum_ = frustum_of(cam);
         if (lod.blocks) errors_.emplace(*lod.blocks, TerrainLod::error_array, 4096);
+        if (lod.blocks && lod.lattice_step == lod_lattice_step && t.derive_xy(0, 1, 0, nullptr))
+            lattice_.emplace(*lod.blocks, TerrainLod::lattice_array, 512);
+        derives_ = t.derive_xy(0, 1, 0, nullptr);
+        lattice_cols_ = std::size_t(lattice_size(cols_));
     }
 
     SurfaceMesh run(LodSelection* stats) {
@@ -576,6 +606,12 @@ private:
     // selection of a whole view touches a few nodes in most blocks of a large DEM.
     mutable NodePointReader reader_;
     mutable std::optional<CheckedBlocks::Cached> errors_;
+    // The node lattice (TerrainLod::lattice_step; none: empty), its last node read, and whether
+    // the nodes' x, y come from the grid's formula (GridNodes::derive_xy) without a block read.
+    mutable std::optional<CheckedBlocks::Cached> lattice_;
+    mutable LatticeNode lattice_node_;
+    mutable std::size_t lattice_at_ = std::size_t(-1), lattice_cols_ = 0;
+    bool derives_ = false;
     int side_, cols_, rows_;
     std::vector<std::uint32_t>* nodes_;
     LevelRadii radii_;
@@ -593,12 +629,38 @@ private:
         if (lod_.padding(c, r)) return kInf;
         const std::size_t k = lod_.index(c, r);
         float e;
-        if (errors_) std::memcpy(&e, errors_->element(k), sizeof e);
+        if (on_lattice(c, r)) e = lattice(c, r).error;
+        else if (errors_) std::memcpy(&e, errors_->element(k), sizeof e);
         else e = lod_.error[k];
         return water_ > 0.0f ? e + water_ : e;
     }
     bool in_dem(int c, int r) const { return c < cols_ && r < rows_; }
-    bool ok(int c, int r) const { return in_dem(c, r) && reader_.has_data(t_.index(c, r)); }
+    bool ok(int c, int r) const { return in_dem(c, r) && has_data(c, r); }
+
+    // Node (c, r) of the DEM: on the lattice, read there (a copy, until the next lattice node).
+    bool on_lattice(int c, int r) const {
+        return lattice_ && c % lod_lattice_step == 0 && r % lod_lattice_step == 0;
+    }
+    const LatticeNode& lattice(int c, int r) const {
+        const std::size_t k = std::size_t(r / lod_lattice_step) * lattice_cols_ + std::size_t(c / lod_lattice_step);
+        if (k != lattice_at_) std::memcpy(&lattice_node_, lattice_->element(k), sizeof lattice_node_), lattice_at_ = k;
+        return lattice_node_;
+    }
+    bool has_data(int c, int r) const {
+        if (on_lattice(c, r)) return (int(lattice(c, r).valid) & 1) != 0;
+        return reader_.has_data(t_.index(c, r));
+    }
+    // Its position as drawn (GridNodes::at), and its plan position alone (z unset where derived).
+    glm::vec3 at(int c, int r) const {
+        if (!on_lattice(c, r)) return reader_.at(c, r);
+        glm::vec3 p(0.0f, 0.0f, lattice(c, r).z[0]);
+        t_.derive_xy(t_.index(c, r), 1, 1, &p);
+        return t_.drawn(p);
+    }
+    glm::vec3 plan(int c, int r) const {
+        glm::vec3 p(0.0f);
+        return derives_ && t_.derive_xy(t_.index(c, r), 1, 1, &p) ? p : reader_.at(c, r);
+    }
 
     // Lindstrom & Pascucci's test: error projected at the distance from the eye to the node's
     // bounding region exceeds the tolerance. Monotone from a node to its parents.
@@ -607,7 +669,7 @@ private:
         if (!(err < kInf)) return true;  // forced (or NaN)
         if (!(err > 0.0f)) return false;
         if (!in_dem(c, r)) return true;  // cannot happen: padding nodes are forced
-        const glm::vec3 p = reader_.at(c, r);  // plan position: z unused
+        const glm::vec3 p = plan(c, r);  // z unused
         const double dx = double(p.x) - eye_.x, dy = double(p.y) - eye_.y;
         int level = 0;
         bool centre = false;
@@ -633,7 +695,7 @@ private:
         if (out_.pos.size() >= kIndexMask) throw std::length_error("terrain lod: too many vertices");
         const std::uint32_t v = std::uint32_t(out_.pos.size());
         e |= v + 1;
-        out_.pos.push_back(reader_.at(id));
+        out_.pos.push_back(at(c, r));
         out_.normal.push_back(full_res_normal(c, r));
         if (nodes_) nodes_->push_back(std::uint32_t(id));
         return v;
@@ -646,23 +708,54 @@ private:
     }
 
     // compute_normals(mesh_from_terrain(t)) at node (c, r): its up-to-6 full-resolution triangles
-    // in the order that mesh lists them (cells row by row; {NW, SW, SE} before {NW, SE, NE}).
+    // in the order that mesh lists them (cells row by row; {NW, SW, SE} before {NW, SE, NE}), made
+    // of the node and its neighbours k at lattice_neighbours[k] (0 the node, 1 NW, 2 W, 3 N, 4 E,
+    // 5 S, 6 SE), read from the lattice where the node lies on it.
     glm::vec3 full_res_normal(int c, int r) const {
-        glm::vec3 sum(0.0f);
-        auto tri = [&](std::size_t a, std::size_t b, std::size_t d) {
-            if (reader_.has_data(a) && reader_.has_data(b) && reader_.has_data(d))
-                sum += face_normal(reader_.at(a), reader_.at(b), reader_.at(d));
-        };
-        auto id = [&](int cc, int rr) { return t_.index(cc, rr); };
-        if (c > 0 && r > 0) {  // node is the SE corner of cell (c-1, r-1)
-            tri(id(c - 1, r - 1), id(c - 1, r), id(c, r));
-            tri(id(c - 1, r - 1), id(c, r), id(c, r - 1));
+        glm::vec3 q[7];
+        bool v[7] = {};
+        if (on_lattice(c, r)) {
+            const LatticeNode n = lattice(c, r);
+            for (int k = 0; k < 7; ++k) {
+                v[k] = (int(n.valid) >> k & 1) != 0;
+                q[k] = glm::vec3(0.0f, 0.0f, n.z[k]);
+            }
+            // x, y a row at a time: columns c-1, c of row r-1; c-1, c, c+1 of r; c, c+1 of r+1
+            for (int dr = -1; dr <= 1; ++dr) {
+                const int rr = r + dr;
+                if (rr < 0 || rr >= rows_) continue;
+                const int c0 = dr <= 0 ? std::max(c - 1, 0) : c, c1 = dr >= 0 ? std::min(c + 1, cols_ - 1) : c;
+                glm::vec3 row[3];
+                t_.derive_xy(t_.index(c0, rr), 1, std::size_t(c1 - c0 + 1), row);
+                for (int k = 0; k < 7; ++k) {
+                    const int cc = c + lattice_neighbours[k][0];
+                    if (lattice_neighbours[k][1] != dr || cc < c0 || cc > c1) continue;
+                    q[k].x = row[cc - c0].x, q[k].y = row[cc - c0].y;
+                }
+            }
+            for (int k = 0; k < 7; ++k)
+                if (v[k]) q[k] = t_.drawn(q[k]);
+        } else {
+            for (int k = 0; k < 7; ++k) {
+                const int cc = c + lattice_neighbours[k][0], rr = r + lattice_neighbours[k][1];
+                if (cc < 0 || rr < 0 || cc >= cols_ || rr >= rows_) continue;
+                const std::size_t i = t_.index(cc, rr);
+                if ((v[k] = reader_.has_data(i))) q[k] = reader_.at(i);
+            }
         }
-        if (c + 1 < cols_ && r > 0) tri(id(c, r - 1), id(c, r), id(c + 1, r));      // SW of cell (c, r-1)
-        if (c > 0 && r + 1 < rows_) tri(id(c - 1, r), id(c, r + 1), id(c, r));      // NE of cell (c-1, r)
-        if (c + 1 < cols_ && r + 1 < rows_) {                                        // NW of cell (c, r)
-            tri(id(c, r), id(c, r + 1), id(c + 1, r + 1));
-            tri(id(c, r), id(c + 1, r + 1), id(c + 1, r));
+        glm::vec3 sum(0.0f);
+        auto tri = [&](int a, int b, int d) {
+            if (v[a] && v[b] && v[d]) sum += face_normal(q[a], q[b], q[d]);
+        };
+        if (c > 0 && r > 0) {  // node is the SE corner of cell (c-1, r-1)
+            tri(1, 2, 0);
+            tri(1, 0, 3);
+        }
+        if (c + 1 < cols_ && r > 0) tri(3, 0, 4);           // SW of cell (c, r-1)
+        if (c > 0 && r + 1 < rows_) tri(2, 5, 0);           // NE of cell (c-1, r)
+        if (c + 1 < cols_ && r + 1 < rows_) {               // NW of cell (c, r)
+            tri(0, 5, 6);
+            tri(0, 6, 4);
         }
         const float len = glm::length(sum);
         return len > 1e-12f ? sum / len : glm::vec3(0, 0, 1);
@@ -684,7 +777,7 @@ private:
         if (err < kInf && ok(it.ac, it.ar) && ok(it.bc, it.br) && ok(it.cc, it.cr)) {
             // Every node inside lies within err (times e) of the triangle's plane, and (on an
             // affine grid) inside the plan triangle of its corners.
-            const glm::dvec3 a(reader_.at(it.ac, it.ar)), b(reader_.at(it.bc, it.br)), c(reader_.at(it.cc, it.cr));
+            const glm::dvec3 a(at(it.ac, it.ar)), b(at(it.bc, it.br)), c(at(it.cc, it.cr));
             lo = glm::min(glm::min(a, b), c), hi = glm::max(glm::max(a, b), c);
             const double dz = double(err) * ex_;
             lo.z -= dz, hi.z += dz;
@@ -696,7 +789,7 @@ private:
             lo = glm::dvec3(1e300), hi = glm::dvec3(-1e300);
             for (const int c : {c0, c1})
                 for (const int r : {r0, r1}) {
-                    const glm::dvec3 p(reader_.at(c, r));
+                    const glm::dvec3 p(at(c, r));
                     lo = glm::min(lo, p), hi = glm::max(hi, p);
                 }
             lo.z = zlo_, hi.z = zhi_;
@@ -708,10 +801,10 @@ private:
         return frustum_.classify(lo, hi);
     }
 
-    bool visible(std::initializer_list<std::size_t> ids) const {
+    bool visible(std::initializer_list<std::pair<int, int>> nodes) const {
         glm::dvec3 lo(1e300), hi(-1e300);
-        for (const std::size_t i : ids) {
-            const glm::dvec3 p(reader_.at(i));
+        for (const auto& [c, r] : nodes) {
+            const glm::dvec3 p(at(c, r));
             lo = glm::min(lo, p), hi = glm::max(hi, p);
         }
         const glm::dvec3 m(1e-3);
@@ -726,7 +819,7 @@ private:
         const int oc = it.ac + it.bc - it.cc, orr = it.ar + it.br - it.cr;  // the other half's right angle
         if (nwse || !active(oc, orr)) {
             if (!(ok(it.ac, it.ar) && ok(it.bc, it.br) && ok(it.cc, it.cr))) return;
-            if (!it.inside && !visible({t_.index(it.ac, it.ar), t_.index(it.bc, it.br), t_.index(it.cc, it.cr)}))
+            if (!it.inside && !visible({{it.ac, it.ar}, {it.bc, it.br}, {it.cc, it.cr}}))
                 return;
             emit(it.ac, it.ar, it.bc, it.br, it.cc, it.cr);
             return;
@@ -749,7 +842,7 @@ private:
         glm::dvec3 lo(1e300), hi(-1e300);
         auto add = [&](bool v, int cc, int rr) {
             if (!v) return;
-            const glm::dvec3 p(reader_.at(cc, rr));
+            const glm::dvec3 p(at(cc, rr));
             lo = glm::min(lo, p), hi = glm::max(hi, p);
         };
         add(vnw, c, r), add(vne, c + 1, r), add(vsw, c, r + 1), add(vse, c + 1, r + 1);

@@ -111,7 +111,41 @@ struct TerrainLod {
     // The nested plan radius of node (c, r), metres: L times the grid-unit radius of its level;
     // 0 at the padded square's corners (never split).
     float radius(int c, int r) const;
+    // The node lattice (LatticeNode) in `blocks` (array 3: lattice_size(cols) x lattice_size(rows)
+    // elements, row-major): lod_lattice_step where the cache holds one, 0 where it holds none (x,
+    // y stored rather than derived) or the pyramid is in memory.
+    int lattice_step = 0;
+    static constexpr int lattice_array = 3;
 };
+
+// What the selection reads of a node of the lattice of every lod_lattice_step-th row and column
+// (c and r multiples of it), kept together in a terrain cache (terrain_cache.hpp), so that the
+// coarse part of a mesh reads the lattice's few blocks rather than blocks of rows r - 1, r and
+// r + 1 for each of its vertices and of the pyramid for each node it tests (on a whole view of
+// jacksboro refined 29 times, 71 % of the nodes tested and 67 % of the vertices lie on it; the
+// rest, near the eye, are close together): the node's error, and the stored heights (GridNodes::pos
+// z, unexaggerated) and data flags of the node and of the six neighbours whose full-resolution
+// triangles make its vertex normal, neighbour k at (c, r) + lattice_neighbours[k]; a neighbour
+// outside the grid: height 0 and no data. valid: bit k set where neighbour k holds data (an
+// integer held exactly as a float, so the element is nine floats: block_codec.hpp codes it).
+// The x, y of each are the grid's formula's (GridNodes::derive_xy), so a cache that stores x, y
+// has no lattice.
+inline constexpr int lod_lattice_step = 8;
+inline constexpr int lattice_neighbours[7][2] = {{0, 0}, {-1, -1}, {-1, 0}, {0, -1}, {1, 0}, {0, 1}, {1, 1}};
+struct LatticeNode {
+    float z[7] = {};
+    float valid = 0.0f;
+    float error = 0.0f;
+};
+// Lattice nodes along a side of n grid nodes.
+inline int lattice_size(int n) { return (n - 1) / lod_lattice_step + 1; }
+// Puts grid row r of a cols x rows grid (its heights z and flags v, cols each) in the lattice
+// nodes that read it, those of the lattice rows r - 1, r and r + 1 (`lattice`: the whole lattice,
+// row-major, lattice_size(cols) a row, made with its elements zero); each grid row once.
+void lattice_add_row(int cols, int rows, int r, const float* z, const std::uint8_t* v, LatticeNode* lattice);
+// Puts the errors of grid row r (cols of them, TerrainLod::error's) in the lattice nodes of that
+// row, when it is a lattice row.
+void lattice_add_errors(int cols, int r, const float* e, LatticeNode* lattice);
 
 // The levels of the padded square of a cols x rows grid: the least k with 2^k + 1 >= max(cols, rows).
 int lod_padded_levels(int cols, int rows);
@@ -217,8 +251,11 @@ SurfaceMesh select_lod_mesh(const TerrainLod& lod, const Terrain& t, const Camer
                             LodSelection* stats = nullptr, std::vector<std::uint32_t>* vertex_nodes = nullptr);
 // The same on nodes drawn as GridNodes::at draws them, at `exaggeration` (which scales the errors).
 // Nodes and errors of a terrain cache are read one at a time through small caches of blocks
-// (NodePointReader, CheckedBlocks::Cached: about 17 MB), none kept in the cache's mapping: a whole
+// (NodePointReader, CheckedBlocks::Cached: about 22 MB), none kept in the cache's mapping: a whole
 // view of a large DEM touches a few nodes in most blocks, which kept would hold hundreds of MB.
+// Those on its node lattice (TerrainLod::lattice_step) are read there, and a node tested alone
+// takes its plan position from the grid's formula (GridNodes::derive_xy) where the cache derives
+// x, y: the same mesh bit for bit, from fewer blocks.
 SurfaceMesh select_lod_mesh(const TerrainLod& lod, const GridNodes& nodes, double exaggeration, const Camera& camera,
                             const LodOptions& options, LodSelection* stats = nullptr,
                             std::vector<std::uint32_t>* vertex_nodes = nullptr);

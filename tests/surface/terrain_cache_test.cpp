@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
 #include <utility>
 
 #include <sys/stat.h>
@@ -47,6 +48,19 @@ Terrain hills() {
 }
 
 TerrainCacheKey key() { return {123456, 789, 0xabcdef, 0, true}; }
+
+// `t` (georeferenced as hills()) with every node's x, y affine_node_xy of its geotransform, as the
+// DEM reader computes a projected DEM's: a cache then derives them (and holds a node lattice).
+Terrain on_affine_grid(Terrain t) {
+    AffineNodes a;
+    if (!terrain_affine(t, a)) throw std::runtime_error("not an affine grid");
+    for (int r = 0; r < t.rows; ++r)
+        for (int c = 0; c < t.cols; ++c) {
+            const glm::vec2 xy = affine_node_xy(a, t.origin, c, r);
+            t.pos[t.index(c, r)].x = xy.x, t.pos[t.index(c, r)].y = xy.y;
+        }
+    return t;
+}
 
 Camera oblique(const StoredTerrain& t, double e) {
     return frame_box(glm::dvec3(t.plan_lo, t.lod.z_min * e), glm::dvec3(t.plan_hi, t.lod.z_max * e),
@@ -384,6 +398,43 @@ TEST(TerrainCache, SmallViewReadsASmallPartAndOnlyItsDamageCounts) {
     }
 }
 
+// A whole view of a large DEM selects a coarse mesh, most of whose nodes lie on the node lattice
+// (terrain_lod.hpp): read there, the frame is the same bit for bit, positions, normals and all, and
+// it reads fewer blocks than without the lattice (which then reads, for each coarse vertex, the
+// blocks of three rows of nodes, and a block of errors for each node tested).
+TEST(TerrainCache, WholeViewReadsItsCoarseNodesFromTheLattice) {
+    test::TempDir dir;
+    Terrain flat = terrain_from_function(2049, 1537, 5.0, rough_hills);
+    for (int r = 800; r < 861; ++r)  // a hole: lattice nodes with some neighbours lacking data
+        for (int c = 1000; c < 1037; ++c) flat.valid[flat.index(c, r)] = 0;
+    flat.origin = {512345.0, 4012345.0}, flat.utm_zone = 16, flat.xy_unit = 1.0;
+    flat.geotransform = {512000.0, 5.0, 0.0, 4013000.0, 0.0, -5.0};
+    const StoredTerrain mem = store_terrain(on_affine_grid(std::move(flat)));
+    const std::string path = dir.file("big.lod");
+    write_terrain_cache(path, mem, key());
+    for (const double e : {1.0, 2.5}) {
+        const Camera cam = oblique(mem, e);
+        LodOptions o;
+        LodSelection s;
+        const SurfaceMesh want = select_lod_mesh(mem.lod, mem.drawn(e), e, cam, o, &s);
+        ASSERT_GT(s.triangles, 5000u);
+        std::uint64_t blocks[2] = {0, 0};
+        for (const bool lattice : {true, false}) {
+            std::optional<StoredTerrain> map = read_terrain_cache(path, key());
+            ASSERT_TRUE(map);
+            ASSERT_EQ(map->lod.lattice_step, lod_lattice_step);
+            if (!lattice) map->lod.lattice_step = 0;
+            expect_same_mesh(want, select_lod_mesh(map->lod, map->drawn(e), e, cam, o));
+            blocks[lattice ? 0 : 1] = map->nodes.blocks->blocks_read();
+        }
+        std::printf("whole view at %.1f: %zu triangles, %llu blocks read with the lattice, %llu without\n", e,
+                    s.triangles, (unsigned long long)blocks[0], (unsigned long long)blocks[1]);
+        // unexaggerated, a tenth (the mesh coarse); at 2.5 the rough hills refine to finer
+        // triangles than the lattice's near the eye, which read their own rows (0.62 of them here)
+        EXPECT_LT(blocks[0] * (e == 1.0 ? 4 : 1), blocks[1]);
+    }
+}
+
 // The arrays are coded (core/block_codec.hpp): the file is a fraction of the floats it holds (17
 // bytes a node of positions, flags and errors; 0.37 and 0.35 of them here, heights at float
 // precision either way: a bound of 0.42 leaves room for another deflater's choices), and holds
@@ -523,17 +574,16 @@ std::pair<double, double> derived_and_stored_sizes(const test::TempDir& dir, con
 // a float step off the grid, whose x, y are all stored (and come back as well, that node too).
 TEST(TerrainCache, XYOfAnAffineGridAreDerivedNotStored) {
     test::TempDir dir;
-    Terrain grid = hills();
-    AffineNodes a;
-    ASSERT_TRUE(terrain_affine(grid, a));
-    for (int r = 0; r < grid.rows; ++r)
-        for (int c = 0; c < grid.cols; ++c) {
-            const glm::vec2 xy = affine_node_xy(a, grid.origin, c, r);
-            grid.pos[grid.index(c, r)].x = xy.x, grid.pos[grid.index(c, r)].y = xy.y;
-        }
+    const Terrain grid = on_affine_grid(hills());
     const auto [derived, stored] = derived_and_stored_sizes(dir, grid, 150, 100, false);
-    std::printf("x, y derived: %.0f bytes; stored: %.0f\n", derived, stored);
-    EXPECT_LT(derived + 0.4 * double(grid.size()), stored);  // x, y coded take 0.65 bytes a node here
+    // the derived file holds the node lattice besides (terrain_lod.hpp: its nodes' x, y are derived)
+    const std::optional<StoredTerrain> d = read_terrain_cache(dir.file("derived.lod"), key());
+    ASSERT_TRUE(d);
+    EXPECT_EQ(d->lod.lattice_step, lod_lattice_step);
+    const double lattice = derived - double(d->nodes.blocks->file_offset(TerrainLod::lattice_array));
+    std::printf("x, y derived: %.0f bytes (%.0f of them the lattice); stored: %.0f\n", derived, lattice, stored);
+    EXPECT_GT(lattice, 0.0);
+    EXPECT_LT(derived - lattice + 0.4 * double(grid.size()), stored);  // x, y coded take 0.65 bytes a node here
 }
 
 // On a geographic DEM read whole (examples/jacksboro.tif, WGS 84) the DEM reader projects each
