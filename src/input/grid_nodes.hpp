@@ -33,6 +33,13 @@ struct GridNodes {
     double sea_level = -std::numeric_limits<double>::infinity();  // unexaggerated; -inf: no water
     const CheckedBlocks* blocks = nullptr;  // the cache file pos and valid are read from; null: in memory
     static constexpr int pos_array = 0, valid_array = 1;  // their arrays in `blocks`
+    // The heights and flags of every coarse_step-th node of every coarse_step-th row from node
+    // (0, 0) (CoarseNode), kept together in `blocks` (array coarse_array, coarse_size(cols) x
+    // coarse_size(rows), row-major) where a terrain cache derives x, y: a sampled grid of a step
+    // that is a multiple of coarse_step, from such a node, reads them there (read_sampled). 0: none.
+    int coarse_step = 0;
+    static constexpr int coarse_array = 4;
+    int coarse_size(int n) const { return (n - 1) / coarse_step + 1; }
 
     // Makes nodes [i0, i1) (positions and valid flags) readable; a no-op for nodes in memory.
     // Throws DamagedBlockError when their blocks are damaged.
@@ -82,6 +89,13 @@ struct GridNodes {
     glm::vec3 at(int c, int r) const { return at(index(c, r)); }
 };
 
+// A node of GridNodes::coarse_array: its stored height (GridNodes::pos z) and its flag (1: data,
+// 0: none) as a float (two floats: block_codec.hpp codes them).
+struct CoarseNode {
+    float z = 0.0f, valid = 0.0f;
+};
+inline constexpr int grid_coarse_step = 4;  // the step of the coarse nodes a terrain cache keeps
+
 // Nodes read one at a time (at, has_data: the values GridNodes gives) for scattered reads over a
 // whole grid: from a terrain cache, through small caches of decoded blocks
 // (CheckedBlocks::Cached, `slots` blocks of positions and as many of valid flags) rather than
@@ -129,7 +143,10 @@ SampledWindow sampled_window(const GridNodes& nodes, GridWindow w, int step);
 // cover (read_strided: blocks not yet read are not kept, and only the sampled nodes' derived x, y
 // are computed), so a step of s reads about 1/s of the part's blocks and holds none of them; rows
 // in parallel chunks of at least ~8 K grid nodes. A part read alone gives the values it has in
-// the whole (the hachures read their nodes a tile at a time: lines/node_tiles.hpp).
+// the whole (the hachures read their nodes a tile at a time: lines/node_tiles.hpp). Where the
+// nodes keep coarse nodes (GridNodes::coarse_step) and the sampled window's first node and step
+// fall on them, they are read there (the same values): a step of s then reads about
+// (coarse_step / s)^2 / coarse_step of the blocks, a quarter of the others at s = 4.
 void read_sampled(const GridNodes& nodes, const SampledWindow& s, GridWindow part, glm::vec3* pos, std::uint8_t* valid);
 
 // A Terrain of the nodes inside `w` (clamped to the grid) as `nodes` draws them, with `grid`'s

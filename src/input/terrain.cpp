@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <vector>
 
 #include <glm/common.hpp>
 
@@ -60,6 +61,23 @@ void read_sampled(const GridNodes& nodes, const SampledWindow& s, GridWindow par
     // rows of at least ~8 K grid nodes a chunk: a tile of the hachures' (64 rows of 256 sampled
     // nodes) on up to 4 threads, a few nodes on the calling one
     const std::size_t min_rows = std::max<std::size_t>(1, (std::size_t(1) << 13) / (cols * step));
+    const int cs = nodes.coarse_step;
+    if (nodes.blocks && cs > 0 && s.step % cs == 0 && s.window.c0 % cs == 0 && s.window.r0 % cs == 0) {
+        const std::size_t coarse_cols = std::size_t(nodes.coarse_size(nodes.cols)), every = std::size_t(s.step / cs);
+        parallel_chunks(std::size_t(part.rows()), min_rows, [&](std::size_t j0, std::size_t j1) {
+            std::vector<CoarseNode> row(cols);
+            for (std::size_t j = j0; j < j1; ++j) {
+                const int r = s.window.r0 + (part.r0 + int(j)) * s.step;
+                const std::size_t at = std::size_t(r / cs) * coarse_cols;
+                nodes.blocks->read_strided(GridNodes::coarse_array, at + std::size_t(c0 / cs),
+                                           at + std::size_t(c_last / cs) + 1, every, row.data());
+                glm::vec3* p = pos + j * cols;
+                nodes.derive_xy(nodes.index(c0, r), step, cols, p);
+                for (std::size_t i = 0; i < cols; ++i) p[i].z = row[i].z, valid[j * cols + i] = row[i].valid != 0.0f;
+            }
+        });
+        return;
+    }
     parallel_chunks(std::size_t(part.rows()), min_rows, [&](std::size_t j0, std::size_t j1) {
         for (std::size_t j = j0; j < j1; ++j) {
             const int r = s.window.r0 + (part.r0 + int(j)) * s.step;

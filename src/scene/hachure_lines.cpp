@@ -98,7 +98,10 @@ int hachure_node_step(const GridNodes& nodes, GridWindow w, const Camera& camera
 
 HachureNodes hachure_nodes(const FrameTerrain& terrain, const Camera& camera) {
     HachureNodes out;
-    out.sampled = sampled_window(terrain.nodes, terrain.window, hachure_node_step(terrain.nodes, terrain.window, camera));
+    const int step = hachure_node_step(terrain.nodes, terrain.window, camera);
+    GridWindow w = terrain.window;
+    w.c0 -= w.c0 % step, w.r0 -= w.r0 % step;  // the grid's every step-th node, whatever the window
+    out.sampled = sampled_window(terrain.nodes, w, step);
     if (out.sampled.step == 1) terrain.nodes.need(terrain.window);  // read directly by the hachures
     return out;
 }

@@ -43,7 +43,10 @@ inline constexpr int hachure_max_node_step = 64;
 int hachure_node_step(const GridNodes& nodes, GridWindow window, const Camera& camera);
 
 // The nodes a frame's hachures are traced on: every hachure_node_step-th node of the frame's
-// window in each direction (sampled.step). At step 1 the window's nodes, made readable in place
+// window in each direction (sampled.step), counted from the grid's node (0, 0) (the window's first
+// row and column rounded down to a multiple of the step): the same nodes for every view at that
+// step, so a pan or a flight does not shift them, and those a terrain cache keeps as its coarse
+// nodes (GridNodes::coarse_step) at a step of 4 or more. At step 1 the window's nodes, made readable in place
 // (GridNodes::need) here; past it the sampled nodes are read by the hachures as they trace, a
 // tile at a time through a cache of NodeTiles::default_budget bytes (read_sampled: only their
 // rows are read, none kept in place), so their memory is bounded whatever the window. Depends on

@@ -98,6 +98,20 @@ static_assert(sizeof(LatticeNode) == 9 * sizeof(float));
 std::uint64_t lattice_count(int cols, int rows, bool derived) {
     return derived ? std::uint64_t(lattice_size(cols)) * std::uint64_t(lattice_size(rows)) : 0;
 }
+// The coarse nodes (GridNodes::coarse_step, CoarseNode): heights differenced once along a block
+// (a coarse row's nodes grid_coarse_step apart), flags as they are; as many as the lattice's.
+constexpr int coarse_orders[2] = {1, 0};
+static_assert(sizeof(CoarseNode) == 2 * sizeof(float));
+std::uint64_t coarse_count(int cols, int rows, bool derived) {
+    const auto n = [](int k) { return std::uint64_t((k - 1) / grid_coarse_step + 1); };
+    return derived ? n(cols) * n(rows) : 0;
+}
+// The coarse nodes of grid row r (heights z, flags v, cols of each) appended to `out`, when it
+// is a coarse row.
+void add_coarse_row(int cols, int r, const float* z, const std::uint8_t* v, std::vector<CoarseNode>& out) {
+    if (r % grid_coarse_step != 0) return;
+    for (int c = 0; c < cols; c += grid_coarse_step) out.push_back({z[c], v[c] ? 1.0f : 0.0f});
+}
 // Header flags: x, y not stored, the node's x, y given by a formula of the grid: the affine grid
 // (a projected DEM), or the projection of the node's longitude, latitude (a geographic DEM).
 constexpr std::uint32_t xy_affine = 1, xy_geographic = 2;
@@ -273,7 +287,7 @@ private:
 };
 
 struct CodedTerrain {
-    CodedBlocks pos, valid, error, lattice;
+    CodedBlocks pos, valid, error, lattice, coarse;
     std::uint32_t flags = 0;
 };
 // The node lattice of nodes z (stored, row by row), flags v and errors e (cols x rows each).
@@ -305,6 +319,16 @@ CodedTerrain code_terrain(const StoredTerrain& t) {
             return encode_floats(z.data(), z.size(), z_orders);
         });
         c.lattice = code_lattice(node_lattice(t.meta.cols, t.meta.rows, t.nodes.pos, t.nodes.valid, t.lod.error.data()));
+        std::vector<CoarseNode> coarse;
+        std::vector<float> z(static_cast<std::size_t>(t.meta.cols));
+        for (int r = 0; r < t.meta.rows; r += grid_coarse_step) {
+            const std::size_t at = t.nodes.index(0, r);
+            for (std::size_t j = 0; j < z.size(); ++j) z[j] = t.nodes.pos[at + j].z;
+            add_coarse_row(t.meta.cols, r, z.data(), t.nodes.valid + at, coarse);
+        }
+        c.coarse = code_blocks(coarse.size(), [&](std::uint64_t i, std::uint64_t k) {
+            return encode_floats(&coarse[std::size_t(i)].z, std::size_t(k), coarse_orders);
+        });
     } else {
         c.pos = code_blocks(nodes, [&](std::uint64_t i, std::uint64_t k) {
             return encode_floats(&t.nodes.pos[i].x, std::size_t(k), pos_orders);
@@ -319,8 +343,8 @@ CodedTerrain code_terrain(const StoredTerrain& t) {
 
 // Each block's coded size and checksum, of the three arrays (what the header lists).
 struct BlockSums {
-    std::vector<std::uint32_t> sizes[4];
-    std::vector<std::uint64_t> sums[4];
+    std::vector<std::uint32_t> sizes[5];
+    std::vector<std::uint64_t> sums[5];
     std::uint32_t flags = 0;
     void take(int array, std::size_t b, std::span<const std::uint8_t> bytes) {
         sizes[array][b] = std::uint32_t(bytes.size()), sums[array][b] = hash64(bytes.data(), bytes.size());
@@ -329,8 +353,8 @@ struct BlockSums {
 BlockSums block_sums(const CodedTerrain& coded) {
     BlockSums s;
     s.flags = coded.flags;
-    const CodedBlocks* arrays[4] = {&coded.pos, &coded.valid, &coded.error, &coded.lattice};
-    for (int j = 0; j < 4; ++j) {
+    const CodedBlocks* arrays[5] = {&coded.pos, &coded.valid, &coded.error, &coded.lattice, &coded.coarse};
+    for (int j = 0; j < 5; ++j) {
         s.sizes[j].resize(arrays[j]->size()), s.sums[j].resize(arrays[j]->size());
         for (std::size_t b = 0; b < arrays[j]->size(); ++b) s.take(j, b, (*arrays[j])[b]);
     }
@@ -339,7 +363,7 @@ BlockSums block_sums(const CodedTerrain& coded) {
 
 // The header and the array offsets of `t` (offsets relative to the file's start).
 std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCacheKey& key, const BlockSums& coded,
-                                        std::uint64_t at[4], std::uint64_t& total) {
+                                        std::uint64_t at[5], std::uint64_t& total) {
     const Terrain& m = t.meta;
     Writer w;
     w.bytes(magic, 8);
@@ -357,26 +381,27 @@ std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCac
     w.put(t.lod.lipschitz), w.put(t.lod.z_min), w.put(t.lod.z_max), w.put(0.0f);
     w.put(t.plan_lo.x), w.put(t.plan_lo.y), w.put(t.plan_hi.x), w.put(t.plan_hi.y);
     const std::size_t offsets = w.b.size();
-    for (int i = 0; i < 5; ++i) w.put(std::uint64_t(0));
+    for (int i = 0; i < 6; ++i) w.put(std::uint64_t(0));
     w.put(std::uint64_t(m.crs_wkt.size()));
     w.bytes(m.crs_wkt.data(), m.crs_wkt.size());
     while (w.b.size() % 8) w.b.push_back(0);
     // each block's coded size, then its checksum, the three arrays' blocks in turn
     w.put(std::uint32_t(block_shift)), w.put(coded.flags);
-    w.put(std::uint32_t(coded.sizes[3].empty() ? 0 : lod_lattice_step)), w.put(std::uint32_t(0));
+    w.put(std::uint32_t(coded.sizes[3].empty() ? 0 : lod_lattice_step));
+    w.put(std::uint32_t(coded.sizes[4].empty() ? 0 : grid_coarse_step));
     for (const auto& sizes : coded.sizes) w.bytes(sizes.data(), sizes.size() * sizeof(std::uint32_t));
     while (w.b.size() % 8) w.b.push_back(0);
     for (const auto& sums : coded.sums) w.bytes(sums.data(), sums.size() * sizeof(std::uint64_t));
     const std::uint32_t length = std::uint32_t(w.b.size() + 8);
     std::memcpy(w.b.data() + 12, &length, 4);
     at[0] = length;
-    for (int j = 0; j < 4; ++j) {
+    for (int j = 0; j < 5; ++j) {
         std::uint64_t bytes = 0;
         for (const std::uint32_t n : coded.sizes[j]) bytes += n;
-        (j < 3 ? at[j + 1] : total) = at[j] + bytes;
+        (j < 4 ? at[j + 1] : total) = at[j] + bytes;
     }
-    std::memcpy(w.b.data() + offsets, at, 32);
-    std::memcpy(w.b.data() + offsets + 32, &total, 8);
+    std::memcpy(w.b.data() + offsets, at, 40);
+    std::memcpy(w.b.data() + offsets + 40, &total, 8);
     w.put(hash64(w.b.data(), w.b.size()));
     return w.b;
 }
@@ -387,10 +412,10 @@ std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCac
 
 // The file of t's header fields and its coded arrays.
 void write_coded(const std::string& path, const StoredTerrain& t, const TerrainCacheKey& key, const CodedTerrain& coded) {
-    std::uint64_t at[4], total = 0;
+    std::uint64_t at[5], total = 0;
     const std::vector<std::uint8_t> header = encode_header(t, key, block_sums(coded), at, total);
     std::vector<std::span<const std::uint8_t>> parts{header};
-    for (const CodedBlocks* a : {&coded.pos, &coded.valid, &coded.error, &coded.lattice})
+    for (const CodedBlocks* a : {&coded.pos, &coded.valid, &coded.error, &coded.lattice, &coded.coarse})
         for (const auto& b : *a) parts.emplace_back(b);
     if (const int err = write_cache_file(path, parts)) write_failed(path, err);
 }
@@ -489,10 +514,12 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
     BlockSums sums;
     sums.flags = formula->flag;
     std::vector<LatticeNode> lattice(std::size_t(lattice_count(m.cols, m.rows, true)));  // filled as rows and errors come
-    const std::uint64_t counts[4] = {block_count(nodes, block_shift), block_count(nodes, block_shift),
-                                     block_count(nodes, block_shift), block_count(lattice.size(), block_shift)};
-    for (int j = 0; j < 4; ++j) sums.sizes[j].assign(std::size_t(counts[j]), 0), sums.sums[j].assign(std::size_t(counts[j]), 0);
-    std::uint64_t at[4], total = 0;
+    const std::uint64_t coarse_nodes = coarse_count(m.cols, m.rows, true);
+    const std::uint64_t counts[5] = {block_count(nodes, block_shift), block_count(nodes, block_shift),
+                                     block_count(nodes, block_shift), block_count(lattice.size(), block_shift),
+                                     block_count(coarse_nodes, block_shift)};
+    for (int j = 0; j < 5; ++j) sums.sizes[j].assign(std::size_t(counts[j]), 0), sums.sums[j].assign(std::size_t(counts[j]), 0);
+    std::uint64_t at[5], total = 0;
     const std::size_t head = encode_header(t, key, sums, at, total).size();
     CacheFileStream out(path);
     if (const int err = out.append(std::vector<std::uint8_t>(head, 0))) write_failed(path, err);
@@ -509,6 +536,14 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
         flags_coded.insert(flags_coded.end(), bytes.begin(), bytes.end());
     };
     InOrderBlocks<std::uint8_t, decltype(code_valid), decltype(keep_valid)> valid_blocks(nodes, code_valid, keep_valid);
+    std::vector<std::uint8_t> coarse_coded;  // the coarse nodes' blocks, back to back, written last
+    auto code_coarse = [](const CoarseNode* v, std::size_t k) { return encode_floats(&v->z, k, coarse_orders); };
+    auto keep_coarse = [&](std::size_t b, std::span<const std::uint8_t> bytes) {
+        sums.take(4, b, bytes);
+        coarse_coded.insert(coarse_coded.end(), bytes.begin(), bytes.end());
+    };
+    InOrderBlocks<CoarseNode, decltype(code_coarse), decltype(keep_coarse)> coarse_blocks(coarse_nodes, code_coarse, keep_coarse);
+    std::vector<CoarseNode> coarse_row;
 
     // Rows come once each, in order, as the pyramid's strips ask for them (a window of the rows a
     // strip reads): each row's x, y checked against the formula the cache recomputes them with
@@ -561,9 +596,13 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
                 all.lipschitz2 = std::max(all.lipschitz2, sum.lipschitz2);
             });
             if (!exact.load()) throw NotFormulaXY{};
-            for (std::size_t i = 0; i < k; ++i)
+            for (std::size_t i = 0; i < k; ++i) {
                 lattice_add_row(m.cols, m.rows, win_end + int(i), win_z.data() + old + i * w,
                                 win_valid.data() + old + i * w, lattice.data());
+                coarse_row.clear();
+                add_coarse_row(m.cols, win_end + int(i), win_z.data() + old + i * w, win_valid.data() + old + i * w, coarse_row);
+                coarse_blocks.add(coarse_row.data(), coarse_row.size());
+            }
             z_blocks.add(win_z.data() + old, k * w);
             valid_blocks.add(win_valid.data() + old, k * w);
             win_end = r1;
@@ -586,7 +625,7 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
     }
     if (win_end != m.rows) throw std::logic_error("terrain cache: rows not read");
     win_z = {}, win_valid = {};
-    z_blocks.finish(), valid_blocks.finish();
+    z_blocks.finish(), valid_blocks.finish(), coarse_blocks.finish();
     if (const int err = out.append(flags_coded)) write_failed(path, err);
     flags_coded = {};
     t.lod.lipschitz = float(std::sqrt(double(all.lipschitz2)));
@@ -605,6 +644,7 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
         sums.take(3, b, bytes);
         if (const int err = out.append(bytes)) write_failed(path, err);
     });
+    if (const int err = out.append(coarse_coded)) write_failed(path, err);
     const std::vector<std::uint8_t> header = encode_header(t, key, sums, at, total);
     if (header.size() != head) throw std::logic_error("terrain cache: header length changed");
     if (const int err = out.finish(header)) write_failed(path, err);
@@ -738,7 +778,7 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     t.lod.lipschitz = r.get<float>(), t.lod.z_min = r.get<float>(), t.lod.z_max = r.get<float>();
     r.get<float>();
     t.plan_lo.x = r.get<double>(), t.plan_lo.y = r.get<double>(), t.plan_hi.x = r.get<double>(), t.plan_hi.y = r.get<double>();
-    std::uint64_t at[4];
+    std::uint64_t at[5];
     for (std::uint64_t& a : at) a = r.get<std::uint64_t>();
     const std::uint64_t total = r.get<std::uint64_t>(), crs = r.get<std::uint64_t>();
     if (!r.ok || crs > max_crs_bytes || crs > r.n - r.at) return fail(why, "damaged terrain cache (header)");
@@ -747,22 +787,24 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     if (m.cols < 2 || m.rows < 2 || std::max(m.cols, m.rows) > (1 << 30) || levels != lod_padded_levels(m.cols, m.rows))
         return fail(why, "damaged terrain cache (grid)");
     const std::uint64_t nodes = node_count(m.cols, m.rows);
-    if (total != size || at[0] < length || at[1] < at[0] || at[2] < at[1] || at[3] < at[2] || total < at[3])
+    if (total != size || at[0] < length || at[1] < at[0] || at[2] < at[1] || at[3] < at[2] || at[4] < at[3] ||
+        total < at[4])
         return fail(why, "damaged terrain cache (lengths)");
     const std::uint32_t shift = r.get<std::uint32_t>(), flags = r.get<std::uint32_t>();
-    const std::uint32_t step = r.get<std::uint32_t>(), reserved = r.get<std::uint32_t>();
+    const std::uint32_t step = r.get<std::uint32_t>(), coarse_step = r.get<std::uint32_t>();
     if (!r.ok || shift < min_block_shift || shift > max_block_shift || (flags & ~(xy_affine | xy_geographic)) != 0 ||
         flags == (xy_affine | xy_geographic) || (step != 0 && (step != std::uint32_t(lod_lattice_step) || !flags)) ||
-        reserved != 0)
+        (coarse_step != 0 && (coarse_step != std::uint32_t(grid_coarse_step) || !flags)))
         return fail(why, "damaged terrain cache (block checksums)");
     const std::uint64_t lattice = lattice_count(m.cols, m.rows, step != 0);
-    const std::uint64_t counts[4] = {block_count(nodes, shift), block_count(nodes, shift), block_count(nodes, shift),
-                                     block_count(lattice, shift)};
-    const std::uint64_t blocks = counts[0] + counts[1] + counts[2] + counts[3];
+    const std::uint64_t coarse = coarse_count(m.cols, m.rows, coarse_step != 0);
+    const std::uint64_t counts[5] = {block_count(nodes, shift), block_count(nodes, shift), block_count(nodes, shift),
+                                     block_count(lattice, shift), block_count(coarse, shift)};
+    const std::uint64_t blocks = counts[0] + counts[1] + counts[2] + counts[3] + counts[4];
     if (align_up(blocks * 4, 8) + blocks * 8 != r.n - r.at) return fail(why, "damaged terrain cache (block checksums)");
-    std::vector<CheckedBlocks::CodedArray> arrays(4);
+    std::vector<CheckedBlocks::CodedArray> arrays(5);
     const std::uint8_t* sizes = b + r.at;
-    for (int j = 0; j < 4; ++j) {
+    for (int j = 0; j < 5; ++j) {
         CheckedBlocks::CodedArray& a = arrays[std::size_t(j)];
         a.offset = at[j], a.shift = shift;
         // 4-byte aligned: the header is allocated aligned and its tables start at a multiple of 8
@@ -770,7 +812,7 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
         sizes += counts[j] * 4;
         std::uint64_t coded = 0;
         for (const std::uint32_t c : a.sizes) coded += c;
-        if (at[j] + coded != (j < 3 ? at[j + 1] : total)) return fail(why, "damaged terrain cache (lengths)");
+        if (at[j] + coded != (j < 4 ? at[j + 1] : total)) return fail(why, "damaged terrain cache (lengths)");
     }
     arrays[0].elems = nodes, arrays[0].elem_bytes = sizeof(glm::vec3);
     if (flags) {
@@ -810,6 +852,10 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     arrays[3].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::uint64_t, std::size_t count) {
         return decode_floats(c, bytes, static_cast<float*>(out), count, lattice_orders);
     };
+    arrays[4].elems = coarse, arrays[4].elem_bytes = sizeof(CoarseNode);
+    arrays[4].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::uint64_t, std::size_t count) {
+        return decode_floats(c, bytes, static_cast<float*>(out), count, coarse_orders);
+    };
     const auto* stored_sums = reinterpret_cast<const std::uint64_t*>(b + r.at + align_up(blocks * 4, 8));  // 8-aligned
     std::vector<std::uint64_t> sums(stored_sums, stored_sums + blocks);
     std::shared_ptr<CheckedBlocks> coded;
@@ -819,11 +865,12 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
         return fail(why, "terrain cache too large for memory");
     }
     static_assert(GridNodes::pos_array == 0 && GridNodes::valid_array == 1 && TerrainLod::error_array == 2 &&
-                  TerrainLod::lattice_array == 3);
+                  TerrainLod::lattice_array == 3 && GridNodes::coarse_array == 4);
     t.nodes.cols = m.cols, t.nodes.rows = m.rows;
     t.nodes.pos = static_cast<const glm::vec3*>(coded->data(GridNodes::pos_array));
     t.nodes.valid = static_cast<const std::uint8_t*>(coded->data(GridNodes::valid_array));
     t.nodes.blocks = coded.get();
+    t.nodes.coarse_step = int(coarse_step);
     t.lod.cols = m.cols, t.lod.rows = m.rows, t.lod.levels = levels;
     t.lod.error = std::span<const float>(static_cast<const float*>(coded->data(TerrainLod::error_array)),
                                          std::size_t(nodes));
@@ -839,6 +886,8 @@ void read_whole(const StoredTerrain& t) {
     if (t.lod.blocks) t.lod.blocks->need(TerrainLod::error_array, 0, t.lod.error.size());
     if (t.lod.blocks && t.lod.lattice_step)
         t.lod.blocks->need(TerrainLod::lattice_array, 0, lattice_count(t.lod.cols, t.lod.rows, true));
+    if (t.nodes.blocks && t.nodes.coarse_step)
+        t.nodes.blocks->need(GridNodes::coarse_array, 0, coarse_count(t.nodes.cols, t.nodes.rows, true));
 }
 
 }  // namespace penink

@@ -112,13 +112,21 @@ TEST(CacheDir, DamagedCachesAreRebuiltNeverDrawn) {
     std::uint64_t lines_at = 0;  // the lines part, which a render reads (dv_format.hpp)
     std::memcpy(&lines_at, dv.data() + 24, 8);
     ASSERT_LT(lines_at, dv.size());
+    // the terrain cache's arrays (terrain_cache.hpp): offsets of pos, valid, error, lattice and the
+    // coarse nodes after the 232 bytes of magic, version, length, key, grid and pyramid, then the length
+    std::uint64_t at[6];
+    std::memcpy(at, lod.data() + 232, sizeof at);
+    ASSERT_EQ(at[5], lod.size());
+    ASSERT_LT(at[3], at[4]);  // a projected DEM: x, y derived, a node lattice kept
     int k = 0;
-    // the terrain cache's middle, three quarters and end; the lines part's vertices (middle,
-    // three quarters: read or not, as the view needs them) and its index's checksum at the end
-    // (the part's last 16 bytes: the index's, then the part's)
+    // what a whole view reads of the terrain cache: the middle of the nodes' heights, of the
+    // pyramid's errors, and the node lattice's end; the lines part's vertices (middle, three
+    // quarters: read or not, as the view needs them) and its index's checksum at the end (the
+    // part's last 16 bytes: the index's, then the part's)
+    const std::uint64_t in_lod[3] = {(at[0] + at[1]) / 2, (at[2] + at[3]) / 2, at[4] - 1};
     for (const double where : {0.5, 0.75, 0.999}) {
         std::string l = lod, d = dv;
-        l[std::size_t(where * double(l.size()))] ^= 0x40;
+        l[std::size_t(in_lod[k])] ^= 0x40;
         d[where > 0.99 ? d.size() - 12 : std::size_t(double(lines_at) + where * double(d.size() - lines_at))] ^= 0x40;
         write_text(dir / "volcano.asc.lod", l);
         write_text(dir / "volcano.asc.dv", d);

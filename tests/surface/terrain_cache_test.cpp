@@ -435,6 +435,55 @@ TEST(TerrainCache, WholeViewReadsItsCoarseNodesFromTheLattice) {
     }
 }
 
+// A sampled grid of every 4th or 8th node from a node of the coarse nodes' lattice (the hachures'
+// on a DEM finer than the pixels) is read from the coarse nodes: the positions and flags of the
+// nodes themselves, holes included, from fewer blocks (a coarse row's blocks for every step-th
+// row's: 0.32 of them at a step of 4 or 8 on rows of 2049 nodes); a step of 2, or a first node off
+// that lattice, reads the nodes.
+TEST(TerrainCache, SampledNodesAreReadFromTheCoarseNodes) {
+    test::TempDir dir;
+    Terrain flat = terrain_from_function(2049, 301, 5.0, rough_hills);
+    flat.origin = {512345.0, 4012345.0}, flat.utm_zone = 16, flat.xy_unit = 1.0;
+    flat.geotransform = {512000.0, 5.0, 0.0, 4013000.0, 0.0, -5.0};
+    for (int r = 0; r < 40; ++r)
+        for (int c = 2000; c < 2049; ++c) flat.valid[flat.index(c, r)] = 0;  // a hole at the north-east edge
+    for (int r = 100; r < 130; ++r)
+        for (int c = 500; c < 600; ++c) flat.valid[flat.index(c, r)] = 0;
+    const StoredTerrain mem = store_terrain(on_affine_grid(std::move(flat)));
+    write_terrain_cache(dir.file("h.lod"), mem, key());
+    for (const int step : {2, 4, 8}) {
+        for (const GridWindow w : {GridWindow{0, 0, 2049, 301}, GridWindow{8, 4, 1950, 281}, GridWindow{3, 0, 2049, 301}}) {
+            SCOPED_TRACE(::testing::Message() << "step " << step << " window from " << w.c0 << ", " << w.r0);
+            std::uint64_t blocks[2] = {0, 0};
+            for (const bool coarse : {true, false}) {
+                std::optional<StoredTerrain> map = read_terrain_cache(dir.file("h.lod"), key());
+                ASSERT_TRUE(map);
+                ASSERT_EQ(map->nodes.coarse_step, grid_coarse_step);
+                if (!coarse) map->nodes.coarse_step = 0;
+                const SampledWindow sw = sampled_window(map->nodes, w, step);
+                const GridWindow part{0, 0, sw.cols, sw.rows};
+                std::vector<glm::vec3> got(std::size_t(sw.cols) * std::size_t(sw.rows));
+                std::vector<std::uint8_t> got_valid(got.size());
+                read_sampled(map->nodes, sw, part, got.data(), got_valid.data());
+                for (int j = 0; j < sw.rows; ++j)
+                    for (int i = 0; i < sw.cols; ++i) {
+                        const std::size_t n = mem.nodes.index(w.c0 + i * step, w.r0 + j * step), o = std::size_t(j * sw.cols + i);
+                        ASSERT_EQ(got_valid[o], mem.nodes.valid[n]);
+                        ASSERT_EQ(got[o], mem.nodes.pos[n]);
+                    }
+                blocks[coarse ? 0 : 1] = map->nodes.blocks->blocks_read();
+            }
+            if (step >= grid_coarse_step && w.c0 % grid_coarse_step == 0 && w.r0 % grid_coarse_step == 0) {
+                std::printf("step %d from %d, %d: %llu blocks read from the coarse nodes, %llu from the nodes\n", step,
+                            w.c0, w.r0, (unsigned long long)blocks[0], (unsigned long long)blocks[1]);
+                EXPECT_LT(blocks[0] * 2, blocks[1]);
+            } else {
+                EXPECT_EQ(blocks[0], blocks[1]);
+            }
+        }
+    }
+}
+
 // The arrays are coded (core/block_codec.hpp): the file is a fraction of the floats it holds (17
 // bytes a node of positions, flags and errors; 0.37 and 0.35 of them here, heights at float
 // precision either way: a bound of 0.42 leaves room for another deflater's choices), and holds
