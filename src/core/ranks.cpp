@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "core/mpi_module.hpp"
+#include "core/parallel_chunks.hpp"
 
 namespace penink {
 
@@ -188,7 +189,7 @@ void abort_reporting(Ranks& ranks, const char* stage, const std::string& file, c
 }
 
 int rank_threads(const Ranks* ranks) {
-    const int hardware = int(std::clamp<unsigned>(std::thread::hardware_concurrency(), 1, 16));
+    const int hardware = int(core_count());
     return ranks ? std::max(1, hardware / std::max(1, ranks->local_size())) : hardware;
 }
 

@@ -101,7 +101,7 @@ std::size_t raise_to_water(Fill& s, const std::vector<float>& water) {
 }  // namespace
 
 int fill_bands(int rows) {
-    const int threads = int(std::clamp<unsigned>(std::thread::hardware_concurrency(), 1, 16));
+    const int threads = int(core_count());
     return std::max(1, std::min(threads, rows / 256));
 }
 

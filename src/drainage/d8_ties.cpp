@@ -381,8 +381,8 @@ std::size_t break_d8_ties(const RoutingGrid& grid, RoutingArrays& arrays, const 
     // automatic: all cores from four up; on two the threads mostly wait for each other whenever
     // other work shares the cores (j29m crop, load 6: 1.0-2.5 s on two threads, 1.0-1.7 s on one;
     // j29, 18.5 M ties, load 4-5: 6.6-9.5 s on one, 7.4-14.2 s on two in 16 or in 2 strips)
-    const unsigned hardware = std::thread::hardware_concurrency();
-    const unsigned threads = split.threads ? split.threads : hardware >= 4 ? std::min(hardware, 16u) : 1u;
+    const unsigned hardware = unsigned(core_count());
+    const unsigned threads = split.threads ? split.threads : hardware >= 4 ? hardware : 1u;
     const int strip_rows = std::max(split.strip_rows ? split.strip_rows : std::clamp(rows / int(8 * threads), 8 * t.depth, 1024), t.depth + 1);
     std::size_t changed;
     if (threads < 2 || rows <= strip_rows || ties.size() >= (std::size_t(1) << 31) || (!split.threads && ties.size() < (std::size_t(1) << 16)))
