@@ -23,13 +23,14 @@ constexpr double terrain_s_per_node = 0.166e-6;  // 2.3 s at 13.86 M nodes
 // (terrain_base_bytes): the window of DEM rows a strip of the pyramid reads (5 B a node of its
 // rows and margins, lod_strip_rows), lod_errors' strips (lod_errors_bytes), the pyramid's
 // blocks held coded until written (a 24 B entry and 2 x 12 B of header lists each block of 256
-// nodes' errors: terrain_bytes_per_error_block) and their bytes with the flags' (about
-// terrain_bytes_per_node): fitted to the build alone (bench/terrain_cache_build_bench.cpp under
+// nodes' errors: terrain_bytes_per_error_block) and their bytes with the flags', the coarse nodes'
+// and the node lattice's coded (about terrain_bytes_per_node), and the node lattice, held whole
+// (36 B every 64 nodes): fitted to the build alone (bench/terrain_cache_build_bench.cpp under
 // /usr/bin/time -v) of jacksboro refined 5, 10 and 29 times (2015x1720, 4030x3440, 11687x9976
-// nodes), 98.9, 157.2 and 402.2 MB: the base and the bytes a node fitted to the last two (the
+// nodes), 103.4, 172.5 and 504.7 MB: the base and the bytes a node fitted to the last two (the
 // first is then about 27 MB over; its own DEM's roughness codes to more bytes a node than the
 // others').
-constexpr double terrain_bytes_per_node = 0.589, terrain_base_bytes = 98.7e6, terrain_bytes_per_error_block = 48.0;
+constexpr double terrain_bytes_per_node = 0.875, terrain_base_bytes = 102.2e6, terrain_bytes_per_error_block = 48.0;
 // The drainage database (`penink drainage DEM -o x.dv`: the network, the ridges and the creases'
 // source; the crease tiles come later, built by the renders that need them, with their own
 // progress): 3.25 s at 13.86 M points (jacksboro refined 10 times) and 42.6 s at 116.6 M (29
@@ -37,10 +38,11 @@ constexpr double terrain_bytes_per_node = 0.589, terrain_base_bytes = 98.7e6, te
 constexpr double drainage_s_at_reference = 3.25, drainage_reference_points = 13.86e6, drainage_exponent = 1.209;
 // Peak resident memory: drainage_memory.hpp's line (drainage_peak_bytes_per_point).
 // The terrain cache written (terrain_cache.hpp, coded: its size follows the DEM's smoothness; x, y
-// derived on projected and geographic DEMs): 1.15 B a node on jacksboro refined 10 times, header
-// included (0.85 refined 29 times, 1.43 refined 5 times, about 2 on the volcano, 2.8 on jacksboro
-// itself, up to 6 on a synthetic DEM of noise; 17 B as floats).
-constexpr double terrain_disk_bytes_per_node = 1.15;
+// derived on projected and geographic DEMs, with the node lattice and the coarse nodes): 1.35 B a
+// node on jacksboro refined 10 times (18.7 MB), header included (0.98 refined 29 times, 1.75
+// refined 5 times; before the lattice about 2 on the volcano, 2.8 on jacksboro itself, up to 6 on
+// a synthetic DEM of noise; 17 B as floats).
+constexpr double terrain_disk_bytes_per_node = 1.35;
 // The file written: 1.84 and 1.83 B a point (25.5 and 213.1 MB), of which the network the creases'
 // source stores (crease_source.hpp) about 0.16.
 constexpr double drainage_disk_bytes_per_point = 1.83;
@@ -54,7 +56,8 @@ CacheBuildEstimate terrain_cache_estimate(int cols, int rows) {
     const double window_rows = double(lod_strip_rows() + 2);  // the strip's rows and the flags' dilation
     e.peak_bytes = terrain_base_bytes + 5.0 * double(cols) * std::min(window_rows, double(rows)) +
                    lod_errors_bytes(cols, rows) + terrain_bytes_per_node * nodes +
-                   terrain_bytes_per_error_block * nodes / 256.0;
+                   terrain_bytes_per_error_block * nodes / 256.0 +
+                   double(sizeof(LatticeNode)) * double(lattice_size(cols)) * double(lattice_size(rows));  // held whole
     e.disk_bytes = terrain_disk_bytes_per_node * nodes;
     return e;
 }

@@ -40,9 +40,10 @@
 //   of a step of 4 or more reads, the hachures' on a DEM finer than the pixels: 4 MiB more there,
 //   108 MiB in all).
 // The coding is lossless: a frame drawn from the file is the frame drawn from memory, bit for bit.
-// Its size follows the DEM's smoothness: 1.15 bytes a node (0.29 of the DEM's float32 heights) on
-// jacksboro refined 10 times (13.9 M nodes, geographic: x, y derived), 0.85 refined 29 times,
-// 1.43 refined 5 times, about 2 on examples/volcano.asc (projected), 2.8 on
+// Its size follows the DEM's smoothness: 1.35 bytes a node (0.34 of the DEM's float32 heights) on
+// jacksboro refined 10 times (13.9 M nodes, geographic: x, y derived; 1.15 without the lattice and
+// the coarse nodes), 0.98 refined 29 times (0.85), 1.75 refined 5 times (1.43); before the
+// lattice about 2 on examples/volcano.asc (projected), 2.8 on
 // examples/jacksboro.tif (1" heights in whole metres, rough at the cell scale); stored as floats
 // it took 17 and more. (`penink render DEM --cache-dir D`, then the size of D/*.lod;
 // bench/terrain_cache_bench.cpp.)
@@ -58,10 +59,12 @@
 // draw_scene (scene/frame_source.hpp) then removes the cache and draws again from a rebuilt one.
 // Written to a temporary file and renamed into place. Built from a DEM file by
 // build_terrain_cache in bounded memory: a window of the DEM's rows, the pyramid's strips
-// (lod_errors) and the coded blocks, 402 MB at peak for jacksboro refined 29 times (116.6 M
-// nodes, 95 MiB written before the lattice) where the whole Terrain and pyramid took 5.19 GB,
-// 2.31 GB for 1.0 G nodes (bench/terrain_cache_build_bench.cpp; docs/timings.md, "Scale"); the
-// node lattice is held whole until written (36 bytes every 64 nodes: 0.56 bytes a node).
+// (lod_errors), the coded blocks and the node lattice, held whole until written (36 bytes every
+// 64 nodes: 0.56 bytes a node): 505 MB at peak for jacksboro refined 29 times (116.6 M nodes,
+// 108 MiB written; 402 MB before the lattice and the coarse nodes) where the whole Terrain and
+// pyramid took 5.19 GB, 2.31 GB for 1.0 G nodes before the lattice, about 3.2 GB with it by the
+// estimate (scene/cache_build_estimate.cpp; bench/terrain_cache_build_bench.cpp; docs/timings.md,
+// "Scale").
 #pragma once
 #include <cstdint>
 #include <functional>
