@@ -40,6 +40,11 @@ struct GridNodes {
     int coarse_step = 0;
     static constexpr int coarse_array = 4;
     int coarse_size(int n) const { return (n - 1) / coarse_step + 1; }
+    // The heights and flags of the first and the last column (CoarseNode: column 0's rows, then
+    // column cols - 1's) kept together in `blocks` (array edge_array) where a terrain cache derives
+    // x, y: read_column reads them there (the automatic camera frames every edge node).
+    bool edges_kept = false;
+    static constexpr int edge_array = 5;
 
     // Makes nodes [i0, i1) (positions and valid flags) readable; a no-op for nodes in memory.
     // Throws DamagedBlockError when their blocks are damaged.
@@ -64,6 +69,10 @@ struct GridNodes {
     bool derive_xy(std::uint64_t first, std::uint64_t every, std::size_t count, glm::vec3* out) const {
         return blocks && blocks->derive(pos_array, first, every, count, out);
     }
+    // The stored positions and flags of column c's nodes (rows of them, row 0 first), read as
+    // read_strided reads; the first and last columns from the edge columns where kept (the same
+    // values from rows / 128 blocks rather than a block a row).
+    void read_column(int c, glm::vec3* pos, std::uint8_t* valid) const;
     // Whether node i holds data.
     bool has_data(std::size_t i) const {
         need(i, i + 1);

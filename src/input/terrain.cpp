@@ -31,6 +31,18 @@ void GridNodes::read_strided(std::size_t i0, std::size_t i1, std::size_t every, 
     for (std::size_t i = i0; i < i1; i += every) *p++ = pos[i], *v++ = valid[i];
 }
 
+void GridNodes::read_column(int c, glm::vec3* p, std::uint8_t* v) const {
+    if (!(blocks && edges_kept && (c == 0 || c == cols - 1))) {
+        read_strided(index(c, 0), size(), std::size_t(cols), p, v);
+        return;
+    }
+    std::vector<CoarseNode> column(static_cast<std::size_t>(rows));
+    const std::uint64_t first = c == 0 ? 0 : std::uint64_t(rows);
+    blocks->read_strided(edge_array, first, first + std::uint64_t(rows), 1, column.data());
+    derive_xy(index(c, 0), std::uint64_t(cols), std::size_t(rows), p);
+    for (int r = 0; r < rows; ++r) p[r].z = column[std::size_t(r)].z, v[r] = column[std::size_t(r)].valid != 0.0f;
+}
+
 void GridNodes::read_heights(std::size_t i0, std::size_t i1, float* z, std::vector<glm::vec3>& scratch) const {
     if (i0 >= i1) return;
     const std::size_t n = i1 - i0;

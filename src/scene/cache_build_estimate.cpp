@@ -27,10 +27,11 @@ constexpr double terrain_s_per_node = 0.166e-6;  // 2.3 s at 13.86 M nodes
 // and the node lattice's coded (about terrain_bytes_per_node), and the node lattice, held whole
 // (36 B every 64 nodes): fitted to the build alone (bench/terrain_cache_build_bench.cpp under
 // /usr/bin/time -v) of jacksboro refined 5, 10 and 29 times (2015x1720, 4030x3440, 11687x9976
-// nodes), 103.4, 172.5 and 504.7 MB: the base and the bytes a node fitted to the last two (the
-// first is then about 27 MB over; its own DEM's roughness codes to more bytes a node than the
-// others').
-constexpr double terrain_bytes_per_node = 0.875, terrain_base_bytes = 102.2e6, terrain_bytes_per_error_block = 48.0;
+// nodes), 103.4, 172.5 and 504.7 MB: the base and the bytes a node fitted to the last two before
+// the lattice (98.9, 157.2, 402.2 MB), the lattice's coded bytes and the coarse nodes' to the
+// last (0.31 B a node more: ×10 then 3 MB under; the first about 27 MB over, its own DEM's
+// roughness codes to more bytes a node than the others').
+constexpr double terrain_bytes_per_node = 0.899, terrain_base_bytes = 98.7e6, terrain_bytes_per_error_block = 48.0;
 // The drainage database (`penink drainage DEM -o x.dv`: the network, the ridges and the creases'
 // source; the crease tiles come later, built by the renders that need them, with their own
 // progress): 3.25 s at 13.86 M points (jacksboro refined 10 times) and 42.6 s at 116.6 M (29

@@ -171,8 +171,9 @@ std::vector<glm::dvec3> frame_samples(const GridNodes& t) {
     read(t.index(0, 0), t.index(0, 0) + std::size_t(t.cols), 1, pa, va);
     read(t.index(0, t.rows - 1), t.index(0, t.rows - 1) + std::size_t(t.cols), 1, pb, vb);
     for (std::size_t c = 0; c < pa.size(); ++c) add(c, pa, va), add(c, pb, vb);
-    read(t.index(0, 0), t.size(), std::size_t(t.cols), pa, va);
-    read(t.index(t.cols - 1, 0), t.size(), std::size_t(t.cols), pb, vb);
+    pa.resize(std::size_t(t.rows)), va.resize(pa.size()), pb.resize(pa.size()), vb.resize(pa.size());
+    t.read_column(0, pa.data(), va.data());
+    t.read_column(t.cols - 1, pb.data(), vb.data());
     for (std::size_t r = 0; r < pa.size(); ++r) add(r, pa, va), add(r, pb, vb);
     return pts;
 }

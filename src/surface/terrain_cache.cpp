@@ -106,6 +106,14 @@ std::uint64_t coarse_count(int cols, int rows, bool derived) {
     const auto n = [](int k) { return std::uint64_t((k - 1) / grid_coarse_step + 1); };
     return derived ? n(cols) * n(rows) : 0;
 }
+// The edge columns (GridNodes::edges_kept): column 0's nodes, then column cols - 1's, coded as
+// the coarse nodes.
+std::uint64_t edge_count(int rows, bool derived) { return derived ? 2 * std::uint64_t(rows) : 0; }
+// Row r's nodes of the edge columns (heights z, flags v: the row's) into `edges` (2 rows).
+void add_edge_row(int cols, int rows, int r, const float* z, const std::uint8_t* v, CoarseNode* edges) {
+    edges[r] = {z[0], v[0] ? 1.0f : 0.0f};
+    edges[rows + r] = {z[cols - 1], v[cols - 1] ? 1.0f : 0.0f};
+}
 // The coarse nodes of grid row r (heights z, flags v, cols of each) appended to `out`, when it
 // is a coarse row.
 void add_coarse_row(int cols, int r, const float* z, const std::uint8_t* v, std::vector<CoarseNode>& out) {
@@ -287,7 +295,7 @@ private:
 };
 
 struct CodedTerrain {
-    CodedBlocks pos, valid, error, lattice, coarse;
+    CodedBlocks pos, valid, error, lattice, coarse, edges;
     std::uint32_t flags = 0;
 };
 // The node lattice of nodes z (stored, row by row), flags v and errors e (cols x rows each).
@@ -302,6 +310,11 @@ std::vector<LatticeNode> node_lattice(int cols, int rows, const glm::vec3* pos, 
         lattice_add_errors(cols, r, e + at, lattice.data());
     }
     return lattice;
+}
+CodedBlocks code_coarse_nodes(const std::vector<CoarseNode>& nodes) {
+    return code_blocks(nodes.size(), [&](std::uint64_t i, std::uint64_t k) {
+        return encode_floats(&nodes[std::size_t(i)].z, std::size_t(k), coarse_orders);
+    });
 }
 CodedBlocks code_lattice(const std::vector<LatticeNode>& lattice) {
     return code_blocks(lattice.size(), [&](std::uint64_t i, std::uint64_t k) {
@@ -319,16 +332,16 @@ CodedTerrain code_terrain(const StoredTerrain& t) {
             return encode_floats(z.data(), z.size(), z_orders);
         });
         c.lattice = code_lattice(node_lattice(t.meta.cols, t.meta.rows, t.nodes.pos, t.nodes.valid, t.lod.error.data()));
-        std::vector<CoarseNode> coarse;
+        std::vector<CoarseNode> coarse, edges(std::size_t(edge_count(t.meta.rows, true)));
         std::vector<float> z(static_cast<std::size_t>(t.meta.cols));
-        for (int r = 0; r < t.meta.rows; r += grid_coarse_step) {
+        for (int r = 0; r < t.meta.rows; ++r) {
             const std::size_t at = t.nodes.index(0, r);
             for (std::size_t j = 0; j < z.size(); ++j) z[j] = t.nodes.pos[at + j].z;
             add_coarse_row(t.meta.cols, r, z.data(), t.nodes.valid + at, coarse);
+            add_edge_row(t.meta.cols, t.meta.rows, r, z.data(), t.nodes.valid + at, edges.data());
         }
-        c.coarse = code_blocks(coarse.size(), [&](std::uint64_t i, std::uint64_t k) {
-            return encode_floats(&coarse[std::size_t(i)].z, std::size_t(k), coarse_orders);
-        });
+        c.coarse = code_coarse_nodes(coarse);
+        c.edges = code_coarse_nodes(edges);
     } else {
         c.pos = code_blocks(nodes, [&](std::uint64_t i, std::uint64_t k) {
             return encode_floats(&t.nodes.pos[i].x, std::size_t(k), pos_orders);
@@ -343,8 +356,8 @@ CodedTerrain code_terrain(const StoredTerrain& t) {
 
 // Each block's coded size and checksum, of the three arrays (what the header lists).
 struct BlockSums {
-    std::vector<std::uint32_t> sizes[5];
-    std::vector<std::uint64_t> sums[5];
+    std::vector<std::uint32_t> sizes[6];
+    std::vector<std::uint64_t> sums[6];
     std::uint32_t flags = 0;
     void take(int array, std::size_t b, std::span<const std::uint8_t> bytes) {
         sizes[array][b] = std::uint32_t(bytes.size()), sums[array][b] = hash64(bytes.data(), bytes.size());
@@ -353,8 +366,8 @@ struct BlockSums {
 BlockSums block_sums(const CodedTerrain& coded) {
     BlockSums s;
     s.flags = coded.flags;
-    const CodedBlocks* arrays[5] = {&coded.pos, &coded.valid, &coded.error, &coded.lattice, &coded.coarse};
-    for (int j = 0; j < 5; ++j) {
+    const CodedBlocks* arrays[6] = {&coded.pos, &coded.valid, &coded.error, &coded.lattice, &coded.coarse, &coded.edges};
+    for (int j = 0; j < 6; ++j) {
         s.sizes[j].resize(arrays[j]->size()), s.sums[j].resize(arrays[j]->size());
         for (std::size_t b = 0; b < arrays[j]->size(); ++b) s.take(j, b, (*arrays[j])[b]);
     }
@@ -363,7 +376,7 @@ BlockSums block_sums(const CodedTerrain& coded) {
 
 // The header and the array offsets of `t` (offsets relative to the file's start).
 std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCacheKey& key, const BlockSums& coded,
-                                        std::uint64_t at[5], std::uint64_t& total) {
+                                        std::uint64_t at[6], std::uint64_t& total) {
     const Terrain& m = t.meta;
     Writer w;
     w.bytes(magic, 8);
@@ -381,7 +394,7 @@ std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCac
     w.put(t.lod.lipschitz), w.put(t.lod.z_min), w.put(t.lod.z_max), w.put(0.0f);
     w.put(t.plan_lo.x), w.put(t.plan_lo.y), w.put(t.plan_hi.x), w.put(t.plan_hi.y);
     const std::size_t offsets = w.b.size();
-    for (int i = 0; i < 6; ++i) w.put(std::uint64_t(0));
+    for (int i = 0; i < 7; ++i) w.put(std::uint64_t(0));
     w.put(std::uint64_t(m.crs_wkt.size()));
     w.bytes(m.crs_wkt.data(), m.crs_wkt.size());
     while (w.b.size() % 8) w.b.push_back(0);
@@ -389,19 +402,20 @@ std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCac
     w.put(std::uint32_t(block_shift)), w.put(coded.flags);
     w.put(std::uint32_t(coded.sizes[3].empty() ? 0 : lod_lattice_step));
     w.put(std::uint32_t(coded.sizes[4].empty() ? 0 : grid_coarse_step));
+    w.put(std::uint32_t(coded.sizes[5].empty() ? 0 : 1)), w.put(std::uint32_t(0));
     for (const auto& sizes : coded.sizes) w.bytes(sizes.data(), sizes.size() * sizeof(std::uint32_t));
     while (w.b.size() % 8) w.b.push_back(0);
     for (const auto& sums : coded.sums) w.bytes(sums.data(), sums.size() * sizeof(std::uint64_t));
     const std::uint32_t length = std::uint32_t(w.b.size() + 8);
     std::memcpy(w.b.data() + 12, &length, 4);
     at[0] = length;
-    for (int j = 0; j < 5; ++j) {
+    for (int j = 0; j < 6; ++j) {
         std::uint64_t bytes = 0;
         for (const std::uint32_t n : coded.sizes[j]) bytes += n;
-        (j < 4 ? at[j + 1] : total) = at[j] + bytes;
+        (j < 5 ? at[j + 1] : total) = at[j] + bytes;
     }
-    std::memcpy(w.b.data() + offsets, at, 40);
-    std::memcpy(w.b.data() + offsets + 40, &total, 8);
+    std::memcpy(w.b.data() + offsets, at, 48);
+    std::memcpy(w.b.data() + offsets + 48, &total, 8);
     w.put(hash64(w.b.data(), w.b.size()));
     return w.b;
 }
@@ -412,10 +426,10 @@ std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCac
 
 // The file of t's header fields and its coded arrays.
 void write_coded(const std::string& path, const StoredTerrain& t, const TerrainCacheKey& key, const CodedTerrain& coded) {
-    std::uint64_t at[5], total = 0;
+    std::uint64_t at[6], total = 0;
     const std::vector<std::uint8_t> header = encode_header(t, key, block_sums(coded), at, total);
     std::vector<std::span<const std::uint8_t>> parts{header};
-    for (const CodedBlocks* a : {&coded.pos, &coded.valid, &coded.error, &coded.lattice, &coded.coarse})
+    for (const CodedBlocks* a : {&coded.pos, &coded.valid, &coded.error, &coded.lattice, &coded.coarse, &coded.edges})
         for (const auto& b : *a) parts.emplace_back(b);
     if (const int err = write_cache_file(path, parts)) write_failed(path, err);
 }
@@ -515,11 +529,12 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
     sums.flags = formula->flag;
     std::vector<LatticeNode> lattice(std::size_t(lattice_count(m.cols, m.rows, true)));  // filled as rows and errors come
     const std::uint64_t coarse_nodes = coarse_count(m.cols, m.rows, true);
-    const std::uint64_t counts[5] = {block_count(nodes, block_shift), block_count(nodes, block_shift),
+    std::vector<CoarseNode> edges(std::size_t(edge_count(m.rows, true)));  // filled as rows come
+    const std::uint64_t counts[6] = {block_count(nodes, block_shift), block_count(nodes, block_shift),
                                      block_count(nodes, block_shift), block_count(lattice.size(), block_shift),
-                                     block_count(coarse_nodes, block_shift)};
-    for (int j = 0; j < 5; ++j) sums.sizes[j].assign(std::size_t(counts[j]), 0), sums.sums[j].assign(std::size_t(counts[j]), 0);
-    std::uint64_t at[5], total = 0;
+                                     block_count(coarse_nodes, block_shift), block_count(edges.size(), block_shift)};
+    for (int j = 0; j < 6; ++j) sums.sizes[j].assign(std::size_t(counts[j]), 0), sums.sums[j].assign(std::size_t(counts[j]), 0);
+    std::uint64_t at[6], total = 0;
     const std::size_t head = encode_header(t, key, sums, at, total).size();
     CacheFileStream out(path);
     if (const int err = out.append(std::vector<std::uint8_t>(head, 0))) write_failed(path, err);
@@ -602,6 +617,8 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
                 coarse_row.clear();
                 add_coarse_row(m.cols, win_end + int(i), win_z.data() + old + i * w, win_valid.data() + old + i * w, coarse_row);
                 coarse_blocks.add(coarse_row.data(), coarse_row.size());
+                add_edge_row(m.cols, m.rows, win_end + int(i), win_z.data() + old + i * w, win_valid.data() + old + i * w,
+                             edges.data());
             }
             z_blocks.add(win_z.data() + old, k * w);
             valid_blocks.add(win_valid.data() + old, k * w);
@@ -645,6 +662,11 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
         if (const int err = out.append(bytes)) write_failed(path, err);
     });
     if (const int err = out.append(coarse_coded)) write_failed(path, err);
+    const CodedBlocks edges_coded = code_coarse_nodes(edges);
+    for (std::size_t b = 0; b < edges_coded.size(); ++b) {
+        sums.take(5, b, edges_coded[b]);
+        if (const int err = out.append(edges_coded[b])) write_failed(path, err);
+    }
     const std::vector<std::uint8_t> header = encode_header(t, key, sums, at, total);
     if (header.size() != head) throw std::logic_error("terrain cache: header length changed");
     if (const int err = out.finish(header)) write_failed(path, err);
@@ -778,7 +800,7 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     t.lod.lipschitz = r.get<float>(), t.lod.z_min = r.get<float>(), t.lod.z_max = r.get<float>();
     r.get<float>();
     t.plan_lo.x = r.get<double>(), t.plan_lo.y = r.get<double>(), t.plan_hi.x = r.get<double>(), t.plan_hi.y = r.get<double>();
-    std::uint64_t at[5];
+    std::uint64_t at[6];
     for (std::uint64_t& a : at) a = r.get<std::uint64_t>();
     const std::uint64_t total = r.get<std::uint64_t>(), crs = r.get<std::uint64_t>();
     if (!r.ok || crs > max_crs_bytes || crs > r.n - r.at) return fail(why, "damaged terrain cache (header)");
@@ -788,23 +810,26 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
         return fail(why, "damaged terrain cache (grid)");
     const std::uint64_t nodes = node_count(m.cols, m.rows);
     if (total != size || at[0] < length || at[1] < at[0] || at[2] < at[1] || at[3] < at[2] || at[4] < at[3] ||
-        total < at[4])
+        at[5] < at[4] || total < at[5])
         return fail(why, "damaged terrain cache (lengths)");
     const std::uint32_t shift = r.get<std::uint32_t>(), flags = r.get<std::uint32_t>();
     const std::uint32_t step = r.get<std::uint32_t>(), coarse_step = r.get<std::uint32_t>();
+    const std::uint32_t edges = r.get<std::uint32_t>(), reserved = r.get<std::uint32_t>();
     if (!r.ok || shift < min_block_shift || shift > max_block_shift || (flags & ~(xy_affine | xy_geographic)) != 0 ||
         flags == (xy_affine | xy_geographic) || (step != 0 && (step != std::uint32_t(lod_lattice_step) || !flags)) ||
-        (coarse_step != 0 && (coarse_step != std::uint32_t(grid_coarse_step) || !flags)))
+        (coarse_step != 0 && (coarse_step != std::uint32_t(grid_coarse_step) || !flags)) || edges > 1 ||
+        (edges && !flags) || reserved != 0)
         return fail(why, "damaged terrain cache (block checksums)");
     const std::uint64_t lattice = lattice_count(m.cols, m.rows, step != 0);
     const std::uint64_t coarse = coarse_count(m.cols, m.rows, coarse_step != 0);
-    const std::uint64_t counts[5] = {block_count(nodes, shift), block_count(nodes, shift), block_count(nodes, shift),
-                                     block_count(lattice, shift), block_count(coarse, shift)};
-    const std::uint64_t blocks = counts[0] + counts[1] + counts[2] + counts[3] + counts[4];
+    const std::uint64_t edge_nodes = edge_count(m.rows, edges != 0);
+    const std::uint64_t counts[6] = {block_count(nodes, shift), block_count(nodes, shift), block_count(nodes, shift),
+                                     block_count(lattice, shift), block_count(coarse, shift), block_count(edge_nodes, shift)};
+    const std::uint64_t blocks = counts[0] + counts[1] + counts[2] + counts[3] + counts[4] + counts[5];
     if (align_up(blocks * 4, 8) + blocks * 8 != r.n - r.at) return fail(why, "damaged terrain cache (block checksums)");
-    std::vector<CheckedBlocks::CodedArray> arrays(5);
+    std::vector<CheckedBlocks::CodedArray> arrays(6);
     const std::uint8_t* sizes = b + r.at;
-    for (int j = 0; j < 5; ++j) {
+    for (int j = 0; j < 6; ++j) {
         CheckedBlocks::CodedArray& a = arrays[std::size_t(j)];
         a.offset = at[j], a.shift = shift;
         // 4-byte aligned: the header is allocated aligned and its tables start at a multiple of 8
@@ -812,7 +837,7 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
         sizes += counts[j] * 4;
         std::uint64_t coded = 0;
         for (const std::uint32_t c : a.sizes) coded += c;
-        if (at[j] + coded != (j < 4 ? at[j + 1] : total)) return fail(why, "damaged terrain cache (lengths)");
+        if (at[j] + coded != (j < 5 ? at[j + 1] : total)) return fail(why, "damaged terrain cache (lengths)");
     }
     arrays[0].elems = nodes, arrays[0].elem_bytes = sizeof(glm::vec3);
     if (flags) {
@@ -856,6 +881,8 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     arrays[4].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::uint64_t, std::size_t count) {
         return decode_floats(c, bytes, static_cast<float*>(out), count, coarse_orders);
     };
+    arrays[5].elems = edge_nodes, arrays[5].elem_bytes = sizeof(CoarseNode);
+    arrays[5].decode = arrays[4].decode;
     const auto* stored_sums = reinterpret_cast<const std::uint64_t*>(b + r.at + align_up(blocks * 4, 8));  // 8-aligned
     std::vector<std::uint64_t> sums(stored_sums, stored_sums + blocks);
     std::shared_ptr<CheckedBlocks> coded;
@@ -865,12 +892,13 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
         return fail(why, "terrain cache too large for memory");
     }
     static_assert(GridNodes::pos_array == 0 && GridNodes::valid_array == 1 && TerrainLod::error_array == 2 &&
-                  TerrainLod::lattice_array == 3 && GridNodes::coarse_array == 4);
+                  TerrainLod::lattice_array == 3 && GridNodes::coarse_array == 4 && GridNodes::edge_array == 5);
     t.nodes.cols = m.cols, t.nodes.rows = m.rows;
     t.nodes.pos = static_cast<const glm::vec3*>(coded->data(GridNodes::pos_array));
     t.nodes.valid = static_cast<const std::uint8_t*>(coded->data(GridNodes::valid_array));
     t.nodes.blocks = coded.get();
     t.nodes.coarse_step = int(coarse_step);
+    t.nodes.edges_kept = edges != 0;
     t.lod.cols = m.cols, t.lod.rows = m.rows, t.lod.levels = levels;
     t.lod.error = std::span<const float>(static_cast<const float*>(coded->data(TerrainLod::error_array)),
                                          std::size_t(nodes));
@@ -888,6 +916,7 @@ void read_whole(const StoredTerrain& t) {
         t.lod.blocks->need(TerrainLod::lattice_array, 0, lattice_count(t.lod.cols, t.lod.rows, true));
     if (t.nodes.blocks && t.nodes.coarse_step)
         t.nodes.blocks->need(GridNodes::coarse_array, 0, coarse_count(t.nodes.cols, t.nodes.rows, true));
+    if (t.nodes.blocks && t.nodes.edges_kept) t.nodes.blocks->need(GridNodes::edge_array, 0, edge_count(t.nodes.rows, true));
 }
 
 }  // namespace penink

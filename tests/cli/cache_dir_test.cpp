@@ -112,11 +112,12 @@ TEST(CacheDir, DamagedCachesAreRebuiltNeverDrawn) {
     std::uint64_t lines_at = 0;  // the lines part, which a render reads (dv_format.hpp)
     std::memcpy(&lines_at, dv.data() + 24, 8);
     ASSERT_LT(lines_at, dv.size());
-    // the terrain cache's arrays (terrain_cache.hpp): offsets of pos, valid, error, lattice and the
-    // coarse nodes after the 232 bytes of magic, version, length, key, grid and pyramid, then the length
-    std::uint64_t at[6];
+    // the terrain cache's arrays (terrain_cache.hpp): offsets of pos, valid, error, lattice, the
+    // coarse nodes and the edge columns after the 232 bytes of magic, version, length, key, grid and
+    // pyramid, then the length
+    std::uint64_t at[7];
     std::memcpy(at, lod.data() + 232, sizeof at);
-    ASSERT_EQ(at[5], lod.size());
+    ASSERT_EQ(at[6], lod.size());
     ASSERT_LT(at[3], at[4]);  // a projected DEM: x, y derived, a node lattice kept
     int k = 0;
     // what a whole view reads of the terrain cache: the middle of the nodes' heights, of the

@@ -39,7 +39,7 @@ TEST(CacheBuildEstimate, ReproducesTheMeasurementsItWasFittedTo) {
     // the build alone: PENINK_BENCH_DEM=DEM /usr/bin/time -v build/terrain_cache_build_bench
     EXPECT_GE(t5.peak_bytes, 103.4e6);  // the base fitted to the larger two: about 27 MB over
     EXPECT_LE(t5.peak_bytes, 145e6);
-    EXPECT_NEAR(t10.peak_bytes, 172.5e6, 3e6);
+    EXPECT_NEAR(t10.peak_bytes, 172.5e6, 4e6);  // 169.3: the lattice's share fitted to x29 alone
     EXPECT_NEAR(terrain_cache_estimate(11687, 9976).peak_bytes, 504.7e6, 5e6);
     // a DEM's cache in bounded memory: a billion cells' (jacksboro refined 85 times, a padded
     // square of 65537^2 nodes) in 4 GB

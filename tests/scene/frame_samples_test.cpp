@@ -45,9 +45,13 @@ std::vector<glm::dvec3> expected_samples(const GridNodes& t) {
 
 TEST(FrameSamples, CachedNodesGiveTheSamePointsAndKeepNoBlock) {
     test::TempDir dir;
-    for (const int side : {101, 601}) {  // 10 k nodes: all of them; 361 k: every 5th of every 5th row
-        Terrain t = terrain_from_function(side, side - 20, 5.0, rough_hills);
-        t.valid[std::size_t(3 * side + 7)] = 0, t.valid[std::size_t(side - 1)] = 0;  // nodata inside and on an edge
+    // 10 k nodes: all of them; 361 k: every 5th of every 5th row; on an affine grid the cache keeps
+    // the edge columns, read there (a block every 128 rows of each instead of one a row)
+    for (const int side : {101, 601, -601}) {
+        Terrain t = terrain_from_function(std::abs(side), std::abs(side) - 20, 5.0, rough_hills);
+        t.valid[std::size_t(3 * std::abs(side) + 7)] = 0, t.valid[std::size_t(std::abs(side) - 1)] = 0;  // nodata inside and on an edge
+        t.valid[t.index(0, 17)] = 0;  // on the west edge
+        if (side < 0) t = on_affine_grid(std::move(t));
         const StoredTerrain mem = store_terrain(t);
         const std::string path = dir.file("t" + std::to_string(side) + ".lod");
         write_terrain_cache(path, mem, key());
@@ -58,7 +62,15 @@ TEST(FrameSamples, CachedNodesGiveTheSamePointsAndKeepNoBlock) {
         const std::vector<glm::dvec3> want = expected_samples(in_memory), got = frame_samples(from_file);
         ASSERT_EQ(got.size(), want.size()) << side;
         for (std::size_t i = 0; i < want.size(); ++i) ASSERT_EQ(got[i], want[i]) << side << " point " << i;
+        EXPECT_EQ(map->nodes.edges_kept, side < 0);
         EXPECT_GT(map->nodes.blocks->blocks_read(), 0u);
+        if (side < 0) {  // the same points from the nodes' rows: two blocks more a row (1162 here)
+            std::optional<StoredTerrain> rows = read_terrain_cache(path, key());
+            ASSERT_TRUE(rows);
+            rows->nodes.edges_kept = false;
+            EXPECT_EQ(frame_samples(rows->drawn(2.0, sea)), got);
+            EXPECT_GT(rows->nodes.blocks->blocks_read(), map->nodes.blocks->blocks_read() + 1100);
+        }
         for (std::size_t i = 0; i < from_file.size(); i += 256)
             ASSERT_FALSE(map->nodes.blocks->has_read(GridNodes::pos_array, i)) << side << " node " << i;
     }

@@ -24,6 +24,22 @@ Terrain holed_hills() {
     return t;
 }
 
+Terrain on_affine_grid(Terrain t, double cell) {
+    t.origin = {512345.0, 4012345.0};
+    t.crs_wkt = "PROJCS[\"WGS 84 / UTM zone 16N\"]";
+    t.utm_zone = 16;
+    t.geotransform = {512000.0, cell, 0.0, 4013000.0, 0.0, -cell};
+    t.xy_unit = 1.0;
+    AffineNodes a;
+    if (!terrain_affine(t, a)) return t;
+    for (int r = 0; r < t.rows; ++r)
+        for (int c = 0; c < t.cols; ++c) {
+            const glm::vec2 xy = affine_node_xy(a, t.origin, c, r);
+            t.pos[t.index(c, r)].x = xy.x, t.pos[t.index(c, r)].y = xy.y;
+        }
+    return t;
+}
+
 double rough_hills(double x, double y) {
     struct Hill {
         double x, y, h, s;

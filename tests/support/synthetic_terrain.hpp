@@ -20,4 +20,10 @@ void cut_hole(Terrain& terrain, double cx, double cy, double radius);
 // holes, one inside and one on the north-west edge: the drainage lines' tests' DEM with nodata.
 Terrain holed_hills();
 
+// `t` georeferenced as a projected DEM of UTM zone 16 whose grid starts at (512000, 4013000) with
+// cells of `cell` metres, every node's x, y affine_node_xy of that geotransform (as the DEM reader
+// computes a projected DEM's, origin at (512345, 4012345)): a terrain cache then derives them, and
+// keeps the node lattice, the coarse nodes and the edge columns.
+Terrain on_affine_grid(Terrain t, double cell = 5.0);
+
 }  // namespace penink

@@ -49,19 +49,6 @@ Terrain hills() {
 
 TerrainCacheKey key() { return {123456, 789, 0xabcdef, 0, true}; }
 
-// `t` (georeferenced as hills()) with every node's x, y affine_node_xy of its geotransform, as the
-// DEM reader computes a projected DEM's: a cache then derives them (and holds a node lattice).
-Terrain on_affine_grid(Terrain t) {
-    AffineNodes a;
-    if (!terrain_affine(t, a)) throw std::runtime_error("not an affine grid");
-    for (int r = 0; r < t.rows; ++r)
-        for (int c = 0; c < t.cols; ++c) {
-            const glm::vec2 xy = affine_node_xy(a, t.origin, c, r);
-            t.pos[t.index(c, r)].x = xy.x, t.pos[t.index(c, r)].y = xy.y;
-        }
-    return t;
-}
-
 Camera oblique(const StoredTerrain& t, double e) {
     return frame_box(glm::dvec3(t.plan_lo, t.lod.z_min * e), glm::dvec3(t.plan_hi, t.lod.z_max * e),
                      {.azimuth = 30.0, .altitude = -20.0, .fov = 40.0, .width = 800, .height = 600});
@@ -407,8 +394,6 @@ TEST(TerrainCache, WholeViewReadsItsCoarseNodesFromTheLattice) {
     Terrain flat = terrain_from_function(2049, 1537, 5.0, rough_hills);
     for (int r = 800; r < 861; ++r)  // a hole: lattice nodes with some neighbours lacking data
         for (int c = 1000; c < 1037; ++c) flat.valid[flat.index(c, r)] = 0;
-    flat.origin = {512345.0, 4012345.0}, flat.utm_zone = 16, flat.xy_unit = 1.0;
-    flat.geotransform = {512000.0, 5.0, 0.0, 4013000.0, 0.0, -5.0};
     const StoredTerrain mem = store_terrain(on_affine_grid(std::move(flat)));
     const std::string path = dir.file("big.lod");
     write_terrain_cache(path, mem, key());
@@ -443,8 +428,6 @@ TEST(TerrainCache, WholeViewReadsItsCoarseNodesFromTheLattice) {
 TEST(TerrainCache, SampledNodesAreReadFromTheCoarseNodes) {
     test::TempDir dir;
     Terrain flat = terrain_from_function(2049, 301, 5.0, rough_hills);
-    flat.origin = {512345.0, 4012345.0}, flat.utm_zone = 16, flat.xy_unit = 1.0;
-    flat.geotransform = {512000.0, 5.0, 0.0, 4013000.0, 0.0, -5.0};
     for (int r = 0; r < 40; ++r)
         for (int c = 2000; c < 2049; ++c) flat.valid[flat.index(c, r)] = 0;  // a hole at the north-east edge
     for (int r = 100; r < 130; ++r)
