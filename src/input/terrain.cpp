@@ -31,16 +31,28 @@ void GridNodes::read_strided(std::size_t i0, std::size_t i1, std::size_t every, 
     for (std::size_t i = i0; i < i1; i += every) *p++ = pos[i], *v++ = valid[i];
 }
 
+namespace {
+
+// n nodes kept as CoarseNode (elements begin, begin + every, ... of array k of nodes.blocks), the
+// grid's nodes first, first + node_every, ...: their x, y derived, heights and flags as kept.
+void read_kept_nodes(const GridNodes& nodes, int k, std::uint64_t begin, std::uint64_t every, std::uint64_t first,
+                     std::uint64_t node_every, std::size_t n, glm::vec3* p, std::uint8_t* v, std::vector<CoarseNode>& kept) {
+    kept.resize(n);
+    nodes.blocks->read_strided(k, begin, begin + (n - 1) * every + 1, every, kept.data());
+    nodes.derive_xy(first, node_every, n, p);
+    for (std::size_t i = 0; i < n; ++i) p[i].z = kept[i].z, v[i] = kept[i].valid != 0.0f;
+}
+
+}  // namespace
+
 void GridNodes::read_column(int c, glm::vec3* p, std::uint8_t* v) const {
     if (!(blocks && edges_kept && (c == 0 || c == cols - 1))) {
         read_strided(index(c, 0), size(), std::size_t(cols), p, v);
         return;
     }
-    std::vector<CoarseNode> column(static_cast<std::size_t>(rows));
-    const std::uint64_t first = c == 0 ? 0 : std::uint64_t(rows);
-    blocks->read_strided(edge_array, first, first + std::uint64_t(rows), 1, column.data());
-    derive_xy(index(c, 0), std::uint64_t(cols), std::size_t(rows), p);
-    for (int r = 0; r < rows; ++r) p[r].z = column[std::size_t(r)].z, v[r] = column[std::size_t(r)].valid != 0.0f;
+    std::vector<CoarseNode> column;
+    read_kept_nodes(*this, edge_array, c == 0 ? 0 : std::uint64_t(rows), 1, index(c, 0), std::uint64_t(cols),
+                    std::size_t(rows), p, v, column);
 }
 
 void GridNodes::read_heights(std::size_t i0, std::size_t i1, float* z, std::vector<glm::vec3>& scratch) const {
@@ -77,15 +89,11 @@ void read_sampled(const GridNodes& nodes, const SampledWindow& s, GridWindow par
     if (nodes.blocks && cs > 0 && s.step % cs == 0 && s.window.c0 % cs == 0 && s.window.r0 % cs == 0) {
         const std::size_t coarse_cols = std::size_t(nodes.coarse_size(nodes.cols)), every = std::size_t(s.step / cs);
         parallel_chunks(std::size_t(part.rows()), min_rows, [&](std::size_t j0, std::size_t j1) {
-            std::vector<CoarseNode> row(cols);
+            std::vector<CoarseNode> row;
             for (std::size_t j = j0; j < j1; ++j) {
                 const int r = s.window.r0 + (part.r0 + int(j)) * s.step;
-                const std::size_t at = std::size_t(r / cs) * coarse_cols;
-                nodes.blocks->read_strided(GridNodes::coarse_array, at + std::size_t(c0 / cs),
-                                           at + std::size_t(c_last / cs) + 1, every, row.data());
-                glm::vec3* p = pos + j * cols;
-                nodes.derive_xy(nodes.index(c0, r), step, cols, p);
-                for (std::size_t i = 0; i < cols; ++i) p[i].z = row[i].z, valid[j * cols + i] = row[i].valid != 0.0f;
+                read_kept_nodes(nodes, GridNodes::coarse_array, std::size_t(r / cs) * coarse_cols + std::size_t(c0 / cs),
+                                every, nodes.index(c0, r), step, cols, pos + j * cols, valid + j * cols, row);
             }
         });
         return;

@@ -298,19 +298,6 @@ struct CodedTerrain {
     CodedBlocks pos, valid, error, lattice, coarse, edges;
     std::uint32_t flags = 0;
 };
-// The node lattice of nodes z (stored, row by row), flags v and errors e (cols x rows each).
-std::vector<LatticeNode> node_lattice(int cols, int rows, const glm::vec3* pos, const std::uint8_t* v, const float* e) {
-    std::vector<LatticeNode> lattice(std::size_t(lattice_count(cols, rows, true)));
-    std::vector<float> z(static_cast<std::size_t>(cols));
-    for (int r = 0; r < rows; ++r) {
-        const std::size_t at = std::size_t(r) * std::size_t(cols);
-        if (r % lod_lattice_step > 1 && r % lod_lattice_step < lod_lattice_step - 1) continue;  // read by no lattice node
-        for (int c = 0; c < cols; ++c) z[std::size_t(c)] = pos[at + std::size_t(c)].z;
-        lattice_add_row(cols, rows, r, z.data(), v + at, lattice.data());
-        lattice_add_errors(cols, r, e + at, lattice.data());
-    }
-    return lattice;
-}
 CodedBlocks code_coarse_nodes(const std::vector<CoarseNode>& nodes) {
     return code_blocks(nodes.size(), [&](std::uint64_t i, std::uint64_t k) {
         return encode_floats(&nodes[std::size_t(i)].z, std::size_t(k), coarse_orders);
@@ -331,15 +318,20 @@ CodedTerrain code_terrain(const StoredTerrain& t) {
             for (std::size_t j = 0; j < z.size(); ++j) z[j] = t.nodes.pos[i + j].z;
             return encode_floats(z.data(), z.size(), z_orders);
         });
-        c.lattice = code_lattice(node_lattice(t.meta.cols, t.meta.rows, t.nodes.pos, t.nodes.valid, t.lod.error.data()));
-        std::vector<CoarseNode> coarse, edges(std::size_t(edge_count(t.meta.rows, true)));
-        std::vector<float> z(static_cast<std::size_t>(t.meta.cols));
-        for (int r = 0; r < t.meta.rows; ++r) {
+        // each row's heights once into the node lattice, the coarse nodes and the edge columns
+        const int cols = t.meta.cols, rows = t.meta.rows;
+        std::vector<LatticeNode> lattice(std::size_t(lattice_count(cols, rows, true)));
+        std::vector<CoarseNode> coarse, edges(std::size_t(edge_count(rows, true)));
+        std::vector<float> z(static_cast<std::size_t>(cols));
+        for (int r = 0; r < rows; ++r) {
             const std::size_t at = t.nodes.index(0, r);
             for (std::size_t j = 0; j < z.size(); ++j) z[j] = t.nodes.pos[at + j].z;
-            add_coarse_row(t.meta.cols, r, z.data(), t.nodes.valid + at, coarse);
-            add_edge_row(t.meta.cols, t.meta.rows, r, z.data(), t.nodes.valid + at, edges.data());
+            lattice_add_row(cols, rows, r, z.data(), t.nodes.valid + at, lattice.data());
+            lattice_add_errors(cols, r, t.lod.error.data() + at, lattice.data());
+            add_coarse_row(cols, r, z.data(), t.nodes.valid + at, coarse);
+            add_edge_row(cols, rows, r, z.data(), t.nodes.valid + at, edges.data());
         }
+        c.lattice = code_lattice(lattice);
         c.coarse = code_coarse_nodes(coarse);
         c.edges = code_coarse_nodes(edges);
     } else {
@@ -354,7 +346,7 @@ CodedTerrain code_terrain(const StoredTerrain& t) {
     return c;
 }
 
-// Each block's coded size and checksum, of the three arrays (what the header lists).
+// Each block's coded size and checksum, of the six arrays (what the header lists).
 struct BlockSums {
     std::vector<std::uint32_t> sizes[6];
     std::vector<std::uint64_t> sums[6];
@@ -398,7 +390,8 @@ std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCac
     w.put(std::uint64_t(m.crs_wkt.size()));
     w.bytes(m.crs_wkt.data(), m.crs_wkt.size());
     while (w.b.size() % 8) w.b.push_back(0);
-    // each block's coded size, then its checksum, the three arrays' blocks in turn
+    // the lattice, coarse and edge flags; each block's coded size, then its checksum, the arrays'
+    // blocks in turn
     w.put(std::uint32_t(block_shift)), w.put(coded.flags);
     w.put(std::uint32_t(coded.sizes[3].empty() ? 0 : lod_lattice_step));
     w.put(std::uint32_t(coded.sizes[4].empty() ? 0 : grid_coarse_step));
@@ -655,18 +648,16 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
         sums.take(2, b, errors.block(b));
         if (const int err = out.append(errors.block(b))) write_failed(path, err);
     }
-    code_batches(lattice.size(), [&](std::uint64_t i, std::uint64_t k) {
-        return encode_floats(lattice[std::size_t(i)].z, std::size_t(k), lattice_orders);
-    }, [&](std::size_t b, std::span<const std::uint8_t> bytes) {
-        sums.take(3, b, bytes);
-        if (const int err = out.append(bytes)) write_failed(path, err);
-    });
+    const auto write_blocks = [&](int array, const CodedBlocks& blocks) {
+        for (std::size_t b = 0; b < blocks.size(); ++b) {
+            sums.take(array, b, blocks[b]);
+            if (const int err = out.append(blocks[b])) write_failed(path, err);
+        }
+    };
+    write_blocks(3, code_lattice(lattice));
+    lattice = {};
     if (const int err = out.append(coarse_coded)) write_failed(path, err);
-    const CodedBlocks edges_coded = code_coarse_nodes(edges);
-    for (std::size_t b = 0; b < edges_coded.size(); ++b) {
-        sums.take(5, b, edges_coded[b]);
-        if (const int err = out.append(edges_coded[b])) write_failed(path, err);
-    }
+    write_blocks(5, code_coarse_nodes(edges));
     const std::vector<std::uint8_t> header = encode_header(t, key, sums, at, total);
     if (header.size() != head) throw std::logic_error("terrain cache: header length changed");
     if (const int err = out.finish(header)) write_failed(path, err);

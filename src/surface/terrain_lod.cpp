@@ -523,9 +523,9 @@ public:
         vz2_ = vz * vz;
         frustum_ = frustum_of(cam);
         if (lod.blocks) errors_.emplace(*lod.blocks, TerrainLod::error_array, 4096);
-        if (lod.blocks && lod.lattice_step == lod_lattice_step && t.derive_xy(0, 1, 0, nullptr))
-            lattice_.emplace(*lod.blocks, TerrainLod::lattice_array, 512);
         derives_ = t.derive_xy(0, 1, 0, nullptr);
+        if (lod.blocks && lod.lattice_step == lod_lattice_step && derives_)
+            lattice_.emplace(*lod.blocks, TerrainLod::lattice_array, 512);
         lattice_cols_ = std::size_t(lattice_size(cols_));
     }
 
