@@ -1,6 +1,7 @@
 #include "cli/render_command.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <iostream>
 #include <sstream>
 
@@ -97,7 +98,8 @@ int run_render(const RenderOptions& o) {
     const PlotStats& stats = written.plot;
     std::ostringstream s;
     s << stats.paths << " paths, " << stats.length_px << " px drawn, " << stats.travel_px << " px pen-up; "
-      << "total " << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s";
+      << "finished in " << std::lround(written.finish_ms) << " ms, written in " << std::lround(written.write_ms)
+      << " ms; total " << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s";
     log.info(s.str());
     for (const std::string& line : written.widths) log.info(line);
     return 0;

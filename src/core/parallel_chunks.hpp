@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <exception>
 #include <future>
+#include <iterator>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -81,7 +82,10 @@ template <class T, class F> std::vector<T> parallel_collect(std::size_t n, std::
     std::vector<std::vector<T>> parts((n + per - 1) / per);
     parallel_chunks(n, min_chunk, [&](std::size_t b, std::size_t e) { f(b, e, parts[b / per]); });
     std::vector<T> all;
-    for (auto& p : parts) all.insert(all.end(), p.begin(), p.end());
+    std::size_t total = 0;
+    for (const auto& p : parts) total += p.size();
+    all.reserve(total);
+    for (auto& p : parts) all.insert(all.end(), std::make_move_iterator(p.begin()), std::make_move_iterator(p.end()));
     return all;
 }
 

@@ -1,11 +1,21 @@
 #include "lines/scored_polylines.hpp"
 
 #include <algorithm>
+#include <span>
 
 #include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
 
+#include "core/parallel_chunks.hpp"
+
 namespace penink {
+
+namespace {
+
+// Runs handed to a core at a time (a whole view of a large DEM scores some 80 000).
+constexpr std::size_t runs_per_chunk = 2048;
+
+}  // namespace
 
 void whole_or_nothing_by_distance(std::vector<float>& scores, const std::vector<glm::vec3>& positions,
                                   const std::vector<VertexRun>& runs, const Camera& camera,
@@ -15,25 +25,29 @@ void whole_or_nothing_by_distance(std::vector<float>& scores, const std::vector<
     const auto without = [&](std::uint32_t i) {  // the score with the attenuation added back
         return double(scores[i]) + attenuation_per_metre * eye_depth(camera, glm::dvec3(positions[i]));
     };
-    for (const VertexRun& run : runs) {
-        const std::uint32_t end = run.first + run.count;
-        bool cut = false;
-        for (std::uint32_t i = run.first; i < end && !cut; ++i) cut = !hidden(i) && scores[i] < 0.0f && without(i) >= 0.0;
-        if (!cut) continue;
-        double with_len = 0.0, without_len = 0.0;
-        for (std::uint32_t i = run.first + 1; i < end; ++i) {
-            if (hidden(i) || hidden(i - 1)) continue;
-            const double len = glm::length(glm::dvec3(positions[i]) - glm::dvec3(positions[i - 1]));
-            if (without(i) >= 0.0 && without(i - 1) >= 0.0) without_len += len;
-            if (scores[i] >= 0.0f && scores[i - 1] >= 0.0f) with_len += len;
+    // the runs on all cores (each writes its own vertices' scores)
+    parallel_chunks(runs.size(), runs_per_chunk, [&](std::size_t r0, std::size_t r1) {
+        for (std::size_t r = r0; r < r1; ++r) {
+            const VertexRun& run = runs[r];
+            const std::uint32_t end = run.first + run.count;
+            bool cut = false;
+            for (std::uint32_t i = run.first; i < end && !cut; ++i) cut = !hidden(i) && scores[i] < 0.0f && without(i) >= 0.0;
+            if (!cut) continue;
+            double with_len = 0.0, without_len = 0.0;
+            for (std::uint32_t i = run.first + 1; i < end; ++i) {
+                if (hidden(i) || hidden(i - 1)) continue;
+                const double len = glm::length(glm::dvec3(positions[i]) - glm::dvec3(positions[i - 1]));
+                if (without(i) >= 0.0 && without(i - 1) >= 0.0) without_len += len;
+                if (scores[i] >= 0.0f && scores[i - 1] >= 0.0f) with_len += len;
+            }
+            const bool whole = with_len >= 0.5 * without_len;
+            for (std::uint32_t i = run.first; i < end; ++i) {
+                if (hidden(i) || without(i) < 0.0) continue;
+                if (whole && scores[i] < 0.0f) scores[i] = 0.0f;
+                if (!whole) scores[i] = -1.0f;
+            }
         }
-        const bool whole = with_len >= 0.5 * without_len;
-        for (std::uint32_t i = run.first; i < end; ++i) {
-            if (hidden(i) || without(i) < 0.0) continue;
-            if (whole && scores[i] < 0.0f) scores[i] = 0.0f;
-            if (!whole) scores[i] = -1.0f;
-        }
-    }
+    });
 }
 
 namespace {
@@ -75,8 +89,10 @@ std::vector<glm::vec3> drawn_points(const DrawnRun& r, const std::vector<glm::ve
     return points;
 }
 
-std::vector<DrawnRun> drawn_runs(const std::vector<glm::vec3>& positions, const std::vector<float>& scores,
-                                 const std::vector<VertexRun>& runs, const Camera& camera) {
+namespace {
+
+std::vector<DrawnRun> drawn_runs_of(const std::vector<glm::vec3>& positions, const std::vector<float>& scores,
+                                    std::span<const VertexRun> runs, const Camera& camera) {
     const glm::dmat4 view = view_matrix(camera), vp = view_projection(camera);
     const auto outside_view = [&](std::uint32_t i) {
         return scores[i] < -1e29f && !in_frustum(vp * glm::dvec4(glm::dvec3(positions[i]), 1.0));
@@ -109,6 +125,13 @@ std::vector<DrawnRun> drawn_runs(const std::vector<glm::vec3>& positions, const 
         close(cur);
     }
     return out;
+}
+
+}  // namespace
+
+std::vector<DrawnRun> drawn_runs(const std::vector<glm::vec3>& positions, const std::vector<float>& scores,
+                                 const std::vector<VertexRun>& runs, const Camera& camera) {
+    return drawn_runs_of(positions, scores, runs, camera);
 }
 
 float mean_score(const std::vector<float>& scores, VertexRun run) {
@@ -148,11 +171,12 @@ std::vector<Stroke> scored_runs_to_strokes(const std::vector<glm::vec3>& positio
                                            const std::vector<float>& scores,
                                            const std::vector<VertexRun>& runs, const Camera& camera,
                                            const std::string& kind, const std::vector<float>& weight) {
-    std::vector<Stroke> out;
-    for (const DrawnRun& run : drawn_runs(positions, scores, runs, camera))
-        out.push_back(project_stroke(drawn_points(run, positions), camera, mean_score(scores, run.run), kind,
-                                     drawn_values(run, weight)));
-    return out;
+    // the runs on all cores, their strokes joined in run order
+    return parallel_collect<Stroke>(runs.size(), runs_per_chunk, [&](std::size_t r0, std::size_t r1, std::vector<Stroke>& out) {
+        for (const DrawnRun& run : drawn_runs_of(positions, scores, {runs.data() + r0, r1 - r0}, camera))
+            out.push_back(project_stroke(drawn_points(run, positions), camera, mean_score(scores, run.run), kind,
+                                         drawn_values(run, weight)));
+    });
 }
 
 }  // namespace penink

@@ -94,6 +94,9 @@ std::vector<Stroke> thin_by_spacing(const std::vector<Stroke>& strokes, float sp
     PointGrid grid(spacing);
     std::vector<Stroke> out;
     for (std::size_t i : order) {
+        // a stroke shorter than a piece may be leaves nothing (its pieces lie on it, densified;
+        // 1e-5: what summing its segments again may round to, kept)
+        if (polyline_length(strokes[i].points) < min_length * (1.0f - 1e-5f)) continue;
         const std::size_t first = out.size();
         accept_runs(densify(strokes[i], spacing * 0.5f), grid, min_length, out);
         // A stroke does not block itself: its points enter the grid only after it is cut.

@@ -35,6 +35,21 @@ TEST(ExportDrawing, EveryFormatWritesOnlyItsFile) {
               std::filesystem::perms::owner_read);
 }
 
+// Written together (the documents made side by side), each file holds the bytes it holds written
+// alone.
+TEST(ExportDrawing, FilesWrittenTogetherHoldWhatEachHoldsAlone) {
+    TempDir together("together"), alone("alone");
+    const std::vector<std::string> names = {"a.svg", "a.ps", "a.eps", "a.pdf", "a.png", "b.png", "a.tif"};
+    std::vector<std::string> paths;
+    for (const std::string& n : names) paths.push_back(together.file(n));
+    export_drawings(drawing(), PageOptions{}, paths);
+    for (const std::string& n : names) {
+        export_drawing(drawing(), PageOptions{}, alone.file(n));
+        EXPECT_EQ(read_text(together.file(n)), read_text(alone.file(n))) << n;
+    }
+    EXPECT_EQ(files_in(together), files_in(alone));
+}
+
 TEST(ExportDrawing, UnknownFormat) {
     EXPECT_EQ(error_of([] { export_drawing(drawing(), PageOptions{}, "/tmp/x.xyz"); }),
               "penink: export: /tmp/x.xyz: unknown output format \".xyz\" (use .svg .ps .eps .pdf, or a raster: .png .tif .tiff .jpg .jpeg .webp .exr)");

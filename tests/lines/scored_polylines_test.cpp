@@ -163,3 +163,38 @@ TEST(ScoredPolylines, FrustumExitOfASegment) {
     const glm::vec3 same = frustum_exit({0.0f, 0.0f, 0.0f}, {10.0f, 0.0f, 0.0f}, vp);  // both inside
     EXPECT_NEAR(same.x, 10.0f, 1e-6);
 }
+
+// Many runs (more than one chunk of the cores' share): the strokes and the whole-or-nothing
+// scores are what each run gives alone, in run order.
+TEST(ScoredPolylines, ManyRunsGiveEachRunsOwnStrokesInOrder) {
+    std::vector<glm::vec3> pos;
+    std::vector<float> scores;
+    std::vector<VertexRun> runs;
+    for (int r = 0; r < 9000; ++r) {
+        runs.push_back({std::uint32_t(pos.size()), std::uint32_t(3 + r % 5)});
+        for (int i = 0; i < 3 + r % 5; ++i) {
+            pos.push_back({float(-80 + (r * 7 + i * 13) % 160), float(-60 + (r * 11 + i * 3) % 120), float(r % 9)});
+            const int k = (r * 31 + i * 17) % 23;
+            scores.push_back(k == 0 ? hidden : float(k - 4) * 0.05f);  // some negative, some hidden
+        }
+    }
+    const Camera cam = down_camera();
+    std::vector<Stroke> alone;
+    std::vector<float> whole_alone = scores;
+    for (const VertexRun& run : runs) {
+        for (Stroke& s : scored_runs_to_strokes(pos, scores, {run}, cam, "crease")) alone.push_back(std::move(s));
+        whole_or_nothing_by_distance(whole_alone, pos, {run}, cam, 1e-3);
+    }
+    const std::vector<Stroke> all = scored_runs_to_strokes(pos, scores, runs, cam, "crease");
+    ASSERT_GT(all.size(), 4096u);
+    ASSERT_EQ(all.size(), alone.size());
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        ASSERT_EQ(all[i].points, alone[i].points) << i;
+        ASSERT_EQ(all[i].depth, alone[i].depth) << i;
+        ASSERT_EQ(all[i].strength, alone[i].strength) << i;
+    }
+    std::vector<float> whole = scores;
+    whole_or_nothing_by_distance(whole, pos, runs, cam, 1e-3);
+    EXPECT_EQ(whole, whole_alone);
+    EXPECT_NE(whole, scores);  // the attenuation cut some runs
+}

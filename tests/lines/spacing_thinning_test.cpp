@@ -96,6 +96,22 @@ TEST(SpacingThinning, ShortPiecesDropped) {
     EXPECT_NEAR(cut[1].points.back().y, 100.0f, 1e-4);
 }
 
+TEST(SpacingThinning, StrokesTooShortToLeaveAPieceBlockNothing) {
+    // A strong 10 px stroke leaves nothing (min 12 px), so the weaker line 2 px beside it stays
+    // whole; a 12 px one (exactly the minimum, in 3 segments) stays and cuts the weaker line.
+    const Stroke weak = line({0, 52}, {100, 52}, 0.2f);
+    const auto out = thin_by_spacing({line({40, 50}, {50, 50}, 0.9f), weak}, 4.0f);
+    ASSERT_EQ(out.size(), 1u);
+    EXPECT_FLOAT_EQ(out[0].strength, 0.2f);
+    EXPECT_FLOAT_EQ(length(out[0]), 100.0f);
+    Stroke twelve = line({40, 50}, {52, 50}, 0.9f);
+    twelve.points = {{40, 50}, {44, 50}, {48, 50}, {52, 50}}, twelve.depth.assign(4, 100.0f);
+    const auto cut = thin_by_spacing({twelve, weak}, 4.0f);
+    ASSERT_EQ(cut.size(), 3u);  // the 12 px stroke and the weaker line's two ends
+    EXPECT_FLOAT_EQ(length(cut[0]), 12.0f);
+    EXPECT_LT(length(cut[1]) + length(cut[2]), 90.0f);
+}
+
 TEST(SpacingThinning, EqualStrengthKeepsInputOrder) {
     const Stroke a = line({0, 50}, {100, 50}, 0.3f), b = line({0, 51}, {100, 51}, 0.3f);
     const auto ab = thin_by_spacing({a, b}, 4.0f), ba = thin_by_spacing({b, a}, 4.0f);
