@@ -31,7 +31,7 @@ std::vector<float> visible_percentiles(const std::vector<float>& values, float h
     return out;
 }
 
-std::vector<float> crease_scores(const std::vector<CreaseTerms>& terms, const CreaseParams& p, float max_distance) {
+std::vector<float> crease_scores(std::span<const CreaseTerms> terms, const CreaseParams& p, float max_distance) {
     const std::array<double, 3> weights{p.slope_weight, p.illumination_weight, p.flow_weight};
     const double sum = weights[0] + weights[1] + weights[2];
     const double divisor = p.normalisation == ScoreNormalisation::thirds ? 3.0 : sum > 0.0 ? sum : 1.0;

@@ -12,6 +12,7 @@
 // the same uniform spread, so a threshold means a share of the drawn network
 // (docs/reproduction.md). Output: one rs per vertex, dm_hidden where the vertex is not visible.
 #pragma once
+#include <span>
 #include <vector>
 
 #include "core/crease_params.hpp"
@@ -22,7 +23,10 @@ namespace penink {
 // rs of every vertex under p; D = max_distance (metres, the frame's farthest visible surface).
 // "thirds" and "paper" are computed in float in the order written above; a term whose weight is 0
 // is not ranked.
-std::vector<float> crease_scores(const std::vector<CreaseTerms>& terms, const CreaseParams& p, float max_distance);
+std::vector<float> crease_scores(std::span<const CreaseTerms> terms, const CreaseParams& p, float max_distance);
+inline std::vector<float> crease_scores(const std::vector<CreaseTerms>& terms, const CreaseParams& p, float max_distance) {
+    return crease_scores(std::span<const CreaseTerms>(terms), p, max_distance);
+}
 
 // D: the largest finite eye distance of the frame's toward-facing surface, metres (0 when none).
 float max_visible_distance(const DepthImage& toward);

@@ -32,10 +32,12 @@ void DmPass::set_vertices(DmInput v) {
     terms_ = make_buffer(*gl_, nullptr, std::max<std::size_t>(1, count_) * sizeof(CreaseTerms), GL_DYNAMIC_READ);
 }
 
-double DmPass::run(const DmFrame& f, std::vector<CreaseTerms>& terms) {
+double DmPass::run(const DmFrame& f, const std::function<void(std::span<const CreaseTerms>)>& use) {
     static_assert(sizeof(CreaseTerms) == 4 * sizeof(float), "one vec4 per vertex");
-    terms.assign(count_, CreaseTerms{});
-    if (count_ == 0) return 0.0;
+    if (count_ == 0) {
+        use({});
+        return 0.0;
+    }
     const Camera& cam = *f.camera;
     const GLuint p = program_.id();
     const auto loc = [&](const char* name) { return uniform_location(*gl_, p, name); };
@@ -56,10 +58,22 @@ double DmPass::run(const DmFrame& f, std::vector<CreaseTerms>& terms) {
     const std::size_t groups = (count_ + 63) / 64, gx = std::min<std::size_t>(groups, 32768);
     gl_->DispatchCompute(GLuint(gx), GLuint((groups + gx - 1) / gx), 1);
     timer_.end();
-    gl_->MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    gl_->GetNamedBufferSubData(terms_.id(), 0, GLsizeiptr(count_ * sizeof(CreaseTerms)), terms.data());
+    gl_->MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
+    const GLsizeiptr bytes = GLsizeiptr(count_ * sizeof(CreaseTerms));
+    const void* mapped = gl_->MapNamedBufferRange(terms_.id(), 0, bytes, GL_MAP_READ_BIT);
     check_gl_error(*gl_, "DM pass (" + std::to_string(count_) + " vertices)");
+    if (!mapped) throw std::runtime_error("DM pass: the terms buffer could not be mapped");
+    struct Unmap {  // (also when `use` throws)
+        const GlApi& gl;
+        GLuint buffer;
+        ~Unmap() { gl.UnmapNamedBuffer(buffer); }
+    } unmap{*gl_, terms_.id()};
+    use({static_cast<const CreaseTerms*>(mapped), count_});
     return timer_.milliseconds();
+}
+
+double DmPass::run(const DmFrame& f, std::vector<CreaseTerms>& terms) {
+    return run(f, [&terms](std::span<const CreaseTerms> t) { terms.assign(t.begin(), t.end()); });
 }
 
 }  // namespace penink

@@ -9,6 +9,7 @@
 // dm_hidden for vertices not visible (outside the frustum, or farther than the TFT surface at
 // their pixel; a pixel with no surface counts as visible: silhouette vertices).
 #pragma once
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -41,7 +42,10 @@ public:
     DmPass(const GlApi& gl, DmInput vertices);
     // Replaces the vertices (new buffers; the program, compiled once, stays).
     void set_vertices(DmInput vertices);
-    // Returns GPU milliseconds; fills `terms` (one per vertex).
+    // Returns GPU milliseconds; hands `use` the terms (one per vertex) where the pass wrote them:
+    // its buffer mapped for reading while `use` runs (no copy of a frame's millions of terms).
+    double run(const DmFrame& frame, const std::function<void(std::span<const CreaseTerms>)>& use);
+    // The same, the terms copied into `terms`.
     double run(const DmFrame& frame, std::vector<CreaseTerms>& terms);
     std::size_t size() const { return count_; }
 

@@ -64,6 +64,8 @@ namespace penink {
     X(PFNGLNAMEDBUFFERSUBDATAPROC, NamedBufferSubData)                                          \
     X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                                                  \
     X(PFNGLGETNAMEDBUFFERSUBDATAPROC, GetNamedBufferSubData)                                    \
+    X(PFNGLMAPNAMEDBUFFERRANGEPROC, MapNamedBufferRange)                                        \
+    X(PFNGLUNMAPNAMEDBUFFERPROC, UnmapNamedBuffer)                                              \
     X(PFNGLDRAWELEMENTSPROC, DrawElements)                                                      \
     X(PFNGLDRAWARRAYSPROC, DrawArrays)                                                          \
     X(PFNGLPATCHPARAMETERIPROC, PatchParameteri)                                                \

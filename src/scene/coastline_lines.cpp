@@ -37,9 +37,8 @@ void CoastlineLines::draw(const Camera& camera, GLuint toward_texture, Drawing& 
     CreaseParams visible;
     visible.slope_weight = visible.illumination_weight = visible.flow_weight = 0.0;
     visible.min_score = -1.0, visible.distance_attenuation = 0.0;
-    std::vector<CreaseTerms> terms;
-    set_.pass->run(frame, terms);
-    const std::vector<float> scores = crease_scores(terms, visible, 1.0f);
+    std::vector<float> scores;
+    set_.pass->run(frame, [&](std::span<const CreaseTerms> terms) { scores = crease_scores(terms, visible, 1.0f); });
     drawing.layer(LayerKind::coastline).strokes =
         scored_runs_to_strokes(set_.lines.positions, scores, set_.lines.runs, camera, "coastline");
 }

@@ -56,10 +56,11 @@ void DrainageLines::draw(const Camera& camera, const Scene& scene, GLuint toward
                                 LayerLines{ridges_, scene.lines.ridges, LayerKind::ridges, "ridge", float(ridge_pen.sketch),
                                            ridge_pen.repeat, times.ridges}}) {
         if (!l.params.enabled) continue;
-        std::vector<CreaseTerms> terms;
-        l.ms = l.set.pass->run(frame, terms);
+        std::vector<float> scores;
+        l.ms = l.set.pass->run(frame, [&](std::span<const CreaseTerms> terms) {
+            scores = crease_scores(terms, l.params, max_distance);
+        });
         const ScoredLineSet& lines = l.set.lines;
-        std::vector<float> scores = crease_scores(terms, l.params, max_distance);
         const double per_metre = max_distance > 0.0f ? l.params.distance_attenuation / double(max_distance) : 0.0;
         whole_or_nothing_by_distance(scores, lines.positions, lines.runs, camera, per_metre);
         std::vector<float> weight;  // creases by flow, ridges by height (lines/stroke_weight.hpp)
