@@ -292,6 +292,11 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
     std::optional<HachureNodes> hachure_grid;
     if (frame.lines.hachures.enabled) hachure_grid = hachure_nodes(terrain_, camera);
     const double nodes_ms = ms_since(t_nodes);
+    // the silhouettes and the surface's outline (their layers alone) while the drainage lines
+    // may still be prepared
+    const auto t0 = Clock::now();
+    add_frame_lines(images, mesh_, camera, out.drawing);
+    out.trace_ms = ms_since(t0);
     if (pending_lines_.valid()) {
         std::unique_ptr<DrainageLines>& made = gpu_ ? gpu_->lines : own_lines_;
         if (made) made->set_lines(pending_lines_.get());
@@ -311,9 +316,6 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
         if (!coast_) coast_ = std::make_unique<CoastlineLines>(context_->gl(), terrain_.nodes, terrain_.window);
         coast_->draw(camera, renderer_->surface_pass().toward_texture(), out.drawing);
     }
-    const auto t0 = Clock::now();
-    add_frame_lines(images, mesh_, camera, out.drawing);
-    out.trace_ms = ms_since(t0);
     const auto t_hachures = Clock::now();  // after the lines they yield to
     if (hachure_grid) {
         NodeTileCounts tiles;
