@@ -15,7 +15,9 @@ Subcommand add_drainage_command(CLI::App& app) {
     auto cmd_options = std::make_shared<DrainageCommand>();
     DrainageCommand& o = *cmd_options;
     CLI::App* cmd = app.add_subcommand(
-        "drainage", "Build the drainage vertex database of a DEM (the cache render reads: DEM.dv)");
+        "drainage",
+        "Build the drainage vertex database of a DEM (the cache render reads: DEM.dv), with the default "
+        "options also the terrain cache (DEM.lod) and the crease tiles of the whole view (DEM.dv.tiles)");
     cmd->add_option("dem", o.dem, "DEM (GeoTIFF, ASCII grid, ...)")->required();
     cmd->add_option("-o,--output", o.output,
                     "Database file (default: the cache render reads, DEM.dv beside the DEM, or in the user cache "

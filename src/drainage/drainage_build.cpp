@@ -274,15 +274,18 @@ DrainageDb drainage_db_from_grid(DrainageGrid& g, const DrainageProgress& progre
 }
 
 DrainageDb build_and_write_drainage_db(Terrain& t, const DrainageOptions& options, const DrainageFingerprint& fp,
-                                       const std::string& path, const DrainageProgress& progress, DrainageResult* keep) {
+                                       const std::string& path, const DrainageProgress& progress, DrainageResult* keep,
+                                       DrainageGrid* grid) {
     report(progress, "resampling the PN surface", 0.0);
     const int factor = drainage_resample_factor(t, options);
     const std::optional<DemHeightsRef> dem = heights_ref(t.source, t, factor);
     DrainageGrid g = resample_pn_releasing(t, factor);  // memory back
-    return build_streamed(
+    DrainageDb meta = build_streamed(
         g, t.crs_wkt, options, fp,
-        [&](const DrainageDb& meta, const DvBranchSource& branches) { write_drainage_db(path, meta, branches); },
+        [&](const DrainageDb& built, const DvBranchSource& branches) { write_drainage_db(path, built, branches); },
         progress, keep, dem ? &*dem : nullptr);
+    if (grid) *grid = std::move(g);
+    return meta;
 }
 
 DrainageDb build_drainage_db(const Terrain& t, const DrainageOptions& options,

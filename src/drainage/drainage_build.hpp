@@ -108,10 +108,12 @@ DrainageDb build_drainage_db(const Terrain& t, const DrainageOptions& options,
 // branches.hpp: no vertex array held; the same bytes). t.pos and t.z are released (emptied) once
 // the grid is resampled (resample_pn_releasing: `t` may be a heights-only read at factor 1), the
 // rest of `t` kept. Returns the database without its branches and vertices
-// (grid, origin, CRS, fingerprint, divides, creases, ridges); `keep` as build_drainage_db.
+// (grid, origin, CRS, fingerprint, divides, creases, ridges); `keep` as build_drainage_db;
+// `grid` (when given) gets the drainage grid as the build leaves it (what a BuiltNetwork holds
+// with the directions and network of `keep`).
 DrainageDb build_and_write_drainage_db(Terrain& t, const DrainageOptions& options, const DrainageFingerprint& fp,
                                        const std::string& path, const DrainageProgress& progress = {},
-                                       DrainageResult* keep = nullptr);
+                                       DrainageResult* keep = nullptr, DrainageGrid* grid = nullptr);
 
 // Fingerprint of the DEM file (options.dem's, when given) plus the build options: the resample
 // factor and the routing (not the vertical exaggeration: the database holds unexaggerated

@@ -77,6 +77,10 @@ public:
     // DEM (decode_crease_source's `heights`: a render's terrain cache) instead of reading the DEM
     // whole; set before the first query.
     void use_node_heights(NodeHeights h) { heights_ = std::move(h); }
+    // The grid, directions and network of the build in this process that wrote the database read
+    // (as take() hands on DrainageDb::built_network): the first stems built from them. Before the
+    // first query.
+    void use_built_network(BuiltNetworkHandle built) { built_ = std::move(built.arrays); }
     // Called once with the drainage grid's size (its points: cols x rows), before the first query
     // that builds stems decodes the grid, directions and network (not where they are a build's of
     // this process, nor for queries whose tiles are all in files): a render checks there that the

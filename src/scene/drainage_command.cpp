@@ -16,9 +16,12 @@
 
 #include "core/error.hpp"
 #include "core/input_files.hpp"
+#include "drainage/crease_source.hpp"
 #include "drainage/dv_format.hpp"
 #include "export/atomic_file.hpp"
 #include "scene/scene_inputs.hpp"
+#include "scene/scene_overrides.hpp"
+#include "scene/terrain_frames.hpp"
 #include <fstream>
 #include <future>
 #include "scene/terrain_view.hpp"
@@ -48,7 +51,7 @@ struct StageTimer {
     double cpu0 = 0;
     void next(const std::string& name) {
         const Clock::time_point now = Clock::now();
-        if (on) {
+        if (on && !stage.empty()) {
             char line[160];
             timespec ts; clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
             const double cpu = ts.tv_sec + ts.tv_nsec * 1e-9;
@@ -255,6 +258,31 @@ int fill_for_rank_0(const DrainageCommand& cmd, Ranks& ranks, std::ostream& log)
 
 int build(const DrainageCommand& cmd, std::ostream& log, FillRanks& ranks);
 
+// The crease tiles of the whole view a render of cmd.dem with the default scene draws
+// (write_view_crease_tiles), built beside the database just written, from the build's network
+// (`built`, as a render that builds the database builds its first tiles); what was written, for
+// the summary. A cache for the first render, not an output: where it cannot be built (its memory),
+// a line says so and the render builds them.
+std::string view_crease_tiles(const DrainageCommand& cmd, std::ostream& log, StageTimer& timer, BuiltNetworkHandle built) {
+    SceneOverrides o;
+    o.input = cmd.dem, o.cache_dir = cmd.cache_dir, o.max_memory = cmd.max_memory;
+    try {
+        Scene scene = load_scene_with_overrides(o);  // (a render's memory check among its errors)
+        if (drainage_routing_named(scene.terrain.drainage_routing) != cmd.routing) return {};
+        timer.next("crease tiles of the whole view");
+        const std::size_t n = write_view_crease_tiles(scene, Log{false, progress_mode(cmd.quiet, cmd.progress)}, std::move(built));
+        if (n == 0) return {};
+        return "crease tiles of the whole view: " + std::to_string(n) + " files in " +
+               crease_tile_folder(drainage_cache_path(cmd.dem, cmd.cache_dir));
+    } catch (const Error& e) {
+        const std::string why = std::string(e.what()).substr(format_error(e.stage(), e.file(), "").size());
+        if (!cmd.quiet)
+            log << "penink: drainage: " << cmd.dem << ": the crease tiles of the whole view are left to the first render ("
+                << why << ")\n";
+        return {};
+    }
+}
+
 int run(const DrainageCommand& cmd, std::ostream& log) {
     const std::unique_ptr<Ranks> world = launched_ranks();
     if (world && world->rank() != 0) return fill_for_rank_0(cmd, *world, log);
@@ -319,6 +347,7 @@ int build(const DrainageCommand& cmd, std::ostream& log, FillRanks& ranks) {
     if (ranks.spread() && factor == 1 && cmd.routing == DrainageRouting::priority_flood)
         o.fill = [&ranks](const GridShape& g, const std::vector<float>& z, const FillRowWriter& rows) { ranks.fill(g, z, rows); };
     DrainageResult res;
+    DrainageGrid grid;  // as the build leaves it: with res's directions and network, the crease tiles' start
     DrainageDb db;
     const DrainageFingerprint fp = drainage_fingerprint(cmd.dem, t, o);
     // The database and the rasters are one set, placed together or not at all (atomic_file.hpp):
@@ -336,7 +365,8 @@ int build(const DrainageCommand& cmd, std::ostream& log, FillRanks& ranks) {
         write_atomically_together(paths, [&](std::size_t i, const std::string& temp) {
             if (i == 0) {
                 try {
-                    db = build_and_write_drainage_db(t, o, fp, temp, progress_printer(progress, timer), &res);
+                    db = build_and_write_drainage_db(t, o, fp, temp, progress_printer(progress, timer), &res,
+                                                     render_caches && cmd.resample == 0 ? &grid : nullptr);
                 } catch (const Error& e) {  // named by its place, not its temporary
                     throw Error(e.stage(), e.file() == temp ? out : e.file(),
                                 std::string(e.what()).substr(format_error(e.stage(), e.file(), "").size()), e.code());
@@ -368,6 +398,23 @@ int build(const DrainageCommand& cmd, std::ostream& log, FillRanks& ranks) {
     if (!cmd.quiet) print_summary(log, res.stats, db, secs), log << ranks.line() << "drainage: wrote " << named(out) << "\n";
     if (!cmd.quiet && !terrain_cache.empty() && std::filesystem::exists(terrain_cache))
         log << "drainage: terrain cache " << named(terrain_cache) << "\n";
+    // and the crease tiles of the whole view a render of the DEM draws first (scene defaults: the
+    // database built with the render's factor and routing), so that the first render reads them;
+    // the build's memory let go first
+    if (render_caches && cmd.resample == 0) {
+        BuiltNetworkHandle built;
+        if (db.has_crease_source())
+            built.arrays = std::make_shared<BuiltNetwork>(BuiltNetwork{std::move(grid), std::move(res.dir), std::move(res.net)});
+        res = DrainageResult{}, db = DrainageDb{}, t = Terrain{}, grid = DrainageGrid{};
+        const auto t1 = Clock::now();
+        const std::string tiles = view_crease_tiles(cmd, log, timer, std::move(built));
+        timer.next("");
+        if (!cmd.quiet && !tiles.empty()) {
+            char took[32];
+            std::snprintf(took, sizeof took, " (%.2f s)", std::chrono::duration<double>(Clock::now() - t1).count());
+            log << "drainage: " << tiles << took << "\n";
+        }
+    }
     return 0;
 }
 

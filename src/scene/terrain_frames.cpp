@@ -221,9 +221,7 @@ TerrainFrames::TerrainFrames(GlContext& context, std::shared_ptr<const DrainageL
                              TerrainGpuKeep* gpu, const Log& log)
     : context_(&context), terrain_(std::move(terrain)), width_(width), height_(height), gpu_(gpu), log_(log) {
     if (!drainage) return;
-    LineBox box;
-    box.lo = glm::vec2(terrain_.lo), box.hi = glm::vec2(terrain_.hi), box.exaggeration = terrain_.meta.vertical_exaggeration;
-    box.sea_level = terrain_.nodes.sea_level;
+    const LineBox box = frame_line_box(terrain_);
     drainage_ = drainage;
     pending_lines_ = std::async(std::launch::async, [this, db = std::move(drainage), box, culling = std::move(culling)] {
         const auto t0 = Clock::now();
@@ -334,6 +332,25 @@ SceneDrawing TerrainFrames::draw(const Camera& camera, const Scene& frame) {
     if (out.drawing.georeference) add_geographic_corners(*out.drawing.georeference, camera.width, camera.height);
     out.drawing.metadata.merge(georeference_metadata(camera, out.drawing.georeference));
     return out;
+}
+
+LineBox frame_line_box(const FrameTerrain& terrain) {
+    LineBox box;
+    box.lo = glm::vec2(terrain.lo), box.hi = glm::vec2(terrain.hi), box.exaggeration = terrain.meta.vertical_exaggeration;
+    box.sea_level = terrain.nodes.sea_level;
+    return box;
+}
+
+std::size_t write_view_crease_tiles(Scene& scene, const Log& log, BuiltNetworkHandle built) {
+    TerrainKeep keep;  // (the caches read as open_terrain_view reads them)
+    const SceneTerrain dem = keep.terrain(scene, log);
+    Camera camera = scene_camera(scene, dem);
+    const std::shared_ptr<const DrainageLineSource> drainage = keep.drainage(scene, dem, log);
+    if (!drainage || !drainage->creases) return 0;
+    if (built) drainage->creases->use_built_network(std::move(built));
+    const FrameTerrain model = terrain_for_view(dem, camera, scene, log);
+    prepare_drainage_lines(*drainage, frame_line_box(model), LineCulling{{camera}, line_culling_px(scene)});
+    return drainage->creases->tiles_written();
 }
 
 SceneView open_terrain_view(Scene& scene, GlContext& context, const Log& log, TerrainKeep* keep) {

@@ -69,6 +69,18 @@ std::function<void(int cols, int rows)> crease_tiles_memory_check(const Scene& s
 // rebuilt, from the DEM's stored terrain `dem` (its grid and key), once found damaged while drawn.
 void read_whole_when_damaged(DrainageLineSource& source, const Scene& scene, const StoredTerrain& dem, const Log& log);
 
+// The box of drainage lines a modelled terrain's frames select from (prepare_drainage_lines): its
+// plan extent, vertical exaggeration and sea level.
+LineBox frame_line_box(const FrameTerrain& terrain);
+
+// The drainage lines of the scene's view (its DEM's caches read, its camera placed), prepared as
+// its first frame prepares them, without a GL context: the crease tiles that frame reads are
+// built and written where the render keeps them (beside the drainage cache). Returns the tile
+// files written (0 where the scene draws no creases, or they are there already). `built`: the
+// network of the build in this process that wrote the drainage cache (StoredCreases::
+// use_built_network), which the first stems are then built from.
+std::size_t write_view_crease_tiles(Scene& scene, const Log& log, BuiltNetworkHandle built = {});
+
 // A terrain set up once and drawn in many frames (render, batch, bench): its level-of-detail
 // pyramid (surface/terrain_lod.hpp), from which each frame selects the mesh its camera needs
 // ([surface] tolerance_px; 0 = the full-resolution mesh), its GPU copy, and its drainage lines.

@@ -4,6 +4,7 @@
 // rewritten) at any vertical exaggeration.
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -14,6 +15,8 @@
 #include <gtest/gtest.h>
 
 #include "scene/drainage_command.hpp"
+#include "scene/scene_overrides.hpp"
+#include "scene/terrain_frames.hpp"
 #include "scene/terrain_view.hpp"
 #include "drainage/drainage_build.hpp"
 #include "input/dem_reader.hpp"
@@ -256,6 +259,64 @@ TEST(DrainageCommand, AFailedBuildLeavesNoTerrainCacheOfItsOwn) {
     EXPECT_EQ(file_bytes(cmd.dem + ".lod"), before);
     EXPECT_FALSE(fs::exists(cmd.dem + ".dv"));
     fs::remove_all(d);
+}
+
+}  // namespace penink
+
+namespace penink {
+namespace {
+
+std::map<std::string, std::string> folder_bytes(const fs::path& d) {
+    std::map<std::string, std::string> files;
+    for (const auto& e : fs::directory_iterator(d)) files[e.path().filename().string()] = file_bytes(e.path());
+    return files;
+}
+
+Scene default_scene(const std::string& dem) {
+    SceneOverrides o;
+    o.input = dem;
+    return load_scene_with_overrides(o);
+}
+
+}  // namespace
+
+// With the render's options, the command also writes the crease tiles of the whole view that a
+// render of the DEM with the default scene reads: the files that render would write itself, so
+// that it writes none. With another factor it writes none (the render would build its own
+// database).
+TEST(DrainageCommand, WritesTheCreaseTilesTheFirstRenderReads) {
+    const fs::path a = volcano_folder("dtiles_a"), b = volcano_folder("dtiles_b");
+    DrainageCommand cmd;
+    cmd.dem = (a / "volcano.asc").string();
+    std::ostringstream log;
+    ASSERT_EQ(run_drainage_command(cmd, log), 0) << log.str();
+    const fs::path tiles = crease_tile_folder(cmd.dem + ".dv");
+    ASSERT_TRUE(fs::is_directory(tiles)) << log.str();
+    const std::map<std::string, std::string> written = folder_bytes(tiles);
+    ASSERT_GT(written.size(), 4u);
+    EXPECT_NE(log.str().find("drainage: crease tiles of the whole view: " + std::to_string(written.size()) + " files in " +
+                             tiles.string()),
+              std::string::npos)
+        << log.str();
+    Scene scene = default_scene(cmd.dem);
+    EXPECT_EQ(write_view_crease_tiles(scene, Log{}), 0u) << "the first render writes none";
+    EXPECT_EQ(folder_bytes(tiles), written);
+    // the same DEM elsewhere, its tiles left to the render: the same files
+    DrainageCommand other = cmd;
+    other.dem = (b / "volcano.asc").string(), other.quiet = true;
+    ASSERT_EQ(run_drainage_command(other, log), 0) << log.str();
+    fs::remove_all(crease_tile_folder(other.dem + ".dv"));
+    Scene scene_b = default_scene(other.dem);
+    EXPECT_EQ(write_view_crease_tiles(scene_b, Log{}), written.size());
+    EXPECT_EQ(folder_bytes(crease_tile_folder(other.dem + ".dv")), written);
+    // another factor: no tiles
+    fs::remove_all(b);
+    fs::create_directories(b);
+    fs::copy_file(a / "volcano.asc", b / "volcano.asc"), fs::copy_file(a / "volcano.prj", b / "volcano.prj");
+    other.resample = 3;
+    ASSERT_EQ(run_drainage_command(other, log), 0) << log.str();
+    EXPECT_FALSE(fs::exists(crease_tile_folder(other.dem + ".dv")));
+    fs::remove_all(a), fs::remove_all(b);
 }
 
 }  // namespace penink
