@@ -35,8 +35,7 @@ TEST(ExportDrawing, EveryFormatWritesOnlyItsFile) {
               std::filesystem::perms::owner_read);
 }
 
-// Written together (the documents made side by side), each file holds the bytes it holds written
-// alone.
+// Written together, each file holds the bytes it holds written alone.
 TEST(ExportDrawing, FilesWrittenTogetherHoldWhatEachHoldsAlone) {
     TempDir together("together"), alone("alone");
     const std::vector<std::string> names = {"a.svg", "a.ps", "a.eps", "a.pdf", "a.png", "b.png", "a.tif"};
