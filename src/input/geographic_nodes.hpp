@@ -45,6 +45,8 @@ class GeographicNodeXY {
 public:
     GeographicNodeXY(const GeographicNodes& g, glm::dvec2 origin) : rows_(geographic_projector(g)), origin_(origin) {}
     void span(int r, int c0, int c1, glm::vec2* out) const { span(r, c0, c1, 1, out); }
+    // The projection's lattice of exact nodes (UtmRowProjector::lattice, adopt_lattice).
+    const UtmRowProjector& projector() const { return rows_; }
     // Every `every`-th node of the span from c0 (UtmRowProjector::row_span); out: (c1 - c0 + every - 1) / every.
     void span(int r, int c0, int c1, int every, glm::vec2* out) const;
 

@@ -104,6 +104,21 @@ void UtmRowProjector::project_rows(std::size_t t0, std::size_t t1) const {
     }
 }
 
+void UtmRowProjector::lattice(glm::dvec2* out) const {
+    if (!lattice_) return;
+    project_rows(0, rows_.size());
+    std::copy_n(lattice_->nodes.get(), lattice_size(), out);
+}
+
+void UtmRowProjector::adopt_lattice(const glm::dvec2* nodes) const {
+    if (!lattice_) return;
+    Lattice& l = *lattice_;
+    const std::lock_guard<std::mutex> lock(l.mutex);
+    std::copy_n(nodes, lattice_size(), l.nodes.get());
+    for (std::size_t b = 0; b < (rows_.size() + lattice_band - 1) / lattice_band; ++b)
+        l.done[b].store(true, std::memory_order_release);
+}
+
 std::size_t UtmRowProjector::lattice_rows_projected() const {
     if (!lattice_) return 0;
     const std::lock_guard<std::mutex> lock(lattice_->mutex);

@@ -1,6 +1,7 @@
 #include "surface/terrain_cache.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <bit>
 #include <cerrno>
@@ -295,9 +296,27 @@ private:
 };
 
 struct CodedTerrain {
-    CodedBlocks pos, valid, error, lattice, coarse, edges;
+    CodedBlocks pos, valid, error, lattice, coarse, edges, utm;
     std::uint32_t flags = 0;
 };
+// The arrays in the order the file holds them.
+constexpr int array_count = 7, utm_array = 6;
+std::array<const CodedBlocks*, array_count> arrays_of(const CodedTerrain& c) {
+    return {&c.pos, &c.valid, &c.error, &c.lattice, &c.coarse, &c.edges, &c.utm};
+}
+// A geographic grid's UTM lattice (UtmRowProjector::lattice: the exact projections its x, y are
+// interpolated from), as it is in memory: what a warm frame would otherwise project again (on
+// jacksboro refined 29 times 456 k nodes, about 0.25 s of CPU, the whole of it for a whole view).
+CodedBlocks code_utm_lattice(const DerivedXY& d) {
+    if (!d.geographic) return {};
+    const UtmRowProjector& projector = d.geographic->projector();
+    std::vector<glm::dvec2> nodes(projector.lattice_size());
+    projector.lattice(nodes.data());
+    return code_blocks(nodes.size(), [&](std::uint64_t i, std::uint64_t k) {
+        const auto* b = reinterpret_cast<const std::uint8_t*>(nodes.data() + i);
+        return std::vector<std::uint8_t>(b, b + k * sizeof(glm::dvec2));
+    });
+}
 CodedBlocks code_coarse_nodes(const std::vector<CoarseNode>& nodes) {
     return code_blocks(nodes.size(), [&](std::uint64_t i, std::uint64_t k) {
         return encode_floats(&nodes[std::size_t(i)].z, std::size_t(k), coarse_orders);
@@ -334,6 +353,7 @@ CodedTerrain code_terrain(const StoredTerrain& t) {
         c.lattice = code_lattice(lattice);
         c.coarse = code_coarse_nodes(coarse);
         c.edges = code_coarse_nodes(edges);
+        c.utm = code_utm_lattice(*d);
     } else {
         c.pos = code_blocks(nodes, [&](std::uint64_t i, std::uint64_t k) {
             return encode_floats(&t.nodes.pos[i].x, std::size_t(k), pos_orders);
@@ -346,10 +366,10 @@ CodedTerrain code_terrain(const StoredTerrain& t) {
     return c;
 }
 
-// Each block's coded size and checksum, of the six arrays (what the header lists).
+// Each block's coded size and checksum, of the arrays (what the header lists).
 struct BlockSums {
-    std::vector<std::uint32_t> sizes[6];
-    std::vector<std::uint64_t> sums[6];
+    std::vector<std::uint32_t> sizes[array_count];
+    std::vector<std::uint64_t> sums[array_count];
     std::uint32_t flags = 0;
     void take(int array, std::size_t b, std::span<const std::uint8_t> bytes) {
         sizes[array][b] = std::uint32_t(bytes.size()), sums[array][b] = hash64(bytes.data(), bytes.size());
@@ -358,8 +378,8 @@ struct BlockSums {
 BlockSums block_sums(const CodedTerrain& coded) {
     BlockSums s;
     s.flags = coded.flags;
-    const CodedBlocks* arrays[6] = {&coded.pos, &coded.valid, &coded.error, &coded.lattice, &coded.coarse, &coded.edges};
-    for (int j = 0; j < 6; ++j) {
+    const auto arrays = arrays_of(coded);
+    for (int j = 0; j < array_count; ++j) {
         s.sizes[j].resize(arrays[j]->size()), s.sums[j].resize(arrays[j]->size());
         for (std::size_t b = 0; b < arrays[j]->size(); ++b) s.take(j, b, (*arrays[j])[b]);
     }
@@ -368,7 +388,7 @@ BlockSums block_sums(const CodedTerrain& coded) {
 
 // The header and the array offsets of `t` (offsets relative to the file's start).
 std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCacheKey& key, const BlockSums& coded,
-                                        std::uint64_t at[6], std::uint64_t& total) {
+                                        std::uint64_t at[array_count], std::uint64_t& total) {
     const Terrain& m = t.meta;
     Writer w;
     w.bytes(magic, 8);
@@ -386,7 +406,7 @@ std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCac
     w.put(t.lod.lipschitz), w.put(t.lod.z_min), w.put(t.lod.z_max), w.put(0.0f);
     w.put(t.plan_lo.x), w.put(t.plan_lo.y), w.put(t.plan_hi.x), w.put(t.plan_hi.y);
     const std::size_t offsets = w.b.size();
-    for (int i = 0; i < 7; ++i) w.put(std::uint64_t(0));
+    for (int i = 0; i <= array_count; ++i) w.put(std::uint64_t(0));
     w.put(std::uint64_t(m.crs_wkt.size()));
     w.bytes(m.crs_wkt.data(), m.crs_wkt.size());
     while (w.b.size() % 8) w.b.push_back(0);
@@ -395,20 +415,20 @@ std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCac
     w.put(std::uint32_t(block_shift)), w.put(coded.flags);
     w.put(std::uint32_t(coded.sizes[3].empty() ? 0 : lod_lattice_step));
     w.put(std::uint32_t(coded.sizes[4].empty() ? 0 : grid_coarse_step));
-    w.put(std::uint32_t(coded.sizes[5].empty() ? 0 : 1)), w.put(std::uint32_t(0));
+    w.put(std::uint32_t(coded.sizes[5].empty() ? 0 : 1)), w.put(std::uint32_t(coded.sizes[utm_array].empty() ? 0 : 1));
     for (const auto& sizes : coded.sizes) w.bytes(sizes.data(), sizes.size() * sizeof(std::uint32_t));
     while (w.b.size() % 8) w.b.push_back(0);
     for (const auto& sums : coded.sums) w.bytes(sums.data(), sums.size() * sizeof(std::uint64_t));
     const std::uint32_t length = std::uint32_t(w.b.size() + 8);
     std::memcpy(w.b.data() + 12, &length, 4);
     at[0] = length;
-    for (int j = 0; j < 6; ++j) {
+    for (int j = 0; j < array_count; ++j) {
         std::uint64_t bytes = 0;
         for (const std::uint32_t n : coded.sizes[j]) bytes += n;
-        (j < 5 ? at[j + 1] : total) = at[j] + bytes;
+        (j + 1 < array_count ? at[j + 1] : total) = at[j] + bytes;
     }
-    std::memcpy(w.b.data() + offsets, at, 48);
-    std::memcpy(w.b.data() + offsets + 48, &total, 8);
+    std::memcpy(w.b.data() + offsets, at, 8 * array_count);
+    std::memcpy(w.b.data() + offsets + 8 * array_count, &total, 8);
     w.put(hash64(w.b.data(), w.b.size()));
     return w.b;
 }
@@ -419,10 +439,10 @@ std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCac
 
 // The file of t's header fields and its coded arrays.
 void write_coded(const std::string& path, const StoredTerrain& t, const TerrainCacheKey& key, const CodedTerrain& coded) {
-    std::uint64_t at[6], total = 0;
+    std::uint64_t at[array_count], total = 0;
     const std::vector<std::uint8_t> header = encode_header(t, key, block_sums(coded), at, total);
     std::vector<std::span<const std::uint8_t>> parts{header};
-    for (const CodedBlocks* a : {&coded.pos, &coded.valid, &coded.error, &coded.lattice, &coded.coarse, &coded.edges})
+    for (const CodedBlocks* a : arrays_of(coded))
         for (const auto& b : *a) parts.emplace_back(b);
     if (const int err = write_cache_file(path, parts)) write_failed(path, err);
 }
@@ -523,11 +543,14 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
     std::vector<LatticeNode> lattice(std::size_t(lattice_count(m.cols, m.rows, true)));  // filled as rows and errors come
     const std::uint64_t coarse_nodes = coarse_count(m.cols, m.rows, true);
     std::vector<CoarseNode> edges(std::size_t(edge_count(m.rows, true)));  // filled as rows come
-    const std::uint64_t counts[6] = {block_count(nodes, block_shift), block_count(nodes, block_shift),
-                                     block_count(nodes, block_shift), block_count(lattice.size(), block_shift),
-                                     block_count(coarse_nodes, block_shift), block_count(edges.size(), block_shift)};
-    for (int j = 0; j < 6; ++j) sums.sizes[j].assign(std::size_t(counts[j]), 0), sums.sums[j].assign(std::size_t(counts[j]), 0);
-    std::uint64_t at[6], total = 0;
+    const std::size_t utm_nodes = formula->geographic ? formula->geographic->projector().lattice_size() : 0;
+    const std::uint64_t counts[array_count] = {block_count(nodes, block_shift), block_count(nodes, block_shift),
+                                               block_count(nodes, block_shift), block_count(lattice.size(), block_shift),
+                                               block_count(coarse_nodes, block_shift), block_count(edges.size(), block_shift),
+                                               block_count(utm_nodes, block_shift)};
+    for (int j = 0; j < array_count; ++j)
+        sums.sizes[j].assign(std::size_t(counts[j]), 0), sums.sums[j].assign(std::size_t(counts[j]), 0);
+    std::uint64_t at[array_count], total = 0;
     const std::size_t head = encode_header(t, key, sums, at, total).size();
     CacheFileStream out(path);
     if (const int err = out.append(std::vector<std::uint8_t>(head, 0))) write_failed(path, err);
@@ -658,6 +681,7 @@ bool build_terrain_cache(const std::string& dem_path, const std::string& path, c
     lattice = {};
     if (const int err = out.append(coarse_coded)) write_failed(path, err);
     write_blocks(5, code_coarse_nodes(edges));
+    write_blocks(utm_array, code_utm_lattice(*formula));
     const std::vector<std::uint8_t> header = encode_header(t, key, sums, at, total);
     if (header.size() != head) throw std::logic_error("terrain cache: header length changed");
     if (const int err = out.finish(header)) write_failed(path, err);
@@ -791,7 +815,7 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     t.lod.lipschitz = r.get<float>(), t.lod.z_min = r.get<float>(), t.lod.z_max = r.get<float>();
     r.get<float>();
     t.plan_lo.x = r.get<double>(), t.plan_lo.y = r.get<double>(), t.plan_hi.x = r.get<double>(), t.plan_hi.y = r.get<double>();
-    std::uint64_t at[6];
+    std::uint64_t at[array_count];
     for (std::uint64_t& a : at) a = r.get<std::uint64_t>();
     const std::uint64_t total = r.get<std::uint64_t>(), crs = r.get<std::uint64_t>();
     if (!r.ok || crs > max_crs_bytes || crs > r.n - r.at) return fail(why, "damaged terrain cache (header)");
@@ -800,27 +824,34 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     if (m.cols < 2 || m.rows < 2 || std::max(m.cols, m.rows) > (1 << 30) || levels != lod_padded_levels(m.cols, m.rows))
         return fail(why, "damaged terrain cache (grid)");
     const std::uint64_t nodes = node_count(m.cols, m.rows);
-    if (total != size || at[0] < length || at[1] < at[0] || at[2] < at[1] || at[3] < at[2] || at[4] < at[3] ||
-        at[5] < at[4] || total < at[5])
-        return fail(why, "damaged terrain cache (lengths)");
+    bool ordered = total == size && at[0] >= length && total >= at[array_count - 1];
+    for (int j = 1; j < array_count; ++j) ordered = ordered && at[j] >= at[j - 1];
+    if (!ordered) return fail(why, "damaged terrain cache (lengths)");
     const std::uint32_t shift = r.get<std::uint32_t>(), flags = r.get<std::uint32_t>();
     const std::uint32_t step = r.get<std::uint32_t>(), coarse_step = r.get<std::uint32_t>();
-    const std::uint32_t edges = r.get<std::uint32_t>(), reserved = r.get<std::uint32_t>();
+    const std::uint32_t edges = r.get<std::uint32_t>(), utm = r.get<std::uint32_t>();
     if (!r.ok || shift < min_block_shift || shift > max_block_shift || (flags & ~(xy_affine | xy_geographic)) != 0 ||
         flags == (xy_affine | xy_geographic) || (step != 0 && (step != std::uint32_t(lod_lattice_step) || !flags)) ||
         (coarse_step != 0 && (coarse_step != std::uint32_t(grid_coarse_step) || !flags)) || edges > 1 ||
-        (edges && !flags) || reserved != 0)
+        (edges && !flags) || utm > 1 || (utm && flags != xy_geographic))
         return fail(why, "damaged terrain cache (block checksums)");
+    // (the grid's formula: a geographic one's lattice size for the UTM lattice's count)
+    const std::optional<DerivedXY> derived = flags ? derive_xy(m, flags) : std::nullopt;
+    if (flags && !derived) return fail(why, "damaged terrain cache (grid)");
+    const std::uint64_t utm_nodes = utm ? derived->geographic->projector().lattice_size() : 0;
     const std::uint64_t lattice = lattice_count(m.cols, m.rows, step != 0);
     const std::uint64_t coarse = coarse_count(m.cols, m.rows, coarse_step != 0);
     const std::uint64_t edge_nodes = edge_count(m.rows, edges != 0);
-    const std::uint64_t counts[6] = {block_count(nodes, shift), block_count(nodes, shift), block_count(nodes, shift),
-                                     block_count(lattice, shift), block_count(coarse, shift), block_count(edge_nodes, shift)};
-    const std::uint64_t blocks = counts[0] + counts[1] + counts[2] + counts[3] + counts[4] + counts[5];
+    const std::uint64_t counts[array_count] = {block_count(nodes, shift),      block_count(nodes, shift),
+                                               block_count(nodes, shift),      block_count(lattice, shift),
+                                               block_count(coarse, shift),     block_count(edge_nodes, shift),
+                                               block_count(utm_nodes, shift)};
+    std::uint64_t blocks = 0;
+    for (const std::uint64_t n : counts) blocks += n;
     if (align_up(blocks * 4, 8) + blocks * 8 != r.n - r.at) return fail(why, "damaged terrain cache (block checksums)");
-    std::vector<CheckedBlocks::CodedArray> arrays(6);
+    std::vector<CheckedBlocks::CodedArray> arrays(array_count);
     const std::uint8_t* sizes = b + r.at;
-    for (int j = 0; j < 6; ++j) {
+    for (int j = 0; j < array_count; ++j) {
         CheckedBlocks::CodedArray& a = arrays[std::size_t(j)];
         a.offset = at[j], a.shift = shift;
         // 4-byte aligned: the header is allocated aligned and its tables start at a multiple of 8
@@ -828,12 +859,10 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
         sizes += counts[j] * 4;
         std::uint64_t coded = 0;
         for (const std::uint32_t c : a.sizes) coded += c;
-        if (at[j] + coded != (j < 5 ? at[j + 1] : total)) return fail(why, "damaged terrain cache (lengths)");
+        if (at[j] + coded != (j + 1 < array_count ? at[j + 1] : total)) return fail(why, "damaged terrain cache (lengths)");
     }
     arrays[0].elems = nodes, arrays[0].elem_bytes = sizeof(glm::vec3);
     if (flags) {
-        const std::optional<DerivedXY> derived = derive_xy(m, flags);
-        if (!derived) return fail(why, "damaged terrain cache (grid)");
         arrays[0].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::uint64_t, std::size_t count) {
             thread_local std::vector<float> z;
             z.resize(count);
@@ -874,6 +903,12 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     };
     arrays[5].elems = edge_nodes, arrays[5].elem_bytes = sizeof(CoarseNode);
     arrays[5].decode = arrays[4].decode;
+    arrays[utm_array].elems = utm_nodes, arrays[utm_array].elem_bytes = sizeof(glm::dvec2);
+    arrays[utm_array].decode = [](const std::uint8_t* c, std::size_t bytes, void* out, std::uint64_t, std::size_t count) {
+        if (bytes != count * sizeof(glm::dvec2)) return false;  // as in memory
+        std::memcpy(out, c, bytes);
+        return true;
+    };
     const auto* stored_sums = reinterpret_cast<const std::uint64_t*>(b + r.at + align_up(blocks * 4, 8));  // 8-aligned
     std::vector<std::uint64_t> sums(stored_sums, stored_sums + blocks);
     std::shared_ptr<CheckedBlocks> coded;
@@ -881,6 +916,15 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
         coded = std::make_shared<CheckedBlocks>(fd, path, std::move(arrays), std::move(sums));
     } catch (const std::bad_alloc&) {
         return fail(why, "terrain cache too large for memory");
+    }
+    if (utm_nodes) {  // the projection's lattice taken as the build projected it: not projected again
+        std::vector<glm::dvec2> utm_lattice(static_cast<std::size_t>(utm_nodes));
+        try {
+            coded->read_strided(utm_array, 0, utm_nodes, 1, utm_lattice.data());
+        } catch (const DamagedBlockError&) {
+            return fail(why, "damaged terrain cache (UTM lattice)");
+        }
+        derived->geographic->projector().adopt_lattice(utm_lattice.data());
     }
     static_assert(GridNodes::pos_array == 0 && GridNodes::valid_array == 1 && TerrainLod::error_array == 2 &&
                   TerrainLod::lattice_array == 3 && GridNodes::coarse_array == 4 && GridNodes::edge_array == 5);

@@ -113,12 +113,13 @@ TEST(CacheDir, DamagedCachesAreRebuiltNeverDrawn) {
     std::memcpy(&lines_at, dv.data() + 24, 8);
     ASSERT_LT(lines_at, dv.size());
     // the terrain cache's arrays (terrain_cache.hpp): offsets of pos, valid, error, lattice, the
-    // coarse nodes and the edge columns after the 232 bytes of magic, version, length, key, grid and
-    // pyramid, then the length
-    std::uint64_t at[7];
+    // coarse nodes, the edge columns and the UTM lattice after the 232 bytes of magic, version,
+    // length, key, grid and pyramid, then the length
+    std::uint64_t at[8];
     std::memcpy(at, lod.data() + 232, sizeof at);
-    ASSERT_EQ(at[6], lod.size());
+    ASSERT_EQ(at[7], lod.size());
     ASSERT_LT(at[3], at[4]);  // a projected DEM: x, y derived, a node lattice kept
+    ASSERT_EQ(at[6], at[7]);  // (and no UTM lattice: its x, y are affine)
     int k = 0;
     // what a whole view reads of the terrain cache: the middle of the nodes' heights, of the
     // pyramid's errors, and the node lattice's end; the lines part's vertices (middle, three

@@ -183,5 +183,28 @@ TEST(UtmProjection, LatticeRowsAreProjectedWhereRowsNeedThem) {
         ASSERT_TRUE(std::memcmp(forward[i].data(), backward[i].data(), sizeof(glm::dvec2) * std::size_t(w)) == 0) << asked[i];
 }
 
+// The lattice handed on (what a terrain cache stores): all of it projected and copied out, then
+// taken by another projector of the same grid, which projects none of it and gives every row
+// the same bits.
+TEST(UtmProjection, AnAdoptedLatticeGivesTheSameRowsAndProjectsNothing) {
+    const double cell = 1.0 / 3600.0;
+    const NodeLonLat ll = [=](int c, int r) { return glm::dvec2(-84.4 + c * cell + r * 0.1 * cell, 36.7 - r * cell); };
+    const int w = 400, h = 300;
+    const UtmRowProjector made(w, h, ll, 16, true);
+    ASSERT_EQ(made.lattice_size(), std::size_t(26 * 20));  // samples 0, 16, ..., and the last node
+    std::vector<glm::dvec2> lattice(made.lattice_size());
+    made.lattice(lattice.data());
+    EXPECT_EQ(made.lattice_rows_projected(), 20u);
+    const UtmRowProjector taken(w, h, ll, 16, true);
+    taken.adopt_lattice(lattice.data());
+    std::vector<glm::dvec2> a(static_cast<std::size_t>(w)), b(a.size());
+    for (int r = 0; r < h; r += 7) {
+        made.row(r, a.data()), taken.row(r, b.data());
+        ASSERT_TRUE(std::memcmp(a.data(), b.data(), sizeof(glm::dvec2) * a.size()) == 0) << r;
+    }
+    EXPECT_EQ(taken.lattice_rows_projected(), 0u);
+    EXPECT_EQ(UtmRowProjector(w, ll, 16, true).lattice_size(), 0u);  // the row form: no lattice
+}
+
 }  // namespace
 }  // namespace penink

@@ -633,6 +633,47 @@ TEST(TerrainCache, XYOfAGeographicDemAreDerivedBitForBit) {
     EXPECT_LT(derived + 0.4 * double(dem.size()), stored);
 }
 
+// A geographic DEM's cache keeps the UTM lattice its x, y are interpolated from (the last array,
+// 16 bytes a lattice node, as UtmRowProjector::lattice gives them): read and checked when the
+// cache is opened (a damaged byte there fails the open), the nodes' x, y from it the DEM's, bit
+// for bit. A projected DEM's has none.
+TEST(TerrainCache, GeographicDemKeepsItsUtmLattice) {
+    test::TempDir dir;
+    const Terrain dem = read_dem(PENINK_SOURCE_DIR "/examples/jacksboro.tif");
+    const std::string path = dir.file("j.lod");
+    write_terrain_cache(path, store_terrain(Terrain(dem)), key());
+    std::vector<char> bytes = file_bytes(path);
+    std::uint64_t at[8];
+    std::memcpy(at, bytes.data() + 232, sizeof at);
+    ASSERT_EQ(at[7], bytes.size());
+    GeographicNodes g;
+    ASSERT_TRUE(terrain_geographic(dem, g));
+    EXPECT_EQ(at[7] - at[6], geographic_projector(g).lattice_size() * sizeof(glm::dvec2));
+    {
+        const std::optional<StoredTerrain> t = read_terrain_cache(path, key());
+        ASSERT_TRUE(t);
+        read_whole(*t);
+        for (std::size_t i = 0; i < dem.size(); i += 7) {
+            const glm::vec3 p = t->nodes.at(i);
+            ASSERT_TRUE(std::memcmp(&p, &dem.pos[i], sizeof p) == 0) << i;
+        }
+    }
+    bytes[std::size_t(at[6] + (at[7] - at[6]) / 2)] ^= 0x10;
+    {
+        std::ofstream out(path, std::ios::binary | std::ios::trunc);
+        out.write(bytes.data(), std::streamsize(bytes.size()));
+    }
+    std::string why;
+    EXPECT_FALSE(read_terrain_cache(path, key(), &why));
+    EXPECT_EQ(why, "damaged terrain cache (UTM lattice)");
+    // the volcano: x, y affine, no lattice
+    write_terrain_cache(path, store_terrain(read_dem(PENINK_SOURCE_DIR "/examples/volcano.asc")), key());
+    bytes = file_bytes(path);
+    std::memcpy(at, bytes.data() + 232, sizeof at);
+    EXPECT_EQ(at[6], at[7]);
+    EXPECT_EQ(at[7], bytes.size());
+}
+
 // build_terrain_cache (heights alone, the pyramid in strips, blocks coded as they are final)
 // writes the file the whole Terrain writes, byte for byte: on a projected DEM (the volcano: x, y
 // affine; a padded side of 129, under a block, so blocks cross the rows the upper levels hold
