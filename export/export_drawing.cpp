@@ -75,8 +75,6 @@ void export_drawings(const StyledDrawing& drawing, const PageOptions& page, cons
         for (std::string& f : raster_side_file_names(p))
             if (std::find(all.begin(), all.end(), f) == all.end() && std::find(stale.begin(), stale.end(), f) == stale.end())
                 stale.push_back(std::move(f));
-    // (the documents made one after another: made side by side, a raster beside a vector file,
-    // they took as long on 2 cores, and the second thread's heap 18 MB more)
     write_files_together(all, [&](std::size_t i) {
         return i < paths.size() ? export_document(drawing, page, paths[i]) : side_bytes[i - paths.size()];
     });

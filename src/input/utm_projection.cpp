@@ -110,11 +110,11 @@ void UtmRowProjector::lattice(glm::dvec2* out) const {
     std::copy_n(lattice_->nodes.get(), lattice_size(), out);
 }
 
-void UtmRowProjector::adopt_lattice(const glm::dvec2* nodes) const {
+void UtmRowProjector::adopt_lattice(const std::function<void(glm::dvec2* nodes)>& fill) const {
     if (!lattice_) return;
     Lattice& l = *lattice_;
     const std::lock_guard<std::mutex> lock(l.mutex);
-    std::copy_n(nodes, lattice_size(), l.nodes.get());
+    fill(l.nodes.get());
     for (std::size_t b = 0; b < (rows_.size() + lattice_band - 1) / lattice_band; ++b)
         l.done[b].store(true, std::memory_order_release);
 }

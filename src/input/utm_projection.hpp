@@ -54,12 +54,12 @@ public:
     // Lattice rows projected so far (0 without a lattice).
     std::size_t lattice_rows_projected() const;
     // The lattice's exact nodes, row-major (lattice rows x sample columns; 0 without a lattice):
-    // all of them projected and copied into out (what a terrain cache stores), or taken from a
-    // copy of them (adopt_lattice: none projected again; they must be what lattice() gives, bit
-    // for bit: a cache of the same grid).
+    // all of them projected and copied into out (what a terrain cache stores), or written in place
+    // by fill(nodes) (adopt_lattice: none projected again; they must be what lattice() gives, bit
+    // for bit: a cache of the same grid; where fill throws, none is taken: rows project as before).
     std::size_t lattice_size() const { return lattice_ ? rows_.size() * cols_.size() : 0; }
     void lattice(glm::dvec2* out) const;
-    void adopt_lattice(const glm::dvec2* nodes) const;
+    void adopt_lattice(const std::function<void(glm::dvec2* nodes)>& fill) const;
 
     static constexpr std::size_t lattice_band = 8;
 

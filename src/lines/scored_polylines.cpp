@@ -89,10 +89,8 @@ std::vector<glm::vec3> drawn_points(const DrawnRun& r, const std::vector<glm::ve
     return points;
 }
 
-namespace {
-
-std::vector<DrawnRun> drawn_runs_of(const std::vector<glm::vec3>& positions, const std::vector<float>& scores,
-                                    std::span<const VertexRun> runs, const Camera& camera) {
+std::vector<DrawnRun> drawn_runs(const std::vector<glm::vec3>& positions, const std::vector<float>& scores,
+                                 std::span<const VertexRun> runs, const Camera& camera) {
     const glm::dmat4 view = view_matrix(camera), vp = view_projection(camera);
     const auto outside_view = [&](std::uint32_t i) {
         return scores[i] < -1e29f && !in_frustum(vp * glm::dvec4(glm::dvec3(positions[i]), 1.0));
@@ -125,13 +123,6 @@ std::vector<DrawnRun> drawn_runs_of(const std::vector<glm::vec3>& positions, con
         close(cur);
     }
     return out;
-}
-
-}  // namespace
-
-std::vector<DrawnRun> drawn_runs(const std::vector<glm::vec3>& positions, const std::vector<float>& scores,
-                                 const std::vector<VertexRun>& runs, const Camera& camera) {
-    return drawn_runs_of(positions, scores, runs, camera);
 }
 
 float mean_score(const std::vector<float>& scores, VertexRun run) {
@@ -173,7 +164,7 @@ std::vector<Stroke> scored_runs_to_strokes(const std::vector<glm::vec3>& positio
                                            const std::string& kind, const std::vector<float>& weight) {
     // the runs on all cores, their strokes joined in run order
     return parallel_collect<Stroke>(runs.size(), runs_per_chunk, [&](std::size_t r0, std::size_t r1, std::vector<Stroke>& out) {
-        for (const DrawnRun& run : drawn_runs_of(positions, scores, {runs.data() + r0, r1 - r0}, camera))
+        for (const DrawnRun& run : drawn_runs(positions, scores, {runs.data() + r0, r1 - r0}, camera))
             out.push_back(project_stroke(drawn_points(run, positions), camera, mean_score(scores, run.run), kind,
                                          drawn_values(run, weight)));
     });

@@ -3,6 +3,7 @@
 // local metres) with one score each; maximal runs of >= 2 consecutive vertices with score >= 0
 // become image-space strokes (pixels, eye distance in metres; strength = mean score of the run).
 #pragma once
+#include <span>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -29,7 +30,7 @@ struct DrawnRun {
 // whose neighbouring vertex in its line is hidden (score below -1e29, the DM pass's dm_hidden) and
 // lies outside the frustum gets the frustum crossing of the segment to it as head or tail.
 std::vector<DrawnRun> drawn_runs(const std::vector<glm::vec3>& positions, const std::vector<float>& scores,
-                                 const std::vector<VertexRun>& runs, const Camera& camera);
+                                 std::span<const VertexRun> runs, const Camera& camera);
 
 // The run's points, head and tail included.
 std::vector<glm::vec3> drawn_points(const DrawnRun& run, const std::vector<glm::vec3>& positions);

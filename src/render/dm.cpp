@@ -58,7 +58,7 @@ double DmPass::run(const DmFrame& f, const std::function<void(std::span<const Cr
     const std::size_t groups = (count_ + 63) / 64, gx = std::min<std::size_t>(groups, 32768);
     gl_->DispatchCompute(GLuint(gx), GLuint((groups + gx - 1) / gx), 1);
     timer_.end();
-    gl_->MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
+    gl_->MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // (also what a mapped read needs)
     const GLsizeiptr bytes = GLsizeiptr(count_ * sizeof(CreaseTerms));
     const void* mapped = gl_->MapNamedBufferRange(terms_.id(), 0, bytes, GL_MAP_READ_BIT);
     check_gl_error(*gl_, "DM pass (" + std::to_string(count_) + " vertices)");

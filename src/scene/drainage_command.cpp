@@ -331,6 +331,9 @@ int build(const DrainageCommand& cmd, std::ostream& log, FillRanks& ranks) {
     // filling, flats, ties, accumulation), else after it. If the drainage build fails, a terrain
     // cache this command wrote is removed with it (the outputs of one command, together or not).
     const bool render_caches = out == drainage_cache_path(cmd.dem, cmd.cache_dir);
+    // and the crease tiles of the whole view a render of the DEM draws first, where the database is
+    // the one a render with the default scene reads (its factor; the routing checked there)
+    const bool view_tiles = render_caches && cmd.resample == 0;
     const std::string terrain_cache = render_caches ? terrain_cache_path(cmd.dem, cmd.cache_dir) : std::string();
     TerrainBeside terrain;
     if (render_caches && cache_builds_fit_together(size.cols, size.rows, factor, budget))
@@ -366,7 +369,7 @@ int build(const DrainageCommand& cmd, std::ostream& log, FillRanks& ranks) {
             if (i == 0) {
                 try {
                     db = build_and_write_drainage_db(t, o, fp, temp, progress_printer(progress, timer), &res,
-                                                     render_caches && cmd.resample == 0 ? &grid : nullptr);
+                                                     view_tiles ? &grid : nullptr);
                 } catch (const Error& e) {  // named by its place, not its temporary
                     throw Error(e.stage(), e.file() == temp ? out : e.file(),
                                 std::string(e.what()).substr(format_error(e.stage(), e.file(), "").size()), e.code());
@@ -398,10 +401,8 @@ int build(const DrainageCommand& cmd, std::ostream& log, FillRanks& ranks) {
     if (!cmd.quiet) print_summary(log, res.stats, db, secs), log << ranks.line() << "drainage: wrote " << named(out) << "\n";
     if (!cmd.quiet && !terrain_cache.empty() && std::filesystem::exists(terrain_cache))
         log << "drainage: terrain cache " << named(terrain_cache) << "\n";
-    // and the crease tiles of the whole view a render of the DEM draws first (scene defaults: the
-    // database built with the render's factor and routing), so that the first render reads them;
-    // the build's memory let go first
-    if (render_caches && cmd.resample == 0) {
+    // the view's crease tiles, so that the first render reads them; the build's memory let go first
+    if (view_tiles) {
         BuiltNetworkHandle built;
         if (db.has_crease_source())
             built.arrays = std::make_shared<BuiltNetwork>(BuiltNetwork{std::move(grid), std::move(res.dir), std::move(res.net)});

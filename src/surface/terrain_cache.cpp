@@ -917,14 +917,13 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     } catch (const std::bad_alloc&) {
         return fail(why, "terrain cache too large for memory");
     }
-    if (utm_nodes) {  // the projection's lattice taken as the build projected it: not projected again
-        std::vector<glm::dvec2> utm_lattice(static_cast<std::size_t>(utm_nodes));
+    if (utm_nodes) {  // the projection's lattice read into place as the build projected it: not projected again
         try {
-            coded->read_strided(utm_array, 0, utm_nodes, 1, utm_lattice.data());
+            derived->geographic->projector().adopt_lattice(
+                [&](glm::dvec2* nodes) { coded->read_strided(utm_array, 0, utm_nodes, 1, nodes); });
         } catch (const DamagedBlockError&) {
             return fail(why, "damaged terrain cache (UTM lattice)");
         }
-        derived->geographic->projector().adopt_lattice(utm_lattice.data());
     }
     static_assert(GridNodes::pos_array == 0 && GridNodes::valid_array == 1 && TerrainLod::error_array == 2 &&
                   TerrainLod::lattice_array == 3 && GridNodes::coarse_array == 4 && GridNodes::edge_array == 5);

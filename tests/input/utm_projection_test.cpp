@@ -196,7 +196,7 @@ TEST(UtmProjection, AnAdoptedLatticeGivesTheSameRowsAndProjectsNothing) {
     made.lattice(lattice.data());
     EXPECT_EQ(made.lattice_rows_projected(), 20u);
     const UtmRowProjector taken(w, h, ll, 16, true);
-    taken.adopt_lattice(lattice.data());
+    taken.adopt_lattice([&](glm::dvec2* nodes) { std::copy(lattice.begin(), lattice.end(), nodes); });
     std::vector<glm::dvec2> a(static_cast<std::size_t>(w)), b(a.size());
     for (int r = 0; r < h; r += 7) {
         made.row(r, a.data()), taken.row(r, b.data());
