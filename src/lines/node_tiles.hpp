@@ -41,13 +41,15 @@ class NodeTiles {
 public:
     // The tile shape and cache budget of a grid read on demand (the hachures'): tiles of 256 x 64
     // nodes (208 KiB; a tile's row of 256 sampled nodes spans several of the terrain cache's
-    // 256-node blocks, the two at its ends shared with the tiles beside it) and 64 MiB (315 tiles).
-    // On the whole view of jacksboro refined 29 times (11687 x 9976 nodes, sampled at every 2nd:
-    // 5844 x 4988, 1794 tiles) the hachures read 2136 tiles (1.19 a tile), 1.33 and 1.36 a tile
-    // on two closer views (docs/timings.md; `penink render -v` prints the counts); least recently
-    // used alone, 1.37, 1.57 and 1.61.
+    // 256-node blocks, the two at its ends shared with the tiles beside it) and 32 MiB (157 tiles).
+    // On the whole view of jacksboro refined 29 times (11687 x 9976 nodes, sampled at every 4th:
+    // 2922 x 2494, 468 tiles) the hachures read 472 tiles, 296 of 264 and 431 of 390 on two
+    // closer views (docs/timings.md; `penink render -v` prints the counts). A larger budget reads
+    // fewer again (468, 264, 390 at 64 MiB) but its slots are fresh memory the frame zeroes page
+    // by page: 64 MiB made the whole view's hachures 80 ms slower and its peak 33 MB higher; 8 MiB
+    // read 1306 tiles for 468.
     static constexpr int default_tile_cols = 256, default_tile_rows = 64;
-    static constexpr std::size_t default_budget = std::size_t(64) << 20;
+    static constexpr std::size_t default_budget = std::size_t(32) << 20;
     static constexpr std::size_t node_bytes = sizeof(glm::vec3) + sizeof(std::uint8_t);
 
     // The nodes in memory (one tile, the whole grid).
