@@ -57,11 +57,14 @@ struct CellBits {
 // Low edges: cells with a direction (or outlets) next to a flat cell of the same elevation, each
 // once, in the order a scan of the cells first meets them. High edges: flat cells next to higher
 // terrain, in cell order. Rows in parallel chunks (low candidates with repeats), joined in chunk
-// order, then the repeats dropped.
-void find_edges(Flats& s) {
+// order, then the repeats dropped. Returns the number of flat cells.
+std::size_t find_edges(Flats& s) {
+    std::atomic<std::size_t> flat_cells{0};
     parallel_chunks(s.g.size(), std::size_t(1) << 18, [&](std::size_t i0, std::size_t i1) {
+        std::size_t n = 0;
         for (std::size_t i = i0; i < i1; ++i)
-            if (s.dir[i] == 0 && s.g.valid[i] && !(s.flags[i] & fill_boundary)) s.flags[i] |= flat_interior;
+            if (s.dir[i] == 0 && s.g.valid[i] && !(s.flags[i] & fill_boundary)) s.flags[i] |= flat_interior, ++n;
+        flat_cells += n;
     });
     const std::size_t cols = std::size_t(s.g.cols), rows = std::size_t(s.g.rows), per = chunk_length(rows, 64);
     std::vector<std::vector<std::uint32_t>> low((rows + per - 1) / per), high(low.size());
@@ -83,6 +86,7 @@ void find_edges(Flats& s) {
             if (!seen.test_and_set(n)) s.low.push_back(n);
         s.high.insert(s.high.end(), high[k].begin(), high[k].end());
     }
+    return flat_cells;
 }
 
 // Breadth-first levels 1, 2, ... from `level` over flat cells of the same elevation not yet in
@@ -193,10 +197,14 @@ std::size_t resolve_flats(const GridShape& g, RoutingArrays& arrays, CellWords& 
     mask.resize(g.size());
     Flats s{arrays.z.data(), g, arrays.dir.data(), arrays.flags.data(), reinterpret_cast<std::int32_t*>(mask.data()),
             d8_offsets(g), {}, {}, &arrays.ties};
-    find_edges(s);
+    const std::size_t flat_cells = find_edges(s);
     CellBits high(g.size()), low_seen(g.size());
     std::size_t high_cells = 0;
+    // what the towards-lower search can reach (its low edges and flat cells), reserved: grown
+    // instead, it copied itself and faulted its pages twice over (jacksboro refined 29 times:
+    // tens of millions of flat cells, seconds of the flats' time)
     std::vector<Reached> low;
+    low.reserve(s.low.size() + flat_cells);
     run_beside([&] { bfs_levels(s, s.high, high, [&](std::uint32_t c, std::int32_t h) { s.mask[c] = h, ++high_cells; }); },
                [&] { bfs_levels(s, s.low, low_seen, [&](std::uint32_t c, std::int32_t l) { low.push_back({c, l}); }); });
     const std::size_t reached_high = combine(s, low, high);
