@@ -341,30 +341,45 @@ LineBox frame_line_box(const FrameTerrain& terrain) {
     return box;
 }
 
+namespace {
+
+// What a view of the scene's DEM is drawn from, read or made through `keep`: the DEM's caches
+// read, its camera placed, its drainage lines' source, and the DEM cropped to the view.
+struct ViewParts {
+    Camera camera;
+    std::shared_ptr<const DrainageLineSource> drainage;
+    FrameTerrain model;
+};
+ViewParts view_parts(Scene& scene, const Log& log, TerrainKeep& keep) {
+    const SceneTerrain dem = keep.terrain(scene, log);
+    ViewParts v;
+    v.camera = scene_camera(scene, dem);
+    v.drainage = keep.drainage(scene, dem, log);
+    const auto t0 = Clock::now();
+    v.model = terrain_for_view(dem, v.camera, scene, log);
+    log.info("view window found (" + std::to_string(int(ms_since(t0))) + " ms)");
+    return v;
+}
+
+}  // namespace
+
 std::size_t write_view_crease_tiles(Scene& scene, const Log& log, BuiltNetworkHandle built) {
     TerrainKeep keep;  // (the caches read as open_terrain_view reads them)
-    const SceneTerrain dem = keep.terrain(scene, log);
-    Camera camera = scene_camera(scene, dem);
-    const std::shared_ptr<const DrainageLineSource> drainage = keep.drainage(scene, dem, log);
-    if (!drainage || !drainage->creases) return 0;
-    if (built) drainage->creases->use_built_network(std::move(built));
-    const FrameTerrain model = terrain_for_view(dem, camera, scene, log);
-    prepare_drainage_lines(*drainage, frame_line_box(model), LineCulling{{camera}, line_culling_px(scene)});
-    return drainage->creases->tiles_written();
+    const ViewParts v = view_parts(scene, log, keep);
+    if (!v.drainage || !v.drainage->creases) return 0;
+    if (built) v.drainage->creases->use_built_network(std::move(built));
+    prepare_drainage_lines(*v.drainage, frame_line_box(v.model), LineCulling{{v.camera}, line_culling_px(scene)});
+    return v.drainage->creases->tiles_written();
 }
 
 SceneView open_terrain_view(Scene& scene, GlContext& context, const Log& log, TerrainKeep* keep) {
     TerrainKeep once;  // without a keep: what this view reads and builds, for it alone
     TerrainKeep& k = keep ? *keep : once;
     k.build_side_by_side(scene, log);  // a large DEM's first drawing: both caches at once
-    const SceneTerrain dem = k.terrain(scene, log);
+    ViewParts v = view_parts(scene, log, k);
     SceneView view;
-    view.camera = scene_camera(scene, dem);
-    std::shared_ptr<const DrainageLineSource> drainage = k.drainage(scene, dem, log);
-    const auto t0 = Clock::now();
-    FrameTerrain model = terrain_for_view(dem, view.camera, scene, log);
-    log.info("view window found (" + std::to_string(int(ms_since(t0))) + " ms)");
-    view.frames = std::make_unique<TerrainFrames>(context, std::move(drainage), std::move(model), view.camera.width,
+    view.camera = v.camera;
+    view.frames = std::make_unique<TerrainFrames>(context, std::move(v.drainage), std::move(v.model), view.camera.width,
                                                   view.camera.height, LineCulling{{view.camera}, line_culling_px(scene)},
                                                   keep ? &keep->gpu() : nullptr, log);
     return view;
