@@ -43,6 +43,20 @@ using Clock = std::chrono::steady_clock;
 
 // Per-stage wall times, printed with -v or when the environment variable PENINK_DRAINAGE_TIMES is
 // set (for profiling: bench/compare_grass.sh shows them).
+// This process's resident and peak resident memory (MiB; /proc/self/status VmRSS, VmHWM), 0 where
+// not known.
+std::pair<long, long> resident_mib() {
+    std::ifstream in("/proc/self/status");
+    long rss = 0, peak = 0;
+    for (std::string line; std::getline(in, line);) {
+        if (line.rfind("VmRSS:", 0) == 0) rss = std::atol(line.c_str() + 6) / 1024;
+        if (line.rfind("VmHWM:", 0) == 0) peak = std::atol(line.c_str() + 6) / 1024;
+    }
+    return {rss, peak};
+}
+
+// With PENINK_DRAINAGE_TIMES set, each stage's wall and CPU time and the memory held when it ends
+// and at most so far.
 struct StageTimer {
     std::ostream& log;
     bool on = std::getenv("PENINK_DRAINAGE_TIMES") != nullptr;
@@ -52,11 +66,12 @@ struct StageTimer {
     void next(const std::string& name) {
         const Clock::time_point now = Clock::now();
         if (on && !stage.empty()) {
-            char line[160];
+            char line[200];
             timespec ts; clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
             const double cpu = ts.tv_sec + ts.tv_nsec * 1e-9;
-            std::snprintf(line, sizeof line, "drainage: time %-26s %.3f s cpu %.3f\n", stage.c_str(),
-                          std::chrono::duration<double>(now - since).count(), cpu - cpu0);
+            const auto [rss, peak] = resident_mib();
+            std::snprintf(line, sizeof line, "drainage: time %-26s %.3f s cpu %.3f, %ld MiB held, %ld at most\n",
+                          stage.c_str(), std::chrono::duration<double>(now - since).count(), cpu - cpu0, rss, peak);
             cpu0 = cpu;
             log << line << std::flush;
         }
