@@ -15,9 +15,10 @@ namespace penink {
 DemSurface::DemSurface(const DrainageGrid& g, Normals normals) {
     if (g.factor == 1) {
         cols_ = g.cols, rows_ = g.rows, valid_ = g.valid.data(), z_ = node_heights(g);
-        if (!g.has_affine && g.coarse_xy.size() != g.size())
+        if (!g.has_affine && g.coarse_xy.size() != g.size() && !g.xy_rows)
             throw Error("drainage", "", "drainage grid without node positions", ExitCode::internal);
-        if (!g.has_affine) xy_ = g.coarse_xy.data();
+        if (!g.has_affine && g.coarse_xy.size() == g.size()) xy_ = g.coarse_xy.data();
+        else if (!g.has_affine) xy_rows_ = g.xy_rows.get();
         node_blocks_ = g.node_blocks.get();
     } else {
         cols_ = g.coarse_cols, rows_ = g.coarse_rows, valid_ = g.coarse_valid.data(), z_ = g.coarse_z.data();
@@ -195,7 +196,7 @@ bool DemSurface::find_cell(double x, double y, int& c, int& r) const {
     if (cols_ < 2 || rows_ < 2 || !std::isfinite(x) || !std::isfinite(y)) return false;
     if (affine_) {
         if (!affine_guess(x, y, c, r)) return false;
-        if (!pos_ && !xy_) return true;  // the nodes are the formula's: its cell
+        if (!pos_ && !xy_ && !xy_rows_) return true;  // the nodes are the formula's: its cell
     }
     return with_node_xy([&](const auto& xy) {  // the walk's node positions
         if (!affine_ && (c < 0 || r < 0 || c > cols_ - 2 || r > rows_ - 2) && !outline_cell(xy, cols_, rows_, x, y, c, r))

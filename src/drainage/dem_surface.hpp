@@ -60,6 +60,7 @@ public:
             if (node_blocks_) node_blocks_->need(i);
             return xy_[i];
         }
+        if (xy_rows_) return xy_rows_->at(c, r);
         if (!col_x_.empty()) return {col_x_[std::size_t(c)], row_y_[std::size_t(r)]};
         return affine_node_xy(nodes_, origin_, c, r);
     }
@@ -101,6 +102,7 @@ public:
     template <class F> decltype(auto) with_node_xy(F&& f) const {
         if (pos_) return f(PosXY{pos_, std::size_t(cols_)});
         if (xy_) return f(StoredXY{xy_, std::size_t(cols_), node_blocks_});
+        if (xy_rows_) return f(RowsXY{xy_rows_});
         if (!col_x_.empty()) return f(AxisXY{col_x_.data(), row_y_.data()});
         return f(FormulaXY{&nodes_, origin_});
     }
@@ -124,6 +126,10 @@ public:
             return xy[i];
         }
         glm::vec2 operator()(int c, int r) const { return at(std::size_t(r) * cols + std::size_t(c)); }
+    };
+    struct RowsXY {
+        const NodeXYRows* rows;
+        glm::vec2 operator()(int c, int r) const { return rows->at(c, r); }
     };
     struct AxisXY {
         const float *x, *y;
@@ -165,6 +171,7 @@ private:
     const float* z_ = nullptr;           // with x, y from xy_ or the affine formula
     const glm::vec3* pos_ = nullptr;     // or x, y, z per node
     const glm::vec2* xy_ = nullptr;
+    const NodeXYRows* xy_rows_ = nullptr;  // or the grid's rows' samples (DrainageGrid::xy_rows)
     CellBlocks* node_blocks_ = nullptr;  // the grid's, where xy_ and z_ hold only the blocks filled
     bool affine_ = false;
     AffineNodes nodes_;

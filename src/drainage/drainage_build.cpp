@@ -223,7 +223,7 @@ DrainageDb build_streamed(DrainageGrid& g, const std::string& crs_wkt, const Dra
         meta.crease_source = assemble_crease_source(g, index, arrays, dem, arrays_hash, &network);
     }
     report(progress, "writing the database", writing_at);
-    restore_node_xy(g);  // the branches' vertices
+    readable_node_xy(g);  // the branches' vertices
     write(meta, branches);
     // kept (BuiltNetwork) for the crease tiles, which make them again when they first build a stem
     if (xy_released) release_node_xy(g);
@@ -251,7 +251,7 @@ DrainageResult compute_drainage(DrainageGrid& g, const DrainageProgress& progres
     }
     FlowNetwork& net = res.net;
     report(progress, "accumulating flow and basins", 0.55);
-    if (divides) restore_node_xy(g);  // the divides' vertices read the x, y (release_node_xy)
+    if (divides) readable_node_xy(g);  // the divides' vertices read the x, y (release_node_xy)
     accumulate_and_label(g, res.dir, shape, net, divides);
     res.stats.basins = net.outlet.size();
     // accumulation holds dir, in-degree, acc, order and (allocated) basin at once

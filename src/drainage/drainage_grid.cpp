@@ -277,6 +277,13 @@ void restore_node_xy(DrainageGrid& g) {
     parallel_chunks(std::size_t(g.rows), 64, [&](std::size_t r0, std::size_t r1) {
         for (std::size_t r = r0; r < r1; ++r) g.node_xy->span(int(r), 0, g.cols, g.coarse_xy.data() + r * std::size_t(g.cols));
     });
+    g.xy_rows.reset();  // (what they were read from meanwhile, if anything)
+}
+
+void readable_node_xy(DrainageGrid& g) {
+    if (!g.node_xy || g.factor != 1 || g.coarse_xy.size() == g.size() || g.xy_rows) return;
+    if (!g.node_blocks && NodeXYRows::possible(*g.node_xy)) g.xy_rows = std::make_shared<const NodeXYRows>(g.node_xy, g.rows);
+    else restore_node_xy(g);
 }
 
 DrainageGrid make_regular_grid(int cols, int rows, double spacing, std::vector<float> z,
@@ -309,6 +316,7 @@ glm::dvec2 grid_xy(const DrainageGrid& g, int c, int r) {
             need_node(g, g.index(c, r));
             return glm::dvec2(g.coarse_xy[g.index(c, r)]);
         }
+        if (g.xy_rows) return glm::dvec2(g.xy_rows->at(c, r));  // released, its rows' samples held
         if (g.node_xy) {  // released (release_node_xy): the node's alone, made again
             glm::vec2 p;
             g.node_xy->span(r, c, c + 1, &p);

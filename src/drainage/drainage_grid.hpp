@@ -43,6 +43,9 @@ struct DrainageGrid {
     // point) and makes it again for those that do (restore_node_xy). Null: coarse_xy is all
     // there is.
     std::shared_ptr<const GeographicNodeXY> node_xy;
+    // Where coarse_xy is let go and its nodes are read again (readable_node_xy): node_xy's rows'
+    // samples, from which grid_xy and DemSurface make each node's x, y (1 B a node held, not 8).
+    std::shared_ptr<const NodeXYRows> xy_rows;
     // Where z or coarse_xy (at factor 1, sized) hold only the blocks of nodes filled so far (z
     // read through NodeHeights, a geographic DEM's x, y made from node_xy, where a render's walks
     // reach: crease_source.hpp): their readers (grid_xy, grid_xy_at, DemSurface, the fall lines'
@@ -103,6 +106,11 @@ bool release_node_xy(DrainageGrid& g);
 // Makes g.coarse_xy again from g.node_xy after release_node_xy (rows in parallel chunks): the
 // same floats. Nothing where it is there or cannot be made.
 void restore_node_xy(DrainageGrid& g);
+// Makes the nodes' x, y readable again after release_node_xy for the stages that read them
+// through grid_xy, grid_xy_at and DemSurface: g.xy_rows where node_xy interpolates its rows
+// (NodeXYRows::possible: the same floats for an eighth of coarse_xy's memory; kept once made),
+// else restore_node_xy.
+void readable_node_xy(DrainageGrid& g);
 
 // A grid of hand-given elevations at regular spacing (x = c*spacing, y = -r*spacing), factor 1;
 // `valid` empty means all valid. Used by tests and benchmarks.

@@ -2,6 +2,8 @@
 
 #include <vector>
 
+#include "core/parallel_chunks.hpp"
+
 namespace penink {
 
 glm::dvec2 geographic_node_lonlat(const GeographicNodes& g, int c, int r) {
@@ -26,5 +28,14 @@ void GeographicNodeXY::span(int r, int c0, int c1, int every, glm::vec2* out) co
     rows_.row_span(r, c0, c1, every, world.data());
     for (std::size_t j = 0; j < world.size(); ++j) out[j] = local_xy(world[j], origin_);
 }
+
+NodeXYRows::NodeXYRows(std::shared_ptr<const GeographicNodeXY> xy, int rows)
+    : xy_(std::move(xy)), rows_(&xy_->projector()), origin_(xy_->origin()), n_(rows_->sample_count()) {
+    samples_.resize(n_ * std::size_t(std::max(rows, 0)));
+    parallel_chunks(std::size_t(std::max(rows, 0)), 64, [&](std::size_t r0, std::size_t r1) {
+        for (std::size_t r = r0; r < r1; ++r) xy_->projector().row_samples(int(r), samples_.data() + r * n_);
+    });
+}
+
 
 }  // namespace penink

@@ -8,9 +8,12 @@
 // both sides: the x, y come back bit for bit.
 #pragma once
 #include <array>
+#include <memory>
+#include <vector>
 
 #include <glm/vec2.hpp>
 
+#include "core/big_allocator.hpp"
 #include "input/terrain.hpp"
 #include "input/utm_projection.hpp"
 
@@ -50,9 +53,39 @@ public:
     // Every `every`-th node of the span from c0 (UtmRowProjector::row_span); out: (c1 - c0 + every - 1) / every.
     void span(int r, int c0, int c1, int every, glm::vec2* out) const;
 
+    glm::dvec2 origin() const { return origin_; }
+
 private:
     UtmRowProjector rows_;
     glm::dvec2 origin_;
+};
+
+// The x, y of the nodes of a GeographicNodeXY's rows 0 .. rows - 1 from every row's samples held
+// (UtmRowProjector::row_samples: every 16th node of the row, 16 B each; on jacksboro refined 29
+// times 117 MB for 11687 x 9976 nodes, which take 933 MB as floats): at(c, r) is span's node
+// (c, r), the same floats, for a cubic of four samples, nothing projected. Made on all cores;
+// then read from any thread. Only where the projector interpolates (possible()).
+class NodeXYRows {
+public:
+    static bool possible(const GeographicNodeXY& xy) { return xy.projector().sample_count() >= 4; }
+    NodeXYRows(std::shared_ptr<const GeographicNodeXY> xy, int rows);
+    glm::vec2 at(int c, int r) const {
+        const glm::dvec2 p = rows_->node_from_samples(c, samples_.data() + std::size_t(r) * n_) - origin_;
+        // rounded to floats for certain: GCC 12 at -O2 drops the rounding of a glm::vec2 made
+        // from a glm::dvec2 and widened again (glm::dvec2(glm::vec2(p)) compiles to p), which
+        // a caller widening this node's x, y (grid_xy) would otherwise see unrounded
+        float x = float(p.x), y = float(p.y);
+        asm("" : "+r"(x), "+r"(y));
+        return {x, y};
+    }
+    std::size_t bytes() const { return samples_.size() * sizeof(glm::dvec2); }
+
+private:
+    std::shared_ptr<const GeographicNodeXY> xy_;
+    const UtmRowProjector* rows_;  // xy_'s
+    glm::dvec2 origin_;            // xy_'s
+    std::size_t n_ = 0;            // samples a row
+    std::vector<glm::dvec2, UninitAllocator<glm::dvec2>> samples_;
 };
 
 }  // namespace penink

@@ -56,10 +56,6 @@ struct Window {
     }
 };
 
-// The cubic through a, b, c, d with weights k.
-glm::dvec2 cubic(const std::array<double, 4>& k, glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, glm::dvec2 d) {
-    return k[0] * a + k[1] * b + k[2] * c + k[3] * d;
-}
 
 }  // namespace
 
@@ -145,7 +141,7 @@ glm::dvec2 UtmRowProjector::from_lattice(const LatticeRow& l, std::size_t k) con
     const glm::dvec2* nodes = lattice_->nodes.get();
     if (l.on) return nodes[l.first * n + k];
     auto at = [&](std::size_t j) { return nodes[(l.first + j) * n + k]; };
-    return cubic(l.weights, at(0), at(1), at(2), at(3));
+    return utm_cubic(l.weights, at(0), at(1), at(2), at(3));
 }
 
 // Exact at the sample columns (their values from the lattice, the row's two ends always
@@ -169,17 +165,31 @@ void UtmRowProjector::row_span(int r, int c0, int c1, int every, glm::dvec2* out
     thread_local std::vector<glm::dvec2> v;  // samples k0 .. k1 - 1
     v.resize(k1 - k0);
     const LatticeRow l = lattice_ ? lattice_row(r) : LatticeRow{};  // found (and projected) once a row
-    for (std::size_t k = k0; k < k1; ++k)
-        v[k - k0] = !lattice_ || k == 0 || k + 1 == n ? exact(cols_[k], r) : from_lattice(l, k);
+    for (std::size_t k = k0; k < k1; ++k) v[k - k0] = sample(l, k, r);
     for (std::size_t i = i0; i <= i1; ++i) {
-        const Window win(cols_, i, step_);
-        const glm::dvec2* s = v.data() + (win.first - k0);
         const int from = std::max(cols_[i], c0), first = c0 + (from - c0 + every - 1) / every * every;
-        for (int c = first; c < std::min(cols_[i + 1], last + 1); c += every)
-            out[(c - c0) / every] = c == cols_[i] ? v[i - k0] : cubic(win.at(cols_, i, c, weights_), s[0], s[1], s[2], s[3]);
+        for (int c = first; c < std::min(cols_[i + 1], last + 1); c += every) out[(c - c0) / every] = node_in(i, c, v.data(), k0);
     }
     if (last == w_ - 1) out[(w_ - 1 - c0) / every] = v[n - 1 - k0];
 }
+
+glm::dvec2 UtmRowProjector::sample(const LatticeRow& l, std::size_t k, int r) const {
+    return !lattice_ || k == 0 || k + 1 == cols_.size() ? exact(cols_[k], r) : from_lattice(l, k);
+}
+
+glm::dvec2 UtmRowProjector::node_in(std::size_t i, int c, const glm::dvec2* samples, std::size_t k0) const {
+    if (c == cols_[i]) return samples[i - k0];
+    const Window win(cols_, i, step_);
+    const glm::dvec2* s = samples + (win.first - k0);
+    return utm_cubic(win.at(cols_, i, c, weights_), s[0], s[1], s[2], s[3]);
+}
+
+void UtmRowProjector::row_samples(int r, glm::dvec2* out) const {
+    if (!lattice_) return;
+    const LatticeRow l = lattice_row(r);
+    for (std::size_t k = 0; k < cols_.size(); ++k) out[k] = sample(l, k, r);
+}
+
 
 void UtmRowProjector::row(int r, glm::dvec2* out) const { row_span(r, 0, w_, out); }
 

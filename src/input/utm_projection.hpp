@@ -13,6 +13,7 @@
 // view of part of a large DEM projects the part it reads (the values do not depend on the
 // order: each is one exact projection). Copies share the lattice; thread-safe.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <functional>
@@ -35,6 +36,11 @@ glm::dvec2 project_to_utm(glm::dvec2 lonlat, int zone, bool north);
 // in r along a column, for the lattice); asked only at the exactly projected nodes.
 using NodeLonLat = std::function<glm::dvec2(int c, int r)>;
 
+// The cubic through a, b, c, d with weights k (Lagrange's: utm_projection.cpp).
+inline glm::dvec2 utm_cubic(const std::array<double, 4>& k, glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, glm::dvec2 d) {
+    return k[0] * a + k[1] * b + k[2] * c + k[3] * d;
+}
+
 // One row of w nodes at a time, as project_grid_to_utm gives it (for callers that use each row
 // once and need not hold the whole grid). Throws like project_grid_to_utm.
 class UtmRowProjector {
@@ -49,6 +55,25 @@ public:
     // Every `every`-th node of the span from c0 (c0, c0 + every, ... < c1; every >= 1), each as
     // row() gives it; out: (c1 - c0 + every - 1) / every nodes. The nodes between are not computed.
     void row_span(int r, int c0, int c1, int every, glm::dvec2* out) const;
+    // A row's samples held by a caller (the exact and lattice-interpolated nodes row_span
+    // interpolates between; sample_count() of them a row, 0 where every node is exact): row_samples
+    // writes row r's, node_from_samples(c, samples) gives node c of the row they are of, exactly
+    // as row() gives it, without projecting or interpolating any sample again (a caller holding
+    // every row's samples, 16 B every step-th node, has any node for a cubic of four of them).
+    std::size_t sample_count() const { return lattice_ ? cols_.size() : 0; }
+    void row_samples(int r, glm::dvec2* out) const;
+    glm::dvec2 node_from_samples(int c, const glm::dvec2* samples) const {
+        const std::size_t n = cols_.size();
+        if (c >= w_ - 1) return samples[n - 1];
+        // the interval holding c: the samples are every step_-th column, then the last
+        const std::size_t i = std::min(std::size_t(c / step_), n - 2);
+        const int k = c - cols_[i];
+        // an interval whose four samples around are all every step_-th column (all but the first
+        // and the last two): node_in's uniform window, its weights and its sum, without finding it
+        if (k > 0 && i >= 1 && i + 2 < n - 1)
+            return utm_cubic(weights_[std::size_t(k)], samples[i - 1], samples[i], samples[i + 1], samples[i + 2]);
+        return node_in(i, c, samples, 0);
+    }
     int zone() const { return zone_; }
     bool north() const { return north_; }
     // Lattice rows projected so far (0 without a lattice).
@@ -86,6 +111,10 @@ private:
         bool on = false;
     };
     glm::dvec2 exact(int c, int r) const;
+    glm::dvec2 sample(const LatticeRow& l, std::size_t k, int r) const;  // sample k of row r (l: its lattice row)
+    // Node c of sample interval i (cols_[i] <= c < cols_[i + 1]) from its samples: samples[k - k0]
+    // is sample k (those from the four around the interval)
+    glm::dvec2 node_in(std::size_t i, int c, const glm::dvec2* samples, std::size_t k0) const;
     LatticeRow lattice_row(int r) const;
     glm::dvec2 from_lattice(const LatticeRow& l, std::size_t k) const;  // sample column k of that row
     void project_rows(std::size_t t0, std::size_t t1) const;  // lattice rows [t0, t1) projected

@@ -920,7 +920,7 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
     if (utm_nodes) {  // the projection's lattice read into place as the build projected it: not projected again
         try {
             derived->geographic->projector().adopt_lattice(
-                [&](glm::dvec2* nodes) { coded->read_strided(utm_array, 0, utm_nodes, 1, nodes); });
+                [&](glm::dvec2* into) { coded->read_strided(utm_array, 0, utm_nodes, 1, into); });
         } catch (const DamagedBlockError&) {
             return fail(why, "damaged terrain cache (UTM lattice)");
         }

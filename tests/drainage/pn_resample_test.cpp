@@ -1,9 +1,12 @@
 // PN resampling: factor 1 reproduces the DEM nodes exactly; a plane stays a plane at factor 3.
 #include <cmath>
 
+#include <cstring>
+
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
+#include "drainage/dem_surface.hpp"
 #include "drainage/drainage_grid.hpp"
 #include "input/dem_reader.hpp"
 #include "support/test_grids.hpp"
@@ -139,6 +142,48 @@ TEST(PnResample, GeographicNodeXyIsReleasedAndMadeAgainBitForBit) {
     EXPECT_FALSE(full.node_xy);
     EXPECT_FALSE(release_node_xy(full));
     EXPECT_EQ(full.coarse_xy, xy);
+}
+
+// The node x, y let go and read from the rows' samples kept instead (readable_node_xy: 1 B a node,
+// not 8): every node's grid_xy, points between nodes (grid_xy_at) and the draping surface's nodes
+// and hits are the same floats as with coarse_xy whole; restoring coarse_xy lets the samples go.
+TEST(PnResample, NodeXyReadFromRowSamplesIsCoarseXyBitForBit) {
+    DemOptions heights;
+    heights.heights_only = true;
+    Terrain h = read_dem(PENINK_SOURCE_DIR "/examples/jacksboro.tif", heights);
+    DrainageGrid g = resample_pn_releasing(h, 1);
+    ASSERT_TRUE(g.node_xy);
+    DrainageGrid kept = g;  // coarse_xy whole
+    ASSERT_TRUE(release_node_xy(g));
+    readable_node_xy(g);
+    ASSERT_TRUE(g.xy_rows);
+    EXPECT_TRUE(g.coarse_xy.empty());
+    EXPECT_LT(g.xy_rows->bytes(), kept.coarse_xy.size() * sizeof(glm::vec2) / 4);
+    for (int r = 0; r < g.rows; ++r)
+        for (int c = 0; c < g.cols; ++c) {
+            const glm::dvec2 a = grid_xy(g, c, r), b = grid_xy(kept, c, r);
+            ASSERT_EQ(std::memcmp(&a, &b, sizeof a), 0) << c << " " << r;
+        }
+    for (const glm::dvec2 at : {glm::dvec2(10.25, 20.5), glm::dvec2(0.0, 0.0), glm::dvec2(401.75, 342.5), glm::dvec2(200.1, 17.9)})
+        EXPECT_EQ(grid_xy_at(g, at.x, at.y), grid_xy_at(kept, at.x, at.y)) << at.x << " " << at.y;
+    const DemSurface from_rows(g), from_xy(kept);
+    for (int r = 0; r < g.rows; r += 3)
+        for (int c = 0; c < g.cols; c += 3) {
+            ASSERT_EQ(from_rows.node(c, r), from_xy.node(c, r)) << c << " " << r;
+            ASSERT_EQ(from_rows.normal(c, r), from_xy.normal(c, r)) << c << " " << r;
+        }
+    const DemDraper d_rows(from_rows), d_xy(from_xy);
+    for (int k = 0; k < 200; ++k) {
+        const glm::dvec2 p = grid_xy_at(kept, 3.0 + k * 1.93, 5.0 + k * 1.61);
+        int c0 = -1, r0 = -1, c1 = -1, r1 = -1;
+        DemHit a, b;
+        ASSERT_EQ(d_rows.locate(p.x, p.y, c0, r0, a), d_xy.locate(p.x, p.y, c1, r1, b)) << k;
+        EXPECT_EQ(a.cell, b.cell) << k;
+        EXPECT_EQ(a.bary, b.bary) << k;
+    }
+    restore_node_xy(g);
+    EXPECT_EQ(g.coarse_xy, kept.coarse_xy);
+    EXPECT_FALSE(g.xy_rows);
 }
 
 TEST(PnResample, RejectsBadFactor) {

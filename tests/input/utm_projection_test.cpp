@@ -152,6 +152,29 @@ TEST(UtmProjection, SpansOfARowAreTheRowBitForBit) {
     }
 }
 
+// A row's samples held (row_samples) give every node of the row as row() does, bit for bit, on
+// rows of the lattice, rows between, the first and last rows, and row lengths one past a sample
+// column and on one.
+TEST(UtmProjection, NodesFromARowsSamplesAreTheRowBitForBit) {
+    const double cell = 1.0 / 3600.0;
+    const NodeLonLat ll = [=](int c, int r) { return glm::dvec2(-84.4 + c * cell + r * 0.1 * cell, 36.7 - r * cell); };
+    for (const int w : {403, 401, 64, 65}) {
+        const UtmRowProjector p(w, 344, ll, 16, true);
+        ASSERT_GE(p.sample_count(), 5u) << w;
+        std::vector<glm::dvec2> whole(static_cast<std::size_t>(w)), samples(p.sample_count());
+        for (const int r : {0, 1, 15, 16, 17, 200, 342, 343}) {
+            p.row(r, whole.data());
+            p.row_samples(r, samples.data());
+            for (int c = 0; c < w; ++c) {
+                const glm::dvec2 a = p.node_from_samples(c, samples.data()), b = whole[std::size_t(c)];
+                ASSERT_TRUE(std::memcmp(&a, &b, sizeof a) == 0) << w << " " << r << " " << c;
+            }
+        }
+    }
+    const UtmRowProjector rows_only(403, ll, 16, true);  // no lattice: no samples to hold
+    EXPECT_EQ(rows_only.sample_count(), 0u);
+}
+
 // The lattice's rows are projected as rows need them, a band at a time: rows near the top of a
 // 3000-row grid project the few bands around them, not the 188 lattice rows; the nodes are the
 // same bits whatever order the rows are asked in, and from several threads at once.
