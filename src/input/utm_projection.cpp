@@ -166,9 +166,12 @@ void UtmRowProjector::row_span(int r, int c0, int c1, int every, glm::dvec2* out
     v.resize(k1 - k0);
     const LatticeRow l = lattice_ ? lattice_row(r) : LatticeRow{};  // found (and projected) once a row
     for (std::size_t k = k0; k < k1; ++k) v[k - k0] = sample(l, k, r);
-    for (std::size_t i = i0; i <= i1; ++i) {
+    for (std::size_t i = i0; i <= i1; ++i) {  // node_in's, its window found once an interval
+        const Window win(cols_, i, step_);
+        const glm::dvec2* s = v.data() + (win.first - k0);
         const int from = std::max(cols_[i], c0), first = c0 + (from - c0 + every - 1) / every * every;
-        for (int c = first; c < std::min(cols_[i + 1], last + 1); c += every) out[(c - c0) / every] = node_in(i, c, v.data(), k0);
+        for (int c = first; c < std::min(cols_[i + 1], last + 1); c += every)
+            out[(c - c0) / every] = c == cols_[i] ? v[i - k0] : utm_cubic(win.at(cols_, i, c, weights_), s[0], s[1], s[2], s[3]);
     }
     if (last == w_ - 1) out[(w_ - 1 - c0) / every] = v[n - 1 - k0];
 }
