@@ -56,7 +56,6 @@ struct Window {
     }
 };
 
-
 }  // namespace
 
 glm::dvec2 project_to_utm(glm::dvec2 lonlat, int zone, bool north) {
@@ -192,7 +191,6 @@ void UtmRowProjector::row_samples(int r, glm::dvec2* out) const {
     const LatticeRow l = lattice_row(r);
     for (std::size_t k = 0; k < cols_.size(); ++k) out[k] = sample(l, k, r);
 }
-
 
 void UtmRowProjector::row(int r, glm::dvec2* out) const { row_span(r, 0, w_, out); }
 
