@@ -384,8 +384,20 @@ int CreaseTiles::unit_detail(const CreaseUnit& u, const LineDetail& detail) cons
 
 int CreaseTiles::read_unit(std::size_t k, int l, int d, TileLines& out, const TileNeed& need) const {
     const bool copy = d >= crease_copy_detail;
-    if (copy && read_line_tile(tile_path(k, l, d), tile_key(k, l, d), out, need)) return 1;
-    if (!read_line_tile(tile_path(k, l), tile_key(k, l), out, need)) return 0;
+    // a copy of some of the unit's stems (written by a query that needed those alone) gives way to
+    // a file of more of them at detail 0, thinned
+    TileLines some;
+    bool some_read = false;
+    if (copy && read_line_tile(tile_path(k, l, d), tile_key(k, l, d), out, need)) {
+        if (out.stems.size() == tiles_[k].unit[std::size_t(l)].count) return 1;
+        some = std::move(out), some_read = true, out = {};
+    }
+    if (!read_line_tile(tile_path(k, l), tile_key(k, l), out, need) || (some_read && out.stems.size() <= some.stems.size())) {
+        if (!some_read) return 0;
+        out = std::move(some);
+        if (need) need(out);  // (what the caller found in the file it is given)
+        return 1;
+    }
     if (d == 0 || out.lines.lines.size() != out.stems.size()) return 1;  // (no line needed: none decoded)
     out.lines = thinned_lines(out.lines, detail_spacing(d));  // a copy made, kept for the next query
     return copy && writable_ && write_line_tile(tile_path(k, l, d), tile_key(k, l, d), crease_lattice(g_), out.lines, out.stems, out.bounds) ? 2 : 1;
@@ -445,6 +457,19 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
         stem_bound_box(b, parts_.lo, parts_.hi, box_lo, box_hi);
         return passes(b, box_lo, box_hi);
     };
+    // whether a file of stems `held` (ascending) holds every one of `stems` (ascending; bounds
+    // `bounds`, the index's) whose bound passes: a file of some of a unit's stems then gives the
+    // query what its whole file would (a stem whose index bound fails has a line whose bound fails)
+    const auto holds_passing = [&](const std::vector<std::uint32_t>& held, const std::vector<std::uint32_t>& stems,
+                                   const std::vector<StemBound>& bounds) {
+        std::size_t h = 0;
+        for (std::size_t i = 0; i < stems.size(); ++i) {
+            if (!bound_passes(bounds[i])) continue;
+            while (h < held.size() && held[h] < stems[i]) ++h;
+            if (h == held.size() || held[h] != stems[i]) return false;
+        }
+        return true;
+    };
     // the units whose summary passes (the others have no stem that does), and their detail
     std::vector<std::pair<std::size_t, int>> units;
     std::vector<int> unit_d;
@@ -493,8 +518,16 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
                 };
                 const int how = read_unit(k, l, unit_d[u], whole, passing);
                 written += how == 2;
-                const bool read = how > 0 && whole.stems.size() == tiles_[k].unit[std::size_t(l)].count;
-                if (!read) reader_.unit(tiles_[k].at[std::size_t(l)], whole.stems, whole.bounds), passing(whole);
+                bool read = how > 0 && whole.stems.size() == tiles_[k].unit[std::size_t(l)].count;
+                TileLines index;  // the unit's stems and bounds as the index gives them
+                if (how > 0 && !read) {  // a file of some of its stems: enough when it holds all that pass
+                    reader_.unit(tiles_[k].at[std::size_t(l)], index.stems, index.bounds);
+                    read = holds_passing(whole.stems, index.stems, index.bounds);
+                }
+                if (!read) {
+                    if (index.stems.empty()) reader_.unit(tiles_[k].at[std::size_t(l)], index.stems, index.bounds);
+                    whole.stems = std::move(index.stems), whole.bounds = std::move(index.bounds), passing(whole);
+                }
                 if (read) got[u] = lines_at(at, whole.lines);
                 else if (at.empty()) done[u] = 1;  // nothing of it needed
                 else unit_ids[u] = std::move(whole.stems), unit_bounds[u] = std::move(whole.bounds);
@@ -522,22 +555,39 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
     // missing[cuts[k], cuts[k + 1]): level cut_level[k] of tile cut_tile[k]'s (unit cut_unit[k]), ascending
     std::vector<std::size_t> cuts{0}, cut_tile, cut_unit;
     std::vector<int> cut_level, cut_d;
+    // the stems a cut's unit is built and written with: all of them, or where the query needs few
+    // (crease_partial_share) those it needs alone (cut_some[k]: ids ascending and their bounds)
+    std::vector<std::unique_ptr<TileLines>> cut_some;
     glm::vec2 blo, bhi;  // a stem's bound's box
     for (std::size_t u = 0; u < units.size(); ++u) {
         if (done[u]) continue;
         const auto [k, l] = units[u];
         const std::vector<std::uint32_t>& ids = stems_of(u);
+        auto some = std::make_unique<TileLines>();
+        double plan_all = 0.0, plan_some = 0.0;  // the unit's and the needed stems' plan bounds
         for (std::size_t i = 0; i < ids.size(); ++i) {
             const std::uint32_t s = ids[i];
+            const double plan = double(stem_bound_plan(bound_of(u, i)));
+            plan_all += plan;
             stem_bound_box(bound_of(u, i), parts_.lo, parts_.hi, blo, bhi);
             if (!passes(bound_of(u, i), blo, bhi)) continue;
             wanted.push_back({s, unit_d[u], bound_of(u, i)});
+            some->stems.push_back(s), some->bounds.push_back(bound_of(u, i)), plan_some += plan;
             if (!kept_.find(s)) missing.push_back(s);
         }
-        if (missing.size() > cuts.back())
+        if (missing.size() > cuts.back()) {
             cuts.push_back(missing.size()), cut_tile.push_back(k), cut_level.push_back(l), cut_d.push_back(unit_d[u]),
                 cut_unit.push_back(u);
+            if (plan_some > crease_partial_share * plan_all) some.reset();
+            cut_some.push_back(std::move(some));
+        }
     }
+    const auto file_ids = [&](std::size_t k) -> const std::vector<std::uint32_t>& {  // cut k's unit's stems built
+        return cut_some[k] ? cut_some[k]->stems : stems_of(cut_unit[k]);
+    };
+    const auto file_bound = [&](std::size_t k, std::size_t i) -> const StemBound& {  // and their bounds
+        return cut_some[k] ? cut_some[k]->bounds[i] : bound_of(cut_unit[k], i);
+    };
     std::sort(wanted.begin(), wanted.end());
     built_in_query_ = built_in_query_ || touched || !missing.empty();
     const auto ids_of = [&](std::size_t k) {
@@ -555,7 +605,8 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
                 TileLines whole;
                 const int how = read_unit(cut_tile[k], cut_level[k], cut_d[k], whole);
                 written += how == 2;
-                if (how > 0 && whole.stems == stems_of(cut_unit[k])) {
+                if (how > 0 && std::includes(whole.stems.begin(), whole.stems.end(), missing.begin() + std::ptrdiff_t(cuts[k]),
+                                              missing.begin() + std::ptrdiff_t(cuts[k + 1]))) {
                     for (std::size_t i = 0, n = cuts[k]; i < whole.stems.size() && n < cuts[k + 1]; ++i) {
                         if (whole.stems[i] != missing[n]) continue;
                         (bound_passes(whole.bounds[i]) ? read_ids[k] : read_dropped[k]).push_back(missing[n++]);
@@ -612,11 +663,11 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
         parallel_chunks(todo.size(), 1, [&](std::size_t j0, std::size_t j1) {
             for (std::size_t j = j0; j < j1; ++j) {
                 const std::size_t k = todo[j];
-                const std::vector<std::uint32_t>& ids = stems_of(cut_unit[k]);
+                const std::vector<std::uint32_t>& ids = file_ids(k);
                 const std::unique_ptr<DrapedLineSet> level = lines_of(ids, stems, whole);
                 std::vector<StemBound> bounds(ids.size());  // their lines' (crease_line_bound)
                 for (std::size_t i = 0; i < ids.size(); ++i)
-                    bounds[i] = crease_line_bound(*level, i, bound_of(cut_unit[k], i), parts_.lo, parts_.hi);
+                    bounds[i] = crease_line_bound(*level, i, file_bound(k, i), parts_.lo, parts_.hi);
                 w.written[j] = write_line_tile(tile_path(cut_tile[k], cut_level[k]), tile_key(cut_tile[k], cut_level[k]),
                                                crease_lattice(g_), *level, ids, bounds);
                 if (!w.written[j]) {
@@ -683,7 +734,7 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
     const auto planned = [&](std::size_t j) {  // the cuts of group j not read, and their units' stems
         auto b = std::make_unique<Writing>();
         for (std::size_t k = group[j]; k < group[j + 1]; ++k)
-            if (!was_read[k]) b->w.todo.push_back(k), b->stems = merged(std::move(b->stems), stems_of(cut_unit[k]));
+            if (!was_read[k]) b->w.todo.push_back(k), b->stems = merged(std::move(b->stems), file_ids(k));
         return b;
     };
     std::vector<std::unique_ptr<Writing>> builds(group.size() - 1);  // the groups' builds started
@@ -716,7 +767,7 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
             if (!next || next->w.todo != todo) {  // (the cuts not read are the cuts missing: never)
                 next = std::make_unique<Writing>();
                 next->w.todo = std::move(todo);
-                for (std::size_t k : next->w.todo) next->stems = merged(std::move(next->stems), stems_of(cut_unit[k]));
+                for (std::size_t k : next->w.todo) next->stems = merged(std::move(next->stems), file_ids(k));
                 next->whole = crease_part(g_, dir_, net_, surface(), parts_, next->stems);
             }
             check_part(next->whole.lines.size(), next->stems.size());

@@ -14,8 +14,10 @@
 // With a tile store (a folder and a key), a tile's stems are kept on disk by length: each level
 // (crease_tile_level: the stems' plan bound under 4, 8, ..., 256 cells, or longer) of each tile in a
 // file of its own (line_tile_files.hpp). A level of a tile with stems a query needs that are not
-// kept is first looked for in its file (read when its key, sizes and checksum hold), else all its
-// stems are built and its file written, so the next process reads what this one built; either
+// kept is first looked for in its file (read when its key, sizes and checksum hold, and it holds
+// every stem of the level the query needs), else all its stems are built (or only those the query
+// needs, when they are few: crease_partial_share) and its file written, so the next process reads
+// what this one built; either
 // way only the stems the query needs are kept in memory (a later query needing others reads the
 // file again). A view of a whole large DEM, which can show only long stems, so reads and builds
 // only the levels of long ones. Without a store, or once a file cannot be written, only the stems
@@ -131,6 +133,16 @@ struct CreaseIndexReader {
     std::function<CreaseTileIndex()> whole;
     std::function<std::vector<std::uint32_t>()> sources;
 };
+
+// A unit a query needs stems of but whose file it cannot read is built and written whole, unless
+// the stems the query needs (their index bounds pass) weigh crease_partial_share of its stems'
+// plan bounds (what their build costs) or less: then those alone are built and written, a file of
+// some of the unit's stems. A query reads such a file when it holds every stem of the unit that
+// the query needs, else builds the unit whole and writes its file over it. The index bounds are
+// loose (on a whole view of jacksboro refined 29 times a line's length bound is 0.55 to 0.7 of its
+// stem's), so the whole view's units of stems shorter than those it draws are mostly stems it does
+// not need: there, 232 k of the 335 k stems of the level of stems 128 to 256 cells long.
+inline constexpr double crease_partial_share = 0.5;
 
 // Copies of a unit's lines with fewer vertices, for frames that cannot tell them from the lines:
 // detail d (1 to crease_detail_levels) keeps vertices about 2^d cells apart (thinned_lines with a

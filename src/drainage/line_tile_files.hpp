@@ -2,7 +2,8 @@
 // level in a folder beside the drainage database, written whole to a temporary file and renamed
 // (core/cache_file_write.hpp: a reader sees the old file, the new one or none, never part of
 // one), and read only when a query needs a stem of the tile that is not kept in memory. A file
-// holds every stem of its tile and level (crease_tiles.hpp), in stem order: its key (what the tile
+// holds every stem of its tile and level, or some of them (crease_tiles.hpp crease_partial_share),
+// in stem order: its key (what the tile
 // was built from: the caller's hash of the database's identity, the tile size and the tile's
 // index), the lattice its vertices lie on (line_lattice.hpp: the build drapes every crease vertex
 // on it, so the file codes them without loss), the stems' ids (the first, then each one's step

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -362,6 +363,123 @@ TEST(CreaseTiles, StoredTilesAreReadByTheNextInstanceAndDamagedOnesRebuilt) {
     EXPECT_EQ(differing(in_memory, db, lo, hi, strict), 0u);
     EXPECT_EQ(nowhere.stems_built(), in_memory.stems_built());
     EXPECT_LT(kept, in_memory.stems_built());
+}
+
+// The files in a tile store that hold some of their unit's stems, not all (crease_partial_share),
+// and all files, of detail 0 (copies: `copies` true, the copies alone).
+struct StoreFiles {
+    std::size_t some = 0, all = 0;
+};
+StoreFiles files_of_some_stems(const std::string& folder, const CreaseTileIndex& index, bool copies = false) {
+    StoreFiles out;
+    for (const auto& e : std::filesystem::directory_iterator(folder)) {
+        const std::string name = e.path().filename().string();  // tile-K-L.pnlt or tile-K-L-dD.pnlt
+        unsigned k = 0, l = 0, d = 0;
+        const int fields = std::sscanf(name.c_str(), "tile-%u-%u-d%u.pnlt", &k, &l, &d);
+        if ((fields == 3) != copies || fields < 2) continue;
+        std::ifstream f(e.path(), std::ios::binary);
+        std::uint64_t key = 0;  // (its own: the header's, after the magic and version)
+        f.seekg(8);
+        f.read(reinterpret_cast<char*>(&key), sizeof key);
+        TileLines lines;
+        if (!read_line_tile(e.path().string(), key, lines)) continue;
+        const auto u = std::find_if(index.units.begin(), index.units.end(),
+                                    [&](const CreaseUnit& c) { return c.tile == k && c.level == l; });
+        if (u == index.units.end()) continue;
+        ++out.all, out.some += lines.stems.size() < u->count;
+    }
+    return out;
+}
+
+// A unit whose stems a query needs weigh crease_partial_share of it or less is built and written
+// with those alone: the next instance with the same test reads its file (from an index of units
+// alone too) and builds nothing; one with a laxer test needing stems the file lacks builds that
+// unit whole and writes it over, and the next one builds nothing; at a detail, a copy of some of
+// the stems gives way to the whole file at detail 0, thinned and written again. The lines are the
+// whole build's throughout.
+TEST(CreaseTiles, UnitsWhoseStemsAreFewNeededAreWrittenWithThoseAlone) {
+    const test::TempDir dir;
+    const JacksboroNetwork n;
+    const DrainageGrid& g = n.g;
+    const DrainageResult& res = n.res;
+    const DrainageDb& db = n.db;
+    const glm::vec2 lo = n.lo, hi = n.hi;
+    const SizeTest strict{lo, 0.05, 2.0}, lax{lo, 0.02, 2.0};
+    const TileStore store{dir.file("tiles"), 42};
+
+    CreaseTiles first(g, res.dir, res.net, 64, store);
+    EXPECT_EQ(differing(first, db, lo, hi, strict), 0u);
+    const CreaseTileIndex whole = first.index();
+    const StoreFiles strict_files = files_of_some_stems(store.folder, whole);
+    EXPECT_GT(strict_files.some, 2u);
+    EXPECT_LT(strict_files.some, strict_files.all);  // others whole
+    EXPECT_EQ(strict_files.all, first.tiles_written());
+    // the stems built: fewer than their units hold
+    std::size_t in_units = 0;
+    for (const auto& e : std::filesystem::directory_iterator(store.folder)) {
+        unsigned k = 0, l = 0;
+        if (std::sscanf(e.path().filename().string().c_str(), "tile-%u-%u", &k, &l) != 2) continue;
+        for (const CreaseUnit& u : whole.units) in_units += u.tile == k && u.level == l ? u.count : 0;
+    }
+    EXPECT_LT(first.stems_built(), in_units);
+
+    // an index of its units alone, the same test: every file read, nothing built
+    CreaseTileIndex units = whole;
+    const std::vector<std::vector<std::uint32_t>> members = crease_unit_stems(whole, g.cols, g.rows, g.dx);
+    units.parts.sources.clear(), units.stems.clear();
+    CreaseIndexReader reader;
+    reader.unit = [&](std::size_t u, std::vector<std::uint32_t>& ids, std::vector<StemBound>& bounds) {
+        ids = members.at(u), bounds.clear();
+        for (std::uint32_t s : ids) bounds.push_back(whole.stems[s]);
+    };
+    reader.whole = [&] { return whole; };
+    reader.sources = [&] { return whole.parts.sources; };
+    CreaseTiles lazy(g, res.dir, res.net, units, store, reader);
+    EXPECT_EQ(differing(lazy, db, lo, hi, strict), 0u);
+    EXPECT_EQ(lazy.tiles_built(), 0u);
+    EXPECT_EQ(lazy.tiles_read(), strict_files.all);
+    EXPECT_FALSE(lazy.index_loaded());
+
+    // a laxer test: the units whose files lack stems it needs built whole and written over
+    CreaseTiles laxer(g, res.dir, res.net, units, store, reader);
+    EXPECT_EQ(differing(laxer, db, lo, hi, lax), 0u);
+    EXPECT_GT(laxer.tiles_built(), 0u);
+    EXPECT_LT(files_of_some_stems(store.folder, whole).some + strict_files.all - strict_files.some,
+              files_of_some_stems(store.folder, whole).all + 1);
+    CreaseTiles laxer_again(g, res.dir, res.net, 64, store);
+    EXPECT_EQ(differing(laxer_again, db, lo, hi, lax), 0u);
+    EXPECT_EQ(laxer_again.tiles_built(), 0u);
+    EXPECT_EQ(differing(laxer_again, db, lo, hi, strict), 0u);
+
+    // at detail 2: copies of some stems, then the units made whole at detail 0 by a laxer test;
+    // the copies then give way to the files, thinned and written again, and are read after
+    const TileStore thin_store{dir.file("thin"), 42};
+    const CreaseTiles::LineDetail detail = [&](glm::vec2, glm::vec2, float) { return 4.5 * g.dx; };
+    const DrapedLineSet want = thinned_lines(db.creases, 4.0 * g.dx);
+    const auto bad_lines = [&](CreaseTiles& tiles, const SizeTest& t, const CreaseTiles::LineDetail& d) {
+        std::vector<std::uint32_t> ids;
+        const DrapedLineSet got = tiles.lines_for_box(lo, hi, &ids, t.bound(), d);
+        std::size_t bad = ids.size() < 100;
+        for (std::uint32_t i = 0; i < ids.size(); ++i) bad += !same_line(got, i, d ? want : db.creases, ids[i]);
+        return bad;
+    };
+    CreaseTiles thin(g, res.dir, res.net, 64, thin_store);
+    EXPECT_EQ(bad_lines(thin, strict, detail), 0u);
+    const StoreFiles copies = files_of_some_stems(thin_store.folder, whole, true);
+    EXPECT_GT(copies.some, 2u);
+    CreaseTiles full(g, res.dir, res.net, 64, thin_store);
+    EXPECT_EQ(bad_lines(full, lax, {}), 0u);
+    EXPECT_GT(full.tiles_built(), 0u);
+    EXPECT_EQ(files_of_some_stems(thin_store.folder, whole, true).some, copies.some);  // (not rewritten yet)
+    CreaseTiles thin_lax(g, res.dir, res.net, 64, thin_store);
+    EXPECT_EQ(bad_lines(thin_lax, lax, detail), 0u);
+    EXPECT_EQ(thin_lax.tiles_built(), 0u);
+    EXPECT_GT(thin_lax.tiles_written(), 0u);  // copies thinned from the files
+    EXPECT_LT(files_of_some_stems(thin_store.folder, whole, true).some, copies.some);
+    CreaseTiles thin_read(g, res.dir, res.net, 64, thin_store);
+    EXPECT_EQ(bad_lines(thin_read, lax, detail), 0u);
+    EXPECT_EQ(thin_read.tiles_built(), 0u);
+    EXPECT_EQ(thin_read.tiles_written(), 0u);
 }
 
 // A stem's line bound (crease_line_bound) passes a screen-size test wherever its line does, is
