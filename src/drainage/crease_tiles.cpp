@@ -400,7 +400,10 @@ int CreaseTiles::read_unit(std::size_t k, int l, int d, TileLines& out, const Ti
     }
     if (d == 0 || out.lines.lines.size() != out.stems.size()) return 1;  // (no line needed: none decoded)
     out.lines = thinned_lines(out.lines, detail_spacing(d));  // a copy made, kept for the next query
-    return copy && writable_ && write_line_tile(tile_path(k, l, d), tile_key(k, l, d), crease_lattice(g_), out.lines, out.stems, out.bounds) ? 2 : 1;
+    return copy && writable_ &&
+                   write_line_tile(tile_path(k, l, d), tile_key(k, l, d), crease_lattice(g_), out.lines, out.stems, out.bounds, out.rest)
+               ? 2
+               : 1;
 }
 
 DrapedLineSet thinned_lines(const DrapedLineSet& from, double spacing) {
@@ -521,8 +524,13 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
                 bool read = how > 0 && whole.stems.size() == tiles_[k].unit[std::size_t(l)].count;
                 TileLines index;  // the unit's stems and bounds as the index gives them
                 if (how > 0 && !read) {  // a file of some of its stems: enough when it holds all that pass
-                    reader_.unit(tiles_[k].at[std::size_t(l)], index.stems, index.bounds);
-                    read = holds_passing(whole.stems, index.stems, index.bounds);
+                    const TileRest& rest = whole.rest;
+                    if (rest.stems.size() + whole.stems.size() == tiles_[k].unit[std::size_t(l)].count) {
+                        read = holds_passing({}, rest.stems, rest.bounds);  // none it leaves out passes
+                    } else {
+                        reader_.unit(tiles_[k].at[std::size_t(l)], index.stems, index.bounds);
+                        read = holds_passing(whole.stems, index.stems, index.bounds);
+                    }
                 }
                 if (!read) {
                     if (index.stems.empty()) reader_.unit(tiles_[k].at[std::size_t(l)], index.stems, index.bounds);
@@ -565,12 +573,16 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
         const std::vector<std::uint32_t>& ids = stems_of(u);
         auto some = std::make_unique<TileLines>();
         double plan_all = 0.0, plan_some = 0.0;  // the unit's and the needed stems' plan bounds
+        TileRest rest;                           // the stems not needed
         for (std::size_t i = 0; i < ids.size(); ++i) {
             const std::uint32_t s = ids[i];
             const double plan = double(stem_bound_plan(bound_of(u, i)));
             plan_all += plan;
             stem_bound_box(bound_of(u, i), parts_.lo, parts_.hi, blo, bhi);
-            if (!passes(bound_of(u, i), blo, bhi)) continue;
+            if (!passes(bound_of(u, i), blo, bhi)) {
+                rest.stems.push_back(s), rest.bounds.push_back(bound_of(u, i));
+                continue;
+            }
             wanted.push_back({s, unit_d[u], bound_of(u, i)});
             some->stems.push_back(s), some->bounds.push_back(bound_of(u, i)), plan_some += plan;
             if (!kept_.find(s)) missing.push_back(s);
@@ -579,6 +591,7 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
             cuts.push_back(missing.size()), cut_tile.push_back(k), cut_level.push_back(l), cut_d.push_back(unit_d[u]),
                 cut_unit.push_back(u);
             if (plan_some > crease_partial_share * plan_all) some.reset();
+            else some->rest = std::move(rest);
             cut_some.push_back(std::move(some));
         }
     }
@@ -668,8 +681,9 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
                 std::vector<StemBound> bounds(ids.size());  // their lines' (crease_line_bound)
                 for (std::size_t i = 0; i < ids.size(); ++i)
                     bounds[i] = crease_line_bound(*level, i, file_bound(k, i), parts_.lo, parts_.hi);
+                const TileRest& rest = cut_some[k] ? cut_some[k]->rest : TileRest{};
                 w.written[j] = write_line_tile(tile_path(cut_tile[k], cut_level[k]), tile_key(cut_tile[k], cut_level[k]),
-                                               crease_lattice(g_), *level, ids, bounds);
+                                               crease_lattice(g_), *level, ids, bounds, rest);
                 if (!w.written[j]) {
                     w.needed_ids[j] = ids_of(k), w.needed[j] = lines_of(w.needed_ids[j], stems, whole);
                     continue;
@@ -692,7 +706,7 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
                 const DrapedLineSet thin = thinned_lines(*level, detail_spacing(d));
                 if (d >= crease_copy_detail &&
                     write_line_tile(tile_path(cut_tile[k], cut_level[k], d), tile_key(cut_tile[k], cut_level[k], d),
-                                    crease_lattice(g_), thin, ids, bounds))
+                                    crease_lattice(g_), thin, ids, bounds, rest))
                     w.written[j] = 2;
                 w.needed[j] = lines_of(w.needed_ids[j], ids, thin);
             }

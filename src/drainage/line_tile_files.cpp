@@ -17,7 +17,7 @@ namespace penink {
 namespace {
 
 constexpr std::uint32_t magic = 0x544c4e50u;  // "PNLT"
-constexpr std::uint32_t version = 7;
+constexpr std::uint32_t version = 8;
 // A vertex's six codes (line_lattice.hpp: x, y, z, the normal's a and b, the flow), each
 // predicted from the vertices before it on its line: x, y, z from the two before (a line's steps
 // turn slowly: the step repeated), the others from the one before; a line's first vertex from the
@@ -185,17 +185,22 @@ std::string line_tile_path(const std::string& folder, std::uint32_t tile, int le
 }
 
 std::vector<std::uint8_t> encode_line_tile(std::uint64_t key, const LineLattice& lattice, const DrapedLineSet& lines,
-                                           const std::vector<std::uint32_t>& stems, const std::vector<StemBound>& bounds) {
+                                           const std::vector<std::uint32_t>& stems, const std::vector<StemBound>& bounds,
+                                           const TileRest& rest) {
     const std::vector<std::uint8_t> coded = encode_lines(lines, lattice);
     if (coded.empty()) return {};
     const std::vector<std::uint8_t> ids = encode_stem_ids(stems.data(), stems.size()),
-                                    bound = encode_stem_bounds(bounds.data(), bounds.size());
+                                    bound = encode_stem_bounds(bounds.data(), bounds.size()),
+                                    rest_ids = encode_stem_ids(rest.stems.data(), rest.stems.size()),
+                                    rest_bound = encode_stem_bounds(rest.bounds.data(), rest.bounds.size());
     std::vector<std::uint8_t> out;
     out.reserve(80 + ids.size() + bound.size() + coded.size());
     put(out, magic), put(out, version), put(out, key);
     put(out, std::int32_t(lattice.plan_exp)), put(out, std::int32_t(lattice.z_exp));
     put(out, std::uint32_t(lines.lines.size())), put(out, std::uint64_t(lines.vertices.size()));
-    for (const std::vector<std::uint8_t>* part : {&ids, &bound, &coded}) {
+    put(out, std::uint32_t(rest.stems.size()));
+    for (const std::vector<std::uint8_t>* part : {&ids, &bound, &coded, &rest_ids, &rest_bound}) {
+        if (rest.stems.empty() && (part == &rest_ids || part == &rest_bound)) continue;
         put(out, std::uint64_t(part->size()));
         out.insert(out.end(), part->begin(), part->end());
     }
@@ -216,6 +221,7 @@ bool decode_line_tile(const std::uint8_t* data, std::size_t size, std::uint64_t 
     if (std::abs(lattice.plan_exp) > 126 || std::abs(lattice.z_exp) > 126) return false;
     const auto nl = r.get<std::uint32_t>();
     const auto nv = r.get<std::uint64_t>();
+    const auto nr = r.get<std::uint32_t>();
     if (!r.ok) return false;
     // a part's coded bytes: its size, then them
     auto part = [&r](const std::uint8_t*& at, std::uint64_t& n) {
@@ -224,9 +230,15 @@ bool decode_line_tile(const std::uint8_t* data, std::size_t size, std::uint64_t 
         at = r.in + r.at, r.at += std::size_t(n);
         return true;
     };
-    const std::uint8_t *ids, *bound, *coded;
-    std::uint64_t ids_n, bound_n, coded_n;
-    if (!part(ids, ids_n) || !part(bound, bound_n) || !part(coded, coded_n) || r.at != r.size) return false;
+    const std::uint8_t *ids, *bound, *coded, *rest_ids = nullptr, *rest_bound = nullptr;
+    std::uint64_t ids_n, bound_n, coded_n, rest_ids_n = 0, rest_bound_n = 0;
+    if (!part(ids, ids_n) || !part(bound, bound_n) || !part(coded, coded_n) ||
+        (nr && (!part(rest_ids, rest_ids_n) || !part(rest_bound, rest_bound_n))) || r.at != r.size)
+        return false;
+    out.rest.stems.resize(nr), out.rest.bounds.resize(nr);
+    if (nr && (!decode_stem_ids(rest_ids, std::size_t(rest_ids_n), out.rest.stems.data(), nr) ||
+               !decode_stem_bounds(rest_bound, std::size_t(rest_bound_n), out.rest.bounds.data(), nr)))
+        return false;
     DrapedLineSet& lines = out.lines;
     lines = DrapedLineSet{};
     std::vector<std::uint32_t>& stems = out.stems;
@@ -241,8 +253,9 @@ bool decode_line_tile(const std::uint8_t* data, std::size_t size, std::uint64_t 
 }
 
 bool write_line_tile(const std::string& path, std::uint64_t key, const LineLattice& lattice, const DrapedLineSet& lines,
-                     const std::vector<std::uint32_t>& stems, const std::vector<StemBound>& bounds) {
-    const std::vector<std::uint8_t> out = encode_line_tile(key, lattice, lines, stems, bounds);
+                     const std::vector<std::uint32_t>& stems, const std::vector<StemBound>& bounds,
+                     const TileRest& rest) {
+    const std::vector<std::uint8_t> out = encode_line_tile(key, lattice, lines, stems, bounds, rest);
     if (out.empty()) return false;
     std::error_code ec;
     std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ec);

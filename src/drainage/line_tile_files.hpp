@@ -27,8 +27,10 @@
 // not ascending or that does not decode reads as absent: the tile is built again and its file
 // rewritten.
 // Layout (little-endian): u32 magic "PNLT", u32 version, u64 key, i32 plan and z exponents of
-// the lattice, u32 lines, u64 vertices, u64 coded size, the coded ids, u64 coded size, the coded
-// bounds, u64 coded size, the coded lines and vertices, u64 hash64 of every byte before it.
+// the lattice, u32 lines, u64 vertices, u32 stems left out (TileRest), u64 coded size, the coded
+// ids, u64 coded size, the coded bounds, u64 coded size, the coded lines and vertices, where stems
+// are left out u64 coded size, their coded ids, u64 coded size, their coded bounds, then u64
+// hash64 of every byte before it.
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -44,12 +46,21 @@ namespace penink {
 // d > 0 (tile-K-L-dD.pnlt: crease_tiles.hpp).
 std::string line_tile_path(const std::string& folder, std::uint32_t tile, int level, int detail = 0);
 
+// The stems of a tile's level that a file of some of them leaves out (crease_tiles.hpp
+// crease_partial_share): their ids (ascending) and index bounds, so that a query tells from the
+// file alone whether it needs any of them (none: a file of every stem of its level).
+struct TileRest {
+    std::vector<std::uint32_t> stems;
+    std::vector<StemBound> bounds;
+    bool operator==(const TileRest&) const = default;
+};
 // A tile file's content: its lines (every one with at least one vertex) and, for line i, its stem
-// id stems[i] (ascending) and bound bounds[i].
+// id stems[i] (ascending) and bound bounds[i]; and what bounds the stems it leaves out.
 struct TileLines {
     DrapedLineSet lines;
     std::vector<std::uint32_t> stems;
     std::vector<StemBound> bounds;
+    TileRest rest;
 };
 
 // Whether a tile file's lines are needed, from its stems and bounds (decoded first: `lines` still
@@ -59,7 +70,8 @@ using TileNeed = std::function<bool(const TileLines&)>;
 // The bytes of a tile file holding `lines`, of stems `stems` with bounds `bounds` (one each a line),
 // their vertices on `lattice`; none when a vertex is not on it (vertex_code).
 std::vector<std::uint8_t> encode_line_tile(std::uint64_t key, const LineLattice& lattice, const DrapedLineSet& lines,
-                                           const std::vector<std::uint32_t>& stems, const std::vector<StemBound>& bounds);
+                                           const std::vector<std::uint32_t>& stems, const std::vector<StemBound>& bounds,
+                                           const TileRest& rest = {});
 // Decodes a tile file's bytes written with `key`: true with its lines (indexed: index_lines),
 // false when they are of another key or version, or damaged (short, checksum, sizes, coding).
 // With `need`: its stems and bounds alone (lines empty) where need says no line is needed.
@@ -69,7 +81,8 @@ bool decode_line_tile(const std::uint8_t* data, std::size_t size, std::uint64_t 
 // Writes the tile atomically (creating the folder); false when it cannot be written (a
 // read-only folder, a full disk, a vertex not on the lattice): the tile then stays in memory only.
 bool write_line_tile(const std::string& path, std::uint64_t key, const LineLattice& lattice, const DrapedLineSet& lines,
-                     const std::vector<std::uint32_t>& stems, const std::vector<StemBound>& bounds);
+                     const std::vector<std::uint32_t>& stems, const std::vector<StemBound>& bounds,
+                     const TileRest& rest = {});
 // Reads the tile written with `key` (decode_line_tile); false also when the file is absent or
 // not a regular file.
 bool read_line_tile(const std::string& path, std::uint64_t key, TileLines& out, const TileNeed& need = {});

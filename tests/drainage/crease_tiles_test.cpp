@@ -428,7 +428,9 @@ TEST(CreaseTiles, UnitsWhoseStemsAreFewNeededAreWrittenWithThoseAlone) {
     const std::vector<std::vector<std::uint32_t>> members = crease_unit_stems(whole, g.cols, g.rows, g.dx);
     units.parts.sources.clear(), units.stems.clear();
     CreaseIndexReader reader;
+    std::atomic<int> asked_units{0};
     reader.unit = [&](std::size_t u, std::vector<std::uint32_t>& ids, std::vector<StemBound>& bounds) {
+        ++asked_units;
         ids = members.at(u), bounds.clear();
         for (std::uint32_t s : ids) bounds.push_back(whole.stems[s]);
     };
@@ -439,6 +441,16 @@ TEST(CreaseTiles, UnitsWhoseStemsAreFewNeededAreWrittenWithThoseAlone) {
     EXPECT_EQ(lazy.tiles_built(), 0u);
     EXPECT_EQ(lazy.tiles_read(), strict_files.all);
     EXPECT_FALSE(lazy.index_loaded());
+    // the files of some stems read by what bounds the stems they leave out: the index's blocks
+    // asked for by the units without a file (whose summary passes but no stem), not by those files
+    std::size_t passing_units = 0;
+    for (const CreaseUnit& u : whole.units) {
+        glm::vec2 ulo = u.lo, uhi = u.hi;
+        passing_units += strict.bound()(u.most, ulo, uhi, whole.z_top);
+    }
+    ASSERT_GT(passing_units, strict_files.all);
+    EXPECT_EQ(std::size_t(asked_units), passing_units - strict_files.all);
+    ::testing::Test::RecordProperty("asked_units", int(asked_units));
 
     // a laxer test: the units whose files lack stems it needs built whole and written over
     CreaseTiles laxer(g, res.dir, res.net, units, store, reader);

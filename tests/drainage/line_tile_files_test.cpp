@@ -74,6 +74,16 @@ TEST(LineTileFiles, LinesComeBackBitForBitInFewerBytes) {
     EXPECT_TRUE(back.lines == set);  // records, boxes, lengths and index as index_lines makes them
     EXPECT_EQ(back.stems, ids);
     EXPECT_EQ(back.bounds, bounds);
+    EXPECT_EQ(back.rest, TileRest{});
+    // a file of some of its level's stems: what bounds those it leaves out comes back as written
+    TileRest rest;
+    rest.stems = {3, 5, 1000, 70000};
+    rest.bounds = {StemBound{1, 2, 3, 4, 5, 6}, StemBound{7, 8, 9, 10, 11, 12}, StemBound{}, StemBound{0, 0, 65535, 65535, 0x4321, 0x0102}};
+    const std::vector<std::uint8_t> some = encode_line_tile(7, lattice, set, ids, bounds, rest);
+    TileLines some_back;
+    ASSERT_TRUE(decode_line_tile(some.data(), some.size(), 7, some_back));
+    EXPECT_EQ(some_back.rest, rest);
+    EXPECT_TRUE(some_back.lines == set);
     // the 7 floats of a walk coded in under 6 of their 28 bytes, ids and bounds included (its
     // random turns of a third of a cell a step cost more than a crease's smooth ones)
     EXPECT_LT(double(bytes.size()), 6.0 * double(set.vertices.size()));
