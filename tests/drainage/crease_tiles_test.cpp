@@ -398,13 +398,10 @@ StoreFiles files_of_some_stems(const std::string& folder, const CreaseTileIndex&
 // the stems gives way to the whole file at detail 0, thinned and written again. The lines are the
 // whole build's throughout.
 TEST(CreaseTiles, UnitsWhoseStemsAreFewNeededAreWrittenWithThoseAlone) {
-    const test::TempDir dir;
     const JacksboroNetwork n;
-    const DrainageGrid& g = n.g;
-    const DrainageResult& res = n.res;
-    const DrainageDb& db = n.db;
-    const glm::vec2 lo = n.lo, hi = n.hi;
+    const auto& [g, res, db, lo, hi] = n;
     const SizeTest strict{lo, 0.05, 2.0}, lax{lo, 0.02, 2.0};
+    const test::TempDir dir;
     const TileStore store{dir.file("tiles"), 42};
 
     CreaseTiles first(g, res.dir, res.net, 64, store);
