@@ -205,6 +205,30 @@ PlanBoxes::PlanBoxes(const DrainageGrid& g) : g_(&g) {
                     lo_[k] = glm::min(lo_[k], p), hi_[k] = glm::max(hi_[k], p);
                 }
     });
+    if (bcols_ < window || brows_ < window) return;
+    // the windows: each block's box rounded outward, then the least and most over each window's
+    // rows of blocks, then over its columns
+    const auto wc = std::size_t(bcols_ - window + 1), wr = std::size_t(brows_ - window + 1);
+    window_lo_.resize(wc * wr), window_hi_.resize(wc * wr);
+    parallel_chunks(wr, 16, [&](std::size_t r0, std::size_t r1) {
+        std::vector<glm::vec2> across_lo(static_cast<std::size_t>(bcols_)), across_hi(static_cast<std::size_t>(bcols_));
+        for (std::size_t wy = r0; wy < r1; ++wy) {
+            for (std::size_t bc = 0; bc < std::size_t(bcols_); ++bc) {
+                glm::vec2 l(std::numeric_limits<float>::infinity()), h = -l;
+                for (std::size_t br = wy; br < wy + window; ++br) {
+                    const std::size_t k = br * std::size_t(bcols_) + bc;
+                    l = glm::min(l, glm::vec2(float_down(float(lo_[k].x)), float_down(float(lo_[k].y))));
+                    h = glm::max(h, glm::vec2(float_up(float(hi_[k].x)), float_up(float(hi_[k].y))));
+                }
+                across_lo[bc] = l, across_hi[bc] = h;
+            }
+            for (std::size_t wx = 0; wx < wc; ++wx) {
+                glm::vec2 l = across_lo[wx], h = across_hi[wx];
+                for (std::size_t bc = wx + 1; bc < wx + window; ++bc) l = glm::min(l, across_lo[bc]), h = glm::max(h, across_hi[bc]);
+                window_lo_[wy * wc + wx] = l, window_hi_[wy * wc + wx] = h;
+            }
+        }
+    });
 }
 
 // The x, y grid_xy_at interpolates between at node (c, r): coarse_xy at factor > 1, grid_xy's
@@ -225,8 +249,23 @@ void PlanBoxes::plan_box(const CellBox& b, glm::vec2& lo, glm::vec2& hi) const {
     if (affine_) {  // an affine image of the node range: its corners span it
         for (const glm::dvec2 p : {node(c0, r0), node(c1, r0), node(c0, r1), node(c1, r1)}) l = glm::min(l, p), h = glm::max(h, p);
     } else {
-        for (int br = r0 / block; br <= r1 / block; ++br)
-            for (int bc = c0 / block; bc <= c1 / block; ++bc) {
+        const int bc0 = c0 / block, bc1 = c1 / block, br0 = r0 / block, br1 = r1 / block;
+        if (!window_lo_.empty() && bc1 - bc0 + 1 >= window && br1 - br0 + 1 >= window) {
+            // windows at every window-th block from the first and one ending at the last, each way
+            const auto wc = std::size_t(bcols_ - window + 1);
+            lo = glm::vec2(std::numeric_limits<float>::infinity()), hi = -lo;
+            for (int wy = br0;; wy = std::min(wy + window, br1 - window + 1)) {
+                for (int wx = bc0;; wx = std::min(wx + window, bc1 - window + 1)) {
+                    const std::size_t k = std::size_t(wy) * wc + std::size_t(wx);
+                    lo = glm::min(lo, window_lo_[k]), hi = glm::max(hi, window_hi_[k]);
+                    if (wx == bc1 - window + 1) break;
+                }
+                if (wy == br1 - window + 1) break;
+            }
+            return;
+        }
+        for (int br = br0; br <= br1; ++br)
+            for (int bc = bc0; bc <= bc1; ++bc) {
                 const std::size_t k = std::size_t(br) * std::size_t(bcols_) + std::size_t(bc);
                 l = glm::min(l, lo_[k]), h = glm::max(h, hi_[k]);
             }

@@ -9,6 +9,7 @@
 // plan length and vertical travel, and quantise outward.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -22,6 +23,7 @@
 #include "drainage/draped_lines.hpp"
 #include "drainage/drainage_build.hpp"
 #include "drainage/stem_reach.hpp"
+#include "input/dem_reader.hpp"
 
 namespace penink {
 namespace {
@@ -163,6 +165,52 @@ TEST(StemReach, BoundsQuantiseOutward) {
     stem_bound_box(stem_bound(lo - 100.0f, hi + 100.0f, StemTravel{1.0, 0.0}, lo, hi), lo, hi, blo, bhi);
     EXPECT_EQ(blo, lo);
     EXPECT_EQ(bhi, hi);
+}
+
+}  // namespace
+}  // namespace penink
+
+namespace penink {
+namespace {
+
+// PlanBoxes on a grid that is not affine (geographic jacksboro at factor 1): for index boxes of
+// every size from a cell to most of the grid at seeded random places, the box of the nodes of
+// every 8 x 8 block that meets the box's node range, rounded outward to floats, as the blocks
+// alone gave it before windows of 4 x 4 blocks answered the larger ones: the same floats.
+TEST(StemReach, PlanBoxesOfWindowsAreThoseOfTheirBlocks) {
+    {
+        const DrainageGrid g = resample_pn(read_dem(PENINK_SOURCE_DIR "/examples/jacksboro.tif"), 1);
+        ASSERT_FALSE(g.has_affine);
+        const PlanBoxes boxes(g);
+        std::mt19937 rng(11);
+        std::size_t windows = 0, bad = 0;
+        for (int k = 0; k < 3000; ++k) {
+            const double side = std::exp(std::uniform_real_distribution<double>(0.0, std::log(0.8 * g.cols))(rng));
+            const double c0 = std::uniform_real_distribution<double>(-2.0, g.cols - side)(rng),
+                         r0 = std::uniform_real_distribution<double>(-2.0, g.rows - side * 0.7)(rng);
+            const CellBox b{std::max(0.0, c0), std::max(0.0, r0), std::min(g.cols - 1.0, c0 + side),
+                            std::min(g.rows - 1.0, r0 + side * 0.7)};
+            if (b.c1 < b.c0 || b.r1 < b.r0) continue;
+            glm::vec2 lo, hi;
+            boxes.plan_box(b, lo, hi);
+            // the blocks' way: every node of the blocks meeting the node range
+            const int nc0 = std::clamp(int(std::floor(b.c0)) - 1, 0, g.cols - 1), nc1 = std::clamp(int(std::floor(b.c1)) + 2, 0, g.cols - 1);
+            const int nr0 = std::clamp(int(std::floor(b.r0)) - 1, 0, g.rows - 1), nr1 = std::clamp(int(std::floor(b.r1)) + 2, 0, g.rows - 1);
+            windows += nc1 / 8 - nc0 / 8 >= 3 && nr1 / 8 - nr0 / 8 >= 3;
+            glm::dvec2 l(1e300), h(-1e300);
+            for (int r = nr0 / 8 * 8; r < std::min(g.rows, (nr1 / 8 + 1) * 8); ++r)
+                for (int c = nc0 / 8 * 8; c < std::min(g.cols, (nc1 / 8 + 1) * 8); ++c) {
+                    const glm::dvec2 p = grid_xy(g, c, r);
+                    l = glm::min(l, p), h = glm::max(h, p);
+                }
+            const float inf = std::numeric_limits<float>::infinity();
+            const glm::vec2 want_lo(std::nextafter(float(l.x), -inf), std::nextafter(float(l.y), -inf));
+            const glm::vec2 want_hi(std::nextafter(float(h.x), inf), std::nextafter(float(h.y), inf));
+            bad += lo != want_lo || hi != want_hi;
+        }
+        EXPECT_EQ(bad, 0u);
+        EXPECT_GT(windows, 1000u);
+    }
 }
 
 }  // namespace
