@@ -526,7 +526,7 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
                 if (how > 0 && !read) {  // a file of some of its stems: enough when it holds all that pass
                     const TileRest& rest = whole.rest;
                     if (rest.stems.size() + whole.stems.size() == tiles_[k].unit[std::size_t(l)].count) {
-                        read = holds_passing({}, rest.stems, rest.bounds);  // none it leaves out passes
+                        read = std::none_of(rest.bounds.begin(), rest.bounds.end(), bound_passes);  // none it leaves out passes
                     } else {
                         reader_.unit(tiles_[k].at[std::size_t(l)], index.stems, index.bounds);
                         read = holds_passing(whole.stems, index.stems, index.bounds);

@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <initializer_list>
 #include <filesystem>
 #include <fstream>
 
@@ -190,16 +191,19 @@ std::vector<std::uint8_t> encode_line_tile(std::uint64_t key, const LineLattice&
     const std::vector<std::uint8_t> coded = encode_lines(lines, lattice);
     if (coded.empty()) return {};
     const std::vector<std::uint8_t> ids = encode_stem_ids(stems.data(), stems.size()),
-                                    bound = encode_stem_bounds(bounds.data(), bounds.size()),
-                                    rest_ids = encode_stem_ids(rest.stems.data(), rest.stems.size()),
-                                    rest_bound = encode_stem_bounds(rest.bounds.data(), rest.bounds.size());
+                                    bound = encode_stem_bounds(bounds.data(), bounds.size());
+    std::vector<std::uint8_t> rest_ids, rest_bound;  // (coded only where stems are left out)
+    if (!rest.stems.empty())
+        rest_ids = encode_stem_ids(rest.stems.data(), rest.stems.size()),
+        rest_bound = encode_stem_bounds(rest.bounds.data(), rest.bounds.size());
     std::vector<std::uint8_t> out;
-    out.reserve(80 + ids.size() + bound.size() + coded.size());
+    out.reserve(96 + ids.size() + bound.size() + coded.size() + rest_ids.size() + rest_bound.size());
     put(out, magic), put(out, version), put(out, key);
     put(out, std::int32_t(lattice.plan_exp)), put(out, std::int32_t(lattice.z_exp));
     put(out, std::uint32_t(lines.lines.size())), put(out, std::uint64_t(lines.vertices.size()));
     put(out, std::uint32_t(rest.stems.size()));
-    for (const std::vector<std::uint8_t>* part : {&ids, &bound, &coded, &rest_ids, &rest_bound}) {
+    for (const std::vector<std::uint8_t>* part :
+         std::initializer_list<const std::vector<std::uint8_t>*>{&ids, &bound, &coded, &rest_ids, &rest_bound}) {
         if (rest.stems.empty() && (part == &rest_ids || part == &rest_bound)) continue;
         put(out, std::uint64_t(part->size()));
         out.insert(out.end(), part->begin(), part->end());
