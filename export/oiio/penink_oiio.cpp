@@ -33,6 +33,9 @@ extern "C" __attribute__((visibility("default"))) int penink_raster_encode(const
     try {
         // A name with the extension makes OpenImageIO pick its writer for it (".tif" -> tiff).
         const std::string name = std::string("penink.") + format;
+        // OpenImageIO's debug lines (Debian's prints them) stay off penink's stderr: what a writer
+        // cannot do reaches the caller as an error, and the null DateTime below is one it notes
+        OIIO::attribute("debug", 0);
         std::vector<unsigned char> buffer;
         OIIO::Filesystem::IOVecOutput proxy(buffer);
         auto out = OIIO::ImageOutput::create(name, &proxy);
@@ -48,6 +51,11 @@ extern "C" __attribute__((visibility("default"))) int penink_raster_encode(const
         spec.attribute("PixelAspectRatio", 1.0f);
         spec.attribute("Software", image->software ? image->software : "penink");
         if (image->description && *image->description) spec.attribute("ImageDescription", image->description);
+        // No clock in the file: OpenImageIO's TIFF and OpenEXR writers stamp the time of writing
+        // where DateTime is not given, so the same drawing written a second later differed; a
+        // DateTime whose string is null is given but written by none of them (no tag at all).
+        const char* no_date = nullptr;
+        spec.attribute("DateTime", OIIO::TypeDesc::STRING, &no_date);
         OIIO::Filesystem::IOProxy* proxy_ptr = &proxy;
         spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy_ptr);
         out->set_ioproxy(&proxy);
