@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <utility>
 
 #include <GeographicLib/UTMUPS.hpp>
@@ -68,7 +69,8 @@ glm::dvec2 project_to_utm(glm::dvec2 lonlat, int zone, bool north) {
 }
 
 UtmRowProjector::UtmRowProjector(int w, NodeLonLat lonlat, int zone, bool north, int step)
-    : w_(w), zone_(zone), step_(step), north_(north), lonlat_(std::move(lonlat)), weights_(uniform_weights(step)) {
+    : w_(w), zone_(zone), step_(step), step_shift_(step > 0 && std::has_single_bit(unsigned(step)) ? std::countr_zero(unsigned(step)) : -1),
+      north_(north), lonlat_(std::move(lonlat)), weights_(uniform_weights(step)) {
     if (interpolated(w, step)) cols_ = samples(w, step);
 }
 

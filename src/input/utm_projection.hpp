@@ -66,7 +66,7 @@ public:
         const std::size_t n = cols_.size();
         if (c >= w_ - 1) return samples[n - 1];
         // the interval holding c: the samples are every step_-th column, then the last
-        const std::size_t i = std::min(std::size_t(c / step_), n - 2);
+        const std::size_t i = std::min(std::size_t(step_shift_ >= 0 && c >= 0 ? c >> step_shift_ : c / step_), n - 2);
         const int k = c - cols_[i];
         // an interval whose four samples around are all every step_-th column (all but the first
         // and the last two): node_in's uniform window, its weights and its sum, without finding it
@@ -97,6 +97,7 @@ private:
         std::size_t projected = 0;  // rows, under mutex
     };
     int w_, zone_, step_;
+    int step_shift_;  // log2(step_) where step_ is a power of two (node_from_samples: a shift, not a division), else -1
     bool north_;
     NodeLonLat lonlat_;
     std::vector<std::array<double, 4>> weights_;  // cubic weights of equally spaced samples
