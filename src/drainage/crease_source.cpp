@@ -420,7 +420,13 @@ bool read_referred_arrays(const SourceHead& h, DrainageGrid& g, bool by_blocks =
         if (t.cols != g.cols || t.rows != g.rows || (formula && h.hashes.xy.size() != grid.count())) return false;
         if (z_blocks) {
             g.z.clear();
-            g.block_z.reset(new float[n]);  // (not written: the pages of the blocks never read are never touched)
+            // not written: the pages of the blocks never read are never touched; nor advised for
+            // huge pages, which malloc's (glibc.malloc.hugetlb) were: each block read then faulted
+            // and zeroed the 2 MiB pages its rows cross, 64 of them (a new view of jacksboro x29:
+            // a quarter of its CPU in page faults)
+            float* z = static_cast<float*>(allocate_big(n * sizeof(float)));
+            advise_small_pages(z, n * sizeof(float));
+            g.block_z = std::shared_ptr<float[]>(z, [n](float* p) { deallocate_big(p, n * sizeof(float)); });
         } else {
             take_node_heights(t, g.z);
             if (block_hashes(g.z.data(), grid) != h.hashes.z) return false;
