@@ -149,7 +149,7 @@ glm::vec3 DemSurface::node_normal(std::size_t i) const {
     });
 }
 
-glm::vec3 DemSurface::node_normal(int c, int r, FaceNormals& faces) const {
+glm::vec3 DemSurface::node_normal(int c, int r, FaceNormals& faces, NodeXYCache* cache) const {
     constexpr std::size_t side = 64;
     if (faces.slots.empty()) faces.slots.assign(2 * side * side, {0, glm::vec3(0.0f)});
     return with_nodes([&](const auto& node) {
@@ -159,7 +159,7 @@ glm::vec3 DemSurface::node_normal(int c, int r, FaceNormals& faces) const {
             if (slot.first != key) slot = {key, face_normal(*this, node, cc, rr, which)};
             return slot.second;
         });
-    });
+    }, cache);
 }
 
 DemDraper::DemDraper(const DemSurface& s) : s_(&s) {
@@ -174,7 +174,7 @@ glm::vec3 DemDraper::normal(std::uint32_t i) const {
     const auto cols = std::uint32_t(s_->cols());
     const std::uint32_t c = i % cols, r = i / cols;
     auto& slot = made_[c % 64 + r % 64 * 64];
-    if (slot.first != i) slot = {i, s_->node_normal(int(c), int(r), faces_)};
+    if (slot.first != i) slot = {i, s_->node_normal(int(c), int(r), faces_, &xy_)};
     return slot.second;
 }
 
@@ -286,12 +286,12 @@ bool DemDraper::locate(double x, double y, int& c, int& r, DemHit& hit) const {
             if (!inside_hit(xy, x, y, pc, pr, hit)) return false;
             c = pc, r = pr;
             return true;
-        });
+        }, &xy_);
         if (found) return true;
     }
     if (!s_->find_cell(x, y, c, r)) return false;
     // Well inside one of the cell's triangles: that one.
-    if (s_->with_node_xy([&](const auto& xy) { return inside_hit(xy, x, y, c, r, hit); })) return true;
+    if (s_->with_node_xy([&](const auto& xy) { return inside_hit(xy, x, y, c, r, hit); }, &xy_)) return true;
     // Else TerrainLocator::locate's rule: the first triangle in mesh order whose barycentric
     // coordinates are all >= -1e-7; any such triangle touches the cell's 3 x 3 neighbourhood.
     for (int rr = r - 1; rr <= r + 1; ++rr)
@@ -321,7 +321,7 @@ void DemDraper::corners(const DemHit& hit, glm::vec3 p[3], glm::vec3 n[3]) const
             else c = int(i % cols), r = int(i / cols);
             p[k] = node(c, r, i), n[k] = normal(i);
         }
-    });
+    }, &xy_);
 }
 
 void DemDraper::position_normal(const DemHit& hit, glm::vec3& position, glm::vec3& normal) const {

@@ -30,7 +30,9 @@ namespace penink {
 // vertex normal of every node (12 B a node, made on all cores; or, with Normals::on_demand, each
 // made where a draper needs it, each DemDraper keeping those of a 64 x 64 window of nodes and the
 // faces they were summed from: the ridges of /tmp/j10.tif draped in 0.5-0.9 s instead of 1.8-2.7 s,
-// and `penink drainage`'s peak 781 -> 615 MB). Holds
+// and `penink drainage`'s peak 781 -> 615 MB; where x, y are made from the grid's rows' samples,
+// each DemDraper keeps those of a 64 x 64 window too: the crease tiles of a cold render of
+// jacksboro x29 then take 4-6 % more CPU than from x, y held whole, not 16 %). Holds
 // pointers into the grid or Terrain it was made from, which must outlive it.
 class DemSurface {
 public:
@@ -77,10 +79,16 @@ public:
     struct FaceNormals {
         std::vector<std::pair<std::uint64_t, glm::vec3>> slots;  // key: 2 cell index + which + 1; 0: none
     };
+    // Node x, y made from the grid's rows' samples (RowsXY: a cubic of four each), kept by a caller
+    // (a DemDraper's): one slot per node of a 64 x 64 window (column and row mod 64), the last made
+    // there and its node's index.
+    struct NodeXYCache {
+        std::vector<std::pair<std::uint64_t, glm::vec2>> slots;  // key: node index + 1; 0: none
+    };
     // node_normal of node (c, r), the faces taken from `faces` where kept there and kept there
     // where made: the same floats (each face is made by face_normal alone, and the sum is of the
     // same faces in the same order), with a face shared by a node's neighbours made once.
-    glm::vec3 node_normal(int c, int r, FaceNormals& faces) const;
+    glm::vec3 node_normal(int c, int r, FaceNormals& faces, NodeXYCache* cache = nullptr) const;
     // Triangle `which` of cell (c, r) (0: NW, SW, SE; 1: NW, SE, NE) is part of the surface: the
     // cell lies on the grid and the triangle's three nodes hold data.
     bool triangle_valid(int c, int r, int which) const {
@@ -98,17 +106,23 @@ public:
 
     // Calls f(nodes) with `nodes(c, r)` giving node_xy(c, r) (the same floats), made for the way
     // this surface holds its nodes (per node, by column and row, or the affine formula) so that a
-    // loop over many nodes does not choose it at every node; returns what f returns.
-    template <class F> decltype(auto) with_node_xy(F&& f) const {
+    // loop over many nodes does not choose it at every node; returns what f returns. With a cache,
+    // nodes made from row samples are taken from it where kept and kept there where made.
+    template <class F> decltype(auto) with_node_xy(F&& f, NodeXYCache* cache = nullptr) const {
         if (pos_) return f(PosXY{pos_, std::size_t(cols_)});
         if (xy_) return f(StoredXY{xy_, std::size_t(cols_), node_blocks_});
+        if (xy_rows_ && cache) {
+            if (cache->slots.empty()) cache->slots.assign(64 * 64, {0, glm::vec2(0.0f)});
+            return f(CachedRowsXY{xy_rows_, cache->slots.data(), std::size_t(cols_)});
+        }
         if (xy_rows_) return f(RowsXY{xy_rows_});
         if (!col_x_.empty()) return f(AxisXY{col_x_.data(), row_y_.data()});
         return f(FormulaXY{&nodes_, origin_});
     }
     // The same for node(c, r) given its index i = index(c, r) too.
-    template <class F> decltype(auto) with_nodes(F&& f) const {
-        return with_node_xy([&](const auto& xy) { return f(Nodes<std::decay_t<decltype(xy)>>{xy, z_, pos_, node_blocks_}); });
+    template <class F> decltype(auto) with_nodes(F&& f, NodeXYCache* cache = nullptr) const {
+        return with_node_xy([&](const auto& xy) { return f(Nodes<std::decay_t<decltype(xy)>>{xy, z_, pos_, node_blocks_}); },
+                            cache);
     }
 
     // node_xy's ways (with_node_xy).
@@ -130,6 +144,17 @@ public:
     struct RowsXY {
         const NodeXYRows* rows;
         glm::vec2 operator()(int c, int r) const { return rows->at(c, r); }
+    };
+    struct CachedRowsXY {
+        const NodeXYRows* rows;
+        std::pair<std::uint64_t, glm::vec2>* slots;  // NodeXYCache's
+        std::size_t cols;
+        glm::vec2 operator()(int c, int r) const {
+            auto& slot = slots[std::size_t(c & 63) + std::size_t(r & 63) * 64];
+            const std::uint64_t key = std::uint64_t(r) * cols + std::uint64_t(c) + 1;
+            if (slot.first != key) slot = {key, rows->at(c, r)};
+            return slot.second;
+        }
     };
     struct AxisXY {
         const float *x, *y;
@@ -215,6 +240,7 @@ private:
     // node of a 64 x 64 window (column and row mod 64), and the faces they were summed from
     mutable std::vector<std::pair<std::uint32_t, glm::vec3>> made_;
     mutable DemSurface::FaceNormals faces_;
+    mutable DemSurface::NodeXYCache xy_;  // the nodes' x, y made last, where made from row samples
     glm::vec3 normal(std::uint32_t i) const;
     bool triangle_hit(double x, double y, int c, int r, int which, double eps, DemHit& hit) const;
     void corners(const DemHit& hit, glm::vec3 p[3], glm::vec3 n[3]) const;

@@ -181,6 +181,29 @@ TEST(PnResample, NodeXyReadFromRowSamplesIsCoarseXyBitForBit) {
         EXPECT_EQ(a.cell, b.cell) << k;
         EXPECT_EQ(a.bary, b.bary) << k;
     }
+    // Drapers of surfaces whose normals are made on demand (the crease tiles'): the nodes made
+    // from the rows' samples are kept in the draper's window (DemSurface::NodeXYCache) and give the
+    // same hits, heights and normals along paths hinted by the point before: one wrapping over the
+    // grid (more than a 64 x 64 window: slots taken over by other nodes), one down a few columns
+    // (nodes 64 rows apart: one slot, its key telling them apart).
+    {
+        const DemSurface lazy_rows(g, DemSurface::Normals::on_demand), lazy_xy(kept, DemSurface::Normals::on_demand);
+        const DemDraper l_rows(lazy_rows), l_xy(lazy_xy);
+        int c0 = -1, r0 = -1, c1 = -1, r1 = -1;
+        for (int k = 0; k < 4000; ++k) {
+            const glm::dvec2 p = k < 2000 ? grid_xy_at(kept, 2.0 + std::fmod(k * 0.31, g.cols - 4.0), 2.0 + std::fmod(k * 0.17, g.rows - 4.0))
+                                          : grid_xy_at(kept, 20.0 + 0.45 * std::sin(k * 0.7), 2.0 + std::fmod(k * 0.35, g.rows - 4.0));
+            DemHit a, b;
+            const bool on = l_rows.locate(p.x, p.y, c0, r0, a);
+            ASSERT_EQ(on, l_xy.locate(p.x, p.y, c1, r1, b)) << k;
+            if (!on) continue;
+            ASSERT_EQ(a.cell, b.cell) << k;
+            glm::vec3 na, nb;
+            const float za = l_rows.height_normal(a, na), zb = l_xy.height_normal(b, nb);
+            ASSERT_EQ(std::memcmp(&za, &zb, sizeof za), 0) << k;
+            ASSERT_EQ(std::memcmp(&na, &nb, sizeof na), 0) << k;
+        }
+    }
     restore_node_xy(g);
     EXPECT_EQ(g.coarse_xy, kept.coarse_xy);
     EXPECT_FALSE(g.xy_rows);
