@@ -90,7 +90,7 @@ TEST(RasterFormats, EachExtensionWritesItsFormatWithSizeAndDpi) {
         }
         EXPECT_LE(mean_diff(r, png), e.max_mean_diff);
         // no clock in the file: the same drawing written a second later gives the same bytes
-        // (OpenImageIO's TIFF writer stamps the time of writing where it is not told otherwise)
+        // (OpenImageIO's TIFF and OpenEXR writers stamp the time of writing where not told otherwise)
         EXPECT_EQ(r.date, "");
     }
     // The drawing is there: the PNG is not blank (its strokes are dark on white paper).
