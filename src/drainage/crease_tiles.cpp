@@ -382,14 +382,15 @@ int CreaseTiles::unit_detail(const CreaseUnit& u, const LineDetail& detail) cons
     return d;
 }
 
-int CreaseTiles::read_unit(std::size_t k, int l, int d, TileLines& out, const TileNeed& need) const {
+int CreaseTiles::read_unit(std::size_t k, int l, int d, TileLines& out, const TileNeed& need, const TileNeed& enough) const {
     const bool copy = d >= crease_copy_detail;
-    // a copy of some of the unit's stems (written by a query that needed those alone) gives way to
-    // a file of more of them at detail 0, thinned
+    // a copy of some of the unit's stems (written by a query that needed those alone) is read
+    // alone where it holds what the query needs, else gives way to a file of more of them at
+    // detail 0, thinned
     TileLines some;
     bool some_read = false;
     if (copy && read_line_tile(tile_path(k, l, d), tile_key(k, l, d), out, need)) {
-        if (out.stems.size() == tiles_[k].unit[std::size_t(l)].count) return 1;
+        if (out.stems.size() == tiles_[k].unit[std::size_t(l)].count || (enough && enough(out))) return 1;
         some = std::move(out), some_read = true, out = {};
     }
     if (!read_line_tile(tile_path(k, l), tile_key(k, l), out, need) || (some_read && out.stems.size() <= some.stems.size())) {
@@ -519,14 +520,20 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
                         if (bound_passes(t.bounds[i])) at.push_back(i), ids[u].push_back(t.stems[i]);
                     return !at.empty();
                 };
-                const int how = read_unit(k, l, unit_d[u], whole, passing);
+                // a file of some of its stems is enough when it holds all that pass
+                const auto holds_all_passing = [&](const TileLines& t) {
+                    const TileRest& rest = t.rest;
+                    return rest.stems.size() + t.stems.size() == tiles_[k].unit[std::size_t(l)].count &&
+                           std::none_of(rest.bounds.begin(), rest.bounds.end(), bound_passes);  // none it leaves out passes
+                };
+                const int how = read_unit(k, l, unit_d[u], whole, passing, holds_all_passing);
                 written += how == 2;
                 bool read = how > 0 && whole.stems.size() == tiles_[k].unit[std::size_t(l)].count;
                 TileLines index;  // the unit's stems and bounds as the index gives them
-                if (how > 0 && !read) {  // a file of some of its stems: enough when it holds all that pass
+                if (how > 0 && !read) {
                     const TileRest& rest = whole.rest;
                     if (rest.stems.size() + whole.stems.size() == tiles_[k].unit[std::size_t(l)].count) {
-                        read = std::none_of(rest.bounds.begin(), rest.bounds.end(), bound_passes);  // none it leaves out passes
+                        read = holds_all_passing(whole);
                     } else {
                         reader_.unit(tiles_[k].at[std::size_t(l)], index.stems, index.bounds);
                         read = holds_passing(whole.stems, index.stems, index.bounds);
@@ -616,10 +623,13 @@ std::vector<CreaseTiles::Pick> CreaseTiles::picks_for_box(glm::vec2 lo, glm::vec
         parallel_chunks(cut_tile.size(), 1, [&](std::size_t k0, std::size_t k1) {
             for (std::size_t k = k0; k < k1; ++k) {
                 TileLines whole;
-                const int how = read_unit(cut_tile[k], cut_level[k], cut_d[k], whole);
+                const auto holds_missing = [&](const TileLines& t) {
+                    return std::includes(t.stems.begin(), t.stems.end(), missing.begin() + std::ptrdiff_t(cuts[k]),
+                                         missing.begin() + std::ptrdiff_t(cuts[k + 1]));
+                };
+                const int how = read_unit(cut_tile[k], cut_level[k], cut_d[k], whole, {}, holds_missing);
                 written += how == 2;
-                if (how > 0 && std::includes(whole.stems.begin(), whole.stems.end(), missing.begin() + std::ptrdiff_t(cuts[k]),
-                                              missing.begin() + std::ptrdiff_t(cuts[k + 1]))) {
+                if (how > 0 && holds_missing(whole)) {
                     for (std::size_t i = 0, n = cuts[k]; i < whole.stems.size() && n < cuts[k + 1]; ++i) {
                         if (whole.stems[i] != missing[n]) continue;
                         (bound_passes(whole.bounds[i]) ? read_ids[k] : read_dropped[k]).push_back(missing[n++]);

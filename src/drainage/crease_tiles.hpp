@@ -260,8 +260,10 @@ private:
     // `out` (d > 0: its copy, else its lines read at detail 0, thinned, and the copy written)
     // (0: no file read; 1: read; 2: read, and the copy written)
     int unit_detail(const CreaseUnit& u, const LineDetail& detail) const;
-    // (need: line_tile_files.hpp's; none decoded where it says none is needed)
-    int read_unit(std::size_t k, int l, int d, TileLines& out, const TileNeed& need = {}) const;
+    // (need: line_tile_files.hpp's; none decoded where it says none is needed. enough: whether a
+    // copy of some of the unit's stems, read first, holds what the query needs; else the file at
+    // detail 0 is read too)
+    int read_unit(std::size_t k, int l, int d, TileLines& out, const TileNeed& need = {}, const TileNeed& enough = {}) const;
     double detail_spacing(int d) const;  // metres between a copy's vertices at detail d
     struct Tile {
         std::array<std::vector<std::uint32_t>, crease_tile_levels> stems;  // ids by level, ascending (loaded_)

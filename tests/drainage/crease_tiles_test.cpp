@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <random>
 #include <string>
 #include <tuple>
@@ -480,6 +481,17 @@ TEST(CreaseTiles, UnitsWhoseStemsAreFewNeededAreWrittenWithThoseAlone) {
     EXPECT_EQ(bad_lines(full, lax, {}), 0u);
     EXPECT_GT(full.tiles_built(), 0u);
     EXPECT_EQ(files_of_some_stems(thin_store.folder, whole, true).some, copies.some);  // (not rewritten yet)
+    // the test the copies were written for: they hold every stem it needs and are read alone,
+    // not the files of more stems beside them (thinned and written again), from the index or
+    // from its units alone
+    for (const bool from_units : {false, true}) {
+        std::unique_ptr<CreaseTiles> again = from_units ? std::make_unique<CreaseTiles>(g, res.dir, res.net, units, thin_store, reader)
+                                                        : std::make_unique<CreaseTiles>(g, res.dir, res.net, 64, thin_store);
+        EXPECT_EQ(bad_lines(*again, strict, detail), 0u) << from_units;
+        EXPECT_EQ(again->tiles_built(), 0u) << from_units;
+        EXPECT_EQ(again->tiles_written(), 0u) << from_units;
+        EXPECT_EQ(files_of_some_stems(thin_store.folder, whole, true).some, copies.some) << from_units;
+    }
     CreaseTiles thin_lax(g, res.dir, res.net, 64, thin_store);
     EXPECT_EQ(bad_lines(thin_lax, lax, detail), 0u);
     EXPECT_EQ(thin_lax.tiles_built(), 0u);
