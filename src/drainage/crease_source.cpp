@@ -628,6 +628,7 @@ bool decode_crease_source(const CreaseSourceBytes& src, DrainageGrid& g, std::ve
     g = DrainageGrid{};
     SourceHead head;
     if (!get_head(r, g, head)) return false;
+    if (head.referred && !src.dem.empty()) head.dem.path = src.dem;  // moved with its database
     const std::uint32_t cols = head.cols, rows = head.rows, affine = head.affine, shared = head.shared;
     const std::int32_t factor = head.factor, ccols = head.ccols, crows = head.crows;
     if (head.referred && factor != 1) return false;
@@ -766,13 +767,13 @@ bool decode_crease_unit(const CreaseSourceBytes& src, const SourceUnitBlock& blo
 }
 
 CreaseSourceBytes crease_source_bytes(const std::vector<std::uint8_t>& bytes, const CheckedBlocks* pages,
-                                      std::uint64_t size) {
-    if (pages) return {static_cast<const std::uint8_t*>(pages->data(0)), std::size_t(size), pages};
-    return {bytes.data(), bytes.size(), nullptr};
+                                      std::uint64_t size, std::string dem) {
+    if (pages) return {static_cast<const std::uint8_t*>(pages->data(0)), std::size_t(size), pages, std::move(dem)};
+    return {bytes.data(), bytes.size(), nullptr, std::move(dem)};
 }
 
 CreaseSourceBytes crease_source_bytes(const DrainageDb& db) {
-    return crease_source_bytes(db.crease_source, db.crease_source_pages.get(), db.crease_source_size);
+    return crease_source_bytes(db.crease_source, db.crease_source_pages.get(), db.crease_source_size, db.crease_source_dem);
 }
 
 void CreaseSourceBytes::need(std::uint64_t at, std::uint64_t n) const {

@@ -100,12 +100,15 @@ struct CreaseSourceBytes {
     const std::uint8_t* data = nullptr;
     std::size_t size = 0;
     const CheckedBlocks* pages = nullptr;
+    // Where the DEM it refers to is read (DrainageDb::crease_source_dem); empty: the path stored.
+    std::string dem = {};
     void need(std::uint64_t at, std::uint64_t n) const;
 };
-// The bytes of a source held as `bytes`, or, with `pages`, the `size` left in the file.
+// The bytes of a source held as `bytes`, or, with `pages`, the `size` left in the file; its DEM
+// read at `dem` where not empty.
 CreaseSourceBytes crease_source_bytes(const std::vector<std::uint8_t>& bytes, const CheckedBlocks* pages,
-                                      std::uint64_t size);
-// A database's (DrainageDb::crease_source, or its pages).
+                                      std::uint64_t size, std::string dem = {});
+// A database's (DrainageDb::crease_source, or its pages, and crease_source_dem).
 CreaseSourceBytes crease_source_bytes(const DrainageDb& db);
 // The page a database file checks its crease source by, and the pages' hash64 (the last one
 // short): stored after the source (drainage_db.cpp), they are also what identifies it (the tile
@@ -113,7 +116,8 @@ CreaseSourceBytes crease_source_bytes(const DrainageDb& db);
 inline constexpr std::size_t crease_source_page = std::size_t(1) << 16;
 std::vector<std::uint64_t> crease_source_page_sums(const std::uint8_t* data, std::size_t n);
 
-// The DEM path a crease source refers to ("" when it stores its arrays or does not decode).
+// The DEM path a crease source stores ("" when it stores its arrays or does not decode), whatever
+// src.dem says.
 std::string crease_source_dem(const CreaseSourceBytes& src);
 inline std::string crease_source_dem(const std::uint8_t* data, std::size_t size) {
     return crease_source_dem(CreaseSourceBytes{data, size});

@@ -104,11 +104,15 @@ std::optional<DemHeightsRef> heights_ref(const std::string& dem_path, const Terr
     return DemHeightsRef{absolute_dem_path(dem_path), t.source_geographic ? t.utm_zone : 0, t.north};
 }
 
-// Whether a cached database's creases' source refers to the heights of a DEM other than the one
-// at `dem_path` (a cache moved with its DEM or found for another path): built again.
-bool refers_to_other_dem(const DrainageDb& db, const std::string& dem_path) {
-    const std::string dem = crease_source_dem(crease_source_bytes(db));  // its first page alone
-    return !dem.empty() && dem != absolute_dem_path(dem_path);
+// A cached database whose fingerprint matched the DEM at `dem_path`, which its creases' source
+// may refer to at another path (moved with its DEM, or the same DEM copied with its time):
+// the source's heights then read at `dem_path` (the same bytes, and checked by the source's block
+// hashes as they are read). The path it stored where it moved, else "".
+std::string follow_moved_dem(DrainageDb& db, const std::string& dem_path) {
+    const std::string stored = crease_source_dem(crease_source_bytes(db)), now = absolute_dem_path(dem_path);  // its first page alone
+    if (stored.empty() || stored == now) return {};
+    db.crease_source_dem = now;
+    return stored;
 }
 
 // A database of `g`'s size, factor and origin, nothing in it yet.
@@ -406,8 +410,8 @@ DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& te
         try {  // a read-only folder's cache: read when valid (a stale one is rebuilt in the user's cache)
             DrainageDb db = in_file ? read_drainage_line_index(beside, &fp, *in_file)
                                     : read_drainage_db(beside, &fp, DvParts::lines);
-            if (refers_to_other_dem(db, dem_path)) throw Error("drainage", beside, "drainage database refers to another DEM path");
-            say("drainage: using cached " + cache_file_report(beside));
+            const std::string moved = follow_moved_dem(db, dem_path);
+            say("drainage: using cached " + cache_file_report(beside) + (moved.empty() ? "" : " (its DEM moved from " + moved + ")"));
             if (file_used) *file_used = beside;
             return db;
         } catch (const Error& e) {
@@ -417,8 +421,8 @@ DrainageDb load_or_build_drainage(const std::string& dem_path, const Terrain& te
     try {
         DrainageDb db = in_file ? read_drainage_line_index(cache, &fp, *in_file)
                                 : read_drainage_db(cache, &fp, DvParts::lines);
-        if (refers_to_other_dem(db, dem_path)) throw Error("drainage", cache, "drainage database refers to another DEM path");
-        say("drainage: using cached " + cache_file_report(cache));
+        const std::string moved = follow_moved_dem(db, dem_path);
+        say("drainage: using cached " + cache_file_report(cache) + (moved.empty() ? "" : " (its DEM moved from " + moved + ")"));
         if (file_used) *file_used = cache;
         return db;
     } catch (const Error& e) {

@@ -102,6 +102,11 @@ struct DrainageDb {
     std::shared_ptr<const CheckedBlocks> crease_source_pages;
     std::uint64_t crease_source_size = 0;
     std::vector<std::uint64_t> crease_source_sums;
+    // Where the DEM whose heights the crease source refers to (crease_source.hpp) is read now, when
+    // it moved with its database (load_or_build_drainage: the same fingerprint, so the same bytes,
+    // at another path; its heights read there are still checked by the source's block hashes);
+    // empty: the path the source stores.
+    std::string crease_source_dem;
     // After a build in this process (load_or_build_drainage): the grid, directions and network the
     // crease source codes, handed to the creases' tiles so that they are not made again
     // (StoredCreases::take); none for a database read from a file.

@@ -38,22 +38,25 @@ StoredCreases::StoredCreases(std::shared_ptr<const CheckedBlocks> pages, std::ui
     : pages_(std::move(pages)), size_(size), sums_(std::move(sums)), folder_(std::move(folder)) {}
 
 std::shared_ptr<StoredCreases> StoredCreases::of(const DrainageDb& db, std::string folder) {
-    if (db.crease_source_pages)
-        return std::make_shared<StoredCreases>(db.crease_source_pages, db.crease_source_size, db.crease_source_sums,
-                                               std::move(folder));
-    return std::make_shared<StoredCreases>(db.crease_source, std::move(folder));
+    std::shared_ptr<StoredCreases> out =
+        db.crease_source_pages ? std::make_shared<StoredCreases>(db.crease_source_pages, db.crease_source_size,
+                                                                  db.crease_source_sums, std::move(folder))
+                               : std::make_shared<StoredCreases>(db.crease_source, std::move(folder));
+    out->dem_ = db.crease_source_dem;
+    return out;
 }
 
 std::shared_ptr<StoredCreases> StoredCreases::take(DrainageDb& db, std::string folder) {
     std::shared_ptr<StoredCreases> out = db.crease_source_pages
                                              ? of(db, std::move(folder))
                                              : std::make_shared<StoredCreases>(std::move(db.crease_source), std::move(folder));
+    out->dem_ = db.crease_source_dem;
     out->built_ = std::move(db.built_network.arrays);
     db.crease_source = {}, db.crease_source_pages = nullptr;
     return out;
 }
 
-CreaseSourceBytes StoredCreases::bytes() const { return crease_source_bytes(source_, pages_.get(), size_); }
+CreaseSourceBytes StoredCreases::bytes() const { return crease_source_bytes(source_, pages_.get(), size_, dem_); }
 
 StoredCreases::~StoredCreases() = default;
 

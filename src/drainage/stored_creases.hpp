@@ -94,6 +94,7 @@ private:
     mutable std::mutex mutex_;
     std::vector<std::uint8_t> source_;
     std::shared_ptr<const CheckedBlocks> pages_;  // or the source's pages in its file
+    std::string dem_;                             // DrainageDb::crease_source_dem
     std::uint64_t size_ = 0;
     std::vector<std::uint64_t> sums_;  // its pages' checksums (made from source_ where not given)
     std::string folder_;

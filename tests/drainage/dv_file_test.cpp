@@ -717,8 +717,10 @@ TEST(DvFile, CacheNextToDemIsReusedAndRebuilt) {
 }
 
 // A cache whose creases' source reads its heights from the DEM (factor 1) moved with its DEM to
-// another folder: the render's load builds it again there (it refers to the old path); a whole
-// read of a database whose DEM is gone says it is stale.
+// another folder (the same fingerprint): the render's load uses it, the heights read at the new
+// path, and its creases are the ones it gave before the move, whether read whole or as a render
+// reads it (the source left in the file); a whole read of a database whose DEM is gone from the
+// path it stores says it is stale.
 // A fingerprint made by the caller (the terrain cache's key of the same run) is taken as it is:
 // the file is not read again (a path that does not exist fingerprints), the factor and routing
 // are the options'.
@@ -737,7 +739,7 @@ TEST(DvFile, GivenDemFingerprintIsNotMadeAgain) {
     EXPECT_THROW(drainage_fingerprint("/nonexistent/penink/dem.asc", t, o), Error);
 }
 
-TEST(DvFile, CacheMovedWithItsDemIsRebuilt) {
+TEST(DvFile, CacheMovedWithItsDemIsUsed) {
     const fs::path d = temp_dir("moved");
     fs::create_directories(d / "a");
     fs::copy_file(PENINK_SOURCE_DIR "/examples/volcano.asc", d / "a" / "v.asc");
@@ -749,20 +751,33 @@ TEST(DvFile, CacheMovedWithItsDemIsRebuilt) {
     load_or_build_drainage((d / "a" / "v.asc").string(), t, o, say);
     ASSERT_TRUE(fs::exists(d / "a" / "v.asc.dv"));
     const DrainageDb whole = read_drainage_db((d / "a" / "v.asc.dv").string());
-    EXPECT_EQ(crease_source_dem(whole.crease_source.data(), whole.crease_source.size()),
-              fs::absolute(d / "a" / "v.asc").lexically_normal().string());
+    const std::string at_a = fs::absolute(d / "a" / "v.asc").lexically_normal().string();
+    EXPECT_EQ(crease_source_dem(whole.crease_source.data(), whole.crease_source.size()), at_a);
+    const glm::vec2 lo(-1e9f), hi(1e9f);
+    const DrapedLineSet before = StoredCreases::of(whole)->lines_for_box(lo, hi);
+    ASSERT_GT(before.lines.size(), 100u);
+    const auto written = fs::last_write_time(d / "a" / "v.asc.dv");
     fs::rename(d / "a", d / "b");
     const Terrain moved = read_dem((d / "b" / "v.asc").string());
-    load_or_build_drainage((d / "b" / "v.asc").string(), moved, o, say);
-    EXPECT_EQ(log[log.size() - 2], "penink: drainage: " + (d / "b" / "v.asc.dv").string() +
-                                       ": drainage database refers to another DEM path; rebuilding");
-    EXPECT_EQ(log.back(), "drainage: wrote " + cache_file_report((d / "b" / "v.asc.dv").string()));
-    EXPECT_TRUE(read_drainage_db((d / "b" / "v.asc.dv").string()).branches == whole.branches);
+    const DrainageDb at_b = load_or_build_drainage((d / "b" / "v.asc").string(), moved, o, say);
+    EXPECT_EQ(log.back(), "drainage: using cached " + cache_file_report((d / "b" / "v.asc.dv").string()) +
+                              " (its DEM moved from " + at_a + ")");
+    EXPECT_EQ(at_b.crease_source_dem, fs::absolute(d / "b" / "v.asc").lexically_normal().string());
+    EXPECT_EQ(fs::last_write_time(d / "b" / "v.asc.dv"), written);  // not written again
+    const DrapedLineSet after = StoredCreases::of(at_b)->lines_for_box(lo, hi);
+    EXPECT_TRUE(after.lines == before.lines && after.vertices == before.vertices);
+    // the stored path read instead: its DEM is gone from there
+    DrainageDb stored_path = at_b;
+    stored_path.crease_source_dem.clear();
+    EXPECT_THROW(StoredCreases::of(stored_path)->lines_for_box(lo, hi), Error);
     fs::rename(d / "b", d / "c");  // again, read as a render reads it (the source left in the file)
     DvLineVertices in_file;
-    load_or_build_drainage((d / "c" / "v.asc").string(), read_dem((d / "c" / "v.asc").string()), o, say, {}, &in_file);
-    EXPECT_EQ(log[log.size() - 2], "penink: drainage: " + (d / "c" / "v.asc.dv").string() +
-                                       ": drainage database refers to another DEM path; rebuilding");
+    const DrainageDb at_c = load_or_build_drainage((d / "c" / "v.asc").string(), read_dem((d / "c" / "v.asc").string()), o,
+                                                   say, {}, &in_file);
+    EXPECT_EQ(log.back(), "drainage: using cached " + cache_file_report((d / "c" / "v.asc.dv").string()) +
+                              " (its DEM moved from " + at_a + ")");
+    const DrapedLineSet paged = StoredCreases::of(at_c)->lines_for_box(lo, hi);
+    EXPECT_TRUE(paged.lines == before.lines && paged.vertices == before.vertices);
     fs::rename(d / "c", d / "b");
     fs::rename(d / "b" / "v.asc", d / "b" / "w.asc");
     EXPECT_EQ(read_error(d / "b" / "v.asc.dv"),
