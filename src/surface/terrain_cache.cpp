@@ -386,6 +386,15 @@ BlockSums block_sums(const CodedTerrain& coded) {
     return s;
 }
 
+// Where the key's identity lies in a header (after the magic, version, length and the key's other
+// fields), the one field the header's checksum leaves out (terrain_cache.hpp).
+constexpr std::size_t identity_at = 16 + 32;
+
+// hash64 of a header's `n` bytes before its checksum, the identity's 8 left out.
+std::uint64_t header_checksum(const std::uint8_t* h, std::size_t n) {
+    return hash64(h + identity_at + 8, n - identity_at - 8, hash64(h, identity_at));
+}
+
 // The header and the array offsets of `t` (offsets relative to the file's start).
 std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCacheKey& key, const BlockSums& coded,
                                         std::uint64_t at[array_count], std::uint64_t& total) {
@@ -429,7 +438,7 @@ std::vector<std::uint8_t> encode_header(const StoredTerrain& t, const TerrainCac
     }
     std::memcpy(w.b.data() + offsets, at, 8 * array_count);
     std::memcpy(w.b.data() + offsets + 8 * array_count, &total, 8);
-    w.put(hash64(w.b.data(), w.b.size()));
+    w.put(header_checksum(w.b.data(), w.b.size()));
     return w.b;
 }
 
@@ -746,7 +755,7 @@ HeaderBytes checked_header(int fd, std::uint64_t size, std::string* why) {
     }
     std::uint64_t stored = 0;
     std::memcpy(&stored, h.bytes.get() + length - 8, 8);
-    if (hash64(h.bytes.get(), length - 8) != stored) return failed("damaged terrain cache (header checksum)");
+    if (header_checksum(h.bytes.get(), length - 8) != stored) return failed("damaged terrain cache (header checksum)");
     return h;
 }
 
@@ -787,6 +796,18 @@ std::optional<TerrainCacheKey> recorded_terrain_key(const std::string& path) {
     if (header_length(f.fd, size, head, sizeof head, 32 + sizeof head, sizeof head + 8, nullptr) == 0) return std::nullopt;
     Reader r{head, sizeof head, 16};
     return read_key(r);
+}
+
+bool record_terrain_identity(const std::string& path, std::uint64_t identity) {
+    const int fd = ::open(path.c_str(), O_RDWR | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);
+    if (fd < 0) return false;
+    const CacheFile f{fd};
+    struct stat st {};
+    std::uint8_t head[16];
+    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) ||
+        header_length(fd, std::uint64_t(st.st_size), head, sizeof head, identity_at + 8 + 8, identity_at + 16, nullptr) == 0)
+        return false;
+    return ::pwrite(fd, &identity, 8, off_t(identity_at)) == 8;
 }
 
 std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const TerrainCacheKey& key, std::string* why) {

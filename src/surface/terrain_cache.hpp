@@ -8,10 +8,11 @@
 // Frames and units: the Terrain's local metres (x east, y north, z elevation unexaggerated),
 // row 0 north (conventions.md); GridNodes::z_scale draws them at any exaggeration.
 //
-// File layout, little-endian, version 8 (one header, then seven coded arrays):
+// File layout, little-endian, version 9 (one header, then seven coded arrays):
 //   "PENINKTC", u32 version, u32 header length (bytes, up to and including its checksum)
 //   key: u64 DEM file size, i64 mtime (ns), u64 content hash, i32 forced UTM zone, u32 north,
-//        u64 the DEM file's identity when the hash was made (TerrainCacheKey::identity)
+//        u64 the DEM file's identity when the hash was made (TerrainCacheKey::identity; the one
+//        field not under the header's checksum: record_terrain_identity writes it in place)
 //   grid: i32 cols, rows, levels, u32 source_geographic; f64 origin x, y; f64 geotransform[6];
 //         f64 xy_unit, elevation_min, elevation_max; i32 utm_zone, u32 north;
 //         f64 angular_unit, prime_meridian
@@ -25,7 +26,7 @@
 //     valid, error, lattice, coarse, edges and utm (each array
 //     cut into blocks of elements from its start, the last one short; padded to 8); u64 hash64 of
 //     each block's coded bytes, in the same order
-//   u64 checksum: hash64 of every header byte before it
+//   u64 checksum: hash64 of every header byte before it but the identity's (header_checksum)
 //   then each array's blocks, coded (core/block_codec.hpp), back to back: pos (f32 x, y, z per
 //   node, cols * rows: encode_floats, x, y differenced twice, z once; with flag 1 or 2, z alone,
 //   differenced once, the x, y recomputed as the DEM reader computes them: flag 1,
@@ -89,7 +90,7 @@
 
 namespace penink {
 
-inline constexpr std::uint32_t terrain_cache_version = 8;
+inline constexpr std::uint32_t terrain_cache_version = 9;
 
 // identity: the DEM file's identity when the key was made (input/dem_file_identity.hpp), stored
 // with it but not compared (a copy of the DEM has another identity and the same key): a cache
@@ -170,6 +171,14 @@ std::optional<StoredTerrain> read_terrain_cache(const std::string& path, const T
 // cache that then does not open is built again under the DEM's hashed key); nullopt when there is
 // no such file or its start is not a terrain cache's of this version.
 std::optional<TerrainCacheKey> recorded_terrain_key(const std::string& path);
+// Records `identity` in the cache file at `path` (a terrain cache of this version), in place:
+// what a render that hashed the DEM and found the cache sound does where the recorded identity
+// was another's (the DEM moved, copied, or its status changed with its bytes the same: a new
+// link, chmod), so the next render takes the key without reading the DEM again. A field of its
+// own written with one pwrite of its 8 bytes, outside the header's checksum: a reader sees the
+// old identity or the new one, and either only saves or costs a hash. False where it cannot be
+// written (a read-only file or folder, not such a cache); nothing else changes.
+bool record_terrain_identity(const std::string& path, std::uint64_t identity);
 
 // Reads and checks every block of a terrain opened from a cache file (a no-op for one in memory).
 // Throws DamagedBlockError at the first damaged block.

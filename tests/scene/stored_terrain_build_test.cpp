@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "core/log.hpp"
+#include "input/dem_file_identity.hpp"
 #include "input/dem_reader.hpp"
 #include "scene/terrain_view.hpp"
 #include "surface/terrain_cache.hpp"
@@ -80,7 +81,9 @@ TEST(StoredTerrainBuild, WhereNothingCanBeWrittenTheTerrainIsBuiltInMemory) {
 // A warm open takes the key the cache recorded with the DEM's identity instead of hashing the DEM
 // (known_terrain_key); once the DEM is written (its bytes changed, its mtime put back) the identity
 // differs, the DEM is hashed, the cache found stale and built again; a copy of the DEM with its
-// cache beside it is hashed once (another inode) and still finds the cache sound.
+// cache beside it is hashed once (another inode), finds the cache sound and records the copy's
+// identity in it, so the next open reads the key alone; so does a link made to the DEM (its
+// status changed, its bytes not).
 TEST(StoredTerrainBuild, AnUnchangedDemIsNotHashedAgain) {
     test::TempDir dir, cache("stored_terrain_identity_cache");
     const std::string volcano = copy_volcano(dir);
@@ -129,6 +132,16 @@ TEST(StoredTerrainBuild, AnUnchangedDemIsNotHashedAgain) {
     open_stored_terrain(moved, log);
     const std::string said = testing::internal::GetCapturedStderr();
     EXPECT_EQ(said.rfind("penink: terrain: using cached " + moved + ".lod", 0), 0u) << said;
+    const std::optional<TerrainCacheKey> recorded = known_terrain_key(moved);  // hashed once
+    ASSERT_TRUE(recorded);
+    EXPECT_EQ(recorded->identity, dem_file_identity(moved));
+    EXPECT_EQ(recorded->content_hash, rebuilt.key.content_hash);
+    EXPECT_TRUE(open_stored_terrain(moved, Log{}).key == *recorded);
+    // a link to the DEM (its ctime moves): hashed once, then known again
+    std::filesystem::create_hard_link(moved, other.file("link.asc"));
+    EXPECT_FALSE(known_terrain_key(moved));
+    open_stored_terrain(moved, Log{});
+    EXPECT_TRUE(known_terrain_key(moved));
 }
 
 // The recorded key is read from the cache's first bytes alone (not its header's checksum): a

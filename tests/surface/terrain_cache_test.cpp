@@ -178,7 +178,7 @@ TEST(TerrainCache, RefusesStaleDamagedTruncatedAndMissingFiles) {
     EXPECT_FALSE(read_terrain_cache(path, key(), &why));
     EXPECT_EQ(why, "damaged terrain cache (header length)");
     damaged = bytes;
-    damaged[8] = 9;  // version
+    damaged[8] = char(terrain_cache_version - 1);  // version
     write(damaged);
     EXPECT_FALSE(read_terrain_cache(path, key(), &why));
     EXPECT_EQ(why, "terrain cache of another version");
@@ -191,6 +191,29 @@ TEST(TerrainCache, RefusesStaleDamagedTruncatedAndMissingFiles) {
     EXPECT_EQ(why, "no terrain cache");
     write(bytes);
     EXPECT_TRUE(read_terrain_cache(path, key(), &why));
+    // the identity alone is outside the header's checksum: written in place, the cache still reads
+    EXPECT_TRUE(record_terrain_identity(path, 0x0123456789abcdefull));
+    const std::optional<TerrainCacheKey> recorded = recorded_terrain_key(path);
+    ASSERT_TRUE(recorded);
+    EXPECT_EQ(recorded->identity, 0x0123456789abcdefull);
+    EXPECT_TRUE(*recorded == key());
+    EXPECT_TRUE(read_terrain_cache(path, key(), &why)) << why;
+    EXPECT_EQ(std::filesystem::file_size(path), bytes.size());
+    damaged = bytes;
+    damaged[16 + 32 - 1] ^= 1;  // the byte before it (the key's north flag): under the checksum
+    write(damaged);
+    EXPECT_FALSE(read_terrain_cache(path, key(), &why));
+    // not a cache of this version, or none: nothing written
+    damaged = bytes;
+    damaged[8] = char(terrain_cache_version - 1);
+    write(damaged);
+    EXPECT_FALSE(record_terrain_identity(path, 7));
+    {
+        std::ifstream in(path, std::ios::binary);
+        EXPECT_TRUE(std::vector<char>(std::istreambuf_iterator<char>(in), {}) == damaged);
+    }
+    EXPECT_FALSE(record_terrain_identity(dir.file("none.lod"), 7));
+    EXPECT_FALSE(std::filesystem::exists(dir.file("none.lod")));
 }
 
 TEST(TerrainCache, UnwritablePlaceIsAnErrorAndLeavesNothing) {
