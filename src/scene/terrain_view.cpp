@@ -251,8 +251,10 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, c
         if (std::optional<StoredTerrain> cached = read_terrain_cache(p, key, &why)) {
             cached->meta.source = dem_path, cached->key = key;
             // the DEM hashed (moved or copied with its cache, its status changed): its identity
-            // now recorded, so the next render does not read it again
-            if (!known && !unchanged && key.identity != 0) {
+            // now recorded, so the next render does not read it again; only in the cache this
+            // render keeps (never one beside the DEM where it writes none: where penink is
+            // installed, its examples stay untouched)
+            if (p == path && !known && !unchanged && key.identity != 0) {
                 const std::optional<TerrainCacheKey> recorded = recorded_terrain_key(p);
                 if (recorded && recorded->identity != key.identity) record_terrain_identity(p, key.identity);
             }

@@ -142,6 +142,14 @@ TEST(StoredTerrainBuild, AnUnchangedDemIsNotHashedAgain) {
     EXPECT_FALSE(known_terrain_key(moved));
     open_stored_terrain(moved, Log{});
     EXPECT_TRUE(known_terrain_key(moved));
+    // a cache beside the DEM that the render does not keep (its caches go to another folder, as
+    // where penink is installed): read, its identity not written
+    std::filesystem::create_hard_link(moved, other.file("link2.asc"));
+    test::TempDir elsewhere("stored_terrain_identity_elsewhere");
+    const auto written = std::filesystem::last_write_time(moved + ".lod");
+    EXPECT_TRUE(open_stored_terrain(moved, Log{}, elsewhere.path.string()).key == *recorded);
+    EXPECT_FALSE(known_terrain_key(moved));
+    EXPECT_EQ(std::filesystem::last_write_time(moved + ".lod"), written);
 }
 
 // The recorded key is read from the cache's first bytes alone (not its header's checksum): a
