@@ -250,14 +250,11 @@ StoredTerrain open_stored_terrain(const std::string& dem_path, const Log& log, c
         if (p != path && !std::filesystem::exists(p)) continue;
         if (std::optional<StoredTerrain> cached = read_terrain_cache(p, key, &why)) {
             cached->meta.source = dem_path, cached->key = key;
-            // the DEM hashed (moved or copied with its cache, its status changed): its identity
-            // now recorded, so the next render does not read it again; only in the cache this
-            // render keeps (never one beside the DEM where it writes none: where penink is
-            // installed, its examples stay untouched)
-            if (p == path && !known && !unchanged && key.identity != 0) {
-                const std::optional<TerrainCacheKey> recorded = recorded_terrain_key(p);
-                if (recorded && recorded->identity != key.identity) record_terrain_identity(p, key.identity);
-            }
+            // the DEM hashed because no cache recorded its identity (moved or copied with its
+            // cache, its status changed): its identity now recorded, so the next render does not
+            // read it again; only in the cache this render keeps (never one beside the DEM where
+            // it writes none: where penink is installed, its examples stay untouched)
+            if (p == path && !known && !unchanged && key.identity != 0) record_terrain_identity(p, key.identity);
             log.info("terrain: using cached " + p + " (" + cache_file_size(p) + ", " + std::to_string(cached->meta.cols) + "x" +
                      std::to_string(cached->meta.rows) + " nodes, " + std::to_string(int(ms_since(t0))) + " ms)");
             return std::move(*cached);
