@@ -172,16 +172,18 @@ public:
         CellBlocks* blocks;  // where z holds only the blocks filled (DrainageGrid::node_blocks)
         // node i read without its column and row (per-node x, y)
         static constexpr bool by_index = std::is_same_v<XY, PosXY> || std::is_same_v<XY, StoredXY>;
+        // (x, y and z of a node held by blocks are in the same block: one need for both)
         glm::vec3 operator()(std::size_t i) const {
             if constexpr (std::is_same_v<XY, PosXY>) return pos[i];
             else {
-                const glm::vec2 p = xy.at(i);
                 if (blocks) blocks->need(i);
+                const glm::vec2 p = blocks == xy.blocks ? xy.xy[i] : xy.at(i);
                 return {p.x, p.y, z[i]};
             }
         }
         glm::vec3 operator()(int c, int r, std::size_t i) const {
             if constexpr (std::is_same_v<XY, PosXY>) return pos[i];
+            else if constexpr (std::is_same_v<XY, StoredXY>) return (*this)(i);
             else {
                 const glm::vec2 p = xy(c, r);
                 if (blocks) blocks->need(i);

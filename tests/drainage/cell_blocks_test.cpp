@@ -1,11 +1,14 @@
 // CellBlocks (src/drainage/cell_blocks.hpp): each block filled once whatever the threads asking,
 // blocks of different stripes filled at the same time, and a block whose fill throws left
-// unfilled for the next asker.
+// unfilled for the next asker; BlockGrid's block of a cell, found without dividing, is the
+// division's.
 #include "drainage/cell_blocks.hpp"
 
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cstdint>
+#include <random>
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
@@ -15,6 +18,37 @@
 
 namespace penink {
 namespace {
+
+// Grids of 1 to 2^32 - 1 cells (the largest whose cells the inverse serves), a few beyond, sides
+// powers of two or not: every cell of the small ones, and the first, last and random cells
+// (rows' edges among them) of the large ones.
+TEST(BlockGrid, BlockOfACellIsTheDivisionsBlock) {
+    std::mt19937_64 rng(7);
+    auto check = [&](std::size_t cols, std::size_t rows, std::size_t side, std::size_t cell) {
+        const BlockGrid grid(cols, rows, side);
+        ASSERT_EQ(grid.row_of(cell), cell / cols) << cols << " x " << rows << " cell " << cell;
+        ASSERT_EQ(grid.block_of(cell), (cell / cols / side) * grid.across + (cell % cols) / side)
+            << cols << " x " << rows << " side " << side << " cell " << cell;
+    };
+    for (std::size_t cols : {1, 2, 3, 7, 16, 17, 255, 256, 257})
+        for (std::size_t rows : {1, 2, 5, 33})
+            for (std::size_t side : {1, 2, 3, 16, 100, 128})
+                for (std::size_t cell = 0; cell < cols * rows; ++cell) check(cols, rows, side, cell);
+    const std::uint64_t most = 0xffffffffu;  // cells a grid may have for the inverse
+    const std::vector<std::pair<std::size_t, std::size_t>> large{
+        {11687, 9976}, {65535, 65537}, {65536, 65535}, {3, most / 3}, {most / 2, 2}, {most, 1},
+        {46341, 92681}, {100000, 100000}, {1u << 20, 1u << 13}, {(1u << 20) + 1, 4096}};
+    for (const auto& [cols, rows] : large)
+        for (std::size_t side : {1, 64, 128, 256, 300}) {
+            const std::size_t n = cols * rows;
+            for (std::size_t cell : {std::size_t(0), n - 1, cols - 1, cols, n - cols, n / 2}) check(cols, rows, side, cell);
+            for (int k = 0; k < 2000; ++k) {
+                const std::size_t r = rng() % rows, c = rng() % cols;
+                check(cols, rows, side, r * cols + c);
+                if (c == 0 && r > 0) check(cols, rows, side, r * cols - 1);
+            }
+        }
+}
 
 TEST(CellBlocks, EveryBlockIsFilledOnceWhateverTheThreads) {
     const BlockGrid grid(300, 200, 16);  // 19 x 13 blocks, the last ones cut
