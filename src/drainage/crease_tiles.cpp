@@ -97,10 +97,10 @@ void index_rows(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, con
     start(0);
     for_each_stem_cells(
         g, dir, net, parts,
-        [&](std::size_t c, std::uint32_t s, const std::uint32_t* cells, std::uint32_t n) {
+        [&](std::size_t c, std::uint32_t s, const std::uint32_t* cells, const glm::vec2* xy, std::uint32_t n) {
             glm::vec2 lo, hi;
             boxes.plan_box(stem_cell_reach(cells, n, g, options), lo, hi);
-            bounds[s - s0] = stem_bound(lo, hi, stem_cell_travel(cells, n, g), parts.lo, parts.hi);
+            bounds[s - s0] = stem_bound(lo, hi, stem_cell_travel(cells, n, g, xy), parts.lo, parts.hi);
             if (chunk_lo[c].empty())  // this chunk's thread alone
                 chunk_lo[c].assign(tx, glm::vec2(std::numeric_limits<float>::infinity())), chunk_hi[c].assign(tx, -chunk_lo[c][0]);
             const std::size_t k = tile_of(parts.sources[s], cols, side, tx) - first_tile;

@@ -676,7 +676,7 @@ StemParts stem_parts(const DrainageGrid& g, const std::vector<std::uint8_t>& dir
 
 void for_each_stem_cells(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                          const StemParts& parts,
-                         const std::function<void(std::size_t, std::uint32_t, const std::uint32_t*, std::uint32_t)>& f,
+                         const std::function<void(std::size_t, std::uint32_t, const std::uint32_t*, const glm::vec2*, std::uint32_t)>& f,
                          const std::vector<std::size_t>& cuts, const std::function<void(std::size_t)>& done) {
     StemWalk walk(g, dir, net);
     walk.use_mains(true);  // every stem walked: each junction's main found once
@@ -686,10 +686,13 @@ void for_each_stem_cells(const DrainageGrid& g, const std::vector<std::uint8_t>&
         const std::size_t first = at[k], n = at[k + 1] - first, per = chunk_length(n, 1024);  // at most 16 chunks
         parallel_chunks(n, 1024, [&](std::size_t s0, std::size_t s1) {
             std::vector<std::uint32_t> cells;
+            std::vector<glm::vec2> xy;
             for (std::size_t s = first + s0; s < first + s1; ++s) {
-                cells.clear();
-                walk.walk(parts.sources[s], [&](const DvVertex&, std::size_t c) { cells.push_back(std::uint32_t(c)); });
-                f(s0 / per, std::uint32_t(s), cells.data(), std::uint32_t(cells.size()));
+                cells.clear(), xy.clear();
+                walk.walk(parts.sources[s], [&](const DvVertex& v, std::size_t c) {
+                    cells.push_back(std::uint32_t(c)), xy.emplace_back(v.x, v.y);
+                });
+                f(s0 / per, std::uint32_t(s), cells.data(), xy.data(), std::uint32_t(cells.size()));
             }
         });
         if (done) done(k);

@@ -121,8 +121,9 @@ StemParts stem_parts(const DrainageGrid& g, const std::vector<std::uint8_t>& dir
 std::vector<std::uint64_t> main_upstream_bits(const DrainageGrid& g, const std::vector<std::uint8_t>& dir,
                                               const FlowNetwork& net);
 inline std::size_t mains_words(std::size_t cells) { return (cells + 63) / 64; }
-// Calls f(chunk, s, cells, n) for each stem s of network_stems(g, dir, net) (parts.sources) with
-// its n grid cells in stem order, on all cores (f must be safe to call from several threads at
+// Calls f(chunk, s, cells, xy, n) for each stem s of network_stems(g, dir, net) (parts.sources)
+// with its n grid cells in stem order and their drainage vertices' x, y (the walk's: grid_xy
+// rounded to floats), on all cores (f must be safe to call from several threads at
 // once): the stems in consecutive chunks, chunk c (0, 1, ... in stem order, fewer than
 // stem_chunks_most) visited in stem order on one thread. No stem's vertices are kept.
 inline constexpr std::size_t stem_chunks_most = 17;
@@ -131,7 +132,7 @@ inline constexpr std::size_t stem_chunks_most = 17;
 // stem and done(k) called once its stems are all visited.
 void for_each_stem_cells(const DrainageGrid& g, const std::vector<std::uint8_t>& dir, const FlowNetwork& net,
                          const StemParts& parts,
-                         const std::function<void(std::size_t, std::uint32_t, const std::uint32_t*, std::uint32_t)>& f,
+                         const std::function<void(std::size_t, std::uint32_t, const std::uint32_t*, const glm::vec2*, std::uint32_t)>& f,
                          const std::vector<std::size_t>& cuts = {}, const std::function<void(std::size_t)>& done = {});
 // The lattice the creases' vertices are draped on (line_lattice.hpp), by g's smaller cell side.
 LineLattice crease_lattice(const DrainageGrid& g);

@@ -32,11 +32,12 @@ CellBox stem_cell_reach(const std::uint32_t* cells, std::uint32_t n, const Drain
     return b;
 }
 
-StemTravel stem_cell_travel(const std::uint32_t* cells, std::uint32_t n, const DrainageGrid& g) {
+StemTravel stem_cell_travel(const std::uint32_t* cells, std::uint32_t n, const DrainageGrid& g, const glm::vec2* xy) {
     const auto cols = std::uint32_t(g.cols);
+    const glm::vec2* given = g.factor == 1 ? xy : nullptr;
     auto at = [&](std::uint32_t k) {
-        const glm::dvec2 xy = grid_xy(g, int(cells[k] % cols), int(cells[k] / cols));
-        return glm::dvec3(xy, double(g.z[cells[k]]));
+        const glm::dvec2 p = given ? glm::dvec2(given[k]) : grid_xy(g, int(cells[k] % cols), int(cells[k] / cols));
+        return glm::dvec3(p, double(g.z[cells[k]]));
     };
     StemTravel t;
     glm::dvec3 last = n ? at(0) : glm::dvec3(0.0);

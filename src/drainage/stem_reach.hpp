@@ -48,11 +48,14 @@ CellBox stem_cell_reach(const std::uint32_t* cells, std::uint32_t n, const Drain
 
 // The plan length and vertical travel (metres, unexaggerated; the sums of the steps' plan lengths
 // and of their |dz|) of the polyline through the drainage vertices of a stem's `n` cells
-// (grid_xy, g.z), in stem order.
+// (grid_xy, g.z), in stem order. `xy`: the cells' x, y as the stems' walk gives them (grid_xy
+// rounded to floats), read instead of grid_xy at factor 1, where grid_xy's are those floats (at
+// jacksboro x29's 117 M cells grid_xy made again from the rows' samples, a tenth of the index's
+// time).
 struct StemTravel {
     double plan = 0.0, rise = 0.0;
 };
-StemTravel stem_cell_travel(const std::uint32_t* cells, std::uint32_t n, const DrainageGrid& g);
+StemTravel stem_cell_travel(const std::uint32_t* cells, std::uint32_t n, const DrainageGrid& g, const glm::vec2* xy = nullptr);
 // A built crease's plan length over its cells', at most 1.18 measured over every stem of volcano
 // (factors 1 and auto), a DEM with holes and jacksboro (the worst on jacksboro), and its vertical
 // travel over its cells' plus crease_rise_slope times their plan length, at most 1.34 (volcano at
