@@ -8,10 +8,10 @@
 namespace penink {
 
 // Peak resident memory of a build at factor 1 (`penink drainage DEM` under /usr/bin/time on
-// jacksboro refined 10 and 29 times, the terrain cache built beside it: 644 MB at 13.86 M points,
-// 3970 MB at 116.6 M; the peak is the creases' index beside the grid, directions and network): a
-// line, which cache_build_estimate.hpp announces.
-constexpr double drainage_peak_bytes_per_point = 32.385, drainage_peak_base_bytes = 194.6e6;
+// jacksboro refined 10 and 29 times, the terrain cache built beside it: 571 MB at 13.86 M points,
+// 2962 MB at 116.6 M; the peak is the creases' index and the source's coding beside the grid,
+// directions and network): a line, which cache_build_estimate.hpp announces.
+constexpr double drainage_peak_bytes_per_point = 23.27, drainage_peak_base_bytes = 249.0e6;
 // What check_drainage_memory counts beyond that: at factor 1 the line with a quarter more a point
 // (a rougher DEM has more stems than jacksboro, and the index holds 16 B a stem); at factor > 1,
 // 64 B a point (measured about 60 on jacksboro at factor 5, the coarse nodes and the resampling's

@@ -30,8 +30,8 @@ TEST(CacheBuildEstimate, ReproducesTheMeasurementsItWasFittedTo) {
     const CacheBuildEstimate d10 = drainage_cache_estimate(4030, 3440), d29 = drainage_cache_estimate(11687, 9976);
     EXPECT_NEAR(d10.seconds, 3.25, 0.05);
     EXPECT_NEAR(d29.seconds, 42.6, 0.5);
-    EXPECT_NEAR(d10.peak_bytes, 643.6e6, 5e6);
-    EXPECT_NEAR(d29.peak_bytes, 3970.3e6, 20e6);
+    EXPECT_NEAR(d10.peak_bytes, 571.5e6, 5e6);
+    EXPECT_NEAR(d29.peak_bytes, 2961.8e6, 20e6);
     EXPECT_NEAR(d10.disk_bytes, 25.5e6, 0.3e6);  // the .dv written
     EXPECT_NEAR(d29.disk_bytes, 213.1e6, 2e6);
     const CacheBuildEstimate t5 = terrain_cache_estimate(2015, 1720), t10 = terrain_cache_estimate(4030, 3440);
