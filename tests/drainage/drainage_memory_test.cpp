@@ -34,12 +34,13 @@ TEST(DrainageMemory, ResampleFactorBeyondTheBudgetIsRefused) {
 
 // At factor 1 the check counts the builds' measured line (penink drainage on jacksboro refined 10
 // and 29 times: 571 MB and 2962 MB at peak) with a quarter more a point: above both measurements
-// and above the cold render of x29 whole (3.10 GB at peak, its frame included), under 1.25 times
-// the larger build's (64 B a point counted 7.5 GB for a 4.0 GB build); at factor > 1, 64 B a point.
+// and above the cold render of x29 whole (3.25 GB at peak, its frame included: /usr/bin/time),
+// under 1.25 times the larger build's (64 B a point counted 7.5 GB for a 4.0 GB build); at
+// factor > 1, 64 B a point.
 TEST(DrainageMemory, FactorOneCountsTheMeasuredPeakWithAMargin) {
     const double x10 = drainage_build_bytes(4030, 3440, 1), x29 = drainage_build_bytes(11687, 9976, 1);
     EXPECT_GT(x10, 571e6);
-    EXPECT_GT(x29, 3100e6);
+    EXPECT_GT(x29, 3255e6);
     EXPECT_LT(x29, 1.25 * 2962e6);
     EXPECT_DOUBLE_EQ(x29, drainage_peak_base_bytes + 1.25 * drainage_peak_bytes_per_point * 11687.0 * 9976.0);
     EXPECT_DOUBLE_EQ(drainage_build_bytes(61, 87, 5), 64.0 * 301.0 * 431.0);
