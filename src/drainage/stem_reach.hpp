@@ -50,8 +50,8 @@ CellBox stem_cell_reach(const std::uint32_t* cells, std::uint32_t n, const Drain
 // and of their |dz|) of the polyline through the drainage vertices of a stem's `n` cells
 // (grid_xy, g.z), in stem order. `xy`: the cells' x, y as the stems' walk gives them (grid_xy
 // rounded to floats), read instead of grid_xy at factor 1, where grid_xy's are those floats (at
-// jacksboro x29's 117 M cells grid_xy made again from the rows' samples, a tenth of the index's
-// time).
+// jacksboro x29's 117 M cells grid_xy made again from the rows' samples here was 3 % of the
+// index's samples, a sixth of all its grid_xy).
 struct StemTravel {
     double plan = 0.0, rise = 0.0;
 };
